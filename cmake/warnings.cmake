@@ -1,0 +1,7 @@
+# Project-wide warning set; RG_WERROR turns them into errors (CI does).
+function(rg_warnings target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wconversion -Wno-sign-conversion -Wno-missing-field-initializers)
+  if(RG_WERROR)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+endfunction()

@@ -1,0 +1,397 @@
+// rgraph: the command line. Exit codes: 0 success, 1 a failed check or a device failure,
+// 2 bad usage or bad input.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "core/compiler.h"
+#include "image/image.h"
+#include "runtime.h"
+
+namespace fs = std::filesystem;
+using namespace rg;
+
+namespace {
+
+constexpr int kOk = 0, kFailed = 1, kUsage = 2;
+
+int exitCodeOf(const Error& e) {
+    switch (e.code) {
+    case ErrorCode::InvalidInput:
+    case ErrorCode::NotFound:
+    case ErrorCode::Unsupported: return kUsage;
+    default: return kFailed;
+    }
+}
+
+int report(const Error& e) {
+    std::fprintf(stderr, "rgraph: error: %s\n", e.describe().c_str());
+    return exitCodeOf(e);
+}
+
+int usageError(const std::string& msg, const char* command) {
+    std::fprintf(stderr, "rgraph %s: %s (see 'rgraph %s --help')\n", command, msg.c_str(), command);
+    return kUsage;
+}
+
+// A tiny argument reader: --flag VALUE, --flag=VALUE, repeated flags, --help.
+struct Args {
+    std::map<std::string, std::vector<std::string>> values;
+    bool help = false;
+    std::string error;
+
+    static Args parse(int argc, char** argv, int first, const std::vector<std::string>& known) {
+        Args a;
+        for (int i = first; i < argc; ++i) {
+            std::string arg = argv[i];
+            if (arg == "--help" || arg == "-h") {
+                a.help = true;
+                continue;
+            }
+            if (arg.rfind("--", 0) != 0) {
+                a.values[""].push_back(arg);
+                continue;
+            }
+            std::string name = arg.substr(2), value;
+            if (auto eq = name.find('='); eq != std::string::npos) {
+                value = name.substr(eq + 1);
+                name = name.substr(0, eq);
+            } else if (i + 1 < argc) {
+                value = argv[++i];
+            } else {
+                a.error = "option --" + name + " needs a value";
+                return a;
+            }
+            if (std::find(known.begin(), known.end(), name) == known.end()) {
+                a.error = "unknown option --" + name;
+                return a;
+            }
+            a.values[name].push_back(value);
+        }
+        return a;
+    }
+    bool has(const std::string& k) const { return values.count(k) > 0; }
+    std::string get(const std::string& k, const std::string& def = "") const {
+        auto it = values.find(k);
+        return it == values.end() ? def : it->second.back();
+    }
+    std::vector<std::string> all(const std::string& k) const {
+        auto it = values.find(k);
+        return it == values.end() ? std::vector<std::string>{} : it->second;
+    }
+};
+
+bool parseSize(const std::string& s, uint32_t& w, uint32_t& h) {
+    unsigned a = 0, b = 0;
+    char x = 0;
+    if (std::sscanf(s.c_str(), "%u%c%u", &a, &x, &b) != 3 || (x != 'x' && x != 'X') || a == 0 || b == 0 ||
+        a > 16384 || b > 16384)
+        return false;
+    w = a;
+    h = b;
+    return true;
+}
+
+bool parseCount(const std::string& s, uint32_t& n) {
+    char* end = nullptr;
+    unsigned long v = std::strtoul(s.c_str(), &end, 10);
+    if (s.empty() || *end || v == 0 || v > 1000000) return false;
+    n = static_cast<uint32_t>(v);
+    return true;
+}
+
+// The graph a command works on: --pipeline builtin:NAME (the default is builtin:test).
+Result<GraphDesc> loadGraph(const Args& args) {
+    std::string pipeline = args.get("pipeline", "builtin:test");
+    if (pipeline.rfind("builtin:", 0) == 0) return builtinGraph(pipeline.substr(8));
+    return fail(ErrorCode::Unsupported, "--pipeline '" + pipeline +
+                                            "': only built-in graphs are available (builtin:test)");
+}
+
+const char* kMainHelp =
+    "usage: rgraph COMMAND [OPTIONS]\n"
+    "\n"
+    "A data-driven render graph on Vulkan (headless; lavapipe when there is no GPU).\n"
+    "\n"
+    "commands:\n"
+    "  devices   list Vulkan devices and mark the one rgraph would choose\n"
+    "  render    render a pipeline to EXR (linear) and PNG (display)\n"
+    "  graph     print the compiled plan of a pipeline as DOT or JSON\n"
+    "  bench     time every pass over several frames\n"
+    "\n"
+    "'rgraph COMMAND --help' describes each command. Exit codes: 0 success, 1 failed check or\n"
+    "device failure, 2 bad usage or bad input.\n"
+    "Environment: RG_VALIDATION=1 turns on the Vulkan validation layer; RG_CACHE_DIR moves the\n"
+    "shader caches; RG_ROOT points at the project folder (shaders/, scripts/).\n";
+
+int cmdDevices(int argc, char** argv) {
+    Args args = Args::parse(argc, argv, 2, {});
+    if (args.help) {
+        std::printf("usage: rgraph devices\n\nLists the Vulkan devices; '*' marks the one rgraph chooses\n"
+                    "(discrete GPU, then integrated, then CPU). Use --device N with other commands to override.\n");
+        return kOk;
+    }
+    if (!args.error.empty()) return usageError(args.error, "devices");
+    prepareEnvironment();
+    auto devices = gpu::Context::listDevices();
+    if (!devices) return report(devices.error());
+    int chosen = -1, bestRank = 99;
+    auto rank = [](const std::string& t) {
+        return t == "discrete" ? 0 : t == "integrated" ? 1 : t == "virtual" ? 2 : t == "cpu" ? 3 : 4;
+    };
+    for (const auto& d : *devices)
+        if (d.usable && rank(d.type) < bestRank) bestRank = rank(d.type), chosen = static_cast<int>(d.index);
+    for (const auto& d : *devices) {
+        std::printf("%c %u  %-40s %-10s Vulkan %u.%u.%u  %s%s%s\n", static_cast<int>(d.index) == chosen ? '*' : ' ',
+                    d.index, d.name.c_str(), d.type.c_str(), VK_API_VERSION_MAJOR(d.apiVersion),
+                    VK_API_VERSION_MINOR(d.apiVersion), VK_API_VERSION_PATCH(d.apiVersion), d.driver.c_str(),
+                    d.usable ? "" : "  (unusable: ", d.usable ? "" : (d.whyNot + ")").c_str());
+    }
+    if (devices->empty()) {
+        std::fprintf(stderr, "rgraph: no Vulkan devices (install mesa-vulkan-drivers for lavapipe)\n");
+        return kFailed;
+    }
+    return kOk;
+}
+
+int cmdGraph(int argc, char** argv) {
+    Args args = Args::parse(argc, argv, 2, {"pipeline", "format", "size", "capture"});
+    if (args.help) {
+        std::printf("usage: rgraph graph [--pipeline builtin:NAME] [--format dot|json] [--size WxH] [--capture RESOURCE]...\n\n"
+                    "Compiles the pipeline (no GPU needed; memory sizes are estimated) and prints the plan:\n"
+                    "passes in order, culled passes and why, resources with lifetimes and memory offsets,\n"
+                    "barriers. Default format: dot.\n");
+        return kOk;
+    }
+    if (!args.error.empty()) return usageError(args.error, "graph");
+    std::string format = args.get("format", "dot");
+    if (format != "dot" && format != "json") return usageError("--format must be 'dot' or 'json'", "graph");
+    CompileOptions opts;
+    if (args.has("size") && !parseSize(args.get("size"), opts.outputWidth, opts.outputHeight))
+        return usageError("--size must be WIDTHxHEIGHT, e.g. 1280x720", "graph");
+    auto graph = loadGraph(args);
+    if (!graph) return report(graph.error());
+    for (const auto& c : args.all("capture")) {
+        auto it = std::find_if(graph->resources.begin(), graph->resources.end(), [&](auto& r) { return r.name == c; });
+        if (it == graph->resources.end()) return report(Error(ErrorCode::NotFound, "--capture: no resource named '" + c + "'"));
+        it->exported = true;
+    }
+    auto plan = compile(*graph, opts);
+    if (!plan) return report(plan.error());
+    std::printf("%s\n", format == "dot" ? plan->toDot().c_str() : plan->toJson().c_str());
+    return kOk;
+}
+
+struct RenderSetup {
+    std::unique_ptr<Runtime> runtime;
+    uint32_t frames = 1;
+};
+
+// Shared by render and bench: options, runtime, graph build.
+Result<RenderSetup> setupRun(const Args& args, const char* command, uint32_t defaultFrames,
+                             const std::vector<std::string>& captures) {
+    RenderSetup s;
+    s.frames = defaultFrames;
+    CompileOptions opts;
+    if (args.has("size") && !parseSize(args.get("size"), opts.outputWidth, opts.outputHeight))
+        return fail(ErrorCode::InvalidInput, std::string(command) + ": --size must be WIDTHxHEIGHT, e.g. 1280x720");
+    if (args.has("frames") && !parseCount(args.get("frames"), s.frames))
+        return fail(ErrorCode::InvalidInput, std::string(command) + ": --frames must be a positive whole number");
+    RuntimeOptions ro;
+    if (args.has("device")) {
+        uint32_t d = 0;
+        const std::string v = args.get("device");
+        if (v.empty() || v.find_first_not_of("0123456789") != std::string::npos)
+            return fail(ErrorCode::InvalidInput, std::string(command) + ": --device must be a device index (see 'rgraph devices')");
+        d = static_cast<uint32_t>(std::stoul(v));
+        ro.device = d;
+    }
+    if (args.has("scene"))
+        return fail(ErrorCode::Unsupported, std::string(command) + ": --scene: the built-in graphs draw no scene");
+    auto graph = loadGraph(args);
+    if (!graph) return std::unexpected(graph.error());
+    for (const auto& c : captures) {
+        auto it = std::find_if(graph->resources.begin(), graph->resources.end(), [&](auto& r) { return r.name == c; });
+        if (it == graph->resources.end())
+            return fail(ErrorCode::NotFound, "--capture: no resource named '" + c + "'");
+        it->exported = true;
+    }
+    auto rt = Runtime::create(ro);
+    if (!rt) return std::unexpected(rt.error());
+    s.runtime = std::move(*rt);
+    if (auto r = s.runtime->executor().build(*graph, opts); !r) return std::unexpected(r.error());
+    return s;
+}
+
+std::string exrMetaDevice(Runtime& rt) { return rt.gpu().deviceInfo().name + " (" + rt.gpu().deviceInfo().driver + ")"; }
+
+int cmdRender(int argc, char** argv) {
+    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "size", "frames", "out", "png", "capture", "device"});
+    if (args.help) {
+        std::printf(
+            "usage: rgraph render [--pipeline builtin:NAME] [--size WxH] [--frames N]\n"
+            "                     [--out FILE.exr] [--png FILE.png] [--capture RESOURCE]... [--device N]\n\n"
+            "Renders N frames (default 1) at WxH (default 1280x720) and writes the pipeline's `output`\n"
+            "to FILE.exr (linear, layer 'hdr'; default out/render.exr) and to FILE.png (sRGB, clamped;\n"
+            "default out/render.png). Each --capture adds that resource to the EXR as a layer of its name.\n");
+        return kOk;
+    }
+    if (!args.error.empty()) return usageError(args.error, "render");
+    const auto captures = args.all("capture");
+    auto setup = setupRun(args, "render", 1, captures);
+    if (!setup) return report(setup.error());
+    Runtime& rt = *setup->runtime;
+    gpu::Executor& ex = rt.executor();
+    for (uint32_t f = 0; f < setup->frames; ++f) {
+        if (auto r = ex.frame(); !r) return report(r.error());
+        if (setup->frames > 1) std::fprintf(stderr, "\rrgraph: frame %u/%u", f + 1, setup->frames);
+    }
+    if (setup->frames > 1) std::fprintf(stderr, "\n");
+    auto out = ex.readback("output");
+    if (!out) return report(out.error());
+
+    std::string exrPath = args.get("out", "out/render.exr");
+    std::string pngPath = args.get("png", "out/render.png");
+    std::vector<ImageLayer> layers;
+    auto channelNames = [](uint32_t n) {
+        static const char* rgba[] = {"R", "G", "B", "A"};
+        std::vector<std::string> names;
+        for (uint32_t i = 0; i < n; ++i) names.push_back(rgba[i]);
+        return names;
+    };
+    layers.push_back({"hdr", channelNames(out->channels), *out});
+    for (const auto& c : captures) {
+        if (c == "output") continue;
+        auto img = ex.readback(c);
+        if (!img) return report(img.error());
+        layers.push_back({c, channelNames(img->channels), *img});
+    }
+    ExrWriteOptions eo;
+    eo.metadata["rgraph.pipeline"] = args.get("pipeline", "builtin:test");
+    eo.metadata["rgraph.device"] = exrMetaDevice(rt);
+    eo.metadata["rgraph.frames"] = std::to_string(setup->frames);
+    for (const auto& p : {exrPath, pngPath}) {
+        std::error_code ec;
+        if (auto parent = fs::path(p).parent_path(); !parent.empty()) fs::create_directories(parent, ec);
+    }
+    if (auto r = writeExr(exrPath, layers, eo); !r) return report(r.error());
+    Image display = *out;
+    display.channels = std::min(3u, out->channels);
+    display.pixels.clear();
+    for (size_t i = 0; i < size_t(out->width) * out->height; ++i)
+        for (uint32_t c = 0; c < display.channels; ++c)
+            display.pixels.push_back(srgbEncode(std::clamp(out->pixels[i * out->channels + c], 0.0f, 1.0f)));
+    if (auto r = writePng(pngPath, display, {{"rgraph.pipeline", eo.metadata["rgraph.pipeline"]}}); !r)
+        return report(r.error());
+    std::printf("rgraph: wrote %s and %s (%ux%u, %u frame%s, %s)\n", exrPath.c_str(), pngPath.c_str(), out->width,
+                out->height, setup->frames, setup->frames == 1 ? "" : "s", rt.gpu().deviceInfo().name.c_str());
+    if (rt.gpu().validationMessageCount() > 0) {
+        std::fprintf(stderr, "rgraph: %u validation message(s)\n", rt.gpu().validationMessageCount());
+        return kFailed;
+    }
+    return kOk;
+}
+
+struct Stat {
+    double median = 0, min = 0, max = 0;
+};
+Stat stats(std::vector<double> v) {
+    Stat s;
+    if (v.empty()) return s;
+    std::sort(v.begin(), v.end());
+    s.min = v.front();
+    s.max = v.back();
+    s.median = v.size() % 2 ? v[v.size() / 2] : 0.5 * (v[v.size() / 2 - 1] + v[v.size() / 2]);
+    return s;
+}
+
+int cmdBench(int argc, char** argv) {
+    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "size", "frames", "json", "device"});
+    if (args.help) {
+        std::printf(
+            "usage: rgraph bench [--pipeline builtin:NAME] [--size WxH] [--frames N] [--json FILE] [--device N]\n\n"
+            "Renders N frames (default 20) at WxH (default 1280x720), one frame at a time, and prints per pass\n"
+            "the median/min/max GPU time (timestamp queries), the CPU recording time, the frame total, the\n"
+            "graph compile time and the transient memory with and without aliasing. --json writes the same.\n");
+        return kOk;
+    }
+    if (!args.error.empty()) return usageError(args.error, "bench");
+    auto setup = setupRun(args, "bench", 20, {});
+    if (!setup) return report(setup.error());
+    Runtime& rt = *setup->runtime;
+    gpu::Executor& ex = rt.executor();
+    std::map<std::string, std::vector<double>> perPass;
+    std::vector<double> totals, records;
+    // One warm-up frame: the first draw of each pipeline JIT-compiles on lavapipe.
+    if (auto r = ex.frame(); !r) return report(r.error());
+    if (auto r = ex.finish(); !r) return report(r.error());
+    for (uint32_t f = 0; f < setup->frames; ++f) {
+        if (auto r = ex.frame(); !r) return report(r.error());
+        if (auto r = ex.finish(); !r) return report(r.error());
+        double total = 0;
+        for (const auto& t : ex.lastTimings()) {
+            perPass[t.name].push_back(t.gpuMs);
+            total += t.gpuMs;
+        }
+        totals.push_back(total);
+        records.push_back(ex.lastRecordMs());
+    }
+    const Plan& plan = ex.plan();
+    uint32_t w = plan.outputWidth, h = plan.outputHeight;
+    std::printf("rgraph bench: %s, %ux%u, %u frames, %s\n", args.get("pipeline", "builtin:test").c_str(), w, h,
+                setup->frames, rt.gpu().deviceInfo().name.c_str());
+    std::printf("%-24s %10s %10s %10s\n", "pass (GPU ms)", "median", "min", "max");
+    nlohmann::json j;
+    j["pipeline"] = args.get("pipeline", "builtin:test");
+    j["size"] = {w, h};
+    j["frames"] = setup->frames;
+    j["device"] = rt.gpu().deviceInfo().name;
+    for (const auto& p : plan.passes) {
+        Stat s = stats(perPass[p.name]);
+        std::printf("%-24s %10.3f %10.3f %10.3f\n", p.name.c_str(), s.median, s.min, s.max);
+        j["passes"].push_back({{"name", p.name}, {"kind", p.kind}, {"medianMs", s.median}, {"minMs", s.min}, {"maxMs", s.max}});
+    }
+    Stat t = stats(totals), rec = stats(records);
+    std::printf("%-24s %10.3f %10.3f %10.3f\n", "frame total", t.median, t.min, t.max);
+    std::printf("%-24s %10.3f %10.3f %10.3f\n", "CPU recording", rec.median, rec.min, rec.max);
+    const auto& bs = ex.buildStats();
+    std::printf("graph compile %.3f ms, resources %.3f ms, pass setup %.3f ms\n", bs.compileMs, bs.resourcesMs, bs.prepareMs);
+    std::printf("transient memory: %.2f MiB aliased, %.2f MiB without aliasing\n",
+                static_cast<double>(plan.transientBytesAliased) / (1 << 20),
+                static_cast<double>(plan.transientBytesUnaliased) / (1 << 20));
+    j["frameTotalMs"] = {{"median", t.median}, {"min", t.min}, {"max", t.max}};
+    j["cpuRecordMs"] = {{"median", rec.median}, {"min", rec.min}, {"max", rec.max}};
+    j["compileMs"] = bs.compileMs;
+    j["transientBytesAliased"] = plan.transientBytesAliased;
+    j["transientBytesUnaliased"] = plan.transientBytesUnaliased;
+    if (args.has("json")) {
+        std::ofstream f(args.get("json"));
+        if (!f) return report(Error(ErrorCode::Io, "cannot write '" + args.get("json") + "'"));
+        f << j.dump(2) << "\n";
+    }
+    return rt.gpu().validationMessageCount() ? kFailed : kOk;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") || !std::strcmp(argv[1], "help")) {
+        std::printf("%s", kMainHelp);
+        return argc < 2 ? kUsage : kOk;
+    }
+    std::string cmd = argv[1];
+    if (cmd == "devices") return cmdDevices(argc, argv);
+    if (cmd == "render") return cmdRender(argc, argv);
+    if (cmd == "graph") return cmdGraph(argc, argv);
+    if (cmd == "bench") return cmdBench(argc, argv);
+    std::fprintf(stderr, "rgraph: unknown command '%s'\n\n%s", cmd.c_str(), kMainHelp);
+    return kUsage;
+}

@@ -1,0 +1,102 @@
+// Declarations of a render graph: plain data with defaults, the shape a Lua table has.
+// Nothing here touches Vulkan; compile() (compiler.h) turns a GraphDesc into a Plan.
+//
+// Ordering model. Passes are declared in order. Each write of a resource makes a new version of
+// it; a read sees the latest version written by a pass declared before the reader. So:
+//  - a read with no earlier writer (and no import) is "read before write";
+//  - a later writer of a resource must either read what is there (attachment load / blend,
+//    storage read-write, depth test against it) or name the earlier writer in `after`; a full
+//    overwrite with neither is "two unordered writers";
+//  - `after` adds explicit edges; an `after` that points forward can make a cycle, reported with
+//    the passes on it.
+// Schedule = stable topological order of those edges (declaration order breaks ties).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "format.h"
+#include "value.h"
+
+namespace rg {
+
+enum class ResourceKind : uint8_t { Texture, Buffer };
+enum class SizeMode : uint8_t { Absolute, OutputRelative };
+
+struct TextureDesc {
+    Format format = Format::RGBA8Unorm;
+    SizeMode sizeMode = SizeMode::OutputRelative;
+    float scaleX = 1.0f;  // OutputRelative: fraction of the output size
+    float scaleY = 1.0f;
+    uint32_t width = 0;   // Absolute: texels
+    uint32_t height = 0;
+    uint32_t layers = 1;  // array layers (6 for a cube)
+    uint32_t mips = 1;    // 0 = full chain
+    bool cube = false;
+};
+
+struct BufferDesc {
+    uint64_t size = 0;  // bytes
+};
+
+struct ResourceDesc {
+    std::string name;
+    ResourceKind kind = ResourceKind::Texture;
+    TextureDesc texture;
+    BufferDesc buffer;
+    bool imported = false;  // contents come from outside the graph; never aliased, never owned
+    bool exported = false;  // kept alive to the end of the frame (output, capture, readback)
+    std::string origin;     // where it was declared ("deferred.lua:12"), for error messages
+};
+
+// How a pass touches a resource. Reads and writes are derived from the usage and `load`.
+enum class Usage : uint8_t {
+    Sampled,           // read: texture sampled in a shader
+    UniformRead,       // read: uniform buffer
+    StorageRead,       // read: storage image / buffer
+    StorageWrite,      // write: storage image / buffer (full overwrite)
+    StorageReadWrite,  // read + write: storage image / buffer
+    ColorAttachment,   // write (+ read when load = true: load op LOAD or blending)
+    DepthStencilAttachment,  // write (+ read when load = true: test against existing values)
+    DepthStencilRead,  // read: read-only depth/stencil attachment (depth or stencil test)
+    CopySrc,           // read: transfer source
+    CopyDst,           // write (+ read when load = true: a partial write such as mip generation)
+};
+
+const char* usageName(Usage u);
+bool usageReads(Usage u, bool load);
+bool usageWrites(Usage u);
+
+// Where a pass runs; decides the pipeline stages of its accesses.
+enum class PassType : uint8_t { Raster, Compute, Transfer };
+const char* passTypeName(PassType t);
+
+struct Access {
+    std::string resource;  // resource name
+    Usage usage = Usage::Sampled;
+    bool load = false;     // attachments and copy destinations: keep previous contents (load op LOAD / blend)
+    std::string field;     // field path in the script ("passes.lighting.reads[3]"), for errors
+};
+
+struct PassDesc {
+    std::string name;
+    std::string kind;  // pass kind implemented in passes/ ("fullscreen", "compute", "clear", ...)
+    PassType type = PassType::Raster;
+    std::vector<Access> accesses;
+    std::vector<std::string> after;  // explicit ordering: run after these passes
+    bool sideEffect = false;         // never culled (e.g. readback, statistics)
+    bool enabled = true;             // disabled passes are dropped before culling, with a reason
+    Value params;                    // kind-specific settings (shader, defines, clear value, ...)
+    std::string origin;              // "deferred.lua:40", for error messages
+};
+
+struct GraphDesc {
+    std::vector<ResourceDesc> resources;
+    std::vector<PassDesc> passes;
+
+    const ResourceDesc* findResource(const std::string& name) const;
+    const PassDesc* findPass(const std::string& name) const;
+};
+
+}  // namespace rg

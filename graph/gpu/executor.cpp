@@ -1,0 +1,488 @@
+#include "executor.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstring>
+
+#include "core/check.h"
+
+namespace rg::gpu {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double msSince(Clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
+
+size_t editDistance(const std::string& a, const std::string& b) {
+    std::vector<size_t> row(b.size() + 1);
+    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (size_t i = 1; i <= a.size(); ++i) {
+        size_t prev = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= b.size(); ++j) {
+            size_t cur = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, prev + (a[i - 1] != b[j - 1] ? 1 : 0)});
+            prev = cur;
+        }
+    }
+    return row[b.size()];
+}
+
+ImageDesc imageDescOf(const PlanResource& r) {
+    ImageDesc d;
+    d.name = r.name;
+    d.format = r.format;
+    d.width = r.width;
+    d.height = r.height;
+    d.layers = r.layers;
+    d.mips = r.mips;
+    d.cube = r.cube;
+    d.usage = imageUsageOf(r.usageMask, r.format);
+    if (r.imported) d.usage |= VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    return d;
+}
+
+}  // namespace
+
+struct Executor::Built {
+    Plan plan;  // owned here so pass instances and the table may point into it
+    GraphDesc graph;
+    std::vector<OwnedMemory> heaps;
+    std::vector<std::unique_ptr<Image>> images;    // by plan resource index
+    std::vector<std::unique_ptr<Buffer>> buffers;  // by plan resource index
+    ResourceTable table;
+    std::vector<std::unique_ptr<PassInstance>> instances;  // by plan pass index
+};
+
+Executor::Executor(Context& ctx, ShaderCompiler& shaders, const PassRegistry& kinds)
+    : m_ctx(ctx), m_shaders(shaders), m_kinds(kinds) {}
+
+Executor::~Executor() {
+    vkDeviceWaitIdle(m_ctx.device());
+    m_built.reset();
+    m_slots.clear();
+    (void)m_ctx.waitIdle();
+}
+
+Result<void> Executor::resolveKinds(GraphDesc& graph) const {
+    for (auto& p : graph.passes) {
+        const PassKindInfo* kind = m_kinds.find(p.kind);
+        if (!kind) {
+            std::string msg = (p.origin.empty() ? "" : p.origin + ": ") + "pass '" + p.name +
+                              "': unknown kind '" + p.kind + "'";
+            std::string best;
+            size_t bestD = 3;
+            for (const auto& n : m_kinds.names())
+                if (size_t d = editDistance(n, p.kind); d < bestD) bestD = d, best = n;
+            if (!best.empty()) msg += " (did you mean '" + best + "'?)";
+            std::string all;
+            for (const auto& n : m_kinds.names()) all += (all.empty() ? "" : ", ") + n;
+            return fail(ErrorCode::InvalidInput, msg + "; known kinds: " + all);
+        }
+        p.type = kind->type;
+    }
+    return {};
+}
+
+Result<void> Executor::createSlots() {
+    VkDevice dev = m_ctx.device();
+    for (uint32_t i = 0; i < m_ctx.framesInFlight(); ++i) {
+        FrameSlot s;
+        VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+        pi.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
+        pi.queueFamilyIndex = m_ctx.queueFamily();
+        VkCommandPool pool = VK_NULL_HANDLE;
+        RG_VK_TRY(vkCreateCommandPool(dev, &pi, nullptr, &pool));
+        s.pool = OwnedCommandPool(dev, pool);
+        VkCommandBufferAllocateInfo ai{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        ai.commandPool = pool;
+        ai.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        ai.commandBufferCount = 1;
+        RG_VK_TRY(vkAllocateCommandBuffers(dev, &ai, &s.cmd));
+        VkFenceCreateInfo fi{VK_STRUCTURE_TYPE_FENCE_CREATE_INFO};
+        fi.flags = VK_FENCE_CREATE_SIGNALED_BIT;
+        VkFence fence = VK_NULL_HANDLE;
+        RG_VK_TRY(vkCreateFence(dev, &fi, nullptr, &fence));
+        s.fence = OwnedFence(dev, fence);
+        m_slots.push_back(std::move(s));
+    }
+    return {};
+}
+
+Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& optionsIn) {
+    if (m_slots.empty())
+        if (auto r = createSlots(); !r) return r;
+    GraphDesc graph = graphIn;
+    if (auto r = resolveKinds(graph); !r) return r;
+
+    auto t0 = Clock::now();
+    CompileOptions options = optionsIn;
+    Context& ctx = m_ctx;
+    options.memoryRequirements = [&ctx](const PlanResource& r) {
+        VkMemoryRequirements req;
+        if (r.kind == ResourceKind::Texture) req = Image::requirements(ctx, imageDescOf(r));
+        else req = Buffer::requirements(ctx, r.bufferSize, bufferUsageOf(r.usageMask));
+        return MemoryRequirements{req.size, req.alignment, req.memoryTypeBits};
+    };
+    auto plan = compile(graph, options);
+    if (!plan) return std::unexpected(plan.error());
+    m_buildStats.compileMs = msSince(t0);
+
+    // Physical resources.
+    auto t1 = Clock::now();
+    auto built = std::make_unique<Built>();
+    built->plan = std::move(*plan);
+    built->graph = std::move(graph);
+    const Plan* planPtr = &built->plan;
+    for (const auto& heap : planPtr->heaps) {
+        uint32_t type = 0;
+        auto mem = m_ctx.allocator().allocateHeap(std::max<uint64_t>(heap.size, 1),
+                                                  heap.memoryTypeBits, type);
+        if (!mem) return std::unexpected(mem.error());
+        built->heaps.push_back(std::move(*mem));
+    }
+    built->images.resize(planPtr->resources.size());
+    built->buffers.resize(planPtr->resources.size());
+    for (size_t i = 0; i < planPtr->resources.size(); ++i) {
+        const PlanResource& r = planPtr->resources[i];
+        PhysicalResource phys;
+        phys.plan = &r;
+        if (r.kind == ResourceKind::Texture) {
+            ImageDesc d = imageDescOf(r);
+            auto img = r.heap >= 0 ? Image::createPlaced(m_ctx, d, built->heaps[static_cast<size_t>(r.heap)].get(), r.offset)
+                                   : Image::create(m_ctx, d);
+            if (!img) return std::unexpected(img.error());
+            built->images[i] = std::make_unique<Image>(std::move(*img));
+            phys.image = built->images[i].get();
+        } else {
+            VkBufferUsageFlags usage = bufferUsageOf(r.usageMask);
+            auto buf = r.heap >= 0 ? Buffer::createPlaced(m_ctx, r.name, r.bufferSize, usage,
+                                                          built->heaps[static_cast<size_t>(r.heap)].get(), r.offset)
+                                   : Buffer::create(m_ctx, r.name, r.bufferSize, usage, false);
+            if (!buf) return std::unexpected(buf.error());
+            built->buffers[i] = std::make_unique<Buffer>(std::move(*buf));
+            phys.buffer = built->buffers[i].get();
+        }
+        built->table.set(r.name, phys);
+    }
+    m_buildStats.resourcesMs = msSince(t1);
+
+    // Pass instances.
+    auto t2 = Clock::now();
+    for (const auto& pass : planPtr->passes) {
+        const PassDesc& desc = built->graph.passes[pass.desc];
+        auto instance = m_kinds.find(desc.kind)->create();
+        PassSetup setup{m_ctx, m_shaders, *planPtr, pass, desc, built->table};
+        if (auto r = instance->prepare(setup); !r) return std::unexpected(r.error());
+        built->instances.push_back(std::move(instance));
+    }
+    m_buildStats.prepareMs = msSince(t2);
+
+    // Swap in; the old build may still be used by frames in flight.
+    if (m_built) {
+        std::shared_ptr<Built> old(std::move(m_built));
+        m_ctx.deferDestroy([old]() mutable { old.reset(); });
+    }
+    m_built = std::move(built);
+    for (const auto& r : m_built->plan.resources) {
+        if (!r.imported) continue;
+        auto it = m_importData.find(r.name);
+        if (it == m_importData.end())
+            return fail(ErrorCode::InvalidInput,
+                        "imported resource '" + r.name + "' has no contents (nothing was uploaded for it)");
+        if (auto u = setImport(r.name, it->second); !u) return u;
+    }
+    return {};
+}
+
+Result<void> Executor::setImport(const std::string& name, const rg::Image& data) {
+    m_importData[name] = data;
+    if (!m_built) return {};
+    const PhysicalResource* phys = m_built->table.find(name);
+    if (!phys) return {};  // not used by the current plan
+    if (!phys->image)
+        return fail(ErrorCode::Unsupported, "imported resource '" + name + "': only textures can be uploaded");
+    const PlanResource& r = *phys->plan;
+    if (data.width != r.width || data.height != r.height)
+        return fail(ErrorCode::InvalidInput,
+                    "imported resource '" + name + "' is " + std::to_string(r.width) + "x" +
+                        std::to_string(r.height) + " but the data is " + std::to_string(data.width) +
+                        "x" + std::to_string(data.height));
+    const uint32_t comps = formatInfo(r.format).components;
+    const size_t texels = size_t(r.width) * r.height;
+    std::vector<float> src(texels * comps, 0.0f);
+    for (size_t i = 0; i < texels; ++i)
+        for (uint32_t c = 0; c < comps; ++c)
+            src[i * comps + c] = c < data.channels ? data.pixels[i * data.channels + c] : (c == 3 ? 1.0f : 0.0f);
+    const size_t bytes = texels * formatInfo(r.format).bytesPerTexel;
+    auto staging = Buffer::create(m_ctx, name + ".staging", bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    if (!staging) return std::unexpected(staging.error());
+    if (!encodeTexels(r.format, src.data(), texels, staging->mapped()))
+        return fail(ErrorCode::Unsupported, "imported resource '" + name + "': cannot upload format '" +
+                                                std::string(formatName(r.format)) + "'");
+    VkImage image = phys->image->image();
+    VkImageAspectFlags aspect = aspectOf(r.format);
+    uint32_t mips = r.mips;
+    return m_ctx.submitNow([&](VkCommandBuffer cmd) {
+        imageBarrier(cmd, image, aspect, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
+                     VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                     VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0, mips);
+        VkBufferImageCopy region{};
+        region.imageSubresource = {aspect, 0, 0, 1};
+        region.imageExtent = {r.width, r.height, 1};
+        vkCmdCopyBufferToImage(cmd, staging->buffer(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+        imageBarrier(cmd, image, aspect, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
+                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, 0, mips);
+    });
+}
+
+void Executor::recordBarriers(VkCommandBuffer cmd, const PlanPass& pass) {
+    if (pass.barriers.empty()) return;
+    std::vector<VkImageMemoryBarrier2> images;
+    std::vector<VkBufferMemoryBarrier2> buffers;
+    for (const Barrier& b : pass.barriers) {
+        const PlanResource& r = m_built->plan.resources[b.resource];
+        if (r.kind == ResourceKind::Texture) {
+            VkImageMemoryBarrier2 ib{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+            ib.srcStageMask = toVkStages(b.srcStages);
+            ib.srcAccessMask = toVkAccess(b.srcAccess);
+            ib.dstStageMask = toVkStages(b.dstStages);
+            ib.dstAccessMask = toVkAccess(b.dstAccess);
+            ib.oldLayout = toVkLayout(b.oldLayout);
+            ib.newLayout = toVkLayout(b.newLayout);
+            ib.srcQueueFamilyIndex = ib.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+            ib.image = m_built->images[b.resource]->image();
+            ib.subresourceRange = {aspectOf(r.format), 0, VK_REMAINING_MIP_LEVELS, 0,
+                                   VK_REMAINING_ARRAY_LAYERS};
+            images.push_back(ib);
+        } else {
+            VkBufferMemoryBarrier2 bb{VK_STRUCTURE_TYPE_BUFFER_MEMORY_BARRIER_2};
+            bb.srcStageMask = toVkStages(b.srcStages);
+            bb.srcAccessMask = toVkAccess(b.srcAccess);
+            bb.dstStageMask = toVkStages(b.dstStages);
+            bb.dstAccessMask = toVkAccess(b.dstAccess);
+            bb.srcQueueFamilyIndex = bb.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+            bb.buffer = m_built->buffers[b.resource]->buffer();
+            bb.size = VK_WHOLE_SIZE;
+            buffers.push_back(bb);
+        }
+    }
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.imageMemoryBarrierCount = static_cast<uint32_t>(images.size());
+    dep.pImageMemoryBarriers = images.data();
+    dep.bufferMemoryBarrierCount = static_cast<uint32_t>(buffers.size());
+    dep.pBufferMemoryBarriers = buffers.data();
+    vkCmdPipelineBarrier2(cmd, &dep);
+}
+
+Result<void> Executor::collect(FrameSlot& slot) {
+    if (!slot.pending) return {};
+    VkFence fence = slot.fence.get();
+    RG_VK_TRY(vkWaitForFences(m_ctx.device(), 1, &fence, VK_TRUE, UINT64_MAX));
+    slot.pending = false;
+    if (slot.queryCount == 0) return {};
+    std::vector<uint64_t> stamps(slot.queryCount);
+    RG_VK_TRY(vkGetQueryPoolResults(m_ctx.device(), slot.queries.get(), 0, slot.queryCount,
+                                    stamps.size() * sizeof(uint64_t), stamps.data(),
+                                    sizeof(uint64_t), VK_QUERY_RESULT_64_BIT));
+    m_lastTimings.clear();
+    for (size_t i = 0; i < slot.passNames.size(); ++i) {
+        double ns = static_cast<double>(stamps[2 * i + 1] - stamps[2 * i]) * m_ctx.timestampPeriodNs();
+        m_lastTimings.push_back({slot.passNames[i], ns * 1e-6});
+    }
+    return {};
+}
+
+Result<void> Executor::frame() {
+    RG_CHECK(m_built) << "Executor::frame() before build()";
+    const uint32_t slotIndex = static_cast<uint32_t>(m_frameIndex % m_slots.size());
+    FrameSlot& slot = m_slots[slotIndex];
+    if (auto r = collect(slot); !r) return r;
+    m_ctx.collectGarbage(slotIndex);
+    m_ctx.setCurrentSlot(slotIndex);
+
+    auto t0 = Clock::now();
+    VkDevice dev = m_ctx.device();
+    const uint32_t queries = static_cast<uint32_t>(m_built->plan.passes.size() * 2);
+    if (queries > slot.queryCount || !slot.queries) {
+        VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
+        qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
+        qi.queryCount = std::max(queries, 2u);
+        VkQueryPool pool = VK_NULL_HANDLE;
+        RG_VK_TRY(vkCreateQueryPool(dev, &qi, nullptr, &pool));
+        slot.queries = OwnedQueryPool(dev, pool);
+    }
+    slot.queryCount = queries;
+    slot.passNames.clear();
+
+    RG_VK_TRY(vkResetCommandPool(dev, slot.pool.get(), 0));
+    VkCommandBuffer cmd = slot.cmd;
+    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    RG_VK_TRY(vkBeginCommandBuffer(cmd, &begin));
+    if (queries) vkCmdResetQueryPool(cmd, slot.queries.get(), 0, queries);
+
+    // Frames in flight share the plan's resources: the previous frame must be done with
+    // them before this one starts overwriting (its first barriers come from UNDEFINED).
+    VkMemoryBarrier2 frameBarrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+    frameBarrier.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    frameBarrier.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+    frameBarrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    frameBarrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+    dep.memoryBarrierCount = 1;
+    dep.pMemoryBarriers = &frameBarrier;
+    vkCmdPipelineBarrier2(cmd, &dep);
+
+    FrameInfo info{m_frameIndex, static_cast<double>(m_frameIndex) / 60.0, slotIndex};
+    for (size_t i = 0; i < m_built->plan.passes.size(); ++i) {
+        const PlanPass& pass = m_built->plan.passes[i];
+        m_ctx.beginLabel(cmd, pass.name);
+        recordBarriers(cmd, pass);
+        vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.queries.get(),
+                             static_cast<uint32_t>(2 * i));
+        RecordContext rc{m_ctx, cmd, pass, m_built->graph.passes[pass.desc], m_built->table, m_built->plan, info};
+        m_built->instances[i]->record(rc);
+        vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.queries.get(),
+                             static_cast<uint32_t>(2 * i + 1));
+        m_ctx.endLabel(cmd);
+        slot.passNames.push_back(pass.name);
+    }
+    RG_VK_TRY(vkEndCommandBuffer(cmd));
+    m_lastRecordMs = msSince(t0);
+
+    VkFence fence = slot.fence.get();
+    RG_VK_TRY(vkResetFences(dev, 1, &fence));
+    VkCommandBufferSubmitInfo ci{VK_STRUCTURE_TYPE_COMMAND_BUFFER_SUBMIT_INFO};
+    ci.commandBuffer = cmd;
+    VkSubmitInfo2 submit{VK_STRUCTURE_TYPE_SUBMIT_INFO_2};
+    submit.commandBufferInfoCount = 1;
+    submit.pCommandBufferInfos = &ci;
+    RG_VK_TRY(vkQueueSubmit2(m_ctx.queue(), 1, &submit, fence));
+    slot.pending = true;
+    ++m_frameIndex;
+    return {};
+}
+
+Result<void> Executor::finish() {
+    // Oldest first, so the timings kept are those of the newest frame.
+    for (uint64_t k = 0; k < m_slots.size(); ++k) {
+        uint64_t idx = (m_frameIndex + k) % m_slots.size();
+        if (auto r = collect(m_slots[idx]); !r) return r;
+    }
+    return m_ctx.waitIdle();
+}
+
+Result<const PhysicalResource*> Executor::exportedResource(const std::string& name) {
+    if (!m_built) return fail(ErrorCode::InvalidInput, "readback before the graph was built");
+    const PhysicalResource* phys = m_built->table.find(name);
+    if (!phys) {
+        if (m_built->graph.findResource(name))
+            return fail(ErrorCode::InvalidInput, "resource '" + name + "' is not used by any kept pass");
+        return fail(ErrorCode::NotFound, "no resource named '" + name + "'");
+    }
+    if (!phys->plan->exported && !phys->plan->imported)
+        return fail(ErrorCode::InvalidInput, "resource '" + name +
+                                                 "' is transient: capture (export) it to read it back");
+    if (auto r = finish(); !r) return std::unexpected(r.error());
+    return phys;
+}
+
+Result<rg::Image> Executor::readback(const std::string& name) {
+    auto found = exportedResource(name);
+    if (!found) return std::unexpected(found.error());
+    const PhysicalResource* phys = *found;
+    if (!phys->image) return fail(ErrorCode::InvalidInput, "resource '" + name + "' is a buffer: use readbackBuffer");
+    const PlanResource& r = *phys->plan;
+    const uint32_t texelBytes = copyTexelBytes(r.format);
+    const size_t texels = size_t(r.width) * r.height;
+    auto host = Buffer::create(m_ctx, name + ".readback", texels * texelBytes,
+                               VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    if (!host) return std::unexpected(host.error());
+    VkImage image = phys->image->image();
+    VkImageAspectFlags aspect = aspectOf(r.format);
+    VkImageAspectFlags copyAspect = formatInfo(r.format).depth ? static_cast<VkImageAspectFlags>(VK_IMAGE_ASPECT_DEPTH_BIT) : aspect;
+    Layout last = r.imported && r.finalLayout == Layout::Undefined ? Layout::ShaderReadOnly : r.finalLayout;
+    auto sub = m_ctx.submitNow([&](VkCommandBuffer cmd) {
+        imageBarrier(cmd, image, aspect, toVkStages(r.finalStages) | VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                     toVkAccess(r.finalAccess), VK_PIPELINE_STAGE_2_COPY_BIT,
+                     VK_ACCESS_2_TRANSFER_READ_BIT, toVkLayout(last),
+                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        VkBufferImageCopy region{};
+        region.imageSubresource = {copyAspect, 0, 0, 1};
+        region.imageExtent = {r.width, r.height, 1};
+        vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, host->buffer(), 1, &region);
+        imageBarrier(cmd, image, aspect, VK_PIPELINE_STAGE_2_COPY_BIT, 0,
+                     VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                     toVkLayout(last == Layout::Undefined ? Layout::General : last));
+    });
+    if (!sub) return std::unexpected(sub.error());
+    rg::Image out;
+    out.width = r.width;
+    out.height = r.height;
+    out.channels = isDepthStencil(r.format) ? 1 : formatInfo(r.format).components;
+    out.pixels.resize(texels * out.channels);
+    decodeTexels(r.format, host->mapped(), texels, out.pixels.data());
+    return out;
+}
+
+Result<std::vector<uint8_t>> Executor::readbackBuffer(const std::string& name) {
+    auto found = exportedResource(name);
+    if (!found) return std::unexpected(found.error());
+    const PhysicalResource* phys = *found;
+    if (!phys->buffer) return fail(ErrorCode::InvalidInput, "resource '" + name + "' is a texture: use readback");
+    const uint64_t size = phys->buffer->size();
+    auto host = Buffer::create(m_ctx, name + ".readback", size, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    if (!host) return std::unexpected(host.error());
+    VkBuffer src = phys->buffer->buffer();
+    auto sub = m_ctx.submitNow([&](VkCommandBuffer cmd) {
+        VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+        mb.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+        mb.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+        mb.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+        mb.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
+        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.memoryBarrierCount = 1;
+        dep.pMemoryBarriers = &mb;
+        vkCmdPipelineBarrier2(cmd, &dep);
+        VkBufferCopy region{0, 0, size};
+        vkCmdCopyBuffer(cmd, src, host->buffer(), 1, &region);
+    });
+    if (!sub) return std::unexpected(sub.error());
+    std::vector<uint8_t> out(size);
+    std::memcpy(out.data(), host->mapped(), size);
+    return out;
+}
+
+const Plan& Executor::plan() const {
+    static const Plan kEmpty;
+    return m_built ? m_built->plan : kEmpty;
+}
+
+const GraphDesc& Executor::graph() const {
+    static const GraphDesc kEmpty;
+    return m_built ? m_built->graph : kEmpty;
+}
+
+Result<rg::Image> Executor::passResult(const std::string& pass) {
+    if (auto r = finish(); !r) return std::unexpected(r.error());
+    int32_t index = m_built ? m_built->plan.findPass(pass) : -1;
+    if (index < 0) return fail(ErrorCode::NotFound, "no kept pass named '" + pass + "'");
+    auto result = m_built->instances[static_cast<size_t>(index)]->hostResult();
+    if (!result) return fail(ErrorCode::InvalidInput, "pass '" + pass + "' has no host result (not a readback pass, or no frame ran)");
+    return *result;
+}
+
+std::vector<std::string> Executor::files() const {
+    std::vector<std::string> out;
+    if (!m_built) return out;
+    for (const auto& inst : m_built->instances)
+        for (auto& f : inst->files())
+            if (std::find(out.begin(), out.end(), f) == out.end()) out.push_back(f);
+    return out;
+}
+
+}  // namespace rg::gpu

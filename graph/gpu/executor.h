@@ -1,0 +1,90 @@
+// Executor: turns a compiled Plan into GPU work. build() compiles the graph against the
+// device's memory requirements, places transient resources in shared heaps, creates the
+// exported/imported ones with their own memory, and prepares one PassInstance per kept pass.
+// frame() records the plan (dynamic rendering, synchronization2 barriers, one timestamp pair
+// per pass, debug labels) into the next frame-in-flight slot and submits it.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/compiler.h"
+#include "image/image.h"
+#include "pass_kind.h"
+
+namespace rg::gpu {
+
+struct PassTiming {
+    std::string name;
+    double gpuMs = 0.0;
+};
+
+struct BuildStats {
+    double compileMs = 0.0;   // graph compile()
+    double resourcesMs = 0.0; // physical resources
+    double prepareMs = 0.0;   // pass instances (shaders, pipelines)
+};
+
+class Executor {
+public:
+    Executor(Context& ctx, ShaderCompiler& shaders, const PassRegistry& kinds);
+    ~Executor();
+    Executor(const Executor&) = delete;
+    Executor& operator=(const Executor&) = delete;
+
+    // Fills each PassDesc::type from its kind and rejects unknown kinds (with a suggestion).
+    Result<void> resolveKinds(GraphDesc& graph) const;
+    // Compiles and builds; the previous build (if any) is retired through the deletion queue.
+    Result<void> build(const GraphDesc& graph, const CompileOptions& options);
+
+    // Contents for an imported texture (uploaded now, then kept in ShaderReadOnly layout).
+    Result<void> setImport(const std::string& name, const rg::Image& data);
+
+    Result<void> frame();
+    Result<void> finish();  // waits for every submitted frame and gathers their timings
+
+    // Reads mip 0 / layer 0 of an exported texture after finish().
+    Result<rg::Image> readback(const std::string& resource);
+    Result<std::vector<uint8_t>> readbackBuffer(const std::string& resource);
+    // What a readback pass copied in the last finished frame.
+    Result<rg::Image> passResult(const std::string& pass);
+
+    const Plan& plan() const;
+    const GraphDesc& graph() const;
+    const BuildStats& buildStats() const { return m_buildStats; }
+    const std::vector<PassTiming>& lastTimings() const { return m_lastTimings; }
+    double lastRecordMs() const { return m_lastRecordMs; }
+    uint64_t framesSubmitted() const { return m_frameIndex; }
+    std::vector<std::string> files() const;  // shader files of every pass
+
+private:
+    struct FrameSlot {
+        OwnedCommandPool pool;
+        VkCommandBuffer cmd = VK_NULL_HANDLE;
+        OwnedFence fence;
+        OwnedQueryPool queries;
+        uint32_t queryCount = 0;
+        bool pending = false;  // submitted, timings not yet read
+        std::vector<std::string> passNames;
+    };
+    struct Built;  // physical resources + pass instances of one plan
+
+    Result<void> createSlots();
+    Result<void> collect(FrameSlot& slot);
+    void recordBarriers(VkCommandBuffer cmd, const PlanPass& pass);
+    Result<const PhysicalResource*> exportedResource(const std::string& name);
+
+    Context& m_ctx;
+    ShaderCompiler& m_shaders;
+    const PassRegistry& m_kinds;
+    std::unique_ptr<Built> m_built;
+    std::vector<FrameSlot> m_slots;
+    std::map<std::string, rg::Image> m_importData;
+    uint64_t m_frameIndex = 0;
+    BuildStats m_buildStats;
+    std::vector<PassTiming> m_lastTimings;
+    double m_lastRecordMs = 0.0;
+};
+
+}  // namespace rg::gpu

@@ -1,0 +1,309 @@
+// OpenEXR reading and writing. OpenEXR reports every failure by throwing; each entry point here
+// catches everything and turns it into a Result, so no exception leaves the module.
+#include <Iex.h>
+#include <ImfChannelList.h>
+#include <ImfFrameBuffer.h>
+#include <ImfHeader.h>
+#include <ImfIO.h>
+#include <ImfInputFile.h>
+#include <ImfOutputFile.h>
+#include <ImfStandardAttributes.h>
+#include <ImfStringAttribute.h>
+#include <ImfVersion.h>
+#include <half.h>
+
+#include <algorithm>
+#include <array>
+#include <cerrno>
+#include <climits>
+#include <cstring>
+#include <exception>
+#include <new>
+#include <set>
+
+#include "image/file_io.h"
+#include "image/image.h"
+
+namespace rg {
+
+using image_detail::quoted;
+
+namespace {
+
+// Reads a file already held in memory, so that the file is opened (and its OS errors reported)
+// in one place, and a truncated file ends in one recognisable exception.
+class MemoryIStream final : public Imf::IStream {
+public:
+    MemoryIStream(const std::string& path, std::vector<char>& data)
+        : Imf::IStream(path.c_str()), m_data(data) {}
+
+    bool isMemoryMapped() const override { return true; }
+    char* readMemoryMapped(int n) override { return take(n); }
+    bool read(char c[], int n) override {
+        std::memcpy(c, take(n), size_t(n));
+        return m_pos < m_data.size();
+    }
+    uint64_t tellg() override { return m_pos; }
+    // Seeking past the end is allowed; the next read reports it.
+    void seekg(uint64_t pos) override { m_pos = pos; }
+
+private:
+    char* take(int n) {
+        if (n < 0 || m_pos > m_data.size() || uint64_t(n) > m_data.size() - m_pos)
+            throw Iex::InputExc("unexpected end of file (truncated?)");
+        char* p = m_data.data() + m_pos;
+        m_pos += uint64_t(n);
+        return p;
+    }
+
+    std::vector<char>& m_data;
+    uint64_t m_pos = 0;
+};
+
+// Writes through a FILE* and remembers the errno of a failure: OutputFile's destructor writes the
+// chunk offset table and swallows exceptions, so a failure there is only visible through this.
+class FileOStream final : public Imf::OStream {
+public:
+    FileOStream(const std::string& path, std::FILE* file)
+        : Imf::OStream(path.c_str()), m_file(file) {}
+
+    void write(const char c[], int n) override {
+        if (n < 0 || std::fwrite(c, 1, size_t(n), m_file) != size_t(n)) failed();
+    }
+    uint64_t tellp() override {
+        const off_t pos = ftello(m_file);
+        if (pos < 0) failed();
+        return uint64_t(pos);
+    }
+    void seekp(uint64_t pos) override {
+        if (pos > uint64_t(LLONG_MAX) || fseeko(m_file, off_t(pos), SEEK_SET) != 0) failed();
+    }
+
+    int error() const { return m_errno; }
+
+private:
+    [[noreturn]] void failed() {
+        m_errno = errno != 0 ? errno : EIO;
+        throw Iex::IoExc("write failed");
+    }
+
+    std::FILE* m_file;
+    int m_errno = 0;
+};
+
+std::string layerLabel(const std::string& name) { return "layer '" + name + "'"; }
+
+std::string fullChannelName(const std::string& layer, const std::string& channel) {
+    return layer.empty() ? channel : layer + "." + channel;
+}
+
+// Attribute names a single-part scanline file owns (OpenEXR spec, "Header Attributes"); a string
+// attribute with one of these names would clash with, or be misread as, the real one.
+bool isReservedAttribute(const std::string& key) {
+    static const std::set<std::string> reserved = {
+        "channels",     "compression", "dataWindow", "displayWindow", "lineOrder",
+        "pixelAspectRatio", "screenWindowCenter", "screenWindowWidth", "tiles", "type",
+        "name",         "version",     "chunkCount", "view",          "multiView"};
+    return reserved.contains(key);
+}
+
+Result<void> validateLayers(const std::string& path, const std::vector<ImageLayer>& layers,
+                            const ExrWriteOptions& opts) {
+    const std::string file = quoted(path);
+    if (layers.empty()) return fail(ErrorCode::InvalidInput, file + ": no layers to write");
+    const Image& first = layers.front().image;
+    std::set<std::string> fullNames;
+    for (const ImageLayer& layer : layers) {
+        const Image& img = layer.image;
+        const std::string label = layerLabel(layer.name);
+        if (img.width == 0 || img.height == 0 || img.channels == 0)
+            return fail(ErrorCode::InvalidInput,
+                        file + ": " + label + " is empty (" + std::to_string(img.width) + "x" +
+                            std::to_string(img.height) + ", " + std::to_string(img.channels) +
+                            " channels)");
+        if (img.width > uint32_t(INT_MAX) || img.height > uint32_t(INT_MAX))
+            return fail(ErrorCode::Unsupported, file + ": " + label + " is too large for OpenEXR");
+        if (img.pixels.size() != size_t(img.width) * img.height * img.channels)
+            return fail(ErrorCode::InvalidInput,
+                        file + ": " + label + " has " + std::to_string(img.pixels.size()) +
+                            " samples, expected " + std::to_string(img.width) + "x" +
+                            std::to_string(img.height) + "x" + std::to_string(img.channels));
+        if (img.width != first.width || img.height != first.height)
+            return fail(ErrorCode::InvalidInput,
+                        file + ": " + label + " is " + std::to_string(img.width) + "x" +
+                            std::to_string(img.height) + " but " +
+                            layerLabel(layers.front().name) + " is " +
+                            std::to_string(first.width) + "x" + std::to_string(first.height) +
+                            "; all layers of an EXR file must have the same size");
+        if (layer.channelNames.size() != img.channels)
+            return fail(ErrorCode::InvalidInput,
+                        file + ": " + label + " names " +
+                            std::to_string(layer.channelNames.size()) + " channels but its image has " +
+                            std::to_string(img.channels));
+        if (!layer.name.empty() && (layer.name.front() == '.' || layer.name.back() == '.'))
+            return fail(ErrorCode::InvalidInput,
+                        file + ": " + label + ": a layer name cannot start or end with '.'");
+        for (const std::string& ch : layer.channelNames) {
+            // A '.' in a channel name would move it into another layer when read back.
+            if (ch.empty() || ch.find('.') != std::string::npos)
+                return fail(ErrorCode::InvalidInput,
+                            file + ": " + label + ": invalid channel name '" + ch +
+                                "' (must be non-empty and contain no '.')");
+            const std::string full = fullChannelName(layer.name, ch);
+            if (!fullNames.insert(full).second)
+                return fail(ErrorCode::InvalidInput,
+                            file + ": channel '" + full + "' appears twice");
+        }
+    }
+    for (const auto& [key, value] : opts.metadata) {
+        if (key.empty()) return fail(ErrorCode::InvalidInput, file + ": empty metadata key");
+        if (isReservedAttribute(key))
+            return fail(ErrorCode::InvalidInput,
+                        file + ": metadata key '" + key + "' is a standard OpenEXR attribute");
+    }
+    return {};
+}
+
+// Channels of one layer in the order readExr promises: R, G, B, A, then alphabetical.
+void sortChannels(std::vector<std::string>& names) {
+    auto rank = [](const std::string& n) {
+        static const std::array<const char*, 4> rgba = {"R", "G", "B", "A"};
+        for (size_t i = 0; i < rgba.size(); ++i)
+            if (n == rgba[i]) return int(i);
+        return int(rgba.size());
+    };
+    std::sort(names.begin(), names.end(), [&](const std::string& a, const std::string& b) {
+        const int ra = rank(a), rb = rank(b);
+        return ra != rb ? ra < rb : a < b;
+    });
+}
+
+}  // namespace
+
+Result<void> writeExr(const std::string& path, const std::vector<ImageLayer>& layers,
+                      const ExrWriteOptions& opts) {
+    if (auto valid = validateLayers(path, layers, opts); !valid) return valid;
+    const int width = int(layers.front().image.width);
+    const int height = int(layers.front().image.height);
+    const bool half = opts.pixelType == ExrPixelType::Half;
+    const Imf::PixelType type = half ? Imf::HALF : Imf::FLOAT;
+
+    auto writer = image_detail::AtomicFileWriter::open(path);
+    if (!writer) return std::unexpected(writer.error());
+
+    std::vector<std::vector<::half>> halfPixels;  // converted copies, alive until writePixels
+    FileOStream stream(path, writer->file());
+    try {
+        Imf::Header header(width, height);
+        header.compression() = opts.compress ? Imf::ZIP_COMPRESSION : Imf::NO_COMPRESSION;
+        for (const auto& [key, value] : opts.metadata)
+            header.insert(key, Imf::StringAttribute(value));
+
+        Imf::FrameBuffer frameBuffer;
+        for (const ImageLayer& layer : layers) {
+            const Image& img = layer.image;
+            const void* base = img.pixels.data();
+            size_t sampleSize = sizeof(float);
+            if (half) {
+                halfPixels.emplace_back(img.pixels.begin(), img.pixels.end());
+                base = halfPixels.back().data();
+                sampleSize = sizeof(::half);
+            }
+            const size_t xStride = sampleSize * img.channels;
+            for (uint32_t c = 0; c < img.channels; ++c) {
+                const std::string name = fullChannelName(layer.name, layer.channelNames[c]);
+                header.channels().insert(name, Imf::Channel(type));
+                const char* channelBase = static_cast<const char*>(base) + c * sampleSize;
+                frameBuffer.insert(name, Imf::Slice::Make(type, channelBase,
+                                                          header.dataWindow(), xStride,
+                                                          xStride * img.width));
+            }
+        }
+        {
+            Imf::OutputFile out(stream, header);
+            out.setFrameBuffer(frameBuffer);
+            out.writePixels(height);
+        }
+    } catch (const std::bad_alloc&) {
+        return fail(ErrorCode::Io, "cannot write " + quoted(path) + ": out of memory");
+    } catch (const std::exception& e) {
+        if (stream.error() != 0) return std::unexpected(writer->writeError(stream.error()));
+        return fail(ErrorCode::InvalidInput, quoted(path) + ": OpenEXR: " + e.what());
+    }
+    if (stream.error() != 0) return std::unexpected(writer->writeError(stream.error()));
+    return writer->commit();
+}
+
+Result<ExrFile> readExr(const std::string& path) {
+    auto data = image_detail::readWholeFile(path);
+    if (!data) return std::unexpected(data.error());
+    const std::string file = quoted(path);
+    if (data->size() < 4 || !Imf::isImfMagic(data->data()))
+        return fail(ErrorCode::InvalidInput, file + ": not an OpenEXR file");
+
+    try {
+        MemoryIStream stream(path, *data);
+        Imf::InputFile input(stream);
+        const Imf::Header& header = input.header();
+        const Imath::Box2i dataWindow = header.dataWindow();
+        const int64_t width = int64_t(dataWindow.max.x) - dataWindow.min.x + 1;
+        const int64_t height = int64_t(dataWindow.max.y) - dataWindow.min.y + 1;
+        if (width <= 0 || height <= 0)
+            return fail(ErrorCode::InvalidInput, file + ": empty data window");
+
+        // Group channel names by layer; the channel list is sorted, so layers come out sorted.
+        std::map<std::string, std::vector<std::string>> layerChannels;
+        for (auto it = header.channels().begin(); it != header.channels().end(); ++it) {
+            const std::string full = it.name();
+            const Imf::Channel& channel = it.channel();
+            if (channel.xSampling != 1 || channel.ySampling != 1)
+                return fail(ErrorCode::Unsupported,
+                            file + ": channel '" + full + "' is subsampled (" +
+                                std::to_string(channel.xSampling) + "x" +
+                                std::to_string(channel.ySampling) + "), which is not supported");
+            const size_t dot = full.rfind('.');
+            if (dot == std::string::npos)
+                layerChannels[""].push_back(full);
+            else
+                layerChannels[full.substr(0, dot)].push_back(full.substr(dot + 1));
+        }
+        if (layerChannels.empty()) return fail(ErrorCode::InvalidInput, file + ": no channels");
+
+        // A garbage header can claim any size; refuse before allocating rather than die in it.
+        constexpr int64_t maxSamples = int64_t(1) << 31;
+        int64_t channelCount = 0;
+        for (const auto& [name, channels] : layerChannels) channelCount += int64_t(channels.size());
+        if (width > INT32_MAX || height > INT32_MAX || width * height > maxSamples / channelCount)
+            return fail(ErrorCode::Unsupported,
+                        file + ": " + std::to_string(width) + "x" + std::to_string(height) + "x" +
+                            std::to_string(channelCount) + " samples is too large to read");
+
+        ExrFile result;
+        Imf::FrameBuffer frameBuffer;
+        for (auto& [name, channels] : layerChannels) {
+            sortChannels(channels);
+            ImageLayer& layer = result.layers.emplace_back();
+            layer.name = name;
+            layer.channelNames = channels;
+            layer.image = Image(uint32_t(width), uint32_t(height), uint32_t(channels.size()));
+            const size_t xStride = sizeof(float) * channels.size();
+            for (size_t c = 0; c < channels.size(); ++c)
+                frameBuffer.insert(fullChannelName(name, channels[c]),
+                                   Imf::Slice::Make(Imf::FLOAT, &layer.image.pixels[c], dataWindow,
+                                                    xStride, xStride * size_t(width)));
+        }
+        input.setFrameBuffer(frameBuffer);
+        input.readPixels(dataWindow.min.y, dataWindow.max.y);
+
+        for (auto it = header.begin(); it != header.end(); ++it)
+            if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
+                result.metadata[it.name()] = s->value();
+        return result;
+    } catch (const std::bad_alloc&) {
+        return fail(ErrorCode::Io, "cannot read " + file + ": out of memory");
+    } catch (const std::exception& e) {
+        return fail(ErrorCode::InvalidInput, file + ": invalid OpenEXR file: " + e.what());
+    }
+}
+
+}  // namespace rg

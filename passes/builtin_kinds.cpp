@@ -1,0 +1,528 @@
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "core/check.h"
+#include "passes.h"
+#include "shader_program.h"
+
+namespace rg::passes {
+
+using namespace rg::gpu;
+
+namespace {
+
+std::vector<const Access*> accessesOf(const PassDesc& desc, std::initializer_list<Usage> usages) {
+    std::vector<const Access*> out;
+    for (const auto& a : desc.accesses)
+        if (std::find(usages.begin(), usages.end(), a.usage) != usages.end()) out.push_back(&a);
+    return out;
+}
+
+Result<std::string> requireShader(const PassDesc& desc) {
+    const Value& s = desc.params["shader"];
+    if (!s.isString() || s.asString().empty())
+        return fail(ErrorCode::InvalidInput,
+                    passPrefix(desc) + "params.shader: expected the path of a GLSL file, got " + s.typeName());
+    return s.asString();
+}
+
+VkCompareOp parseCompare(const std::string& s, bool& ok) {
+    ok = true;
+    if (s == "never") return VK_COMPARE_OP_NEVER;
+    if (s == "less") return VK_COMPARE_OP_LESS;
+    if (s == "equal") return VK_COMPARE_OP_EQUAL;
+    if (s == "less_equal") return VK_COMPARE_OP_LESS_OR_EQUAL;
+    if (s == "greater") return VK_COMPARE_OP_GREATER;
+    if (s == "not_equal") return VK_COMPARE_OP_NOT_EQUAL;
+    if (s == "greater_equal") return VK_COMPARE_OP_GREATER_OR_EQUAL;
+    if (s == "always") return VK_COMPARE_OP_ALWAYS;
+    ok = false;
+    return VK_COMPARE_OP_ALWAYS;
+}
+
+VkClearColorValue clearColor(const Value& v) {
+    VkClearColorValue c{};
+    if (v.isNumber()) {
+        float f = static_cast<float>(v.asNumber());
+        c.float32[0] = c.float32[1] = c.float32[2] = c.float32[3] = f;
+    } else {
+        const auto& l = v.asList();
+        for (size_t i = 0; i < 4 && i < l.size(); ++i) c.float32[i] = static_cast<float>(l[i].asNumber());
+    }
+    return c;
+}
+
+VkClearColorValue clearColorFor(Format f, const Value& v) {
+    VkClearColorValue c = clearColor(v);
+    if (formatInfo(f).integer)
+        for (int i = 0; i < 4; ++i) c.uint32[i] = static_cast<uint32_t>(std::max(0.0f, c.float32[i]));
+    return c;
+}
+
+// ---------------------------------------------------------------------------------------------
+// fullscreen: one triangle over the colour attachments, fragment shader from params.shader.
+// params: shader, defines, clear (colour for attachments that do not load), blend ("alpha" |
+// "additive"), stencil = { ref, compare, mask } (needs a depth/stencil attachment), bind, uniforms.
+class FullscreenPass final : public PassInstance {
+public:
+    Result<void> prepare(PassSetup& setup) override {
+        const PassDesc& desc = setup.desc;
+        auto shader = requireShader(desc);
+        if (!shader) return std::unexpected(shader.error());
+        ShaderRequest vert;
+        vert.path = "fullscreen.vert";
+        ShaderRequest frag;
+        frag.path = *shader;
+        frag.stage = ShaderStage::Fragment;
+        if (auto r = m_program.build(setup, {vert, frag}); !r) return r;
+
+        m_colors = accessesOf(desc, {Usage::ColorAttachment});
+        auto depth = accessesOf(desc, {Usage::DepthStencilAttachment, Usage::DepthStencilRead});
+        m_depth = depth.empty() ? nullptr : depth.front();
+        if (m_colors.empty() && !m_depth)
+            return fail(ErrorCode::InvalidInput, passPrefix(desc) + "a fullscreen pass needs at least one colour attachment in its writes");
+        const auto& outputs = m_program.reflection().colorOutputs;
+        for (uint32_t loc : outputs)
+            if (loc >= m_colors.size())
+                return fail(ErrorCode::InvalidInput, passPrefix(desc) + "the fragment shader writes location " +
+                                                         std::to_string(loc) + " but the pass has " +
+                                                         std::to_string(m_colors.size()) + " colour attachment(s)");
+        const PhysicalResource* first = setup.resources.find(m_colors.empty() ? m_depth->resource : m_colors[0]->resource);
+        m_width = first->plan->width;
+        m_height = first->plan->height;
+
+        const Value& stencil = desc.params["stencil"];
+        if (!stencil.isNil()) {
+            if (!m_depth || !formatInfo(setup.resources.find(m_depth->resource)->plan->format).stencil)
+                return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.stencil: the pass has no stencil attachment to test against");
+            bool ok = false;
+            m_stencilCompare = parseCompare(stencil["compare"].isString() ? stencil["compare"].asString() : "equal", ok);
+            if (!ok)
+                return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.stencil.compare: unknown '" + stencil["compare"].asString() +
+                                                         "', expected one of: 'never', 'less', 'equal', 'less_equal', 'greater', 'not_equal', 'greater_equal', 'always'");
+            m_stencilRef = static_cast<uint32_t>(stencil["ref"].asNumber(0));
+            m_stencilMask = static_cast<uint32_t>(stencil["mask"].asNumber(255));
+            m_stencilTest = true;
+        }
+        const std::string blend = desc.params["blend"].asString();
+        if (!blend.empty() && blend != "alpha" && blend != "additive")
+            return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.blend: unknown '" + blend + "', expected one of: 'alpha', 'additive'");
+        return createPipeline(setup, blend);
+    }
+
+    void record(RecordContext& rc) override {
+        std::vector<VkRenderingAttachmentInfo> colors;
+        for (const Access* a : m_colors) {
+            const PhysicalResource* r = rc.resources.find(a->resource);
+            VkRenderingAttachmentInfo ai{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+            ai.imageView = r->image->attachmentView();
+            ai.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+            ai.loadOp = a->load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
+            ai.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+            ai.clearValue.color = clearColorFor(r->plan->format, rc.desc.params["clear"]);
+            colors.push_back(ai);
+        }
+        VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+        ri.renderArea = {{0, 0}, {m_width, m_height}};
+        ri.layerCount = 1;
+        ri.colorAttachmentCount = static_cast<uint32_t>(colors.size());
+        ri.pColorAttachments = colors.data();
+        if (m_depth) {
+            const PhysicalResource* r = rc.resources.find(m_depth->resource);
+            bool readOnly = m_depth->usage == Usage::DepthStencilRead;
+            depth.imageView = r->image->attachmentView();
+            depth.imageLayout = readOnly ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL
+                                         : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+            depth.loadOp = readOnly || m_depth->load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
+            depth.storeOp = readOnly ? VK_ATTACHMENT_STORE_OP_NONE : VK_ATTACHMENT_STORE_OP_STORE;
+            depth.clearValue.depthStencil = {1.0f, 0};
+            const FormatInfo& fi = formatInfo(r->plan->format);
+            if (fi.depth) ri.pDepthAttachment = &depth;
+            if (fi.stencil) ri.pStencilAttachment = &depth;
+        }
+        vkCmdBeginRendering(rc.cmd, &ri);
+        VkViewport vp{0, 0, static_cast<float>(m_width), static_cast<float>(m_height), 0, 1};
+        VkRect2D sc{{0, 0}, {m_width, m_height}};
+        vkCmdSetViewport(rc.cmd, 0, 1, &vp);
+        vkCmdSetScissor(rc.cmd, 0, 1, &sc);
+        if (m_stencilTest) vkCmdSetStencilReference(rc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, m_stencilRef);
+        vkCmdBindPipeline(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, m_pipeline.get());
+        m_program.bind(rc, VK_PIPELINE_BIND_POINT_GRAPHICS);
+        vkCmdDraw(rc.cmd, 3, 1, 0, 0);
+        vkCmdEndRendering(rc.cmd);
+    }
+
+    std::vector<std::string> files() const override { return m_program.files(); }
+
+private:
+    Result<void> createPipeline(PassSetup& setup, const std::string& blend) {
+        std::vector<VkFormat> colorFormats;
+        std::vector<VkPipelineColorBlendAttachmentState> blends;
+        for (const Access* a : m_colors) {
+            Format f = setup.resources.find(a->resource)->plan->format;
+            colorFormats.push_back(toVkFormat(f));
+            VkPipelineColorBlendAttachmentState b{};
+            b.colorWriteMask = 0xf;
+            if (!blend.empty() && !formatInfo(f).integer) {
+                b.blendEnable = VK_TRUE;
+                b.srcColorBlendFactor = blend == "alpha" ? VK_BLEND_FACTOR_SRC_ALPHA : VK_BLEND_FACTOR_ONE;
+                b.dstColorBlendFactor = blend == "alpha" ? VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA : VK_BLEND_FACTOR_ONE;
+                b.colorBlendOp = VK_BLEND_OP_ADD;
+                b.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
+                b.dstAlphaBlendFactor = blend == "alpha" ? VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA : VK_BLEND_FACTOR_ONE;
+                b.alphaBlendOp = VK_BLEND_OP_ADD;
+            }
+            blends.push_back(b);
+        }
+        VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
+        rendering.colorAttachmentCount = static_cast<uint32_t>(colorFormats.size());
+        rendering.pColorAttachmentFormats = colorFormats.data();
+        if (m_depth) {
+            Format f = setup.resources.find(m_depth->resource)->plan->format;
+            if (formatInfo(f).depth) rendering.depthAttachmentFormat = toVkFormat(f);
+            if (formatInfo(f).stencil) rendering.stencilAttachmentFormat = toVkFormat(f);
+        }
+        VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
+        VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
+        ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
+        VkPipelineViewportStateCreateInfo vp{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
+        vp.viewportCount = 1;
+        vp.scissorCount = 1;
+        VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
+        rs.polygonMode = VK_POLYGON_MODE_FILL;
+        rs.cullMode = VK_CULL_MODE_NONE;
+        rs.lineWidth = 1.0f;
+        VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
+        ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
+        VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+        if (m_stencilTest) {
+            ds.stencilTestEnable = VK_TRUE;
+            VkStencilOpState op{};
+            op.failOp = op.passOp = op.depthFailOp = VK_STENCIL_OP_KEEP;
+            op.compareOp = m_stencilCompare;
+            op.compareMask = m_stencilMask;
+            ds.front = ds.back = op;
+        }
+        VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
+        cb.attachmentCount = static_cast<uint32_t>(blends.size());
+        cb.pAttachments = blends.data();
+        std::vector<VkDynamicState> dyn{VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
+        if (m_stencilTest) dyn.push_back(VK_DYNAMIC_STATE_STENCIL_REFERENCE);
+        VkPipelineDynamicStateCreateInfo dy{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
+        dy.dynamicStateCount = static_cast<uint32_t>(dyn.size());
+        dy.pDynamicStates = dyn.data();
+
+        VkGraphicsPipelineCreateInfo gp{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
+        gp.pNext = &rendering;
+        gp.stageCount = static_cast<uint32_t>(m_program.stageInfos().size());
+        gp.pStages = m_program.stageInfos().data();
+        gp.pVertexInputState = &vi;
+        gp.pInputAssemblyState = &ia;
+        gp.pViewportState = &vp;
+        gp.pRasterizationState = &rs;
+        gp.pMultisampleState = &ms;
+        gp.pDepthStencilState = &ds;
+        gp.pColorBlendState = &cb;
+        gp.pDynamicState = &dy;
+        gp.layout = m_program.layout();
+        VkPipeline pipeline = VK_NULL_HANDLE;
+        RG_VK_TRY(vkCreateGraphicsPipelines(setup.gpu.device(), VK_NULL_HANDLE, 1, &gp, nullptr, &pipeline));
+        m_pipeline = OwnedPipeline(setup.gpu.device(), pipeline);
+        return {};
+    }
+
+    ShaderProgram m_program;
+    OwnedPipeline m_pipeline;
+    std::vector<const Access*> m_colors;
+    const Access* m_depth = nullptr;
+    uint32_t m_width = 0, m_height = 0;
+    bool m_stencilTest = false;
+    VkCompareOp m_stencilCompare = VK_COMPARE_OP_ALWAYS;
+    uint32_t m_stencilRef = 0, m_stencilMask = 0xff;
+};
+
+// ---------------------------------------------------------------------------------------------
+// compute: params.shader; params.groups = {x, y, z}, or params.dispatch = "resource" (work groups
+// cover its width x height x layers); default: the first storage image it writes.
+class ComputePass final : public PassInstance {
+public:
+    Result<void> prepare(PassSetup& setup) override {
+        const PassDesc& desc = setup.desc;
+        auto shader = requireShader(desc);
+        if (!shader) return std::unexpected(shader.error());
+        ShaderRequest req;
+        req.path = *shader;
+        req.stage = ShaderStage::Compute;
+        if (auto r = m_program.build(setup, {req}); !r) return r;
+        const auto& local = m_program.reflection().localSize;
+        const Value& groups = desc.params["groups"];
+        if (groups.isList()) {
+            const auto& g = groups.asList();
+            for (size_t i = 0; i < 3; ++i) m_groups[i] = i < g.size() ? static_cast<uint32_t>(g[i].asNumber(1)) : 1;
+        } else {
+            std::string target = desc.params["dispatch"].asString();
+            if (target.empty())
+                for (const Access* a : accessesOf(desc, {Usage::StorageWrite, Usage::StorageReadWrite}))
+                    if (setup.resources.find(a->resource)->image) { target = a->resource; break; }
+            if (target.empty())
+                return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.dispatch: name the resource whose size the dispatch covers, or give params.groups = {x, y, z}");
+            const PhysicalResource* r = setup.resources.find(target);
+            if (!r)
+                return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.dispatch: '" + target + "' is not a resource this pass uses");
+            uint32_t w = r->image ? r->plan->width : static_cast<uint32_t>(r->plan->bufferSize / 4);
+            uint32_t h = r->image ? r->plan->height : 1;
+            m_groups = {(w + local[0] - 1) / local[0], (h + local[1] - 1) / local[1],
+                        r->image ? r->plan->layers : 1};
+        }
+        VkComputePipelineCreateInfo ci{VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO};
+        ci.stage = m_program.stageInfos()[0];
+        ci.layout = m_program.layout();
+        VkPipeline pipeline = VK_NULL_HANDLE;
+        RG_VK_TRY(vkCreateComputePipelines(setup.gpu.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline));
+        m_pipeline = OwnedPipeline(setup.gpu.device(), pipeline);
+        return {};
+    }
+
+    void record(RecordContext& rc) override {
+        vkCmdBindPipeline(rc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m_pipeline.get());
+        m_program.bind(rc, VK_PIPELINE_BIND_POINT_COMPUTE);
+        vkCmdDispatch(rc.cmd, m_groups[0], m_groups[1], m_groups[2]);
+    }
+
+    std::vector<std::string> files() const override { return m_program.files(); }
+
+private:
+    ShaderProgram m_program;
+    OwnedPipeline m_pipeline;
+    std::array<uint32_t, 3> m_groups{1, 1, 1};
+};
+
+// ---------------------------------------------------------------------------------------------
+// clear: every CopyDst texture to params.value (colour) or params.depth / params.stencil;
+// buffers are filled with zeros.
+class ClearPass final : public PassInstance {
+public:
+    Result<void> prepare(PassSetup& setup) override {
+        m_targets = accessesOf(setup.desc, {Usage::CopyDst});
+        if (m_targets.empty())
+            return fail(ErrorCode::InvalidInput, passPrefix(setup.desc) + "a clear pass needs at least one resource in its writes");
+        return {};
+    }
+    void record(RecordContext& rc) override {
+        for (const Access* a : m_targets) {
+            const PhysicalResource* r = rc.resources.find(a->resource);
+            if (r->buffer) {
+                vkCmdFillBuffer(rc.cmd, r->buffer->buffer(), 0, VK_WHOLE_SIZE, 0);
+                continue;
+            }
+            VkImageSubresourceRange range{aspectOf(r->plan->format), 0, VK_REMAINING_MIP_LEVELS, 0, VK_REMAINING_ARRAY_LAYERS};
+            if (isDepthStencil(r->plan->format)) {
+                VkClearDepthStencilValue v{static_cast<float>(rc.desc.params["depth"].asNumber(1.0)),
+                                           static_cast<uint32_t>(rc.desc.params["stencil"].asNumber(0))};
+                vkCmdClearDepthStencilImage(rc.cmd, r->image->image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &v, 1, &range);
+            } else {
+                VkClearColorValue v = clearColorFor(r->plan->format, rc.desc.params["value"]);
+                vkCmdClearColorImage(rc.cmd, r->image->image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &v, 1, &range);
+            }
+        }
+    }
+
+private:
+    std::vector<const Access*> m_targets;
+};
+
+// ---------------------------------------------------------------------------------------------
+// copy: CopySrc -> CopyDst. Same size and format: an exact copy; otherwise a linear blit
+// (nearest for integer and depth formats).
+class CopyPass final : public PassInstance {
+public:
+    Result<void> prepare(PassSetup& setup) override {
+        auto src = accessesOf(setup.desc, {Usage::CopySrc});
+        auto dst = accessesOf(setup.desc, {Usage::CopyDst});
+        if (src.size() != 1 || dst.size() != 1)
+            return fail(ErrorCode::InvalidInput, passPrefix(setup.desc) + "a copy pass reads exactly one resource and writes exactly one (has " +
+                                                     std::to_string(src.size()) + " and " + std::to_string(dst.size()) + ")");
+        m_src = src[0]->resource;
+        m_dst = dst[0]->resource;
+        const PhysicalResource* s = setup.resources.find(m_src);
+        const PhysicalResource* d = setup.resources.find(m_dst);
+        if ((s->image == nullptr) != (d->image == nullptr))
+            return fail(ErrorCode::InvalidInput, passPrefix(setup.desc) + "cannot copy between a texture and a buffer ('" + m_src + "' -> '" + m_dst + "')");
+        if (s->image && isDepthStencil(s->plan->format) != isDepthStencil(d->plan->format))
+            return fail(ErrorCode::InvalidInput, passPrefix(setup.desc) + "format mismatch: cannot copy '" + m_src + "' (" +
+                                                     std::string(formatName(s->plan->format)) + ") to '" + m_dst + "' (" +
+                                                     std::string(formatName(d->plan->format)) + ")");
+        return {};
+    }
+    void record(RecordContext& rc) override {
+        const PhysicalResource* s = rc.resources.find(m_src);
+        const PhysicalResource* d = rc.resources.find(m_dst);
+        if (s->buffer) {
+            VkBufferCopy region{0, 0, std::min(s->buffer->size(), d->buffer->size())};
+            vkCmdCopyBuffer(rc.cmd, s->buffer->buffer(), d->buffer->buffer(), 1, &region);
+            return;
+        }
+        const PlanResource& sp = *s->plan;
+        const PlanResource& dp = *d->plan;
+        VkImageAspectFlags aspect = aspectOf(sp.format);
+        if (sp.width == dp.width && sp.height == dp.height && sp.format == dp.format) {
+            VkImageCopy region{};
+            region.srcSubresource = {aspect, 0, 0, std::min(sp.layers, dp.layers)};
+            region.dstSubresource = region.srcSubresource;
+            region.extent = {sp.width, sp.height, 1};
+            vkCmdCopyImage(rc.cmd, s->image->image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, d->image->image(),
+                           VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+            return;
+        }
+        VkImageBlit blit{};
+        blit.srcSubresource = {aspect, 0, 0, 1};
+        blit.dstSubresource = {aspectOf(dp.format), 0, 0, 1};
+        blit.srcOffsets[1] = {static_cast<int32_t>(sp.width), static_cast<int32_t>(sp.height), 1};
+        blit.dstOffsets[1] = {static_cast<int32_t>(dp.width), static_cast<int32_t>(dp.height), 1};
+        bool nearest = formatInfo(sp.format).integer || isDepthStencil(sp.format);
+        vkCmdBlitImage(rc.cmd, s->image->image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, d->image->image(),
+                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR);
+    }
+
+private:
+    std::string m_src, m_dst;
+};
+
+// ---------------------------------------------------------------------------------------------
+// mips: the target (declared as a CopyDst that loads) gets mips 1..n-1 from mip 0, each a
+// linear 2x downsample of the one before. All mips end in TRANSFER_DST, as the plan expects.
+class MipsPass final : public PassInstance {
+public:
+    Result<void> prepare(PassSetup& setup) override {
+        auto dst = accessesOf(setup.desc, {Usage::CopyDst});
+        if (dst.size() != 1)
+            return fail(ErrorCode::InvalidInput, passPrefix(setup.desc) + "a mips pass writes exactly one texture");
+        m_target = dst[0]->resource;
+        const PhysicalResource* r = setup.resources.find(m_target);
+        if (!r->image || formatInfo(r->plan->format).integer || isDepthStencil(r->plan->format))
+            return fail(ErrorCode::InvalidInput, passPrefix(setup.desc) + "'" + m_target + "' must be a filterable colour texture to build mips");
+        return {};
+    }
+    void record(RecordContext& rc) override {
+        const PhysicalResource* r = rc.resources.find(m_target);
+        const PlanResource& p = *r->plan;
+        VkImage img = r->image->image();
+        int32_t w = static_cast<int32_t>(p.width), h = static_cast<int32_t>(p.height);
+        for (uint32_t m = 1; m < p.mips; ++m) {
+            // Mip m-1 becomes a blit source once written.
+            imageBarrier(rc.cmd, img, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                         VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT,
+                         VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, m - 1, 1);
+            int32_t nw = std::max(1, w / 2), nh = std::max(1, h / 2);
+            VkImageBlit blit{};
+            blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m - 1, 0, p.layers};
+            blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m, 0, p.layers};
+            blit.srcOffsets[1] = {w, h, 1};
+            blit.dstOffsets[1] = {nw, nh, 1};
+            vkCmdBlitImage(rc.cmd, img, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, img, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit,
+                           VK_FILTER_LINEAR);
+            w = nw;
+            h = nh;
+        }
+        if (p.mips > 1)
+            imageBarrier(rc.cmd, img, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                         VK_ACCESS_2_TRANSFER_READ_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                         VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 0, p.mips - 1);
+    }
+
+private:
+    std::string m_target;
+};
+
+// ---------------------------------------------------------------------------------------------
+// readback: copies mip 0 / layer 0 of its CopySrc into host memory, one buffer per frame slot;
+// hostResult() decodes the newest finished copy.
+class ReadbackPass final : public PassInstance {
+public:
+    Result<void> prepare(PassSetup& setup) override {
+        auto src = accessesOf(setup.desc, {Usage::CopySrc});
+        if (src.size() != 1)
+            return fail(ErrorCode::InvalidInput, passPrefix(setup.desc) + "a readback pass reads exactly one resource (as a copy source)");
+        m_source = src[0]->resource;
+        const PhysicalResource* r = setup.resources.find(m_source);
+        m_plan = *r->plan;
+        m_bytes = r->image ? uint64_t(m_plan.width) * m_plan.height * copyTexelBytes(m_plan.format) : m_plan.bufferSize;
+        for (uint32_t s = 0; s < setup.gpu.framesInFlight(); ++s) {
+            auto buf = Buffer::create(setup.gpu, setup.desc.name + ".host", m_bytes, VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+            if (!buf) return std::unexpected(buf.error());
+            m_host.push_back(std::move(*buf));
+        }
+        return {};
+    }
+    void record(RecordContext& rc) override {
+        const PhysicalResource* r = rc.resources.find(m_source);
+        Buffer& host = m_host[rc.frame.slot];
+        if (r->buffer) {
+            VkBufferCopy region{0, 0, m_bytes};
+            vkCmdCopyBuffer(rc.cmd, r->buffer->buffer(), host.buffer(), 1, &region);
+        } else {
+            VkBufferImageCopy region{};
+            VkImageAspectFlags aspect = formatInfo(m_plan.format).depth ? static_cast<VkImageAspectFlags>(VK_IMAGE_ASPECT_DEPTH_BIT) : aspectOf(m_plan.format);
+            region.imageSubresource = {aspect, 0, 0, 1};
+            region.imageExtent = {m_plan.width, m_plan.height, 1};
+            vkCmdCopyImageToBuffer(rc.cmd, r->image->image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, host.buffer(), 1, &region);
+        }
+        // Make the copy visible to the host once the frame's fence has signalled.
+        VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+        mb.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
+        mb.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+        mb.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
+        mb.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
+        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.memoryBarrierCount = 1;
+        dep.pMemoryBarriers = &mb;
+        vkCmdPipelineBarrier2(rc.cmd, &dep);
+        m_lastSlot = static_cast<int>(rc.frame.slot);
+    }
+    std::optional<rg::Image> hostResult() const override {
+        if (m_lastSlot < 0) return std::nullopt;
+        rg::Image out;
+        const void* data = m_host[static_cast<size_t>(m_lastSlot)].mapped();
+        if (m_plan.kind == ResourceKind::Buffer) {
+            out.width = static_cast<uint32_t>(m_bytes / 4);
+            out.height = 1;
+            out.channels = 1;
+            out.pixels.resize(out.width);
+            std::memcpy(out.pixels.data(), data, out.width * 4);
+            return out;
+        }
+        out.width = m_plan.width;
+        out.height = m_plan.height;
+        out.channels = isDepthStencil(m_plan.format) ? 1 : formatInfo(m_plan.format).components;
+        out.pixels.resize(size_t(out.width) * out.height * out.channels);
+        decodeTexels(m_plan.format, data, size_t(out.width) * out.height, out.pixels.data());
+        return out;
+    }
+
+private:
+    std::string m_source;
+    PlanResource m_plan;
+    uint64_t m_bytes = 0;
+    std::vector<Buffer> m_host;
+    int m_lastSlot = -1;
+};
+
+template <class T>
+PassKindInfo kind(const char* name, PassType type, const char* summary) {
+    return PassKindInfo{name, type, summary, [] { return std::make_unique<T>(); }};
+}
+
+}  // namespace
+
+void registerBuiltinPassKinds(PassRegistry& registry) {
+    registry.add(kind<FullscreenPass>("fullscreen", PassType::Raster, "one triangle over the colour attachments; fragment shader from params.shader"));
+    registry.add(kind<ComputePass>("compute", PassType::Compute, "a compute shader dispatched over a resource's size or params.groups"));
+    registry.add(kind<ClearPass>("clear", PassType::Transfer, "clears its copy destinations to params.value / depth / stencil"));
+    registry.add(kind<CopyPass>("copy", PassType::Transfer, "copies or blits its copy source into its copy destination"));
+    registry.add(kind<MipsPass>("mips", PassType::Transfer, "fills mips 1..n-1 of a texture from mip 0 by linear blits"));
+    registry.add(kind<ReadbackPass>("readback", PassType::Transfer, "copies its copy source to host memory every frame (side effect)"));
+}
+
+}  // namespace rg::passes

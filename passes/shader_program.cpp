@@ -1,0 +1,344 @@
+#include "shader_program.h"
+
+#include <algorithm>
+#include <cstring>
+#include <map>
+
+#include "core/check.h"
+
+namespace rg::passes {
+
+using namespace rg::gpu;
+
+std::string passPrefix(const PassDesc& desc) {
+    return (desc.origin.empty() ? "" : desc.origin + ": ") + "pass '" + desc.name + "': ";
+}
+
+VkShaderStageFlags toVkStageFlags(uint32_t mask) {
+    VkShaderStageFlags f = 0;
+    if (mask & stageBit(ShaderStage::Vertex)) f |= VK_SHADER_STAGE_VERTEX_BIT;
+    if (mask & stageBit(ShaderStage::Fragment)) f |= VK_SHADER_STAGE_FRAGMENT_BIT;
+    if (mask & stageBit(ShaderStage::Compute)) f |= VK_SHADER_STAGE_COMPUTE_BIT;
+    return f;
+}
+
+namespace {
+
+VkDescriptorType toVkDescriptor(DescriptorType t) {
+    switch (t) {
+    case DescriptorType::CombinedImageSampler: return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    case DescriptorType::SampledImage: return VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
+    case DescriptorType::Sampler: return VK_DESCRIPTOR_TYPE_SAMPLER;
+    case DescriptorType::StorageImage: return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+    case DescriptorType::UniformBuffer: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    case DescriptorType::StorageBuffer: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    }
+    return VK_DESCRIPTOR_TYPE_MAX_ENUM;
+}
+
+bool isParamsBlock(const ReflectedBinding& b) {
+    return b.type == DescriptorType::UniformBuffer && b.name == "Params";
+}
+
+// Which usages may stand behind a descriptor type.
+bool usageFits(DescriptorType t, Usage u) {
+    switch (t) {
+    case DescriptorType::CombinedImageSampler:
+    case DescriptorType::SampledImage: return u == Usage::Sampled;
+    case DescriptorType::StorageImage:
+    case DescriptorType::StorageBuffer:
+        return u == Usage::StorageRead || u == Usage::StorageWrite || u == Usage::StorageReadWrite;
+    case DescriptorType::UniformBuffer: return u == Usage::UniformRead;
+    case DescriptorType::Sampler: return false;
+    }
+    return false;
+}
+
+std::string glslName(std::string s) {
+    std::replace(s.begin(), s.end(), '.', '_');
+    return s;
+}
+
+Result<OwnedSampler> makeSampler(VkDevice dev, VkFilter filter) {
+    VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    si.magFilter = si.minFilter = filter;
+    si.mipmapMode = filter == VK_FILTER_LINEAR ? VK_SAMPLER_MIPMAP_MODE_LINEAR
+                                               : VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    si.maxLod = VK_LOD_CLAMP_NONE;
+    VkSampler s = VK_NULL_HANDLE;
+    RG_VK_TRY(vkCreateSampler(dev, &si, nullptr, &s));
+    return OwnedSampler(dev, s);
+}
+
+}  // namespace
+
+Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> stages) {
+    const PassDesc& desc = setup.desc;
+    // Defines from params.defines = { NAME = value, ... } (numbers, booleans or strings).
+    std::vector<std::pair<std::string, std::string>> defines;
+    for (const auto& [name, v] : desc.params["defines"].asTable()) {
+        std::string value;
+        if (v.isBool()) value = v.asBool() ? "1" : "0";
+        else if (v.isNumber()) {
+            double d = v.asNumber();
+            value = d == static_cast<double>(static_cast<long long>(d))
+                        ? std::to_string(static_cast<long long>(d))
+                        : std::to_string(d);
+        } else if (v.isString()) value = v.asString();
+        else
+            return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.defines." + name +
+                                                     ": expected a number, boolean or string, got " +
+                                                     v.typeName());
+        defines.emplace_back(name, value);
+    }
+
+    for (auto& req : stages) {
+        req.passName = desc.name;
+        req.defines.insert(req.defines.end(), defines.begin(), defines.end());
+        auto mod = setup.shaders.compile(req);
+        if (!mod) {
+            Error e = mod.error();
+            if (!desc.origin.empty()) e.message = desc.origin + ": " + e.message;
+            return std::unexpected(e);
+        }
+        for (const auto& f : mod->files)
+            if (std::find(m_files.begin(), m_files.end(), f) == m_files.end()) m_files.push_back(f);
+        if (m_modules.empty()) m_reflection = mod->reflection;
+        else {
+            auto merged = mergeReflections(m_reflection, mod->reflection, desc.name);
+            if (!merged) return std::unexpected(merged.error());
+            m_reflection = *merged;
+        }
+        m_modules.push_back(std::move(*mod));
+    }
+
+    VkDevice dev = setup.gpu.device();
+    for (const auto& mod : m_modules) {
+        VkShaderModuleCreateInfo ci{VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO};
+        ci.codeSize = mod.spirv.size() * sizeof(uint32_t);
+        ci.pCode = mod.spirv.data();
+        VkShaderModule sm = VK_NULL_HANDLE;
+        RG_VK_TRY(vkCreateShaderModule(dev, &ci, nullptr, &sm));
+        m_vkModules.emplace_back(dev, sm);
+    }
+    for (size_t i = 0; i < m_modules.size(); ++i) {
+        VkPipelineShaderStageCreateInfo si{VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO};
+        si.stage = static_cast<VkShaderStageFlagBits>(toVkStageFlags(stageBit(m_modules[i].stage)));
+        si.module = m_vkModules[i].get();
+        si.pName = m_modules[i].entry.c_str();
+        m_stageInfos.push_back(si);
+    }
+    if (auto r = createLayouts(setup); !r) return r;
+    return writeDescriptors(setup);
+}
+
+Result<void> ShaderProgram::createLayouts(PassSetup& setup) {
+    VkDevice dev = setup.gpu.device();
+    uint32_t setCount = 0;
+    for (const auto& b : m_reflection.bindings) setCount = std::max(setCount, b.set + 1);
+    for (uint32_t s = 0; s < setCount; ++s) {
+        std::vector<VkDescriptorSetLayoutBinding> bindings;
+        for (const auto& b : m_reflection.bindings) {
+            if (b.set != s) continue;
+            VkDescriptorSetLayoutBinding lb{};
+            lb.binding = b.binding;
+            lb.descriptorType = toVkDescriptor(b.type);
+            lb.descriptorCount = std::max(1u, b.count);
+            lb.stageFlags = toVkStageFlags(b.stageMask);
+            bindings.push_back(lb);
+        }
+        VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+        li.bindingCount = static_cast<uint32_t>(bindings.size());
+        li.pBindings = bindings.data();
+        VkDescriptorSetLayout layout = VK_NULL_HANDLE;
+        RG_VK_TRY(vkCreateDescriptorSetLayout(dev, &li, nullptr, &layout));
+        m_setLayouts.emplace_back(dev, layout);
+    }
+    std::vector<VkDescriptorSetLayout> raw;
+    for (const auto& l : m_setLayouts) raw.push_back(l.get());
+    VkPushConstantRange range{};
+    for (const auto& m : m_modules) m_pushStages |= toVkStageFlags(stageBit(m.stage));
+    range.stageFlags = m_pushStages;
+    range.size = m_reflection.pushConstantSize;
+    VkPipelineLayoutCreateInfo pi{VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO};
+    pi.setLayoutCount = static_cast<uint32_t>(raw.size());
+    pi.pSetLayouts = raw.data();
+    pi.pushConstantRangeCount = range.size ? 1 : 0;
+    pi.pPushConstantRanges = &range;
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    RG_VK_TRY(vkCreatePipelineLayout(dev, &pi, nullptr, &layout));
+    m_layout = OwnedPipelineLayout(dev, layout);
+    return {};
+}
+
+Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
+    const PassDesc& desc = setup.desc;
+    VkDevice dev = setup.gpu.device();
+    const uint32_t slots = setup.gpu.framesInFlight();
+    if (m_setLayouts.empty()) return {};
+
+    auto lin = makeSampler(dev, VK_FILTER_LINEAR);
+    if (!lin) return std::unexpected(lin.error());
+    m_linear = std::move(*lin);
+    auto near = makeSampler(dev, VK_FILTER_NEAREST);
+    if (!near) return std::unexpected(near.error());
+    m_nearest = std::move(*near);
+
+    std::map<VkDescriptorType, uint32_t> counts;
+    for (const auto& b : m_reflection.bindings) counts[toVkDescriptor(b.type)] += std::max(1u, b.count) * slots;
+    std::vector<VkDescriptorPoolSize> sizes;
+    for (auto [t, n] : counts) sizes.push_back({t, n});
+    VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    pi.maxSets = static_cast<uint32_t>(m_setLayouts.size()) * slots;
+    pi.poolSizeCount = static_cast<uint32_t>(sizes.size());
+    pi.pPoolSizes = sizes.data();
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    RG_VK_TRY(vkCreateDescriptorPool(dev, &pi, nullptr, &pool));
+    m_pool = OwnedDescriptorPool(dev, pool);
+
+    for (const auto& b : m_reflection.bindings)
+        if (isParamsBlock(b)) m_params = &b;
+    if (m_params) {
+        for (uint32_t s = 0; s < slots; ++s) {
+            auto buf = Buffer::create(setup.gpu, desc.name + ".Params", std::max(16u, m_params->blockSize),
+                                      VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+            if (!buf) return std::unexpected(buf.error());
+            m_paramBuffers.push_back(std::move(*buf));
+        }
+    }
+
+    // Resolve every binding to a resource of this pass before writing anything.
+    struct Bound {
+        const ReflectedBinding* binding;
+        const PhysicalResource* resource;
+        Usage usage;
+    };
+    std::vector<Bound> bound;
+    const Value& bindMap = desc.params["bind"];
+    for (const auto& b : m_reflection.bindings) {
+        if (isParamsBlock(b)) continue;
+        std::string want = bindMap[b.name].isString() ? bindMap[b.name].asString() : "";
+        const Access* access = nullptr;
+        for (const auto& a : desc.accesses) {
+            if (want.empty() ? glslName(a.resource) == b.name : a.resource == want) {
+                if (!access || usageFits(b.type, a.usage)) access = &a;
+            }
+        }
+        std::string where = "shader binding '" + b.name + "' (set " + std::to_string(b.set) +
+                            ", binding " + std::to_string(b.binding) + ", " + toString(b.type) + ")";
+        if (!access)
+            return fail(ErrorCode::InvalidInput,
+                        passPrefix(desc) + where + " matches no resource the pass reads or writes" +
+                            (want.empty() ? "; list it in reads/writes or map it with bind = { " +
+                                                b.name + " = \"resource\" }"
+                                          : " (params.bind names '" + want + "')"));
+        if (!usageFits(b.type, access->usage))
+            return fail(ErrorCode::InvalidInput, passPrefix(desc) + where + " is bound to '" +
+                                                     access->resource + "', which the pass declares as " +
+                                                     usageName(access->usage));
+        const PhysicalResource* phys = setup.resources.find(access->resource);
+        RG_CHECK(phys) << "resource '" << access->resource << "' of a kept pass has no physical resource";
+        bool wantImage = b.type != DescriptorType::UniformBuffer && b.type != DescriptorType::StorageBuffer;
+        if (wantImage != (phys->image != nullptr))
+            return fail(ErrorCode::InvalidInput, passPrefix(desc) + where + " is bound to '" + access->resource +
+                                                     "', which is a " + (phys->image ? "texture" : "buffer"));
+        bound.push_back({&b, phys, access->usage});
+    }
+
+    m_sets.resize(slots);
+    std::vector<VkDescriptorSetLayout> layouts;
+    for (const auto& l : m_setLayouts) layouts.push_back(l.get());
+    for (uint32_t s = 0; s < slots; ++s) {
+        m_sets[s].resize(layouts.size());
+        VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+        ai.descriptorPool = m_pool.get();
+        ai.descriptorSetCount = static_cast<uint32_t>(layouts.size());
+        ai.pSetLayouts = layouts.data();
+        RG_VK_TRY(vkAllocateDescriptorSets(dev, &ai, m_sets[s].data()));
+
+        std::vector<VkWriteDescriptorSet> writes;
+        std::vector<VkDescriptorImageInfo> images;
+        std::vector<VkDescriptorBufferInfo> buffers;
+        images.reserve(bound.size());
+        buffers.reserve(bound.size() + 1);
+        for (const auto& bd : bound) {
+            VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            w.dstSet = m_sets[s][bd.binding->set];
+            w.dstBinding = bd.binding->binding;
+            w.descriptorCount = 1;
+            w.descriptorType = toVkDescriptor(bd.binding->type);
+            if (bd.resource->image) {
+                const gpu::Image& img = *bd.resource->image;
+                const FormatInfo& fi = formatInfo(img.desc().format);
+                bool storage = bd.binding->type == DescriptorType::StorageImage;
+                bool nearest = fi.integer || fi.depth || desc.params["filter"].asString() == "nearest";
+                images.push_back({nearest ? m_nearest.get() : m_linear.get(),
+                                  storage ? img.mipView(0) : img.view(),
+                                  storage ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+                w.pImageInfo = &images.back();
+            } else {
+                buffers.push_back({bd.resource->buffer->buffer(), 0, VK_WHOLE_SIZE});
+                w.pBufferInfo = &buffers.back();
+            }
+            writes.push_back(w);
+        }
+        if (m_params) {
+            buffers.push_back({m_paramBuffers[s].buffer(), 0, VK_WHOLE_SIZE});
+            VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            w.dstSet = m_sets[s][m_params->set];
+            w.dstBinding = m_params->binding;
+            w.descriptorCount = 1;
+            w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+            w.pBufferInfo = &buffers.back();
+            writes.push_back(w);
+        }
+        vkUpdateDescriptorSets(dev, static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+    }
+    return {};
+}
+
+namespace {
+
+// Writes a number or a list of numbers as floats into [offset, offset+size).
+void putFloats(std::vector<uint8_t>& bytes, uint32_t offset, uint32_t size, const Value& v) {
+    std::vector<float> f;
+    if (v.isNumber()) f.push_back(static_cast<float>(v.asNumber()));
+    else if (v.isBool()) f.push_back(v.asBool() ? 1.0f : 0.0f);
+    else
+        for (const auto& e : v.asList()) f.push_back(static_cast<float>(e.asNumber()));
+    size_t n = std::min<size_t>(f.size(), size / sizeof(float));
+    if (offset + n * sizeof(float) <= bytes.size()) std::memcpy(bytes.data() + offset, f.data(), n * sizeof(float));
+}
+
+}  // namespace
+
+void ShaderProgram::writeUniforms(const Value& uniforms, uint32_t slot) {
+    std::vector<uint8_t> bytes(m_params->blockSize, 0);
+    for (const auto& m : m_params->members) putFloats(bytes, m.offset, m.size, uniforms[m.name]);
+    std::memcpy(m_paramBuffers[slot].mapped(), bytes.data(), bytes.size());
+}
+
+void ShaderProgram::bind(RecordContext& rc, VkPipelineBindPoint point) {
+    const uint32_t slot = rc.frame.slot;
+    if (m_params) writeUniforms(rc.desc.params["uniforms"], slot);
+    if (!m_sets.empty() && !m_sets[slot].empty())
+        vkCmdBindDescriptorSets(rc.cmd, point, m_layout.get(), 0, static_cast<uint32_t>(m_sets[slot].size()),
+                                m_sets[slot].data(), 0, nullptr);
+    if (m_reflection.pushConstantSize) {
+        std::vector<uint8_t> bytes(m_reflection.pushConstantSize, 0);
+        const Value& constants = rc.desc.params["constants"];
+        for (const auto& m : m_reflection.pushConstants) {
+            if (m.name == "rg_outputSize")
+                putFloats(bytes, m.offset, m.size,
+                          Value(Value::List{Value(static_cast<double>(rc.plan.outputWidth)),
+                                            Value(static_cast<double>(rc.plan.outputHeight))}));
+            else if (m.name == "rg_time") putFloats(bytes, m.offset, m.size, Value(rc.frame.timeSeconds));
+            else if (m.name == "rg_frame") putFloats(bytes, m.offset, m.size, Value(static_cast<double>(rc.frame.index)));
+            else putFloats(bytes, m.offset, m.size, constants[m.name]);
+        }
+        vkCmdPushConstants(rc.cmd, m_layout.get(), m_pushStages, 0, static_cast<uint32_t>(bytes.size()), bytes.data());
+    }
+}
+
+}  // namespace rg::passes

@@ -1,0 +1,265 @@
+// GPU tests on the real Vulkan device (lavapipe in CI) with the validation layer on: every test
+// ends by checking that the layer said nothing.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "cli/runtime.h"
+#include "image/image.h"
+
+namespace fs = std::filesystem;
+using namespace rg;
+
+namespace {
+
+class GpuTest : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        RuntimeOptions o;
+        o.validation = true;
+        auto rt = Runtime::create(o);
+        ASSERT_TRUE(rt.has_value()) << rt.error().describe();
+        s_runtime = std::move(*rt).release();
+    }
+    static void TearDownTestSuite() {
+        delete s_runtime;
+        s_runtime = nullptr;
+    }
+    void SetUp() override {
+        ASSERT_NE(s_runtime, nullptr);
+        m_messagesBefore = s_runtime->gpu().validationMessageCount();
+    }
+    void TearDown() override {
+        ASSERT_NE(s_runtime, nullptr);
+        EXPECT_EQ(s_runtime->gpu().validationMessageCount(), m_messagesBefore)
+            << (s_runtime->gpu().validationMessages().empty() ? "" : s_runtime->gpu().validationMessages().back());
+    }
+    Runtime& rt() { return *s_runtime; }
+    static Runtime* s_runtime;
+    uint32_t m_messagesBefore = 0;
+};
+Runtime* GpuTest::s_runtime = nullptr;
+
+ResourceDesc texture(const std::string& name, Format f, bool exported = false) {
+    ResourceDesc r;
+    r.name = name;
+    r.texture.format = f;
+    r.exported = exported;
+    return r;
+}
+
+PassDesc pass(const std::string& name, const std::string& kind, std::vector<Access> accesses, Value::Table params = {}) {
+    PassDesc p;
+    p.name = name;
+    p.kind = kind;
+    p.accesses = std::move(accesses);
+    p.params = Value(std::move(params));
+    return p;
+}
+
+// The CPU version of shaders/test/pattern.comp.
+std::array<float, 4> patternAt(uint32_t x, uint32_t y) {
+    float checker = static_cast<float>(((x >> 3) + (y >> 3)) & 1u);
+    return {static_cast<float>(x & 63u) / 64.0f, static_cast<float>(y & 63u) / 64.0f, checker, 1.0f};
+}
+// The CPU version of shaders/test/transform.frag.
+std::array<float, 4> transform(std::array<float, 4> c, float scale) {
+    return {c[1] * scale, c[0] * scale, (1.0f - c[2]) * scale, scale};
+}
+
+// compute pattern -> fullscreen transform (scale 0.5) -> readback pass.
+GraphDesc threePassGraph() {
+    GraphDesc g;
+    g.resources = {texture("pattern", Format::RGBA16F), texture("shaded", Format::RGBA16F)};
+    g.passes = {
+        pass("generate", "compute", {{"pattern", Usage::StorageWrite}}, {{"shader", "test/pattern.comp"}}),
+        pass("transform", "fullscreen", {{"pattern", Usage::Sampled}, {"shaded", Usage::ColorAttachment}},
+             {{"shader", "test/transform.frag"}, {"uniforms", Value(Value::Table{{"scale", 0.5}})}}),
+        pass("fetch", "readback", {{"shaded", Usage::CopySrc}}),
+    };
+    g.passes.back().sideEffect = true;
+    return g;
+}
+
+TEST_F(GpuTest, ThreePassGraphIsExactPixelForPixel) {
+    auto& ex = rt().executor();
+    CompileOptions o;
+    o.outputWidth = 96;
+    o.outputHeight = 40;
+    ASSERT_TRUE(ex.build(threePassGraph(), o).has_value());
+    ASSERT_EQ(ex.plan().passes.size(), 3u);
+    ASSERT_TRUE(ex.frame().has_value());
+    auto img = ex.passResult("fetch");
+    ASSERT_TRUE(img.has_value()) << img.error().describe();
+    ASSERT_EQ(img->width, 96u);
+    ASSERT_EQ(img->height, 40u);
+    ASSERT_EQ(img->channels, 4u);
+    int mismatches = 0;
+    for (uint32_t y = 0; y < 40; ++y)
+        for (uint32_t x = 0; x < 96; ++x) {
+            auto want = transform(patternAt(x, y), 0.5f);
+            for (uint32_t c = 0; c < 4; ++c)
+                if (img->at(x, y, c) != want[c] && mismatches++ < 5)
+                    ADD_FAILURE() << "pixel (" << x << "," << y << ") channel " << c << ": " << img->at(x, y, c)
+                                  << " != " << want[c];
+        }
+    EXPECT_EQ(mismatches, 0);
+    ASSERT_EQ(ex.lastTimings().size(), 3u);
+    EXPECT_EQ(ex.lastTimings()[1].name, "transform");
+}
+
+TEST_F(GpuTest, ParameterChangeNeedsNoRebuild) {
+    auto& ex = rt().executor();
+    CompileOptions o;
+    o.outputWidth = 16;
+    o.outputHeight = 16;
+    GraphDesc g = threePassGraph();
+    ASSERT_TRUE(ex.build(g, o).has_value());
+    ASSERT_TRUE(ex.frame().has_value());
+    auto a = ex.passResult("fetch");
+    ASSERT_TRUE(a.has_value());
+    EXPECT_FLOAT_EQ(a->at(3, 5, 3), 0.5f);
+    // Uniforms are written every frame from the pass's params.
+    const_cast<PassDesc&>(ex.graph().passes[1]).params.table()["uniforms"] = Value(Value::Table{{"scale", 2.0}});
+    ASSERT_TRUE(ex.frame().has_value());
+    auto b = ex.passResult("fetch");
+    ASSERT_TRUE(b.has_value());
+    EXPECT_FLOAT_EQ(b->at(3, 5, 3), 2.0f);
+    EXPECT_FLOAT_EQ(b->at(3, 5, 0), transform(patternAt(3, 5), 2.0f)[0]);
+}
+
+TEST_F(GpuTest, AliasedTransientsShareMemoryAndStayExact) {
+    // a -> b -> c -> output: a and c have disjoint lifetimes and the same size, so they alias.
+    GraphDesc g;
+    g.resources = {texture("a", Format::RGBA16F), texture("b", Format::RGBA16F), texture("c", Format::RGBA16F),
+                   texture("output", Format::RGBA16F, /*exported=*/true)};
+    auto step = [](const std::string& name, const std::string& from, const std::string& to) {
+        return pass(name, "fullscreen", {{from, Usage::Sampled}, {to, Usage::ColorAttachment}},
+                    {{"shader", "test/transform.frag"},
+                     {"bind", Value(Value::Table{{"pattern", Value(from)}})},
+                     {"uniforms", Value(Value::Table{{"scale", 1.0}})}});
+    };
+    g.passes = {pass("generate", "compute", {{"a", Usage::StorageWrite}},
+                     {{"shader", "test/pattern.comp"}, {"bind", Value(Value::Table{{"pattern", Value("a")}})}}),
+                step("t1", "a", "b"), step("t2", "b", "c"), step("t3", "c", "output")};
+    auto& ex = rt().executor();
+    CompileOptions o;
+    o.outputWidth = 64;
+    o.outputHeight = 48;
+    auto built = ex.build(g, o);
+    ASSERT_TRUE(built.has_value()) << built.error().describe();
+    const Plan& plan = ex.plan();
+    const auto& ra = plan.resources[static_cast<size_t>(plan.findResource("a"))];
+    const auto& rc = plan.resources[static_cast<size_t>(plan.findResource("c"))];
+    ASSERT_GE(ra.heap, 0);
+    EXPECT_EQ(ra.heap, rc.heap);
+    EXPECT_EQ(ra.offset, rc.offset) << "a and c should share memory";
+    EXPECT_LT(plan.transientBytesAliased, plan.transientBytesUnaliased);
+    ASSERT_TRUE(ex.frame().has_value());
+    auto img = ex.readback("output");
+    ASSERT_TRUE(img.has_value()) << img.error().describe();
+    int mismatches = 0;
+    for (uint32_t y = 0; y < 48; ++y)
+        for (uint32_t x = 0; x < 64; ++x) {
+            auto want = transform(transform(transform(patternAt(x, y), 1), 1), 1);
+            for (uint32_t ch = 0; ch < 4; ++ch) mismatches += img->at(x, y, ch) != want[ch];
+        }
+    EXPECT_EQ(mismatches, 0);
+}
+
+TEST_F(GpuTest, FramesInFlightAndReadbackOfTransientIsRefused) {
+    auto& ex = rt().executor();
+    CompileOptions o;
+    o.outputWidth = 32;
+    o.outputHeight = 32;
+    auto g = builtinGraph("test");
+    ASSERT_TRUE(g.has_value());
+    ASSERT_TRUE(ex.build(*g, o).has_value());
+    for (int i = 0; i < 5; ++i) ASSERT_TRUE(ex.frame().has_value());
+    auto out = ex.readback("output");
+    ASSERT_TRUE(out.has_value()) << out.error().describe();
+    EXPECT_FLOAT_EQ(out->at(9, 2, 0), transform(patternAt(9, 2), 1)[0]);
+    auto bad = ex.readback("pattern");
+    ASSERT_FALSE(bad.has_value());
+    EXPECT_EQ(bad.error().message, "resource 'pattern' is transient: capture (export) it to read it back");
+}
+
+TEST_F(GpuTest, ExrOfARenderReadsBackEqual) {
+    auto& ex = rt().executor();
+    CompileOptions o;
+    o.outputWidth = 40;
+    o.outputHeight = 24;
+    auto g = builtinGraph("test");
+    ASSERT_TRUE(g.has_value());
+    ASSERT_TRUE(ex.build(*g, o).has_value());
+    ASSERT_TRUE(ex.frame().has_value());
+    auto out = ex.readback("output");
+    ASSERT_TRUE(out.has_value());
+    fs::create_directories(RG_TEST_TMP);
+    const std::string path = std::string(RG_TEST_TMP) + "/gpu_render.exr";
+    ASSERT_TRUE(writeExr(path, {{"hdr", {"R", "G", "B", "A"}, *out}}, {}).has_value());
+    auto back = readExr(path);
+    ASSERT_TRUE(back.has_value()) << back.error().describe();
+    ASSERT_EQ(back->layers.size(), 1u);
+    EXPECT_EQ(back->layers[0].name, "hdr");
+    EXPECT_EQ(back->layers[0].image.pixels, out->pixels);  // RGBA16F data is exact in half EXR
+}
+
+TEST_F(GpuTest, ClearCopyAndMipsKinds) {
+    GraphDesc g;
+    ResourceDesc src = texture("src", Format::RGBA16F);
+    src.texture.sizeMode = SizeMode::Absolute;
+    src.texture.width = 16;
+    src.texture.height = 8;
+    ResourceDesc dst = src;
+    dst.name = "dst";
+    dst.texture.mips = 0;  // full chain: 5 mips
+    dst.exported = true;
+    g.resources = {src, dst};
+    g.passes = {pass("clear", "clear", {{"src", Usage::CopyDst}},
+                     {{"value", Value(Value::List{Value(0.25), Value(0.5), Value(0.75), Value(1.0)})}}),
+                pass("copy", "copy", {{"src", Usage::CopySrc}, {"dst", Usage::CopyDst}}),
+                pass("mips", "mips", {{"dst", Usage::CopyDst, /*load=*/true}})};
+    auto& ex = rt().executor();
+    auto built = ex.build(g, {});
+    ASSERT_TRUE(built.has_value()) << built.error().describe();
+    EXPECT_EQ(ex.plan().resources[1].mips, 5u);
+    ASSERT_TRUE(ex.frame().has_value());
+    auto img = ex.readback("dst");
+    ASSERT_TRUE(img.has_value());
+    EXPECT_FLOAT_EQ(img->at(15, 7, 0), 0.25f);
+    EXPECT_FLOAT_EQ(img->at(0, 0, 2), 0.75f);
+}
+
+TEST_F(GpuTest, ShaderErrorNamesFileLineAndPass) {
+    GraphDesc g;
+    g.resources = {texture("out", Format::RGBA8Unorm, true)};
+    g.passes = {pass("broken", "fullscreen", {{"out", Usage::ColorAttachment}}, {{"shader", "tests/gpu/shaders/broken.frag"}})};
+    auto r = rt().executor().build(g, {});
+    ASSERT_FALSE(r.has_value());
+    EXPECT_NE(r.error().message.find("pass 'broken'"), std::string::npos) << r.error().message;
+    EXPECT_NE(r.error().message.find("broken.frag:7:"), std::string::npos) << r.error().message;
+}
+
+TEST_F(GpuTest, UnboundShaderResourceIsReported) {
+    GraphDesc g;
+    g.resources = {texture("out", Format::RGBA16F, true)};
+    g.passes = {pass("lonely", "fullscreen", {{"out", Usage::ColorAttachment}}, {{"shader", "test/transform.frag"}})};
+    auto r = rt().executor().build(g, {});
+    ASSERT_FALSE(r.has_value());
+    EXPECT_EQ(r.error().message,
+              "pass 'lonely': shader binding 'pattern' (set 0, binding 0, combined_image_sampler) matches no resource "
+              "the pass reads or writes; list it in reads/writes or map it with bind = { pattern = \"resource\" }");
+}
+
+TEST_F(GpuTest, UnknownPassKindSuggestsTheClosest) {
+    GraphDesc g;
+    g.resources = {texture("out", Format::RGBA16F, true)};
+    g.passes = {pass("p", "fulscreen", {{"out", Usage::ColorAttachment}})};
+    auto r = rt().executor().build(g, {});
+    ASSERT_FALSE(r.has_value());
+    EXPECT_EQ(r.error().message.substr(0, 63), "pass 'p': unknown kind 'fulscreen' (did you mean 'fullscreen'?)");
+}
+
+}  // namespace

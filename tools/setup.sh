@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Installs the Debian packages rgraph needs (only those missing), then configures and builds.
+# Usage: tools/setup.sh [BUILD_DIR]   (default: build)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=${1:-build}
+
+packages=(
+  cmake g++ pkg-config ninja-build
+  libvulkan-dev mesa-vulkan-drivers vulkan-validationlayers vulkan-tools
+  glslang-dev glslang-tools spirv-tools libspirv-cross-c-shared-dev
+  libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
+  libopenexr-dev liblua5.4-dev libpng-dev zlib1g-dev libgtest-dev
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "rgraph setup: installing ${missing[*]}"
+  sudo=""; [ "$(id -u)" = 0 ] || sudo=sudo
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRG_WERROR="${RG_WERROR:-OFF}" >/dev/null
+cmake --build "$build" --parallel "$(nproc)"
