@@ -1,6 +1,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <optional>
 
 #include "core/check.h"
 #include "passes.h"
@@ -12,10 +13,12 @@ using namespace rg::gpu;
 
 namespace {
 
-std::vector<const Access*> accessesOf(const PassDesc& desc, std::initializer_list<Usage> usages) {
-    std::vector<const Access*> out;
+// Copies, not pointers: a pass instance may outlive the GraphDesc it was prepared from (it is
+// reused across incremental rebuilds).
+std::vector<Access> accessesOf(const PassDesc& desc, std::initializer_list<Usage> usages) {
+    std::vector<Access> out;
     for (const auto& a : desc.accesses)
-        if (std::find(usages.begin(), usages.end(), a.usage) != usages.end()) out.push_back(&a);
+        if (std::find(usages.begin(), usages.end(), a.usage) != usages.end()) out.push_back(a);
     return out;
 }
 
@@ -79,7 +82,7 @@ public:
 
         m_colors = accessesOf(desc, {Usage::ColorAttachment});
         auto depth = accessesOf(desc, {Usage::DepthStencilAttachment, Usage::DepthStencilRead});
-        m_depth = depth.empty() ? nullptr : depth.front();
+        if (!depth.empty()) m_depth = depth.front();
         if (m_colors.empty() && !m_depth)
             return fail(ErrorCode::InvalidInput, passPrefix(desc) + "a fullscreen pass needs at least one colour attachment in its writes");
         const auto& outputs = m_program.reflection().colorOutputs;
@@ -88,7 +91,7 @@ public:
                 return fail(ErrorCode::InvalidInput, passPrefix(desc) + "the fragment shader writes location " +
                                                          std::to_string(loc) + " but the pass has " +
                                                          std::to_string(m_colors.size()) + " colour attachment(s)");
-        const PhysicalResource* first = setup.resources.find(m_colors.empty() ? m_depth->resource : m_colors[0]->resource);
+        const PhysicalResource* first = setup.resources.find(m_colors.empty() ? m_depth->resource : m_colors[0].resource);
         m_width = first->plan->width;
         m_height = first->plan->height;
 
@@ -113,12 +116,12 @@ public:
 
     void record(RecordContext& rc) override {
         std::vector<VkRenderingAttachmentInfo> colors;
-        for (const Access* a : m_colors) {
-            const PhysicalResource* r = rc.resources.find(a->resource);
+        for (const Access& a : m_colors) {
+            const PhysicalResource* r = rc.resources.find(a.resource);
             VkRenderingAttachmentInfo ai{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
             ai.imageView = r->image->attachmentView();
             ai.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-            ai.loadOp = a->load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
+            ai.loadOp = a.load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
             ai.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
             ai.clearValue.color = clearColorFor(r->plan->format, rc.desc.params["clear"]);
             colors.push_back(ai);
@@ -160,8 +163,8 @@ private:
     Result<void> createPipeline(PassSetup& setup, const std::string& blend) {
         std::vector<VkFormat> colorFormats;
         std::vector<VkPipelineColorBlendAttachmentState> blends;
-        for (const Access* a : m_colors) {
-            Format f = setup.resources.find(a->resource)->plan->format;
+        for (const Access& a : m_colors) {
+            Format f = setup.resources.find(a.resource)->plan->format;
             colorFormats.push_back(toVkFormat(f));
             VkPipelineColorBlendAttachmentState b{};
             b.colorWriteMask = 0xf;
@@ -235,8 +238,8 @@ private:
 
     ShaderProgram m_program;
     OwnedPipeline m_pipeline;
-    std::vector<const Access*> m_colors;
-    const Access* m_depth = nullptr;
+    std::vector<Access> m_colors;
+    std::optional<Access> m_depth;
     uint32_t m_width = 0, m_height = 0;
     bool m_stencilTest = false;
     VkCompareOp m_stencilCompare = VK_COMPARE_OP_ALWAYS;
@@ -264,8 +267,8 @@ public:
         } else {
             std::string target = desc.params["dispatch"].asString();
             if (target.empty())
-                for (const Access* a : accessesOf(desc, {Usage::StorageWrite, Usage::StorageReadWrite}))
-                    if (setup.resources.find(a->resource)->image) { target = a->resource; break; }
+                for (const Access& a : accessesOf(desc, {Usage::StorageWrite, Usage::StorageReadWrite}))
+                    if (setup.resources.find(a.resource)->image) { target = a.resource; break; }
             if (target.empty())
                 return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.dispatch: name the resource whose size the dispatch covers, or give params.groups = {x, y, z}");
             const PhysicalResource* r = setup.resources.find(target);
@@ -311,8 +314,8 @@ public:
         return {};
     }
     void record(RecordContext& rc) override {
-        for (const Access* a : m_targets) {
-            const PhysicalResource* r = rc.resources.find(a->resource);
+        for (const Access& a : m_targets) {
+            const PhysicalResource* r = rc.resources.find(a.resource);
             if (r->buffer) {
                 vkCmdFillBuffer(rc.cmd, r->buffer->buffer(), 0, VK_WHOLE_SIZE, 0);
                 continue;
@@ -330,7 +333,7 @@ public:
     }
 
 private:
-    std::vector<const Access*> m_targets;
+    std::vector<Access> m_targets;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -344,8 +347,8 @@ public:
         if (src.size() != 1 || dst.size() != 1)
             return fail(ErrorCode::InvalidInput, passPrefix(setup.desc) + "a copy pass reads exactly one resource and writes exactly one (has " +
                                                      std::to_string(src.size()) + " and " + std::to_string(dst.size()) + ")");
-        m_src = src[0]->resource;
-        m_dst = dst[0]->resource;
+        m_src = src[0].resource;
+        m_dst = dst[0].resource;
         const PhysicalResource* s = setup.resources.find(m_src);
         const PhysicalResource* d = setup.resources.find(m_dst);
         if ((s->image == nullptr) != (d->image == nullptr))
@@ -399,7 +402,7 @@ public:
         auto dst = accessesOf(setup.desc, {Usage::CopyDst});
         if (dst.size() != 1)
             return fail(ErrorCode::InvalidInput, passPrefix(setup.desc) + "a mips pass writes exactly one texture");
-        m_target = dst[0]->resource;
+        m_target = dst[0].resource;
         const PhysicalResource* r = setup.resources.find(m_target);
         if (!r->image || formatInfo(r->plan->format).integer || isDepthStencil(r->plan->format))
             return fail(ErrorCode::InvalidInput, passPrefix(setup.desc) + "'" + m_target + "' must be a filterable colour texture to build mips");
@@ -445,7 +448,7 @@ public:
         auto src = accessesOf(setup.desc, {Usage::CopySrc});
         if (src.size() != 1)
             return fail(ErrorCode::InvalidInput, passPrefix(setup.desc) + "a readback pass reads exactly one resource (as a copy source)");
-        m_source = src[0]->resource;
+        m_source = src[0].resource;
         const PhysicalResource* r = setup.resources.find(m_source);
         m_plan = *r->plan;
         m_bytes = r->image ? uint64_t(m_plan.width) * m_plan.height * copyTexelBytes(m_plan.format) : m_plan.bufferSize;
@@ -510,19 +513,51 @@ private:
 };
 
 template <class T>
-PassKindInfo kind(const char* name, PassType type, const char* summary) {
-    return PassKindInfo{name, type, summary, [] { return std::make_unique<T>(); }};
+PassKindInfo kind(PassKindSchema schema) {
+    return PassKindInfo{std::move(schema), [] { return std::make_unique<T>(); }};
+}
+
+// Parameters every shader-driven kind takes.
+std::vector<ParamSpec> shaderParams() {
+    return {
+        {"shader", "string", "GLSL file, relative to shaders/, the project root or the pipeline's folder"},
+        {"defines", "table", "preprocessor defines: NAME = number, boolean or string"},
+        {"bind", "table", "maps a GLSL binding name to a resource name when they differ"},
+        {"uniforms", "table", "values for the members of the shader's `Params` uniform block"},
+        {"constants", "table", "values for push-constant members"},
+        {"filter", "string", "'linear' (default) or 'nearest' sampling"},
+    };
+}
+
+std::vector<ParamSpec> plus(std::vector<ParamSpec> a, std::vector<ParamSpec> b) {
+    a.insert(a.end(), b.begin(), b.end());
+    return a;
 }
 
 }  // namespace
 
 void registerBuiltinPassKinds(PassRegistry& registry) {
-    registry.add(kind<FullscreenPass>("fullscreen", PassType::Raster, "one triangle over the colour attachments; fragment shader from params.shader"));
-    registry.add(kind<ComputePass>("compute", PassType::Compute, "a compute shader dispatched over a resource's size or params.groups"));
-    registry.add(kind<ClearPass>("clear", PassType::Transfer, "clears its copy destinations to params.value / depth / stencil"));
-    registry.add(kind<CopyPass>("copy", PassType::Transfer, "copies or blits its copy source into its copy destination"));
-    registry.add(kind<MipsPass>("mips", PassType::Transfer, "fills mips 1..n-1 of a texture from mip 0 by linear blits"));
-    registry.add(kind<ReadbackPass>("readback", PassType::Transfer, "copies its copy source to host memory every frame (side effect)"));
+    registry.add(kind<FullscreenPass>(
+        {"fullscreen", PassType::Raster, "one triangle over the colour attachments; fragment shader from `shader`",
+         plus(shaderParams(),
+              {{"clear", "number|list", "clear colour of attachments that do not load (default 0)"},
+               {"blend", "string", "'alpha' or 'additive'"},
+               {"stencil", "table", "{ ref = N, compare = 'equal', mask = 255 }: stencil test"}}),
+         Usage::Sampled, Usage::ColorAttachment}));
+    registry.add(kind<ComputePass>(
+        {"compute", PassType::Compute, "a compute shader dispatched over a resource's size or `groups`",
+         plus(shaderParams(),
+              {{"groups", "list", "{x, y, z} work groups"},
+               {"dispatch", "string", "resource whose size the dispatch covers (default: first storage image written)"}}),
+         Usage::Sampled, Usage::StorageWrite}));
+    registry.add(kind<ClearPass>(
+        {"clear", PassType::Transfer, "clears what it writes to `value` (colour) or `depth`/`stencil`",
+         {{"value", "number|list", "clear colour"}, {"depth", "number", "depth clear value (default 1)"},
+          {"stencil", "number", "stencil clear value (default 0)"}},
+         Usage::CopySrc, Usage::CopyDst}));
+    registry.add(kind<CopyPass>({"copy", PassType::Transfer, "copies or blits what it reads into what it writes", {}, Usage::CopySrc, Usage::CopyDst}));
+    registry.add(kind<MipsPass>({"mips", PassType::Transfer, "fills mips 1..n-1 of the texture it writes from mip 0", {}, Usage::CopySrc, Usage::CopyDst, /*writesLoad=*/true}));
+    registry.add(kind<ReadbackPass>({"readback", PassType::Transfer, "copies what it reads to host memory every frame (a side effect)", {}, Usage::CopySrc, Usage::CopyDst}));
 }
 
 }  // namespace rg::passes

@@ -15,6 +15,9 @@
 #include "core/compiler.h"
 #include "image/image.h"
 #include "runtime.h"
+#include "session.h"
+
+#include <thread>
 
 namespace fs = std::filesystem;
 using namespace rg;
@@ -49,6 +52,7 @@ struct Args {
     std::string error;
 
     static Args parse(int argc, char** argv, int first, const std::vector<std::string>& known) {
+        static const std::vector<std::string> flags = {"verbose"};  // options without a value
         Args a;
         for (int i = first; i < argc; ++i) {
             std::string arg = argv[i];
@@ -61,6 +65,11 @@ struct Args {
                 continue;
             }
             std::string name = arg.substr(2), value;
+            if (std::find(flags.begin(), flags.end(), name) != flags.end() &&
+                std::find(known.begin(), known.end(), name) != known.end()) {
+                a.values[name].push_back("1");
+                continue;
+            }
             if (auto eq = name.find('='); eq != std::string::npos) {
                 value = name.substr(eq + 1);
                 name = name.substr(0, eq);
@@ -108,12 +117,18 @@ bool parseCount(const std::string& s, uint32_t& n) {
     return true;
 }
 
-// The graph a command works on: --pipeline builtin:NAME (the default is builtin:test).
+std::string defaultPipeline() { return projectRoot() + "/scripts/pipelines/deferred.lua"; }
+std::string pipelineArg(const Args& args) { return args.get("pipeline", defaultPipeline()); }
+bool isBuiltin(const std::string& p) { return p.rfind("builtin:", 0) == 0; }
+
+// The graph a command works on, without a GPU: a pipeline script or builtin:NAME.
 Result<GraphDesc> loadGraph(const Args& args) {
-    std::string pipeline = args.get("pipeline", "builtin:test");
-    if (pipeline.rfind("builtin:", 0) == 0) return builtinGraph(pipeline.substr(8));
-    return fail(ErrorCode::Unsupported, "--pipeline '" + pipeline +
-                                            "': only built-in graphs are available (builtin:test)");
+    std::string pipeline = pipelineArg(args);
+    if (isBuiltin(pipeline)) return builtinGraph(pipeline.substr(8));
+    LuaHost host(luaHostOptionsWithoutDevice());
+    auto p = host.load(pipeline);
+    if (!p) return std::unexpected(p.error());
+    return graphWithParams(*p);
 }
 
 const char* kMainHelp =
@@ -126,6 +141,7 @@ const char* kMainHelp =
     "  render    render a pipeline to EXR (linear) and PNG (display)\n"
     "  graph     print the compiled plan of a pipeline as DOT or JSON\n"
     "  bench     time every pass over several frames\n"
+    "  watch     re-render whenever a script or shader of the pipeline changes\n"
     "\n"
     "'rgraph COMMAND --help' describes each command. Exit codes: 0 success, 1 failed check or\n"
     "device failure, 2 bad usage or bad input.\n"
@@ -165,7 +181,7 @@ int cmdDevices(int argc, char** argv) {
 int cmdGraph(int argc, char** argv) {
     Args args = Args::parse(argc, argv, 2, {"pipeline", "format", "size", "capture"});
     if (args.help) {
-        std::printf("usage: rgraph graph [--pipeline builtin:NAME] [--format dot|json] [--size WxH] [--capture RESOURCE]...\n\n"
+        std::printf("usage: rgraph graph [--pipeline FILE.lua|builtin:NAME] [--format dot|json] [--size WxH] [--capture RESOURCE]...\n\n"
                     "Compiles the pipeline (no GPU needed; memory sizes are estimated) and prints the plan:\n"
                     "passes in order, culled passes and why, resources with lifetimes and memory offsets,\n"
                     "barriers. Default format: dot.\n");
@@ -192,14 +208,20 @@ int cmdGraph(int argc, char** argv) {
 
 struct RenderSetup {
     std::unique_ptr<Runtime> runtime;
+    std::unique_ptr<Session> session;  // null for builtin:NAME graphs
     uint32_t frames = 1;
+    std::string pipeline;
+
+    Result<void> frame() { return session ? session->frame() : runtime->executor().frame(); }
+    std::string output() const { return session ? session->pipeline().output : "output"; }
 };
 
-// Shared by render and bench: options, runtime, graph build.
+// Shared by render, bench and watch: options, runtime, pipeline load and build.
 Result<RenderSetup> setupRun(const Args& args, const char* command, uint32_t defaultFrames,
-                             const std::vector<std::string>& captures) {
+                             const std::vector<std::string>& captures, bool verbose = false) {
     RenderSetup s;
     s.frames = defaultFrames;
+    s.pipeline = pipelineArg(args);
     CompileOptions opts;
     if (args.has("size") && !parseSize(args.get("size"), opts.outputWidth, opts.outputHeight))
         return fail(ErrorCode::InvalidInput, std::string(command) + ": --size must be WIDTHxHEIGHT, e.g. 1280x720");
@@ -207,55 +229,62 @@ Result<RenderSetup> setupRun(const Args& args, const char* command, uint32_t def
         return fail(ErrorCode::InvalidInput, std::string(command) + ": --frames must be a positive whole number");
     RuntimeOptions ro;
     if (args.has("device")) {
-        uint32_t d = 0;
         const std::string v = args.get("device");
-        if (v.empty() || v.find_first_not_of("0123456789") != std::string::npos)
+        if (v.empty() || v.size() > 3 || v.find_first_not_of("0123456789") != std::string::npos)
             return fail(ErrorCode::InvalidInput, std::string(command) + ": --device must be a device index (see 'rgraph devices')");
-        d = static_cast<uint32_t>(std::stoul(v));
-        ro.device = d;
+        ro.device = static_cast<uint32_t>(std::stoul(v));
     }
     if (args.has("scene"))
-        return fail(ErrorCode::Unsupported, std::string(command) + ": --scene: the built-in graphs draw no scene");
-    auto graph = loadGraph(args);
-    if (!graph) return std::unexpected(graph.error());
-    for (const auto& c : captures) {
-        auto it = std::find_if(graph->resources.begin(), graph->resources.end(), [&](auto& r) { return r.name == c; });
-        if (it == graph->resources.end())
-            return fail(ErrorCode::NotFound, "--capture: no resource named '" + c + "'");
-        it->exported = true;
-    }
+        return fail(ErrorCode::Unsupported, std::string(command) + ": --scene: no pipeline draws scenes yet (the scene raster pass is not there)");
     auto rt = Runtime::create(ro);
     if (!rt) return std::unexpected(rt.error());
     s.runtime = std::move(*rt);
-    if (auto r = s.runtime->executor().build(*graph, opts); !r) return std::unexpected(r.error());
+    if (isBuiltin(s.pipeline)) {
+        auto graph = builtinGraph(s.pipeline.substr(8));
+        if (!graph) return std::unexpected(graph.error());
+        for (const auto& c : captures) {
+            auto it = std::find_if(graph->resources.begin(), graph->resources.end(), [&](auto& r) { return r.name == c; });
+            if (it == graph->resources.end()) return fail(ErrorCode::NotFound, "--capture: no resource named '" + c + "'");
+            it->exported = true;
+        }
+        if (auto r = s.runtime->executor().build(*graph, opts); !r) return std::unexpected(r.error());
+        return s;
+    }
+    SessionOptions so;
+    so.compile = opts;
+    so.captures = captures;
+    so.verbose = verbose;
+    s.session = std::make_unique<Session>(*s.runtime, so);
+    if (auto r = s.session->load(s.pipeline); !r) return std::unexpected(r.error());
     return s;
 }
 
 std::string exrMetaDevice(Runtime& rt) { return rt.gpu().deviceInfo().name + " (" + rt.gpu().deviceInfo().driver + ")"; }
 
 int cmdRender(int argc, char** argv) {
-    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "size", "frames", "out", "png", "capture", "device"});
+    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "size", "frames", "out", "png", "capture", "device", "verbose"});
     if (args.help) {
         std::printf(
-            "usage: rgraph render [--pipeline builtin:NAME] [--size WxH] [--frames N]\n"
-            "                     [--out FILE.exr] [--png FILE.png] [--capture RESOURCE]... [--device N]\n\n"
-            "Renders N frames (default 1) at WxH (default 1280x720) and writes the pipeline's `output`\n"
+            "usage: rgraph render [--pipeline FILE.lua|builtin:NAME] [--size WxH] [--frames N]\n"
+            "                     [--out FILE.exr] [--png FILE.png] [--capture RESOURCE]... [--device N] [--verbose]\n\n"
+            "Renders N frames (default 1) at WxH (default 1280x720) through the pipeline (default\n"
+            "scripts/pipelines/deferred.lua), calling its rg.frame(ctx) before each frame, and writes its output\n"
             "to FILE.exr (linear, layer 'hdr'; default out/render.exr) and to FILE.png (sRGB, clamped;\n"
             "default out/render.png). Each --capture adds that resource to the EXR as a layer of its name.\n");
         return kOk;
     }
     if (!args.error.empty()) return usageError(args.error, "render");
     const auto captures = args.all("capture");
-    auto setup = setupRun(args, "render", 1, captures);
+    auto setup = setupRun(args, "render", 1, captures, args.has("verbose"));
     if (!setup) return report(setup.error());
     Runtime& rt = *setup->runtime;
     gpu::Executor& ex = rt.executor();
     for (uint32_t f = 0; f < setup->frames; ++f) {
-        if (auto r = ex.frame(); !r) return report(r.error());
+        if (auto r = setup->frame(); !r) return report(r.error());
         if (setup->frames > 1) std::fprintf(stderr, "\rrgraph: frame %u/%u", f + 1, setup->frames);
     }
     if (setup->frames > 1) std::fprintf(stderr, "\n");
-    auto out = ex.readback("output");
+    auto out = ex.readback(setup->output());
     if (!out) return report(out.error());
 
     std::string exrPath = args.get("out", "out/render.exr");
@@ -269,13 +298,13 @@ int cmdRender(int argc, char** argv) {
     };
     layers.push_back({"hdr", channelNames(out->channels), *out});
     for (const auto& c : captures) {
-        if (c == "output") continue;
+        if (c == setup->output()) continue;
         auto img = ex.readback(c);
         if (!img) return report(img.error());
         layers.push_back({c, channelNames(img->channels), *img});
     }
     ExrWriteOptions eo;
-    eo.metadata["rgraph.pipeline"] = args.get("pipeline", "builtin:test");
+    eo.metadata["rgraph.pipeline"] = setup->pipeline;
     eo.metadata["rgraph.device"] = exrMetaDevice(rt);
     eo.metadata["rgraph.frames"] = std::to_string(setup->frames);
     for (const auto& p : {exrPath, pngPath}) {
@@ -300,6 +329,75 @@ int cmdRender(int argc, char** argv) {
     return kOk;
 }
 
+int cmdWatch(int argc, char** argv) {
+    Args args = Args::parse(argc, argv, 2, {"pipeline", "size", "out", "png", "device", "interval", "max-reloads"});
+    if (args.help) {
+        std::printf(
+            "usage: rgraph watch [--pipeline FILE.lua] [--size WxH] [--out FILE.exr] [--png FILE.png]\n"
+            "                    [--interval MS] [--max-reloads N]\n\n"
+            "Renders once, then re-renders whenever a script or shader the pipeline uses changes (polled\n"
+            "every MS milliseconds, default 250). A script that fails to load or compile is reported and the\n"
+            "previous pipeline keeps running. Stops after N reloads when --max-reloads is given.\n");
+        return kOk;
+    }
+    if (!args.error.empty()) return usageError(args.error, "watch");
+    uint32_t interval = 250, maxReloads = 0;
+    if (args.has("interval") && !parseCount(args.get("interval"), interval)) return usageError("--interval must be milliseconds", "watch");
+    if (args.has("max-reloads") && !parseCount(args.get("max-reloads"), maxReloads)) return usageError("--max-reloads must be a count", "watch");
+    if (isBuiltin(pipelineArg(args))) return usageError("watch needs a pipeline script", "watch");
+    auto setup = setupRun(args, "watch", 1, {}, /*verbose=*/true);
+    if (!setup) return report(setup.error());
+    Session& session = *setup->session;
+    const std::string exrPath = args.get("out", "out/watch.exr"), pngPath = args.get("png", "out/watch.png");
+    auto renderOnce = [&]() -> Result<void> {
+        if (auto r = session.frame(); !r) return r;
+        auto img = setup->runtime->executor().readback(session.pipeline().output);
+        if (!img) return std::unexpected(img.error());
+        std::error_code ec;
+        if (auto parent = fs::path(exrPath).parent_path(); !parent.empty()) fs::create_directories(parent, ec);
+        if (auto r = writeExr(exrPath, {{"hdr", {"R", "G", "B", "A"}, *img}}, {}); !r) return r;
+        Image display = *img;
+        display.channels = 3;
+        display.pixels.clear();
+        for (size_t i = 0; i < size_t(img->width) * img->height; ++i)
+            for (uint32_t c = 0; c < 3; ++c)
+                display.pixels.push_back(srgbEncode(std::clamp(img->pixels[i * img->channels + std::min(c, img->channels - 1)], 0.0f, 1.0f)));
+        return writePng(pngPath, display);
+    };
+    auto stamp = [&]() {
+        std::map<std::string, fs::file_time_type> t;
+        for (const auto& f : session.files()) {
+            std::error_code ec;
+            t[f] = fs::last_write_time(f, ec);
+        }
+        return t;
+    };
+    if (auto r = renderOnce(); !r) return report(r.error());
+    std::printf("rgraph watch: rendered %s; watching %zu files\n", pngPath.c_str(), session.files().size());
+    std::fflush(stdout);
+    auto last = stamp();
+    for (uint32_t reloads = 0; maxReloads == 0 || reloads < maxReloads;) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(interval));
+        auto now = stamp();
+        if (now == last) continue;
+        last = now;
+        ++reloads;
+        if (auto r = session.load(setup->pipeline); !r) {
+            std::printf("rgraph watch: reload failed, the previous pipeline keeps running:\n%s\n", r.error().describe().c_str());
+            std::fflush(stdout);
+            continue;
+        }
+        if (auto r = renderOnce(); !r) {
+            std::printf("rgraph watch: render failed: %s\n", r.error().describe().c_str());
+            std::fflush(stdout);
+            continue;
+        }
+        std::printf("rgraph watch: reloaded and rendered %s\n", pngPath.c_str());
+        std::fflush(stdout);
+    }
+    return kOk;
+}
+
 struct Stat {
     double median = 0, min = 0, max = 0;
 };
@@ -317,7 +415,7 @@ int cmdBench(int argc, char** argv) {
     Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "size", "frames", "json", "device"});
     if (args.help) {
         std::printf(
-            "usage: rgraph bench [--pipeline builtin:NAME] [--size WxH] [--frames N] [--json FILE] [--device N]\n\n"
+            "usage: rgraph bench [--pipeline FILE.lua|builtin:NAME] [--size WxH] [--frames N] [--json FILE] [--device N]\n\n"
             "Renders N frames (default 20) at WxH (default 1280x720), one frame at a time, and prints per pass\n"
             "the median/min/max GPU time (timestamp queries), the CPU recording time, the frame total, the\n"
             "graph compile time and the transient memory with and without aliasing. --json writes the same.\n");
@@ -329,12 +427,12 @@ int cmdBench(int argc, char** argv) {
     Runtime& rt = *setup->runtime;
     gpu::Executor& ex = rt.executor();
     std::map<std::string, std::vector<double>> perPass;
-    std::vector<double> totals, records;
+    std::vector<double> totals, records, callbacks;
     // One warm-up frame: the first draw of each pipeline JIT-compiles on lavapipe.
     if (auto r = ex.frame(); !r) return report(r.error());
     if (auto r = ex.finish(); !r) return report(r.error());
     for (uint32_t f = 0; f < setup->frames; ++f) {
-        if (auto r = ex.frame(); !r) return report(r.error());
+        if (auto r = setup->frame(); !r) return report(r.error());
         if (auto r = ex.finish(); !r) return report(r.error());
         double total = 0;
         for (const auto& t : ex.lastTimings()) {
@@ -343,14 +441,15 @@ int cmdBench(int argc, char** argv) {
         }
         totals.push_back(total);
         records.push_back(ex.lastRecordMs());
+        if (setup->session) callbacks.push_back(setup->session->lastFrameCallbackMs());
     }
     const Plan& plan = ex.plan();
     uint32_t w = plan.outputWidth, h = plan.outputHeight;
-    std::printf("rgraph bench: %s, %ux%u, %u frames, %s\n", args.get("pipeline", "builtin:test").c_str(), w, h,
+    std::printf("rgraph bench: %s, %ux%u, %u frames, %s\n", setup->pipeline.c_str(), w, h,
                 setup->frames, rt.gpu().deviceInfo().name.c_str());
     std::printf("%-24s %10s %10s %10s\n", "pass (GPU ms)", "median", "min", "max");
     nlohmann::json j;
-    j["pipeline"] = args.get("pipeline", "builtin:test");
+    j["pipeline"] = setup->pipeline;
     j["size"] = {w, h};
     j["frames"] = setup->frames;
     j["device"] = rt.gpu().deviceInfo().name;
@@ -362,6 +461,13 @@ int cmdBench(int argc, char** argv) {
     Stat t = stats(totals), rec = stats(records);
     std::printf("%-24s %10.3f %10.3f %10.3f\n", "frame total", t.median, t.min, t.max);
     std::printf("%-24s %10.3f %10.3f %10.3f\n", "CPU recording", rec.median, rec.min, rec.max);
+    if (setup->session) {
+        Stat cb = stats(callbacks);
+        std::printf("%-24s %10.3f %10.3f %10.3f\n", "rg.frame (Lua)", cb.median, cb.min, cb.max);
+        std::printf("pipeline load %.1f ms (script, shaders, graph compile, resources, pipelines)\n", setup->session->lastLoadMs());
+        j["luaFrameMs"] = {{"median", cb.median}, {"min", cb.min}, {"max", cb.max}};
+        j["loadMs"] = setup->session->lastLoadMs();
+    }
     const auto& bs = ex.buildStats();
     std::printf("graph compile %.3f ms, resources %.3f ms, pass setup %.3f ms\n", bs.compileMs, bs.resourcesMs, bs.prepareMs);
     std::printf("transient memory: %.2f MiB aliased, %.2f MiB without aliasing\n",
@@ -392,6 +498,7 @@ int main(int argc, char** argv) {
     if (cmd == "render") return cmdRender(argc, argv);
     if (cmd == "graph") return cmdGraph(argc, argv);
     if (cmd == "bench") return cmdBench(argc, argv);
+    if (cmd == "watch") return cmdWatch(argc, argv);
     std::fprintf(stderr, "rgraph: unknown command '%s'\n\n%s", cmd.c_str(), kMainHelp);
     return kUsage;
 }

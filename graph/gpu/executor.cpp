@@ -46,15 +46,57 @@ ImageDesc imageDescOf(const PlanResource& r) {
 
 }  // namespace
 
+// Physical resources and pass instances of one plan. Shared pointers, so an incremental rebuild
+// can reuse what did not change while the old build stays intact until the new one succeeds.
 struct Executor::Built {
     Plan plan;  // owned here so pass instances and the table may point into it
     GraphDesc graph;
-    std::vector<OwnedMemory> heaps;
-    std::vector<std::unique_ptr<Image>> images;    // by plan resource index
-    std::vector<std::unique_ptr<Buffer>> buffers;  // by plan resource index
+    std::vector<std::shared_ptr<OwnedMemory>> heaps;
+    std::vector<std::shared_ptr<Image>> images;    // by plan resource index
+    std::vector<std::shared_ptr<Buffer>> buffers;  // by plan resource index
     ResourceTable table;
-    std::vector<std::unique_ptr<PassInstance>> instances;  // by plan pass index
+    std::vector<std::shared_ptr<PassInstance>> instances;  // by plan pass index
 };
+
+namespace {
+
+bool sameHeap(const TransientHeap& a, const TransientHeap& b) {
+    return a.size == b.size && a.memoryTypeBits == b.memoryTypeBits && a.buffers == b.buffers;
+}
+
+// Same physical shape: a resource built for `a` serves `b`.
+bool sameShape(const PlanResource& a, const PlanResource& b) {
+    return a.kind == b.kind && a.format == b.format && a.width == b.width && a.height == b.height &&
+           a.layers == b.layers && a.mips == b.mips && a.cube == b.cube && a.bufferSize == b.bufferSize &&
+           a.usageMask == b.usageMask && a.transient == b.transient && a.imported == b.imported;
+}
+
+Value withoutUniforms(const Value& params) {
+    Value v = params;
+    if (v.isTable()) v.table().erase("uniforms");
+    return v;
+}
+
+bool sameAccesses(const std::vector<Access>& a, const std::vector<Access>& b) {
+    if (a.size() != b.size()) return false;
+    for (size_t i = 0; i < a.size(); ++i)
+        if (a[i].resource != b[i].resource || a[i].usage != b[i].usage || a[i].load != b[i].load) return false;
+    return true;
+}
+
+}  // namespace
+
+std::string BuildReport::summary() const {
+    std::string s = "rebuilt " + std::to_string(passesPrepared.size()) + " pass(es)";
+    if (!passesPrepared.empty()) {
+        s += " (";
+        for (size_t i = 0; i < passesPrepared.size(); ++i) s += (i ? ", " : "") + passesPrepared[i];
+        s += ")";
+    }
+    s += ", reused " + std::to_string(passesReused.size()) + "; resources: " + std::to_string(resourcesCreated) +
+         " created, " + std::to_string(resourcesReused) + " reused";
+    return s;
+}
 
 Executor::Executor(Context& ctx, ShaderCompiler& shaders, const PassRegistry& kinds)
     : m_ctx(ctx), m_shaders(shaders), m_kinds(kinds) {}
@@ -81,7 +123,7 @@ Result<void> Executor::resolveKinds(GraphDesc& graph) const {
             for (const auto& n : m_kinds.names()) all += (all.empty() ? "" : ", ") + n;
             return fail(ErrorCode::InvalidInput, msg + "; known kinds: " + all);
         }
-        p.type = kind->type;
+        p.type = kind->schema.type;
     }
     return {};
 }
@@ -130,71 +172,127 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
     if (!plan) return std::unexpected(plan.error());
     m_buildStats.compileMs = msSince(t0);
 
-    // Physical resources.
+    // Physical resources: reuse the previous build's where nothing about them changed.
     auto t1 = Clock::now();
+    BuildReport report;
+    const Built* old = m_built.get();
     auto built = std::make_unique<Built>();
     built->plan = std::move(*plan);
     built->graph = std::move(graph);
     const Plan* planPtr = &built->plan;
-    for (const auto& heap : planPtr->heaps) {
+    std::vector<bool> heapReused(planPtr->heaps.size(), false);
+    for (size_t h = 0; h < planPtr->heaps.size(); ++h) {
+        const auto& heap = planPtr->heaps[h];
+        if (old && h < old->plan.heaps.size() && sameHeap(old->plan.heaps[h], heap)) {
+            built->heaps.push_back(old->heaps[h]);
+            heapReused[h] = true;
+            continue;
+        }
         uint32_t type = 0;
-        auto mem = m_ctx.allocator().allocateHeap(std::max<uint64_t>(heap.size, 1),
-                                                  heap.memoryTypeBits, type);
+        auto mem = m_ctx.allocator().allocateHeap(std::max<uint64_t>(heap.size, 1), heap.memoryTypeBits, type);
         if (!mem) return std::unexpected(mem.error());
-        built->heaps.push_back(std::move(*mem));
+        built->heaps.push_back(std::make_shared<OwnedMemory>(std::move(*mem)));
     }
     built->images.resize(planPtr->resources.size());
     built->buffers.resize(planPtr->resources.size());
+    std::vector<bool> resourceReused(planPtr->resources.size(), false);
     for (size_t i = 0; i < planPtr->resources.size(); ++i) {
         const PlanResource& r = planPtr->resources[i];
-        PhysicalResource phys;
-        phys.plan = &r;
+        if (old) {
+            int32_t o = old->plan.findResource(r.name);
+            if (o >= 0) {
+                const PlanResource& orr = old->plan.resources[static_cast<size_t>(o)];
+                bool placementKept = r.heap < 0 ? orr.heap < 0
+                                                : (orr.heap == r.heap && orr.offset == r.offset &&
+                                                   heapReused[static_cast<size_t>(r.heap)]);
+                if (sameShape(orr, r) && placementKept) {
+                    built->images[i] = old->images[static_cast<size_t>(o)];
+                    built->buffers[i] = old->buffers[static_cast<size_t>(o)];
+                    resourceReused[i] = true;
+                    ++report.resourcesReused;
+                    continue;
+                }
+            }
+        }
+        ++report.resourcesCreated;
         if (r.kind == ResourceKind::Texture) {
             ImageDesc d = imageDescOf(r);
-            auto img = r.heap >= 0 ? Image::createPlaced(m_ctx, d, built->heaps[static_cast<size_t>(r.heap)].get(), r.offset)
+            auto img = r.heap >= 0 ? Image::createPlaced(m_ctx, d, built->heaps[static_cast<size_t>(r.heap)]->get(), r.offset)
                                    : Image::create(m_ctx, d);
             if (!img) return std::unexpected(img.error());
-            built->images[i] = std::make_unique<Image>(std::move(*img));
-            phys.image = built->images[i].get();
+            built->images[i] = std::make_shared<Image>(std::move(*img));
         } else {
             VkBufferUsageFlags usage = bufferUsageOf(r.usageMask);
             auto buf = r.heap >= 0 ? Buffer::createPlaced(m_ctx, r.name, r.bufferSize, usage,
-                                                          built->heaps[static_cast<size_t>(r.heap)].get(), r.offset)
+                                                          built->heaps[static_cast<size_t>(r.heap)]->get(), r.offset)
                                    : Buffer::create(m_ctx, r.name, r.bufferSize, usage, false);
             if (!buf) return std::unexpected(buf.error());
-            built->buffers[i] = std::make_unique<Buffer>(std::move(*buf));
-            phys.buffer = built->buffers[i].get();
+            built->buffers[i] = std::make_shared<Buffer>(std::move(*buf));
         }
-        built->table.set(r.name, phys);
     }
+    for (size_t i = 0; i < planPtr->resources.size(); ++i)
+        built->table.set(planPtr->resources[i].name,
+                         PhysicalResource{&planPtr->resources[i], built->images[i].get(), built->buffers[i].get()});
     m_buildStats.resourcesMs = msSince(t1);
 
-    // Pass instances.
+    // Pass instances: an unchanged pass over unchanged resources keeps its pipeline and
+    // descriptor sets.
     auto t2 = Clock::now();
     for (const auto& pass : planPtr->passes) {
         const PassDesc& desc = built->graph.passes[pass.desc];
-        auto instance = m_kinds.find(desc.kind)->create();
+        if (old) {
+            int32_t o = old->plan.findPass(pass.name);
+            if (o >= 0) {
+                const PlanPass& op = old->plan.passes[static_cast<size_t>(o)];
+                const PassDesc& od = old->graph.passes[op.desc];
+                bool resourcesKept = std::all_of(pass.accesses.begin(), pass.accesses.end(),
+                                                 [&](const PlanAccess& a) { return resourceReused[a.resource]; });
+                if (od.kind == desc.kind && sameAccesses(od.accesses, desc.accesses) && resourcesKept &&
+                    withoutUniforms(od.params) == withoutUniforms(desc.params)) {
+                    built->instances.push_back(old->instances[static_cast<size_t>(o)]);
+                    report.passesReused.push_back(pass.name);
+                    continue;
+                }
+            }
+        }
+        auto instance = std::shared_ptr<PassInstance>(m_kinds.find(desc.kind)->create());
         PassSetup setup{m_ctx, m_shaders, *planPtr, pass, desc, built->table};
         if (auto r = instance->prepare(setup); !r) return std::unexpected(r.error());
         built->instances.push_back(std::move(instance));
+        report.passesPrepared.push_back(pass.name);
     }
     m_buildStats.prepareMs = msSince(t2);
 
+    // Upload imported contents into resources that are new.
+    for (size_t i = 0; i < planPtr->resources.size(); ++i) {
+        const PlanResource& r = planPtr->resources[i];
+        if (!r.imported || resourceReused[i]) continue;
+        if (!m_importData.count(r.name))
+            return fail(ErrorCode::InvalidInput, "imported resource '" + r.name + "' has no contents (nothing was uploaded for it)");
+    }
+
     // Swap in; the old build may still be used by frames in flight.
     if (m_built) {
-        std::shared_ptr<Built> old(std::move(m_built));
-        m_ctx.deferDestroy([old]() mutable { old.reset(); });
+        std::shared_ptr<Built> retired(std::move(m_built));
+        m_ctx.deferDestroy([retired]() mutable { retired.reset(); });
     }
     m_built = std::move(built);
-    for (const auto& r : m_built->plan.resources) {
-        if (!r.imported) continue;
-        auto it = m_importData.find(r.name);
-        if (it == m_importData.end())
-            return fail(ErrorCode::InvalidInput,
-                        "imported resource '" + r.name + "' has no contents (nothing was uploaded for it)");
-        if (auto u = setImport(r.name, it->second); !u) return u;
+    m_lastReport = report;
+    ++m_buildCount;
+    for (size_t i = 0; i < m_built->plan.resources.size(); ++i) {
+        const PlanResource& r = m_built->plan.resources[i];
+        if (r.imported && !resourceReused[i])
+            if (auto u = setImport(r.name, m_importData[r.name]); !u) return u;
     }
     return {};
+}
+
+void Executor::updateUniforms(const GraphDesc& graph) {
+    if (!m_built) return;
+    for (auto& pass : m_built->graph.passes) {
+        const PassDesc* p = graph.findPass(pass.name);
+        if (p && pass.params.isTable()) pass.params.table()["uniforms"] = p->params["uniforms"];
+    }
 }
 
 Result<void> Executor::setImport(const std::string& name, const rg::Image& data) {

@@ -26,6 +26,15 @@ struct BuildStats {
     double prepareMs = 0.0;   // pass instances (shaders, pipelines)
 };
 
+// What an incremental build reused and what it made anew.
+struct BuildReport {
+    std::vector<std::string> passesPrepared;  // new pass instances (pipelines, descriptor sets)
+    std::vector<std::string> passesReused;
+    uint32_t resourcesCreated = 0;
+    uint32_t resourcesReused = 0;
+    std::string summary() const;
+};
+
 class Executor {
 public:
     Executor(Context& ctx, ShaderCompiler& shaders, const PassRegistry& kinds);
@@ -35,8 +44,14 @@ public:
 
     // Fills each PassDesc::type from its kind and rejects unknown kinds (with a suggestion).
     Result<void> resolveKinds(GraphDesc& graph) const;
-    // Compiles and builds; the previous build (if any) is retired through the deletion queue.
+    // Compiles and builds. Resources and pass instances of the previous build that did not
+    // change are reused; the rest of it is retired through the deletion queue. On failure the
+    // previous build stays in place, untouched.
     Result<void> build(const GraphDesc& graph, const CompileOptions& options);
+    const BuildReport& lastBuildReport() const { return m_lastReport; }
+    uint32_t buildCount() const { return m_buildCount; }
+    // New `uniforms` of each pass (parameter changes): nothing is rebuilt or re-recorded.
+    void updateUniforms(const GraphDesc& graph);
 
     // Contents for an imported texture (uploaded now, then kept in ShaderReadOnly layout).
     Result<void> setImport(const std::string& name, const rg::Image& data);
@@ -83,6 +98,8 @@ private:
     std::map<std::string, rg::Image> m_importData;
     uint64_t m_frameIndex = 0;
     BuildStats m_buildStats;
+    BuildReport m_lastReport;
+    uint32_t m_buildCount = 0;
     std::vector<PassTiming> m_lastTimings;
     double m_lastRecordMs = 0.0;
 };

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "core/graph.h"
+#include "core/kind_schema.h"
 #include "core/plan.h"
 #include "image/image.h"
 #include "resources.h"
@@ -80,18 +81,21 @@ public:
 };
 
 struct PassKindInfo {
-    std::string name;
-    PassType type = PassType::Raster;
-    std::string summary;  // one line for `rgraph kinds` / docs
+    PassKindSchema schema;  // name, type, parameters: what scripts may declare
     std::function<std::unique_ptr<PassInstance>()> create;
 };
 
 class PassRegistry {
 public:
-    void add(PassKindInfo info) { m_kinds[info.name] = std::move(info); }
+    void add(PassKindInfo info) { m_kinds[info.schema.name] = std::move(info); }
     const PassKindInfo* find(const std::string& name) const {
         auto it = m_kinds.find(name);
         return it == m_kinds.end() ? nullptr : &it->second;
+    }
+    std::vector<PassKindSchema> schemas() const {
+        std::vector<PassKindSchema> out;
+        for (const auto& [n, k] : m_kinds) out.push_back(k.schema);
+        return out;
     }
     std::vector<std::string> names() const {
         std::vector<std::string> out;

@@ -32,13 +32,14 @@ namespace {
 
 // Reads a file already held in memory, so that the file is opened (and its OS errors reported)
 // in one place, and a truncated file ends in one recognisable exception.
+// Deliberately not "memory-mapped" (isMemoryMapped() stays false): OpenEXR 3.1 then reads
+// uncompressed chunks in place and a chunk whose size field is too small makes it read past the
+// end of the buffer (found by fuzzing); copying gives every chunk a buffer of full size.
 class MemoryIStream final : public Imf::IStream {
 public:
     MemoryIStream(const std::string& path, std::vector<char>& data)
         : Imf::IStream(path.c_str()), m_data(data) {}
 
-    bool isMemoryMapped() const override { return true; }
-    char* readMemoryMapped(int n) override { return take(n); }
     bool read(char c[], int n) override {
         std::memcpy(c, take(n), size_t(n));
         return m_pos < m_data.size();
@@ -178,6 +179,24 @@ void sortChannels(std::vector<std::string>& names) {
     });
 }
 
+// OpenEXR's messages repeat the file name ('Cannot read image file "x.exr". Invalid data window
+// in image header.'); ours already start with it, so keep only what OpenEXR adds.
+std::string exrReason(const std::string& path, const std::string& what) {
+    const std::string named = "\"" + path + "\". ";
+    const size_t at = what.find(named);
+    if (at == std::string::npos) return what;
+    std::string action = what.substr(0, at);
+    const std::string reason = what.substr(at + named.size());
+    for (const char* tail : {" from image file ", " image file "}) {
+        if (action.ends_with(tail)) {
+            action.resize(action.size() - std::strlen(tail));
+            break;
+        }
+    }
+    if (action == "Cannot read" || action == "Cannot open") return reason;
+    return action + ": " + reason;
+}
+
 }  // namespace
 
 Result<void> writeExr(const std::string& path, const std::vector<ImageLayer>& layers,
@@ -228,7 +247,8 @@ Result<void> writeExr(const std::string& path, const std::vector<ImageLayer>& la
         return fail(ErrorCode::Io, "cannot write " + quoted(path) + ": out of memory");
     } catch (const std::exception& e) {
         if (stream.error() != 0) return std::unexpected(writer->writeError(stream.error()));
-        return fail(ErrorCode::InvalidInput, quoted(path) + ": OpenEXR: " + e.what());
+        return fail(ErrorCode::InvalidInput,
+                    quoted(path) + ": OpenEXR: " + exrReason(path, e.what()));
     }
     if (stream.error() != 0) return std::unexpected(writer->writeError(stream.error()));
     return writer->commit();
@@ -302,7 +322,8 @@ Result<ExrFile> readExr(const std::string& path) {
     } catch (const std::bad_alloc&) {
         return fail(ErrorCode::Io, "cannot read " + file + ": out of memory");
     } catch (const std::exception& e) {
-        return fail(ErrorCode::InvalidInput, file + ": invalid OpenEXR file: " + e.what());
+        return fail(ErrorCode::InvalidInput,
+                    file + ": invalid OpenEXR file: " + exrReason(path, e.what()));
     }
 }
 

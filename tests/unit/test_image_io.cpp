@@ -1,6 +1,7 @@
 // Image I/O: EXR layers/metadata/precision, PNG 8-bit + text, Radiance HDR, sRGB, and the exact
 // error text for each kind of bad file.
 #include <gtest/gtest.h>
+#include <png.h>  // only to write PNG variants that writePng does not produce
 
 #include <cmath>
 #include <cstdint>
@@ -273,16 +274,55 @@ TEST(ExrTest, GarbageFile) {
 
 TEST(ExrTest, GarbageAfterMagic) {
     const std::string path = tmpPath("garbage_magic.exr");
-    std::vector<char> bytes(1000);
-    for (size_t i = 0; i < bytes.size(); ++i) bytes[i] = char((i * 7919u) >> 3);
-    const char magic[4] = {0x76, 0x2f, 0x31, 0x01};
-    std::copy(magic, magic + 4, bytes.begin());
+    // Magic, version 2, then a header whose "channels" attribute claims to be an int.
+    const std::string header("\x76\x2f\x31\x01\x02\0\0\0channels\0int\0\x04\0\0\0\0\0\0\0\0", 30);
+    std::vector<char> bytes(header.begin(), header.end());
+    bytes.resize(1000, 'x');
     writeBytes(path, bytes);
     auto r = rg::readExr(path);
     ASSERT_FALSE(r);
     EXPECT_EQ(r.error().code, ErrorCode::InvalidInput);
-    EXPECT_NE(r.error().message.find("'" + path + "': invalid OpenEXR file: "), std::string::npos)
-        << r.error().message;
+    EXPECT_EQ(r.error().message, "'" + path +
+                                     "': invalid OpenEXR file: Unexpected type for image "
+                                     "attribute \"channels\".");
+
+    // Garbage where the header's attribute names should be.
+    for (size_t i = 8; i < bytes.size(); ++i) bytes[i] = char(1 + (i * 7919u) % 250);
+    writeBytes(path, bytes);
+    r = rg::readExr(path);
+    ASSERT_FALSE(r);
+    EXPECT_EQ(r.error().message, "'" + path +
+                                     "': invalid OpenEXR file: Invalid attribute name: it is "
+                                     "more than 255 characters long.");
+
+    // A wrong version field is reported as such.
+    bytes[4] = 7;
+    writeBytes(path, bytes);
+    r = rg::readExr(path);
+    ASSERT_FALSE(r);
+    EXPECT_EQ(r.error().message, "'" + path +
+                                     "': invalid OpenEXR file: Cannot read version 7 image "
+                                     "files.  Current file format version is 2.");
+}
+
+TEST(ExrTest, TruncatedFile) {
+    const std::string good = tmpPath("whole_t.exr"), cut = tmpPath("cut_t.exr");
+    ASSERT_TRUE(rg::writeExr(good, makeLayers(16, 8), {}));
+    const auto bytes = readBytes(good);
+    // Cut inside the last pixel chunk: header and offset table intact.
+    writeBytes(cut, std::vector<char>(bytes.begin(), bytes.end() - 10));
+    auto r = rg::readExr(cut);
+    ASSERT_FALSE(r);
+    EXPECT_EQ(r.error().code, ErrorCode::InvalidInput);
+    EXPECT_EQ(r.error().message, "'" + cut +
+                                     "': invalid OpenEXR file: Error reading pixel data: "
+                                     "unexpected end of file (truncated?)");
+    // Cut inside the header.
+    writeBytes(cut, std::vector<char>(bytes.begin(), bytes.begin() + 40));
+    r = rg::readExr(cut);
+    ASSERT_FALSE(r);
+    EXPECT_EQ(r.error().message,
+              "'" + cut + "': invalid OpenEXR file: unexpected end of file (truncated?)");
 }
 
 TEST(ExrTest, TruncatedFileAtEveryLength) {
@@ -291,8 +331,9 @@ TEST(ExrTest, TruncatedFileAtEveryLength) {
     opts.metadata = {{"note", "truncate me"}};
     ASSERT_TRUE(rg::writeExr(good, makeLayers(16, 8), opts));
     const auto bytes = readBytes(good);
-    // Every prefix must fail cleanly (no crash, no exception, no success).
-    for (size_t n = 0; n < bytes.size(); n += (n < 600 ? 1 : 37)) {
+    // Every prefix through the header, then every 7th, must fail cleanly (no crash, no
+    // exception, no success).
+    for (size_t n = 0; n < bytes.size(); n += (n < 400 ? 1 : 7)) {
         writeBytes(cut, std::vector<char>(bytes.begin(), bytes.begin() + std::ptrdiff_t(n)));
         auto r = rg::readExr(cut);
         ASSERT_FALSE(r) << "prefix of " << n << " bytes read successfully";
@@ -364,6 +405,51 @@ TEST(PngTest, BadChannelCountIsRefused) {
     EXPECT_EQ(r.error().message, "'" + path + "': PNG takes 1-4 channels, the image has 5");
 }
 
+TEST(PngTest, ReadsSixteenBitAndPaletteFiles) {
+    // 16-bit gray through libpng's simplified API, which stores linear formats as 16-bit as is.
+    const std::string path16 = tmpPath("gray16.png");
+    const std::vector<uint16_t> gray = {0, 1, 257, 32768, 65534, 65535};
+    png_image image{};
+    image.version = PNG_IMAGE_VERSION;
+    image.width = 3;
+    image.height = 2;
+    image.format = PNG_FORMAT_LINEAR_Y;
+    ASSERT_NE(png_image_write_to_file(&image, path16.c_str(), 0, gray.data(), 0, nullptr), 0)
+        << image.message;
+    png_image_free(&image);
+    auto r16 = rg::readPng(path16);
+    ASSERT_TRUE(r16) << r16.error().describe();
+    ASSERT_EQ(r16->channels, 1u);
+    ASSERT_EQ(r16->pixels.size(), gray.size());
+    for (size_t i = 0; i < gray.size(); ++i)
+        EXPECT_EQ(r16->pixels[i], float(gray[i]) / 65535.0f) << "sample " << i;
+
+    // A 3-colour palette image comes back as RGB.
+    const std::string pathPal = tmpPath("palette.png");
+    const std::vector<uint8_t> indices = {0, 1, 2, 1};
+    const uint8_t colormap[9] = {255, 0, 0, 0, 255, 0, 0, 0, 51};
+    image = {};
+    image.version = PNG_IMAGE_VERSION;
+    image.width = 2;
+    image.height = 2;
+    image.format = PNG_FORMAT_RGB_COLORMAP;
+    image.colormap_entries = 3;
+    ASSERT_NE(png_image_write_to_file(&image, pathPal.c_str(), 0, indices.data(), 0, colormap), 0)
+        << image.message;
+    png_image_free(&image);
+    auto rp = rg::readPng(pathPal);
+    ASSERT_TRUE(rp) << rp.error().describe();
+    ASSERT_EQ(rp->channels, 3u);
+    EXPECT_EQ(rp->pixels, (std::vector<float>{1, 0, 0, 0, 1, 0, 0, 0, 0.2f, 0, 1, 0}));
+}
+
+TEST(PngTest, DirectoryIsAnOsError) {
+    auto r = rg::readPng(RG_TEST_TMP);
+    ASSERT_FALSE(r);
+    EXPECT_EQ(r.error().code, ErrorCode::Io);
+    EXPECT_EQ(r.error().message, "cannot read '" + std::string(RG_TEST_TMP) + "': Is a directory");
+}
+
 TEST(PngTest, MissingFile) {
     const std::string path = tmpPath("missing.png");
     auto r = rg::readPng(path);
@@ -391,8 +477,8 @@ TEST(PngTest, TruncatedFile) {
     EXPECT_EQ(r.error().code, ErrorCode::InvalidInput);
     EXPECT_EQ(r.error().message, "'" + cut + "': truncated PNG file");
 
-    // Every other prefix longer than the signature fails too, without crashing.
-    for (size_t n = 8; n < bytes.size(); ++n) {
+    // Other prefixes longer than the signature fail too, without crashing.
+    for (size_t n = 8; n < bytes.size(); n += (n < 120 ? 1 : 5)) {
         writeBytes(cut, std::vector<char>(bytes.begin(), bytes.begin() + std::ptrdiff_t(n)));
         auto rn = rg::readPng(cut);
         ASSERT_FALSE(rn) << "prefix of " << n << " bytes read successfully";
@@ -451,6 +537,78 @@ TEST(HdrTest, ReadsKnownRgbeValues) {
     };
     EXPECT_EQ(img->pixels, want);
     EXPECT_EQ(img->at(1, 1, 0), 0x1p21f);  // row 1 is the second row of the file
+}
+
+// An 8x2 run-length encoded file (widths 8..32767 may be RLE): per scanline 2, 2, width (16
+// bits), then the R, G, B and E components one after the other as runs (128 + n, value) or
+// dumps (n, n values).
+std::vector<uint8_t> makeRleScanlines() {
+    std::vector<uint8_t> out;
+    for (uint8_t row = 0; row < 2; ++row) {
+        const std::vector<uint8_t> line = {
+            2, 2, 0, 8,
+            128 + 8, uint8_t(64 + row),                 // R: run of 8
+            8, 0, 1, 2, 3, 4, 5, 6, 7,                  // G: dump of 8
+            128 + 5, 128, 3, 10, 20, 30,                // B: run of 5, dump of 3
+            128 + 8, 137,                               // E: run of 8 -> scale 2^(137-136) = 2
+        };
+        out.insert(out.end(), line.begin(), line.end());
+    }
+    return out;
+}
+
+TEST(HdrTest, ReadsRunLengthEncodedFile) {
+    const std::string path = tmpPath("rle.hdr");
+    writeRgbe(path, 8, 2, makeRleScanlines());
+    auto img = rg::readHdr(path);
+    ASSERT_TRUE(img) << img.error().describe();
+    ASSERT_EQ(img->width, 8u);
+    ASSERT_EQ(img->height, 2u);
+    const float blue[8] = {128, 128, 128, 128, 128, 10, 20, 30};
+    for (uint32_t y = 0; y < 2; ++y)
+        for (uint32_t x = 0; x < 8; ++x) {
+            EXPECT_EQ(img->at(x, y, 0), float(64 + y) * 2) << x << "," << y;
+            EXPECT_EQ(img->at(x, y, 1), float(x) * 2) << x << "," << y;
+            EXPECT_EQ(img->at(x, y, 2), blue[x] * 2) << x << "," << y;
+        }
+}
+
+TEST(HdrTest, TruncatedFiles) {
+    // Every prefix of an RLE file fails (stb_image alone loops forever on some of them).
+    const std::string path = tmpPath("rle_cut.hdr");
+    const auto rle = makeRleScanlines();
+    for (size_t n = 0; n < rle.size(); ++n) {
+        writeRgbe(path, 8, 2, std::vector<uint8_t>(rle.begin(), rle.begin() + std::ptrdiff_t(n)));
+        auto r = rg::readHdr(path);
+        ASSERT_FALSE(r) << "prefix of " << n << " pixel bytes read successfully";
+        EXPECT_EQ(r.error().message, "'" + path + "': truncated Radiance HDR file") << n;
+    }
+    // A flat file one byte short (stb_image alone fills the gap with black).
+    writeRgbe(path, 4, 2, std::vector<uint8_t>(4 * 2 * 4 - 1, 130));
+    auto r = rg::readHdr(path);
+    ASSERT_FALSE(r);
+    EXPECT_EQ(r.error().code, ErrorCode::InvalidInput);
+    EXPECT_EQ(r.error().message, "'" + path + "': truncated Radiance HDR file");
+}
+
+TEST(HdrTest, CorruptRunLengths) {
+    const std::string path = tmpPath("rle_bad.hdr");
+    auto rle = makeRleScanlines();
+    rle[23 + 4 + 2] = 0;  // second scanline (23 bytes each), G: a dump of 0 values
+    writeRgbe(path, 8, 2, rle);
+    auto r = rg::readHdr(path);
+    ASSERT_FALSE(r);
+    EXPECT_EQ(r.error().message,
+              "'" + path + "': corrupt Radiance HDR file: scanline 1: zero-length run");
+
+    rle = makeRleScanlines();
+    rle[4] = 128 + 9;  // first scanline, R: a run of 9 in an 8-pixel line
+    writeRgbe(path, 8, 2, rle);
+    r = rg::readHdr(path);
+    ASSERT_FALSE(r);
+    EXPECT_EQ(r.error().message, "'" + path +
+                                     "': corrupt Radiance HDR file: scanline 0: run-length data "
+                                     "overruns the line");
 }
 
 TEST(HdrTest, MissingFile) {

@@ -1,0 +1,60 @@
+// Session: a pipeline script running on the executor. load() is transactional — a script that
+// fails to load or compile leaves the previous pipeline running and returns the error. frame()
+// calls the script's rg.frame(ctx), applies what it changed (parameters: uniforms only;
+// enabling/disabling a pass or swapping its shader: an incremental rebuild) and renders.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "lua/lua_host.h"
+#include "runtime.h"
+
+namespace rg {
+
+struct SessionOptions {
+    CompileOptions compile;
+    std::vector<std::string> captures;  // resources to export for readback
+    bool verbose = false;               // print what each rebuild reused
+};
+
+class Session {
+public:
+    Session(Runtime& runtime, SessionOptions options);
+    ~Session();
+
+    Result<void> load(const std::string& pipelineFile);
+    Result<void> frame();
+
+    const PipelineDesc& pipeline() const { return m_pipeline; }
+    uint64_t framesRendered() const { return m_frame; }
+    uint32_t rebuilds() const { return m_rebuilds; }  // structural rebuilds since the last load
+    double lastFrameCallbackMs() const { return m_callbackMs; }
+    double lastLoadMs() const { return m_loadMs; }
+    const std::vector<std::string>& log() const { return m_log; }
+    // Scripts and shaders the running pipeline was built from (what `watch` polls).
+    std::vector<std::string> files() const;
+    bool loaded() const { return m_host != nullptr; }
+
+private:
+    GraphDesc buildableGraph(const PipelineDesc& p) const;
+    void note(const std::string& line);
+
+    Runtime& m_runtime;
+    SessionOptions m_options;
+    std::unique_ptr<LuaHost> m_host;
+    PipelineDesc m_pipeline;
+    uint64_t m_frame = 0;
+    uint32_t m_rebuilds = 0;
+    double m_callbackMs = 0.0;
+    double m_loadMs = 0.0;
+    std::vector<std::string> m_log;
+};
+
+// Options for a LuaHost that sees the project's scripts/ and materials/ and the runtime's kinds.
+LuaHostOptions luaHostOptions(const Runtime& runtime);
+// Same, without a GPU: the built-in kinds' schemas.
+LuaHostOptions luaHostOptionsWithoutDevice();
+
+}  // namespace rg

@@ -1,0 +1,41 @@
+// Declarations as a script made them, before validation: what kind, the name, the module it
+// came from, the body converted to a Value, and where (file:line). buildPipeline() checks each
+// against its schema and produces the PipelineDesc. No Lua here, so it is tested directly.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "core/kind_schema.h"
+#include "pipeline.h"
+
+namespace rg {
+
+enum class DeclKind : uint8_t { Texture, Buffer, Pass, Param, Layout, Stencil, Path, Material };
+const char* declKindName(DeclKind k);  // "resource", "buffer", "pass", ...
+
+struct Declaration {
+    DeclKind kind = DeclKind::Pass;
+    std::string name;    // as declared (without the module prefix)
+    std::string module;  // "" for the pipeline itself
+    Value body;          // tables: string keys -> Table; 1..n -> List; positional entries of
+                         // mixed tables appear as "#1", "#2", ... keys
+    std::string origin;  // "scripts/pipelines/deferred.lua:12"
+};
+
+struct BuildOptions {
+    std::vector<PassKindSchema> kinds;
+    uint32_t stencilBits = 4;  // low stencil bits the framework allocates classes from
+};
+
+// Validates every declaration and assembles the pipeline: names resolved (module-local first),
+// module passes inserted at their `insert = { after = ... }` / `{ before = ... }` points,
+// stencil values allocated, material ids checked. Errors: "file:line: field.path: what was
+// expected" with a suggestion when a name is close to a known one.
+Result<PipelineDesc> buildPipeline(const std::vector<Declaration>& decls, const std::string& output,
+                                   const BuildOptions& options);
+
+// The closest candidate within edit distance 2 (or 1 for short names), or "".
+std::string closestName(const std::string& name, const std::vector<std::string>& candidates);
+
+}  // namespace rg

@@ -1,0 +1,621 @@
+// The Lua glue: the sandboxed state, `require`, limits, the rg.* declaration functions and
+// the frame callback's ctx. Everything else (validation, the pipeline) is plain C++ in
+// declarations.cpp and pipeline.cpp.
+#include "lua_host.h"
+
+extern "C" {
+#include <lauxlib.h>
+#include <lua.h>
+#include <lualib.h>
+}
+
+#include <algorithm>
+#include <cctype>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "declarations.h"
+
+namespace fs = std::filesystem;
+
+namespace rg {
+
+struct LuaHost::Impl {
+    LuaHostOptions options;
+    lua_State* L = nullptr;
+    size_t memory = 0;
+    bool memoryExceeded = false;
+    uint64_t instructions = 0;
+    std::vector<Declaration> decls;
+    std::string output;
+    std::vector<std::string> files;
+    std::string pipelineDir;
+    // During a frame callback.
+    FrameChanges* changes = nullptr;
+    const PipelineDesc* current = nullptr;
+
+    ~Impl() { close(); }
+    void close() {
+        if (L) lua_close(L);
+        L = nullptr;
+    }
+};
+
+namespace {
+
+constexpr int kHookEvery = 1000;
+const char* kModulesKey = "rgraph.modules";
+
+LuaHost::Impl& implOf(lua_State* L) { return **static_cast<LuaHost::Impl**>(lua_getextraspace(L)); }
+
+void* allocate(void* ud, void* ptr, size_t osize, size_t nsize) {
+    auto* impl = static_cast<LuaHost::Impl*>(ud);
+    const size_t old = ptr ? osize : 0;
+    if (nsize == 0) {
+        impl->memory -= old;
+        std::free(ptr);
+        return nullptr;
+    }
+    if (nsize > old && impl->memory + (nsize - old) > impl->options.memoryBytes) {
+        impl->memoryExceeded = true;
+        return nullptr;  // Lua raises "not enough memory"
+    }
+    void* p = std::realloc(ptr, nsize);
+    if (p) impl->memory = impl->memory - old + nsize;
+    return p;
+}
+
+void countHook(lua_State* L, lua_Debug*) {
+    auto& impl = implOf(L);
+    impl.instructions += kHookEvery;
+    if (impl.instructions > impl.options.instructions) {
+        // Level 0 inside a count hook is the Lua function that was running.
+        luaL_where(L, 0);
+        lua_pushfstring(L, "script stopped after %d million instructions: a runaway loop? (limit: %d million)",
+                        static_cast<int>(impl.instructions / 1000000), static_cast<int>(impl.options.instructions / 1000000));
+        lua_concat(L, 2);
+        lua_error(L);
+    }
+}
+
+int messageHandler(lua_State* L) {
+    const char* msg = lua_tostring(L, 1);
+    if (!msg) msg = luaL_tolstring(L, 1, nullptr);
+    luaL_traceback(L, L, msg, 1);
+    return 1;
+}
+
+// Runs the function on top of the stack with `nargs` arguments below it... in protected mode with
+// a traceback; returns the error text on failure.
+Result<void> protectedCall(LuaHost::Impl& impl, int nargs, int nresults) {
+    lua_State* L = impl.L;
+    int base = lua_gettop(L) - nargs;
+    lua_pushcfunction(L, messageHandler);
+    lua_insert(L, base);
+    impl.instructions = 0;
+    impl.memoryExceeded = false;
+    int status = lua_pcall(L, nargs, nresults, base);
+    lua_remove(L, base);
+    if (status == LUA_OK) return {};
+    std::string msg = lua_tostring(L, -1) ? lua_tostring(L, -1) : "unknown Lua error";
+    lua_pop(L, 1);
+    if (status == LUA_ERRMEM || impl.memoryExceeded)
+        msg = "script stopped: it used more than " + std::to_string(impl.options.memoryBytes >> 20) + " MiB of Lua memory";
+    return fail(ErrorCode::InvalidInput, msg);
+}
+
+std::string chunkName(const LuaHost::Impl& impl, const std::string& path) {
+    std::error_code ec;
+    fs::path abs = fs::weakly_canonical(path, ec);
+    fs::path root = fs::weakly_canonical(impl.options.projectRoot, ec);
+    std::string rel = fs::relative(abs, root, ec).string();
+    if (ec || rel.empty() || rel.rfind("..", 0) == 0) return abs.string();
+    return rel;
+}
+
+// Loads a text chunk from a file (binary chunks are refused).
+Result<void> loadFile(LuaHost::Impl& impl, const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return fail(ErrorCode::NotFound, "cannot open script '" + path + "'");
+    std::stringstream ss;
+    ss << in.rdbuf();
+    std::string text = ss.str();
+    std::string name = "@" + chunkName(impl, path);
+    if (luaL_loadbufferx(impl.L, text.data(), text.size(), name.c_str(), "t") != LUA_OK) {
+        std::string msg = lua_tostring(impl.L, -1);
+        lua_pop(impl.L, 1);
+        return fail(ErrorCode::InvalidInput, msg);
+    }
+    std::string abs = fs::weakly_canonical(path).string();
+    if (std::find(impl.files.begin(), impl.files.end(), abs) == impl.files.end()) impl.files.push_back(abs);
+    return {};
+}
+
+// "file:line" of the Lua code that called the running C function.
+std::string callerOrigin(lua_State* L) {
+    lua_Debug ar;
+    for (int level = 1; lua_getstack(L, level, &ar); ++level) {
+        lua_getinfo(L, "Sl", &ar);
+        if (ar.currentline > 0) return std::string(ar.short_src) + ":" + std::to_string(ar.currentline);
+    }
+    return "?";
+}
+
+// Lua value -> Value. Tables with keys 1..n become lists, with string keys tables; positional
+// entries of mixed tables become "#1", "#2", ... keys.
+Result<Value> toValue(lua_State* L, int idx, const std::string& path, int depth = 0) {
+    idx = lua_absindex(L, idx);
+    switch (lua_type(L, idx)) {
+    case LUA_TNIL: return Value();
+    case LUA_TBOOLEAN: return Value(static_cast<bool>(lua_toboolean(L, idx)));
+    case LUA_TNUMBER: return Value(static_cast<double>(lua_tonumber(L, idx)));
+    case LUA_TSTRING: return Value(std::string(lua_tostring(L, idx)));
+    case LUA_TTABLE: {
+        if (depth > 32) return fail(ErrorCode::InvalidInput, path + ": tables nested too deep (or a cycle)");
+        const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, idx));
+        Value::List list;
+        Value::Table table;
+        bool hasStrings = false;
+        lua_pushnil(L);
+        while (lua_next(L, idx)) {
+            std::string key;
+            if (lua_type(L, -2) == LUA_TSTRING) {
+                key = lua_tostring(L, -2);
+                hasStrings = true;
+            } else if (lua_isinteger(L, -2) && lua_tointeger(L, -2) >= 1 && lua_tointeger(L, -2) <= n) {
+                key = "#" + std::to_string(lua_tointeger(L, -2));
+            } else {
+                lua_pop(L, 2);
+                return fail(ErrorCode::InvalidInput, path + ": keys must be names or list positions");
+            }
+            auto v = toValue(L, -1, path + (key[0] == '#' ? "[" + key.substr(1) + "]" : "." + key), depth + 1);
+            if (!v) {
+                lua_pop(L, 2);
+                return v;
+            }
+            table[key] = *v;
+            lua_pop(L, 1);
+        }
+        if (!hasStrings && n > 0) {
+            for (lua_Integer i = 1; i <= n; ++i) list.push_back(table["#" + std::to_string(i)]);
+            return Value(list);
+        }
+        return Value(table);
+    }
+    default:
+        return fail(ErrorCode::InvalidInput, path + ": expected data, got a " + std::string(luaL_typename(L, idx)));
+    }
+}
+
+void pushValue(lua_State* L, const Value& v) {
+    if (v.isBool()) lua_pushboolean(L, v.asBool());
+    else if (v.isNumber()) lua_pushnumber(L, v.asNumber());
+    else if (v.isString()) lua_pushstring(L, v.asString().c_str());
+    else if (v.isList()) {
+        lua_createtable(L, static_cast<int>(v.asList().size()), 0);
+        for (size_t i = 0; i < v.asList().size(); ++i) {
+            pushValue(L, v.asList()[i]);
+            lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+        }
+    } else if (v.isTable()) {
+        lua_newtable(L);
+        for (const auto& [k, e] : v.asTable()) {
+            pushValue(L, e);
+            lua_setfield(L, -2, k.c_str());
+        }
+    } else
+        lua_pushnil(L);
+}
+
+// Errors inside C functions are thrown as LuaRaise and turned into a Lua error by guarded()
+// after every C++ object of the function is destroyed: no longjmp crosses C++ frames with live
+// destructors, and no C++ exception crosses lua_error.
+struct LuaRaise {
+    std::string message;
+};
+
+[[noreturn]] void raise(lua_State*, const std::string& msg) { throw LuaRaise{msg}; }
+
+template <int (*F)(lua_State*)>
+int guarded(lua_State* L) {
+    {
+        std::string message;
+        try {
+            return F(L);
+        } catch (const LuaRaise& e) {
+            message = e.message;
+        } catch (const std::exception& e) {
+            message = std::string("internal error: ") + e.what();
+        } catch (...) {
+            message = "internal error";
+        }
+        // Say where in the script, unless the message already starts with a position.
+        const size_t space = message.find(' ');
+        const size_t lua = message.find(".lua:");
+        if (lua == std::string::npos || (space != std::string::npos && lua > space)) {
+            luaL_where(L, 1);
+            message = std::string(lua_tostring(L, -1)) + message;
+            lua_pop(L, 1);
+        }
+        lua_pushlstring(L, message.data(), message.size());
+    }
+    return lua_error(L);
+}
+
+bool validName(const std::string& n, bool allowDots) {
+    if (n.empty()) return false;
+    for (char c : n)
+        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || (allowDots && c == '.'))) return false;
+    return true;
+}
+
+void recordDeclaration(lua_State* L, DeclKind kind, const std::string& module, const std::string& name,
+                       const std::string& origin, int tableIndex) {
+    if (!lua_istable(L, tableIndex))
+        raise(L, origin + ": " + declKindName(kind) + " \"" + name + "\": expected a table of fields, got " +
+                     luaL_typename(L, tableIndex));
+    auto value = toValue(L, tableIndex, std::string(declKindName(kind)) + " '" + name + "'");
+    if (!value) raise(L, origin + ": " + value.error().message);
+    implOf(L).decls.push_back({kind, name, module, *value, origin});
+}
+
+// The second half of rg.pass "name" { ... } — upvalues: kind, module, name, origin.
+int declareBody(lua_State* L) {
+    recordDeclaration(L, static_cast<DeclKind>(lua_tointeger(L, lua_upvalueindex(1))), lua_tostring(L, lua_upvalueindex(2)),
+                      lua_tostring(L, lua_upvalueindex(3)), lua_tostring(L, lua_upvalueindex(4)), 1);
+    return 0;
+}
+
+// rg.pass "name" — upvalues: kind, module. Returns the function that takes the body, or
+// records it at once for rg.pass("name", { ... }).
+int declare(lua_State* L) {
+    auto kind = static_cast<DeclKind>(lua_tointeger(L, lua_upvalueindex(1)));
+    std::string module = lua_tostring(L, lua_upvalueindex(2));
+    std::string origin = callerOrigin(L);
+    if (lua_type(L, 1) != LUA_TSTRING)
+        raise(L, origin + ": rg." + declKindName(kind) + ": expected a name, e.g. rg." + declKindName(kind) + " \"name\" { ... }");
+    std::string name = lua_tostring(L, 1);
+    if (!validName(name, false))
+        raise(L, origin + ": rg." + declKindName(kind) + ": '" + name + "' is not a valid name (letters, digits, '_' and '-')");
+    if (lua_gettop(L) >= 2) {
+        recordDeclaration(L, kind, module, name, origin, 2);
+        return 0;
+    }
+    lua_pushvalue(L, lua_upvalueindex(1));
+    lua_pushvalue(L, lua_upvalueindex(2));
+    lua_pushstring(L, name.c_str());
+    lua_pushstring(L, origin.c_str());
+    lua_pushcclosure(L, guarded<declareBody>, 4);
+    return 1;
+}
+
+int setOutput(lua_State* L) {
+    implOf(L).output = luaL_checkstring(L, 1);
+    return 0;
+}
+
+void pushDeclarers(lua_State* L, const std::string& module);
+
+int declareModule(lua_State* L) {
+    std::string origin = callerOrigin(L);
+    if (lua_type(L, 1) != LUA_TSTRING || !validName(lua_tostring(L, 1), false))
+        raise(L, origin + ": rg.module: expected a module name (letters, digits, '_' and '-')");
+    pushDeclarers(L, lua_tostring(L, 1));
+    return 1;
+}
+
+// A table with resource/buffer/pass/... declaring functions bound to `module`.
+void pushDeclarers(lua_State* L, const std::string& module) {
+    lua_newtable(L);
+    const std::pair<const char*, DeclKind> fns[] = {
+        {"resource", DeclKind::Texture}, {"buffer", DeclKind::Buffer}, {"pass", DeclKind::Pass},
+        {"param", DeclKind::Param},      {"layout", DeclKind::Layout}, {"stencil", DeclKind::Stencil},
+        {"path", DeclKind::Path},        {"material", DeclKind::Material}};
+    for (const auto& [name, kind] : fns) {
+        lua_pushinteger(L, static_cast<lua_Integer>(kind));
+        lua_pushstring(L, module.c_str());
+        lua_pushcclosure(L, guarded<declare>, 2);
+        lua_setfield(L, -2, name);
+    }
+    lua_pushstring(L, module.c_str());
+    lua_setfield(L, -2, "name");
+}
+
+// require "name": the pipeline's folder, then the search dirs; "a.b" is a/b.lua.
+int requireModule(lua_State* L) {
+    std::string name = luaL_checkstring(L, 1);
+    auto& impl = implOf(L);
+    // Module names are dotted identifiers: no path tricks ("..", "/") to leave the search dirs.
+    bool valid = !name.empty() && name.front() != '.' && name.back() != '.' && name.find("..") == std::string::npos;
+    for (char c : name)
+        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) valid = false;
+    if (!valid) raise(L, "require: '" + name + "' is not a module name (dotted names of letters, digits, '_' and '-')");
+    lua_getfield(L, LUA_REGISTRYINDEX, kModulesKey);
+    lua_getfield(L, -1, name.c_str());
+    if (!lua_isnil(L, -1)) return 1;
+    lua_pop(L, 1);
+    std::string rel = name;
+    std::replace(rel.begin(), rel.end(), '.', '/');
+    rel += ".lua";
+    std::vector<std::string> dirs;
+    if (!impl.pipelineDir.empty()) dirs.push_back(impl.pipelineDir);
+    for (const auto& d : impl.options.searchDirs) dirs.push_back(d);
+    std::string found;
+    for (const auto& d : dirs) {
+        std::error_code ec;
+        if (fs::is_regular_file(fs::path(d) / rel, ec)) {
+            found = (fs::path(d) / rel).string();
+            break;
+        }
+    }
+    if (found.empty()) {
+        std::string searched;
+        for (const auto& d : dirs) searched += (searched.empty() ? "" : ", ") + chunkName(impl, d);
+        raise(L, "module '" + name + "' not found (searched " + searched + " for " + rel + ")");
+    }
+    auto loaded = loadFile(impl, found);
+    if (!loaded) raise(L, loaded.error().message);
+    lua_pushstring(L, name.c_str());
+    if (lua_pcall(L, 1, 1, 0) != LUA_OK) {
+        std::string msg = lua_tostring(L, -1) ? lua_tostring(L, -1) : "error in module '" + name + "'";
+        lua_pop(L, 1);
+        raise(L, msg);
+    }
+    if (lua_isnil(L, -1)) {
+        lua_pop(L, 1);
+        lua_pushboolean(L, 1);
+    }
+    lua_pushvalue(L, -1);
+    lua_setfield(L, -3, name.c_str());
+    return 1;
+}
+
+// Indexing a removed library function explains the sandbox instead of "attempt to call nil".
+int sandboxIndex(lua_State* L) {
+    std::string lib = lua_tostring(L, lua_upvalueindex(1));
+    std::string key = lua_type(L, 2) == LUA_TSTRING ? lua_tostring(L, 2) : "?";
+    raise(L, lib + (lib.empty() ? "" : ".") + key + " is not available to rgraph scripts (sandbox)");
+}
+
+void pushSandboxGuard(lua_State* L, const char* lib) {
+    lua_newtable(L);
+    lua_pushstring(L, lib);
+    lua_pushcclosure(L, guarded<sandboxIndex>, 1);
+    lua_setfield(L, -2, "__index");
+}
+
+// ---- frame callback: ctx.params and ctx.pass(name) ----
+
+int paramsIndex(lua_State* L) {
+    auto& impl = implOf(L);
+    std::string name = luaL_checkstring(L, 2);
+    if (auto it = impl.changes->params.find(name); it != impl.changes->params.end()) {
+        pushValue(L, it->second);
+        return 1;
+    }
+    const ParamDesc* p = impl.current->findParam(name);
+    if (!p) {
+        std::vector<std::string> names;
+        for (const auto& q : impl.current->params) names.push_back(q.name);
+        std::string best = closestName(name, names);
+        raise(L, "ctx.params: unknown parameter '" + name + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)"));
+    }
+    pushValue(L, p->value);
+    return 1;
+}
+
+int paramsNewIndex(lua_State* L) {
+    auto& impl = implOf(L);
+    std::string name = luaL_checkstring(L, 2);
+    const ParamDesc* p = impl.current->findParam(name);
+    if (!p) {
+        std::vector<std::string> names;
+        for (const auto& q : impl.current->params) names.push_back(q.name);
+        std::string best = closestName(name, names);
+        raise(L, "ctx.params: unknown parameter '" + name + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)"));
+    }
+    auto v = toValue(L, 3, "ctx.params." + name);
+    if (!v) raise(L, v.error().message);
+    auto checked = checkParamValue(*p, *v);
+    if (!checked) raise(L, "ctx.params: " + checked.error().message);
+    impl.changes->params[name] = *checked;
+    return 0;
+}
+
+const PassDesc* findPass(const PipelineDesc& p, const std::string& name) {
+    for (const auto& pass : p.graph.passes)
+        if (pass.name == name) return &pass;
+    return nullptr;
+}
+
+int passIndex(lua_State* L) {
+    auto& impl = implOf(L);
+    std::string pass = lua_tostring(L, lua_upvalueindex(1));
+    std::string key = luaL_checkstring(L, 2);
+    const PassDesc* p = findPass(*impl.current, pass);
+    if (key == "name") lua_pushstring(L, pass.c_str());
+    else if (key == "enabled") {
+        auto it = impl.changes->enabled.find(pass);
+        lua_pushboolean(L, it != impl.changes->enabled.end() ? it->second : p->enabled);
+    } else if (key == "shader") {
+        auto it = impl.changes->shaders.find(pass);
+        lua_pushstring(L, it != impl.changes->shaders.end() ? it->second.c_str() : p->params["shader"].asString().c_str());
+    } else if (key == "kind")
+        lua_pushstring(L, p->kind.c_str());
+    else
+        raise(L, "ctx.pass('" + pass + "'): no field '" + key + "'; expected one of: 'name', 'kind', 'enabled', 'shader'");
+    return 1;
+}
+
+int passNewIndex(lua_State* L) {
+    auto& impl = implOf(L);
+    std::string pass = lua_tostring(L, lua_upvalueindex(1));
+    std::string key = luaL_checkstring(L, 2);
+    const PassDesc* p = findPass(*impl.current, pass);
+    if (key == "enabled") {
+        if (!lua_isboolean(L, 3)) raise(L, "ctx.pass('" + pass + "').enabled: expected a boolean, got " + luaL_typename(L, 3));
+        bool on = lua_toboolean(L, 3);
+        if (on == p->enabled) impl.changes->enabled.erase(pass);
+        else impl.changes->enabled[pass] = on;
+    } else if (key == "shader") {
+        if (!p->params.has("shader")) raise(L, "ctx.pass('" + pass + "').shader: a '" + p->kind + "' pass has no shader");
+        if (lua_type(L, 3) != LUA_TSTRING) raise(L, "ctx.pass('" + pass + "').shader: expected a path, got " + luaL_typename(L, 3));
+        std::string shader = lua_tostring(L, 3);
+        if (shader == p->params["shader"].asString()) impl.changes->shaders.erase(pass);
+        else impl.changes->shaders[pass] = shader;
+    } else
+        raise(L, "ctx.pass('" + pass + "'): cannot set '" + key + "'; settable: 'enabled', 'shader'");
+    return 0;
+}
+
+int ctxPass(lua_State* L) {
+    auto& impl = implOf(L);
+    std::string name = luaL_checkstring(L, 1);
+    if (!findPass(*impl.current, name)) {
+        std::vector<std::string> names;
+        for (const auto& p : impl.current->graph.passes) names.push_back(p.name);
+        std::string best = closestName(name, names);
+        raise(L, "ctx.pass: unknown pass '" + name + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)"));
+    }
+    lua_newtable(L);
+    lua_newtable(L);
+    lua_pushstring(L, name.c_str());
+    lua_pushcclosure(L, guarded<passIndex>, 1);
+    lua_setfield(L, -2, "__index");
+    lua_pushstring(L, name.c_str());
+    lua_pushcclosure(L, guarded<passNewIndex>, 1);
+    lua_setfield(L, -2, "__newindex");
+    lua_setmetatable(L, -2);
+    return 1;
+}
+
+}  // namespace
+
+LuaHost::LuaHost(LuaHostOptions options) : m(std::make_unique<Impl>()) { m->options = std::move(options); }
+LuaHost::~LuaHost() = default;
+
+Result<PipelineDesc> LuaHost::load(const std::string& file) {
+    m->close();
+    m->decls.clear();
+    m->files.clear();
+    m->output.clear();
+    std::error_code ec;
+    if (!fs::is_regular_file(file, ec)) return fail(ErrorCode::NotFound, "cannot open pipeline script '" + file + "'");
+    m->pipelineDir = fs::absolute(file).parent_path().string();
+
+    lua_State* L = lua_newstate(allocate, m.get());
+    if (!L) return fail(ErrorCode::Io, "cannot create a Lua state");
+    m->L = L;
+    *static_cast<Impl**>(lua_getextraspace(L)) = m.get();
+    lua_sethook(L, countHook, LUA_MASKCOUNT, kHookEvery);
+
+    // Safe libraries only.
+    const std::pair<const char*, lua_CFunction> libs[] = {{LUA_GNAME, luaopen_base},   {LUA_TABLIBNAME, luaopen_table},
+                                                          {LUA_STRLIBNAME, luaopen_string}, {LUA_MATHLIBNAME, luaopen_math},
+                                                          {LUA_UTF8LIBNAME, luaopen_utf8}, {LUA_OSLIBNAME, luaopen_os}};
+    for (const auto& [name, open] : libs) {
+        luaL_requiref(L, name, open, 1);
+        lua_pop(L, 1);
+    }
+    // Base functions that reach files or load code.
+    for (const char* fn : {"dofile", "loadfile", "load", "collectgarbage"}) {
+        lua_pushnil(L);
+        lua_setglobal(L, fn);
+    }
+    // os keeps clock/time/date; every other os.* explains the sandbox.
+    lua_getglobal(L, "os");
+    for (const char* fn : {"execute", "exit", "getenv", "remove", "rename", "tmpname", "setlocale"}) {
+        lua_pushnil(L);
+        lua_setfield(L, -2, fn);
+    }
+    pushSandboxGuard(L, "os");
+    lua_setmetatable(L, -2);
+    lua_pop(L, 1);
+    for (const char* lib : {"io", "package", "debug"}) {
+        lua_newtable(L);
+        pushSandboxGuard(L, lib);
+        lua_setmetatable(L, -2);
+        lua_setglobal(L, lib);
+    }
+
+    // Module cache and require.
+    lua_newtable(L);
+    lua_setfield(L, LUA_REGISTRYINDEX, kModulesKey);
+    lua_pushcfunction(L, guarded<requireModule>);
+    lua_setglobal(L, "require");
+
+    // The rg table: declarations, output, module; also what `require "rg"` returns.
+    pushDeclarers(L, "");
+    lua_pushcfunction(L, guarded<setOutput>);
+    lua_setfield(L, -2, "output");
+    lua_pushcfunction(L, guarded<declareModule>);
+    lua_setfield(L, -2, "module");
+    lua_newtable(L);
+    for (size_t i = 0; i < m->options.kinds.size(); ++i) {
+        lua_pushstring(L, m->options.kinds[i].name.c_str());
+        lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+    }
+    lua_setfield(L, -2, "kinds");
+    lua_pushvalue(L, -1);
+    lua_setglobal(L, "rg");
+    lua_getfield(L, LUA_REGISTRYINDEX, kModulesKey);
+    lua_insert(L, -2);
+    lua_setfield(L, -2, "rg");
+    lua_pop(L, 1);
+
+    if (auto r = loadFile(*m, file); !r) return std::unexpected(r.error());
+    if (auto r = protectedCall(*m, 0, 0); !r) return std::unexpected(r.error());
+
+    BuildOptions bo;
+    bo.kinds = m->options.kinds;
+    auto pipeline = buildPipeline(m->decls, m->output, bo);
+    if (!pipeline) return pipeline;
+    pipeline->file = file;
+    pipeline->files = m->files;
+    return pipeline;
+}
+
+bool LuaHost::hasFrameCallback() const {
+    if (!m->L) return false;
+    lua_getglobal(m->L, "rg");
+    lua_getfield(m->L, -1, "frame");
+    bool has = lua_isfunction(m->L, -1);
+    lua_pop(m->L, 2);
+    return has;
+}
+
+Result<FrameChanges> LuaHost::frame(const FrameContext& ctx, const PipelineDesc& current) {
+    FrameChanges changes;
+    if (!hasFrameCallback()) return changes;
+    lua_State* L = m->L;
+    m->changes = &changes;
+    m->current = &current;
+    lua_getglobal(L, "rg");
+    lua_getfield(L, -1, "frame");
+    lua_remove(L, -2);
+    // ctx = { frame, time, params (proxy), pass(name) }
+    lua_newtable(L);
+    lua_pushinteger(L, static_cast<lua_Integer>(ctx.frame));
+    lua_setfield(L, -2, "frame");
+    lua_pushnumber(L, ctx.time);
+    lua_setfield(L, -2, "time");
+    lua_newtable(L);
+    lua_newtable(L);
+    lua_pushcfunction(L, guarded<paramsIndex>);
+    lua_setfield(L, -2, "__index");
+    lua_pushcfunction(L, guarded<paramsNewIndex>);
+    lua_setfield(L, -2, "__newindex");
+    lua_setmetatable(L, -2);
+    lua_setfield(L, -2, "params");
+    lua_pushcfunction(L, guarded<ctxPass>);
+    lua_setfield(L, -2, "pass");
+    auto r = protectedCall(*m, 1, 0);
+    m->changes = nullptr;
+    m->current = nullptr;
+    if (!r) return std::unexpected(Error(ErrorCode::InvalidInput, "rg.frame: " + r.error().message));
+    return changes;
+}
+
+}  // namespace rg

@@ -1,0 +1,71 @@
+// The Lua 5.4 host: runs pipeline scripts in a sandbox and turns their declarations into a
+// validated PipelineDesc; calls the script's rg.frame(ctx) before each frame.
+//
+// Sandbox: no io, no os except os.clock/os.time/os.date, no load/loadfile/dofile, no
+// package.loadlib; `require` loads text chunks only from the pipeline's folder, scripts/ and
+// materials/. A run is stopped past `instructions` VM instructions or `memoryBytes` of Lua
+// memory, with an error that says so. Every error carries `file:line` and a traceback.
+// C++ exceptions never cross lua_error. Threading: one thread per LuaHost.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/kind_schema.h"
+#include "pipeline.h"
+
+namespace rg {
+
+struct LuaHostOptions {
+    std::string projectRoot;                 // chunk names are relative to it
+    std::vector<std::string> searchDirs;     // for require, after the pipeline's own folder
+    std::vector<PassKindSchema> kinds;       // what `kind = ...` may name
+    uint64_t instructions = 100'000'000;     // per call into the script
+    size_t memoryBytes = 256u << 20;
+};
+
+struct FrameContext {
+    uint64_t frame = 0;
+    double time = 0.0;  // seconds
+};
+
+// What rg.frame(ctx) changed. Parameters are applied without recompiling; enabling,
+// disabling or swapping a shader is structural (the plan is recompiled incrementally).
+struct FrameChanges {
+    std::map<std::string, Value> params;
+    std::map<std::string, bool> enabled;      // pass -> enabled
+    std::map<std::string, std::string> shaders;  // pass -> shader path
+    bool structural() const { return !enabled.empty() || !shaders.empty(); }
+    bool empty() const { return params.empty() && !structural(); }
+};
+
+class LuaHost {
+public:
+    explicit LuaHost(LuaHostOptions options);
+    ~LuaHost();
+    LuaHost(const LuaHost&) = delete;
+    LuaHost& operator=(const LuaHost&) = delete;
+
+    // Runs the script in a fresh Lua state and validates what it declared.
+    Result<PipelineDesc> load(const std::string& file);
+    bool hasFrameCallback() const;
+    // Calls rg.frame(ctx); `current` supplies parameter values and pass states to read.
+    Result<FrameChanges> frame(const FrameContext& ctx, const PipelineDesc& current);
+
+    struct Impl;  // the Lua state and what the script declared (lua_host.cpp)
+
+private:
+    std::unique_ptr<Impl> m;
+};
+
+// Applies changes to a pipeline in place (parameters validated already).
+void applyFrameChanges(PipelineDesc& pipeline, const FrameChanges& changes);
+
+// The GraphDesc to build: the pipeline's graph with every parameter merged into each pass's
+// `uniforms` (a pass's own uniforms win), and the output exported.
+GraphDesc graphWithParams(const PipelineDesc& pipeline);
+
+}  // namespace rg

@@ -1,0 +1,104 @@
+#include "pipeline.h"
+
+#include <cmath>
+
+#include "lua_host.h"
+
+namespace rg {
+
+const char* paramTypeName(ParamType t) {
+    switch (t) {
+    case ParamType::Number: return "number";
+    case ParamType::Integer: return "integer";
+    case ParamType::Boolean: return "boolean";
+    case ParamType::Vec3: return "vec3";
+    case ParamType::Choice: return "choice";
+    }
+    return "?";
+}
+
+const ParamDesc* PipelineDesc::findParam(const std::string& name) const {
+    for (const auto& p : params)
+        if (p.name == name) return &p;
+    return nullptr;
+}
+
+ParamDesc* PipelineDesc::findParam(const std::string& name) {
+    for (auto& p : params)
+        if (p.name == name) return &p;
+    return nullptr;
+}
+
+Result<Value> checkParamValue(const ParamDesc& p, const Value& v) {
+    auto bad = [&](const std::string& want) {
+        return fail(ErrorCode::InvalidInput, "parameter '" + p.name + "' expects " + want + ", got " +
+                                                 (v.isNil() ? "nil" : v.isNumber() ? std::to_string(v.asNumber())
+                                                                      : v.isString() ? "'" + v.asString() + "'"
+                                                                                     : v.typeName()));
+    };
+    auto range = [&]() {
+        return "a " + std::string(p.type == ParamType::Integer ? "whole number" : "number") + " in [" +
+               (p.min < -1e299 ? "-inf" : std::to_string(p.min)) + ", " + (p.max > 1e299 ? "inf" : std::to_string(p.max)) + "]";
+    };
+    switch (p.type) {
+    case ParamType::Number:
+        if (!v.isNumber() || v.asNumber() < p.min || v.asNumber() > p.max || std::isnan(v.asNumber())) return bad(range());
+        return v;
+    case ParamType::Integer:
+        if (!v.isNumber() || std::floor(v.asNumber()) != v.asNumber() || v.asNumber() < p.min || v.asNumber() > p.max)
+            return bad(range());
+        return v;
+    case ParamType::Boolean:
+        if (!v.isBool()) return bad("a boolean");
+        return v;
+    case ParamType::Vec3:
+        if (!v.isList() || v.asList().size() != 3 || !v.asList()[0].isNumber() || !v.asList()[1].isNumber() ||
+            !v.asList()[2].isNumber())
+            return bad("{x, y, z}");
+        return v;
+    case ParamType::Choice:
+        for (const auto& c : p.choices)
+            if (v.isString() && v.asString() == c) return v;
+        {
+            std::string list;
+            for (const auto& c : p.choices) list += (list.empty() ? "'" : ", '") + c + "'";
+            return bad("one of " + list);
+        }
+    }
+    return v;
+}
+
+void applyFrameChanges(PipelineDesc& pipeline, const FrameChanges& changes) {
+    for (const auto& [name, value] : changes.params)
+        if (ParamDesc* p = pipeline.findParam(name)) p->value = value;
+    for (auto& pass : pipeline.graph.passes) {
+        if (auto it = changes.enabled.find(pass.name); it != changes.enabled.end()) pass.enabled = it->second;
+        if (auto it = changes.shaders.find(pass.name); it != changes.shaders.end()) pass.params.table()["shader"] = Value(it->second);
+    }
+}
+
+GraphDesc graphWithParams(const PipelineDesc& pipeline) {
+    GraphDesc g = pipeline.graph;
+    for (auto& pass : g.passes) {
+        if (!pass.params.isTable()) pass.params = Value(Value::Table{});
+        Value::Table uniforms;
+        for (const auto& p : pipeline.params) {
+            // Params blocks hold floats: booleans as 0/1; choices as their index.
+            if (p.type == ParamType::Boolean) uniforms[p.name] = Value(p.value.asBool() ? 1.0 : 0.0);
+            else if (p.type == ParamType::Choice) {
+                double index = 0;
+                for (size_t i = 0; i < p.choices.size(); ++i)
+                    if (p.choices[i] == p.value.asString()) index = static_cast<double>(i);
+                uniforms[p.name] = Value(index);
+            } else
+                uniforms[p.name] = p.value;
+        }
+        for (const auto& [k, v] : pass.params["uniforms"].asTable()) uniforms[k] = v;
+        pass.params.table()["uniforms"] = Value(uniforms);
+    }
+    for (auto& r : g.resources)
+        if (r.name == pipeline.output) r.exported = true;
+    return g;
+}
+
+}  // namespace rg

@@ -1,0 +1,23 @@
+-- The standard (Disney) base material and its G-buffer, Frostbite seed 000 §3.2, tbl:2.
+-- A pipeline pulls this in with `require "disney"`; game teams add materials the same way.
+local rg = require "rg"
+
+-- tbl:2. GB1 is sRGB so base colour keeps 8-bit precision where the eye needs it; the three
+-- spare bits of GB1.A are declared so nothing is padded behind the script's back.
+rg.layout "disney" {
+    { "GB0", "rgb10a2",    { "normal:oct:20", "smoothness:unorm:10", "materialId:uint:2" } },
+    { "GB1", "rgba8_srgb", { "baseColor:srgb:24", "materialData:uint:5", "normalExtra:uint:3" } },
+    { "GB2", "rgba8",      { "reserved:unorm:8", "metalMask:unorm:8", "reflectance:unorm:8", "ao:unorm:8" } },
+    { "GB3", "rgba16f",    { "emissive:float:16x3" } },
+}
+
+-- Pixels lit by the standard lighting path carry this stencil class (value allocated by rgraph).
+rg.stencil "lit_standard" { doc = "standard Disney BRDF lighting" }
+rg.path "standard" { stencil = "lit_standard", doc = "Disney diffuse + GGX specular, seed 000 §3.1" }
+
+-- materialId 0: BaseColor, Smoothness, MetalMask, Reflectance (f0 = 0.16 * reflectance^2), AO.
+rg.material "standard" {
+    id = 0, layout = "disney", path = "standard",
+    params = { baseColor = { 0.5, 0.5, 0.5 }, smoothness = 0.5, metalMask = 0, reflectance = 0.5, ao = 1 },
+    doc = "the standard Disney base material, seed 000 §3.2.1",
+}

@@ -1,0 +1,2 @@
+local rg = require "rg"
+os.execute("touch /tmp/rgraph-sandbox-escape")

@@ -1,0 +1,3 @@
+local rg = require "rg"
+rg.resource "output" { format = 16 }
+rg.output "output"

@@ -1,0 +1,296 @@
+// Pipeline scripts: the sandbox, every kind of bad script with its exact message, the schema,
+// modules, and (on the GPU) runtime reconfiguration and transactional reload.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "cli/runtime.h"
+#include "cli/session.h"
+#include "core/compiler.h"
+#include "lua/lua_host.h"
+
+namespace fs = std::filesystem;
+using namespace rg;
+
+namespace {
+
+const std::string kScripts = "tests/lua/scripts/";
+
+std::string script(const std::string& name) { return std::string(RG_SOURCE_ROOT) + "/" + kScripts + name; }
+
+Result<PipelineDesc> load(const std::string& name, LuaHostOptions o = luaHostOptionsWithoutDevice()) {
+    LuaHost host(o);
+    return host.load(script(name));
+}
+
+// The first line of an error (the rest is the traceback).
+std::string firstLine(const Error& e) { return e.message.substr(0, e.message.find('\n')); }
+
+std::string loadError(const std::string& name, LuaHostOptions o = luaHostOptionsWithoutDevice()) {
+    auto p = load(name, o);
+    EXPECT_FALSE(p.has_value()) << name << " loaded but should not";
+    return p ? "" : firstLine(p.error());
+}
+
+TEST(LuaErrors, SyntaxError) {
+    EXPECT_EQ(loadError("syntax_error.lua"),
+              kScripts + "syntax_error.lua:3: unexpected symbol near <eof>");
+}
+
+TEST(LuaErrors, RuntimeErrorHasTraceback) {
+    auto p = load("runtime_error.lua");
+    ASSERT_FALSE(p.has_value());
+    EXPECT_EQ(firstLine(p.error()), kScripts + "runtime_error.lua:3: attempt to index a nil value (local 'settings')");
+    EXPECT_NE(p.error().message.find("stack traceback:"), std::string::npos);
+}
+
+TEST(LuaErrors, UnknownFieldSuggestsTheClosest) {
+    EXPECT_EQ(loadError("unknown_field.lua"),
+              kScripts + "unknown_field.lua:3: passes.tonemap.shadr: unknown field (did you mean 'shader'?); expected one of: "
+                         "'kind', 'reads', 'writes', 'after', 'enabled', 'side_effect', 'doc', 'insert', 'shader', 'defines', "
+                         "'bind', 'uniforms', 'constants', 'filter', 'clear', 'blend', 'stencil'");
+}
+
+TEST(LuaErrors, WrongType) {
+    EXPECT_EQ(loadError("wrong_type.lua"), kScripts + "wrong_type.lua:2: resources.output.format: expected a string, got number");
+}
+
+TEST(LuaErrors, UnknownResource) {
+    EXPECT_EQ(loadError("unknown_resource.lua"),
+              kScripts + "unknown_resource.lua:6: passes.lighting.reads[3]: unknown resource 'GB9' (did you mean 'GB0'?)");
+}
+
+TEST(LuaErrors, CycleIsReportedByTheCompiler) {
+    auto p = load("cycle.lua");
+    ASSERT_TRUE(p.has_value()) << p.error().message;
+    auto plan = compile(graphWithParams(*p), {});
+    ASSERT_FALSE(plan.has_value());
+    EXPECT_EQ(plan.error().message, kScripts + "cycle.lua:4: cycle between passes: 'first' -> 'second' -> 'first'");
+}
+
+TEST(LuaErrors, MaterialIdCollisionNamesBothDeclarations) {
+    EXPECT_EQ(loadError("id_collision.lua"),
+              kScripts + "id_collision.lua:4: materials.foliage.id: 1 is already the id of material 'clearcoat' (" + kScripts +
+                  "id_collision.lua:3)");
+}
+
+TEST(LuaErrors, StencilExhaustion) {
+    EXPECT_EQ(loadError("stencil_exhaustion.lua"),
+              kScripts + "stencil_exhaustion.lua:4: stencil.class16: no stencil value left: 4 stencil bits hold 15 classes, all "
+                         "taken by 'class1', 'class2', 'class3', 'class4', 'class5', 'class6', 'class7', 'class8', 'class9', "
+                         "'class10', 'class11', 'class12', 'class13', 'class14', 'class15'");
+}
+
+TEST(LuaErrors, RunawayLoopIsStopped) {
+    LuaHostOptions o = luaHostOptionsWithoutDevice();
+    o.instructions = 5'000'000;
+    EXPECT_EQ(loadError("runaway.lua", o),
+              kScripts + "runaway.lua:3: script stopped after 5 million instructions: a runaway loop? (limit: 5 million)");
+}
+
+TEST(LuaErrors, MemoryLimit) {
+    LuaHostOptions o = luaHostOptionsWithoutDevice();
+    o.memoryBytes = 16u << 20;
+    EXPECT_EQ(loadError("memory_hog.lua", o), "script stopped: it used more than 16 MiB of Lua memory");
+}
+
+TEST(LuaErrors, ForbiddenOsExecute) {
+    EXPECT_EQ(loadError("forbidden.lua"), kScripts + "forbidden.lua:2: os.execute is not available to rgraph scripts (sandbox)");
+    EXPECT_FALSE(fs::exists("/tmp/rgraph-sandbox-escape"));
+}
+
+TEST(LuaErrors, ForbiddenIo) {
+    EXPECT_EQ(loadError("forbidden_io.lua"), kScripts + "forbidden_io.lua:1: io.open is not available to rgraph scripts (sandbox)");
+}
+
+TEST(LuaErrors, RequireCannotLeaveTheSearchFolders) {
+    EXPECT_EQ(loadError("require_escape.lua"),
+              kScripts + "require_escape.lua:1: require: '..etc.passwd' is not a module name (dotted names of letters, digits, '_' "
+                         "and '-')");
+}
+
+TEST(LuaErrors, MissingScript) {
+    auto p = load("no_such_script.lua");
+    ASSERT_FALSE(p.has_value());
+    EXPECT_EQ(p.error().message, "cannot open pipeline script '" + script("no_such_script.lua") + "'");
+}
+
+TEST(LuaErrors, HostSurvivesAndLoadsAgainAfterErrors) {
+    LuaHost host(luaHostOptionsWithoutDevice());
+    for (const char* bad : {"syntax_error.lua", "runtime_error.lua", "forbidden.lua", "unknown_field.lua"})
+        EXPECT_FALSE(host.load(script(bad)).has_value());
+    auto ok = host.load(script("params.lua"));
+    ASSERT_TRUE(ok.has_value()) << ok.error().message;
+    EXPECT_EQ(ok->graph.passes.size(), 2u);
+}
+
+TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
+    LuaHost host(luaHostOptionsWithoutDevice());
+    auto p = host.load(std::string(RG_SOURCE_ROOT) + "/scripts/pipelines/deferred.lua");
+    ASSERT_TRUE(p.has_value()) << p.error().message;
+    ASSERT_EQ(p->layouts.size(), 1u);
+    EXPECT_EQ(p->layouts[0].name, "disney");
+    EXPECT_EQ(p->layouts[0].targets.size(), 4u);
+    ASSERT_EQ(p->materials.size(), 1u);
+    EXPECT_EQ(p->materials[0].id, 0u);
+    EXPECT_EQ(p->materials[0].stencil, "lit_standard");
+    ASSERT_EQ(p->stencilClasses.size(), 1u);
+    EXPECT_EQ(p->stencilClasses[0].value, 1u);
+    EXPECT_EQ(p->output, "output");
+    auto plan = compile(graphWithParams(*p), {});
+    ASSERT_TRUE(plan.has_value()) << plan.error().message;
+    // Every script it pulled in is known, for hot reload.
+    EXPECT_EQ(p->files.size(), 2u);
+}
+
+TEST(LuaPipeline, ModulesAreNamespacedAndInsertedAfterTheirAnchor) {
+    auto p = load("with_modules.lua");
+    ASSERT_TRUE(p.has_value()) << p.error().message;
+    std::vector<std::string> order;
+    for (const auto& pass : p->graph.passes) order.push_back(pass.name);
+    EXPECT_EQ(order, (std::vector<std::string>{"generate", "transform", "team_tint.make_overlay", "team_tint.apply", "final"}));
+    EXPECT_NE(p->graph.findResource("team_tint.overlay"), nullptr);
+    EXPECT_EQ(p->graph.findPass("team_tint.apply")->accesses[0].resource, "team_tint.overlay");
+    EXPECT_EQ(p->modules, (std::vector<std::string>{"team_tint"}));
+    ASSERT_TRUE(compile(graphWithParams(*p), {}).has_value());
+}
+
+TEST(LuaPipeline, TwoWritersFromDifferentModulesAreAnError) {
+    auto p = load("module_clash.lua");
+    ASSERT_TRUE(p.has_value()) << p.error().message;
+    auto plan = compile(graphWithParams(*p), {});
+    ASSERT_FALSE(plan.has_value());
+    EXPECT_EQ(plan.error().message,
+              kScripts + "modules/team_clash.lua:4: passes 'transform' and 'team_clash.overwrite' both write 'output' with no order "
+                         "between them: make 'team_clash.overwrite' load it or list 'transform' in its after");
+}
+
+// ---- on the GPU: reconfiguration and reload ----
+
+class LuaGpu : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        RuntimeOptions o;
+        o.validation = true;
+        auto rt = Runtime::create(o);
+        ASSERT_TRUE(rt.has_value()) << rt.error().describe();
+        s_runtime = std::move(*rt).release();
+    }
+    static void TearDownTestSuite() {
+        delete s_runtime;
+        s_runtime = nullptr;
+    }
+    void SetUp() override { m_before = s_runtime->gpu().validationMessageCount(); }
+    void TearDown() override { EXPECT_EQ(s_runtime->gpu().validationMessageCount(), m_before); }
+
+    static SessionOptions small() {
+        SessionOptions o;
+        o.compile.outputWidth = 32;
+        o.compile.outputHeight = 16;
+        return o;
+    }
+    Image output(Session& s) {
+        auto img = s_runtime->executor().readback(s.pipeline().output);
+        EXPECT_TRUE(img.has_value()) << (img ? "" : img.error().message);
+        return img ? *img : Image();
+    }
+    static Runtime* s_runtime;
+    uint32_t m_before = 0;
+};
+Runtime* LuaGpu::s_runtime = nullptr;
+
+TEST_F(LuaGpu, DisableOnFrame2EnableOnFrame3) {
+    Session s(*s_runtime, small());
+    ASSERT_TRUE(s.load(script("reconfigure.lua")).has_value());
+    std::vector<Image> frames;
+    for (int f = 0; f < 3; ++f) {
+        auto r = s.frame();
+        ASSERT_TRUE(r.has_value()) << r.error().message;
+        frames.push_back(output(s));
+    }
+    EXPECT_EQ(frames[0].pixels, frames[2].pixels);
+    EXPECT_NE(frames[0].pixels, frames[1].pixels);
+    EXPECT_FLOAT_EQ(frames[0].at(5, 3, 0) - frames[1].at(5, 3, 0), 0.25f);  // the tint's contribution
+    EXPECT_EQ(s.rebuilds(), 2u);
+    // Re-enabling brings back the passes and resources it had: nothing new was compiled.
+    EXPECT_EQ(s_runtime->executor().lastBuildReport().passesPrepared, (std::vector<std::string>{"tint"}));
+}
+
+TEST_F(LuaGpu, ParameterChangeRebuildsNothing) {
+    Session s(*s_runtime, small());
+    ASSERT_TRUE(s.load(script("params.lua")).has_value());
+    ASSERT_TRUE(s.frame().has_value());
+    Image a = output(s);
+    ASSERT_TRUE(s.frame().has_value());
+    Image b = output(s);
+    EXPECT_EQ(s.rebuilds(), 0u);
+    EXPECT_FLOAT_EQ(b.at(9, 4, 1), 2 * a.at(9, 4, 1));
+    EXPECT_FLOAT_EQ(b.at(0, 0, 3), 2.0f);
+}
+
+TEST_F(LuaGpu, FrameCallbackErrorsAreReported) {
+    Session s(*s_runtime, small());
+    ASSERT_TRUE(s.load(script("bad_frame.lua")).has_value());
+    auto r = s.frame();
+    ASSERT_FALSE(r.has_value());
+    EXPECT_EQ(firstLine(r.error()),
+              "rg.frame: " + kScripts + "bad_frame.lua:9: ctx.params: unknown parameter 'scael' (did you mean 'scale'?)");
+}
+
+TEST_F(LuaGpu, ReloadIsTransactional) {
+    fs::create_directories(RG_TEST_TMP);
+    const std::string file = std::string(RG_TEST_TMP) + "/reload.lua";
+    auto write = [&](const std::string& text) { std::ofstream(file) << text; };
+    const std::string valid =
+        "local rg = require 'rg'\n"
+        "rg.param 'scale' { type = 'number', default = SCALE, min = 0, max = 16 }\n"
+        "rg.resource 'pattern' { format = 'rgba16f' }\n"
+        "rg.resource 'output' { format = 'rgba16f' }\n"
+        "rg.pass 'generate' { kind = 'compute', shader = 'test/pattern.comp', writes = { 'pattern' } }\n"
+        "rg.pass 'transform' { kind = 'fullscreen', shader = 'test/transform.frag', reads = { 'pattern' }, writes = { 'output' } }\n"
+        "rg.output 'output'\n";
+    auto withScale = [&](const char* scale) {
+        std::string t = valid;
+        t.replace(t.find("SCALE"), 5, scale);
+        return t;
+    };
+    Session s(*s_runtime, small());
+    write(withScale("1"));
+    ASSERT_TRUE(s.load(file).has_value());
+    ASSERT_TRUE(s.frame().has_value());
+    Image first = output(s);
+
+    write(withScale("1") + "rg.pass 'oops' { kind = 'fullscreen', reads = { 'nothing' } }\n");
+    auto broken = s.load(file);
+    ASSERT_FALSE(broken.has_value());
+    EXPECT_NE(broken.error().message.find("reload.lua:8: passes.oops.reads[1]: unknown resource 'nothing'"), std::string::npos)
+        << broken.error().message;
+    ASSERT_TRUE(s.frame().has_value());  // the previous pipeline keeps rendering
+    EXPECT_EQ(output(s).pixels, first.pixels);
+
+    write(withScale("1") + "rg.pass 'bad_shader' { kind = 'fullscreen', shader = 'tests/gpu/shaders/broken.frag', writes = { 'output' }, after = { 'transform' } }\n");
+    auto badShader = s.load(file);
+    ASSERT_FALSE(badShader.has_value());
+    EXPECT_NE(badShader.error().message.find("broken.frag:7:"), std::string::npos) << badShader.error().message;
+    ASSERT_TRUE(s.frame().has_value());
+    EXPECT_EQ(output(s).pixels, first.pixels);
+
+    write(withScale("0.5"));
+    ASSERT_TRUE(s.load(file).has_value());
+    ASSERT_TRUE(s.frame().has_value());
+    EXPECT_FLOAT_EQ(output(s).at(0, 0, 3), 0.5f);
+}
+
+TEST_F(LuaGpu, ModulePassesRender) {
+    Session s(*s_runtime, small());
+    auto r = s.load(script("with_modules.lua"));
+    ASSERT_TRUE(r.has_value()) << r.error().message;
+    ASSERT_TRUE(s.frame().has_value());
+    auto img = s_runtime->executor().passResult("final");
+    ASSERT_TRUE(img.has_value()) << img.error().message;
+    // transform gives (g, r, 1 - b, 1); the module adds (0, 0, 0.125, 0) on top.
+    EXPECT_FLOAT_EQ(img->at(0, 0, 2), 1.0f - 0.0f + 0.125f);
+}
+
+}  // namespace
