@@ -19,6 +19,8 @@ std::string cacheDir() {
     return RG_DEFAULT_CACHE_DIR;
 }
 
+std::string generatedShaderDir() { return cacheDir() + "/generated"; }
+
 void prepareEnvironment() {
     std::string mesa = cacheDir() + "/mesa";
     std::error_code ec;
@@ -39,7 +41,7 @@ Result<std::unique_ptr<Runtime>> Runtime::create(const RuntimeOptions& options) 
 
     ShaderCompiler::Options so;
     const std::string root = projectRoot();
-    so.includeDirs = {root + "/shaders", root};
+    so.includeDirs = {root + "/shaders", root, generatedShaderDir()};
     so.cacheDir = cacheDir() + "/spirv";
     std::error_code ec;
     fs::create_directories(so.cacheDir, ec);

@@ -17,6 +17,8 @@ namespace rg {
 
 std::string projectRoot();
 std::string cacheDir();
+// Generated GLSL (G-buffer pack/unpack of each layout): <cacheDir>/generated, on the include path.
+std::string generatedShaderDir();
 // Sets MESA_SHADER_CACHE_DIR (unless set) before any Vulkan call.
 void prepareEnvironment();
 

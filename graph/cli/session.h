@@ -52,6 +52,10 @@ private:
     std::vector<std::string> m_log;
 };
 
+// Writes gbuffer_<layout>.glsl (pack/unpack, generated) for every layout of the pipeline into
+// generatedShaderDir(), which shaders reach with #include "gbuffer_<layout>.glsl".
+Result<void> writeLayoutHeaders(const PipelineDesc& pipeline);
+
 // Options for a LuaHost that sees the project's scripts/ and materials/ and the runtime's kinds.
 LuaHostOptions luaHostOptions(const Runtime& runtime);
 // Same, without a GPU: the built-in kinds' schemas.

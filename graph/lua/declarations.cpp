@@ -420,7 +420,8 @@ struct Builder {
     Result<void> layout(const Declaration& d) {
         Where w = where(d);
         LayoutDesc l;
-        l.name = fullName(d);
+        // Layout names become GLSL identifiers (GBuffer_<name>): modules use '_' as separator.
+        l.name = d.module.empty() ? d.name : d.module + "_" + d.name;
         l.origin = d.origin;
         if (!d.body.isList()) return w.error("expected a list of targets: { { \"GB0\", \"rgb10a2\", { \"normal:oct:20\", ... } }, ... }");
         for (size_t i = 0; i < d.body.asList().size(); ++i) {
@@ -466,16 +467,14 @@ struct Builder {
                 ChannelDesc ch;
                 ch.name = parts[0];
                 ch.origin = d.origin;
-                static const std::vector<std::pair<std::string, Encoding>> encodings = {
-                    {"unorm", Encoding::Unorm}, {"snorm", Encoding::Snorm}, {"srgb", Encoding::Srgb},
-                    {"oct", Encoding::Oct}, {"uint", Encoding::Uint}, {"float", Encoding::Float}};
-                auto it = std::find_if(encodings.begin(), encodings.end(), [&](auto& e) { return e.first == parts[1]; });
-                if (it == encodings.end()) {
+                auto encoding = parseEncoding(parts[1]);
+                if (!encoding) {
                     std::vector<std::string> names;
-                    for (auto& e : encodings) names.push_back(e.first);
-                    return cw.error("unknown encoding '" + parts[1] + "'" + suggestion(parts[1], names) + "; expected one of: " + joinQuoted(names));
+                    for (auto e : {Encoding::Unorm, Encoding::Snorm, Encoding::Srgb, Encoding::Oct, Encoding::Uint, Encoding::Float})
+                        names.emplace_back(encodingName(e));
+                    return cw.error("unknown encoding '" + parts[1] + "'" + suggestion(parts[1], names) + "; expected one of: " + encodingNameList());
                 }
-                ch.encoding = it->second;
+                ch.encoding = *encoding;
                 ch.bits = bits;
                 ch.components = components;
                 target.channels.push_back(ch);
@@ -568,13 +567,16 @@ struct Builder {
         ids[m.id] = &d;
         auto layoutName = requireString(w, b, "layout");
         if (!layoutName) return std::unexpected(layoutName.error());
-        auto lit = std::find_if(out.layouts.begin(), out.layouts.end(), [&](auto& l) { return l.name == *layoutName; });
+        auto lit = std::find_if(out.layouts.begin(), out.layouts.end(),
+                                [&](auto& l) { return !d.module.empty() && l.name == d.module + "_" + *layoutName; });
+        if (lit == out.layouts.end())
+            lit = std::find_if(out.layouts.begin(), out.layouts.end(), [&](auto& l) { return l.name == *layoutName; });
         if (lit == out.layouts.end()) {
             std::vector<std::string> names;
             for (auto& l : out.layouts) names.push_back(l.name);
             return w.at("layout").error("unknown layout '" + *layoutName + "'" + suggestion(*layoutName, names));
         }
-        m.layout = *layoutName;
+        m.layout = lit->name;
         // The id must fit the layout's materialId field.
         for (const auto& t : lit->targets)
             for (const auto& c : t.channels)

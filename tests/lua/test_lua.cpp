@@ -4,6 +4,10 @@
 
 #include <filesystem>
 #include <fstream>
+#include <random>
+
+#include "image/image.h"
+#include "layout/layout.h"
 
 #include "cli/runtime.h"
 #include "cli/session.h"
@@ -217,6 +221,47 @@ TEST_F(LuaGpu, DisableOnFrame2EnableOnFrame3) {
     EXPECT_EQ(s_runtime->executor().lastBuildReport().passesPrepared, (std::vector<std::string>{"tint"}));
 }
 
+TEST_F(LuaGpu, ShaderSwapRebuildsOnlyThatPass) {
+    Session s(*s_runtime, small());
+    ASSERT_TRUE(s.load(script("swap_shader.lua")).has_value());
+    ASSERT_TRUE(s.frame().has_value());
+    EXPECT_FLOAT_EQ(output(s).at(1, 1, 3), 1.0f);
+    EXPECT_FLOAT_EQ(output(s).at(1, 1, 1), 1.0f / 64.0f);  // transform: g = pattern.r = x / 64
+    ASSERT_TRUE(s.frame().has_value());
+    EXPECT_FLOAT_EQ(output(s).at(1, 1, 1), 0.75f);  // tint.frag: the constant tint
+    EXPECT_EQ(s.rebuilds(), 1u);
+    EXPECT_EQ(s_runtime->executor().lastBuildReport().passesPrepared, (std::vector<std::string>{"transform"}));
+    EXPECT_EQ(s_runtime->executor().lastBuildReport().passesReused, (std::vector<std::string>{"generate"}));
+    ASSERT_FALSE(s.log().empty());
+    EXPECT_NE(s.log().back().find("'transform' uses test/tint.frag; recompiled in"), std::string::npos) << s.log().back();
+}
+
+TEST_F(LuaGpu, ShadersIncludeTheGeneratedPackCode) {
+    Session s(*s_runtime, small());
+    auto r = s.load(script("gbuffer.lua"));
+    ASSERT_TRUE(r.has_value()) << r.error().describe();
+    ASSERT_TRUE(s.frame().has_value());
+    auto info = analyzeLayout(s.pipeline().layouts[0]);
+    ASSERT_TRUE(info.has_value());
+    std::vector<TexelValue> texels;
+    for (const auto& t : info->desc.targets) {
+        auto img = s_runtime->executor().readback(t.name);
+        ASSERT_TRUE(img.has_value()) << img.error().message;
+        texels.push_back(texelFromFloats(t.format, &img->pixels[(3 * img->width + 7) * img->channels], img->channels));
+    }
+    auto g = unpackTexel(*info, texels);
+    auto channel = [&](const char* name) { return g[static_cast<size_t>(info->find(name))]; };
+    EXPECT_EQ(channel("materialId").u[0], 2u);
+    EXPECT_NEAR(channel("smoothness").v[0], 0.7f, 0.5f / 1023 + 1e-5f);
+    EXPECT_NEAR(channel("metalMask").v[0], 1.0f, 1e-6f);
+    EXPECT_NEAR(channel("reflectance").v[0], 0.5f, 0.5f / 255 + 1e-5f);  // 127.5 rounds up: exactly half a step
+    EXPECT_NEAR(channel("ao").v[0], 0.9f, 0.5f / 255 + 1e-5f);
+    EXPECT_NEAR(srgbEncode(channel("baseColor").v[0]), srgbEncode(0.8f), 1.0f / 255);
+    const float len = std::sqrt(0.3f * 0.3f + 0.5f * 0.5f + 0.8f * 0.8f);
+    const auto& n = channel("normal").v;
+    EXPECT_GT((n[0] * 0.3f - n[1] * 0.5f + n[2] * 0.8f) / len, std::cos(4.2e-3f));  // the 10+10-bit octahedral bound
+}
+
 TEST_F(LuaGpu, ParameterChangeRebuildsNothing) {
     Session s(*s_runtime, small());
     ASSERT_TRUE(s.load(script("params.lua")).has_value());
@@ -291,6 +336,133 @@ TEST_F(LuaGpu, ModulePassesRender) {
     ASSERT_TRUE(img.has_value()) << img.error().message;
     // transform gives (g, r, 1 - b, 1); the module adds (0, 0, 0.125, 0) on top.
     EXPECT_FLOAT_EQ(img->at(0, 0, 2), 1.0f - 0.0f + 0.125f);
+}
+
+}  // namespace
+
+namespace {
+
+// Every ```lua block of scripts/README.md, in order.
+std::vector<std::string> readmeExamples() {
+    std::ifstream in(std::string(RG_SOURCE_ROOT) + "/scripts/README.md");
+    std::vector<std::string> blocks;
+    std::string line, block;
+    bool inside = false;
+    while (std::getline(in, line)) {
+        if (!inside && line == "```lua") {
+            inside = true;
+            block.clear();
+        } else if (inside && line == "```") {
+            inside = false;
+            blocks.push_back(block);
+        } else if (inside)
+            block += line + "\n";
+    }
+    return blocks;
+}
+
+class ScriptsReadme : public LuaGpu {};
+
+TEST_F(ScriptsReadme, EveryExampleLoadsCompilesAndRenders) {
+    auto examples = readmeExamples();
+    ASSERT_GE(examples.size(), 10u);
+    fs::create_directories(RG_TEST_TMP);
+    for (size_t i = 0; i < examples.size(); ++i) {
+        const std::string file = std::string(RG_TEST_TMP) + "/readme_example_" + std::to_string(i + 1) + ".lua";
+        std::ofstream(file) << examples[i];
+        SCOPED_TRACE("example " + std::to_string(i + 1) + ":\n" + examples[i]);
+        Session s(*s_runtime, small());
+        auto r = s.load(file);
+        ASSERT_TRUE(r.has_value()) << r.error().describe();
+        for (int f = 0; f < 2; ++f) {
+            auto fr = s.frame();
+            ASSERT_TRUE(fr.has_value()) << fr.error().describe();
+        }
+        auto img = s_runtime->executor().readback(s.pipeline().output);
+        ASSERT_TRUE(img.has_value()) << img.error().describe();
+    }
+}
+
+}  // namespace
+
+namespace {
+
+// Every layout any shipped pipeline or README example declares survives pack -> unpack within its
+// encoding's bound (uint exact; unorm/snorm half a step; sRGB half a step in the encoded domain;
+// octahedral normals within 2·asin(3√2 / 2N); floats at the format's precision).
+void roundTrip(const LayoutDesc& layout, std::mt19937& rng) {
+    auto info = analyzeLayout(layout);
+    ASSERT_TRUE(info.has_value()) << info.error().message;
+    std::uniform_real_distribution<float> unit(0.0f, 1.0f), signedUnit(-1.0f, 1.0f);
+    for (int trial = 0; trial < 2000; ++trial) {
+        std::vector<ChannelValue> in(info->channels.size());
+        for (size_t c = 0; c < in.size(); ++c) {
+            const ChannelDesc& ch = info->channelDesc(c);
+            for (int k = 0; k < 4; ++k) {
+                in[c].v[static_cast<size_t>(k)] = ch.encoding == Encoding::Snorm || ch.encoding == Encoding::Oct ? signedUnit(rng)
+                                                                                                                 : unit(rng);
+                in[c].u[static_cast<size_t>(k)] = static_cast<uint32_t>(rng());
+            }
+            if (ch.encoding == Encoding::Oct) {
+                float len = std::sqrt(in[c].v[0] * in[c].v[0] + in[c].v[1] * in[c].v[1] + in[c].v[2] * in[c].v[2]);
+                if (len < 1e-3f) in[c].v = {0, 0, 1, 0};
+            }
+        }
+        auto out = unpackTexel(*info, packTexel(*info, in));
+        ASSERT_EQ(out.size(), in.size());
+        for (size_t c = 0; c < in.size(); ++c) {
+            const ChannelDesc& ch = info->channelDesc(c);
+            const ChannelPlacement& pl = info->channels[c];
+            const double n = std::pow(2.0, pl.bitsPerComponent) - 1.0;
+            SCOPED_TRACE(layout.name + "." + ch.name);
+            for (uint32_t k = 0; k < pl.components; ++k) {
+                switch (ch.encoding) {
+                case Encoding::Uint: {
+                    uint32_t mask = pl.bitsPerComponent >= 32 ? ~0u : (1u << pl.bitsPerComponent) - 1u;
+                    EXPECT_EQ(out[c].u[k], std::min(in[c].u[k], mask));
+                    break;
+                }
+                case Encoding::Unorm: EXPECT_NEAR(out[c].v[k], in[c].v[k], 0.5 / n + 1e-6); break;
+                case Encoding::Snorm: EXPECT_NEAR(out[c].v[k], in[c].v[k], 1.0 / (n - 1.0) + 1e-6); break;
+                case Encoding::Srgb: EXPECT_NEAR(srgbEncode(out[c].v[k]), srgbEncode(in[c].v[k]), 0.5 / n + 1e-5); break;
+                case Encoding::Float: EXPECT_NEAR(out[c].v[k], in[c].v[k], std::abs(in[c].v[k]) * 1e-3 + 1e-6); break;
+                case Encoding::Oct: break;
+                }
+            }
+            if (ch.encoding == Encoding::Oct) {
+                const auto& a = in[c].v;
+                const auto& b = out[c].v;
+                double la = std::sqrt(a[0] * a[0] + a[1] * a[1] + a[2] * a[2]);
+                double cosAngle = (a[0] * b[0] + a[1] * b[1] + a[2] * b[2]) / la;
+                double bound = 2.0 * std::asin(3.0 * std::sqrt(2.0) / (2.0 * n));
+                EXPECT_LE(std::acos(std::min(1.0, cosAngle)), bound + 1e-5);
+            }
+        }
+    }
+}
+
+TEST(LuaLayouts, EveryDeclaredLayoutRoundTrips) {
+    std::vector<std::string> files;
+    for (const auto& e : fs::directory_iterator(std::string(RG_SOURCE_ROOT) + "/scripts/pipelines"))
+        if (e.path().extension() == ".lua") files.push_back(e.path().string());
+    fs::create_directories(RG_TEST_TMP);
+    auto examples = readmeExamples();
+    for (size_t i = 0; i < examples.size(); ++i) {
+        files.push_back(std::string(RG_TEST_TMP) + "/layout_example_" + std::to_string(i + 1) + ".lua");
+        std::ofstream(files.back()) << examples[i];
+    }
+    std::mt19937 rng(7);
+    size_t layouts = 0;
+    for (const auto& f : files) {
+        LuaHost host(luaHostOptionsWithoutDevice());
+        auto p = host.load(f);
+        ASSERT_TRUE(p.has_value()) << f << ": " << p.error().message;
+        for (const auto& l : p->layouts) {
+            roundTrip(l, rng);
+            ++layouts;
+        }
+    }
+    EXPECT_GE(layouts, 3u);  // disney (deferred.lua, the README) and the README's compact layout
 }
 
 }  // namespace
