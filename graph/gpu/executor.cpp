@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstring>
+#include <filesystem>
 
 #include "core/check.h"
 
@@ -56,6 +57,7 @@ struct Executor::Built {
     std::vector<std::shared_ptr<Buffer>> buffers;  // by plan resource index
     ResourceTable table;
     std::vector<std::shared_ptr<PassInstance>> instances;  // by plan pass index
+    std::vector<std::string> sourceStamps;  // by plan pass index: its files' times and sizes when prepared
 };
 
 namespace {
@@ -75,6 +77,19 @@ Value withoutUniforms(const Value& params) {
     Value v = params;
     if (v.isTable()) v.table().erase("uniforms");
     return v;
+}
+
+// Modification times and sizes of a pass's shader files: a pass whose sources changed on disk
+// is prepared again even when its declaration did not change (hot reload).
+std::string sourceStamp(const PassInstance& instance) {
+    std::string stamp;
+    for (const auto& f : instance.files()) {
+        std::error_code ec;
+        auto t = std::filesystem::last_write_time(f, ec);
+        auto size = std::filesystem::file_size(f, ec);
+        stamp += f + "@" + std::to_string(t.time_since_epoch().count()) + ":" + std::to_string(size) + ";";
+    }
+    return stamp;
 }
 
 bool sameAccesses(const std::vector<Access>& a, const std::vector<Access>& b) {
@@ -247,9 +262,12 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
                 const PassDesc& od = old->graph.passes[op.desc];
                 bool resourcesKept = std::all_of(pass.accesses.begin(), pass.accesses.end(),
                                                  [&](const PlanAccess& a) { return resourceReused[a.resource]; });
+                const auto& instance = old->instances[static_cast<size_t>(o)];
                 if (od.kind == desc.kind && sameAccesses(od.accesses, desc.accesses) && resourcesKept &&
-                    withoutUniforms(od.params) == withoutUniforms(desc.params)) {
-                    built->instances.push_back(old->instances[static_cast<size_t>(o)]);
+                    withoutUniforms(od.params) == withoutUniforms(desc.params) &&
+                    sourceStamp(*instance) == old->sourceStamps[static_cast<size_t>(o)]) {
+                    built->instances.push_back(instance);
+                    built->sourceStamps.push_back(old->sourceStamps[static_cast<size_t>(o)]);
                     report.passesReused.push_back(pass.name);
                     continue;
                 }
@@ -258,6 +276,7 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
         auto instance = std::shared_ptr<PassInstance>(m_kinds.find(desc.kind)->create());
         PassSetup setup{m_ctx, m_shaders, *planPtr, pass, desc, built->table};
         if (auto r = instance->prepare(setup); !r) return std::unexpected(r.error());
+        built->sourceStamps.push_back(sourceStamp(*instance));
         built->instances.push_back(std::move(instance));
         report.passesPrepared.push_back(pass.name);
     }

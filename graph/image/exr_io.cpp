@@ -7,7 +7,6 @@
 #include <ImfIO.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
-#include <ImfStandardAttributes.h>
 #include <ImfStringAttribute.h>
 #include <ImfVersion.h>
 #include <half.h>
@@ -37,7 +36,7 @@ namespace {
 // end of the buffer (found by fuzzing); copying gives every chunk a buffer of full size.
 class MemoryIStream final : public Imf::IStream {
 public:
-    MemoryIStream(const std::string& path, std::vector<char>& data)
+    MemoryIStream(const std::string& path, const std::vector<char>& data)
         : Imf::IStream(path.c_str()), m_data(data) {}
 
     bool read(char c[], int n) override {
@@ -49,15 +48,15 @@ public:
     void seekg(uint64_t pos) override { m_pos = pos; }
 
 private:
-    char* take(int n) {
+    const char* take(int n) {
         if (n < 0 || m_pos > m_data.size() || uint64_t(n) > m_data.size() - m_pos)
             throw Iex::InputExc("unexpected end of file (truncated?)");
-        char* p = m_data.data() + m_pos;
+        const char* p = m_data.data() + m_pos;
         m_pos += uint64_t(n);
         return p;
     }
 
-    std::vector<char>& m_data;
+    const std::vector<char>& m_data;
     uint64_t m_pos = 0;
 };
 
@@ -249,6 +248,8 @@ Result<void> writeExr(const std::string& path, const std::vector<ImageLayer>& la
         if (stream.error() != 0) return std::unexpected(writer->writeError(stream.error()));
         return fail(ErrorCode::InvalidInput,
                     quoted(path) + ": OpenEXR: " + exrReason(path, e.what()));
+    } catch (...) {
+        return fail(ErrorCode::InvalidInput, quoted(path) + ": OpenEXR: unknown exception");
     }
     if (stream.error() != 0) return std::unexpected(writer->writeError(stream.error()));
     return writer->commit();
@@ -299,6 +300,7 @@ Result<ExrFile> readExr(const std::string& path) {
                             std::to_string(channelCount) + " samples is too large to read");
 
         ExrFile result;
+        result.layers.reserve(layerChannels.size());  // the slices point into these images
         Imf::FrameBuffer frameBuffer;
         for (auto& [name, channels] : layerChannels) {
             sortChannels(channels);
@@ -324,6 +326,8 @@ Result<ExrFile> readExr(const std::string& path) {
     } catch (const std::exception& e) {
         return fail(ErrorCode::InvalidInput,
                     file + ": invalid OpenEXR file: " + exrReason(path, e.what()));
+    } catch (...) {
+        return fail(ErrorCode::InvalidInput, file + ": invalid OpenEXR file: unknown exception");
     }
 }
 

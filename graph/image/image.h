@@ -8,8 +8,8 @@
 // - Failures caused by the file or the arguments come back as an Error whose message starts with
 //   the quoted file name ("'out.exr': ..." or "cannot open 'out.exr': ..."). No function throws and
 //   none crashes on a truncated or garbage file.
-// - Writers go through "<path>.tmp" and a rename, so a failed write leaves an existing file at
-//   `path` untouched.
+// - Writers write "<path>.tmp-<pid>-<n>" and rename it to `path`, so a failed write leaves an
+//   existing file at `path` untouched (and removes the temp file).
 // - Every function is safe to call from several threads at once on different files.
 #pragma once
 
@@ -87,9 +87,8 @@ Result<void> writePng(const std::string& path, const Image& img,
 // `text` is not null it receives the file's text chunks (tEXt, zTXt, iTXt).
 Result<Image> readPng(const std::string& path, std::map<std::string, std::string>* text = nullptr);
 
-// Reads a Radiance RGBE (.hdr) file as 3-channel linear float.
-// Note: stb_image fills the missing pixels of a truncated uncompressed (flat) file with zeros
-// instead of failing; run-length-encoded files fail.
+// Reads a Radiance RGBE (.hdr) file, flat or run-length encoded, as 3-channel linear float
+// (decoded by stb_image after the pixel stream is checked: truncated and corrupt files fail).
 Result<Image> readHdr(const std::string& path);
 
 // The sRGB transfer function of IEC 61966-2-1, for one colour value (never apply it to alpha).

@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# The rgraph command line as a user meets it: help, exit codes (0 ok, 1 failed check, 2 bad
+# usage or input), error texts, the files render/bench write, and watch's reload cycle.
+# Usage: test_cli.sh RGRAPH_BINARY SOURCE_ROOT TMP_DIR
+set -u
+rgraph=$1 root=$2 tmp=$3/cli
+rm -rf "$tmp" && mkdir -p "$tmp"
+cd "$root"
+passed=0 failed=0
+check() {  # check NAME EXPECTED_RC [grep PATTERN] -- command...
+    local name=$1 want=$2; shift 2
+    local pattern=""
+    if [ "$1" = grep ]; then pattern=$2; shift 2; fi
+    [ "$1" = -- ] && shift
+    local out rc
+    out=$("$@" 2>&1); rc=$?
+    if [ "$rc" != "$want" ]; then
+        echo "FAIL $name: exit $rc, expected $want"; echo "$out" | head -20; failed=$((failed+1)); return
+    fi
+    if [ -n "$pattern" ] && ! grep -qF -- "$pattern" <<<"$out"; then
+        echo "FAIL $name: output lacks '$pattern'"; echo "$out" | head -20; failed=$((failed+1)); return
+    fi
+    echo "ok   $name"; passed=$((passed+1))
+}
+
+check "help" 0 grep "usage: rgraph COMMAND" -- "$rgraph" --help
+check "no command" 2 grep "commands:" -- "$rgraph"
+check "unknown command" 2 grep "unknown command 'rendr'" -- "$rgraph" rendr
+for c in devices render graph bench watch; do
+    check "$c --help" 0 grep "usage: rgraph $c" -- "$rgraph" $c --help
+done
+check "devices" 0 grep "*" -- "$rgraph" devices
+check "bad size" 2 grep "--size must be WIDTHxHEIGHT" -- "$rgraph" render --size 12
+check "unknown option" 2 grep "unknown option --sise" -- "$rgraph" render --sise 12x12
+check "bad device" 2 grep "--device 7: only" -- "$rgraph" render --device 7 --size 8x8 --out "$tmp/x.exr" --png "$tmp/x.png"
+check "missing pipeline" 2 grep "cannot open pipeline script 'nope.lua'" -- "$rgraph" render --pipeline nope.lua
+check "bad script" 2 grep "unknown_field.lua:3: passes.tonemap.shadr: unknown field (did you mean 'shader'?)" -- \
+    "$rgraph" render --pipeline tests/lua/scripts/unknown_field.lua
+check "unknown capture" 2 grep "--capture: the pipeline has no resource named 'GB7'" -- "$rgraph" render --capture GB7 --size 8x8
+check "render" 0 grep "wrote $tmp/r.exr and $tmp/r.png (64x32" -- \
+    env RG_VALIDATION=1 "$rgraph" render --size 64x32 --frames 3 --out "$tmp/r.exr" --png "$tmp/r.png" --capture card
+check "render wrote files" 0 -- test -s "$tmp/r.exr" -a -s "$tmp/r.png"
+check "graph json parses" 0 -- bash -c "'$rgraph' graph --format json --size 64x64 | python3 -c 'import json,sys; p=json.load(sys.stdin); assert [x[\"name\"] for x in p[\"passes\"]]==[\"card\",\"present\"]'"
+check "graph dot" 0 grep "digraph rgraph" -- "$rgraph" graph --pipeline scripts/pipelines/test.lua
+check "bench" 0 grep "frame total" -- "$rgraph" bench --size 64x64 --frames 3 --json "$tmp/bench.json"
+check "bench json" 0 -- python3 -c "import json; b=json.load(open('$tmp/bench.json')); assert len(b['passes'])==2 and b['frames']==3"
+
+# watch: a valid script, a broken one (reported, old pipeline kept), a fixed one (picked up),
+# then an edited shader (only its pass is rebuilt).
+cp shaders/test/transform.frag "$tmp/my.frag"
+sed 's#test/transform.frag#my.frag#' scripts/pipelines/test.lua >"$tmp/valid.lua"
+cp "$tmp/valid.lua" "$tmp/watched.lua"
+"$rgraph" watch --pipeline "$tmp/watched.lua" --size 16x16 --interval 100 --max-reloads 3 \
+    --out "$tmp/w.exr" --png "$tmp/w.png" >"$tmp/watch.log" 2>&1 &
+pid=$!
+for _ in $(seq 100); do grep -q "watching" "$tmp/watch.log" && break; sleep 0.1; done
+sleep 0.3; echo 'rg.pass "oops" { kind = "fullscreen", reads = { "nothing" } }' >>"$tmp/watched.lua"
+for _ in $(seq 100); do grep -q "reload failed" "$tmp/watch.log" && break; sleep 0.1; done
+sleep 0.3; cp "$tmp/valid.lua" "$tmp/watched.lua"; echo "-- fixed" >>"$tmp/watched.lua"
+for _ in $(seq 100); do grep -q "reloaded and rendered" "$tmp/watch.log" && break; sleep 0.1; done
+sleep 0.3; echo "// edited" >>"$tmp/my.frag"
+for _ in $(seq 100); do kill -0 $pid 2>/dev/null || break; sleep 0.1; done
+if kill -0 $pid 2>/dev/null; then kill $pid; fi
+wait $pid; rc=$?
+check "watch exits after its reloads" 0 -- test "$rc" = 0
+check "watch reports the broken script" 0 grep "watched.lua:17: passes.oops.reads[1]: unknown resource 'nothing'" -- cat "$tmp/watch.log"
+check "watch picks up the fix" 0 grep "reloaded and rendered" -- cat "$tmp/watch.log"
+check "watch rebuilds only the edited shader's pass" 0 grep "rebuilt 1 pass(es) (transform), reused 1" -- cat "$tmp/watch.log"
+
+echo "$passed passed, $failed failed"
+[ "$failed" = 0 ]
