@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <optional>
 
@@ -75,6 +76,12 @@ public:
         if (!shader) return std::unexpected(shader.error());
         ShaderRequest vert;
         vert.path = "fullscreen.vert";
+        const Value& depthState = desc.params["depth"];
+        if (!depthState.isNil()) {
+            char value[32];
+            std::snprintf(value, sizeof value, "%.9g", depthState["value"].asNumber(0.0));
+            vert.defines.emplace_back("RG_FULLSCREEN_DEPTH", value);
+        }
         ShaderRequest frag;
         frag.path = *shader;
         frag.stage = ShaderStage::Fragment;
@@ -107,6 +114,19 @@ public:
             m_stencilRef = static_cast<uint32_t>(stencil["ref"].asNumber(0));
             m_stencilMask = static_cast<uint32_t>(stencil["mask"].asNumber(255));
             m_stencilTest = true;
+        }
+        if (!depthState.isNil()) {
+            if (!m_depth || !formatInfo(setup.resources.find(m_depth->resource)->plan->format).depth)
+                return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.depth: the pass has no depth attachment to test against");
+            bool ok = false;
+            m_depthCompare = parseCompare(depthState["compare"].isString() ? depthState["compare"].asString() : "less", ok);
+            if (!ok)
+                return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.depth.compare: unknown '" + depthState["compare"].asString() +
+                                                         "', expected one of: 'never', 'less', 'equal', 'less_equal', 'greater', 'not_equal', 'greater_equal', 'always'");
+            m_depthWrite = depthState["write"].asBool(false);
+            if (m_depthWrite && m_depth->usage != Usage::DepthStencilAttachment)
+                return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.depth.write: the depth buffer is read-only here; declare it in writes to write depth");
+            m_depthTest = true;
         }
         const std::string blend = desc.params["blend"].asString();
         if (!blend.empty() && blend != "alpha" && blend != "additive")
@@ -200,6 +220,11 @@ private:
         VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
         ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
         VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+        if (m_depthTest) {
+            ds.depthTestEnable = VK_TRUE;
+            ds.depthWriteEnable = m_depthWrite ? VK_TRUE : VK_FALSE;
+            ds.depthCompareOp = m_depthCompare;
+        }
         if (m_stencilTest) {
             ds.stencilTestEnable = VK_TRUE;
             VkStencilOpState op{};
@@ -243,6 +268,8 @@ private:
     uint32_t m_width = 0, m_height = 0;
     bool m_stencilTest = false;
     VkCompareOp m_stencilCompare = VK_COMPARE_OP_ALWAYS;
+    bool m_depthTest = false, m_depthWrite = false;
+    VkCompareOp m_depthCompare = VK_COMPARE_OP_LESS;
     uint32_t m_stencilRef = 0, m_stencilMask = 0xff;
 };
 
@@ -542,7 +569,8 @@ void registerBuiltinPassKinds(PassRegistry& registry) {
          plus(shaderParams(),
               {{"clear", "number|list", "clear colour of attachments that do not load (default 0)"},
                {"blend", "string", "'alpha' or 'additive'"},
-               {"stencil", "table", "{ ref = N, compare = 'equal', mask = 255 }: stencil test"}}),
+               {"stencil", "table", "{ ref = N, compare = 'equal', mask = 255 }: stencil test"},
+               {"depth", "table", "{ compare = 'less', value = 0, write = false }: depth test of the triangle at depth `value`"}}),
          Usage::Sampled, Usage::ColorAttachment}));
     registry.add(kind<ComputePass>(
         {"compute", PassType::Compute, "a compute shader dispatched over a resource's size or `groups`",

@@ -281,9 +281,9 @@ int cmdRender(int argc, char** argv) {
     gpu::Executor& ex = rt.executor();
     for (uint32_t f = 0; f < setup->frames; ++f) {
         if (auto r = setup->frame(); !r) return report(r.error());
-        if (setup->frames > 1) std::fprintf(stderr, "\rrgraph: frame %u/%u", f + 1, setup->frames);
+        if (setup->frames > 1 && !args.has("verbose")) std::fprintf(stderr, "\rrgraph: frame %u/%u", f + 1, setup->frames);
     }
-    if (setup->frames > 1) std::fprintf(stderr, "\n");
+    if (setup->frames > 1 && !args.has("verbose")) std::fprintf(stderr, "\n");
     auto out = ex.readback(setup->output());
     if (!out) return report(out.error());
 

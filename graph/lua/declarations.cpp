@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <map>
 #include <set>
 
@@ -401,7 +402,11 @@ struct Builder {
         }
         p.min = b["min"].asNumber(p.min);
         p.max = b["max"].asNumber(p.max);
-        if (p.min > p.max) return w.at("min").error("min (" + std::to_string(p.min) + ") is above max (" + std::to_string(p.max) + ")");
+        if (p.min > p.max) {
+            char b[96];
+            std::snprintf(b, sizeof b, "min (%g) is above max (%g)", p.min, p.max);
+            return w.at("min").error(b);
+        }
         if (p.type == ParamType::Choice) {
             auto choices = stringList(w.at("choices"), b["choices"]);
             if (!choices) return std::unexpected(choices.error());

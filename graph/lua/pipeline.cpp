@@ -1,6 +1,7 @@
 #include "pipeline.h"
 
 #include <cmath>
+#include <cstdio>
 
 #include "lua_host.h"
 
@@ -29,16 +30,24 @@ ParamDesc* PipelineDesc::findParam(const std::string& name) {
     return nullptr;
 }
 
+namespace {
+std::string num(double d) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%g", d);
+    return b;
+}
+}  // namespace
+
 Result<Value> checkParamValue(const ParamDesc& p, const Value& v) {
     auto bad = [&](const std::string& want) {
         return fail(ErrorCode::InvalidInput, "parameter '" + p.name + "' expects " + want + ", got " +
-                                                 (v.isNil() ? "nil" : v.isNumber() ? std::to_string(v.asNumber())
+                                                 (v.isNil() ? "nil" : v.isNumber() ? num(v.asNumber())
                                                                       : v.isString() ? "'" + v.asString() + "'"
                                                                                      : v.typeName()));
     };
     auto range = [&]() {
         return "a " + std::string(p.type == ParamType::Integer ? "whole number" : "number") + " in [" +
-               (p.min < -1e299 ? "-inf" : std::to_string(p.min)) + ", " + (p.max > 1e299 ? "inf" : std::to_string(p.max)) + "]";
+               (p.min < -1e299 ? "-inf" : num(p.min)) + ", " + (p.max > 1e299 ? "inf" : num(p.max)) + "]";
     };
     switch (p.type) {
     case ParamType::Number:

@@ -53,11 +53,16 @@ TEST(LuaErrors, UnknownFieldSuggestsTheClosest) {
     EXPECT_EQ(loadError("unknown_field.lua"),
               kScripts + "unknown_field.lua:3: passes.tonemap.shadr: unknown field (did you mean 'shader'?); expected one of: "
                          "'kind', 'reads', 'writes', 'after', 'enabled', 'side_effect', 'doc', 'insert', 'shader', 'defines', "
-                         "'bind', 'uniforms', 'constants', 'filter', 'clear', 'blend', 'stencil'");
+                         "'bind', 'uniforms', 'constants', 'filter', 'clear', 'blend', 'stencil', 'depth'");
 }
 
 TEST(LuaErrors, WrongType) {
     EXPECT_EQ(loadError("wrong_type.lua"), kScripts + "wrong_type.lua:2: resources.output.format: expected a string, got number");
+}
+
+TEST(LuaErrors, OutOfRangeValue) {
+    EXPECT_EQ(loadError("out_of_range.lua"), kScripts + "out_of_range.lua:2: params.exposure.default: parameter 'exposure' expects a "
+                                                        "number in [-6, 16], got 20");
 }
 
 TEST(LuaErrors, UnknownResource) {
@@ -260,6 +265,22 @@ TEST_F(LuaGpu, ShadersIncludeTheGeneratedPackCode) {
     const float len = std::sqrt(0.3f * 0.3f + 0.5f * 0.5f + 0.8f * 0.8f);
     const auto& n = channel("normal").v;
     EXPECT_GT((n[0] * 0.3f - n[1] * 0.5f + n[2] * 0.8f) / len, std::cos(4.2e-3f));  // the 10+10-bit octahedral bound
+}
+
+TEST_F(LuaGpu, StencilAndDepthTestedFullscreenPasses) {
+    Session s(*s_runtime, small());
+    auto r = s.load(script("stencil_depth.lua"));
+    ASSERT_TRUE(r.has_value()) << r.error().describe();
+    ASSERT_TRUE(s.frame().has_value());
+    auto px = [&](const char* name) {
+        auto img = s_runtime->executor().readback(name);
+        EXPECT_TRUE(img.has_value());
+        return img ? img->at(10, 7, 0) : -1.0f;
+    };
+    EXPECT_FLOAT_EQ(px("hit"), 1.0f);   // stencil 3 == 3
+    EXPECT_FLOAT_EQ(px("miss"), 0.0f);  // stencil 3 != 2: only the clear
+    EXPECT_FLOAT_EQ(px("near"), 1.0f);  // 0.25 < 0.5
+    EXPECT_FLOAT_EQ(px("far"), 0.0f);   // 0.75 is behind 0.5
 }
 
 TEST_F(LuaGpu, ParameterChangeRebuildsNothing) {

@@ -325,7 +325,7 @@ TEST(ExrTest, TruncatedFile) {
               "'" + cut + "': invalid OpenEXR file: unexpected end of file (truncated?)");
 }
 
-TEST(ExrTest, TruncatedFileAtEveryLength) {
+TEST(ExrTest, TruncatedFileAtManyLengths) {
     const std::string good = tmpPath("whole.exr"), cut = tmpPath("cut.exr");
     rg::ExrWriteOptions opts;
     opts.metadata = {{"note", "truncate me"}};

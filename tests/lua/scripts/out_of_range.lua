@@ -1,0 +1,2 @@
+local rg = require "rg"
+rg.param "exposure" { type = "number", default = 20, min = -6, max = 16 }
