@@ -387,7 +387,7 @@ Status validateVersions(Compiler& c) {
             const ResourceDesc& r = resources[m.resource];
             if (lastWriter[m.resource] >= 0) {
                 c.addEdge(static_cast<uint32_t>(lastWriter[m.resource]), pi, /* need= */ true);
-            } else if (!r.imported) {
+            } else if (!r.imported && !r.persistent) {
                 if (disabledWriter[m.resource] >= 0)
                     return invalid(c.passError(pi, "pass '" + p.name + "' reads '" + r.name + "', but its only writer '" +
                                                        passes[static_cast<size_t>(disabledWriter[m.resource])].name +
@@ -412,7 +412,7 @@ Status validateVersions(Compiler& c) {
             if (const int32_t w = lastWriter[m.resource]; w >= 0) {
                 const std::string& writer = passes[static_cast<size_t>(w)].name;
                 const bool ordered = std::find(p.after.begin(), p.after.end(), writer) != p.after.end();
-                if (!m.reads && !r.imported && !ordered)
+                if (!m.reads && !r.imported && !r.persistent && !ordered)
                     return invalid(c.passError(pi, "passes '" + writer + "' and '" + p.name + "' both write '" +
                                                        r.name + "' with no order between them: make '" + p.name +
                                                        "' load it or list '" + writer + "' in its after"));
@@ -495,7 +495,8 @@ void cull(Compiler& c) {
         if (!passes[pi].enabled) continue;
         bool root = passes[pi].sideEffect;
         for (const MergedAccess& m : c.merged[pi])
-            root = root || (m.writes && (resources[m.resource].exported || resources[m.resource].imported));
+            root = root || (m.writes && (resources[m.resource].exported || resources[m.resource].imported ||
+                                         resources[m.resource].persistent));
         if (root) {
             c.kept[pi] = true;
             work.push_back(pi);
@@ -580,7 +581,8 @@ void computeLifetimes(Compiler& c) {
         r.kind = d.kind;
         r.imported = d.imported;
         r.exported = d.exported;
-        r.transient = !d.imported && !d.exported;
+        r.persistent = d.persistent;
+        r.transient = !d.imported && !d.exported && !d.persistent;
         if (d.kind == ResourceKind::Buffer) {
             r.bufferSize = d.buffer.size;
         } else {
@@ -779,7 +781,7 @@ void planBarriers(Compiler& c) {
     auto& resources = c.plan.resources;
     std::vector<SyncState> state(resources.size());
     for (size_t ri = 0; ri < resources.size(); ++ri) {
-        if (!resources[ri].imported) continue;
+        if (!resources[ri].imported && !resources[ri].persistent) continue;
         // Whatever happened before the frame: assume any write, textures left ready for sampling.
         state[ri].layout = resources[ri].kind == ResourceKind::Texture ? Layout::ShaderReadOnly : Layout::Undefined;
         state[ri].writeStages = stage::AllCommands;
@@ -864,6 +866,27 @@ void planBarriers(Compiler& c) {
             r.finalStages = s.writeStages | s.readStages;
             r.finalAccess = s.writeAccess | s.readAccess;
         }
+    }
+    // Imported and persistent textures end the frame as they start it: ready for sampling.
+    for (uint32_t ri = 0; ri < resources.size(); ++ri) {
+        PlanResource& r = resources[ri];
+        if ((!r.imported && !r.persistent) || r.kind != ResourceKind::Texture) continue;
+        // Already there: a texture in ShaderReadOnly was not written since its last transition
+        // (the executor's barrier at the start of each frame orders frames against each other).
+        if (r.finalLayout == Layout::ShaderReadOnly) continue;
+        if (r.firstPass < 0) continue;
+        Barrier b;
+        b.resource = ri;
+        b.srcStages = r.finalStages;
+        b.srcAccess = r.finalAccess & kWriteAccessBits;
+        b.dstStages = stage::AllCommands;
+        b.dstAccess = access::ShaderSampledRead;
+        b.oldLayout = r.finalLayout;
+        b.newLayout = Layout::ShaderReadOnly;
+        c.plan.finalBarriers.push_back(b);
+        r.finalLayout = Layout::ShaderReadOnly;
+        r.finalStages = stage::AllCommands;
+        r.finalAccess = access::ShaderSampledRead;
     }
 }
 

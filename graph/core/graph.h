@@ -47,6 +47,10 @@ struct ResourceDesc {
     BufferDesc buffer;
     bool imported = false;  // contents come from outside the graph; never aliased, never owned
     bool exported = false;  // kept alive to the end of the frame (output, capture, readback)
+    // Contents carry over to the next frame (history: exposure state, previous HDR). Like an
+    // import it may be read before it is written in a frame (that reads the previous frame's
+    // contents, zero at first); never aliased; it starts and ends every frame ready for sampling.
+    bool persistent = false;
     std::string origin;     // where it was declared ("deferred.lua:12"), for error messages
 };
 

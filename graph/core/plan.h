@@ -113,6 +113,7 @@ struct PlanResource {
     bool transient = true;     // false for imported and exported resources
     bool imported = false;
     bool exported = false;
+    bool persistent = false;
     int32_t firstPass = -1;    // index into Plan::passes of the first and last use
     int32_t lastPass = -1;
     MemoryRequirements memory;
@@ -142,6 +143,9 @@ struct Plan {
     std::vector<CulledPass> culled;      // in declaration order
     std::vector<PlanResource> resources; // only resources used by kept passes, in declaration order
     std::vector<TransientHeap> heaps;
+    // Recorded after the last pass: imported and persistent textures go back to ShaderReadOnly,
+    // the state every frame assumes they start in.
+    std::vector<Barrier> finalBarriers;
     uint64_t transientBytesAliased = 0;    // sum of heap sizes
     uint64_t transientBytesUnaliased = 0;  // sum of transient sizes (aligned) without sharing
     std::vector<StepTiming> timings;

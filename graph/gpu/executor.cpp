@@ -70,7 +70,8 @@ bool sameHeap(const TransientHeap& a, const TransientHeap& b) {
 bool sameShape(const PlanResource& a, const PlanResource& b) {
     return a.kind == b.kind && a.format == b.format && a.width == b.width && a.height == b.height &&
            a.layers == b.layers && a.mips == b.mips && a.cube == b.cube && a.bufferSize == b.bufferSize &&
-           a.usageMask == b.usageMask && a.transient == b.transient && a.imported == b.imported;
+           a.usageMask == b.usageMask && a.transient == b.transient && a.imported == b.imported &&
+           a.persistent == b.persistent;
 }
 
 Value withoutUniforms(const Value& params) {
@@ -302,8 +303,46 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
         const PlanResource& r = m_built->plan.resources[i];
         if (r.imported && !resourceReused[i])
             if (auto u = setImport(r.name, m_importData[r.name]); !u) return u;
+        if (r.persistent && !resourceReused[i])
+            if (auto u = clearPersistent(i); !u) return u;
     }
     return {};
+}
+
+// A new persistent resource starts as zeros, in the state every frame expects it in.
+Result<void> Executor::clearPersistent(size_t index) {
+    const PlanResource& r = m_built->plan.resources[index];
+    Image* image = m_built->images[index].get();
+    Buffer* buffer = m_built->buffers[index].get();
+    return m_ctx.submitNow([&](VkCommandBuffer cmd) {
+        if (buffer) {
+            vkCmdFillBuffer(cmd, buffer->buffer(), 0, VK_WHOLE_SIZE, 0);
+            VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+            mb.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
+            mb.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+            mb.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+            mb.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+            VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+            dep.memoryBarrierCount = 1;
+            dep.pMemoryBarriers = &mb;
+            vkCmdPipelineBarrier2(cmd, &dep);
+            return;
+        }
+        VkImageAspectFlags aspect = aspectOf(r.format);
+        imageBarrier(cmd, image->image(), aspect, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                     VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        VkImageSubresourceRange range{aspect, 0, VK_REMAINING_MIP_LEVELS, 0, VK_REMAINING_ARRAY_LAYERS};
+        if (isDepthStencil(r.format)) {
+            VkClearDepthStencilValue zero{0.0f, 0};
+            vkCmdClearDepthStencilImage(cmd, image->image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
+        } else {
+            VkClearColorValue zero{};
+            vkCmdClearColorImage(cmd, image->image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
+        }
+        imageBarrier(cmd, image->image(), aspect, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
+                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    });
 }
 
 void Executor::updateUniforms(const GraphDesc& graph) {
@@ -356,11 +395,11 @@ Result<void> Executor::setImport(const std::string& name, const rg::Image& data)
     });
 }
 
-void Executor::recordBarriers(VkCommandBuffer cmd, const PlanPass& pass) {
-    if (pass.barriers.empty()) return;
+void Executor::recordBarriers(VkCommandBuffer cmd, const std::vector<Barrier>& barriers) {
+    if (barriers.empty()) return;
     std::vector<VkImageMemoryBarrier2> images;
     std::vector<VkBufferMemoryBarrier2> buffers;
-    for (const Barrier& b : pass.barriers) {
+    for (const Barrier& b : barriers) {
         const PlanResource& r = m_built->plan.resources[b.resource];
         if (r.kind == ResourceKind::Texture) {
             VkImageMemoryBarrier2 ib{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
@@ -458,7 +497,7 @@ Result<void> Executor::frame() {
     for (size_t i = 0; i < m_built->plan.passes.size(); ++i) {
         const PlanPass& pass = m_built->plan.passes[i];
         m_ctx.beginLabel(cmd, pass.name);
-        recordBarriers(cmd, pass);
+        recordBarriers(cmd, pass.barriers);
         vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.queries.get(),
                              static_cast<uint32_t>(2 * i));
         RecordContext rc{m_ctx, cmd, pass, m_built->graph.passes[pass.desc], m_built->table, m_built->plan, info};
@@ -468,6 +507,7 @@ Result<void> Executor::frame() {
         m_ctx.endLabel(cmd);
         slot.passNames.push_back(pass.name);
     }
+    recordBarriers(cmd, m_built->plan.finalBarriers);
     RG_VK_TRY(vkEndCommandBuffer(cmd));
     m_lastRecordMs = msSince(t0);
 
@@ -501,7 +541,7 @@ Result<const PhysicalResource*> Executor::exportedResource(const std::string& na
             return fail(ErrorCode::InvalidInput, "resource '" + name + "' is not used by any kept pass");
         return fail(ErrorCode::NotFound, "no resource named '" + name + "'");
     }
-    if (!phys->plan->exported && !phys->plan->imported)
+    if (!phys->plan->exported && !phys->plan->imported && !phys->plan->persistent)
         return fail(ErrorCode::InvalidInput, "resource '" + name +
                                                  "' is transient: capture (export) it to read it back");
     if (auto r = finish(); !r) return std::unexpected(r.error());

@@ -87,7 +87,8 @@ private:
 
     Result<void> createSlots();
     Result<void> collect(FrameSlot& slot);
-    void recordBarriers(VkCommandBuffer cmd, const PlanPass& pass);
+    void recordBarriers(VkCommandBuffer cmd, const std::vector<Barrier>& barriers);
+    Result<void> clearPersistent(size_t index);
     Result<const PhysicalResource*> exportedResource(const std::string& name);
 
     Context& m_ctx;

@@ -183,7 +183,7 @@ struct Builder {
     Result<void> texture(const Declaration& d) {
         Where w = where(d);
         const Value& b = d.body;
-        if (auto r = checkFields(w, b, {"format", "size", "scale", "mips", "layers", "cube", "export", "import", "doc"}); !r) return r;
+        if (auto r = checkFields(w, b, {"format", "size", "scale", "mips", "layers", "cube", "export", "import", "persistent", "doc"}); !r) return r;
         ResourceDesc r;
         r.name = fullName(d);
         r.origin = d.origin;
@@ -228,10 +228,11 @@ struct Builder {
                 return w.at("layers").error("expected a whole number in 1..2048");
             r.texture.layers = static_cast<uint32_t>(b["layers"].asNumber());
         }
-        for (const char* flag : {"cube", "export", "import"})
+        for (const char* flag : {"cube", "export", "import", "persistent"})
             if (b.has(flag))
                 if (auto e = expectType(w.at(flag), b[flag], "boolean"); !e) return e;
         r.texture.cube = b["cube"].asBool();
+        r.persistent = b["persistent"].asBool();
         if (r.texture.cube) r.texture.layers = 6;
         r.exported = b["export"].asBool();
         r.imported = b["import"].asBool();
@@ -242,7 +243,7 @@ struct Builder {
     Result<void> buffer(const Declaration& d) {
         Where w = where(d);
         const Value& b = d.body;
-        if (auto r = checkFields(w, b, {"size", "export", "import", "doc"}); !r) return r;
+        if (auto r = checkFields(w, b, {"size", "export", "import", "persistent", "doc"}); !r) return r;
         ResourceDesc r;
         r.name = fullName(d);
         r.origin = d.origin;
@@ -250,11 +251,12 @@ struct Builder {
         if (!isInteger(b["size"]) || b["size"].asNumber() < 4)
             return w.at("size").error(b.has("size") ? "expected a whole number of bytes >= 4" : "missing (expected the size in bytes)");
         r.buffer.size = static_cast<uint64_t>(b["size"].asNumber());
-        for (const char* flag : {"export", "import"})
+        for (const char* flag : {"export", "import", "persistent"})
             if (b.has(flag))
                 if (auto e = expectType(w.at(flag), b[flag], "boolean"); !e) return e;
         r.exported = b["export"].asBool();
         r.imported = b["import"].asBool();
+        r.persistent = b["persistent"].asBool();
         out.graph.resources.push_back(r);
         return {};
     }

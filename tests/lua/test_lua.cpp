@@ -283,6 +283,20 @@ TEST_F(LuaGpu, StencilAndDepthTestedFullscreenPasses) {
     EXPECT_FLOAT_EQ(px("far"), 0.0f);   // 0.75 is behind 0.5
 }
 
+TEST_F(LuaGpu, PersistentResourcesCarryOverFrames) {
+    Session s(*s_runtime, small());
+    auto r = s.load(script("persistent.lua"));
+    ASSERT_TRUE(r.has_value()) << r.error().describe();
+    for (int f = 1; f <= 3; ++f) {
+        ASSERT_TRUE(s.frame().has_value());
+        EXPECT_FLOAT_EQ(output(s).at(4, 4, 0), 0.5f * static_cast<float>(f));
+    }
+    // A rebuild that keeps the resource keeps its contents.
+    ASSERT_TRUE(s.load(script("persistent.lua")).has_value());
+    ASSERT_TRUE(s.frame().has_value());
+    EXPECT_FLOAT_EQ(output(s).at(4, 4, 0), 2.0f);
+}
+
 TEST_F(LuaGpu, ParameterChangeRebuildsNothing) {
     Session s(*s_runtime, small());
     ASSERT_TRUE(s.load(script("params.lua")).has_value());

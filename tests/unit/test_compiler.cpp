@@ -599,7 +599,12 @@ TEST(CompilerBarriers, Snapshot) {
     const PlanResource& hdr = p.resources[2];
     EXPECT_EQ(hdr.finalLayout, Layout::ShaderReadOnly);
     EXPECT_EQ(hdr.finalStages, stage::ColorAttachmentOutput | stage::ComputeShader);
-    EXPECT_EQ(p.resources[5].finalLayout, Layout::TransferDst);
+    // The imported backbuffer goes back to ShaderReadOnly after the last pass, ready for next frame.
+    EXPECT_EQ(p.resources[5].finalLayout, Layout::ShaderReadOnly);
+    ASSERT_EQ(p.finalBarriers.size(), 1u);
+    EXPECT_EQ(p.finalBarriers[0].resource, 5u);
+    EXPECT_EQ(p.finalBarriers[0].oldLayout, Layout::TransferDst);
+    EXPECT_EQ(p.finalBarriers[0].srcAccess, access::TransferWrite);
 
     // The accesses carry the state each one needs.
     const PlanAccess& sampledGb = p.passes[1].accesses[0];

@@ -325,9 +325,20 @@ void checkBarriers(const Plan& plan) {
             s.touched = true;
         }
     }
+    // Imported and persistent textures are put back into ShaderReadOnly after the last pass.
+    for (const Barrier& b : plan.finalBarriers) {
+        const PlanResource& r = plan.resources[b.resource];
+        EXPECT_TRUE(r.imported || r.persistent);
+        EXPECT_EQ(b.oldLayout, sim[b.resource].layout);
+        EXPECT_EQ(b.newLayout, Layout::ShaderReadOnly);
+        sim[b.resource].layout = b.newLayout;
+    }
     for (size_t r = 0; r < plan.resources.size(); ++r)
         if (plan.resources[r].kind == ResourceKind::Texture) {
             EXPECT_EQ(plan.resources[r].finalLayout, sim[r].layout);
+            if (plan.resources[r].imported || plan.resources[r].persistent) {
+                EXPECT_EQ(plan.resources[r].finalLayout, Layout::ShaderReadOnly);
+            }
         }
 }
 
