@@ -19,9 +19,20 @@ const char* declKindName(DeclKind k) {
     case DeclKind::Stencil: return "stencil";
     case DeclKind::Path: return "path";
     case DeclKind::Material: return "material";
+    case DeclKind::SceneMaterial: return "scene.material";
+    case DeclKind::Sphere: return "scene.sphere";
+    case DeclKind::Plane: return "scene.plane";
+    case DeclKind::Box: return "scene.box";
+    case DeclKind::Gltf: return "scene.gltf";
+    case DeclKind::Light: return "scene.light";
+    case DeclKind::Camera: return "scene.camera";
+    case DeclKind::Environment: return "scene.environment";
+    case DeclKind::Count: break;
     }
     return "?";
 }
+
+bool isSceneKind(DeclKind k) { return k >= DeclKind::SceneMaterial && k < DeclKind::Count; }
 
 namespace {
 
@@ -140,8 +151,8 @@ struct Builder {
         case DeclKind::Stencil: return "stencil";
         case DeclKind::Path: return "paths";
         case DeclKind::Material: return "materials";
+        default: return "scene";
         }
-        return "?";
     }
     static Where where(const Declaration& d) { return {d, section(d.kind) + "." + fullName(d)}; }
 
@@ -158,9 +169,11 @@ struct Builder {
     }
 
     Result<void> collectNames() {
-        std::map<std::string, const Declaration*> seen[8];
+        std::map<std::string, const Declaration*> seen[static_cast<size_t>(DeclKind::Count)];
         for (const auto& d : decls) {
             Where w = where(d);
+            if (isSceneKind(d.kind))
+                return w.error(std::string(declKindName(d.kind)) + " belongs in a scene script (--scene), not in a pipeline");
             if (!d.body.isTable() && !(d.body.isList() && (d.kind == DeclKind::Layout || d.body.asList().empty())))
                 return w.error("expected a table after " + std::string(declKindName(d.kind)) + " \"" + d.name + "\", got " + typeOf(d.body));
             // Textures and buffers share one namespace.

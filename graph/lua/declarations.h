@@ -11,8 +11,15 @@
 
 namespace rg {
 
-enum class DeclKind : uint8_t { Texture, Buffer, Pass, Param, Layout, Stencil, Path, Material };
-const char* declKindName(DeclKind k);  // "resource", "buffer", "pass", ...
+enum class DeclKind : uint8_t {
+    // Pipelines (rg.*)
+    Texture, Buffer, Pass, Param, Layout, Stencil, Path, Material,
+    // Scenes (scene.*): graph/scene builds a Scene from these
+    SceneMaterial, Sphere, Plane, Box, Gltf, Light, Camera, Environment,
+    Count
+};
+const char* declKindName(DeclKind k);  // "resource", "buffer", "pass", ..., "scene.sphere", ...
+bool isSceneKind(DeclKind k);
 
 struct Declaration {
     DeclKind kind = DeclKind::Pass;

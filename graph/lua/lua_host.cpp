@@ -497,6 +497,18 @@ LuaHost::LuaHost(LuaHostOptions options) : m(std::make_unique<Impl>()) { m->opti
 LuaHost::~LuaHost() = default;
 
 Result<PipelineDesc> LuaHost::load(const std::string& file) {
+    auto decls = loadDeclarations(file);
+    if (!decls) return std::unexpected(decls.error());
+    BuildOptions bo;
+    bo.kinds = m->options.kinds;
+    auto pipeline = buildPipeline(m->decls, m->output, bo);
+    if (!pipeline) return pipeline;
+    pipeline->file = file;
+    pipeline->files = m->files;
+    return pipeline;
+}
+
+Result<std::vector<Declaration>> LuaHost::loadDeclarations(const std::string& file, std::vector<std::string>* files) {
     m->close();
     m->decls.clear();
     m->files.clear();
@@ -565,16 +577,29 @@ Result<PipelineDesc> LuaHost::load(const std::string& file) {
     lua_setfield(L, -2, "rg");
     lua_pop(L, 1);
 
+    // The scene table: what `require "scene"` returns (also the global `scene`).
+    lua_newtable(L);
+    const std::pair<const char*, DeclKind> sceneFns[] = {
+        {"material", DeclKind::SceneMaterial}, {"sphere", DeclKind::Sphere}, {"plane", DeclKind::Plane},
+        {"box", DeclKind::Box},                {"gltf", DeclKind::Gltf},     {"light", DeclKind::Light},
+        {"camera", DeclKind::Camera},          {"environment", DeclKind::Environment}};
+    for (const auto& [name, kind] : sceneFns) {
+        lua_pushinteger(L, static_cast<lua_Integer>(kind));
+        lua_pushstring(L, "");
+        lua_pushcclosure(L, guarded<declare>, 2);
+        lua_setfield(L, -2, name);
+    }
+    lua_pushvalue(L, -1);
+    lua_setglobal(L, "scene");
+    lua_getfield(L, LUA_REGISTRYINDEX, kModulesKey);
+    lua_insert(L, -2);
+    lua_setfield(L, -2, "scene");
+    lua_pop(L, 1);
+
     if (auto r = loadFile(*m, file); !r) return std::unexpected(r.error());
     if (auto r = protectedCall(*m, 0, 0); !r) return std::unexpected(r.error());
-
-    BuildOptions bo;
-    bo.kinds = m->options.kinds;
-    auto pipeline = buildPipeline(m->decls, m->output, bo);
-    if (!pipeline) return pipeline;
-    pipeline->file = file;
-    pipeline->files = m->files;
-    return pipeline;
+    if (files) *files = m->files;
+    return m->decls;
 }
 
 bool LuaHost::hasFrameCallback() const {

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "core/kind_schema.h"
+#include "declarations.h"
 #include "pipeline.h"
 
 namespace rg {
@@ -51,6 +52,10 @@ public:
 
     // Runs the script in a fresh Lua state and validates what it declared.
     Result<PipelineDesc> load(const std::string& file);
+    // Runs the script in a fresh Lua state and returns what it declared, unvalidated (scene
+    // scripts: graph/scene turns scene.* declarations into a Scene). `files` gets every script
+    // it loaded.
+    Result<std::vector<Declaration>> loadDeclarations(const std::string& file, std::vector<std::string>* files = nullptr);
     bool hasFrameCallback() const;
     // Calls rg.frame(ctx); `current` supplies parameter values and pass states to read.
     Result<FrameChanges> frame(const FrameContext& ctx, const PipelineDesc& current);
