@@ -261,6 +261,76 @@ Result<RenderSetup> setupRun(const Args& args, const char* command, uint32_t def
 
 std::string exrMetaDevice(Runtime& rt) { return rt.gpu().deviceInfo().name + " (" + rt.gpu().deviceInfo().driver + ")"; }
 
+std::vector<std::string> rgbaNames(uint32_t n) {
+    static const char* rgba[] = {"R", "G", "B", "A"};
+    std::vector<std::string> names;
+    for (uint32_t i = 0; i < n; ++i) names.push_back(rgba[i]);
+    return names;
+}
+
+std::string number(double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.6g", v);
+    return b;
+}
+
+// Writes the EXR (linear: layer `hdr` in cd/m² when the pipeline has a physical camera, plus one
+// layer per capture) and the PNG (the display image). Returns the display image.
+Result<Image> writeOutputs(RenderSetup& setup, const std::string& exrPath, const std::string& pngPath,
+                           const std::vector<std::string>& captures) {
+    gpu::Executor& ex = setup.runtime->executor();
+    auto display = ex.readback(setup.output());
+    if (!display) return std::unexpected(display.error());
+    ExrWriteOptions eo;
+    eo.metadata["rgraph.pipeline"] = setup.pipeline;
+    eo.metadata["rgraph.device"] = exrMetaDevice(*setup.runtime);
+    eo.metadata["rgraph.frames"] = std::to_string(setup.frames);
+    std::vector<ImageLayer> layers;
+    const PipelineDesc* pipeline = setup.session ? &setup.session->pipeline() : nullptr;
+    Image png = *display;
+    if (pipeline && !pipeline->hdr.empty()) {
+        // Absolute luminance: the pre-exposure this frame was rendered with divided out.
+        auto hdr = ex.readback(pipeline->hdr);
+        if (!hdr) return std::unexpected(hdr.error());
+        auto state = ex.readbackBuffer(pipeline->exposure);
+        if (!state) return std::unexpected(state.error());
+        float s[4] = {};
+        std::memcpy(s, state->data(), std::min<size_t>(sizeof s, state->size()));
+        const float preExposure = s[2] > 0 ? s[2] : 1.0f;
+        for (size_t i = 0; i < hdr->pixels.size(); ++i)
+            if (i % hdr->channels < 3) hdr->pixels[i] /= preExposure;
+        layers.push_back({"hdr", rgbaNames(hdr->channels), *hdr});
+        eo.metadata["rgraph.ev100"] = number(s[0]);
+        eo.metadata["rgraph.exposure"] = number(s[1]);
+        eo.metadata["rgraph.preExposure"] = number(preExposure);
+        for (const char* p : {"exposure_mode", "aperture", "shutter", "iso", "ec", "tonemap", "bloom_ec"})
+            if (const ParamDesc* d = pipeline->findParam(p))
+                eo.metadata[std::string("rgraph.camera.") + p] = d->value.isString() ? d->value.asString() : number(d->value.asNumber());
+    } else {
+        layers.push_back({"hdr", rgbaNames(display->channels), *display});
+        // A pipeline without a camera: its output is shown clamped, sRGB-encoded.
+        for (size_t i = 0; i < png.pixels.size(); ++i) png.pixels[i] = srgbEncode(std::clamp(png.pixels[i], 0.0f, 1.0f));
+    }
+    for (const auto& c : captures) {
+        if (c == setup.output() || (pipeline && c == pipeline->hdr)) continue;
+        auto img = ex.readback(c);
+        if (!img) return std::unexpected(img.error());
+        layers.push_back({c, rgbaNames(img->channels), *img});
+    }
+    for (const auto& p : {exrPath, pngPath}) {
+        std::error_code ec;
+        if (auto parent = fs::path(p).parent_path(); !parent.empty()) fs::create_directories(parent, ec);
+    }
+    if (auto r = writeExr(exrPath, layers, eo); !r) return std::unexpected(r.error());
+    Image rgb(png.width, png.height, std::min(3u, png.channels));
+    for (size_t i = 0; i < size_t(png.width) * png.height; ++i)
+        for (uint32_t c = 0; c < rgb.channels; ++c) rgb.pixels[i * rgb.channels + c] = png.pixels[i * png.channels + c];
+    std::map<std::string, std::string> text;
+    for (const auto& [k, v] : eo.metadata) text[k] = v;
+    if (auto r = writePng(pngPath, rgb, text); !r) return std::unexpected(r.error());
+    return *display;
+}
+
 int cmdRender(int argc, char** argv) {
     Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "size", "frames", "out", "png", "capture", "device", "verbose"});
     if (args.help) {
@@ -268,9 +338,11 @@ int cmdRender(int argc, char** argv) {
             "usage: rgraph render [--pipeline FILE.lua|builtin:NAME] [--size WxH] [--frames N]\n"
             "                     [--out FILE.exr] [--png FILE.png] [--capture RESOURCE]... [--device N] [--verbose]\n\n"
             "Renders N frames (default 1) at WxH (default 1280x720) through the pipeline (default\n"
-            "scripts/pipelines/deferred.lua), calling its rg.frame(ctx) before each frame, and writes its output\n"
-            "to FILE.exr (linear, layer 'hdr'; default out/render.exr) and to FILE.png (sRGB, clamped;\n"
-            "default out/render.png). Each --capture adds that resource to the EXR as a layer of its name.\n");
+            "scripts/pipelines/deferred.lua), calling its rg.frame(ctx) before each frame. Writes FILE.png (default\n"
+            "out/render.png), the display image, and FILE.exr (default out/render.exr), linear: layer 'hdr' holds\n"
+            "absolute luminance in cd/m2 (pre-exposure divided out) when the pipeline has a camera (rg.output\n"
+            "{ display, hdr, exposure }), else the output itself. Each --capture adds that resource as a layer of\n"
+            "its name. Both files record the camera settings and exposure in their metadata.\n");
         return kOk;
     }
     if (!args.error.empty()) return usageError(args.error, "render");
@@ -278,48 +350,16 @@ int cmdRender(int argc, char** argv) {
     auto setup = setupRun(args, "render", 1, captures, args.has("verbose"));
     if (!setup) return report(setup.error());
     Runtime& rt = *setup->runtime;
-    gpu::Executor& ex = rt.executor();
     for (uint32_t f = 0; f < setup->frames; ++f) {
         if (auto r = setup->frame(); !r) return report(r.error());
         if (setup->frames > 1 && !args.has("verbose")) std::fprintf(stderr, "\rrgraph: frame %u/%u", f + 1, setup->frames);
     }
     if (setup->frames > 1 && !args.has("verbose")) std::fprintf(stderr, "\n");
-    auto out = ex.readback(setup->output());
-    if (!out) return report(out.error());
-
     std::string exrPath = args.get("out", "out/render.exr");
     std::string pngPath = args.get("png", "out/render.png");
-    std::vector<ImageLayer> layers;
-    auto channelNames = [](uint32_t n) {
-        static const char* rgba[] = {"R", "G", "B", "A"};
-        std::vector<std::string> names;
-        for (uint32_t i = 0; i < n; ++i) names.push_back(rgba[i]);
-        return names;
-    };
-    layers.push_back({"hdr", channelNames(out->channels), *out});
-    for (const auto& c : captures) {
-        if (c == setup->output()) continue;
-        auto img = ex.readback(c);
-        if (!img) return report(img.error());
-        layers.push_back({c, channelNames(img->channels), *img});
-    }
-    ExrWriteOptions eo;
-    eo.metadata["rgraph.pipeline"] = setup->pipeline;
-    eo.metadata["rgraph.device"] = exrMetaDevice(rt);
-    eo.metadata["rgraph.frames"] = std::to_string(setup->frames);
-    for (const auto& p : {exrPath, pngPath}) {
-        std::error_code ec;
-        if (auto parent = fs::path(p).parent_path(); !parent.empty()) fs::create_directories(parent, ec);
-    }
-    if (auto r = writeExr(exrPath, layers, eo); !r) return report(r.error());
-    Image display = *out;
-    display.channels = std::min(3u, out->channels);
-    display.pixels.clear();
-    for (size_t i = 0; i < size_t(out->width) * out->height; ++i)
-        for (uint32_t c = 0; c < display.channels; ++c)
-            display.pixels.push_back(srgbEncode(std::clamp(out->pixels[i * out->channels + c], 0.0f, 1.0f)));
-    if (auto r = writePng(pngPath, display, {{"rgraph.pipeline", eo.metadata["rgraph.pipeline"]}}); !r)
-        return report(r.error());
+    auto written = writeOutputs(*setup, exrPath, pngPath, captures);
+    if (!written) return report(written.error());
+    const Image* out = &*written;
     std::printf("rgraph: wrote %s and %s (%ux%u, %u frame%s, %s)\n", exrPath.c_str(), pngPath.c_str(), out->width,
                 out->height, setup->frames, setup->frames == 1 ? "" : "s", rt.gpu().deviceInfo().name.c_str());
     if (rt.gpu().validationMessageCount() > 0) {
@@ -351,18 +391,9 @@ int cmdWatch(int argc, char** argv) {
     const std::string exrPath = args.get("out", "out/watch.exr"), pngPath = args.get("png", "out/watch.png");
     auto renderOnce = [&]() -> Result<void> {
         if (auto r = session.frame(); !r) return r;
-        auto img = setup->runtime->executor().readback(session.pipeline().output);
-        if (!img) return std::unexpected(img.error());
-        std::error_code ec;
-        if (auto parent = fs::path(exrPath).parent_path(); !parent.empty()) fs::create_directories(parent, ec);
-        if (auto r = writeExr(exrPath, {{"hdr", {"R", "G", "B", "A"}, *img}}, {}); !r) return r;
-        Image display = *img;
-        display.channels = 3;
-        display.pixels.clear();
-        for (size_t i = 0; i < size_t(img->width) * img->height; ++i)
-            for (uint32_t c = 0; c < 3; ++c)
-                display.pixels.push_back(srgbEncode(std::clamp(img->pixels[i * img->channels + std::min(c, img->channels - 1)], 0.0f, 1.0f)));
-        return writePng(pngPath, display);
+        auto written = writeOutputs(*setup, exrPath, pngPath, {});
+        if (!written) return std::unexpected(written.error());
+        return {};
     };
     auto stamp = [&]() {
         std::map<std::string, fs::file_time_type> t;

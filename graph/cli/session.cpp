@@ -94,6 +94,9 @@ Result<void> Session::load(const std::string& file) {
             return fail(ErrorCode::NotFound, "--capture: the pipeline has no resource named '" + c + "'");
     // The executor keeps its previous build when this one fails.
     if (auto r = m_runtime.executor().build(buildableGraph(*pipeline), m_options.compile); !r) return r;
+    // History (exposure, previous frames) carries over a reload of the same pipeline, not to another.
+    if (file != m_pipeline.file)
+        if (auto r = m_runtime.executor().resetPersistent(); !r) return r;
     m_host = std::move(host);
     m_pipeline = std::move(*pipeline);
     m_rebuilds = 0;

@@ -345,6 +345,15 @@ Result<void> Executor::clearPersistent(size_t index) {
     });
 }
 
+Result<void> Executor::resetPersistent() {
+    if (!m_built) return {};
+    if (auto r = finish(); !r) return r;
+    for (size_t i = 0; i < m_built->plan.resources.size(); ++i)
+        if (m_built->plan.resources[i].persistent)
+            if (auto r = clearPersistent(i); !r) return r;
+    return {};
+}
+
 void Executor::updateUniforms(const GraphDesc& graph) {
     if (!m_built) return;
     for (auto& pass : m_built->graph.passes) {

@@ -50,6 +50,8 @@ public:
     Result<void> build(const GraphDesc& graph, const CompileOptions& options);
     const BuildReport& lastBuildReport() const { return m_lastReport; }
     uint32_t buildCount() const { return m_buildCount; }
+    // Zeros every persistent resource (a new pipeline starts without history).
+    Result<void> resetPersistent();
     // New `uniforms` of each pass (parameter changes): nothing is rebuilt or re-recorded.
     void updateUniforms(const GraphDesc& graph);
 

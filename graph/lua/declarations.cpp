@@ -683,7 +683,8 @@ struct Builder {
         return {};
     }
 
-    Result<PipelineDesc> build(const std::string& output) {
+    Result<PipelineDesc> build(const OutputNames& names) {
+        const std::string& output = names.display;
         if (auto r = collectNames(); !r) return std::unexpected(r.error());
         for (const auto& d : decls) {
             Result<void> r;
@@ -716,6 +717,22 @@ struct Builder {
                                                                 : "rg.output: unknown resource '" + output + "'" + suggestion(output, resourceNames));
         if (it->kind != ResourceKind::Texture) return fail(ErrorCode::InvalidInput, "rg.output: '" + out.output + "' is a buffer, not a texture");
         it->exported = true;
+        const std::string where = names.origin.empty() ? "rg.output" : names.origin + ": rg.output";
+        if (!names.hdr.empty()) {
+            auto h = std::find_if(out.graph.resources.begin(), out.graph.resources.end(), [&](auto& r) { return r.name == names.hdr; });
+            if (h == out.graph.resources.end() || h->kind != ResourceKind::Texture)
+                return fail(ErrorCode::InvalidInput, where + ".hdr: unknown texture '" + names.hdr + "'" + suggestion(names.hdr, resourceNames));
+            h->exported = true;
+            out.hdr = names.hdr;
+            if (names.exposure.empty())
+                return fail(ErrorCode::InvalidInput, where + ".exposure: an hdr output needs the exposure state buffer that says its pre-exposure");
+        }
+        if (!names.exposure.empty()) {
+            auto e = std::find_if(out.graph.resources.begin(), out.graph.resources.end(), [&](auto& r) { return r.name == names.exposure; });
+            if (e == out.graph.resources.end() || e->kind != ResourceKind::Buffer || !e->persistent)
+                return fail(ErrorCode::InvalidInput, where + ".exposure: '" + names.exposure + "' must be a persistent buffer (post.exposure_state())");
+            out.exposure = names.exposure;
+        }
         for (const auto& d : decls)
             if (!d.module.empty() && std::find(out.modules.begin(), out.modules.end(), d.module) == out.modules.end())
                 out.modules.push_back(d.module);
@@ -735,7 +752,7 @@ std::string closestName(const std::string& name, const std::vector<std::string>&
     return best;
 }
 
-Result<PipelineDesc> buildPipeline(const std::vector<Declaration>& decls, const std::string& output,
+Result<PipelineDesc> buildPipeline(const std::vector<Declaration>& decls, const OutputNames& output,
                                    const BuildOptions& options) {
     Builder b{decls, options, {}, {}, {}, {}, {}};
     return b.build(output);

@@ -39,7 +39,13 @@ struct BuildOptions {
 // module passes inserted at their `insert = { after = ... }` / `{ before = ... }` points,
 // stencil values allocated, material ids checked. Errors: "file:line: field.path: what was
 // expected" with a suggestion when a name is close to a known one.
-Result<PipelineDesc> buildPipeline(const std::vector<Declaration>& decls, const std::string& output,
+// What rg.output named: `rg.output "name"` or `rg.output { display = , hdr = , exposure = }`.
+struct OutputNames {
+    std::string display, hdr, exposure;
+    std::string origin;
+};
+
+Result<PipelineDesc> buildPipeline(const std::vector<Declaration>& decls, const OutputNames& output,
                                    const BuildOptions& options);
 
 // The closest candidate within edit distance 2 (or 1 for short names), or "".

@@ -29,7 +29,7 @@ struct LuaHost::Impl {
     bool memoryExceeded = false;
     uint64_t instructions = 0;
     std::vector<Declaration> decls;
-    std::string output;
+    OutputNames output;
     std::vector<std::string> files;
     std::string pipelineDir;
     // During a frame callback.
@@ -291,8 +291,28 @@ int declare(lua_State* L) {
     return 1;
 }
 
+// rg.output "name" or rg.output { display = "name", hdr = "hdr", exposure = "exposure" }.
 int setOutput(lua_State* L) {
-    implOf(L).output = luaL_checkstring(L, 1);
+    OutputNames names;
+    names.origin = callerOrigin(L);
+    if (lua_type(L, 1) == LUA_TSTRING) {
+        names.display = lua_tostring(L, 1);
+    } else if (lua_istable(L, 1)) {
+        auto v = toValue(L, 1, "rg.output");
+        if (!v) raise(L, v.error().message);
+        for (const auto& [key, value] : v->asTable()) {
+            if (key != "display" && key != "hdr" && key != "exposure")
+                raise(L, names.origin + ": rg.output." + key + ": unknown field; expected one of: 'display', 'hdr', 'exposure'");
+            if (!value.isString()) raise(L, names.origin + ": rg.output." + key + ": expected a resource name");
+        }
+        names.display = (*v)["display"].asString();
+        names.hdr = (*v)["hdr"].asString();
+        names.exposure = (*v)["exposure"].asString();
+        if (names.display.empty()) raise(L, names.origin + ": rg.output.display: missing (expected the display image)");
+    } else {
+        raise(L, names.origin + ": rg.output: expected a resource name or { display = , hdr = , exposure = }");
+    }
+    implOf(L).output = names;
     return 0;
 }
 
@@ -512,7 +532,7 @@ Result<std::vector<Declaration>> LuaHost::loadDeclarations(const std::string& fi
     m->close();
     m->decls.clear();
     m->files.clear();
-    m->output.clear();
+    m->output = {};
     std::error_code ec;
     if (!fs::is_regular_file(file, ec)) return fail(ErrorCode::NotFound, "cannot open pipeline script '" + file + "'");
     m->pipelineDir = fs::absolute(file).parent_path().string();

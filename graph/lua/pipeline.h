@@ -60,7 +60,12 @@ struct MaterialDesc {
 struct PipelineDesc {
     std::string file;  // the script it came from
     GraphDesc graph;
-    std::string output = "output";  // resource written to the EXR/PNG
+    std::string output = "output";  // the image `render` writes (PNG; EXR too unless `hdr` is set)
+    // With a physical camera: the HDR target (luminance × pre-exposure) written to the EXR in
+    // cd/m², and the persistent exposure state (shaders/lib/exposure.glsl) that says the
+    // pre-exposure. Empty when the pipeline has no post chain.
+    std::string hdr;
+    std::string exposure;
     std::vector<LayoutDesc> layouts;
     std::vector<MaterialDesc> materials;
     std::vector<StencilClassDesc> stencilClasses;

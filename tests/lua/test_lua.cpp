@@ -146,11 +146,13 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     EXPECT_EQ(p->materials[0].stencil, "lit_standard");
     ASSERT_EQ(p->stencilClasses.size(), 1u);
     EXPECT_EQ(p->stencilClasses[0].value, 1u);
-    EXPECT_EQ(p->output, "output");
+    EXPECT_EQ(p->output, "display");
+    EXPECT_EQ(p->hdr, "hdr");
+    EXPECT_EQ(p->exposure, "exposure");
     auto plan = compile(graphWithParams(*p), {});
     ASSERT_TRUE(plan.has_value()) << plan.error().message;
-    // Every script it pulled in is known, for hot reload.
-    EXPECT_EQ(p->files.size(), 2u);
+    // Every script it pulled in is known, for hot reload: deferred.lua, post.lua, disney.lua.
+    EXPECT_EQ(p->files.size(), 3u);
 }
 
 TEST(LuaPipeline, ModulesAreNamespacedAndInsertedAfterTheirAnchor) {

@@ -1,0 +1,197 @@
+// Generated geometry: tangent frames, flat normals, the Lua scene's primitives, bounds.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "scene.h"
+
+namespace rg {
+
+const char* lightTypeName(LightType t) {
+    switch (t) {
+    case LightType::Point: return "point";
+    case LightType::Spot: return "spot";
+    case LightType::Directional: return "sun";
+    case LightType::Sphere: return "sphere";
+    case LightType::Disk: return "disk";
+    case LightType::Rect: return "rect";
+    case LightType::Tube: return "tube";
+    }
+    return "?";
+}
+
+namespace {
+
+// Any unit vector perpendicular to n (n unit length).
+glm::vec3 anyPerpendicular(const glm::vec3& n) {
+    const glm::vec3 a = std::fabs(n.x) < 0.9f ? glm::vec3(1, 0, 0) : glm::vec3(0, 1, 0);
+    return glm::normalize(glm::cross(n, a));
+}
+
+glm::vec3 safeNormalize(const glm::vec3& v, const glm::vec3& fallback) {
+    const float len = glm::length(v);
+    return len > 1e-20f && std::isfinite(len) ? v / len : fallback;
+}
+
+}  // namespace
+
+void generateTangents(Primitive& p) {
+    const size_t n = p.vertices.size();
+    std::vector<glm::vec3> tan(n, glm::vec3(0.0f)), bitan(n, glm::vec3(0.0f));
+    for (size_t t = 0; t + 2 < p.indices.size(); t += 3) {
+        const uint32_t i0 = p.indices[t], i1 = p.indices[t + 1], i2 = p.indices[t + 2];
+        if (i0 >= n || i1 >= n || i2 >= n) continue;
+        const Vertex &a = p.vertices[i0], &b = p.vertices[i1], &c = p.vertices[i2];
+        const glm::vec3 e1 = b.position - a.position, e2 = c.position - a.position;
+        const glm::vec2 d1 = b.uv0 - a.uv0, d2 = c.uv0 - a.uv0;
+        const float det = d1.x * d2.y - d2.x * d1.y;
+        if (std::fabs(det) < 1e-20f || !std::isfinite(det)) continue;
+        // Solve e = dP/du * du + dP/dv * dv for the two edges.
+        const float r = 1.0f / det;
+        const glm::vec3 dPdu = (e1 * d2.y - e2 * d1.y) * r;
+        const glm::vec3 dPdv = (e2 * d1.x - e1 * d2.x) * r;
+        // Unnormalised sums weight each triangle by its area in uv space: large faces dominate,
+        // which is the usual choice and keeps slivers from swinging the frame.
+        for (uint32_t i : {i0, i1, i2}) {
+            tan[i] += dPdu;
+            bitan[i] -= dPdv;  // the bitangent points along -v (up in the image), see scene.h
+        }
+    }
+    for (size_t i = 0; i < n; ++i) {
+        Vertex& v = p.vertices[i];
+        const glm::vec3 nrm = safeNormalize(v.normal, glm::vec3(0, 0, 1));
+        // Gram-Schmidt: remove the normal component.
+        glm::vec3 t = tan[i] - nrm * glm::dot(nrm, tan[i]);
+        const float len = glm::length(t);
+        if (!(len > 1e-12f) || !std::isfinite(len)) {
+            v.tangent = glm::vec4(anyPerpendicular(nrm), 1.0f);
+            continue;
+        }
+        t /= len;
+        const float w = glm::dot(glm::cross(nrm, t), bitan[i]) < 0.0f ? -1.0f : 1.0f;
+        v.tangent = glm::vec4(t, w);
+    }
+}
+
+void generateFlatNormals(Primitive& p) {
+    std::vector<Vertex> out;
+    out.reserve(p.indices.size());
+    for (size_t t = 0; t + 2 < p.indices.size(); t += 3) {
+        Vertex tri[3];
+        for (int k = 0; k < 3; ++k) tri[k] = p.vertices.at(p.indices[t + size_t(k)]);
+        const glm::vec3 fn = safeNormalize(glm::cross(tri[1].position - tri[0].position, tri[2].position - tri[0].position),
+                                           glm::vec3(0, 0, 1));
+        for (auto& v : tri) {
+            v.normal = fn;
+            out.push_back(v);
+        }
+    }
+    p.vertices = std::move(out);
+    p.indices.resize(p.vertices.size());
+    for (size_t i = 0; i < p.indices.size(); ++i) p.indices[i] = static_cast<uint32_t>(i);
+}
+
+Primitive makeSphere(float radius, uint32_t segments, uint32_t material) {
+    Primitive p;
+    p.material = material;
+    segments = std::max(segments, 3u);
+    const uint32_t rings = std::max(segments / 2, 2u);
+    const float pi = 3.14159265358979f;
+    // theta from the +Y pole (v = 0) to the -Y pole (v = 1); phi around +Y with u. The seam is
+    // duplicated (u = 0 and u = 1) and so is each pole vertex, one per segment, so uvs and
+    // tangents stay continuous per triangle.
+    for (uint32_t r = 0; r <= rings; ++r) {
+        const float v = float(r) / float(rings);
+        const float theta = v * pi;
+        for (uint32_t s = 0; s <= segments; ++s) {
+            const float u = float(s) / float(segments);
+            const float phi = u * 2.0f * pi;
+            Vertex vert;
+            // Going around with growing u turns clockwise seen from +Y (phi -> -phi), so that u
+            // grows to the right for a viewer outside the sphere (image not mirrored).
+            const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), -std::sin(theta) * std::sin(phi));
+            vert.normal = n;
+            vert.position = n * radius;
+            vert.uv0 = vert.uv1 = glm::vec2(u, v);
+            // dP/du ~ (-sin phi, 0, -cos phi); the bitangent (-dP/dv) points towards +Y.
+            const glm::vec3 t(-std::sin(phi), 0.0f, -std::cos(phi));
+            const glm::vec3 b(-std::cos(theta) * std::cos(phi), std::sin(theta), std::cos(theta) * std::sin(phi));
+            const float w = glm::dot(glm::cross(n, t), b) < 0.0f ? -1.0f : 1.0f;
+            vert.tangent = glm::vec4(t, w);
+            p.vertices.push_back(vert);
+        }
+    }
+    const uint32_t row = segments + 1;
+    for (uint32_t r = 0; r < rings; ++r)
+        for (uint32_t s = 0; s < segments; ++s) {
+            const uint32_t a = r * row + s, b = a + 1, c = a + row, d = c + 1;
+            // a-b on the upper ring, c-d below; u grows to the right seen from outside.
+            if (r != 0) p.indices.insert(p.indices.end(), {a, c, b});
+            if (r != rings - 1) p.indices.insert(p.indices.end(), {b, c, d});
+        }
+    return p;
+}
+
+Primitive makePlane(float width, float depth, uint32_t material) {
+    Primitive p;
+    p.material = material;
+    const float hw = width * 0.5f, hd = depth * 0.5f;
+    // u along +x, v along +z: seen from above, the image's top edge is at -z.
+    const glm::vec3 pos[4] = {{-hw, 0, -hd}, {hw, 0, -hd}, {hw, 0, hd}, {-hw, 0, hd}};
+    const glm::vec2 uv[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+    for (int i = 0; i < 4; ++i) {
+        Vertex v;
+        v.position = pos[i];
+        v.normal = glm::vec3(0, 1, 0);
+        v.uv0 = v.uv1 = uv[i];
+        v.tangent = glm::vec4(1, 0, 0, 1);
+        p.vertices.push_back(v);
+    }
+    p.indices = {0, 3, 2, 0, 2, 1};
+    return p;
+}
+
+Primitive makeBox(glm::vec3 size, uint32_t material) {
+    Primitive p;
+    p.material = material;
+    const glm::vec3 h = size * 0.5f;
+    // Each face: its normal and the direction u grows in (seen from outside, v grows downwards).
+    const glm::vec3 faces[6][2] = {{{1, 0, 0}, {0, 0, -1}}, {{-1, 0, 0}, {0, 0, 1}}, {{0, 1, 0}, {1, 0, 0}},
+                                   {{0, -1, 0}, {1, 0, 0}}, {{0, 0, 1}, {1, 0, 0}},  {{0, 0, -1}, {-1, 0, 0}}};
+    for (const auto& f : faces) {
+        const glm::vec3 n = f[0], right = f[1], up = glm::cross(n, right);
+        const uint32_t base = static_cast<uint32_t>(p.vertices.size());
+        const glm::vec2 uv[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+        for (int i = 0; i < 4; ++i) {
+            const float sx = uv[i].x * 2.0f - 1.0f, sy = 1.0f - uv[i].y * 2.0f;
+            Vertex v;
+            v.position = (n + right * sx + up * sy) * h;
+            v.normal = n;
+            v.uv0 = v.uv1 = uv[i];
+            v.tangent = glm::vec4(right, 1.0f);  // bitangent cross(n, right) = up = -dP/dv
+            p.vertices.push_back(v);
+        }
+        // (0,0) top-left, (1,0) top-right, (1,1) bottom-right, (0,1) bottom-left: CCW from outside.
+        p.indices.insert(p.indices.end(), {base, base + 3, base + 2, base, base + 2, base + 1});
+    }
+    return p;
+}
+
+void computeBounds(Scene& scene) {
+    glm::vec3 lo(std::numeric_limits<float>::max()), hi(-std::numeric_limits<float>::max());
+    bool any = false;
+    for (const auto& node : scene.nodes) {
+        if (node.mesh < 0 || size_t(node.mesh) >= scene.meshes.size()) continue;
+        for (const auto& prim : scene.meshes[size_t(node.mesh)].primitives)
+            for (const auto& v : prim.vertices) {
+                const glm::vec3 w = glm::vec3(node.world * glm::vec4(v.position, 1.0f));
+                lo = glm::min(lo, w);
+                hi = glm::max(hi, w);
+                any = true;
+            }
+    }
+    scene.boundsMin = any ? lo : glm::vec3(0.0f);
+    scene.boundsMax = any ? hi : glm::vec3(0.0f);
+}
+
+}  // namespace rg

@@ -1,0 +1,297 @@
+// The CPU scene: plain data that a glTF file or a Lua scene script becomes, before anything goes
+// to the GPU. No Vulkan here.
+//
+// Units and conventions (DESIGN.md §5):
+// - 1 unit = 1 metre, time in seconds, angles in radians unless a name says otherwise.
+// - Colours are linear Rec.709. Light intensities keep the photometric unit they were declared in
+//   (lm, cd, lux, nits, ev100); nothing here converts them (the lighting code does, seed 000 tbl:9,
+//   tbl:12, eq:12).
+// - Right-handed, +Y up; a camera and a light look along their local -Z, as in glTF.
+// - Triangles are counter-clockwise when seen from their front side.
+// - Texture coordinates follow glTF: (0, 0) is the top-left texel, v grows downwards.
+// - Tangents (xyz) point along +u; tangent.w is the handedness: the bitangent is
+//   cross(normal, tangent.xyz) * tangent.w and points along -v (up in the image), which is the
+//   glTF / MikkTSpace convention that normal maps (+Y up) are authored for.
+//
+// Ownership: a Scene owns all of its data (vertices, decoded pixels); indices between its arrays
+// (Primitive::material, TextureRef::image/sampler, Node::mesh) are plain integers into the same
+// Scene. Threading: the loaders share no state; call them from any thread.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/result.h"
+#include "core/value.h"
+#include "image/image.h"
+
+namespace rg {
+
+// ---------------------------------------------------------------------------------------------
+// Geometry
+
+struct Vertex {
+    glm::vec3 position{0.0f};
+    glm::vec3 normal{0.0f, 0.0f, 1.0f};
+    glm::vec4 tangent{1.0f, 0.0f, 0.0f, 1.0f};  // xyz along +u, w = handedness (±1), see above
+    glm::vec2 uv0{0.0f};
+    glm::vec2 uv1{0.0f};
+};
+
+// A triangle list: every 3 indices are one counter-clockwise triangle.
+struct Primitive {
+    std::vector<Vertex> vertices;
+    std::vector<uint32_t> indices;
+    uint32_t material = 0;  // index into Scene::materials
+};
+
+struct Mesh {
+    std::string name;
+    std::vector<Primitive> primitives;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Textures and images
+
+struct TextureRef {
+    int32_t image = -1;    // index into Scene::images; -1: no texture
+    int32_t sampler = -1;  // index into Scene::samplers; -1: the default (linear, repeat)
+    uint32_t texCoord = 0; // 0: Vertex::uv0, 1: Vertex::uv1
+    // KHR_texture_transform as a uv matrix: uv' = (transform * vec3(uv, 1)).xy, i.e.
+    // translation(offset) * rotation(rotation) * scale(scale) with glTF's rotation sign.
+    glm::mat3 transform{1.0f};
+
+    bool valid() const { return image >= 0; }
+};
+
+// A decoded texture. `pixels` holds the values the file holds, as floats in [0, 1], always four
+// channels (RGBA; grey and grey+alpha are expanded, a missing alpha is 1). When `srgb` is true the
+// colour channels are sRGB-encoded (upload as an *_SRGB format, or srgbDecode() them; alpha is
+// always linear); base colour and emissive textures are sRGB (glTF), every other map is linear.
+struct SceneImage {
+    std::string name;
+    rg::Image pixels;        // level 0
+    bool srgb = false;
+    uint32_t mipLevels = 1;  // floor(log2(max(width, height))) + 1 once generateMips() ran
+    // Levels 1 .. mipLevels-1 (level 0 is `pixels`), each max(1, floor(previous / 2)) wide and
+    // high, box-filtered from the previous level; sRGB images are filtered in linear space and
+    // re-encoded. Same channel layout and encoding as `pixels`.
+    std::vector<rg::Image> mips;
+
+    const rg::Image& level(uint32_t i) const { return i == 0 ? pixels : mips.at(i - 1); }
+};
+
+enum class Filter : uint8_t { Nearest, Linear };
+enum class MipmapMode : uint8_t { Nearest, Linear };
+enum class Wrap : uint8_t { Repeat, ClampToEdge, MirroredRepeat };
+
+struct SamplerDesc {
+    Filter magFilter = Filter::Linear;
+    Filter minFilter = Filter::Linear;
+    MipmapMode mipmapMode = MipmapMode::Linear;
+    Wrap wrapS = Wrap::Repeat;
+    Wrap wrapT = Wrap::Repeat;
+    bool operator==(const SamplerDesc&) const = default;
+};
+
+// ---------------------------------------------------------------------------------------------
+// Materials (seed 000 §3.2.1)
+
+enum class AlphaMode : uint8_t { Opaque, Mask, Blend };
+
+struct Material {
+    std::string name;
+    // The pipeline material it maps to ("standard", "two_colour", or a game-team material such as
+    // "clear_coat"); the pipeline gives the materialId.
+    std::string model = "standard";
+
+    // Disney base material (tbl:2). Factors; a texture, when present, multiplies them.
+    glm::vec3 baseColor{0.5f};  // linear; diffuse albedo (dielectrics) or f0 (metals)
+    float smoothness = 0.5f;    // 1 - perceptual roughness (glTF roughness); alpha = (1 - s)^2
+    float metalMask = 0.0f;     // glTF metallic
+    float reflectance = 0.5f;   // dielectric f0 = 0.16 * reflectance^2 (0.5 -> 4 %)
+    float ao = 1.0f;            // ambient occlusion factor
+    // Emitted luminance in nits (cd/m²), linear RGB. From glTF: emissiveFactor (× the emissive
+    // texture) × KHR_materials_emissive_strength, read as nits. glTF leaves the emissive unit
+    // undefined; treating it as nits is our choice and the lighting work may revisit it.
+    glm::vec3 emissive{0.0f};
+    float opacity = 1.0f;       // base colour alpha (glTF baseColorFactor.a)
+
+    // Two-colour base material (tbl:3), used when model == "two_colour".
+    glm::vec3 diffuseColor{0.5f};
+    glm::vec3 f0{0.04f};
+
+    TextureRef baseColorTex;          // sRGB; rgb × baseColor, a × opacity
+    TextureRef metallicRoughnessTex;  // linear; g = roughness (× (1 - smoothness)), b = metallic
+    TextureRef normalTex;             // linear tangent-space normal map
+    TextureRef occlusionTex;          // linear; r = occlusion
+    TextureRef emissiveTex;           // sRGB; rgb × emissive
+    float normalScale = 1.0f;
+    float occlusionStrength = 1.0f;
+
+    AlphaMode alphaMode = AlphaMode::Opaque;
+    float alphaCutoff = 0.5f;
+    bool doubleSided = false;
+
+    Value extra;  // a table of other parameters for game-team materials (clear coat, foliage, ...)
+};
+
+// ---------------------------------------------------------------------------------------------
+// Nodes, lights, cameras, environment
+
+// The flattened hierarchy: one entry per node that draws a mesh, with its world transform.
+struct Node {
+    std::string name;
+    glm::mat4 world{1.0f};
+    int32_t mesh = -1;  // index into Scene::meshes
+};
+
+enum class LightType : uint8_t {
+    Point,        // punctual; lm or cd (seed 000 tbl:8)
+    Spot,         // punctual; lm or cd
+    Directional,  // the sun: a disk light of angular radius sunAngularRadius, in lux
+    Sphere,       // area lights: lm, nits or ev100
+    Disk,
+    Rect,
+    Tube,
+};
+const char* lightTypeName(LightType t);  // "point", "spot", "sun", "sphere", "disk", "rect", "tube"
+
+struct Light {
+    std::string name;
+    LightType type = LightType::Point;
+    glm::vec3 position{0.0f};             // metres (unused by the sun)
+    // Unit vector the light points along (the way its light travels): a spot's axis, a disk's or
+    // a rect's emitting side, the sun's rays (from the sun towards the scene), a tube's axis.
+    glm::vec3 direction{0.0f, -1.0f, 0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};       // rect lights: the direction of `height`
+    glm::vec3 color{1.0f};                // linear RGB, multiplies the intensity
+    float temperatureK = 0.0f;            // kelvin; 0 = use color
+    float intensity = 1.0f;               // in `unit`
+    std::string unit = "lm";              // "lm", "cd", "lux", "nits", "ev100" (as declared)
+    float radius = 0.0f;                  // sphere, disk, tube (metres)
+    float width = 0.0f, height = 0.0f;    // rect (metres)
+    float length = 0.0f;                  // tube (metres)
+    float innerAngle = 0.0f;              // spot half-angles (radians)
+    float outerAngle = 0.785398f;
+    float range = 0.0f;                   // metres; 0 = unlimited (windowed falloff otherwise)
+    std::string ies;                      // path of an IES (LM-63) profile, "" for none
+    float sunAngularRadius = 0.00465f;    // radians (the sun seen from the earth: 0.2664°)
+};
+
+// A physical camera (seed 002 §5.2). Exposure comes from aperture, shutter and ISO.
+struct Camera {
+    std::string name;
+    glm::vec3 position{0.0f, 0.0f, 5.0f};
+    glm::vec3 target{0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float verticalFov = 0.785398f;   // radians
+    float focalLength = 0.0f;        // metres; 0 = derived from verticalFov
+    float sensorHeight = 0.024f;     // metres (full frame)
+    float nearPlane = 0.05f, farPlane = 1000.0f;  // metres
+    float aperture = 16.0f;          // f-number N
+    float shutter = 0.008f;          // seconds (1/125)
+    float iso = 100.0f;
+    float exposureCompensation = 0.0f;  // EV
+};
+
+struct Environment {
+    std::string name;
+    std::string kind = "sky";        // "sky" (procedural), "hdr" (equirectangular file), "color"
+    std::string file;                // "hdr": the .hdr/.exr path (resolved, absolute)
+    glm::vec3 color{1.0f};           // "color": linear RGB
+    float intensity = 1.0f;          // multiplies the file / colour / sky, in `unit`
+    std::string unit = "nits";       // sky and image-based light: luminance (tbl:8)
+    float rotation = 0.0f;           // radians about +Y
+};
+
+struct Scene {
+    std::vector<Mesh> meshes;
+    std::vector<Material> materials;
+    std::vector<SceneImage> images;
+    std::vector<SamplerDesc> samplers;
+    std::vector<Node> nodes;
+    std::vector<Light> lights;
+    std::vector<Camera> cameras;
+    std::optional<Environment> environment;
+    std::vector<std::string> files;  // every file read (absolute paths), for hot reload
+    glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};  // world-space box around every node's mesh
+};
+
+// ---------------------------------------------------------------------------------------------
+// Loading and saving
+
+struct GltfOptions {
+    bool loadImages = true;    // false: materials keep their texture references, images stay empty
+    bool generateMips = true;  // fill SceneImage::mips
+    // When not null, receives one line for each thing the loader skipped or changed (an
+    // orthographic camera, an unused extension, ...). The scene is still valid.
+    std::vector<std::string>* warnings = nullptr;
+};
+
+// Loads a .gltf (with its external .bin files and images, or data: URIs) or a .glb.
+// - Every node of the default scene (or every root node when there is none) becomes a Node with
+//   its world transform; cameras and KHR_lights_punctual lights take their node's transform.
+// - Triangle primitives (TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN; indexed or not) become
+//   triangle lists; other modes are refused by name. Missing normals become flat normals;
+//   missing tangents are generated (see generateTangents).
+// - Materials map as DESIGN.md §5 says: smoothness = 1 - roughness, metalMask = metallic,
+//   reflectance 0.5 (KHR_materials_specular / _ior are ignored), emissive in nits × strength.
+//   A material whose extras hold { "rgraph": { ... } } (written by exportGlb) gets back the
+//   fields glTF cannot say (model, reflectance, ao, two-colour, params).
+// Errors name the file and the thing: NotFound for a missing file, InvalidInput for broken JSON,
+// a missing buffer or image, an accessor out of range; Unsupported for a required extension or
+// a primitive mode rgraph does not handle.
+Result<Scene> loadGltf(const std::string& path, const GltfOptions& options = {});
+
+struct SceneScriptOptions {
+    std::string projectRoot;  // "" = RG_ROOT when set, else the source tree this was built from
+    bool loadImages = true;   // passed on to the glTF files the script names
+    bool generateMips = true;
+};
+
+// Runs a Lua scene script (scene.material/sphere/plane/box/gltf/light/camera/environment, see
+// scripts/README.md) in the sandboxed host and builds the scene. Every field is checked: an
+// unknown field (with a suggestion), a wrong type, a value out of range, an unknown material,
+// a light unit its type cannot have; errors read "file:line: scene.kind.name.field: ...".
+// Without a scene.camera the scene gets a camera named "default" that frames the bounds.
+Result<Scene> loadSceneScript(const std::string& path, const SceneScriptOptions& options = {});
+
+// Writes a binary glTF: meshes, materials (metallic-roughness: roughness = 1 - smoothness; what
+// glTF cannot hold goes to the material's extras.rgraph), images as embedded PNG (8 bits), one
+// root node per Node, cameras (physical settings in extras) and KHR_lights_punctual lights whose
+// unit glTF can say (cd for point/spot, lux for the sun). Other lights are skipped with a line
+// in `warnings`. Written to a temporary file and renamed, so a failure leaves `path` untouched.
+Result<void> exportGlb(const Scene& scene, const std::string& path,
+                       std::vector<std::string>* warnings = nullptr);
+
+// ---------------------------------------------------------------------------------------------
+// Helpers (used by the loaders, public for tests and tools)
+
+// Fills image.mips and image.mipLevels: the full chain down to 1x1, box filter (each texel of a
+// level is the area-weighted mean of the texels of the previous level it covers, so odd sizes
+// are exact); colour channels of sRGB images are averaged in linear space.
+void generateMips(SceneImage& image);
+
+// Per-triangle tangents from the uv derivatives (dP/du, and -dP/dv for the bitangent, see the
+// convention above), summed per vertex, Gram-Schmidt orthonormalised against the normal; w is
+// the sign of dot(cross(n, t), b). Vertices whose triangles have degenerate uvs get any unit
+// vector perpendicular to the normal, w = 1. Uses uv0.
+void generateTangents(Primitive& primitive);
+
+// Gives every triangle its own three vertices with the face normal (glTF: no normals means flat).
+void generateFlatNormals(Primitive& primitive);
+
+// Meshes the Lua scene makes (unit-free, in metres, centred on the origin, CCW outwards).
+Primitive makeSphere(float radius, uint32_t segments, uint32_t material);  // segments around, segments/2 rings
+Primitive makePlane(float width, float depth, uint32_t material);           // XZ plane, normal +Y
+Primitive makeBox(glm::vec3 size, uint32_t material);
+
+// Recomputes Scene::boundsMin/boundsMax from the nodes' meshes.
+void computeBounds(Scene& scene);
+
+}  // namespace rg

@@ -1,0 +1,28 @@
+// Internal to rg_scene: what the glTF reader, the writer and the Lua scene builder share.
+// Not a public header.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "scene.h"
+
+namespace rg::scene_detail {
+
+// Decodes a PNG or JPEG held in memory into four float channels in [0, 1] (8-bit samples / 255,
+// 16-bit / 65535), no colour conversion. The error message is the decoder's reason.
+Result<Image> decodeImage(const unsigned char* data, size_t size);
+
+// Encodes 1-4 channel values in [0, 1] as an 8-bit PNG (round(clamp(v) * 255)).
+Result<std::vector<unsigned char>> encodePng(const Image& image);
+
+// "'path'", how messages of this module name a file.
+inline std::string quoted(const std::string& path) { return "'" + path + "'"; }
+
+// The OS's text for errno (thread-safe).
+std::string errnoText(int err);
+
+// The whole file, or NotFound/Io "cannot open 'path': reason" (`path` as given).
+Result<std::vector<unsigned char>> readFile(const std::string& path);
+
+}  // namespace rg::scene_detail

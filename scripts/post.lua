@@ -1,0 +1,108 @@
+-- The physical camera and the post chain (seed 002 §5.1–§5.3): auto-exposure from a
+-- log-luminance histogram, an energy-conserving bloom, tone mapping, the exact sRGB transfer
+-- function, FXAA. A pipeline uses it as
+--
+--   local post = require "post"
+--   post.params { exposure_mode = "auto" }   -- camera and post parameters (rg.param)
+--   post.exposure_state()                    -- the persistent `exposure` buffer HDR passes read
+--   ... passes that render `hdr` (luminance × pre-exposure, see shaders/lib/exposure.glsl) ...
+--   post.chain { input = "hdr", output = "display" }
+--   rg.output { display = "display", hdr = "hdr", exposure = "exposure" }
+local rg = require "rg"
+local post = {}
+
+local function log2(x) return math.log(x, 2) end
+
+-- EV100 = log2(N² / t · 100 / S) − EC (seed 002 §5.1.1).
+function post.ev100(aperture, shutter, iso, ec)
+    return log2(aperture * aperture / shutter * 100 / iso) - (ec or 0)
+end
+
+-- Declares the camera and post parameters; `o` overrides defaults. The default camera is
+-- "Sunny 16": f/16, 1/125 s, ISO 100 (EV100 ≈ 15), right for a scene in full sun.
+function post.params(o)
+    o = o or {}
+    local aperture, shutter, iso, ec = o.aperture or 16, o.shutter or 1 / 125, o.iso or 100, o.ec or 0
+    rg.param "exposure_mode" { type = "choice", default = o.exposure_mode or "auto", choices = { "auto", "manual" },
+                               doc = "auto: metered from a histogram; manual: from aperture, shutter and ISO" }
+    rg.param "aperture" { type = "number", default = aperture, min = 0.5, max = 128, doc = "relative aperture N, f-stops" }
+    rg.param "shutter" { type = "number", default = shutter, min = 1e-6, max = 3600, doc = "shutter time t, seconds" }
+    rg.param "iso" { type = "number", default = iso, min = 1, max = 409600, doc = "sensor sensitivity S, ISO" }
+    rg.param "ec" { type = "number", default = ec, min = -16, max = 16, doc = "exposure compensation, stops" }
+    rg.param "auto_low" { type = "number", default = o.auto_low or 10, min = 0, max = 100, doc = "auto-exposure: lowest percentile metered" }
+    rg.param "auto_high" { type = "number", default = o.auto_high or 90, min = 0, max = 100, doc = "auto-exposure: highest percentile metered" }
+    rg.param "speed_up" { type = "number", default = o.speed_up or 3, min = 0, max = 1000, doc = "adaptation speed towards higher EV, 1/s" }
+    rg.param "speed_down" { type = "number", default = o.speed_down or 1, min = 0, max = 1000, doc = "adaptation speed towards lower EV, 1/s" }
+    rg.param "min_ev100" { type = "number", default = o.min_ev100 or -8, min = -32, max = 32 }
+    rg.param "max_ev100" { type = "number", default = o.max_ev100 or 24, min = -32, max = 32 }
+    rg.param "frame_time" { type = "number", default = o.frame_time or 1 / 60, min = 0, max = 10, doc = "seconds per frame (fixed)" }
+    rg.param "initial_ev100" { type = "number", default = o.initial_ev100 or post.ev100(aperture, shutter, iso, ec), min = -32, max = 32,
+                               doc = "exposure of the first frame, before anything was metered" }
+    rg.param "bloom_ec" { type = "number", default = o.bloom_ec or -6, min = -32, max = 0, doc = "bloom strength in EV relative to the exposed image" }
+    rg.param "tonemap" { type = "choice", default = o.tonemap or "aces", choices = { "aces", "neutral", "linear" } }
+    rg.param "dither" { type = "boolean", default = o.dither ~= false, doc = "triangular dither before 8-bit quantisation" }
+    rg.param "fxaa_threshold" { type = "number", default = 0.125, min = 0, max = 1 }
+    rg.param "fxaa_subpixel" { type = "number", default = 0.75, min = 0, max = 1 }
+end
+
+-- The persistent exposure state (shaders/lib/exposure.glsl, RgExposureState: 4 floats).
+function post.exposure_state()
+    rg.buffer "exposure" { size = 16, persistent = true }
+end
+
+-- o.input: the HDR target; o.output: the display image to create (rgba8, sRGB-encoded values);
+-- o.bloom_levels (default 5, 0 = no bloom); o.fxaa (default true). Auto-exposure meters the
+-- first bloom level (half size, the same average luminance: a quarter of the atomics) or the
+-- input itself without bloom.
+function post.chain(o)
+    local input, output = assert(o.input, "post.chain: input"), assert(o.output, "post.chain: output")
+    local levels = o.bloom_levels or 5
+    local meter = levels >= 1 and "bloom_down1" or input
+
+    local previous = input
+    for i = 1, levels do
+        local name = "bloom_down" .. i
+        rg.resource(name) { format = "rgba16f", scale = 0.5 ^ i }
+        rg.pass(name) { kind = "fullscreen", shader = "post/bloom_down.frag", reads = { previous }, writes = { name }, bind = { source = previous } }
+        previous = name
+    end
+
+    rg.buffer "histogram" { size = 256 * 8 }
+    rg.pass "exposure_clear" { kind = "clear", writes = { "histogram" } }
+    rg.pass "exposure_histogram" {
+        kind = "compute", shader = "post/histogram.comp", dispatch = meter,
+        reads = { meter, { "exposure", as = "storage" } }, writes = { { "histogram", as = "storage_rw" } },
+        bind = { hdr = meter },
+    }
+    rg.pass "exposure_update" {
+        kind = "compute", shader = "post/exposure_update.comp", groups = { 1, 1, 1 },
+        reads = { { "histogram", as = "storage" } }, writes = { { "exposure", as = "storage_rw" } },
+    }
+    local lower = "bloom_down" .. levels
+    for i = levels - 1, 1, -1 do
+        local name = "bloom_up" .. i
+        rg.resource(name) { format = "rgba16f", scale = 0.5 ^ i }
+        rg.pass(name) {
+            kind = "fullscreen", shader = "post/bloom_up.frag", reads = { "bloom_down" .. i, lower }, writes = { name },
+            bind = { down = "bloom_down" .. i, lower = lower },
+        }
+        lower = name
+    end
+    local reads = { input, { "exposure", as = "storage" } }
+    if levels >= 1 then table.insert(reads, 2, lower) end
+
+    local fxaa = o.fxaa ~= false
+    local mapped = fxaa and (output .. "_ldr") or output
+    rg.resource(mapped) { format = "rgba8" }
+    if fxaa then rg.resource(output) { format = "rgba8" } end
+    rg.pass "tonemap" {
+        kind = "fullscreen", shader = "post/tonemap.frag",
+        reads = reads, writes = { mapped },
+        bind = { hdr = input, bloom = levels >= 1 and lower or input }, uniforms = { bloom_levels = levels },
+    }
+    if fxaa then
+        rg.pass "fxaa" { kind = "fullscreen", shader = "post/fxaa.frag", reads = { mapped }, writes = { output }, bind = { source = mapped } }
+    end
+end
+
+return post

@@ -1,0 +1,71 @@
+#version 460
+// Exposure, bloom, tone curve and the exact sRGB transfer function: HDR (luminance × this
+// frame's pre-exposure) to an 8-bit display image.
+//  - exposure: the HDR is divided by its pre-exposure and multiplied by the current exposure
+//    (1 / (1.2 · 2^EV100), seed 002 §5.1.2);
+//  - bloom: mixed in with weight 2^bloom_ec, a strength in EV relative to the exposed image
+//    (seed 002 §5.1.3), as (1 − w)·image + w·blur so the mix keeps the energy;
+//  - curves: 0 ACES (Narkowicz's fit of the ACES RRT+ODT), 1 Khronos PBR Neutral (keeps base
+//    colours up to its compression start), 2 linear (clamped);
+//  - sRGB: exact piecewise function (seed 002 §5.1.5), then triangular dither when `dither`.
+#include "lib/exposure.glsl"
+
+layout(location = 0) in vec2 uv;
+layout(location = 0) out vec4 color;
+layout(set = 0, binding = 0) uniform sampler2D hdr;
+layout(set = 0, binding = 1) uniform sampler2D bloom;
+layout(set = 0, binding = 2, std430) readonly buffer exposure { RgExposureState state; } ex;
+layout(set = 0, binding = 3) uniform Params {
+    float tonemap;
+    float bloom_ec;
+    float bloom_levels;
+    float dither;
+    float initial_ev100;
+} params;
+layout(push_constant) uniform Constants { float rg_frame; } pc;
+
+vec3 acesFit(vec3 x) {
+    return clamp((x * (2.51 * x + 0.03)) / (x * (2.43 * x + 0.59) + 0.14), 0.0, 1.0);
+}
+
+vec3 pbrNeutral(vec3 c) {
+    const float startCompression = 0.8 - 0.04;
+    const float desaturation = 0.15;
+    float x = min(c.r, min(c.g, c.b));
+    float offset = x < 0.08 ? x - 6.25 * x * x : 0.04;
+    c -= offset;
+    float peak = max(c.r, max(c.g, c.b));
+    if (peak < startCompression) return c;
+    const float d = 1.0 - startCompression;
+    float newPeak = 1.0 - d * d / (peak + d - startCompression);
+    c *= newPeak / peak;
+    float g = 1.0 - 1.0 / (desaturation * (peak - newPeak) + 1.0);
+    return mix(c, vec3(newPeak), g);
+}
+
+float hash(uvec3 v) {
+    v = v * 1664525u + 1013904223u;
+    v.x += v.y * v.z; v.y += v.z * v.x; v.z += v.x * v.y;
+    v ^= v >> 16u;
+    v.x += v.y * v.z;
+    return float(v.x) / 4294967296.0;
+}
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    float pre = ex.state.preExposure > 0.0 ? ex.state.preExposure : rgPreExposure(ex.state, params.initial_ev100);
+    float exposure = ex.state.initialized > 0.5 ? ex.state.exposure : pre;
+    vec3 image = texelFetch(hdr, p, 0).rgb / pre * exposure;
+    if (params.bloom_levels > 0.0) {
+        vec3 blur = texture(bloom, uv).rgb / params.bloom_levels / pre * exposure;
+        float w = exp2(params.bloom_ec);
+        image = mix(image, blur, w);
+    }
+    vec3 mapped = params.tonemap < 0.5 ? acesFit(image) : params.tonemap < 1.5 ? pbrNeutral(image) : clamp(image, 0.0, 1.0);
+    vec3 display = rgLinearToSrgb(mapped);
+    if (params.dither > 0.5) {
+        uvec3 seed = uvec3(uvec2(p), uint(pc.rg_frame));
+        display += (hash(seed) + hash(seed + 7919u) - 1.0) / 255.0;
+    }
+    color = vec4(clamp(display, 0.0, 1.0), 1.0);
+}

@@ -1,0 +1,198 @@
+// The physical camera and post chain on the GPU: auto-exposure settles on the metered EV and
+// adapts at its speed, manual exposure follows the camera, pre-exposure keeps RGBA16F finite
+// under a sun, the EXR's HDR is absolute luminance, and the GLSL sRGB functions match their
+// definition at the breakpoints.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+
+#include "cli/runtime.h"
+#include "cli/session.h"
+#include "core/photometry.h"
+#include "image/image.h"
+
+using namespace rg;
+
+namespace {
+
+const std::string kScripts = std::string(RG_SOURCE_ROOT) + "/tests/lua/scripts/";
+
+class PostGpu : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        RuntimeOptions o;
+        o.validation = true;
+        auto rt = Runtime::create(o);
+        ASSERT_TRUE(rt.has_value()) << rt.error().describe();
+        s_runtime = std::move(*rt).release();
+    }
+    static void TearDownTestSuite() {
+        delete s_runtime;
+        s_runtime = nullptr;
+    }
+    void SetUp() override { m_before = s_runtime->gpu().validationMessageCount(); }
+    void TearDown() override { EXPECT_EQ(s_runtime->gpu().validationMessageCount(), m_before); }
+
+    std::unique_ptr<Session> session(const std::string& script) {
+        SessionOptions o;
+        o.compile.outputWidth = 64;
+        o.compile.outputHeight = 48;
+        auto s = std::make_unique<Session>(*s_runtime, o);
+        auto r = s->load(kScripts + script);
+        EXPECT_TRUE(r.has_value()) << r.error().describe();
+        return s;
+    }
+    // ev100, exposure, preExposure, initialized
+    std::array<float, 4> state() {
+        auto bytes = s_runtime->executor().readbackBuffer("exposure");
+        EXPECT_TRUE(bytes.has_value());
+        std::array<float, 4> s{};
+        if (bytes) std::memcpy(s.data(), bytes->data(), sizeof s);
+        return s;
+    }
+    // Sets a parameter the way rg.frame would (a uniform, no rebuild).
+    void setParam(Session& s, const std::string& name, Value v) {
+        auto& p = const_cast<PipelineDesc&>(s.pipeline());
+        p.findParam(name)->value = v;
+        s_runtime->executor().updateUniforms(graphWithParams(p));
+    }
+    static Runtime* s_runtime;
+    uint32_t m_before = 0;
+};
+Runtime* PostGpu::s_runtime = nullptr;
+
+TEST_F(PostGpu, AutoExposureSettlesOnTheMeteredEv) {
+    for (double L : {0.5, 1000.0, 31831.0}) {
+        auto s = session("post_uniform.lua");
+        setParam(*s, "luminance", Value(L));
+        for (int f = 0; f < 3; ++f) ASSERT_TRUE(s->frame().has_value());
+        auto st = state();
+        const double want = photometry::ev100FromLuminance(L);  // log2(L · 100 / 12.5)
+        EXPECT_NEAR(st[0], want, 0.05) << L << " cd/m²";
+        EXPECT_NEAR(st[1], photometry::exposureFromEv100(st[0]), st[1] * 1e-5);
+        EXPECT_EQ(st[3], 1.0f);
+    }
+}
+
+TEST_F(PostGpu, AutoExposureAdaptsAtItsSpeed) {
+    auto s = session("post_uniform.lua");
+    setParam(*s, "luminance", Value(1000.0));
+    for (int f = 0; f < 2; ++f) ASSERT_TRUE(s->frame().has_value());
+    const double start = state()[0];
+    // Four stops brighter: each frame moves (target − ev)·(1 − e^(−dt·speed_up)), dt = 1/60, speed_up = 3.
+    setParam(*s, "luminance", Value(16000.0));
+    const double target = photometry::ev100FromLuminance(16000.0);
+    double ev = start;
+    for (int f = 0; f < 10; ++f) {
+        ASSERT_TRUE(s->frame().has_value());
+        ev += (target - ev) * (1.0 - std::exp(-3.0 / 60.0));
+        EXPECT_NEAR(state()[0], ev, 0.02) << "frame " << f;
+    }
+    // And down at speed_down = 1.
+    setParam(*s, "luminance", Value(1000.0));
+    const double down = photometry::ev100FromLuminance(1000.0);
+    ASSERT_TRUE(s->frame().has_value());
+    ev += (down - ev) * (1.0 - std::exp(-1.0 / 60.0));
+    EXPECT_NEAR(state()[0], ev, 0.02);
+}
+
+TEST_F(PostGpu, ManualExposureFollowsTheCamera) {
+    auto s = session("post_uniform.lua");
+    setParam(*s, "exposure_mode", Value("manual"));
+    ASSERT_TRUE(s->frame().has_value());
+    auto st = state();
+    EXPECT_NEAR(st[0], 14.966, 0.001);       // f/16, 1/125 s, ISO 100
+    EXPECT_NEAR(st[1], 2.604e-5, 0.001e-5);  // 1 / (1.2 · 2^EV100)
+}
+
+TEST_F(PostGpu, PreExposureKeepsHalfFloatsFiniteUnderTheSun) {
+    // A white diffuse surface under a 100 000 lux sun is E·ρ/π ≈ 31 831 cd/m²; the sun's disk
+    // is ≈ 1.6e9 cd/m², far beyond half precision (65 504) unless pre-exposed.
+    auto s = session("post_uniform.lua");
+    setParam(*s, "luminance", Value(31831.0));
+    setParam(*s, "highlight", Value(1.6e9));
+    setParam(*s, "initial_ev100", Value(15.0));
+    for (int f = 0; f < 4; ++f) ASSERT_TRUE(s->frame().has_value());
+    for (const char* target : {"hdr", "bloom_down1", "bloom_up1", "display"}) {
+        auto img = s_runtime->executor().readback(target);
+        if (!img) continue;  // transient intermediates cannot be read back
+        for (float v : img->pixels) ASSERT_TRUE(std::isfinite(v)) << target;
+    }
+    auto hdr = s_runtime->executor().readback("hdr");
+    ASSERT_TRUE(hdr.has_value());
+    for (float v : hdr->pixels) ASSERT_TRUE(std::isfinite(v));
+    const float pre = state()[2];
+    EXPECT_NEAR(hdr->at(32, 24, 0) / pre, 1.6e9f, 1.6e9f * 1e-3f);  // the sun disk, recovered
+    EXPECT_NEAR(hdr->at(2, 2, 0) / pre, 31831.0f, 31831.0f * 1e-3f);
+    // The same frame without pre-exposure (exposure 1 ⇔ EV100 = log2(1/1.2)) overflows half
+    // precision: the disk saturates (lavapipe rounds towards zero to 65504; others give inf).
+    setParam(*s, "exposure_mode", Value("manual"));
+    setParam(*s, "aperture", Value(1.0));
+    setParam(*s, "shutter", Value(1.2));
+    setParam(*s, "iso", Value(100.0));
+    for (int f = 0; f < 2; ++f) ASSERT_TRUE(s->frame().has_value());
+    auto overflow = s_runtime->executor().readback("hdr");
+    ASSERT_TRUE(overflow.has_value());
+    EXPECT_NEAR(state()[2], 1.0f, 1e-5f);
+    const float v = overflow->at(32, 24, 0);
+    EXPECT_TRUE(std::isinf(v) || v == 65504.0f) << v;
+}
+
+TEST_F(PostGpu, HdrOutputIsAbsoluteLuminance) {
+    auto s = session("post_uniform.lua");
+    setParam(*s, "luminance", Value(1000.0));
+    for (int f = 0; f < 3; ++f) ASSERT_TRUE(s->frame().has_value());
+    auto hdr = s_runtime->executor().readback("hdr");
+    ASSERT_TRUE(hdr.has_value());
+    const float pre = state()[2];
+    EXPECT_NEAR(hdr->at(10, 10, 1) / pre, 1000.0f, 1000.0f * 1e-3f);  // half precision
+    // The display image of a uniform field metered by auto-exposure: the metered middle grey.
+    auto display = s_runtime->executor().readback("display");
+    ASSERT_TRUE(display.has_value());
+    const float grey = display->at(10, 10, 0);
+    EXPECT_GT(grey, 0.2f);
+    EXPECT_LT(grey, 0.6f);
+    EXPECT_FLOAT_EQ(display->at(10, 10, 0), display->at(50, 40, 0));
+}
+
+TEST_F(PostGpu, GlslSrgbMatchesItsDefinition) {
+    GraphDesc g;
+    ResourceDesc out;
+    out.name = "srgb_out";
+    out.kind = ResourceKind::Buffer;
+    out.buffer.size = 512;
+    out.exported = true;
+    g.resources = {out};
+    Value::List x;
+    std::vector<float> inputs = {0.0f, 0.001f, 0.0031308f, 0.0031309f, 0.04045f, 0.04046f, 0.1f, 0.5f, 0.9f, 1.0f};
+    while (inputs.size() < 64) inputs.push_back(static_cast<float>(inputs.size()) / 64.0f);
+    for (float v : inputs) x.push_back(Value(static_cast<double>(v)));
+    PassDesc p;
+    p.name = "srgb";
+    p.kind = "compute";
+    p.accesses = {{"srgb_out", Usage::StorageWrite}};
+    p.params = Value(Value::Table{{"shader", Value("test/srgb.comp")}, {"groups", Value(Value::List{1, 1, 1})},
+                                  {"uniforms", Value(Value::Table{{"x", Value(x)}})}});
+    g.passes = {p};
+    auto& ex = s_runtime->executor();
+    ASSERT_TRUE(ex.build(g, {}).has_value());
+    ASSERT_TRUE(ex.frame().has_value());
+    auto bytes = ex.readbackBuffer("srgb_out");
+    ASSERT_TRUE(bytes.has_value());
+    std::vector<float> r(128);
+    std::memcpy(r.data(), bytes->data(), 512);
+    for (size_t i = 0; i < 64; ++i) {
+        const double v = inputs[i];
+        const double encode = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1 / 2.4) - 0.055;
+        const double decode = v <= 0.04045 ? v / 12.92 : std::pow((v + 0.055) / 1.055, 2.4);
+        EXPECT_NEAR(r[i], encode, 2e-6) << "encode " << v;
+        EXPECT_NEAR(r[64 + i], decode, 2e-6) << "decode " << v;
+        EXPECT_NEAR(r[i], srgbEncode(inputs[i]), 2e-6);
+    }
+    // Both pieces meet at the breakpoint: the function is continuous there.
+    EXPECT_NEAR(r[2], 12.92 * 0.0031308, 1e-6);
+    EXPECT_NEAR(r[3], r[2], 1e-5);
+}
+
+}  // namespace
