@@ -61,6 +61,7 @@ struct TestOutcome {
     uint32_t width = 0, height = 0, frames = 0;
     TestStatus status = TestStatus::Error;
     std::string message;         // the error, or what failed, in one line
+    bool badInput = false;       // Error caused by input (script, pipeline, parameters): exit code 2
     std::string firstDivergent;  // the first capture in pipeline order that failed ("" if none)
     std::vector<CaptureOutcome> captures;  // in pipeline order
     std::vector<std::string> changes;      // --update: what it wrote or removed

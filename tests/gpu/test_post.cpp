@@ -156,6 +156,62 @@ TEST_F(PostGpu, HdrOutputIsAbsoluteLuminance) {
     EXPECT_FLOAT_EQ(display->at(10, 10, 0), display->at(50, 40, 0));
 }
 
+TEST_F(PostGpu, BloomConservesEnergy) {
+    SessionOptions o;
+    o.compile.outputWidth = 256;
+    o.compile.outputHeight = 128;
+    o.captures = {"bloom_up1", "bloom_down1", "bloom_down3", "bloom_down5"};
+    Session s(*s_runtime, o);
+    ASSERT_TRUE(s.load(kScripts + "post_uniform.lua").has_value());
+    setParam(s, "luminance", Value(100.0));
+    setParam(s, "highlight", Value(1e5));  // a small bright disc: most energy in a few pixels
+    for (int f = 0; f < 2; ++f) ASSERT_TRUE(s.frame().has_value());
+    auto mean = [&](const char* name) {
+        auto img = s_runtime->executor().readback(name);
+        EXPECT_TRUE(img.has_value());
+        double sum = 0;
+        for (uint32_t y = 0; y < img->height; ++y)
+            for (uint32_t x = 0; x < img->width; ++x) sum += img->at(x, y, 1);
+        return sum / (double(img->width) * img->height);
+    };
+    const double input = mean("hdr");
+    std::printf("bloom energy: input %.5f, down1 %.5f, down3 %.5f, down5 %.5f, up1/5 %.5f\n", input, mean("bloom_down1"),
+                mean("bloom_down3"), mean("bloom_down5"), mean("bloom_up1") / 5.0);
+    // Every down level keeps the average, up to the clamp-to-edge border (which weighs border
+    // texels more: it grows as levels get small); the up chain sums the 5 levels.
+    EXPECT_NEAR(mean("bloom_down1"), input, input * 0.001);
+    EXPECT_NEAR(mean("bloom_down3"), input, input * 0.002);
+    EXPECT_NEAR(mean("bloom_down5"), input, input * 0.005);
+    EXPECT_NEAR(mean("bloom_up1") / 5.0, input, input * 0.01);
+}
+
+TEST_F(PostGpu, FxaaSmoothsAnAliasedEdgeOnly) {
+    SessionOptions o;
+    o.compile.outputWidth = 64;
+    o.compile.outputHeight = 48;
+    o.captures = {"display_ldr"};
+    Session s(*s_runtime, o);
+    ASSERT_TRUE(s.load(kScripts + "post_edge.lua").has_value());
+    ASSERT_TRUE(s.frame().has_value());
+    auto before = s_runtime->executor().readback("display_ldr");
+    auto after = s_runtime->executor().readback("display");
+    ASSERT_TRUE(before.has_value() && after.has_value());
+    const float dark = before->at(0, 40, 0), bright = before->at(60, 2, 0);
+    ASSERT_GT(bright - dark, 0.3f);
+    int blended = 0, changedAway = 0;
+    for (uint32_t y = 0; y < 48; ++y)
+        for (uint32_t x = 0; x < 64; ++x) {
+            const float b = before->at(x, y, 0), a = after->at(x, y, 0);
+            const float edgeDistance = std::abs(static_cast<float>(x) + 0.5f - 0.7f * (static_cast<float>(y) + 0.5f) - 10.0f);
+            // Before FXAA every pixel is one of the two levels; after, edge pixels lie between.
+            EXPECT_TRUE(b == dark || b == bright);
+            if (a > dark + 0.02f && a < bright - 0.02f) ++blended;
+            if (edgeDistance > 3.0f && a != b) ++changedAway;
+        }
+    EXPECT_GT(blended, 30);  // most of the ~48 edge pixels
+    EXPECT_EQ(changedAway, 0);
+}
+
 TEST_F(PostGpu, GlslSrgbMatchesItsDefinition) {
     GraphDesc g;
     ResourceDesc out;

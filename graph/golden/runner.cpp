@@ -1,0 +1,715 @@
+#include "golden/runner.h"
+
+#include <fnmatch.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <set>
+
+#include <nlohmann/json.hpp>
+
+#include "cli/runtime.h"
+#include "cli/session.h"
+#include "golden/golden_test.h"
+#include "lua/declarations.h"
+
+namespace fs = std::filesystem;
+
+namespace rg::golden {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+
+constexpr double kFrameTime = 1.0 / 60.0;  // the profile's fixed frame time
+constexpr const char* kThreads = "2";      // the profile's LP_NUM_THREADS unless the environment sets one
+const std::vector<std::string> kProfileOff = {"dither", "dithering", "jitter", "taa_jitter"};
+
+// ---- where files are ----
+
+std::string relativeToRoot(const std::string& path) {
+    std::error_code ec;
+    const fs::path abs = fs::weakly_canonical(path, ec);
+    const fs::path root = fs::weakly_canonical(projectRoot(), ec);
+    const std::string rel = fs::relative(abs, root, ec).string();
+    if (ec || rel.empty() || rel.rfind("..", 0) == 0) return path;
+    return rel;
+}
+
+std::string fromRoot(const std::string& path) {
+    if (fs::path(path).is_absolute()) return path;
+    return (fs::path(projectRoot()) / path).string();
+}
+
+// ---- the environment the goldens record ----
+
+std::string readCpuInfo(const char* key) {
+    std::ifstream in("/proc/cpuinfo");
+    std::string line;
+    while (std::getline(in, line))
+        if (line.rfind(key, 0) == 0) {
+            auto colon = line.find(':');
+            if (colon != std::string::npos) {
+                std::string v = line.substr(colon + 1);
+                v.erase(0, v.find_first_not_of(" \t"));
+                return v;
+            }
+        }
+    return "";
+}
+
+RunEnvironment environmentOf(Runtime& rt) {
+    RunEnvironment e;
+    e.device = rt.gpu().deviceInfo().name;
+    e.driver = rt.gpu().deviceInfo().driver;
+    if (auto at = e.driver.find("Mesa "); at != std::string::npos) {
+        e.mesa = e.driver.substr(at + 5);
+        e.mesa = e.mesa.substr(0, e.mesa.find_first_of(" )"));
+    }
+    e.cpu = readCpuInfo("model name");
+    // The features LLVM's code generation for lavapipe depends on: they decide the vector width
+    // and whether FMA contracts, which is where 1-LSB differences between hosts come from.
+    const std::string flags = " " + readCpuInfo("flags") + " ";
+    for (const char* f : {"sse4_1", "sse4_2", "avx", "avx2", "fma", "f16c", "avx512f"})
+        if (flags.find(" " + std::string(f) + " ") != std::string::npos) e.cpuFeatures += (e.cpuFeatures.empty() ? "" : " ") + std::string(f);
+    if (const char* t = std::getenv("LP_NUM_THREADS")) e.lpNumThreads = t;
+    if (const char* w = std::getenv("LP_NATIVE_VECTOR_WIDTH")) e.vectorWidth = w;
+    return e;
+}
+
+std::string profileLine(const RunEnvironment& e) {
+    std::string s = "LP_NUM_THREADS=" + e.lpNumThreads;
+    if (!e.vectorWidth.empty()) s += ", LP_NATIVE_VECTOR_WIDTH=" + e.vectorWidth;
+    s += ", frame time 1/60 s, dithering and jitter parameters off";
+    return s;
+}
+
+nlohmann::ordered_json environmentJson(const RunEnvironment& e) {
+    nlohmann::ordered_json j;
+    j["device"] = e.device;
+    j["driver"] = e.driver;
+    j["mesa"] = e.mesa;
+    j["cpu"] = e.cpu;
+    j["cpu_features"] = e.cpuFeatures;
+    j["lp_num_threads"] = e.lpNumThreads;
+    if (!e.vectorWidth.empty()) j["lp_native_vector_width"] = e.vectorWidth;
+    return j;
+}
+
+// ---- golden image files ----
+
+bool isSrgb(const std::string& format) { return format == "rgba8_srgb"; }
+
+std::vector<std::string> channelNames(uint32_t n) {
+    static const char* rgba[] = {"R", "G", "B", "A"};
+    std::vector<std::string> names;
+    for (uint32_t i = 0; i < n && i < 4; ++i) names.push_back(rgba[i]);
+    return names;
+}
+
+// Encodes the colour channels of a decoded sRGB-format image back to what its bytes held.
+Image srgbEncoded(const Image& img) {
+    Image out = img;
+    for (uint32_t y = 0; y < img.height; ++y)
+        for (uint32_t x = 0; x < img.width; ++x)
+            for (uint32_t k = 0; k < std::min(img.channels, 3u); ++k) out.at(x, y, k) = srgbEncode(img.at(x, y, k));
+    return out;
+}
+
+Result<void> writeStored(const std::string& path, const Image& img, Storage storage, bool srgb,
+                         const std::map<std::string, std::string>& meta) {
+    std::error_code ec;
+    fs::create_directories(fs::path(path).parent_path(), ec);
+    if (storage == Storage::Png) return writePng(path, srgb ? srgbEncoded(img) : img, meta);
+    ExrWriteOptions o;
+    o.pixelType = storage == Storage::ExrHalf ? ExrPixelType::Half : ExrPixelType::Float;
+    o.compress = true;
+    o.metadata = meta;
+    return writeExr(path, {{"", channelNames(img.channels), img}}, o);
+}
+
+Result<Image> readStored(const std::string& path, Storage storage, bool srgb) {
+    if (storage == Storage::Png) {
+        auto img = readPng(path);
+        if (!img) return img;
+        if (srgb)
+            for (uint32_t y = 0; y < img->height; ++y)
+                for (uint32_t x = 0; x < img->width; ++x)
+                    for (uint32_t k = 0; k < std::min(img->channels, 3u); ++k) img->at(x, y, k) = srgbDecode(img->at(x, y, k));
+        return img;
+    }
+    auto exr = readExr(path);
+    if (!exr) return std::unexpected(exr.error());
+    if (exr->layers.empty()) return fail(ErrorCode::InvalidInput, "'" + path + "': no image layers");
+    return exr->layers[0].image;
+}
+
+// A PNG preview of a linear image: clamped and sRGB-encoded RGB (grey for one channel).
+Image preview(const Image& img, bool display) {
+    Image out(img.width, img.height, 3);
+    for (uint32_t y = 0; y < img.height; ++y)
+        for (uint32_t x = 0; x < img.width; ++x)
+            for (uint32_t k = 0; k < 3; ++k) {
+                float v = img.channels == 1 ? img.at(x, y, 0) : k < img.channels ? img.at(x, y, k) : 0.0f;
+                v = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
+                out.at(x, y, k) = display ? v : srgbEncode(v);
+            }
+    return out;
+}
+
+bool samePixels(const Image& a, const Image& b) {
+    if (a.width != b.width || a.height != b.height || a.channels != b.channels) return false;
+    for (size_t i = 0; i < a.pixels.size(); ++i)
+        if (!(a.pixels[i] == b.pixels[i] || (std::isnan(a.pixels[i]) && std::isnan(b.pixels[i])))) return false;
+    return true;
+}
+
+// ---- rendering a test ----
+
+// The pipeline's graph with parameters as uniforms, captures exported, and shader paths that
+// exist next to the pipeline script made absolute: what Session builds (graph/cli/session.cpp).
+GraphDesc buildableGraph(const PipelineDesc& p, const std::vector<std::string>& captures) {
+    GraphDesc g = graphWithParams(p);
+    for (auto& r : g.resources)
+        if (std::find(captures.begin(), captures.end(), r.name) != captures.end()) r.exported = true;
+    const fs::path dir = fs::absolute(p.file).parent_path();
+    for (auto& pass : g.passes) {
+        const Value& s = pass.params["shader"];
+        std::error_code ec;
+        if (s.isString() && !s.asString().empty() && fs::path(s.asString()).is_relative() &&
+            fs::is_regular_file(dir / s.asString(), ec))
+            pass.params.table()["shader"] = Value((dir / s.asString()).string());
+    }
+    return g;
+}
+
+struct Capture {
+    Image image;
+    std::string format;
+    std::string writer;
+    int32_t order = -1;
+};
+
+struct Rendered {
+    std::map<std::string, Capture> captures;
+    std::vector<std::string> log;
+};
+
+struct TestError {
+    Error error;
+    bool badInput;
+};
+
+std::unexpected<TestError> testError(const Error& e) {
+    const bool input = e.code == ErrorCode::InvalidInput || e.code == ErrorCode::NotFound || e.code == ErrorCode::Unsupported;
+    return std::unexpected(TestError{e, input});
+}
+
+std::string changesText(const FrameChanges& c) {
+    std::string s;
+    for (const auto& [pass, on] : c.enabled) s += (s.empty() ? "" : ", ") + std::string(on ? "enabled '" : "disabled '") + pass + "'";
+    for (const auto& [pass, shader] : c.shaders) s += (s.empty() ? "" : ", ") + ("'" + pass + "' uses " + shader);
+    return s;
+}
+
+std::expected<Rendered, TestError> render(Runtime& rt, GoldenScript& script, const RunnerOptions& options, std::FILE* out) {
+    const GoldenTest& test = script.test();
+    const std::string& where = test.file;
+    if (!test.scene.empty())
+        return testError(Error(ErrorCode::Unsupported, where + ": scene: scenes are not supported yet (no pipeline draws a "
+                                                                "scene until the scene raster pass lands)"));
+    const std::string pipelineFile = fromRoot(test.pipeline);
+    std::error_code ec;
+    if (!fs::is_regular_file(pipelineFile, ec))
+        return testError(Error(ErrorCode::NotFound, where + ": pipeline: no pipeline script '" + test.pipeline + "'"));
+
+    LuaHost host(luaHostOptions(rt));
+    auto loaded = host.load(pipelineFile);
+    if (!loaded) return testError(loaded.error());
+    PipelineDesc pipeline = std::move(*loaded);
+    Rendered result;
+
+    // Parameters the test sets, then the determinism profile for those it leaves alone.
+    for (const auto& [name, value] : test.params) {
+        ParamDesc* p = pipeline.findParam(name);
+        if (!p) {
+            std::vector<std::string> names;
+            for (const auto& q : pipeline.params) names.push_back(q.name);
+            const std::string best = closestName(name, names);
+            return testError(Error(ErrorCode::InvalidInput, where + ": params." + name + ": the pipeline has no parameter '" +
+                                                                name + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)")));
+        }
+        auto checked = checkParamValue(*p, value);
+        if (!checked) return testError(Error(ErrorCode::InvalidInput, where + ": params." + name + ": " + checked.error().message));
+        p->value = *checked;
+    }
+    for (auto& p : pipeline.params) {
+        if (std::find(kProfileOff.begin(), kProfileOff.end(), p.name) == kProfileOff.end() || test.params.count(p.name)) continue;
+        Value off = p.type == ParamType::Boolean ? Value(false) : p.type == ParamType::Choice ? Value("off") : Value(0.0);
+        if (p.type == ParamType::Choice && std::find(p.choices.begin(), p.choices.end(), "off") == p.choices.end()) off = Value("none");
+        if (checkParamValue(p, off)) {
+            p.value = off;
+            result.log.push_back("profile: " + p.name + " off");
+        }
+    }
+
+    std::vector<std::string> captureNames;
+    for (const auto& c : test.captures) {
+        const ResourceDesc* r = pipeline.graph.findResource(c.resource);
+        if (!r) {
+            std::vector<std::string> names;
+            for (const auto& res : pipeline.graph.resources) names.push_back(res.name);
+            const std::string best = closestName(c.resource, names);
+            return testError(Error(ErrorCode::NotFound, where + ": captures." + c.resource + ": the pipeline has no resource named '" +
+                                                            c.resource + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)")));
+        }
+        if (r->kind != ResourceKind::Texture)
+            return testError(Error(ErrorCode::InvalidInput, where + ": captures." + c.resource + ": '" + c.resource +
+                                                                "' is a buffer; golden tests capture textures"));
+        captureNames.push_back(c.resource);
+    }
+    if (auto r = writeLayoutHeaders(pipeline); !r) return testError(r.error());
+
+    // A fresh executor per test: nothing (persistent contents, memory) leaks from one test into the next.
+    gpu::Executor executor(rt.gpu(), rt.shaders(), rt.kinds());
+    CompileOptions compile;
+    compile.outputWidth = test.width;
+    compile.outputHeight = test.height;
+    if (auto r = executor.build(buildableGraph(pipeline, captureNames), compile); !r) return testError(r.error());
+    for (uint32_t f = 0; f < test.frames; ++f) {
+        const FrameContext ctx{f, static_cast<double>(f) * kFrameTime};
+        // The pipeline's own rg.frame first, then the test's frame(ctx), which sees its changes.
+        auto own = host.frame(ctx, pipeline);
+        if (!own) return testError(own.error());
+        PipelineDesc next = pipeline;
+        applyFrameChanges(next, *own);
+        auto mine = script.frame(ctx, next);
+        if (!mine) return testError(mine.error());
+        applyFrameChanges(next, *mine);
+        const bool structural = own->structural() || mine->structural();
+        if (structural) {
+            if (auto r = executor.build(buildableGraph(next, captureNames), compile); !r) return testError(r.error());
+            std::string what = changesText(*own);
+            const std::string more = changesText(*mine);
+            what += (what.empty() || more.empty() ? "" : ", ") + more;
+            result.log.push_back("frame " + std::to_string(f) + ": " + what + "; rebuilt: " + executor.lastBuildReport().summary());
+            if (options.verbose) std::fprintf(out, "        %s\n", result.log.back().c_str());
+        } else if (!own->params.empty() || !mine->params.empty()) {
+            executor.updateUniforms(buildableGraph(next, captureNames));
+        }
+        pipeline = std::move(next);
+        if (auto r = executor.frame(); !r) return testError(r.error());
+    }
+    if (auto r = executor.finish(); !r) return testError(r.error());
+
+    const Plan& plan = executor.plan();
+    for (const auto& name : captureNames) {
+        auto img = executor.readback(name);
+        if (!img) return testError(Error(img.error().code, where + ": captures." + name + ": " + img.error().message));
+        Capture c;
+        c.image = std::move(*img);
+        const int32_t ri = plan.findResource(name);
+        if (ri >= 0) c.format = std::string(formatName(plan.resources[static_cast<size_t>(ri)].format));
+        for (size_t i = 0; i < plan.passes.size(); ++i)
+            for (const auto& a : plan.passes[i].accesses)
+                if (static_cast<int32_t>(a.resource) == ri && usageWrites(a.usage)) {
+                    c.order = static_cast<int32_t>(i);
+                    c.writer = plan.passes[i].name;
+                }
+        result.captures[name] = std::move(c);
+    }
+    return result;
+}
+
+// ---- comparing, blessing, reporting ----
+
+void compareCapture(CaptureOutcome& co, const CaptureSpec& spec) {
+    co.passed = true;
+    co.comparisons.clear();
+    for (const auto& cmp : spec.comparisons) {
+        ComparisonOutcome o;
+        o.spec = cmp;
+        auto r = compare(co.actual, co.expected, cmp);
+        if (r) o.result = std::move(*r);
+        else o.error = r.error().message;
+        co.passed = co.passed && o.passed();
+        co.comparisons.push_back(std::move(o));
+    }
+}
+
+std::string verdicts(const CaptureOutcome& co) {
+    std::string s;
+    for (const auto& c : co.comparisons) s += (s.empty() ? "" : ", ") + (c.error.empty() ? c.result.verdict() : c.error);
+    return s;
+}
+
+nlohmann::ordered_json sidecarWithoutEnvironment(const GoldenTest& t, const std::vector<CaptureOutcome>& caps) {
+    nlohmann::ordered_json j;
+    j["test"] = t.name;
+    j["pipeline"] = t.pipeline;
+    j["size"] = {t.width, t.height};
+    j["frames"] = t.frames;
+    nlohmann::ordered_json params = nlohmann::ordered_json::object();
+    for (const auto& [k, v] : t.params)
+        params[k] = v.isNumber() ? nlohmann::ordered_json(v.asNumber()) : v.isBool() ? nlohmann::ordered_json(v.asBool())
+                                 : v.isString() ? nlohmann::ordered_json(v.asString()) : nlohmann::ordered_json(v.typeName());
+    j["params"] = params;
+    nlohmann::ordered_json captures = nlohmann::ordered_json::object();
+    for (const auto& c : caps) {
+        nlohmann::ordered_json cj;
+        cj["file"] = c.resource + storageExtension(c.storage);
+        cj["format"] = c.format;
+        cj["storage"] = storageName(c.storage);
+        cj["size"] = {c.actual.width, c.actual.height};
+        nlohmann::ordered_json cmps = nlohmann::ordered_json::array();
+        for (const auto& cmp : c.comparisons) cmps.push_back(cmp.spec.describe());
+        cj["comparisons"] = cmps;
+        captures[c.resource] = cj;
+    }
+    j["captures"] = captures;
+    j["profile"] = {{"lp_num_threads", kThreads}, {"frame_time", "1/60 s"}, {"off", kProfileOff}};
+    return j;
+}
+
+// Blesses the test's goldens; returns what changed, one line each.
+Result<std::vector<std::string>> bless(const GoldenTest& t, std::vector<CaptureOutcome>& caps, const std::string& dir,
+                                       const RunEnvironment& env) {
+    std::vector<std::string> changes;
+    bool wrote = false;
+    std::set<std::string> keep = {"golden.json"};
+    for (auto& c : caps) {
+        const std::string file = c.resource + storageExtension(c.storage);
+        keep.insert(file);
+        const bool missing = c.expected.width == 0;
+        const bool shapeChanged = !missing && (c.expected.width != c.actual.width || c.expected.height != c.actual.height ||
+                                               c.expected.channels != c.actual.channels);
+        if (!missing && !shapeChanged && c.passed) {
+            changes.push_back(samePixels(c.actual, c.expected) ? c.resource + ": unchanged"
+                                                                : c.resource + ": kept, within tolerance (" + verdicts(c) + ")");
+            continue;
+        }
+        std::map<std::string, std::string> meta = {{"rgraph.test", t.name}, {"rgraph.resource", c.resource},
+                                                   {"rgraph.format", c.format}, {"rgraph.device", env.device},
+                                                   {"rgraph.driver", env.driver}};
+        if (auto r = writeStored(c.expectedFile, c.actual, c.storage, isSrgb(c.format), meta); !r) return std::unexpected(r.error());
+        wrote = true;
+        if (missing) changes.push_back(c.resource + ": new golden " + relativeToRoot(c.expectedFile) + " (" + c.format + ", " +
+                                       std::to_string(c.actual.width) + "x" + std::to_string(c.actual.height) + ")");
+        else if (shapeChanged)
+            changes.push_back(c.resource + ": updated " + relativeToRoot(c.expectedFile) + " (was " + std::to_string(c.expected.width) +
+                              "x" + std::to_string(c.expected.height) + "x" + std::to_string(c.expected.channels) + ")");
+        else changes.push_back(c.resource + ": updated " + relativeToRoot(c.expectedFile) + " (was: " + verdicts(c) + ")");
+        c.expected = c.actual;
+        c.note = changes.back();
+        // The report shows the state after blessing.
+        for (auto& cmp : c.comparisons) {
+            auto r = compare(c.actual, c.expected, cmp.spec);
+            if (r) cmp.result = std::move(*r), cmp.error.clear();
+        }
+        c.passed = true;
+    }
+    std::error_code ec;
+    if (fs::is_directory(dir, ec))
+        for (const auto& entry : fs::directory_iterator(dir, ec)) {
+            const std::string name = entry.path().filename().string();
+            const std::string ext = entry.path().extension().string();
+            if ((ext == ".exr" || ext == ".png") && !keep.count(name)) {
+                fs::remove(entry.path(), ec);
+                changes.push_back("removed " + relativeToRoot(entry.path().string()) + " (no capture names it)");
+                wrote = true;
+            }
+        }
+
+    // golden.json: what the goldens were made with. The environment is only replaced when an
+    // image was written, so re-running --update on another machine changes nothing.
+    const std::string sidecar = (fs::path(dir) / "golden.json").string();
+    nlohmann::ordered_json j = sidecarWithoutEnvironment(t, caps);
+    std::string old;
+    {
+        std::ifstream in(sidecar);
+        old.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    }
+    nlohmann::ordered_json made = environmentJson(env);
+    if (!wrote && !old.empty()) {
+        auto parsed = nlohmann::ordered_json::parse(old, nullptr, false);
+        if (!parsed.is_discarded() && parsed.contains("made_with")) made = parsed["made_with"];
+    }
+    j["made_with"] = made;
+    const std::string text = j.dump(2) + "\n";
+    if (text != old) {
+        fs::create_directories(dir, ec);
+        const std::string tmp = sidecar + ".tmp";
+        std::ofstream(tmp) << text;
+        fs::rename(tmp, sidecar, ec);
+        if (ec) return fail(ErrorCode::Io, "cannot write '" + sidecar + "': " + ec.message());
+        if (!wrote) changes.push_back("golden.json: updated (the test's captures or comparisons changed)");
+    }
+    return changes;
+}
+
+// Writes actual, expected and diff heat maps of a failing capture under outDir/test/.
+void writeArtefacts(CaptureOutcome& c, const std::string& dir) {
+    const std::string base = (fs::path(dir) / c.resource).string();
+    const std::string ext = storageExtension(c.storage);
+    auto note = [&](const std::string& path, Result<void> r) {
+        if (r) c.files.push_back(path);
+        else c.note += (c.note.empty() ? "" : "; ") + r.error().message;
+    };
+    note(base + ".actual" + ext, writeStored(base + ".actual" + ext, c.actual, c.storage, isSrgb(c.format), {}));
+    if (c.storage != Storage::Png) note(base + ".actual.png", writePng(base + ".actual.png", preview(c.actual, c.display)));
+    if (c.expected.width > 0) {
+        note(base + ".expected" + ext, writeStored(base + ".expected" + ext, c.expected, c.storage, isSrgb(c.format), {}));
+        if (c.storage != Storage::Png) note(base + ".expected.png", writePng(base + ".expected.png", preview(c.expected, c.display)));
+    }
+    for (auto& cmp : c.comparisons) {
+        if (!cmp.error.empty() || cmp.result.error.width == 0) continue;
+        const std::string path = base + "." + metricName(cmp.spec.metric) + ".diff.png";
+        auto r = writePng(path, heatMap(cmp.result.error, cmp.result.heatScale));
+        if (r) cmp.diffFile = path;
+        note(path, std::move(r));
+    }
+}
+
+TestOutcome runOne(Runtime& rt, const std::string& file, const RunnerOptions& options, const RunEnvironment& env,
+                   std::FILE* out) {
+    const auto t0 = Clock::now();
+    TestOutcome t;
+    t.file = relativeToRoot(file);
+    t.name = fs::path(file).stem().string();
+    const uint32_t validationBefore = rt.gpu().validationMessageCount();
+
+    auto script = GoldenScript::load(file, t.file);
+    if (!script) {
+        t.status = TestStatus::Error;
+        t.message = script.error().describe();
+        t.badInput = true;
+        t.seconds = secondsSince(t0);
+        return t;
+    }
+    const GoldenTest& test = (*script)->test();
+    t.doc = test.doc;
+    t.pipeline = test.pipeline;
+    t.golden = test.golden;
+    t.width = test.width;
+    t.height = test.height;
+    t.frames = test.frames;
+
+    auto rendered = render(rt, **script, options, out);
+    if (!rendered) {
+        t.status = TestStatus::Error;
+        t.message = rendered.error().error.describe();
+        t.badInput = rendered.error().badInput;
+        t.seconds = secondsSince(t0);
+        return t;
+    }
+    t.log = rendered->log;
+
+    const std::string goldenDir = (fs::path(options.imageDir) / test.golden).string();
+    for (const auto& spec : test.captures) {
+        const Capture& cap = rendered->captures.at(spec.resource);
+        CaptureOutcome co;
+        co.resource = spec.resource;
+        co.format = cap.format;
+        co.storage = storageForFormat(cap.format);
+        co.display = co.storage == Storage::Png && !isSrgb(cap.format);
+        co.writerPass = cap.writer;
+        co.order = cap.order;
+        co.actual = quantizeForStorage(cap.image, co.storage, isSrgb(cap.format));
+        co.expectedFile = (fs::path(goldenDir) / (spec.resource + storageExtension(co.storage))).string();
+        std::error_code ec;
+        if (fs::exists(co.expectedFile, ec)) {
+            auto expected = readStored(co.expectedFile, co.storage, isSrgb(cap.format));
+            if (expected) co.expected = std::move(*expected);
+            else co.note = "cannot read the golden: " + expected.error().message;
+        } else {
+            co.note = "no golden image " + relativeToRoot(co.expectedFile) + ": bless it with 'rgraph test " + test.name + " --update'";
+        }
+        if (co.expected.width > 0) compareCapture(co, spec);
+        else {
+            co.passed = false;
+            for (const auto& cmp : spec.comparisons) co.comparisons.push_back(ComparisonOutcome{cmp, {}, "no golden image", ""});
+        }
+        t.captures.push_back(std::move(co));
+    }
+    // Pipeline order: by the pass that last writes each capture, then by name.
+    std::stable_sort(t.captures.begin(), t.captures.end(), [](const CaptureOutcome& a, const CaptureOutcome& b) {
+        return a.order != b.order ? a.order < b.order : a.resource < b.resource;
+    });
+
+    if (options.update && test.golden == test.name) {
+        auto changes = bless(test, t.captures, goldenDir, env);
+        if (!changes) {
+            t.status = TestStatus::Error;
+            t.message = changes.error().describe();
+            t.seconds = secondsSince(t0);
+            return t;
+        }
+        t.changes = std::move(*changes);
+    } else if (options.update) {
+        t.changes.push_back("not blessed: it compares with the goldens of '" + test.golden + "'");
+    }
+
+    t.status = TestStatus::Passed;
+    for (auto& c : t.captures) {
+        if (c.passed) continue;
+        t.status = TestStatus::Failed;
+        if (t.firstDivergent.empty()) {
+            t.firstDivergent = c.resource;
+            t.message = "first divergent resource in pipeline order: '" + c.resource + "'" +
+                        (c.writerPass.empty() ? "" : " (last written by pass '" + c.writerPass + "')") + ": " +
+                        (c.expected.width == 0 ? c.note : verdicts(c));
+        }
+        writeArtefacts(c, (fs::path(options.outDir) / test.name).string());
+    }
+    if (t.status == TestStatus::Failed) {
+        // Say when the goldens came from another device or driver: a likely cause of small differences.
+        std::ifstream in(fs::path(goldenDir) / "golden.json");
+        std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        auto j = nlohmann::ordered_json::parse(text, nullptr, false);
+        if (!j.is_discarded() && j.contains("made_with")) {
+            const auto& m = j["made_with"];
+            const std::string dev = m.value("device", ""), drv = m.value("driver", ""), feat = m.value("cpu_features", "");
+            if (dev != env.device || drv != env.driver || feat != env.cpuFeatures)
+                t.message += "\n(the goldens were made with " + dev + ", " + drv + ", CPU features '" + feat + "'; this run: " +
+                             env.device + ", " + env.driver + ", '" + env.cpuFeatures + "')";
+        }
+    }
+    if (const uint32_t n = rt.gpu().validationMessageCount() - validationBefore; n > 0) {
+        t.status = TestStatus::Failed;
+        t.message = std::to_string(n) + " Vulkan validation message(s), printed above" + (t.message.empty() ? "" : "; " + t.message);
+    }
+    t.seconds = secondsSince(t0);
+    return t;
+}
+
+void print(std::FILE* out, const TestOutcome& t) {
+    std::fprintf(out, "%-5s %-32s %6.2f s\n", testStatusName(t.status), t.name.c_str(), t.seconds);
+    for (const auto& c : t.captures) {
+        for (const auto& cmp : c.comparisons) {
+            const std::string v = cmp.error.empty() ? cmp.result.verdict() : cmp.error;
+            std::fprintf(out, "        %-16s %-44s %s\n", c.resource.c_str(), v.c_str(),
+                         cmp.passed() ? "ok" : (c.resource == t.firstDivergent ? "FAIL  <- first divergent" : "FAIL"));
+            if (!cmp.passed() && cmp.error.empty() && !cmp.result.detail.empty())
+                std::fprintf(out, "        %-16s   %s\n", "", cmp.result.detail.c_str());
+        }
+        if (!c.files.empty()) {
+            std::string files;
+            for (const auto& f : c.files) files += (files.empty() ? "" : ", ") + relativeToRoot(f);
+            std::fprintf(out, "        %-16s   wrote %s\n", "", files.c_str());
+        }
+    }
+    for (const auto& line : t.changes) std::fprintf(out, "        update: %s\n", line.c_str());
+    if (t.status != TestStatus::Passed && !t.message.empty()) {
+        std::string m = t.message;
+        for (size_t at = 0; (at = m.find('\n', at)) != std::string::npos; at += 9) m.replace(at, 1, "\n        ");
+        std::fprintf(out, "        %s\n", m.c_str());
+    }
+    std::fflush(out);
+}
+
+}  // namespace
+
+bool matchesPattern(const std::string& name, const std::string& pattern) {
+    if (pattern.empty()) return true;
+    return fnmatch(pattern.c_str(), name.c_str(), 0) == 0;
+}
+
+Result<std::vector<std::string>> findGoldenTests(const std::string& dir, const std::string& pattern) {
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) return fail(ErrorCode::NotFound, "no golden test folder '" + dir + "'");
+    std::vector<std::string> files;
+    for (const auto& entry : fs::directory_iterator(dir, ec)) {
+        if (!entry.is_regular_file() || entry.path().extension() != ".lua") continue;
+        if (matchesPattern(entry.path().stem().string(), pattern)) files.push_back(entry.path().string());
+    }
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+Storage storageForFormat(const std::string& format) {
+    if (format == "r8" || format == "rg8" || format == "rgba8" || format == "rgba8_srgb") return Storage::Png;
+    if (format == "r16f" || format == "rg16f" || format == "rgba16f" || format == "r11g11b10f") return Storage::ExrHalf;
+    return Storage::ExrFloat;
+}
+
+Image quantizeForStorage(const Image& image, Storage storage, bool srgb) {
+    Image out = image;
+    switch (storage) {
+    case Storage::Png:
+        for (uint32_t y = 0; y < image.height; ++y)
+            for (uint32_t x = 0; x < image.width; ++x)
+                for (uint32_t k = 0; k < image.channels; ++k) {
+                    const bool colour = srgb && k < 3;
+                    float v = image.at(x, y, k);
+                    if (colour) v = srgbEncode(v);
+                    v = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
+                    v = static_cast<float>(std::lround(v * 255.0f)) / 255.0f;  // what writePng / readPng do
+                    out.at(x, y, k) = colour ? srgbDecode(v) : v;
+                }
+        break;
+    case Storage::ExrHalf:
+        for (float& v : out.pixels) v = roundToHalf(v);
+        break;
+    case Storage::ExrFloat: break;
+    }
+    return out;
+}
+
+Result<RunReport> runGoldenTests(const RunnerOptions& optionsIn, std::FILE* out) {
+    RunnerOptions options = optionsIn;
+    if (options.testDir.empty()) options.testDir = projectRoot() + "/tests/golden";
+    if (options.imageDir.empty()) options.imageDir = projectRoot() + "/tests/golden/images";
+    auto files = findGoldenTests(options.testDir, options.pattern);
+    if (!files) return std::unexpected(files.error());
+    if (files->empty()) {
+        auto all = findGoldenTests(options.testDir, "");
+        std::string names;
+        for (const auto& f : all ? *all : std::vector<std::string>{})
+            names += (names.empty() ? "" : ", ") + fs::path(f).stem().string();
+        return fail(ErrorCode::NotFound, "no golden test matches '" + options.pattern + "' in " + relativeToRoot(options.testDir) +
+                                             (names.empty() ? " (it has none)" : " (tests: " + names + ")"));
+    }
+
+    // The determinism profile's thread count, before the Vulkan driver reads it.
+    setenv("LP_NUM_THREADS", kThreads, /*overwrite=*/0);
+    const auto t0 = Clock::now();
+    RuntimeOptions ro;
+    ro.device = options.device;
+    auto rt = Runtime::create(ro);
+    if (!rt) return std::unexpected(rt.error());
+
+    RunReport report;
+    report.update = options.update;
+    report.environment = environmentOf(**rt);
+    report.profile = profileLine(report.environment);
+    std::fprintf(out, "rgraph test: %zu golden test%s from %s on %s (%s; %s)\n", files->size(), files->size() == 1 ? "" : "s",
+                 relativeToRoot(options.testDir).c_str(), report.environment.device.c_str(), report.environment.driver.c_str(),
+                 report.profile.c_str());
+    std::fflush(out);
+    for (const auto& file : *files) {
+        report.tests.push_back(runOne(**rt, file, options, report.environment, out));
+        print(out, report.tests.back());
+    }
+    report.seconds = secondsSince(t0);
+    std::fprintf(out, "rgraph test: %zu passed, %zu failed, %zu errors (%.2f s)\n", report.count(TestStatus::Passed),
+                 report.count(TestStatus::Failed), report.count(TestStatus::Error), report.seconds);
+    if (!options.reportDir.empty()) {
+        if (auto r = writeHtmlReport(options.reportDir, report); !r) return std::unexpected(r.error());
+        std::fprintf(out, "rgraph test: report %s\n", (fs::path(options.reportDir) / "index.html").string().c_str());
+    }
+    if (!options.junitFile.empty()) {
+        if (auto r = writeJunit(options.junitFile, report); !r) return std::unexpected(r.error());
+        std::fprintf(out, "rgraph test: JUnit %s\n", options.junitFile.c_str());
+    }
+    std::fflush(out);
+    return report;
+}
+
+}  // namespace rg::golden
