@@ -17,7 +17,6 @@ rg.path "standard" { stencil = "lit_standard", doc = "Disney diffuse + GGX specu
 
 -- materialId 0: BaseColor, Smoothness, MetalMask, Reflectance (f0 = 0.16 * reflectance^2), AO.
 rg.material "standard" {
-    id = 0, layout = "disney", path = "standard",
-    params = { baseColor = { 0.5, 0.5, 0.5 }, smoothness = 0.5, metalMask = 0, reflectance = 0.5, ao = 1 },
+    id = 0, layout = "disney", path = "standard", surface = "materials/standard.glsl",
     doc = "the standard Disney base material, seed 000 §3.2.1",
 }

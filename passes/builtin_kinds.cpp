@@ -6,6 +6,7 @@
 
 #include "core/check.h"
 #include "passes.h"
+#include "scene_pass.h"
 #include "shader_program.h"
 
 namespace rg::passes {
@@ -585,6 +586,7 @@ void registerBuiltinPassKinds(PassRegistry& registry) {
          Usage::CopySrc, Usage::CopyDst}));
     registry.add(kind<CopyPass>({"copy", PassType::Transfer, "copies or blits what it reads into what it writes", {}, Usage::CopySrc, Usage::CopyDst}));
     registry.add(kind<MipsPass>({"mips", PassType::Transfer, "fills mips 1..n-1 of the texture it writes from mip 0", {}, Usage::CopySrc, Usage::CopyDst, /*writesLoad=*/true}));
+    registry.add(scenePassKind());
     registry.add(kind<ReadbackPass>({"readback", PassType::Transfer, "copies what it reads to host memory every frame (a side effect)", {}, Usage::CopySrc, Usage::CopyDst}));
 }
 

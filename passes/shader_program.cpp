@@ -5,6 +5,7 @@
 #include <map>
 
 #include "core/check.h"
+#include "gpu_scene.h"
 
 namespace rg::passes {
 
@@ -73,7 +74,9 @@ Result<OwnedSampler> makeSampler(VkDevice dev, VkFilter filter) {
 
 }  // namespace
 
-Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> stages) {
+Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> stages,
+                                  std::map<uint32_t, VkDescriptorSetLayout> externalSets) {
+    m_external = std::move(externalSets);
     const PassDesc& desc = setup.desc;
     // Defines from params.defines = { NAME = value, ... } (numbers, booleans or strings).
     std::vector<std::pair<std::string, std::string>> defines;
@@ -137,7 +140,14 @@ Result<void> ShaderProgram::createLayouts(PassSetup& setup) {
     VkDevice dev = setup.gpu.device();
     uint32_t setCount = 0;
     for (const auto& b : m_reflection.bindings) setCount = std::max(setCount, b.set + 1);
+    for (const auto& [set, _] : m_external) setCount = std::max(setCount, set + 1);
+    std::vector<VkDescriptorSetLayout> raw;
     for (uint32_t s = 0; s < setCount; ++s) {
+        if (auto ext = m_external.find(s); ext != m_external.end()) {
+            m_setLayouts.emplace_back();
+            raw.push_back(ext->second);
+            continue;
+        }
         std::vector<VkDescriptorSetLayoutBinding> bindings;
         for (const auto& b : m_reflection.bindings) {
             if (b.set != s) continue;
@@ -154,9 +164,8 @@ Result<void> ShaderProgram::createLayouts(PassSetup& setup) {
         VkDescriptorSetLayout layout = VK_NULL_HANDLE;
         RG_VK_TRY(vkCreateDescriptorSetLayout(dev, &li, nullptr, &layout));
         m_setLayouts.emplace_back(dev, layout);
+        raw.push_back(layout);
     }
-    std::vector<VkDescriptorSetLayout> raw;
-    for (const auto& l : m_setLayouts) raw.push_back(l.get());
     VkPushConstantRange range{};
     for (const auto& m : m_modules) m_pushStages |= toVkStageFlags(stageBit(m.stage));
     range.stageFlags = m_pushStages;
@@ -186,7 +195,9 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
     m_nearest = std::move(*near);
 
     std::map<VkDescriptorType, uint32_t> counts;
-    for (const auto& b : m_reflection.bindings) counts[toVkDescriptor(b.type)] += std::max(1u, b.count) * slots;
+    for (const auto& b : m_reflection.bindings)
+        if (!m_external.count(b.set)) counts[toVkDescriptor(b.type)] += std::max(1u, b.count) * slots;
+    if (counts.empty()) counts[VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER] = 1;  // a pool needs one size
     std::vector<VkDescriptorPoolSize> sizes;
     for (auto [t, n] : counts) sizes.push_back({t, n});
     VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
@@ -216,8 +227,19 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
     };
     std::vector<Bound> bound;
     const Value& bindMap = desc.params["bind"];
+    std::vector<const ReflectedBinding*> sceneBindings;
     for (const auto& b : m_reflection.bindings) {
-        if (isParamsBlock(b)) continue;
+        if (isParamsBlock(b) || m_external.count(b.set)) continue;
+        // The scene's camera and lights, bound whatever the pass declares.
+        const bool camera = b.name == "Camera" && b.type == DescriptorType::UniformBuffer;
+        const bool lights = b.name == "Lights" && b.type == DescriptorType::StorageBuffer;
+        if (camera || lights) {
+            if (!setup.scene)
+                return fail(ErrorCode::InvalidInput, passPrefix(desc) + "shader binding '" + b.name +
+                                                         "' is the scene's, but no scene is loaded (give --scene)");
+            sceneBindings.push_back(&b);
+            continue;
+        }
         std::string want = bindMap[b.name].isString() ? bindMap[b.name].asString() : "";
         const Access* access = nullptr;
         for (const auto& a : desc.accesses) {
@@ -247,21 +269,23 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
     }
 
     m_sets.resize(slots);
-    std::vector<VkDescriptorSetLayout> layouts;
-    for (const auto& l : m_setLayouts) layouts.push_back(l.get());
     for (uint32_t s = 0; s < slots; ++s) {
-        m_sets[s].resize(layouts.size());
-        VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-        ai.descriptorPool = m_pool.get();
-        ai.descriptorSetCount = static_cast<uint32_t>(layouts.size());
-        ai.pSetLayouts = layouts.data();
-        RG_VK_TRY(vkAllocateDescriptorSets(dev, &ai, m_sets[s].data()));
+        m_sets[s].assign(m_setLayouts.size(), VK_NULL_HANDLE);
+        for (size_t set = 0; set < m_setLayouts.size(); ++set) {
+            if (!m_setLayouts[set]) continue;  // external
+            VkDescriptorSetLayout layout = m_setLayouts[set].get();
+            VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+            ai.descriptorPool = m_pool.get();
+            ai.descriptorSetCount = 1;
+            ai.pSetLayouts = &layout;
+            RG_VK_TRY(vkAllocateDescriptorSets(dev, &ai, &m_sets[s][set]));
+        }
 
         std::vector<VkWriteDescriptorSet> writes;
         std::vector<VkDescriptorImageInfo> images;
         std::vector<VkDescriptorBufferInfo> buffers;
         images.reserve(bound.size());
-        buffers.reserve(bound.size() + 1);
+        buffers.reserve(bound.size() + sceneBindings.size() + 1);
         for (const auto& bd : bound) {
             VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
             w.dstSet = m_sets[s][bd.binding->set];
@@ -273,14 +297,30 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
                 const FormatInfo& fi = formatInfo(img.desc().format);
                 bool storage = bd.binding->type == DescriptorType::StorageImage;
                 bool nearest = fi.integer || fi.depth || desc.params["filter"].asString() == "nearest";
+                // A depth buffer the pass also attaches read-only is sampled in that layout.
+                const bool depthAttached = std::any_of(desc.accesses.begin(), desc.accesses.end(), [&](const Access& a) {
+                    return a.usage == Usage::DepthStencilRead && setup.resources.find(a.resource) == bd.resource;
+                });
                 images.push_back({nearest ? m_nearest.get() : m_linear.get(),
                                   storage ? img.mipView(0) : img.view(),
-                                  storage ? VK_IMAGE_LAYOUT_GENERAL : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+                                  storage         ? VK_IMAGE_LAYOUT_GENERAL
+                                  : depthAttached ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL
+                                                  : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
                 w.pImageInfo = &images.back();
             } else {
                 buffers.push_back({bd.resource->buffer->buffer(), 0, VK_WHOLE_SIZE});
                 w.pBufferInfo = &buffers.back();
             }
+            writes.push_back(w);
+        }
+        for (const ReflectedBinding* b : sceneBindings) {
+            buffers.push_back({b->name == "Camera" ? setup.scene->cameraBuffer(s) : setup.scene->lightBuffer(s), 0, VK_WHOLE_SIZE});
+            VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            w.dstSet = m_sets[s][b->set];
+            w.dstBinding = b->binding;
+            w.descriptorCount = 1;
+            w.descriptorType = toVkDescriptor(b->type);
+            w.pBufferInfo = &buffers.back();
             writes.push_back(w);
         }
         if (m_params) {
@@ -322,9 +362,10 @@ void ShaderProgram::writeUniforms(const Value& uniforms, uint32_t slot) {
 void ShaderProgram::bind(RecordContext& rc, VkPipelineBindPoint point) {
     const uint32_t slot = rc.frame.slot;
     if (m_params) writeUniforms(rc.desc.params["uniforms"], slot);
-    if (!m_sets.empty() && !m_sets[slot].empty())
-        vkCmdBindDescriptorSets(rc.cmd, point, m_layout.get(), 0, static_cast<uint32_t>(m_sets[slot].size()),
-                                m_sets[slot].data(), 0, nullptr);
+    if (!m_sets.empty())
+        for (size_t set = 0; set < m_sets[slot].size(); ++set)
+            if (m_sets[slot][set] != VK_NULL_HANDLE)
+                vkCmdBindDescriptorSets(rc.cmd, point, m_layout.get(), static_cast<uint32_t>(set), 1, &m_sets[slot][set], 0, nullptr);
     if (m_reflection.pushConstantSize) {
         std::vector<uint8_t> bytes(m_reflection.pushConstantSize, 0);
         const Value& constants = rc.desc.params["constants"];

@@ -9,6 +9,7 @@
 //    `rg_frame` (float) and any member named in params.constants (floats).
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
@@ -20,7 +21,9 @@ namespace rg::passes {
 class ShaderProgram {
 public:
     // `stages`: requests whose passName/defines are filled in from the pass here.
-    Result<void> build(gpu::PassSetup& setup, std::vector<ShaderRequest> stages);
+    // `externalSets`: set index -> layout someone else binds (scene draws bind materials in set 1).
+    Result<void> build(gpu::PassSetup& setup, std::vector<ShaderRequest> stages,
+                       std::map<uint32_t, VkDescriptorSetLayout> externalSets = {});
 
     VkPipelineLayout layout() const { return m_layout.get(); }
     const std::vector<VkPipelineShaderStageCreateInfo>& stageInfos() const { return m_stageInfos; }
@@ -40,7 +43,9 @@ private:
     std::vector<VkPipelineShaderStageCreateInfo> m_stageInfos;
     ShaderReflection m_reflection;
     std::vector<std::string> m_files;
-    std::vector<gpu::OwnedDescriptorSetLayout> m_setLayouts;
+    std::vector<gpu::OwnedDescriptorSetLayout> m_setLayouts;  // null where a set is external
+    std::map<uint32_t, VkDescriptorSetLayout> m_external;
+    uint32_t m_ownedSets = 0;  // sets [0, m_ownedSets) bound by bind(), external ones skipped
     gpu::OwnedPipelineLayout m_layout;
     gpu::OwnedDescriptorPool m_pool;
     std::vector<std::vector<VkDescriptorSet>> m_sets;  // [frame slot][set]

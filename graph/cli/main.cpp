@@ -234,8 +234,8 @@ Result<RenderSetup> setupRun(const Args& args, const char* command, uint32_t def
             return fail(ErrorCode::InvalidInput, std::string(command) + ": --device must be a device index (see 'rgraph devices')");
         ro.device = static_cast<uint32_t>(std::stoul(v));
     }
-    if (args.has("scene"))
-        return fail(ErrorCode::Unsupported, std::string(command) + ": --scene: no pipeline draws scenes yet (the scene raster pass is not there)");
+    if (args.has("scene") && isBuiltin(s.pipeline))
+        return fail(ErrorCode::InvalidInput, std::string(command) + ": --scene: built-in graphs draw no scene");
     auto rt = Runtime::create(ro);
     if (!rt) return std::unexpected(rt.error());
     s.runtime = std::move(*rt);
@@ -253,6 +253,8 @@ Result<RenderSetup> setupRun(const Args& args, const char* command, uint32_t def
     SessionOptions so;
     so.compile = opts;
     so.captures = captures;
+    so.scene = args.get("scene");
+    so.camera = args.get("camera");
     so.verbose = verbose;
     s.session = std::make_unique<Session>(*s.runtime, so);
     if (auto r = s.session->load(s.pipeline); !r) return std::unexpected(r.error());
@@ -332,7 +334,7 @@ Result<Image> writeOutputs(RenderSetup& setup, const std::string& exrPath, const
 }
 
 int cmdRender(int argc, char** argv) {
-    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "size", "frames", "out", "png", "capture", "device", "verbose"});
+    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "camera", "size", "frames", "out", "png", "capture", "device", "verbose"});
     if (args.help) {
         std::printf(
             "usage: rgraph render [--pipeline FILE.lua|builtin:NAME] [--size WxH] [--frames N]\n"
@@ -370,7 +372,7 @@ int cmdRender(int argc, char** argv) {
 }
 
 int cmdWatch(int argc, char** argv) {
-    Args args = Args::parse(argc, argv, 2, {"pipeline", "size", "out", "png", "device", "interval", "max-reloads"});
+    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "camera", "size", "out", "png", "device", "interval", "max-reloads"});
     if (args.help) {
         std::printf(
             "usage: rgraph watch [--pipeline FILE.lua] [--size WxH] [--out FILE.exr] [--png FILE.png]\n"
@@ -443,7 +445,7 @@ Stat stats(std::vector<double> v) {
 }
 
 int cmdBench(int argc, char** argv) {
-    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "size", "frames", "json", "device"});
+    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "camera", "size", "frames", "json", "device"});
     if (args.help) {
         std::printf(
             "usage: rgraph bench [--pipeline FILE.lua|builtin:NAME] [--size WxH] [--frames N] [--json FILE] [--device N]\n\n"

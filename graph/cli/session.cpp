@@ -1,6 +1,8 @@
 #include "session.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -83,12 +85,94 @@ Result<void> writeLayoutHeaders(const PipelineDesc& pipeline) {
     return {};
 }
 
+const Scene* Session::scene() const { return m_scene ? &m_scene->scene() : nullptr; }
+
+namespace {
+
+std::string defaultScene() { return projectRoot() + "/scripts/scenes/default.lua"; }
+
+bool hasScenePass(const PipelineDesc& p) {
+    return std::any_of(p.graph.passes.begin(), p.graph.passes.end(), [](const PassDesc& d) { return d.kind == "scene"; });
+}
+
+Result<Scene> readScene(const std::string& file) {
+    const std::string ext = fs::path(file).extension().string();
+    if (ext == ".lua") return loadSceneScript(file);
+    if (ext == ".gltf" || ext == ".glb") {
+        auto scene = loadGltf(file);
+        if (!scene) return scene;
+        if (scene->cameras.empty()) {
+            // Frame the bounds from the front, slightly above.
+            Camera c;
+            c.name = "default";
+            const glm::vec3 centre = 0.5f * (scene->boundsMin + scene->boundsMax);
+            const float radius = std::max(0.5f * glm::length(scene->boundsMax - scene->boundsMin), 0.01f);
+            c.target = centre;
+            c.position = centre + glm::normalize(glm::vec3(0.0f, 0.35f, 1.0f)) * radius / std::sin(c.verticalFov * 0.5f);
+            c.nearPlane = radius * 0.01f;
+            c.farPlane = radius * 100.0f;
+            scene->cameras.push_back(c);
+        }
+        return scene;
+    }
+    return fail(ErrorCode::InvalidInput, "--scene '" + file + "': expected a .lua scene script, a .gltf or a .glb file");
+}
+
+}  // namespace
+
+// Loads the scene the pipeline's scene passes draw, matches its materials to the pipeline's, and
+// takes the camera's exposure settings into the camera parameters.
+Result<void> Session::loadScene(PipelineDesc& pipeline) {
+    const std::string file = m_options.scene.empty() ? defaultScene() : m_options.scene;
+    auto scene = readScene(file);
+    if (!scene) return std::unexpected(scene.error());
+    for (Material& m : scene->materials) {
+        auto pm = std::find_if(pipeline.materials.begin(), pipeline.materials.end(), [&](auto& x) { return x.name == m.model; });
+        if (pm == pipeline.materials.end()) {
+            std::string names;
+            for (const auto& x : pipeline.materials) names += (names.empty() ? "'" : ", '") + x.name + "'";
+            return fail(ErrorCode::InvalidInput, file + ": material '" + m.name + "' uses model '" + m.model +
+                                                     "', which the pipeline does not declare (materials: " + names + ")");
+        }
+        // Game-team parameters in the order the shaders read them: the pipeline material's.
+        Value::Table custom;
+        for (const auto& [key, def] : pm->params.asTable())
+            if (def.isNumber()) custom[key] = m.extra[key].isNumber() ? m.extra[key] : def;
+        m.extra = Value(custom);
+    }
+    auto gpuScene = passes::GpuScene::create(m_runtime.gpu(), std::move(*scene));
+    if (!gpuScene) return std::unexpected(gpuScene.error());
+    if (!m_options.camera.empty())
+        if (auto r = (*gpuScene)->selectCamera(m_options.camera); !r) return r;
+    const Camera& cam = (*gpuScene)->camera();
+    auto set = [&](const char* name, double v) {
+        if (ParamDesc* p = pipeline.findParam(name))
+            if (auto ok = checkParamValue(*p, Value(v))) p->value = *ok;
+    };
+    set("aperture", cam.aperture);
+    set("shutter", cam.shutter);
+    set("iso", cam.iso);
+    set("ec", cam.exposureCompensation);
+    set("initial_ev100", std::log2(cam.aperture * cam.aperture / cam.shutter * 100.0 / cam.iso) - cam.exposureCompensation);
+    m_scene = std::move(*gpuScene);
+    m_sceneFile = file;
+    passes::GpuScene* raw = m_scene.get();
+    const uint32_t w = m_options.compile.outputWidth, h = m_options.compile.outputHeight;
+    m_runtime.executor().setScene(raw, [raw, w, h](uint32_t slot) { raw->updateFrame(slot, w, h); });
+    return {};
+}
+
 Result<void> Session::load(const std::string& file) {
     auto t0 = Clock::now();
     auto host = std::make_unique<LuaHost>(luaHostOptions(m_runtime));
     auto pipeline = host->load(file);
     if (!pipeline) return std::unexpected(pipeline.error());
     if (auto r = writeLayoutHeaders(*pipeline); !r) return r;
+    if (hasScenePass(*pipeline)) {
+        if (auto r = loadScene(*pipeline); !r) return r;
+    } else if (!m_options.scene.empty()) {
+        return fail(ErrorCode::InvalidInput, "--scene: pipeline '" + file + "' has no scene pass to draw it");
+    }
     for (const auto& c : m_options.captures)
         if (!pipeline->graph.findResource(c))
             return fail(ErrorCode::NotFound, "--capture: the pipeline has no resource named '" + c + "'");
@@ -140,6 +224,8 @@ Result<void> Session::frame() {
 
 std::vector<std::string> Session::files() const {
     std::vector<std::string> out = m_pipeline.files;
+    if (m_scene)
+        for (const auto& f : m_scene->scene().files) out.push_back(f);
     for (const auto& f : m_runtime.executor().files()) out.push_back(f);
     return out;
 }

@@ -9,12 +9,17 @@
 #include <vector>
 
 #include "lua/lua_host.h"
+#include "passes/gpu_scene.h"
 #include "runtime.h"
 
 namespace rg {
 
 struct SessionOptions {
     CompileOptions compile;
+    // The scene (.lua, .gltf, .glb) the pipeline's `scene` passes draw; "" = the default scene
+    // (scripts/scenes/default.lua) when the pipeline has a scene pass.
+    std::string scene;
+    std::string camera;  // a camera of the scene by name; "" = its first
     std::vector<std::string> captures;  // resources to export for readback
     bool verbose = false;               // print what each rebuild reused
 };
@@ -33,17 +38,21 @@ public:
     double lastFrameCallbackMs() const { return m_callbackMs; }
     double lastLoadMs() const { return m_loadMs; }
     const std::vector<std::string>& log() const { return m_log; }
+    const Scene* scene() const;
     // Scripts and shaders the running pipeline was built from (what `watch` polls).
     std::vector<std::string> files() const;
     bool loaded() const { return m_host != nullptr; }
 
 private:
     GraphDesc buildableGraph(const PipelineDesc& p) const;
+    Result<void> loadScene(PipelineDesc& pipeline);
     void note(const std::string& line);
 
     Runtime& m_runtime;
     SessionOptions m_options;
     std::unique_ptr<LuaHost> m_host;
+    std::unique_ptr<passes::GpuScene> m_scene;
+    std::string m_sceneFile;
     PipelineDesc m_pipeline;
     uint64_t m_frame = 0;
     uint32_t m_rebuilds = 0;

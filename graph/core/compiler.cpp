@@ -303,7 +303,14 @@ Status validatePasses(Compiler& c) {
                 if (usageWrites(a.usage) || usageWrites(b.usage))
                     return invalid(c.passError(pi, where() + "'" + r->name + "' is used as " + usageName(a.usage) +
                                                        " and also as " + other + " in the same pass (feedback loop)"));
-                if (r->kind == ResourceKind::Texture && usageLayout(a.usage, p.type) != usageLayout(b.usage, p.type))
+                // Sampling a depth buffer that is also the read-only depth/stencil attachment is
+                // fine: both read, in DepthStencilReadOnly (deferred lighting tests stencil and
+                // reads depth for positions).
+                const bool depthReadAndSample =
+                    (a.usage == Usage::Sampled && b.usage == Usage::DepthStencilRead) ||
+                    (a.usage == Usage::DepthStencilRead && b.usage == Usage::Sampled);
+                if (r->kind == ResourceKind::Texture && !depthReadAndSample &&
+                    usageLayout(a.usage, p.type) != usageLayout(b.usage, p.type))
                     return invalid(c.passError(pi, where() + "'" + r->name + "' is used as " + usageName(a.usage) +
                                                        " and also as " + other +
                                                        " in the same pass, which need different layouts"));
@@ -797,8 +804,13 @@ void planBarriers(Compiler& c) {
     for (uint32_t pi = 0; pi < c.plan.passes.size(); ++pi) {
         PlanPass& pass = c.plan.passes[pi];
         std::vector<Needed> needed;
+        for (PlanAccess& a : pass.accesses) describeAccess(a, pass.type, resources[a.resource].kind);
+        // A depth buffer both sampled and attached read-only is in DepthStencilReadOnly for both.
+        for (PlanAccess& a : pass.accesses)
+            if (a.usage == Usage::Sampled)
+                for (const PlanAccess& b : pass.accesses)
+                    if (b.resource == a.resource && b.usage == Usage::DepthStencilRead) a.layout = Layout::DepthStencilReadOnly;
         for (PlanAccess& a : pass.accesses) {
-            describeAccess(a, pass.type, resources[a.resource].kind);
             auto it = std::find_if(needed.begin(), needed.end(), [&](const Needed& n) { return n.resource == a.resource; });
             if (it == needed.end()) it = needed.insert(needed.end(), Needed{a.resource, 0, 0, a.layout});
             it->stages |= a.stages;

@@ -1,9 +1,14 @@
 #include "golden/golden_test.h"
 
+#include <fnmatch.h>
+
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 
 #include "lua/declarations.h"
+
+namespace fs = std::filesystem;
 
 namespace rg::golden {
 
@@ -155,6 +160,23 @@ Result<Comparison> parseComparison(const Value& v, const std::string& path, cons
 }
 
 }  // namespace
+
+bool matchesPattern(const std::string& name, const std::string& pattern) {
+    if (pattern.empty()) return true;
+    return fnmatch(pattern.c_str(), name.c_str(), 0) == 0;
+}
+
+Result<std::vector<std::string>> findGoldenTests(const std::string& dir, const std::string& pattern) {
+    std::error_code ec;
+    if (!fs::is_directory(dir, ec)) return fail(ErrorCode::NotFound, "no golden test folder '" + dir + "'");
+    std::vector<std::string> files;
+    for (const auto& entry : fs::directory_iterator(dir, ec)) {
+        if (!entry.is_regular_file() || entry.path().extension() != ".lua") continue;
+        if (matchesPattern(entry.path().stem().string(), pattern)) files.push_back(entry.path().string());
+    }
+    std::sort(files.begin(), files.end());
+    return files;
+}
 
 Result<std::vector<uint32_t>> parseChannels(const std::string& letters) {
     std::vector<uint32_t> out;

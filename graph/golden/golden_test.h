@@ -66,6 +66,14 @@ struct GoldenTest {
 // is given as hasFrame (functions are not Values).
 Result<GoldenTest> parseGoldenTest(const Value& table, bool hasFrame, const std::string& name, const std::string& where);
 
+// The golden test scripts (*.lua) directly in `dir` whose name matches `pattern`, sorted.
+// Errors: the folder does not exist (NotFound).
+Result<std::vector<std::string>> findGoldenTests(const std::string& dir, const std::string& pattern);
+
+// True when `name` matches `pattern`: an fnmatch glob ("deferred_*"); without wildcards, the
+// name itself. An empty pattern matches every name.
+bool matchesPattern(const std::string& name, const std::string& pattern);
+
 // Parses a channel list: letters of "rgba" ("rgb", "a", "rg") into indices.
 Result<std::vector<uint32_t>> parseChannels(const std::string& letters);
 

@@ -95,7 +95,7 @@ table { border-collapse: collapse; margin: 6px 0; }
 td, th { border: 1px solid #ddd; padding: 2px 8px; text-align: left; vertical-align: top; }
 th { background: #f0f0f0; }
 .badge { display: inline-block; min-width: 48px; text-align: center; border-radius: 4px; color: #fff; font-weight: 600; padding: 0 6px; }
-.PASS { background: #1a7f37; } .FAIL { background: #cf222e; } .ERROR { background: #9a6700; }
+.badge.PASS { background: #1a7f37; } .badge.FAIL { background: #cf222e; } .badge.ERROR { background: #9a6700; }
 .ok { color: #1a7f37; } .bad { color: #cf222e; font-weight: 600; }
 section.test { background: #fff; border: 1px solid #ddd; border-radius: 6px; padding: 12px 16px; margin: 16px 0; }
 .message { white-space: pre-wrap; font-family: ui-monospace, monospace; font-size: 12px; background: #fff4f4; padding: 6px; }
@@ -235,11 +235,22 @@ struct Html {
     }
 };
 
+// Linear images open at 0 EV; integer data (ids, counts) opens with its largest value at 1.
+double initialExposure(const CaptureOutcome& c) {
+    const bool integer = c.format == "r8ui" || c.format == "r32ui" || c.format == "rgba32ui";
+    if (!integer) return 0.0;
+    float top = 0.0f;
+    for (const Image* img : {&c.actual, &c.expected})
+        for (float v : img->pixels)
+            if (std::isfinite(v)) top = std::max(top, v);
+    return top > 1.0f ? -std::ceil(std::log2(double(top)) * 10.0) / 10.0 : 0.0;
+}
+
 void writeCapture(Html& html, const TestOutcome& t, const CaptureOutcome& c) {
     auto& b = html.body;
     const bool first = c.resource == t.firstDivergent;
     b << "<div class=\"capture\" data-capture=\"" << htmlEscape(c.resource) << "\" data-mode=\""
-      << (c.display ? "display" : "linear") << "\" data-exposure=\"0\">\n";
+      << (c.display ? "display" : "linear") << "\" data-exposure=\"" << formatNumber(initialExposure(c)) << "\">\n";
     b << "<h3>" << htmlEscape(c.resource) << " <small>" << htmlEscape(c.format) << " &middot; golden "
       << storageName(c.storage);
     if (!c.writerPass.empty()) b << " &middot; last written by pass '" << htmlEscape(c.writerPass) << "'";

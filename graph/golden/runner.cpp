@@ -1,11 +1,10 @@
 #include "golden/runner.h"
 
-#include <fnmatch.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -17,6 +16,7 @@
 #include "cli/runtime.h"
 #include "cli/session.h"
 #include "golden/golden_test.h"
+#include "golden/storage.h"
 #include "lua/declarations.h"
 
 namespace fs = std::filesystem;
@@ -31,6 +31,7 @@ double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(
 constexpr double kFrameTime = 1.0 / 60.0;  // the profile's fixed frame time
 constexpr const char* kThreads = "2";      // the profile's LP_NUM_THREADS unless the environment sets one
 const std::vector<std::string> kProfileOff = {"dither", "dithering", "jitter", "taa_jitter"};
+const char* kFrameTimeParam = "frame_time";  // a pipeline's own fixed frame time is pinned to kFrameTime
 
 // ---- where files are ----
 
@@ -87,7 +88,7 @@ RunEnvironment environmentOf(Runtime& rt) {
 std::string profileLine(const RunEnvironment& e) {
     std::string s = "LP_NUM_THREADS=" + e.lpNumThreads;
     if (!e.vectorWidth.empty()) s += ", LP_NATIVE_VECTOR_WIDTH=" + e.vectorWidth;
-    s += ", frame time 1/60 s, dithering and jitter parameters off";
+    s += ", frame time 1/60 s, dither and jitter parameters off";
     return s;
 }
 
@@ -103,66 +104,7 @@ nlohmann::ordered_json environmentJson(const RunEnvironment& e) {
     return j;
 }
 
-// ---- golden image files ----
-
-bool isSrgb(const std::string& format) { return format == "rgba8_srgb"; }
-
-std::vector<std::string> channelNames(uint32_t n) {
-    static const char* rgba[] = {"R", "G", "B", "A"};
-    std::vector<std::string> names;
-    for (uint32_t i = 0; i < n && i < 4; ++i) names.push_back(rgba[i]);
-    return names;
-}
-
-// Encodes the colour channels of a decoded sRGB-format image back to what its bytes held.
-Image srgbEncoded(const Image& img) {
-    Image out = img;
-    for (uint32_t y = 0; y < img.height; ++y)
-        for (uint32_t x = 0; x < img.width; ++x)
-            for (uint32_t k = 0; k < std::min(img.channels, 3u); ++k) out.at(x, y, k) = srgbEncode(img.at(x, y, k));
-    return out;
-}
-
-Result<void> writeStored(const std::string& path, const Image& img, Storage storage, bool srgb,
-                         const std::map<std::string, std::string>& meta) {
-    std::error_code ec;
-    fs::create_directories(fs::path(path).parent_path(), ec);
-    if (storage == Storage::Png) return writePng(path, srgb ? srgbEncoded(img) : img, meta);
-    ExrWriteOptions o;
-    o.pixelType = storage == Storage::ExrHalf ? ExrPixelType::Half : ExrPixelType::Float;
-    o.compress = true;
-    o.metadata = meta;
-    return writeExr(path, {{"", channelNames(img.channels), img}}, o);
-}
-
-Result<Image> readStored(const std::string& path, Storage storage, bool srgb) {
-    if (storage == Storage::Png) {
-        auto img = readPng(path);
-        if (!img) return img;
-        if (srgb)
-            for (uint32_t y = 0; y < img->height; ++y)
-                for (uint32_t x = 0; x < img->width; ++x)
-                    for (uint32_t k = 0; k < std::min(img->channels, 3u); ++k) img->at(x, y, k) = srgbDecode(img->at(x, y, k));
-        return img;
-    }
-    auto exr = readExr(path);
-    if (!exr) return std::unexpected(exr.error());
-    if (exr->layers.empty()) return fail(ErrorCode::InvalidInput, "'" + path + "': no image layers");
-    return exr->layers[0].image;
-}
-
-// A PNG preview of a linear image: clamped and sRGB-encoded RGB (grey for one channel).
-Image preview(const Image& img, bool display) {
-    Image out(img.width, img.height, 3);
-    for (uint32_t y = 0; y < img.height; ++y)
-        for (uint32_t x = 0; x < img.width; ++x)
-            for (uint32_t k = 0; k < 3; ++k) {
-                float v = img.channels == 1 ? img.at(x, y, 0) : k < img.channels ? img.at(x, y, k) : 0.0f;
-                v = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
-                out.at(x, y, k) = display ? v : srgbEncode(v);
-            }
-    return out;
-}
+// ---- golden image files (storage.h) ----
 
 bool samePixels(const Image& a, const Image& b) {
     if (a.width != b.width || a.height != b.height || a.channels != b.channels) return false;
@@ -189,6 +131,8 @@ GraphDesc buildableGraph(const PipelineDesc& p, const std::vector<std::string>& 
     }
     return g;
 }
+
+constexpr const char* kBufferFormat = "buffer:float32";
 
 struct Capture {
     Image image;
@@ -251,12 +195,18 @@ std::expected<Rendered, TestError> render(Runtime& rt, GoldenScript& script, con
         p->value = *checked;
     }
     for (auto& p : pipeline.params) {
-        if (std::find(kProfileOff.begin(), kProfileOff.end(), p.name) == kProfileOff.end() || test.params.count(p.name)) continue;
+        if (test.params.count(p.name)) continue;
+        if (p.name == kFrameTimeParam && p.type == ParamType::Number && checkParamValue(p, Value(kFrameTime))) {
+            p.value = Value(kFrameTime);
+            result.log.push_back("profile: frame_time = 1/60 s");
+            continue;
+        }
+        if (std::find(kProfileOff.begin(), kProfileOff.end(), p.name) == kProfileOff.end()) continue;
         Value off = p.type == ParamType::Boolean ? Value(false) : p.type == ParamType::Choice ? Value("off") : Value(0.0);
         if (p.type == ParamType::Choice && std::find(p.choices.begin(), p.choices.end(), "off") == p.choices.end()) off = Value("none");
         if (checkParamValue(p, off)) {
             p.value = off;
-            result.log.push_back("profile: " + p.name + " off");
+            result.log.push_back("profile: " + p.name + " = " + (off.isBool() ? "false" : off.isString() ? off.asString() : "0"));
         }
     }
 
@@ -270,9 +220,6 @@ std::expected<Rendered, TestError> render(Runtime& rt, GoldenScript& script, con
             return testError(Error(ErrorCode::NotFound, where + ": captures." + c.resource + ": the pipeline has no resource named '" +
                                                             c.resource + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)")));
         }
-        if (r->kind != ResourceKind::Texture)
-            return testError(Error(ErrorCode::InvalidInput, where + ": captures." + c.resource + ": '" + c.resource +
-                                                                "' is a buffer; golden tests capture textures"));
         captureNames.push_back(c.resource);
     }
     if (auto r = writeLayoutHeaders(pipeline); !r) return testError(r.error());
@@ -311,12 +258,21 @@ std::expected<Rendered, TestError> render(Runtime& rt, GoldenScript& script, con
 
     const Plan& plan = executor.plan();
     for (const auto& name : captureNames) {
-        auto img = executor.readback(name);
-        if (!img) return testError(Error(img.error().code, where + ": captures." + name + ": " + img.error().message));
         Capture c;
-        c.image = std::move(*img);
         const int32_t ri = plan.findResource(name);
-        if (ri >= 0) c.format = std::string(formatName(plan.resources[static_cast<size_t>(ri)].format));
+        if (ri >= 0 && plan.resources[static_cast<size_t>(ri)].kind == ResourceKind::Buffer) {
+            // A buffer is captured as an array of 32-bit floats: one row, one channel.
+            auto bytes = executor.readbackBuffer(name);
+            if (!bytes) return testError(Error(bytes.error().code, where + ": captures." + name + ": " + bytes.error().message));
+            c.image = Image(static_cast<uint32_t>(bytes->size() / 4), 1, 1);
+            std::memcpy(c.image.pixels.data(), bytes->data(), c.image.pixels.size() * 4);
+            c.format = kBufferFormat;
+        } else {
+            auto img = executor.readback(name);
+            if (!img) return testError(Error(img.error().code, where + ": captures." + name + ": " + img.error().message));
+            c.image = std::move(*img);
+            if (ri >= 0) c.format = std::string(formatName(plan.resources[static_cast<size_t>(ri)].format));
+        }
         for (size_t i = 0; i < plan.passes.size(); ++i)
             for (const auto& a : plan.passes[i].accesses)
                 if (static_cast<int32_t>(a.resource) == ri && usageWrites(a.usage)) {
@@ -350,11 +306,14 @@ std::string verdicts(const CaptureOutcome& co) {
     return s;
 }
 
-nlohmann::ordered_json sidecarWithoutEnvironment(const GoldenTest& t, const std::vector<CaptureOutcome>& caps) {
+std::string sizeText(uint32_t w, uint32_t h) { return std::to_string(w) + "x" + std::to_string(h); }
+
+nlohmann::ordered_json sidecarWithoutEnvironment(const GoldenTest& t, const std::vector<CaptureOutcome>& caps,
+                                                 const std::vector<std::string>& profileApplied) {
     nlohmann::ordered_json j;
     j["test"] = t.name;
     j["pipeline"] = t.pipeline;
-    j["size"] = {t.width, t.height};
+    j["size"] = sizeText(t.width, t.height);
     j["frames"] = t.frames;
     nlohmann::ordered_json params = nlohmann::ordered_json::object();
     for (const auto& [k, v] : t.params)
@@ -367,20 +326,24 @@ nlohmann::ordered_json sidecarWithoutEnvironment(const GoldenTest& t, const std:
         cj["file"] = c.resource + storageExtension(c.storage);
         cj["format"] = c.format;
         cj["storage"] = storageName(c.storage);
-        cj["size"] = {c.actual.width, c.actual.height};
+        cj["size"] = sizeText(c.actual.width, c.actual.height);
         nlohmann::ordered_json cmps = nlohmann::ordered_json::array();
         for (const auto& cmp : c.comparisons) cmps.push_back(cmp.spec.describe());
         cj["comparisons"] = cmps;
         captures[c.resource] = cj;
     }
     j["captures"] = captures;
-    j["profile"] = {{"lp_num_threads", kThreads}, {"frame_time", "1/60 s"}, {"off", kProfileOff}};
+    nlohmann::ordered_json profile;
+    profile["lp_num_threads"] = kThreads;
+    profile["frame_time"] = "1/60 s";
+    profile["applied"] = profileApplied;
+    j["profile"] = profile;
     return j;
 }
 
 // Blesses the test's goldens; returns what changed, one line each.
 Result<std::vector<std::string>> bless(const GoldenTest& t, std::vector<CaptureOutcome>& caps, const std::string& dir,
-                                       const RunEnvironment& env) {
+                                       const RunEnvironment& env, const std::vector<std::string>& profileApplied) {
     std::vector<std::string> changes;
     bool wrote = false;
     std::set<std::string> keep = {"golden.json"};
@@ -398,7 +361,7 @@ Result<std::vector<std::string>> bless(const GoldenTest& t, std::vector<CaptureO
         std::map<std::string, std::string> meta = {{"rgraph.test", t.name}, {"rgraph.resource", c.resource},
                                                    {"rgraph.format", c.format}, {"rgraph.device", env.device},
                                                    {"rgraph.driver", env.driver}};
-        if (auto r = writeStored(c.expectedFile, c.actual, c.storage, isSrgb(c.format), meta); !r) return std::unexpected(r.error());
+        if (auto r = writeStored(c.expectedFile, c.actual, c.storage, isSrgbFormat(c.format), meta); !r) return std::unexpected(r.error());
         wrote = true;
         if (missing) changes.push_back(c.resource + ": new golden " + relativeToRoot(c.expectedFile) + " (" + c.format + ", " +
                                        std::to_string(c.actual.width) + "x" + std::to_string(c.actual.height) + ")");
@@ -430,7 +393,7 @@ Result<std::vector<std::string>> bless(const GoldenTest& t, std::vector<CaptureO
     // golden.json: what the goldens were made with. The environment is only replaced when an
     // image was written, so re-running --update on another machine changes nothing.
     const std::string sidecar = (fs::path(dir) / "golden.json").string();
-    nlohmann::ordered_json j = sidecarWithoutEnvironment(t, caps);
+    nlohmann::ordered_json j = sidecarWithoutEnvironment(t, caps, profileApplied);
     std::string old;
     {
         std::ifstream in(sidecar);
@@ -462,11 +425,11 @@ void writeArtefacts(CaptureOutcome& c, const std::string& dir) {
         if (r) c.files.push_back(path);
         else c.note += (c.note.empty() ? "" : "; ") + r.error().message;
     };
-    note(base + ".actual" + ext, writeStored(base + ".actual" + ext, c.actual, c.storage, isSrgb(c.format), {}));
-    if (c.storage != Storage::Png) note(base + ".actual.png", writePng(base + ".actual.png", preview(c.actual, c.display)));
+    note(base + ".actual" + ext, writeStored(base + ".actual" + ext, c.actual, c.storage, isSrgbFormat(c.format), {}));
+    if (c.storage != Storage::Png) note(base + ".actual.png", writePng(base + ".actual.png", previewImage(c.actual, c.display)));
     if (c.expected.width > 0) {
-        note(base + ".expected" + ext, writeStored(base + ".expected" + ext, c.expected, c.storage, isSrgb(c.format), {}));
-        if (c.storage != Storage::Png) note(base + ".expected.png", writePng(base + ".expected.png", preview(c.expected, c.display)));
+        note(base + ".expected" + ext, writeStored(base + ".expected" + ext, c.expected, c.storage, isSrgbFormat(c.format), {}));
+        if (c.storage != Storage::Png) note(base + ".expected.png", writePng(base + ".expected.png", previewImage(c.expected, c.display)));
     }
     for (auto& cmp : c.comparisons) {
         if (!cmp.error.empty() || cmp.result.error.width == 0) continue;
@@ -518,14 +481,14 @@ TestOutcome runOne(Runtime& rt, const std::string& file, const RunnerOptions& op
         co.resource = spec.resource;
         co.format = cap.format;
         co.storage = storageForFormat(cap.format);
-        co.display = co.storage == Storage::Png && !isSrgb(cap.format);
+        co.display = co.storage == Storage::Png && !isSrgbFormat(cap.format);
         co.writerPass = cap.writer;
         co.order = cap.order;
-        co.actual = quantizeForStorage(cap.image, co.storage, isSrgb(cap.format));
+        co.actual = quantizeForStorage(cap.image, co.storage, isSrgbFormat(cap.format));
         co.expectedFile = (fs::path(goldenDir) / (spec.resource + storageExtension(co.storage))).string();
         std::error_code ec;
         if (fs::exists(co.expectedFile, ec)) {
-            auto expected = readStored(co.expectedFile, co.storage, isSrgb(cap.format));
+            auto expected = readStored(co.expectedFile, co.storage, isSrgbFormat(cap.format));
             if (expected) co.expected = std::move(*expected);
             else co.note = "cannot read the golden: " + expected.error().message;
         } else {
@@ -544,7 +507,10 @@ TestOutcome runOne(Runtime& rt, const std::string& file, const RunnerOptions& op
     });
 
     if (options.update && test.golden == test.name) {
-        auto changes = bless(test, t.captures, goldenDir, env);
+        std::vector<std::string> applied;
+        for (const auto& line : t.log)
+            if (line.rfind("profile: ", 0) == 0) applied.push_back(line.substr(9));
+        auto changes = bless(test, t.captures, goldenDir, env, applied);
         if (!changes) {
             t.status = TestStatus::Error;
             t.message = changes.error().describe();
@@ -592,7 +558,11 @@ TestOutcome runOne(Runtime& rt, const std::string& file, const RunnerOptions& op
 void print(std::FILE* out, const TestOutcome& t) {
     std::fprintf(out, "%-5s %-32s %6.2f s\n", testStatusName(t.status), t.name.c_str(), t.seconds);
     for (const auto& c : t.captures) {
+        if (c.expected.width == 0)
+            std::fprintf(out, "        %-16s %-44s %s\n", c.resource.c_str(), "no golden image",
+                         c.resource == t.firstDivergent ? "FAIL  <- first divergent" : "FAIL");
         for (const auto& cmp : c.comparisons) {
+            if (c.expected.width == 0) break;
             const std::string v = cmp.error.empty() ? cmp.result.verdict() : cmp.error;
             std::fprintf(out, "        %-16s %-44s %s\n", c.resource.c_str(), v.c_str(),
                          cmp.passed() ? "ok" : (c.resource == t.firstDivergent ? "FAIL  <- first divergent" : "FAIL"));
@@ -615,52 +585,6 @@ void print(std::FILE* out, const TestOutcome& t) {
 }
 
 }  // namespace
-
-bool matchesPattern(const std::string& name, const std::string& pattern) {
-    if (pattern.empty()) return true;
-    return fnmatch(pattern.c_str(), name.c_str(), 0) == 0;
-}
-
-Result<std::vector<std::string>> findGoldenTests(const std::string& dir, const std::string& pattern) {
-    std::error_code ec;
-    if (!fs::is_directory(dir, ec)) return fail(ErrorCode::NotFound, "no golden test folder '" + dir + "'");
-    std::vector<std::string> files;
-    for (const auto& entry : fs::directory_iterator(dir, ec)) {
-        if (!entry.is_regular_file() || entry.path().extension() != ".lua") continue;
-        if (matchesPattern(entry.path().stem().string(), pattern)) files.push_back(entry.path().string());
-    }
-    std::sort(files.begin(), files.end());
-    return files;
-}
-
-Storage storageForFormat(const std::string& format) {
-    if (format == "r8" || format == "rg8" || format == "rgba8" || format == "rgba8_srgb") return Storage::Png;
-    if (format == "r16f" || format == "rg16f" || format == "rgba16f" || format == "r11g11b10f") return Storage::ExrHalf;
-    return Storage::ExrFloat;
-}
-
-Image quantizeForStorage(const Image& image, Storage storage, bool srgb) {
-    Image out = image;
-    switch (storage) {
-    case Storage::Png:
-        for (uint32_t y = 0; y < image.height; ++y)
-            for (uint32_t x = 0; x < image.width; ++x)
-                for (uint32_t k = 0; k < image.channels; ++k) {
-                    const bool colour = srgb && k < 3;
-                    float v = image.at(x, y, k);
-                    if (colour) v = srgbEncode(v);
-                    v = std::isnan(v) ? 0.0f : std::clamp(v, 0.0f, 1.0f);
-                    v = static_cast<float>(std::lround(v * 255.0f)) / 255.0f;  // what writePng / readPng do
-                    out.at(x, y, k) = colour ? srgbDecode(v) : v;
-                }
-        break;
-    case Storage::ExrHalf:
-        for (float& v : out.pixels) v = roundToHalf(v);
-        break;
-    case Storage::ExrFloat: break;
-    }
-    return out;
-}
 
 Result<RunReport> runGoldenTests(const RunnerOptions& optionsIn, std::FILE* out) {
     RunnerOptions options = optionsIn;

@@ -5,8 +5,12 @@
 //
 // Determinism profile, applied to every test: LP_NUM_THREADS pinned (2 unless the environment
 // sets it; lavapipe's output does not depend on it, its timing does), a fixed frame time
-// (ctx.time = frame / 60 s), and the parameters named `dither`, `dithering`, `jitter` and
-// `taa_jitter` switched off when a pipeline declares them and the test does not set them.
+// (ctx.time = frame / 60 s, and a pipeline parameter `frame_time` set to 1/60), and the
+// parameters named `dither`, `dithering`, `jitter` and `taa_jitter` switched off; parameters the
+// test sets itself are left as it sets them.
+//
+// Captures are textures (read back as the executor decodes them) or buffers (read as arrays of
+// 32-bit floats: one row, one channel, format "buffer:float32").
 //
 // A failure writes, under the output folder, <test>/<resource>.actual.<ext>,
 // .expected.<ext> (EXR captures also as .png previews) and <resource>.<metric>.diff.png, states
@@ -40,22 +44,8 @@ struct RunnerOptions {
     std::optional<uint32_t> device;
 };
 
-// The golden test scripts (*.lua) directly in `dir` whose name matches `pattern`, sorted.
-// Errors: the folder does not exist (NotFound).
-Result<std::vector<std::string>> findGoldenTests(const std::string& dir, const std::string& pattern);
-
-// True when `name` matches `pattern`: fnmatch glob; a pattern without wildcards is a name.
-bool matchesPattern(const std::string& name, const std::string& pattern);
-
 // Runs the tests and prints progress to `out`. Errors only for what stops every test (no test
 // matches, no device); each test's own failures and errors are in the report.
 Result<RunReport> runGoldenTests(const RunnerOptions& options, std::FILE* out);
-
-// Which storage a resource format's golden uses (by script format name, e.g. "rgba16f").
-Storage storageForFormat(const std::string& format);
-
-// The image as its golden stores it: 8-bit rounding for PNG (through sRGB for "rgba8_srgb"),
-// binary16 rounding for half EXR, unchanged for float EXR. Comparisons run on this.
-Image quantizeForStorage(const Image& image, Storage storage, bool srgb);
 
 }  // namespace rg::golden

@@ -191,7 +191,7 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
     // Physical resources: reuse the previous build's where nothing about them changed.
     auto t1 = Clock::now();
     BuildReport report;
-    const Built* old = m_built.get();
+    const Built* old = m_forceRebuild ? nullptr : m_built.get();
     auto built = std::make_unique<Built>();
     built->plan = std::move(*plan);
     built->graph = std::move(graph);
@@ -275,7 +275,7 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
             }
         }
         auto instance = std::shared_ptr<PassInstance>(m_kinds.find(desc.kind)->create());
-        PassSetup setup{m_ctx, m_shaders, *planPtr, pass, desc, built->table};
+        PassSetup setup{m_ctx, m_shaders, *planPtr, pass, desc, built->table, m_scene};
         if (auto r = instance->prepare(setup); !r) return std::unexpected(r.error());
         built->sourceStamps.push_back(sourceStamp(*instance));
         built->instances.push_back(std::move(instance));
@@ -297,6 +297,7 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
         m_ctx.deferDestroy([retired]() mutable { retired.reset(); });
     }
     m_built = std::move(built);
+    m_forceRebuild = false;
     m_lastReport = report;
     ++m_buildCount;
     for (size_t i = 0; i < m_built->plan.resources.size(); ++i) {
@@ -343,6 +344,12 @@ Result<void> Executor::clearPersistent(size_t index) {
                      VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
                      VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     });
+}
+
+void Executor::setScene(const passes::GpuScene* scene, std::function<void(uint32_t)> perFrame) {
+    m_scene = scene;
+    m_perFrame = std::move(perFrame);
+    m_forceRebuild = true;
 }
 
 Result<void> Executor::resetPersistent() {
@@ -470,6 +477,7 @@ Result<void> Executor::frame() {
     m_ctx.setCurrentSlot(slotIndex);
 
     auto t0 = Clock::now();
+    if (m_perFrame) m_perFrame(slotIndex);
     VkDevice dev = m_ctx.device();
     const uint32_t queries = static_cast<uint32_t>(m_built->plan.passes.size() * 2);
     if (queries > slot.queryCount || !slot.queries) {
@@ -509,7 +517,7 @@ Result<void> Executor::frame() {
         recordBarriers(cmd, pass.barriers);
         vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.queries.get(),
                              static_cast<uint32_t>(2 * i));
-        RecordContext rc{m_ctx, cmd, pass, m_built->graph.passes[pass.desc], m_built->table, m_built->plan, info};
+        RecordContext rc{m_ctx, cmd, pass, m_built->graph.passes[pass.desc], m_built->table, m_built->plan, info, m_scene};
         m_built->instances[i]->record(rc);
         vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.queries.get(),
                              static_cast<uint32_t>(2 * i + 1));

@@ -5,6 +5,7 @@
 // per pass, debug labels) into the next frame-in-flight slot and submits it.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -55,6 +56,11 @@ public:
     // New `uniforms` of each pass (parameter changes): nothing is rebuilt or re-recorded.
     void updateUniforms(const GraphDesc& graph);
 
+    // The scene passes draw and bind (camera, lights, materials); the next build prepares every
+    // pass anew. `perFrame` runs before each frame is recorded, with its frame-in-flight slot.
+    void setScene(const passes::GpuScene* scene, std::function<void(uint32_t slot)> perFrame);
+    const passes::GpuScene* scene() const { return m_scene; }
+
     // Contents for an imported texture (uploaded now, then kept in ShaderReadOnly layout).
     Result<void> setImport(const std::string& name, const rg::Image& data);
 
@@ -100,6 +106,9 @@ private:
     std::vector<FrameSlot> m_slots;
     std::map<std::string, rg::Image> m_importData;
     uint64_t m_frameIndex = 0;
+    const passes::GpuScene* m_scene = nullptr;
+    std::function<void(uint32_t)> m_perFrame;
+    bool m_forceRebuild = false;
     BuildStats m_buildStats;
     BuildReport m_lastReport;
     uint32_t m_buildCount = 0;

@@ -20,6 +20,9 @@
 namespace rg {
 class ShaderCompiler;
 }
+namespace rg::passes {
+class GpuScene;  // passes/gpu_scene.h: the scene on the GPU, when a scene is loaded
+}
 
 namespace rg::gpu {
 
@@ -50,6 +53,7 @@ struct PassSetup {
     const PlanPass& pass;
     const PassDesc& desc;
     const ResourceTable& resources;
+    const passes::GpuScene* scene = nullptr;
 };
 
 struct FrameInfo {
@@ -66,6 +70,7 @@ struct RecordContext {
     const ResourceTable& resources;
     const Plan& plan;
     FrameInfo frame;
+    const passes::GpuScene* scene = nullptr;
 };
 
 class PassInstance {

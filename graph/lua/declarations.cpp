@@ -683,6 +683,43 @@ struct Builder {
         return {};
     }
 
+    // Passes that name stencil classes (stencil = { class = ... }) or select materials (scene
+    // passes: materials = { ... }, paths = { ... }) name ones that exist, with surfaces.
+    Result<void> checkMaterialReferences() {
+        for (const auto& p : out.graph.passes) {
+            const Declaration& d = *passes[p.name];
+            Where w = where(d);
+            const Value& stencil = p.params["stencil"];
+            if (stencil.has("class")) {
+                const std::string cls = stencil["class"].asString();
+                if (!hasStencil(cls))
+                    return w.at("stencil").at("class").error("unknown stencil class '" + cls + "'" + suggestion(cls, stencilNames()));
+            }
+            if (p.kind != "scene") continue;
+            std::vector<std::string> materialNames, pathNames;
+            for (const auto& m : out.materials) materialNames.push_back(m.name);
+            for (const auto& lp : out.lightingPaths) pathNames.push_back(lp.name);
+            auto selected = stringList(w.at("materials"), p.params["materials"]);
+            if (!selected) return std::unexpected(selected.error());
+            for (size_t i = 0; i < selected->size(); ++i)
+                if (std::find(materialNames.begin(), materialNames.end(), (*selected)[i]) == materialNames.end())
+                    return w.at("materials").index(i).error("unknown material '" + (*selected)[i] + "'" + suggestion((*selected)[i], materialNames));
+            auto paths = stringList(w.at("paths"), p.params["paths"]);
+            if (!paths) return std::unexpected(paths.error());
+            for (size_t i = 0; i < paths->size(); ++i)
+                if (std::find(pathNames.begin(), pathNames.end(), (*paths)[i]) == pathNames.end())
+                    return w.at("paths").index(i).error("unknown lighting path '" + (*paths)[i] + "'" + suggestion((*paths)[i], pathNames));
+            for (const auto& m : out.materials) {
+                const bool chosen = (selected->empty() && paths->empty()) ||
+                                    std::find(selected->begin(), selected->end(), m.name) != selected->end() ||
+                                    std::find(paths->begin(), paths->end(), m.path) != paths->end();
+                if (chosen && m.surface.empty())
+                    return w.error("material '" + m.name + "' (" + m.origin + ") has no surface function (surface = \"file.glsl\"), so this scene pass cannot draw it");
+            }
+        }
+        return {};
+    }
+
     Result<PipelineDesc> build(const OutputNames& names) {
         const std::string& output = names.display;
         if (auto r = collectNames(); !r) return std::unexpected(r.error());
@@ -709,6 +746,7 @@ struct Builder {
             if (d.kind == DeclKind::Material)
                 if (auto r = material(d, ids); !r) return std::unexpected(r.error());
         if (auto r = insertModulePasses(); !r) return std::unexpected(r.error());
+        if (auto r = checkMaterialReferences(); !r) return std::unexpected(r.error());
 
         out.output = output.empty() ? "output" : output;
         auto it = std::find_if(out.graph.resources.begin(), out.graph.resources.end(), [&](auto& r) { return r.name == out.output; });

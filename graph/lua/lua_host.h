@@ -71,6 +71,14 @@ void applyFrameChanges(PipelineDesc& pipeline, const FrameChanges& changes);
 
 // The GraphDesc to build: the pipeline's graph with every parameter merged into each pass's
 // `uniforms` (a pass's own uniforms win), and the output exported.
+// Also resolves stencil = { class = "name" } to the class's ref and mask, and gives each
+// `scene` pass its materials (params.rg_materials, see sceneMaterials).
 GraphDesc graphWithParams(const PipelineDesc& pipeline);
+
+// The pipeline materials a scene pass draws (params.materials / params.paths; default all that
+// have a surface), each as { name, id, layout, surface, targets, integer, fills, custom,
+// stencil_value, stencil_mask }: custom lists the numeric material params in key order, the
+// order of MaterialData.custom.
+Value sceneMaterials(const PipelineDesc& pipeline, const Value& passParams);
 
 }  // namespace rg

@@ -1,5 +1,6 @@
 #include "pipeline.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -107,7 +108,66 @@ GraphDesc graphWithParams(const PipelineDesc& pipeline) {
     }
     for (auto& r : g.resources)
         if (r.name == pipeline.output) r.exported = true;
+    for (auto& pass : g.passes) {
+        // stencil = { class = "lit_standard" } -> the class's value and mask.
+        const Value& stencil = pass.params["stencil"];
+        if (stencil.has("class")) {
+            Value::Table t = stencil.asTable();
+            for (const auto& c : pipeline.stencilClasses)
+                if (c.name == stencil["class"].asString()) {
+                    t["ref"] = Value(static_cast<double>(c.value));
+                    t["mask"] = Value(static_cast<double>(c.mask));
+                }
+            if (!t.count("compare")) t["compare"] = Value("equal");
+            t.erase("class");
+            pass.params.table()["stencil"] = Value(t);
+        }
+        if (pass.kind == "scene") pass.params.table()["rg_materials"] = sceneMaterials(pipeline, pass.params);
+    }
     return g;
+}
+
+Value sceneMaterials(const PipelineDesc& pipeline, const Value& params) {
+    std::vector<std::string> selected, paths;
+    auto names = [](const Value& v, std::vector<std::string>& out) {
+        if (v.isString()) out.push_back(v.asString());
+        for (const auto& e : v.asList()) out.push_back(e.asString());
+    };
+    names(params["materials"], selected);
+    names(params["paths"], paths);
+    Value::List out;
+    for (const MaterialDesc& m : pipeline.materials) {
+        const bool chosen = (selected.empty() && paths.empty()) ||
+                            std::find(selected.begin(), selected.end(), m.name) != selected.end() ||
+                            std::find(paths.begin(), paths.end(), m.path) != paths.end();
+        if (!chosen || m.surface.empty()) continue;
+        Value::Table t;
+        t["name"] = Value(m.name);
+        t["id"] = Value(static_cast<double>(m.id));
+        t["layout"] = Value(m.layout);
+        t["surface"] = Value(m.surface);
+        Value::List targets, integer, fills, custom;
+        for (const LayoutDesc& l : pipeline.layouts)
+            if (l.name == m.layout)
+                for (const TargetDesc& target : l.targets) {
+                    targets.push_back(Value(target.name));
+                    integer.push_back(Value(formatInfo(target.format).integer));
+                }
+        for (const auto& f : m.fills) fills.push_back(Value(f));
+        for (const auto& [key, value] : m.params.asTable())
+            if (value.isNumber()) custom.push_back(Value(key));
+        t["targets"] = Value(targets);
+        t["integer"] = Value(integer);
+        t["fills"] = Value(fills);
+        t["custom"] = Value(custom);
+        for (const auto& c : pipeline.stencilClasses)
+            if (c.name == m.stencil) {
+                t["stencil_value"] = Value(static_cast<double>(c.value));
+                t["stencil_mask"] = Value(static_cast<double>(c.mask));
+            }
+        out.push_back(Value(t));
+    }
+    return Value(out);
 }
 
 }  // namespace rg

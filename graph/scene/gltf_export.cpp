@@ -369,24 +369,24 @@ struct Writer {
 Result<void> exportGlb(const Scene& scene, const std::string& path, std::vector<std::string>* warnings) {
     Writer w{scene, warnings, {}, {}, {}, false, false};
     auto bytes = w.run();
-    if (!bytes) return fail(bytes.error().code, quoted(path) + ": " + bytes.error().message);
+    if (!bytes) return fail(bytes.error().code, quote(path) + ": " + bytes.error().message);
     // Write beside the target and rename: a failed write never leaves half a file at `path`.
     static std::atomic<unsigned> counter{0};
     const std::string temp = path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
     std::FILE* f = std::fopen(temp.c_str(), "wb");
-    if (!f) return fail(ErrorCode::Io, "cannot write " + quoted(path) + ": " + errnoText(errno));
+    if (!f) return fail(ErrorCode::Io, "cannot write " + quote(path) + ": " + errnoText(errno));
     const bool written = std::fwrite(bytes->data(), 1, bytes->size(), f) == bytes->size();
     const int writeErr = errno;
     const bool closed = std::fclose(f) == 0;
     if (!written || !closed) {
         std::remove(temp.c_str());
-        return fail(ErrorCode::Io, "cannot write " + quoted(path) + ": " + errnoText(written ? errno : writeErr));
+        return fail(ErrorCode::Io, "cannot write " + quote(path) + ": " + errnoText(written ? errno : writeErr));
     }
     std::error_code ec;
     fs::rename(temp, path, ec);
     if (ec) {
         std::remove(temp.c_str());
-        return fail(ErrorCode::Io, "cannot write " + quoted(path) + ": " + ec.message());
+        return fail(ErrorCode::Io, "cannot write " + quote(path) + ": " + ec.message());
     }
     return {};
 }

@@ -206,10 +206,10 @@ struct Loader {
     int32_t defaultMaterial = -1;
 
     std::unexpected<Error> error(ErrorCode code, const std::string& msg) const {
-        return fail(code, quoted(path) + ": " + msg);
+        return fail(code, quote(path) + ": " + msg);
     }
     void warn(const std::string& msg) const {
-        if (options.warnings) options.warnings->push_back(quoted(path) + ": " + msg);
+        if (options.warnings) options.warnings->push_back(quote(path) + ": " + msg);
     }
     static std::string named(const std::string& what, size_t index, const std::string& name) {
         return what + " " + std::to_string(index) + (name.empty() ? "" : " '" + name + "'");
@@ -256,6 +256,12 @@ struct Loader {
                          at == std::string::npos ? "invalid JSON: " + what : "invalid JSON at " + what.substr(at + marker.size()));
         }
         if (!pf.json.is_object()) return error(ErrorCode::InvalidInput, "invalid glTF: the top level is not a JSON object");
+        auto asset = pf.json.find("asset");
+        if (asset == pf.json.end() || !asset->is_object() || !asset->contains("version") || !(*asset)["version"].is_string())
+            return error(ErrorCode::InvalidInput, "invalid glTF: no asset.version (is this a glTF file?)");
+        const std::string version = (*asset)["version"].get<std::string>();
+        if (version.rfind("2.", 0) != 0)
+            return error(ErrorCode::Unsupported, "glTF version " + version + " is not supported (only 2.x)");
         return pf;
     }
 
@@ -268,7 +274,7 @@ struct Loader {
             std::vector<std::string> reasons;
             if (unsupported.size() > 1)
                 for (const auto& u : unsupported) reasons.push_back("required and not supported: " + u);
-            return fail(ErrorCode::Unsupported, quoted(fs::path(path).filename().string()) + " requires extension '" + unsupported[0] +
+            return fail(ErrorCode::Unsupported, quote(path) + " requires extension '" + unsupported[0] +
                                                     "', which rgraph does not support", reasons);
         }
         if (auto it = j.find("extensionsUsed"); it != j.end() && it->is_array())
@@ -323,11 +329,12 @@ struct Loader {
                             ? gltf.LoadBinaryFromMemory(&model, &err, &warnings, bytes->data(), static_cast<unsigned int>(bytes->size()), base)
                             : gltf.LoadASCIIFromString(&model, &err, &warnings, reinterpret_cast<const char*>(bytes->data()),
                                                        static_cast<unsigned int>(bytes->size()), base);
-        if (!ok || !err.empty()) {
+        if (!ok) {
             std::string first = err.substr(0, err.find('\n'));
             if (first.empty()) first = "tinygltf could not read it";
             return error(ErrorCode::InvalidInput, "invalid glTF: " + first);
         }
+        warnings += err;  // what tinygltf complained about but read anyway
         for (size_t from = 0; from < warnings.size();) {
             size_t to = warnings.find('\n', from);
             if (to == std::string::npos) to = warnings.size();
@@ -564,7 +571,12 @@ struct Loader {
         // glTF 3.7.2.1: without normals, flat normals, and tangents are then ignored.
         if (normals->empty()) generateFlatNormals(p);
         else
-            for (auto& v : p.vertices) v.normal = glm::length(v.normal) > 0.0f ? glm::normalize(v.normal) : glm::vec3(0, 0, 1);
+            for (auto& v : p.vertices) {
+                // Renormalise only what is not unit already, so written normals load back bit-exact.
+                const float len = glm::length(v.normal);
+                if (!(len > 0.0f)) v.normal = glm::vec3(0, 0, 1);
+                else if (std::fabs(len - 1.0f) > 1e-6f) v.normal /= len;
+            }
         if (normals->empty() || tangents->empty()) generateTangents(p);
         return p;
     }

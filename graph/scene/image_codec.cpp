@@ -42,10 +42,10 @@ Result<std::vector<unsigned char>> readFile(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         const int err = errno ? errno : ENOENT;
-        return fail(err == ENOENT ? ErrorCode::NotFound : ErrorCode::Io, "cannot open " + quoted(path) + ": " + errnoText(err));
+        return fail(err == ENOENT ? ErrorCode::NotFound : ErrorCode::Io, "cannot open " + quote(path) + ": " + errnoText(err));
     }
     std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) return fail(ErrorCode::Io, "cannot read " + quoted(path) + ": " + errnoText(errno ? errno : EIO));
+    if (in.bad()) return fail(ErrorCode::Io, "cannot read " + quote(path) + ": " + errnoText(errno ? errno : EIO));
     return bytes;
 }
 

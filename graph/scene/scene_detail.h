@@ -17,7 +17,7 @@ Result<Image> decodeImage(const unsigned char* data, size_t size);
 Result<std::vector<unsigned char>> encodePng(const Image& image);
 
 // "'path'", how messages of this module name a file.
-inline std::string quoted(const std::string& path) { return "'" + path + "'"; }
+inline std::string quote(const std::string& path) { return "'" + path + "'"; }
 
 // The OS's text for errno (thread-safe).
 std::string errnoText(int err);

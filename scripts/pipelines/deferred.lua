@@ -1,23 +1,37 @@
 -- The default pipeline: Frostbite's render loop as a graph (seed 000 §3.2.2, lst:3; DESIGN §3).
--- It declares the material system (G-buffer layout of tbl:2, stencil classes, lighting paths,
--- the standard material) and the physical camera and post chain (seed 002 §5), and grows pass
--- by pass as the scene raster and lighting passes land. Until the scene raster pass exists the
--- HDR target shows a test card of `card_luminance` cd/m².
+-- G-buffer of the standard material (tbl:2) with stencil classes from the materials, deferred
+-- lighting per lighting path routed by stencil, a sky behind, then the physical camera and post
+-- chain (seed 002 §5). It grows as decals, forward, IBL and SSR land.
 local rg = require "rg"
 local post = require "post"
 require "disney"
 
 post.params { exposure_mode = "auto" }
 post.exposure_state()
-rg.param "card_luminance" { type = "number", default = 4000, min = 0, max = 1e9, doc = "test card luminance, cd/m²" }
+rg.param "sky_luminance" { type = "number", default = 6000, min = 0, max = 1e6, doc = "sky luminance at the zenith, cd/m²" }
 
-rg.resource "card" { format = "rgba16f" }
+-- The G-buffer: one resource per target of the disney layout, plus depth and the stencil classes.
+rg.resource "GB0" { format = "rgb10a2" }
+rg.resource "GB1" { format = "rgba8_srgb" }
+rg.resource "GB2" { format = "rgba8" }
+rg.resource "GB3" { format = "rgba16f" }
+rg.resource "depth" { format = "d32f_s8" }
 rg.resource "hdr" { format = "rgba16f" }
 
-rg.pass "card" { kind = "compute", shader = "test/pattern.comp", writes = { "card" }, bind = { pattern = "card" } }
-rg.pass "present" {
-    kind = "fullscreen", shader = "test/card_hdr.frag",
-    reads = { "card", { "exposure", as = "storage" } }, writes = { "hdr" },
+rg.pass "gbuffer" { kind = "scene", writes = { "GB0", "GB1", "GB2", "GB3", "depth" } }
+
+-- One lighting pass per lighting path, each on its stencil class.
+rg.pass "lighting_standard" {
+    kind = "fullscreen", shader = "passes/deferred_lighting.frag",
+    reads = { "GB0", "GB1", "GB2", "GB3", "depth", { "depth", as = "depth" }, { "exposure", as = "storage" } },
+    writes = { "hdr" }, stencil = { class = "lit_standard" },
+}
+
+-- The sky where nothing was drawn: depth still at the far plane.
+rg.pass "sky" {
+    kind = "fullscreen", shader = "passes/sky.frag",
+    reads = { { "depth", as = "depth" }, { "exposure", as = "storage" } }, writes = { { "hdr", load = true } },
+    depth = { compare = "equal", value = 1 },
 }
 
 post.chain { input = "hdr", output = "display" }

@@ -37,13 +37,15 @@ check "missing pipeline" 2 grep "cannot open pipeline script 'nope.lua'" -- "$rg
 check "bad script" 2 grep "unknown_field.lua:3: passes.tonemap.shadr: unknown field (did you mean 'shader'?)" -- \
     "$rgraph" render --pipeline tests/lua/scripts/unknown_field.lua
 check "unknown capture" 2 grep "--capture: the pipeline has no resource named 'GB7'" -- "$rgraph" render --capture GB7 --size 8x8
+check "unknown scene file type" 2 grep "expected a .lua scene script, a .gltf or a .glb file" -- "$rgraph" render --scene README.md --size 8x8
+check "missing scene" 2 grep "nope.gltf" -- "$rgraph" render --scene nope.gltf --size 8x8
 check "render" 0 grep "wrote $tmp/r.exr and $tmp/r.png (64x32" -- \
-    env RG_VALIDATION=1 "$rgraph" render --size 64x32 --frames 3 --out "$tmp/r.exr" --png "$tmp/r.png" --capture card
+    env RG_VALIDATION=1 "$rgraph" render --size 64x32 --frames 3 --out "$tmp/r.exr" --png "$tmp/r.png" --capture GB0
 check "render wrote files" 0 -- test -s "$tmp/r.exr" -a -s "$tmp/r.png"
-check "graph json parses" 0 -- bash -c "'$rgraph' graph --format json --size 64x64 | python3 -c 'import json,sys; p=json.load(sys.stdin); n=[x[\"name\"] for x in p[\"passes\"]]; assert n[:2]==[\"card\",\"present\"] and n[-2:]==[\"tonemap\",\"fxaa\"], n'"
+check "graph json parses" 0 -- bash -c "'$rgraph' graph --format json --size 64x64 | python3 -c 'import json,sys; p=json.load(sys.stdin); n=[x[\"name\"] for x in p[\"passes\"]]; assert n[:3]==[\"gbuffer\",\"lighting_standard\",\"sky\"] and n[-2:]==[\"tonemap\",\"fxaa\"], n'"
 check "graph dot" 0 grep "digraph rgraph" -- "$rgraph" graph --pipeline scripts/pipelines/test.lua
 check "bench" 0 grep "frame total" -- "$rgraph" bench --size 64x64 --frames 3 --json "$tmp/bench.json"
-check "bench json" 0 -- python3 -c "import json; b=json.load(open('$tmp/bench.json')); assert len(b['passes'])==16 and b['frames']==3"
+check "bench json" 0 -- python3 -c "import json; b=json.load(open('$tmp/bench.json')); assert len(b['passes'])==17 and b['frames']==3"
 
 # watch: a valid script, a broken one (reported, old pipeline kept), a fixed one (picked up),
 # then an edited shader (only its pass is rebuilt).

@@ -1,0 +1,675 @@
+// Lua scene scripts -> Scene. The host runs the script and hands back scene.* declarations as
+// plain Values; this file checks each against its schema (the same wording as the pipeline's
+// declarations.cpp: "file:line: scene.sphere.ball.radius: expected a number > 0, got -1") and
+// builds the meshes, materials, lights, cameras and environment.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <functional>
+#include <map>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "lua/declarations.h"
+#include "lua/lua_host.h"
+#include "scene.h"
+#include "scene_detail.h"
+
+namespace fs = std::filesystem;
+
+namespace rg {
+
+using namespace scene_detail;
+
+namespace {
+
+constexpr float kDegrees = 3.14159265358979f / 180.0f;
+
+std::string joinQuoted(const std::vector<std::string>& names) {
+    std::string s;
+    for (const auto& n : names) s += (s.empty() ? "'" : ", '") + n + "'";
+    return s;
+}
+
+std::string suggestion(const std::string& name, const std::vector<std::string>& candidates) {
+    std::string best = closestName(name, candidates);
+    return best.empty() ? "" : " (did you mean '" + best + "'?)";
+}
+
+std::string formatNumber(double d) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%g", d);
+    return buf;
+}
+
+// A value as an error message shows it: -1, "text", {1, 2, 3}, a table, a boolean.
+std::string describe(const Value& v, int depth = 0) {
+    if (v.isNumber()) return formatNumber(v.asNumber());
+    if (v.isString()) return "\"" + v.asString() + "\"";
+    if (v.isBool()) return v.asBool() ? "true" : "false";
+    if (v.isList()) {
+        if (depth > 0) return "a list";
+        std::string s = "{";
+        for (size_t i = 0; i < v.asList().size() && i < 6; ++i) s += (i ? ", " : "") + describe(v.asList()[i], depth + 1);
+        return s + (v.asList().size() > 6 ? ", ...}" : "}");
+    }
+    if (v.isTable()) return "a table";
+    return "nil";
+}
+
+struct Where {
+    const Declaration& decl;
+    std::string path;
+    Where at(const std::string& field) const { return {decl, path + "." + field}; }
+    std::unexpected<Error> error(const std::string& msg) const {
+        return fail(ErrorCode::InvalidInput, decl.origin + ": " + path + ": " + msg);
+    }
+};
+
+Result<void> checkFields(const Where& w, const Value& body, const std::vector<std::string>& allowed) {
+    for (const auto& [key, _] : body.asTable()) {
+        if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
+        if (key[0] == '#')
+            return w.error("unexpected positional value " + key.substr(1) + "; expected named fields: " + joinQuoted(allowed));
+        return w.at(key).error("unknown field" + suggestion(key, allowed) + "; expected one of: " + joinQuoted(allowed));
+    }
+    return {};
+}
+
+// A numeric constraint and how an error words it ("a number > 0").
+struct Range {
+    double lo = -HUGE_VAL, hi = HUGE_VAL;
+    bool loOpen = false, hiOpen = false;
+    bool integer = false;
+
+    static Range any() { return {}; }
+    static Range positive() { return {0, HUGE_VAL, true, false}; }
+    static Range nonNegative() { return {0, HUGE_VAL, false, false}; }
+    static Range unit() { return {0, 1, false, false}; }
+    static Range closed(double a, double b) { return {a, b, false, false}; }
+    static Range openLow(double a, double b) { return {a, b, true, false}; }
+    static Range open(double a, double b) { return {a, b, true, true}; }
+
+    bool contains(double v) const {
+        if (!std::isfinite(v)) return false;
+        if (integer && std::floor(v) != v) return false;
+        return (loOpen ? v > lo : v >= lo) && (hiOpen ? v < hi : v <= hi);
+    }
+    std::string words(const char* noun = "a number") const {
+        std::string n = integer ? "a whole number" : noun;
+        const bool hasLo = lo != -HUGE_VAL, hasHi = hi != HUGE_VAL;
+        if (hasLo && hasHi)
+            return n + " in " + (loOpen ? "(" : "[") + formatNumber(lo) + ", " + formatNumber(hi) + (hiOpen ? ")" : "]");
+        if (hasLo) return n + (loOpen ? " > " : " >= ") + formatNumber(lo);
+        if (hasHi) return n + (hiOpen ? " < " : " <= ") + formatNumber(hi);
+        return n;
+    }
+};
+
+Result<double> number(const Where& w, const Value& body, const std::string& field, double def, Range range) {
+    const Value& v = body[field];
+    if (v.isNil()) return def;
+    if (!v.isNumber() || !range.contains(v.asNumber())) return w.at(field).error("expected " + range.words() + ", got " + describe(v));
+    return v.asNumber();
+}
+
+Result<float> numberF(const Where& w, const Value& body, const std::string& field, float def, Range range) {
+    auto r = number(w, body, field, def, range);
+    if (!r) return std::unexpected(r.error());
+    return static_cast<float>(*r);
+}
+
+// A list of `n` numbers, each within `range`; `shape` names them in messages ("{x, y, z}").
+Result<std::vector<float>> numbers(const Where& w, const Value& v, size_t n, const std::string& shape, Range range) {
+    bool ok = v.isList() && v.asList().size() == n;
+    if (ok)
+        for (const auto& e : v.asList()) ok = ok && e.isNumber() && range.contains(e.asNumber());
+    if (!ok) {
+        const std::string each = range.lo == -HUGE_VAL && range.hi == HUGE_VAL ? " (" + std::to_string(n) + " numbers)"
+                                                                               : " with each value " + range.words("").substr(1);
+        return w.error("expected " + shape + each + ", got " + describe(v));
+    }
+    std::vector<float> out;
+    for (const auto& e : v.asList()) out.push_back(static_cast<float>(e.asNumber()));
+    return out;
+}
+
+Result<glm::vec3> vec3(const Where& w, const Value& body, const std::string& field, glm::vec3 def,
+                       const std::string& shape = "{x, y, z}", Range range = Range::any()) {
+    const Value& v = body[field];
+    if (v.isNil()) return def;
+    auto r = numbers(w.at(field), v, 3, shape, range);
+    if (!r) return std::unexpected(r.error());
+    return glm::vec3((*r)[0], (*r)[1], (*r)[2]);
+}
+
+Result<glm::vec3> colour(const Where& w, const Value& body, const std::string& field, glm::vec3 def, Range range = Range::unit()) {
+    return vec3(w, body, field, def, "{r, g, b}", range);
+}
+
+Result<std::string> string(const Where& w, const Value& body, const std::string& field, const std::string& def) {
+    const Value& v = body[field];
+    if (v.isNil()) return def;
+    if (!v.isString() || v.asString().empty()) return w.at(field).error("expected a string, got " + describe(v));
+    return v.asString();
+}
+
+Result<std::string> choice(const Where& w, const Value& body, const std::string& field, const std::string& def,
+                           const std::vector<std::string>& allowed, const std::string& what) {
+    auto s = string(w, body, field, def);
+    if (!s) return s;
+    if (std::find(allowed.begin(), allowed.end(), *s) == allowed.end())
+        return w.at(field).error("unknown " + what + " '" + *s + "'" + suggestion(*s, allowed) + "; expected one of: " + joinQuoted(allowed));
+    return s;
+}
+
+Result<bool> boolean(const Where& w, const Value& body, const std::string& field, bool def) {
+    const Value& v = body[field];
+    if (v.isNil()) return def;
+    if (!v.isBool()) return w.at(field).error("expected a boolean, got " + describe(v));
+    return v.asBool();
+}
+
+// Results of several checks in a row: `TRY(x, expr)` assigns or returns the error.
+#define RG_TRY(lhs, expr)                                    \
+    do {                                                     \
+        auto rg_try_ = (expr);                               \
+        if (!rg_try_) return std::unexpected(rg_try_.error()); \
+        lhs = std::move(*rg_try_);                           \
+    } while (0)
+
+struct Builder {
+    const std::string& scriptPath;
+    const SceneScriptOptions& options;
+    Scene scene;
+    std::map<std::string, uint32_t> materials;  // name -> index
+    std::vector<std::string> materialNames;
+    std::map<std::string, const Declaration*> seen[static_cast<size_t>(DeclKind::Count)];
+    const Declaration* firstEnvironment = nullptr;
+
+    static Where where(const Declaration& d) { return {d, std::string(declKindName(d.kind)) + "." + d.name}; }
+
+    // Files named in a script are relative to the script's folder.
+    std::string resolve(const std::string& file) const {
+        fs::path p(file);
+        if (p.is_absolute()) return p.string();
+        return (fs::path(scriptPath).parent_path() / p).lexically_normal().string();
+    }
+    void addFile(const std::string& p) {
+        std::error_code ec;
+        std::string a = fs::weakly_canonical(fs::absolute(p), ec).string();
+        if (ec) a = p;
+        if (std::find(scene.files.begin(), scene.files.end(), a) == scene.files.end()) scene.files.push_back(a);
+    }
+    Result<std::string> existingFile(const Where& w, const Value& body, const std::string& field) {
+        const Value& v = body[field];
+        if (!v.isString() || v.asString().empty()) return w.at(field).error("expected a file name, got " + describe(v));
+        const std::string path = resolve(v.asString());
+        std::error_code ec;
+        if (!fs::is_regular_file(path, ec)) {
+            auto r = readFile(path);  // for the OS's reason
+            return w.at(field).error(r ? "'" + path + "' is not a regular file" : r.error().message);
+        }
+        addFile(path);
+        return path;
+    }
+
+    static Result<glm::mat4> transform(const Where& w, const Value& b) {
+        glm::vec3 position, rotation, scale(1.0f);
+        RG_TRY(position, vec3(w, b, "position", glm::vec3(0.0f)));
+        RG_TRY(rotation, vec3(w, b, "rotation", glm::vec3(0.0f), "{x, y, z} in degrees"));
+        const Value& s = b["scale"];
+        if (s.isNumber()) {
+            if (!Range::positive().contains(s.asNumber()))
+                return w.at("scale").error("expected a number > 0 or {x, y, z} of numbers > 0, got " + describe(s));
+            scale = glm::vec3(static_cast<float>(s.asNumber()));
+        } else if (!s.isNil()) {
+            if (!s.isList()) return w.at("scale").error("expected a number > 0 or {x, y, z} of numbers > 0, got " + describe(s));
+            RG_TRY(scale, vec3(w, b, "scale", scale, "{x, y, z}", Range::positive()));
+        }
+        // Rotation in degrees about X, then Y, then Z (R = Rz * Ry * Rx).
+        glm::mat4 m = glm::translate(glm::mat4(1.0f), position);
+        m = glm::rotate(m, rotation.z * kDegrees, glm::vec3(0, 0, 1));
+        m = glm::rotate(m, rotation.y * kDegrees, glm::vec3(0, 1, 0));
+        m = glm::rotate(m, rotation.x * kDegrees, glm::vec3(1, 0, 0));
+        return glm::scale(m, scale);
+    }
+
+    // ---- declarations -----------------------------------------------------------------------
+
+    Result<void> names(const std::vector<Declaration>& decls) {
+        for (const auto& d : decls) {
+            Where w = where(d);
+            if (!isSceneKind(d.kind))
+                return fail(ErrorCode::InvalidInput, d.origin + ": rg." + declKindName(d.kind) + " \"" + d.name +
+                                                         "\" belongs in a pipeline script, not in a scene");
+            if (!d.body.isTable()) return w.error("expected a table of fields after " + std::string(declKindName(d.kind)) + " \"" + d.name + "\", got " + describe(d.body));
+            // Objects (meshes) share one namespace: each becomes a node of that name.
+            DeclKind slot = d.kind == DeclKind::Plane || d.kind == DeclKind::Box || d.kind == DeclKind::Gltf ? DeclKind::Sphere : d.kind;
+            auto [it, fresh] = seen[static_cast<size_t>(slot)].emplace(d.name, &d);
+            if (!fresh)
+                return w.error(std::string(declKindName(it->second->kind)) + " '" + d.name + "' is already declared (at " + it->second->origin + ")");
+            if (d.kind == DeclKind::Environment) {
+                if (firstEnvironment)
+                    return w.error("a scene has one environment; '" + firstEnvironment->name + "' is declared at " + firstEnvironment->origin);
+                firstEnvironment = &d;
+            }
+        }
+        return {};
+    }
+
+    Result<void> material(const Declaration& d) {
+        Where w = where(d);
+        const Value& b = d.body;
+        if (auto r = checkFields(w, b, {"model", "base_color", "smoothness", "metal_mask", "reflectance", "ao", "emissive", "opacity",
+                                        "diffuse_color", "f0", "params", "double_sided", "alpha", "alpha_cutoff", "doc"});
+            !r)
+            return r;
+        Material m;
+        m.name = d.name;
+        RG_TRY(m.model, string(w, b, "model", "standard"));
+        const bool twoColour = m.model == "two_colour";
+        if (twoColour) {
+            for (const char* f : {"base_color", "metal_mask", "reflectance"})
+                if (b.has(f)) return w.at(f).error("not used by model 'two_colour', which takes diffuse_color and f0");
+        } else {
+            for (const char* f : {"diffuse_color", "f0"})
+                if (b.has(f)) return w.at(f).error("applies to model 'two_colour' only (this material's model is '" + m.model + "')");
+        }
+        RG_TRY(m.baseColor, colour(w, b, "base_color", m.baseColor));
+        RG_TRY(m.smoothness, numberF(w, b, "smoothness", m.smoothness, Range::unit()));
+        RG_TRY(m.metalMask, numberF(w, b, "metal_mask", m.metalMask, Range::unit()));
+        RG_TRY(m.reflectance, numberF(w, b, "reflectance", m.reflectance, Range::unit()));
+        RG_TRY(m.ao, numberF(w, b, "ao", m.ao, Range::unit()));
+        RG_TRY(m.opacity, numberF(w, b, "opacity", m.opacity, Range::unit()));
+        RG_TRY(m.emissive, colour(w, b, "emissive", m.emissive, Range::nonNegative()));
+        RG_TRY(m.diffuseColor, colour(w, b, "diffuse_color", m.diffuseColor));
+        RG_TRY(m.f0, colour(w, b, "f0", m.f0));
+        if (b.has("params") && !b["params"].isTable() && !(b["params"].isList() && b["params"].asList().empty()))
+            return w.at("params").error("expected a table of named parameters, got " + describe(b["params"]));
+        m.extra = b["params"];
+        RG_TRY(m.doubleSided, boolean(w, b, "double_sided", false));
+        std::string alpha;
+        RG_TRY(alpha, choice(w, b, "alpha", "opaque", {"opaque", "mask", "blend"}, "alpha mode"));
+        m.alphaMode = alpha == "mask" ? AlphaMode::Mask : alpha == "blend" ? AlphaMode::Blend : AlphaMode::Opaque;
+        if (b.has("alpha_cutoff") && m.alphaMode != AlphaMode::Mask) return w.at("alpha_cutoff").error("applies to alpha = \"mask\" only");
+        RG_TRY(m.alphaCutoff, numberF(w, b, "alpha_cutoff", m.alphaCutoff, Range::unit()));
+        materials[d.name] = static_cast<uint32_t>(scene.materials.size());
+        materialNames.push_back(d.name);
+        scene.materials.push_back(std::move(m));
+        return {};
+    }
+
+    Result<uint32_t> materialRef(const Where& w, const Value& b) {
+        const Value& v = b["material"];
+        if (v.isNil()) {
+            // The material named "default" when the script declares one, else a grey dielectric.
+            if (auto it = materials.find("default"); it != materials.end()) return it->second;
+            Material m;
+            m.name = "default";
+            materials["default"] = static_cast<uint32_t>(scene.materials.size());
+            scene.materials.push_back(m);
+            return materials["default"];
+        }
+        if (!v.isString()) return w.at("material").error("expected a material name, got " + describe(v));
+        auto it = materials.find(v.asString());
+        if (it == materials.end())
+            return w.at("material").error("unknown material '" + v.asString() + "'" + suggestion(v.asString(), materialNames) +
+                                          (materialNames.empty() ? "; the scene declares no scene.material"
+                                                                 : "; declared: " + joinQuoted(materialNames)));
+        return it->second;
+    }
+
+    Result<void> object(const Declaration& d) {
+        Where w = where(d);
+        const Value& b = d.body;
+        std::vector<std::string> fields = {"position", "rotation", "scale", "material", "doc"};
+        if (d.kind == DeclKind::Sphere) fields.insert(fields.end(), {"radius", "segments"});
+        else fields.push_back("size");
+        if (auto r = checkFields(w, b, fields); !r) return r;
+        glm::mat4 world;
+        RG_TRY(world, transform(w, b));
+        uint32_t material = 0;
+        RG_TRY(material, materialRef(w, b));
+        Primitive p;
+        if (d.kind == DeclKind::Sphere) {
+            float radius = 0.5f;
+            double segments = 48;
+            RG_TRY(radius, numberF(w, b, "radius", radius, Range::positive()));
+            Range seg = Range::closed(3, 1024);
+            seg.integer = true;
+            RG_TRY(segments, number(w, b, "segments", segments, seg));
+            p = makeSphere(radius, static_cast<uint32_t>(segments), material);
+        } else if (d.kind == DeclKind::Plane) {
+            std::vector<float> size = {10.0f, 10.0f};
+            if (b.has("size")) RG_TRY(size, numbers(w.at("size"), b["size"], 2, "{width, depth} in metres", Range::positive()));
+            p = makePlane(size[0], size[1], material);
+        } else {
+            glm::vec3 size(1.0f);
+            RG_TRY(size, vec3(w, b, "size", size, "{x, y, z} in metres", Range::positive()));
+            p = makeBox(size, material);
+        }
+        Mesh mesh;
+        mesh.name = d.name;
+        mesh.primitives.push_back(std::move(p));
+        scene.nodes.push_back({d.name, world, static_cast<int32_t>(scene.meshes.size())});
+        scene.meshes.push_back(std::move(mesh));
+        return {};
+    }
+
+    // Appends a loaded glTF scene, placed by `t`; names get the declaration's name in front.
+    void merge(Scene&& sub, const glm::mat4& t, const std::string& prefix) {
+        const auto matOff = static_cast<uint32_t>(scene.materials.size());
+        const auto imgOff = static_cast<int32_t>(scene.images.size());
+        const auto smpOff = static_cast<int32_t>(scene.samplers.size());
+        const auto meshOff = static_cast<int32_t>(scene.meshes.size());
+        for (auto& m : sub.materials) {
+            for (TextureRef* tex : {&m.baseColorTex, &m.metallicRoughnessTex, &m.normalTex, &m.occlusionTex, &m.emissiveTex}) {
+                if (tex->image >= 0) tex->image += imgOff;
+                if (tex->sampler >= 0) tex->sampler += smpOff;
+            }
+            m.name = prefix + "/" + m.name;
+            scene.materials.push_back(std::move(m));
+        }
+        for (auto& img : sub.images) scene.images.push_back(std::move(img));
+        for (auto& s : sub.samplers) scene.samplers.push_back(s);
+        for (auto& mesh : sub.meshes) {
+            for (auto& p : mesh.primitives) p.material += matOff;
+            mesh.name = prefix + "/" + mesh.name;
+            scene.meshes.push_back(std::move(mesh));
+        }
+        for (auto& n : sub.nodes) scene.nodes.push_back({prefix + "/" + n.name, t * n.world, n.mesh + meshOff});
+        const glm::mat3 linear(t);
+        auto dir = [&](glm::vec3 v) {
+            const glm::vec3 r = linear * v;
+            return glm::length(r) > 0.0f ? glm::normalize(r) : v;
+        };
+        for (auto& l : sub.lights) {
+            l.name = prefix + "/" + l.name;
+            l.position = glm::vec3(t * glm::vec4(l.position, 1.0f));
+            l.direction = dir(l.direction);
+            l.up = dir(l.up);
+            scene.lights.push_back(std::move(l));
+        }
+        for (auto& c : sub.cameras) {
+            c.name = prefix + "/" + c.name;
+            c.position = glm::vec3(t * glm::vec4(c.position, 1.0f));
+            c.target = glm::vec3(t * glm::vec4(c.target, 1.0f));
+            c.up = dir(c.up);
+            scene.cameras.push_back(std::move(c));
+        }
+        if (sub.environment && !scene.environment) scene.environment = sub.environment;
+        for (const auto& f : sub.files) addFile(f);
+    }
+
+    Result<void> gltf(const Declaration& d) {
+        Where w = where(d);
+        const Value& b = d.body;
+        if (auto r = checkFields(w, b, {"file", "position", "rotation", "scale", "doc"}); !r) return r;
+        if (!b.has("file")) return w.at("file").error("missing (expected a .gltf or .glb file, relative to the script)");
+        if (!b["file"].isString()) return w.at("file").error("expected a file name, got " + describe(b["file"]));
+        glm::mat4 t;
+        RG_TRY(t, transform(w, b));
+        GltfOptions go;
+        go.loadImages = options.loadImages;
+        go.generateMips = options.generateMips;
+        auto sub = loadGltf(resolve(b["file"].asString()), go);
+        if (!sub) return fail(sub.error().code, d.origin + ": " + w.at("file").path + ": " + sub.error().message, sub.error().reasons);
+        merge(std::move(*sub), t, d.name);
+        return {};
+    }
+
+    Result<void> light(const Declaration& d) {
+        Where w = where(d);
+        const Value& b = d.body;
+        if (auto r = checkFields(w, b, {"type", "intensity", "unit", "color", "temperature", "position", "direction", "target", "up",
+                                        "radius", "width", "height", "length", "inner_angle", "outer_angle", "range", "ies",
+                                        "angular_radius", "doc"});
+            !r)
+            return r;
+        Light l;
+        l.name = d.name;
+        if (!b.has("type")) return w.at("type").error("missing (expected one of: 'point', 'spot', 'sun', 'sphere', 'disk', 'rect', 'tube')");
+        std::string type;
+        RG_TRY(type, choice(w, b, "type", "", {"point", "spot", "sun", "directional", "sphere", "disk", "rect", "tube"}, "light type"));
+        const std::map<std::string, LightType> types = {{"point", LightType::Point}, {"spot", LightType::Spot},
+                                                        {"sun", LightType::Directional}, {"directional", LightType::Directional},
+                                                        {"sphere", LightType::Sphere}, {"disk", LightType::Disk},
+                                                        {"rect", LightType::Rect}, {"tube", LightType::Tube}};
+        l.type = types.at(type);
+        const bool punctual = l.type == LightType::Point || l.type == LightType::Spot;
+        const bool sun = l.type == LightType::Directional;
+        const std::string a = "a " + type + " light";
+
+        // Which fields this type has (seed 000 §4.4-4.7).
+        auto only = [&](const char* field, bool allowed, const std::string& who) -> Result<void> {
+            if (b.has(field) && !allowed) return w.at(field).error("applies to " + who + " only, not to " + a);
+            return {};
+        };
+        if (auto r = only("radius", l.type == LightType::Sphere || l.type == LightType::Disk || l.type == LightType::Tube,
+                          "sphere, disk and tube lights"); !r) return r;
+        if (auto r = only("width", l.type == LightType::Rect, "rect lights"); !r) return r;
+        if (auto r = only("height", l.type == LightType::Rect, "rect lights"); !r) return r;
+        if (auto r = only("up", l.type == LightType::Rect, "rect lights"); !r) return r;
+        if (auto r = only("length", l.type == LightType::Tube, "tube lights"); !r) return r;
+        if (auto r = only("inner_angle", l.type == LightType::Spot, "spot lights"); !r) return r;
+        if (auto r = only("outer_angle", l.type == LightType::Spot, "spot lights"); !r) return r;
+        if (auto r = only("ies", punctual, "point and spot lights"); !r) return r;
+        if (auto r = only("angular_radius", sun, "the sun"); !r) return r;
+        if (auto r = only("range", !sun, "local lights (not the sun)"); !r) return r;
+        if (auto r = only("direction", l.type != LightType::Sphere, "lights with an orientation"); !r) return r;
+        if (auto r = only("target", l.type != LightType::Sphere, "lights with an orientation"); !r) return r;
+
+        // Units: seed 000 tbl:8.
+        std::vector<std::string> units = punctual ? std::vector<std::string>{"lm", "cd"}
+                                         : sun    ? std::vector<std::string>{"lux"}
+                                                  : std::vector<std::string>{"lm", "nits", "ev100"};
+        RG_TRY(l.unit, string(w, b, "unit", units[0]));
+        if (std::find(units.begin(), units.end(), l.unit) == units.end()) {
+            const std::vector<std::string> all = {"lm", "cd", "lux", "nits", "ev100"};
+            if (std::find(all.begin(), all.end(), l.unit) == all.end())
+                return w.at("unit").error("unknown unit '" + l.unit + "'" + suggestion(l.unit, all) + "; " + a + " takes " + joinQuoted(units));
+            return w.at("unit").error(a + " cannot be given in '" + l.unit + "' (seed 000 tbl:8); expected " + joinQuoted(units));
+        }
+        if (!b.has("intensity")) return w.at("intensity").error("missing (expected a number, in " + joinQuoted(units) + ")");
+        RG_TRY(l.intensity, numberF(w, b, "intensity", 0.0f, l.unit == "ev100" ? Range::any() : Range::nonNegative()));
+
+        if (b.has("color") && b.has("temperature")) return w.at("temperature").error("give either color or temperature, not both");
+        RG_TRY(l.color, colour(w, b, "color", l.color, Range::nonNegative()));
+        RG_TRY(l.temperatureK, numberF(w, b, "temperature", 0.0f, Range::closed(1000, 40000)));
+
+        RG_TRY(l.position, vec3(w, b, "position", l.position));
+        if (b.has("direction") && b.has("target")) return w.at("target").error("give either direction or target, not both");
+        if (b.has("direction")) {
+            glm::vec3 dir;
+            RG_TRY(dir, vec3(w, b, "direction", l.direction));
+            if (glm::length(dir) < 1e-6f) return w.at("direction").error("expected a non-zero vector, got {0, 0, 0}");
+            l.direction = glm::normalize(dir);
+        } else if (b.has("target")) {
+            glm::vec3 target;
+            RG_TRY(target, vec3(w, b, "target", glm::vec3(0.0f)));
+            if (glm::length(target - l.position) < 1e-6f) return w.at("target").error("equals position; the light needs a direction");
+            l.direction = glm::normalize(target - l.position);
+        } else if (l.type != LightType::Point && l.type != LightType::Sphere)
+            return w.at("direction").error("missing (" + a + " needs direction or target)");
+
+        auto need = [&](const char* field, float& out) -> Result<void> {
+            if (!b.has(field)) return w.at(field).error("missing (" + a + " needs its " + field + " in metres)");
+            auto r = numberF(w, b, field, 0.0f, Range::positive());
+            if (!r) return std::unexpected(r.error());
+            out = *r;
+            return {};
+        };
+        if (l.type == LightType::Sphere || l.type == LightType::Disk || l.type == LightType::Tube)
+            if (auto r = need("radius", l.radius); !r) return r;
+        if (l.type == LightType::Rect) {
+            if (auto r = need("width", l.width); !r) return r;
+            if (auto r = need("height", l.height); !r) return r;
+            glm::vec3 up;
+            RG_TRY(up, vec3(w, b, "up", l.up));
+            if (glm::length(glm::cross(up, l.direction)) < 1e-6f)
+                return w.at("up").error("is parallel to the light's direction (or zero); the rect needs a height axis");
+            l.up = glm::normalize(up);
+        }
+        if (l.type == LightType::Tube)
+            if (auto r = need("length", l.length); !r) return r;
+        if (l.type == LightType::Spot) {
+            float inner = 0.0f, outer = 45.0f;
+            RG_TRY(inner, numberF(w, b, "inner_angle", inner, Range::closed(0, 90)));
+            RG_TRY(outer, numberF(w, b, "outer_angle", outer, Range::openLow(0, 90)));
+            if (inner > outer)
+                return w.at("inner_angle").error("is " + formatNumber(inner) + "°, wider than outer_angle (" + formatNumber(outer) + "°)");
+            l.innerAngle = inner * kDegrees;
+            l.outerAngle = outer * kDegrees;
+        }
+        RG_TRY(l.range, numberF(w, b, "range", 0.0f, Range::nonNegative()));
+        if (b.has("ies")) RG_TRY(l.ies, existingFile(w, b, "ies"));
+        float angular = 0.2664f;
+        RG_TRY(angular, numberF(w, b, "angular_radius", angular, Range::openLow(0, 10)));
+        l.sunAngularRadius = angular * kDegrees;
+        scene.lights.push_back(std::move(l));
+        return {};
+    }
+
+    Result<void> camera(const Declaration& d) {
+        Where w = where(d);
+        const Value& b = d.body;
+        if (auto r = checkFields(w, b, {"position", "target", "up", "fov", "focal_length", "sensor_height", "aperture", "shutter", "iso",
+                                        "ec", "near", "far", "doc"});
+            !r)
+            return r;
+        Camera c;
+        c.name = d.name;
+        c.position = glm::vec3(0.0f, 1.0f, 5.0f);
+        RG_TRY(c.position, vec3(w, b, "position", c.position));
+        RG_TRY(c.target, vec3(w, b, "target", c.target));
+        RG_TRY(c.up, vec3(w, b, "up", c.up));
+        if (glm::length(c.target - c.position) < 1e-6f) return w.at("target").error("equals position; the camera needs a direction to look in");
+        if (glm::length(glm::cross(c.up, c.target - c.position)) < 1e-6f * glm::length(c.target - c.position))
+            return w.at("up").error("is parallel to the view direction (or zero)");
+        if (b.has("fov") && b.has("focal_length")) return w.at("focal_length").error("give either fov or focal_length (with sensor_height), not both");
+        if (b.has("sensor_height") && !b.has("focal_length")) return w.at("sensor_height").error("applies with focal_length only");
+        float fovDeg = 45.0f;
+        RG_TRY(fovDeg, numberF(w, b, "fov", fovDeg, Range::open(0, 180)));
+        c.verticalFov = fovDeg * kDegrees;
+        if (b.has("focal_length")) {
+            float focalMm = 0.0f, sensorMm = 24.0f;
+            RG_TRY(focalMm, numberF(w, b, "focal_length", focalMm, Range::positive()));
+            RG_TRY(sensorMm, numberF(w, b, "sensor_height", sensorMm, Range::positive()));
+            c.focalLength = focalMm / 1000.0f;
+            c.sensorHeight = sensorMm / 1000.0f;
+            c.verticalFov = 2.0f * std::atan(c.sensorHeight / (2.0f * c.focalLength));
+        }
+        RG_TRY(c.aperture, numberF(w, b, "aperture", c.aperture, Range::closed(0.5, 128)));
+        RG_TRY(c.shutter, numberF(w, b, "shutter", c.shutter, Range::openLow(0, 60)));
+        RG_TRY(c.iso, numberF(w, b, "iso", c.iso, Range::closed(1, 1000000)));
+        RG_TRY(c.exposureCompensation, numberF(w, b, "ec", c.exposureCompensation, Range::closed(-20, 20)));
+        RG_TRY(c.nearPlane, numberF(w, b, "near", c.nearPlane, Range::positive()));
+        RG_TRY(c.farPlane, numberF(w, b, "far", c.farPlane, Range::positive()));
+        if (c.farPlane <= c.nearPlane)
+            return w.at("far").error("is " + formatNumber(c.farPlane) + ", not beyond near (" + formatNumber(c.nearPlane) + ")");
+        scene.cameras.push_back(c);
+        return {};
+    }
+
+    Result<void> environment(const Declaration& d) {
+        Where w = where(d);
+        const Value& b = d.body;
+        if (auto r = checkFields(w, b, {"kind", "file", "color", "intensity", "unit", "rotation", "doc"}); !r) return r;
+        Environment e;
+        e.name = d.name;
+        if (!b.has("kind")) return w.at("kind").error("missing (expected one of: 'sky', 'hdr', 'color')");
+        RG_TRY(e.kind, choice(w, b, "kind", "", {"sky", "hdr", "color"}, "environment kind"));
+        if (b.has("file") && e.kind != "hdr") return w.at("file").error("applies to kind = \"hdr\" only");
+        if (b.has("color") && e.kind != "color") return w.at("color").error("applies to kind = \"color\" only");
+        if (e.kind == "hdr") {
+            if (!b.has("file")) return w.at("file").error("missing (expected an equirectangular .hdr or .exr, relative to the script)");
+            RG_TRY(e.file, existingFile(w, b, "file"));
+        }
+        RG_TRY(e.color, colour(w, b, "color", e.color, Range::nonNegative()));
+        RG_TRY(e.intensity, numberF(w, b, "intensity", e.intensity, Range::nonNegative()));
+        RG_TRY(e.unit, string(w, b, "unit", "nits"));
+        if (e.unit != "nits") return w.at("unit").error("an environment's luminance is in 'nits' (seed 000 tbl:8), got '" + e.unit + "'");
+        float rotation = 0.0f;
+        RG_TRY(rotation, numberF(w, b, "rotation", rotation, Range::closed(-360, 360)));
+        e.rotation = rotation * kDegrees;
+        scene.environment = e;
+        return {};
+    }
+
+    // A camera that sees the whole scene from the front, a little above.
+    void defaultCamera() {
+        Camera c;
+        c.name = "default";
+        const glm::vec3 centre = (scene.boundsMin + scene.boundsMax) * 0.5f;
+        const float radius = std::max(0.5f * glm::length(scene.boundsMax - scene.boundsMin), 0.5f);
+        const float distance = radius / std::sin(c.verticalFov * 0.5f) * 1.05f;
+        c.target = centre;
+        c.position = centre + glm::normalize(glm::vec3(0.0f, 0.45f, 1.0f)) * distance;
+        c.nearPlane = std::max(0.01f, (distance - radius) * 0.5f);
+        c.farPlane = std::max(1000.0f, (distance + radius) * 2.0f);
+        scene.cameras.push_back(c);
+    }
+
+    Result<Scene> build(const std::vector<Declaration>& decls) {
+        if (auto r = names(decls); !r) return std::unexpected(r.error());
+        // Materials first, so objects may name a material declared further down.
+        for (const auto& d : decls)
+            if (d.kind == DeclKind::SceneMaterial)
+                if (auto r = material(d); !r) return std::unexpected(r.error());
+        for (const auto& d : decls) {
+            Result<void> r;
+            switch (d.kind) {
+            case DeclKind::Sphere:
+            case DeclKind::Plane:
+            case DeclKind::Box: r = object(d); break;
+            case DeclKind::Gltf: r = gltf(d); break;
+            case DeclKind::Light: r = light(d); break;
+            case DeclKind::Camera: r = camera(d); break;
+            default: break;
+            }
+            if (!r) return std::unexpected(r.error());
+        }
+        for (const auto& d : decls)
+            if (d.kind == DeclKind::Environment)
+                if (auto r = environment(d); !r) return std::unexpected(r.error());
+        if (options.generateMips)
+            for (auto& img : scene.images)
+                if (img.mips.empty() && img.pixels.width > 0) generateMips(img);
+        computeBounds(scene);
+        if (scene.cameras.empty()) defaultCamera();
+        return std::move(scene);
+    }
+};
+
+#undef RG_TRY
+
+std::string defaultRoot() {
+    if (const char* r = std::getenv("RG_ROOT"); r && *r) return r;
+    return RG_SOURCE_ROOT;
+}
+
+}  // namespace
+
+Result<Scene> loadSceneScript(const std::string& path, const SceneScriptOptions& options) {
+    std::error_code ec;
+    if (!fs::is_regular_file(path, ec)) {
+        auto r = readFile(path);
+        return fail(ErrorCode::NotFound, r ? "'" + path + "' is not a regular file" : "scene script: " + r.error().message);
+    }
+    const std::string root = options.projectRoot.empty() ? defaultRoot() : options.projectRoot;
+    LuaHostOptions ho;
+    ho.projectRoot = root;
+    ho.searchDirs = {root + "/scripts", root + "/materials"};
+    LuaHost host(ho);
+    std::vector<std::string> files;
+    auto decls = host.loadDeclarations(path, &files);
+    if (!decls) return std::unexpected(decls.error());
+    Builder b{path, options, {}, {}, {}, {}, nullptr};
+    for (const auto& f : files) b.addFile(f);
+    return b.build(*decls);
+}
+
+}  // namespace rg

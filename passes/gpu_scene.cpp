@@ -1,0 +1,377 @@
+#include "gpu_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/check.h"
+#include "core/light_units.h"
+
+namespace rg::passes {
+
+using namespace rg::gpu;
+
+namespace {
+
+// std140 layout of MaterialData (shaders/lib/material.glsl).
+struct MaterialUniforms {
+    glm::vec4 baseColorOpacity, emissive, factors, factors2, diffuseColor, f0;
+    glm::vec4 uvTransform[10];
+    glm::vec4 custom[4];
+};
+static_assert(sizeof(MaterialUniforms) == 320);
+
+struct CameraUniforms {
+    glm::mat4 viewProj, view, proj, invViewProj;
+    glm::vec4 position, viewport;
+};
+
+struct GpuLight {
+    glm::vec4 positionType, directionRadius, intensity, params;
+};
+
+VkFilter toVk(Filter f) { return f == Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR; }
+VkSamplerAddressMode toVk(Wrap w) {
+    switch (w) {
+    case Wrap::ClampToEdge: return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    case Wrap::MirroredRepeat: return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
+    default: return VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    }
+}
+
+Result<OwnedSampler> makeSampler(VkDevice dev, const SamplerDesc& d) {
+    VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
+    si.magFilter = toVk(d.magFilter);
+    si.minFilter = toVk(d.minFilter);
+    si.mipmapMode = d.mipmapMode == MipmapMode::Nearest ? VK_SAMPLER_MIPMAP_MODE_NEAREST : VK_SAMPLER_MIPMAP_MODE_LINEAR;
+    si.addressModeU = toVk(d.wrapS);
+    si.addressModeV = toVk(d.wrapT);
+    si.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
+    si.maxLod = VK_LOD_CLAMP_NONE;
+    VkSampler s = VK_NULL_HANDLE;
+    RG_VK_TRY(vkCreateSampler(dev, &si, nullptr, &s));
+    return OwnedSampler(dev, s);
+}
+
+// Uploads RGBA8 levels (values already in the image's encoding) and leaves the image ready for sampling.
+Result<gpu::Image> uploadRgba8(Context& ctx, const std::string& name, bool srgb, const std::vector<const rg::Image*>& levels) {
+    ImageDesc d;
+    d.name = name;
+    d.format = srgb ? Format::RGBA8Srgb : Format::RGBA8Unorm;
+    d.width = levels[0]->width;
+    d.height = levels[0]->height;
+    d.mips = static_cast<uint32_t>(levels.size());
+    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    auto img = gpu::Image::create(ctx, d);
+    if (!img) return std::unexpected(img.error());
+    size_t bytes = 0;
+    for (const auto* l : levels) bytes += size_t(l->width) * l->height * 4;
+    auto staging = Buffer::create(ctx, name + ".staging", bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    if (!staging) return std::unexpected(staging.error());
+    auto* dst = static_cast<uint8_t*>(staging->mapped());
+    std::vector<VkBufferImageCopy> regions;
+    size_t offset = 0;
+    for (uint32_t m = 0; m < levels.size(); ++m) {
+        const rg::Image& l = *levels[m];
+        for (size_t i = 0; i < size_t(l.width) * l.height; ++i)
+            for (uint32_t c = 0; c < 4; ++c) {
+                float v = c < l.channels ? l.pixels[i * l.channels + c] : 1.0f;
+                dst[offset + i * 4 + c] = static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+            }
+        VkBufferImageCopy r{};
+        r.bufferOffset = offset;
+        r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m, 0, 1};
+        r.imageExtent = {l.width, l.height, 1};
+        regions.push_back(r);
+        offset += size_t(l.width) * l.height * 4;
+    }
+    VkImage image = img->image();
+    auto sub = ctx.submitNow([&](VkCommandBuffer cmd) {
+        imageBarrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
+                     VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        vkCmdCopyBufferToImage(cmd, staging->buffer(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                               static_cast<uint32_t>(regions.size()), regions.data());
+        imageBarrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
+                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    });
+    if (!sub) return std::unexpected(sub.error());
+    return img;
+}
+
+Result<gpu::Image> solidTexture(Context& ctx, const std::string& name, glm::vec4 value) {
+    rg::Image pixel(1, 1, 4);
+    for (int c = 0; c < 4; ++c) pixel.pixels[static_cast<size_t>(c)] = value[c];
+    return uploadRgba8(ctx, name, false, {&pixel});
+}
+
+}  // namespace
+
+GpuScene::~GpuScene() = default;
+
+Result<std::unique_ptr<GpuScene>> GpuScene::create(Context& ctx, Scene scene) {
+    std::unique_ptr<GpuScene> s(new GpuScene());
+    s->m_ctx = &ctx;
+    s->m_scene = std::move(scene);
+    if (s->m_scene.cameras.empty()) return fail(ErrorCode::InvalidInput, "the scene has no camera");
+    if (s->m_scene.materials.empty()) s->m_scene.materials.push_back(Material{});
+    if (auto r = s->uploadGeometry(ctx); !r) return std::unexpected(r.error());
+    if (auto r = s->uploadImages(ctx); !r) return std::unexpected(r.error());
+    if (auto r = s->createMaterials(ctx); !r) return std::unexpected(r.error());
+    if (auto r = s->createFrameData(ctx); !r) return std::unexpected(r.error());
+    return s;
+}
+
+Result<void> GpuScene::uploadGeometry(Context& ctx) {
+    std::vector<Vertex> vertices;
+    std::vector<uint32_t> indices;
+    struct Range {
+        uint32_t firstIndex, indexCount;
+        int32_t vertexOffset;
+        uint32_t material;
+    };
+    std::vector<std::vector<Range>> meshRanges;
+    for (const Mesh& mesh : m_scene.meshes) {
+        std::vector<Range> ranges;
+        for (const Primitive& p : mesh.primitives) {
+            ranges.push_back({static_cast<uint32_t>(indices.size()), static_cast<uint32_t>(p.indices.size()),
+                              static_cast<int32_t>(vertices.size()), std::min<uint32_t>(p.material, static_cast<uint32_t>(m_scene.materials.size() - 1))});
+            vertices.insert(vertices.end(), p.vertices.begin(), p.vertices.end());
+            indices.insert(indices.end(), p.indices.begin(), p.indices.end());
+        }
+        meshRanges.push_back(std::move(ranges));
+    }
+    for (const Node& node : m_scene.nodes) {
+        if (node.mesh < 0 || static_cast<size_t>(node.mesh) >= meshRanges.size()) continue;
+        const glm::mat4 normal = glm::mat4(glm::transpose(glm::inverse(glm::mat3(node.world))));
+        for (const Range& r : meshRanges[static_cast<size_t>(node.mesh)])
+            if (r.indexCount) m_draws.push_back({r.firstIndex, r.indexCount, r.vertexOffset, r.material, node.world, normal});
+    }
+    if (vertices.empty()) {  // keep valid (empty) buffers for an empty scene
+        vertices.resize(1);
+        indices.resize(3, 0);
+    }
+    auto upload = [&](Buffer& target, const void* data, size_t bytes, VkBufferUsageFlags usage, const char* name) -> Result<void> {
+        auto staging = Buffer::create(ctx, std::string(name) + ".staging", bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+        if (!staging) return std::unexpected(staging.error());
+        std::memcpy(staging->mapped(), data, bytes);
+        auto buf = Buffer::create(ctx, name, bytes, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
+        if (!buf) return std::unexpected(buf.error());
+        target = std::move(*buf);
+        VkBuffer src = staging->buffer(), dst = target.buffer();
+        return ctx.submitNow([&](VkCommandBuffer cmd) {
+            VkBufferCopy region{0, 0, bytes};
+            vkCmdCopyBuffer(cmd, src, dst, 1, &region);
+            VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+            mb.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
+            mb.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
+            mb.dstStageMask = VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT;
+            mb.dstAccessMask = VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_2_INDEX_READ_BIT;
+            VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+            dep.memoryBarrierCount = 1;
+            dep.pMemoryBarriers = &mb;
+            vkCmdPipelineBarrier2(cmd, &dep);
+        });
+    };
+    if (auto r = upload(m_vertices, vertices.data(), vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "scene.vertices"); !r) return r;
+    return upload(m_indices, indices.data(), indices.size() * sizeof(uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "scene.indices");
+}
+
+Result<void> GpuScene::uploadImages(Context& ctx) {
+    for (const SceneImage& si : m_scene.images) {
+        std::vector<const rg::Image*> levels;
+        for (uint32_t m = 0; m < std::max(1u, si.mipLevels); ++m) {
+            if (m > 0 && m - 1 >= si.mips.size()) break;
+            levels.push_back(&si.level(m));
+        }
+        if (levels.empty() || levels[0]->width == 0)
+            return fail(ErrorCode::InvalidInput, "scene image '" + si.name + "' has no pixels");
+        auto img = uploadRgba8(ctx, "scene." + si.name, si.srgb, levels);
+        if (!img) return std::unexpected(img.error());
+        m_images.push_back(std::move(*img));
+    }
+    auto white = solidTexture(ctx, "scene.white", glm::vec4(1.0f));
+    if (!white) return std::unexpected(white.error());
+    m_white = std::move(*white);
+    auto flat = solidTexture(ctx, "scene.flat_normal", glm::vec4(0.5f, 0.5f, 1.0f, 1.0f));
+    if (!flat) return std::unexpected(flat.error());
+    m_flatNormal = std::move(*flat);
+    for (const SamplerDesc& d : m_scene.samplers) {
+        auto s = makeSampler(ctx.device(), d);
+        if (!s) return std::unexpected(s.error());
+        m_samplers.push_back(std::move(*s));
+    }
+    auto def = makeSampler(ctx.device(), SamplerDesc{});
+    if (!def) return std::unexpected(def.error());
+    m_defaultSampler = std::move(*def);
+    return {};
+}
+
+Result<void> GpuScene::createMaterials(Context& ctx) {
+    VkDevice dev = ctx.device();
+    std::vector<VkDescriptorSetLayoutBinding> bindings;
+    bindings.push_back({0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+    for (uint32_t b = 1; b <= 5; ++b)
+        bindings.push_back({b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+    VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
+    li.bindingCount = static_cast<uint32_t>(bindings.size());
+    li.pBindings = bindings.data();
+    VkDescriptorSetLayout layout = VK_NULL_HANDLE;
+    RG_VK_TRY(vkCreateDescriptorSetLayout(dev, &li, nullptr, &layout));
+    m_materialLayout = OwnedDescriptorSetLayout(dev, layout);
+
+    const auto count = static_cast<uint32_t>(m_scene.materials.size());
+    VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, count},
+                                    {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, count * 5}};
+    VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    pi.maxSets = count;
+    pi.poolSizeCount = 2;
+    pi.pPoolSizes = sizes;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    RG_VK_TRY(vkCreateDescriptorPool(dev, &pi, nullptr, &pool));
+    m_pool = OwnedDescriptorPool(dev, pool);
+    std::vector<VkDescriptorSetLayout> layouts(count, layout);
+    m_materialSets.resize(count);
+    VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    ai.descriptorPool = pool;
+    ai.descriptorSetCount = count;
+    ai.pSetLayouts = layouts.data();
+    RG_VK_TRY(vkAllocateDescriptorSets(dev, &ai, m_materialSets.data()));
+
+    for (uint32_t i = 0; i < count; ++i) {
+        const Material& m = m_scene.materials[i];
+        MaterialUniforms u{};
+        u.baseColorOpacity = glm::vec4(m.baseColor, m.opacity);
+        u.emissive = glm::vec4(m.emissive, 0.0f);
+        u.factors = glm::vec4(m.smoothness, m.metalMask, m.reflectance, m.ao);
+        u.factors2 = glm::vec4(m.normalScale, m.occlusionStrength, m.alphaCutoff, static_cast<float>(m.alphaMode));
+        u.diffuseColor = glm::vec4(m.diffuseColor, 0.0f);
+        u.f0 = glm::vec4(m.f0, 0.0f);
+        const TextureRef* refs[5] = {&m.baseColorTex, &m.metallicRoughnessTex, &m.normalTex, &m.occlusionTex, &m.emissiveTex};
+        for (int t = 0; t < 5; ++t) {
+            const glm::mat3& x = refs[t]->transform;  // column-major: x[col][row]
+            u.uvTransform[2 * t] = glm::vec4(x[0][0], x[1][0], x[2][0], static_cast<float>(refs[t]->texCoord));
+            u.uvTransform[2 * t + 1] = glm::vec4(x[0][1], x[1][1], x[2][1], 0.0f);
+        }
+        // Game-team parameters: the material's extra numbers, in key order.
+        size_t slot = 0;
+        for (const auto& [key, value] : m.extra.asTable()) {
+            if (!value.isNumber() || slot >= 16) continue;
+            u.custom[slot / 4][static_cast<int>(slot % 4)] = static_cast<float>(value.asNumber());
+            ++slot;
+        }
+        auto buf = Buffer::create(ctx, "material." + m.name, sizeof u, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+        if (!buf) return std::unexpected(buf.error());
+        std::memcpy(buf->mapped(), &u, sizeof u);
+        m_materialBuffers.push_back(std::move(*buf));
+
+        VkDescriptorBufferInfo bi{m_materialBuffers.back().buffer(), 0, VK_WHOLE_SIZE};
+        VkDescriptorImageInfo ii[5];
+        VkWriteDescriptorSet writes[6];
+        writes[0] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+        writes[0].dstSet = m_materialSets[i];
+        writes[0].dstBinding = 0;
+        writes[0].descriptorCount = 1;
+        writes[0].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+        writes[0].pBufferInfo = &bi;
+        for (int t = 0; t < 5; ++t) {
+            const TextureRef& ref = *refs[t];
+            const bool has = ref.image >= 0 && static_cast<size_t>(ref.image) < m_images.size();
+            VkImageView view = has ? m_images[static_cast<size_t>(ref.image)].view() : (t == 2 ? m_flatNormal.view() : m_white.view());
+            VkSampler sampler = ref.sampler >= 0 && static_cast<size_t>(ref.sampler) < m_samplers.size()
+                                    ? m_samplers[static_cast<size_t>(ref.sampler)].get()
+                                    : m_defaultSampler.get();
+            ii[t] = {sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+            writes[t + 1] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+            writes[t + 1].dstSet = m_materialSets[i];
+            writes[t + 1].dstBinding = static_cast<uint32_t>(t + 1);
+            writes[t + 1].descriptorCount = 1;
+            writes[t + 1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+            writes[t + 1].pImageInfo = &ii[t];
+        }
+        vkUpdateDescriptorSets(dev, 6, writes, 0, nullptr);
+    }
+    return {};
+}
+
+Result<void> GpuScene::createFrameData(Context& ctx) {
+    for (uint32_t s = 0; s < ctx.framesInFlight(); ++s) {
+        auto cam = Buffer::create(ctx, "scene.camera", sizeof(CameraUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+        if (!cam) return std::unexpected(cam.error());
+        m_cameraBuffers.push_back(std::move(*cam));
+        auto lights = Buffer::create(ctx, "scene.lights", 16 + kMaxLights * sizeof(GpuLight), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+        if (!lights) return std::unexpected(lights.error());
+        m_lightBuffers.push_back(std::move(*lights));
+    }
+    // Lights in the units the shaders take: cd for punctual lights, lux for the sun.
+    std::vector<GpuLight> out;
+    for (const Light& l : m_scene.lights) {
+        if (out.size() >= kMaxLights) break;
+        glm::vec3 color = l.color;
+        if (l.temperatureK > 0) {
+            auto rgb = lights::colorTemperatureToRgb(l.temperatureK);
+            color *= glm::vec3(static_cast<float>(rgb[0]), static_cast<float>(rgb[1]), static_cast<float>(rgb[2]));
+        }
+        GpuLight g{};
+        const float invSqrRange = l.range > 0 ? 1.0f / (l.range * l.range) : 0.0f;
+        g.directionRadius = glm::vec4(glm::normalize(l.direction), invSqrRange);
+        if (l.type == LightType::Point || l.type == LightType::Spot) {
+            double cd = l.intensity;
+            if (l.unit == "lm")
+                cd = l.type == LightType::Point ? lights::pointIntensityFromLumens(l.intensity)
+                                                : lights::spotIntensityFromLumens(l.intensity, l.outerAngle);
+            g.positionType = glm::vec4(l.position, l.type == LightType::Point ? 0.0f : 1.0f);
+            g.intensity = glm::vec4(color * static_cast<float>(cd), 0.0f);
+            // lst:4: angle attenuation as a scale and offset of cos θ.
+            const float cosOuter = std::cos(l.outerAngle), cosInner = std::cos(std::min(l.innerAngle, l.outerAngle - 1e-3f));
+            const float scale = l.type == LightType::Spot ? 1.0f / std::max(0.001f, cosInner - cosOuter) : 0.0f;
+            const float offset = l.type == LightType::Spot ? -cosOuter * scale : 1.0f;
+            g.params = glm::vec4(scale, offset, 0.0f, 0.0f);
+        } else if (l.type == LightType::Directional) {
+            g.positionType = glm::vec4(0.0f, 0.0f, 0.0f, 2.0f);
+            g.intensity = glm::vec4(color * l.intensity, 0.0f);  // lux
+            g.params = glm::vec4(0.0f, 0.0f, l.sunAngularRadius, 0.0f);
+        } else {
+            continue;  // area lights arrive with the lighting work
+        }
+        out.push_back(g);
+    }
+    m_lightCount = static_cast<uint32_t>(out.size());
+    for (auto& buf : m_lightBuffers) {
+        auto* p = static_cast<uint8_t*>(buf.mapped());
+        uint32_t header[4] = {m_lightCount, 0, 0, 0};
+        std::memcpy(p, header, 16);
+        if (!out.empty()) std::memcpy(p + 16, out.data(), out.size() * sizeof(GpuLight));
+    }
+    return {};
+}
+
+Result<void> GpuScene::selectCamera(const std::string& name) {
+    for (size_t i = 0; i < m_scene.cameras.size(); ++i)
+        if (m_scene.cameras[i].name == name) {
+            m_camera = i;
+            return {};
+        }
+    std::string names;
+    for (const auto& c : m_scene.cameras) names += (names.empty() ? "'" : ", '") + c.name + "'";
+    return fail(ErrorCode::NotFound, "the scene has no camera '" + name + "' (cameras: " + names + ")");
+}
+
+void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
+    const Camera& c = camera();
+    const float aspect = static_cast<float>(width) / static_cast<float>(std::max(1u, height));
+    const float fovy = c.focalLength > 0 ? 2.0f * std::atan(c.sensorHeight / (2.0f * c.focalLength)) : c.verticalFov;
+    CameraUniforms u{};
+    u.view = glm::lookAt(c.position, c.target, c.up);
+    u.proj = glm::perspectiveRH_ZO(fovy, aspect, c.nearPlane, c.farPlane);
+    u.proj[1][1] *= -1.0f;  // Vulkan's y points down
+    u.viewProj = u.proj * u.view;
+    u.invViewProj = glm::inverse(u.viewProj);
+    u.position = glm::vec4(c.position, 1.0f);
+    u.viewport = glm::vec4(static_cast<float>(width), static_cast<float>(height), 1.0f / static_cast<float>(width),
+                           1.0f / static_cast<float>(height));
+    std::memcpy(m_cameraBuffers[slot].mapped(), &u, sizeof u);
+}
+
+}  // namespace rg::passes

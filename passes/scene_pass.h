@@ -1,0 +1,10 @@
+// The `scene` pass kind (scene_pass.cpp).
+#pragma once
+
+#include "gpu/pass_kind.h"
+
+namespace rg::passes {
+
+gpu::PassKindInfo scenePassKind();
+
+}  // namespace rg::passes

@@ -1,0 +1,69 @@
+// The material interface of scene draws (set 1, one descriptor set per scene material, filled by
+// passes/gpu_scene.cpp) and the sampled surface every material's surface function receives.
+#ifndef RG_MATERIAL_GLSL
+#define RG_MATERIAL_GLSL
+
+layout(set = 1, binding = 0) uniform MaterialData {
+    vec4 baseColorOpacity;  // linear base colour, opacity
+    vec4 emissive;          // rgb: nits (cd/m²)
+    vec4 factors;           // smoothness, metalMask, reflectance, ao
+    vec4 factors2;          // normalScale, occlusionStrength, alphaCutoff, alphaMode (0 opaque, 1 mask, 2 blend)
+    vec4 diffuseColor;      // two-colour model
+    vec4 f0;                // two-colour model
+    vec4 uvTransform[10];   // per texture: two rows of the affine uv matrix; w of the first row: texCoord
+    vec4 custom[4];         // game-team material parameters, in declaration order
+} material;
+layout(set = 1, binding = 1) uniform sampler2D baseColorTex;
+layout(set = 1, binding = 2) uniform sampler2D metallicRoughnessTex;
+layout(set = 1, binding = 3) uniform sampler2D normalTex;
+layout(set = 1, binding = 4) uniform sampler2D occlusionTex;
+layout(set = 1, binding = 5) uniform sampler2D emissiveTex;
+
+// What a surface function starts from: the material's parameters with its textures applied.
+struct RgSurface {
+    vec3 position;      // world
+    vec3 normal;        // world, unit, normal map applied, facing the viewer
+    vec3 baseColor;     // linear
+    float opacity;
+    float smoothness;
+    float metalMask;
+    float reflectance;
+    float ao;
+    vec3 emissive;      // nits
+    vec3 diffuseColor;  // two-colour model
+    vec3 f0;
+};
+
+vec2 rgTextureUv(int texture, vec2 uv0, vec2 uv1) {
+    vec4 r0 = material.uvTransform[2 * texture], r1 = material.uvTransform[2 * texture + 1];
+    vec2 uv = r0.w > 0.5 ? uv1 : uv0;
+    return vec2(dot(r0.xyz, vec3(uv, 1.0)), dot(r1.xyz, vec3(uv, 1.0)));
+}
+
+RgSurface rgSampleSurface(vec3 position, vec3 normal, vec4 tangent, vec2 uv0, vec2 uv1, bool frontFacing) {
+    RgSurface s;
+    s.position = position;
+    vec4 base = texture(baseColorTex, rgTextureUv(0, uv0, uv1));
+    s.baseColor = material.baseColorOpacity.rgb * base.rgb;
+    s.opacity = material.baseColorOpacity.a * base.a;
+    vec4 mr = texture(metallicRoughnessTex, rgTextureUv(1, uv0, uv1));
+    // glTF: roughness in G, metallic in B; smoothness = 1 − roughness.
+    s.smoothness = 1.0 - (1.0 - material.factors.x) * mr.g;
+    s.metalMask = material.factors.y * mr.b;
+    s.reflectance = material.factors.z;
+    float occlusion = texture(occlusionTex, rgTextureUv(3, uv0, uv1)).r;
+    s.ao = material.factors.w * mix(1.0, occlusion, material.factors2.y);
+    s.emissive = material.emissive.rgb * texture(emissiveTex, rgTextureUv(4, uv0, uv1)).rgb;
+    s.diffuseColor = material.diffuseColor.rgb;
+    s.f0 = material.f0.rgb;
+    vec3 n = normalize(normal);
+    if (!frontFacing) n = -n;
+    vec3 t = normalize(tangent.xyz - n * dot(n, tangent.xyz));
+    vec3 b = cross(n, t) * tangent.w;
+    vec3 m = texture(normalTex, rgTextureUv(2, uv0, uv1)).xyz * 2.0 - 1.0;
+    m.xy *= material.factors2.x;
+    s.normal = normalize(mat3(t, b, n) * m);
+    return s;
+}
+
+#endif
