@@ -14,6 +14,7 @@
 
 #include "core/compiler.h"
 #include "image/image.h"
+#include "layout/layout.h"
 #include "runtime.h"
 #include "session.h"
 
@@ -254,6 +255,7 @@ Result<RenderSetup> setupRun(const Args& args, const char* command, uint32_t def
     so.compile = opts;
     so.captures = captures;
     so.scene = args.get("scene");
+    so.view = args.get("view");
     so.camera = args.get("camera");
     so.verbose = verbose;
     s.session = std::make_unique<Session>(*s.runtime, so);
@@ -281,7 +283,9 @@ std::string number(double v) {
 Result<Image> writeOutputs(RenderSetup& setup, const std::string& exrPath, const std::string& pngPath,
                            const std::vector<std::string>& captures) {
     gpu::Executor& ex = setup.runtime->executor();
-    auto display = ex.readback(setup.output());
+    const std::string displayName = setup.session ? setup.session->displayResource() : setup.output();
+    const bool view = setup.session && displayName != setup.output();
+    auto display = ex.readback(displayName);
     if (!display) return std::unexpected(display.error());
     ExrWriteOptions eo;
     eo.metadata["rgraph.pipeline"] = setup.pipeline;
@@ -290,7 +294,10 @@ Result<Image> writeOutputs(RenderSetup& setup, const std::string& exrPath, const
     std::vector<ImageLayer> layers;
     const PipelineDesc* pipeline = setup.session ? &setup.session->pipeline() : nullptr;
     Image png = *display;
-    if (pipeline && !pipeline->hdr.empty()) {
+    if (view) {
+        // A debug view is display-ready; the EXR gets it as is.
+        layers.push_back({"view", rgbaNames(display->channels), *display});
+    } else if (pipeline && !pipeline->hdr.empty()) {
         // Absolute luminance: the pre-exposure this frame was rendered with divided out.
         auto hdr = ex.readback(pipeline->hdr);
         if (!hdr) return std::unexpected(hdr.error());
@@ -313,8 +320,42 @@ Result<Image> writeOutputs(RenderSetup& setup, const std::string& exrPath, const
         // A pipeline without a camera: its output is shown clamped, sRGB-encoded.
         for (size_t i = 0; i < png.pixels.size(); ++i) png.pixels[i] = srgbEncode(std::clamp(png.pixels[i], 0.0f, 1.0f));
     }
+    // G-buffer channels, decoded on the CPU with the layout's own unpack code.
+    std::vector<std::string> channelNames;
+    if (setup.session)
+        for (const auto& ch : setup.session->channelCaptures()) {
+            channelNames.push_back(ch.name);
+            auto info = analyzeLayout(ch.layout);
+            if (!info) return std::unexpected(info.error());
+            std::vector<Image> targets;
+            for (const auto& t : ch.layout.targets) {
+                auto img = ex.readback(t.name);
+                if (!img) return std::unexpected(img.error());
+                targets.push_back(std::move(*img));
+            }
+            const int index = info->find(ch.channel);
+            const ChannelPlacement& pl = info->channels[static_cast<size_t>(index)];
+            const bool integer = info->channelDesc(static_cast<size_t>(index)).encoding == Encoding::Uint;
+            const uint32_t comps = info->channelDesc(static_cast<size_t>(index)).encoding == Encoding::Oct ? 3u : pl.components;
+            Image out(targets[0].width, targets[0].height, comps);
+            std::vector<TexelValue> texels(targets.size());
+            for (uint32_t y = 0; y < out.height; ++y)
+                for (uint32_t x = 0; x < out.width; ++x) {
+                    for (size_t t = 0; t < targets.size(); ++t)
+                        texels[t] = texelFromFloats(ch.layout.targets[t].format, &targets[t].pixels[(size_t(y) * out.width + x) * targets[t].channels],
+                                                    targets[t].channels);
+                    auto values = unpackTexel(*info, texels);
+                    for (uint32_t c = 0; c < comps; ++c)
+                        out.at(x, y, c) = integer ? static_cast<float>(values[static_cast<size_t>(index)].u[c]) : values[static_cast<size_t>(index)].v[c];
+                }
+            static const char* xyz[] = {"x", "y", "z", "w"};
+            std::vector<std::string> names;
+            for (uint32_t c = 0; c < comps; ++c) names.push_back(comps == 1 ? "Y" : xyz[c]);
+            layers.push_back({ch.name, names, out});
+        }
     for (const auto& c : captures) {
         if (c == setup.output() || (pipeline && c == pipeline->hdr)) continue;
+        if (std::find(channelNames.begin(), channelNames.end(), c) != channelNames.end()) continue;
         auto img = ex.readback(c);
         if (!img) return std::unexpected(img.error());
         layers.push_back({c, rgbaNames(img->channels), *img});
@@ -334,11 +375,16 @@ Result<Image> writeOutputs(RenderSetup& setup, const std::string& exrPath, const
 }
 
 int cmdRender(int argc, char** argv) {
-    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "camera", "size", "frames", "out", "png", "capture", "device", "verbose"});
+    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "camera", "size", "frames", "out", "png", "capture", "view", "device", "verbose"});
     if (args.help) {
         std::printf(
-            "usage: rgraph render [--pipeline FILE.lua|builtin:NAME] [--size WxH] [--frames N]\n"
-            "                     [--out FILE.exr] [--png FILE.png] [--capture RESOURCE]... [--device N] [--verbose]\n\n"
+            "usage: rgraph render [--pipeline FILE.lua|builtin:NAME] [--scene FILE] [--camera NAME] [--size WxH] [--frames N]\n"
+            "                     [--out FILE.exr] [--png FILE.png] [--capture RESOURCE|gbuffer.CHANNEL]... [--view VIEW]\n"
+            "                     [--device N] [--verbose]\n\n"
+            "--scene: a Lua scene (scripts/scenes/*.lua), .gltf or .glb (default scripts/scenes/default.lua).\n"
+            "--view: write a debug view instead of the image: normals, basecolor, smoothness, metalmask,\n"
+            "materialid, reflectance, ao, emissive or stencil.\n"
+            "--capture gbuffer.CHANNEL: a G-buffer channel, decoded, as an EXR layer (e.g. gbuffer.normal).\n"
             "Renders N frames (default 1) at WxH (default 1280x720) through the pipeline (default\n"
             "scripts/pipelines/deferred.lua), calling its rg.frame(ctx) before each frame. Writes FILE.png (default\n"
             "out/render.png), the display image, and FILE.exr (default out/render.exr), linear: layer 'hdr' holds\n"

@@ -45,13 +45,79 @@ void Session::note(const std::string& line) {
     if (m_options.verbose) std::fprintf(stderr, "rgraph: %s\n", line.c_str());
 }
 
+namespace {
+
+const std::vector<std::string> kViews = {"normals", "basecolor", "smoothness", "metalmask", "materialid",
+                                         "reflectance", "ao", "emissive"};
+
+// Appends the debug view's passes: a fullscreen decode of the disney G-buffer, or for the
+// stencil one colour per stencil class drawn with that class's stencil test.
+Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string& view) {
+    for (const char* r : {"GB0", "GB1", "GB2", "GB3", "depth"})
+        if (!g.findResource(r))
+            return fail(ErrorCode::InvalidInput, "--view " + view + ": the pipeline has no '" + r +
+                                                     "' (views read the disney G-buffer GB0..GB3 and depth)");
+    ResourceDesc out;
+    out.name = "debug_view";
+    out.texture.format = Format::RGBA8Unorm;
+    out.exported = true;
+    g.resources.push_back(out);
+    if (view == "stencil") {
+        PassDesc clear;
+        clear.name = "debug_view_clear";
+        clear.kind = "clear";
+        clear.type = PassType::Transfer;
+        clear.accesses = {{"debug_view", Usage::CopyDst}};
+        clear.params = Value(Value::Table{{"value", Value(Value::List{0.0, 0.0, 0.0, 1.0})}});
+        g.passes.push_back(clear);
+        static const double colors[][3] = {{0.9, 0.2, 0.2}, {0.2, 0.8, 0.2}, {0.2, 0.4, 0.9}, {0.9, 0.8, 0.2},
+                                           {0.8, 0.3, 0.9}, {0.2, 0.9, 0.9}, {0.9, 0.5, 0.1}, {0.6, 0.6, 0.6}};
+        for (size_t i = 0; i < p.stencilClasses.size(); ++i) {
+            const auto& c = p.stencilClasses[i];
+            PassDesc pass;
+            pass.name = "debug_view_" + c.name;
+            pass.kind = "fullscreen";
+            pass.accesses = {{"depth", Usage::DepthStencilRead}, {"debug_view", Usage::ColorAttachment, /*load=*/true}};
+            const double* rgb = colors[i % 8];
+            pass.params = Value(Value::Table{
+                {"shader", Value("passes/stencil_view.frag")},
+                {"stencil", Value(Value::Table{{"ref", Value(static_cast<double>(c.value))}, {"mask", Value(255.0)}, {"compare", Value("equal")}})},
+                {"uniforms", Value(Value::Table{{"class_color", Value(Value::List{rgb[0], rgb[1], rgb[2], 1.0})}})}});
+            g.passes.push_back(pass);
+        }
+        return {};
+    }
+    auto it = std::find(kViews.begin(), kViews.end(), view);
+    if (it == kViews.end()) {
+        std::string all = "'stencil'";
+        for (const auto& v : kViews) all += ", '" + v + "'";
+        return fail(ErrorCode::InvalidInput, "--view: unknown view '" + view + "'; expected one of: " + all);
+    }
+    PassDesc pass;
+    pass.name = "debug_view";
+    pass.kind = "fullscreen";
+    pass.accesses = {{"GB0", Usage::Sampled}, {"GB1", Usage::Sampled}, {"GB2", Usage::Sampled},
+                     {"GB3", Usage::Sampled}, {"depth", Usage::Sampled}, {"debug_view", Usage::ColorAttachment}};
+    pass.params = Value(Value::Table{{"shader", Value("passes/debug_view.frag")},
+                                     {"uniforms", Value(Value::Table{{"view", Value(static_cast<double>(it - kViews.begin()))}})}});
+    g.passes.push_back(pass);
+    return {};
+}
+
+}  // namespace
+
 // The pipeline's graph with parameters as uniforms, captures exported, and shader paths that
 // exist next to the pipeline script made absolute (shaders/ and the root are searched anyway).
 GraphDesc Session::buildableGraph(const PipelineDesc& p) const {
     GraphDesc g = graphWithParams(p);
-    for (auto& r : g.resources)
+    if (!m_options.view.empty()) (void)addDebugView(g, p, m_options.view);  // checked in load()
+    for (auto& r : g.resources) {
         for (const auto& c : m_options.captures)
             if (r.name == c) r.exported = true;
+        for (const auto& ch : m_channels)
+            for (const auto& t : ch.layout.targets)
+                if (r.name == t.name) r.exported = true;
+    }
     const fs::path dir = fs::absolute(p.file).parent_path();
     for (auto& pass : g.passes) {
         const Value& s = pass.params["shader"];
@@ -173,9 +239,33 @@ Result<void> Session::load(const std::string& file) {
     } else if (!m_options.scene.empty()) {
         return fail(ErrorCode::InvalidInput, "--scene: pipeline '" + file + "' has no scene pass to draw it");
     }
-    for (const auto& c : m_options.captures)
-        if (!pipeline->graph.findResource(c))
-            return fail(ErrorCode::NotFound, "--capture: the pipeline has no resource named '" + c + "'");
+    if (!m_options.view.empty()) {
+        GraphDesc probe = graphWithParams(*pipeline);
+        if (auto r = addDebugView(probe, *pipeline, m_options.view); !r) return r;
+    }
+    std::vector<ChannelCapture> channels;
+    for (const auto& c : m_options.captures) {
+        if (pipeline->graph.findResource(c)) continue;
+        // "gbuffer.smoothness" or "disney.smoothness": a channel of a layout.
+        const size_t dot = c.find('.');
+        bool found = false;
+        if (dot != std::string::npos) {
+            const std::string prefix = c.substr(0, dot), channel = c.substr(dot + 1);
+            for (const auto& l : pipeline->layouts) {
+                if (prefix != "gbuffer" && prefix != l.name) continue;
+                for (const auto& t : l.targets)
+                    for (const auto& ch : t.channels)
+                        if (ch.name == channel && !found) {
+                            channels.push_back({c, l, channel});
+                            found = true;
+                        }
+            }
+        }
+        if (!found)
+            return fail(ErrorCode::NotFound, "--capture: the pipeline has no resource named '" + c +
+                                                 "' (nor a G-buffer channel: use gbuffer.<channel>)");
+    }
+    m_channels = channels;
     // The executor keeps its previous build when this one fails.
     if (auto r = m_runtime.executor().build(buildableGraph(*pipeline), m_options.compile); !r) return r;
     // History (exposure, previous frames) carries over a reload of the same pipeline, not to another.

@@ -20,6 +20,9 @@ struct SessionOptions {
     // (scripts/scenes/default.lua) when the pipeline has a scene pass.
     std::string scene;
     std::string camera;  // a camera of the scene by name; "" = its first
+    // A debug view instead of the pipeline's display image: normals, basecolor, smoothness,
+    // metalmask, materialid, reflectance, ao, emissive (of the disney G-buffer) or stencil.
+    std::string view;
     std::vector<std::string> captures;  // resources to export for readback
     bool verbose = false;               // print what each rebuild reused
 };
@@ -39,6 +42,16 @@ public:
     double lastLoadMs() const { return m_loadMs; }
     const std::vector<std::string>& log() const { return m_log; }
     const Scene* scene() const;
+    // A capture that names a G-buffer channel ("gbuffer.smoothness" or "<layout>.<channel>"):
+    // the layout that holds it. Its targets are exported; `render` decodes the channel.
+    struct ChannelCapture {
+        std::string name;
+        LayoutDesc layout;
+        std::string channel;
+    };
+    const std::vector<ChannelCapture>& channelCaptures() const { return m_channels; }
+    // The image `render` shows: the view's when a view is set, else the pipeline's display.
+    std::string displayResource() const { return m_options.view.empty() ? m_pipeline.output : "debug_view"; }
     // Scripts and shaders the running pipeline was built from (what `watch` polls).
     std::vector<std::string> files() const;
     bool loaded() const { return m_host != nullptr; }
@@ -59,6 +72,7 @@ private:
     double m_callbackMs = 0.0;
     double m_loadMs = 0.0;
     std::vector<std::string> m_log;
+    std::vector<ChannelCapture> m_channels;
 };
 
 // Writes gbuffer_<layout>.glsl (pack/unpack, generated) for every layout of the pipeline into

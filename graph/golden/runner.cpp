@@ -114,23 +114,23 @@ bool samePixels(const Image& a, const Image& b) {
 }
 
 // ---- rendering a test ----
+//
+// Tests render through rg::Session (graph/cli), so they see what `rgraph render` sees: scenes,
+// cameras, reloads. Session takes the test's parameter values and frame callback through
+// SessionOptions::params and SessionOptions::frameHook; a Session without those hooks gets the
+// fallback driver below (the same steps with the public pieces Session is made of), which cannot
+// draw scenes. The concepts pick whichever this build has.
 
-// The pipeline's graph with parameters as uniforms, captures exported, and shader paths that
-// exist next to the pipeline script made absolute: what Session builds (graph/cli/session.cpp).
-GraphDesc buildableGraph(const PipelineDesc& p, const std::vector<std::string>& captures) {
-    GraphDesc g = graphWithParams(p);
-    for (auto& r : g.resources)
-        if (std::find(captures.begin(), captures.end(), r.name) != captures.end()) r.exported = true;
-    const fs::path dir = fs::absolute(p.file).parent_path();
-    for (auto& pass : g.passes) {
-        const Value& s = pass.params["shader"];
-        std::error_code ec;
-        if (s.isString() && !s.asString().empty() && fs::path(s.asString()).is_relative() &&
-            fs::is_regular_file(dir / s.asString(), ec))
-            pass.params.table()["shader"] = Value((dir / s.asString()).string());
-    }
-    return g;
-}
+template <class O>
+concept SessionHasHooks = requires(O o) {
+    o.params = std::map<std::string, Value>{};
+    o.frameHook = [](const FrameContext&, const PipelineDesc&) -> Result<FrameChanges> { return FrameChanges{}; };
+};
+template <class O>
+concept SessionHasScene = requires(O o) {
+    o.scene = std::string();
+    o.camera = std::string();
+};
 
 constexpr const char* kBufferFormat = "buffer:float32";
 
@@ -144,6 +144,7 @@ struct Capture {
 struct Rendered {
     std::map<std::string, Capture> captures;
     std::vector<std::string> log;
+    uint32_t validationMessages = 0;
 };
 
 struct TestError {
@@ -156,108 +157,78 @@ std::unexpected<TestError> testError(const Error& e) {
     return std::unexpected(TestError{e, input});
 }
 
-std::string changesText(const FrameChanges& c) {
-    std::string s;
-    for (const auto& [pass, on] : c.enabled) s += (s.empty() ? "" : ", ") + std::string(on ? "enabled '" : "disabled '") + pass + "'";
-    for (const auto& [pass, shader] : c.shaders) s += (s.empty() ? "" : ", ") + ("'" + pass + "' uses " + shader);
-    return s;
-}
+// What a test needs before it renders: the pipeline's file, the parameter values to set (the
+// test's, then the determinism profile's) and the captures, all checked against the pipeline.
+struct Prepared {
+    std::string pipelineFile;
+    std::map<std::string, Value> params;
+    std::vector<std::string> profileLog;
+    std::vector<std::string> captures;
+};
 
-std::expected<Rendered, TestError> render(Runtime& rt, GoldenScript& script, const RunnerOptions& options, std::FILE* out) {
-    const GoldenTest& test = script.test();
+std::expected<Prepared, TestError> prepare(Runtime& rt, const GoldenTest& test) {
     const std::string& where = test.file;
-    if (!test.scene.empty())
-        return testError(Error(ErrorCode::Unsupported, where + ": scene: scenes are not supported yet (no pipeline draws a "
-                                                                "scene until the scene raster pass lands)"));
-    const std::string pipelineFile = fromRoot(test.pipeline);
+    if (!test.scene.empty() && !SessionHasScene<SessionOptions>)
+        return testError(Error(ErrorCode::Unsupported, where + ": scene: scenes are not supported yet (this build's Session "
+                                                                "draws no scene)"));
+    Prepared p;
+    p.pipelineFile = fromRoot(test.pipeline);
     std::error_code ec;
-    if (!fs::is_regular_file(pipelineFile, ec))
+    if (!fs::is_regular_file(p.pipelineFile, ec))
         return testError(Error(ErrorCode::NotFound, where + ": pipeline: no pipeline script '" + test.pipeline + "'"));
-
     LuaHost host(luaHostOptions(rt));
-    auto loaded = host.load(pipelineFile);
-    if (!loaded) return testError(loaded.error());
-    PipelineDesc pipeline = std::move(*loaded);
-    Rendered result;
+    auto pipeline = host.load(p.pipelineFile);
+    if (!pipeline) return testError(pipeline.error());
 
-    // Parameters the test sets, then the determinism profile for those it leaves alone.
     for (const auto& [name, value] : test.params) {
-        ParamDesc* p = pipeline.findParam(name);
-        if (!p) {
+        const ParamDesc* d = pipeline->findParam(name);
+        if (!d) {
             std::vector<std::string> names;
-            for (const auto& q : pipeline.params) names.push_back(q.name);
+            for (const auto& q : pipeline->params) names.push_back(q.name);
             const std::string best = closestName(name, names);
             return testError(Error(ErrorCode::InvalidInput, where + ": params." + name + ": the pipeline has no parameter '" +
                                                                 name + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)")));
         }
-        auto checked = checkParamValue(*p, value);
+        auto checked = checkParamValue(*d, value);
         if (!checked) return testError(Error(ErrorCode::InvalidInput, where + ": params." + name + ": " + checked.error().message));
-        p->value = *checked;
+        p.params[name] = *checked;
     }
-    for (auto& p : pipeline.params) {
-        if (test.params.count(p.name)) continue;
-        if (p.name == kFrameTimeParam && p.type == ParamType::Number && checkParamValue(p, Value(kFrameTime))) {
-            p.value = Value(kFrameTime);
-            result.log.push_back("profile: frame_time = 1/60 s");
+    for (const auto& d : pipeline->params) {
+        if (test.params.count(d.name)) continue;
+        if (d.name == kFrameTimeParam && d.type == ParamType::Number && checkParamValue(d, Value(kFrameTime))) {
+            p.params[d.name] = Value(kFrameTime);
+            p.profileLog.push_back("frame_time = 1/60 s");
             continue;
         }
-        if (std::find(kProfileOff.begin(), kProfileOff.end(), p.name) == kProfileOff.end()) continue;
-        Value off = p.type == ParamType::Boolean ? Value(false) : p.type == ParamType::Choice ? Value("off") : Value(0.0);
-        if (p.type == ParamType::Choice && std::find(p.choices.begin(), p.choices.end(), "off") == p.choices.end()) off = Value("none");
-        if (checkParamValue(p, off)) {
-            p.value = off;
-            result.log.push_back("profile: " + p.name + " = " + (off.isBool() ? "false" : off.isString() ? off.asString() : "0"));
+        if (std::find(kProfileOff.begin(), kProfileOff.end(), d.name) == kProfileOff.end()) continue;
+        Value off = d.type == ParamType::Boolean ? Value(false) : d.type == ParamType::Choice ? Value("off") : Value(0.0);
+        if (d.type == ParamType::Choice && std::find(d.choices.begin(), d.choices.end(), "off") == d.choices.end()) off = Value("none");
+        if (checkParamValue(d, off)) {
+            p.params[d.name] = off;
+            p.profileLog.push_back(d.name + " = " + (off.isBool() ? "false" : off.isString() ? off.asString() : "0"));
         }
     }
 
-    std::vector<std::string> captureNames;
     for (const auto& c : test.captures) {
-        const ResourceDesc* r = pipeline.graph.findResource(c.resource);
-        if (!r) {
+        if (!pipeline->graph.findResource(c.resource)) {
             std::vector<std::string> names;
-            for (const auto& res : pipeline.graph.resources) names.push_back(res.name);
+            for (const auto& res : pipeline->graph.resources) names.push_back(res.name);
             const std::string best = closestName(c.resource, names);
             return testError(Error(ErrorCode::NotFound, where + ": captures." + c.resource + ": the pipeline has no resource named '" +
                                                             c.resource + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)")));
         }
-        captureNames.push_back(c.resource);
+        p.captures.push_back(c.resource);
     }
-    if (auto r = writeLayoutHeaders(pipeline); !r) return testError(r.error());
+    return p;
+}
 
-    // A fresh executor per test: nothing (persistent contents, memory) leaks from one test into the next.
-    gpu::Executor executor(rt.gpu(), rt.shaders(), rt.kinds());
-    CompileOptions compile;
-    compile.outputWidth = test.width;
-    compile.outputHeight = test.height;
-    if (auto r = executor.build(buildableGraph(pipeline, captureNames), compile); !r) return testError(r.error());
-    for (uint32_t f = 0; f < test.frames; ++f) {
-        const FrameContext ctx{f, static_cast<double>(f) * kFrameTime};
-        // The pipeline's own rg.frame first, then the test's frame(ctx), which sees its changes.
-        auto own = host.frame(ctx, pipeline);
-        if (!own) return testError(own.error());
-        PipelineDesc next = pipeline;
-        applyFrameChanges(next, *own);
-        auto mine = script.frame(ctx, next);
-        if (!mine) return testError(mine.error());
-        applyFrameChanges(next, *mine);
-        const bool structural = own->structural() || mine->structural();
-        if (structural) {
-            if (auto r = executor.build(buildableGraph(next, captureNames), compile); !r) return testError(r.error());
-            std::string what = changesText(*own);
-            const std::string more = changesText(*mine);
-            what += (what.empty() || more.empty() ? "" : ", ") + more;
-            result.log.push_back("frame " + std::to_string(f) + ": " + what + "; rebuilt: " + executor.lastBuildReport().summary());
-            if (options.verbose) std::fprintf(out, "        %s\n", result.log.back().c_str());
-        } else if (!own->params.empty() || !mine->params.empty()) {
-            executor.updateUniforms(buildableGraph(next, captureNames));
-        }
-        pipeline = std::move(next);
-        if (auto r = executor.frame(); !r) return testError(r.error());
-    }
+// Reads the captures back after the last frame, with the pass that last writes each.
+std::expected<std::map<std::string, Capture>, TestError> readCaptures(gpu::Executor& executor, const std::vector<std::string>& names,
+                                                                       const std::string& where) {
+    std::map<std::string, Capture> out;
     if (auto r = executor.finish(); !r) return testError(r.error());
-
     const Plan& plan = executor.plan();
-    for (const auto& name : captureNames) {
+    for (const auto& name : names) {
         Capture c;
         const int32_t ri = plan.findResource(name);
         if (ri >= 0 && plan.resources[static_cast<size_t>(ri)].kind == ResourceKind::Buffer) {
@@ -279,9 +250,138 @@ std::expected<Rendered, TestError> render(Runtime& rt, GoldenScript& script, con
                     c.order = static_cast<int32_t>(i);
                     c.writer = plan.passes[i].name;
                 }
-        result.captures[name] = std::move(c);
+        out[name] = std::move(c);
     }
+    return out;
+}
+
+// Renders through a Session of its own runtime (a fresh device per test: no scene, persistent
+// contents or memory carry over from one test to the next).
+template <class Options>
+std::expected<Rendered, TestError> renderWithSession(const Prepared& p, const GoldenTest& test, GoldenScript& script,
+                                                     const RunnerOptions& options, std::FILE* out) {
+    if constexpr (SessionHasHooks<Options>) {
+        RuntimeOptions ro;
+        ro.device = options.device;
+        auto rt = Runtime::create(ro);
+        if (!rt) return testError(rt.error());
+        Options so;
+        so.compile.outputWidth = test.width;
+        so.compile.outputHeight = test.height;
+        so.captures = p.captures;
+        so.params = p.params;
+        if (test.hasFrameCallback)
+            so.frameHook = [&script](const FrameContext& ctx, const PipelineDesc& current) { return script.frame(ctx, current); };
+        if constexpr (SessionHasScene<Options>) {
+            so.scene = test.scene.empty() ? std::string() : fromRoot(test.scene);
+            so.camera = test.camera;
+        }
+        Session session(**rt, so);
+        if (auto r = session.load(p.pipelineFile); !r) return testError(r.error());
+        for (uint32_t f = 0; f < test.frames; ++f)
+            if (auto r = session.frame(); !r) return testError(r.error());
+        auto captures = readCaptures((*rt)->executor(), p.captures, test.file);
+        if (!captures) return std::unexpected(captures.error());
+        Rendered result;
+        result.captures = std::move(*captures);
+        for (const auto& line : session.log())
+            if (line.rfind("frame ", 0) == 0) {
+                result.log.push_back(line);
+                if (options.verbose) std::fprintf(out, "        %s\n", line.c_str());
+            }
+        result.validationMessages = (*rt)->gpu().validationMessageCount();
+        return result;
+    } else {
+        return testError(Error(ErrorCode::Unsupported, "this build's Session has no params/frameHook"));
+    }
+}
+
+// The fallback driver: Session's steps (graph/cli/session.cpp) with the test's parameters and
+// frame callback, on a fresh executor. No scenes.
+GraphDesc buildableGraph(const PipelineDesc& p, const std::vector<std::string>& captures) {
+    GraphDesc g = graphWithParams(p);
+    for (auto& r : g.resources)
+        if (std::find(captures.begin(), captures.end(), r.name) != captures.end()) r.exported = true;
+    const fs::path dir = fs::absolute(p.file).parent_path();
+    for (auto& pass : g.passes) {
+        const Value& s = pass.params["shader"];
+        std::error_code ec;
+        if (s.isString() && !s.asString().empty() && fs::path(s.asString()).is_relative() &&
+            fs::is_regular_file(dir / s.asString(), ec))
+            pass.params.table()["shader"] = Value((dir / s.asString()).string());
+    }
+    return g;
+}
+
+std::string changesText(const FrameChanges& c) {
+    std::string s;
+    for (const auto& [pass, on] : c.enabled) s += (s.empty() ? "" : ", ") + std::string(on ? "enabled '" : "disabled '") + pass + "'";
+    for (const auto& [pass, shader] : c.shaders) s += (s.empty() ? "" : ", ") + ("'" + pass + "' uses " + shader);
+    return s;
+}
+
+std::expected<Rendered, TestError> renderWithoutSession(Runtime& rt, const Prepared& p, const GoldenTest& test, GoldenScript& script,
+                                                        const RunnerOptions& options, std::FILE* out) {
+    LuaHost host(luaHostOptions(rt));
+    auto loaded = host.load(p.pipelineFile);
+    if (!loaded) return testError(loaded.error());
+    PipelineDesc pipeline = std::move(*loaded);
+    if (std::any_of(pipeline.graph.passes.begin(), pipeline.graph.passes.end(), [](const PassDesc& d) { return d.kind == "scene"; }))
+        return testError(Error(ErrorCode::Unsupported, test.file + ": pipeline: '" + test.pipeline + "' draws a scene, which "
+                                                                   "needs Session's params/frameHook (graph/cli) in this build"));
+    for (const auto& [name, value] : p.params) pipeline.findParam(name)->value = value;
+    if (auto r = writeLayoutHeaders(pipeline); !r) return testError(r.error());
+
+    const uint32_t validationBefore = rt.gpu().validationMessageCount();
+    Rendered result;
+    gpu::Executor executor(rt.gpu(), rt.shaders(), rt.kinds());
+    CompileOptions compile;
+    compile.outputWidth = test.width;
+    compile.outputHeight = test.height;
+    if (auto r = executor.build(buildableGraph(pipeline, p.captures), compile); !r) return testError(r.error());
+    for (uint32_t f = 0; f < test.frames; ++f) {
+        const FrameContext ctx{f, static_cast<double>(f) * kFrameTime};
+        // The pipeline's own rg.frame first, then the test's frame(ctx), which sees its changes.
+        auto own = host.frame(ctx, pipeline);
+        if (!own) return testError(own.error());
+        PipelineDesc next = pipeline;
+        applyFrameChanges(next, *own);
+        auto mine = script.frame(ctx, next);
+        if (!mine) return testError(mine.error());
+        applyFrameChanges(next, *mine);
+        if (own->structural() || mine->structural()) {
+            if (auto r = executor.build(buildableGraph(next, p.captures), compile); !r) return testError(r.error());
+            std::string what = changesText(*own);
+            const std::string more = changesText(*mine);
+            what += (what.empty() || more.empty() ? "" : ", ") + more;
+            result.log.push_back("frame " + std::to_string(f) + ": " + what + "; rebuilt: " + executor.lastBuildReport().summary());
+            if (options.verbose) std::fprintf(out, "        %s\n", result.log.back().c_str());
+        } else if (!own->params.empty() || !mine->params.empty()) {
+            executor.updateUniforms(buildableGraph(next, p.captures));
+        }
+        pipeline = std::move(next);
+        if (auto r = executor.frame(); !r) return testError(r.error());
+    }
+    auto captures = readCaptures(executor, p.captures, test.file);
+    if (!captures) return std::unexpected(captures.error());
+    result.captures = std::move(*captures);
+    result.validationMessages = rt.gpu().validationMessageCount() - validationBefore;
     return result;
+}
+
+std::expected<Rendered, TestError> render(Runtime& rt, GoldenScript& script, const RunnerOptions& options, std::FILE* out) {
+    const GoldenTest& test = script.test();
+    auto prepared = prepare(rt, test);
+    if (!prepared) return std::unexpected(prepared.error());
+    std::expected<Rendered, TestError> r = SessionHasHooks<SessionOptions>
+                                               ? renderWithSession<SessionOptions>(*prepared, test, script, options, out)
+                                               : renderWithoutSession(rt, *prepared, test, script, options, out);
+    if (r) {
+        std::vector<std::string> log;
+        for (const auto& line : prepared->profileLog) log.push_back("profile: " + line);
+        r->log.insert(r->log.begin(), log.begin(), log.end());
+    }
+    return r;
 }
 
 // ---- comparing, blessing, reporting ----
@@ -446,8 +546,6 @@ TestOutcome runOne(Runtime& rt, const std::string& file, const RunnerOptions& op
     TestOutcome t;
     t.file = relativeToRoot(file);
     t.name = fs::path(file).stem().string();
-    const uint32_t validationBefore = rt.gpu().validationMessageCount();
-
     auto script = GoldenScript::load(file, t.file);
     if (!script) {
         t.status = TestStatus::Error;
@@ -473,6 +571,7 @@ TestOutcome runOne(Runtime& rt, const std::string& file, const RunnerOptions& op
         return t;
     }
     t.log = rendered->log;
+    const uint32_t validationMessages = rendered->validationMessages;
 
     const std::string goldenDir = (fs::path(options.imageDir) / test.golden).string();
     for (const auto& spec : test.captures) {
@@ -547,7 +646,7 @@ TestOutcome runOne(Runtime& rt, const std::string& file, const RunnerOptions& op
                              env.device + ", " + env.driver + ", '" + env.cpuFeatures + "')";
         }
     }
-    if (const uint32_t n = rt.gpu().validationMessageCount() - validationBefore; n > 0) {
+    if (const uint32_t n = validationMessages; n > 0) {
         t.status = TestStatus::Failed;
         t.message = std::to_string(n) + " Vulkan validation message(s), printed above" + (t.message.empty() ? "" : "; " + t.message);
     }

@@ -116,7 +116,8 @@ GraphDesc graphWithParams(const PipelineDesc& pipeline) {
             for (const auto& c : pipeline.stencilClasses)
                 if (c.name == stencil["class"].asString()) {
                     t["ref"] = Value(static_cast<double>(c.value));
-                    t["mask"] = Value(static_cast<double>(c.mask));
+                    // A narrower mask lets a path light several classes (e.g. foliage = standard | 8).
+                    if (!t.count("mask")) t["mask"] = Value(static_cast<double>(c.mask));
                 }
             if (!t.count("compare")) t["compare"] = Value("equal");
             t.erase("class");

@@ -4,7 +4,9 @@
 -- chain (seed 002 §5). It grows as decals, forward, IBL and SSR land.
 local rg = require "rg"
 local post = require "post"
-require "disney"
+require "disney"     -- the standard material, its layout (tbl:2), stencil class and lighting path
+require "clearcoat"  -- a game team's clear-coat material and its lighting path
+require "foliage"    -- a game team's foliage material and its G-buffer fix-up
 
 post.params { exposure_mode = "auto" }
 post.exposure_state()
@@ -24,7 +26,7 @@ rg.pass "gbuffer" { kind = "scene", writes = { "GB0", "GB1", "GB2", "GB3", "dept
 rg.pass "lighting_standard" {
     kind = "fullscreen", shader = "passes/deferred_lighting.frag",
     reads = { "GB0", "GB1", "GB2", "GB3", "depth", { "depth", as = "depth" }, { "exposure", as = "storage" } },
-    writes = { "hdr" }, stencil = { class = "lit_standard" },
+    writes = { "hdr" }, stencil = { class = "lit_standard", mask = 7 },  -- low 3 bits: foliage (9) too
 }
 
 -- The sky where nothing was drawn: depth still at the far plane.

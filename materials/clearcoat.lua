@@ -1,0 +1,22 @@
+-- A game team's clear-coat material, declared in Lua and GLSL only: its own materialId, stencil
+-- class and lighting path, whose lighting pass evaluates the lights twice (seed 000 §3.2.2: "a
+-- clear coat model that needs to sample the lighting twice"): the base layer, attenuated by what
+-- the coat reflects, plus a second GGX lobe for the coat. Coat smoothness goes into the disney
+-- layout's spare GB2.r channel, coat strength into GB1.a's 5-bit MaterialData.
+local rg = require "rg"
+require "disney"
+
+rg.stencil "lit_clearcoat" { doc = "clear coat: two specular lobes" }
+rg.path "clearcoat" { stencil = "lit_clearcoat" }
+rg.material "clear_coat" {
+    id = 1, layout = "disney", path = "clearcoat", surface = "materials/clearcoat.glsl",
+    params = { coatSmoothness = 0.9, coatStrength = 1.0 },
+}
+
+-- Lights the clear-coat pixels right after the standard ones (the low 3 stencil bits name the path).
+rg.pass "lighting_clearcoat" {
+    kind = "fullscreen", shader = "materials/clearcoat_lighting.frag",
+    reads = { "GB0", "GB1", "GB2", "GB3", "depth", { "depth", as = "depth" }, { "exposure", as = "storage" } },
+    writes = { { "hdr", load = true } }, stencil = { class = "lit_clearcoat", mask = 7 },
+    insert = { after = "lighting_standard" },
+}

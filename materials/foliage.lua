@@ -1,0 +1,24 @@
+-- A game team's foliage material, declared in Lua and GLSL only (seed 000 §3.2.2, lst:3): the
+-- geometry-heavy G-buffer pass fills only GB0 and GB1; a fix-up pass fills GB2 and GB3 for its
+-- pixels afterwards (global smoothness-free parameters: no metal, one reflectance, AO 1, and the
+-- indirect light of a uniform sky into GB3's radiosity), so foliage shares the standard lighting
+-- pass. Its stencil class is the standard class's value plus bit 3: the standard lighting
+-- (testing the low 3 bits) lights it, the fix-up (testing all 4) finds it.
+local rg = require "rg"
+require "disney"
+
+rg.stencil "foliage" { value = 9, doc = "needs the G-buffer fix-up, then standard lighting" }
+rg.param "foliage_reflectance" { type = "number", default = 0.35, min = 0, max = 1, doc = "fix-up: reflectance of all foliage" }
+rg.param "foliage_ambient" { type = "number", default = 5000, min = 0, max = 1e6, doc = "fix-up: sky illuminance for foliage radiosity, lux" }
+
+rg.material "foliage" {
+    id = 2, layout = "disney", stencil = "foliage", surface = "materials/foliage.glsl",
+    fills = { "GB0", "GB1" }, fixup = "foliage_fixup",
+}
+
+rg.pass "foliage_fixup" {
+    kind = "fullscreen", shader = "materials/foliage_fixup.frag",
+    reads = { "GB0", "GB1", { "depth", as = "depth" } },
+    writes = { { "GB2", load = true }, { "GB3", load = true } },
+    stencil = { class = "foliage" }, insert = { after = "gbuffer" },
+}

@@ -1,0 +1,14 @@
+-- One object per pipeline material under a sun: standard, clear coat, foliage; for the tests of
+-- the material system (known parameters, read back from the G-buffer).
+local scene = require "scene"
+scene.material "floor" { base_color = { 0.2, 0.2, 0.2 }, smoothness = 0.3 }
+scene.plane "floor" { size = { 8, 8 }, material = "floor" }
+scene.material "red" { base_color = { 0.8, 0.05, 0.05 }, smoothness = 0.6, metal_mask = 0, reflectance = 0.5 }
+scene.sphere "standard" { radius = 0.5, position = { -1.2, 0.5, 0 }, material = "red" }
+scene.material "coated" { model = "clear_coat", base_color = { 0.8, 0.05, 0.05 }, smoothness = 0.6,
+                          params = { coatSmoothness = 0.95, coatStrength = 1.0 } }
+scene.sphere "coated" { radius = 0.5, position = { 0, 0.5, 0 }, material = "coated" }
+scene.material "leaf" { model = "foliage", base_color = { 0.1, 0.5, 0.05 }, smoothness = 0.4, double_sided = true }
+scene.box "bush" { size = { 0.8, 0.8, 0.8 }, position = { 1.2, 0.4, 0 }, material = "leaf" }
+scene.light "sun" { type = "sun", intensity = 50000, unit = "lux", direction = { -0.3, -0.8, -0.5 } }
+scene.camera "main" { position = { 0, 1.2, 3.4 }, target = { 0, 0.45, 0 }, fov = 45, aperture = 16, shutter = 1 / 125, iso = 100 }
