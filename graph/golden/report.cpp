@@ -288,7 +288,8 @@ void writeCapture(Html& html, const TestOutcome& t, const CaptureOutcome& c) {
     b << "<figure><figcaption>actual</figcaption><canvas class=\"actual\" data-img=\"" << actualId << "\" data-scale=\""
       << scale << "\"></canvas></figure>\n";
     if (haveExpected) {
-        b << "<figure><figcaption>swipe: expected | actual</figcaption><div class=\"swipebox\">"
+        b << "<figure><figcaption>swipe: expected | actual</figcaption><div class=\"swipebox\" style=\"width:"
+          << c.actual.width * scale << "px;height:" << c.actual.height * scale << "px\">"
           << "<canvas class=\"under\" data-img=\"" << expectedId << "\" data-scale=\"" << scale << "\"></canvas>"
           << "<canvas class=\"over\" data-img=\"" << actualId << "\" data-scale=\"" << scale << "\"></canvas>"
           << "<div class=\"divider\"></div></div>"

@@ -712,9 +712,10 @@ Result<RunReport> runGoldenTests(const RunnerOptions& optionsIn, std::FILE* out)
     report.update = options.update;
     report.environment = environmentOf(**rt);
     report.profile = profileLine(report.environment);
-    std::fprintf(out, "rgraph test: %zu golden test%s from %s on %s (%s; %s)\n", files->size(), files->size() == 1 ? "" : "s",
+    std::fprintf(out, "rgraph test: %zu golden test%s from %s on %s (%s; %s)%s\n", files->size(), files->size() == 1 ? "" : "s",
                  relativeToRoot(options.testDir).c_str(), report.environment.device.c_str(), report.environment.driver.c_str(),
-                 report.profile.c_str());
+                 report.profile.c_str(),
+                 SessionHasHooks<SessionOptions> ? "" : "\nrgraph test: fallback driver (SessionOptions has no params/frameHook): no scenes");
     std::fflush(out);
     for (const auto& file : *files) {
         report.tests.push_back(runOne(**rt, file, options, report.environment, out));

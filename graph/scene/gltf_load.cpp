@@ -3,6 +3,7 @@
 // broken file is an error that names the file and the thing, never a crash.
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -24,6 +25,14 @@ namespace rg {
 using namespace scene_detail;
 
 namespace {
+
+// `lhs = value of expr`, or return its error.
+#define RG_TRY(lhs, expr)                                      \
+    do {                                                       \
+        auto rg_try_ = (expr);                                 \
+        if (!rg_try_) return std::unexpected(rg_try_.error()); \
+        lhs = std::move(*rg_try_);                             \
+    } while (0)
 
 // Extensions whose meaning we implement (a file may require them).
 const std::set<std::string> kSupported = {"KHR_texture_transform", "KHR_materials_emissive_strength",
@@ -595,6 +604,31 @@ struct Loader {
         return {};
     }
 
+    // ---- numbers glTF gives a range -----------------------------------------------------------
+
+    static std::string fmt(double v) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%g", v);
+        return buf;
+    }
+    // v within [lo, hi] (hi = inf: v >= lo), else an error naming `what`.
+    Result<float> ranged(const std::string& what, double v, double lo, double hi) const {
+        if (v >= lo && v <= hi && std::isfinite(v)) return static_cast<float>(v);
+        return error(ErrorCode::InvalidInput, what + " is " + fmt(v) + ", expected " +
+                                                  (std::isinf(hi) ? "a number >= " + fmt(lo) : "a number in [" + fmt(lo) + ", " + fmt(hi) + "]"));
+    }
+    Result<glm::vec3> ranged3(const std::string& what, const std::vector<double>& v, glm::vec3 def, double lo, double hi) const {
+        if (v.empty()) return def;
+        if (v.size() != 3) return error(ErrorCode::InvalidInput, what + " has " + std::to_string(v.size()) + " values, expected 3");
+        glm::vec3 out;
+        for (int i = 0; i < 3; ++i) {
+            auto r = ranged(what + "[" + std::to_string(i) + "]", v[size_t(i)], lo, hi);
+            if (!r) return std::unexpected(r.error());
+            out[i] = *r;
+        }
+        return out;
+    }
+
     // ---- materials, textures, images --------------------------------------------------------
 
     void convertSamplers() {
@@ -674,6 +708,11 @@ struct Loader {
     }
 
     static double number(const tinygltf::Value& v, double def) { return v.IsNumber() ? v.GetNumberAsDouble() : def; }
+    // A JSON number used as an index: -1 unless it is a whole number an int can hold.
+    static int indexOf(const tinygltf::Value& v) {
+        const double d = number(v, -1.0);
+        return d >= 0.0 && d <= 2147483647.0 && std::floor(d) == d ? static_cast<int>(d) : -1;
+    }
 
     Result<TextureRef> texture(const std::string& where, int index, int texCoord, const tinygltf::ExtensionMap& ext, bool srgb) {
         TextureRef ref;
@@ -706,7 +745,7 @@ struct Loader {
                 scale = glm::vec2(float(number(t.Get("scale").Get(0), 1)), float(number(t.Get("scale").Get(1), 1)));
             const float rotation = float(number(t.Get("rotation"), 0.0));
             ref.transform = uvTransform(offset, rotation, scale);
-            if (t.Has("texCoord")) coord = int(number(t.Get("texCoord"), texCoord));
+            if (t.Has("texCoord")) coord = indexOf(t.Get("texCoord"));
         }
         if (coord < 0 || coord > 1) {
             warn(where + ": texCoord " + std::to_string(coord) + " is not supported (TEXCOORD_0 and _1 only); using TEXCOORD_0");
@@ -749,19 +788,28 @@ struct Loader {
             Material m;
             m.name = src.name.empty() ? "material " + std::to_string(i) : src.name;
             const auto& pbr = src.pbrMetallicRoughness;
-            if (pbr.baseColorFactor.size() == 4) {
-                m.baseColor = vec3Of(pbr.baseColorFactor, glm::vec3(1.0f));
-                m.opacity = float(pbr.baseColorFactor[3]);
-            } else
-                m.baseColor = glm::vec3(1.0f);
-            m.metalMask = float(pbr.metallicFactor);
-            m.smoothness = 1.0f - float(pbr.roughnessFactor);  // glTF roughness is perceptual
-            m.reflectance = 0.5f;
-            float strength = 1.0f;
+            if (pbr.baseColorFactor.size() != 4)
+                return error(ErrorCode::InvalidInput, where + ": baseColorFactor has " + std::to_string(pbr.baseColorFactor.size()) +
+                                                          " values, expected 4");
+            glm::vec4 base;
+            for (int k = 0; k < 4; ++k) {
+                auto r = ranged(where + ": baseColorFactor[" + std::to_string(k) + "]", pbr.baseColorFactor[size_t(k)], 0, 1);
+                if (!r) return std::unexpected(r.error());
+                base[k] = *r;
+            }
+            m.baseColor = glm::vec3(base);
+            m.opacity = base.a;
+            float roughness = 1.0f, strength = 1.0f;
+            RG_TRY(m.metalMask, ranged(where + ": metallicFactor", pbr.metallicFactor, 0, 1));
+            RG_TRY(roughness, ranged(where + ": roughnessFactor", pbr.roughnessFactor, 0, 1));
+            m.smoothness = 1.0f - roughness;  // glTF roughness is perceptual (DESIGN.md §5)
+            m.reflectance = 0.5f;             // f0 = 4 %; KHR_materials_specular / _ior are ignored
             if (auto it = src.extensions.find("KHR_materials_emissive_strength"); it != src.extensions.end())
-                strength = float(number(it->second.Get("emissiveStrength"), 1.0));
+                RG_TRY(strength, ranged(where + ": emissiveStrength", number(it->second.Get("emissiveStrength"), 1.0), 0, HUGE_VAL));
+            glm::vec3 emissive;
+            RG_TRY(emissive, ranged3(where + ": emissiveFactor", src.emissiveFactor, glm::vec3(0.0f), 0, 1));
             // Read as nits (see Material::emissive).
-            m.emissive = vec3Of(src.emissiveFactor, glm::vec3(0.0f)) * strength;
+            m.emissive = emissive * strength;
             auto tex = [&](const char* what, int index, int texCoord, const tinygltf::ExtensionMap& ext, bool srgb,
                            TextureRef& out) -> Result<void> {
                 auto r = texture(where + " " + what, index, texCoord, ext, srgb);
@@ -784,14 +832,14 @@ struct Loader {
             if (auto r = tex("emissiveTexture", src.emissiveTexture.index, src.emissiveTexture.texCoord, src.emissiveTexture.extensions,
                              true, m.emissiveTex); !r)
                 return r;
-            m.normalScale = float(src.normalTexture.scale);
-            m.occlusionStrength = float(src.occlusionTexture.strength);
+            RG_TRY(m.normalScale, ranged(where + ": normalTexture.scale", src.normalTexture.scale, -1e6, 1e6));
+            RG_TRY(m.occlusionStrength, ranged(where + ": occlusionTexture.strength", src.occlusionTexture.strength, 0, 1));
             if (src.alphaMode == "OPAQUE" || src.alphaMode.empty()) m.alphaMode = AlphaMode::Opaque;
             else if (src.alphaMode == "MASK") m.alphaMode = AlphaMode::Mask;
             else if (src.alphaMode == "BLEND") m.alphaMode = AlphaMode::Blend;
             else
                 return error(ErrorCode::InvalidInput, where + ": alphaMode '" + src.alphaMode + "', expected OPAQUE, MASK or BLEND");
-            m.alphaCutoff = float(src.alphaCutoff);
+            RG_TRY(m.alphaCutoff, ranged(where + ": alphaCutoff", src.alphaCutoff, 0, HUGE_VAL));
             m.doubleSided = src.doubleSided;
             // What glTF cannot say, as exportGlb wrote it.
             if (src.extras.IsObject() && src.extras.Has("rgraph") && src.extras.Get("rgraph").IsObject()) {
@@ -818,7 +866,11 @@ struct Loader {
                 return error(ErrorCode::InvalidInput, where + ": matrix has " + std::to_string(n.matrix.size()) + " values, expected 16");
             glm::mat4 m;
             for (int c = 0; c < 4; ++c)
-                for (int r = 0; r < 4; ++r) m[c][r] = float(n.matrix[size_t(c * 4 + r)]);  // column-major, as glm
+                for (int r = 0; r < 4; ++r) {
+                    auto v = ranged(where + ": matrix[" + std::to_string(c * 4 + r) + "]", n.matrix[size_t(c * 4 + r)], -1e30, 1e30);
+                    if (!v) return std::unexpected(v.error());
+                    m[c][r] = *v;  // column-major, as glm
+                }
             return m;
         }
         auto sized = [&](const std::vector<double>& v, size_t want, const char* what) -> Result<void> {
@@ -830,10 +882,16 @@ struct Loader {
         if (auto r = sized(n.translation, 3, "translation"); !r) return std::unexpected(r.error());
         if (auto r = sized(n.rotation, 4, "rotation"); !r) return std::unexpected(r.error());
         if (auto r = sized(n.scale, 3, "scale"); !r) return std::unexpected(r.error());
-        const glm::vec3 t = vec3Of(n.translation, glm::vec3(0.0f));
-        const glm::vec3 s = vec3Of(n.scale, glm::vec3(1.0f));
+        glm::vec3 t, s;
+        RG_TRY(t, ranged3(where + ": translation", n.translation, glm::vec3(0.0f), -1e30, 1e30));
+        RG_TRY(s, ranged3(where + ": scale", n.scale, glm::vec3(1.0f), -1e30, 1e30));
         glm::quat q(1.0f, 0.0f, 0.0f, 0.0f);  // glm::quat(w, x, y, z); glTF stores x, y, z, w
-        if (n.rotation.size() == 4) q = glm::normalize(glm::quat(float(n.rotation[3]), float(n.rotation[0]), float(n.rotation[1]), float(n.rotation[2])));
+        if (n.rotation.size() == 4) {
+            glm::vec4 r;
+            for (int k = 0; k < 4; ++k) RG_TRY(r[k], ranged(where + ": rotation[" + std::to_string(k) + "]", n.rotation[size_t(k)], -1, 1));
+            if (glm::length(r) < 1e-6f) return error(ErrorCode::InvalidInput, where + ": rotation is not a unit quaternion (it is zero)");
+            q = glm::normalize(glm::quat(r.w, r.x, r.y, r.z));
+        }
         return glm::translate(glm::mat4(1.0f), t) * glm::mat4_cast(q) * glm::scale(glm::mat4(1.0f), s);
     }
 
@@ -848,10 +906,11 @@ struct Loader {
             warn(named("camera", size_t(n.camera), c.name) + ": " + c.type + " cameras are not supported; skipped");
             return {};
         }
-        cam.verticalFov = float(c.perspective.yfov);
-        cam.nearPlane = float(c.perspective.znear);
+        const std::string where = named("camera", size_t(n.camera), c.name);
+        RG_TRY(cam.verticalFov, ranged(where + ": yfov", c.perspective.yfov, 1e-6, 3.14159));
+        RG_TRY(cam.nearPlane, ranged(where + ": znear", c.perspective.znear, 1e-9, 1e30));
         // glTF: no zfar means an infinite projection; we keep the finite default.
-        if (c.perspective.zfar > 0) cam.farPlane = float(c.perspective.zfar);
+        if (c.perspective.zfar > 0) RG_TRY(cam.farPlane, ranged(where + ": zfar", c.perspective.zfar, c.perspective.znear, 1e30));
         cam.position = glm::vec3(world[3]);
         cam.target = cam.position + glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
         cam.up = glm::normalize(glm::vec3(world * glm::vec4(0, 1, 0, 0)));
@@ -875,25 +934,29 @@ struct Loader {
         const auto& n = model.nodes[nodeIndex];
         auto ext = n.extensions.find("KHR_lights_punctual");
         if (ext == n.extensions.end() || !ext->second.IsObject() || !ext->second.Has("light")) return {};
-        const int index = int(number(ext->second.Get("light"), -1));
-        if (index < 0 || size_t(index) >= model.lights.size())
-            return error(ErrorCode::InvalidInput, named("node", nodeIndex, n.name) + ": KHR_lights_punctual light " + std::to_string(index) +
-                                                      " does not exist (" + std::to_string(model.lights.size()) + " lights)");
-        const auto& l = model.lights[size_t(index)];
+        const int li = indexOf(ext->second.Get("light"));
+        if (li < 0 || size_t(li) >= model.lights.size())
+            return error(ErrorCode::InvalidInput, named("node", nodeIndex, n.name) + ": KHR_lights_punctual light " +
+                                                      (li < 0 ? "index is not a whole number >= 0" : std::to_string(li) + " does not exist (" +
+                                                      std::to_string(model.lights.size()) + " lights)"));
+        const auto& l = model.lights[size_t(li)];
         Light out;
-        out.name = !l.name.empty() ? l.name : !n.name.empty() ? n.name : "light " + std::to_string(index);
+        out.name = !l.name.empty() ? l.name : !n.name.empty() ? n.name : "light " + std::to_string(li);
         // KHR_lights_punctual: point and spot in candela, directional in lux.
         if (l.type == "point") out.type = LightType::Point, out.unit = "cd";
         else if (l.type == "spot") out.type = LightType::Spot, out.unit = "cd";
         else if (l.type == "directional") out.type = LightType::Directional, out.unit = "lux";
         else
-            return error(ErrorCode::InvalidInput, named("light", size_t(index), l.name) + ": type '" + l.type +
+            return error(ErrorCode::InvalidInput, named("light", size_t(li), l.name) + ": type '" + l.type +
                                                       "', expected point, spot or directional");
-        out.color = vec3Of(l.color, glm::vec3(1.0f));
-        out.intensity = float(l.intensity);
-        out.range = float(l.range);
-        out.innerAngle = float(l.spot.innerConeAngle);
-        out.outerAngle = float(l.spot.outerConeAngle);
+        const std::string where = named("light", size_t(li), l.name);
+        RG_TRY(out.color, ranged3(where + ": color", l.color, glm::vec3(1.0f), 0, 1));
+        RG_TRY(out.intensity, ranged(where + ": intensity", l.intensity, 0, HUGE_VAL));
+        RG_TRY(out.range, ranged(where + ": range", l.range, 0, HUGE_VAL));
+        if (out.type == LightType::Spot) {
+            RG_TRY(out.outerAngle, ranged(where + ": spot.outerConeAngle", l.spot.outerConeAngle, 0, 1.5707964));
+            RG_TRY(out.innerAngle, ranged(where + ": spot.innerConeAngle", l.spot.innerConeAngle, 0, l.spot.outerConeAngle));
+        }
         out.position = glm::vec3(world[3]);
         out.direction = glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
         if (l.extras.IsObject() && l.extras.Get("rgraph").IsObject()) {

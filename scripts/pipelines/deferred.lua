@@ -29,11 +29,12 @@ rg.pass "lighting_standard" {
     writes = { "hdr" }, stencil = { class = "lit_standard", mask = 7 },  -- low 3 bits: foliage (9) too
 }
 
--- The sky where nothing was drawn: depth still at the far plane.
+-- The sky where nothing was drawn: depth still at the far plane. ("equal" would depend on the
+-- rasteriser reproducing 1.0 exactly; less_equal against the cleared 1.0 does not.)
 rg.pass "sky" {
     kind = "fullscreen", shader = "passes/sky.frag",
     reads = { { "depth", as = "depth" }, { "exposure", as = "storage" } }, writes = { { "hdr", load = true } },
-    depth = { compare = "equal", value = 1 },
+    depth = { compare = "less_equal", value = 1 },  -- at the far plane: only where nothing was drawn
 }
 
 post.chain { input = "hdr", output = "display" }

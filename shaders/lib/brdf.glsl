@@ -7,8 +7,10 @@
 
 #define RG_PI 3.14159265358979
 
-vec3 F_Schlick(vec3 f0, float f90, float u) { return f0 + (f90 - f0) * pow(1.0 - u, 5.0); }
-float F_Schlick(float f0, float f90, float u) { return f0 + (f90 - f0) * pow(1.0 - u, 5.0); }
+// lst:2. u may exceed 1 by the 1e-5 lst:2 adds to NdotV; pow of a negative base is undefined
+// in GLSL (NaN on lavapipe), so the base is clamped at 0.
+vec3 F_Schlick(vec3 f0, float f90, float u) { return f0 + (f90 - f0) * pow(max(1.0 - u, 0.0), 5.0); }
+float F_Schlick(float f0, float f90, float u) { return f0 + (f90 - f0) * pow(max(1.0 - u, 0.0), 5.0); }
 
 // lst:1 — Disney diffuse with the energy renormalisation; divide by π for the BRDF.
 float Fr_DisneyDiffuse(float NdotV, float NdotL, float LdotH, float linearRoughness) {

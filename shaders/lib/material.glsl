@@ -58,7 +58,12 @@ RgSurface rgSampleSurface(vec3 position, vec3 normal, vec4 tangent, vec2 uv0, ve
     s.f0 = material.f0.rgb;
     vec3 n = normalize(normal);
     if (!frontFacing) n = -n;
-    vec3 t = normalize(tangent.xyz - n * dot(n, tangent.xyz));
+    // Gram-Schmidt; a degenerate tangent (at a sphere's pole, or none at all) falls back to
+    // any vector perpendicular to n, so no NaN reaches the G-buffer.
+    vec3 t = tangent.xyz - n * dot(n, tangent.xyz);
+    float tl = dot(t, t);
+    vec3 anyT = normalize(abs(n.x) < 0.9 ? cross(n, vec3(1.0, 0.0, 0.0)) : cross(n, vec3(0.0, 1.0, 0.0)));
+    t = tl > 1e-12 ? t * inversesqrt(tl) : anyT;
     vec3 b = cross(n, t) * tangent.w;
     vec3 m = texture(normalTex, rgTextureUv(2, uv0, uv1)).xyz * 2.0 - 1.0;
     m.xy *= material.factors2.x;

@@ -42,10 +42,10 @@ check "missing scene" 2 grep "nope.gltf" -- "$rgraph" render --scene nope.gltf -
 check "render" 0 grep "wrote $tmp/r.exr and $tmp/r.png (64x32" -- \
     env RG_VALIDATION=1 "$rgraph" render --size 64x32 --frames 3 --out "$tmp/r.exr" --png "$tmp/r.png" --capture GB0
 check "render wrote files" 0 -- test -s "$tmp/r.exr" -a -s "$tmp/r.png"
-check "graph json parses" 0 -- bash -c "'$rgraph' graph --format json --size 64x64 | python3 -c 'import json,sys; p=json.load(sys.stdin); n=[x[\"name\"] for x in p[\"passes\"]]; assert n[:3]==[\"gbuffer\",\"lighting_standard\",\"sky\"] and n[-2:]==[\"tonemap\",\"fxaa\"], n'"
+check "graph json parses" 0 -- bash -c "'$rgraph' graph --format json --size 64x64 | python3 -c 'import json,sys; p=json.load(sys.stdin); n=[x[\"name\"] for x in p[\"passes\"]]; assert n[:5]==[\"gbuffer\",\"foliage_fixup\",\"lighting_standard\",\"lighting_clearcoat\",\"sky\"] and n[-2:]==[\"tonemap\",\"fxaa\"], n'"
 check "graph dot" 0 grep "digraph rgraph" -- "$rgraph" graph --pipeline scripts/pipelines/test.lua
 check "bench" 0 grep "frame total" -- "$rgraph" bench --size 64x64 --frames 3 --json "$tmp/bench.json"
-check "bench json" 0 -- python3 -c "import json; b=json.load(open('$tmp/bench.json')); assert len(b['passes'])==17 and b['frames']==3"
+check "bench json" 0 -- python3 -c "import json; b=json.load(open('$tmp/bench.json')); assert len(b['passes'])==19 and b['frames']==3"
 
 # watch: a valid script, a broken one (reported, old pipeline kept), a fixed one (picked up),
 # then an edited shader (only its pass is rebuilt).

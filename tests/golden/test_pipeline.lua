@@ -7,6 +7,6 @@ return {
     params = { scale = 0.5 },
     captures = {
         pattern = { metric = "max_abs", tolerance = 0 },
-        output = { metric = "max_abs", tolerance = 0 },
+        output = { { metric = "max_abs", tolerance = 0 }, { metric = "rmse", tolerance = 0 } },
     },
 }

@@ -141,18 +141,33 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     ASSERT_EQ(p->layouts.size(), 1u);
     EXPECT_EQ(p->layouts[0].name, "disney");
     EXPECT_EQ(p->layouts[0].targets.size(), 4u);
-    ASSERT_EQ(p->materials.size(), 1u);
+    // The standard material and two game-team materials, each with its id and stencil class.
+    ASSERT_EQ(p->materials.size(), 3u);
+    EXPECT_EQ(p->materials[0].name, "standard");
     EXPECT_EQ(p->materials[0].id, 0u);
     EXPECT_EQ(p->materials[0].stencil, "lit_standard");
-    ASSERT_EQ(p->stencilClasses.size(), 1u);
-    EXPECT_EQ(p->stencilClasses[0].value, 1u);
+    EXPECT_EQ(p->materials[1].name, "clear_coat");
+    EXPECT_EQ(p->materials[1].id, 1u);
+    EXPECT_EQ(p->materials[1].stencil, "lit_clearcoat");
+    EXPECT_EQ(p->materials[2].name, "foliage");
+    EXPECT_EQ(p->materials[2].fills, (std::vector<std::string>{"GB0", "GB1"}));
+    EXPECT_EQ(p->materials[2].fixup, "foliage_fixup");
+    ASSERT_EQ(p->stencilClasses.size(), 3u);
+    EXPECT_EQ(p->stencilClasses[0].value, 1u);  // lit_standard, allocated
+    EXPECT_EQ(p->stencilClasses[1].value, 2u);  // lit_clearcoat, allocated
+    EXPECT_EQ(p->stencilClasses[2].value, 9u);  // foliage, explicit: standard | bit 3
     EXPECT_EQ(p->output, "display");
     EXPECT_EQ(p->hdr, "hdr");
     EXPECT_EQ(p->exposure, "exposure");
+    // Modules' passes land at their insertion points.
+    std::vector<std::string> order;
+    for (const auto& pass : p->graph.passes) order.push_back(pass.name);
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 5),
+              (std::vector<std::string>{"gbuffer", "foliage_fixup", "lighting_standard", "lighting_clearcoat", "sky"}));
     auto plan = compile(graphWithParams(*p), {});
     ASSERT_TRUE(plan.has_value()) << plan.error().message;
-    // Every script it pulled in is known, for hot reload: deferred.lua, post.lua, disney.lua.
-    EXPECT_EQ(p->files.size(), 3u);
+    // Every script it pulled in is known, for hot reload.
+    EXPECT_EQ(p->files.size(), 5u);  // deferred, post, disney, clearcoat, foliage
 }
 
 TEST(LuaPipeline, ModulesAreNamespacedAndInsertedAfterTheirAnchor) {

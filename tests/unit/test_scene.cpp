@@ -687,6 +687,20 @@ TEST(GltfErrors, UnsupportedPrimitiveMode) {
     EXPECT_EQ(errorOf(rg::loadGltf(g.writeGltf(dir, "m3"))), "'" + dir + "/m3.gltf': mesh 0 'pts' primitive 0: no POSITION attribute");
 }
 
+TEST(GltfErrors, NumbersOutsideTheirGltfRange) {
+    const std::string dir = tmpDir("numbers");
+    GltfBuilder g;
+    g.j["materials"] = json::array({{{"name", "m"}, {"pbrMetallicRoughness", {{"roughnessFactor", 1.5}}}}});
+    EXPECT_EQ(errorOf(rg::loadGltf(g.writeGltf(dir, "a"))), "'" + dir + "/a.gltf': material 0 'm': roughnessFactor is 1.5, expected a number in [0, 1]");
+    g.j["materials"] = json::array({{{"emissiveFactor", {1, 2, 0}}}});
+    EXPECT_EQ(errorOf(rg::loadGltf(g.writeGltf(dir, "b"))), "'" + dir + "/b.gltf': material 0: emissiveFactor[1] is 2, expected a number in [0, 1]");
+    g.j.erase("materials");
+    g.j["extensions"]["KHR_lights_punctual"]["lights"] =
+        json::array({{{"type", "spot"}, {"intensity", 1.0}, {"spot", {{"innerConeAngle", 0.9}, {"outerConeAngle", 0.5}}}}});
+    g.scene({g.node({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}})});
+    EXPECT_EQ(errorOf(rg::loadGltf(g.writeGltf(dir, "c"))), "'" + dir + "/c.gltf': light 0: spot.innerConeAngle is 0.9, expected a number in [0, 0.5]");
+}
+
 TEST(GltfErrors, NodeCycleAndBadTransforms) {
     const std::string dir = tmpDir("cycle");
     GltfBuilder g;

@@ -14,14 +14,15 @@ return {
             { metric = "angular", channels = "rgb", tolerance = 0.05 },
             { metric = "rel_max", channels = "a", tolerance = 1e-3 },
         },
-        albedo = { metric = "max_abs", tolerance = 0.002 },
+        albedo = { metric = "max_abs", tolerance = 1 / 255 },
         hdr = {
-            { metric = "rel_mean", channels = "rgb", tolerance = 1e-4 },
-            { metric = "rel_max", channels = "rgb", tolerance = 2e-3 },
+            { metric = "rel_mean", channels = "rgb", tolerance = 1e-5 },
+            { metric = "rel_max", channels = "rgb", epsilon = 1e-2, tolerance = 5e-3 },
         },
         ldr = {
-            { metric = "flip", channels = "rgb", display = "srgb", tolerance = 1e-3 },
-            { metric = "over_threshold", channels = "rgb", threshold = 1.5 / 255, tolerance = 0 },
+            { metric = "flip", channels = "rgb", display = "srgb", tolerance = 0.01 },
+            { metric = "over_threshold", channels = "rgb", threshold = 1.5 / 255, tolerance = 0.02 },
+            { metric = "psnr", channels = "rgb", tolerance = 45 },
         },
     },
 }

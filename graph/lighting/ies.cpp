@@ -1,0 +1,656 @@
+#include "ies.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <sstream>
+
+#include "core/check.h"
+
+namespace rg {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+// Angles closer than this (degrees, 0.36") are the same angle: a float in radians carries about
+// 1e-5° of rounding (float π is 5e-6° above 180°), far inside it.
+constexpr double kAngleEpsilon = 1e-4;
+// No real profile comes near these; they keep a corrupt header from asking for absurd tables.
+constexpr int kMaxAngles = 100000;
+constexpr std::uintmax_t kMaxFileBytes = 64u << 20;
+
+std::string_view trim(std::string_view s) {
+    const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; };
+    while (!s.empty() && blank(s.front())) s.remove_prefix(1);
+    while (!s.empty() && blank(s.back())) s.remove_suffix(1);
+    return s;
+}
+
+bool startsWithNoCase(std::string_view s, std::string_view prefix) {
+    if (s.size() < prefix.size()) return false;
+    for (size_t i = 0; i < prefix.size(); ++i) {
+        const auto up = [](char c) { return c >= 'a' && c <= 'z' ? static_cast<char>(c - 'a' + 'A') : c; };
+        if (up(s[i]) != up(prefix[i])) return false;
+    }
+    return true;
+}
+
+bool equalsNoCase(std::string_view a, std::string_view b) { return a.size() == b.size() && startsWithNoCase(a, b); }
+
+// Lines with their 1-based numbers; "\r\n", "\r" and "\n" all end a line.
+std::vector<std::string_view> splitLines(std::string_view text) {
+    std::vector<std::string_view> lines;
+    size_t start = 0;
+    for (size_t i = 0; i < text.size(); ++i) {
+        if (text[i] == '\n' || text[i] == '\r') {
+            lines.push_back(text.substr(start, i - start));
+            if (text[i] == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
+            start = i + 1;
+        }
+    }
+    if (start < text.size()) lines.push_back(text.substr(start));
+    return lines;
+}
+
+// Blanks and commas both separate values (LM-63-2002 §3.1).
+bool isSeparator(char c) { return c == ' ' || c == '\t' || c == ',' || c == '\f' || c == '\v'; }
+
+struct Token {
+    std::string_view text;
+    int line = 0;
+    bool firstOnLine = false;
+    bool lastOnLine = false;
+};
+
+// A number as LM-63 writes it (optional sign, decimals, exponent); the whole token must be used.
+bool parseNumber(std::string_view s, double& out) {
+    if (!s.empty() && s.front() == '+') s.remove_prefix(1);
+    if (s.empty()) return false;
+    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), out, std::chars_format::general);
+    return ec == std::errc() && end == s.data() + s.size() && std::isfinite(out);
+}
+
+bool looksNumeric(std::string_view line) {
+    bool any = false;
+    size_t i = 0;
+    while (i < line.size()) {
+        while (i < line.size() && isSeparator(line[i])) ++i;
+        size_t j = i;
+        while (j < line.size() && !isSeparator(line[j])) ++j;
+        if (j > i) {
+            double v;
+            if (!parseNumber(line.substr(i, j - i), v)) return false;
+            any = true;
+        }
+        i = j;
+    }
+    return any;
+}
+
+std::string shorten(std::string_view s) {
+    constexpr size_t kMax = 60;
+    return s.size() <= kMax ? std::string(s) : std::string(s.substr(0, kMax)) + "...";
+}
+
+std::string numberText(double v) {
+    std::ostringstream os;
+    os << v;
+    return os.str();
+}
+
+class Parser {
+public:
+    Parser(std::string_view text, const std::string& fileName) : m_fileName(fileName), m_lines(splitLines(text)) {
+        // A UTF-8 byte order mark is not part of the first line.
+        if (!m_lines.empty() && m_lines[0].starts_with("\xEF\xBB\xBF")) m_lines[0].remove_prefix(3);
+    }
+
+    Result<IesProfile> parse();
+
+private:
+    std::unexpected<Error> failAt(int line, std::string message, ErrorCode code = ErrorCode::InvalidInput) const {
+        return fail(code, "'" + m_fileName + "':" + std::to_string(line) + ": " + message);
+    }
+    int lastLine() const { return std::max(1, static_cast<int>(m_lines.size())); }
+    bool atEnd() const { return m_next >= m_tokens.size(); }
+    size_t remaining() const { return m_tokens.size() - m_next; }
+    // The line where the next value is (or the file's last line at its end).
+    int nextLine() const { return atEnd() ? lastLine() : m_tokens[m_next].line; }
+
+    Result<int> header(IesProfile& profile);
+    Result<void> tilt(std::string_view line, int lineNumber);
+    void tokenize(size_t firstLine);
+    Result<double> number(std::string_view role);
+    Result<int> integer(std::string_view role);
+    Result<std::vector<float>> angles(int count, std::string_view plural, std::string_view singular);
+    Result<void> wrongCount(int nV, int nH);
+
+    const std::string& m_fileName;
+    std::vector<std::string_view> m_lines;
+    std::vector<Token> m_tokens;
+    size_t m_next = 0;
+    // How many values the header's counts call for after the TILT line; a count that the data does
+    // not match shows as a block that ends early or late.
+    int64_t m_needed = 0;
+};
+
+// The format line, keyword / label lines and the TILT line; returns the index of the TILT line.
+Result<int> Parser::header(IesProfile& profile) {
+    size_t first = 0;
+    const std::string_view formatLine = m_lines.empty() ? std::string_view() : trim(m_lines[0]);
+    if (formatLine == "IESNA:LM-63-2002") {
+        profile.format = IesFormat::Lm63_2002;
+        first = 1;
+    } else if (formatLine == "IESNA:LM-63-1995") {
+        profile.format = IesFormat::Lm63_1995;
+        first = 1;
+    } else if (formatLine == "IESNA91" || formatLine == "IESNA:LM-63-1991") {
+        profile.format = IesFormat::Lm63_1991;
+        first = 1;
+    } else if (startsWithNoCase(formatLine, "IESNA") || startsWithNoCase(formatLine, "IES:")) {
+        return failAt(1,
+                      "unknown IES format '" + shorten(formatLine) +
+                          "', expected one of: 'IESNA:LM-63-2002', 'IESNA:LM-63-1995', 'IESNA91', or no format line "
+                          "(LM-63-1986)",
+                      ErrorCode::Unsupported);
+    } else {
+        profile.format = IesFormat::Lm63_1986;  // no format line: the first line is already a label
+    }
+
+    for (size_t i = first; i < m_lines.size(); ++i) {
+        const std::string_view line = trim(m_lines[i]);
+        const int lineNumber = static_cast<int>(i) + 1;
+        if (startsWithNoCase(line, "TILT")) {
+            const std::string_view rest = trim(line.substr(4));
+            if (rest.starts_with('=')) {
+                if (auto t = tilt(trim(rest.substr(1)), lineNumber); !t) return std::unexpected(t.error());
+                return static_cast<int>(i);
+            }
+        }
+        if (line.empty()) continue;
+        if (looksNumeric(line))
+            return failAt(lineNumber, "missing TILT line: expected 'TILT=NONE' before the photometric data, found '" +
+                                          shorten(line) + "'");
+        if (profile.format != IesFormat::Lm63_1986 && line.front() == '[') {
+            const size_t close = line.find(']');
+            if (close == std::string_view::npos)
+                return failAt(lineNumber, "expected a keyword line '[KEYWORD] text', found '" + shorten(line) + "'");
+            const std::string name(trim(line.substr(1, close - 1)));
+            const std::string value(trim(line.substr(close + 1)));
+            if (name == "MORE" && !profile.keywords.empty()) {
+                profile.keywords.back().value += "\n" + value;  // [MORE] continues the previous keyword
+            } else {
+                profile.keywords.push_back({name, value});
+            }
+            continue;
+        }
+        profile.keywords.push_back({"", std::string(line)});  // a free-text label (LM-63-1986 style)
+    }
+    return failAt(lastLine(),
+                  "missing TILT line: expected 'TILT=NONE' before the photometric data, found the end of the file");
+}
+
+Result<void> Parser::tilt(std::string_view value, int lineNumber) {
+    if (equalsNoCase(value, "NONE")) return {};
+    if (equalsNoCase(value, "INCLUDE"))
+        return failAt(lineNumber, "TILT=INCLUDE is not supported (only TILT=NONE)", ErrorCode::Unsupported);
+    if (value.empty()) return failAt(lineNumber, "expected 'TILT=NONE', found 'TILT='");
+    return failAt(lineNumber, "TILT=" + shorten(value) + " (a tilt file) is not supported (only TILT=NONE)",
+                  ErrorCode::Unsupported);
+}
+
+void Parser::tokenize(size_t firstLine) {
+    for (size_t l = firstLine; l < m_lines.size(); ++l) {
+        const std::string_view line = m_lines[l];
+        const size_t before = m_tokens.size();
+        size_t i = 0;
+        while (i < line.size()) {
+            while (i < line.size() && (isSeparator(line[i]) || line[i] == '\r')) ++i;
+            size_t j = i;
+            while (j < line.size() && !isSeparator(line[j]) && line[j] != '\r') ++j;
+            if (j > i) m_tokens.push_back({line.substr(i, j - i), static_cast<int>(l) + 1, m_tokens.size() == before, false});
+            i = j;
+        }
+        if (m_tokens.size() > before) m_tokens.back().lastOnLine = true;
+    }
+}
+
+Result<double> Parser::number(std::string_view role) {
+    if (atEnd()) return failAt(lastLine(), "truncated file: expected " + std::string(role) + ", found the end of the file");
+    const Token& t = m_tokens[m_next];
+    double v = 0.0;
+    if (!parseNumber(t.text, v))
+        return failAt(t.line, "expected a number for " + std::string(role) + ", found '" + shorten(t.text) + "'");
+    ++m_next;
+    return v;
+}
+
+Result<int> Parser::integer(std::string_view role) {
+    const int line = nextLine();
+    const std::string text = atEnd() ? std::string() : std::string(m_tokens[m_next].text);
+    auto v = number(role);
+    if (!v) return std::unexpected(v.error());
+    if (*v != std::floor(*v) || std::abs(*v) > 1e9)
+        return failAt(line, "expected an integer for " + std::string(role) + ", found '" + shorten(text) + "'");
+    return static_cast<int>(*v);
+}
+
+// When the values after the header do not add up to what its counts announce, the usual culprit is
+// one wrong count in a table that is otherwise consistent: nV' + nH + nV'·nH or nV + nH' + nV·nH'
+// values, the angle list ending at a line break. Name that count and what the data holds.
+Result<void> Parser::wrongCount(int nV, int nH) {
+    if (static_cast<int64_t>(m_tokens.size()) == m_needed) return {};
+    const int64_t rest = static_cast<int64_t>(remaining());
+    const auto endsLine = [&](int64_t n) {
+        const int64_t i = static_cast<int64_t>(m_next) + n - 1;
+        return i >= 0 && i < static_cast<int64_t>(m_tokens.size()) && m_tokens[static_cast<size_t>(i)].lastOnLine;
+    };
+    if (rest > nH && (rest - nH) % (1 + nH) == 0) {
+        const int64_t found = (rest - nH) / (1 + nH);
+        if (found != nV && endsLine(found))
+            return failAt(nextLine(), "expected " + std::to_string(nV) + " vertical angles, found " + std::to_string(found));
+    }
+    if (rest > nV && (rest - nV) % (1 + nV) == 0) {
+        const int64_t found = (rest - nV) / (1 + nV);
+        if (found != nH && endsLine(nV) && endsLine(nV + found))
+            return failAt(m_tokens[m_next + static_cast<size_t>(nV)].line,
+                          "expected " + std::to_string(nH) + " horizontal angles, found " + std::to_string(found));
+    }
+    return {};
+}
+
+Result<std::vector<float>> Parser::angles(int count, std::string_view plural, std::string_view singular) {
+    const int startLine = nextLine();
+    const bool countsMismatch = static_cast<int64_t>(m_tokens.size()) != m_needed;
+    const auto wrongCount = [&](int64_t found) {
+        return failAt(startLine, "expected " + std::to_string(count) + " " + std::string(plural) + ", found " +
+                                     std::to_string(found));
+    };
+    std::vector<float> out;
+    for (int k = 0; k < count; ++k) {
+        if (atEnd())
+            return failAt(lastLine(), "truncated file: expected " + std::to_string(count) + " " + std::string(plural) +
+                                          ", found " + std::to_string(k));
+        const Token& t = m_tokens[m_next];
+        auto v = number(std::string(singular) + " " + std::to_string(k + 1) + " of " + std::to_string(count));
+        if (!v) return std::unexpected(v.error());
+        if (k > 0 && *v <= out.back()) {
+            // A value that starts a new line and breaks the order is where the next block begins when
+            // the values do not add up to what the header announced: the count is wrong.
+            if (t.firstOnLine && countsMismatch) return wrongCount(k);
+            return failAt(t.line, "expected " + std::string(plural) + " in increasing order, found " +
+                                      std::string(t.text) + " after " + numberText(out.back()));
+        }
+        out.push_back(static_cast<float>(*v));
+    }
+    // The block ends in the middle of a line while the totals do not match: the line holds more.
+    if (count > 0 && countsMismatch && !m_tokens[m_next - 1].lastOnLine) {
+        int64_t extra = 0;
+        for (size_t i = m_next; i < m_tokens.size() && m_tokens[i].line == m_tokens[m_next - 1].line; ++i) ++extra;
+        return wrongCount(count + extra);
+    }
+    return out;
+}
+
+Result<IesProfile> Parser::parse() {
+    IesProfile profile;
+    profile.fileName = m_fileName;
+    auto tiltLine = header(profile);
+    if (!tiltLine) return std::unexpected(tiltLine.error());
+    tokenize(static_cast<size_t>(*tiltLine) + 1);
+
+    // Line 1 after TILT: the lamp and geometry values (LM-63-2002 §3.12–§3.13).
+    const int lampsLine = nextLine();
+    auto lamps = integer("the number of lamps (value 1 of 10 after TILT)");
+    if (!lamps) return std::unexpected(lamps.error());
+    if (*lamps < 1) return failAt(lampsLine, "expected a positive number of lamps, found " + std::to_string(*lamps));
+    profile.numberOfLamps = *lamps;
+
+    const int lumensLine = nextLine();
+    auto lumens = number("the lumens per lamp (value 2 of 10 after TILT)");
+    if (!lumens) return std::unexpected(lumens.error());
+    if (*lumens < 0.0 && *lumens != -1.0)
+        return failAt(lumensLine, "expected the lumens per lamp (or -1 for absolute photometry), found " +
+                                      numberText(*lumens));
+    profile.lumens = static_cast<float>(*lumens);
+
+    const int multiplierLine = nextLine();
+    auto multiplier = number("the candela multiplier (value 3 of 10 after TILT)");
+    if (!multiplier) return std::unexpected(multiplier.error());
+    if (*multiplier <= 0.0)
+        return failAt(multiplierLine, "expected a positive candela multiplier, found " + numberText(*multiplier));
+    profile.multiplier = static_cast<float>(*multiplier);
+
+    const auto count = [&](std::string_view what, std::string_view role) -> Result<int> {
+        const int line = nextLine();
+        auto n = integer(role);
+        if (!n) return std::unexpected(n.error());
+        if (*n < 1) return failAt(line, "expected a positive number of " + std::string(what) + ", found " + std::to_string(*n));
+        if (*n > kMaxAngles)
+            return failAt(line, "expected at most " + std::to_string(kMaxAngles) + " " + std::string(what) + ", found " +
+                                    std::to_string(*n));
+        return *n;
+    };
+    auto nV = count("vertical angles", "the number of vertical angles (value 4 of 10 after TILT)");
+    if (!nV) return std::unexpected(nV.error());
+    auto nH = count("horizontal angles", "the number of horizontal angles (value 5 of 10 after TILT)");
+    if (!nH) return std::unexpected(nH.error());
+
+    const int typeLine = nextLine();
+    auto type = integer("the photometric type (value 6 of 10 after TILT)");
+    if (!type) return std::unexpected(type.error());
+    if (*type == 2)
+        return failAt(typeLine, "photometric type B (2) is not supported (only type C, 1)", ErrorCode::Unsupported);
+    if (*type == 3)
+        return failAt(typeLine, "photometric type A (3) is not supported (only type C, 1)", ErrorCode::Unsupported);
+    if (*type != 1)
+        return failAt(typeLine, "expected photometric type 1 (C), 2 (B) or 3 (A), found " + std::to_string(*type));
+    profile.photometricType = *type;
+
+    const int unitsLine = nextLine();
+    auto units = integer("the units type (value 7 of 10 after TILT)");
+    if (!units) return std::unexpected(units.error());
+    if (*units != 1 && *units != 2)
+        return failAt(unitsLine, "expected units type 1 (feet) or 2 (meters), found " + std::to_string(*units));
+    profile.unitsType = *units;
+
+    float* const geometry[] = {&profile.width, &profile.length, &profile.height};
+    const char* const geometryRoles[] = {"the luminous opening width (value 8 of 10 after TILT)",
+                                         "the luminous opening length (value 9 of 10 after TILT)",
+                                         "the luminous opening height (value 10 of 10 after TILT)"};
+    for (int i = 0; i < 3; ++i) {
+        auto v = number(geometryRoles[i]);
+        if (!v) return std::unexpected(v.error());
+        *geometry[i] = static_cast<float>(*v);
+    }
+
+    // Line 2 after TILT: ballast factor, ballast-lamp photometric factor ("future use"), input watts.
+    float* const electrical[] = {&profile.ballastFactor, &profile.ballastLampFactor, &profile.inputWatts};
+    const char* const electricalRoles[] = {"the ballast factor (value 1 of 3 on the second line after TILT)",
+                                           "the ballast-lamp photometric factor (value 2 of 3 on the second line after TILT)",
+                                           "the input watts (value 3 of 3 on the second line after TILT)"};
+    for (int i = 0; i < 3; ++i) {
+        auto v = number(electricalRoles[i]);
+        if (!v) return std::unexpected(v.error());
+        *electrical[i] = static_cast<float>(*v);
+    }
+
+    const int64_t cells = static_cast<int64_t>(*nV) * *nH;
+    m_needed = 13 + *nV + *nH + cells;
+    if (auto wrong = wrongCount(*nV, *nH); !wrong) return std::unexpected(wrong.error());
+
+    // Vertical angles, type C: 0..180 degrees from the nadir.
+    const int verticalLine = nextLine();
+    auto vertical = angles(*nV, "vertical angles", "vertical angle");
+    if (!vertical) return std::unexpected(vertical.error());
+    if (vertical->front() < 0.0f || vertical->back() > 180.0f)
+        return failAt(verticalLine, "expected vertical angles within 0..180 degrees (type C), found " +
+                                        numberText(vertical->front()) + ".." + numberText(vertical->back()));
+    profile.verticalAngles = std::move(*vertical);
+
+    // Horizontal angles and the symmetry they imply.
+    const int horizontalLine = nextLine();
+    auto horizontal = angles(*nH, "horizontal angles", "horizontal angle");
+    if (!horizontal) return std::unexpected(horizontal.error());
+    const float hFirst = horizontal->front(), hLast = horizontal->back();
+    if (horizontal->size() == 1) {
+        profile.symmetry = IesSymmetry::Rotational;
+    } else if (hFirst == 0.0f && hLast == 90.0f) {
+        profile.symmetry = IesSymmetry::Quadrant;
+    } else if (hFirst == 0.0f && hLast == 180.0f) {
+        profile.symmetry = IesSymmetry::Bilateral;
+    } else if (hFirst == 90.0f && hLast == 270.0f) {
+        profile.symmetry = IesSymmetry::Bilateral90;
+    } else if (hFirst == 0.0f && hLast > 180.0f && hLast <= 360.0f) {
+        profile.symmetry = IesSymmetry::None;
+    } else {
+        return failAt(horizontalLine,
+                      "expected horizontal angles 0 (rotationally symmetric), 0..90, 0..180, 0..360 or 90..270 degrees "
+                      "(type C), found " +
+                          numberText(hFirst) + ".." + numberText(hLast));
+    }
+    profile.horizontalAngles = std::move(*horizontal);
+
+    // Candela values: one set of vertical values per horizontal angle.
+    const int candelaLine = nextLine();
+    const std::string cellsText = std::to_string(cells) + " candela values (" + std::to_string(*nH) +
+                                  " horizontal x " + std::to_string(*nV) + " vertical angles)";
+    profile.candela.reserve(static_cast<size_t>(std::min<int64_t>(cells, static_cast<int64_t>(remaining()))));
+    for (int h = 0; h < *nH; ++h) {
+        for (int v = 0; v < *nV; ++v) {
+            const int64_t k = static_cast<int64_t>(h) * *nV + v;
+            if (atEnd())
+                return failAt(lastLine(), "truncated file: expected " + cellsText + ", found " + std::to_string(k));
+            const Token& t = m_tokens[m_next++];
+            const auto where = [&] {
+                return "horizontal angle " + numberText(profile.horizontalAngles[static_cast<size_t>(h)]) +
+                       ", vertical angle " + numberText(profile.verticalAngles[static_cast<size_t>(v)]);
+            };
+            double c = 0.0;
+            if (!parseNumber(t.text, c))
+                return failAt(t.line, "expected a number for candela value " + std::to_string(k + 1) + " of " +
+                                          std::to_string(cells) + " (" + where() + "), found '" + shorten(t.text) + "'");
+            if (c < 0.0)
+                return failAt(t.line, "expected a non-negative candela value at " + where() + ", found " + std::string(t.text));
+            profile.candela.push_back(static_cast<float>(c * *multiplier));
+        }
+    }
+    if (!atEnd())
+        return failAt(candelaLine, "expected " + cellsText + ", found " + std::to_string(cells + static_cast<int64_t>(remaining())));
+
+    profile.maxCandela = *std::max_element(profile.candela.begin(), profile.candela.end());
+    return profile;
+}
+
+// Folds a horizontal angle (degrees) into the declared range by the profile's symmetry.
+double foldHorizontal(const IesProfile& p, double h) {
+    h = std::fmod(h, 360.0);
+    if (h < 0.0) h += 360.0;
+    switch (p.symmetry) {
+        case IesSymmetry::Rotational: return p.horizontalAngles.front();
+        case IesSymmetry::Quadrant:
+            if (h > 180.0) h = 360.0 - h;
+            if (h > 90.0) h = 180.0 - h;
+            return h;
+        case IesSymmetry::Bilateral: return h > 180.0 ? 360.0 - h : h;
+        case IesSymmetry::Bilateral90:
+            if (h < 90.0) return 180.0 - h;   // mirror about the 90°–270° plane
+            if (h > 270.0) return 540.0 - h;
+            return h;
+        case IesSymmetry::None: return h;
+    }
+    return h;
+}
+
+// Index i and weight w with angles[i] ≤ x ≤ angles[i + 1] (x already inside the range).
+void bracket(const std::vector<float>& angles, double x, size_t& i, double& w) {
+    if (angles.size() < 2) {
+        i = 0;
+        w = 0.0;
+        return;
+    }
+    const auto it = std::upper_bound(angles.begin(), angles.end(), x, [](double a, float b) { return a < b; });
+    const size_t upper = static_cast<size_t>(std::distance(angles.begin(), it));
+    i = std::min(upper == 0 ? 0 : upper - 1, angles.size() - 2);
+    const double a0 = angles[i], a1 = angles[i + 1];
+    w = std::clamp((x - a0) / (a1 - a0), 0.0, 1.0);
+}
+
+}  // namespace
+
+std::string_view toString(IesFormat format) {
+    switch (format) {
+        case IesFormat::Lm63_1986: return "LM-63-1986";
+        case IesFormat::Lm63_1991: return "LM-63-1991";
+        case IesFormat::Lm63_1995: return "LM-63-1995";
+        case IesFormat::Lm63_2002: return "LM-63-2002";
+    }
+    return "?";
+}
+
+std::string_view toString(IesSymmetry symmetry) {
+    switch (symmetry) {
+        case IesSymmetry::Rotational: return "rotational";
+        case IesSymmetry::Quadrant: return "quadrant";
+        case IesSymmetry::Bilateral: return "bilateral";
+        case IesSymmetry::Bilateral90: return "bilateral-90";
+        case IesSymmetry::None: return "none";
+    }
+    return "?";
+}
+
+Result<IesProfile> parseIes(std::string_view text, const std::string& fileName) {
+    return Parser(text, fileName).parse();
+}
+
+Result<IesProfile> loadIes(const std::filesystem::path& path) {
+    const std::string name = path.string();
+    std::error_code ec;
+    if (!std::filesystem::exists(path, ec)) return fail(ErrorCode::NotFound, "'" + name + "': no such IES file");
+    const auto size = std::filesystem::file_size(path, ec);
+    if (ec) return fail(ErrorCode::Io, "'" + name + "': cannot read the IES file (" + ec.message() + ")");
+    if (size > kMaxFileBytes)
+        return fail(ErrorCode::InvalidInput, "'" + name + "': expected an IES file of at most 64 MiB, found " +
+                                                 std::to_string(size) + " bytes");
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return fail(ErrorCode::Io, "'" + name + "': cannot open the IES file");
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    if (in.bad()) return fail(ErrorCode::Io, "'" + name + "': cannot read the IES file");
+    return parseIes(text, name);
+}
+
+double evaluateDegrees(const IesProfile& p, double horizontalDegrees, double verticalDegrees) {
+    const size_t nV = p.verticalAngles.size(), nH = p.horizontalAngles.size();
+    if (nV == 0 || nH == 0 || p.candela.size() != nV * nH) return 0.0;
+    // Outside the measured vertical range the luminaire sends nothing (e.g. above a downlight).
+    if (verticalDegrees < p.verticalAngles.front() - kAngleEpsilon || verticalDegrees > p.verticalAngles.back() + kAngleEpsilon)
+        return 0.0;
+    size_t iv;
+    double wv;
+    bracket(p.verticalAngles, std::clamp<double>(verticalDegrees, p.verticalAngles.front(), p.verticalAngles.back()), iv, wv);
+    const size_t iv1 = std::min(iv + 1, nV - 1);
+
+    size_t ih0 = 0, ih1 = 0;
+    double wh = 0.0;
+    const double h = foldHorizontal(p, horizontalDegrees);
+    if (nH > 1) {
+        const double last = p.horizontalAngles.back();
+        if (p.symmetry == IesSymmetry::None && h > last) {
+            // The gap between the last angle and 360° closes on the 0° column.
+            ih0 = nH - 1;
+            ih1 = 0;
+            wh = last < 360.0 ? (h - last) / (360.0 - last) : 0.0;
+        } else {
+            bracket(p.horizontalAngles, std::clamp<double>(h, p.horizontalAngles.front(), last), ih0, wh);
+            ih1 = ih0 + 1;
+        }
+    }
+    const auto at = [&](size_t ih, size_t v) { return static_cast<double>(p.candela[ih * nV + v]); };
+    // (1 − w)·a + w·b returns a and b exactly at w = 0 and w = 1, i.e. at the table's angles.
+    const double c0 = (1.0 - wv) * at(ih0, iv) + wv * at(ih0, iv1);
+    const double c1 = (1.0 - wv) * at(ih1, iv) + wv * at(ih1, iv1);
+    return (1.0 - wh) * c0 + wh * c1;
+}
+
+float evaluate(const IesProfile& profile, float theta, float phi) {
+    const double toDegrees = 180.0 / kPi;
+    return static_cast<float>(evaluateDegrees(profile, theta * toDegrees, phi * toDegrees));
+}
+
+IesProfile expandSymmetry(const IesProfile& p) {
+    IesProfile out = p;
+    if (p.symmetry == IesSymmetry::None && !p.horizontalAngles.empty() && p.horizontalAngles.back() == 360.0f) return out;
+    // Every image of a table angle under the symmetry, plus both ends of the circle.
+    std::vector<double> hs = {0.0, 360.0};
+    for (const float a : p.horizontalAngles) {
+        const double x = a;
+        switch (p.symmetry) {
+            case IesSymmetry::Rotational: break;
+            case IesSymmetry::Quadrant: hs.insert(hs.end(), {x, 180.0 - x, 180.0 + x, 360.0 - x}); break;
+            case IesSymmetry::Bilateral: hs.insert(hs.end(), {x, 360.0 - x}); break;
+            case IesSymmetry::Bilateral90: hs.insert(hs.end(), {x, x <= 180.0 ? 180.0 - x : 540.0 - x}); break;  // 180° − x mod 360°
+            case IesSymmetry::None: hs.push_back(x); break;
+        }
+    }
+    std::erase_if(hs, [](double x) { return x < 0.0 || x > 360.0; });
+    std::sort(hs.begin(), hs.end());
+    hs.erase(std::unique(hs.begin(), hs.end(), [](double a, double b) { return std::abs(a - b) < kAngleEpsilon; }), hs.end());
+
+    out.horizontalAngles.assign(hs.begin(), hs.end());
+    out.candela.clear();
+    out.candela.reserve(hs.size() * p.verticalAngles.size());
+    for (const double h : hs)
+        for (const float v : p.verticalAngles) out.candela.push_back(static_cast<float>(evaluateDegrees(p, h, v)));
+    out.symmetry = IesSymmetry::None;
+    return out;
+}
+
+double integrateLumens(const IesProfile& profile, int steps) {
+    RG_CHECK(steps > 0) << "integrateLumens needs at least one step, got " << steps;
+    // ∫∫ I(h, v) sin v dv dh over v ∈ [0, π], h ∈ [0, 2π), midpoint rule.
+    const double dv = kPi / steps, dh = 2.0 * kPi / steps;
+    double sum = 0.0;
+    for (int i = 0; i < steps; ++i) {
+        const double v = (i + 0.5) * dv;
+        double ring = 0.0;
+        for (int j = 0; j < steps; ++j) ring += evaluateDegrees(profile, (j + 0.5) * dh * 180.0 / kPi, v * 180.0 / kPi);
+        sum += ring * std::sin(v);
+    }
+    return sum * dv * dh;
+}
+
+IesTexture bakeIes(const IesProfile& profile, uint32_t width, uint32_t height) {
+    RG_CHECK(width > 0 && height > 0) << "an IES texture needs a positive size, got " << width << " x " << height;
+    IesTexture tex;
+    tex.width = width;
+    tex.height = height;
+    tex.maxCandela = profile.maxCandela;
+    tex.texels.resize(static_cast<size_t>(width) * height);
+    // seed 000 §4.5: store I / I_max so the texture is both a profile and a mask (eq:27).
+    const double scale = profile.maxCandela > 0.0f ? 1.0 / profile.maxCandela : 0.0;
+    for (uint32_t j = 0; j < height; ++j) {
+        const double cosPhi = 2.0 * (j + 0.5) / height - 1.0;  // lst:5: v = cos φ · 0.5 + 0.5
+        const double vertical = std::acos(cosPhi) * 180.0 / kPi;
+        for (uint32_t i = 0; i < width; ++i) {
+            const double horizontal = 360.0 * (i + 0.5) / width;  // lst:5: u = θ / 2π
+            tex.texels[static_cast<size_t>(j) * width + i] =
+                static_cast<float>(std::min(1.0, evaluateDegrees(profile, horizontal, vertical) * scale));
+        }
+    }
+    return tex;
+}
+
+glm::vec2 iesTexCoord(glm::vec3 d) {
+    // seed 000 lst:5: cos φ from z scaled from [-1, 1] to [0, 1]; θ = atan2(y, x) / 2π.
+    const float phiCoord = d.z * 0.5f + 0.5f;
+    const float theta = std::atan2(d.y, d.x);
+    const float thetaCoord = theta * static_cast<float>(1.0 / (2.0 * kPi));
+    return {thetaCoord, phiCoord};
+}
+
+float sampleIesTexture(const IesTexture& t, glm::vec2 uv) {
+    if (t.width == 0 || t.height == 0) return 0.0f;
+    const double x = static_cast<double>(uv.x) * t.width - 0.5;
+    const double y = static_cast<double>(uv.y) * t.height - 0.5;
+    const double fx0 = std::floor(x), fy0 = std::floor(y);
+    const double wx = x - fx0, wy = y - fy0;
+    const auto W = static_cast<int64_t>(t.width), Hh = static_cast<int64_t>(t.height);
+    const auto wrap = [&](int64_t i) { return ((i % W) + W) % W; };               // repeat
+    const auto clampRow = [&](int64_t j) { return std::clamp<int64_t>(j, 0, Hh - 1); };  // clamp to edge
+    const int64_t i0 = wrap(static_cast<int64_t>(fx0)), i1 = wrap(static_cast<int64_t>(fx0) + 1);
+    const int64_t j0 = clampRow(static_cast<int64_t>(fy0)), j1 = clampRow(static_cast<int64_t>(fy0) + 1);
+    const auto at = [&](int64_t i, int64_t j) { return static_cast<double>(t.texels[static_cast<size_t>(j * W + i)]); };
+    const double top = (1.0 - wx) * at(i0, j0) + wx * at(i1, j0);
+    const double bottom = (1.0 - wx) * at(i0, j1) + wx * at(i1, j1);
+    return static_cast<float>((1.0 - wy) * top + wy * bottom);
+}
+
+float getIESProfileAttenuation(glm::vec3 L, const glm::mat3& worldToLight, const IesTexture& texture) {
+    // seed 000 lst:5: the sample direction goes from the light to the point, in light space.
+    const glm::vec3 iesSampleDirection = worldToLight * -L;
+    return sampleIesTexture(texture, iesTexCoord(iesSampleDirection));
+}
+
+}  // namespace rg

@@ -1,0 +1,124 @@
+// IES photometric profiles (seed 000 §4.5, eq:27, lst:5): an IESNA LM-63 parser, evaluation of the
+// candela table, and the baked, max-normalised 2D texture that the shaders sample as an attenuation.
+//
+// Formats read: LM-63-1986 (no format line), LM-63-1991 ("IESNA91"), LM-63-1995 ("IESNA:LM-63-1995")
+// and LM-63-2002 ("IESNA:LM-63-2002"); keyword lines ([TEST], [MANUFAC], … with [MORE]
+// continuations) are kept. Refused by name: TILT=INCLUDE and TILT=<file> (only TILT=NONE), and
+// photometric types A (3) and B (2) — only type C (1), the one computer graphics uses (§4.5).
+// Numbers may be split across any number of lines and separated by blanks and/or commas.
+//
+// Angles: IES tables are in degrees. Type C: the vertical angle is measured from the nadir (0°, the
+// direction a downlight or spot shines) to the zenith (180°); the horizontal angle turns around the
+// vertical axis, 0° along the luminaire's length. In the light space of lst:5 the nadir is +z,
+// horizontal 0° is +x and horizontal 90° is +y, so the seed's φ is the vertical angle
+// (cos φ = z) and its θ the horizontal one (θ = atan2(y, x)).
+//
+// Ownership: IesProfile and IesTexture are plain values. Thread-safe: no shared state.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/mat3x3.hpp>
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "core/result.h"
+
+namespace rg {
+
+enum class IesFormat { Lm63_1986, Lm63_1991, Lm63_1995, Lm63_2002 };
+// "LM-63-1986" … "LM-63-2002".
+std::string_view toString(IesFormat format);
+
+// How the horizontal angles cover the full circle (type C, LM-63-2002 §3.20).
+enum class IesSymmetry {
+    Rotational,  // a single horizontal angle (0°): the same in every direction around the axis
+    Quadrant,    // 0°..90°: symmetric in each quadrant
+    Bilateral,   // 0°..180°: symmetric about the 0°–180° plane
+    Bilateral90, // 90°..270°: symmetric about the 90°–270° plane
+    None,        // 0°..360° (or 0°..last > 180°, the gap to 360° interpolated to 0°)
+};
+std::string_view toString(IesSymmetry symmetry);
+
+struct IesKeyword {
+    std::string name;   // "TEST", "MANUFAC", …; empty for LM-63-1986 label lines
+    std::string value;  // [MORE] lines are appended after a '\n'
+};
+
+struct IesProfile {
+    std::string fileName;
+    IesFormat format = IesFormat::Lm63_2002;
+    std::vector<IesKeyword> keywords;
+
+    int numberOfLamps = 1;
+    float lumens = 0.0f;      // lumens per lamp as declared; -1 means absolute photometry
+    float multiplier = 1.0f;  // the candela multiplier as declared (already applied to `candela`)
+    int photometricType = 1;  // 1 = type C (the only one accepted)
+    int unitsType = 2;        // 1 = feet, 2 = metres (of the luminous opening below)
+    float width = 0.0f, length = 0.0f, height = 0.0f;  // luminous opening, in unitsType
+    float ballastFactor = 1.0f;
+    float ballastLampFactor = 1.0f;  // "future use" since LM-63-1995; kept as read
+    float inputWatts = 0.0f;
+
+    std::vector<float> verticalAngles;    // degrees, increasing, within 0..180
+    std::vector<float> horizontalAngles;  // degrees, increasing, as declared (see symmetry)
+    // Luminous intensity in cd: the file's values times the multiplier. [h][v], i.e.
+    // candela[h * verticalAngles.size() + v]. Ballast factors are not applied.
+    std::vector<float> candela;
+    float maxCandela = 0.0f;  // cd, the largest entry of `candela`
+    IesSymmetry symmetry = IesSymmetry::Rotational;
+};
+
+// Parses an LM-63 file's text. fileName is only used in error messages, which read
+// "'<fileName>':<line>: <what was expected>, found <what was there>".
+Result<IesProfile> parseIes(std::string_view text, const std::string& fileName);
+// Reads and parses a file (Io/NotFound errors name the path).
+Result<IesProfile> loadIes(const std::filesystem::path& path);
+
+// Luminous intensity (cd) towards horizontal angle theta and vertical angle phi (radians), by
+// bilinear interpolation of the candela table in (horizontal, vertical) degrees, after folding
+// theta by the profile's symmetry. Outside the vertical range of the table (e.g. above 90° for a
+// 0°..90° downlight) the intensity is 0.
+float evaluate(const IesProfile& profile, float theta, float phi);
+// The same with angles in degrees, in double: at table angles it returns the table's value exactly.
+double evaluateDegrees(const IesProfile& profile, double horizontalDegrees, double verticalDegrees);
+
+// The profile with its symmetry unfolded: horizontal angles from 0° to 360° (both included: the
+// 360° column repeats 0°), every mirrored table angle kept, values copied from the table.
+// Rotationally symmetric profiles become {0°, 360°}. evaluate() gives the same on both.
+IesProfile expandSymmetry(const IesProfile& profile);
+
+// Luminous flux (lm) of the candela distribution, ∫ I dω (midpoint rule in the vertical angle and
+// the horizontal angle, steps × steps). For relative photometry it is the luminaire's flux, which
+// the declared lamp lumens bound from above.
+double integrateLumens(const IesProfile& profile, int steps = 720);
+
+// lst:5: the profile resampled in the (θ, cos φ) parametrisation, normalised by the maximum
+// candela, so one texture serves as an intensity profile (lightColor = color · maxCandela) and as
+// a mask (lightColor = color · Φ / 4π) (eq:27). Texel (i, j) is at the centre of its cell:
+// θ = 2π (i + 0.5) / width, cos φ = 2 (j + 0.5) / height − 1; sampled with repeat in u and
+// clamp-to-edge in v, the texture coordinates of lst:5 then land on the table's values. Values lie
+// in [0, 1]; the largest is 1 where the profile's peak falls on a texel centre and slightly less
+// otherwise (the texture is point-sampled, never renormalised, so texel × maxCandela stays in cd).
+struct IesTexture {
+    uint32_t width = 0;   // θ samples (horizontal angle, u)
+    uint32_t height = 0;  // cos φ samples (vertical angle, v)
+    std::vector<float> texels;  // row-major: texels[j * width + i], R32_SFLOAT
+    float maxCandela = 0.0f;    // cd; texel × maxCandela is the intensity
+};
+IesTexture bakeIes(const IesProfile& profile, uint32_t width = 256, uint32_t height = 256);
+
+// lst:5's texture coordinates of a light-space direction (from the light towards the point):
+// u = atan2(y, x) / 2π (in −0.5..0.5, for a repeating sampler), v = z · 0.5 + 0.5.
+glm::vec2 iesTexCoord(glm::vec3 lightSpaceDirection);
+// What the GPU's bilinear sampler returns at uv (repeat in u, clamp-to-edge in v, texel centres).
+float sampleIesTexture(const IesTexture& texture, glm::vec2 uv);
+// lst:5: the normalised profile towards the shaded point; L is the unit vector from the point to
+// the light, worldToLight rotates world directions into light space.
+float getIESProfileAttenuation(glm::vec3 L, const glm::mat3& worldToLight, const IesTexture& texture);
+
+}  // namespace rg

@@ -1,0 +1,207 @@
+// The default pipeline on a scene of known materials (tests/gpu/scenes/materials.lua): G-buffer
+// channels read back within their encodings' bounds, materialId and stencil classes exact, the
+// foliage fix-up filling what the foliage material leaves out, the clear coat's second lobe.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "cli/runtime.h"
+#include "cli/session.h"
+#include "image/image.h"
+#include "layout/layout.h"
+
+using namespace rg;
+
+namespace {
+
+const std::string kRoot = RG_SOURCE_ROOT;
+constexpr uint32_t W = 256, H = 128;
+
+class SceneRender : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        RuntimeOptions o;
+        o.validation = true;
+        auto rt = Runtime::create(o);
+        ASSERT_TRUE(rt.has_value()) << rt.error().describe();
+        s_runtime = std::move(*rt).release();
+    }
+    static void TearDownTestSuite() {
+        delete s_runtime;
+        s_runtime = nullptr;
+    }
+    void SetUp() override { m_before = s_runtime->gpu().validationMessageCount(); }
+    void TearDown() override { EXPECT_EQ(s_runtime->gpu().validationMessageCount(), m_before); }
+
+    std::unique_ptr<Session> render(const std::string& pipeline, std::vector<std::string> captures, const std::string& view = "") {
+        SessionOptions o;
+        o.compile.outputWidth = W;
+        o.compile.outputHeight = H;
+        o.scene = kRoot + "/tests/gpu/scenes/materials.lua";
+        o.captures = std::move(captures);
+        o.view = view;
+        auto s = std::make_unique<Session>(*s_runtime, o);
+        auto r = s->load(kRoot + "/" + pipeline);
+        EXPECT_TRUE(r.has_value()) << r.error().describe();
+        for (int f = 0; f < 2; ++f) {
+            auto fr = s->frame();
+            EXPECT_TRUE(fr.has_value()) << fr.error().describe();
+        }
+        return s;
+    }
+    // The pixel a world point lands on with the scene's camera (as GpuScene::updateFrame sets it).
+    static glm::ivec2 pixelOf(const Session& s, glm::vec3 p) {
+        const Camera& c = s.scene()->cameras.front();
+        glm::mat4 proj = glm::perspectiveRH_ZO(c.verticalFov, float(W) / float(H), c.nearPlane, c.farPlane);
+        proj[1][1] *= -1.0f;
+        glm::vec4 clip = proj * glm::lookAt(c.position, c.target, c.up) * glm::vec4(p, 1.0f);
+        glm::vec2 ndc = glm::vec2(clip) / clip.w;
+        return glm::ivec2((ndc * 0.5f + 0.5f) * glm::vec2(W, H));
+    }
+    // The disney G-buffer at a pixel, decoded with the layout's C++ unpack.
+    static std::vector<ChannelValue> gbufferAt(const Session& s, glm::ivec2 px, LayoutInfo& info) {
+        auto li = analyzeLayout(s.pipeline().layouts.front());
+        EXPECT_TRUE(li.has_value());
+        info = *li;
+        std::vector<TexelValue> texels;
+        for (const auto& t : info.desc.targets) {
+            auto img = s_runtime->executor().readback(t.name);
+            EXPECT_TRUE(img.has_value()) << t.name;
+            texels.push_back(texelFromFloats(t.format, &img->pixels[(size_t(px.y) * W + px.x) * img->channels], img->channels));
+        }
+        return unpackTexel(info, texels);
+    }
+    // The same exposure for every render compared: manual, from the camera's default settings.
+    static void setManualExposure(Session& s) {
+        auto& p = const_cast<PipelineDesc&>(s.pipeline());
+        p.findParam("exposure_mode")->value = Value("manual");
+        s_runtime->executor().updateUniforms(graphWithParams(p));
+    }
+    static Runtime* s_runtime;
+    uint32_t m_before = 0;
+};
+Runtime* SceneRender::s_runtime = nullptr;
+
+// The sphere centres of materials.lua, pulled towards the camera to the visible surface.
+const glm::vec3 kStandard{-1.2f, 0.5f, 0.0f}, kCoated{0.0f, 0.5f, 0.0f}, kBush{1.2f, 0.4f, 0.4f};
+
+TEST_F(SceneRender, GBufferHoldsTheMaterialParameters) {
+    auto s = render("scripts/pipelines/deferred.lua", {"GB0", "GB1", "GB2", "GB3"});
+    LayoutInfo info;
+    auto g = gbufferAt(*s, pixelOf(*s, kStandard), info);
+    auto ch = [&](const char* n) { return g[static_cast<size_t>(info.find(n))]; };
+    EXPECT_EQ(ch("materialId").u[0], 0u);
+    EXPECT_NEAR(srgbEncode(ch("baseColor").v[0]), srgbEncode(0.8f), 0.5f / 255 + 1e-4f);
+    EXPECT_NEAR(srgbEncode(ch("baseColor").v[1]), srgbEncode(0.05f), 0.5f / 255 + 1e-4f);
+    EXPECT_NEAR(ch("smoothness").v[0], 0.6f, 0.5f / 1023 + 1e-5f);
+    EXPECT_EQ(ch("metalMask").v[0], 0.0f);
+    EXPECT_NEAR(ch("reflectance").v[0], 0.5f, 0.5f / 255 + 1e-5f);
+    EXPECT_NEAR(ch("ao").v[0], 1.0f, 1e-6f);
+    // The normal at the centre faces the camera, within the 10+10-bit octahedral bound.
+    const glm::vec3 toCamera = glm::normalize(s->scene()->cameras.front().position - kStandard);
+    const auto& n = ch("normal").v;
+    EXPECT_GT(glm::dot(glm::vec3(n[0], n[1], n[2]), toCamera), 0.97f);
+
+    auto c = gbufferAt(*s, pixelOf(*s, kCoated), info);
+    auto cc = [&](const char* n) { return c[static_cast<size_t>(info.find(n))]; };
+    EXPECT_EQ(cc("materialId").u[0], 1u);
+    EXPECT_NEAR(cc("reserved").v[0], 0.95f, 0.5f / 255 + 1e-5f);  // coat smoothness
+    EXPECT_EQ(cc("materialData").u[0], 31u);                      // coat strength 1 in 5 bits
+}
+
+TEST_F(SceneRender, FoliageIsFixedUpAfterFillingOnlyTwoTargets) {
+    {
+        // Without the fix-up, GB2 and GB3 under the bush keep what was drawn there before it — the
+        // floor behind (reflectance 0.5, AO 1, no emissive) — not the foliage surface's own values
+        // (reflectance 0): the foliage material wrote only GB0 and GB1.
+        auto s = render("tests/lua/scripts/deferred_nofixup.lua", {"GB0", "GB1", "GB2", "GB3"});
+        LayoutInfo info;
+        auto g = gbufferAt(*s, pixelOf(*s, kBush), info);
+        auto ch = [&](const char* n) { return g[static_cast<size_t>(info.find(n))]; };
+        EXPECT_EQ(ch("materialId").u[0], 2u);
+        EXPECT_NEAR(ch("reflectance").v[0], 0.5f, 0.5f / 255 + 1e-5f);
+        EXPECT_EQ(ch("ao").v[0], 1.0f);
+        EXPECT_EQ(ch("emissive").v[1], 0.0f);
+    }
+    {
+        auto s = render("scripts/pipelines/deferred.lua", {"GB0", "GB1", "GB2", "GB3"});
+        LayoutInfo info;
+        auto g = gbufferAt(*s, pixelOf(*s, kBush), info);
+        auto ch = [&](const char* n) { return g[static_cast<size_t>(info.find(n))]; };
+        EXPECT_EQ(ch("materialId").u[0], 2u);
+        EXPECT_NEAR(ch("reflectance").v[0], 0.35f, 0.5f / 255 + 1e-5f);  // foliage_reflectance
+        EXPECT_EQ(ch("metalMask").v[0], 0.0f);
+        EXPECT_NEAR(ch("ao").v[0], 1.0f, 1e-6f);
+        // Radiosity of a 5000 lux sky on the leaf colour as GB1 stores it: E·ρ/π (half precision).
+        const float radiosity = ch("baseColor").v[1] * 5000.0f / 3.14159265f;
+        EXPECT_NEAR(ch("emissive").v[1], radiosity, radiosity * 2e-3f);
+    }
+}
+
+TEST_F(SceneRender, StencilClassesRouteEveryMaterial) {
+    auto s = render("scripts/pipelines/deferred.lua", {}, "stencil");
+    auto view = s_runtime->executor().readback("debug_view");
+    ASSERT_TRUE(view.has_value());
+    auto rgbAt = [&](glm::vec3 p) {
+        glm::ivec2 px = pixelOf(*s, p);
+        return glm::vec3(view->at(uint32_t(px.x), uint32_t(px.y), 0), view->at(uint32_t(px.x), uint32_t(px.y), 1),
+                         view->at(uint32_t(px.x), uint32_t(px.y), 2));
+    };
+    // The view paints class i with palette entry i: lit_standard red, lit_clearcoat green, foliage blue.
+    EXPECT_NEAR(glm::distance(rgbAt(kStandard), glm::vec3(0.9f, 0.2f, 0.2f)), 0.0f, 0.01f);
+    EXPECT_NEAR(glm::distance(rgbAt(kCoated), glm::vec3(0.2f, 0.8f, 0.2f)), 0.0f, 0.01f);
+    EXPECT_NEAR(glm::distance(rgbAt(kBush), glm::vec3(0.2f, 0.4f, 0.9f)), 0.0f, 0.01f);
+    // The sky (nothing drawn) keeps stencil 0: black.
+    EXPECT_EQ(view->at(W / 2, 2, 0), 0.0f);
+}
+
+TEST_F(SceneRender, ClearCoatAddsItsSecondLobe) {
+    // One red sphere lit by a lamp beside the camera, as a standard material, as a clear coat of
+    // strength 0 (must light exactly like the standard) and of strength 1 (a second, sharp lobe).
+    auto hdrOf = [&](const std::string& material) {
+        const std::string file = std::string(RG_TEST_TMP) + "/coat_scene.lua";
+        std::ofstream(file) << "local scene = require 'scene'\n"
+                            << "scene.material 'm' { " << material << " }\n"
+                            << "scene.sphere 'ball' { radius = 0.5, position = { 0, 0, 0 }, material = 'm', segments = 64 }\n"
+                            << "scene.light 'lamp' { type = 'point', intensity = 2000, unit = 'lm', position = { 0.6, 0.6, 2.0 } }\n"
+                            << "scene.camera 'main' { position = { 0, 0, 2.5 }, target = { 0, 0, 0 }, fov = 30 }\n";
+        SessionOptions o;
+        // 256 x 256 puts a pixel exactly where N·V = 1 (with lst:2's +1e-5, NdotV > 1: a NaN
+        // once came from pow of a negative base there).
+        o.compile.outputWidth = 256;
+        o.compile.outputHeight = 256;
+        o.scene = file;
+        Session s(*s_runtime, o);
+        auto r = s.load(kRoot + "/scripts/pipelines/deferred.lua");
+        EXPECT_TRUE(r.has_value()) << r.error().describe();
+        setManualExposure(s);
+        EXPECT_TRUE(s.frame().has_value());
+        EXPECT_TRUE(s.frame().has_value());
+        auto hdr = s_runtime->executor().readback("hdr");
+        EXPECT_TRUE(hdr.has_value());
+        return *hdr;
+    };
+    const std::string base = "base_color = { 0.8, 0.05, 0.05 }, smoothness = 0.5";
+    Image standard = hdrOf(base);
+    Image noCoat = hdrOf("model = 'clear_coat', " + base + ", params = { coatStrength = 0, coatSmoothness = 0.8 }");
+    Image coat = hdrOf("model = 'clear_coat', " + base + ", params = { coatStrength = 1, coatSmoothness = 0.8 }");
+    double maxDiff = 0, peakStandard = 0, peakCoat = 0;
+    for (size_t i = 0; i < standard.pixels.size(); ++i) {
+        maxDiff = std::max(maxDiff, double(std::abs(standard.pixels[i] - noCoat.pixels[i])) / (1e-3 + std::abs(standard.pixels[i])));
+        const double x = double((i / 4) % 256) - 128.0, y = double((i / 4) / 256) - 128.0;
+        if (i % 4 == 1 && x * x + y * y < 80.0 * 80.0) {  // green, on the ball: specular only (the ball is red)
+            peakStandard = std::max(peakStandard, double(standard.pixels[i]));
+            peakCoat = std::max(peakCoat, double(coat.pixels[i]));
+        }
+    }
+    EXPECT_LT(maxDiff, 2e-3);  // strength 0: the clear-coat path lights exactly like the standard one
+    EXPECT_GT(peakCoat, 5.0 * peakStandard);  // the coat's smooth lobe
+    for (const Image* img : {&standard, &noCoat, &coat})
+        for (float v : img->pixels) ASSERT_TRUE(std::isfinite(v));
+}
+
+}  // namespace
