@@ -37,5 +37,11 @@ rg.pass "sky" {
     depth = { compare = "less_equal", value = 1 },  -- at the far plane: only where nothing was drawn
 }
 
+-- Blended materials, lit directly with the same light loop, over the lit HDR (back to front).
+rg.pass "forward" {
+    kind = "scene", forward = true,
+    reads = { { "depth", as = "depth" }, { "exposure", as = "storage" } }, writes = { { "hdr", load = true } },
+}
+
 post.chain { input = "hdr", output = "display" }
 rg.output { display = "display", hdr = "hdr", exposure = "exposure" }

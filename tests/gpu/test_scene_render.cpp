@@ -7,6 +7,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "cli/runtime.h"
@@ -202,6 +203,41 @@ TEST_F(SceneRender, ClearCoatAddsItsSecondLobe) {
     EXPECT_GT(peakCoat, 5.0 * peakStandard);  // the coat's smooth lobe
     for (const Image* img : {&standard, &noCoat, &coat})
         for (float v : img->pixels) ASSERT_TRUE(std::isfinite(v));
+}
+
+TEST_F(SceneRender, BlendedMaterialsGoForwardOverTheLitImage) {
+    // The glass pane of materials.lua (opacity 0.35) in front of the standard sphere: not in the
+    // G-buffer (materialId behind it stays the sphere's), and at opacity 0 the image is unchanged.
+    auto hdrWith = [&](const std::string& opacity, std::vector<std::string> captures) {
+        const std::string file = std::string(RG_TEST_TMP) + "/forward_scene.lua";
+        std::ifstream in(kRoot + "/tests/gpu/scenes/materials.lua");
+        std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        text.replace(text.find("opacity = 0.35"), 14, "opacity = " + opacity);
+        std::ofstream(file) << text;
+        SessionOptions o;
+        o.compile.outputWidth = W;
+        o.compile.outputHeight = H;
+        o.scene = file;
+        o.captures = std::move(captures);
+        auto s = std::make_unique<Session>(*s_runtime, o);
+        EXPECT_TRUE(s->load(kRoot + "/scripts/pipelines/deferred.lua").has_value());
+        setManualExposure(*s);
+        EXPECT_TRUE(s->frame().has_value());
+        EXPECT_TRUE(s->frame().has_value());
+        return s;
+    };
+    const glm::vec3 paneCentre{-0.6f, 0.5f, 1.0f};
+    auto clear = hdrWith("0", {"GB0"});
+    auto hidden = s_runtime->executor().readback("hdr");
+    auto tinted = hdrWith("0.35", {"GB0", "GB1", "GB2", "GB3"});
+    auto seen = s_runtime->executor().readback("hdr");
+    ASSERT_TRUE(hidden.has_value() && seen.has_value());
+    const glm::ivec2 px = pixelOf(*tinted, paneCentre);
+    LayoutInfo info;
+    auto g = gbufferAt(*tinted, px, info);
+    EXPECT_EQ(g[static_cast<size_t>(info.find("materialId"))].u[0], 0u);  // the sphere behind
+    EXPECT_NE(seen->at(uint32_t(px.x), uint32_t(px.y), 2), hidden->at(uint32_t(px.x), uint32_t(px.y), 2));
+    (void)clear;
 }
 
 }  // namespace

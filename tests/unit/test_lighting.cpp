@@ -373,7 +373,7 @@ TEST(Brdf, SpecularLobeWhiteFurnace) {
 TEST(Brdf, RenormalisedDisneyPlusSpecularStaysCloseToOne) {
     // Figure 9 (c): the directional albedo of f_r + f_d with the renormalised Disney diffuse is "not
     // exactly 1 but close enough". White diffuse, f0 = 4 %, over NdotV and linearRoughness.
-    double maxAlbedo = 0.0, minAlbedo = 2.0, maxAboveGrazing = 0.0;
+    double maxAlbedo = 0.0, minAlbedo = 2.0, maxAboveGrazing = 0.0, maxFromHalf = 0.0;
     float maxAt[2] = {}, minAt[2] = {};
     for (int i = 0; i <= 20; ++i) {
         const float lr = static_cast<float>(i) / 20.0f;
@@ -383,16 +383,19 @@ TEST(Brdf, RenormalisedDisneyPlusSpecularStaysCloseToOne) {
             if (a > maxAlbedo) maxAlbedo = a, maxAt[0] = nv, maxAt[1] = lr;
             if (a < minAlbedo) minAlbedo = a, minAt[0] = nv, minAt[1] = lr;
             if (nv >= 0.25f) maxAboveGrazing = std::max(maxAboveGrazing, a);
+            if (nv >= 0.5f) maxFromHalf = std::max(maxFromHalf, a);
         }
     }
     std::printf("Figure 9 (c), f0 = 0.04, white diffuse: max %.4f (NdotV %.2f, linearRoughness %.2f), "
-                "min %.4f (NdotV %.2f, linearRoughness %.2f), max for NdotV >= 0.25: %.4f\n",
-                maxAlbedo, maxAt[0], maxAt[1], minAlbedo, minAt[0], minAt[1], maxAboveGrazing);
-    // Measured: max 1.098 at grazing view on the roughest surface, min 0.698 at normal view on it;
-    // away from grazing (NdotV ≥ 0.25) at most 1.02.
+                "min %.4f (NdotV %.2f, linearRoughness %.2f), max for NdotV >= 0.25: %.4f, for NdotV >= 0.5: %.4f\n",
+                maxAlbedo, maxAt[0], maxAt[1], minAlbedo, minAt[0], minAt[1], maxAboveGrazing, maxFromHalf);
+    // Measured: max 1.098 at grazing view (NdotV 0.01) on the roughest surface, min 0.698 at normal
+    // view on it. It exceeds 1 only at grazing views: at most 1.015 for NdotV ≥ 0.25 and 0.993 (the
+    // smooth surface) for NdotV ≥ 0.5.
     EXPECT_LT(maxAlbedo, 1.11);
     EXPECT_GT(maxAlbedo, 1.05);
-    EXPECT_LT(maxAboveGrazing, 1.03);
+    EXPECT_LT(maxAboveGrazing, 1.02);
+    EXPECT_LE(maxFromHalf, 1.0);
     EXPECT_GT(minAlbedo, 0.68);
     EXPECT_LT(minAlbedo, 0.72);
 

@@ -12,3 +12,5 @@ scene.material "leaf" { model = "foliage", base_color = { 0.1, 0.5, 0.05 }, smoo
 scene.box "bush" { size = { 0.8, 0.8, 0.8 }, position = { 1.2, 0.4, 0 }, material = "leaf" }
 scene.light "sun" { type = "sun", intensity = 50000, unit = "lux", direction = { -0.3, -0.8, -0.5 } }
 scene.camera "main" { position = { 0, 1.2, 3.4 }, target = { 0, 0.45, 0 }, fov = 45, aperture = 16, shutter = 1 / 125, iso = 100 }
+scene.material "glass" { base_color = { 0.2, 0.4, 0.9 }, smoothness = 0.9, alpha = "blend", opacity = 0.35 }
+scene.box "pane" { size = { 0.9, 0.9, 0.02 }, position = { -0.6, 0.5, 1.0 }, material = "glass" }
