@@ -15,8 +15,10 @@ inline constexpr double kPi = 3.14159265358979323846;
 double pointIntensityFromLumens(double lumens);
 // Spot light, lm → cd. Frostbite's default (eq:17) treats a spot as a point light whose light
 // the cone masks, I = Φ / π, so changing the cone does not change the brightness; the
-// physically exact alternative (eq:16) spreads Φ over the cone: I = Φ / (2π (1 − cos θ_outer)).
-double spotIntensityFromLumens(double lumens, double outerAngle, bool exactCone = false);
+// physically exact alternative (eq:16) spreads Φ over the cone. `outerHalfAngle` is the cone's
+// half-angle (the seed's θ_outer is the full opening angle: eq:16 reads 2π(1 − cos(θ_outer / 2))),
+// so the exact form is I = Φ / (2π (1 − cos outerHalfAngle)).
+double spotIntensityFromLumens(double lumens, double outerHalfAngle, bool exactCone = false);
 // Luminance (cd/m²) from an EV100 value: L = 2^(EV − 3) (eq:12).
 double luminanceFromEv100(double ev100);
 // Illuminance (lux) at distance d (m) and incidence cosine from an intensity (cd): E = I cosθ / d².

@@ -413,6 +413,8 @@ nlohmann::ordered_json sidecarWithoutEnvironment(const GoldenTest& t, const std:
     nlohmann::ordered_json j;
     j["test"] = t.name;
     j["pipeline"] = t.pipeline;
+    if (!t.scene.empty()) j["scene"] = t.scene;
+    if (!t.camera.empty()) j["camera"] = t.camera;
     j["size"] = sizeText(t.width, t.height);
     j["frames"] = t.frames;
     nlohmann::ordered_json params = nlohmann::ordered_json::object();

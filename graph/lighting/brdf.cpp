@@ -25,11 +25,13 @@ glm::dvec3 viewVector(float NdotV) {
 
 }  // namespace
 
+// lst:2. As in brdf.glsl, the base is clamped at 0: u exceeds 1 by the 1e-5 lst:2 adds to NdotV,
+// and GLSL's pow of a negative base is undefined.
 glm::vec3 F_Schlick(glm::vec3 f0, float f90, float u) {
-    return f0 + (glm::vec3(f90) - f0) * std::pow(1.0f - u, 5.0f);  // lst:2
+    return f0 + (glm::vec3(f90) - f0) * std::pow(std::max(1.0f - u, 0.0f), 5.0f);
 }
 
-float F_Schlick(float f0, float f90, float u) { return f0 + (f90 - f0) * std::pow(1.0f - u, 5.0f); }
+float F_Schlick(float f0, float f90, float u) { return f0 + (f90 - f0) * std::pow(std::max(1.0f - u, 0.0f), 5.0f); }
 
 float Fr_DisneyDiffuse(float NdotV, float NdotL, float LdotH, float linearRoughness) {
     // seed 000 lst:1: the bias keeps Disney's retro-reflection, the factor removes its energy gain.

@@ -17,8 +17,8 @@ namespace rg::brdf {
 // RG_PI of brdf.glsl (the GLSL literal, rounded to float).
 inline constexpr float kPi = 3.14159265358979f;
 
-// lst:2 — Schlick's Fresnel with an explicit f90: f0 + (f90 − f0)(1 − u)^5, u = cos of the angle
-// between the light (or view) and the half vector.
+// lst:2 — Schlick's Fresnel with an explicit f90: f0 + (f90 − f0) max(1 − u, 0)^5, u = cos of the
+// angle between the light (or view) and the half vector (may exceed 1 by lst:2's 1e-5).
 glm::vec3 F_Schlick(glm::vec3 f0, float f90, float u);
 float F_Schlick(float f0, float f90, float u);
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <sstream>
 
 #include "core/check.h"
@@ -64,12 +65,13 @@ struct Token {
     bool lastOnLine = false;
 };
 
-// A number as LM-63 writes it (optional sign, decimals, exponent); the whole token must be used.
+// A number as LM-63 writes it (optional sign, decimals, exponent); the whole token must be used,
+// and it must fit the float the profile stores it in.
 bool parseNumber(std::string_view s, double& out) {
     if (!s.empty() && s.front() == '+') s.remove_prefix(1);
     if (s.empty()) return false;
     const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), out, std::chars_format::general);
-    return ec == std::errc() && end == s.data() + s.size() && std::isfinite(out);
+    return ec == std::errc() && end == s.data() + s.size() && std::abs(out) <= std::numeric_limits<float>::max();
 }
 
 bool looksNumeric(std::string_view line) {
@@ -264,7 +266,7 @@ Result<void> Parser::wrongCount(int nV, int nH) {
 Result<std::vector<float>> Parser::angles(int count, std::string_view plural, std::string_view singular) {
     const int startLine = nextLine();
     const bool countsMismatch = static_cast<int64_t>(m_tokens.size()) != m_needed;
-    const auto wrongCount = [&](int64_t found) {
+    const auto countError = [&](int64_t found) {
         return failAt(startLine, "expected " + std::to_string(count) + " " + std::string(plural) + ", found " +
                                      std::to_string(found));
     };
@@ -276,20 +278,22 @@ Result<std::vector<float>> Parser::angles(int count, std::string_view plural, st
         const Token& t = m_tokens[m_next];
         auto v = number(std::string(singular) + " " + std::to_string(k + 1) + " of " + std::to_string(count));
         if (!v) return std::unexpected(v.error());
-        if (k > 0 && *v <= out.back()) {
+        // Compared as stored (float), so no two table angles can coincide.
+        const float angle = static_cast<float>(*v);
+        if (k > 0 && angle <= out.back()) {
             // A value that starts a new line and breaks the order is where the next block begins when
             // the values do not add up to what the header announced: the count is wrong.
-            if (t.firstOnLine && countsMismatch) return wrongCount(k);
+            if (t.firstOnLine && countsMismatch) return countError(k);
             return failAt(t.line, "expected " + std::string(plural) + " in increasing order, found " +
                                       std::string(t.text) + " after " + numberText(out.back()));
         }
-        out.push_back(static_cast<float>(*v));
+        out.push_back(angle);
     }
     // The block ends in the middle of a line while the totals do not match: the line holds more.
     if (count > 0 && countsMismatch && !m_tokens[m_next - 1].lastOnLine) {
         int64_t extra = 0;
         for (size_t i = m_next; i < m_tokens.size() && m_tokens[i].line == m_tokens[m_next - 1].line; ++i) ++extra;
-        return wrongCount(count + extra);
+        return countError(count + extra);
     }
     return out;
 }
@@ -434,7 +438,11 @@ Result<IesProfile> Parser::parse() {
                                           std::to_string(cells) + " (" + where() + "), found '" + shorten(t.text) + "'");
             if (c < 0.0)
                 return failAt(t.line, "expected a non-negative candela value at " + where() + ", found " + std::string(t.text));
-            profile.candela.push_back(static_cast<float>(c * *multiplier));
+            const double cd = c * *multiplier;
+            if (cd > std::numeric_limits<float>::max())
+                return failAt(t.line, "expected a candela value that times the multiplier fits a float at " + where() +
+                                          ", found " + std::string(t.text));
+            profile.candela.push_back(static_cast<float>(cd));
         }
     }
     if (!atEnd())

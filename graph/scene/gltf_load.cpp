@@ -300,6 +300,8 @@ struct Loader {
         for (size_t i = 0; i < it->size(); ++i) {
             const auto& b = (*it)[i];
             if (!b.is_object()) continue;
+            if (auto len = b.find("byteLength"); len != b.end() && !(len->is_number_unsigned() && len->get<uint64_t>() >= 1))
+                return error(ErrorCode::InvalidInput, "buffer " + std::to_string(i) + ": byteLength is " + len->dump() + ", expected a whole number >= 1");
             auto uri = b.find("uri");
             if (uri == b.end() || !uri->is_string() || isDataUri(uri->get<std::string>())) continue;
             const std::string file = resolve(uri->get<std::string>());
@@ -334,10 +336,14 @@ struct Loader {
         gltf.SetImageLoader(keepEncodedImage, &imageState);
         std::string err, warnings;
         const std::string base = fs::absolute(dir.empty() ? fs::path(".") : dir).string();
-        const bool ok = pf->binary
-                            ? gltf.LoadBinaryFromMemory(&model, &err, &warnings, bytes->data(), static_cast<unsigned int>(bytes->size()), base)
+        bool ok = false;
+        try {  // tinygltf throws on some inputs (e.g. vector::at on an empty GLB buffer)
+            ok = pf->binary ? gltf.LoadBinaryFromMemory(&model, &err, &warnings, bytes->data(), static_cast<unsigned int>(bytes->size()), base)
                             : gltf.LoadASCIIFromString(&model, &err, &warnings, reinterpret_cast<const char*>(bytes->data()),
                                                        static_cast<unsigned int>(bytes->size()), base);
+        } catch (const std::exception& e) {
+            return error(ErrorCode::InvalidInput, std::string("invalid glTF: tinygltf failed (") + e.what() + ")");
+        }
         if (!ok) {
             std::string first = err.substr(0, err.find('\n'));
             if (first.empty()) first = "tinygltf could not read it";

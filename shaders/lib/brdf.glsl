@@ -1,6 +1,6 @@
 // The Frostbite BRDF (seed 000 §3.1): renormalised Disney diffuse (lst:1), GGX distribution,
 // height-correlated Smith visibility and Schlick's Fresnel with f90 (lst:2). The same functions
-// are in C++ (graph/core/brdf.h) for tests. Roughness conventions (§3.2.1):
+// are in C++ (graph/lighting/brdf.h) for tests. Roughness conventions (§3.2.1):
 // linearRoughness = 1 − smoothness (perceptually linear), alpha = linearRoughness².
 #ifndef RG_BRDF_GLSL
 #define RG_BRDF_GLSL

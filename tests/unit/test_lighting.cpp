@@ -246,6 +246,11 @@ TEST(Brdf, ComponentsFollowTheListings) {
     EXPECT_FLOAT_EQ(brdf::F_Schlick(0.04f, 1.0f, 1.0f), 0.04f);
     EXPECT_FLOAT_EQ(brdf::F_Schlick(0.04f, 1.0f, 0.0f), 1.0f);
     EXPECT_FLOAT_EQ(brdf::F_Schlick(glm::vec3(0.04f), 0.5f, 0.0f).y, 0.5f);
+    // u beyond 1 (NdotV + 1e-5 in lst:2) gives f0, as brdf.glsl clamps the base of its pow (an
+    // unclamped (1 − 1.5)^5 would give 0.01 here).
+    EXPECT_EQ(brdf::F_Schlick(0.04f, 1.0f, 1.5f), 0.04f);
+    EXPECT_EQ(brdf::F_Schlick(glm::vec3(0.04f), 1.0f, 1.5f), glm::vec3(0.04f));
+    EXPECT_EQ(brdf::Fr_DisneyDiffuse(1.00001f, 1.0f, 1.0f, 0.5f), brdf::Fr_DisneyDiffuse(1.0f, 1.0f, 1.0f, 0.5f));
     // lst:1 at linearRoughness 0 and normal incidence is Lambert (1, before the 1/π); at roughness 1
     // the renormalisation factor 1/1.51 applies, fd90 = 0.5 + 2 LdotH².
     EXPECT_FLOAT_EQ(brdf::Fr_DisneyDiffuse(1.0f, 1.0f, 1.0f, 0.0f), 1.0f);
@@ -477,6 +482,18 @@ TEST(SphereLight, MatchesTheIntegralWithAndWithoutTheHorizon) {
     }
 }
 
+TEST(SphereLight, Listing7AsPrintedHasATypoInItsLastTerm) {
+    // lst:7 prints atan(sin β + sqrt(1 − y²) / x); lst:10's form, atan(sin β · sqrt(1 − y²) / x), is
+    // the one that matches the integral (previous test). The printed one is visibly off.
+    const double h = 1.0 / 0.7, cosBeta = 0.2, beta = std::acos(cosBeta);
+    const double x = std::sqrt(h * h - 1), y = -x / std::tan(beta);
+    const double printed = kPi * ((1 / (kPi * h * h)) * (cosBeta * std::acos(y) - x * std::sin(beta) * std::sqrt(1 - y * y)) +
+                                  (1 / kPi) * std::atan(std::sin(beta) + std::sqrt(1 - y * y) / x));
+    const double reference = capIlluminanceReference(cosBeta, 0.7, 600);
+    EXPECT_NEAR(lighting::sphereIlluminanceTilted(0.7, 1.0, cosBeta), reference, 1e-4);
+    EXPECT_GT(std::abs(printed - reference), 0.1 * reference);
+}
+
 TEST(SphereLight, ApproachesThePointLightAsItShrinks) {
     // Sphere of fixed power at fixed distance: E → Φ / (4π d²) ⟨n·l⟩ (eq:19, eq:38) as r/d → 0, also
     // around the horizon where the sphere's light wraps.
@@ -607,8 +624,8 @@ TEST(RectangleLight, SolidAngleAndStructuredSamplingAgainstTheIntegral) {
                      p2 = center + left * (w / 2) - up * (h / 2), p3 = center + left * (w / 2) + up * (h / 2);
     EXPECT_NEAR(lighting::rectangleSolidAngle(x, p0, p1, p2, p3), lighting::rightPyramidSolidAngle(2.0, w / 2, h / 2), 1e-12);
 
-    // Measured: 2.8 % low facing the light, 2.8 % and 2.8 % at 27° and 73°; +22 % for a normal
-    // 86° away whose horizon cuts the light (the five samples see too much of it).
+    // Measured: 2.8 % low with the normal facing the light and tilted by 27° or 73°; +22 % for a
+    // normal tilted 86° whose horizon cuts through the light (the five samples see too much of it).
     struct Case {
         glm::dvec3 n;
         double tolerance;
@@ -856,6 +873,8 @@ TEST(Ies, ErrorNonNumericValues) {
               "'lamp.ies':5: expected a number for the candela multiplier (value 3 of 10 after TILT), found 'one'");
     EXPECT_EQ(parseError(replaceLine(validIes(), 5, "1 1000 1 5.5 2 1 2 0 0 0")),
               "'lamp.ies':5: expected an integer for the number of vertical angles (value 4 of 10 after TILT), found '5.5'");
+    EXPECT_EQ(parseError(replaceLine(validIes(), 9, "100 90 70 1e39 0")),
+              "'lamp.ies':9: expected a number for candela value 4 of 10 (horizontal angle 0, vertical angle 67.5), found '1e39'");
     EXPECT_EQ(parseError(replaceLine(validIes(), 6, "1 1 nan")),
               "'lamp.ies':6: expected a number for the input watts (value 3 of 3 on the second line after TILT), found 'nan'");
 }
