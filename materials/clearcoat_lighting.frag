@@ -32,16 +32,18 @@ void main() {
     float NdotV = abs(dot(N, V)) + 1e-5;
     vec3 luminance = g.emissive;
     for (uint i = 0u; i < rgLightCount(); ++i) {
-        vec3 L;
-        vec3 E = rgLightIlluminance(i, position, L);
-        vec3 H = normalize(V + L);
-        float NdotL = clamp(dot(N, L), 0.0, 1.0);
+        // Each lobe sees the light from its own representative point (area lights): evaluated
+        // with the base's roughness and with the coat's.
+        RgLightSample s = rgEvaluateLight(i, position, N, V, linearRoughness);
+        RgLightSample c = rgEvaluateLight(i, position, N, V, coatRoughness);
+        vec3 H = rgSafeNormalize(V + c.Ls, N);
+        float NdotL = clamp(dot(N, c.Ls), 0.0, 1.0);
         float NdotH = clamp(dot(N, H), 0.0, 1.0);
-        float LdotH = clamp(dot(L, H), 0.0, 1.0);
+        float LdotH = clamp(dot(c.Ls, H), 0.0, 1.0);
         float Fc = F_Schlick(0.04, 1.0, LdotH) * coatStrength;
         float coat = D_GGX(NdotH, coatAlpha) * V_SmithGGXCorrelated(NdotL, NdotV, coatAlpha) * Fc / RG_PI * NdotL;
-        vec3 base = rgStandardBrdf(N, V, L, diffuseColor, f0, linearRoughness);
-        luminance += (base * (1.0 - Fc) + vec3(coat)) * E;
+        vec3 base = rgStandardLighting(s, N, V, diffuseColor, f0, linearRoughness);
+        luminance += base * (1.0 - Fc) + vec3(coat) * c.specularIlluminance * c.specularNormalisation;
     }
     color = vec4(luminance * rgPreExposure(ex.state, params.initial_ev100), 1.0);
 }

@@ -7,6 +7,8 @@
 
 #include "core/check.h"
 #include "core/light_units.h"
+#include "lighting/area_lights.h"
+#include "lighting/punctual.h"
 
 namespace rg::passes {
 
@@ -25,10 +27,6 @@ static_assert(sizeof(MaterialUniforms) == 320);
 struct CameraUniforms {
     glm::mat4 viewProj, view, proj, invViewProj;
     glm::vec4 position, viewport;
-};
-
-struct GpuLight {
-    glm::vec4 positionType, directionRadius, intensity, params;
 };
 
 VkFilter toVk(Filter f) { return f == Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR; }
@@ -110,7 +108,7 @@ Result<gpu::Image> solidTexture(Context& ctx, const std::string& name, glm::vec4
 
 GpuScene::~GpuScene() = default;
 
-Result<std::unique_ptr<GpuScene>> GpuScene::create(Context& ctx, Scene scene) {
+Result<std::unique_ptr<GpuScene>> GpuScene::create(Context& ctx, Scene scene, const GpuSceneOptions& options) {
     std::unique_ptr<GpuScene> s(new GpuScene());
     s->m_ctx = &ctx;
     s->m_scene = std::move(scene);
@@ -119,7 +117,7 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(Context& ctx, Scene scene) {
     if (auto r = s->uploadGeometry(ctx); !r) return std::unexpected(r.error());
     if (auto r = s->uploadImages(ctx); !r) return std::unexpected(r.error());
     if (auto r = s->createMaterials(ctx); !r) return std::unexpected(r.error());
-    if (auto r = s->createFrameData(ctx); !r) return std::unexpected(r.error());
+    if (auto r = s->createFrameData(ctx, options); !r) return std::unexpected(r.error());
     return s;
 }
 
@@ -295,19 +293,42 @@ Result<void> GpuScene::createMaterials(Context& ctx) {
     return {};
 }
 
-Result<void> GpuScene::createFrameData(Context& ctx) {
-    for (uint32_t s = 0; s < ctx.framesInFlight(); ++s) {
-        auto cam = Buffer::create(ctx, "scene.camera", sizeof(CameraUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
-        if (!cam) return std::unexpected(cam.error());
-        m_cameraBuffers.push_back(std::move(*cam));
-        auto lights = Buffer::create(ctx, "scene.lights", 16 + kMaxLights * sizeof(GpuLight), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-        if (!lights) return std::unexpected(lights.error());
-        m_lightBuffers.push_back(std::move(*lights));
-    }
-    // Lights in the units the shaders take: cd for punctual lights, lux for the sun.
-    std::vector<GpuLight> out;
-    for (const Light& l : m_scene.lights) {
-        if (out.size() >= kMaxLights) break;
+namespace {
+
+std::string lightLabel(const Light& l) { return "light '" + l.name + "' (" + lightTypeName(l.type) + ")"; }
+
+// A unit vector perpendicular to `n`: `hint` made perpendicular, or any when they are parallel.
+glm::vec3 perpendicularTo(glm::vec3 n, glm::vec3 hint) {
+    glm::vec3 p = hint - glm::dot(hint, n) * n;
+    if (glm::length(p) < 1e-4f) p = glm::cross(n, std::abs(n.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0));
+    return glm::normalize(p);
+}
+
+}  // namespace
+
+Result<GpuLightTable> convertLights(const std::vector<Light>& lights, IesMode iesMode) {
+    GpuLightTable table;
+    if (lights.size() > kMaxLights)
+        return fail(ErrorCode::InvalidInput, "the scene has " + std::to_string(lights.size()) + " lights; the GPU light list holds at most " +
+                                                 std::to_string(kMaxLights));
+    for (const Light& l : lights) {
+        const std::string label = lightLabel(l);
+        const bool punctual = l.type == LightType::Point || l.type == LightType::Spot;
+        const bool sun = l.type == LightType::Directional;
+        // seed 000 tbl:8: the units each type takes (as the scene loaders check; a Scene built
+        // in C++ may not have been).
+        const std::vector<std::string> units = punctual ? std::vector<std::string>{"lm", "cd"}
+                                               : sun    ? std::vector<std::string>{"lux"}
+                                                        : std::vector<std::string>{"lm", "nits", "ev100"};
+        if (std::find(units.begin(), units.end(), l.unit) == units.end()) {
+            std::string list;
+            for (const auto& u : units) list += (list.empty() ? "'" : ", '") + u + "'";
+            return fail(ErrorCode::InvalidInput, label + ": unit '" + l.unit + "' is not one of " + list + " (seed 000 tbl:8)");
+        }
+        if (!l.ies.empty() && !punctual)
+            return fail(ErrorCode::InvalidInput, label + ": an IES profile applies to point and spot lights only");
+        const glm::vec3 direction = glm::length(l.direction) > 0.0f ? glm::normalize(l.direction) : glm::vec3(0, -1, 0);
+
         glm::vec3 color = l.color;
         if (l.temperatureK > 0) {
             auto rgb = lights::colorTemperatureToRgb(l.temperatureK);
@@ -315,34 +336,122 @@ Result<void> GpuScene::createFrameData(Context& ctx) {
         }
         GpuLight g{};
         const float invSqrRange = l.range > 0 ? 1.0f / (l.range * l.range) : 0.0f;
-        g.directionRadius = glm::vec4(glm::normalize(l.direction), invSqrRange);
-        if (l.type == LightType::Point || l.type == LightType::Spot) {
-            double cd = l.intensity;
+        g.positionType = glm::vec4(l.position, 0.0f);
+        g.directionRange = glm::vec4(direction, invSqrRange);
+        g.intensity.a = -1.0f;
+        GpuLightType type = GpuLightType::Point;
+        double value = l.intensity;  // cd, lux or cd/m² once converted
+        switch (l.type) {
+        case LightType::Point:
+        case LightType::Spot: {
+            type = l.type == LightType::Point ? GpuLightType::Point : GpuLightType::Spot;
+            // tbl:9; spots by eq:17 (Φ / π): spotIntensityFromLumens' default, never the exact cone.
             if (l.unit == "lm")
-                cd = l.type == LightType::Point ? lights::pointIntensityFromLumens(l.intensity)
-                                                : lights::spotIntensityFromLumens(l.intensity, l.outerAngle);
-            g.positionType = glm::vec4(l.position, l.type == LightType::Point ? 0.0f : 1.0f);
-            g.intensity = glm::vec4(color * static_cast<float>(cd), 0.0f);
-            // lst:4: angle attenuation as a scale and offset of cos θ.
-            const float cosOuter = std::cos(l.outerAngle), cosInner = std::cos(std::min(l.innerAngle, l.outerAngle - 1e-3f));
-            const float scale = l.type == LightType::Spot ? 1.0f / std::max(0.001f, cosInner - cosOuter) : 0.0f;
-            const float offset = l.type == LightType::Spot ? -cosOuter * scale : 1.0f;
-            g.params = glm::vec4(scale, offset, 0.0f, 0.0f);
-        } else if (l.type == LightType::Directional) {
-            g.positionType = glm::vec4(0.0f, 0.0f, 0.0f, 2.0f);
-            g.intensity = glm::vec4(color * l.intensity, 0.0f);  // lux
-            g.params = glm::vec4(0.0f, 0.0f, l.sunAngularRadius, 0.0f);
-        } else {
-            continue;  // area lights arrive with the lighting work
+                value = l.type == LightType::Point ? lights::pointIntensityFromLumens(l.intensity)
+                                                   : lights::spotIntensityFromLumens(l.intensity, l.outerAngle);
+            // lst:4: the cone as a scale and offset of cos θ; a point light has none (0, 1).
+            lighting::AngleScaleOffset cone;
+            if (l.type == LightType::Spot) cone = lighting::spotAngleScaleOffset(l.innerAngle, l.outerAngle);
+            g.params = glm::vec4(cone.scale, cone.offset, 0.0f, 0.0f);
+            if (!l.ies.empty()) {
+                auto it = std::find(table.profilePaths.begin(), table.profilePaths.end(), l.ies);
+                if (it == table.profilePaths.end()) {
+                    if (table.profiles.size() >= kMaxIesProfiles)
+                        return fail(ErrorCode::InvalidInput, label + ": the scene uses more than " + std::to_string(kMaxIesProfiles) +
+                                                                 " different IES profiles");
+                    auto profile = loadIes(l.ies);
+                    if (!profile) return fail(profile.error().code, label + ": " + profile.error().message, profile.error().reasons);
+                    if (profile->maxCandela <= 0.0f)
+                        return fail(ErrorCode::InvalidInput, label + ": the IES profile '" + l.ies + "' sends no light (its largest candela value is 0)");
+                    table.profiles.push_back(bakeIes(*profile, kIesWidth, kIesHeight));
+                    table.profilePaths.push_back(l.ies);
+                    it = table.profilePaths.end() - 1;
+                }
+                const auto index = static_cast<size_t>(it - table.profilePaths.begin());
+                g.intensity.a = static_cast<float>(index);
+                // eq:27: I is either the profile's maximum candela or the user's intensity (mask).
+                if (iesMode == IesMode::Intensity) value = table.profiles[index].maxCandela;
+                // lst:5's light space: z the nadir (the light's direction), x horizontal 0°.
+                g.axis = glm::vec4(perpendicularTo(direction, l.up), 0.0f);
+            }
+            break;
         }
-        out.push_back(g);
+        case LightType::Directional: {
+            type = GpuLightType::Sun;  // lux; lst:6 takes the disk's sin and cos
+            g.params = glm::vec4(0.0f, 0.0f, std::sin(l.sunAngularRadius), std::cos(l.sunAngularRadius));
+            break;
+        }
+        case LightType::Sphere:
+        case LightType::Disk:
+        case LightType::Rect:
+        case LightType::Tube: {
+            lighting::AreaLightShape shape;
+            if (l.type == LightType::Rect) {
+                if (!(l.width > 0.0f && l.height > 0.0f))
+                    return fail(ErrorCode::InvalidInput, label + ": width and height must be positive metres, got " +
+                                                             std::to_string(l.width) + " x " + std::to_string(l.height));
+                if (glm::length(glm::cross(l.up, direction)) < 1e-6f)
+                    return fail(ErrorCode::InvalidInput, label + ": up is parallel to the direction (or zero); the rect needs a height axis");
+                shape = {lighting::AreaShape::Rectangle, 0.0, 0.0, l.width, l.height};
+                type = GpuLightType::Rect;
+                g.params = glm::vec4(0.0f, 0.0f, 0.0f, l.width);
+                g.axis = glm::vec4(perpendicularTo(direction, l.up), l.height);
+            } else {
+                if (!(l.radius > 0.0f)) return fail(ErrorCode::InvalidInput, label + ": radius must be positive metres, got " + std::to_string(l.radius));
+                if (l.type == LightType::Tube && !(l.length > 0.0f))
+                    return fail(ErrorCode::InvalidInput, label + ": length must be positive metres, got " + std::to_string(l.length));
+                shape.shape = l.type == LightType::Sphere ? lighting::AreaShape::Sphere
+                              : l.type == LightType::Disk ? lighting::AreaShape::Disk
+                                                          : lighting::AreaShape::Tube;
+                shape.radius = l.radius;
+                shape.length = l.length;
+                type = l.type == LightType::Sphere ? GpuLightType::Sphere : l.type == LightType::Disk ? GpuLightType::Disk : GpuLightType::Tube;
+                g.params = glm::vec4(0.0f, 0.0f, l.radius, l.type == LightType::Tube ? l.length : 0.0f);
+            }
+            const lighting::AreaUnit unit = l.unit == "lm"     ? lighting::AreaUnit::Lumens
+                                            : l.unit == "nits" ? lighting::AreaUnit::Nits
+                                                               : lighting::AreaUnit::Ev100;
+            value = lighting::areaLightLuminance(shape, l.intensity, unit);  // tbl:12, eq:12: cd/m²
+            break;
+        }
+        }
+        g.positionType.w = static_cast<float>(type);
+        const glm::vec3 rgb = color * static_cast<float>(value);
+        g.intensity = glm::vec4(rgb, g.intensity.a);
+        if (!std::isfinite(rgb.r) || !std::isfinite(rgb.g) || !std::isfinite(rgb.b))
+            return fail(ErrorCode::InvalidInput, label + ": intensity " + std::to_string(l.intensity) + " " + l.unit + " is not a finite value on the GPU");
+        table.lights.push_back(g);
     }
-    m_lightCount = static_cast<uint32_t>(out.size());
-    for (auto& buf : m_lightBuffers) {
-        auto* p = static_cast<uint8_t*>(buf.mapped());
-        uint32_t header[4] = {m_lightCount, 0, 0, 0};
-        std::memcpy(p, header, 16);
-        if (!out.empty()) std::memcpy(p + 16, out.data(), out.size() * sizeof(GpuLight));
+    return table;
+}
+
+Result<void> GpuScene::createFrameData(Context& ctx, const GpuSceneOptions& options) {
+    auto table = convertLights(m_scene.lights, options.iesMode);
+    if (!table) return std::unexpected(table.error());
+    m_lightCount = static_cast<uint32_t>(table->lights.size());
+    m_iesProfileCount = static_cast<uint32_t>(table->profiles.size());
+    // scene.glsl's Lights block: a uvec4 header, RG_MAX_LIGHTS lights, then every profile's texels
+    // (one float more, so the runtime array is never empty).
+    const size_t lightBytes = 16 + size_t(kMaxLights) * sizeof(GpuLight);
+    const size_t texelCount = size_t(kIesWidth) * kIesHeight;
+    const size_t bytes = lightBytes + (m_iesProfileCount * texelCount + 1) * sizeof(float);
+    for (uint32_t s = 0; s < ctx.framesInFlight(); ++s) {
+        auto cam = Buffer::create(ctx, "scene.camera", sizeof(CameraUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+        if (!cam) return std::unexpected(cam.error());
+        m_cameraBuffers.push_back(std::move(*cam));
+        auto lights = Buffer::create(ctx, "scene.lights", bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+        if (!lights) return std::unexpected(lights.error());
+        auto* p = static_cast<uint8_t*>(lights->mapped());
+        std::memset(p, 0, bytes);
+        const uint32_t header[4] = {m_lightCount, m_iesProfileCount, kIesWidth, kIesHeight};
+        std::memcpy(p, header, sizeof header);
+        if (m_lightCount) std::memcpy(p + 16, table->lights.data(), table->lights.size() * sizeof(GpuLight));
+        for (size_t i = 0; i < table->profiles.size(); ++i) {
+            const IesTexture& t = table->profiles[i];
+            RG_CHECK(t.texels.size() == texelCount) << "IES profile baked at " << t.width << " x " << t.height;
+            std::memcpy(p + lightBytes + i * texelCount * sizeof(float), t.texels.data(), texelCount * sizeof(float));
+        }
+        m_lightBuffers.push_back(std::move(*lights));
     }
     return {};
 }

@@ -1,7 +1,8 @@
 // The scene on the GPU: one vertex and one index buffer for every primitive, the images with
 // their mip chains, a descriptor set per material (set 1 of scene draws, see
 // shaders/lib/material.glsl), and per frame slot the camera uniforms and the light list
-// (shaders/lib/scene.glsl), lights converted to cd / lux once here (seed 000 tbl:9, eq:17).
+// (shaders/lib/scene.glsl's Lights block: the lights converted once here — cd, lux or cd/m², see
+// convertLights — followed by their baked IES profiles).
 #pragma once
 
 #include <memory>
@@ -12,6 +13,7 @@
 
 #include "gpu/context.h"
 #include "gpu/resources.h"
+#include "lighting/ies.h"
 #include "scene/scene.h"
 
 namespace rg::passes {
@@ -28,11 +30,62 @@ struct DrawItem {
 // Binding slots of the scene's camera and lights in set 0 (shaders/lib/scene.glsl).
 inline constexpr uint32_t kCameraBinding = 15;
 inline constexpr uint32_t kLightsBinding = 14;
+// The Lights block's fixed light array (scene.glsl's RG_MAX_LIGHTS, the same number).
 inline constexpr uint32_t kMaxLights = 256;
+// IES profiles are baked at this size (bakeIes' θ × cos φ texels, seed 000 lst:5), each 256 KiB
+// in every frame slot's light buffer; a scene may use this many different profile files.
+inline constexpr uint32_t kIesWidth = 256, kIesHeight = 256;
+inline constexpr uint32_t kMaxIesProfiles = 16;
+
+// One light as scene.glsl's RgLight (std430: five vec4; see there for every field).
+struct GpuLight {
+    glm::vec4 positionType{0.0f};
+    glm::vec4 directionRange{0.0f};
+    glm::vec4 intensity{0.0f};  // rgb: colour × cd / lux / cd/m²; a: IES profile, -1 for none
+    glm::vec4 params{0.0f};
+    glm::vec4 axis{0.0f};
+};
+static_assert(sizeof(GpuLight) == 80, "GpuLight must match RgLight's std430 layout");
+
+// scene.glsl's RG_LIGHT_* codes (GpuLight::positionType.w).
+enum class GpuLightType : uint8_t { Point = 0, Spot = 1, Sun = 2, Sphere = 3, Disk = 4, Rect = 5, Tube = 6 };
+
+// How an IES profile sets a point or spot light's intensity (seed 000 §4.5, eq:27, lst:5). Light
+// has no field for it, so it is one choice for the scene.
+enum class IesMode {
+    Mask,       // the declared intensity (lm → cd as without a profile, or cd) × I / I_max: the
+                // profile only shapes the light (the default; lst:5's "mask")
+    Intensity,  // the profile's own candela: I_max × I / I_max; the declared intensity is ignored
+};
+
+struct GpuSceneOptions {
+    IesMode iesMode = IesMode::Mask;
+};
+
+// The scene's lights as the shaders take them, converted once (what GpuScene uploads).
+struct GpuLightTable {
+    std::vector<GpuLight> lights;        // in the scene's order
+    std::vector<IesTexture> profiles;    // one per distinct IES file, kIesWidth × kIesHeight
+    std::vector<std::string> profilePaths;
+};
+
+// Converts lights to GpuLights (graph/lighting and graph/core/light_units do the arithmetic):
+// - point, spot: cd; lm → cd by tbl:9 — Φ / 4π, and for spots Frostbite's eq:17, Φ / π, always
+//   (the cone does not change the brightness; eq:16's exact cone is not used). The cone's angle
+//   scale and offset of lst:4. With an IES profile (Light::ies: loaded with loadIes, baked with
+//   bakeIes), see IesMode; its light space has +z along Light::direction (the profile's nadir)
+//   and +x along Light::up made perpendicular to it (horizontal angle 0°).
+// - sun: lux perpendicular to its rays; sin and cos of its angular radius (lst:6).
+// - sphere, disk, rect, tube: luminance in cd/m² from lm (tbl:12), nits or EV100 (eq:12) by
+//   lighting::areaLightLuminance. A rect's up is made perpendicular to its direction.
+// Colour temperature multiplies the colour (tbl:4). Errors name the light: a unit its type cannot
+// have, a size that is not positive, an IES file that does not load, more than kMaxLights lights
+// or kMaxIesProfiles profiles.
+Result<GpuLightTable> convertLights(const std::vector<Light>& lights, IesMode iesMode = IesMode::Mask);
 
 class GpuScene {
 public:
-    static Result<std::unique_ptr<GpuScene>> create(gpu::Context& ctx, Scene scene);
+    static Result<std::unique_ptr<GpuScene>> create(gpu::Context& ctx, Scene scene, const GpuSceneOptions& options = {});
     ~GpuScene();
 
     const Scene& scene() const { return m_scene; }
@@ -50,13 +103,14 @@ public:
     VkBuffer cameraBuffer(uint32_t slot) const { return m_cameraBuffers[slot].buffer(); }
     VkBuffer lightBuffer(uint32_t slot) const { return m_lightBuffers[slot].buffer(); }
     uint32_t lightCount() const { return m_lightCount; }
+    uint32_t iesProfileCount() const { return m_iesProfileCount; }
 
 private:
     GpuScene() = default;
     Result<void> uploadGeometry(gpu::Context& ctx);
     Result<void> uploadImages(gpu::Context& ctx);
     Result<void> createMaterials(gpu::Context& ctx);
-    Result<void> createFrameData(gpu::Context& ctx);
+    Result<void> createFrameData(gpu::Context& ctx, const GpuSceneOptions& options);
 
     Scene m_scene;
     gpu::Context* m_ctx = nullptr;
@@ -72,6 +126,7 @@ private:
     std::vector<VkDescriptorSet> m_materialSets;
     std::vector<gpu::Buffer> m_cameraBuffers, m_lightBuffers;
     uint32_t m_lightCount = 0;
+    uint32_t m_iesProfileCount = 0;
     size_t m_camera = 0;
 };
 

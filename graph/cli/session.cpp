@@ -38,7 +38,10 @@ LuaHostOptions luaHostOptionsWithoutDevice() {
 }
 
 Session::Session(Runtime& runtime, SessionOptions options) : m_runtime(runtime), m_options(std::move(options)) {}
-Session::~Session() = default;
+Session::~Session() {
+    // The executor must not keep drawing (or calling back into) a scene that goes away with us.
+    if (m_scene && m_runtime.executor().scene() == m_scene.get()) m_runtime.executor().setScene(nullptr, {});
+}
 
 void Session::note(const std::string& line) {
     m_log.push_back(line);
@@ -188,7 +191,7 @@ Result<Scene> readScene(const std::string& file) {
 
 // Loads the scene the pipeline's scene passes draw, matches its materials to the pipeline's, and
 // takes the camera's exposure settings into the camera parameters.
-Result<void> Session::loadScene(PipelineDesc& pipeline) {
+Result<std::unique_ptr<passes::GpuScene>> Session::loadScene(PipelineDesc& pipeline) {
     const std::string file = m_options.scene.empty() ? defaultScene() : m_options.scene;
     auto scene = readScene(file);
     if (!scene) return std::unexpected(scene.error());
@@ -209,7 +212,7 @@ Result<void> Session::loadScene(PipelineDesc& pipeline) {
     auto gpuScene = passes::GpuScene::create(m_runtime.gpu(), std::move(*scene));
     if (!gpuScene) return std::unexpected(gpuScene.error());
     if (!m_options.camera.empty())
-        if (auto r = (*gpuScene)->selectCamera(m_options.camera); !r) return r;
+        if (auto r = (*gpuScene)->selectCamera(m_options.camera); !r) return std::unexpected(r.error());
     const Camera& cam = (*gpuScene)->camera();
     auto set = [&](const char* name, double v) {
         if (ParamDesc* p = pipeline.findParam(name))
@@ -220,12 +223,8 @@ Result<void> Session::loadScene(PipelineDesc& pipeline) {
     set("iso", cam.iso);
     set("ec", cam.exposureCompensation);
     set("initial_ev100", std::log2(cam.aperture * cam.aperture / cam.shutter * 100.0 / cam.iso) - cam.exposureCompensation);
-    m_scene = std::move(*gpuScene);
     m_sceneFile = file;
-    passes::GpuScene* raw = m_scene.get();
-    const uint32_t w = m_options.compile.outputWidth, h = m_options.compile.outputHeight;
-    m_runtime.executor().setScene(raw, [raw, w, h](uint32_t slot) { raw->updateFrame(slot, w, h); });
-    return {};
+    return std::move(*gpuScene);
 }
 
 Result<void> Session::load(const std::string& file) {
@@ -234,11 +233,25 @@ Result<void> Session::load(const std::string& file) {
     auto pipeline = host->load(file);
     if (!pipeline) return std::unexpected(pipeline.error());
     if (auto r = writeLayoutHeaders(*pipeline); !r) return r;
+    std::unique_ptr<passes::GpuScene> scene;
     if (hasScenePass(*pipeline)) {
-        if (auto r = loadScene(*pipeline); !r) return r;
+        auto loaded = loadScene(*pipeline);
+        if (!loaded) return std::unexpected(loaded.error());
+        scene = std::move(*loaded);
     } else if (!m_options.scene.empty()) {
         return fail(ErrorCode::InvalidInput, "--scene: pipeline '" + file + "' has no scene pass to draw it");
     }
+    // The new scene is what the build prepares against; if the build fails, the executor goes
+    // back to the scene its previous (still running) build uses.
+    const passes::GpuScene* previousScene = m_runtime.executor().scene();
+    auto previousHook = m_frameHook;
+    m_frameHook = {};
+    if (scene) {
+        passes::GpuScene* raw = scene.get();
+        const uint32_t w = m_options.compile.outputWidth, h = m_options.compile.outputHeight;
+        m_frameHook = [raw, w, h](uint32_t slot) { raw->updateFrame(slot, w, h); };
+    }
+    m_runtime.executor().setScene(scene.get(), m_frameHook);
     if (!m_options.view.empty()) {
         GraphDesc probe = graphWithParams(*pipeline);
         if (auto r = addDebugView(probe, *pipeline, m_options.view); !r) return r;
@@ -267,7 +280,18 @@ Result<void> Session::load(const std::string& file) {
     }
     m_channels = channels;
     // The executor keeps its previous build when this one fails.
-    if (auto r = m_runtime.executor().build(buildableGraph(*pipeline), m_options.compile); !r) return r;
+    if (auto r = m_runtime.executor().build(buildableGraph(*pipeline), m_options.compile); !r) {
+        m_frameHook = previousHook;
+        m_runtime.executor().setScene(previousScene, previousHook);
+        return r;
+    }
+    // The previous scene may still be in use by frames in flight: retire it through the
+    // deletion queue.
+    if (m_scene) {
+        std::shared_ptr<passes::GpuScene> retired(std::move(m_scene));
+        m_runtime.gpu().deferDestroy([retired]() mutable { retired.reset(); });
+    }
+    m_scene = std::move(scene);
     // History (exposure, previous frames) carries over a reload of the same pipeline, not to another.
     if (file != m_pipeline.file)
         if (auto r = m_runtime.executor().resetPersistent(); !r) return r;

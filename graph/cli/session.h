@@ -4,6 +4,7 @@
 // enabling/disabling a pass or swapping its shader: an incremental rebuild) and renders.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -58,7 +59,7 @@ public:
 
 private:
     GraphDesc buildableGraph(const PipelineDesc& p) const;
-    Result<void> loadScene(PipelineDesc& pipeline);
+    Result<std::unique_ptr<passes::GpuScene>> loadScene(PipelineDesc& pipeline);
     void note(const std::string& line);
 
     Runtime& m_runtime;
@@ -66,6 +67,7 @@ private:
     std::unique_ptr<LuaHost> m_host;
     std::unique_ptr<passes::GpuScene> m_scene;
     std::string m_sceneFile;
+    std::function<void(uint32_t)> m_frameHook;  // writes the scene's camera for a frame slot
     PipelineDesc m_pipeline;
     uint64_t m_frame = 0;
     uint32_t m_rebuilds = 0;

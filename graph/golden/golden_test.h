@@ -5,7 +5,8 @@
 //   return {
 //       doc = "what it shows",                         -- optional, shown in the report
 //       pipeline = "scripts/pipelines/test.lua",        -- required; relative to the project root
-//       scene = "scenes/room.lua", camera = "main",     -- optional (scenes are not supported yet)
+//       scene = "scripts/scenes/default.lua",           -- optional: .lua, .gltf or .glb, for the
+//       camera = "main",                                --   pipeline's scene passes (Session's scene)
 //       size = { 64, 64 },                              -- required; at most 256 x 256
 //       frames = 3,                                     -- default 1
 //       params = { scale = 0.5 },                       -- parameter values before the first frame

@@ -1,5 +1,6 @@
-// The golden test runner: finds golden test scripts, renders each through its pipeline on a
-// fresh executor, reads back the captured resources and compares them with the golden images
+// The golden test runner: finds golden test scripts, renders each through its pipeline with
+// rg::Session on a runtime of its own (nothing carries over between tests), reads back the
+// captured resources after the last frame and compares them with the golden images
 // (tests/golden/images/<test>/<resource>.exr|png, beside golden.json which records the device,
 // the driver, the Mesa version and the determinism profile they were made with).
 //
@@ -16,6 +17,10 @@
 // .expected.<ext> (EXR captures also as .png previews) and <resource>.<metric>.diff.png, states
 // every metric against its tolerance, and names the first capture in pipeline order (the order
 // of the passes that last write them) that failed: the resource where the divergence starts.
+//
+// Session takes the test's parameters and frame callback through SessionOptions::params and
+// ::frameHook. Built against a Session without them, the runner falls back to driving the
+// executor itself (the same steps, no scenes) and says so when it starts.
 //
 // --update blesses: it writes the golden of every capture that has none or no longer passes
 // its comparisons, keeps goldens that still pass (so 1-LSB noise never churns the repository),

@@ -1,7 +1,16 @@
-// The light loop shared by every lighting path and the forward pass: for light i of the scene,
-// the illuminance it delivers at a point (lux, per colour channel, on a surface facing it) and
-// the direction towards it. Seed 000 §4: punctual lights with the windowed inverse-square
-// falloff and smooth angular attenuation (lst:4), the sun as a directional light in lux.
+// The light loop shared by every lighting path and the forward pass. For light i of the scene and
+// a shaded point, rgEvaluateLight gives what the diffuse lobe receives — the illuminance, with the
+// horizon handled for area lights — and where the specular lobe sees the light — the
+// representative point, with the energy normalisation of the widened lobe:
+//   point, spot   seed 000 lst:4 (windowed inverse square, smooth cone), eq:27 / lst:5 (IES)
+//   sun           seed 000 lst:6: diffuse as a directional light, specular towards the closest
+//                 point of the sun's disk
+//   sphere, disk  seed 000 lst:10 (the merged form, horizon included)
+//   rect, tube    seed 002 §4.7.2.5, §4.7.2.6 (structured sampling: 4 corners + centre × Ω)
+//   specular      seed 002 §4.7.5: Karis' representative point (the light's point closest to the
+//                 reflection ray, here the area dominant direction), energy normalised.
+// The CPU twins are graph/lighting's area_lights.h, punctual.h and ies.h; tests/gpu/test_lights.cpp
+// compares the two. Intensities arrive converted (passes/gpu_scene.cpp): cd, lux or cd/m².
 #ifndef RG_LIGHTING_GLSL
 #define RG_LIGHTING_GLSL
 
@@ -25,20 +34,304 @@ float getAngleAtt(vec3 normalizedLightVector, vec3 lightDir, float lightAngleSca
     float attenuation = clamp(cd * lightAngleScale + lightAngleOffset, 0.0, 1.0);
     return attenuation * attenuation;
 }
+// §4.4: the same window ends area lights at their range; its criterion is radial (the distance to
+// the light's centre), a trade-off the seed accepts for tubes and rectangles.
+float rgRangeWindow(float squaredDistance, float invSqrAttRadius) {
+    return invSqrAttRadius > 0.0 ? smoothDistanceAtt(squaredDistance, invSqrAttRadius) : 1.0;
+}
 
-vec3 rgLightIlluminance(uint i, vec3 position, out vec3 L) {
-    RgLight light = lights.light[i];
-    if (light.positionType.w > 1.5) {  // the sun: illuminance perpendicular to its rays
-        L = -normalize(light.directionRadius.xyz);
-        return light.intensity.rgb;
+vec3 rgSafeNormalize(vec3 v, vec3 fallback) {
+    float l2 = dot(v, v);
+    return l2 > 1e-20 ? v * inversesqrt(l2) : fallback;
+}
+
+// ---- IES profiles (seed 000 §4.5, lst:5) -------------------------------------------------------
+
+// The profile (I / I_max, in [0, 1]) of `light` towards the shaded point; L is the unit vector from
+// the point to the light. Light space: +z is the light's direction (the profile's nadir), +x its
+// axis (horizontal angle 0°), +y = z × x. The bilinear lookup is written out (repeat in θ,
+// clamp-to-edge in cos φ, texel centres): the arithmetic of graph/lighting's sampleIesTexture.
+float rgIesAttenuation(RgLight light, vec3 L) {
+    if (light.intensity.a < 0.0) return 1.0;
+    vec3 z = light.directionRange.xyz, x = light.axis.xyz;
+    vec3 y = cross(z, x);
+    vec3 d = vec3(dot(-L, x), dot(-L, y), dot(-L, z));  // lst:5: worldToLight · −L
+    float phiCoord = d.z * 0.5 + 0.5;
+    float theta = abs(d.x) + abs(d.y) > 0.0 ? atan(d.y, d.x) : 0.0;  // atan(0, 0) is undefined in GLSL
+    float thetaCoord = theta * (0.5 / RG_PI);
+    int width = int(lights.count.z), height = int(lights.count.w);
+    float fx = thetaCoord * float(width) - 0.5, fy = phiCoord * float(height) - 0.5;
+    float x0 = floor(fx), y0 = floor(fy);
+    float wx = fx - x0, wy = fy - y0;
+    int i0 = int(mod(x0, float(width)));  // GLSL's % is undefined for negative operands
+    int i1 = (i0 + 1) % width;
+    int j0 = clamp(int(y0), 0, height - 1), j1 = clamp(int(y0) + 1, 0, height - 1);
+    uint base = uint(light.intensity.a + 0.5) * uint(width * height);
+    float t00 = lights.iesTexels[base + uint(j0 * width + i0)], t10 = lights.iesTexels[base + uint(j0 * width + i1)];
+    float t01 = lights.iesTexels[base + uint(j1 * width + i0)], t11 = lights.iesTexels[base + uint(j1 * width + i1)];
+    return mix(mix(t00, t10, wx), mix(t01, t11, wx), wy);
+}
+
+// ---- Diffuse area lights -----------------------------------------------------------------------
+
+// seed 000 lst:10: sphere and disk in one form, horizon included. cosTheta: unclamped cosine between
+// the normal and the direction to the light's centre; sinSigmaSqr: sin² of the half-angle the light
+// subtends (sphere r²/d², disk facing the point r²/(r² + d²)). Returns the illuminance of a light of
+// luminance 1 cd/m² (lux).
+float illuminanceSphereOrDisk(float cosTheta, float sinSigmaSqr) {
+    float sinTheta = sqrt(max(0.0, 1.0 - cosTheta * cosTheta));
+    float illuminance = 0.0;
+    if (cosTheta * cosTheta > sinSigmaSqr) {
+        illuminance = RG_PI * sinSigmaSqr * clamp(cosTheta, 0.0, 1.0);
+    } else {
+        float x = sqrt(1.0 / sinSigmaSqr - 1.0);  // d / r for the disk
+        float y = -x * (cosTheta / sinTheta);      // sinTheta > 0 here: cos²θ ≤ sin²σ < 1
+        float sinThetaSqrtY = sinTheta * sqrt(max(0.0, 1.0 - y * y));
+        illuminance = (cosTheta * acos(clamp(y, -1.0, 1.0)) - x * sinThetaSqrtY) * sinSigmaSqr + atan(sinThetaSqrtY / x);
     }
-    vec3 toLight = light.positionType.xyz - position;
-    L = normalize(toLight);
-    float att = getDistanceAtt(toLight, light.directionRadius.w);
-    att *= getAngleAtt(-L, normalize(light.directionRadius.xyz), light.params.x, light.params.y);
-    return light.intensity.rgb * att;  // cd / d² = lux
+    return max(illuminance, 0.0);
+}
+
+// seed 002 §4.7.2.5, rectangleSolidAngle: the solid angle (sr) of the quad v0 v1 v2 v3 (corners
+// relative to the shaded point, in order around it), Girard's Σ angles − 2π.
+float rgRectangleSolidAngle(vec3 v0, vec3 v1, vec3 v2, vec3 v3) {
+    vec3 n0 = normalize(cross(v0, v1)), n1 = normalize(cross(v1, v2));
+    vec3 n2 = normalize(cross(v2, v3)), n3 = normalize(cross(v3, v0));
+    float g0 = acos(clamp(dot(-n0, n1), -1.0, 1.0)), g1 = acos(clamp(dot(-n1, n2), -1.0, 1.0));
+    float g2 = acos(clamp(dot(-n2, n3), -1.0, 1.0)), g3 = acos(clamp(dot(-n3, n0), -1.0, 1.0));
+    return max(g0 + g1 + g2 + g3 - 2.0 * RG_PI, 0.0);
+}
+
+// seed 002 §4.7.2.5, structured sampling of the light's shape: Ω × the mean of ⟨n·l⟩ over the four
+// corners and the centre (vectors relative to the shaded point); the clamped cosines handle the horizon.
+float rgStructuredQuadIlluminance(vec3 N, float solidAngle, vec3 centre, vec3 p0, vec3 p1, vec3 p2, vec3 p3) {
+    return solidAngle * 0.2 *
+           (clamp(dot(normalize(p0), N), 0.0, 1.0) + clamp(dot(normalize(p1), N), 0.0, 1.0) +
+            clamp(dot(normalize(p2), N), 0.0, 1.0) + clamp(dot(normalize(p3), N), 0.0, 1.0) +
+            clamp(dot(normalize(centre), N), 0.0, 1.0));
+}
+
+// ---- Specular area lights (seed 002 §4.7.5) ----------------------------------------------------
+
+// The area-light dominant direction: normalize(lerp(N, R, 1 − roughness)), roughness = α.
+vec3 rgSpecularDominantDirArea(vec3 N, vec3 R, float alpha) { return normalize(mix(N, R, 1.0 - alpha)); }
+
+// Karis (the reference of §4.7.5): moving the light to its representative point widens the lobe
+// as if α became α' = saturate(α + ½ · subtended angle); GGX's normalisation 1/(π α²) then asks
+// for (α / α')² for a sphere. Per widened dimension: α / α'. `angle` ≈ half extent / distance.
+float rgLobeWidening(float alpha, float angle) { return alpha / clamp(alpha + 0.5 * clamp(angle, 0.0, 1.0), 0.0, 1.0); }
+
+// The point of a plane (through `centre`, normal n; vectors relative to the shaded point) the ray
+// R meets, or where it passes closest to the centre when it runs away from the plane's front.
+vec3 rgRayOnPlane(vec3 centre, vec3 n, vec3 R) {
+    float denom = dot(R, n);
+    float t = denom < -1e-4 ? dot(centre, n) / denom : -1.0;
+    vec3 hit = t > 0.0 ? R * t : dot(centre, R) * R;
+    return hit - dot(hit - centre, n) * n;  // back on the plane
+}
+
+// ---- One light at one point --------------------------------------------------------------------
+
+// What light i gives a point: the diffuse lobe sees `diffuseIlluminance` (lux, per channel; the
+// cosine and the horizon already in it) from direction Ld; the specular lobe sees
+// `specularIlluminance` (lux on a surface facing the light, before ⟨n·Ls⟩) from the representative
+// direction Ls, times `specularNormalisation` (1 for punctual lights). See rgStandardLighting.
+struct RgLightSample {
+    vec3 Ld;
+    vec3 diffuseIlluminance;
+    vec3 Ls;
+    vec3 specularIlluminance;
+    float specularNormalisation;
+};
+
+int rgLightType(RgLight light) { return int(light.positionType.w + 0.5); }
+
+// P: world position (m), N: unit normal, V: unit direction to the viewer, linearRoughness of the
+// specular lobe (1 − smoothness; its α = max(linearRoughness², 1e-3) as rgStandardBrdf's).
+RgLightSample rgEvaluateLight(uint i, vec3 P, vec3 N, vec3 V, float linearRoughness) {
+    RgLight light = lights.light[i];
+    int type = rgLightType(light);
+    float alpha = max(linearRoughness * linearRoughness, 1e-3);
+    vec3 R = rgSpecularDominantDirArea(N, reflect(-V, N), alpha);
+    vec3 colour = light.intensity.rgb;
+    vec3 dir = light.directionRange.xyz;
+    RgLightSample s;
+    s.specularNormalisation = 1.0;
+
+    if (type == RG_LIGHT_SUN) {
+        // lst:6: the diffuse part as if the sun were punctual (eq:28), the specular part towards
+        // the point of its disk closest to R. params.z, w: sin and cos of the angular radius.
+        vec3 D = -dir;
+        float r = light.params.z, d = light.params.w;
+        float DdotR = dot(D, R);
+        vec3 perpendicular = normalize(cross(D, abs(D.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
+        vec3 S = rgSafeNormalize(R - DdotR * D, perpendicular);
+        s.Ld = D;
+        s.diffuseIlluminance = colour * clamp(dot(N, D), 0.0, 1.0);
+        s.Ls = DdotR < d ? normalize(d * D + S * r) : R;
+        s.specularIlluminance = colour;
+        // lst:6 has no energy factor ("not found yet"); the sphere's of §4.7.5 with σ keeps a
+        // mirror's highlight from exceeding what the disk can give by orders of magnitude.
+        float w = rgLobeWidening(alpha, r);
+        s.specularNormalisation = w * w;
+        return s;
+    }
+
+    vec3 Lu = light.positionType.xyz - P;  // to the light's centre
+    float sqrDist = max(dot(Lu, Lu), 1e-12);
+    float invDist = inversesqrt(sqrDist);
+    vec3 L = Lu * invDist;
+
+    if (type <= RG_LIGHT_SPOT) {
+        // lst:4 (point: scale 0, offset 1), eq:27 / lst:5 for an IES profile.
+        float att = getDistanceAtt(Lu, light.directionRange.w);
+        att *= getAngleAtt(-L, dir, light.params.x, light.params.y);
+        att *= rgIesAttenuation(light, L);
+        vec3 E = colour * att;  // cd / d² = lux
+        s.Ld = L;
+        s.Ls = L;
+        s.diffuseIlluminance = E * clamp(dot(N, L), 0.0, 1.0);
+        s.specularIlluminance = E;
+        return s;
+    }
+
+    vec3 luminance = colour * rgRangeWindow(sqrDist, light.directionRange.w);  // cd/m²
+    float radius = light.params.z;
+
+    if (type == RG_LIGHT_SPHERE) {
+        // lst:10, sphere evaluation: clamps keep away from the edge cases and out of the light.
+        float sinSigmaSqr = min(radius * radius / sqrDist, 0.9999);
+        s.Ld = L;
+        s.diffuseIlluminance = luminance * illuminanceSphereOrDisk(clamp(dot(N, L), -0.999, 0.999), sinSigmaSqr);
+        // The sphere's point closest to the ray.
+        vec3 centreToRay = dot(Lu, R) * R - Lu;
+        vec3 closest = Lu + centreToRay * clamp(radius * inversesqrt(max(dot(centreToRay, centreToRay), 1e-20)), 0.0, 1.0);
+        s.Ls = rgSafeNormalize(closest, L);
+        s.specularIlluminance = luminance * (RG_PI * sinSigmaSqr);
+        float w = rgLobeWidening(alpha, radius * invDist);
+        s.specularNormalisation = w * w;
+    } else if (type == RG_LIGHT_DISK) {
+        // lst:10, disk evaluation, times the disk's own orientation. It emits along `dir`.
+        float cosLight = clamp(dot(dir, -L), 0.0, 1.0);
+        float sqrRadius = radius * radius;
+        float sinSigmaSqr = sqrRadius / (sqrRadius + max(sqrRadius, sqrDist));
+        s.Ld = L;
+        s.diffuseIlluminance = luminance * (illuminanceSphereOrDisk(dot(N, L), sinSigmaSqr) * cosLight);
+        // Where the ray meets the disk's plane, brought inside its rim.
+        vec3 offset = rgRayOnPlane(Lu, dir, R) - Lu;
+        vec3 closest = Lu + offset * min(1.0, radius * inversesqrt(max(dot(offset, offset), 1e-20)));
+        s.Ls = rgSafeNormalize(closest, L);
+        s.specularIlluminance = luminance * (RG_PI * sinSigmaSqr * cosLight);
+        float w = rgLobeWidening(alpha, radius * invDist);
+        s.specularNormalisation = w * w;
+    } else if (type == RG_LIGHT_RECT) {
+        // seed 002 §4.7.2.5: one-sided, it emits along `dir`; axis: its height direction.
+        s.Ld = L;
+        s.Ls = L;
+        s.diffuseIlluminance = vec3(0.0);
+        s.specularIlluminance = vec3(0.0);
+        if (dot(-Lu, dir) > 0.0) {
+            vec3 up = light.axis.xyz, left = cross(up, dir);
+            float halfWidth = 0.5 * light.params.w, halfHeight = 0.5 * light.axis.w;
+            vec3 p0 = Lu - left * halfWidth + up * halfHeight;
+            vec3 p1 = Lu - left * halfWidth - up * halfHeight;
+            vec3 p2 = Lu + left * halfWidth - up * halfHeight;
+            vec3 p3 = Lu + left * halfWidth + up * halfHeight;
+            float solidAngle = rgRectangleSolidAngle(p0, p1, p2, p3);
+            s.diffuseIlluminance = luminance * rgStructuredQuadIlluminance(N, solidAngle, Lu, p0, p1, p2, p3);
+            // Where the ray meets the plane, clamped to the rectangle.
+            vec3 offset = rgRayOnPlane(Lu, dir, R) - Lu;
+            vec3 closest = Lu + left * clamp(dot(offset, left), -halfWidth, halfWidth) +
+                           up * clamp(dot(offset, up), -halfHeight, halfHeight);
+            s.Ls = rgSafeNormalize(closest, L);
+            s.specularIlluminance = luminance * solidAngle;
+            s.specularNormalisation = rgLobeWidening(alpha, halfWidth * invDist) * rgLobeWidening(alpha, halfHeight * invDist);
+        }
+    } else {  // RG_LIGHT_TUBE
+        // seed 002 §4.7.2.6: the capsule as a rectangle (length × 2r) facing the point plus its two
+        // half-spheres as one sphere at the segment's closest point. dir: along the tube.
+        float lightWidth = light.params.w;
+        vec3 L0 = Lu - dir * (0.5 * lightWidth), L1 = Lu + dir * (0.5 * lightWidth);
+        vec3 ab = L1 - L0;
+        float t = dot(-L0, ab) / max(dot(ab, ab), 1e-20);
+        vec3 closestOnLine = L0 + t * ab;
+        vec3 closestOnSegment = L0 + clamp(t, 0.0, 1.0) * ab;
+        vec3 forward = rgSafeNormalize(closestOnLine, normalize(cross(dir, abs(dir.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0))));
+        vec3 up = cross(dir, forward);
+        vec3 p0 = Lu - dir * (0.5 * lightWidth) + radius * up;
+        vec3 p1 = Lu - dir * (0.5 * lightWidth) - radius * up;
+        vec3 p2 = Lu + dir * (0.5 * lightWidth) - radius * up;
+        vec3 p3 = Lu + dir * (0.5 * lightWidth) + radius * up;
+        float solidAngle = rgRectangleSolidAngle(p0, p1, p2, p3);
+        float sqrSphereDistance = max(dot(closestOnSegment, closestOnSegment), 1e-12);
+        vec3 sphereL = closestOnSegment * inversesqrt(sqrSphereDistance);
+        float sphereFactor = radius * radius / sqrSphereDistance;
+        s.Ld = sphereL;
+        s.diffuseIlluminance = luminance * (rgStructuredQuadIlluminance(N, solidAngle, Lu, p0, p1, p2, p3) +
+                                            RG_PI * clamp(dot(sphereL, N), 0.0, 1.0) * sphereFactor);
+        // Karis: the segment's point closest to the ray, then the sphere of radius r around it.
+        float RdotL0 = dot(R, L0), RdotAb = dot(R, ab), L0dotAb = dot(L0, ab);
+        float tr = (RdotL0 * RdotAb - L0dotAb) / max(dot(ab, ab) - RdotAb * RdotAb, 1e-12);
+        vec3 onSegment = L0 + ab * clamp(tr, 0.0, 1.0);
+        vec3 centreToRay = dot(onSegment, R) * R - onSegment;
+        vec3 closest = onSegment + centreToRay * clamp(radius * inversesqrt(max(dot(centreToRay, centreToRay), 1e-20)), 0.0, 1.0);
+        s.Ls = rgSafeNormalize(closest, sphereL);
+        s.specularIlluminance = luminance * (solidAngle + RG_PI * min(sphereFactor, 1.0));
+        float w = rgLobeWidening(alpha, radius * invDist);
+        s.specularNormalisation = w * w * rgLobeWidening(alpha, lightWidth * invDist);  // sphere × line
+    }
+    return s;
+}
+
+// ---- The standard material lit by one light ----------------------------------------------------
+
+// rgStandardBrdf's two halves, so that each lobe can look at the light from its own direction.
+// The diffuse half without ⟨n·l⟩ (the diffuse illuminance carries it): Fr_DisneyDiffuse / π.
+float rgDiffuseBrdf(vec3 N, vec3 V, vec3 L, float linearRoughness) {
+    float NdotV = abs(dot(N, V)) + 1e-5;  // lst:2
+    vec3 H = rgSafeNormalize(V + L, N);
+    float LdotH = clamp(dot(L, H), 0.0, 1.0);
+    float NdotL = clamp(dot(N, L), 0.0, 1.0);
+    return Fr_DisneyDiffuse(NdotV, NdotL, LdotH, linearRoughness) / RG_PI;
+}
+// The specular half with its ⟨n·l⟩: D · F · Vis / π · ⟨n·l⟩ (f90 and α as in rgStandardBrdf).
+vec3 rgSpecularBrdf(vec3 N, vec3 V, vec3 L, vec3 f0, float linearRoughness) {
+    float NdotV = abs(dot(N, V)) + 1e-5;
+    vec3 H = rgSafeNormalize(V + L, N);
+    float LdotH = clamp(dot(L, H), 0.0, 1.0);
+    float NdotH = clamp(dot(N, H), 0.0, 1.0);
+    float NdotL = clamp(dot(N, L), 0.0, 1.0);
+    float alpha = max(linearRoughness * linearRoughness, 1e-3);
+    float f90 = clamp(50.0 * dot(f0, vec3(0.33)), 0.0, 1.0);
+    vec3 F = F_Schlick(f0, f90, LdotH);
+    return D_GGX(NdotH, alpha) * F * V_SmithGGXCorrelated(NdotL, NdotV, alpha) / RG_PI * NdotL;
+}
+
+// Luminance (cd/m²) the standard material reflects from one evaluated light. For a punctual light
+// (Ld = Ls, diffuse = specular illuminance × ⟨n·l⟩) it is rgStandardBrdf × the illuminance.
+vec3 rgStandardLighting(RgLightSample s, vec3 N, vec3 V, vec3 diffuseColor, vec3 f0, float linearRoughness) {
+    return diffuseColor * rgDiffuseBrdf(N, V, s.Ld, linearRoughness) * s.diffuseIlluminance +
+           rgSpecularBrdf(N, V, s.Ls, f0, linearRoughness) * s.specularIlluminance * s.specularNormalisation;
 }
 
 uint rgLightCount() { return lights.count.x; }
+
+// The simple interface (generated forward shader): the illuminance (lux) light i delivers at
+// `position` on a surface facing it, and the unit direction L towards it — exact for point, spot
+// and sun; for an area light, its diffuse illuminance on a surface facing its centre (a tube: the
+// closest point of its axis) without the horizon, towards that point.
+vec3 rgLightIlluminance(uint i, vec3 position, out vec3 L) {
+    RgLight light = lights.light[i];
+    int type = rgLightType(light);
+    vec3 towards = light.positionType.xyz - position;
+    if (type == RG_LIGHT_SUN) towards = -light.directionRange.xyz;
+    if (type == RG_LIGHT_TUBE) {  // the closest point of the segment p0 p1 (relative to position)
+        vec3 ab = light.directionRange.xyz * light.params.w;
+        vec3 p0 = towards - 0.5 * ab;
+        towards = p0 + clamp(dot(-p0, ab) / max(dot(ab, ab), 1e-20), 0.0, 1.0) * ab;
+    }
+    L = rgSafeNormalize(towards, vec3(0.0, 1.0, 0.0));
+    return rgEvaluateLight(i, position, L, L, 1.0).diffuseIlluminance;
+}
 
 #endif

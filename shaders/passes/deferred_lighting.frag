@@ -1,7 +1,8 @@
 #version 460
 // Deferred lighting of the standard material (seed 000 §3.1, §4): the `disney` G-buffer, every
-// light of the scene (shaders/lib/lighting.glsl), emissive (GB3), written as pre-exposed
-// luminance. Runs only on the pixels of its stencil class (the pass's stencil test).
+// light of the scene (shaders/lib/lighting.glsl: punctual, sun and area lights, the diffuse lobe
+// from the light's illuminance, the specular lobe from its representative point), emissive (GB3),
+// written as pre-exposed luminance. Runs only on the pixels of its stencil class (the pass's stencil test).
 #include "lib/lighting.glsl"
 #include "lib/exposure.glsl"
 #include "gbuffer_disney.glsl"
@@ -28,9 +29,8 @@ void main() {
     float linearRoughness = 1.0 - g.smoothness;
     vec3 luminance = g.emissive;
     for (uint i = 0u; i < rgLightCount(); ++i) {
-        vec3 L;
-        vec3 E = rgLightIlluminance(i, position, L);
-        luminance += rgStandardBrdf(g.normal, V, L, diffuseColor, f0, linearRoughness) * E;
+        RgLightSample s = rgEvaluateLight(i, position, g.normal, V, linearRoughness);
+        luminance += rgStandardLighting(s, g.normal, V, diffuseColor, f0, linearRoughness);
     }
     color = vec4(luminance * rgPreExposure(ex.state, params.initial_ev100), 1.0);
 }
