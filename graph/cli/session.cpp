@@ -251,7 +251,7 @@ Result<void> Session::load(const std::string& file) {
         const uint32_t w = m_options.compile.outputWidth, h = m_options.compile.outputHeight;
         m_frameHook = [raw, w, h](uint32_t slot) { raw->updateFrame(slot, w, h); };
     }
-    m_runtime.executor().setScene(scene.get(), m_frameHook);
+    if (scene || previousScene) m_runtime.executor().setScene(scene.get(), m_frameHook);
     if (!m_options.view.empty()) {
         GraphDesc probe = graphWithParams(*pipeline);
         if (auto r = addDebugView(probe, *pipeline, m_options.view); !r) return r;
@@ -282,7 +282,7 @@ Result<void> Session::load(const std::string& file) {
     // The executor keeps its previous build when this one fails.
     if (auto r = m_runtime.executor().build(buildableGraph(*pipeline), m_options.compile); !r) {
         m_frameHook = previousHook;
-        m_runtime.executor().setScene(previousScene, previousHook);
+        if (scene || previousScene) m_runtime.executor().setScene(previousScene, previousHook);
         return r;
     }
     // The previous scene may still be in use by frames in flight: retire it through the
