@@ -16,6 +16,7 @@
 #include "image/image.h"
 #include "layout/layout.h"
 #include "scene/scene.h"
+#include "golden/command.h"
 #include "runtime.h"
 #include "session.h"
 
@@ -145,6 +146,7 @@ const char* kMainHelp =
     "  bench     time every pass over several frames\n"
     "  watch     re-render whenever a script or shader of the pipeline changes\n"
     "  export-scene  write a Lua scene as binary glTF (.glb)\n"
+    "  test      run the golden-image tests (tests/golden/*.lua): --update, --report DIR, --junit FILE\n"
     "\n"
     "'rgraph COMMAND --help' describes each command. Exit codes: 0 success, 1 failed check or\n"
     "device failure, 2 bad usage or bad input.\n"
@@ -606,6 +608,7 @@ int main(int argc, char** argv) {
     if (cmd == "bench") return cmdBench(argc, argv);
     if (cmd == "watch") return cmdWatch(argc, argv);
     if (cmd == "export-scene") return cmdExportScene(argc, argv);
+    if (cmd == "test") return goldenCommand(argc, argv);
     std::fprintf(stderr, "rgraph: unknown command '%s'\n\n%s", cmd.c_str(), kMainHelp);
     return kUsage;
 }

@@ -241,6 +241,13 @@ Result<void> Session::load(const std::string& file) {
     } else if (!m_options.scene.empty()) {
         return fail(ErrorCode::InvalidInput, "--scene: pipeline '" + file + "' has no scene pass to draw it");
     }
+    for (const auto& [name, value] : m_options.params) {
+        ParamDesc* p = pipeline->findParam(name);
+        if (!p) return fail(ErrorCode::NotFound, "params." + name + ": the pipeline has no parameter '" + name + "'");
+        auto checked = checkParamValue(*p, value);
+        if (!checked) return fail(ErrorCode::InvalidInput, "params." + name + ": " + checked.error().message);
+        p->value = *checked;
+    }
     // The new scene is what the build prepares against; if the build fails, the executor goes
     // back to the scene its previous (still running) build uses.
     const passes::GpuScene* previousScene = m_runtime.executor().scene();
@@ -307,7 +314,26 @@ Result<void> Session::load(const std::string& file) {
 Result<void> Session::frame() {
     if (!m_host) return fail(ErrorCode::InvalidInput, "no pipeline loaded");
     auto t0 = Clock::now();
-    auto changes = m_host->frame({m_frame, static_cast<double>(m_frame) / 60.0}, m_pipeline);
+    const FrameContext ctx{m_frame, static_cast<double>(m_frame) / 60.0};
+    auto changes = m_host->frame(ctx, m_pipeline);
+    if (changes && m_options.frameHook) {
+        PipelineDesc seen = m_pipeline;
+        applyFrameChanges(seen, *changes);
+        auto more = m_options.frameHook(ctx, seen);
+        if (!more) return std::unexpected(more.error());
+        for (const auto& [k, v] : more->params) changes->params[k] = v;
+        for (const auto& [k, v] : more->enabled) changes->enabled[k] = v;
+        for (const auto& [k, v] : more->shaders) changes->shaders[k] = v;
+        // A pass the two callbacks leave as it was is no change (no rebuild).
+        std::erase_if(changes->enabled, [&](const auto& e) {
+            const PassDesc* p = m_pipeline.graph.findPass(e.first);
+            return p && p->enabled == e.second;
+        });
+        std::erase_if(changes->shaders, [&](const auto& e) {
+            const PassDesc* p = m_pipeline.graph.findPass(e.first);
+            return p && p->params["shader"].asString() == e.second;
+        });
+    }
     m_callbackMs = msSince(t0);
     if (!changes) return std::unexpected(changes.error());
     if (!changes->empty()) {

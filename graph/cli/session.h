@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -26,6 +27,12 @@ struct SessionOptions {
     std::string view;
     std::vector<std::string> captures;  // resources to export for readback
     bool verbose = false;               // print what each rebuild reused
+    // Parameter values set when a script loads (after the scene's camera settings), checked like
+    // ctx.params: the golden tests' `params` and determinism profile.
+    std::map<std::string, Value> params;
+    // Called every frame after the script's rg.frame with the pipeline as rg.frame left it; its
+    // changes are applied on top (the golden tests' frame callbacks).
+    std::function<Result<FrameChanges>(const FrameContext&, const PipelineDesc&)> frameHook;
 };
 
 class Session {

@@ -23,8 +23,10 @@ void main() {
         float L = rgLuminance(texelFetch(hdr, p, 0).rgb) / pre;
         // Black pixels (and anything below the range) land in bin 0.
         const float binWidth = (RG_HISTOGRAM_MAX - RG_HISTOGRAM_MIN) / float(RG_HISTOGRAM_BINS);
+        // NaN or negative luminance (a broken HDR pass) must not index outside the bins.
+        if (!(L >= 0.0)) L = 0.0;
         float x = (clamp(log2(max(L, 1e-30)), RG_HISTOGRAM_MIN, RG_HISTOGRAM_MAX - 1e-4) - RG_HISTOGRAM_MIN) / binWidth;
-        uint bin = uint(x);
+        uint bin = min(uint(max(x, 0.0)), uint(RG_HISTOGRAM_BINS - 1));
         atomicAdd(sCounts[bin], 1u);
         atomicAdd(sFractions[bin], uint(fract(x) * RG_HISTOGRAM_FRACTION + 0.5));
     }

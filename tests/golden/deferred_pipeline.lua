@@ -1,6 +1,6 @@
 -- Every pass of the default pipeline (scripts/pipelines/deferred.lua) on the default scene, three
 -- frames so that auto-exposure adapts. Captured in pipeline order: the G-buffer (gbuffer,
--- foliage_fixup), the HDR target (lighting per path, sky), the bloom chain down and up, the
+-- foliage_fixup), the HDR target (lighting per path, sky, forward), the bloom chain down and up, the
 -- exposure state the histogram passes meter (a buffer of 4 floats), the tone-mapped image
 -- (tonemap) and the anti-aliased display image (fxaa). Depth and stencil are not captured:
 -- exporting `depth` crashes lavapipe in this pipeline today (so does `rgraph render --capture
