@@ -35,6 +35,8 @@ namespace {
     } while (0)
 
 // Extensions whose meaning we implement (a file may require them).
+constexpr size_t kMaxDepth = 1000;  // node hierarchy levels (recursion depth)
+
 const std::set<std::string> kSupported = {"KHR_texture_transform", "KHR_materials_emissive_strength",
                                           "KHR_lights_punctual", "KHR_mesh_quantization"};
 
@@ -975,9 +977,16 @@ struct Loader {
         return {};
     }
 
-    Result<void> visit(size_t index, const glm::mat4& parent, std::vector<bool>& onPath) {
+    // Each node once: glTF nodes have at most one parent, and a node reached twice (a shared
+    // child, a cycle) would repeat or never end.
+    Result<void> visit(size_t index, const glm::mat4& parent, std::vector<bool>& onPath, std::vector<bool>& seen, size_t depth) {
         if (onPath[index]) return error(ErrorCode::InvalidInput, named("node", index, model.nodes[index].name) + " is its own ancestor (the node hierarchy has a cycle)");
-        onPath[index] = true;
+        if (seen[index])
+            return error(ErrorCode::InvalidInput, named("node", index, model.nodes[index].name) +
+                                                      " appears twice in the hierarchy (a glTF node has one parent)");
+        if (depth > kMaxDepth)
+            return error(ErrorCode::InvalidInput, "the node hierarchy is deeper than " + std::to_string(kMaxDepth) + " levels");
+        onPath[index] = seen[index] = true;
         const auto& n = model.nodes[index];
         auto local = localTransform(index);
         if (!local) return std::unexpected(local.error());
@@ -995,7 +1004,7 @@ struct Loader {
             if (child < 0 || size_t(child) >= model.nodes.size())
                 return error(ErrorCode::InvalidInput, named("node", index, n.name) + ": child " + std::to_string(child) + " does not exist (" +
                                                           std::to_string(model.nodes.size()) + " nodes)");
-            if (auto r = visit(size_t(child), world, onPath); !r) return r;
+            if (auto r = visit(size_t(child), world, onPath, seen, depth + 1); !r) return r;
         }
         onPath[index] = false;
         return {};
@@ -1031,12 +1040,12 @@ struct Loader {
             for (size_t i = 0; i < model.nodes.size(); ++i)
                 if (!child[i]) roots.push_back(int(i));
         }
-        std::vector<bool> onPath(model.nodes.size(), false);
+        std::vector<bool> onPath(model.nodes.size(), false), seen(model.nodes.size(), false);
         for (int r : roots) {
             if (r < 0 || size_t(r) >= model.nodes.size())
                 return error(ErrorCode::InvalidInput, "scene root node " + std::to_string(r) + " does not exist (" +
                                                           std::to_string(model.nodes.size()) + " nodes)");
-            if (auto v = visit(size_t(r), glm::mat4(1.0f), onPath); !v) return v;
+            if (auto v = visit(size_t(r), glm::mat4(1.0f), onPath, seen, 0); !v) return v;
         }
         return {};
     }

@@ -55,6 +55,10 @@ Result<Image> decodeImage(const unsigned char* data, size_t size) {
     int w = 0, h = 0, comp = 0;
     if (!stbi_info_from_memory(data, len, &w, &h, &comp))
         return fail(ErrorCode::InvalidInput, std::string("not a PNG or JPEG image (") + stbi_failure_reason() + ")");
+    // Refuse decompression bombs before allocating: 16384 x 16384 is the largest 2D image a
+    // Vulkan implementation must support.
+    if (w > 16384 || h > 16384)
+        return fail(ErrorCode::Unsupported, "image is " + std::to_string(w) + "x" + std::to_string(h) + ", larger than 16384x16384");
     const bool sixteen = stbi_is_16_bit_from_memory(data, len) != 0;
     void* pixels = sixteen ? static_cast<void*>(stbi_load_16_from_memory(data, len, &w, &h, &comp, 4))
                            : static_cast<void*>(stbi_load_from_memory(data, len, &w, &h, &comp, 4));

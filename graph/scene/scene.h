@@ -255,7 +255,7 @@ struct SceneScriptOptions {
 };
 
 // Runs a Lua scene script (scene.material/sphere/plane/box/gltf/light/camera/environment, see
-// scripts/README.md) in the sandboxed host and builds the scene. Every field is checked: an
+// scripts/scenes/README.md) in the sandboxed host and builds the scene. Every field is checked: an
 // unknown field (with a suggestion), a wrong type, a value out of range, an unknown material,
 // a light unit its type cannot have; errors read "file:line: scene.kind.name.field: ...".
 // Without a scene.camera the scene gets a camera named "default" that frames the bounds.

@@ -188,6 +188,8 @@ struct Builder {
     std::vector<std::string> materialNames;
     std::map<std::string, const Declaration*> seen[static_cast<size_t>(DeclKind::Count)];
     const Declaration* firstEnvironment = nullptr;
+    size_t generatedVertices = 0;  // budget for sphere/plane/box meshes (a script is a loop away from millions)
+    static constexpr size_t kMaxGeneratedVertices = size_t(1) << 24;
 
     static Where where(const Declaration& d) { return {d, std::string(declKindName(d.kind)) + "." + d.name}; }
 
@@ -341,6 +343,9 @@ struct Builder {
             Range seg = Range::closed(3, 1024);
             seg.integer = true;
             RG_TRY(segments, number(w, b, "segments", segments, seg));
+            const auto s = static_cast<size_t>(segments);
+            if (generatedVertices + (s + 1) * (std::max<size_t>(s / 2, 2) + 1) > kMaxGeneratedVertices)
+                return w.error("the scene's generated meshes would have more than " + std::to_string(kMaxGeneratedVertices) + " vertices");
             p = makeSphere(radius, static_cast<uint32_t>(segments), material);
         } else if (d.kind == DeclKind::Plane) {
             std::vector<float> size = {10.0f, 10.0f};
@@ -351,6 +356,7 @@ struct Builder {
             RG_TRY(size, vec3(w, b, "size", size, "{x, y, z} in metres", Range::positive()));
             p = makeBox(size, material);
         }
+        generatedVertices += p.vertices.size();
         Mesh mesh;
         mesh.name = d.name;
         mesh.primitives.push_back(std::move(p));
@@ -445,7 +451,7 @@ struct Builder {
 
         // Which fields this type has (seed 000 §4.4-4.7).
         auto only = [&](const char* field, bool allowed, const std::string& who) -> Result<void> {
-            if (b.has(field) && !allowed) return w.at(field).error("applies to " + who + " only, not to " + a);
+            if (b.has(field) && !allowed) return w.at(field).error("not used by " + a + " (only by " + who + ")");
             return {};
         };
         if (auto r = only("radius", l.type == LightType::Sphere || l.type == LightType::Disk || l.type == LightType::Tube,
@@ -458,7 +464,7 @@ struct Builder {
         if (auto r = only("outer_angle", l.type == LightType::Spot, "spot lights"); !r) return r;
         if (auto r = only("ies", punctual, "point and spot lights"); !r) return r;
         if (auto r = only("angular_radius", sun, "the sun"); !r) return r;
-        if (auto r = only("range", !sun, "local lights (not the sun)"); !r) return r;
+        if (auto r = only("range", !sun, "local lights"); !r) return r;
         if (auto r = only("direction", l.type != LightType::Sphere, "lights with an orientation"); !r) return r;
         if (auto r = only("target", l.type != LightType::Sphere, "lights with an orientation"); !r) return r;
 
@@ -548,7 +554,7 @@ struct Builder {
         RG_TRY(c.up, vec3(w, b, "up", c.up));
         if (glm::length(c.target - c.position) < 1e-6f) return w.at("target").error("equals position; the camera needs a direction to look in");
         if (glm::length(glm::cross(c.up, c.target - c.position)) < 1e-6f * glm::length(c.target - c.position))
-            return w.at("up").error("is parallel to the view direction (or zero)");
+            return w.at("up").error("is parallel to the view direction (or zero); e.g. up = {0, 0, -1} for a camera looking straight down");
         if (b.has("fov") && b.has("focal_length")) return w.at("focal_length").error("give either fov or focal_length (with sensor_height), not both");
         if (b.has("sensor_height") && !b.has("focal_length")) return w.at("sensor_height").error("applies with focal_length only");
         float fovDeg = 45.0f;

@@ -709,6 +709,17 @@ TEST(GltfErrors, NodeCycleAndBadTransforms) {
     g.scene({0});
     EXPECT_EQ(errorOf(rg::loadGltf(g.writeGltf(dir, "c"))),
               "'" + dir + "/c.gltf': node 0 'a' is its own ancestor (the node hierarchy has a cycle)");
+    // A node shared by two parents.
+    GltfBuilder d;
+    const int shared = d.node({{"name", "s"}});
+    d.scene({d.node({{"children", {shared}}}), d.node({{"children", {shared}}})});
+    EXPECT_EQ(errorOf(rg::loadGltf(d.writeGltf(dir, "d"))),
+              "'" + dir + "/d.gltf': node 0 's' appears twice in the hierarchy (a glTF node has one parent)");
+    // A chain too deep to walk.
+    GltfBuilder deep;
+    for (int i = 0; i < 1100; ++i) deep.node(i + 1 < 1100 ? json{{"children", {i + 1}}} : json::object());
+    deep.scene({0});
+    EXPECT_EQ(errorOf(rg::loadGltf(deep.writeGltf(dir, "deep"))), "'" + dir + "/deep.gltf': the node hierarchy is deeper than 1000 levels");
     GltfBuilder h;
     h.scene({h.node({{"name", "n"}, {"rotation", {0, 0, 1}}})});
     EXPECT_EQ(errorOf(rg::loadGltf(h.writeGltf(dir, "r"))), "'" + dir + "/r.gltf': node 0 'n': rotation has 3 values, expected 4");
@@ -978,7 +989,9 @@ TEST(SceneScript, LightFieldErrorsAndUnitsPerType) {
     EXPECT_EQ(lua.error("scene.light \"a\" { type = \"point\", intensity = 5, color = { 1, 1, 1 }, temperature = 3000 }"),
               "bad.lua:1: scene.light.a.temperature: give either color or temperature, not both");
     EXPECT_EQ(lua.error("scene.light \"a\" { type = \"point\", intensity = 5, width = 1 }"),
-              "bad.lua:1: scene.light.a.width: applies to rect lights only, not to a point light");
+              "bad.lua:1: scene.light.a.width: not used by a point light (only by rect lights)");
+    EXPECT_EQ(lua.error("scene.light \"s\" { type = \"sun\", intensity = 5, direction = { 0, -1, 0 }, range = 3 }"),
+              "bad.lua:1: scene.light.s.range: not used by a sun light (only by local lights)");
     EXPECT_EQ(lua.error("scene.light \"a\" { type = \"spot\", intensity = 5 }"),
               "bad.lua:1: scene.light.a.direction: missing (a spot light needs direction or target)");
     EXPECT_EQ(lua.error("scene.light \"a\" { type = \"spot\", intensity = 5, direction = { 0, -1, 0 }, inner_angle = 40, outer_angle = 30 }"),
@@ -1008,6 +1021,8 @@ TEST(SceneScript, CameraAndEnvironmentFieldErrors) {
     EXPECT_EQ(lua.error("scene.camera \"c\" { position = { 0, 0, 0 }, target = { 0, 0, 0 } }"),
               "bad.lua:1: scene.camera.c.target: equals position; the camera needs a direction to look in");
     EXPECT_EQ(lua.error("scene.camera \"c\" { near = 10, far = 5 }"), "bad.lua:1: scene.camera.c.far: is 5, not beyond near (10)");
+    EXPECT_EQ(lua.error("scene.camera \"c\" { position = { 0, 10, 0 } }"),
+              "bad.lua:1: scene.camera.c.up: is parallel to the view direction (or zero); e.g. up = {0, 0, -1} for a camera looking straight down");
     EXPECT_EQ(lua.error("scene.camera \"c\" { aperture = 0 }"), "bad.lua:1: scene.camera.c.aperture: expected a number in [0.5, 128], got 0");
     EXPECT_EQ(lua.error("scene.environment \"e\" { kind = \"hdri\" }"),
               "bad.lua:1: scene.environment.e.kind: unknown environment kind 'hdri' (did you mean 'hdr'?); expected one of: 'sky', "
