@@ -205,6 +205,32 @@ TEST_F(SceneRender, ClearCoatAddsItsSecondLobe) {
         for (float v : img->pixels) ASSERT_TRUE(std::isfinite(v));
 }
 
+TEST_F(SceneRender, FullSunKeepsEveryHdrTargetFinite) {
+    // Issue figure: the sun test scene (100 000 lux) has no infinities or NaNs in any HDR target.
+    SessionOptions o;
+    o.compile.outputWidth = W;
+    o.compile.outputHeight = H;
+    o.scene = kRoot + "/tests/gpu/scenes/sun.lua";
+    o.captures = {"GB3", "hdr", "bloom_down1", "bloom_down3", "bloom_down5", "bloom_up1"};
+    Session s(*s_runtime, o);
+    auto r = s.load(kRoot + "/scripts/pipelines/deferred.lua");
+    ASSERT_TRUE(r.has_value()) << r.error().describe();
+    for (int f = 0; f < 4; ++f) ASSERT_TRUE(s.frame().has_value());
+    for (const auto& name : o.captures) {
+        auto img = s_runtime->executor().readback(name);
+        ASSERT_TRUE(img.has_value()) << name;
+        for (float v : img->pixels) ASSERT_TRUE(std::isfinite(v)) << name;
+    }
+    // The white floor in full sun: E·ρ/π·(diffuse term) ≈ 100 000 · 0.9 / π · cosθ ≈ 26 000 cd/m²,
+    // far past half precision without pre-exposure; the metered EV100 lands near 15 (sunny 16).
+    auto state = s_runtime->executor().readbackBuffer("exposure");
+    ASSERT_TRUE(state.has_value());
+    float ev = 0;
+    std::memcpy(&ev, state->data(), sizeof ev);
+    EXPECT_GT(ev, 13.5f);
+    EXPECT_LT(ev, 17.5f);
+}
+
 TEST_F(SceneRender, BlendedMaterialsGoForwardOverTheLitImage) {
     // The glass pane of materials.lua (opacity 0.35) in front of the standard sphere: not in the
     // G-buffer (materialId behind it stays the sphere's), and at opacity 0 the image is unchanged.
