@@ -104,6 +104,47 @@ Result<gpu::Image> solidTexture(Context& ctx, const std::string& name, glm::vec4
     return uploadRgba8(ctx, name, false, {&pixel});
 }
 
+// Half-float bits of a value half precision holds exactly (0, ±2^-14..65504 with 10 mantissa bits).
+uint16_t exactHalfBits(float f) {
+    uint32_t x = 0;
+    std::memcpy(&x, &f, sizeof x);
+    const auto sign = static_cast<uint16_t>((x >> 16) & 0x8000u);
+    if ((x & 0x7fffffffu) == 0) return sign;
+    const auto exponent = static_cast<int>((x >> 23) & 0xffu) - 127 + 15;
+    RG_CHECK(exponent > 0 && exponent < 31 && (x & 0x1fffu) == 0) << f << " is not exact in half precision";
+    return static_cast<uint16_t>(sign | (exponent << 10) | ((x >> 13) & 0x3ffu));
+}
+
+// A 1x1 RGBA16F texture: values 8 bits cannot hold exactly. The default normal map is one —
+// (0.5, 0.5, 1) in RGBA8 reads back as 128/255 and tilts every unmapped normal by 0.3°.
+Result<gpu::Image> solidHalfTexture(Context& ctx, const std::string& name, glm::vec4 value) {
+    const uint16_t texel[4] = {exactHalfBits(value.x), exactHalfBits(value.y), exactHalfBits(value.z), exactHalfBits(value.w)};
+    ImageDesc d;
+    d.name = name;
+    d.format = Format::RGBA16F;
+    d.width = d.height = 1;
+    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    auto img = gpu::Image::create(ctx, d);
+    if (!img) return std::unexpected(img.error());
+    auto staging = Buffer::create(ctx, name + ".staging", sizeof texel, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    if (!staging) return std::unexpected(staging.error());
+    std::memcpy(staging->mapped(), texel, sizeof texel);
+    VkImage image = img->image();
+    auto sub = ctx.submitNow([&](VkCommandBuffer cmd) {
+        imageBarrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
+                     VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        VkBufferImageCopy r{};
+        r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        r.imageExtent = {1, 1, 1};
+        vkCmdCopyBufferToImage(cmd, staging->buffer(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r);
+        imageBarrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
+                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    });
+    if (!sub) return std::unexpected(sub.error());
+    return img;
+}
+
 }  // namespace
 
 GpuScene::~GpuScene() = default;
@@ -192,7 +233,7 @@ Result<void> GpuScene::uploadImages(Context& ctx) {
     auto white = solidTexture(ctx, "scene.white", glm::vec4(1.0f));
     if (!white) return std::unexpected(white.error());
     m_white = std::move(*white);
-    auto flat = solidTexture(ctx, "scene.flat_normal", glm::vec4(0.5f, 0.5f, 1.0f, 1.0f));
+    auto flat = solidHalfTexture(ctx, "scene.flat_normal", glm::vec4(0.5f, 0.5f, 1.0f, 1.0f));
     if (!flat) return std::unexpected(flat.error());
     m_flatNormal = std::move(*flat);
     for (const SamplerDesc& d : m_scene.samplers) {

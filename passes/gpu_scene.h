@@ -74,10 +74,14 @@ struct GpuLightTable {
 //   (the cone does not change the brightness; eq:16's exact cone is not used). The cone's angle
 //   scale and offset of lst:4. With an IES profile (Light::ies: loaded with loadIes, baked with
 //   bakeIes), see IesMode; its light space has +z along Light::direction (the profile's nadir)
-//   and +x along Light::up made perpendicular to it (horizontal angle 0°).
+//   and +x along Light::up made perpendicular to it (horizontal angle 0°) — when they are
+//   parallel, as for a light pointing straight down with the default up, +x is direction ×
+//   (1, 0, 0): +z for a light pointing down.
 // - sun: lux perpendicular to its rays; sin and cos of its angular radius (lst:6).
 // - sphere, disk, rect, tube: luminance in cd/m² from lm (tbl:12), nits or EV100 (eq:12) by
-//   lighting::areaLightLuminance. A rect's up is made perpendicular to its direction.
+//   lighting::areaLightLuminance. A rect's up is made perpendicular to its direction. Disks have
+//   no cone (lst:9 needs a spot's angles, which Light gives spots only); range windows every
+//   local light by the distance to its centre (lst:4).
 // Colour temperature multiplies the colour (tbl:4). Errors name the light: a unit its type cannot
 // have, a size that is not positive, an IES file that does not load, more than kMaxLights lights
 // or kMaxIesProfiles profiles.
