@@ -466,7 +466,39 @@ Result<GpuLightTable> convertLights(const std::vector<Light>& lights, IesMode ie
     return table;
 }
 
+// std430 RgDecal (shaders/lib/scene.glsl).
+struct GpuDecal {
+    glm::mat4 worldToBox;
+    glm::vec4 baseColorOpacity;  // rgb, opacity
+    glm::vec4 params;            // smoothness, metalMask, reflectance, 0
+    glm::vec4 flags;             // has base colour, smoothness, metal mask, reflectance (0/1)
+    glm::vec4 axis;              // xyz: the box's +Y axis in world space (normal target); w: blend normal
+};
+
+Result<void> GpuScene::createDecals(Context& ctx) {
+    std::vector<GpuDecal> decals;
+    for (const Decal& d : m_scene.decals) {
+        GpuDecal g{};
+        g.worldToBox = glm::inverse(d.world);
+        g.baseColorOpacity = glm::vec4(d.baseColor, d.opacity);
+        g.params = glm::vec4(d.smoothness, d.metalMask, d.reflectance, 0.0f);
+        g.flags = glm::vec4(d.hasBaseColor, d.hasSmoothness, d.hasMetalMask, d.hasReflectance);
+        g.axis = glm::vec4(glm::normalize(glm::vec3(d.world[1])), d.normal ? 1.0f : 0.0f);
+        decals.push_back(g);
+    }
+    auto buf = Buffer::create(ctx, "scene.decals", 16 + std::max<size_t>(1, decals.size()) * sizeof(GpuDecal),
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    if (!buf) return std::unexpected(buf.error());
+    m_decals = std::move(*buf);
+    auto* p = static_cast<uint8_t*>(m_decals.mapped());
+    uint32_t header[4] = {static_cast<uint32_t>(decals.size()), 0, 0, 0};
+    std::memcpy(p, header, 16);
+    if (!decals.empty()) std::memcpy(p + 16, decals.data(), decals.size() * sizeof(GpuDecal));
+    return {};
+}
+
 Result<void> GpuScene::createFrameData(Context& ctx, const GpuSceneOptions& options) {
+    if (auto r = createDecals(ctx); !r) return r;
     auto table = convertLights(m_scene.lights, options.iesMode);
     if (!table) return std::unexpected(table.error());
     m_lightCount = static_cast<uint32_t>(table->lights.size());

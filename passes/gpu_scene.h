@@ -106,6 +106,8 @@ public:
     void updateFrame(uint32_t slot, uint32_t width, uint32_t height);
     VkBuffer cameraBuffer(uint32_t slot) const { return m_cameraBuffers[slot].buffer(); }
     VkBuffer lightBuffer(uint32_t slot) const { return m_lightBuffers[slot].buffer(); }
+    // The decals (shaders/lib/scene.glsl's Decals block): a count, then one RgDecal each.
+    VkBuffer decalBuffer() const { return m_decals.buffer(); }
     uint32_t lightCount() const { return m_lightCount; }
     uint32_t iesProfileCount() const { return m_iesProfileCount; }
 
@@ -129,6 +131,8 @@ private:
     std::vector<gpu::Buffer> m_materialBuffers;
     std::vector<VkDescriptorSet> m_materialSets;
     std::vector<gpu::Buffer> m_cameraBuffers, m_lightBuffers;
+    gpu::Buffer m_decals;
+    Result<void> createDecals(gpu::Context& ctx);
     uint32_t m_lightCount = 0;
     uint32_t m_iesProfileCount = 0;
     size_t m_camera = 0;

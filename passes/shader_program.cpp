@@ -233,7 +233,8 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
         // The scene's camera and lights, bound whatever the pass declares.
         const bool camera = b.name == "Camera" && b.type == DescriptorType::UniformBuffer;
         const bool lights = b.name == "Lights" && b.type == DescriptorType::StorageBuffer;
-        if (camera || lights) {
+        const bool decalList = b.name == "Decals" && b.type == DescriptorType::StorageBuffer;
+        if (camera || lights || decalList) {
             if (!setup.scene)
                 return fail(ErrorCode::InvalidInput, passPrefix(desc) + "shader binding '" + b.name +
                                                          "' is the scene's, but no scene is loaded (give --scene)");
@@ -314,7 +315,10 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
             writes.push_back(w);
         }
         for (const ReflectedBinding* b : sceneBindings) {
-            buffers.push_back({b->name == "Camera" ? setup.scene->cameraBuffer(s) : setup.scene->lightBuffer(s), 0, VK_WHOLE_SIZE});
+            buffers.push_back({b->name == "Camera"   ? setup.scene->cameraBuffer(s)
+                               : b->name == "Lights" ? setup.scene->lightBuffer(s)
+                                                     : setup.scene->decalBuffer(),
+                               0, VK_WHOLE_SIZE});
             VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
             w.dstSet = m_sets[s][b->set];
             w.dstBinding = b->binding;

@@ -27,6 +27,7 @@ const char* declKindName(DeclKind k) {
     case DeclKind::Light: return "scene.light";
     case DeclKind::Camera: return "scene.camera";
     case DeclKind::Environment: return "scene.environment";
+    case DeclKind::Decal: return "scene.decal";
     case DeclKind::Count: break;
     }
     return "?";

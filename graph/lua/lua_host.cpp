@@ -602,7 +602,8 @@ Result<std::vector<Declaration>> LuaHost::loadDeclarations(const std::string& fi
     const std::pair<const char*, DeclKind> sceneFns[] = {
         {"material", DeclKind::SceneMaterial}, {"sphere", DeclKind::Sphere}, {"plane", DeclKind::Plane},
         {"box", DeclKind::Box},                {"gltf", DeclKind::Gltf},     {"light", DeclKind::Light},
-        {"camera", DeclKind::Camera},          {"environment", DeclKind::Environment}};
+        {"camera", DeclKind::Camera},          {"environment", DeclKind::Environment},
+        {"decal", DeclKind::Decal}};
     for (const auto& [name, kind] : sceneFns) {
         lua_pushinteger(L, static_cast<lua_Integer>(kind));
         lua_pushstring(L, "");

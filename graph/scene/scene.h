@@ -209,8 +209,23 @@ struct Environment {
     float rotation = 0.0f;           // radians about +Y
 };
 
+// A deferred decal (seed 000 §3.3): a box that, where it encloses the G-buffer's surface, blends
+// the common parameters — Normal (towards the box's +Y axis), BaseColor, Smoothness, and on
+// materialId 0 only MetalMask and Reflectance — with linear alpha blending. MaterialId and
+// MaterialData are never touched (they do not blend).
+struct Decal {
+    std::string name;
+    glm::mat4 world{1.0f};  // unit box [-0.5, 0.5]^3 to world (position, rotation, size)
+    float opacity = 1.0f;
+    bool hasBaseColor = false, hasSmoothness = false, hasMetalMask = false, hasReflectance = false;
+    bool normal = false;    // blend the normal towards the box's +Y axis
+    glm::vec3 baseColor{1.0f};
+    float smoothness = 0.5f, metalMask = 0.0f, reflectance = 0.5f;
+};
+
 struct Scene {
     std::vector<Mesh> meshes;
+    std::vector<Decal> decals;
     std::vector<Material> materials;
     std::vector<SceneImage> images;
     std::vector<SamplerDesc> samplers;

@@ -605,6 +605,38 @@ struct Builder {
         return {};
     }
 
+    Result<void> decal(const Declaration& d) {
+        Where w = where(d);
+        const Value& b = d.body;
+        if (auto r = checkFields(w, b, {"position", "rotation", "size", "opacity", "base_color", "smoothness", "metal_mask",
+                                        "reflectance", "normal", "doc"});
+            !r)
+            return r;
+        Decal decal;
+        decal.name = d.name;
+        glm::vec3 position, rotation, size(1.0f);
+        RG_TRY(position, vec3(w, b, "position", glm::vec3(0.0f)));
+        RG_TRY(rotation, vec3(w, b, "rotation", glm::vec3(0.0f), "{x, y, z} in degrees"));
+        RG_TRY(size, vec3(w, b, "size", size, "{x, y, z} in metres", Range::positive()));
+        glm::mat4 m = glm::translate(glm::mat4(1.0f), position);
+        m = glm::rotate(m, rotation.z * kDegrees, glm::vec3(0, 0, 1));
+        m = glm::rotate(m, rotation.y * kDegrees, glm::vec3(0, 1, 0));
+        m = glm::rotate(m, rotation.x * kDegrees, glm::vec3(1, 0, 0));
+        decal.world = glm::scale(m, size);
+        RG_TRY(decal.opacity, numberF(w, b, "opacity", 1.0f, Range::unit()));
+        decal.hasBaseColor = b.has("base_color");
+        decal.hasSmoothness = b.has("smoothness");
+        decal.hasMetalMask = b.has("metal_mask");
+        decal.hasReflectance = b.has("reflectance");
+        RG_TRY(decal.baseColor, colour(w, b, "base_color", decal.baseColor));
+        RG_TRY(decal.smoothness, numberF(w, b, "smoothness", decal.smoothness, Range::unit()));
+        RG_TRY(decal.metalMask, numberF(w, b, "metal_mask", decal.metalMask, Range::unit()));
+        RG_TRY(decal.reflectance, numberF(w, b, "reflectance", decal.reflectance, Range::unit()));
+        RG_TRY(decal.normal, boolean(w, b, "normal", false));
+        scene.decals.push_back(decal);
+        return {};
+    }
+
     // A camera that sees the whole scene from the front, a little above.
     void defaultCamera() {
         Camera c;
@@ -634,6 +666,7 @@ struct Builder {
             case DeclKind::Gltf: r = gltf(d); break;
             case DeclKind::Light: r = light(d); break;
             case DeclKind::Camera: r = camera(d); break;
+            case DeclKind::Decal: r = decal(d); break;
             default: break;
             }
             if (!r) return std::unexpected(r.error());

@@ -22,6 +22,21 @@ rg.resource "hdr" { format = "rgba16f" }
 
 rg.pass "gbuffer" { kind = "scene", writes = { "GB0", "GB1", "GB2", "GB3", "depth" } }
 
+-- Deferred decals (seed 000 §3.3) after the fix-up: the pass reads copies of GB0..GB2 (there is no
+-- programmable blending), blends Normal/BaseColor/Smoothness (MetalMask/Reflectance on materialId
+-- 0 only) of the scene's decal boxes and re-packs.
+for i = 0, 2 do
+    rg.resource("GB" .. i .. "_in") { format = ({ "rgb10a2", "rgba8_srgb", "rgba8" })[i + 1] }
+end
+rg.pass "decals_copy0" { kind = "copy", reads = { "GB0" }, writes = { "GB0_in" } }
+rg.pass "decals_copy1" { kind = "copy", reads = { "GB1" }, writes = { "GB1_in" } }
+rg.pass "decals_copy2" { kind = "copy", reads = { "GB2" }, writes = { "GB2_in" } }
+rg.pass "decals" {
+    kind = "fullscreen", shader = "passes/decals.frag",
+    reads = { "GB0_in", "GB1_in", "GB2_in", "depth" },
+    writes = { { "GB0", load = true }, { "GB1", load = true }, { "GB2", load = true } },
+}
+
 -- One lighting pass per lighting path, each on its stencil class.
 rg.pass "lighting_standard" {
     kind = "fullscreen", shader = "passes/deferred_lighting.frag",

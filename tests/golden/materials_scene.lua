@@ -1,13 +1,14 @@
 -- The default pipeline on the material-system scene (tests/gpu/scenes/materials.lua): the
 -- standard material, a game team's clear coat (its own lighting path) and foliage (G-buffer
--- fix-up), and a blended glass pane drawn by the forward pass. Tolerances as deferred_pipeline.lua
+-- fix-up), a blended glass pane drawn by the forward pass, and a decal across the floor and the
+-- clear-coat sphere (metal mask blended on the floor only: materialId 0). Tolerances as deferred_pipeline.lua
 -- (measured there across thread counts and host CPU features).
 local display = {
     { metric = "flip", channels = "rgb", display = "srgb", tolerance = 0.01 },
     { metric = "over_threshold", channels = "rgb", threshold = 1.5 / 255, tolerance = 0.02 },
 }
 return {
-    doc = "clear coat, foliage fix-up and forward glass through the default pipeline",
+    doc = "clear coat, foliage fix-up, decal and forward glass through the default pipeline",
     pipeline = "scripts/pipelines/deferred.lua",
     scene = "tests/gpu/scenes/materials.lua",
     size = { 192, 96 },

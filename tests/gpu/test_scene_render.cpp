@@ -205,6 +205,25 @@ TEST_F(SceneRender, ClearCoatAddsItsSecondLobe) {
         for (float v : img->pixels) ASSERT_TRUE(std::isfinite(v));
 }
 
+TEST_F(SceneRender, DecalsBlendTheCommonParametersOnly) {
+    // materials.lua's "stain" decal (red, smoothness 0.9, metal 1, opacity 0.8) covers part of the
+    // floor (materialId 0) and of the clear-coat sphere (materialId 1).
+    auto s = render("scripts/pipelines/deferred.lua", {"GB0", "GB1", "GB2", "GB3"});
+    LayoutInfo info;
+    auto floor = gbufferAt(*s, pixelOf(*s, {0.5f, 0.0f, 0.8f}), info);
+    auto f = [&](const char* n) { return floor[static_cast<size_t>(info.find(n))]; };
+    EXPECT_EQ(f("materialId").u[0], 0u);
+    EXPECT_NEAR(srgbEncode(f("baseColor").v[0]), srgbEncode(0.2f * 0.2f + 0.9f * 0.8f), 1.0f / 255);
+    EXPECT_NEAR(f("smoothness").v[0], 0.3f * 0.2f + 0.9f * 0.8f, 1.0f / 1023);
+    EXPECT_NEAR(f("metalMask").v[0], 0.8f, 1.0f / 255);  // base material: metal mask blends
+    auto coat = gbufferAt(*s, pixelOf(*s, {0.3f, 0.5f, 0.4f}), info);
+    auto c = [&](const char* n) { return coat[static_cast<size_t>(info.find(n))]; };
+    EXPECT_EQ(c("materialId").u[0], 1u);        // never blended
+    EXPECT_EQ(c("materialData").u[0], 31u);     // the coat's strength survives
+    EXPECT_EQ(c("metalMask").v[0], 0.0f);       // not on materialId 1
+    EXPECT_NEAR(srgbEncode(c("baseColor").v[0]), srgbEncode(0.8f * 0.2f + 0.9f * 0.8f), 1.0f / 255);
+}
+
 TEST_F(SceneRender, FullSunKeepsEveryHdrTargetFinite) {
     // Issue figure: the sun test scene (100 000 lux) has no infinities or NaNs in any HDR target.
     SessionOptions o;

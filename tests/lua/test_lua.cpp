@@ -162,8 +162,9 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // Modules' passes land at their insertion points.
     std::vector<std::string> order;
     for (const auto& pass : p->graph.passes) order.push_back(pass.name);
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 5),
-              (std::vector<std::string>{"gbuffer", "foliage_fixup", "lighting_standard", "lighting_clearcoat", "sky"}));
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 10),
+              (std::vector<std::string>{"gbuffer", "foliage_fixup", "decals_copy0", "decals_copy1", "decals_copy2", "decals",
+                                        "lighting_standard", "lighting_clearcoat", "sky", "forward"}));
     auto plan = compile(graphWithParams(*p), {});
     ASSERT_TRUE(plan.has_value()) << plan.error().message;
     // Every script it pulled in is known, for hot reload.

@@ -14,3 +14,6 @@ scene.light "sun" { type = "sun", intensity = 50000, unit = "lux", direction = {
 scene.camera "main" { position = { 0, 1.2, 3.4 }, target = { 0, 0.45, 0 }, fov = 45, aperture = 16, shutter = 1 / 125, iso = 100 }
 scene.material "glass" { base_color = { 0.2, 0.4, 0.9 }, smoothness = 0.9, alpha = "blend", opacity = 0.35 }
 scene.box "pane" { size = { 0.9, 0.9, 0.02 }, position = { -0.6, 0.5, 1.0 }, material = "glass" }
+-- A decal on the floor and across the clear-coat sphere: red, glossy, metal where it may be.
+scene.decal "stain" { position = { 0.35, 0.3, 0.6 }, size = { 1.0, 1.2, 1.0 }, base_color = { 0.9, 0.1, 0.1 },
+                      smoothness = 0.9, metal_mask = 1, opacity = 0.8 }

@@ -1,0 +1,45 @@
+#version 460
+// Deferred decals (seed 000 §3.3): every scene decal whose box encloses the pixel's surface
+// blends the common parameters with linear alpha blending, in decoded form (no programmable
+// blending here: the pass reads copies of the targets and re-packs): BaseColor, Smoothness and
+// the Normal (towards the box's +Y axis); MetalMask and Reflectance only on materialId 0 (the
+// base material); MaterialId and MaterialData are never blended. Pixels no decal touches keep
+// the G-buffer as it is (discard, the targets are loaded).
+#define RG_WITH_DECALS
+#include "lib/scene.glsl"
+#include "gbuffer_disney.glsl"
+
+layout(location = 0) in vec2 uv;
+layout(location = 0) out vec4 gb0;
+layout(location = 1) out vec4 gb1;
+layout(location = 2) out vec4 gb2;
+layout(set = 0, binding = 0) uniform sampler2D GB0_in;
+layout(set = 0, binding = 1) uniform sampler2D GB1_in;
+layout(set = 0, binding = 2) uniform sampler2D GB2_in;
+layout(set = 0, binding = 3) uniform sampler2D depth;
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    float d = texelFetch(depth, p, 0).r;
+    if (d >= 1.0) discard;
+    GBuffer_disney g = unpackGBuffer_disney(texelFetch(GB0_in, p, 0), texelFetch(GB1_in, p, 0), texelFetch(GB2_in, p, 0), vec4(0.0));
+    vec3 position = rgWorldPosition(uv, d);
+    bool touched = false;
+    for (uint i = 0u; i < decals.count.x; ++i) {
+        RgDecal decal = decals.decal[i];
+        vec3 q = (decal.worldToBox * vec4(position, 1.0)).xyz;
+        if (any(greaterThan(abs(q), vec3(0.5)))) continue;
+        float a = decal.baseColorOpacity.a;
+        if (decal.flags.x > 0.5) g.baseColor = mix(g.baseColor, decal.baseColorOpacity.rgb, a);
+        if (decal.flags.y > 0.5) g.smoothness = mix(g.smoothness, decal.params.x, a);
+        if (g.materialId == 0u) {
+            if (decal.flags.z > 0.5) g.metalMask = mix(g.metalMask, decal.params.y, a);
+            if (decal.flags.w > 0.5) g.reflectance = mix(g.reflectance, decal.params.z, a);
+        }
+        if (decal.axis.w > 0.5) g.normal = normalize(mix(g.normal, decal.axis.xyz, a));
+        touched = true;
+    }
+    if (!touched) discard;
+    vec4 t3;
+    packGBuffer_disney(g, gb0, gb1, gb2, t3);
+}
