@@ -26,7 +26,7 @@ check() {  # check NAME EXPECTED_RC [grep PATTERN] -- command...
 check "help" 0 grep "usage: rgraph COMMAND" -- "$rgraph" --help
 check "no command" 2 grep "commands:" -- "$rgraph"
 check "unknown command" 2 grep "unknown command 'rendr'" -- "$rgraph" rendr
-for c in devices render graph bench watch export-scene; do
+for c in devices render graph bench watch export-scene compare test; do
     check "$c --help" 0 grep "usage: rgraph $c" -- "$rgraph" $c --help
 done
 check "devices" 0 grep "*" -- "$rgraph" devices
@@ -48,6 +48,9 @@ check "render a glb" 0 grep "wrote $tmp/g.exr" -- "$rgraph" render --scene "$tmp
 check "debug view" 0 grep "wrote $tmp/v.exr" -- "$rgraph" render --scene tests/gpu/scenes/materials.lua --view materialid --size 64x32 --out "$tmp/v.exr" --png "$tmp/v.png"
 check "unknown view" 2 grep "--view: unknown view 'albedo'" -- "$rgraph" render --view albedo --size 8x8
 check "channel capture" 0 grep "wrote $tmp/c.exr" -- "$rgraph" render --capture gbuffer.normal --size 32x16 --out "$tmp/c.exr" --png "$tmp/c.png"
+check "compare identical" 0 grep "mean relative error 0" -- "$rgraph" compare "$tmp/r.exr" "$tmp/r.exr" --heatmap "$tmp/heat.png"
+check "compare differs" 1 grep "above the tolerance" -- "$rgraph" compare "$tmp/g.exr" "$tmp/r.exr" --tolerance 0.001
+check "compare missing layer" 2 grep "has no layer 'nope'" -- "$rgraph" compare "$tmp/r.exr" "$tmp/r.exr" --layer nope
 check "graph dot" 0 grep "digraph rgraph" -- "$rgraph" graph --pipeline scripts/pipelines/test.lua
 check "bench" 0 grep "frame total" -- "$rgraph" bench --size 64x64 --frames 3 --json "$tmp/bench.json"
 check "bench json" 0 -- python3 -c "import json; b=json.load(open('$tmp/bench.json')); assert len(b['passes'])==24 and b['frames']==3"
