@@ -2,6 +2,8 @@
 // ends by checking that the layer said nothing.
 #include <gtest/gtest.h>
 
+#include "gpu_fixture.h"
+
 #include <cmath>
 #include <filesystem>
 
@@ -13,33 +15,9 @@ using namespace rg;
 
 namespace {
 
-class GpuTest : public ::testing::Test {
+class GpuTest : public GpuFixture {
 protected:
-    static void SetUpTestSuite() {
-        RuntimeOptions o;
-        o.validation = true;
-        auto rt = Runtime::create(o);
-        ASSERT_TRUE(rt.has_value()) << rt.error().describe();
-        s_runtime = std::move(*rt).release();
-    }
-    static void TearDownTestSuite() {
-        delete s_runtime;
-        s_runtime = nullptr;
-    }
-    void SetUp() override {
-        ASSERT_NE(s_runtime, nullptr);
-        m_messagesBefore = s_runtime->gpu().validationMessageCount();
-    }
-    void TearDown() override {
-        ASSERT_NE(s_runtime, nullptr);
-        EXPECT_EQ(s_runtime->gpu().validationMessageCount(), m_messagesBefore)
-            << (s_runtime->gpu().validationMessages().empty() ? "" : s_runtime->gpu().validationMessages().back());
-    }
-    Runtime& rt() { return *s_runtime; }
-    static Runtime* s_runtime;
-    uint32_t m_messagesBefore = 0;
 };
-Runtime* GpuTest::s_runtime = nullptr;
 
 ResourceDesc texture(const std::string& name, Format f, bool exported = false) {
     ResourceDesc r;

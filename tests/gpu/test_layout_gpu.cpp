@@ -11,6 +11,8 @@
 // A failure writes the read-back targets to RG_TEST_TMP/layout/<layout>_gpu.exr.
 #include <gtest/gtest.h>
 
+#include "gpu_fixture.h"
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -28,33 +30,9 @@ using namespace rg;
 
 namespace {
 
-class LayoutGpuTest : public ::testing::Test {
+class LayoutGpuTest : public GpuFixture {
 protected:
-    static void SetUpTestSuite() {
-        RuntimeOptions o;
-        o.validation = true;
-        auto rt = Runtime::create(o);
-        ASSERT_TRUE(rt.has_value()) << rt.error().describe();
-        s_runtime = std::move(*rt).release();
-    }
-    static void TearDownTestSuite() {
-        delete s_runtime;
-        s_runtime = nullptr;
-    }
-    void SetUp() override {
-        ASSERT_NE(s_runtime, nullptr);
-        m_messagesBefore = s_runtime->gpu().validationMessageCount();
-    }
-    void TearDown() override {
-        ASSERT_NE(s_runtime, nullptr);
-        EXPECT_EQ(s_runtime->gpu().validationMessageCount(), m_messagesBefore)
-            << (s_runtime->gpu().validationMessages().empty() ? "" : s_runtime->gpu().validationMessages().back());
-    }
-    Runtime& rt() { return *s_runtime; }
-    static Runtime* s_runtime;
-    uint32_t m_messagesBefore = 0;
 };
-Runtime* LayoutGpuTest::s_runtime = nullptr;
 
 // ---------------------------------------------------------------------------------------------
 // C++ copies of shaders/test/layout/hash.glsl.

@@ -7,6 +7,8 @@
 // (lm, nits, EV100: one image); the specular lobe at the representative point (seed 002 §4.7.5).
 #include <gtest/gtest.h>
 
+#include "gpu_fixture.h"
+
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -189,22 +191,8 @@ struct Frame {
     bool finite = true;  // every HDR and display value
 };
 
-class Lights : public ::testing::Test {
+class Lights : public GpuFixture {
 protected:
-    static void SetUpTestSuite() {
-        RuntimeOptions o;
-        o.validation = true;
-        auto rt = Runtime::create(o);
-        ASSERT_TRUE(rt.has_value()) << rt.error().describe();
-        s_runtime = std::move(*rt).release();
-    }
-    static void TearDownTestSuite() {
-        delete s_runtime;
-        s_runtime = nullptr;
-    }
-    void SetUp() override { m_before = s_runtime->gpu().validationMessageCount(); }
-    void TearDown() override { EXPECT_EQ(s_runtime->gpu().validationMessageCount(), m_before); }
-
     // Renders `scene` with the default pipeline at manual exposure (the scene camera's settings)
     // and no sky (every image holds the light's contribution only), two frames, and reads back
     // the HDR in cd/m² and the floor's surface at the centre pixel.
@@ -281,10 +269,7 @@ public:
     }
 
 protected:
-    static Runtime* s_runtime;
-    uint32_t m_before = 0;
 };
-Runtime* Lights::s_runtime = nullptr;
 
 // Compares a frame lit by one area light with graph/lighting at floor points (white, diffuse only).
 void checkAreaLight(const Frame& f, const std::vector<glm::dvec3>& points, const char* what, double* worst = nullptr) {

@@ -4,6 +4,8 @@
 // definition at the breakpoints.
 #include <gtest/gtest.h>
 
+#include "gpu_fixture.h"
+
 #include <cmath>
 #include <cstring>
 
@@ -18,22 +20,8 @@ namespace {
 
 const std::string kScripts = std::string(RG_SOURCE_ROOT) + "/tests/lua/scripts/";
 
-class PostGpu : public ::testing::Test {
+class PostGpu : public GpuFixture {
 protected:
-    static void SetUpTestSuite() {
-        RuntimeOptions o;
-        o.validation = true;
-        auto rt = Runtime::create(o);
-        ASSERT_TRUE(rt.has_value()) << rt.error().describe();
-        s_runtime = std::move(*rt).release();
-    }
-    static void TearDownTestSuite() {
-        delete s_runtime;
-        s_runtime = nullptr;
-    }
-    void SetUp() override { m_before = s_runtime->gpu().validationMessageCount(); }
-    void TearDown() override { EXPECT_EQ(s_runtime->gpu().validationMessageCount(), m_before); }
-
     std::unique_ptr<Session> session(const std::string& script) {
         SessionOptions o;
         o.compile.outputWidth = 64;
@@ -57,10 +45,7 @@ protected:
         p.findParam(name)->value = v;
         s_runtime->executor().updateUniforms(graphWithParams(p));
     }
-    static Runtime* s_runtime;
-    uint32_t m_before = 0;
 };
-Runtime* PostGpu::s_runtime = nullptr;
 
 TEST_F(PostGpu, AutoExposureSettlesOnTheMeteredEv) {
     for (double L : {0.5, 1000.0, 31831.0}) {

@@ -3,6 +3,8 @@
 // foliage fix-up filling what the foliage material leaves out, the clear coat's second lobe.
 #include <gtest/gtest.h>
 
+#include "gpu_fixture.h"
+
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -22,22 +24,8 @@ namespace {
 const std::string kRoot = RG_SOURCE_ROOT;
 constexpr uint32_t W = 256, H = 128;
 
-class SceneRender : public ::testing::Test {
+class SceneRender : public GpuFixture {
 protected:
-    static void SetUpTestSuite() {
-        RuntimeOptions o;
-        o.validation = true;
-        auto rt = Runtime::create(o);
-        ASSERT_TRUE(rt.has_value()) << rt.error().describe();
-        s_runtime = std::move(*rt).release();
-    }
-    static void TearDownTestSuite() {
-        delete s_runtime;
-        s_runtime = nullptr;
-    }
-    void SetUp() override { m_before = s_runtime->gpu().validationMessageCount(); }
-    void TearDown() override { EXPECT_EQ(s_runtime->gpu().validationMessageCount(), m_before); }
-
     std::unique_ptr<Session> render(const std::string& pipeline, std::vector<std::string> captures, const std::string& view = "") {
         SessionOptions o;
         o.compile.outputWidth = W;
@@ -82,10 +70,7 @@ protected:
         p.findParam("exposure_mode")->value = Value("manual");
         s_runtime->executor().updateUniforms(graphWithParams(p));
     }
-    static Runtime* s_runtime;
-    uint32_t m_before = 0;
 };
-Runtime* SceneRender::s_runtime = nullptr;
 
 // The sphere centres of materials.lua, pulled towards the camera to the visible surface.
 const glm::vec3 kStandard{-1.2f, 0.5f, 0.0f}, kCoated{0.0f, 0.5f, 0.0f}, kBush{1.2f, 0.4f, 0.4f};

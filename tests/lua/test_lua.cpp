@@ -2,6 +2,8 @@
 // modules, and (on the GPU) runtime reconfiguration and transactional reload.
 #include <gtest/gtest.h>
 
+#include "../gpu/gpu_fixture.h"
+
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -195,22 +197,8 @@ TEST(LuaPipeline, TwoWritersFromDifferentModulesAreAnError) {
 
 // ---- on the GPU: reconfiguration and reload ----
 
-class LuaGpu : public ::testing::Test {
+class LuaGpu : public GpuFixture {
 protected:
-    static void SetUpTestSuite() {
-        RuntimeOptions o;
-        o.validation = true;
-        auto rt = Runtime::create(o);
-        ASSERT_TRUE(rt.has_value()) << rt.error().describe();
-        s_runtime = std::move(*rt).release();
-    }
-    static void TearDownTestSuite() {
-        delete s_runtime;
-        s_runtime = nullptr;
-    }
-    void SetUp() override { m_before = s_runtime->gpu().validationMessageCount(); }
-    void TearDown() override { EXPECT_EQ(s_runtime->gpu().validationMessageCount(), m_before); }
-
     static SessionOptions small() {
         SessionOptions o;
         o.compile.outputWidth = 32;
@@ -222,10 +210,7 @@ protected:
         EXPECT_TRUE(img.has_value()) << (img ? "" : img.error().message);
         return img ? *img : Image();
     }
-    static Runtime* s_runtime;
-    uint32_t m_before = 0;
 };
-Runtime* LuaGpu::s_runtime = nullptr;
 
 TEST_F(LuaGpu, DisableOnFrame2EnableOnFrame3) {
     Session s(*s_runtime, small());
