@@ -31,7 +31,9 @@ void main() {
     float coatAlpha = max(coatRoughness * coatRoughness, 1e-3);
     float NdotV = abs(dot(N, V)) + 1e-5;
     vec3 luminance = g.emissive;
-    for (uint i = 0u; i < rgLightCount(); ++i) {
+    RgLightList list = rgLightList(p);  // the tile's lights (lib/light_tiles.glsl)
+    for (uint k = 0u; k < list.count; ++k) {
+        uint i = rgListLight(list, k);
         // Each lobe sees the light from its own representative point (area lights): evaluated
         // with the base's roughness and with the coat's.
         RgLightSample s = rgEvaluateLight(i, position, N, V, linearRoughness);

@@ -304,6 +304,14 @@ public:
                 return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.dispatch: '" + target + "' is not a resource this pass uses");
             uint32_t w = r->image ? r->plan->width : static_cast<uint32_t>(r->plan->bufferSize / 4);
             uint32_t h = r->image ? r->plan->height : 1;
+            // One invocation per tile x tile texels (per-tile work such as light culling).
+            const double tileParam = desc.params["tile"].asNumber(1);
+            if (tileParam < 1 || tileParam > 4096)
+                return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.tile: expected 1..4096 texels");
+            if (const uint32_t tile = static_cast<uint32_t>(tileParam); tile > 1) {
+                w = (w + tile - 1) / tile;
+                h = (h + tile - 1) / tile;
+            }
             m_groups = {(w + local[0] - 1) / local[0], (h + local[1] - 1) / local[1],
                         r->image ? r->plan->layers : 1};
         }
@@ -577,7 +585,8 @@ void registerBuiltinPassKinds(PassRegistry& registry) {
         {"compute", PassType::Compute, "a compute shader dispatched over a resource's size or `groups`",
          plus(shaderParams(),
               {{"groups", "list", "{x, y, z} work groups"},
-               {"dispatch", "string", "resource whose size the dispatch covers (default: first storage image written)"}}),
+               {"dispatch", "string", "resource whose size the dispatch covers (default: first storage image written)"},
+               {"tile", "integer", "one invocation per tile x tile texels of the dispatch resource (default 1)"}}),
          Usage::Sampled, Usage::StorageWrite}));
     registry.add(kind<ClearPass>(
         {"clear", PassType::Transfer, "clears what it writes to `value` (colour) or `depth`/`stencil`",

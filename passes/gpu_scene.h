@@ -31,7 +31,7 @@ struct DrawItem {
 inline constexpr uint32_t kCameraBinding = 15;
 inline constexpr uint32_t kLightsBinding = 14;
 // The Lights block's fixed light array (scene.glsl's RG_MAX_LIGHTS, the same number).
-inline constexpr uint32_t kMaxLights = 256;
+inline constexpr uint32_t kMaxLights = 1024;
 // IES profiles are baked at this size (bakeIes' θ × cos φ texels, seed 000 lst:5), each 256 KiB
 // in every frame slot's light buffer; a scene may use this many different profile files.
 inline constexpr uint32_t kIesWidth = 256, kIesHeight = 256;

@@ -264,6 +264,27 @@ Result<RenderSetup> setupRun(const Args& args, const char* command, uint32_t def
     so.view = args.get("view");
     so.camera = args.get("camera");
     so.verbose = verbose;
+    // NAME=VALUE pairs: --scene-arg for the scene script's `scene.args`, --set for pipeline parameters.
+    auto pair = [&](const std::string& option, const std::string& text) -> Result<std::pair<std::string, std::string>> {
+        const auto eq = text.find('=');
+        if (eq == std::string::npos || eq == 0)
+            return fail(ErrorCode::InvalidInput, std::string(command) + ": --" + option + " takes NAME=VALUE, got '" + text + "'");
+        return std::pair{text.substr(0, eq), text.substr(eq + 1)};
+    };
+    for (const auto& a : args.all("scene-arg")) {
+        auto p = pair("scene-arg", a);
+        if (!p) return std::unexpected(p.error());
+        so.sceneArgs[p->first] = p->second;
+    }
+    for (const auto& a : args.all("set")) {
+        auto p = pair("set", a);
+        if (!p) return std::unexpected(p.error());
+        char* end = nullptr;
+        const double number = std::strtod(p->second.c_str(), &end);
+        if (!p->second.empty() && end && *end == '\0') so.params[p->first] = Value(number);
+        else if (p->second == "true" || p->second == "false") so.params[p->first] = Value(p->second == "true");
+        else so.params[p->first] = Value(p->second);
+    }
     s.session = std::make_unique<Session>(*s.runtime, so);
     if (auto r = s.session->load(s.pipeline); !r) return std::unexpected(r.error());
     return s;
@@ -381,13 +402,15 @@ Result<Image> writeOutputs(RenderSetup& setup, const std::string& exrPath, const
 }
 
 int cmdRender(int argc, char** argv) {
-    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "camera", "size", "frames", "out", "png", "capture", "view", "device", "verbose"});
+    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "scene-arg", "set", "camera", "size", "frames", "out", "png", "capture", "view", "device", "verbose"});
     if (args.help) {
         std::printf(
             "usage: rgraph render [--pipeline FILE.lua|builtin:NAME] [--scene FILE] [--camera NAME] [--size WxH] [--frames N]\n"
             "                     [--out FILE.exr] [--png FILE.png] [--capture RESOURCE|gbuffer.CHANNEL]... [--view VIEW]\n"
-            "                     [--device N] [--verbose]\n\n"
+            "                     [--scene-arg NAME=VALUE]... [--set NAME=VALUE]... [--device N] [--verbose]\n\n"
             "--scene: a Lua scene (scripts/scenes/*.lua), .gltf or .glb (default scripts/scenes/default.lua).\n"
+            "--scene-arg NAME=VALUE (repeatable): sets scene.args.NAME for a Lua scene (a number when it reads as one).\n"
+            "--set NAME=VALUE (repeatable): sets the pipeline parameter NAME (rg.param) before the first frame.\n"
             "--view: write a debug view instead of the image: normals, basecolor, smoothness, metalmask,\n"
             "materialid, reflectance, ao, emissive or stencil.\n"
             "--capture gbuffer.CHANNEL: a G-buffer channel, decoded, as an EXR layer (e.g. gbuffer.normal).\n"
@@ -424,11 +447,11 @@ int cmdRender(int argc, char** argv) {
 }
 
 int cmdWatch(int argc, char** argv) {
-    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "camera", "size", "out", "png", "device", "interval", "max-reloads"});
+    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "scene-arg", "set", "camera", "size", "out", "png", "device", "interval", "max-reloads"});
     if (args.help) {
         std::printf(
-            "usage: rgraph watch [--pipeline FILE.lua] [--size WxH] [--out FILE.exr] [--png FILE.png]\n"
-            "                    [--interval MS] [--max-reloads N]\n\n"
+            "usage: rgraph watch [--pipeline FILE.lua] [--scene FILE] [--size WxH] [--out FILE.exr] [--png FILE.png]\n"
+            "                    [--scene-arg NAME=VALUE]... [--set NAME=VALUE]... [--interval MS] [--max-reloads N]\n\n"
             "Renders once, then re-renders whenever a script or shader the pipeline uses changes (polled\n"
             "every MS milliseconds, default 250). A script that fails to load or compile is reported and the\n"
             "previous pipeline keeps running. Stops after N reloads when --max-reloads is given.\n");
@@ -586,10 +609,13 @@ Stat stats(std::vector<double> v) {
 }
 
 int cmdBench(int argc, char** argv) {
-    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "camera", "size", "frames", "json", "device"});
+    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "scene-arg", "set", "camera", "size", "frames", "json", "device"});
     if (args.help) {
         std::printf(
-            "usage: rgraph bench [--pipeline FILE.lua|builtin:NAME] [--size WxH] [--frames N] [--json FILE] [--device N]\n\n"
+            "usage: rgraph bench [--pipeline FILE.lua|builtin:NAME] [--scene FILE] [--scene-arg NAME=VALUE]... [--set NAME=VALUE]...\n"
+            "                    [--size WxH] [--frames N] [--json FILE] [--device N]\n\n"
+            "--scene-arg NAME=VALUE (repeatable): sets scene.args.NAME for a Lua scene (a number when it reads as one).\n"
+            "--set NAME=VALUE (repeatable): sets the pipeline parameter NAME (rg.param) before the first frame.\n"
             "Renders N frames (default 20) at WxH (default 1280x720), one frame at a time, and prints per pass\n"
             "the median/min/max GPU time (timestamp queries), the CPU recording time, the frame total, the\n"
             "graph compile time and the transient memory with and without aliasing. --json writes the same.\n");

@@ -90,9 +90,20 @@ Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string
         }
         return {};
     }
+    if (view == "lights") {
+        if (!g.findResource("light_tiles"))
+            return fail(ErrorCode::InvalidInput, "--view lights: the pipeline has no 'light_tiles' (require \"lighting\" and light its passes with lighting.tiled)");
+        PassDesc pass;
+        pass.name = "debug_view";
+        pass.kind = "fullscreen";
+        pass.accesses = {{"light_tiles", Usage::StorageRead}, {"depth", Usage::Sampled}, {"debug_view", Usage::ColorAttachment}};
+        pass.params = Value(Value::Table{{"shader", Value("passes/light_count_view.frag")}, {"defines", Value(Value::Table{{"RG_LIGHT_TILES", Value(true)}})}});
+        g.passes.push_back(pass);
+        return {};
+    }
     auto it = std::find(kViews.begin(), kViews.end(), view);
     if (it == kViews.end()) {
-        std::string all = "'stencil'";
+        std::string all = "'stencil', 'lights'";
         for (const auto& v : kViews) all += ", '" + v + "'";
         return fail(ErrorCode::InvalidInput, "--view: unknown view '" + view + "'; expected one of: " + all);
     }
@@ -164,9 +175,13 @@ bool hasScenePass(const PipelineDesc& p) {
     return std::any_of(p.graph.passes.begin(), p.graph.passes.end(), [](const PassDesc& d) { return d.kind == "scene"; });
 }
 
-Result<Scene> readScene(const std::string& file) {
+Result<Scene> readScene(const std::string& file, const std::map<std::string, std::string>& args) {
     const std::string ext = fs::path(file).extension().string();
-    if (ext == ".lua") return loadSceneScript(file);
+    if (ext == ".lua") {
+        SceneScriptOptions o;
+        o.args = args;
+        return loadSceneScript(file, o);
+    }
     if (ext == ".gltf" || ext == ".glb") {
         auto scene = loadGltf(file);
         if (!scene) return scene;
@@ -193,7 +208,7 @@ Result<Scene> readScene(const std::string& file) {
 // takes the camera's exposure settings into the camera parameters.
 Result<std::unique_ptr<passes::GpuScene>> Session::loadScene(PipelineDesc& pipeline) {
     const std::string file = m_options.scene.empty() ? defaultScene() : m_options.scene;
-    auto scene = readScene(file);
+    auto scene = readScene(file, m_options.sceneArgs);
     if (!scene) return std::unexpected(scene.error());
     for (Material& m : scene->materials) {
         auto pm = std::find_if(pipeline.materials.begin(), pipeline.materials.end(), [&](auto& x) { return x.name == m.model; });

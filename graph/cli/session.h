@@ -22,6 +22,7 @@ struct SessionOptions {
     // (scripts/scenes/default.lua) when the pipeline has a scene pass.
     std::string scene;
     std::string camera;  // a camera of the scene by name; "" = its first
+    std::map<std::string, std::string> sceneArgs;  // a Lua scene's `scene.args` (--scene-arg)
     // A debug view instead of the pipeline's display image: normals, basecolor, smoothness,
     // metalmask, materialid, reflectance, ao, emissive (of the disney G-buffer) or stencil.
     std::string view;

@@ -44,6 +44,12 @@ Extent resolveExtent(const TextureDesc& t, const CompileOptions& o) {
     return {scaledDimension(o.outputWidth, t.scaleX), scaledDimension(o.outputHeight, t.scaleY)};
 }
 
+uint64_t resolvedBufferSize(const BufferDesc& b, const CompileOptions& o) {
+    if (b.tileSize == 0) return b.size;
+    const uint64_t tx = (o.outputWidth + b.tileSize - 1) / b.tileSize, ty = (o.outputHeight + b.tileSize - 1) / b.tileSize;
+    return b.size + tx * ty * b.tileBytes;
+}
+
 // floor(log2(max(w, h))) + 1
 uint32_t fullMipChain(Extent e) {
     uint32_t m = std::max(e.width, e.height);
@@ -591,7 +597,7 @@ void computeLifetimes(Compiler& c) {
         r.persistent = d.persistent;
         r.transient = !d.imported && !d.exported && !d.persistent;
         if (d.kind == ResourceKind::Buffer) {
-            r.bufferSize = d.buffer.size;
+            r.bufferSize = resolvedBufferSize(d.buffer, c.options);
         } else {
             const Extent e = resolveExtent(d.texture, c.options);
             r.format = d.texture.format;

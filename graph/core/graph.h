@@ -38,6 +38,10 @@ struct TextureDesc {
 
 struct BufferDesc {
     uint64_t size = 0;  // bytes
+    // Screen-tiled buffers (light lists): `tileBytes` more per tile of tileSize x tileSize pixels
+    // of the output, ceil(w / tileSize) x ceil(h / tileSize) tiles; 0 = a fixed size.
+    uint32_t tileSize = 0;
+    uint64_t tileBytes = 0;
 };
 
 struct ResourceDesc {

@@ -257,7 +257,7 @@ struct Builder {
     Result<void> buffer(const Declaration& d) {
         Where w = where(d);
         const Value& b = d.body;
-        if (auto r = checkFields(w, b, {"size", "export", "import", "persistent", "doc"}); !r) return r;
+        if (auto r = checkFields(w, b, {"size", "tile", "tile_bytes", "export", "import", "persistent", "doc"}); !r) return r;
         ResourceDesc r;
         r.name = fullName(d);
         r.origin = d.origin;
@@ -265,6 +265,17 @@ struct Builder {
         if (!isInteger(b["size"]) || b["size"].asNumber() < 4)
             return w.at("size").error(b.has("size") ? "expected a whole number of bytes >= 4" : "missing (expected the size in bytes)");
         r.buffer.size = static_cast<uint64_t>(b["size"].asNumber());
+        // Screen-tiled: `tile_bytes` more for every tile x tile pixels of the output.
+        if (b.has("tile") != b.has("tile_bytes"))
+            return w.at(b.has("tile") ? "tile_bytes" : "tile").error("missing (a tiled buffer gives both tile, in pixels, and tile_bytes)");
+        if (b.has("tile")) {
+            if (!isInteger(b["tile"]) || b["tile"].asNumber() < 1 || b["tile"].asNumber() > 256)
+                return w.at("tile").error("expected a tile size in pixels, 1..256");
+            if (!isInteger(b["tile_bytes"]) || b["tile_bytes"].asNumber() < 4 || b["tile_bytes"].asNumber() > (1 << 20))
+                return w.at("tile_bytes").error("expected a whole number of bytes per tile, 4..1048576");
+            r.buffer.tileSize = static_cast<uint32_t>(b["tile"].asNumber());
+            r.buffer.tileBytes = static_cast<uint64_t>(b["tile_bytes"].asNumber());
+        }
         for (const char* flag : {"export", "import", "persistent"})
             if (b.has(flag))
                 if (auto e = expectType(w.at(flag), b[flag], "boolean"); !e) return e;

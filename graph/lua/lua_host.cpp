@@ -11,6 +11,7 @@ extern "C" {
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -610,6 +611,15 @@ Result<std::vector<Declaration>> LuaHost::loadDeclarations(const std::string& fi
         lua_pushcclosure(L, guarded<declare>, 2);
         lua_setfield(L, -2, name);
     }
+    lua_newtable(L);
+    for (const auto& [name, value] : m->options.sceneArgs) {
+        char* end = nullptr;
+        const double number = std::strtod(value.c_str(), &end);
+        if (!value.empty() && end && *end == '\0') lua_pushnumber(L, number);
+        else lua_pushstring(L, value.c_str());
+        lua_setfield(L, -2, name.c_str());
+    }
+    lua_setfield(L, -2, "args");
     lua_pushvalue(L, -1);
     lua_setglobal(L, "scene");
     lua_getfield(L, LUA_REGISTRYINDEX, kModulesKey);

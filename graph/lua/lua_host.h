@@ -26,6 +26,9 @@ struct LuaHostOptions {
     std::vector<PassKindSchema> kinds;       // what `kind = ...` may name
     uint64_t instructions = 100'000'000;     // per call into the script
     size_t memoryBytes = 256u << 20;
+    // Scene scripts: `scene.args`, NAME = VALUE from the command line (--scene-arg); a value
+    // that reads as a number is a number, else a string.
+    std::map<std::string, std::string> sceneArgs;
 };
 
 struct FrameContext {

@@ -19,6 +19,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -267,6 +268,7 @@ struct SceneScriptOptions {
     std::string projectRoot;  // "" = RG_ROOT when set, else the source tree this was built from
     bool loadImages = true;   // passed on to the glTF files the script names
     bool generateMips = true;
+    std::map<std::string, std::string> args;  // the script's `scene.args` (rgraph --scene-arg NAME=VALUE)
 };
 
 // Runs a Lua scene script (scene.material/sphere/plane/box/gltf/light/camera/environment, see

@@ -702,6 +702,7 @@ Result<Scene> loadSceneScript(const std::string& path, const SceneScriptOptions&
     LuaHostOptions ho;
     ho.projectRoot = root;
     ho.searchDirs = {root + "/scripts", root + "/materials"};
+    ho.sceneArgs = options.args;
     LuaHost host(ho);
     std::vector<std::string> files;
     auto decls = host.loadDeclarations(path, &files);

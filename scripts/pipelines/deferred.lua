@@ -4,6 +4,7 @@
 -- chain (seed 002 §5). It grows as decals, forward, IBL and SSR land.
 local rg = require "rg"
 local post = require "post"
+local lighting = require "lighting"  -- per-tile light lists for the lighting passes
 require "disney"     -- the standard material, its layout (tbl:2), stencil class and lighting path
 require "clearcoat"  -- a game team's clear-coat material and its lighting path
 require "foliage"    -- a game team's foliage material and its G-buffer fix-up
@@ -37,12 +38,13 @@ rg.pass "decals" {
     writes = { { "GB0", load = true }, { "GB1", load = true }, { "GB2", load = true } },
 }
 
--- One lighting pass per lighting path, each on its stencil class.
-rg.pass "lighting_standard" {
+-- One lighting pass per lighting path, each on its stencil class, each looping over the lights
+-- of its pixel's tile (lighting.tiled).
+rg.pass "lighting_standard" (lighting.tiled {
     kind = "fullscreen", shader = "passes/deferred_lighting.frag",
     reads = { "GB0", "GB1", "GB2", "GB3", "depth", { "depth", as = "depth" }, { "exposure", as = "storage" } },
     writes = { "hdr" }, stencil = { class = "lit_standard", mask = 7 },  -- low 3 bits: foliage (9) too
-}
+})
 
 -- The sky where nothing was drawn: depth still at the far plane. ("equal" would depend on the
 -- rasteriser reproducing 1.0 exactly; less_equal against the cleared 1.0 does not.)

@@ -16,6 +16,7 @@
 
 #include "lib/scene.glsl"
 #include "lib/brdf.glsl"
+#include "lib/light_tiles.glsl"
 
 // lst:4 — windowed inverse-square falloff; distances below 1 cm are clamped. (The listing's
 // max(sqrtDist, …) means the squared distance: 0.01² is 1 cm squared.)

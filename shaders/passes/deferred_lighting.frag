@@ -28,7 +28,9 @@ void main() {
     vec3 f0 = mix(vec3(rgDielectricF0(g.reflectance)), g.baseColor, g.metalMask);
     float linearRoughness = 1.0 - g.smoothness;
     vec3 luminance = g.emissive;
-    for (uint i = 0u; i < rgLightCount(); ++i) {
+    RgLightList list = rgLightList(p);  // the tile's lights (lib/light_tiles.glsl)
+    for (uint k = 0u; k < list.count; ++k) {
+        uint i = rgListLight(list, k);
         RgLightSample s = rgEvaluateLight(i, position, g.normal, V, linearRoughness);
         luminance += rgStandardLighting(s, g.normal, V, diffuseColor, f0, linearRoughness);
     }

@@ -72,6 +72,21 @@ TEST(LuaErrors, UnknownResource) {
               kScripts + "unknown_resource.lua:6: passes.lighting.reads[3]: unknown resource 'GB9' (did you mean 'GB0'?)");
 }
 
+TEST(LuaPipeline, TiledBufferGrowsWithTheOutput) {
+    auto p = load("tiled_buffer.lua");
+    ASSERT_TRUE(p.has_value()) << p.error().message;
+    CompileOptions o;
+    o.outputWidth = 100;  // 13 x 5 tiles of 8 pixels
+    o.outputHeight = 33;
+    auto plan = compile(graphWithParams(*p), o);
+    ASSERT_TRUE(plan.has_value()) << plan.error().message;
+    auto lists = std::find_if(plan->resources.begin(), plan->resources.end(), [](auto& r) { return r.name == "lists"; });
+    ASSERT_NE(lists, plan->resources.end());
+    EXPECT_EQ(lists->bufferSize, 16u + 13u * 5u * 64u);
+    EXPECT_EQ(loadError("tiled_buffer_half.lua"),
+              kScripts + "tiled_buffer_half.lua:2: resources.lists.tile_bytes: missing (a tiled buffer gives both tile, in pixels, and tile_bytes)");
+}
+
 TEST(LuaErrors, CycleIsReportedByTheCompiler) {
     auto p = load("cycle.lua");
     ASSERT_TRUE(p.has_value()) << p.error().message;
@@ -164,13 +179,13 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // Modules' passes land at their insertion points.
     std::vector<std::string> order;
     for (const auto& pass : p->graph.passes) order.push_back(pass.name);
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 10),
-              (std::vector<std::string>{"gbuffer", "foliage_fixup", "decals_copy0", "decals_copy1", "decals_copy2", "decals",
-                                        "lighting_standard", "lighting_clearcoat", "sky", "forward"}));
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 11),
+              (std::vector<std::string>{"gbuffer", "light_culling", "foliage_fixup", "decals_copy0", "decals_copy1", "decals_copy2",
+                                        "decals", "lighting_standard", "lighting_clearcoat", "sky", "forward"}));
     auto plan = compile(graphWithParams(*p), {});
     ASSERT_TRUE(plan.has_value()) << plan.error().message;
     // Every script it pulled in is known, for hot reload.
-    EXPECT_EQ(p->files.size(), 5u);  // deferred, post, disney, clearcoat, foliage
+    EXPECT_EQ(p->files.size(), 6u);  // deferred, post, lighting, disney, clearcoat, foliage
 }
 
 TEST(LuaPipeline, ModulesAreNamespacedAndInsertedAfterTheirAnchor) {

@@ -1,0 +1,39 @@
+-- Light culling per screen tile for the deferred lighting passes (seed 000 §4; DESIGN §3).
+--
+--   local lighting = require "lighting"   -- declares `light_tiles` and the `light_culling` pass
+--   rg.pass "lighting_x" (lighting.tiled { kind = "fullscreen", shader = ..., reads = { ... }, ... })
+--
+-- The culling pass (shaders/passes/light_culling.comp) runs after the pass named "gbuffer", reads
+-- its depth and lists, per 16x16-pixel tile, the lights whose range reaches the tile's surfaces.
+-- `lighting.tiled` makes a lighting pass read that list (the shader's light loop, through
+-- lib/light_tiles.glsl, then visits only the tile's lights). A pipeline that never uses
+-- `lighting.tiled` loses the culling pass to the graph's culling, and its shaders loop over all.
+local rg = require "rg"
+
+local lighting = {}
+
+-- Words per tile: the count, then up to 255 light indices (1 KiB per tile; 3.5 MiB at 1280x720).
+-- A tile reached by more lights keeps the first 255 (the `lights` debug view shows such tiles).
+lighting.tile_words = 256
+
+rg.buffer "light_tiles" {
+    size = 16, tile = 16, tile_bytes = 4 * lighting.tile_words,
+    doc = "per 16x16 tile: how many lights reach it, then their indices (light_culling.comp)",
+}
+rg.pass "light_culling" {
+    kind = "compute", shader = "passes/light_culling.comp",
+    reads = { "depth" }, writes = { { "light_tiles", as = "storage" } },
+    dispatch = "depth", tile = 16, insert = { after = "gbuffer" },
+}
+
+-- A lighting pass's declaration, reading the tile lists: adds `light_tiles` to its reads and
+-- RG_LIGHT_TILES to its defines. Returns the table it was given.
+function lighting.tiled(pass)
+    pass.reads = pass.reads or {}
+    table.insert(pass.reads, { "light_tiles", as = "storage" })
+    pass.defines = pass.defines or {}
+    pass.defines.RG_LIGHT_TILES = true
+    return pass
+end
+
+return lighting

@@ -1,0 +1,52 @@
+-- Many small lights over a floor with a 5x5 grid of spheres: the light-culling benchmark.
+--   rgraph bench --scene scripts/scenes/many_lights.lua --scene-arg lights=256
+-- scene.args.lights (default 64, 1..1024) point lights hang 0.3 m over a 16 m x 16 m floor on a
+-- jittered grid. Their range shrinks as the count grows so that about `overlap` lights (default
+-- 4) reach each point of the floor whatever the count — the lights per pixel stay about the same
+-- while the lights in the scene grow — and their flux shrinks with the area each one covers, so
+-- the image keeps about the same brightness.
+local scene = require "scene"
+
+local count = math.floor(scene.args.lights or 64)
+if count < 1 or count > 1024 then error("scene.args.lights: expected 1..1024 lights, got " .. tostring(count)) end
+local overlap = scene.args.overlap or 4
+local size = 16
+local area = size * size
+
+scene.material "floor" { base_color = { 0.5, 0.5, 0.5 }, smoothness = 0.4 }
+scene.plane "floor" { size = { size, size }, material = "floor" }
+for i = 0, 4 do
+  for j = 0, 4 do
+    local name = string.format("ball_%d_%d", i, j)
+    scene.material(name) { base_color = { 0.8, 0.8, 0.8 }, smoothness = i / 4, metal_mask = j / 4 }
+    scene.sphere(name) { radius = 0.5, position = { (i - 2) * 3, 0.5, (j - 2) * 3 }, material = name, segments = 32 }
+  end
+end
+
+-- N · π r² = overlap · area: each floor point lies within `overlap` ranges on average.
+local range = math.sqrt(overlap * area / (math.pi * count))
+-- 2000 lm per 1 m² that a light covers (π r² / overlap): the floor sees roughly the same
+-- illuminance at any count.
+local flux = 2000 * math.pi * range * range / overlap
+
+-- A fixed linear congruential sequence: the same scene every run.
+local state = 12345
+local function random()
+  state = (state * 1103515245 + 12345) % 2147483648
+  return state / 2147483648
+end
+local side = math.ceil(math.sqrt(count))
+local cell = size / side
+for k = 0, count - 1 do
+  local gx, gz = k % side, math.floor(k / side)
+  scene.light(string.format("light_%d", k)) {
+    type = "point", intensity = flux, unit = "lm", temperature = 2500 + 5000 * random(),
+    position = { -size / 2 + (gx + random()) * cell, 0.3, -size / 2 + (gz + random()) * cell },
+    range = range,
+  }
+end
+
+scene.camera "main" {
+  position = { 0, 11, 13 }, target = { 0, 0, 0.5 }, fov = 55,
+  aperture = 4, shutter = 1 / 60, iso = 800,
+}
