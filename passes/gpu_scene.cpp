@@ -285,7 +285,7 @@ Result<void> GpuScene::createMaterials(Context& ctx) {
         u.emissive = glm::vec4(m.emissive, 0.0f);
         u.factors = glm::vec4(m.smoothness, m.metalMask, m.reflectance, m.ao);
         u.factors2 = glm::vec4(m.normalScale, m.occlusionStrength, m.alphaCutoff, static_cast<float>(m.alphaMode));
-        u.diffuseColor = glm::vec4(m.diffuseColor, 0.0f);
+        u.diffuseColor = glm::vec4(m.diffuseColor, m.model == "two_colour" ? 1.0f : 0.0f);
         u.f0 = glm::vec4(m.f0, 0.0f);
         const TextureRef* refs[5] = {&m.baseColorTex, &m.metallicRoughnessTex, &m.normalTex, &m.occlusionTex, &m.emissiveTex};
         for (int t = 0; t < 5; ++t) {

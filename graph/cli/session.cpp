@@ -114,6 +114,10 @@ Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string
                      {"GB3", Usage::Sampled}, {"depth", Usage::Sampled}, {"debug_view", Usage::ColorAttachment}};
     pass.params = Value(Value::Table{{"shader", Value("passes/debug_view.frag")},
                                      {"uniforms", Value(Value::Table{{"view", Value(static_cast<double>(it - kViews.begin()))}})}});
+    // Pixels of the two-colour material (materials/two_colour.lua) decode with its own layout.
+    for (const auto& m : p.materials)
+        if (m.layout == "two_colour")
+            pass.params.table()["defines"] = Value(Value::Table{{"RG_TWO_COLOUR_ID", Value(static_cast<double>(m.id))}});
     g.passes.push_back(pass);
     return {};
 }

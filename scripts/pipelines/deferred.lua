@@ -8,6 +8,7 @@ local lighting = require "lighting"  -- per-tile light lists for the lighting pa
 require "disney"     -- the standard material, its layout (tbl:2), stencil class and lighting path
 require "clearcoat"  -- a game team's clear-coat material and its lighting path
 require "foliage"    -- a game team's foliage material and its G-buffer fix-up
+require "two_colour" -- the two-colour base material (tbl:3) and its lighting path
 
 post.params { exposure_mode = "auto" }
 post.exposure_state()

@@ -8,7 +8,7 @@ layout(set = 1, binding = 0) uniform MaterialData {
     vec4 emissive;          // rgb: nits (cd/m²)
     vec4 factors;           // smoothness, metalMask, reflectance, ao
     vec4 factors2;          // normalScale, occlusionStrength, alphaCutoff, alphaMode (0 opaque, 1 mask, 2 blend)
-    vec4 diffuseColor;      // two-colour model
+    vec4 diffuseColor;      // two-colour model (tbl:3); w: 1 for a two-colour material
     vec4 f0;                // two-colour model
     vec4 uvTransform[10];   // per texture: two rows of the affine uv matrix; w of the first row: texCoord
     vec4 custom[4];         // game-team material parameters, in declaration order
@@ -30,8 +30,9 @@ struct RgSurface {
     float reflectance;
     float ao;
     vec3 emissive;      // nits
-    vec3 diffuseColor;  // two-colour model
-    vec3 f0;
+    vec3 diffuseColor;  // two-colour model (tbl:3), linear, times the base colour texture
+    vec3 f0;            // two-colour model: specular colour at normal incidence
+    bool twoColour;     // the material is a two-colour one (its lighting takes diffuseColor and f0)
 };
 
 vec2 rgTextureUv(int texture, vec2 uv0, vec2 uv1) {
@@ -54,8 +55,9 @@ RgSurface rgSampleSurface(vec3 position, vec3 normal, vec4 tangent, vec2 uv0, ve
     float occlusion = texture(occlusionTex, rgTextureUv(3, uv0, uv1)).r;
     s.ao = material.factors.w * mix(1.0, occlusion, material.factors2.y);
     s.emissive = material.emissive.rgb * texture(emissiveTex, rgTextureUv(4, uv0, uv1)).rgb;
-    s.diffuseColor = material.diffuseColor.rgb;
+    s.diffuseColor = material.diffuseColor.rgb * base.rgb;
     s.f0 = material.f0.rgb;
+    s.twoColour = material.diffuseColor.w > 0.5;
     vec3 n = normalize(normal);
     if (!frontFacing) n = -n;
     // Gram-Schmidt; a degenerate tangent (at a sphere's pole, or none at all) falls back to

@@ -2,8 +2,13 @@
 // Debug views of the disney G-buffer, display-ready (sRGB-encoded, in 0..1):
 // 0 normals (world, 0.5 + 0.5·n), 1 base colour, 2 smoothness, 3 metal mask, 4 materialId (a
 // distinct colour per id), 5 reflectance, 6 ambient occlusion, 7 emissive (log-scaled nits).
+// With RG_TWO_COLOUR_ID (the pipeline has the two-colour material), its pixels show their diffuse
+// colour as the base colour, their f0 colour as the reflectance and no metal mask.
 #include "lib/photometry.glsl"
 #include "gbuffer_disney.glsl"
+#ifdef RG_TWO_COLOUR_ID
+#include "gbuffer_two_colour.glsl"
+#endif
 
 layout(location = 0) in vec2 uv;
 layout(location = 0) out vec4 color;
@@ -31,5 +36,14 @@ void main() {
     } else if (v == 5) c = vec3(g.reflectance);
     else if (v == 6) c = vec3(g.ao);
     else c = vec3(clamp(log2(1.0 + rgLuminance(g.emissive)) / 16.0, 0.0, 1.0));
+#ifdef RG_TWO_COLOUR_ID
+    if (g.materialId == uint(RG_TWO_COLOUR_ID)) {
+        GBuffer_two_colour t = unpackGBuffer_two_colour(texelFetch(GB0, p, 0), texelFetch(GB1, p, 0), texelFetch(GB2, p, 0),
+                                                        texelFetch(GB3, p, 0));
+        if (v == 1) c = rgLinearToSrgb(t.diffuseColor);
+        else if (v == 3) c = vec3(0.0);
+        else if (v == 5) c = rgLinearToSrgb(t.f0);
+    }
+#endif
     color = vec4(c, 1.0);
 }

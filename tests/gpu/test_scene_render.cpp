@@ -5,6 +5,7 @@
 
 #include "gpu_fixture.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -137,10 +138,12 @@ TEST_F(SceneRender, StencilClassesRouteEveryMaterial) {
         return glm::vec3(view->at(uint32_t(px.x), uint32_t(px.y), 0), view->at(uint32_t(px.x), uint32_t(px.y), 1),
                          view->at(uint32_t(px.x), uint32_t(px.y), 2));
     };
-    // The view paints class i with palette entry i: lit_standard red, lit_clearcoat green, foliage blue.
+    // The view paints class i with palette entry i: lit_standard red, lit_clearcoat green, foliage
+    // blue, lit_two_colour yellow.
     EXPECT_NEAR(glm::distance(rgbAt(kStandard), glm::vec3(0.9f, 0.2f, 0.2f)), 0.0f, 0.01f);
     EXPECT_NEAR(glm::distance(rgbAt(kCoated), glm::vec3(0.2f, 0.8f, 0.2f)), 0.0f, 0.01f);
     EXPECT_NEAR(glm::distance(rgbAt(kBush), glm::vec3(0.2f, 0.4f, 0.9f)), 0.0f, 0.01f);
+    EXPECT_NEAR(glm::distance(rgbAt({-2.3f, 0.5f, 0.2f}), glm::vec3(0.9f, 0.8f, 0.2f)), 0.0f, 0.01f);  // lit_two_colour
     // The sky (nothing drawn) keeps stencil 0: black.
     EXPECT_EQ(view->at(W / 2, 2, 0), 0.0f);
 }
@@ -207,6 +210,124 @@ TEST_F(SceneRender, DecalsBlendTheCommonParametersOnly) {
     EXPECT_EQ(c("materialData").u[0], 31u);     // the coat's strength survives
     EXPECT_EQ(c("metalMask").v[0], 0.0f);       // not on materialId 1
     EXPECT_NEAR(srgbEncode(c("baseColor").v[0]), srgbEncode(0.8f * 0.2f + 0.9f * 0.8f), 1.0f / 255);
+}
+
+// The oxide sphere of materials.lua (two-colour, tbl:3) and the "patch" decal over its front.
+const glm::vec3 kOxide{-2.3f, 0.5f, 0.2f}, kOxideEdge{-2.3f, 0.95f, -0.1f};
+
+TEST_F(SceneRender, TwoColourMaterialFillsItsLayout) {
+    auto s = render("scripts/pipelines/deferred.lua", {"GB0", "GB1", "GB2", "GB3"});
+    const PipelineDesc& p = s->pipeline();
+    auto layout = std::find_if(p.layouts.begin(), p.layouts.end(), [](auto& l) { return l.name == "two_colour"; });
+    ASSERT_NE(layout, p.layouts.end());
+    auto info = analyzeLayout(*layout);
+    ASSERT_TRUE(info.has_value());
+    auto at = [&](glm::vec3 point) {
+        const glm::ivec2 px = pixelOf(*s, point);
+        std::vector<TexelValue> texels;
+        for (const auto& t : info->desc.targets) {
+            auto img = s_runtime->executor().readback(t.name);
+            EXPECT_TRUE(img.has_value()) << t.name;
+            texels.push_back(texelFromFloats(t.format, &img->pixels[(size_t(px.y) * W + px.x) * img->channels], img->channels));
+        }
+        return unpackTexel(*info, texels);
+    };
+    // Above the decal: the material as declared, each channel within its encoding.
+    auto g = at(kOxideEdge);
+    auto ch = [&](const char* n) { return g[static_cast<size_t>(info->find(n))]; };
+    EXPECT_EQ(ch("materialId").u[0], 3u);
+    EXPECT_NEAR(srgbEncode(ch("diffuseColor").v[0]), srgbEncode(0.30f), 0.5f / 255 + 1e-4f);
+    EXPECT_NEAR(srgbEncode(ch("diffuseColor").v[1]), srgbEncode(0.12f), 0.5f / 255 + 1e-4f);
+    EXPECT_NEAR(srgbEncode(ch("diffuseColor").v[2]), srgbEncode(0.05f), 0.5f / 255 + 1e-4f);
+    EXPECT_NEAR(ch("f0").v[0], 0.35f, 0.5f / 255 + 1e-5f);
+    EXPECT_NEAR(ch("f0").v[1], 0.25f, 0.5f / 255 + 1e-5f);
+    EXPECT_NEAR(ch("f0").v[2], 0.20f, 0.5f / 255 + 1e-5f);
+    EXPECT_NEAR(ch("smoothness").v[0], 0.5f, 0.5f / 1023 + 1e-5f);
+    EXPECT_NEAR(ch("ao").v[0], 1.0f, 1e-6f);
+    // Under the decal (blue, opacity 0.5, smoothness 0.9, metal 1, reflectance 1): base colour
+    // blends into the diffuse colour and smoothness blends; f0 — the two-colour material's
+    // specular, like MetalMask/Reflectance on the base material — is left exactly as it was.
+    auto d = at(kOxide);
+    auto dc = [&](const char* n) { return d[static_cast<size_t>(info->find(n))]; };
+    EXPECT_EQ(dc("materialId").u[0], 3u);
+    EXPECT_NEAR(srgbEncode(dc("diffuseColor").v[2]), srgbEncode(0.05f * 0.5f + 0.8f * 0.5f), 1.0f / 255);
+    EXPECT_NEAR(dc("smoothness").v[0], 0.5f * 0.5f + 0.9f * 0.5f, 1.0f / 1023);
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(dc("f0").v[c], ch("f0").v[c]) << "f0[" << c << "]";
+    EXPECT_EQ(dc("ao").v[0], ch("ao").v[0]);
+}
+
+TEST_F(SceneRender, TwoColourLightsAsTheStandardMaterialItConvertsFrom) {
+    // tbl:3 / fig:14: Disney -> two-colour is diffuse = base·(1 − metal), f0 = lerp(0.16·refl², base,
+    // metal). A ball of each kind, lit by a lamp, must give the same image up to the encodings
+    // (sRGB 8-bit base colour vs linear 8-bit f0), and only the two-colour path lights it.
+    auto hdrOf = [&](const std::string& material, bool twoColourPass = true) {
+        const std::string file = std::string(RG_TEST_TMP) + "/two_colour_scene.lua";
+        std::ofstream(file) << "local scene = require 'scene'\n"
+                            << "scene.material 'm' { " << material << " }\n"
+                            << "scene.sphere 'ball' { radius = 0.5, position = { 0, 0, 0 }, material = 'm', segments = 64 }\n"
+                            << "scene.light 'lamp' { type = 'point', intensity = 2000, unit = 'lm', position = { 0.6, 0.6, 2.0 } }\n"
+                            << "scene.camera 'main' { position = { 0, 0, 2.5 }, target = { 0, 0, 0 }, fov = 30 }\n";
+        SessionOptions o;
+        o.compile.outputWidth = 128;
+        o.compile.outputHeight = 128;
+        o.scene = file;
+        o.params["exposure_mode"] = Value("manual");
+        if (!twoColourPass)
+            o.frameHook = [](const FrameContext&, const PipelineDesc&) -> Result<FrameChanges> {
+                FrameChanges c;
+                c.enabled["lighting_two_colour"] = false;
+                return c;
+            };
+        Session s(*s_runtime, o);
+        auto r = s.load(kRoot + "/scripts/pipelines/deferred.lua");
+        EXPECT_TRUE(r.has_value()) << r.error().describe();
+        EXPECT_TRUE(s.frame().has_value());
+        auto hdr = s_runtime->executor().readback("hdr");
+        EXPECT_TRUE(hdr.has_value());
+        return *hdr;
+    };
+    auto compareBall = [](const Image& a, const Image& b, double& mean, double& worst) {
+        double sum = 0;
+        size_t n = 0;
+        worst = 0;
+        for (size_t i = 0; i < a.pixels.size(); ++i) {
+            const double x = double((i / 4) % 128) - 64.0, y = double((i / 4) / 128) - 64.0;
+            if (i % 4 == 3 || x * x + y * y > 40.0 * 40.0) continue;  // the ball's inside
+            const double e = std::abs(double(a.pixels[i]) - b.pixels[i]) / std::max(1e-3, std::abs(double(b.pixels[i])));
+            sum += e;
+            worst = std::max(worst, e);
+            ++n;
+        }
+        mean = sum / double(n);
+    };
+    double mean = 0, worst = 0;
+    // A metal: all specular, f0 = the base colour.
+    Image gold = hdrOf("base_color = { 1.0, 0.766, 0.336 }, metal_mask = 1, smoothness = 0.6");
+    Image goldTwo = hdrOf("model = 'two_colour', diffuse_color = { 0, 0, 0 }, f0 = { 1.0, 0.766, 0.336 }, smoothness = 0.6");
+    compareBall(goldTwo, gold, mean, worst);
+    std::printf("metal: mean %.4f %%, worst %.4f %%\n", 100 * mean, 100 * worst);
+    EXPECT_LT(mean, 0.005);
+    EXPECT_LT(worst, 0.02);
+    // A dielectric: diffuse = the base colour, f0 = 0.16 · 0.5² = 0.04 (8-bit linear: 10/255).
+    Image red = hdrOf("base_color = { 0.8, 0.05, 0.05 }, smoothness = 0.5");
+    Image redTwo = hdrOf("model = 'two_colour', diffuse_color = { 0.8, 0.05, 0.05 }, f0 = { 0.04, 0.04, 0.04 }, smoothness = 0.5");
+    compareBall(redTwo, red, mean, worst);
+    std::printf("dielectric: mean %.4f %%, worst %.4f %%\n", 100 * mean, 100 * worst);
+    EXPECT_LT(mean, 0.01);
+    EXPECT_LT(worst, 0.04);
+    // Stencil routing: without its lighting pass the two-colour ball is black (no other path
+    // touches it); the standard ball is lit by the standard path alone, so it does not change.
+    Image unlit = hdrOf("model = 'two_colour', diffuse_color = { 0.8, 0.05, 0.05 }, f0 = { 0.04, 0.04, 0.04 }, smoothness = 0.5", false);
+    Image redNoTwoPass = hdrOf("base_color = { 0.8, 0.05, 0.05 }, smoothness = 0.5", false);
+    double lit = 0;
+    for (size_t i = 0; i < unlit.pixels.size(); i += 4) {
+        const double x = double((i / 4) % 128) - 64.0, y = double((i / 4) / 128) - 64.0;
+        if (x * x + y * y > 40.0 * 40.0) continue;
+        EXPECT_EQ(unlit.pixels[i], 0.0f);
+        lit += redTwo.pixels[i];
+    }
+    EXPECT_GT(lit, 0.0);
+    EXPECT_EQ(redNoTwoPass.pixels, red.pixels);
 }
 
 TEST_F(SceneRender, FullSunKeepsEveryHdrTargetFinite) {

@@ -155,11 +155,14 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     LuaHost host(luaHostOptionsWithoutDevice());
     auto p = host.load(std::string(RG_SOURCE_ROOT) + "/scripts/pipelines/deferred.lua");
     ASSERT_TRUE(p.has_value()) << p.error().message;
-    ASSERT_EQ(p->layouts.size(), 1u);
+    ASSERT_EQ(p->layouts.size(), 2u);
     EXPECT_EQ(p->layouts[0].name, "disney");
     EXPECT_EQ(p->layouts[0].targets.size(), 4u);
-    // The standard material and two game-team materials, each with its id and stencil class.
-    ASSERT_EQ(p->materials.size(), 3u);
+    EXPECT_EQ(p->layouts[1].name, "two_colour");  // tbl:3, over the same four targets
+    EXPECT_EQ(p->layouts[1].targets.size(), 4u);
+    // The standard material, two game-team materials and the two-colour base material, each
+    // with its id and stencil class.
+    ASSERT_EQ(p->materials.size(), 4u);
     EXPECT_EQ(p->materials[0].name, "standard");
     EXPECT_EQ(p->materials[0].id, 0u);
     EXPECT_EQ(p->materials[0].stencil, "lit_standard");
@@ -169,23 +172,27 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     EXPECT_EQ(p->materials[2].name, "foliage");
     EXPECT_EQ(p->materials[2].fills, (std::vector<std::string>{"GB0", "GB1"}));
     EXPECT_EQ(p->materials[2].fixup, "foliage_fixup");
-    ASSERT_EQ(p->stencilClasses.size(), 3u);
+    EXPECT_EQ(p->materials[3].name, "two_colour");
+    EXPECT_EQ(p->materials[3].id, 3u);
+    EXPECT_EQ(p->materials[3].stencil, "lit_two_colour");
+    ASSERT_EQ(p->stencilClasses.size(), 4u);
     EXPECT_EQ(p->stencilClasses[0].value, 1u);  // lit_standard, allocated
     EXPECT_EQ(p->stencilClasses[1].value, 2u);  // lit_clearcoat, allocated
     EXPECT_EQ(p->stencilClasses[2].value, 9u);  // foliage, explicit: standard | bit 3
+    EXPECT_EQ(p->stencilClasses[3].value, 3u);  // lit_two_colour, allocated
     EXPECT_EQ(p->output, "display");
     EXPECT_EQ(p->hdr, "hdr");
     EXPECT_EQ(p->exposure, "exposure");
     // Modules' passes land at their insertion points.
     std::vector<std::string> order;
     for (const auto& pass : p->graph.passes) order.push_back(pass.name);
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 11),
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 12),
               (std::vector<std::string>{"gbuffer", "light_culling", "foliage_fixup", "decals_copy0", "decals_copy1", "decals_copy2",
-                                        "decals", "lighting_standard", "lighting_clearcoat", "sky", "forward"}));
+                                        "decals", "lighting_standard", "lighting_clearcoat", "lighting_two_colour", "sky", "forward"}));
     auto plan = compile(graphWithParams(*p), {});
     ASSERT_TRUE(plan.has_value()) << plan.error().message;
     // Every script it pulled in is known, for hot reload.
-    EXPECT_EQ(p->files.size(), 6u);  // deferred, post, lighting, disney, clearcoat, foliage
+    EXPECT_EQ(p->files.size(), 7u);  // deferred, post, lighting, disney, clearcoat, foliage, two_colour
 }
 
 TEST(LuaPipeline, ModulesAreNamespacedAndInsertedAfterTheirAnchor) {

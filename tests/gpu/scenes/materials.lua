@@ -17,3 +17,9 @@ scene.box "pane" { size = { 0.9, 0.9, 0.02 }, position = { -0.6, 0.5, 1.0 }, mat
 -- A decal on the floor and across the clear-coat sphere: red, glossy, metal where it may be.
 scene.decal "stain" { position = { 0.35, 0.3, 0.6 }, size = { 1.0, 1.2, 1.0 }, base_color = { 0.9, 0.1, 0.1 },
                       smoothness = 0.9, metal_mask = 1, opacity = 0.8 }
+-- The two-colour base material (tbl:3), and a decal over its front: base colour blends into its
+-- diffuse colour; metal mask and reflectance (base material only) leave its f0 alone.
+scene.material "oxide" { model = "two_colour", diffuse_color = { 0.30, 0.12, 0.05 }, f0 = { 0.35, 0.25, 0.20 }, smoothness = 0.5 }
+scene.sphere "oxide" { radius = 0.5, position = { -2.3, 0.5, -0.3 }, material = "oxide" }
+scene.decal "patch" { position = { -2.3, 0.5, 0.2 }, size = { 0.5, 0.5, 0.5 }, base_color = { 0.1, 0.2, 0.8 },
+                      smoothness = 0.9, metal_mask = 1, reflectance = 1, opacity = 0.5 }

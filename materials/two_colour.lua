@@ -1,0 +1,34 @@
+-- The two-colour base material (seed 000 §3.2, tbl:3): a diffuse colour and an f0 colour instead
+-- of Disney's single base colour, metal mask and scalar reflectance, for the specular highlights
+-- of metal/dielectric mixes such as metal oxides. Its layout shares GB0, GB1's alpha and GB3 with
+-- the disney layout (MaterialId in the same place for every material); GB1's colour holds the
+-- diffuse colour (sRGB, like BaseColor) and GB2 the f0 colour with AO. It unpacks to the same
+-- lighting inputs as the standard material (diffuse colour, f0, roughness: the Disney -> two-colour
+-- conversion is the one the standard lighting does when it unpacks, fig:14), so its lighting pass
+-- runs the standard BRDF and light loop on its own stencil class.
+local rg = require "rg"
+local lighting = require "lighting"
+require "disney"
+
+rg.layout "two_colour" {
+    { "GB0", "rgb10a2",    { "normal:oct:20", "smoothness:unorm:10", "materialId:uint:2" } },
+    { "GB1", "rgba8_srgb", { "diffuseColor:srgb:24", "materialData:uint:5", "normalExtra:uint:3" } },
+    -- f0 linear in 8 bits: below 2 % it reads as micro-occlusion (f90 = saturate(50 · f0),
+    -- lst:2) as Reflectance's low range does.
+    { "GB2", "rgba8",      { "f0:unorm:8x3", "ao:unorm:8" } },
+    { "GB3", "rgba16f",    { "emissive:float:16x3" } },
+}
+
+rg.stencil "lit_two_colour" { doc = "two-colour base material: standard BRDF from diffuse and f0 colours" }
+rg.path "two_colour" { stencil = "lit_two_colour", doc = "the standard light loop over the two_colour layout" }
+rg.material "two_colour" {
+    id = 3, layout = "two_colour", path = "two_colour", surface = "materials/two_colour.glsl",
+    doc = "two-colour base material, seed 000 tbl:3",
+}
+
+rg.pass "lighting_two_colour" (lighting.tiled {
+    kind = "fullscreen", shader = "materials/two_colour_lighting.frag",
+    reads = { "GB0", "GB1", "GB2", "GB3", "depth", { "depth", as = "depth" }, { "exposure", as = "storage" } },
+    writes = { { "hdr", load = true } }, stencil = { class = "lit_two_colour", mask = 7 },
+    insert = { after = "lighting_standard" },
+})
