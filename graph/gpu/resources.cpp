@@ -1,5 +1,6 @@
 #include "resources.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 
@@ -142,6 +143,12 @@ VkImageView makeView(VkDevice device, VkImage image, const ImageDesc& d, VkImage
     return view;
 }
 
+// Lavapipe reports 16-byte alignment for images, but llvmpipe's rasteriser reads and writes them
+// with aligned 256-bit vector instructions: an image bound 16 bytes into a block (after a small
+// buffer) crashed the JIT code with a general-protection fault. Every image — own allocation or
+// placed in a transient heap — is aligned to 64 bytes, as llvmpipe aligns its own textures.
+constexpr VkDeviceSize kMinImageAlignment = 64;
+
 }  // namespace
 
 VkMemoryRequirements Image::requirements(Context& ctx, const ImageDesc& desc) {
@@ -150,6 +157,7 @@ VkMemoryRequirements Image::requirements(Context& ctx, const ImageDesc& desc) {
     q.pCreateInfo = &info;
     VkMemoryRequirements2 out{VK_STRUCTURE_TYPE_MEMORY_REQUIREMENTS_2};
     vkGetDeviceImageMemoryRequirements(ctx.device(), &q, &out);
+    out.memoryRequirements.alignment = std::max(out.memoryRequirements.alignment, kMinImageAlignment);
     return out.memoryRequirements;
 }
 
@@ -193,6 +201,7 @@ Result<Image> Image::create(Context& ctx, const ImageDesc& desc) {
     img.m_image = OwnedImage(ctx.device(), image);
     VkMemoryRequirements req;
     vkGetImageMemoryRequirements(ctx.device(), image, &req);
+    req.alignment = std::max(req.alignment, kMinImageAlignment);  // see kMinImageAlignment
     auto mem = ctx.allocator().allocate(req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
     if (!mem) mem = ctx.allocator().allocate(req, 0);
     if (!mem) return std::unexpected(mem.error());

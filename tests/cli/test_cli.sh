@@ -47,6 +47,9 @@ check "export-scene" 0 grep "wrote $tmp/materials.glb (6 meshes" -- "$rgraph" ex
 check "render a glb" 0 grep "wrote $tmp/g.exr" -- "$rgraph" render --scene "$tmp/materials.glb" --size 64x32 --out "$tmp/g.exr" --png "$tmp/g.png"
 check "debug view" 0 grep "wrote $tmp/v.exr" -- "$rgraph" render --scene tests/gpu/scenes/materials.lua --view materialid --size 64x32 --out "$tmp/v.exr" --png "$tmp/v.png"
 check "unknown view" 2 grep "--view: unknown view 'albedo'" -- "$rgraph" render --view albedo --size 8x8
+# Depth of the default pipeline: once crashed llvmpipe (images placed 16 bytes into a memory block).
+check "depth capture" 0 grep "wrote $tmp/depth.exr" -- \
+    env RG_VALIDATION=1 "$rgraph" render --capture depth --size 64x32 --out "$tmp/depth.exr" --png "$tmp/depth.png"
 check "channel capture" 0 grep "wrote $tmp/c.exr" -- "$rgraph" render --capture gbuffer.normal --size 32x16 --out "$tmp/c.exr" --png "$tmp/c.png"
 check "compare identical" 0 grep "mean relative error 0" -- "$rgraph" compare "$tmp/r.exr" "$tmp/r.exr" --heatmap "$tmp/heat.png"
 check "compare differs" 1 grep "above the tolerance" -- "$rgraph" compare "$tmp/g.exr" "$tmp/r.exr" --tolerance 0.001
