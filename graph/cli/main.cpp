@@ -665,6 +665,15 @@ int cmdBench(int argc, char** argv) {
         Stat cb = stats(callbacks);
         std::printf("%-24s %10.3f %10.3f %10.3f\n", "rg.frame (Lua)", cb.median, cb.min, cb.max);
         std::printf("pipeline load %.1f ms (script, shaders, graph compile, resources, pipelines)\n", setup->session->lastLoadMs());
+        if (const passes::GpuScene* scene = setup->session->gpuScene()) {
+            uint64_t triangles = 0;
+            for (const auto& d : scene->draws()) triangles += d.indexCount / 3;
+            std::printf("scene: %zu draws, %llu triangles, %zu materials, %u lights; loaded in %.1f ms (read, build, upload)\n",
+                        scene->draws().size(), static_cast<unsigned long long>(triangles), scene->scene().materials.size(),
+                        scene->lightCount(), setup->session->lastSceneLoadMs());
+            j["scene"] = {{"draws", scene->draws().size()}, {"triangles", triangles}, {"lights", scene->lightCount()},
+                          {"loadMs", setup->session->lastSceneLoadMs()}};
+        }
         j["luaFrameMs"] = {{"median", cb.median}, {"min", cb.min}, {"max", cb.max}};
         j["loadMs"] = setup->session->lastLoadMs();
     }

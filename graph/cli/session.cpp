@@ -253,10 +253,13 @@ Result<void> Session::load(const std::string& file) {
     if (!pipeline) return std::unexpected(pipeline.error());
     if (auto r = writeLayoutHeaders(*pipeline); !r) return r;
     std::unique_ptr<passes::GpuScene> scene;
+    double sceneMs = 0;
     if (hasScenePass(*pipeline)) {
+        auto s0 = Clock::now();
         auto loaded = loadScene(*pipeline);
         if (!loaded) return std::unexpected(loaded.error());
         scene = std::move(*loaded);
+        sceneMs = std::chrono::duration<double, std::milli>(Clock::now() - s0).count();
     } else if (!m_options.scene.empty()) {
         return fail(ErrorCode::InvalidInput, "--scene: pipeline '" + file + "' has no scene pass to draw it");
     }
@@ -318,6 +321,7 @@ Result<void> Session::load(const std::string& file) {
         m_runtime.gpu().deferDestroy([retired]() mutable { retired.reset(); });
     }
     m_scene = std::move(scene);
+    m_sceneLoadMs = sceneMs;
     // History (exposure, previous frames) carries over a reload of the same pipeline, not to another.
     if (file != m_pipeline.file)
         if (auto r = m_runtime.executor().resetPersistent(); !r) return r;
@@ -333,7 +337,10 @@ Result<void> Session::load(const std::string& file) {
 Result<void> Session::frame() {
     if (!m_host) return fail(ErrorCode::InvalidInput, "no pipeline loaded");
     auto t0 = Clock::now();
-    const FrameContext ctx{m_frame, static_cast<double>(m_frame) / 60.0};
+    FrameContext ctx{m_frame, static_cast<double>(m_frame) / 60.0, std::nullopt};
+    if (m_scene)
+        ctx.scene = FrameContext::SceneFacts{static_cast<uint32_t>(m_scene->draws().size()), m_scene->lightCount(),
+                                             static_cast<uint32_t>(m_scene->scene().decals.size())};
     auto changes = m_host->frame(ctx, m_pipeline);
     if (changes && m_options.frameHook) {
         PipelineDesc seen = m_pipeline;

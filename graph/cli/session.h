@@ -51,6 +51,9 @@ public:
     double lastLoadMs() const { return m_loadMs; }
     const std::vector<std::string>& log() const { return m_log; }
     const Scene* scene() const;
+    const passes::GpuScene* gpuScene() const { return m_scene.get(); }
+    // Reading, building and uploading the scene at the last load (file to GPU), ms; 0 without one.
+    double lastSceneLoadMs() const { return m_sceneLoadMs; }
     // A capture that names a G-buffer channel ("gbuffer.smoothness" or "<layout>.<channel>"):
     // the layout that holds it. Its targets are exported; `render` decodes the channel.
     struct ChannelCapture {
@@ -75,6 +78,7 @@ private:
     std::unique_ptr<LuaHost> m_host;
     std::unique_ptr<passes::GpuScene> m_scene;
     std::string m_sceneFile;
+    double m_sceneLoadMs = 0;
     std::function<void(uint32_t)> m_frameHook;  // writes the scene's camera for a frame slot
     PipelineDesc m_pipeline;
     uint64_t m_frame = 0;

@@ -657,6 +657,16 @@ Result<FrameChanges> LuaHost::frame(const FrameContext& ctx, const PipelineDesc&
     lua_setfield(L, -2, "frame");
     lua_pushnumber(L, ctx.time);
     lua_setfield(L, -2, "time");
+    if (ctx.scene) {
+        lua_newtable(L);
+        lua_pushinteger(L, ctx.scene->draws);
+        lua_setfield(L, -2, "draws");
+        lua_pushinteger(L, ctx.scene->lights);
+        lua_setfield(L, -2, "lights");
+        lua_pushinteger(L, ctx.scene->decals);
+        lua_setfield(L, -2, "decals");
+        lua_setfield(L, -2, "scene");
+    }
     lua_newtable(L);
     lua_newtable(L);
     lua_pushcfunction(L, guarded<paramsIndex>);

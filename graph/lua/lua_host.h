@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -34,6 +35,11 @@ struct LuaHostOptions {
 struct FrameContext {
     uint64_t frame = 0;
     double time = 0.0;  // seconds
+    // What the scene holds (ctx.scene in Lua; absent when the pipeline draws no scene).
+    struct SceneFacts {
+        uint32_t draws = 0, lights = 0, decals = 0;
+    };
+    std::optional<SceneFacts> scene;
 };
 
 // What rg.frame(ctx) changed. Parameters are applied without recompiling; enabling,

@@ -19,6 +19,7 @@ layout(set = 0, binding = 2) uniform sampler2D GB2_in;
 layout(set = 0, binding = 3) uniform sampler2D depth;
 
 void main() {
+    if (decals.count.x == 0u) discard;  // a scene without decals pays for one load per pixel
     ivec2 p = ivec2(gl_FragCoord.xy);
     float d = texelFetch(depth, p, 0).r;
     if (d >= 1.0) discard;
