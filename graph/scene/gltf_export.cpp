@@ -15,6 +15,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "scene.h"
+#include "core/light_units.h"
 #include "scene_detail.h"
 #include "tinygltf.h"
 
@@ -296,10 +297,12 @@ struct Writer {
         }
         for (const auto& l : scene.lights) {
             const bool punctual = l.type == LightType::Point || l.type == LightType::Spot;
-            const bool maps = (punctual && l.unit == "cd") || (l.type == LightType::Directional && l.unit == "lux");
+            // Lumens become the candela rgraph renders them with (tbl:9: Φ/4π; spots eq:17: Φ/π),
+            // so the exported file lights the same.
+            const bool maps = (punctual && (l.unit == "cd" || l.unit == "lm")) || (l.type == LightType::Directional && l.unit == "lux");
             if (!maps) {
                 warn("light '" + l.name + "' (" + lightTypeName(l.type) + ", " + l.unit + ") is not exported: KHR_lights_punctual has " +
-                     (punctual ? "point and spot lights in cd only"
+                     (punctual ? "point and spot lights in cd (or lm, converted) only"
                                : l.type == LightType::Directional ? "directional lights in lux only" : "no area lights"));
                 continue;
             }
@@ -307,12 +310,15 @@ struct Writer {
             g.name = l.name;
             g.type = l.type == LightType::Point ? "point" : l.type == LightType::Spot ? "spot" : "directional";
             g.color = {l.color.r, l.color.g, l.color.b};
-            g.intensity = l.intensity;
+            g.intensity = l.unit != "lm"                 ? l.intensity
+                          : l.type == LightType::Point ? lights::pointIntensityFromLumens(l.intensity)
+                                                       : lights::spotIntensityFromLumens(l.intensity, l.outerAngle);
             g.range = l.range;
             g.spot.innerConeAngle = l.innerAngle;
             g.spot.outerConeAngle = l.outerAngle;
             tinygltf::Value::Object x;
             if (l.temperatureK > 0) x["temperature"] = tinygltf::Value(double(l.temperatureK));
+            if (l.unit == "lm") x["lumens"] = tinygltf::Value(double(l.intensity));  // as declared
             if (!l.ies.empty()) x["ies"] = tinygltf::Value(l.ies);
             if (l.type == LightType::Directional) x["angular_radius"] = tinygltf::Value(double(l.sunAngularRadius));
             if (!x.empty()) g.extras = tinygltf::Value(tinygltf::Value::Object{{"rgraph", tinygltf::Value(std::move(x))}});

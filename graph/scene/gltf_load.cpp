@@ -972,6 +972,11 @@ struct Loader {
             out.temperatureK = float(number(x.Get("temperature"), 0.0));
             if (x.Get("ies").IsString()) out.ies = x.Get("ies").Get<std::string>();
             out.sunAngularRadius = float(number(x.Get("angular_radius"), out.sunAngularRadius));
+            // Written by exportGlb for a light declared in lumens (its cd is what rgraph renders).
+            if (x.Get("lumens").IsNumber() && (out.type == LightType::Point || out.type == LightType::Spot)) {
+                RG_TRY(out.intensity, ranged(where + ": extras.rgraph.lumens", number(x.Get("lumens"), 0.0), 0, HUGE_VAL));
+                out.unit = "lm";
+            }
         }
         scene.lights.push_back(out);
         return {};

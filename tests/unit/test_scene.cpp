@@ -1176,6 +1176,48 @@ TEST(ExportGlb, LuaSceneRoundTripsThroughGlb) {
     expectNear(back->boundsMin, scene->boundsMin, 1e-5f, "bounds");
 }
 
+TEST(ExportGlb, LumensBecomeTheCandelaRenderedAndComeBack) {
+    // KHR_lights_punctual holds cd: a 1600 lm point light is written as 1600 / 4π cd (tbl:9, what
+    // rgraph renders it with) and a 1000 lm spot as 1000 / π cd (eq:17); the declared lumens ride
+    // in extras, so rgraph reads lumens back while other readers light it the same.
+    rg::Scene scene;
+    rg::Light point;
+    point.name = "bulb";
+    point.type = rg::LightType::Point;
+    point.unit = "lm";
+    point.intensity = 1600.0f;
+    rg::Light spot = point;
+    spot.name = "torch";
+    spot.type = rg::LightType::Spot;
+    spot.intensity = 1000.0f;
+    spot.outerAngle = 0.5f;
+    spot.innerAngle = 0.3f;
+    scene.lights = {point, spot};
+    const std::string path = tmpDir("export") + "/lumens.glb";
+    std::vector<std::string> warnings;
+    auto w = rg::exportGlb(scene, path, &warnings);
+    ASSERT_TRUE(w) << w.error().message;
+    EXPECT_TRUE(warnings.empty());
+    // The GLB's JSON chunk: 12-byte header, then chunk length, type, JSON.
+    std::ifstream in(path, std::ios::binary);
+    std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    ASSERT_GT(bytes.size(), 20u);
+    uint32_t jsonLength = 0;
+    std::memcpy(&jsonLength, bytes.data() + 12, 4);
+    const auto json = nlohmann::json::parse(bytes.substr(20, jsonLength));
+    const auto& lights = json["extensions"]["KHR_lights_punctual"]["lights"];
+    ASSERT_EQ(lights.size(), 2u);
+    EXPECT_NEAR(lights[0]["intensity"].get<double>(), 1600.0 / (4.0 * 3.14159265358979), 1e-3);
+    EXPECT_NEAR(lights[1]["intensity"].get<double>(), 1000.0 / 3.14159265358979, 1e-3);
+    auto back = rg::loadGltf(path);
+    ASSERT_TRUE(back) << errorOf(back);
+    ASSERT_EQ(back->lights.size(), 2u);
+    EXPECT_EQ(back->lights[0].unit, "lm");
+    EXPECT_FLOAT_EQ(back->lights[0].intensity, 1600.0f);
+    EXPECT_EQ(back->lights[1].unit, "lm");
+    EXPECT_FLOAT_EQ(back->lights[1].intensity, 1000.0f);
+}
+
 TEST(ExportGlb, TexturesSamplersAndTransformsRoundTrip) {
     const std::string dir = tmpDir("export_tex");
     writeTestPng(dir + "/a.png", 2, 2, {0, 0, 0, 1, 1, 1, 1, 1, 0.5f, 0.25f, 0.75f, 1, 1, 0, 0, 0.5f});
