@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstring>
+#include <unistd.h>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -427,11 +428,15 @@ int cmdRender(int argc, char** argv) {
     auto setup = setupRun(args, "render", 1, captures, args.has("verbose"));
     if (!setup) return report(setup.error());
     Runtime& rt = *setup->runtime;
+    // Progress on stderr: one updating line on a terminal, else a line per tenth of the frames.
+    const bool tty = isatty(fileno(stderr));
+    const uint32_t step = std::max(1u, setup->frames / 10);
     for (uint32_t f = 0; f < setup->frames; ++f) {
         if (auto r = setup->frame(); !r) return report(r.error());
-        if (setup->frames > 1 && !args.has("verbose")) std::fprintf(stderr, "\rrgraph: frame %u/%u", f + 1, setup->frames);
+        if (setup->frames > 1 && !args.has("verbose") && (tty || (f + 1) % step == 0 || f + 1 == setup->frames))
+            std::fprintf(stderr, tty ? "\rrgraph: frame %u/%u" : "rgraph: frame %u/%u\n", f + 1, setup->frames);
     }
-    if (setup->frames > 1 && !args.has("verbose")) std::fprintf(stderr, "\n");
+    if (setup->frames > 1 && !args.has("verbose") && tty) std::fprintf(stderr, "\n");
     std::string exrPath = args.get("out", "out/render.exr");
     std::string pngPath = args.get("png", "out/render.png");
     auto written = writeOutputs(*setup, exrPath, pngPath, captures);

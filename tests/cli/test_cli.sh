@@ -63,6 +63,11 @@ check "scene arg out of range" 2 grep "many_lights.lua:11: scene.args.lights: ex
 check "set: bad value" 2 grep "parameter 'exposure_mode' expects one of 'auto', 'manual', got 'nope'" -- "$rgraph" render --set exposure_mode=nope --size 8x8
 check "set: unknown parameter" 2 grep "the pipeline has no parameter 'nope'" -- "$rgraph" render --set nope=1 --size 8x8
 check "set: no value" 2 grep "render: --set takes NAME=VALUE, got 'exposure_mode'" -- "$rgraph" render --set exposure_mode --size 8x8
+check "reference mode" 0 grep "rgraph: frame 4/4" -- \
+    env RG_VALIDATION=1 "$rgraph" render --pipeline scripts/pipelines/reference.lua --scene tests/gpu/scenes/reference_rect.lua \
+    --frames 4 --size 48x32 --out "$tmp/ref.exr" --png "$tmp/ref.png"
+check "reference vs real time" 0 grep "mean relative error" -- \
+    bash -c "'$rgraph' render --scene tests/gpu/scenes/reference_rect.lua --size 48x32 --out '$tmp/rt.exr' --png '$tmp/rt.png' >/dev/null && '$rgraph' compare '$tmp/rt.exr' '$tmp/ref.exr'"
 check "bench" 0 grep "frame total" -- "$rgraph" bench --size 64x64 --frames 3 --json "$tmp/bench.json"
 check "bench json" 0 -- python3 -c "import json; b=json.load(open('$tmp/bench.json')); assert len(b['passes'])==22 and b['scene']['draws']>0 and b['frames']==3"
 

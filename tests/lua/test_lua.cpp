@@ -192,7 +192,7 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     auto plan = compile(graphWithParams(*p), {});
     ASSERT_TRUE(plan.has_value()) << plan.error().message;
     // Every script it pulled in is known, for hot reload.
-    EXPECT_EQ(p->files.size(), 7u);  // deferred, post, lighting, disney, clearcoat, foliage, two_colour
+    EXPECT_EQ(p->files.size(), 8u);  // deferred, post, lighting, render_loop, disney, clearcoat, foliage, two_colour
 }
 
 TEST(LuaPipeline, ModulesAreNamespacedAndInsertedAfterTheirAnchor) {

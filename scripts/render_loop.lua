@@ -1,0 +1,67 @@
+-- The G-buffer half of Frostbite's render loop (seed 000 §3.2.2, §3.3), shared by
+-- pipelines/deferred.lua and pipelines/reference.lua: the materials, the targets of the disney
+-- layout (tbl:2) with depth/stencil and the HDR the lighting writes, the `gbuffer` scene pass
+-- (stencil classes from the materials; the foliage fix-up inserts itself after it) and the
+-- deferred decals.
+--
+--   local loop = require "render_loop"
+--   rg.pass "lighting_..." { ... }                 -- the lighting passes write `hdr`
+--   loop.sky_and_forward()                         -- the sky, then blended materials
+--   function rg.frame(ctx) loop.frame(ctx) end     -- skips the decal passes without decals
+local rg = require "rg"
+require "disney"     -- the standard material, its layout (tbl:2), stencil class and lighting path
+require "clearcoat"  -- a game team's clear-coat material and its lighting path
+require "foliage"    -- a game team's foliage material and its G-buffer fix-up
+require "two_colour" -- the two-colour base material (tbl:3) and its lighting path
+
+local loop = {}
+
+rg.resource "GB0" { format = "rgb10a2" }
+rg.resource "GB1" { format = "rgba8_srgb" }
+rg.resource "GB2" { format = "rgba8" }
+rg.resource "GB3" { format = "rgba16f" }
+rg.resource "depth" { format = "d32f_s8" }
+rg.resource "hdr" { format = "rgba16f" }
+
+rg.pass "gbuffer" { kind = "scene", writes = { "GB0", "GB1", "GB2", "GB3", "depth" } }
+
+-- Deferred decals (seed 000 §3.3) after the fix-up: the pass reads copies of GB0..GB2 (there is no
+-- programmable blending), blends Normal/BaseColor/Smoothness (MetalMask/Reflectance on materialId
+-- 0 only) of the scene's decal boxes and re-packs.
+loop.decal_passes = { "decals_copy0", "decals_copy1", "decals_copy2", "decals" }
+for i = 0, 2 do
+    rg.resource("GB" .. i .. "_in") { format = ({ "rgb10a2", "rgba8_srgb", "rgba8" })[i + 1] }
+    rg.pass("decals_copy" .. i) { kind = "copy", reads = { "GB" .. i }, writes = { "GB" .. i .. "_in" } }
+end
+rg.pass "decals" {
+    kind = "fullscreen", shader = "passes/decals.frag",
+    reads = { "GB0_in", "GB1_in", "GB2_in", "depth" },
+    writes = { { "GB0", load = true }, { "GB1", load = true }, { "GB2", load = true } },
+}
+
+-- After the lighting: the sky where nothing was drawn (depth still at the far plane; "equal" would
+-- depend on the rasteriser reproducing 1.0 exactly, less_equal against the cleared 1.0 does not),
+-- then the blended materials, lit directly with the same light loop, over the lit HDR (back to
+-- front). Returns the forward pass's name.
+function loop.sky_and_forward()
+    rg.pass "sky" {
+        kind = "fullscreen", shader = "passes/sky.frag",
+        reads = { { "depth", as = "depth" }, { "exposure", as = "storage" } }, writes = { { "hdr", load = true } },
+        depth = { compare = "less_equal", value = 1 },
+    }
+    rg.pass "forward" {
+        kind = "scene", forward = true,
+        reads = { { "depth", as = "depth" }, { "exposure", as = "storage" } }, writes = { { "hdr", load = true } },
+    }
+    return "forward"
+end
+
+-- Per frame: a scene without decals skips the decal passes and their copies of the G-buffer (on
+-- lavapipe even a pass that discards every pixel loads and stores its three targets: ~30 ms at 720p).
+function loop.frame(ctx)
+    if ctx.scene then
+        for _, pass in ipairs(loop.decal_passes) do ctx.pass(pass).enabled = ctx.scene.decals > 0 end
+    end
+end
+
+return loop

@@ -1,0 +1,456 @@
+#version 460
+// The in-engine reference mode (seed 000 §2.3: "brute-force sampling of the light integration on
+// the GPU" to validate the approximations; §4.7: an in-engine reference that importance-samples
+// every area light; seed 002 §4.7: the area-light integral
+//   L_out = ∫_Ω f(v, l) L_in ⟨n·l⟩ dl = ∫_A f(v, l) L_in ⟨n·l⟩ ⟨n_a·−l⟩ / d² dA,
+// which has no closed form in general but can be integrated by Monte Carlo and importance
+// sampling). Direct lighting only, unoccluded like the real-time approximations
+// (shaders/lib/lighting.glsl), of the standard material with exactly rgStandardBrdf's BRDF:
+// renormalised Disney diffuse (lst:1) + GGX / height-correlated Smith / Schlick with f90 (lst:2),
+// so `rgraph compare` against deferred.lua measures only the light approximations.
+//
+//   point, spot   delta lights: evaluated exactly, lst:4 (windowed inverse square, cone) and
+//                 eq:27 / lst:5 (IES) — the formula of rgEvaluateLight's punctual branch.
+//   sun           a disk of angular radius σ (params.z = sin σ), uniform radiance
+//                 E⊥ / (2π (1 − cos σ)) over its cone; sampled uniformly in the cone.
+//   sphere        luminance × the range window; the cone it subtends sampled uniformly by solid
+//                 angle. Below the horizon a sample simply gets ⟨n·l⟩ = 0: the exact horizon
+//                 handling lst:10 approximates (seed 000 §4.7.2.2–4; seed 002 §4.7.2.2–4).
+//                 Like every emitter here it emits outwards only: a point inside a sphere or a
+//                 tube gets nothing from it (lighting.glsl clamps the sphere to sin²σ = 0.9999).
+//   disk, rect    one-sided emitters along directionRange.xyz; uniform area sampling,
+//                 pdf_ω = pdf_A · d² / ⟨n_a·−l⟩ (seed 002 §4.7: the area form of the integral).
+//   tube          a capsule (cylinder of length params.w and radius params.z along
+//                 directionRange.xyz, plus two hemispherical caps), area sampling of its surface
+//                 (the cylinder's half facing the point by projected width, the caps uniformly:
+//                 see TubeSampling); samples on the side turned away contribute 0 (convex emitter).
+// Every sampled light also receives the pixel's BRDF sample (diffuse cosine lobe, GGX visible
+// normals, or the coat's), intersected analytically with its shape (ray–cone for sun and sphere,
+// ray–disk, ray–rectangle, ray–capsule); the light's sample and the BRDF's are combined with the
+// power heuristic (Veach, β = 2). Area lights keep lighting.glsl's rgRangeWindow of the squared
+// distance to the light's centre (lst:4's window), so the two stay comparable.
+// Clear coat (materialId 1, materials/clearcoat.lua) gets its coat lobe too, evaluated per
+// direction as materials/clearcoat_lighting.frag does for one light direction. The two-colour
+// material (materialId RG_TWO_COLOUR_ID, materials/two_colour.lua) is unpacked with its own layout
+// into the same diffuse colour and f0.
+//
+// Progressive: each frame adds Params.reference_samples samples to the running mean in the
+// persistent `reference_accum` (rgb: absolute cd/m²; a: how many frames it holds — the target
+// starts as zeros, and again whenever the session resets its history), then writes it
+// pre-exposed to `hdr`. Random numbers: shaders/lib/sampling.glsl's PCG stream, seeded by the
+// PCG hash of (pixel x, pixel y, frames accumulated, Params.reference_seed); samples draw
+// consecutively from it.
+#include "lib/lighting.glsl"
+#include "lib/exposure.glsl"
+#include "lib/sampling.glsl"
+#include "gbuffer_disney.glsl"
+#ifdef RG_TWO_COLOUR_ID
+#include "gbuffer_two_colour.glsl"
+#endif
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 0, binding = 0) uniform sampler2D GB0;
+layout(set = 0, binding = 1) uniform sampler2D GB1;
+layout(set = 0, binding = 2) uniform sampler2D GB2;
+layout(set = 0, binding = 3) uniform sampler2D GB3;
+layout(set = 0, binding = 4) uniform sampler2D depth;
+layout(set = 0, binding = 5, std430) readonly buffer exposure { RgExposureState state; } ex;
+layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D hdr;
+layout(set = 0, binding = 7, rgba32f) uniform image2D reference_accum;
+layout(set = 0, binding = 8) uniform Params {
+    float reference_samples;  // samples per pixel per frame
+    float reference_seed;
+    float reference_strategy;  // 0 MIS, 1 light sampling only, 2 BRDF sampling only
+    float initial_ev100;
+} params;
+
+// ---- The shaded point and its BRDF --------------------------------------------------------------
+
+struct Shading {
+    vec3 P, N, V;
+    vec3 diffuseColor, f0;
+    float f90, linearRoughness, alpha;
+    float NdotV;      // lst:2's |N·V| + 1e-5, as the real-time BRDF
+    vec3 Vs;          // V lifted above the horizon for sampling the GGX visible normals
+    float NdotVs;
+    vec3 T, B;        // tangent frame around N
+    bool coat;        // materialId 1 (materials/clearcoat.lua): a second GGX lobe on top
+    float coatStrength, coatAlpha;
+    vec3 lobeProbability;  // of picking the diffuse, GGX and coat lobes for the BRDF sample
+};
+
+// rgStandardBrdf: (diffuse · Fr_DisneyDiffuse / π + D · F · Vis / π) · ⟨n·l⟩, term for term. With a
+// coat (materials/clearcoat_lighting.frag, per direction): base · (1 − Fc) + D_c · Vis_c · Fc / π · ⟨n·l⟩,
+// Fc = F_Schlick(0.04, 1, ⟨l·h⟩) · coatStrength.
+vec3 brdfCos(Shading s, vec3 L) {
+    float NdotL = dot(s.N, L);
+    if (NdotL <= 0.0) return vec3(0.0);
+    vec3 H = rgSafeNormalize(s.V + L, s.N);
+    float LdotH = clamp(dot(L, H), 0.0, 1.0);
+    float NdotH = clamp(dot(s.N, H), 0.0, 1.0);
+    NdotL = min(NdotL, 1.0);
+    vec3 F = F_Schlick(s.f0, s.f90, LdotH);
+    float Vis = V_SmithGGXCorrelated(NdotL, s.NdotV, s.alpha);
+    float D = D_GGX(NdotH, s.alpha);
+    float Fd = Fr_DisneyDiffuse(s.NdotV, NdotL, LdotH, s.linearRoughness) / RG_PI;
+    vec3 base = (s.diffuseColor * Fd + D * F * Vis / RG_PI) * NdotL;
+    if (!s.coat) return base;
+    float Fc = F_Schlick(0.04, 1.0, LdotH) * s.coatStrength;
+    float coat = D_GGX(NdotH, s.coatAlpha) * V_SmithGGXCorrelated(NdotL, s.NdotV, s.coatAlpha) * Fc / RG_PI * NdotL;
+    return base * (1.0 - Fc) + vec3(coat);
+}
+
+// pdf (solid angle) of the BRDF sampling strategy: the mixture of the cosine lobe and the GGX
+// visible-normal reflections of the base (and of the coat).
+float brdfPdf(Shading s, vec3 L) {
+    float NdotL = dot(s.N, L);
+    if (NdotL <= 0.0) return 0.0;
+    vec3 H = rgSafeNormalize(s.Vs + L, s.N);
+    float NdotH = dot(s.N, H), VdotH = dot(s.Vs, H);
+    float pdf = s.lobeProbability.x * NdotL / RG_PI;
+    pdf += s.lobeProbability.y * rgGgxVisibleReflectionPdf(s.NdotVs, NdotH, VdotH, s.alpha);
+    if (s.lobeProbability.z > 0.0) pdf += s.lobeProbability.z * rgGgxVisibleReflectionPdf(s.NdotVs, NdotH, VdotH, s.coatAlpha);
+    return pdf;
+}
+
+// Draws the BRDF sample; returns its pdf (0: unusable, e.g. below the horizon).
+float sampleBrdf(Shading s, inout RgRng rng, out vec3 L) {
+    float pick = rgRngNext(rng);
+    vec2 u = rgRngNext2(rng);
+    if (pick >= s.lobeProbability.x) {
+        float alpha = pick < s.lobeProbability.x + s.lobeProbability.y ? s.alpha : s.coatAlpha;
+        vec3 Ve = vec3(dot(s.Vs, s.T), dot(s.Vs, s.B), s.NdotVs);
+        vec3 H = rgToWorld(rgSampleGgxVisibleNormal(Ve, alpha, u), s.T, s.B, s.N);
+        L = reflect(-s.Vs, H);
+    } else {
+        L = rgToWorld(rgSampleCosineHemisphere(u), s.T, s.B, s.N);
+    }
+    L = normalize(L);
+    return brdfPdf(s, L);
+}
+
+// ---- Lights: sampling and intersection ----------------------------------------------------------
+
+// The radiance (cd/m²) a sampled light shows, constant over its shape: the sun's E⊥ spread over
+// its cone, an area light's luminance times the range window of its centre (as lighting.glsl).
+vec3 lightRadiance(RgLight light, int type, vec3 P) {
+    if (type == RG_LIGHT_SUN) {
+        float oneMinusCos = rgOneMinusCosFromSinSqr(light.params.z * light.params.z);
+        return light.intensity.rgb / (2.0 * RG_PI * oneMinusCos);
+    }
+    vec3 Lu = light.positionType.xyz - P;
+    return light.intensity.rgb * rgRangeWindow(max(dot(Lu, Lu), 1e-12), light.directionRange.w);
+}
+
+// Area sampling, as a direction: pdf_ω = pdf_A · d² / ⟨n_a·−l⟩; 0 where the sampled point shows
+// its back (one-sided disk and rect, the far side of a capsule).
+float areaToSolidAngle(vec3 toPoint, vec3 lightNormal, float pdfArea, out vec3 L) {
+    float d2 = dot(toPoint, toPoint);
+    L = toPoint * inversesqrt(max(d2, 1e-20));
+    float cosLight = dot(lightNormal, -L);
+    return cosLight > 0.0 && d2 > 0.0 ? pdfArea * d2 / cosLight : 0.0;
+}
+
+// The nearest t > 0 where the ray P + t·D (D unit) enters the sphere (centre c, radius r) from
+// outside; −1 when it misses or starts inside.
+float raySphere(vec3 P, vec3 D, vec3 c, float r) {
+    vec3 oc = P - c;
+    float b = dot(oc, D), cc = dot(oc, oc) - r * r;
+    if (cc <= 0.0) return -1.0;
+    float disc = b * b - cc;
+    if (disc < 0.0) return -1.0;
+    float t = -b - sqrt(disc);
+    return t > 0.0 ? t : -1.0;
+}
+
+// Where the ray meets a one-sided emitter's plane (centre c, emitting along n) from its front:
+// returns t, −1 when it runs parallel, away or into the back.
+float rayFrontPlane(vec3 P, vec3 D, vec3 c, vec3 n) {
+    float denom = dot(D, n);
+    if (denom >= -1e-7) return -1.0;
+    float t = dot(c - P, n) / denom;
+    return t > 0.0 ? t : -1.0;
+}
+
+// The tube's (capsule's) sampling — by area, not uniformly: the lateral surface is sampled over
+// its half facing P (the side the point can see: w, the unit direction from the axis to P, is the
+// same along the whole axis) with the point's angle φ from w distributed as x = sin φ uniform —
+// uniform in the cylinder's projected width, pdf_A = cos φ / (2 r len), about proportional to
+// ⟨n_a·−l⟩ — and the two hemispherical caps uniformly by area (pdf_A = 1 / 4πr²). Uniform area
+// sampling of the whole capsule wastes the half turned away and left ~3.7 % noise on the floor of
+// tests/gpu/scenes/reference_tube.lua after 1024 samples; this leaves ~1.5 %. The cylinder is
+// picked with the share of its projected area
+// (2 r len against π r² for the caps), never when P lies within the cylinder's radius of the axis
+// (beyond an end, where the lateral surface shows only its back).
+struct TubeSampling { vec3 w, v; float cylinderProbability; };
+TubeSampling tubeSampling(RgLight light, vec3 P) {
+    vec3 dir = light.directionRange.xyz;
+    vec3 o = P - light.positionType.xyz;
+    vec3 perp = o - dot(o, dir) * dir;
+    float rho2 = dot(perp, perp), radius = light.params.z, len = light.params.w;
+    TubeSampling ts;
+    vec3 t, b;
+    rgBasis(dir, t, b);
+    ts.w = rho2 > 1e-20 ? perp * inversesqrt(rho2) : t;
+    ts.v = cross(dir, ts.w);
+    ts.cylinderProbability = rho2 > radius * radius ? 2.0 * len / (2.0 * len + RG_PI * radius) : 0.0;
+    return ts;
+}
+
+// Draws a direction L towards light `light` from P with the light's strategy; returns its pdf
+// (solid angle; 0: the sample contributes nothing). u: three uniform numbers.
+float sampleLight(RgLight light, int type, vec3 P, vec3 u, out vec3 L) {
+    vec3 dir = light.directionRange.xyz;
+    vec3 c = light.positionType.xyz;
+    float radius = light.params.z;
+    vec3 t, b;
+    if (type == RG_LIGHT_SUN) {
+        vec3 D = -dir;
+        float oneMinusCos = rgOneMinusCosFromSinSqr(light.params.z * light.params.z);
+        rgBasis(D, t, b);
+        L = normalize(rgToWorld(rgSampleCone(u.xy, oneMinusCos), t, b, D));
+        return 1.0 / (2.0 * RG_PI * oneMinusCos);
+    }
+    vec3 Lu = c - P;
+    float d2 = dot(Lu, Lu);
+    if (type == RG_LIGHT_SPHERE) {
+        if (d2 <= radius * radius) {  // inside: every direction sees the back of the (outward) emitter
+            L = vec3(0.0, 1.0, 0.0);
+            return 0.0;
+        }
+        vec3 axis = Lu * inversesqrt(d2);
+        float oneMinusCos = rgOneMinusCosFromSinSqr(radius * radius / d2);
+        rgBasis(axis, t, b);
+        L = normalize(rgToWorld(rgSampleCone(u.xy, oneMinusCos), t, b, axis));
+        return 1.0 / (2.0 * RG_PI * oneMinusCos);
+    }
+    if (type == RG_LIGHT_DISK) {
+        rgBasis(dir, t, b);
+        float r = radius * sqrt(u.x), phi = 2.0 * RG_PI * u.y;
+        vec3 y = c + r * (cos(phi) * t + sin(phi) * b);
+        return areaToSolidAngle(y - P, dir, 1.0 / (RG_PI * radius * radius), L);
+    }
+    if (type == RG_LIGHT_RECT) {
+        vec3 up = light.axis.xyz, left = cross(up, dir);
+        float halfWidth = 0.5 * light.params.w, halfHeight = 0.5 * light.axis.w;
+        vec3 y = c + left * ((2.0 * u.x - 1.0) * halfWidth) + up * ((2.0 * u.y - 1.0) * halfHeight);
+        return areaToSolidAngle(y - P, dir, 1.0 / (4.0 * halfWidth * halfHeight), L);
+    }
+    // RG_LIGHT_TUBE: see TubeSampling.
+    TubeSampling ts = tubeSampling(light, P);
+    vec3 y, n;
+    float pdfArea;
+    if (u.z < ts.cylinderProbability) {  // x = sin φ uniform over the half facing P
+        float x = 2.0 * u.y - 1.0, cosPhi = sqrt(max(0.0, 1.0 - x * x));
+        n = cosPhi * ts.w + x * ts.v;
+        y = c + dir * ((u.x - 0.5) * light.params.w) + radius * n;
+        pdfArea = ts.cylinderProbability * cosPhi / (2.0 * radius * light.params.w);
+    } else {  // a uniform point of the sphere, moved to the end cap of its hemisphere
+        n = rgSampleSphere(u.xy);
+        y = c + dir * (dot(n, dir) >= 0.0 ? 0.5 : -0.5) * light.params.w + radius * n;
+        pdfArea = (1.0 - ts.cylinderProbability) / (4.0 * RG_PI * radius * radius);
+    }
+    return areaToSolidAngle(y - P, n, pdfArea, L);
+}
+
+// Whether the ray from P along D (unit) meets the light's emitting side, and the pdf with which
+// sampleLight would have drawn D (for the MIS weight of a BRDF sample).
+float lightPdfAlong(RgLight light, int type, vec3 P, vec3 D) {
+    vec3 dir = light.directionRange.xyz;
+    vec3 c = light.positionType.xyz;
+    float radius = light.params.z;
+    if (type == RG_LIGHT_SUN) {
+        // The cone test by its sine (precise for σ ≈ 0.27°): ⟨D·−dir⟩ > 0 and sin² ≤ sin² σ.
+        vec3 x = cross(D, -dir);
+        float sinSqr = light.params.z * light.params.z;
+        if (dot(D, -dir) <= 0.0 || dot(x, x) > sinSqr) return 0.0;
+        return 1.0 / (2.0 * RG_PI * rgOneMinusCosFromSinSqr(sinSqr));
+    }
+    vec3 Lu = c - P;
+    float d2 = dot(Lu, Lu);
+    if (type == RG_LIGHT_SPHERE) {
+        if (d2 <= radius * radius) return 0.0;  // inside: see sampleLight
+        vec3 x = cross(D, Lu);  // |D × Lu|² = d² sin² of the angle to the centre ≤ r²: inside the cone
+        if (dot(D, Lu) <= 0.0 || dot(x, x) > radius * radius) return 0.0;
+        return 1.0 / (2.0 * RG_PI * rgOneMinusCosFromSinSqr(radius * radius / d2));
+    }
+    if (type == RG_LIGHT_DISK || type == RG_LIGHT_RECT) {
+        float t = rayFrontPlane(P, D, c, dir);
+        if (t < 0.0) return 0.0;
+        vec3 q = P + t * D - c;
+        float pdfArea;
+        if (type == RG_LIGHT_DISK) {
+            if (dot(q, q) > radius * radius) return 0.0;
+            pdfArea = 1.0 / (RG_PI * radius * radius);
+        } else {
+            vec3 up = light.axis.xyz, left = cross(up, dir);
+            float halfWidth = 0.5 * light.params.w, halfHeight = 0.5 * light.axis.w;
+            if (abs(dot(q, left)) > halfWidth || abs(dot(q, up)) > halfHeight) return 0.0;
+            pdfArea = 1.0 / (4.0 * halfWidth * halfHeight);
+        }
+        return pdfArea * t * t / -dot(D, dir);
+    }
+    // RG_LIGHT_TUBE: the nearest entry into the union of the cylinder (lateral surface within the
+    // segment) and the two end balls is the capsule's; a flat end of the cylinder lies inside a ball.
+    float len = light.params.w;
+    vec3 o = P - c;
+    vec3 onAxis = dir * clamp(dot(o, dir), -0.5 * len, 0.5 * len);
+    if (dot(o - onAxis, o - onAxis) <= radius * radius) return 0.0;  // inside: see sampleLight
+    TubeSampling ts = tubeSampling(light, P);
+    float best = 1e30, pdfArea = 0.0;
+    vec3 normal = vec3(0.0);
+    vec3 oPerp = o - dot(o, dir) * dir, dPerp = D - dot(D, dir) * dir;
+    float a = dot(dPerp, dPerp), bq = dot(oPerp, dPerp), cq = dot(oPerp, oPerp) - radius * radius;
+    if (a > 1e-12 && cq > 0.0) {
+        float disc = bq * bq - a * cq;
+        if (disc >= 0.0) {
+            float t = (-bq - sqrt(disc)) / a;
+            if (t > 0.0 && abs(dot(o, dir) + t * dot(D, dir)) <= 0.5 * len) {
+                best = t;
+                normal = normalize(oPerp + t * dPerp);
+                pdfArea = ts.cylinderProbability * max(dot(normal, ts.w), 0.0) / (2.0 * radius * len);
+            }
+        }
+    }
+    for (int e = 0; e < 2; ++e) {
+        vec3 centre = c + dir * (e == 0 ? 0.5 * len : -0.5 * len);
+        float t = raySphere(P, D, centre, radius);
+        if (t > 0.0 && t < best) {
+            best = t;
+            normal = (P + t * D - centre) / radius;
+            pdfArea = (1.0 - ts.cylinderProbability) / (4.0 * RG_PI * radius * radius);
+        }
+    }
+    if (best >= 1e30) return 0.0;
+    float cosLight = dot(normal, -D);
+    return cosLight > 0.0 ? pdfArea * best * best / cosLight : 0.0;
+}
+
+// ---- Punctual lights, exactly -------------------------------------------------------------------
+
+// lst:4 / eq:27 / lst:5: the illuminance of a point or spot light at P, on a surface facing it,
+// times the BRDF — rgEvaluateLight's punctual branch with the same helpers.
+vec3 punctual(Shading s, RgLight light) {
+    vec3 Lu = light.positionType.xyz - s.P;
+    float sqrDist = max(dot(Lu, Lu), 1e-12);
+    vec3 L = Lu * inversesqrt(sqrDist);
+    float att = getDistanceAtt(Lu, light.directionRange.w);
+    att *= getAngleAtt(-L, light.directionRange.xyz, light.params.x, light.params.y);
+    att *= rgIesAttenuation(light, L);
+    return brdfCos(s, L) * light.intensity.rgb * att;
+}
+
+bool finite3(vec3 v) { return !any(isnan(v)) && !any(isinf(v)); }
+
+void main() {
+    ivec2 p = ivec2(gl_GlobalInvocationID.xy);
+    ivec2 size = imageSize(hdr);
+    if (any(greaterThanEqual(p, size))) return;
+    vec4 previous = imageLoad(reference_accum, p);
+    uint frame = uint(max(previous.a, 0.0) + 0.5);  // frames accumulated so far
+    float pre = rgPreExposure(ex.state, params.initial_ev100);
+
+    float z = texelFetch(depth, p, 0).r;
+    if (z >= 1.0) {  // the far plane: left to the sky pass
+        imageStore(reference_accum, p, vec4(0.0, 0.0, 0.0, float(frame + 1u)));
+        imageStore(hdr, p, vec4(0.0, 0.0, 0.0, 1.0));
+        return;
+    }
+    GBuffer_disney g = unpackGBuffer_disney(texelFetch(GB0, p, 0), texelFetch(GB1, p, 0), texelFetch(GB2, p, 0),
+                                            texelFetch(GB3, p, 0));
+    Shading s;
+    vec2 uv = (vec2(p) + 0.5) / vec2(size);
+    s.P = rgWorldPosition(uv, z);
+    s.N = g.normal;
+    s.V = normalize(camera.position.xyz - s.P);
+    // §3.2.1, as deferred_lighting.frag and rgStandardBrdf.
+    s.diffuseColor = g.baseColor * (1.0 - g.metalMask);
+    s.f0 = mix(vec3(rgDielectricF0(g.reflectance)), g.baseColor, g.metalMask);
+#ifdef RG_TWO_COLOUR_ID
+    if (g.materialId == uint(RG_TWO_COLOUR_ID)) {
+        GBuffer_two_colour t = unpackGBuffer_two_colour(texelFetch(GB0, p, 0), texelFetch(GB1, p, 0), texelFetch(GB2, p, 0),
+                                                        texelFetch(GB3, p, 0));
+        s.diffuseColor = t.diffuseColor;
+        s.f0 = t.f0;
+    }
+#endif
+    s.f90 = clamp(50.0 * dot(s.f0, vec3(0.33)), 0.0, 1.0);
+    s.linearRoughness = 1.0 - g.smoothness;
+    s.alpha = max(s.linearRoughness * s.linearRoughness, 1e-3);
+    s.NdotV = abs(dot(s.N, s.V)) + 1e-5;
+    // Sampling needs V above the surface; where the G-buffer normal faces away from the camera the
+    // (arbitrary but consistent) sampling view is V raised to a grazing 1e-3 above the horizon.
+    float rawNdotV = dot(s.N, s.V);
+    s.Vs = rawNdotV > 1e-3 ? s.V : normalize(s.V + (1e-3 - rawNdotV) * s.N);
+    s.NdotVs = max(dot(s.N, s.Vs), 1e-3);
+    rgBasis(s.N, s.T, s.B);
+    // materials/clearcoat_lighting.frag's coat: strength in MaterialData, smoothness in GB2.r.
+    s.coat = g.materialId == 1u;
+    s.coatStrength = float(g.materialData) / 31.0;
+    s.coatAlpha = max((1.0 - g.reserved) * (1.0 - g.reserved), 1e-3);
+    // Lobe selection by the lobes' albedo estimates (diffuse colour, Schlick at N·V for the GGX
+    // lobes), each present lobe picked with probability at least 0.1 so that none is starved.
+    const vec3 luma = vec3(0.2126, 0.7152, 0.0722);
+    float Fc = s.coat ? F_Schlick(0.04, 1.0, s.NdotV) * s.coatStrength : 0.0;
+    vec3 w = vec3(dot(s.diffuseColor, luma) * (1.0 - Fc), dot(F_Schlick(s.f0, s.f90, s.NdotV), luma) * (1.0 - Fc), Fc);
+    w /= max(w.x + w.y + w.z, 1e-6);
+    w = max(w, vec3(0.1, 0.1, s.coat ? 0.1 : 0.0));
+    s.lobeProbability = w / (w.x + w.y + w.z);
+
+    vec3 luminance = g.emissive;
+    uint count = rgLightCount();
+    // Delta lights: no sampling, no noise.
+    uint sampled = 0u;
+    for (uint i = 0u; i < count; ++i) {
+        RgLight light = lights.light[i];
+        if (rgLightType(light) <= RG_LIGHT_SPOT) luminance += punctual(s, light);
+        else ++sampled;
+    }
+
+    // Sampled lights: one BRDF sample shared by every light + one light sample per light, MIS.
+    RgRng rng = rgRngInit(uvec4(uint(p.x), uint(p.y), frame, uint(params.reference_seed + 0.5)));
+    int samples = sampled > 0u ? max(int(params.reference_samples + 0.5), 1) : 0;
+    int strategy = int(params.reference_strategy + 0.5);
+    vec3 sum = vec3(0.0);
+    for (int k = 0; k < samples; ++k) {
+        vec3 Lb;
+        float pdfB = sampleBrdf(s, rng, Lb);
+        vec3 fB = pdfB > 0.0 ? brdfCos(s, Lb) : vec3(0.0);
+        bool useB = pdfB > 0.0 && any(greaterThan(fB, vec3(0.0)));
+        vec3 estimate = vec3(0.0);
+        for (uint i = 0u; i < count; ++i) {
+            RgLight light = lights.light[i];
+            int type = rgLightType(light);
+            if (type <= RG_LIGHT_SPOT) continue;
+            vec3 Le = lightRadiance(light, type, s.P);
+            // The light's sample.
+            vec3 u = vec3(rgRngNext2(rng), rgRngNext(rng));
+            vec3 Ll;
+            float pdfL = sampleLight(light, type, s.P, u, Ll);
+            if (pdfL > 0.0 && strategy != 2) {
+                vec3 f = brdfCos(s, Ll);
+                if (any(greaterThan(f, vec3(0.0)))) {
+                    float weight = strategy == 1 ? 1.0 : rgPowerHeuristic(pdfL, brdfPdf(s, Ll));
+                    estimate += f * Le * (weight / pdfL);
+                }
+            }
+            // The BRDF's sample, if its ray meets this light.
+            if (useB && strategy != 1) {
+                float pdfLB = lightPdfAlong(light, type, s.P, Lb);
+                if (pdfLB > 0.0) {
+                    float weight = strategy == 2 ? 1.0 : rgPowerHeuristic(pdfB, pdfLB);
+                    estimate += fB * Le * (weight / pdfB);
+                }
+            }
+        }
+#ifdef RG_REFERENCE_SHOW_NAN
+        if (!finite3(estimate)) { imageStore(hdr, p, vec4(65504.0, 0.0, 65504.0, 1.0)); return; }
+#endif
+        if (finite3(estimate)) sum += estimate;  // a non-finite sample would poison the running mean
+    }
+    if (samples > 0) luminance += sum / float(samples);
+
+    vec3 mean = frame == 0u ? luminance : previous.rgb + (luminance - previous.rgb) / float(frame + 1u);
+    imageStore(reference_accum, p, vec4(mean, float(frame + 1u)));
+    imageStore(hdr, p, vec4(mean * pre, 1.0));
+}

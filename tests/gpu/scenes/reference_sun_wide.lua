@@ -1,0 +1,6 @@
+-- Reference-mode test scene (scripts/pipelines/reference.lua): reference_stage.lua's floor and
+-- four spheres under ONE sun of angular radius 5° (the disk matters for the glossy spheres). Render it with deferred.lua
+-- and with reference.lua, then `rgraph compare` the two EXRs.
+local scene = require "scene"
+require "reference_stage"  -- the floor, four spheres and the camera
+scene.light "key" { type = "sun", intensity = 100000, unit = "lux", direction = { -0.4, -0.8, -0.45 }, angular_radius = 5 }

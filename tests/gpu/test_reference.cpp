@@ -1,0 +1,168 @@
+// Reference mode (scripts/pipelines/reference.lua, seed 000 §2.3): the same G-buffer lit by Monte
+// Carlo integration of every light. First the integrator itself — a delta light, where both
+// pipelines evaluate the same formula, and a 0.5 mm sphere, which must converge to that point
+// light — then each area light's real-time approximation (shaders/lib/lighting.glsl) against it
+// on tests/gpu/scenes/reference_*.lua: a white diffuse floor (reflectance 0: only the diffuse
+// approximation shows there) and four spheres (rough, glossy, gold, chrome) under one light.
+// Each bound below is the error measured at 160x90 with 64 frames x 4 samples, plus a margin for
+// the reference's remaining noise (about 1/sqrt(256) of a pixel's value, averaged over the region).
+#include <gtest/gtest.h>
+
+#include "gpu_fixture.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+
+#include "cli/runtime.h"
+#include "cli/session.h"
+#include "image/image.h"
+
+using namespace rg;
+
+namespace {
+
+const std::string kRoot = RG_SOURCE_ROOT;
+constexpr uint32_t W = 160, H = 90;
+
+struct Render {
+    Image hdr;  // cd/m²
+    Image gb2;  // metal mask (g), reflectance (b): the floor is the only surface of reflectance 0
+    Image depth;
+};
+
+class Reference : public GpuFixture {
+protected:
+    static Render render(const std::string& pipeline, const std::string& scene, uint32_t frames) {
+        SessionOptions o;
+        o.compile.outputWidth = W;
+        o.compile.outputHeight = H;
+        o.scene = kRoot + "/tests/gpu/scenes/" + scene;
+        o.captures = {"GB2", "depth"};
+        o.params["exposure_mode"] = Value("manual");
+        o.params["sky_luminance"] = Value(0.0);
+        Session s(*s_runtime, o);
+        Render out;
+        auto r = s.load(kRoot + "/scripts/pipelines/" + pipeline);
+        EXPECT_TRUE(r.has_value()) << r.error().describe();
+        if (!r) return out;
+        for (uint32_t f = 0; f < frames; ++f) {
+            auto fr = s.frame();
+            EXPECT_TRUE(fr.has_value()) << fr.error().describe();
+            if (!fr) return out;
+        }
+        auto hdr = s_runtime->executor().readback("hdr");
+        auto state = s_runtime->executor().readbackBuffer("exposure");
+        auto gb2 = s_runtime->executor().readback("GB2");
+        auto depth = s_runtime->executor().readback("depth");
+        EXPECT_TRUE(hdr && state && gb2 && depth);
+        if (!hdr || !state || !gb2 || !depth) return out;
+        float st[4];
+        std::memcpy(st, state->data(), sizeof st);
+        for (float& v : hdr->pixels) v /= st[2];  // the pre-exposure this frame was rendered with
+        out.hdr = std::move(*hdr);
+        out.gb2 = std::move(*gb2);
+        out.depth = std::move(*depth);
+        return out;
+    }
+
+    struct Error {
+        double floorMean = 0;    // mean relative error over the floor (diffuse only)
+        double surfaceMean = 0;  // mean relative error over every surface the reference lights
+        double bias = 0;         // Σ real-time / Σ reference − 1 over every surface
+    };
+    // Relative errors over RGB where the reference is above 1 % of its brightest surface (the
+    // rest — back faces, the far floor — is noise over nearly nothing).
+    static Error compare(const Render& rt, const Render& ref) {
+        Error e;
+        double peak = 0;
+        for (size_t i = 0; i < size_t(W) * H; ++i)
+            if (ref.depth.pixels[i] < 1.0f)
+                for (int c = 0; c < 3; ++c) peak = std::max(peak, double(ref.hdr.pixels[i * 4 + c]));
+        double floorSum = 0, surfaceSum = 0, rtSum = 0, refSum = 0;
+        size_t floorN = 0, surfaceN = 0;
+        for (size_t i = 0; i < size_t(W) * H; ++i) {
+            if (ref.depth.pixels[i] >= 1.0f) continue;
+            const bool floor = ref.gb2.pixels[i * 4 + 2] == 0.0f;
+            for (int c = 0; c < 3; ++c) {
+                const double a = rt.hdr.pixels[i * 4 + c], b = ref.hdr.pixels[i * 4 + c];
+                rtSum += a;
+                refSum += b;
+                if (b < 0.01 * peak) continue;
+                const double rel = std::abs(a - b) / b;
+                surfaceSum += rel;
+                ++surfaceN;
+                if (floor) {
+                    floorSum += rel;
+                    ++floorN;
+                }
+            }
+        }
+        e.floorMean = floorN ? floorSum / double(floorN) : 0;
+        e.surfaceMean = surfaceN ? surfaceSum / double(surfaceN) : 0;
+        e.bias = refSum > 0 ? rtSum / refSum - 1.0 : 0;
+        return e;
+    }
+
+    static Error measure(const char* scene) {
+        Render rt = render("deferred.lua", scene, 1);
+        Render ref = render("reference.lua", scene, 64);
+        Error e = compare(rt, ref);
+        std::printf("%-22s floor %.4f, surfaces %.4f, energy %+.4f\n", scene, e.floorMean, e.surfaceMean, e.bias);
+        return e;
+    }
+};
+
+TEST_F(Reference, PointLightIsExactInBoth) {
+    Error e = measure("reference_point.lua");
+    EXPECT_LT(e.surfaceMean, 1e-3);
+    EXPECT_LT(std::abs(e.bias), 1e-3);
+}
+
+TEST_F(Reference, TinySphereConvergesToThePointLight) {
+    // A 0.5 mm sphere: the reference samples its cone, the real-time path takes lst:10 — both
+    // must reach the point light's exact answer (checks the sampling and its pdf).
+    Error e = measure("reference_sphere_tiny.lua");
+    EXPECT_LT(e.surfaceMean, 0.01);
+    EXPECT_LT(std::abs(e.bias), 0.005);
+}
+
+// Measured (160x90, 256 samples): floor 0.0023, surfaces 0.0062, energy -0.011. lst:10 is exact
+// for a sphere's illuminance; what is left is the Disney diffuse taken towards the light's centre
+// and, on the glossy spheres, the representative point's energy factor.
+TEST_F(Reference, SphereLight) {
+    Error e = measure("reference_sphere.lua");
+    EXPECT_LT(e.floorMean, 0.01);
+    EXPECT_LT(e.surfaceMean, 0.02);
+    EXPECT_LT(std::abs(e.bias), 0.025);
+}
+
+// Measured: floor 0.0245, surfaces 0.028, energy -0.038: lst:10's disk form with the disk's own
+// facing factor, a little dark (the seed calls it a small discrepancy); highlights lose energy.
+TEST_F(Reference, DiskLight) {
+    Error e = measure("reference_disk.lua");
+    EXPECT_LT(e.floorMean, 0.035);
+    EXPECT_LT(e.surfaceMean, 0.04);
+    EXPECT_LT(std::abs(e.bias), 0.055);
+}
+
+// Measured: floor 0.040, surfaces 0.048, energy -0.043: structured sampling (4 corners + centre ×
+// the solid angle, seed 002 §4.7.2.5) of a 1.6 m x 0.5 m light 1.8 m up.
+TEST_F(Reference, RectangleLight) {
+    Error e = measure("reference_rect.lua");
+    EXPECT_LT(e.floorMean, 0.055);
+    EXPECT_LT(e.surfaceMean, 0.065);
+    EXPECT_LT(std::abs(e.bias), 0.06);
+}
+
+// Measured: floor 0.036, surfaces 0.047, energy -0.061: the capsule as a rectangle facing the
+// point plus one sphere (seed 002 §4.7.2.6); near-mirror highlights lose most (sphere × line
+// energy factors).
+TEST_F(Reference, TubeLight) {
+    Error e = measure("reference_tube.lua");
+    EXPECT_LT(e.floorMean, 0.05);
+    EXPECT_LT(e.surfaceMean, 0.065);
+    EXPECT_LT(std::abs(e.bias), 0.08);
+}
+
+}  // namespace
