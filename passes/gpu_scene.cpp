@@ -386,10 +386,10 @@ Result<GpuLightTable> convertLights(const std::vector<Light>& lights, IesMode ie
         case LightType::Point:
         case LightType::Spot: {
             type = l.type == LightType::Point ? GpuLightType::Point : GpuLightType::Spot;
-            // tbl:9; spots by eq:17 (Φ / π): spotIntensityFromLumens' default, never the exact cone.
+            // tbl:9; spots by eq:17 (Φ / π), or eq:16's exact cone when the light asks for it.
             if (l.unit == "lm")
                 value = l.type == LightType::Point ? lights::pointIntensityFromLumens(l.intensity)
-                                                   : lights::spotIntensityFromLumens(l.intensity, l.outerAngle);
+                                                   : lights::spotIntensityFromLumens(l.intensity, l.outerAngle, l.exactCone);
             // lst:4: the cone as a scale and offset of cos θ; a point light has none (0, 1).
             lighting::AngleScaleOffset cone;
             if (l.type == LightType::Spot) cone = lighting::spotAngleScaleOffset(l.innerAngle, l.outerAngle);
@@ -411,7 +411,10 @@ Result<GpuLightTable> convertLights(const std::vector<Light>& lights, IesMode ie
                 const auto index = static_cast<size_t>(it - table.profilePaths.begin());
                 g.intensity.a = static_cast<float>(index);
                 // eq:27: I is either the profile's maximum candela or the user's intensity (mask).
-                if (iesMode == IesMode::Intensity) value = table.profiles[index].maxCandela;
+                if (!l.iesMode.empty() && l.iesMode != "mask" && l.iesMode != "intensity")
+                    return fail(ErrorCode::InvalidInput, label + ": ies_mode '" + l.iesMode + "' is not 'mask' or 'intensity'");
+                const bool profileIntensity = l.iesMode.empty() ? iesMode == IesMode::Intensity : l.iesMode == "intensity";
+                if (profileIntensity) value = table.profiles[index].maxCandela;
                 // lst:5's light space: z the nadir (the light's direction), x horizontal 0°.
                 g.axis = glm::vec4(perpendicularTo(direction, l.up), 0.0f);
             }

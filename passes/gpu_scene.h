@@ -50,8 +50,8 @@ static_assert(sizeof(GpuLight) == 80, "GpuLight must match RgLight's std430 layo
 // scene.glsl's RG_LIGHT_* codes (GpuLight::positionType.w).
 enum class GpuLightType : uint8_t { Point = 0, Spot = 1, Sun = 2, Sphere = 3, Disk = 4, Rect = 5, Tube = 6 };
 
-// How an IES profile sets a point or spot light's intensity (seed 000 §4.5, eq:27, lst:5). Light
-// has no field for it, so it is one choice for the scene.
+// How an IES profile sets a point or spot light's intensity (seed 000 §4.5, eq:27, lst:5): the
+// scene's default, for lights whose Light::iesMode is empty.
 enum class IesMode {
     Mask,       // the declared intensity (lm → cd as without a profile, or cd) × I / I_max: the
                 // profile only shapes the light (the default; lst:5's "mask")
@@ -70,10 +70,10 @@ struct GpuLightTable {
 };
 
 // Converts lights to GpuLights (graph/lighting and graph/core/light_units do the arithmetic):
-// - point, spot: cd; lm → cd by tbl:9 — Φ / 4π, and for spots Frostbite's eq:17, Φ / π, always
-//   (the cone does not change the brightness; eq:16's exact cone is not used). The cone's angle
+// - point, spot: cd; lm → cd by tbl:9 — Φ / 4π, and for spots Frostbite's eq:17, Φ / π (the cone
+//   does not change the brightness), or eq:16's exact cone with Light::exactCone. The cone's angle
 //   scale and offset of lst:4. With an IES profile (Light::ies: loaded with loadIes, baked with
-//   bakeIes), see IesMode; its light space has +z along Light::direction (the profile's nadir)
+//   bakeIes), Light::iesMode or else the scene's IesMode; its light space has +z along Light::direction (the profile's nadir)
 //   and +x along Light::up made perpendicular to it (horizontal angle 0°) — when they are
 //   parallel, as for a light pointing straight down with the default up, +x is direction ×
 //   (1, 0, 0): +z for a light pointing down.

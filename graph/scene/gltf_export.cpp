@@ -312,7 +312,7 @@ struct Writer {
             g.color = {l.color.r, l.color.g, l.color.b};
             g.intensity = l.unit != "lm"                 ? l.intensity
                           : l.type == LightType::Point ? lights::pointIntensityFromLumens(l.intensity)
-                                                       : lights::spotIntensityFromLumens(l.intensity, l.outerAngle);
+                                                       : lights::spotIntensityFromLumens(l.intensity, l.outerAngle, l.exactCone);
             g.range = l.range;
             g.spot.innerConeAngle = l.innerAngle;
             g.spot.outerConeAngle = l.outerAngle;
@@ -320,6 +320,8 @@ struct Writer {
             if (l.temperatureK > 0) x["temperature"] = tinygltf::Value(double(l.temperatureK));
             if (l.unit == "lm") x["lumens"] = tinygltf::Value(double(l.intensity));  // as declared
             if (!l.ies.empty()) x["ies"] = tinygltf::Value(l.ies);
+            if (!l.iesMode.empty()) x["ies_mode"] = tinygltf::Value(l.iesMode);
+            if (l.exactCone) x["exact_cone"] = tinygltf::Value(true);
             if (l.type == LightType::Directional) x["angular_radius"] = tinygltf::Value(double(l.sunAngularRadius));
             if (!x.empty()) g.extras = tinygltf::Value(tinygltf::Value::Object{{"rgraph", tinygltf::Value(std::move(x))}});
             model.lights.push_back(g);

@@ -971,6 +971,12 @@ struct Loader {
             const auto& x = l.extras.Get("rgraph");
             out.temperatureK = float(number(x.Get("temperature"), 0.0));
             if (x.Get("ies").IsString()) out.ies = x.Get("ies").Get<std::string>();
+            if (x.Get("ies_mode").IsString()) {
+                out.iesMode = x.Get("ies_mode").Get<std::string>();
+                if (out.iesMode != "mask" && out.iesMode != "intensity")
+                    return fail(ErrorCode::InvalidInput, where + ": extras.rgraph.ies_mode '" + out.iesMode + "' is not 'mask' or 'intensity'");
+            }
+            if (x.Get("exact_cone").IsBool()) out.exactCone = x.Get("exact_cone").Get<bool>();
             out.sunAngularRadius = float(number(x.Get("angular_radius"), out.sunAngularRadius));
             // Written by exportGlb for a light declared in lumens (its cd is what rgraph renders).
             if (x.Get("lumens").IsNumber() && (out.type == LightType::Point || out.type == LightType::Spot)) {

@@ -181,6 +181,13 @@ struct Light {
     float outerAngle = 0.785398f;
     float range = 0.0f;                   // metres; 0 = unlimited (windowed falloff otherwise)
     std::string ies;                      // path of an IES (LM-63) profile, "" for none
+    // How the profile sets the intensity (seed 000 §4.5, eq:27, lst:5): "mask" (the declared
+    // intensity shaped by I / I_max), "intensity" (the profile's own candela), "" = the scene's
+    // default (passes::GpuSceneOptions::iesMode, itself "mask").
+    std::string iesMode;
+    // A spot in lumens: false = Frostbite's default, eq:17 (I = Φ / π, the cone only masks),
+    // true = eq:16's exact cone (I = Φ / 2π(1 − cos θ_outer)).
+    bool exactCone = false;
     float sunAngularRadius = 0.00465f;    // radians (the sun seen from the earth: 0.2664°)
 };
 

@@ -432,7 +432,7 @@ struct Builder {
         const Value& b = d.body;
         if (auto r = checkFields(w, b, {"type", "intensity", "unit", "color", "temperature", "position", "direction", "target", "up",
                                         "radius", "width", "height", "length", "inner_angle", "outer_angle", "range", "ies",
-                                        "angular_radius", "doc"});
+                                        "ies_mode", "exact_cone", "angular_radius", "doc"});
             !r)
             return r;
         Light l;
@@ -463,6 +463,9 @@ struct Builder {
         if (auto r = only("inner_angle", l.type == LightType::Spot, "spot lights"); !r) return r;
         if (auto r = only("outer_angle", l.type == LightType::Spot, "spot lights"); !r) return r;
         if (auto r = only("ies", punctual, "point and spot lights"); !r) return r;
+        if (auto r = only("ies_mode", punctual, "point and spot lights with an IES profile"); !r) return r;
+        if (b.has("ies_mode") && !b.has("ies")) return w.at("ies_mode").error("needs an ies profile to apply");
+        if (auto r = only("exact_cone", l.type == LightType::Spot, "spot lights"); !r) return r;
         if (auto r = only("angular_radius", sun, "the sun"); !r) return r;
         if (auto r = only("range", !sun, "local lights"); !r) return r;
         if (auto r = only("direction", l.type != LightType::Sphere, "lights with an orientation"); !r) return r;
@@ -532,6 +535,8 @@ struct Builder {
         }
         RG_TRY(l.range, numberF(w, b, "range", 0.0f, Range::nonNegative()));
         if (b.has("ies")) RG_TRY(l.ies, existingFile(w, b, "ies"));
+        if (b.has("ies_mode")) RG_TRY(l.iesMode, choice(w, b, "ies_mode", "", {"mask", "intensity"}, "IES mode"));
+        RG_TRY(l.exactCone, boolean(w, b, "exact_cone", false));
         float angular = 0.2664f;
         RG_TRY(angular, numberF(w, b, "angular_radius", angular, Range::openLow(0, 10)));
         l.sunAngularRadius = angular * kDegrees;

@@ -521,6 +521,17 @@ TEST_F(Lights, IesModeMaskOrIntensity) {
     EXPECT_NEAR(intensity->lights[0].intensity.r, 470.0, 1e-3);
     EXPECT_EQ(mask->lights[0].intensity.a, 0.0f);
     ASSERT_EQ(mask->profiles.size(), 1u);
+    // Per light (Light::iesMode, the scene's `ies_mode`), over the scene's default.
+    Light own = l;
+    own.iesMode = "intensity";
+    auto mixed = passes::convertLights({l, own}, passes::IesMode::Mask);
+    ASSERT_TRUE(mixed.has_value());
+    EXPECT_NEAR(mixed->lights[0].intensity.r, 1000.0 / kPi, 1e-3);
+    EXPECT_NEAR(mixed->lights[1].intensity.r, 470.0, 1e-3);
+    own.iesMode = "mask";
+    auto overridden = passes::convertLights({own}, passes::IesMode::Intensity);
+    ASSERT_TRUE(overridden.has_value());
+    EXPECT_NEAR(overridden->lights[0].intensity.r, 1000.0 / kPi, 1e-3);
     // Two lights with one file share one baked profile.
     auto twice = passes::convertLights({l, l});
     ASSERT_TRUE(twice.has_value());
@@ -531,6 +542,25 @@ TEST_F(Lights, IesModeMaskOrIntensity) {
     auto missing = passes::convertLights({l});
     ASSERT_FALSE(missing.has_value());
     EXPECT_EQ(missing.error().message, "light 'washer' (spot): '/nonexistent/lamp.ies': no such IES file");
+}
+
+TEST_F(Lights, SpotLumensByEq17OrTheExactConeOfEq16) {
+    // seed 000 eq:17 (the default): I = Φ / π whatever the cone; eq:16 (exact_cone): the flux
+    // spread over the cone, I = Φ / (2π (1 − cos θ)), θ the outer half-angle. 1000 lm, θ = 30°.
+    Light l;
+    l.name = "torch";
+    l.type = LightType::Spot;
+    l.intensity = 1000;
+    l.unit = "lm";
+    l.outerAngle = static_cast<float>(kPi / 6);
+    Light exact = l;
+    exact.exactCone = true;
+    auto r = passes::convertLights({l, exact});
+    ASSERT_TRUE(r.has_value());
+    EXPECT_NEAR(r->lights[0].intensity.r, 1000.0 / kPi, 1e-3);
+    EXPECT_NEAR(r->lights[1].intensity.r, 1000.0 / (2.0 * kPi * (1.0 - std::cos(kPi / 6))), 1e-2);  // 1187.9 cd
+    // The flux that leaves the exact cone is the declared one: ∫ I dω over the cone = Φ.
+    EXPECT_NEAR(r->lights[1].intensity.r * 2.0 * kPi * (1.0 - std::cos(kPi / 6)), 1000.0, 0.1);
 }
 
 TEST_F(Lights, ConversionRefusesWhatTheShadersCannotTake) {

@@ -1002,11 +1002,20 @@ TEST(SceneScript, LightFieldErrorsAndUnitsPerType) {
               "bad.lua:1: scene.light.a.length: missing (a tube light needs its length in metres)");
     EXPECT_EQ(lua.error("scene.light \"a\" { type = \"point\", intensity = 5, ies = \"x.ies\" }"),
               "bad.lua:1: scene.light.a.ies: cannot open '" + lua.dir + "/x.ies': No such file or directory");
+    EXPECT_EQ(lua.error("scene.light \"a\" { type = \"point\", intensity = 5, exact_cone = true }"),
+              "bad.lua:1: scene.light.a.exact_cone: not used by a point light (only by spot lights)");
+    EXPECT_EQ(lua.error("scene.light \"a\" { type = \"point\", intensity = 5, ies_mode = \"mask\" }"),
+              "bad.lua:1: scene.light.a.ies_mode: needs an ies profile to apply");
+    EXPECT_EQ(lua.error("scene.light \"a\" { type = \"sphere\", intensity = 5, radius = 1, ies_mode = \"mask\" }"),
+              "bad.lua:1: scene.light.a.ies_mode: not used by a sphere light (only by point and spot lights with an IES profile)");
     // Valid: EV100 may be negative; spot angles are degrees, stored in radians.
     auto ok = lua.run("ok.lua",
                       "scene.light \"a\" { type = \"disk\", intensity = -2, unit = \"ev100\", radius = 0.5, target = { 0, 0, 0 }, position = { 0, 2, 0 } }\n"
-                      "scene.light \"b\" { type = \"spot\", intensity = 800, direction = { 0, -1, 0 }, inner_angle = 20, outer_angle = 30 }\n");
+                      "scene.light \"b\" { type = \"spot\", intensity = 800, direction = { 0, -1, 0 }, inner_angle = 20, outer_angle = 30,\n"
+                      "                   exact_cone = true }\n");
     ASSERT_TRUE(ok) << errorOf(ok);
+    EXPECT_FALSE(ok->lights[0].exactCone);
+    EXPECT_TRUE(ok->lights[1].exactCone);
     EXPECT_FLOAT_EQ(ok->lights[0].intensity, -2.0f);
     expectNear(ok->lights[0].direction, {0, -1, 0}, 1e-6f, "disk direction from target");
     EXPECT_EQ(ok->lights[1].unit, "lm");  // the default unit of a spot light
@@ -1157,7 +1166,9 @@ TEST(ExportGlb, LuaSceneRoundTripsThroughGlb) {
         EXPECT_EQ(a.doubleSided, b.doubleSided);
         EXPECT_EQ(a.extra, b.extra);
     }
-    ASSERT_EQ(back->lights.size(), 2u);
+    ASSERT_EQ(back->lights.size(), 3u);
+    EXPECT_FALSE(back->lights[1].exactCone);
+    EXPECT_TRUE(back->lights[2].exactCone);
     EXPECT_EQ(back->lights[0].name, "sun");
     EXPECT_EQ(back->lights[0].unit, "lux");
     expectNear(back->lights[0].direction, scene->lights[0].direction, 1e-6f, "sun direction");
@@ -1192,7 +1203,10 @@ TEST(ExportGlb, LumensBecomeTheCandelaRenderedAndComeBack) {
     spot.intensity = 1000.0f;
     spot.outerAngle = 0.5f;
     spot.innerAngle = 0.3f;
-    scene.lights = {point, spot};
+    rg::Light exact = spot;  // eq:16: the flux over the cone, 1000 / (2π (1 − cos 0.5)) cd
+    exact.name = "beam";
+    exact.exactCone = true;
+    scene.lights = {point, spot, exact};
     const std::string path = tmpDir("export") + "/lumens.glb";
     std::vector<std::string> warnings;
     auto w = rg::exportGlb(scene, path, &warnings);
@@ -1206,12 +1220,15 @@ TEST(ExportGlb, LumensBecomeTheCandelaRenderedAndComeBack) {
     std::memcpy(&jsonLength, bytes.data() + 12, 4);
     const auto json = nlohmann::json::parse(bytes.substr(20, jsonLength));
     const auto& lights = json["extensions"]["KHR_lights_punctual"]["lights"];
-    ASSERT_EQ(lights.size(), 2u);
+    ASSERT_EQ(lights.size(), 3u);
     EXPECT_NEAR(lights[0]["intensity"].get<double>(), 1600.0 / (4.0 * 3.14159265358979), 1e-3);
     EXPECT_NEAR(lights[1]["intensity"].get<double>(), 1000.0 / 3.14159265358979, 1e-3);
+    EXPECT_NEAR(lights[2]["intensity"].get<double>(), 1000.0 / (2.0 * 3.14159265358979 * (1.0 - std::cos(0.5))), 1e-2);
     auto back = rg::loadGltf(path);
     ASSERT_TRUE(back) << errorOf(back);
-    ASSERT_EQ(back->lights.size(), 2u);
+    ASSERT_EQ(back->lights.size(), 3u);
+    EXPECT_FALSE(back->lights[1].exactCone);
+    EXPECT_TRUE(back->lights[2].exactCone);
     EXPECT_EQ(back->lights[0].unit, "lm");
     EXPECT_FLOAT_EQ(back->lights[0].intensity, 1600.0f);
     EXPECT_EQ(back->lights[1].unit, "lm");
