@@ -1166,9 +1166,7 @@ TEST(ExportGlb, LuaSceneRoundTripsThroughGlb) {
         EXPECT_EQ(a.doubleSided, b.doubleSided);
         EXPECT_EQ(a.extra, b.extra);
     }
-    ASSERT_EQ(back->lights.size(), 3u);
-    EXPECT_FALSE(back->lights[1].exactCone);
-    EXPECT_TRUE(back->lights[2].exactCone);
+    ASSERT_EQ(back->lights.size(), 2u);
     EXPECT_EQ(back->lights[0].name, "sun");
     EXPECT_EQ(back->lights[0].unit, "lux");
     expectNear(back->lights[0].direction, scene->lights[0].direction, 1e-6f, "sun direction");
