@@ -869,7 +869,9 @@ TEST_F(Lights, TileListsFollowLightsPerPixelNotLightsInTheScene) {
             EXPECT_LT(count, stride) << "tile " << t << " overflows";
             for (uint32_t k = 0; k < std::min(count, stride - 1); ++k) {
                 EXPECT_LT(list[1 + k], n);
-                if (k > 0) EXPECT_LT(list[k], list[1 + k]) << "tile " << t;
+                if (k > 0) {
+                    EXPECT_LT(list[k], list[1 + k]) << "tile " << t;
+                }
             }
             if (count > 0) {
                 total += count;

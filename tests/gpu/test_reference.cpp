@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <map>
 
 #include "cli/runtime.h"
 #include "cli/session.h"
@@ -33,8 +34,10 @@ struct Render {
 
 class Reference : public GpuFixture {
 protected:
-    static Render render(const std::string& pipeline, const std::string& scene, uint32_t frames) {
+    static Render render(const std::string& pipeline, const std::string& scene, uint32_t frames,
+                         const std::map<std::string, std::string>& sceneArgs = {}) {
         SessionOptions o;
+        o.sceneArgs = sceneArgs;
         o.compile.outputWidth = W;
         o.compile.outputHeight = H;
         o.scene = kRoot + "/tests/gpu/scenes/" + scene;
@@ -69,10 +72,10 @@ protected:
     struct Error {
         double floorMean = 0;    // mean relative error over the floor (diffuse only)
         double surfaceMean = 0;  // mean relative error over every surface the reference lights
-        double bias = 0;         // Σ real-time / Σ reference − 1 over every surface
+        double bias = 0;         // Σ real-time / Σ reference − 1 over the same pixels
     };
-    // Relative errors over RGB where the reference is above 1 % of its brightest surface (the
-    // rest — back faces, the far floor — is noise over nearly nothing).
+    // Relative errors and energy over RGB where the reference is above 1 % of its brightest
+    // surface (the rest — back faces, the far floor, points inside a light — is nearly nothing).
     static Error compare(const Render& rt, const Render& ref) {
         Error e;
         double peak = 0;
@@ -86,9 +89,9 @@ protected:
             const bool floor = ref.gb2.pixels[i * 4 + 2] == 0.0f;
             for (int c = 0; c < 3; ++c) {
                 const double a = rt.hdr.pixels[i * 4 + c], b = ref.hdr.pixels[i * 4 + c];
+                if (b < 0.01 * peak) continue;
                 rtSum += a;
                 refSum += b;
-                if (b < 0.01 * peak) continue;
                 const double rel = std::abs(a - b) / b;
                 surfaceSum += rel;
                 ++surfaceN;
@@ -104,11 +107,13 @@ protected:
         return e;
     }
 
-    static Error measure(const char* scene) {
-        Render rt = render("deferred.lua", scene, 1);
-        Render ref = render("reference.lua", scene, 64);
+    static Error measure(const char* scene, const std::map<std::string, std::string>& sceneArgs = {}) {
+        Render rt = render("deferred.lua", scene, 1, sceneArgs);
+        Render ref = render("reference.lua", scene, 64, sceneArgs);
         Error e = compare(rt, ref);
-        std::printf("%-22s floor %.4f, surfaces %.4f, energy %+.4f\n", scene, e.floorMean, e.surfaceMean, e.bias);
+        std::string args;
+        for (const auto& [k, v] : sceneArgs) args += " " + k + "=" + v;
+        std::printf("%-22s%s floor %.4f, surfaces %.4f, energy %+.4f\n", scene, args.c_str(), e.floorMean, e.surfaceMean, e.bias);
         return e;
     }
 };
@@ -127,7 +132,7 @@ TEST_F(Reference, TinySphereConvergesToThePointLight) {
     EXPECT_LT(std::abs(e.bias), 0.005);
 }
 
-// Measured (160x90, 256 samples): floor 0.0023, surfaces 0.0062, energy -0.011. lst:10 is exact
+// Measured (160x90, 256 samples): floor 0.0023, surfaces 0.0062, energy -0.0075. lst:10 is exact
 // for a sphere's illuminance; what is left is the Disney diffuse taken towards the light's centre
 // and, on the glossy spheres, the representative point's energy factor.
 TEST_F(Reference, SphereLight) {
@@ -137,7 +142,7 @@ TEST_F(Reference, SphereLight) {
     EXPECT_LT(std::abs(e.bias), 0.025);
 }
 
-// Measured: floor 0.0245, surfaces 0.028, energy -0.038: lst:10's disk form with the disk's own
+// Measured: floor 0.0245, surfaces 0.028, energy -0.037: lst:10's disk form with the disk's own
 // facing factor, a little dark (the seed calls it a small discrepancy); highlights lose energy.
 TEST_F(Reference, DiskLight) {
     Error e = measure("reference_disk.lua");
@@ -155,14 +160,36 @@ TEST_F(Reference, RectangleLight) {
     EXPECT_LT(std::abs(e.bias), 0.06);
 }
 
-// Measured: floor 0.036, surfaces 0.047, energy -0.061: the capsule as a rectangle facing the
+// Measured: floor 0.036, surfaces 0.047, energy -0.074: the capsule as a rectangle facing the
 // point plus one sphere (seed 002 §4.7.2.6); near-mirror highlights lose most (sphere × line
 // energy factors).
 TEST_F(Reference, TubeLight) {
     Error e = measure("reference_tube.lua");
     EXPECT_LT(e.floorMean, 0.05);
     EXPECT_LT(e.surfaceMean, 0.065);
-    EXPECT_LT(std::abs(e.bias), 0.08);
+    EXPECT_LT(std::abs(e.bias), 0.10);
+}
+
+TEST_F(Reference, LightsAcrossTheHorizon) {
+    // reference_horizon.lua: a floor around a light that dips below it, the case lst:10's horizon
+    // handling exists for. Floor only (the scene has nothing else); pixels inside the sphere or
+    // tube get nothing in the reference (emitters emit outwards) and near-nothing pixels are left
+    // out by compare(). Measured: see each bound.
+    const struct {
+        const char* light;
+        double floor, energy;
+    } cases[] = {
+        {"sphere", 0.20, 0.15},  // measured 0.13, +0.10: lst:10 is exact for the illuminance; the
+                                 // Disney diffuse taken towards the centre is not, this close
+        {"disk", 0.20, 0.30},    // measured 0.13, -0.21: the disk's facing factor at the horizon
+        {"rect", 0.50, 0.50},    // measured 0.34, +0.38: clamped corner cosines over-light
+        {"tube", 0.30, 0.15},    // measured 0.21, +0.06
+    };
+    for (const auto& c : cases) {
+        Error e = measure("reference_horizon.lua", {{"light", c.light}});
+        EXPECT_LT(e.floorMean, c.floor) << c.light;
+        EXPECT_LT(std::abs(e.bias), c.energy) << c.light;
+    }
 }
 
 }  // namespace
