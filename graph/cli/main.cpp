@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <cmath>
 #include <cstring>
 #include <unistd.h>
 #include <filesystem>
@@ -392,6 +393,11 @@ Result<Image> writeOutputs(RenderSetup& setup, const std::string& exrPath, const
         std::error_code ec;
         if (auto parent = fs::path(p).parent_path(); !parent.empty()) fs::create_directories(parent, ec);
     }
+    // Half floats end at 65504: absolute luminance beyond it (the sun, its mirror reflections)
+    // would be written as inf, so such a file is written in 32-bit floats.
+    for (const auto& l : layers)
+        for (float v : l.image.pixels)
+            if (std::isfinite(v) && std::abs(v) > 65504.0f) eo.pixelType = ExrPixelType::Float;
     if (auto r = writeExr(exrPath, layers, eo); !r) return std::unexpected(r.error());
     Image rgb(png.width, png.height, std::min(3u, png.channels));
     for (size_t i = 0; i < size_t(png.width) * png.height; ++i)

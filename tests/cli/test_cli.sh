@@ -68,6 +68,9 @@ check "reference mode" 0 grep "rgraph: frame 4/4" -- \
     --frames 4 --size 48x32 --out "$tmp/ref.exr" --png "$tmp/ref.png"
 check "reference vs real time" 0 grep "mean relative error" -- \
     bash -c "'$rgraph' render --scene tests/gpu/scenes/reference_rect.lua --size 48x32 --out '$tmp/rt.exr' --png '$tmp/rt.png' >/dev/null && '$rgraph' compare '$tmp/rt.exr' '$tmp/ref.exr'"
+# The sun in a chrome sphere is far beyond 65504 cd/m²: the EXR switches to 32-bit floats (no inf).
+check "luminance beyond half floats" 0 grep "mean relative error 0" -- \
+    bash -c "'$rgraph' render --scene tests/gpu/scenes/reference_sun.lua --size 48x32 --out '$tmp/sun.exr' --png '$tmp/sun.png' >/dev/null && '$rgraph' compare '$tmp/sun.exr' '$tmp/sun.exr'"
 check "bench" 0 grep "frame total" -- "$rgraph" bench --size 64x64 --frames 3 --json "$tmp/bench.json"
 check "bench json" 0 -- python3 -c "import json; b=json.load(open('$tmp/bench.json')); assert len(b['passes'])==22 and b['scene']['draws']>0 and b['frames']==3"
 
