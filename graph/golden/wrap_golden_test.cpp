@@ -3,27 +3,19 @@
 // frame(ctx) callback. The only file of graph/golden that sees lua.h.
 #include "golden/golden_test.h"
 
-extern "C" {
-#include <lauxlib.h>
-#include <lua.h>
-#include <lualib.h>
-}
-
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
 
 #include "lua/declarations.h"
+#include "lua/lua_sandbox.h"
 
 namespace rg::golden {
 
 struct GoldenScript::Impl {
     lua_State* L = nullptr;
-    Limits limits;
-    size_t memory = 0;
-    bool memoryExceeded = false;
-    uint64_t instructions = 0;
+    lua::Budget budget;  // memory and instructions (lua/lua_sandbox.h)
     int frameRef = LUA_NOREF;
     // During a frame callback.
     FrameChanges* changes = nullptr;
@@ -36,94 +28,13 @@ struct GoldenScript::Impl {
 
 namespace {
 
-constexpr int kHookEvery = 1000;
 constexpr int kMaxDepth = 32;
 
 GoldenScript::Impl& implOf(lua_State* L) { return **static_cast<GoldenScript::Impl**>(lua_getextraspace(L)); }
 
-void* allocate(void* ud, void* ptr, size_t osize, size_t nsize) {
-    auto* impl = static_cast<GoldenScript::Impl*>(ud);
-    const size_t old = ptr ? osize : 0;
-    if (nsize == 0) {
-        impl->memory -= old;
-        std::free(ptr);
-        return nullptr;
-    }
-    if (nsize > old && impl->memory + (nsize - old) > impl->limits.memoryBytes) {
-        impl->memoryExceeded = true;
-        return nullptr;  // Lua raises "not enough memory"
-    }
-    void* p = std::realloc(ptr, nsize);
-    if (p) impl->memory = impl->memory - old + nsize;
-    return p;
-}
-
-void countHook(lua_State* L, lua_Debug*) {
-    auto& impl = implOf(L);
-    impl.instructions += kHookEvery;
-    if (impl.instructions > impl.limits.instructions) {
-        luaL_where(L, 0);
-        lua_pushfstring(L, "golden test script stopped after %d million instructions: a runaway loop?",
-                        static_cast<int>(impl.instructions / 1000000));
-        lua_concat(L, 2);
-        lua_error(L);
-    }
-}
-
-int messageHandler(lua_State* L) {
-    const char* msg = lua_tostring(L, 1);
-    if (!msg) msg = luaL_tolstring(L, 1, nullptr);
-    luaL_traceback(L, L, msg, 1);
-    return 1;
-}
-
-Result<void> protectedCall(GoldenScript::Impl& impl, int nargs, int nresults) {
-    lua_State* L = impl.L;
-    const int base = lua_gettop(L) - nargs;
-    lua_pushcfunction(L, messageHandler);
-    lua_insert(L, base);
-    impl.instructions = 0;
-    impl.memoryExceeded = false;
-    const int status = lua_pcall(L, nargs, nresults, base);
-    lua_remove(L, base);
-    if (status == LUA_OK) return {};
-    std::string msg = lua_tostring(L, -1) ? lua_tostring(L, -1) : "unknown Lua error";
-    lua_pop(L, 1);
-    if (status == LUA_ERRMEM || impl.memoryExceeded)
-        msg = "golden test script stopped: it used more than " + std::to_string(impl.limits.memoryBytes >> 20) +
-              " MiB of Lua memory";
-    return fail(ErrorCode::InvalidInput, msg);
-}
-
-// An error raised by glue code; `guarded` turns it into a Lua error once no C++ object is alive.
-struct ScriptError {
-    std::string message;
-};
-
-std::string where(lua_State* L) {
-    luaL_where(L, 1);
-    std::string w = lua_tostring(L, -1);
-    lua_pop(L, 1);
-    return w;
-}
-
-// C++ exceptions never cross lua_error: the message is copied into Lua inside the scope, the
-// error is raised after it (LÖVE's rule).
-template <int (*F)(lua_State*)>
-int guarded(lua_State* L) {
-    {
-        std::string message;
-        try {
-            return F(L);
-        } catch (const ScriptError& e) {
-            message = where(L) + e.message;
-        } catch (const std::exception& e) {
-            message = where(L) + "internal error: " + e.what();
-        }
-        lua_pushlstring(L, message.data(), message.size());
-    }
-    return lua_error(L);
-}
+// Glue errors are thrown as lua::ScriptError and raised by lua::guarded (lua/lua_sandbox.h).
+using lua::guarded;
+using lua::ScriptError;
 
 std::string typeName(lua_State* L, int idx) { return luaL_typename(L, idx); }
 
@@ -344,22 +255,12 @@ Result<std::unique_ptr<GoldenScript>> GoldenScript::load(const std::string& file
 
     std::unique_ptr<GoldenScript> script(new GoldenScript());
     Impl& impl = *script->m;
-    impl.limits = limits;
-    lua_State* L = lua_newstate(allocate, &impl);
+    impl.budget = lua::Budget{"golden test script", limits.memoryBytes, limits.instructions};
+    lua_State* L = lua::newSandboxedState(impl.budget);
     if (!L) return fail(ErrorCode::Io, "cannot create a Lua state");
     impl.L = L;
     *static_cast<Impl**>(lua_getextraspace(L)) = &impl;
-    lua_sethook(L, countHook, LUA_MASKCOUNT, kHookEvery);
 
-    const std::pair<const char*, lua_CFunction> libs[] = {{LUA_GNAME, luaopen_base},
-                                                          {LUA_TABLIBNAME, luaopen_table},
-                                                          {LUA_STRLIBNAME, luaopen_string},
-                                                          {LUA_MATHLIBNAME, luaopen_math},
-                                                          {LUA_UTF8LIBNAME, luaopen_utf8}};
-    for (const auto& [name, open] : libs) {
-        luaL_requiref(L, name, open, 1);
-        lua_pop(L, 1);
-    }
     // Nothing that reads files or loads code; each says why when called.
     for (const char* fn : {"dofile", "loadfile", "load", "require", "collectgarbage"}) {
         lua_pushstring(L, fn);
@@ -372,7 +273,7 @@ Result<std::unique_ptr<GoldenScript>> GoldenScript::load(const std::string& file
         std::string msg = lua_tostring(L, -1) ? lua_tostring(L, -1) : "cannot load";
         return fail(ErrorCode::InvalidInput, msg);
     }
-    if (auto r = protectedCall(impl, 0, 1); !r) return std::unexpected(r.error());
+    if (auto r = lua::protectedCall(impl.L, 0, 1); !r) return std::unexpected(r.error());
 
     // The returned table; `frame` is kept in the registry, the rest becomes a Value.
     bool hasFrame = false;
@@ -426,7 +327,7 @@ Result<FrameChanges> GoldenScript::frame(const FrameContext& ctx, const Pipeline
     lua_setfield(L, -2, "params");
     lua_pushcfunction(L, guarded<ctxPass>);
     lua_setfield(L, -2, "pass");
-    auto r = protectedCall(*m, 1, 0);
+    auto r = lua::protectedCall(m->L, 1, 0);
     m->changes = nullptr;
     m->current = nullptr;
     if (!r) return std::unexpected(r.error());

@@ -3,12 +3,6 @@
 // declarations.cpp and pipeline.cpp.
 #include "lua_host.h"
 
-extern "C" {
-#include <lauxlib.h>
-#include <lua.h>
-#include <lualib.h>
-}
-
 #include <algorithm>
 #include <cctype>
 #include <cstdlib>
@@ -18,6 +12,7 @@ extern "C" {
 #include <sstream>
 
 #include "declarations.h"
+#include "lua_sandbox.h"
 
 namespace fs = std::filesystem;
 
@@ -26,9 +21,7 @@ namespace rg {
 struct LuaHost::Impl {
     LuaHostOptions options;
     lua_State* L = nullptr;
-    size_t memory = 0;
-    bool memoryExceeded = false;
-    uint64_t instructions = 0;
+    lua::Budget budget;  // memory and instructions (lua_sandbox.h)
     std::vector<Declaration> decls;
     OutputNames output;
     std::vector<std::string> files;
@@ -46,66 +39,9 @@ struct LuaHost::Impl {
 
 namespace {
 
-constexpr int kHookEvery = 1000;
 const char* kModulesKey = "rgraph.modules";
 
 LuaHost::Impl& implOf(lua_State* L) { return **static_cast<LuaHost::Impl**>(lua_getextraspace(L)); }
-
-void* allocate(void* ud, void* ptr, size_t osize, size_t nsize) {
-    auto* impl = static_cast<LuaHost::Impl*>(ud);
-    const size_t old = ptr ? osize : 0;
-    if (nsize == 0) {
-        impl->memory -= old;
-        std::free(ptr);
-        return nullptr;
-    }
-    if (nsize > old && impl->memory + (nsize - old) > impl->options.memoryBytes) {
-        impl->memoryExceeded = true;
-        return nullptr;  // Lua raises "not enough memory"
-    }
-    void* p = std::realloc(ptr, nsize);
-    if (p) impl->memory = impl->memory - old + nsize;
-    return p;
-}
-
-void countHook(lua_State* L, lua_Debug*) {
-    auto& impl = implOf(L);
-    impl.instructions += kHookEvery;
-    if (impl.instructions > impl.options.instructions) {
-        // Level 0 inside a count hook is the Lua function that was running.
-        luaL_where(L, 0);
-        lua_pushfstring(L, "script stopped after %d million instructions: a runaway loop? (limit: %d million)",
-                        static_cast<int>(impl.instructions / 1000000), static_cast<int>(impl.options.instructions / 1000000));
-        lua_concat(L, 2);
-        lua_error(L);
-    }
-}
-
-int messageHandler(lua_State* L) {
-    const char* msg = lua_tostring(L, 1);
-    if (!msg) msg = luaL_tolstring(L, 1, nullptr);
-    luaL_traceback(L, L, msg, 1);
-    return 1;
-}
-
-// Runs the function on top of the stack with `nargs` arguments below it... in protected mode with
-// a traceback; returns the error text on failure.
-Result<void> protectedCall(LuaHost::Impl& impl, int nargs, int nresults) {
-    lua_State* L = impl.L;
-    int base = lua_gettop(L) - nargs;
-    lua_pushcfunction(L, messageHandler);
-    lua_insert(L, base);
-    impl.instructions = 0;
-    impl.memoryExceeded = false;
-    int status = lua_pcall(L, nargs, nresults, base);
-    lua_remove(L, base);
-    if (status == LUA_OK) return {};
-    std::string msg = lua_tostring(L, -1) ? lua_tostring(L, -1) : "unknown Lua error";
-    lua_pop(L, 1);
-    if (status == LUA_ERRMEM || impl.memoryExceeded)
-        msg = "script stopped: it used more than " + std::to_string(impl.options.memoryBytes >> 20) + " MiB of Lua memory";
-    return fail(ErrorCode::InvalidInput, msg);
-}
 
 std::string chunkName(const LuaHost::Impl& impl, const std::string& path) {
     std::error_code ec;
@@ -210,40 +146,10 @@ void pushValue(lua_State* L, const Value& v) {
         lua_pushnil(L);
 }
 
-// Errors inside C functions are thrown as LuaRaise and turned into a Lua error by guarded()
-// after every C++ object of the function is destroyed: no longjmp crosses C++ frames with live
-// destructors, and no C++ exception crosses lua_error.
-struct LuaRaise {
-    std::string message;
-};
-
-[[noreturn]] void raise(lua_State*, const std::string& msg) { throw LuaRaise{msg}; }
-
-template <int (*F)(lua_State*)>
-int guarded(lua_State* L) {
-    {
-        std::string message;
-        try {
-            return F(L);
-        } catch (const LuaRaise& e) {
-            message = e.message;
-        } catch (const std::exception& e) {
-            message = std::string("internal error: ") + e.what();
-        } catch (...) {
-            message = "internal error";
-        }
-        // Say where in the script, unless the message already starts with a position.
-        const size_t space = message.find(' ');
-        const size_t lua = message.find(".lua:");
-        if (lua == std::string::npos || (space != std::string::npos && lua > space)) {
-            luaL_where(L, 1);
-            message = std::string(lua_tostring(L, -1)) + message;
-            lua_pop(L, 1);
-        }
-        lua_pushlstring(L, message.data(), message.size());
-    }
-    return lua_error(L);
-}
+// Errors inside C functions are thrown as lua::ScriptError and raised by lua::guarded after
+// every C++ object of the function is destroyed (lua_sandbox.h).
+[[noreturn]] void raise(lua_State*, const std::string& msg) { throw lua::ScriptError{msg}; }
+using lua::guarded;
 
 bool validName(const std::string& n, bool allowDots) {
     if (n.empty()) return false;
@@ -538,25 +444,12 @@ Result<std::vector<Declaration>> LuaHost::loadDeclarations(const std::string& fi
     if (!fs::is_regular_file(file, ec)) return fail(ErrorCode::NotFound, "cannot open pipeline script '" + file + "'");
     m->pipelineDir = fs::absolute(file).parent_path().string();
 
-    lua_State* L = lua_newstate(allocate, m.get());
+    m->budget = lua::Budget{"script", m->options.memoryBytes, m->options.instructions};
+    lua_State* L = lua::newSandboxedState(m->budget, /*withOs=*/true);
     if (!L) return fail(ErrorCode::Io, "cannot create a Lua state");
     m->L = L;
     *static_cast<Impl**>(lua_getextraspace(L)) = m.get();
-    lua_sethook(L, countHook, LUA_MASKCOUNT, kHookEvery);
 
-    // Safe libraries only.
-    const std::pair<const char*, lua_CFunction> libs[] = {{LUA_GNAME, luaopen_base},   {LUA_TABLIBNAME, luaopen_table},
-                                                          {LUA_STRLIBNAME, luaopen_string}, {LUA_MATHLIBNAME, luaopen_math},
-                                                          {LUA_UTF8LIBNAME, luaopen_utf8}, {LUA_OSLIBNAME, luaopen_os}};
-    for (const auto& [name, open] : libs) {
-        luaL_requiref(L, name, open, 1);
-        lua_pop(L, 1);
-    }
-    // Base functions that reach files or load code.
-    for (const char* fn : {"dofile", "loadfile", "load", "collectgarbage"}) {
-        lua_pushnil(L);
-        lua_setglobal(L, fn);
-    }
     // os keeps clock/time/date; every other os.* explains the sandbox.
     lua_getglobal(L, "os");
     for (const char* fn : {"execute", "exit", "getenv", "remove", "rename", "tmpname", "setlocale"}) {
@@ -628,7 +521,7 @@ Result<std::vector<Declaration>> LuaHost::loadDeclarations(const std::string& fi
     lua_pop(L, 1);
 
     if (auto r = loadFile(*m, file); !r) return std::unexpected(r.error());
-    if (auto r = protectedCall(*m, 0, 0); !r) return std::unexpected(r.error());
+    if (auto r = lua::protectedCall(m->L, 0, 0); !r) return std::unexpected(r.error());
     if (files) *files = m->files;
     return m->decls;
 }
@@ -677,7 +570,7 @@ Result<FrameChanges> LuaHost::frame(const FrameContext& ctx, const PipelineDesc&
     lua_setfield(L, -2, "params");
     lua_pushcfunction(L, guarded<ctxPass>);
     lua_setfield(L, -2, "pass");
-    auto r = protectedCall(*m, 1, 0);
+    auto r = lua::protectedCall(m->L, 1, 0);
     m->changes = nullptr;
     m->current = nullptr;
     if (!r) return std::unexpected(Error(ErrorCode::InvalidInput, "rg.frame: " + r.error().message));

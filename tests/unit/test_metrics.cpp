@@ -588,7 +588,7 @@ TEST(GoldenScripts, TheSandboxHoldsAndLimitsStopRunaways) {
     auto s = GoldenScript::load(writeScript("runaway", "while true do end"), "runaway.lua", small);
     ASSERT_FALSE(s.has_value());
     EXPECT_EQ(s.error().message.substr(0, s.error().message.find('\n')),
-              "runaway.lua:1: golden test script stopped after 2 million instructions: a runaway loop?");
+              "runaway.lua:1: golden test script stopped after 2 million instructions: a runaway loop? (limit: 2 million)");
     small.memoryBytes = 8u << 20;
     auto m = GoldenScript::load(writeScript("hog", "local t = {} for i = 1, 1e8 do t[i] = i end return {}"), "hog.lua", small);
     ASSERT_FALSE(m.has_value());
