@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "core/check.h"
+#include "graphics_pipeline.h"
 #include "passes.h"
 #include "scene_pass.h"
 #include "shader_program.h"
@@ -182,83 +183,35 @@ public:
 
 private:
     Result<void> createPipeline(PassSetup& setup, const std::string& blend) {
-        std::vector<VkFormat> colorFormats;
-        std::vector<VkPipelineColorBlendAttachmentState> blends;
+        GraphicsPipelineDesc d;
+        d.program = &m_program;
         for (const Access& a : m_colors) {
             Format f = setup.resources.find(a.resource)->plan->format;
-            colorFormats.push_back(toVkFormat(f));
-            VkPipelineColorBlendAttachmentState b{};
-            b.colorWriteMask = 0xf;
-            if (!blend.empty() && !formatInfo(f).integer) {
-                b.blendEnable = VK_TRUE;
-                b.srcColorBlendFactor = blend == "alpha" ? VK_BLEND_FACTOR_SRC_ALPHA : VK_BLEND_FACTOR_ONE;
-                b.dstColorBlendFactor = blend == "alpha" ? VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA : VK_BLEND_FACTOR_ONE;
-                b.colorBlendOp = VK_BLEND_OP_ADD;
-                b.srcAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-                b.dstAlphaBlendFactor = blend == "alpha" ? VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA : VK_BLEND_FACTOR_ONE;
-                b.alphaBlendOp = VK_BLEND_OP_ADD;
-            }
-            blends.push_back(b);
+            d.colorFormats.push_back(toVkFormat(f));
+            d.blends.push_back(blendState(formatInfo(f).integer ? "" : blend));
         }
-        VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
-        rendering.colorAttachmentCount = static_cast<uint32_t>(colorFormats.size());
-        rendering.pColorAttachmentFormats = colorFormats.data();
         if (m_depth) {
             Format f = setup.resources.find(m_depth->resource)->plan->format;
-            if (formatInfo(f).depth) rendering.depthAttachmentFormat = toVkFormat(f);
-            if (formatInfo(f).stencil) rendering.stencilAttachmentFormat = toVkFormat(f);
+            if (formatInfo(f).depth) d.depthFormat = toVkFormat(f);
+            if (formatInfo(f).stencil) d.stencilFormat = toVkFormat(f);
         }
-        VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-        VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-        ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-        VkPipelineViewportStateCreateInfo vp{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-        vp.viewportCount = 1;
-        vp.scissorCount = 1;
-        VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-        rs.polygonMode = VK_POLYGON_MODE_FILL;
-        rs.cullMode = VK_CULL_MODE_NONE;
-        rs.lineWidth = 1.0f;
-        VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-        ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-        VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
         if (m_depthTest) {
-            ds.depthTestEnable = VK_TRUE;
-            ds.depthWriteEnable = m_depthWrite ? VK_TRUE : VK_FALSE;
-            ds.depthCompareOp = m_depthCompare;
+            d.depthStencil.depthTestEnable = VK_TRUE;
+            d.depthStencil.depthWriteEnable = m_depthWrite ? VK_TRUE : VK_FALSE;
+            d.depthStencil.depthCompareOp = m_depthCompare;
         }
         if (m_stencilTest) {
-            ds.stencilTestEnable = VK_TRUE;
+            d.depthStencil.stencilTestEnable = VK_TRUE;
             VkStencilOpState op{};
             op.failOp = op.passOp = op.depthFailOp = VK_STENCIL_OP_KEEP;
             op.compareOp = m_stencilCompare;
             op.compareMask = m_stencilMask;
-            ds.front = ds.back = op;
+            d.depthStencil.front = d.depthStencil.back = op;
+            d.dynamicStates.push_back(VK_DYNAMIC_STATE_STENCIL_REFERENCE);
         }
-        VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-        cb.attachmentCount = static_cast<uint32_t>(blends.size());
-        cb.pAttachments = blends.data();
-        std::vector<VkDynamicState> dyn{VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
-        if (m_stencilTest) dyn.push_back(VK_DYNAMIC_STATE_STENCIL_REFERENCE);
-        VkPipelineDynamicStateCreateInfo dy{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-        dy.dynamicStateCount = static_cast<uint32_t>(dyn.size());
-        dy.pDynamicStates = dyn.data();
-
-        VkGraphicsPipelineCreateInfo gp{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-        gp.pNext = &rendering;
-        gp.stageCount = static_cast<uint32_t>(m_program.stageInfos().size());
-        gp.pStages = m_program.stageInfos().data();
-        gp.pVertexInputState = &vi;
-        gp.pInputAssemblyState = &ia;
-        gp.pViewportState = &vp;
-        gp.pRasterizationState = &rs;
-        gp.pMultisampleState = &ms;
-        gp.pDepthStencilState = &ds;
-        gp.pColorBlendState = &cb;
-        gp.pDynamicState = &dy;
-        gp.layout = m_program.layout();
-        VkPipeline pipeline = VK_NULL_HANDLE;
-        RG_VK_TRY(vkCreateGraphicsPipelines(setup.gpu.device(), VK_NULL_HANDLE, 1, &gp, nullptr, &pipeline));
-        m_pipeline = OwnedPipeline(setup.gpu.device(), pipeline);
+        auto pipeline = createGraphicsPipeline(setup.gpu.device(), d);
+        if (!pipeline) return std::unexpected(pipeline.error());
+        m_pipeline = std::move(*pipeline);
         return {};
     }
 

@@ -10,6 +10,7 @@
 
 #include "core/check.h"
 #include "gpu_scene.h"
+#include "graphics_pipeline.h"
 #include "passes.h"
 #include "scene_pass.h"
 #include "shader_program.h"
@@ -258,31 +259,20 @@ private:
     };
 
     Result<void> createPipeline(PassSetup& setup, Group& g, const std::vector<std::string>& attachments) {
-        std::vector<VkFormat> colorFormats;
-        std::vector<VkPipelineColorBlendAttachmentState> blends;
+        GraphicsPipelineDesc d;
+        d.program = g.program.get();
         for (const auto& name : attachments) {
-            colorFormats.push_back(toVkFormat(setup.resources.find(name)->plan->format));
-            VkPipelineColorBlendAttachmentState b{};
+            d.colorFormats.push_back(toVkFormat(setup.resources.find(name)->plan->format));
+            // Forward: over the lit HDR, src·α + dst·(1 − α), the HDR's alpha kept.
+            VkPipelineColorBlendAttachmentState b = blendState(m_forward ? "alpha" : "", /*alphaKeepsDestination=*/true);
             const bool ofLayout = std::find(g.info.targets.begin(), g.info.targets.end(), name) != g.info.targets.end();
             const bool filled = g.info.fills.empty() || std::find(g.info.fills.begin(), g.info.fills.end(), name) != g.info.fills.end();
             // A material writes only the targets of its layout it fills (the fix-up pass does the rest).
             b.colorWriteMask = m_forward || (ofLayout && filled) ? 0xfu : 0u;
-            if (m_forward) {  // over the lit HDR: src·α + dst·(1 − α)
-                b.blendEnable = VK_TRUE;
-                b.srcColorBlendFactor = VK_BLEND_FACTOR_SRC_ALPHA;
-                b.dstColorBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
-                b.colorBlendOp = VK_BLEND_OP_ADD;
-                b.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;
-                b.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE;
-                b.alphaBlendOp = VK_BLEND_OP_ADD;
-            }
-            blends.push_back(b);
+            d.blends.push_back(b);
         }
-        VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
-        rendering.colorAttachmentCount = static_cast<uint32_t>(colorFormats.size());
-        rendering.pColorAttachmentFormats = colorFormats.data();
-        rendering.depthAttachmentFormat = toVkFormat(m_depthFormat);
-        if (formatInfo(m_depthFormat).stencil) rendering.stencilAttachmentFormat = toVkFormat(m_depthFormat);
+        d.depthFormat = toVkFormat(m_depthFormat);
+        if (formatInfo(m_depthFormat).stencil) d.stencilFormat = toVkFormat(m_depthFormat);
 
         VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
         VkVertexInputAttributeDescription attrs[] = {
@@ -296,57 +286,28 @@ private:
         vi.pVertexBindingDescriptions = &binding;
         vi.vertexAttributeDescriptionCount = 5;
         vi.pVertexAttributeDescriptions = attrs;
-        VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
-        ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
-        VkPipelineViewportStateCreateInfo vp{VK_STRUCTURE_TYPE_PIPELINE_VIEWPORT_STATE_CREATE_INFO};
-        vp.viewportCount = 1;
-        vp.scissorCount = 1;
-        VkPipelineRasterizationStateCreateInfo rs{VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO};
-        rs.polygonMode = VK_POLYGON_MODE_FILL;
-        rs.cullMode = VK_CULL_MODE_BACK_BIT;
+        d.vertexInput = &vi;
         // glTF front faces are counter-clockwise; the projection's y flip (Vulkan's y points
         // down) keeps them counter-clockwise as seen on screen, which is what Vulkan tests.
-        rs.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-        rs.lineWidth = 1.0f;
-        VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
-        ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
-        VkPipelineDepthStencilStateCreateInfo ds{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
-        ds.depthTestEnable = VK_TRUE;
-        ds.depthWriteEnable = m_forward ? VK_FALSE : VK_TRUE;
-        ds.depthCompareOp = VK_COMPARE_OP_LESS;
+        // Culling is set per draw (double-sided materials).
+        d.cullMode = VK_CULL_MODE_BACK_BIT;
+        d.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+        d.depthStencil.depthTestEnable = VK_TRUE;
+        d.depthStencil.depthWriteEnable = m_forward ? VK_FALSE : VK_TRUE;
+        d.depthStencil.depthCompareOp = VK_COMPARE_OP_LESS;
         if (!m_forward && formatInfo(m_depthFormat).stencil && g.info.stencilMask) {
-            ds.stencilTestEnable = VK_TRUE;
+            d.depthStencil.stencilTestEnable = VK_TRUE;
             VkStencilOpState op{};
             op.failOp = op.depthFailOp = VK_STENCIL_OP_KEEP;
             op.passOp = VK_STENCIL_OP_REPLACE;
             op.compareOp = VK_COMPARE_OP_ALWAYS;
             op.writeMask = g.info.stencilMask;
-            ds.front = ds.back = op;
+            d.depthStencil.front = d.depthStencil.back = op;
         }
-        VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};
-        cb.attachmentCount = static_cast<uint32_t>(blends.size());
-        cb.pAttachments = blends.data();
-        VkDynamicState dyn[] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR, VK_DYNAMIC_STATE_STENCIL_REFERENCE,
-                                VK_DYNAMIC_STATE_CULL_MODE};
-        VkPipelineDynamicStateCreateInfo dy{VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO};
-        dy.dynamicStateCount = 4;
-        dy.pDynamicStates = dyn;
-        VkGraphicsPipelineCreateInfo gp{VK_STRUCTURE_TYPE_GRAPHICS_PIPELINE_CREATE_INFO};
-        gp.pNext = &rendering;
-        gp.stageCount = static_cast<uint32_t>(g.program->stageInfos().size());
-        gp.pStages = g.program->stageInfos().data();
-        gp.pVertexInputState = &vi;
-        gp.pInputAssemblyState = &ia;
-        gp.pViewportState = &vp;
-        gp.pRasterizationState = &rs;
-        gp.pMultisampleState = &ms;
-        gp.pDepthStencilState = &ds;
-        gp.pColorBlendState = &cb;
-        gp.pDynamicState = &dy;
-        gp.layout = g.program->layout();
-        VkPipeline pipeline = VK_NULL_HANDLE;
-        RG_VK_TRY(vkCreateGraphicsPipelines(setup.gpu.device(), VK_NULL_HANDLE, 1, &gp, nullptr, &pipeline));
-        g.pipeline = OwnedPipeline(setup.gpu.device(), pipeline);
+        d.dynamicStates = {VK_DYNAMIC_STATE_STENCIL_REFERENCE, VK_DYNAMIC_STATE_CULL_MODE};
+        auto pipeline = createGraphicsPipeline(setup.gpu.device(), d);
+        if (!pipeline) return std::unexpected(pipeline.error());
+        g.pipeline = std::move(*pipeline);
         return {};
     }
 

@@ -1,0 +1,34 @@
+// The graphics pipeline both raster pass kinds build (fullscreen in builtin_kinds.cpp, scene in
+// scene_pass.cpp): dynamic rendering into the given attachment formats, one viewport and scissor
+// (always dynamic), filled triangles, one sample. What differs between kinds — vertex input,
+// culling, depth/stencil, blending, further dynamic state — is in the description.
+#pragma once
+
+#include <vector>
+
+#include "gpu/vk.h"
+#include "shader_program.h"
+
+namespace rg::passes {
+
+struct GraphicsPipelineDesc {
+    const ShaderProgram* program = nullptr;
+    std::vector<VkFormat> colorFormats;
+    std::vector<VkPipelineColorBlendAttachmentState> blends;  // one per colour attachment
+    VkFormat depthFormat = VK_FORMAT_UNDEFINED;
+    VkFormat stencilFormat = VK_FORMAT_UNDEFINED;
+    const VkPipelineVertexInputStateCreateInfo* vertexInput = nullptr;  // none: no vertex buffers
+    VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
+    VkFrontFace frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    VkPipelineDepthStencilStateCreateInfo depthStencil{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    std::vector<VkDynamicState> dynamicStates;  // besides viewport and scissor
+};
+
+// The blend of a colour attachment: `alpha` src·α + dst·(1 − α), `additive` src + dst, none
+// (write as is); `alphaKeepsDestination` leaves the target's alpha as it was (blending over an
+// image whose alpha means something else).
+VkPipelineColorBlendAttachmentState blendState(const std::string& mode, bool alphaKeepsDestination = false);
+
+Result<gpu::OwnedPipeline> createGraphicsPipeline(VkDevice device, const GraphicsPipelineDesc& desc);
+
+}  // namespace rg::passes
