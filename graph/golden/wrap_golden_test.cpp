@@ -17,9 +17,6 @@ struct GoldenScript::Impl {
     lua_State* L = nullptr;
     lua::Budget budget;  // memory and instructions (lua/lua_sandbox.h)
     int frameRef = LUA_NOREF;
-    // During a frame callback.
-    FrameChanges* changes = nullptr;
-    const PipelineDesc* current = nullptr;
 
     ~Impl() {
         if (L) lua_close(L);
@@ -30,7 +27,6 @@ namespace {
 
 constexpr int kMaxDepth = 32;
 
-GoldenScript::Impl& implOf(lua_State* L) { return **static_cast<GoldenScript::Impl**>(lua_getextraspace(L)); }
 
 // Glue errors are thrown as lua::ScriptError and raised by lua::guarded (lua/lua_sandbox.h).
 using lua::guarded;
@@ -106,136 +102,8 @@ Result<Value> toValue(lua_State* L, int idx, const std::string& path, const std:
     }
 }
 
-void pushValue(lua_State* L, const Value& v) {
-    if (v.isBool()) lua_pushboolean(L, v.asBool());
-    else if (v.isNumber()) lua_pushnumber(L, v.asNumber());
-    else if (v.isString()) lua_pushlstring(L, v.asString().data(), v.asString().size());
-    else if (v.isList()) {
-        lua_createtable(L, static_cast<int>(v.asList().size()), 0);
-        for (size_t i = 0; i < v.asList().size(); ++i) {
-            pushValue(L, v.asList()[i]);
-            lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
-        }
-    } else if (v.isTable()) {
-        lua_createtable(L, 0, static_cast<int>(v.asTable().size()));
-        for (const auto& [k, item] : v.asTable()) {
-            pushValue(L, item);
-            lua_setfield(L, -2, k.c_str());
-        }
-    } else
-        lua_pushnil(L);
-}
 
-// ---- the frame callback's ctx (the rg.frame interface) ----
-
-// A string argument; luaL_check* would longjmp past live C++ objects, so glue checks by hand.
-std::string stringArg(lua_State* L, int idx, const char* what) {
-    if (lua_type(L, idx) != LUA_TSTRING) throw ScriptError{std::string(what) + ": expected a name, got " + typeName(L, idx)};
-    return lua_tostring(L, idx);
-}
-
-const ParamDesc& paramOf(GoldenScript::Impl& impl, const std::string& name) {
-    const ParamDesc* p = impl.current->findParam(name);
-    if (!p) {
-        std::vector<std::string> names;
-        for (const auto& q : impl.current->params) names.push_back(q.name);
-        std::string best = closestName(name, names);
-        throw ScriptError{"ctx.params: unknown parameter '" + name + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)")};
-    }
-    return *p;
-}
-
-int paramsIndex(lua_State* L) {
-    auto& impl = implOf(L);
-    const std::string name = stringArg(L, 2, "ctx.params");
-    if (auto it = impl.changes->params.find(name); it != impl.changes->params.end()) {
-        pushValue(L, it->second);
-        return 1;
-    }
-    pushValue(L, paramOf(impl, name).value);
-    return 1;
-}
-
-int paramsNewIndex(lua_State* L) {
-    auto& impl = implOf(L);
-    const std::string name = stringArg(L, 2, "ctx.params");
-    const ParamDesc& p = paramOf(impl, name);
-    auto v = toValue(L, 3, "ctx.params." + name, "", 0);
-    if (!v) throw ScriptError{v.error().message};
-    auto checked = checkParamValue(p, *v);
-    if (!checked) throw ScriptError{"ctx.params: " + checked.error().message};
-    impl.changes->params[name] = *checked;
-    return 0;
-}
-
-const PassDesc& passOf(GoldenScript::Impl& impl, const std::string& name) {
-    for (const auto& pass : impl.current->graph.passes)
-        if (pass.name == name) return pass;
-    std::vector<std::string> names;
-    for (const auto& p : impl.current->graph.passes) names.push_back(p.name);
-    std::string best = closestName(name, names);
-    throw ScriptError{"ctx.pass: unknown pass '" + name + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)")};
-}
-
-int passIndex(lua_State* L) {
-    auto& impl = implOf(L);
-    const std::string name = lua_tostring(L, lua_upvalueindex(1));
-    const std::string key = stringArg(L, 2, "ctx.pass");
-    const PassDesc& p = passOf(impl, name);
-    if (key == "name") {
-        lua_pushstring(L, name.c_str());
-    } else if (key == "enabled") {
-        auto it = impl.changes->enabled.find(name);
-        lua_pushboolean(L, it != impl.changes->enabled.end() ? it->second : p.enabled);
-    } else if (key == "shader") {
-        auto it = impl.changes->shaders.find(name);
-        const std::string s = it != impl.changes->shaders.end() ? it->second : p.params["shader"].asString();
-        lua_pushstring(L, s.c_str());
-    } else if (key == "kind") {
-        lua_pushstring(L, p.kind.c_str());
-    } else {
-        throw ScriptError{"ctx.pass('" + name + "'): no field '" + key + "'; expected one of: 'name', 'kind', 'enabled', 'shader'"};
-    }
-    return 1;
-}
-
-int passNewIndex(lua_State* L) {
-    auto& impl = implOf(L);
-    const std::string name = lua_tostring(L, lua_upvalueindex(1));
-    const std::string key = stringArg(L, 2, "ctx.pass");
-    const PassDesc& p = passOf(impl, name);
-    if (key == "enabled") {
-        if (!lua_isboolean(L, 3)) throw ScriptError{"ctx.pass('" + name + "').enabled: expected a boolean, got " + typeName(L, 3)};
-        const bool on = lua_toboolean(L, 3) != 0;
-        if (on == p.enabled) impl.changes->enabled.erase(name);
-        else impl.changes->enabled[name] = on;
-    } else if (key == "shader") {
-        if (!p.params.has("shader")) throw ScriptError{"ctx.pass('" + name + "').shader: a '" + p.kind + "' pass has no shader"};
-        if (lua_type(L, 3) != LUA_TSTRING) throw ScriptError{"ctx.pass('" + name + "').shader: expected a path, got " + typeName(L, 3)};
-        const std::string shader = lua_tostring(L, 3);
-        if (shader == p.params["shader"].asString()) impl.changes->shaders.erase(name);
-        else impl.changes->shaders[name] = shader;
-    } else {
-        throw ScriptError{"ctx.pass('" + name + "'): cannot set '" + key + "'; settable: 'enabled', 'shader'"};
-    }
-    return 0;
-}
-
-int ctxPass(lua_State* L) {
-    auto& impl = implOf(L);
-    const std::string name = stringArg(L, 1, "ctx.pass");
-    passOf(impl, name);  // unknown names fail here, with a suggestion
-    lua_newtable(L);
-    lua_newtable(L);
-    lua_pushstring(L, name.c_str());
-    lua_pushcclosure(L, guarded<passIndex>, 1);
-    lua_setfield(L, -2, "__index");
-    lua_pushstring(L, name.c_str());
-    lua_pushcclosure(L, guarded<passNewIndex>, 1);
-    lua_setfield(L, -2, "__newindex");
-    lua_setmetatable(L, -2);
-    return 1;
-}
+// The frame callback's ctx is the rg.frame one (lua::callFrame).
 
 int forbidden(lua_State* L) {
     const char* name = lua_tostring(L, lua_upvalueindex(1));
@@ -259,7 +127,6 @@ Result<std::unique_ptr<GoldenScript>> GoldenScript::load(const std::string& file
     lua_State* L = lua::newSandboxedState(impl.budget);
     if (!L) return fail(ErrorCode::Io, "cannot create a Lua state");
     impl.L = L;
-    *static_cast<Impl**>(lua_getextraspace(L)) = &impl;
 
     // Nothing that reads files or loads code; each says why when called.
     for (const char* fn : {"dofile", "loadfile", "load", "require", "collectgarbage"}) {
@@ -309,28 +176,8 @@ Result<FrameChanges> GoldenScript::frame(const FrameContext& ctx, const Pipeline
     FrameChanges changes;
     if (m->frameRef == LUA_NOREF) return changes;
     lua_State* L = m->L;
-    m->changes = &changes;
-    m->current = &current;
     lua_rawgeti(L, LUA_REGISTRYINDEX, m->frameRef);
-    lua_newtable(L);
-    lua_pushinteger(L, static_cast<lua_Integer>(ctx.frame));
-    lua_setfield(L, -2, "frame");
-    lua_pushnumber(L, ctx.time);
-    lua_setfield(L, -2, "time");
-    lua_newtable(L);
-    lua_newtable(L);
-    lua_pushcfunction(L, guarded<paramsIndex>);
-    lua_setfield(L, -2, "__index");
-    lua_pushcfunction(L, guarded<paramsNewIndex>);
-    lua_setfield(L, -2, "__newindex");
-    lua_setmetatable(L, -2);
-    lua_setfield(L, -2, "params");
-    lua_pushcfunction(L, guarded<ctxPass>);
-    lua_setfield(L, -2, "pass");
-    auto r = lua::protectedCall(m->L, 1, 0);
-    m->changes = nullptr;
-    m->current = nullptr;
-    if (!r) return std::unexpected(r.error());
+    if (auto r = lua::callFrame(L, ctx, current, changes); !r) return std::unexpected(r.error());
     return changes;
 }
 

@@ -26,9 +26,6 @@ struct LuaHost::Impl {
     OutputNames output;
     std::vector<std::string> files;
     std::string pipelineDir;
-    // During a frame callback.
-    FrameChanges* changes = nullptr;
-    const PipelineDesc* current = nullptr;
 
     ~Impl() { close(); }
     void close() {
@@ -80,71 +77,9 @@ std::string callerOrigin(lua_State* L) {
     return "?";
 }
 
-// Lua value -> Value. Tables with keys 1..n become lists, with string keys tables; positional
-// entries of mixed tables become "#1", "#2", ... keys.
-Result<Value> toValue(lua_State* L, int idx, const std::string& path, int depth = 0) {
-    idx = lua_absindex(L, idx);
-    switch (lua_type(L, idx)) {
-    case LUA_TNIL: return Value();
-    case LUA_TBOOLEAN: return Value(static_cast<bool>(lua_toboolean(L, idx)));
-    case LUA_TNUMBER: return Value(static_cast<double>(lua_tonumber(L, idx)));
-    case LUA_TSTRING: return Value(std::string(lua_tostring(L, idx)));
-    case LUA_TTABLE: {
-        if (depth > 32) return fail(ErrorCode::InvalidInput, path + ": tables nested too deep (or a cycle)");
-        const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, idx));
-        Value::List list;
-        Value::Table table;
-        bool hasStrings = false;
-        lua_pushnil(L);
-        while (lua_next(L, idx)) {
-            std::string key;
-            if (lua_type(L, -2) == LUA_TSTRING) {
-                key = lua_tostring(L, -2);
-                hasStrings = true;
-            } else if (lua_isinteger(L, -2) && lua_tointeger(L, -2) >= 1 && lua_tointeger(L, -2) <= n) {
-                key = "#" + std::to_string(lua_tointeger(L, -2));
-            } else {
-                lua_pop(L, 2);
-                return fail(ErrorCode::InvalidInput, path + ": keys must be names or list positions");
-            }
-            auto v = toValue(L, -1, path + (key[0] == '#' ? "[" + key.substr(1) + "]" : "." + key), depth + 1);
-            if (!v) {
-                lua_pop(L, 2);
-                return v;
-            }
-            table[key] = *v;
-            lua_pop(L, 1);
-        }
-        if (!hasStrings && n > 0) {
-            for (lua_Integer i = 1; i <= n; ++i) list.push_back(table["#" + std::to_string(i)]);
-            return Value(list);
-        }
-        return Value(table);
-    }
-    default:
-        return fail(ErrorCode::InvalidInput, path + ": expected data, got a " + std::string(luaL_typename(L, idx)));
-    }
-}
+using lua::pushValue;
+using lua::toValue;
 
-void pushValue(lua_State* L, const Value& v) {
-    if (v.isBool()) lua_pushboolean(L, v.asBool());
-    else if (v.isNumber()) lua_pushnumber(L, v.asNumber());
-    else if (v.isString()) lua_pushstring(L, v.asString().c_str());
-    else if (v.isList()) {
-        lua_createtable(L, static_cast<int>(v.asList().size()), 0);
-        for (size_t i = 0; i < v.asList().size(); ++i) {
-            pushValue(L, v.asList()[i]);
-            lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
-        }
-    } else if (v.isTable()) {
-        lua_newtable(L);
-        for (const auto& [k, e] : v.asTable()) {
-            pushValue(L, e);
-            lua_setfield(L, -2, k.c_str());
-        }
-    } else
-        lua_pushnil(L);
-}
 
 // Errors inside C functions are thrown as lua::ScriptError and raised by lua::guarded after
 // every C++ object of the function is destroyed (lua_sandbox.h).
@@ -313,110 +248,6 @@ void pushSandboxGuard(lua_State* L, const char* lib) {
     lua_setfield(L, -2, "__index");
 }
 
-// ---- frame callback: ctx.params and ctx.pass(name) ----
-
-int paramsIndex(lua_State* L) {
-    auto& impl = implOf(L);
-    std::string name = luaL_checkstring(L, 2);
-    if (auto it = impl.changes->params.find(name); it != impl.changes->params.end()) {
-        pushValue(L, it->second);
-        return 1;
-    }
-    const ParamDesc* p = impl.current->findParam(name);
-    if (!p) {
-        std::vector<std::string> names;
-        for (const auto& q : impl.current->params) names.push_back(q.name);
-        std::string best = closestName(name, names);
-        raise(L, "ctx.params: unknown parameter '" + name + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)"));
-    }
-    pushValue(L, p->value);
-    return 1;
-}
-
-int paramsNewIndex(lua_State* L) {
-    auto& impl = implOf(L);
-    std::string name = luaL_checkstring(L, 2);
-    const ParamDesc* p = impl.current->findParam(name);
-    if (!p) {
-        std::vector<std::string> names;
-        for (const auto& q : impl.current->params) names.push_back(q.name);
-        std::string best = closestName(name, names);
-        raise(L, "ctx.params: unknown parameter '" + name + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)"));
-    }
-    auto v = toValue(L, 3, "ctx.params." + name);
-    if (!v) raise(L, v.error().message);
-    auto checked = checkParamValue(*p, *v);
-    if (!checked) raise(L, "ctx.params: " + checked.error().message);
-    impl.changes->params[name] = *checked;
-    return 0;
-}
-
-const PassDesc* findPass(const PipelineDesc& p, const std::string& name) {
-    for (const auto& pass : p.graph.passes)
-        if (pass.name == name) return &pass;
-    return nullptr;
-}
-
-int passIndex(lua_State* L) {
-    auto& impl = implOf(L);
-    std::string pass = lua_tostring(L, lua_upvalueindex(1));
-    std::string key = luaL_checkstring(L, 2);
-    const PassDesc* p = findPass(*impl.current, pass);
-    if (key == "name") lua_pushstring(L, pass.c_str());
-    else if (key == "enabled") {
-        auto it = impl.changes->enabled.find(pass);
-        lua_pushboolean(L, it != impl.changes->enabled.end() ? it->second : p->enabled);
-    } else if (key == "shader") {
-        auto it = impl.changes->shaders.find(pass);
-        lua_pushstring(L, it != impl.changes->shaders.end() ? it->second.c_str() : p->params["shader"].asString().c_str());
-    } else if (key == "kind")
-        lua_pushstring(L, p->kind.c_str());
-    else
-        raise(L, "ctx.pass('" + pass + "'): no field '" + key + "'; expected one of: 'name', 'kind', 'enabled', 'shader'");
-    return 1;
-}
-
-int passNewIndex(lua_State* L) {
-    auto& impl = implOf(L);
-    std::string pass = lua_tostring(L, lua_upvalueindex(1));
-    std::string key = luaL_checkstring(L, 2);
-    const PassDesc* p = findPass(*impl.current, pass);
-    if (key == "enabled") {
-        if (!lua_isboolean(L, 3)) raise(L, "ctx.pass('" + pass + "').enabled: expected a boolean, got " + luaL_typename(L, 3));
-        bool on = lua_toboolean(L, 3);
-        if (on == p->enabled) impl.changes->enabled.erase(pass);
-        else impl.changes->enabled[pass] = on;
-    } else if (key == "shader") {
-        if (!p->params.has("shader")) raise(L, "ctx.pass('" + pass + "').shader: a '" + p->kind + "' pass has no shader");
-        if (lua_type(L, 3) != LUA_TSTRING) raise(L, "ctx.pass('" + pass + "').shader: expected a path, got " + luaL_typename(L, 3));
-        std::string shader = lua_tostring(L, 3);
-        if (shader == p->params["shader"].asString()) impl.changes->shaders.erase(pass);
-        else impl.changes->shaders[pass] = shader;
-    } else
-        raise(L, "ctx.pass('" + pass + "'): cannot set '" + key + "'; settable: 'enabled', 'shader'");
-    return 0;
-}
-
-int ctxPass(lua_State* L) {
-    auto& impl = implOf(L);
-    std::string name = luaL_checkstring(L, 1);
-    if (!findPass(*impl.current, name)) {
-        std::vector<std::string> names;
-        for (const auto& p : impl.current->graph.passes) names.push_back(p.name);
-        std::string best = closestName(name, names);
-        raise(L, "ctx.pass: unknown pass '" + name + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)"));
-    }
-    lua_newtable(L);
-    lua_newtable(L);
-    lua_pushstring(L, name.c_str());
-    lua_pushcclosure(L, guarded<passIndex>, 1);
-    lua_setfield(L, -2, "__index");
-    lua_pushstring(L, name.c_str());
-    lua_pushcclosure(L, guarded<passNewIndex>, 1);
-    lua_setfield(L, -2, "__newindex");
-    lua_setmetatable(L, -2);
-    return 1;
-}
 
 }  // namespace
 
@@ -539,40 +370,10 @@ Result<FrameChanges> LuaHost::frame(const FrameContext& ctx, const PipelineDesc&
     FrameChanges changes;
     if (!hasFrameCallback()) return changes;
     lua_State* L = m->L;
-    m->changes = &changes;
-    m->current = &current;
     lua_getglobal(L, "rg");
     lua_getfield(L, -1, "frame");
     lua_remove(L, -2);
-    // ctx = { frame, time, params (proxy), pass(name) }
-    lua_newtable(L);
-    lua_pushinteger(L, static_cast<lua_Integer>(ctx.frame));
-    lua_setfield(L, -2, "frame");
-    lua_pushnumber(L, ctx.time);
-    lua_setfield(L, -2, "time");
-    if (ctx.scene) {
-        lua_newtable(L);
-        lua_pushinteger(L, ctx.scene->draws);
-        lua_setfield(L, -2, "draws");
-        lua_pushinteger(L, ctx.scene->lights);
-        lua_setfield(L, -2, "lights");
-        lua_pushinteger(L, ctx.scene->decals);
-        lua_setfield(L, -2, "decals");
-        lua_setfield(L, -2, "scene");
-    }
-    lua_newtable(L);
-    lua_newtable(L);
-    lua_pushcfunction(L, guarded<paramsIndex>);
-    lua_setfield(L, -2, "__index");
-    lua_pushcfunction(L, guarded<paramsNewIndex>);
-    lua_setfield(L, -2, "__newindex");
-    lua_setmetatable(L, -2);
-    lua_setfield(L, -2, "params");
-    lua_pushcfunction(L, guarded<ctxPass>);
-    lua_setfield(L, -2, "pass");
-    auto r = lua::protectedCall(m->L, 1, 0);
-    m->changes = nullptr;
-    m->current = nullptr;
+    auto r = lua::callFrame(L, ctx, current, changes);
     if (!r) return std::unexpected(Error(ErrorCode::InvalidInput, "rg.frame: " + r.error().message));
     return changes;
 }

@@ -2,6 +2,9 @@
 
 #include <cstdlib>
 #include <utility>
+#include <vector>
+
+#include "declarations.h"
 
 namespace rg::lua {
 
@@ -100,6 +103,237 @@ std::string withPosition(lua_State* L, const std::string& message) {
     std::string out = std::string(lua_tostring(L, -1)) + message;
     lua_pop(L, 1);
     return out;
+}
+
+// Lua value -> Value. Tables with keys 1..n become lists, with string keys tables; positional
+// entries of mixed tables become "#1", "#2", ... keys.
+Result<Value> toValue(lua_State* L, int idx, const std::string& path, int depth) {
+    idx = lua_absindex(L, idx);
+    switch (lua_type(L, idx)) {
+    case LUA_TNIL: return Value();
+    case LUA_TBOOLEAN: return Value(static_cast<bool>(lua_toboolean(L, idx)));
+    case LUA_TNUMBER: return Value(static_cast<double>(lua_tonumber(L, idx)));
+    case LUA_TSTRING: return Value(std::string(lua_tostring(L, idx)));
+    case LUA_TTABLE: {
+        if (depth > 32) return fail(ErrorCode::InvalidInput, path + ": tables nested too deep (or a cycle)");
+        const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, idx));
+        Value::List list;
+        Value::Table table;
+        bool hasStrings = false;
+        lua_pushnil(L);
+        while (lua_next(L, idx)) {
+            std::string key;
+            if (lua_type(L, -2) == LUA_TSTRING) {
+                key = lua_tostring(L, -2);
+                hasStrings = true;
+            } else if (lua_isinteger(L, -2) && lua_tointeger(L, -2) >= 1 && lua_tointeger(L, -2) <= n) {
+                key = "#" + std::to_string(lua_tointeger(L, -2));
+            } else {
+                lua_pop(L, 2);
+                return fail(ErrorCode::InvalidInput, path + ": keys must be names or list positions");
+            }
+            auto v = toValue(L, -1, path + (key[0] == '#' ? "[" + key.substr(1) + "]" : "." + key), depth + 1);
+            if (!v) {
+                lua_pop(L, 2);
+                return v;
+            }
+            table[key] = *v;
+            lua_pop(L, 1);
+        }
+        if (!hasStrings && n > 0) {
+            for (lua_Integer i = 1; i <= n; ++i) list.push_back(table["#" + std::to_string(i)]);
+            return Value(list);
+        }
+        return Value(table);
+    }
+    default:
+        return fail(ErrorCode::InvalidInput, path + ": expected data, got a " + std::string(luaL_typename(L, idx)));
+    }
+}
+
+void pushValue(lua_State* L, const Value& v) {
+    if (v.isBool()) lua_pushboolean(L, v.asBool());
+    else if (v.isNumber()) lua_pushnumber(L, v.asNumber());
+    else if (v.isString()) lua_pushstring(L, v.asString().c_str());
+    else if (v.isList()) {
+        lua_createtable(L, static_cast<int>(v.asList().size()), 0);
+        for (size_t i = 0; i < v.asList().size(); ++i) {
+            pushValue(L, v.asList()[i]);
+            lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
+        }
+    } else if (v.isTable()) {
+        lua_newtable(L);
+        for (const auto& [k, e] : v.asTable()) {
+            pushValue(L, e);
+            lua_setfield(L, -2, k.c_str());
+        }
+    } else
+        lua_pushnil(L);
+}
+
+// ---- The rg.frame ctx -----------------------------------------------------------------------
+
+namespace {
+
+const char* kFrameKey = "rgraph.frame";
+
+// What the ctx proxies work on, valid during callFrame only (the registry holds its address).
+struct FrameBinding {
+    const PipelineDesc* current = nullptr;
+    FrameChanges* changes = nullptr;
+};
+
+FrameBinding& bindingOf(lua_State* L) {
+    lua_getfield(L, LUA_REGISTRYINDEX, kFrameKey);
+    auto* b = static_cast<FrameBinding*>(lua_touserdata(L, -1));
+    lua_pop(L, 1);
+    if (!b) throw ScriptError{"ctx is only valid during the frame callback that received it"};
+    return *b;
+}
+
+// A string argument; luaL_check* would longjmp past live C++ objects, so glue checks by hand.
+std::string stringArg(lua_State* L, int idx, const char* what) {
+    if (lua_type(L, idx) != LUA_TSTRING) throw ScriptError{std::string(what) + ": expected a name, got " + luaL_typename(L, idx)};
+    return lua_tostring(L, idx);
+}
+
+const ParamDesc& paramOf(const PipelineDesc& current, const std::string& name) {
+    if (const ParamDesc* p = current.findParam(name)) return *p;
+    std::vector<std::string> names;
+    for (const auto& q : current.params) names.push_back(q.name);
+    const std::string best = closestName(name, names);
+    throw ScriptError{"ctx.params: unknown parameter '" + name + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)")};
+}
+
+const PassDesc& passOf(const PipelineDesc& current, const std::string& name) {
+    for (const auto& pass : current.graph.passes)
+        if (pass.name == name) return pass;
+    std::vector<std::string> names;
+    for (const auto& p : current.graph.passes) names.push_back(p.name);
+    const std::string best = closestName(name, names);
+    throw ScriptError{"ctx.pass: unknown pass '" + name + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)")};
+}
+
+int paramsIndex(lua_State* L) {
+    FrameBinding& b = bindingOf(L);
+    const std::string name = stringArg(L, 2, "ctx.params");
+    if (auto it = b.changes->params.find(name); it != b.changes->params.end()) {
+        pushValue(L, it->second);
+        return 1;
+    }
+    pushValue(L, paramOf(*b.current, name).value);
+    return 1;
+}
+
+int paramsNewIndex(lua_State* L) {
+    FrameBinding& b = bindingOf(L);
+    const std::string name = stringArg(L, 2, "ctx.params");
+    const ParamDesc& p = paramOf(*b.current, name);
+    auto v = toValue(L, 3, "ctx.params." + name);
+    if (!v) throw ScriptError{v.error().message};
+    auto checked = checkParamValue(p, *v);
+    if (!checked) throw ScriptError{"ctx.params: " + checked.error().message};
+    b.changes->params[name] = *checked;
+    return 0;
+}
+
+int passIndex(lua_State* L) {
+    FrameBinding& b = bindingOf(L);
+    const std::string name = lua_tostring(L, lua_upvalueindex(1));
+    const std::string key = stringArg(L, 2, "ctx.pass");
+    const PassDesc& p = passOf(*b.current, name);
+    if (key == "name") {
+        lua_pushstring(L, name.c_str());
+    } else if (key == "enabled") {
+        auto it = b.changes->enabled.find(name);
+        lua_pushboolean(L, it != b.changes->enabled.end() ? it->second : p.enabled);
+    } else if (key == "shader") {
+        auto it = b.changes->shaders.find(name);
+        const std::string s = it != b.changes->shaders.end() ? it->second : p.params["shader"].asString();
+        lua_pushstring(L, s.c_str());
+    } else if (key == "kind") {
+        lua_pushstring(L, p.kind.c_str());
+    } else {
+        throw ScriptError{"ctx.pass('" + name + "'): no field '" + key + "'; expected one of: 'name', 'kind', 'enabled', 'shader'"};
+    }
+    return 1;
+}
+
+int passNewIndex(lua_State* L) {
+    FrameBinding& b = bindingOf(L);
+    const std::string name = lua_tostring(L, lua_upvalueindex(1));
+    const std::string key = stringArg(L, 2, "ctx.pass");
+    const PassDesc& p = passOf(*b.current, name);
+    if (key == "enabled") {
+        if (!lua_isboolean(L, 3))
+            throw ScriptError{"ctx.pass('" + name + "').enabled: expected a boolean, got " + luaL_typename(L, 3)};
+        const bool on = lua_toboolean(L, 3) != 0;
+        if (on == p.enabled) b.changes->enabled.erase(name);
+        else b.changes->enabled[name] = on;
+    } else if (key == "shader") {
+        if (!p.params.has("shader")) throw ScriptError{"ctx.pass('" + name + "').shader: a '" + p.kind + "' pass has no shader"};
+        if (lua_type(L, 3) != LUA_TSTRING)
+            throw ScriptError{"ctx.pass('" + name + "').shader: expected a path, got " + luaL_typename(L, 3)};
+        const std::string shader = lua_tostring(L, 3);
+        if (shader == p.params["shader"].asString()) b.changes->shaders.erase(name);
+        else b.changes->shaders[name] = shader;
+    } else {
+        throw ScriptError{"ctx.pass('" + name + "'): cannot set '" + key + "'; settable: 'enabled', 'shader'"};
+    }
+    return 0;
+}
+
+int ctxPass(lua_State* L) {
+    FrameBinding& b = bindingOf(L);
+    const std::string name = stringArg(L, 1, "ctx.pass");
+    passOf(*b.current, name);  // unknown names fail here, with a suggestion
+    lua_newtable(L);
+    lua_newtable(L);
+    lua_pushstring(L, name.c_str());
+    lua_pushcclosure(L, guarded<passIndex>, 1);
+    lua_setfield(L, -2, "__index");
+    lua_pushstring(L, name.c_str());
+    lua_pushcclosure(L, guarded<passNewIndex>, 1);
+    lua_setfield(L, -2, "__newindex");
+    lua_setmetatable(L, -2);
+    return 1;
+}
+
+}  // namespace
+
+Result<void> callFrame(lua_State* L, const FrameContext& ctx, const PipelineDesc& current, FrameChanges& changes) {
+    FrameBinding binding{&current, &changes};
+    lua_pushlightuserdata(L, &binding);
+    lua_setfield(L, LUA_REGISTRYINDEX, kFrameKey);
+    lua_newtable(L);
+    lua_pushinteger(L, static_cast<lua_Integer>(ctx.frame));
+    lua_setfield(L, -2, "frame");
+    lua_pushnumber(L, ctx.time);
+    lua_setfield(L, -2, "time");
+    if (ctx.scene) {
+        lua_newtable(L);
+        lua_pushinteger(L, ctx.scene->draws);
+        lua_setfield(L, -2, "draws");
+        lua_pushinteger(L, ctx.scene->lights);
+        lua_setfield(L, -2, "lights");
+        lua_pushinteger(L, ctx.scene->decals);
+        lua_setfield(L, -2, "decals");
+        lua_setfield(L, -2, "scene");
+    }
+    lua_newtable(L);
+    lua_newtable(L);
+    lua_pushcfunction(L, guarded<paramsIndex>);
+    lua_setfield(L, -2, "__index");
+    lua_pushcfunction(L, guarded<paramsNewIndex>);
+    lua_setfield(L, -2, "__newindex");
+    lua_setmetatable(L, -2);
+    lua_setfield(L, -2, "params");
+    lua_pushcfunction(L, guarded<ctxPass>);
+    lua_setfield(L, -2, "pass");
+    auto r = protectedCall(L, 1, 0);
+    lua_pushnil(L);
+    lua_setfield(L, LUA_REGISTRYINDEX, kFrameKey);
+    return r;
 }
 
 }  // namespace rg::lua

@@ -17,6 +17,8 @@ extern "C" {
 #include <string>
 
 #include "core/result.h"
+#include "core/value.h"
+#include "lua_host.h"
 
 namespace rg::lua {
 
@@ -39,6 +41,17 @@ lua_State* newSandboxedState(Budget& budget, bool withOs = false);
 // Calls the function below `nargs` arguments on the stack with a traceback handler; the error
 // (or the exceeded allowance, named) comes back as InvalidInput.
 Result<void> protectedCall(lua_State* L, int nargs, int nresults);
+
+// Lua value <-> Value. Tables with keys 1..n become lists, with string keys tables; positional
+// entries of mixed tables become "#1", "#2", ... keys. `path` names the value in errors.
+Result<Value> toValue(lua_State* L, int idx, const std::string& path, int depth = 0);
+void pushValue(lua_State* L, const Value& v);
+
+// Calls the rg.frame-style function on top of the stack with its ctx — { frame, time, scene
+// (when the pipeline draws one), params (reads and type-checked writes of `current`'s
+// parameters), pass(name) (enabled and shader, read and set) } — recording what the script
+// changes in `changes`. A ctx kept past the call refuses to be used.
+Result<void> callFrame(lua_State* L, const FrameContext& ctx, const PipelineDesc& current, FrameChanges& changes);
 
 // What glue code throws for a script error; `guarded` prefixes the script position unless the
 // message already starts with one ("file.lua:12: ...").
