@@ -187,7 +187,8 @@ void pushDeclarers(lua_State* L, const std::string& module) {
 
 // require "name": the pipeline's folder, then the search dirs; "a.b" is a/b.lua.
 int requireModule(lua_State* L) {
-    std::string name = luaL_checkstring(L, 1);
+    if (lua_type(L, 1) != LUA_TSTRING) raise(L, std::string("require: expected a module name, got ") + luaL_typename(L, 1));
+    std::string name = lua_tostring(L, 1);
     auto& impl = implOf(L);
     // Module names are dotted identifiers: no path tricks ("..", "/") to leave the search dirs.
     bool valid = !name.empty() && name.front() != '.' && name.back() != '.' && name.find("..") == std::string::npos;
