@@ -320,11 +320,22 @@ Result<void> Session::load(const std::string& file) {
         std::shared_ptr<passes::GpuScene> retired(std::move(m_scene));
         m_runtime.gpu().deferDestroy([retired]() mutable { retired.reset(); });
     }
+    // What the scene was made from: its files' contents and the scene arguments.
+    std::string sceneKey;
+    if (scene) {
+        for (const auto& [k, v] : m_options.sceneArgs) sceneKey += k + "=" + v + ";";
+        for (const auto& f : scene->scene().files) {
+            std::ifstream in(f, std::ios::binary);
+            sceneKey += f + ":" + std::to_string(std::hash<std::string>{}(std::string((std::istreambuf_iterator<char>(in)), {}))) + ";";
+        }
+    }
     m_scene = std::move(scene);
     m_sceneLoadMs = sceneMs;
-    // History (exposure, previous frames) carries over a reload of the same pipeline, not to another.
-    if (file != m_pipeline.file)
+    // History (exposure, previous frames, a reference accumulation) carries over a reload of the
+    // same pipeline drawing the same scene, not to another pipeline or a changed scene.
+    if (file != m_pipeline.file || sceneKey != m_sceneKey)
         if (auto r = m_runtime.executor().resetPersistent(); !r) return r;
+    m_sceneKey = sceneKey;
     m_host = std::move(host);
     m_pipeline = std::move(*pipeline);
     m_rebuilds = 0;

@@ -79,6 +79,7 @@ private:
     std::unique_ptr<passes::GpuScene> m_scene;
     std::string m_sceneFile;
     double m_sceneLoadMs = 0;
+    std::string m_sceneKey;  // the scene's files (contents) and arguments at the last load
     std::function<void(uint32_t)> m_frameHook;  // writes the scene's camera for a frame slot
     PipelineDesc m_pipeline;
     uint64_t m_frame = 0;

@@ -191,7 +191,11 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
     // Physical resources: reuse the previous build's where nothing about them changed.
     auto t1 = Clock::now();
     BuildReport report;
-    const Built* old = m_forceRebuild ? nullptr : m_built.get();
+    // A new scene (setScene) re-prepares every pass — passes hold the scene's buffers and
+    // pipelines built for its materials — but memory and resources do not depend on the scene,
+    // so their contents (persistent history) carry over.
+    const Built* old = m_built.get();
+    const Built* oldPasses = m_forceRebuild ? nullptr : old;
     auto built = std::make_unique<Built>();
     built->plan = std::move(*plan);
     built->graph = std::move(graph);
@@ -256,7 +260,7 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
     auto t2 = Clock::now();
     for (const auto& pass : planPtr->passes) {
         const PassDesc& desc = built->graph.passes[pass.desc];
-        if (old) {
+        if (oldPasses) {
             int32_t o = old->plan.findPass(pass.name);
             if (o >= 0) {
                 const PlanPass& op = old->plan.passes[static_cast<size_t>(o)];

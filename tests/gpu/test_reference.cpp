@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <fstream>
 #include <map>
 
 #include "cli/runtime.h"
@@ -190,6 +191,43 @@ TEST_F(Reference, LightsAcrossTheHorizon) {
         EXPECT_LT(e.floorMean, c.floor) << c.light;
         EXPECT_LT(std::abs(e.bias), c.energy) << c.light;
     }
+}
+
+TEST_F(Reference, AccumulationKeepsItsFramesUntilTheSceneChanges) {
+    // The accumulator's alpha counts its frames. A reload of the same pipeline and scene (watch)
+    // keeps them; a scene whose file changed starts again (the old frames show another scene).
+    const std::string scene = std::string(RG_TEST_TMP) + "/reference_reload.lua";
+    auto writeScene = [&](const char* intensity) {
+        std::ofstream(scene) << "local scene = require 'scene'\n"
+                             << "scene.material 'm' { base_color = { 0.5, 0.5, 0.5 } }\n"
+                             << "scene.plane 'floor' { size = { 4, 4 }, material = 'm' }\n"
+                             << "scene.light 'key' { type = 'sphere', intensity = " << intensity
+                             << ", unit = 'lm', radius = 0.2, position = { 0, 1, 0 } }\n"
+                             << "scene.camera 'c' { position = { 0, 2, 2 }, target = { 0, 0, 0 } }\n";
+    };
+    writeScene("1000");
+    SessionOptions o;
+    o.compile.outputWidth = 32;
+    o.compile.outputHeight = 16;
+    o.scene = scene;
+    o.captures = {"reference_accum"};
+    Session s(*s_runtime, o);
+    auto framesHeld = [&]() {
+        auto img = s_runtime->executor().readback("reference_accum");
+        EXPECT_TRUE(img.has_value());
+        return img ? img->at(16, 8, 3) : -1.0f;
+    };
+    const std::string pipeline = kRoot + "/scripts/pipelines/reference.lua";
+    ASSERT_TRUE(s.load(pipeline).has_value());
+    for (int f = 0; f < 3; ++f) ASSERT_TRUE(s.frame().has_value());
+    EXPECT_EQ(framesHeld(), 3.0f);
+    ASSERT_TRUE(s.load(pipeline).has_value());  // same pipeline, same scene: the frames stay
+    ASSERT_TRUE(s.frame().has_value());
+    EXPECT_EQ(framesHeld(), 4.0f);
+    writeScene("2000");
+    ASSERT_TRUE(s.load(pipeline).has_value());  // the scene changed: start again
+    ASSERT_TRUE(s.frame().has_value());
+    EXPECT_EQ(framesHeld(), 1.0f);
 }
 
 }  // namespace

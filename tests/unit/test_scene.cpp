@@ -1205,7 +1205,7 @@ TEST(ExportGlb, LumensBecomeTheCandelaRenderedAndComeBack) {
     exact.name = "beam";
     exact.exactCone = true;
     scene.lights = {point, spot, exact};
-    const std::string path = tmpDir("export") + "/lumens.glb";
+    const std::string path = tmpDir("export_lumens") + "/lumens.glb";  // its own folder: tests run in parallel
     std::vector<std::string> warnings;
     auto w = rg::exportGlb(scene, path, &warnings);
     ASSERT_TRUE(w) << w.error().message;
