@@ -259,7 +259,7 @@ public:
             uint32_t h = r->image ? r->plan->height : 1;
             // One invocation per tile x tile texels (per-tile work such as light culling).
             const double tileParam = desc.params["tile"].asNumber(1);
-            if (tileParam < 1 || tileParam > 4096)
+            if (!(tileParam >= 1 && tileParam <= 4096))  // NaN too
                 return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.tile: expected 1..4096 texels");
             if (const uint32_t tile = static_cast<uint32_t>(tileParam); tile > 1) {
                 w = (w + tile - 1) / tile;

@@ -12,13 +12,16 @@ local rg = require "rg"
 
 local lighting = {}
 
--- Words per tile: the count, then up to 255 light indices (1 KiB per tile; 3.5 MiB at 1280x720).
--- A tile reached by more lights keeps the first 255 (the `lights` debug view shows such tiles).
+-- Words per tile: the count, then up to 255 indices of ranged lights (1 KiB per tile; 3.5 MiB at
+-- 1280x720). Lights without a range and the sun reach every pixel and are listed once, in the
+-- global list (count + up to 1024 indices, shaders/lib/scene.glsl's RG_MAX_LIGHTS). A tile
+-- reached by more than 255 ranged lights keeps the first 255 (the `lights` view shows them).
 lighting.tile_words = 256
+lighting.max_lights = 1024
 
 rg.buffer "light_tiles" {
-    size = 16, tile = 16, tile_bytes = 4 * lighting.tile_words,
-    doc = "per 16x16 tile: how many lights reach it, then their indices (light_culling.comp)",
+    size = 16 + 4 * (lighting.max_lights + 1), tile = 16, tile_bytes = 4 * lighting.tile_words,
+    doc = "the lights that reach every pixel, then per 16x16 tile the ranged lights that reach it (light_culling.comp)",
 }
 rg.pass "light_culling" {
     kind = "compute", shader = "passes/light_culling.comp",

@@ -55,6 +55,7 @@ rg.output { display = "display", hdr = "hdr", exposure = "exposure" }
 function rg.frame(ctx)
     ctx.pass("lighting_clearcoat").enabled = false   -- the reference lights clear coat itself
     ctx.pass("lighting_two_colour").enabled = false  -- and the two-colour material
+    ctx.pass("light_culling").enabled = false        -- nothing here reads tile lists
     ctx.pass("forward").enabled = ctx.params.reference_forward
     loop.frame(ctx)  -- as deferred.lua: no decals, no decal passes
 end

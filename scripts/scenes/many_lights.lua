@@ -10,6 +10,9 @@ local scene = require "scene"
 local count = math.floor(scene.args.lights or 64)
 if count < 1 or count > 1024 then error("scene.args.lights: expected 1..1024 lights, got " .. tostring(count)) end
 local overlap = scene.args.overlap or 4
+-- --scene-arg ranged=0: the same lights without a range (they reach every pixel: culling lists
+-- them once for all tiles).
+local ranged = (scene.args.ranged or 1) ~= 0
 local size = 16
 local area = size * size
 
@@ -42,7 +45,7 @@ for k = 0, count - 1 do
   scene.light(string.format("light_%d", k)) {
     type = "point", intensity = flux, unit = "lm", temperature = 2500 + 5000 * random(),
     position = { -size / 2 + (gx + random()) * cell, 0.3, -size / 2 + (gz + random()) * cell },
-    range = range,
+    range = ranged and range or nil,
   }
 end
 

@@ -1,17 +1,19 @@
-// The per-tile light lists of shaders/passes/light_culling.comp, and the light loop's view of
-// them. A lighting shader loops over
+// The light lists of shaders/passes/light_culling.comp, and the light loop's view of them. A
+// lighting shader loops over
 //     RgLightList list = rgLightList(ivec2(gl_FragCoord.xy));
 //     for (uint k = 0u; k < list.count; ++k) { uint i = rgListLight(list, k); ... }
 // With RG_LIGHT_TILES defined (the pass's `defines`, and `{ "light_tiles", as = "storage" }` in its
-// reads) that is the pixel's tile's list; without, every light of the scene — so one shader works
-// with and without culling.
+// reads) that is the lights that reach every pixel (the sun, lights without a range) followed by
+// the pixel's tile's ranged lights; without, every light of the scene — so one shader works with
+// and without culling.
 #ifndef RG_LIGHT_TILES_GLSL
 #define RG_LIGHT_TILES_GLSL
 
 #include "lib/scene.glsl"
 
-// Pixels per tile side; the culling pass's work group is RG_TILE_SIZE². The light_tiles buffer is
-// declared with the same tile size (rg.buffer { tile = 16, tile_bytes = ... }).
+// Pixels per tile side; the culling pass runs one invocation per tile. The light_tiles buffer is
+// declared with the same tile size (rg.buffer { tile = 16, tile_bytes = ... }, scripts/lighting.lua)
+// and room for the global list: size = 16 + 4 · (RG_MAX_LIGHTS + 1).
 #define RG_TILE_SIZE 16
 
 #ifndef RG_LIGHT_TILES_BINDING
@@ -19,29 +21,38 @@
 #endif
 
 struct RgLightList {
-    uint base;   // index of the tile's first light in light_tiles.data (0 without tiles)
-    uint count;
+    uint base;    // index of the tile's first light in light_tiles.data
+    uint count;   // global lights + the tile's
+    uint global;  // how many of them come from the global list
 };
 
 #if defined(RG_LIGHT_TILES) && !defined(RG_LIGHT_TILES_WRITER)
 layout(set = 0, binding = RG_LIGHT_TILES_BINDING, std430) readonly buffer light_tiles {
-    uvec4 header;  // tiles x, tiles y, stride (words per tile), tile size
-    uint data[];
+    uvec4 header;                    // tiles x, tiles y, stride (words per tile), tile size
+    uint global[RG_MAX_LIGHTS + 1];  // count, then the lights that reach every pixel
+    uint data[];                     // per tile: count, then the ranged lights that reach it
 } lightTiles;
 
 uint rgLightTileIndex(ivec2 pixel) {
     uvec2 t = uvec2(pixel) / lightTiles.header.w;
     return t.y * lightTiles.header.x + t.x;
 }
-// How many lights reach the tile (may exceed what its list holds: see rgLightList).
-uint rgTileLightTotal(ivec2 pixel) { return lightTiles.data[rgLightTileIndex(pixel) * lightTiles.header.z]; }
-RgLightList rgLightList(ivec2 pixel) {
-    uint base = rgLightTileIndex(pixel) * lightTiles.header.z;
-    return RgLightList(base + 1u, min(lightTiles.data[base], lightTiles.header.z - 1u));
+// How many ranged lights reach the tile (may exceed what its list holds: see rgLightList).
+uint rgTileLightTotal(ivec2 pixel) {
+    return lightTiles.header.z < 2u ? 0u : lightTiles.data[rgLightTileIndex(pixel) * lightTiles.header.z];
 }
-uint rgListLight(RgLightList list, uint k) { return lightTiles.data[list.base + k]; }
+RgLightList rgLightList(ivec2 pixel) {
+    uint stride = lightTiles.header.z;
+    uint global = lightTiles.global[0];
+    if (stride < 2u) return RgLightList(0u, global, global);  // no room for tile lists
+    uint base = rgLightTileIndex(pixel) * stride;
+    return RgLightList(base + 1u, global + min(lightTiles.data[base], stride - 1u), global);
+}
+uint rgListLight(RgLightList list, uint k) {
+    return k < list.global ? lightTiles.global[1u + k] : lightTiles.data[list.base + k - list.global];
+}
 #else
-RgLightList rgLightList(ivec2 pixel) { return RgLightList(0u, lights.count.x); }
+RgLightList rgLightList(ivec2 pixel) { return RgLightList(0u, lights.count.x, 0u); }
 uint rgListLight(RgLightList list, uint k) { return k; }
 #endif
 

@@ -1,7 +1,7 @@
 #version 460
-// The `lights` debug view: how many lights reach each 16x16 tile (light_culling.comp's lists):
-// black 0, then blue -> green -> yellow -> red at 32 and more; magenta where more lights reach
-// the tile than its list holds. Pixels where nothing was drawn are dimmed.
+// The `lights` debug view: how many lights reach each 16x16 tile (light_culling.comp's lists: the
+// global ones plus the tile's): black 0, then blue -> green -> yellow -> red at 32 and more;
+// magenta where more ranged lights reach the tile than its list holds. Pixels where nothing was drawn are dimmed.
 #include "lib/lighting.glsl"
 
 layout(location = 0) in vec2 uv;
@@ -10,8 +10,8 @@ layout(set = 0, binding = 0) uniform sampler2D depth;
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
-    uint total = rgTileLightTotal(p);
     RgLightList list = rgLightList(p);
+    uint total = list.global + rgTileLightTotal(p);  // the lights that reach every pixel + the tile's
     vec3 c;
     if (total > list.count) {
         c = vec3(1.0, 0.0, 1.0);

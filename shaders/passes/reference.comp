@@ -118,7 +118,9 @@ float sampleBrdf(Shading s, inout RgRng rng, out vec3 L) {
     float pick = rgRngNext(rng);
     vec2 u = rgRngNext2(rng);
     if (pick >= s.lobeProbability.x) {
-        float alpha = pick < s.lobeProbability.x + s.lobeProbability.y ? s.alpha : s.coatAlpha;
+        // The coat lobe only when there is one (rounding could put `pick` past x + y without).
+        bool coatLobe = s.lobeProbability.z > 0.0 && pick >= s.lobeProbability.x + s.lobeProbability.y;
+        float alpha = coatLobe ? s.coatAlpha : s.alpha;
         vec3 Ve = vec3(dot(s.Vs, s.T), dot(s.Vs, s.B), s.NdotVs);
         vec3 H = rgToWorld(rgSampleGgxVisibleNormal(Ve, alpha, u), s.T, s.B, s.N);
         L = reflect(-s.Vs, H);
@@ -135,8 +137,9 @@ float sampleBrdf(Shading s, inout RgRng rng, out vec3 L) {
 // its cone, an area light's luminance times the range window of its centre (as lighting.glsl).
 vec3 lightRadiance(RgLight light, int type, vec3 P) {
     if (type == RG_LIGHT_SUN) {
-        float oneMinusCos = rgOneMinusCosFromSinSqr(light.params.z * light.params.z);
-        return light.intensity.rgb / (2.0 * RG_PI * oneMinusCos);
+        // A uniform disk of half-angle σ gives a surface facing it ∫ L cos θ dω = L · π sin²σ:
+        // L = E⊥ / (π sin²σ) (graph/lighting's sunLuminance), not E⊥ over the solid angle.
+        return light.intensity.rgb / (RG_PI * light.params.z * light.params.z);
     }
     vec3 Lu = light.positionType.xyz - P;
     return light.intensity.rgb * rgRangeWindow(max(dot(Lu, Lu), 1e-12), light.directionRange.w);

@@ -789,7 +789,7 @@ struct TiledFrame {
     Image hdr;
     std::vector<uint32_t> tiles;  // light_tiles, when tiled
 };
-TiledFrame renderManyLights(Runtime& rt, uint32_t lights, bool tiled, uint32_t w, uint32_t h) {
+TiledFrame renderManyLights(Runtime& rt, uint32_t lights, bool tiled, uint32_t w, uint32_t h, bool ranged = true) {
     std::string pipeline = kRoot + "/scripts/pipelines/deferred.lua";
     if (!tiled) {
         const std::string dir = std::string(RG_TEST_TMP) + "/untiled";
@@ -803,6 +803,7 @@ TiledFrame renderManyLights(Runtime& rt, uint32_t lights, bool tiled, uint32_t w
     o.compile.outputHeight = h;
     o.scene = kRoot + "/scripts/scenes/many_lights.lua";
     o.sceneArgs["lights"] = std::to_string(lights);
+    o.sceneArgs["ranged"] = ranged ? "1" : "0";
     o.params["exposure_mode"] = Value("manual");
     if (tiled) o.captures = {"light_tiles"};
     Session s(rt, o);
@@ -830,9 +831,15 @@ TiledFrame renderManyLights(Runtime& rt, uint32_t lights, bool tiled, uint32_t w
 TEST_F(Lights, TileCullingChangesNoPixel) {
     // A light left out of a tile's list is one whose range window is zero at every surface of the
     // tile, and the lists keep the scene's order: the culled image is the unculled one, bit for bit.
-    for (uint32_t n : {16u, 256u}) {
-        TiledFrame culled = renderManyLights(rt(), n, true, 200, 120);
-        TiledFrame all = renderManyLights(rt(), n, false, 200, 120);
+    // 300 lights without a range reach every pixel: listed once, globally, not per tile (a tile
+    // list holds 255), so none is lost.
+    const struct {
+        uint32_t n;
+        bool ranged;
+    } cases[] = {{16u, true}, {256u, true}, {300u, false}};
+    for (const auto& [n, ranged] : cases) {
+        TiledFrame culled = renderManyLights(rt(), n, true, 200, 120, ranged);
+        TiledFrame all = renderManyLights(rt(), n, false, 200, 120, ranged);
         ASSERT_EQ(culled.hdr.pixels.size(), all.hdr.pixels.size());
         size_t differ = 0;
         double sum = 0;
@@ -840,15 +847,15 @@ TEST_F(Lights, TileCullingChangesNoPixel) {
             differ += culled.hdr.pixels[i] != all.hdr.pixels[i];
             sum += all.hdr.pixels[i];
         }
-        std::printf("%u lights: %zu of %zu values differ\n", n, differ, all.hdr.pixels.size());
+        std::printf("%u %s lights: %zu of %zu values differ\n", n, ranged ? "ranged" : "unranged", differ, all.hdr.pixels.size());
         EXPECT_EQ(differ, 0u) << n << " lights";
         EXPECT_GT(sum, 0.0);
     }
 }
 
 TEST_F(Lights, TileListsFollowLightsPerPixelNotLightsInTheScene) {
-    // light_tiles: header (tiles x, tiles y, stride, tile size), then per tile the count and the
-    // light indices, ascending. The many-lights scene keeps ~4 lights over each floor point at any
+    // light_tiles: header (tiles x, tiles y, stride, tile size), the global list (count + 1024),
+    // then per tile the count and the light indices, ascending. The many-lights scene keeps ~4 lights over each floor point at any
     // count, so the mean list grows far slower than the scene's lights.
     constexpr uint32_t w = 1280, h = 720;
     std::vector<double> means;
@@ -860,11 +867,13 @@ TEST_F(Lights, TileListsFollowLightsPerPixelNotLightsInTheScene) {
         EXPECT_EQ(ty, (h + 15) / 16);
         EXPECT_EQ(f.tiles[3], 16u);
         EXPECT_EQ(stride, 256u);  // scripts/lighting.lua: 1 KiB per tile
-        ASSERT_GE(f.tiles.size(), 4u + size_t(tx) * ty * stride);
+        const size_t globalWords = passes::kMaxLights + 1;
+        ASSERT_GE(f.tiles.size(), 4u + globalWords + size_t(tx) * ty * stride);
+        EXPECT_EQ(f.tiles[4], 0u);  // every light has a range: nothing in the global list
         double total = 0;
         uint32_t lit = 0, most = 0;
         for (uint32_t t = 0; t < tx * ty; ++t) {
-            const uint32_t* list = &f.tiles[4 + size_t(t) * stride];
+            const uint32_t* list = &f.tiles[4 + globalWords + size_t(t) * stride];
             const uint32_t count = list[0];
             EXPECT_LT(count, stride) << "tile " << t << " overflows";
             for (uint32_t k = 0; k < std::min(count, stride - 1); ++k) {
