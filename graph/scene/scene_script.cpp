@@ -218,6 +218,24 @@ struct Builder {
         return path;
     }
 
+    // A texture file of a material: decoded once per file and encoding, its index in scene.images.
+    Result<int32_t> textureFile(const Where& w, const Value& b, const std::string& field, bool srgb) {
+        std::string path;
+        RG_TRY(path, existingFile(w, b, field));
+        for (size_t i = 0; i < scene.images.size(); ++i)
+            if (scene.images[i].name == path && scene.images[i].srgb == srgb) return static_cast<int32_t>(i);
+        auto bytes = readFile(path);
+        if (!bytes) return w.at(field).error(bytes.error().message);
+        auto image = decodeImage(bytes->data(), bytes->size());
+        if (!image) return w.at(field).error("cannot decode " + quote(path) + ": " + image.error().message);
+        SceneImage si;
+        si.name = path;
+        si.pixels = std::move(*image);
+        si.srgb = srgb;
+        scene.images.push_back(std::move(si));
+        return static_cast<int32_t>(scene.images.size() - 1);
+    }
+
     static Result<glm::mat4> transform(const Where& w, const Value& b) {
         glm::vec3 position, rotation, scale(1.0f);
         RG_TRY(position, vec3(w, b, "position", glm::vec3(0.0f)));
@@ -266,7 +284,8 @@ struct Builder {
         Where w = where(d);
         const Value& b = d.body;
         if (auto r = checkFields(w, b, {"model", "base_color", "smoothness", "metal_mask", "reflectance", "ao", "emissive", "opacity",
-                                        "diffuse_color", "f0", "params", "double_sided", "alpha", "alpha_cutoff", "doc"});
+                                        "diffuse_color", "f0", "params", "double_sided", "alpha", "alpha_cutoff", "base_color_map",
+                                        "metallic_roughness_map", "normal_map", "normal_scale", "occlusion_map", "emissive_map", "doc"});
             !r)
             return r;
         Material m;
@@ -298,6 +317,16 @@ struct Builder {
         m.alphaMode = alpha == "mask" ? AlphaMode::Mask : alpha == "blend" ? AlphaMode::Blend : AlphaMode::Opaque;
         if (b.has("alpha_cutoff") && m.alphaMode != AlphaMode::Mask) return w.at("alpha_cutoff").error("applies to alpha = \"mask\" only");
         RG_TRY(m.alphaCutoff, numberF(w, b, "alpha_cutoff", m.alphaCutoff, Range::unit()));
+        // Texture files (PNG or JPEG, relative to the script), as glTF's five maps: base colour and
+        // emissive are sRGB, the others linear; each multiplies its factor.
+        const std::pair<const char*, std::pair<TextureRef*, bool>> maps[] = {
+            {"base_color_map", {&m.baseColorTex, true}},          {"metallic_roughness_map", {&m.metallicRoughnessTex, false}},
+            {"normal_map", {&m.normalTex, false}},                {"occlusion_map", {&m.occlusionTex, false}},
+            {"emissive_map", {&m.emissiveTex, true}}};
+        for (const auto& [field, target] : maps)
+            if (b.has(field)) RG_TRY(target.first->image, textureFile(w, b, field, target.second));
+        if (b.has("normal_scale") && !b.has("normal_map")) return w.at("normal_scale").error("applies with a normal_map only");
+        RG_TRY(m.normalScale, numberF(w, b, "normal_scale", m.normalScale, Range::closed(0, 10)));
         materials[d.name] = static_cast<uint32_t>(scene.materials.size());
         materialNames.push_back(d.name);
         scene.materials.push_back(std::move(m));

@@ -965,7 +965,49 @@ TEST(SceneScript, MaterialFieldErrors) {
     EXPECT_EQ(lua.error("scene.material \"red\" { metalness = 1 }"),
               "bad.lua:1: scene.material.red.metalness: unknown field; expected one of: 'model', 'base_color', 'smoothness', "
               "'metal_mask', 'reflectance', 'ao', 'emissive', 'opacity', 'diffuse_color', 'f0', 'params', 'double_sided', 'alpha', "
-              "'alpha_cutoff', 'doc'");
+              "'alpha_cutoff', 'base_color_map', 'metallic_roughness_map', 'normal_map', 'normal_scale', 'occlusion_map', "
+              "'emissive_map', 'doc'");
+}
+
+TEST(SceneScript, MaterialTextureFiles) {
+    // The five glTF maps from files next to the script: decoded once per file and encoding,
+    // base colour and emissive sRGB, the others linear; errors name the field and the file.
+    ScriptRunner lua("textures");
+    rg::Image checker(2, 2, 3);
+    for (uint32_t y = 0; y < 2; ++y)
+        for (uint32_t x = 0; x < 2; ++x)
+            for (uint32_t c = 0; c < 3; ++c) checker.at(x, y, c) = (x + y) % 2 ? 1.0f : (c == 0 ? 0.8f : 0.2f);
+    ASSERT_TRUE(rg::writePng(lua.dir + "/checker.png", checker));
+    writeText(lua.dir + "/broken.png", "not a png");
+    auto ok = lua.run("ok.lua",
+                      "scene.material \"tiles\" { base_color_map = \"checker.png\", normal_map = \"checker.png\", normal_scale = 0.5,\n"
+                      "                           emissive_map = \"checker.png\", emissive = { 1, 1, 1 } }\n"
+                      "scene.material \"more\" { base_color_map = \"checker.png\", occlusion_map = \"checker.png\" }\n"
+                      "scene.plane \"floor\" { size = { 2, 2 }, material = \"tiles\" }\n");
+    ASSERT_TRUE(ok) << errorOf(ok);
+    const rg::Material& tiles = ok->materials[0];
+    ASSERT_TRUE(tiles.baseColorTex.valid());
+    ASSERT_TRUE(tiles.normalTex.valid());
+    EXPECT_FALSE(tiles.metallicRoughnessTex.valid());
+    EXPECT_FLOAT_EQ(tiles.normalScale, 0.5f);
+    // One sRGB and one linear decode of checker.png, shared by both materials.
+    ASSERT_EQ(ok->images.size(), 2u);
+    EXPECT_EQ(tiles.baseColorTex.image, ok->materials[1].baseColorTex.image);
+    EXPECT_EQ(tiles.emissiveTex.image, tiles.baseColorTex.image);
+    EXPECT_EQ(tiles.normalTex.image, ok->materials[1].occlusionTex.image);
+    EXPECT_TRUE(ok->images[static_cast<size_t>(tiles.baseColorTex.image)].srgb);
+    EXPECT_FALSE(ok->images[static_cast<size_t>(tiles.normalTex.image)].srgb);
+    const rg::Image& px = ok->images[static_cast<size_t>(tiles.baseColorTex.image)].pixels;
+    EXPECT_NEAR(px.at(0, 0, 0), 204.0f / 255.0f, 1e-6f);  // the file's 8-bit value, as stored
+    EXPECT_EQ(px.at(1, 0, 1), 1.0f);
+    EXPECT_GE(ok->files.size(), 2u);  // the script and the texture, for hot reload
+    EXPECT_EQ(lua.error("scene.material \"m\" { base_color_map = \"nope.png\" }"),
+              "bad.lua:1: scene.material.m.base_color_map: cannot open '" + lua.dir + "/nope.png': No such file or directory");
+    EXPECT_EQ(lua.error("scene.material \"m\" { normal_map = \"broken.png\" }").rfind(
+                  "bad.lua:1: scene.material.m.normal_map: cannot decode '" + lua.dir + "/broken.png': ", 0),
+              0u);
+    EXPECT_EQ(lua.error("scene.material \"m\" { normal_scale = 2 }"),
+              "bad.lua:1: scene.material.m.normal_scale: applies with a normal_map only");
 }
 
 TEST(SceneScript, LightFieldErrorsAndUnitsPerType) {
