@@ -51,6 +51,8 @@ check "unknown view" 2 grep "--view: unknown view 'albedo'" -- "$rgraph" render 
 check "depth capture" 0 grep "wrote $tmp/depth.exr" -- \
     env RG_VALIDATION=1 "$rgraph" render --capture depth --size 64x32 --out "$tmp/depth.exr" --png "$tmp/depth.png"
 check "channel capture" 0 grep "wrote $tmp/c.exr" -- "$rgraph" render --capture gbuffer.normal --size 32x16 --out "$tmp/c.exr" --png "$tmp/c.png"
+check "two-colour channel capture" 0 grep "wrote $tmp/tc.exr" -- \
+    "$rgraph" render --scene tests/gpu/scenes/materials.lua --capture two_colour.f0 --size 32x16 --out "$tmp/tc.exr" --png "$tmp/tc.png"
 check "compare identical" 0 grep "mean relative error 0" -- "$rgraph" compare "$tmp/r.exr" "$tmp/r.exr" --heatmap "$tmp/heat.png"
 check "compare differs" 1 grep "above the tolerance" -- "$rgraph" compare "$tmp/g.exr" "$tmp/r.exr" --tolerance 0.001
 check "compare missing layer" 2 grep "has no layer 'nope'" -- "$rgraph" compare "$tmp/r.exr" "$tmp/r.exr" --layer nope
