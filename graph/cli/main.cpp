@@ -283,7 +283,7 @@ Result<RenderSetup> setupRun(const Args& args, const char* command, uint32_t def
         if (!p) return std::unexpected(p.error());
         char* end = nullptr;
         const double number = std::strtod(p->second.c_str(), &end);
-        if (!p->second.empty() && end && *end == '\0') so.params[p->first] = Value(number);
+        if (!p->second.empty() && end && *end == '\0' && std::isfinite(number)) so.params[p->first] = Value(number);
         else if (p->second == "true" || p->second == "false") so.params[p->first] = Value(p->second == "true");
         else so.params[p->first] = Value(p->second);
     }

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
@@ -340,7 +341,10 @@ Result<std::vector<Declaration>> LuaHost::loadDeclarations(const std::string& fi
     for (const auto& [name, value] : m->options.sceneArgs) {
         char* end = nullptr;
         const double number = std::strtod(value.c_str(), &end);
-        if (!value.empty() && end && *end == '\0') lua_pushnumber(L, number);
+        if (!value.empty() && end && *end == '\0' && std::isfinite(number)) {
+            if (number == std::floor(number) && std::abs(number) < 9e15) lua_pushinteger(L, static_cast<lua_Integer>(number));
+            else lua_pushnumber(L, number);
+        }
         else lua_pushstring(L, value.c_str());
         lua_setfield(L, -2, name.c_str());
     }

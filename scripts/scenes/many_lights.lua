@@ -7,8 +7,10 @@
 -- the image keeps about the same brightness.
 local scene = require "scene"
 
-local count = math.floor(scene.args.lights or 64)
-if count < 1 or count > 1024 then error("scene.args.lights: expected 1..1024 lights, got " .. tostring(count)) end
+local count = scene.args.lights or 64
+if type(count) ~= "number" or count ~= math.floor(count) or count < 1 or count > 1024 then
+  error("scene.args.lights: expected 1..1024 lights, got " .. tostring(count))
+end
 local overlap = scene.args.overlap or 4
 -- --scene-arg ranged=0: the same lights without a range (they reach every pixel: culling lists
 -- them once for all tiles).

@@ -60,7 +60,7 @@ check "graph dot" 0 grep "digraph rgraph" -- "$rgraph" graph --pipeline scripts/
 check "scene args" 0 grep "wrote $tmp/ml.exr" -- \
     env RG_VALIDATION=1 "$rgraph" render --scene scripts/scenes/many_lights.lua --scene-arg lights=8 --set exposure_mode=manual \
     --view lights --size 64x32 --out "$tmp/ml.exr" --png "$tmp/ml.png"
-check "scene arg out of range" 2 grep "many_lights.lua:11: scene.args.lights: expected 1..1024 lights, got 5000" -- \
+check "scene arg out of range" 2 grep "many_lights.lua:12: scene.args.lights: expected 1..1024 lights, got 5000" -- \
     "$rgraph" render --scene scripts/scenes/many_lights.lua --scene-arg lights=5000 --size 8x8
 check "set: bad value" 2 grep "parameter 'exposure_mode' expects one of 'auto', 'manual', got 'nope'" -- "$rgraph" render --set exposure_mode=nope --size 8x8
 check "set: unknown parameter" 2 grep "the pipeline has no parameter 'nope'" -- "$rgraph" render --set nope=1 --size 8x8
