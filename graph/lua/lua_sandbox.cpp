@@ -299,12 +299,10 @@ int ctxPass(lua_State* L) {
     return 1;
 }
 
-}  // namespace
-
-Result<void> callFrame(lua_State* L, const FrameContext& ctx, const PipelineDesc& current, FrameChanges& changes) {
-    FrameBinding binding{&current, &changes};
-    lua_pushlightuserdata(L, &binding);
-    lua_setfield(L, LUA_REGISTRYINDEX, kFrameKey);
+// Builds the ctx and calls the function below it, inside the protected call: a memory error
+// while building the ctx is then an ordinary script error, not a panic. No C++ object lives here.
+int frameTrampoline(lua_State* L) {
+    const auto& ctx = *static_cast<const FrameContext*>(lua_touserdata(L, lua_upvalueindex(1)));
     lua_newtable(L);
     lua_pushinteger(L, static_cast<lua_Integer>(ctx.frame));
     lua_setfield(L, -2, "frame");
@@ -330,6 +328,19 @@ Result<void> callFrame(lua_State* L, const FrameContext& ctx, const PipelineDesc
     lua_setfield(L, -2, "params");
     lua_pushcfunction(L, guarded<ctxPass>);
     lua_setfield(L, -2, "pass");
+    lua_call(L, 1, 0);  // the script's function (below the ctx)
+    return 0;
+}
+
+}  // namespace
+
+Result<void> callFrame(lua_State* L, const FrameContext& ctx, const PipelineDesc& current, FrameChanges& changes) {
+    FrameBinding binding{&current, &changes};
+    lua_pushlightuserdata(L, &binding);
+    lua_setfield(L, LUA_REGISTRYINDEX, kFrameKey);
+    lua_pushlightuserdata(L, const_cast<FrameContext*>(&ctx));
+    lua_pushcclosure(L, frameTrampoline, 1);
+    lua_insert(L, -2);  // trampoline(fn)
     auto r = protectedCall(L, 1, 0);
     lua_pushnil(L);
     lua_setfield(L, LUA_REGISTRYINDEX, kFrameKey);

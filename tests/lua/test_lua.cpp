@@ -121,6 +121,19 @@ TEST(LuaErrors, MemoryLimit) {
     EXPECT_EQ(loadError("memory_hog.lua", o), "script stopped: it used more than 16 MiB of Lua memory");
 }
 
+TEST(LuaErrors, MemoryLimitInTheFrameCallback) {
+    LuaHostOptions o = luaHostOptionsWithoutDevice();
+    o.memoryBytes = 16u << 20;
+    LuaHost host(o);
+    auto p = host.load(script("frame_memory_hog.lua"));
+    ASSERT_TRUE(p.has_value()) << p.error().message;
+    for (uint64_t frame = 0; frame < 3; ++frame) {
+        auto r = host.frame(FrameContext{frame, 0.0, std::nullopt}, *p);
+        ASSERT_FALSE(r.has_value());
+        EXPECT_EQ(r.error().message, "rg.frame: script stopped: it used more than 16 MiB of Lua memory") << "frame " << frame;
+    }
+}
+
 TEST(LuaErrors, ForbiddenOsExecute) {
     EXPECT_EQ(loadError("forbidden.lua"), kScripts + "forbidden.lua:2: os.execute is not available to rgraph scripts (sandbox)");
     EXPECT_FALSE(fs::exists("/tmp/rgraph-sandbox-escape"));
