@@ -136,14 +136,7 @@ GraphDesc Session::buildableGraph(const PipelineDesc& p) const {
             for (const auto& t : ch.layout.targets)
                 if (r.name == t.name) r.exported = true;
     }
-    const fs::path dir = fs::absolute(p.file).parent_path();
-    for (auto& pass : g.passes) {
-        const Value& s = pass.params["shader"];
-        std::error_code ec;
-        if (s.isString() && !s.asString().empty() && fs::path(s.asString()).is_relative() &&
-            fs::is_regular_file(dir / s.asString(), ec))
-            pass.params.table()["shader"] = Value((dir / s.asString()).string());
-    }
+    resolveShaderPaths(g, p.file);
     return g;
 }
 

@@ -11,6 +11,7 @@
 #include <unordered_map>
 
 #include "check.h"
+#include "names.h"
 
 namespace rg {
 
@@ -73,35 +74,14 @@ bool isStorage(Usage u) {
 // Lua truthiness: everything but nil and false.
 bool truthy(const Value& v) { return !v.isNil() && !(v.isBool() && !v.asBool()); }
 
-size_t editDistance(const std::string& a, const std::string& b) {
-    std::vector<size_t> prev(b.size() + 1), cur(b.size() + 1);
-    for (size_t j = 0; j <= b.size(); ++j) prev[j] = j;
-    for (size_t i = 1; i <= a.size(); ++i) {
-        cur[0] = i;
-        for (size_t j = 1; j <= b.size(); ++j) {
-            const size_t subst = prev[j - 1] + (a[i - 1] == b[j - 1] ? 0 : 1);
-            cur[j] = std::min({prev[j] + 1, cur[j - 1] + 1, subst});
-        }
-        std::swap(prev, cur);
-    }
-    return prev[b.size()];
-}
 
 // " (did you mean 'x'?)" for the closest name within edit distance 2, earliest declared on ties.
 template <class Range, class NameOf>
-std::string suggestion(const std::string& wanted, const Range& candidates, NameOf nameOf) {
-    size_t best = 3;
-    const std::string* bestName = nullptr;
-    for (const auto& c : candidates) {
-        const std::string& name = nameOf(c);
-        if (name.empty()) continue;
-        const size_t d = editDistance(wanted, name);
-        if (d < best) {
-            best = d;
-            bestName = &name;
-        }
-    }
-    return bestName ? " (did you mean '" + *bestName + "'?)" : std::string();
+std::string suggestionAmong(const std::string& wanted, const Range& candidates, NameOf nameOf) {
+    std::vector<std::string> names;
+    for (const auto& c : candidates) names.push_back(nameOf(c));
+    const std::string best = closestName(wanted, names, 3);
+    return best.empty() ? std::string() : " (did you mean '" + best + "'?)";
 }
 
 std::string withOrigin(const std::string& origin, std::string text) {
@@ -290,7 +270,7 @@ Status validatePasses(Compiler& c) {
             const ResourceDesc* r = found == c.resourceIndex.end() ? nullptr : &resources[found->second];
             if (!r)
                 return invalid(c.passError(pi, where() + "unknown resource '" + a.resource + "'" +
-                                                   suggestion(a.resource, resources,
+                                                   suggestionAmong(a.resource, resources,
                                                               [](const ResourceDesc& d) -> const std::string& {
                                                                   return d.name;
                                                               })));
@@ -364,7 +344,7 @@ Status validatePasses(Compiler& c) {
             if (c.passIndex.contains(p.after[k])) continue;
             return invalid(c.passError(
                 pi, "pass '" + p.name + "' field 'after[" + std::to_string(k) + "]': unknown pass '" + p.after[k] +
-                        "'" + suggestion(p.after[k], passes, [](const PassDesc& d) -> const std::string& {
+                        "'" + suggestionAmong(p.after[k], passes, [](const PassDesc& d) -> const std::string& {
                             return d.name;
                         })));
         }

@@ -302,14 +302,7 @@ GraphDesc buildableGraph(const PipelineDesc& p, const std::vector<std::string>& 
     GraphDesc g = graphWithParams(p);
     for (auto& r : g.resources)
         if (std::find(captures.begin(), captures.end(), r.name) != captures.end()) r.exported = true;
-    const fs::path dir = fs::absolute(p.file).parent_path();
-    for (auto& pass : g.passes) {
-        const Value& s = pass.params["shader"];
-        std::error_code ec;
-        if (s.isString() && !s.asString().empty() && fs::path(s.asString()).is_relative() &&
-            fs::is_regular_file(dir / s.asString(), ec))
-            pass.params.table()["shader"] = Value((dir / s.asString()).string());
-    }
+    resolveShaderPaths(g, p.file);
     return g;
 }
 

@@ -6,6 +6,7 @@
 #include <filesystem>
 
 #include "core/check.h"
+#include "core/names.h"
 
 namespace rg::gpu {
 
@@ -14,21 +15,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 double msSince(Clock::time_point t) {
     return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
-}
-
-size_t editDistance(const std::string& a, const std::string& b) {
-    std::vector<size_t> row(b.size() + 1);
-    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-    for (size_t i = 1; i <= a.size(); ++i) {
-        size_t prev = row[0];
-        row[0] = i;
-        for (size_t j = 1; j <= b.size(); ++j) {
-            size_t cur = row[j];
-            row[j] = std::min({row[j] + 1, row[j - 1] + 1, prev + (a[i - 1] != b[j - 1] ? 1 : 0)});
-            prev = cur;
-        }
-    }
-    return row[b.size()];
 }
 
 ImageDesc imageDescOf(const PlanResource& r) {
@@ -130,11 +116,8 @@ Result<void> Executor::resolveKinds(GraphDesc& graph) const {
         if (!kind) {
             std::string msg = (p.origin.empty() ? "" : p.origin + ": ") + "pass '" + p.name +
                               "': unknown kind '" + p.kind + "'";
-            std::string best;
-            size_t bestD = 3;
-            for (const auto& n : m_kinds.names())
-                if (size_t d = editDistance(n, p.kind); d < bestD) bestD = d, best = n;
-            if (!best.empty()) msg += " (did you mean '" + best + "'?)";
+            if (const std::string best = closestName(p.kind, m_kinds.names(), 3); !best.empty())
+                msg += " (did you mean '" + best + "'?)";
             std::string all;
             for (const auto& n : m_kinds.names()) all += (all.empty() ? "" : ", ") + n;
             return fail(ErrorCode::InvalidInput, msg + "; known kinds: " + all);

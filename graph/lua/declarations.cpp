@@ -37,32 +37,6 @@ bool isSceneKind(DeclKind k) { return k >= DeclKind::SceneMaterial && k < DeclKi
 
 namespace {
 
-size_t editDistance(const std::string& a, const std::string& b) {
-    std::vector<size_t> row(b.size() + 1);
-    for (size_t j = 0; j <= b.size(); ++j) row[j] = j;
-    for (size_t i = 1; i <= a.size(); ++i) {
-        size_t prev = row[0];
-        row[0] = i;
-        for (size_t j = 1; j <= b.size(); ++j) {
-            size_t cur = row[j];
-            row[j] = std::min({row[j] + 1, row[j - 1] + 1, prev + (a[i - 1] != b[j - 1] ? 1 : 0)});
-            prev = cur;
-        }
-    }
-    return row[b.size()];
-}
-
-std::string joinQuoted(const std::vector<std::string>& names) {
-    std::string s;
-    for (const auto& n : names) s += (s.empty() ? "'" : ", '") + n + "'";
-    return s;
-}
-
-std::string suggestion(const std::string& name, const std::vector<std::string>& candidates) {
-    std::string best = closestName(name, candidates);
-    return best.empty() ? "" : " (did you mean '" + best + "'?)";
-}
-
 std::string typeOf(const Value& v) {
     if (v.isNumber()) return "number";
     if (v.isBool()) return "boolean";
@@ -74,27 +48,6 @@ std::string typeOf(const Value& v) {
 
 bool isInteger(const Value& v) {
     return v.isNumber() && std::floor(v.asNumber()) == v.asNumber();
-}
-
-// Everything a check needs to word an error: the declaration and the field path so far.
-struct Where {
-    const Declaration& decl;
-    std::string path;
-    Where at(const std::string& field) const { return {decl, path + "." + field}; }
-    Where index(size_t i) const { return {decl, path + "[" + std::to_string(i + 1) + "]"}; }
-    std::unexpected<Error> error(const std::string& msg) const {
-        return fail(ErrorCode::InvalidInput, decl.origin + ": " + path + ": " + msg);
-    }
-};
-
-Result<void> checkFields(const Where& w, const Value& body, const std::vector<std::string>& allowed) {
-    for (const auto& [key, _] : body.asTable()) {
-        if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
-        if (key[0] == '#')
-            return w.error("unexpected positional value " + key.substr(1) + "; expected named fields: " + joinQuoted(allowed));
-        return w.at(key).error("unknown field" + suggestion(key, allowed) + "; expected one of: " + joinQuoted(allowed));
-    }
-    return {};
 }
 
 Result<void> expectType(const Where& w, const Value& v, const std::string& type) {
@@ -792,14 +745,14 @@ struct Builder {
 
 }  // namespace
 
-std::string closestName(const std::string& name, const std::vector<std::string>& candidates) {
-    std::string best;
-    size_t bestD = name.size() <= 3 ? 2 : 3;
-    for (const auto& c : candidates) {
-        size_t d = editDistance(name, c);
-        if (d < bestD) bestD = d, best = c;
+Result<void> checkFields(const Where& w, const Value& body, const std::vector<std::string>& allowed) {
+    for (const auto& [key, _] : body.asTable()) {
+        if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
+        if (key[0] == '#')
+            return w.error("unexpected positional value " + key.substr(1) + "; expected named fields: " + joinQuoted(allowed));
+        return w.at(key).error("unknown field" + suggestion(key, allowed) + "; expected one of: " + joinQuoted(allowed));
     }
-    return best;
+    return {};
 }
 
 Result<PipelineDesc> buildPipeline(const std::vector<Declaration>& decls, const OutputNames& output,

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/kind_schema.h"
+#include "core/names.h"  // closestName, suggestion, joinQuoted for the scripts' messages
 #include "pipeline.h"
 
 namespace rg {
@@ -30,6 +31,22 @@ struct Declaration {
     std::string origin;  // "scripts/pipelines/deferred.lua:12"
 };
 
+// Everything a check of a declaration's fields needs to word an error: the declaration and the
+// field path so far ("file:line: passes.lighting.reads[3]: ..."). Shared by the pipeline schemas
+// (declarations.cpp) and the scene scripts (graph/scene).
+struct Where {
+    const Declaration& decl;
+    std::string path;
+    Where at(const std::string& field) const { return {decl, path + "." + field}; }
+    Where index(size_t i) const { return {decl, path + "[" + std::to_string(i + 1) + "]"}; }
+    std::unexpected<Error> error(const std::string& msg) const {
+        return fail(ErrorCode::InvalidInput, decl.origin + ": " + path + ": " + msg);
+    }
+};
+
+// Refuses a field of `body` not in `allowed` (with the closest allowed name) and positional values.
+Result<void> checkFields(const Where& w, const Value& body, const std::vector<std::string>& allowed);
+
 struct BuildOptions {
     std::vector<PassKindSchema> kinds;
     uint32_t stencilBits = 4;  // low stencil bits the framework allocates classes from
@@ -48,7 +65,5 @@ struct OutputNames {
 Result<PipelineDesc> buildPipeline(const std::vector<Declaration>& decls, const OutputNames& output,
                                    const BuildOptions& options);
 
-// The closest candidate within edit distance 2 (or 1 for short names), or "".
-std::string closestName(const std::string& name, const std::vector<std::string>& candidates);
 
 }  // namespace rg

@@ -84,6 +84,10 @@ void applyFrameChanges(PipelineDesc& pipeline, const FrameChanges& changes);
 // `scene` pass its materials (params.rg_materials, see sceneMaterials).
 GraphDesc graphWithParams(const PipelineDesc& pipeline);
 
+// Makes absolute the passes' relative shader paths that name a file next to the pipeline script
+// (shaders/ and the project root are searched by the shader compiler anyway).
+void resolveShaderPaths(GraphDesc& graph, const std::string& pipelineFile);
+
 // The pipeline materials a scene pass draws (params.materials / params.paths; default all that
 // have a surface), each as { name, id, layout, surface, targets, integer, fills, custom,
 // stencil_value, stencil_mask }: custom lists the numeric material params in key order, the

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 
 #include "lua_host.h"
 
@@ -126,6 +127,17 @@ GraphDesc graphWithParams(const PipelineDesc& pipeline) {
         if (pass.kind == "scene") pass.params.table()["rg_materials"] = sceneMaterials(pipeline, pass.params);
     }
     return g;
+}
+
+void resolveShaderPaths(GraphDesc& graph, const std::string& pipelineFile) {
+    const std::filesystem::path dir = std::filesystem::absolute(pipelineFile).parent_path();
+    for (auto& pass : graph.passes) {
+        const Value& s = pass.params["shader"];
+        std::error_code ec;
+        if (s.isString() && !s.asString().empty() && std::filesystem::path(s.asString()).is_relative() &&
+            std::filesystem::is_regular_file(dir / s.asString(), ec))
+            pass.params.table()["shader"] = Value((dir / s.asString()).string());
+    }
 }
 
 Value sceneMaterials(const PipelineDesc& pipeline, const Value& params) {

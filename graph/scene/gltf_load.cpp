@@ -26,14 +26,6 @@ using namespace scene_detail;
 
 namespace {
 
-// `lhs = value of expr`, or return its error.
-#define RG_TRY(lhs, expr)                                      \
-    do {                                                       \
-        auto rg_try_ = (expr);                                 \
-        if (!rg_try_) return std::unexpected(rg_try_.error()); \
-        lhs = std::move(*rg_try_);                             \
-    } while (0)
-
 // Extensions whose meaning we implement (a file may require them).
 constexpr size_t kMaxDepth = 1000;  // node hierarchy levels (recursion depth)
 

@@ -7,6 +7,14 @@
 
 #include "scene.h"
 
+// `lhs = value of expr`, or return its error: several checks in a row in the loaders.
+#define RG_TRY(lhs, expr)                                      \
+    do {                                                       \
+        auto rg_try_ = (expr);                                 \
+        if (!rg_try_) return std::unexpected(rg_try_.error()); \
+        lhs = std::move(*rg_try_);                             \
+    } while (0)
+
 namespace rg::scene_detail {
 
 // Decodes a PNG or JPEG held in memory into four float channels in [0, 1] (8-bit samples / 255,

@@ -27,17 +27,6 @@ namespace {
 
 constexpr float kDegrees = 3.14159265358979f / 180.0f;
 
-std::string joinQuoted(const std::vector<std::string>& names) {
-    std::string s;
-    for (const auto& n : names) s += (s.empty() ? "'" : ", '") + n + "'";
-    return s;
-}
-
-std::string suggestion(const std::string& name, const std::vector<std::string>& candidates) {
-    std::string best = closestName(name, candidates);
-    return best.empty() ? "" : " (did you mean '" + best + "'?)";
-}
-
 std::string formatNumber(double d) {
     char buf[32];
     std::snprintf(buf, sizeof buf, "%g", d);
@@ -57,25 +46,6 @@ std::string describe(const Value& v, int depth = 0) {
     }
     if (v.isTable()) return "a table";
     return "nil";
-}
-
-struct Where {
-    const Declaration& decl;
-    std::string path;
-    Where at(const std::string& field) const { return {decl, path + "." + field}; }
-    std::unexpected<Error> error(const std::string& msg) const {
-        return fail(ErrorCode::InvalidInput, decl.origin + ": " + path + ": " + msg);
-    }
-};
-
-Result<void> checkFields(const Where& w, const Value& body, const std::vector<std::string>& allowed) {
-    for (const auto& [key, _] : body.asTable()) {
-        if (std::find(allowed.begin(), allowed.end(), key) != allowed.end()) continue;
-        if (key[0] == '#')
-            return w.error("unexpected positional value " + key.substr(1) + "; expected named fields: " + joinQuoted(allowed));
-        return w.at(key).error("unknown field" + suggestion(key, allowed) + "; expected one of: " + joinQuoted(allowed));
-    }
-    return {};
 }
 
 // A numeric constraint and how an error words it ("a number > 0").
@@ -171,14 +141,6 @@ Result<bool> boolean(const Where& w, const Value& body, const std::string& field
     if (!v.isBool()) return w.at(field).error("expected a boolean, got " + describe(v));
     return v.asBool();
 }
-
-// Results of several checks in a row: `TRY(x, expr)` assigns or returns the error.
-#define RG_TRY(lhs, expr)                                    \
-    do {                                                     \
-        auto rg_try_ = (expr);                               \
-        if (!rg_try_) return std::unexpected(rg_try_.error()); \
-        lhs = std::move(*rg_try_);                           \
-    } while (0)
 
 struct Builder {
     const std::string& scriptPath;
@@ -716,8 +678,6 @@ struct Builder {
         return std::move(scene);
     }
 };
-
-#undef RG_TRY
 
 std::string defaultRoot() {
     if (const char* r = std::getenv("RG_ROOT"); r && *r) return r;
