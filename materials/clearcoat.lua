@@ -5,6 +5,7 @@
 -- layout's spare GB2.r channel, coat strength into GB1.a's 5-bit MaterialData.
 local rg = require "rg"
 local lighting = require "lighting"
+local ibl = require "ibl"  -- lit by the distant light probe too
 require "disney"
 
 rg.stencil "lit_clearcoat" { doc = "clear coat: two specular lobes" }
@@ -15,9 +16,9 @@ rg.material "clear_coat" {
 }
 
 -- Lights the clear-coat pixels right after the standard ones (the low 3 stencil bits name the path).
-rg.pass "lighting_clearcoat" (lighting.tiled {
+rg.pass "lighting_clearcoat" (ibl.lit(lighting.tiled {
     kind = "fullscreen", shader = "materials/clearcoat_lighting.frag",
     reads = { "GB0", "GB1", "GB2", "GB3", "depth", { "depth", as = "depth" }, { "exposure", as = "storage" } },
     writes = { { "hdr", load = true } }, stencil = { class = "lit_clearcoat", mask = 7 },
     insert = { after = "lighting_standard" },
-})
+}))

@@ -4,6 +4,7 @@
 // coatSmoothness). The lights are evaluated for both lobes: "lit twice".
 #include "lib/lighting.glsl"
 #include "lib/exposure.glsl"
+#include "lib/ibl.glsl"
 #include "gbuffer_disney.glsl"
 
 layout(location = 0) in vec2 uv;
@@ -47,5 +48,13 @@ void main() {
         vec3 base = rgStandardLighting(s, N, V, diffuseColor, f0, linearRoughness);
         luminance += base * (1.0 - Fc) + vec3(coat) * c.specularIlluminance * c.specularNormalisation;
     }
+#ifdef RG_IBL
+    // The distant probe, both lobes: the base attenuated by the coat's Fresnel at the view angle,
+    // the coat's own split-sum lobe (f0 0.04, f90 1) with its specular occlusion.
+    float FcView = F_Schlick(0.04, 1.0, NdotV) * coatStrength;
+    RgIbl coatIbl = rgEvaluateIbl(N, V, vec3(0.04), 1.0, coatRoughness);
+    luminance += rgStandardIbl(N, V, diffuseColor, f0, linearRoughness, g.ao) * (1.0 - FcView) +
+                 coatIbl.specular * coatStrength * rgSpecularOcclusion(NdotV, g.ao, coatRoughness * coatRoughness);
+#endif
     color = vec4(luminance * rgPreExposure(ex.state, params.initial_ev100), 1.0);
 }

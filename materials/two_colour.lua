@@ -8,6 +8,7 @@
 -- runs the standard BRDF and light loop on its own stencil class.
 local rg = require "rg"
 local lighting = require "lighting"
+local ibl = require "ibl"  -- lit by the distant light probe too
 require "disney"
 
 rg.layout "two_colour" {
@@ -26,9 +27,9 @@ rg.material "two_colour" {
     doc = "two-colour base material, seed 000 tbl:3",
 }
 
-rg.pass "lighting_two_colour" (lighting.tiled {
+rg.pass "lighting_two_colour" (ibl.lit(lighting.tiled {
     kind = "fullscreen", shader = "materials/two_colour_lighting.frag",
     reads = { "GB0", "GB1", "GB2", "GB3", "depth", { "depth", as = "depth" }, { "exposure", as = "storage" } },
     writes = { { "hdr", load = true } }, stencil = { class = "lit_two_colour", mask = 7 },
     insert = { after = "lighting_standard" },
-})
+}))

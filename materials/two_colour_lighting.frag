@@ -4,6 +4,7 @@
 // and light loop of shaders/passes/deferred_lighting.frag, over the tile's lights.
 #include "lib/lighting.glsl"
 #include "lib/exposure.glsl"
+#include "lib/ibl.glsl"
 #include "gbuffer_two_colour.glsl"
 
 layout(location = 0) in vec2 uv;
@@ -29,5 +30,6 @@ void main() {
         RgLightSample s = rgEvaluateLight(rgListLight(list, k), position, g.normal, V, linearRoughness);
         luminance += rgStandardLighting(s, g.normal, V, g.diffuseColor, g.f0, linearRoughness);
     }
+    luminance += rgStandardIbl(g.normal, V, g.diffuseColor, g.f0, linearRoughness, g.ao);  // the distant probe (RG_IBL)
     color = vec4(luminance * rgPreExposure(ex.state, params.initial_ev100), 1.0);
 }

@@ -66,6 +66,35 @@ VkClearColorValue clearColorFor(Format f, const Value& v) {
     return c;
 }
 
+// params.cadence of the compute and mips kinds. "frame" (default): the pass records every frame.
+// "once": it records after each prepare (new shader, scene or size) and after each clearing of the
+// persistent resources (FrameInfo::persistentEpoch), then never again until one of those happens —
+// for what depends only on the scene's environment or on nothing (filtered probes, lookup tables).
+// The plan's barriers still run when it skips; a persistent texture keeps its contents through them
+// (it starts and ends every frame in ShaderReadOnly).
+class Cadence {
+public:
+    Result<void> parse(const PassDesc& desc) {
+        const std::string c = desc.params["cadence"].isString() ? desc.params["cadence"].asString() : "frame";
+        if (c != "frame" && c != "once")
+            return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.cadence: unknown '" + c + "', expected one of: 'frame', 'once'");
+        m_once = c == "once";
+        m_recorded = false;
+        return {};
+    }
+    // True when the pass records this frame (and remembers that it did).
+    bool due(const RecordContext& rc) {
+        if (m_once && m_recorded && m_epoch == rc.frame.persistentEpoch) return false;
+        m_recorded = true;
+        m_epoch = rc.frame.persistentEpoch;
+        return true;
+    }
+
+private:
+    bool m_once = false, m_recorded = false;
+    uint64_t m_epoch = 0;
+};
+
 // ---------------------------------------------------------------------------------------------
 // fullscreen: one triangle over the colour attachments, fragment shader from params.shader.
 // params: shader, defines, clear (colour for attachments that do not load), blend ("alpha" |
@@ -239,8 +268,32 @@ public:
         ShaderRequest req;
         req.path = *shader;
         req.stage = ShaderStage::Compute;
-        if (auto r = m_program.build(setup, {req}); !r) return r;
+        if (auto r = m_cadence.parse(desc); !r) return r;
+        const bool perMip = desc.params["per_mip"].asBool(false);
+        const PhysicalResource* mipTarget = nullptr;
+        if (perMip) {
+            if (desc.params["groups"].isList())
+                return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.per_mip: the dispatch follows each mip's size; give no params.groups");
+            for (const Access& a : accessesOf(desc, {Usage::StorageWrite, Usage::StorageReadWrite}))
+                if (const PhysicalResource* r = setup.resources.find(a.resource); r->image) {
+                    if (mipTarget)
+                        return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.per_mip: the pass writes two storage images ('" +
+                                                                 mipTarget->plan->name + "', '" + a.resource + "'); a per-mip pass writes one");
+                    mipTarget = r;
+                }
+            if (!mipTarget)
+                return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.per_mip: the pass writes no storage image whose mips it could fill");
+        }
+        m_mips = mipTarget ? mipTarget->plan->mips : 1;
+        if (auto r = m_program.build(setup, {req}, {}, m_mips); !r) return r;
         const auto& local = m_program.reflection().localSize;
+        if (mipTarget) {
+            m_mipGroups.clear();
+            for (uint32_t m = 0; m < m_mips; ++m) {
+                const uint32_t w = std::max(1u, mipTarget->plan->width >> m), h = std::max(1u, mipTarget->plan->height >> m);
+                m_mipGroups.push_back({(w + local[0] - 1) / local[0], (h + local[1] - 1) / local[1], mipTarget->plan->layers});
+            }
+        }
         const Value& groups = desc.params["groups"];
         if (groups.isList()) {
             const auto& g = groups.asList();
@@ -278,9 +331,17 @@ public:
     }
 
     void record(RecordContext& rc) override {
+        if (!m_cadence.due(rc)) return;
         vkCmdBindPipeline(rc.cmd, VK_PIPELINE_BIND_POINT_COMPUTE, m_pipeline.get());
-        m_program.bind(rc, VK_PIPELINE_BIND_POINT_COMPUTE);
-        vkCmdDispatch(rc.cmd, m_groups[0], m_groups[1], m_groups[2]);
+        if (m_mipGroups.empty()) {
+            m_program.bind(rc, VK_PIPELINE_BIND_POINT_COMPUTE);
+            vkCmdDispatch(rc.cmd, m_groups[0], m_groups[1], m_groups[2]);
+            return;
+        }
+        for (uint32_t m = 0; m < m_mips; ++m) {
+            m_program.bind(rc, VK_PIPELINE_BIND_POINT_COMPUTE, m);
+            vkCmdDispatch(rc.cmd, m_mipGroups[m][0], m_mipGroups[m][1], m_mipGroups[m][2]);
+        }
     }
 
     std::vector<std::string> files() const override { return m_program.files(); }
@@ -289,6 +350,9 @@ private:
     ShaderProgram m_program;
     OwnedPipeline m_pipeline;
     std::array<uint32_t, 3> m_groups{1, 1, 1};
+    uint32_t m_mips = 1;
+    std::vector<std::array<uint32_t, 3>> m_mipGroups;  // per_mip: the work groups of each mip
+    Cadence m_cadence;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -395,9 +459,10 @@ public:
         const PhysicalResource* r = setup.resources.find(m_target);
         if (!r->image || formatInfo(r->plan->format).integer || isDepthStencil(r->plan->format))
             return fail(ErrorCode::InvalidInput, passPrefix(setup.desc) + "'" + m_target + "' must be a filterable colour texture to build mips");
-        return {};
+        return m_cadence.parse(setup.desc);
     }
     void record(RecordContext& rc) override {
+        if (!m_cadence.due(rc)) return;
         const PhysicalResource* r = rc.resources.find(m_target);
         const PlanResource& p = *r->plan;
         VkImage img = r->image->image();
@@ -426,6 +491,7 @@ public:
 
 private:
     std::string m_target;
+    Cadence m_cadence;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -518,6 +584,10 @@ std::vector<ParamSpec> shaderParams() {
     };
 }
 
+ParamSpec cadenceParam() {
+    return {"cadence", "string", "'frame' (default): every frame; 'once': when (re)built or its persistent outputs were cleared (environment filtering, lookup tables)"};
+}
+
 std::vector<ParamSpec> plus(std::vector<ParamSpec> a, std::vector<ParamSpec> b) {
     a.insert(a.end(), b.begin(), b.end());
     return a;
@@ -539,7 +609,9 @@ void registerBuiltinPassKinds(PassRegistry& registry) {
          plus(shaderParams(),
               {{"groups", "list", "{x, y, z} work groups"},
                {"dispatch", "string", "resource whose size the dispatch covers (default: first storage image written)"},
-               {"tile", "integer", "one invocation per tile x tile texels of the dispatch resource (default 1)"}}),
+               {"tile", "integer", "one invocation per tile x tile texels of the dispatch resource (default 1)"},
+               {"per_mip", "boolean", "one dispatch per mip of the storage image it writes, each binding that mip (`rg_mip` push constant)"},
+               cadenceParam()}),
          Usage::Sampled, Usage::StorageWrite}));
     registry.add(kind<ClearPass>(
         {"clear", PassType::Transfer, "clears what it writes to `value` (colour) or `depth`/`stencil`",
@@ -547,7 +619,7 @@ void registerBuiltinPassKinds(PassRegistry& registry) {
           {"stencil", "number", "stencil clear value (default 0)"}},
          Usage::CopySrc, Usage::CopyDst}));
     registry.add(kind<CopyPass>({"copy", PassType::Transfer, "copies or blits what it reads into what it writes", {}, Usage::CopySrc, Usage::CopyDst}));
-    registry.add(kind<MipsPass>({"mips", PassType::Transfer, "fills mips 1..n-1 of the texture it writes from mip 0", {}, Usage::CopySrc, Usage::CopyDst, /*writesLoad=*/true}));
+    registry.add(kind<MipsPass>({"mips", PassType::Transfer, "fills mips 1..n-1 of the texture it writes from mip 0", {cadenceParam()}, Usage::CopySrc, Usage::CopyDst, /*writesLoad=*/true}));
     registry.add(scenePassKind());
     registry.add(kind<ReadbackPass>({"readback", PassType::Transfer, "copies what it reads to host memory every frame (a side effect)", {}, Usage::CopySrc, Usage::CopyDst}));
 }

@@ -9,6 +9,7 @@
 #include "core/light_units.h"
 #include "lighting/area_lights.h"
 #include "lighting/punctual.h"
+#include "scene/environment.h"
 
 namespace rg::passes {
 
@@ -52,6 +53,20 @@ Result<OwnedSampler> makeSampler(VkDevice dev, const SamplerDesc& d) {
     return OwnedSampler(dev, s);
 }
 
+// Copies staged texels into `image` (all of it in TRANSFER_DST, from UNDEFINED) and leaves it
+// ready for sampling.
+Result<void> copyToImage(Context& ctx, VkImage image, const Buffer& staging, const std::vector<VkBufferImageCopy>& regions) {
+    return ctx.submitNow([&](VkCommandBuffer cmd) {
+        imageBarrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
+                     VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        vkCmdCopyBufferToImage(cmd, staging.buffer(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                               static_cast<uint32_t>(regions.size()), regions.data());
+        imageBarrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                     VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
+                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+    });
+}
+
 // Uploads RGBA8 levels (values already in the image's encoding) and leaves the image ready for sampling.
 Result<gpu::Image> uploadRgba8(Context& ctx, const std::string& name, bool srgb, const std::vector<const rg::Image*>& levels) {
     ImageDesc d;
@@ -84,17 +99,7 @@ Result<gpu::Image> uploadRgba8(Context& ctx, const std::string& name, bool srgb,
         regions.push_back(r);
         offset += size_t(l.width) * l.height * 4;
     }
-    VkImage image = img->image();
-    auto sub = ctx.submitNow([&](VkCommandBuffer cmd) {
-        imageBarrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
-                     VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-        vkCmdCopyBufferToImage(cmd, staging->buffer(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                               static_cast<uint32_t>(regions.size()), regions.data());
-        imageBarrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                     VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
-                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    });
-    if (!sub) return std::unexpected(sub.error());
+    if (auto sub = copyToImage(ctx, img->image(), *staging, regions); !sub) return std::unexpected(sub.error());
     return img;
 }
 
@@ -129,19 +134,33 @@ Result<gpu::Image> solidHalfTexture(Context& ctx, const std::string& name, glm::
     auto staging = Buffer::create(ctx, name + ".staging", sizeof texel, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
     if (!staging) return std::unexpected(staging.error());
     std::memcpy(staging->mapped(), texel, sizeof texel);
-    VkImage image = img->image();
-    auto sub = ctx.submitNow([&](VkCommandBuffer cmd) {
-        imageBarrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
-                     VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-        VkBufferImageCopy r{};
-        r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
-        r.imageExtent = {1, 1, 1};
-        vkCmdCopyBufferToImage(cmd, staging->buffer(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &r);
-        imageBarrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                     VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
-                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-    });
-    if (!sub) return std::unexpected(sub.error());
+    VkBufferImageCopy r{};
+    r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    r.imageExtent = {1, 1, 1};
+    if (auto sub = copyToImage(ctx, img->image(), *staging, {r}); !sub) return std::unexpected(sub.error());
+    return img;
+}
+
+// Uploads a float image (1..4 channels; missing colour channels 0, alpha 1) as RGBA32F.
+Result<gpu::Image> uploadRgba32f(Context& ctx, const std::string& name, const rg::Image& src) {
+    ImageDesc d;
+    d.name = name;
+    d.format = Format::RGBA32F;
+    d.width = src.width;
+    d.height = src.height;
+    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    auto img = gpu::Image::create(ctx, d);
+    if (!img) return std::unexpected(img.error());
+    const size_t texels = size_t(src.width) * src.height;
+    auto staging = Buffer::create(ctx, name + ".staging", texels * 16, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    if (!staging) return std::unexpected(staging.error());
+    auto* dst = static_cast<float*>(staging->mapped());
+    for (size_t i = 0; i < texels; ++i)
+        for (uint32_t c = 0; c < 4; ++c) dst[i * 4 + c] = c < src.channels ? src.pixels[i * src.channels + c] : (c == 3 ? 1.0f : 0.0f);
+    VkBufferImageCopy r{};
+    r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    r.imageExtent = {src.width, src.height, 1};
+    if (auto sub = copyToImage(ctx, img->image(), *staging, {r}); !sub) return std::unexpected(sub.error());
     return img;
 }
 
@@ -244,6 +263,20 @@ Result<void> GpuScene::uploadImages(Context& ctx) {
     auto def = makeSampler(ctx.device(), SamplerDesc{});
     if (!def) return std::unexpected(def.error());
     m_defaultSampler = std::move(*def);
+    // The environment (graph/scene/environment.h): equirectangular nits, black without one. Its
+    // sampler wraps around the vertical seam and clamps at the poles.
+    rg::Image black(1, 1, 4);
+    auto env = m_scene.environment ? environmentImage(m_scene) : Result<rg::Image>(std::move(black));
+    if (!env) return std::unexpected(env.error());
+    auto envImage = uploadRgba32f(ctx, "scene.environment", *env);
+    if (!envImage) return std::unexpected(envImage.error());
+    m_environment = std::move(*envImage);
+    SamplerDesc envSampler;
+    envSampler.wrapS = Wrap::Repeat;
+    envSampler.wrapT = Wrap::ClampToEdge;
+    auto es = makeSampler(ctx.device(), envSampler);
+    if (!es) return std::unexpected(es.error());
+    m_environmentSampler = std::move(*es);
     return {};
 }
 

@@ -108,6 +108,12 @@ public:
     VkBuffer lightBuffer(uint32_t slot) const { return m_lightBuffers[slot].buffer(); }
     // The decals (shaders/lib/scene.glsl's Decals block): a count, then one RgDecal each.
     VkBuffer decalBuffer() const { return m_decals.buffer(); }
+    // The environment as an equirectangular RGBA32F image of luminance (nits) in world orientation
+    // (graph/scene/environment.h's mapping; 1x1 black without one), with its sampler: what a
+    // shader's `SceneEnvironment` sampler2D is bound to.
+    VkImageView environmentView() const { return m_environment.view(); }
+    VkSampler environmentSampler() const { return m_environmentSampler.get(); }
+    bool hasEnvironment() const { return m_scene.environment.has_value(); }
     uint32_t lightCount() const { return m_lightCount; }
     uint32_t iesProfileCount() const { return m_iesProfileCount; }
 
@@ -124,6 +130,8 @@ private:
     gpu::Buffer m_vertices, m_indices;
     std::vector<gpu::Image> m_images;
     gpu::Image m_white, m_flatNormal;  // defaults for missing textures
+    gpu::Image m_environment;
+    gpu::OwnedSampler m_environmentSampler;
     std::vector<gpu::OwnedSampler> m_samplers;
     gpu::OwnedSampler m_defaultSampler;
     gpu::OwnedDescriptorSetLayout m_materialLayout;

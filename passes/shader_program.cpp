@@ -75,8 +75,9 @@ Result<OwnedSampler> makeSampler(VkDevice dev, VkFilter filter) {
 }  // namespace
 
 Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> stages,
-                                  std::map<uint32_t, VkDescriptorSetLayout> externalSets) {
+                                  std::map<uint32_t, VkDescriptorSetLayout> externalSets, uint32_t mipVariants) {
     m_external = std::move(externalSets);
+    m_variants = std::max(1u, mipVariants);
     const PassDesc& desc = setup.desc;
     // Defines from params.defines = { NAME = value, ... } (numbers, booleans or strings).
     std::vector<std::pair<std::string, std::string>> defines;
@@ -184,7 +185,7 @@ Result<void> ShaderProgram::createLayouts(PassSetup& setup) {
 Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
     const PassDesc& desc = setup.desc;
     VkDevice dev = setup.gpu.device();
-    const uint32_t slots = setup.gpu.framesInFlight();
+    const uint32_t slots = setup.gpu.framesInFlight() * m_variants;  // descriptor sets per set index
     if (m_setLayouts.empty()) return {};
 
     auto lin = makeSampler(dev, VK_FILTER_LINEAR);
@@ -211,7 +212,7 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
     for (const auto& b : m_reflection.bindings)
         if (isParamsBlock(b)) m_params = &b;
     if (m_params) {
-        for (uint32_t s = 0; s < slots; ++s) {
+        for (uint32_t s = 0; s < setup.gpu.framesInFlight(); ++s) {
             auto buf = Buffer::create(setup.gpu, desc.name + ".Params", std::max(16u, m_params->blockSize),
                                       VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
             if (!buf) return std::unexpected(buf.error());
@@ -234,7 +235,8 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
         const bool camera = b.name == "Camera" && b.type == DescriptorType::UniformBuffer;
         const bool lights = b.name == "Lights" && b.type == DescriptorType::StorageBuffer;
         const bool decalList = b.name == "Decals" && b.type == DescriptorType::StorageBuffer;
-        if (camera || lights || decalList) {
+        const bool environment = b.name == "SceneEnvironment" && b.type == DescriptorType::CombinedImageSampler;
+        if (camera || lights || decalList || environment) {
             if (!setup.scene)
                 return fail(ErrorCode::InvalidInput, passPrefix(desc) + "shader binding '" + b.name +
                                                          "' is the scene's, but no scene is loaded (give --scene)");
@@ -285,7 +287,7 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
         std::vector<VkWriteDescriptorSet> writes;
         std::vector<VkDescriptorImageInfo> images;
         std::vector<VkDescriptorBufferInfo> buffers;
-        images.reserve(bound.size());
+        images.reserve(bound.size() + sceneBindings.size());
         buffers.reserve(bound.size() + sceneBindings.size() + 1);
         for (const auto& bd : bound) {
             VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -302,8 +304,9 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
                 const bool depthAttached = std::any_of(desc.accesses.begin(), desc.accesses.end(), [&](const Access& a) {
                     return a.usage == Usage::DepthStencilRead && setup.resources.find(a.resource) == bd.resource;
                 });
+                const uint32_t mip = std::min(s % m_variants, img.desc().mips - 1);
                 images.push_back({nearest ? m_nearest.get() : m_linear.get(),
-                                  storage ? img.mipView(0) : img.view(),
+                                  storage ? img.mipView(mip) : img.view(),
                                   storage         ? VK_IMAGE_LAYOUT_GENERAL
                                   : depthAttached ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL
                                                   : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
@@ -315,8 +318,19 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
             writes.push_back(w);
         }
         for (const ReflectedBinding* b : sceneBindings) {
-            buffers.push_back({b->name == "Camera"   ? setup.scene->cameraBuffer(s)
-                               : b->name == "Lights" ? setup.scene->lightBuffer(s)
+            if (b->type == DescriptorType::CombinedImageSampler) {  // SceneEnvironment
+                images.push_back({setup.scene->environmentSampler(), setup.scene->environmentView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+                VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+                w.dstSet = m_sets[s][b->set];
+                w.dstBinding = b->binding;
+                w.descriptorCount = 1;
+                w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+                w.pImageInfo = &images.back();
+                writes.push_back(w);
+                continue;
+            }
+            buffers.push_back({b->name == "Camera"   ? setup.scene->cameraBuffer(s / m_variants)
+                               : b->name == "Lights" ? setup.scene->lightBuffer(s / m_variants)
                                                      : setup.scene->decalBuffer(),
                                0, VK_WHOLE_SIZE});
             VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -328,7 +342,7 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
             writes.push_back(w);
         }
         if (m_params) {
-            buffers.push_back({m_paramBuffers[s].buffer(), 0, VK_WHOLE_SIZE});
+            buffers.push_back({m_paramBuffers[s / m_variants].buffer(), 0, VK_WHOLE_SIZE});
             VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
             w.dstSet = m_sets[s][m_params->set];
             w.dstBinding = m_params->binding;
@@ -363,13 +377,14 @@ void ShaderProgram::writeUniforms(const Value& uniforms, uint32_t slot) {
     std::memcpy(m_paramBuffers[slot].mapped(), bytes.data(), bytes.size());
 }
 
-void ShaderProgram::bind(RecordContext& rc, VkPipelineBindPoint point) {
+void ShaderProgram::bind(RecordContext& rc, VkPipelineBindPoint point, uint32_t mipVariant) {
     const uint32_t slot = rc.frame.slot;
-    if (m_params) writeUniforms(rc.desc.params["uniforms"], slot);
+    if (m_params && mipVariant == 0) writeUniforms(rc.desc.params["uniforms"], slot);
+    const uint32_t index = slot * m_variants + std::min(mipVariant, m_variants - 1);
     if (!m_sets.empty())
-        for (size_t set = 0; set < m_sets[slot].size(); ++set)
-            if (m_sets[slot][set] != VK_NULL_HANDLE)
-                vkCmdBindDescriptorSets(rc.cmd, point, m_layout.get(), static_cast<uint32_t>(set), 1, &m_sets[slot][set], 0, nullptr);
+        for (size_t set = 0; set < m_sets[index].size(); ++set)
+            if (m_sets[index][set] != VK_NULL_HANDLE)
+                vkCmdBindDescriptorSets(rc.cmd, point, m_layout.get(), static_cast<uint32_t>(set), 1, &m_sets[index][set], 0, nullptr);
     if (m_reflection.pushConstantSize) {
         std::vector<uint8_t> bytes(m_reflection.pushConstantSize, 0);
         const Value& constants = rc.desc.params["constants"];
@@ -380,6 +395,8 @@ void ShaderProgram::bind(RecordContext& rc, VkPipelineBindPoint point) {
                                             Value(static_cast<double>(rc.plan.outputHeight))}));
             else if (m.name == "rg_time") putFloats(bytes, m.offset, m.size, Value(rc.frame.timeSeconds));
             else if (m.name == "rg_frame") putFloats(bytes, m.offset, m.size, Value(static_cast<double>(rc.frame.index)));
+            else if (m.name == "rg_mip") putFloats(bytes, m.offset, m.size, Value(static_cast<double>(mipVariant)));
+            else if (m.name == "rg_mipCount") putFloats(bytes, m.offset, m.size, Value(static_cast<double>(m_variants)));
             else putFloats(bytes, m.offset, m.size, constants[m.name]);
         }
         vkCmdPushConstants(rc.cmd, m_layout.get(), m_pushStages, 0, static_cast<uint32_t>(bytes.size()), bytes.data());

@@ -6,7 +6,10 @@
 //  - a uniform block named `Params` is filled every frame from params.uniforms by member name
 //    (numbers and lists of numbers, as floats), so changing a parameter re-records nothing;
 //  - push constants: built-in members `rg_outputSize` (vec2, texels), `rg_time` (float, seconds),
-//    `rg_frame` (float) and any member named in params.constants (floats).
+//    `rg_frame` (float), `rg_mip` and `rg_mipCount` (floats: the mip a per-mip variant writes, of how many) and any member named
+//    in params.constants (floats).
+// Per-mip variants (the compute kind's per_mip): variant v binds every storage image at mip v
+// (clamped to its chain) instead of mip 0, so one pass writes a whole mip chain, a dispatch each.
 #pragma once
 
 #include <map>
@@ -23,7 +26,7 @@ public:
     // `stages`: requests whose passName/defines are filled in from the pass here.
     // `externalSets`: set index -> layout someone else binds (scene draws bind materials in set 1).
     Result<void> build(gpu::PassSetup& setup, std::vector<ShaderRequest> stages,
-                       std::map<uint32_t, VkDescriptorSetLayout> externalSets = {});
+                       std::map<uint32_t, VkDescriptorSetLayout> externalSets = {}, uint32_t mipVariants = 1);
 
     VkPipelineLayout layout() const { return m_layout.get(); }
     const std::vector<VkPipelineShaderStageCreateInfo>& stageInfos() const { return m_stageInfos; }
@@ -31,7 +34,7 @@ public:
     std::vector<std::string> files() const { return m_files; }
 
     // Writes this frame's uniforms and push constants and binds the descriptor sets.
-    void bind(gpu::RecordContext& rc, VkPipelineBindPoint point);
+    void bind(gpu::RecordContext& rc, VkPipelineBindPoint point, uint32_t mipVariant = 0);
 
 private:
     Result<void> createLayouts(gpu::PassSetup& setup);
@@ -48,7 +51,8 @@ private:
     uint32_t m_ownedSets = 0;  // sets [0, m_ownedSets) bound by bind(), external ones skipped
     gpu::OwnedPipelineLayout m_layout;
     gpu::OwnedDescriptorPool m_pool;
-    std::vector<std::vector<VkDescriptorSet>> m_sets;  // [frame slot][set]
+    uint32_t m_variants = 1;                            // per-mip descriptor variants
+    std::vector<std::vector<VkDescriptorSet>> m_sets;  // [frame slot × m_variants + variant][set]
     gpu::OwnedSampler m_linear, m_nearest;
     const ReflectedBinding* m_params = nullptr;  // the `Params` uniform block, if any
     std::vector<gpu::Buffer> m_paramBuffers;     // one per frame slot

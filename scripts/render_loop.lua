@@ -14,6 +14,8 @@ require "clearcoat"  -- a game team's clear-coat material and its lighting path
 require "foliage"    -- a game team's foliage material and its G-buffer fix-up
 require "two_colour" -- the two-colour base material (tbl:3) and its lighting path
 
+local ibl = require "ibl"   -- the distant light probe: the forward pass is lit by it too
+
 local loop = {}
 
 rg.resource "GB0" { format = "rgb10a2" }
@@ -39,7 +41,7 @@ rg.pass "decals" {
     writes = { { "GB0", load = true }, { "GB1", load = true }, { "GB2", load = true } },
 }
 
--- After the lighting: the sky where nothing was drawn (depth still at the far plane; "equal" would
+-- After the lighting: the sky (the scene's environment, lib/environment.glsl) where nothing was drawn (depth still at the far plane; "equal" would
 -- depend on the rasteriser reproducing 1.0 exactly, less_equal against the cleared 1.0 does not),
 -- then the blended materials, lit directly with the same light loop, over the lit HDR (back to
 -- front). Returns the forward pass's name.
@@ -49,10 +51,10 @@ function loop.sky_and_forward()
         reads = { { "depth", as = "depth" }, { "exposure", as = "storage" } }, writes = { { "hdr", load = true } },
         depth = { compare = "less_equal", value = 1 },
     }
-    rg.pass "forward" {
+    rg.pass "forward" (ibl.lit {
         kind = "scene", forward = true,
         reads = { { "depth", as = "depth" }, { "exposure", as = "storage" } }, writes = { { "hdr", load = true } },
-    }
+    })
     return "forward"
 end
 

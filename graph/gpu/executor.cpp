@@ -299,6 +299,7 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
 
 // A new persistent resource starts as zeros, in the state every frame expects it in.
 Result<void> Executor::clearPersistent(size_t index) {
+    ++m_persistentEpoch;
     const PlanResource& r = m_built->plan.resources[index];
     Image* image = m_built->images[index].get();
     Buffer* buffer = m_built->buffers[index].get();
@@ -497,7 +498,7 @@ Result<void> Executor::frame() {
     dep.pMemoryBarriers = &frameBarrier;
     vkCmdPipelineBarrier2(cmd, &dep);
 
-    FrameInfo info{m_frameIndex, static_cast<double>(m_frameIndex) / 60.0, slotIndex};
+    FrameInfo info{m_frameIndex, static_cast<double>(m_frameIndex) / 60.0, slotIndex, m_persistentEpoch};
     for (size_t i = 0; i < m_built->plan.passes.size(); ++i) {
         const PlanPass& pass = m_built->plan.passes[i];
         m_ctx.beginLabel(cmd, pass.name);

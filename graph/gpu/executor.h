@@ -106,6 +106,7 @@ private:
     std::vector<FrameSlot> m_slots;
     std::map<std::string, rg::Image> m_importData;
     uint64_t m_frameIndex = 0;
+    uint64_t m_persistentEpoch = 0;  // FrameInfo::persistentEpoch
     const passes::GpuScene* m_scene = nullptr;
     std::function<void(uint32_t)> m_perFrame;
     bool m_forceRebuild = false;

@@ -60,6 +60,10 @@ struct FrameInfo {
     uint64_t index = 0;      // frames rendered since the plan was built
     double timeSeconds = 0;  // fixed step in tests: index / 60
     uint32_t slot = 0;       // frame-in-flight slot
+    // Counts the times persistent resources were cleared (new resources, a reset of history):
+    // a pass that fills a persistent resource once (the compute kind's cadence = "once") fills it
+    // again when this changes.
+    uint64_t persistentEpoch = 0;
 };
 
 struct RecordContext {

@@ -343,6 +343,7 @@ struct Writer {
             x["intensity"] = tinygltf::Value(double(e.intensity));
             x["unit"] = tinygltf::Value(e.unit);
             x["rotation"] = tinygltf::Value(double(e.rotation));
+            x["turbidity"] = tinygltf::Value(double(e.turbidity));
             root.extras = tinygltf::Value(tinygltf::Value::Object{
                 {"rgraph", tinygltf::Value(tinygltf::Value::Object{{"environment", tinygltf::Value(std::move(x))}})}});
         }

@@ -1026,6 +1026,7 @@ struct Loader {
         e.color = vec3Of(x.Get("color"), e.color);
         e.intensity = float(number(x.Get("intensity"), e.intensity));
         e.rotation = float(number(x.Get("rotation"), e.rotation));
+        e.turbidity = std::clamp(float(number(x.Get("turbidity"), e.turbidity)), 1.7f, 10.0f);
         scene.environment = e;
     }
 

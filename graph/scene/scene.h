@@ -215,6 +215,7 @@ struct Environment {
     float intensity = 1.0f;          // multiplies the file / colour / sky, in `unit`
     std::string unit = "nits";       // sky and image-based light: luminance (tbl:8)
     float rotation = 0.0f;           // radians about +Y
+    float turbidity = 2.5f;          // "sky": Preetham's atmospheric turbidity (2 clear .. 10 hazy)
 };
 
 // A deferred decal (seed 000 §3.3): a box that, where it encloses the G-buffer's surface, blends

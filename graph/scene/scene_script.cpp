@@ -579,13 +579,15 @@ struct Builder {
     Result<void> environment(const Declaration& d) {
         Where w = where(d);
         const Value& b = d.body;
-        if (auto r = checkFields(w, b, {"kind", "file", "color", "intensity", "unit", "rotation", "doc"}); !r) return r;
+        if (auto r = checkFields(w, b, {"kind", "file", "color", "intensity", "unit", "rotation", "turbidity", "doc"}); !r) return r;
         Environment e;
         e.name = d.name;
         if (!b.has("kind")) return w.at("kind").error("missing (expected one of: 'sky', 'hdr', 'color')");
         RG_TRY(e.kind, choice(w, b, "kind", "", {"sky", "hdr", "color"}, "environment kind"));
         if (b.has("file") && e.kind != "hdr") return w.at("file").error("applies to kind = \"hdr\" only");
         if (b.has("color") && e.kind != "color") return w.at("color").error("applies to kind = \"color\" only");
+        if (b.has("turbidity") && e.kind != "sky") return w.at("turbidity").error("applies to kind = \"sky\" only");
+        RG_TRY(e.turbidity, numberF(w, b, "turbidity", e.turbidity, Range::closed(1.7, 10)));
         if (e.kind == "hdr") {
             if (!b.has("file")) return w.at("file").error("missing (expected an equirectangular .hdr or .exr, relative to the script)");
             RG_TRY(e.file, existingFile(w, b, "file"));

@@ -6,18 +6,18 @@ local rg = require "rg"
 local post = require "post"
 local lighting = require "lighting"  -- per-tile light lists for the lighting passes
 local loop = require "render_loop"  -- the materials, the G-buffer, its scene pass and the decals
+local ibl = require "ibl"  -- the distant light probe, filtered once per environment (seed 002 §4.9)
 
 post.params { exposure_mode = "auto" }
 post.exposure_state()
-rg.param "sky_luminance" { type = "number", default = 6000, min = 0, max = 1e6, doc = "sky luminance at the zenith, cd/m²" }
 
 -- One lighting pass per lighting path, each on its stencil class, each looping over the lights
--- of its pixel's tile (lighting.tiled).
-rg.pass "lighting_standard" (lighting.tiled {
+-- of its pixel's tile (lighting.tiled), then adding the distant probe's light (ibl.lit).
+rg.pass "lighting_standard" (ibl.lit(lighting.tiled {
     kind = "fullscreen", shader = "passes/deferred_lighting.frag",
     reads = { "GB0", "GB1", "GB2", "GB3", "depth", { "depth", as = "depth" }, { "exposure", as = "storage" } },
     writes = { "hdr" }, stencil = { class = "lit_standard", mask = 7 },  -- low 3 bits: foliage (9) too
-})
+}))
 
 -- The sky where nothing was drawn, then blended materials lit with the same light loop.
 loop.sky_and_forward()

@@ -17,7 +17,6 @@ local loop = require "render_loop"  -- the materials, G-buffer, scene pass and d
 
 post.params { exposure_mode = "auto" }
 post.exposure_state()
-rg.param "sky_luminance" { type = "number", default = 6000, min = 0, max = 1e6, doc = "sky luminance at the zenith, cd/m²" }
 rg.param "reference_samples" { type = "integer", default = 4, min = 1, max = 1024,
                                doc = "samples per pixel per frame (each: one BRDF sample + one sample of every sampled light)" }
 rg.param "reference_seed" { type = "integer", default = 0, min = 0, max = 16777215,

@@ -1,10 +1,12 @@
 #version 460
 // Deferred lighting of the standard material (seed 000 §3.1, §4): the `disney` G-buffer, every
 // light of the scene (shaders/lib/lighting.glsl: punctual, sun and area lights, the diffuse lobe
-// from the light's illuminance, the specular lobe from its representative point), emissive (GB3),
+// from the light's illuminance, the specular lobe from its representative point), the distant
+// light probe (lib/ibl.glsl, with RG_IBL), emissive (GB3),
 // written as pre-exposed luminance. Runs only on the pixels of its stencil class (the pass's stencil test).
 #include "lib/lighting.glsl"
 #include "lib/exposure.glsl"
+#include "lib/ibl.glsl"
 #include "gbuffer_disney.glsl"
 
 layout(location = 0) in vec2 uv;
@@ -34,5 +36,6 @@ void main() {
         RgLightSample s = rgEvaluateLight(i, position, g.normal, V, linearRoughness);
         luminance += rgStandardLighting(s, g.normal, V, diffuseColor, f0, linearRoughness);
     }
+    luminance += rgStandardIbl(g.normal, V, diffuseColor, f0, linearRoughness, g.ao);  // the distant probe (RG_IBL)
     color = vec4(luminance * rgPreExposure(ex.state, params.initial_ev100), 1.0);
 }

@@ -1,20 +1,21 @@
 #version 460
-// The background where nothing was drawn (depth test "equal 1" against the cleared depth): a
-// simple physical sky of luminance Params.sky_luminance at the zenith, brighter towards the
-// horizon, darker below it, pre-exposed.
+// The background where nothing was drawn (depth test against the cleared depth): the scene's
+// environment (lib/environment.glsl — the same equirectangular image of nits the distant light
+// probe is filtered from), pre-exposed; black without one. The sun is a light, not part of the
+// environment (seed 002 §4.9.1.1: strong sources are removed from the probe): its disk is not drawn.
 #include "lib/scene.glsl"
 #include "lib/exposure.glsl"
+#include "lib/environment.glsl"
 
 layout(location = 0) in vec2 uv;
 layout(location = 0) out vec4 color;
 layout(set = 0, binding = 0, std430) readonly buffer exposure { RgExposureState state; } ex;
-layout(set = 0, binding = 1) uniform Params { float sky_luminance; float initial_ev100; } params;
+layout(set = 0, binding = 1) uniform Params { float initial_ev100; } params;
+layout(set = 0, binding = 2) uniform sampler2D SceneEnvironment;
 
 void main() {
     vec3 far = rgWorldPosition(uv, 1.0);
     vec3 d = normalize(far - camera.position.xyz);
-    float up = d.y;
-    vec3 zenith = vec3(0.25, 0.45, 1.0), horizon = vec3(0.85, 0.9, 1.0), ground = vec3(0.18, 0.16, 0.14);
-    vec3 sky = up > 0.0 ? mix(horizon * 1.6, zenith, pow(up, 0.6)) : mix(horizon * 0.6, ground * 0.4, pow(-up, 0.4));
-    color = vec4(sky * params.sky_luminance * rgPreExposure(ex.state, params.initial_ev100), 1.0);
+    vec3 sky = textureLod(SceneEnvironment, rgEquirectUv(d), 0.0).rgb;
+    color = vec4(sky * rgPreExposure(ex.state, params.initial_ev100), 1.0);
 }

@@ -210,7 +210,6 @@ protected:
         if (!r) return out;
         auto& p = const_cast<PipelineDesc&>(s.pipeline());
         p.findParam("exposure_mode")->value = Value("manual");
-        p.findParam("sky_luminance")->value = Value(0.0);
         s_runtime->executor().updateUniforms(graphWithParams(p));
         for (int f = 0; f < 2; ++f) {
             auto fr = s.frame();

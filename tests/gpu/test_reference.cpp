@@ -44,7 +44,6 @@ protected:
         o.scene = kRoot + "/tests/gpu/scenes/" + scene;
         o.captures = {"GB2", "depth"};
         o.params["exposure_mode"] = Value("manual");
-        o.params["sky_luminance"] = Value(0.0);
         Session s(*s_runtime, o);
         Render out;
         auto r = s.load(kRoot + "/scripts/pipelines/" + pipeline);

@@ -199,13 +199,14 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // Modules' passes land at their insertion points.
     std::vector<std::string> order;
     for (const auto& pass : p->graph.passes) order.push_back(pass.name);
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 12),
-              (std::vector<std::string>{"gbuffer", "light_culling", "foliage_fixup", "decals_copy0", "decals_copy1", "decals_copy2",
+    // The environment filtering (scripts/ibl.lua, required by render_loop) comes first.
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 17),
+              (std::vector<std::string>{"env_cube", "env_mips", "env_prefilter", "env_irradiance", "dfg_table", "gbuffer", "light_culling", "foliage_fixup", "decals_copy0", "decals_copy1", "decals_copy2",
                                         "decals", "lighting_standard", "lighting_clearcoat", "lighting_two_colour", "sky", "forward"}));
     auto plan = compile(graphWithParams(*p), {});
     ASSERT_TRUE(plan.has_value()) << plan.error().message;
     // Every script it pulled in is known, for hot reload.
-    EXPECT_EQ(p->files.size(), 8u);  // deferred, post, lighting, render_loop, disney, clearcoat, foliage, two_colour
+    EXPECT_EQ(p->files.size(), 9u);  // deferred, post, lighting, render_loop, ibl, disney, clearcoat, foliage, two_colour
 }
 
 TEST(LuaPipeline, ModulesAreNamespacedAndInsertedAfterTheirAnchor) {
@@ -333,6 +334,52 @@ TEST_F(LuaGpu, PersistentResourcesCarryOverFrames) {
     ASSERT_TRUE(s.load(script("persistent.lua")).has_value());
     ASSERT_TRUE(s.frame().has_value());
     EXPECT_FLOAT_EQ(output(s).at(4, 4, 0), 2.0f);
+}
+
+TEST_F(LuaGpu, CadenceOnceRecordsAfterEachBuildAndEachReset) {
+    Session s(*s_runtime, small());
+    auto r = s.load(script("cadence_once.lua"));
+    ASSERT_TRUE(r.has_value()) << r.error().describe();
+    for (int f = 1; f <= 3; ++f) {
+        ASSERT_TRUE(s.frame().has_value());
+        EXPECT_FLOAT_EQ(output(s).at(4, 4, 0), 0.5f) << "frame " << f;  // once, not per frame
+    }
+    // Cleared history: the pass fills it again, once.
+    ASSERT_TRUE(s_runtime->executor().resetPersistent().has_value());
+    for (int f = 1; f <= 2; ++f) {
+        ASSERT_TRUE(s.frame().has_value());
+        EXPECT_FLOAT_EQ(output(s).at(4, 4, 0), 0.5f) << "after the reset, frame " << f;
+    }
+    // A bad cadence is named with the values it may take.
+    const std::string bad = std::string(RG_TEST_TMP) + "/bad_cadence.lua";
+    fs::create_directories(RG_TEST_TMP);
+    std::ifstream in(script("cadence_once.lua"));
+    std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    text.replace(text.find("cadence = \"once\""), 16, "cadence = \"daily\"");
+    std::ofstream(bad) << text;
+    auto loaded = s.load(bad);  // kept as the transaction's new plan, or refused when it is prepared
+    Result<void> e = loaded ? s.frame() : Result<void>(std::unexpected(loaded.error()));
+    ASSERT_FALSE(e.has_value());
+    EXPECT_NE(e.error().describe().find("pass 'accumulate': params.cadence: unknown 'daily', expected one of: 'frame', 'once'"), std::string::npos)
+        << e.error().describe();
+}
+
+TEST_F(LuaGpu, PerMipDispatchWritesEveryMipOfTheChain) {
+    Session s(*s_runtime, small());
+    auto r = s.load(script("per_mip.lua"));
+    ASSERT_TRUE(r.has_value()) << r.error().describe();
+    ASSERT_TRUE(s.frame().has_value());
+    Image out = output(s);
+    ASSERT_EQ(out.width, 8u);
+    // 16x8, full chain: 16x8, 8x4, 4x2, 2x1, 1x1.
+    const float sizes[5][2] = {{16, 8}, {8, 4}, {4, 2}, {2, 1}, {1, 1}};
+    for (uint32_t m = 0; m < 5; ++m) {
+        EXPECT_EQ(out.at(m, 0, 0), static_cast<float>(m)) << "mip " << m;
+        EXPECT_EQ(out.at(m, 0, 1), 5.0f) << "mip " << m;
+        EXPECT_EQ(out.at(m, 0, 2), sizes[m][0]) << "mip " << m;
+        EXPECT_EQ(out.at(m, 0, 3), sizes[m][1]) << "mip " << m;
+    }
+    EXPECT_EQ(out.at(5, 0, 1), 0.0f);
 }
 
 TEST_F(LuaGpu, ParameterChangeRebuildsNothing) {

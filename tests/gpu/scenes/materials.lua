@@ -23,3 +23,5 @@ scene.material "oxide" { model = "two_colour", diffuse_color = { 0.30, 0.12, 0.0
 scene.sphere "oxide" { radius = 0.5, position = { -2.3, 0.5, -0.3 }, material = "oxide" }
 scene.decal "patch" { position = { -2.3, 0.5, 0.2 }, size = { 0.5, 0.5, 0.5 }, base_color = { 0.1, 0.2, 0.8 },
                       smoothness = 0.9, metal_mask = 1, reflectance = 1, opacity = 0.5 }
+-- The clear sky of that sun: the distant probe lighting every material path (and the forward pane).
+scene.environment "sky" { kind = "sky" }

@@ -1,0 +1,180 @@
+#include "environment.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <glm/geometric.hpp>
+
+namespace rg {
+
+namespace {
+
+constexpr float kPi = 3.14159265358979f;
+
+// Perez et al.'s sky luminance distribution, F(θ, γ) = (1 + A e^(B / cos θ)) (1 + C e^(D γ) + E cos² γ)
+// (Preetham 1999, eq. 3), θ from the zenith, γ from the sun.
+struct Perez {
+    float A, B, C, D, E;
+    float operator()(float cosTheta, float gamma, float cosGamma) const {
+        return (1.0f + A * std::exp(B / std::max(cosTheta, 0.01f))) * (1.0f + C * std::exp(D * gamma) + E * cosGamma * cosGamma);
+    }
+};
+
+// Preetham 1999, appendix A.2: the distribution coefficients as linear functions of turbidity.
+Perez perezY(float T) { return {0.1787f * T - 1.4630f, -0.3554f * T + 0.4275f, -0.0227f * T + 5.3251f, 0.1206f * T - 2.5771f, -0.0670f * T + 0.3703f}; }
+Perez perezX(float T) { return {-0.0193f * T - 0.2592f, -0.0665f * T + 0.0008f, -0.0004f * T + 0.2125f, -0.0641f * T - 0.8989f, -0.0033f * T + 0.0452f}; }
+Perez perezYc(float T) { return {-0.0167f * T - 0.2608f, -0.0950f * T + 0.0092f, -0.0079f * T + 0.2102f, -0.0441f * T - 1.6537f, -0.0109f * T + 0.0529f}; }
+
+// CIE XYZ (Y in cd/m²) → linear Rec.709 (sRGB primaries, D65).
+glm::vec3 xyzToRec709(glm::vec3 c) {
+    return {3.2404542f * c.x - 1.5371385f * c.y - 0.4985314f * c.z, -0.9692660f * c.x + 1.8760108f * c.y + 0.0415560f * c.z,
+            0.0556434f * c.x - 0.2040259f * c.y + 1.0572252f * c.z};
+}
+
+// Bilinear lookup with wrap in u and clamp in v (the equirectangular seam).
+glm::vec3 sampleEquirect(const Image& img, glm::vec2 uv) {
+    const float x = uv.x * static_cast<float>(img.width) - 0.5f;
+    const float y = std::clamp(uv.y * static_cast<float>(img.height) - 0.5f, 0.0f, static_cast<float>(img.height - 1));
+    const float fx = std::floor(x), fy = std::floor(y);
+    const float tx = x - fx, ty = y - fy;
+    auto wrapX = [&](long i) { const long w = img.width; return static_cast<uint32_t>(((i % w) + w) % w); };
+    const uint32_t x0 = wrapX(static_cast<long>(fx)), x1 = wrapX(static_cast<long>(fx) + 1);
+    const uint32_t y0 = static_cast<uint32_t>(fy), y1 = std::min(y0 + 1, img.height - 1);
+    glm::vec3 out(0.0f);
+    for (uint32_t c = 0; c < 3; ++c) {
+        const uint32_t ch = std::min(c, img.channels - 1);
+        const float top = img.at(x0, y0, ch) * (1 - tx) + img.at(x1, y0, ch) * tx;
+        const float bottom = img.at(x0, y1, ch) * (1 - tx) + img.at(x1, y1, ch) * tx;
+        out[static_cast<int>(c)] = top * (1 - ty) + bottom * ty;
+    }
+    return out;
+}
+
+}  // namespace
+
+glm::vec2 equirectUv(glm::vec3 d) {
+    return {0.5f + std::atan2(d.x, -d.z) / (2.0f * kPi), std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi};
+}
+
+glm::vec3 equirectDirection(glm::vec2 uv) {
+    const float phi = (uv.x - 0.5f) * 2.0f * kPi, theta = uv.y * kPi;
+    return {std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi)};
+}
+
+glm::vec3 preethamSky(glm::vec3 direction, const SkyParams& p) {
+    const float T = p.turbidity;
+    const glm::vec3 s = glm::normalize(p.toSun);
+    const float thetaS = std::acos(std::clamp(s.y, 0.0f, 1.0f));  // a sun under the horizon: at it
+    const float cosTheta = std::max(direction.y, 0.0f);
+    const float cosGamma = std::clamp(glm::dot(direction, s), -1.0f, 1.0f);
+    const float gamma = std::acos(cosGamma);
+    // Zenith luminance in kcd/m² (Preetham eq. A.1 with χ) and chromaticity (A.2's polynomials).
+    const float chi = (4.0f / 9.0f - T / 120.0f) * (kPi - 2.0f * thetaS);
+    const float Yz = std::max(0.0f, (4.0453f * T - 4.9710f) * std::tan(chi) - 0.2155f * T + 2.4192f) * 1000.0f;
+    const float t3 = thetaS * thetaS * thetaS, t2 = thetaS * thetaS;
+    const float xz = T * T * (0.00166f * t3 - 0.00375f * t2 + 0.00209f * thetaS) +
+                     T * (-0.02903f * t3 + 0.06377f * t2 - 0.03202f * thetaS + 0.00394f) +
+                     (0.11693f * t3 - 0.21196f * t2 + 0.06052f * thetaS + 0.25886f);
+    const float yz = T * T * (0.00275f * t3 - 0.00610f * t2 + 0.00317f * thetaS) +
+                     T * (-0.04214f * t3 + 0.08970f * t2 - 0.04153f * thetaS + 0.00516f) +
+                     (0.15346f * t3 - 0.26756f * t2 + 0.06670f * thetaS + 0.26688f);
+    // Each quantity relative to its zenith value: F(θ, γ) / F(0, θs) (eq. 4).
+    auto rel = [&](const Perez& f) { return f(cosTheta, gamma, cosGamma) / f(1.0f, thetaS, std::cos(thetaS)); };
+    const float Y = Yz * rel(perezY(T)) * (p.sunLux / kClearSkySunLux);
+    const float x = xz * rel(perezX(T)), y = yz * rel(perezYc(T));
+    if (y <= 0.0f || Y <= 0.0f) return glm::vec3(0.0f);
+    const glm::vec3 rgb = xyzToRec709({x / y * Y, Y, (1.0f - x - y) / y * Y});
+    return glm::max(rgb, glm::vec3(0.0f));
+}
+
+Image skyImage(const SkyParams& p, uint32_t width) {
+    width = std::max(width, 4u);
+    const uint32_t height = width / 2;
+    Image img(width, height, 4);
+    // Sky illuminance on the ground, ∫ L cos θ dω over the upper half (texel solid angle
+    // (2π/w)(π/h) sin θ).
+    glm::dvec3 skyE(0.0);
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) {
+            const glm::vec2 uv{(static_cast<float>(x) + 0.5f) / static_cast<float>(width), (static_cast<float>(y) + 0.5f) / static_cast<float>(height)};
+            const glm::vec3 d = equirectDirection(uv);
+            if (d.y < 0.0f) continue;
+            const glm::vec3 L = preethamSky(d, p);
+            for (int c = 0; c < 3; ++c) img.at(x, y, static_cast<uint32_t>(c)) = L[c];
+            img.at(x, y, 3) = 1.0f;
+            const double dOmega = (2.0 * kPi / double(width)) * (kPi / double(height)) * std::sin(double(uv.y) * kPi);
+            skyE += glm::dvec3(L) * static_cast<double>(d.y) * dOmega;
+        }
+    const glm::vec3 s = glm::normalize(p.toSun);
+    const glm::vec3 sunE = glm::vec3(p.sunLux * std::max(s.y, 0.0f));
+    const glm::vec3 ground = p.groundAlbedo * (sunE + glm::vec3(skyE)) / kPi;
+    for (uint32_t y = 0; y < height; ++y)
+        for (uint32_t x = 0; x < width; ++x) {
+            const glm::vec3 d = equirectDirection({(static_cast<float>(x) + 0.5f) / static_cast<float>(width), (static_cast<float>(y) + 0.5f) / static_cast<float>(height)});
+            if (d.y >= 0.0f) continue;
+            for (int c = 0; c < 3; ++c) img.at(x, y, static_cast<uint32_t>(c)) = ground[c];
+            img.at(x, y, 3) = 1.0f;
+        }
+    return img;
+}
+
+Result<Image> environmentImage(const Scene& scene) {
+    if (!scene.environment) return fail(ErrorCode::InvalidInput, "the scene has no environment");
+    const Environment& e = *scene.environment;
+    const std::string what = "environment '" + e.name + "'";
+    Image src;
+    if (e.kind == "color") {
+        src = Image(1, 1, 4);
+        for (uint32_t c = 0; c < 3; ++c) src.at(0, 0, c) = e.color[static_cast<int>(c)] * e.intensity;
+        src.at(0, 0, 3) = 1.0f;
+        return src;
+    }
+    if (e.kind == "sky") {
+        SkyParams p;
+        p.turbidity = e.turbidity;
+        for (const Light& l : scene.lights)
+            if (l.type == LightType::Directional) {
+                p.toSun = -glm::normalize(l.direction);
+                p.sunLux = l.intensity;
+                break;
+            }
+        Image img = skyImage(p, 512);
+        for (size_t i = 0; i < img.pixels.size(); i += 4)
+            for (size_t c = 0; c < 3; ++c) img.pixels[i + c] *= e.intensity;
+        if (e.rotation == 0.0f) return img;
+        src = std::move(img);
+    } else {
+        const bool exr = e.file.size() >= 4 && (e.file.substr(e.file.size() - 4) == ".exr" || e.file.substr(e.file.size() - 4) == ".EXR");
+        if (exr) {
+            auto f = readExr(e.file);
+            if (!f) return fail(f.error().code, what + ": " + f.error().message);
+            if (f->layers.empty() || f->layers[0].image.channels < 3)
+                return fail(ErrorCode::InvalidInput, what + ": '" + e.file + "' has no RGB layer");
+            src = std::move(f->layers[0].image);
+        } else {
+            auto img = readHdr(e.file);
+            if (!img) return fail(img.error().code, what + ": " + img.error().message);
+            src = std::move(*img);
+        }
+        if (src.width < 2 || src.height < 1)
+            return fail(ErrorCode::InvalidInput, what + ": '" + e.file + "' is " + std::to_string(src.width) + "x" + std::to_string(src.height) + ", too small for an equirectangular image");
+        for (float v : src.pixels)
+            if (!std::isfinite(v) || v < 0.0f)
+                return fail(ErrorCode::InvalidInput, what + ": '" + e.file + "' holds a negative or non-finite value");
+    }
+    // Resample into world orientation (the rotation turns the image about +Y) and apply the intensity.
+    const float scale = e.kind == "sky" ? 1.0f : e.intensity;
+    Image out(src.width, src.height, 4);
+    for (uint32_t y = 0; y < out.height; ++y)
+        for (uint32_t x = 0; x < out.width; ++x) {
+            glm::vec2 uv{(static_cast<float>(x) + 0.5f) / static_cast<float>(out.width), (static_cast<float>(y) + 0.5f) / static_cast<float>(out.height)};
+            uv.x -= e.rotation / (2.0f * kPi);
+            uv.x -= std::floor(uv.x);
+            const glm::vec3 L = sampleEquirect(src, uv) * scale;
+            for (int c = 0; c < 3; ++c) out.at(x, y, static_cast<uint32_t>(c)) = L[c];
+            out.at(x, y, 3) = 1.0f;
+        }
+    return out;
+}
+
+}  // namespace rg

@@ -1,0 +1,55 @@
+// The distant light probe's source (seed 002 §4.9.1.1): a scene's environment as one
+// equirectangular image of luminance in cd/m² (nits), in world orientation, which the GPU scene
+// uploads and the pipeline's environment passes filter (scripts/ibl.lua). Three kinds:
+// - "hdr": an equirectangular .hdr or .exr, times `intensity`, turned by `rotation` about +Y;
+// - "color": a uniform colour × intensity (the white furnace);
+// - "sky": Preetham's clear-sky model (below) lit by the scene's sun: same direction, and the sky's
+//   luminance scaled with the sun's illuminance, so sky and sun light agree.
+//
+// Mapping (the same in shaders/lib/environment.glsl): direction d (unit, +Y up) ↔ texel
+//   u = 0.5 + atan(d.x, -d.z) / 2π,  v = acos(d.y) / π   (v = 0 at the zenith, top row first),
+// so the image's centre column looks down −Z, its left quarter −X.
+// Pure functions, thread-safe; no Vulkan.
+#pragma once
+
+#include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
+
+#include "core/result.h"
+#include "image/image.h"
+#include "scene.h"
+
+namespace rg {
+
+glm::vec2 equirectUv(glm::vec3 direction);
+glm::vec3 equirectDirection(glm::vec2 uv);
+
+// The clear-sky sun that Preetham's zenith luminance goes with: direct illuminance perpendicular
+// to the rays for a high sun on a clear day — seed 000 tbl:11 measured 106 500 to 123 100 lux
+// around midday; with 120 000 the sky's illuminance on the ground lands within the table's sky
+// column (tests/unit/test_environment.cpp). A scene sun of E lux scales the sky by E / kClearSkySunLux.
+inline constexpr float kClearSkySunLux = 120000.0f;
+
+struct SkyParams {
+    glm::vec3 toSun{0.0f, 0.70710678f, 0.70710678f};  // unit, towards the sun
+    float turbidity = 2.5f;                            // Preetham's T, 2 (very clear) .. 10 (hazy)
+    float sunLux = kClearSkySunLux;                    // the scene's sun, lux perpendicular to its rays
+    float groundAlbedo = 0.2f;                         // the ground under the horizon (Lambertian)
+};
+
+// Preetham, Shirley & Smits, "A Practical Analytic Model for Daylight" (1999): Perez's luminance
+// distribution with the paper's turbidity fits for Y, x and y, the zenith luminance (kcd/m²) and
+// chromaticity; xyY → linear Rec.709. Returns cd/m² for a direction above the horizon (y ≥ 0).
+glm::vec3 preethamSky(glm::vec3 direction, const SkyParams& p);
+
+// A width × (width/2) equirectangular image (RGBA, nits) of the sky over a ground: above the
+// horizon preethamSky; below it a Lambertian ground of groundAlbedo lit by the sun and by the sky
+// (its illuminance integrated from the image's own upper half): L = ρ (E_sun + E_sky) / π.
+Image skyImage(const SkyParams& p, uint32_t width = 512);
+
+// The scene's environment as an RGBA equirectangular image in nits (width ≥ 1). No environment:
+// none (the caller binds black). The sky takes its sun from the scene's first sun light (default:
+// 45° up, from +Z, kClearSkySunLux). Errors name the environment and the file.
+Result<Image> environmentImage(const Scene& scene);
+
+}  // namespace rg

@@ -1,0 +1,59 @@
+-- Image-based lighting from the scene's distant light probe (seed 002 §4.9; DESIGN §3).
+--
+--   local ibl = require "ibl"        -- declares the probe's resources and its filtering passes
+--   rg.pass "lighting_x" (ibl.lit { kind = "fullscreen", shader = ..., reads = { ... }, ... })
+--
+-- The filtering (§4.9.2) runs once, when the pipeline is built or the scene (its environment)
+-- changes — `cadence = "once"` — never per frame, into persistent resources:
+--   env_cube       the environment (graph/scene/environment.h: an HDR file, a colour or the
+--                  Preetham sky of the scene's sun) resampled into a cube, then its mip chain;
+--   env_prefilter  the specular pre-filtered cube, one mip per roughness (mip = sqrt(α_lin) · (mips − 1)),
+--                  GGX importance sampling with filtered samples;
+--   env_irradiance the diffuse probe as 9 spherical-harmonic coefficients;
+--   dfg_table      the 128×128 DFG table: the split-sum's two specular terms and the Disney diffuse.
+-- `ibl.lit` makes a lighting pass read them (lib/ibl.glsl with RG_IBL: the distant probe's diffuse
+-- and specular along the seed's dominant directions, with specular occlusion from AO).
+local rg = require "rg"
+
+local ibl = {}
+
+ibl.source_size = 256   -- the cube the environment is resampled into (texels per face)
+ibl.specular_size = 128 -- the pre-filtered cube; 8 mips: linear roughness 0, 1/49, 4/49 .. 1
+
+rg.resource "env_source" { format = "rgba16f", size = { ibl.source_size, ibl.source_size }, cube = true, mips = "full", persistent = true,
+    doc = "the environment as a cube with its mip chain (nits)" }
+rg.resource "env_specular" { format = "rgba16f", size = { ibl.specular_size, ibl.specular_size }, cube = true, mips = 8, persistent = true,
+    doc = "the specular pre-filtered probe: mip m for linear roughness (m / 7)²" }
+rg.buffer "env_sh" { size = 9 * 16, persistent = true, doc = "the environment's radiance as order-2 spherical harmonics (9 RGB)" }
+rg.resource "dfg" { format = "rgba16f", size = { 128, 128 }, persistent = true,
+    doc = "pre-integrated DFG: x, y the split-sum specular terms, z the Disney diffuse, over (N·V, linear roughness)" }
+
+rg.pass "env_cube" {
+    kind = "compute", shader = "ibl/env_cube.comp", writes = { { "env_source", as = "storage" } }, cadence = "once",
+}
+rg.pass "env_mips" { kind = "mips", writes = { "env_source" }, cadence = "once" }
+rg.pass "env_prefilter" {
+    kind = "compute", shader = "ibl/env_prefilter.comp", reads = { "env_source" },
+    writes = { { "env_specular", as = "storage" } }, per_mip = true, cadence = "once",
+}
+rg.pass "env_irradiance" {
+    kind = "compute", shader = "ibl/env_sh.comp", reads = { "env_source" },
+    writes = { { "env_sh", as = "storage" } }, groups = { 1, 1, 1 }, cadence = "once",
+}
+rg.pass "dfg_table" {
+    kind = "compute", shader = "ibl/dfg.comp", writes = { { "dfg", as = "storage" } }, cadence = "once",
+}
+
+-- A lighting pass's declaration, lit by the distant probe too: adds the probe's resources to its
+-- reads and RG_IBL to its defines. Returns the table it was given.
+function ibl.lit(pass)
+    pass.reads = pass.reads or {}
+    table.insert(pass.reads, "env_specular")
+    table.insert(pass.reads, { "env_sh", as = "storage" })
+    table.insert(pass.reads, "dfg")
+    pass.defines = pass.defines or {}
+    pass.defines.RG_IBL = true
+    return pass
+end
+
+return ibl

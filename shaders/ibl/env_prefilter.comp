@@ -1,0 +1,58 @@
+#version 460
+// Environment filtering, step 2 (seed 002 §4.9.2): the specular pre-filtered cube. Mip m holds
+// the radiance convolved with GGX for linear roughness r = (m / (mips − 1))², i.e. the seed's
+// mipLevel = sqrt(α_lin) · mipCount, with N = V = R (the split-sum assumption). GGX importance
+// sampling of the half vector, each sample weighted by N·L (the seed's LD term), and read from the
+// source cube's mip chain at the level whose texel matches the sample's solid angle ("filtered
+// importance sampling", Křivánek & Colbert 2008): few samples, no fireflies.
+#include "lib/environment.glsl"
+#include "lib/sampling.glsl"
+
+layout(local_size_x = 8, local_size_y = 8) in;
+layout(set = 0, binding = 0) uniform samplerCube env_source;
+layout(set = 0, binding = 1, rgba16f) uniform writeonly image2DArray env_specular;
+layout(push_constant) uniform Constants { float rg_mip; float rg_mipCount; } pc;
+
+const uint kSamples = 64u;
+
+// Hammersley point i of n (Van der Corput radical inverse in base 2).
+vec2 hammersley(uint i, uint n) { return vec2((float(i) + 0.5) / float(n), float(bitfieldReverse(i)) * 2.3283064365386963e-10); }
+
+void main() {
+    ivec3 p = ivec3(gl_GlobalInvocationID);
+    ivec2 size = imageSize(env_specular).xy;
+    if (any(greaterThanEqual(p.xy, size))) return;
+    vec3 N = rgCubeDirection(uint(p.z), (vec2(p.xy) + 0.5) / vec2(size));
+    int mips = textureQueryLevels(env_source);
+    float linearRoughness = pow(pc.rg_mip / max(pc.rg_mipCount - 1.0, 1.0), 2.0);
+    float alpha = max(linearRoughness * linearRoughness, 1e-3);
+    if (pc.rg_mip == 0.0) {  // a mirror: the source itself, at the matching resolution
+        float lod = log2(float(textureSize(env_source, 0).x) / float(size.x));
+        imageStore(env_specular, p, vec4(textureLod(env_source, N, lod).rgb, 1.0));
+        return;
+    }
+    vec3 t, b;
+    rgBasis(N, t, b);
+    float sourceSize = float(textureSize(env_source, 0).x);
+    float texelSolidAngle = 4.0 * RG_PI / (6.0 * sourceSize * sourceSize);
+    vec3 sum = vec3(0.0);
+    float weight = 0.0;
+    for (uint i = 0u; i < kSamples; ++i) {
+        vec2 u = hammersley(i, kSamples);
+        // GGX half vector around N: cos²θ = (1 − u) / (1 + (α² − 1) u).
+        float cosTheta = sqrt((1.0 - u.y) / (1.0 + (alpha * alpha - 1.0) * u.y));
+        float sinTheta = sqrt(max(0.0, 1.0 - cosTheta * cosTheta));
+        float phi = 2.0 * RG_PI * u.x;
+        vec3 H = rgToWorld(vec3(sinTheta * cos(phi), sinTheta * sin(phi), cosTheta), t, b, N);
+        vec3 L = reflect(-N, H);
+        float NdotL = dot(N, L);
+        if (NdotL <= 0.0) continue;
+        // pdf(L) = D(H) (N·H) / (4 V·H) with V = N: D / 4. Solid angle of one sample 1 / (n pdf).
+        float pdf = rgGgxD(cosTheta, alpha) * 0.25;
+        float sampleSolidAngle = 1.0 / (float(kSamples) * pdf + 1e-6);
+        float lod = clamp(0.5 * log2(sampleSolidAngle / texelSolidAngle) + 1.0, 0.0, float(mips - 1));
+        sum += textureLod(env_source, L, lod).rgb * NdotL;
+        weight += NdotL;
+    }
+    imageStore(env_specular, p, vec4(sum / max(weight, 1e-6), 1.0));
+}

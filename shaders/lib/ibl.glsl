@@ -1,0 +1,96 @@
+// Image-based lighting from the distant light probe (seed 002 §4.9.3, §4.10.2): the split-sum
+// specular and the Disney diffuse, each fetched along the seed's dominant direction, with
+// specular micro-occlusion (f90) and specular occlusion from AO. A lighting shader that includes
+// this file with RG_IBL defined (scripts/ibl.lua's `ibl.lit`) reads the filtered probe
+// (env_specular), its diffuse SH (env_sh) and the DFG table (dfg); without RG_IBL every
+// function returns 0 and nothing is bound.
+//
+// Conventions: linearRoughness = 1 − smoothness; the seed's listings call α = linearRoughness²
+// "roughness" (their dominant-direction fits take α); the DFG table is indexed by
+// (N·V, linearRoughness) — shaders/ibl/dfg.comp.
+#ifndef RG_IBL_GLSL
+#define RG_IBL_GLSL
+
+#include "lib/environment.glsl"
+
+#ifndef RG_IBL_SET
+#define RG_IBL_SET 0
+#endif
+#ifndef RG_IBL_BINDING
+#define RG_IBL_BINDING 7  // env_specular, env_sh, dfg at 7, 8, 9
+#endif
+#define RG_DFG_SIZE 128.0
+
+#ifdef RG_IBL
+layout(set = RG_IBL_SET, binding = RG_IBL_BINDING) uniform samplerCube env_specular;
+layout(set = RG_IBL_SET, binding = RG_IBL_BINDING + 1, std430) readonly buffer env_sh { vec4 coefficients[9]; } rgEnvSh;
+layout(set = RG_IBL_SET, binding = RG_IBL_BINDING + 2) uniform sampler2D dfg;
+#endif
+
+// §4.9.3, "a simple approximation performs better": lerp(N, R) by smoothness (not normalised:
+// it fetches a cube map).
+vec3 rgSpecularDominantDir(vec3 N, vec3 R, float alpha) {
+    float smoothness = clamp(1.0 - alpha, 0.0, 1.0);
+    float lerpFactor = smoothness * (sqrt(smoothness) + alpha);
+    return mix(N, R, lerpFactor);
+}
+
+// §4.9.3: the Disney diffuse lobe leans towards V as the view grazes (a linear fit).
+vec3 rgDiffuseDominantDir(vec3 N, vec3 V, float NdotV, float alpha) {
+    float a = 1.02341 * alpha - 1.51174;
+    float b = -0.511705 * alpha + 0.755868;
+    float lerpFactor = clamp((NdotV * a + b) * alpha, 0.0, 1.0);
+    return mix(N, V, lerpFactor);
+}
+
+// §4.10.2 (Lagarde's fit after Gotanda): specular occlusion from AO, view and roughness (α).
+float rgSpecularOcclusion(float NdotV, float ao, float alpha) {
+    return clamp(pow(NdotV + ao, exp2(-16.0 * alpha - 1.0)) - 1.0 + ao, 0.0, 1.0);
+}
+
+// The DFG table at (N·V, linearRoughness), clamped to texel centres at the edges.
+vec3 rgDfg(float NdotV, float linearRoughness) {
+#ifdef RG_IBL
+    vec2 uv = clamp(vec2(NdotV, linearRoughness), vec2(0.5 / RG_DFG_SIZE), vec2(1.0 - 0.5 / RG_DFG_SIZE));
+    return textureLod(dfg, uv, 0.0).xyz;
+#else
+    return vec3(0.0);
+#endif
+}
+
+// The distant probe's lighting of one lobe pair, before occlusion: diffuse (LD · DFG.z, the
+// radiance reflected by a white Disney diffuse) and specular (LD · (f0 DFG.x + f90 DFG.y)), both in
+// cd/m² for an environment in nits.
+struct RgIbl { vec3 diffuse; vec3 specular; };
+
+RgIbl rgEvaluateIbl(vec3 N, vec3 V, vec3 f0, float f90, float linearRoughness) {
+    RgIbl r;
+    r.diffuse = vec3(0.0);
+    r.specular = vec3(0.0);
+#ifdef RG_IBL
+    float NdotV = max(dot(N, V), 0.5 / RG_DFG_SIZE);
+    float alpha = linearRoughness * linearRoughness;
+    vec3 R = reflect(-V, N);
+    vec3 dfgTerms = rgDfg(NdotV, linearRoughness);
+    // Diffuse: irradiance / π is the radiance a white Lambertian reflects; DFG.z turns it into the
+    // renormalised Disney diffuse's.
+    vec3 Nd = normalize(rgDiffuseDominantDir(N, V, NdotV, alpha));
+    r.diffuse = rgShIrradiance(rgEnvSh.coefficients, Nd) / RG_PI * dfgTerms.z;
+    // Specular: the mip of sqrt(linearRoughness) (env_prefilter.comp), along the dominant direction.
+    float mips = float(textureQueryLevels(env_specular));
+    vec3 Rd = rgSpecularDominantDir(N, R, alpha);
+    vec3 ld = textureLod(env_specular, Rd, sqrt(linearRoughness) * (mips - 1.0)).rgb;
+    r.specular = ld * (f0 * dfgTerms.x + f90 * dfgTerms.y);
+#endif
+    return r;
+}
+
+// The standard material's ambient light: diffuse × colour × AO, specular × specular occlusion.
+vec3 rgStandardIbl(vec3 N, vec3 V, vec3 diffuseColor, vec3 f0, float linearRoughness, float ao) {
+    float f90 = clamp(50.0 * dot(f0, vec3(0.33)), 0.0, 1.0);  // as rgStandardBrdf (§4.10.2)
+    RgIbl ibl = rgEvaluateIbl(N, V, f0, f90, linearRoughness);
+    float NdotV = max(dot(N, V), 0.0);
+    return diffuseColor * ibl.diffuse * ao + ibl.specular * rgSpecularOcclusion(NdotV, ao, linearRoughness * linearRoughness);
+}
+
+#endif
