@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "passes/passes.h"
+#include "scene/environment.h"
 
 namespace fs = std::filesystem;
 
@@ -207,6 +208,9 @@ Result<std::unique_ptr<passes::GpuScene>> Session::loadScene(PipelineDesc& pipel
     const std::string file = m_options.scene.empty() ? defaultScene() : m_options.scene;
     auto scene = readScene(file, m_options.sceneArgs);
     if (!scene) return std::unexpected(scene.error());
+    const std::string ext = fs::path(file).extension().string();
+    if (auto r = chooseEnvironment(*scene, m_options.environment, /*litByDefault=*/ext == ".gltf" || ext == ".glb"); !r)
+        return std::unexpected(r.error());
     for (Material& m : scene->materials) {
         auto pm = std::find_if(pipeline.materials.begin(), pipeline.materials.end(), [&](auto& x) { return x.name == m.model; });
         if (pm == pipeline.materials.end()) {
@@ -317,6 +321,7 @@ Result<void> Session::load(const std::string& file) {
     std::string sceneKey;
     if (scene) {
         for (const auto& [k, v] : m_options.sceneArgs) sceneKey += k + "=" + v + ";";
+        sceneKey += "environment=" + m_options.environment + ";";
         for (const auto& f : scene->scene().files) {
             std::ifstream in(f, std::ios::binary);
             sceneKey += f + ":" + std::to_string(std::hash<std::string>{}(std::string((std::istreambuf_iterator<char>(in)), {}))) + ";";

@@ -23,6 +23,9 @@ struct SessionOptions {
     std::string scene;
     std::string camera;  // a camera of the scene by name; "" = its first
     std::map<std::string, std::string> sceneArgs;  // a Lua scene's `scene.args` (--scene-arg)
+    // --environment: "" = the scene's own (a glTF scene with no light and no environment gets the
+    // sky); "sky", "none", or an equirectangular .hdr/.exr file (graph/scene/environment.h).
+    std::string environment;
     // A debug view instead of the pipeline's display image: normals, basecolor, smoothness,
     // metalmask, materialid, reflectance, ao, emissive (of the disney G-buffer) or stencil.
     std::string view;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <glm/geometric.hpp>
 
@@ -175,6 +176,37 @@ Result<Image> environmentImage(const Scene& scene) {
             out.at(x, y, 3) = 1.0f;
         }
     return out;
+}
+
+Result<void> chooseEnvironment(Scene& scene, const std::string& option, bool litByDefault) {
+    Environment sky;
+    sky.name = "sky";
+    sky.kind = "sky";
+    if (option.empty()) {
+        if (litByDefault && scene.lights.empty() && !scene.environment) scene.environment = sky;
+        return {};
+    }
+    if (option == "none") {
+        scene.environment.reset();
+        return {};
+    }
+    if (option == "sky") {
+        scene.environment = sky;
+        return {};
+    }
+    const std::string ext = option.size() >= 4 ? option.substr(option.size() - 4) : "";
+    if (ext != ".hdr" && ext != ".exr" && ext != ".HDR" && ext != ".EXR")
+        return fail(ErrorCode::InvalidInput, "--environment: expected an equirectangular .hdr or .exr file, 'sky' or 'none', got '" + option + "'");
+    std::FILE* f = std::fopen(option.c_str(), "rb");
+    if (!f) return fail(ErrorCode::NotFound, "--environment: cannot open '" + option + "'");
+    std::fclose(f);
+    Environment e;
+    e.name = option;
+    e.kind = "hdr";
+    e.file = option;
+    scene.environment = e;
+    scene.files.push_back(option);
+    return {};
 }
 
 }  // namespace rg

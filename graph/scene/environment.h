@@ -52,4 +52,10 @@ Image skyImage(const SkyParams& p, uint32_t width = 512);
 // 45° up, from +Z, kClearSkySunLux). Errors name the environment and the file.
 Result<Image> environmentImage(const Scene& scene);
 
+// The environment a render uses (the --environment option): "" keeps the scene's — except that,
+// with `litByDefault` (a glTF file, as published), a scene with no light and no environment gets
+// the sky, so that it is lit as in any glTF viewer; "sky" the Preetham sky of the scene's sun;
+// "none" no environment; anything else an equirectangular .hdr/.exr file of nits (it must exist).
+Result<void> chooseEnvironment(Scene& scene, const std::string& option, bool litByDefault);
+
 }  // namespace rg

@@ -42,6 +42,25 @@ check "missing scene" 2 grep "nope.gltf" -- "$rgraph" render --scene nope.gltf -
 check "render" 0 grep "wrote $tmp/r.exr and $tmp/r.png (64x32" -- \
     env RG_VALIDATION=1 "$rgraph" render --size 64x32 --frames 3 --out "$tmp/r.exr" --png "$tmp/r.png" --capture GB0
 check "render wrote files" 0 -- test -s "$tmp/r.exr" -a -s "$tmp/r.png"
+# --environment: replaces the scene's distant probe; a published glTF with no light is lit by the sky.
+check "environment none" 0 grep "wrote $tmp/e.exr" -- \
+    env RG_VALIDATION=1 "$rgraph" render --environment none --size 32x16 --out "$tmp/e.exr" --png "$tmp/e.png"
+check "environment missing file" 2 grep "--environment: cannot open 'nowhere.hdr'" -- "$rgraph" render --environment nowhere.hdr --size 8x8
+check "environment wrong type" 2 grep "expected an equirectangular .hdr or .exr file, 'sky' or 'none', got 'sky.png'" -- \
+    "$rgraph" render --environment sky.png --size 8x8
+cat >"$tmp/unlit.lua" <<'LUA'
+local scene = require "scene"
+scene.material "white" { base_color = { 0.8, 0.8, 0.8 } }
+scene.box "box" { size = { 1, 1, 1 }, material = "white" }
+scene.camera "main" { position = { 2, 1.5, 3 }, target = { 0, 0, 0 } }
+LUA
+check "export unlit" 0 -- "$rgraph" export-scene --scene "$tmp/unlit.lua" --out "$tmp/unlit.glb"
+check "unlit glb is lit by the sky" 0 grep "wrote $tmp/u.exr" -- \
+    env RG_VALIDATION=1 "$rgraph" render --scene "$tmp/unlit.glb" --size 48x32 --frames 4 --out "$tmp/u.exr" --png "$tmp/u.png"
+check "unlit glb without environment" 0 grep "wrote $tmp/n.exr" -- \
+    "$rgraph" render --scene "$tmp/unlit.glb" --environment none --size 48x32 --out "$tmp/n.exr" --png "$tmp/n.png"
+# The box's pixels: lit under the default sky, black with none (relative error of the unlit image against the lit one: 100 %).
+check "sky lights the glb" 0 grep "mean relative error 1" -- "$rgraph" compare "$tmp/n.exr" "$tmp/u.exr"
 check "graph json parses" 0 -- bash -c "'$rgraph' graph --format json --size 64x64 | python3 -c 'import json,sys; p=json.load(sys.stdin); n=[x[\"name\"] for x in p[\"passes\"]]; assert n[:5]==[\"env_cube\",\"env_mips\",\"env_prefilter\",\"env_irradiance\",\"dfg_table\"] and n[5:8]==[\"gbuffer\",\"light_culling\",\"foliage_fixup\"] and n[11:16]==[\"decals\",\"lighting_standard\",\"lighting_clearcoat\",\"lighting_two_colour\",\"sky\"] and n[-2:]==[\"tonemap\",\"fxaa\"], n'"
 check "export-scene" 0 grep "wrote $tmp/materials.glb (6 meshes" -- "$rgraph" export-scene --scene tests/gpu/scenes/materials.lua --out "$tmp/materials.glb"
 check "render a glb" 0 grep "wrote $tmp/g.exr" -- "$rgraph" render --scene "$tmp/materials.glb" --size 64x32 --out "$tmp/g.exr" --png "$tmp/g.png"

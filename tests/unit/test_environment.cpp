@@ -128,3 +128,46 @@ TEST(Environment, ColourAndFileEnvironmentsScaleAndTurn) {
     EXPECT_NE(b.error().message.find("environment 'grey': "), std::string::npos) << b.error().message;
     EXPECT_NE(b.error().message.find("env_broken.hdr"), std::string::npos) << b.error().message;
 }
+
+TEST(Environment, TheEnvironmentOptionReplacesOrDefaultsIt) {
+    Scene lit;
+    lit.lights.push_back(Light{});
+    Scene unlit;
+    // A published glTF with no light and no environment is lit by the sky; a lit one is left alone,
+    // and so is a Lua scene (litByDefault false).
+    ASSERT_TRUE(chooseEnvironment(unlit, "", /*litByDefault=*/true).has_value());
+    ASSERT_TRUE(unlit.environment.has_value());
+    EXPECT_EQ(unlit.environment->kind, "sky");
+    ASSERT_TRUE(chooseEnvironment(lit, "", true).has_value());
+    EXPECT_FALSE(lit.environment.has_value());
+    Scene script;
+    ASSERT_TRUE(chooseEnvironment(script, "", false).has_value());
+    EXPECT_FALSE(script.environment.has_value());
+    // none / sky / a file.
+    ASSERT_TRUE(chooseEnvironment(unlit, "none", true).has_value());
+    EXPECT_FALSE(unlit.environment.has_value());
+    ASSERT_TRUE(chooseEnvironment(lit, "sky", true).has_value());
+    EXPECT_EQ(lit.environment->kind, "sky");
+    auto missing = chooseEnvironment(lit, "nowhere/garden.hdr", true);
+    ASSERT_FALSE(missing.has_value());
+    EXPECT_EQ(missing.error().message, "--environment: cannot open 'nowhere/garden.hdr'");
+    auto wrong = chooseEnvironment(lit, "garden.png", true);
+    ASSERT_FALSE(wrong.has_value());
+    EXPECT_EQ(wrong.error().message, "--environment: expected an equirectangular .hdr or .exr file, 'sky' or 'none', got 'garden.png'");
+}
+
+TEST(Environment, SharedHdriLoadsAsAnEnvironment) {
+    // The project's own tests need no downloaded image; this one only checks that a real
+    // published HDRI loads, when the shared assets are there.
+    const std::string file = std::string(RG_SOURCE_ROOT) + "/../shared/assets/hdri/chinese_garden_1k.hdr";
+    if (!fs::exists(file)) GTEST_SKIP() << "shared assets absent: " << file;
+    Scene scene;
+    ASSERT_TRUE(chooseEnvironment(scene, file, false).has_value());
+    auto img = environmentImage(scene);
+    ASSERT_TRUE(img.has_value()) << img.error().message;
+    EXPECT_EQ(img->width, 1024u);
+    EXPECT_EQ(img->height, 512u);
+    double sum = 0;
+    for (size_t i = 0; i < img->pixels.size(); i += 4) sum += img->pixels[i + 1];
+    EXPECT_GT(sum, 0.0);
+}
