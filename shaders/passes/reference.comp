@@ -29,6 +29,11 @@
 // ray–disk, ray–rectangle, ray–capsule); the light's sample and the BRDF's are combined with the
 // power heuristic (Veach, β = 2). Area lights keep lighting.glsl's rgRangeWindow of the squared
 // distance to the light's centre (lst:4's window), so the two stay comparable.
+// The environment (the scene's SceneEnvironment, lib/environment.glsl — the distant probe the
+// real-time path pre-filters, scripts/ibl.lua) is integrated with the same BRDF samples: each
+// sample's direction reads the equirectangular radiance there, f · L / pdf, unoccluded like the
+// split sum it checks (importance sampling by the BRDF only, no luminance-CDF sample of the
+// environment: fine for skies and soft HDRIs, noisy for a small bright source in the image).
 // Clear coat (materialId 1, materials/clearcoat.lua) gets its coat lobe too, evaluated per
 // direction as materials/clearcoat_lighting.frag does for one light direction. The two-colour
 // material (materialId RG_TWO_COLOUR_ID, materials/two_colour.lua) is unpacked with its own layout
@@ -43,6 +48,7 @@
 #include "lib/lighting.glsl"
 #include "lib/exposure.glsl"
 #include "lib/sampling.glsl"
+#include "lib/environment.glsl"
 #include "gbuffer_disney.glsl"
 #ifdef RG_TWO_COLOUR_ID
 #include "gbuffer_two_colour.glsl"
@@ -63,6 +69,7 @@ layout(set = 0, binding = 8) uniform Params {
     float reference_strategy;  // 0 MIS, 1 light sampling only, 2 BRDF sampling only
     float initial_ev100;
 } params;
+layout(set = 0, binding = 9) uniform sampler2D SceneEnvironment;  // the scene's (1x1 black without one)
 
 // ---- The shaded point and its BRDF --------------------------------------------------------------
 
@@ -412,7 +419,8 @@ void main() {
 
     // Sampled lights: one BRDF sample shared by every light + one light sample per light, MIS.
     RgRng rng = rgRngInit(uvec4(uint(p.x), uint(p.y), frame, uint(params.reference_seed + 0.5)));
-    int samples = sampled > 0u ? max(int(params.reference_samples + 0.5), 1) : 0;
+    const bool environment = textureSize(SceneEnvironment, 0).x > 1 || any(greaterThan(texelFetch(SceneEnvironment, ivec2(0), 0).rgb, vec3(0.0)));
+    int samples = sampled > 0u || environment ? max(int(params.reference_samples + 0.5), 1) : 0;
     int strategy = int(params.reference_strategy + 0.5);
     vec3 sum = vec3(0.0);
     for (int k = 0; k < samples; ++k) {
@@ -421,6 +429,7 @@ void main() {
         vec3 fB = pdfB > 0.0 ? brdfCos(s, Lb) : vec3(0.0);
         bool useB = pdfB > 0.0 && any(greaterThan(fB, vec3(0.0)));
         vec3 estimate = vec3(0.0);
+        if (useB && environment) estimate += fB * textureLod(SceneEnvironment, rgEquirectUv(Lb), 0.0).rgb / pdfB;
         for (uint i = 0u; i < count; ++i) {
             RgLight light = lights.light[i];
             int type = rgLightType(light);

@@ -14,7 +14,13 @@ for row, metal in ipairs({ 0, 1 }) do
   end
 end
 
-scene.environment "white" { kind = "color", color = { 1, 1, 1 }, intensity = 1, unit = "nits" }
+-- scene.args.environment = "sky": the clear sky (its sun 45° up, no sun light) instead, for the
+-- comparison of the image-based lighting with the reference mode.
+if scene.args.environment == "sky" then
+  scene.environment "sky" { kind = "sky" }
+else
+  scene.environment "white" { kind = "color", color = { 1, 1, 1 }, intensity = 1, unit = "nits" }
+end
 
 -- Far away with a narrow field of view: nearly orthographic, so every sphere centre is seen head on.
 scene.camera "main" { position = { 0, 0, 40 }, target = { 0, 0, 0 }, fov = 8.5, aperture = 2, shutter = 0.5, iso = 100 }
