@@ -28,6 +28,7 @@ static_assert(sizeof(MaterialUniforms) == 320);
 struct CameraUniforms {
     glm::mat4 viewProj, view, proj, invViewProj;
     glm::vec4 position, viewport;
+    glm::vec4 sceneMin, sceneMax;  // scene.glsl's Camera: the scene's bounds
 };
 
 VkFilter toVk(Filter f) { return f == Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR; }
@@ -589,6 +590,8 @@ void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
     u.position = glm::vec4(c.position, 1.0f);
     u.viewport = glm::vec4(static_cast<float>(width), static_cast<float>(height), 1.0f / static_cast<float>(width),
                            1.0f / static_cast<float>(height));
+    u.sceneMin = glm::vec4(m_scene.boundsMin, 1.0f);
+    u.sceneMax = glm::vec4(m_scene.boundsMax, 1.0f);
     std::memcpy(m_cameraBuffers[slot].mapped(), &u, sizeof u);
 }
 

@@ -23,6 +23,7 @@ Result<gpu::OwnedPipeline> createGraphicsPipeline(VkDevice device, const Graphic
     rendering.pColorAttachmentFormats = desc.colorFormats.data();
     rendering.depthAttachmentFormat = desc.depthFormat;
     rendering.stencilAttachmentFormat = desc.stencilFormat;
+    rendering.viewMask = desc.viewMask;
     VkPipelineVertexInputStateCreateInfo noVertices{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
     VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
     ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
@@ -34,6 +35,9 @@ Result<gpu::OwnedPipeline> createGraphicsPipeline(VkDevice device, const Graphic
     rs.cullMode = desc.cullMode;
     rs.frontFace = desc.frontFace;
     rs.lineWidth = 1.0f;
+    rs.depthBiasEnable = desc.depthBiasConstant != 0.0f || desc.depthBiasSlope != 0.0f ? VK_TRUE : VK_FALSE;
+    rs.depthBiasConstantFactor = desc.depthBiasConstant;
+    rs.depthBiasSlopeFactor = desc.depthBiasSlope;
     VkPipelineMultisampleStateCreateInfo ms{VK_STRUCTURE_TYPE_PIPELINE_MULTISAMPLE_STATE_CREATE_INFO};
     ms.rasterizationSamples = VK_SAMPLE_COUNT_1_BIT;
     VkPipelineColorBlendStateCreateInfo cb{VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO};

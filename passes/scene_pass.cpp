@@ -118,6 +118,8 @@ public:
         if (!setup.scene)
             return fail(ErrorCode::InvalidInput, passPrefix(desc) + "a 'scene' pass needs a scene (give --scene FILE)");
         m_forward = desc.params["forward"].asBool();
+        m_shadow = desc.params["shadow"].asBool();
+        if (m_shadow) return prepareShadow(setup);
         for (const Access& a : desc.accesses) {
             if (a.usage == Usage::ColorAttachment) m_colors.push_back(a);
             if (a.usage == Usage::DepthStencilAttachment || (m_forward && a.usage == Usage::DepthStencilRead)) m_depth = a;
@@ -180,6 +182,7 @@ public:
     }
 
     void record(RecordContext& rc) override {
+        if (m_shadow) return recordShadow(rc);
         const PassDesc& desc = rc.desc;
         std::vector<VkRenderingAttachmentInfo> colors;
         for (const Access& a : m_colors) {
@@ -259,6 +262,109 @@ private:
         std::vector<size_t> draws;
     };
 
+    // shadow = true: depth only, from the light's view, every layer of the depth target at once
+    // (multiview: shadows/shadow.vert takes layer gl_ViewIndex's matrix from a buffer the pass
+    // reads); every opaque draw, both faces, with the rasteriser's depth bias.
+    Result<void> prepareShadow(PassSetup& setup) {
+        const PassDesc& desc = setup.desc;
+        for (const Access& a : desc.accesses) {
+            if (a.usage == Usage::ColorAttachment)
+                return fail(ErrorCode::InvalidInput, passPrefix(desc) + "a shadow 'scene' pass writes depth only; '" + a.resource + "' is a colour target");
+            if (a.usage == Usage::DepthStencilAttachment) m_depth = a;
+        }
+        if (!m_depth) return fail(ErrorCode::InvalidInput, passPrefix(desc) + "a shadow 'scene' pass writes a depth texture (d32f, one layer per view)");
+        const PhysicalResource* depth = setup.resources.find(m_depth->resource);
+        m_width = depth->plan->width;
+        m_height = depth->plan->height;
+        m_depthFormat = depth->plan->format;
+        m_layers = depth->plan->layers;
+        if (m_layers > 1 && !setup.gpu.multiview())
+            return fail(ErrorCode::Unsupported, passPrefix(desc) + "'" + m_depth->resource + "' has " + std::to_string(m_layers) +
+                                                    " layers, and this device cannot render several layers at once (no multiview)");
+        if (m_layers > 32) return fail(ErrorCode::InvalidInput, passPrefix(desc) + "'" + m_depth->resource + "': at most 32 layers");
+        const Value& bias = desc.params["depth_bias"];
+        if (!bias.isNil() && !(bias.isList() && bias.asList().size() == 2))
+            return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.depth_bias: expected { constant, slope }");
+        Group g;
+        g.info.name = "shadow";
+        ShaderRequest vert;
+        vert.path = desc.params["shader"].isString() ? desc.params["shader"].asString() : "shadows/shadow.vert";
+        g.program = std::make_unique<ShaderProgram>();
+        if (auto r = g.program->build(setup, {vert}); !r) return r;
+        GraphicsPipelineDesc d;
+        d.program = g.program.get();
+        d.depthFormat = toVkFormat(m_depthFormat);
+        // Positions only (the shader reads nothing else), from the same interleaved vertices.
+        static const VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
+        static const VkVertexInputAttributeDescription position{0, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, position))};
+        static const VkPipelineVertexInputStateCreateInfo positions{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO, nullptr, 0, 1, &binding, 1, &position};
+        d.vertexInput = &positions;
+        d.cullMode = VK_CULL_MODE_NONE;
+        d.depthStencil.depthTestEnable = VK_TRUE;
+        d.depthStencil.depthWriteEnable = VK_TRUE;
+        d.depthStencil.depthCompareOp = VK_COMPARE_OP_LESS;
+        d.viewMask = m_layers > 1 ? (1u << m_layers) - 1u : 0u;
+        if (bias.isList()) {
+            d.depthBiasConstant = static_cast<float>(bias.asList()[0].asNumber(0));
+            d.depthBiasSlope = static_cast<float>(bias.asList()[1].asNumber(0));
+        }
+        auto pipeline = createGraphicsPipeline(setup.gpu.device(), d);
+        if (!pipeline) return std::unexpected(pipeline.error());
+        g.pipeline = std::move(*pipeline);
+        const auto& sceneMaterials = setup.scene->scene().materials;
+        for (size_t i = 0; i < setup.scene->draws().size(); ++i)
+            if (sceneMaterials[setup.scene->draws()[i].material].alphaMode != AlphaMode::Blend) g.draws.push_back(i);
+        m_groups.push_back(std::move(g));
+        return {};
+    }
+
+    void recordShadow(RecordContext& rc) {
+        const PhysicalResource* d = rc.resources.find(m_depth->resource);
+        VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        depth.imageView = d->image->layersView();
+        depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+        depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        depth.clearValue.depthStencil = {1.0f, 0};
+        VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+        ri.renderArea = {{0, 0}, {m_width, m_height}};
+        ri.layerCount = 1;
+        ri.viewMask = m_layers > 1 ? (1u << m_layers) - 1u : 0u;
+        ri.pDepthAttachment = &depth;
+        vkCmdBeginRendering(rc.cmd, &ri);
+        VkViewport vp{0, 0, static_cast<float>(m_width), static_cast<float>(m_height), 0, 1};
+        VkRect2D sc{{0, 0}, {m_width, m_height}};
+        vkCmdSetViewport(rc.cmd, 0, 1, &vp);
+        vkCmdSetScissor(rc.cmd, 0, 1, &sc);
+        VkDeviceSize offset = 0;
+        VkBuffer vb = rc.scene->vertexBuffer();
+        vkCmdBindVertexBuffers(rc.cmd, 0, 1, &vb, &offset);
+        vkCmdBindIndexBuffer(rc.cmd, rc.scene->indexBuffer(), 0, VK_INDEX_TYPE_UINT32);
+        Group& g = m_groups.front();
+        vkCmdBindPipeline(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.pipeline.get());
+        g.program->bind(rc, VK_PIPELINE_BIND_POINT_GRAPHICS);
+        for (size_t i : g.draws) {
+            const DrawItem& item = rc.scene->draws()[i];
+            glm::mat4 push[2] = {item.world, item.normalMatrix};
+            vkCmdPushConstants(rc.cmd, g.program->layout(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof push, push);
+            vkCmdDrawIndexed(rc.cmd, item.indexCount, 1, item.firstIndex, item.vertexOffset, 0);
+        }
+        vkCmdEndRendering(rc.cmd);
+    }
+
+    // The scene's vertex layout (graph/scene's Vertex).
+    static const VkPipelineVertexInputStateCreateInfo& vertexInput() {
+        static const VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
+        static const VkVertexInputAttributeDescription attrs[] = {
+            {0, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, position))},
+            {1, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, normal))},
+            {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, tangent))},
+            {3, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, uv0))},
+            {4, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, uv1))}};
+        static const VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO, nullptr, 0, 1, &binding, 5, attrs};
+        return vi;
+    }
+
     Result<void> createPipeline(PassSetup& setup, Group& g, const std::vector<std::string>& attachments) {
         GraphicsPipelineDesc d;
         d.program = g.program.get();
@@ -275,19 +381,7 @@ private:
         d.depthFormat = toVkFormat(m_depthFormat);
         if (formatInfo(m_depthFormat).stencil) d.stencilFormat = toVkFormat(m_depthFormat);
 
-        VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
-        VkVertexInputAttributeDescription attrs[] = {
-            {0, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, position))},
-            {1, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, normal))},
-            {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, tangent))},
-            {3, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, uv0))},
-            {4, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, uv1))}};
-        VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
-        vi.vertexBindingDescriptionCount = 1;
-        vi.pVertexBindingDescriptions = &binding;
-        vi.vertexAttributeDescriptionCount = 5;
-        vi.pVertexAttributeDescriptions = attrs;
-        d.vertexInput = &vi;
+        d.vertexInput = &vertexInput();
         // glTF front faces are counter-clockwise; the projection's y flip (Vulkan's y points
         // down) keeps them counter-clockwise as seen on screen, which is what Vulkan tests.
         // Culling is set per draw (double-sided materials).
@@ -318,6 +412,8 @@ private:
     Format m_depthFormat = Format::D32F;
     std::vector<Group> m_groups;
     bool m_forward = false;
+    bool m_shadow = false;
+    uint32_t m_layers = 1;
 };
 
 }  // namespace
@@ -330,6 +426,9 @@ PassKindInfo scenePassKind() {
           {"forward", "boolean", "draw the blended (alpha = 'blend') materials, lit directly, over the colour target it loads"},
           {"paths", "string|list", "draw the materials of these lighting paths"},
           {"defines", "table", "preprocessor defines for its shaders (the forward pass: RG_IBL with scripts/ibl.lua's ibl.lit)"},
+          {"shadow", "boolean", "depth only, every layer of the depth target it writes at once (multiview), from the views its vertex shader computes (scripts/shadows.lua)"},
+          {"shader", "string", "shadow: the vertex shader (default shadows/shadow.vert: layer gl_ViewIndex's matrix from the `cascades` buffer)"},
+          {"depth_bias", "list", "shadow: { constant, slope } rasteriser depth bias"},
           {"rg_materials", "list", "(filled in by rgraph) the resolved materials"}},
          Usage::Sampled, Usage::ColorAttachment},
         [] { return std::make_unique<ScenePass>(); }};

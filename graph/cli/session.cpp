@@ -348,8 +348,10 @@ Result<void> Session::frame() {
     auto t0 = Clock::now();
     FrameContext ctx{m_frame, static_cast<double>(m_frame) / 60.0, std::nullopt};
     if (m_scene)
-        ctx.scene = FrameContext::SceneFacts{static_cast<uint32_t>(m_scene->draws().size()), m_scene->lightCount(),
-                                             static_cast<uint32_t>(m_scene->scene().decals.size())};
+        ctx.scene = FrameContext::SceneFacts{
+            static_cast<uint32_t>(m_scene->draws().size()), m_scene->lightCount(), static_cast<uint32_t>(m_scene->scene().decals.size()),
+            static_cast<uint32_t>(std::count_if(m_scene->scene().lights.begin(), m_scene->scene().lights.end(),
+                                                [](const Light& l) { return l.type == LightType::Directional; }))};
     auto changes = m_host->frame(ctx, m_pipeline);
     if (changes && m_options.frameHook) {
         PipelineDesc seen = m_pipeline;

@@ -180,6 +180,13 @@ Result<void> Image::createViews(Context& ctx) {
         VkImageView v = VK_NULL_HANDLE;
         RG_VK_TRY(vkCreateImageView(dev, &info, nullptr, &v));
         m_attachmentView = OwnedImageView(dev, v);
+        if (m_desc.layers > 1) {
+            info.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
+            info.subresourceRange.layerCount = m_desc.layers;
+            VkImageView layers = VK_NULL_HANDLE;
+            RG_VK_TRY(vkCreateImageView(dev, &info, nullptr, &layers));
+            m_layersView = OwnedImageView(dev, layers);
+        }
     }
     for (uint32_t m = 0; m < m_desc.mips; ++m) {
         VkImageViewType t = m_desc.layers > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;

@@ -38,6 +38,7 @@ struct FrameContext {
     // What the scene holds (ctx.scene in Lua; absent when the pipeline draws no scene).
     struct SceneFacts {
         uint32_t draws = 0, lights = 0, decals = 0;
+        uint32_t suns = 0;  // directional lights (shadow cascades follow the first)
     };
     std::optional<SceneFacts> scene;
 };

@@ -316,6 +316,8 @@ int frameTrampoline(lua_State* L) {
         lua_setfield(L, -2, "lights");
         lua_pushinteger(L, ctx.scene->decals);
         lua_setfield(L, -2, "decals");
+        lua_pushinteger(L, ctx.scene->suns);
+        lua_setfield(L, -2, "suns");
         lua_setfield(L, -2, "scene");
     }
     lua_newtable(L);

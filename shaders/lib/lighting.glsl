@@ -17,6 +17,7 @@
 #include "lib/scene.glsl"
 #include "lib/brdf.glsl"
 #include "lib/light_tiles.glsl"
+#include "lib/shadows.glsl"
 
 // lst:4 — windowed inverse-square falloff; distances below 1 cm are clamped. (The listing's
 // max(sqrtDist, …) means the squared distance: 0.01² is 1 cm squared.)
@@ -149,7 +150,7 @@ int rgLightType(RgLight light) { return int(light.positionType.w + 0.5); }
 
 // P: world position (m), N: unit normal, V: unit direction to the viewer, linearRoughness of the
 // specular lobe (1 − smoothness; its α = max(linearRoughness², 1e-3) as rgStandardBrdf's).
-RgLightSample rgEvaluateLight(uint i, vec3 P, vec3 N, vec3 V, float linearRoughness) {
+RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float linearRoughness) {
     RgLight light = lights.light[i];
     int type = rgLightType(light);
     float alpha = max(linearRoughness * linearRoughness, 1e-3);
@@ -287,6 +288,18 @@ RgLightSample rgEvaluateLight(uint i, vec3 P, vec3 N, vec3 V, float linearRoughn
 // ---- The standard material lit by one light ----------------------------------------------------
 
 // rgStandardBrdf's two halves, so that each lobe can look at the light from its own direction.
+// Light i as rgEvaluateLightUnshadowed gives it, times its shadow (lib/shadows.glsl: the sun's
+// cascades when the pass is built with RG_SHADOWS, scripts/shadows.lua's `shadows.lit`).
+RgLightSample rgEvaluateLight(uint i, vec3 P, vec3 N, vec3 V, float linearRoughness) {
+    RgLightSample s = rgEvaluateLightUnshadowed(i, P, N, V, linearRoughness);
+#ifdef RG_SHADOWS
+    float visibility = rgShadow(i, P, N);
+    s.diffuseIlluminance *= visibility;
+    s.specularIlluminance *= visibility;
+#endif
+    return s;
+}
+
 // The diffuse half without ⟨n·l⟩ (the diffuse illuminance carries it): Fr_DisneyDiffuse / π.
 float rgDiffuseBrdf(vec3 N, vec3 V, vec3 L, float linearRoughness) {
     float NdotV = abs(dot(N, V)) + 1e-5;  // lst:2

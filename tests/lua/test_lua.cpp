@@ -200,13 +200,15 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     std::vector<std::string> order;
     for (const auto& pass : p->graph.passes) order.push_back(pass.name);
     // The environment filtering (scripts/ibl.lua, required by render_loop) comes first.
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 17),
+    // Then the G-buffer half, the sun's shadow map (scripts/shadows.lua) and the lighting.
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 20),
               (std::vector<std::string>{"env_cube", "env_mips", "env_prefilter", "env_irradiance", "dfg_table", "gbuffer", "light_culling", "foliage_fixup", "decals_copy0", "decals_copy1", "decals_copy2",
-                                        "decals", "lighting_standard", "lighting_clearcoat", "lighting_two_colour", "sky", "forward"}));
+                                        "decals", "sun_cascades", "shadow_clear", "shadow_sun", "lighting_standard", "lighting_clearcoat", "lighting_two_colour",
+                                        "sky", "forward"}));
     auto plan = compile(graphWithParams(*p), {});
     ASSERT_TRUE(plan.has_value()) << plan.error().message;
     // Every script it pulled in is known, for hot reload.
-    EXPECT_EQ(p->files.size(), 9u);  // deferred, post, lighting, render_loop, ibl, disney, clearcoat, foliage, two_colour
+    EXPECT_EQ(p->files.size(), 10u);  // deferred, post, lighting, render_loop, ibl, shadows, disney, clearcoat, foliage, two_colour
 }
 
 TEST(LuaPipeline, ModulesAreNamespacedAndInsertedAfterTheirAnchor) {

@@ -1,0 +1,91 @@
+// Shadows of the lights (seed 002 §4.10.4): today the sun's cascaded shadow map
+// (scripts/shadows.lua). A lighting shader built with RG_SHADOWS reads the cascades
+// (`sun_cascades`, written each frame by shaders/shadows/sun_cascades.comp) and the map
+// (`sun_shadow`, one layer per cascade, drawn by the shadow scene pass), and rgEvaluateLight
+// (lib/lighting.glsl) multiplies the sun's diffuse and specular illuminance by rgShadow.
+//
+// Filtering: percentage-closer soft shadows for a disk light (the sun of angular radius σ,
+// lst:6): a blocker search gives the mean depth d_b of what occludes the point, the penumbra is
+// then (d_r − d_b) · 2 tan σ wide at the receiver (similar triangles through the disk), and the
+// PCF kernel covers it — contact-hardening: sharp where the caster touches, soft far from it.
+#ifndef RG_SHADOWS_GLSL
+#define RG_SHADOWS_GLSL
+
+#ifndef RG_SHADOW_BINDING
+#define RG_SHADOW_BINDING 10  // sun_shadow at 10, sun_cascades at 11
+#endif
+#define RG_MAX_CASCADES 4
+
+// std430; shaders/shadows/sun_cascades.comp writes it.
+struct RgCascades {
+    mat4 viewProj[RG_MAX_CASCADES];  // world → the cascade's clip space (orthographic, depth 0..1)
+    vec4 splitFar;    // view distance (m) where each cascade ends
+    vec4 texelWorld;  // world size (m) of one texel of each cascade
+    vec4 depthRange;  // metres along the light that depth 0..1 spans, per cascade
+    vec4 info;        // x: cascades in use (0: no sun), y: the sun's light index, z: map size (texels), w: tan σ
+    vec4 bias;        // x: receiver depth bias (m), y: normal offset (texels), z: softness (× the physical penumbra)
+};
+
+#ifdef RG_SHADOWS
+layout(set = 0, binding = RG_SHADOW_BINDING) uniform sampler2DArray sun_shadow;
+layout(set = 0, binding = RG_SHADOW_BINDING + 1, std430) readonly buffer sun_cascades { RgCascades c; } rgCascades;
+
+// 16 points of a golden-angle spiral in the unit disk (equal area per point).
+vec2 rgShadowTap(int k) {
+    float r = sqrt((float(k) + 0.5) / 16.0);
+    float a = float(k) * 2.39996323;
+    return r * vec2(cos(a), sin(a));
+}
+
+// The cascade a point at view distance `viewDepth` falls in, RG_MAX_CASCADES beyond the last.
+int rgCascadeOf(float viewDepth) {
+    int count = int(rgCascades.c.info.x + 0.5);
+    for (int i = 0; i < count; ++i)
+        if (viewDepth < rgCascades.c.splitFar[i]) return i;
+    return RG_MAX_CASCADES;
+}
+
+// Visibility of the sun (0 shadowed .. 1 lit) at world position P with normal N.
+float rgSunShadow(vec3 P, vec3 N) {
+    float viewDepth = -(camera.view * vec4(P, 1.0)).z;
+    int ci = rgCascadeOf(viewDepth);
+    if (ci >= RG_MAX_CASCADES) return 1.0;  // beyond the shadow distance
+    float texel = rgCascades.c.texelWorld[ci];
+    float size = rgCascades.c.info.z;
+    // Normal offset: move the lookup off the surface by a few texels (no acne at grazing light).
+    vec3 Po = P + N * (rgCascades.c.bias.y * texel);
+    vec4 clip = rgCascades.c.viewProj[ci] * vec4(Po, 1.0);
+    vec2 uv = clip.xy * 0.5 + 0.5;
+    float range = rgCascades.c.depthRange[ci];
+    float receiver = clip.z - rgCascades.c.bias.x / range;
+    // Blocker search over the widest penumbra a caster at the top of the depth range could cast
+    // (radius: distance to the caster × tan σ — half the penumbra's width).
+    float tanSigma = rgCascades.c.info.w * rgCascades.c.bias.z;
+    float searchTexels = clamp(receiver * range * tanSigma / texel, 1.0, 64.0);
+    float blockers = 0.0, blockerDepth = 0.0;
+    for (int k = 0; k < 16; ++k) {
+        vec2 t = uv + rgShadowTap(k) * searchTexels / size;
+        float d = textureLod(sun_shadow, vec3(t, float(ci)), 0.0).r;
+        if (d < receiver) { blockers += 1.0; blockerDepth += d; }
+    }
+    if (blockers == 0.0) return 1.0;
+    blockerDepth /= blockers;
+    // The kernel's radius at the receiver, in texels: half the penumbra (d_r − d_b) · 2 tan σ, so
+    // that the disk of taps convolves the edge as the sun's disk does; at least a texel.
+    float penumbra = clamp((receiver - blockerDepth) * range * tanSigma / texel, 1.0, 64.0);
+    float lit = 0.0;
+    for (int k = 0; k < 16; ++k) {
+        vec2 t = uv + rgShadowTap(k) * penumbra / size;
+        float d = textureLod(sun_shadow, vec3(t, float(ci)), 0.0).r;
+        lit += d < receiver ? 0.0 : 1.0;
+    }
+    return lit / 16.0;
+}
+
+float rgShadow(uint light, vec3 P, vec3 N) {
+    if (rgCascades.c.info.x > 0.0 && light == uint(rgCascades.c.info.y + 0.5)) return rgSunShadow(P, N);
+    return 1.0;
+}
+#endif
+
+#endif
