@@ -27,6 +27,5 @@ post.chain { input = "hdr", output = "display" }
 rg.output { display = "display", hdr = "hdr", exposure = "exposure" }
 
 function rg.frame(ctx)
-    loop.frame(ctx)  -- no decals in the scene: no decal passes
-    shadows.frame(ctx)  -- no sun: no shadow map
+    loop.frame(ctx)  -- no decals in the scene: no decal passes; no sun: no shadow draws
 end

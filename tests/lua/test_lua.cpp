@@ -202,8 +202,9 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // The environment filtering (scripts/ibl.lua, required by render_loop) comes first.
     // Then the G-buffer half, the sun's shadow map (scripts/shadows.lua) and the lighting.
     EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 20),
-              (std::vector<std::string>{"env_cube", "env_mips", "env_prefilter", "env_irradiance", "dfg_table", "gbuffer", "light_culling", "foliage_fixup", "decals_copy0", "decals_copy1", "decals_copy2",
-                                        "decals", "sun_cascades", "shadow_clear", "shadow_sun", "lighting_standard", "lighting_clearcoat", "lighting_two_colour",
+              (std::vector<std::string>{"env_cube", "env_mips", "env_prefilter", "env_irradiance", "dfg_table", "sun_cascades",
+                                        "shadow_clear", "shadow_sun", "gbuffer", "light_culling", "foliage_fixup", "decals_copy0", "decals_copy1", "decals_copy2",
+                                        "decals", "lighting_standard", "lighting_clearcoat", "lighting_two_colour",
                                         "sky", "forward"}));
     auto plan = compile(graphWithParams(*p), {});
     ASSERT_TRUE(plan.has_value()) << plan.error().message;
