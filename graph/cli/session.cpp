@@ -102,9 +102,27 @@ Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string
         g.passes.push_back(pass);
         return {};
     }
+    if (view == "cascades" || view == "shadow") {
+        for (const char* r : {"sun_shadow", "sun_cascades"})
+            if (!g.findResource(r))
+                return fail(ErrorCode::InvalidInput, "--view " + view + ": the pipeline has no '" + r + "' (require \"shadows\")");
+        PassDesc pass;
+        pass.name = "debug_view";
+        pass.kind = "fullscreen";
+        if (view == "shadow") {
+            pass.accesses = {{"sun_shadow", Usage::Sampled}, {"debug_view", Usage::ColorAttachment}};
+            pass.params = Value(Value::Table{{"shader", Value("passes/shadow_map_view.frag")}});
+        } else {
+            pass.accesses = {{"GB0", Usage::Sampled}, {"depth", Usage::Sampled}, {"sun_shadow", Usage::Sampled},
+                             {"sun_cascades", Usage::StorageRead}, {"debug_view", Usage::ColorAttachment}};
+            pass.params = Value(Value::Table{{"shader", Value("passes/cascade_view.frag")}});
+        }
+        g.passes.push_back(pass);
+        return {};
+    }
     auto it = std::find(kViews.begin(), kViews.end(), view);
     if (it == kViews.end()) {
-        std::string all = "'stencil', 'lights'";
+        std::string all = "'stencil', 'lights', 'cascades', 'shadow'";
         for (const auto& v : kViews) all += ", '" + v + "'";
         return fail(ErrorCode::InvalidInput, "--view: unknown view '" + view + "'; expected one of: " + all);
     }

@@ -66,6 +66,22 @@ check "export-scene" 0 grep "wrote $tmp/materials.glb (6 meshes" -- "$rgraph" ex
 check "render a glb" 0 grep "wrote $tmp/g.exr" -- "$rgraph" render --scene "$tmp/materials.glb" --size 64x32 --out "$tmp/g.exr" --png "$tmp/g.png"
 check "debug view" 0 grep "wrote $tmp/v.exr" -- "$rgraph" render --scene tests/gpu/scenes/materials.lua --view materialid --size 64x32 --out "$tmp/v.exr" --png "$tmp/v.png"
 check "unknown view" 2 grep "--view: unknown view 'albedo'" -- "$rgraph" render --view albedo --size 8x8
+for v in cascades shadow; do
+    check "view $v" 0 grep "wrote $tmp/$v.exr" -- env RG_VALIDATION=1 "$rgraph" render --view $v --size 64x32 --out "$tmp/$v.exr" --png "$tmp/$v.png"
+done
+cat >"$tmp/unshadowed.lua" <<'LUA'
+local rg = require "rg"
+require "disney"
+rg.resource "GB0" { format = "rgb10a2" }
+rg.resource "GB1" { format = "rgba8_srgb" }
+rg.resource "GB2" { format = "rgba8" }
+rg.resource "GB3" { format = "rgba16f" }
+rg.resource "depth" { format = "d32f_s8" }
+rg.pass "gbuffer" { kind = "scene", writes = { "GB0", "GB1", "GB2", "GB3", "depth" } }
+rg.output "GB0"
+LUA
+check "view shadow needs shadows" 2 grep "--view shadow: the pipeline has no 'sun_shadow' (require \"shadows\")" -- \
+    "$rgraph" render --view shadow --pipeline "$tmp/unshadowed.lua" --size 8x8
 # Depth of the default pipeline: once crashed llvmpipe (images placed 16 bytes into a memory block).
 check "depth capture" 0 grep "wrote $tmp/depth.exr" -- \
     env RG_VALIDATION=1 "$rgraph" render --capture depth --size 64x32 --out "$tmp/depth.exr" --png "$tmp/depth.png"
