@@ -23,7 +23,6 @@ Result<gpu::OwnedPipeline> createGraphicsPipeline(VkDevice device, const Graphic
     rendering.pColorAttachmentFormats = desc.colorFormats.data();
     rendering.depthAttachmentFormat = desc.depthFormat;
     rendering.stencilAttachmentFormat = desc.stencilFormat;
-    rendering.viewMask = desc.viewMask;
     VkPipelineVertexInputStateCreateInfo noVertices{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO};
     VkPipelineInputAssemblyStateCreateInfo ia{VK_STRUCTURE_TYPE_PIPELINE_INPUT_ASSEMBLY_STATE_CREATE_INFO};
     ia.topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;

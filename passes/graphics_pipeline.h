@@ -22,7 +22,6 @@ struct GraphicsPipelineDesc {
     VkFrontFace frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     VkPipelineDepthStencilStateCreateInfo depthStencil{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
     std::vector<VkDynamicState> dynamicStates;  // besides viewport and scissor
-    uint32_t viewMask = 0;  // multiview: the layers one draw renders (gl_ViewIndex), 0 = off
     // Depth bias in the rasteriser (shadow maps): constant (in units of the depth format's
     // resolution) and slope-scaled; off when both are 0.
     float depthBiasConstant = 0.0f, depthBiasSlope = 0.0f;

@@ -262,9 +262,11 @@ private:
         std::vector<size_t> draws;
     };
 
-    // shadow = true: depth only, from the light's view, every layer of the depth target at once
-    // (multiview: shadows/shadow.vert takes layer gl_ViewIndex's matrix from a buffer the pass
-    // reads); every opaque draw, both faces, with the rasteriser's depth bias.
+    // shadow = true: depth only, from the light's view, into each layer of the depth target in turn
+    // (shadows/shadow.vert takes the matrix of the layer its push constant names from a buffer the
+    // pass reads); every opaque draw, both faces, with the rasteriser's depth bias. (One multiview
+    // pass for all layers was tried first: llvmpipe then misplaces triangles clipped at the map's
+    // edges in layer 0.)
     Result<void> prepareShadow(PassSetup& setup) {
         const PassDesc& desc = setup.desc;
         for (const Access& a : desc.accesses) {
@@ -278,10 +280,6 @@ private:
         m_height = depth->plan->height;
         m_depthFormat = depth->plan->format;
         m_layers = depth->plan->layers;
-        if (m_layers > 1 && !setup.gpu.multiview())
-            return fail(ErrorCode::Unsupported, passPrefix(desc) + "'" + m_depth->resource + "' has " + std::to_string(m_layers) +
-                                                    " layers, and this device cannot render several layers at once (no multiview)");
-        if (m_layers > 32) return fail(ErrorCode::InvalidInput, passPrefix(desc) + "'" + m_depth->resource + "': at most 32 layers");
         const Value& bias = desc.params["depth_bias"];
         if (!bias.isNil() && !(bias.isList() && bias.asList().size() == 2))
             return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.depth_bias: expected { constant, slope }");
@@ -303,7 +301,6 @@ private:
         d.depthStencil.depthTestEnable = VK_TRUE;
         d.depthStencil.depthWriteEnable = VK_TRUE;
         d.depthStencil.depthCompareOp = VK_COMPARE_OP_LESS;
-        d.viewMask = m_layers > 1 ? (1u << m_layers) - 1u : 0u;
         if (bias.isList()) {
             d.depthBiasConstant = static_cast<float>(bias.asList()[0].asNumber(0));
             d.depthBiasSlope = static_cast<float>(bias.asList()[1].asNumber(0));
@@ -320,36 +317,37 @@ private:
 
     void recordShadow(RecordContext& rc) {
         const PhysicalResource* d = rc.resources.find(m_depth->resource);
-        VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        depth.imageView = d->image->layersView();
-        depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-        depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-        depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        depth.clearValue.depthStencil = {1.0f, 0};
-        VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-        ri.renderArea = {{0, 0}, {m_width, m_height}};
-        ri.layerCount = 1;
-        ri.viewMask = m_layers > 1 ? (1u << m_layers) - 1u : 0u;
-        ri.pDepthAttachment = &depth;
-        vkCmdBeginRendering(rc.cmd, &ri);
-        VkViewport vp{0, 0, static_cast<float>(m_width), static_cast<float>(m_height), 0, 1};
-        VkRect2D sc{{0, 0}, {m_width, m_height}};
-        vkCmdSetViewport(rc.cmd, 0, 1, &vp);
-        vkCmdSetScissor(rc.cmd, 0, 1, &sc);
-        VkDeviceSize offset = 0;
-        VkBuffer vb = rc.scene->vertexBuffer();
-        vkCmdBindVertexBuffers(rc.cmd, 0, 1, &vb, &offset);
-        vkCmdBindIndexBuffer(rc.cmd, rc.scene->indexBuffer(), 0, VK_INDEX_TYPE_UINT32);
         Group& g = m_groups.front();
-        vkCmdBindPipeline(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.pipeline.get());
-        g.program->bind(rc, VK_PIPELINE_BIND_POINT_GRAPHICS);
-        for (size_t i : g.draws) {
-            const DrawItem& item = rc.scene->draws()[i];
-            glm::mat4 push[2] = {item.world, item.normalMatrix};
-            vkCmdPushConstants(rc.cmd, g.program->layout(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof push, push);
-            vkCmdDrawIndexed(rc.cmd, item.indexCount, 1, item.firstIndex, item.vertexOffset, 0);
+        for (uint32_t layer = 0; layer < m_layers; ++layer) {
+            VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+            depth.imageView = d->image->layerView(layer);
+            depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+            depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+            depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+            depth.clearValue.depthStencil = {1.0f, 0};
+            VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+            ri.renderArea = {{0, 0}, {m_width, m_height}};
+            ri.layerCount = 1;
+            ri.pDepthAttachment = &depth;
+            vkCmdBeginRendering(rc.cmd, &ri);
+            VkViewport vp{0, 0, static_cast<float>(m_width), static_cast<float>(m_height), 0, 1};
+            VkRect2D sc{{0, 0}, {m_width, m_height}};
+            vkCmdSetViewport(rc.cmd, 0, 1, &vp);
+            vkCmdSetScissor(rc.cmd, 0, 1, &sc);
+            VkDeviceSize offset = 0;
+            VkBuffer vb = rc.scene->vertexBuffer();
+            vkCmdBindVertexBuffers(rc.cmd, 0, 1, &vb, &offset);
+            vkCmdBindIndexBuffer(rc.cmd, rc.scene->indexBuffer(), 0, VK_INDEX_TYPE_UINT32);
+            vkCmdBindPipeline(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.pipeline.get());
+            g.program->bind(rc, VK_PIPELINE_BIND_POINT_GRAPHICS);
+            for (size_t i : g.draws) {
+                const DrawItem& item = rc.scene->draws()[i];
+                struct { glm::mat4 world; glm::vec4 layer; } push{item.world, glm::vec4(static_cast<float>(layer))};
+                vkCmdPushConstants(rc.cmd, g.program->layout(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof push, &push);
+                vkCmdDrawIndexed(rc.cmd, item.indexCount, 1, item.firstIndex, item.vertexOffset, 0);
+            }
+            vkCmdEndRendering(rc.cmd);
         }
-        vkCmdEndRendering(rc.cmd);
     }
 
     // The scene's vertex layout (graph/scene's Vertex).
@@ -426,8 +424,8 @@ PassKindInfo scenePassKind() {
           {"forward", "boolean", "draw the blended (alpha = 'blend') materials, lit directly, over the colour target it loads"},
           {"paths", "string|list", "draw the materials of these lighting paths"},
           {"defines", "table", "preprocessor defines for its shaders (the forward pass: RG_IBL with scripts/ibl.lua's ibl.lit)"},
-          {"shadow", "boolean", "depth only, every layer of the depth target it writes at once (multiview), from the views its vertex shader computes (scripts/shadows.lua)"},
-          {"shader", "string", "shadow: the vertex shader (default shadows/shadow.vert: layer gl_ViewIndex's matrix from the `cascades` buffer)"},
+          {"shadow", "boolean", "depth only, into each layer of the depth target it writes, from the views its vertex shader computes (scripts/shadows.lua)"},
+          {"shader", "string", "shadow: the vertex shader (default shadows/shadow.vert: the matrix of the layer its push constant names, from `sun_cascades`)"},
           {"depth_bias", "list", "shadow: { constant, slope } rasteriser depth bias"},
           {"rg_materials", "list", "(filled in by rgraph) the resolved materials"}},
          Usage::Sampled, Usage::ColorAttachment},

@@ -6,9 +6,9 @@
 -- Each frame `sun_cascades` (compute, one invocation: shaders/shadows/sun_cascades.comp) places
 -- shadows.cascades cascades over the view up to `shadow_distance` (practical split scheme,
 -- stable by texel snapping), and `shadow_sun` (the `scene` kind with shadow = true) draws every
--- opaque primitive's depth into `sun_shadow`, one layer per cascade, in one multiview pass. Both
+-- opaque primitive's depth into `sun_shadow`, one layer per cascade. Both
 -- are culled by the graph when nothing reads the map, and skipped (rg.frame: shadows.frame) when
--- the scene has no sun. `shadows.lit` makes a lighting pass read them: lib/shadows.glsl's PCSS
+-- the scene has no sun or `sun_shadows` is off. `shadows.lit` makes a lighting pass read them: lib/shadows.glsl's PCSS
 -- (blocker search, penumbra from the sun's angular size) multiplies the sun's light.
 local rg = require "rg"
 
@@ -17,6 +17,7 @@ local shadows = {}
 shadows.size = 2048    -- texels per side of each cascade
 shadows.cascades = 4   -- 1..4
 
+rg.param "sun_shadows" { type = "boolean", default = true, doc = "the sun casts shadows (false: the map is only cleared)" }
 rg.param "shadow_distance" { type = "number", default = 40, min = 1, max = 10000, doc = "metres of view the sun's cascades cover" }
 rg.param "shadow_split_lambda" { type = "number", default = 0.8, min = 0, max = 1, doc = "cascade splits: 0 uniform .. 1 logarithmic (practical split scheme)" }
 rg.param "shadow_depth_bias" { type = "number", default = 0.02, min = 0, max = 1, doc = "receiver depth bias, metres along the light" }
@@ -49,13 +50,12 @@ function shadows.lit(pass)
     return pass
 end
 
--- Per frame: no sun in the scene, no shadow draws — the map is cleared instead (and the lighting
--- finds no cascades).
+-- Per frame: no sun in the scene (or sun_shadows off), no shadow draws — the map is cleared
+-- instead, and everything reads as lit.
 function shadows.frame(ctx)
-    if ctx.scene then
-        ctx.pass("shadow_sun").enabled = ctx.scene.suns > 0
-        ctx.pass("shadow_clear").enabled = ctx.scene.suns == 0
-    end
+    local draw = ctx.params.sun_shadows and (not ctx.scene or ctx.scene.suns > 0)
+    ctx.pass("shadow_sun").enabled = draw
+    ctx.pass("shadow_clear").enabled = not draw
 end
 
 return shadows

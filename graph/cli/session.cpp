@@ -102,6 +102,17 @@ Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string
         g.passes.push_back(pass);
         return {};
     }
+    if (view == "ssao") {
+        if (!g.findResource("ssao"))
+            return fail(ErrorCode::InvalidInput, "--view ssao: the pipeline has no 'ssao' (require \"ao\")");
+        PassDesc pass;
+        pass.name = "debug_view";
+        pass.kind = "fullscreen";
+        pass.accesses = {{"ssao", Usage::Sampled}, {"debug_view", Usage::ColorAttachment}};
+        pass.params = Value(Value::Table{{"shader", Value("passes/ssao_view.frag")}});
+        g.passes.push_back(pass);
+        return {};
+    }
     if (view == "cascades" || view == "shadow") {
         for (const char* r : {"sun_shadow", "sun_cascades"})
             if (!g.findResource(r))
@@ -122,7 +133,7 @@ Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string
     }
     auto it = std::find(kViews.begin(), kViews.end(), view);
     if (it == kViews.end()) {
-        std::string all = "'stencil', 'lights', 'cascades', 'shadow'";
+        std::string all = "'stencil', 'lights', 'ssao', 'cascades', 'shadow'";
         for (const auto& v : kViews) all += ", '" + v + "'";
         return fail(ErrorCode::InvalidInput, "--view: unknown view '" + view + "'; expected one of: " + all);
     }

@@ -235,18 +235,8 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     f13.synchronization2 = VK_TRUE;
     // Required by Vulkan 1.3; glslang's SPIR-V 1.6 uses LocalSizeId, which needs it.
     f13.maintenance4 = VK_TRUE;
-    VkPhysicalDeviceVulkan11Features f11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
-    f11.pNext = &f13;
-    // Layered targets drawn once for all their layers (shadow cascades: gl_ViewIndex picks the
-    // cascade). Core since 1.1 and on every Vulkan 1.3 device we know; checked where used.
-    VkPhysicalDeviceVulkan11Features s11{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_1_FEATURES};
-    VkPhysicalDeviceFeatures2 probe{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
-    probe.pNext = &s11;
-    vkGetPhysicalDeviceFeatures2(ctx->m_physical, &probe);
-    f11.multiview = s11.multiview;
-    ctx->m_multiview = s11.multiview == VK_TRUE;
     VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
-    f12.pNext = &f11;
+    f12.pNext = &f13;
     f12.hostQueryReset = VK_TRUE;
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     features.pNext = &f12;

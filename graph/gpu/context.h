@@ -54,8 +54,6 @@ public:
     const VkPhysicalDeviceProperties& properties() const { return m_properties; }
     Allocator& allocator() { return *m_allocator; }
     uint32_t framesInFlight() const { return m_framesInFlight; }
-    // The device renders to several layers at once (multiview, enabled when present).
-    bool multiview() const { return m_multiview; }
     double timestampPeriodNs() const { return m_properties.limits.timestampPeriod; }
 
     bool validationEnabled() const { return m_validation; }
@@ -101,7 +99,6 @@ private:
 
     bool m_validation = false;
     bool m_debugUtils = false;
-    bool m_multiview = false;
     uint32_t m_validationMessages = 0;
     std::vector<std::string> m_messages;
     PFN_vkCmdBeginDebugUtilsLabelEXT m_beginLabel = nullptr;

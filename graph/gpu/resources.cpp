@@ -180,12 +180,11 @@ Result<void> Image::createViews(Context& ctx) {
         VkImageView v = VK_NULL_HANDLE;
         RG_VK_TRY(vkCreateImageView(dev, &info, nullptr, &v));
         m_attachmentView = OwnedImageView(dev, v);
-        if (m_desc.layers > 1) {
-            info.viewType = VK_IMAGE_VIEW_TYPE_2D_ARRAY;
-            info.subresourceRange.layerCount = m_desc.layers;
-            VkImageView layers = VK_NULL_HANDLE;
-            RG_VK_TRY(vkCreateImageView(dev, &info, nullptr, &layers));
-            m_layersView = OwnedImageView(dev, layers);
+        for (uint32_t layer = 1; layer < m_desc.layers; ++layer) {
+            info.subresourceRange.baseArrayLayer = layer;
+            VkImageView lv = VK_NULL_HANDLE;
+            RG_VK_TRY(vkCreateImageView(dev, &info, nullptr, &lv));
+            m_layerViews.emplace_back(dev, lv);
         }
     }
     for (uint32_t m = 0; m < m_desc.mips; ++m) {

@@ -41,9 +41,8 @@ public:
     VkImageView view() const { return m_view.get(); }  // all mips and layers
     VkImageView mipView(uint32_t mip) const { return m_mipViews[mip].get(); }
     VkImageView attachmentView() const { return m_attachmentView.get(); }  // mip 0, layer 0 (2D)
-    // Mip 0, every layer (2D array): a layered attachment (multiview); the attachment view when
-    // the image has one layer.
-    VkImageView layersView() const { return m_layersView ? m_layersView.get() : m_attachmentView.get(); }
+    // Mip 0, layer `layer` (2D): one layer of a layered target as an attachment.
+    VkImageView layerView(uint32_t layer) const { return layer == 0 ? m_attachmentView.get() : m_layerViews[layer - 1].get(); }
     const ImageDesc& desc() const { return m_desc; }
     explicit operator bool() const { return static_cast<bool>(m_image); }
 
@@ -54,7 +53,7 @@ private:
     Allocation m_memory;
     OwnedImageView m_view;
     OwnedImageView m_attachmentView;
-    OwnedImageView m_layersView;
+    std::vector<OwnedImageView> m_layerViews;  // layers 1..n-1 (layer 0 is m_attachmentView)
     std::vector<OwnedImageView> m_mipViews;
 };
 

@@ -8,17 +8,18 @@ local lighting = require "lighting"  -- per-tile light lists for the lighting pa
 local loop = require "render_loop"  -- the materials, the G-buffer, its scene pass and the decals
 local ibl = require "ibl"  -- the distant light probe, filtered once per environment (seed 002 §4.9)
 local shadows = require "shadows"  -- the sun's cascaded shadow map (seed 002 §4.10.4)
+local ao = require "ao"  -- screen-space ambient occlusion (seed 002 §4.10.3)
 
 post.params { exposure_mode = "auto" }
 post.exposure_state()
 
 -- One lighting pass per lighting path, each on its stencil class, each looping over the lights
 -- of its pixel's tile (lighting.tiled), then adding the distant probe's light (ibl.lit).
-rg.pass "lighting_standard" (shadows.lit(ibl.lit(lighting.tiled {
+rg.pass "lighting_standard" (ao.lit(shadows.lit(ibl.lit(lighting.tiled {
     kind = "fullscreen", shader = "passes/deferred_lighting.frag",
     reads = { "GB0", "GB1", "GB2", "GB3", "depth", { "depth", as = "depth" }, { "exposure", as = "storage" } },
     writes = { "hdr" }, stencil = { class = "lit_standard", mask = 7 },  -- low 3 bits: foliage (9) too
-})))
+}))))
 
 -- The sky where nothing was drawn, then blended materials lit with the same light loop.
 loop.sky_and_forward()

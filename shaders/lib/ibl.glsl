@@ -85,6 +85,18 @@ RgIbl rgEvaluateIbl(vec3 N, vec3 V, vec3 f0, float f90, float linearRoughness) {
     return r;
 }
 
+// The ambient occlusion of the shaded pixel: the material's, or with RG_SSAO (scripts/ao.lua's
+// ao.lit) the smaller of it and the screen-space AO (seed 002 §4.10.3: combined by min).
+#ifdef RG_SSAO
+#ifndef RG_SSAO_BINDING
+#define RG_SSAO_BINDING 16
+#endif
+layout(set = 0, binding = RG_SSAO_BINDING) uniform sampler2D ssao;
+float rgAmbientOcclusion(float materialAo) { return min(materialAo, texelFetch(ssao, ivec2(gl_FragCoord.xy), 0).r); }
+#else
+float rgAmbientOcclusion(float materialAo) { return materialAo; }
+#endif
+
 // The standard material's ambient light: diffuse × colour × AO, specular × specular occlusion.
 vec3 rgStandardIbl(vec3 N, vec3 V, vec3 diffuseColor, vec3 f0, float linearRoughness, float ao) {
     float f90 = clamp(50.0 * dot(f0, vec3(0.33)), 0.0, 1.0);  // as rgStandardBrdf (§4.10.2)

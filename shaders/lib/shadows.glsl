@@ -5,9 +5,11 @@
 // (lib/lighting.glsl) multiplies the sun's diffuse and specular illuminance by rgShadow.
 //
 // Filtering: percentage-closer soft shadows for a disk light (the sun of angular radius σ,
-// lst:6): a blocker search gives the mean depth d_b of what occludes the point, the penumbra is
+// lst:6): a blocker search finds the occluder nearest the receiver, at depth d_b, the penumbra is
 // then (d_r − d_b) · 2 tan σ wide at the receiver (similar triangles through the disk), and the
 // PCF kernel covers it — contact-hardening: sharp where the caster touches, soft far from it.
+// (PCSS's usual mean blocker depth over-widens the penumbra under a caster tilted against the
+// light — the box's top at 45°: 0.42 m against the geometry's 0.256 m; the nearest gives 0.22 m.)
 #ifndef RG_SHADOWS_GLSL
 #define RG_SHADOWS_GLSL
 
@@ -66,10 +68,9 @@ float rgSunShadow(vec3 P, vec3 N) {
     for (int k = 0; k < 16; ++k) {
         vec2 t = uv + rgShadowTap(k) * searchTexels / size;
         float d = textureLod(sun_shadow, vec3(t, float(ci)), 0.0).r;
-        if (d < receiver) { blockers += 1.0; blockerDepth += d; }
+        if (d < receiver) { blockers += 1.0; blockerDepth = max(blockerDepth, d); }
     }
     if (blockers == 0.0) return 1.0;
-    blockerDepth /= blockers;
     // The kernel's radius at the receiver, in texels: half the penumbra (d_r − d_b) · 2 tan σ, so
     // that the disk of taps convolves the edge as the sun's disk does; at least a texel.
     float penumbra = clamp((receiver - blockerDepth) * range * tanSigma / texel, 1.0, 64.0);

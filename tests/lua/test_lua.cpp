@@ -200,16 +200,17 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     std::vector<std::string> order;
     for (const auto& pass : p->graph.passes) order.push_back(pass.name);
     // The environment filtering (scripts/ibl.lua, required by render_loop) comes first.
-    // Then the G-buffer half, the sun's shadow map (scripts/shadows.lua) and the lighting.
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 20),
+    // Then the sun's shadow map (scripts/shadows.lua), the G-buffer half with the passes inserted
+    // after it (light culling, screen-space AO: scripts/ao.lua) and the lighting.
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 22),
               (std::vector<std::string>{"env_cube", "env_mips", "env_prefilter", "env_irradiance", "dfg_table", "sun_cascades",
-                                        "shadow_clear", "shadow_sun", "gbuffer", "light_culling", "foliage_fixup", "decals_copy0", "decals_copy1", "decals_copy2",
+                                        "shadow_clear", "shadow_sun", "gbuffer", "light_culling", "gtao", "foliage_fixup", "ao_blur", "decals_copy0", "decals_copy1", "decals_copy2",
                                         "decals", "lighting_standard", "lighting_clearcoat", "lighting_two_colour",
                                         "sky", "forward"}));
     auto plan = compile(graphWithParams(*p), {});
     ASSERT_TRUE(plan.has_value()) << plan.error().message;
     // Every script it pulled in is known, for hot reload.
-    EXPECT_EQ(p->files.size(), 10u);  // deferred, post, lighting, render_loop, ibl, shadows, disney, clearcoat, foliage, two_colour
+    EXPECT_EQ(p->files.size(), 11u);  // deferred, post, lighting, render_loop, ibl, shadows, ao, disney, clearcoat, foliage, two_colour
 }
 
 TEST(LuaPipeline, ModulesAreNamespacedAndInsertedAfterTheirAnchor) {

@@ -1,0 +1,40 @@
+-- Screen-space ambient occlusion (seed 002 §4.10.1–4.10.3): GTAO at half resolution from the
+-- depth buffer and the G-buffer's normals (shaders/passes/gtao.frag), then a depth-aware blur back to
+-- full resolution (ao_blur.frag) into `ssao` (r8: 1 open, 0 closed), inserted after the pass
+-- named "gbuffer" (as the light culling).
+--
+--   local ao = require "ao"
+--   rg.pass "lighting_x" (ao.lit { ... })   -- the lighting takes min(material AO, ssao)
+--
+-- With `ao.lit` a lighting shader's rgAmbientOcclusion(materialAo) (lib/ibl.glsl) returns the
+-- smaller of the two (the seed's "combined with material AO by min"), which then scales the
+-- probe's diffuse and, through computeSpecOcclusion, its specular. Direct light is left to the
+-- shadows.
+local rg = require "rg"
+
+local ao = {}
+
+rg.param "ao_radius" { type = "number", default = 1.0, min = 0.05, max = 10, doc = "metres around a point searched for occluders" }
+
+rg.resource "ao_half" { format = "r16f", scale = { 0.5, 0.5 }, doc = "GTAO at half resolution, before its blur" }
+rg.resource "ssao" { format = "r8", doc = "screen-space ambient occlusion, 1 open .. 0 closed" }
+
+rg.pass "gtao" {
+    kind = "fullscreen", shader = "passes/gtao.frag", reads = { "depth", "GB0" }, writes = { "ao_half" },
+    insert = { after = "gbuffer" }, filter = "nearest",
+}
+rg.pass "ao_blur" {
+    kind = "fullscreen", shader = "passes/ao_blur.frag", reads = { "ao_half", "depth" }, writes = { "ssao" },
+    insert = { after = "gtao" }, filter = "nearest",
+}
+
+-- A lighting pass's declaration that takes its ambient occlusion from `ssao` too.
+function ao.lit(pass)
+    pass.reads = pass.reads or {}
+    table.insert(pass.reads, "ssao")
+    pass.defines = pass.defines or {}
+    pass.defines.RG_SSAO = true
+    return pass
+end
+
+return ao

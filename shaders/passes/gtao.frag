@@ -1,0 +1,85 @@
+#version 460
+// Screen-space ambient occlusion (seed 002 §4.10.1, §4.10.3): ground-truth AO (Jimenez et al.
+// 2016, "Practical Realtime Strategies for Accurate Indirect Occlusion") at half resolution. For
+// RG_AO_SLICES screen directions per pixel the depth buffer is marched RG_AO_STEPS times each way
+// within Params.ao_radius metres, the highest horizon on each side kept, and the visible part of
+// the cosine lobe between the two horizons integrated analytically around the normal projected
+// into the slice:  ¼ (−cos(2h − n) + cos n + 2h sin n)  per side, weighted by the projected
+// normal's length. 1 = open, 0 = closed. Directions turn per pixel (a 4×4 pattern the
+// ao_blur pass averages out).
+#include "lib/scene.glsl"
+#include "gbuffer_disney.glsl"
+
+#ifndef RG_AO_SLICES
+#define RG_AO_SLICES 4
+#endif
+#ifndef RG_AO_STEPS
+#define RG_AO_STEPS 6
+#endif
+
+layout(location = 0) in vec2 uv;
+layout(location = 0) out vec4 color;
+layout(set = 0, binding = 0) uniform sampler2D depth;
+layout(set = 0, binding = 1) uniform sampler2D GB0;
+layout(set = 0, binding = 2) uniform Params { float ao_radius; } params;
+
+vec3 viewPosition(ivec2 fullPixel) {
+    ivec2 size = textureSize(depth, 0);
+    ivec2 q = clamp(fullPixel, ivec2(0), size - 1);
+    vec2 quv = (vec2(q) + 0.5) / vec2(size);
+    vec3 world = rgWorldPosition(quv, texelFetch(depth, q, 0).r);
+    return (camera.view * vec4(world, 1.0)).xyz;
+}
+
+void main() {
+    ivec2 half_ = ivec2(gl_FragCoord.xy);
+    ivec2 full = half_ * 2;
+    float z = texelFetch(depth, full, 0).r;
+    if (z >= 1.0) { color = vec4(1.0); return; }
+    vec3 P = viewPosition(full);
+    vec3 Nw = unpackGBuffer_disney(texelFetch(GB0, full, 0), vec4(0.0), vec4(0.0), vec4(0.0)).normal;
+    vec3 N = normalize(mat3(camera.view) * Nw);
+    vec3 V = normalize(-P);
+    // The radius on screen, in full-resolution pixels (the projection's y scale).
+    float radiusPx = clamp(params.ao_radius * abs(camera.proj[1][1]) * 0.5 * camera.viewport.y / max(-P.z, 1e-3), 2.0, 96.0);
+    // 4×4 interleaved rotations and step offsets.
+    int k = (half_.x & 3) + 4 * (half_.y & 3);
+    float rotation = float(k) / 16.0 * 3.14159265 / float(RG_AO_SLICES);
+    float jitter = float((k * 7) & 15) / 16.0;
+    float visibility = 0.0;
+    for (int s = 0; s < RG_AO_SLICES; ++s) {
+        float phi = rotation + float(s) * 3.14159265 / float(RG_AO_SLICES);
+        vec2 d = vec2(cos(phi), sin(phi));        // screen direction (y down)
+        vec3 dir = vec3(d.x, -d.y, 0.0);          // the same in view space (y up)
+        vec3 axis = normalize(cross(dir, V));
+        vec3 projN = N - axis * dot(N, axis);
+        float projLen = length(projN);
+        if (projLen < 1e-4) { visibility += 1.0; continue; }
+        vec3 ortho = normalize(dir - V * dot(dir, V));
+        float cosN = clamp(dot(projN / projLen, V), -1.0, 1.0);
+        float n = sign(dot(projN, ortho)) * acos(cosN);
+        float best[2] = float[2](-1.0, -1.0);  // cos of the highest horizon on each side
+        for (int side = 0; side < 2; ++side) {
+            vec2 sd = side == 0 ? d : -d;
+            for (int i = 0; i < RG_AO_STEPS; ++i) {
+                float t = (float(i) + jitter) / float(RG_AO_STEPS);
+                ivec2 q = full + ivec2(round(sd * max(t * radiusPx, 1.0 + float(i))));
+                vec3 S = viewPosition(q) - P;
+                float len = length(S);
+                // Occluders within the radius, and above the tangent plane by more than the depth
+                // buffer's reconstruction noise (a flat floor must not occlude itself).
+                if (len < 1e-4 || len > params.ao_radius || dot(S / len, N) < 0.05) continue;
+                best[side] = max(best[side], dot(S / len, V));
+            }
+        }
+        // Side 0 is along +ortho (h2 > 0), side 1 along −ortho (h1 < 0); clamped to the hemisphere around n.
+        float h2 = acos(clamp(best[0], -1.0, 1.0));
+        float h1 = -acos(clamp(best[1], -1.0, 1.0));
+        h1 = n + max(h1 - n, -1.5707963);
+        h2 = n + min(h2 - n, 1.5707963);
+        float sinN = sin(n);
+        float arc = 0.25 * (-cos(2.0 * h1 - n) + cosN + 2.0 * h1 * sinN) + 0.25 * (-cos(2.0 * h2 - n) + cosN + 2.0 * h2 * sinN);
+        visibility += projLen * arc;
+    }
+    color = vec4(vec3(clamp(visibility / float(RG_AO_SLICES), 0.0, 1.0)), 1.0);
+}
