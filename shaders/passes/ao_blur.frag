@@ -12,8 +12,7 @@ layout(set = 0, binding = 1) uniform sampler2D depth;
 float viewDepth(ivec2 fullPixel) {
     ivec2 size = textureSize(depth, 0);
     ivec2 q = clamp(fullPixel, ivec2(0), size - 1);
-    vec3 world = rgWorldPosition((vec2(q) + 0.5) / vec2(size), texelFetch(depth, q, 0).r);
-    return -(camera.view * vec4(world, 1.0)).z;
+    return camera.proj[3][2] / (texelFetch(depth, q, 0).r + camera.proj[2][2]);  // rgViewPosition's distance
 }
 
 void main() {

@@ -26,9 +26,7 @@ layout(set = 0, binding = 2) uniform Params { float ao_radius; } params;
 vec3 viewPosition(ivec2 fullPixel) {
     ivec2 size = textureSize(depth, 0);
     ivec2 q = clamp(fullPixel, ivec2(0), size - 1);
-    vec2 quv = (vec2(q) + 0.5) / vec2(size);
-    vec3 world = rgWorldPosition(quv, texelFetch(depth, q, 0).r);
-    return (camera.view * vec4(world, 1.0)).xyz;
+    return rgViewPosition((vec2(q) + 0.5) / vec2(size), texelFetch(depth, q, 0).r);
 }
 
 void main() {
