@@ -339,6 +339,17 @@ public:
             return;
         }
         for (uint32_t m = 0; m < m_mips; ++m) {
+            if (m > 0) {
+                // The next mip may read this one (a chain through `<image>_previous`).
+                VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+                mb.srcStageMask = mb.dstStageMask = VK_PIPELINE_STAGE_2_COMPUTE_SHADER_BIT;
+                mb.srcAccessMask = VK_ACCESS_2_SHADER_STORAGE_WRITE_BIT;
+                mb.dstAccessMask = VK_ACCESS_2_SHADER_SAMPLED_READ_BIT | VK_ACCESS_2_SHADER_STORAGE_READ_BIT;
+                VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+                dep.memoryBarrierCount = 1;
+                dep.pMemoryBarriers = &mb;
+                vkCmdPipelineBarrier2(rc.cmd, &dep);
+            }
             m_program.bind(rc, VK_PIPELINE_BIND_POINT_COMPUTE, m);
             vkCmdDispatch(rc.cmd, m_mipGroups[m][0], m_mipGroups[m][1], m_mipGroups[m][2]);
         }

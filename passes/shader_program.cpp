@@ -225,6 +225,7 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
         const ReflectedBinding* binding;
         const PhysicalResource* resource;
         Usage usage;
+        bool previousMip = false;  // `<image>_previous`: the mip before the one a per-mip variant writes
     };
     std::vector<Bound> bound;
     const Value& bindMap = desc.params["bind"];
@@ -242,6 +243,18 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
                                                          "' is the scene's, but no scene is loaded (give --scene)");
             sceneBindings.push_back(&b);
             continue;
+        }
+        // A sampler named `<image>_previous` for an image the pass writes as storage: in
+        // per-mip variant m, mip m − 1 of it (a mip chain built from itself, e.g. a depth pyramid).
+        if (b.type == DescriptorType::CombinedImageSampler && b.name.size() > 9 && b.name.ends_with("_previous")) {
+            const std::string base = b.name.substr(0, b.name.size() - 9);
+            const Access* chain = nullptr;
+            for (const auto& a : desc.accesses)
+                if (glslName(a.resource) == base && (a.usage == Usage::StorageWrite || a.usage == Usage::StorageReadWrite)) chain = &a;
+            if (chain) {
+                bound.push_back({&b, setup.resources.find(chain->resource), chain->usage, true});
+                continue;
+            }
         }
         std::string want = bindMap[b.name].isString() ? bindMap[b.name].asString() : "";
         const Access* access = nullptr;
@@ -306,8 +319,8 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
                 });
                 const uint32_t mip = std::min(s % m_variants, img.desc().mips - 1);
                 images.push_back({nearest ? m_nearest.get() : m_linear.get(),
-                                  storage ? img.mipView(mip) : img.view(),
-                                  storage         ? VK_IMAGE_LAYOUT_GENERAL
+                                  bd.previousMip ? img.mipView(mip > 0 ? mip - 1 : 0) : storage ? img.mipView(mip) : img.view(),
+                                  storage || bd.previousMip ? VK_IMAGE_LAYOUT_GENERAL
                                   : depthAttached ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL
                                                   : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
                 w.pImageInfo = &images.back();

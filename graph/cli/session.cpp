@@ -102,6 +102,18 @@ Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string
         g.passes.push_back(pass);
         return {};
     }
+    if (view == "ssr" || view == "ssr_confidence") {
+        if (!g.findResource("ssr"))
+            return fail(ErrorCode::InvalidInput, "--view " + view + ": the pipeline has no 'ssr' (require \"ssr\")");
+        PassDesc pass;
+        pass.name = "debug_view";
+        pass.kind = "fullscreen";
+        pass.accesses = {{"ssr", Usage::Sampled}, {"debug_view", Usage::ColorAttachment}};
+        pass.params = Value(Value::Table{{"shader", Value("passes/ssr_view.frag")},
+                                         {"uniforms", Value(Value::Table{{"view", Value(view == "ssr" ? 0.0 : 1.0)}})}});
+        g.passes.push_back(pass);
+        return {};
+    }
     if (view == "ssao") {
         if (!g.findResource("ssao"))
             return fail(ErrorCode::InvalidInput, "--view ssao: the pipeline has no 'ssao' (require \"ao\")");
@@ -133,7 +145,7 @@ Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string
     }
     auto it = std::find(kViews.begin(), kViews.end(), view);
     if (it == kViews.end()) {
-        std::string all = "'stencil', 'lights', 'ssao', 'cascades', 'shadow'";
+        std::string all = "'stencil', 'lights', 'ssao', 'ssr', 'ssr_confidence', 'cascades', 'shadow'";
         for (const auto& v : kViews) all += ", '" + v + "'";
         return fail(ErrorCode::InvalidInput, "--view: unknown view '" + view + "'; expected one of: " + all);
     }

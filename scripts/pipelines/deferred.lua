@@ -9,6 +9,7 @@ local loop = require "render_loop"  -- the materials, the G-buffer, its scene pa
 local ibl = require "ibl"  -- the distant light probe, filtered once per environment (seed 002 §4.9)
 local shadows = require "shadows"  -- the sun's cascaded shadow map (seed 002 §4.10.4)
 local ao = require "ao"  -- screen-space ambient occlusion (seed 002 §4.10.3)
+local ssr = require "ssr"  -- screen-space reflections over the probe (seed 002 §4.9.4, §4.9.5)
 
 post.params { exposure_mode = "auto" }
 post.exposure_state()
@@ -21,8 +22,13 @@ rg.pass "lighting_standard" (ao.lit(shadows.lit(ibl.lit(lighting.tiled {
     writes = { "hdr" }, stencil = { class = "lit_standard", mask = 7 },  -- low 3 bits: foliage (9) too
 }))))
 
--- The sky where nothing was drawn, then blended materials lit with the same light loop.
+-- SSR replaces the distant probe's specular where it found the reflected surface (§4.9.5).
+ssr.compose()
+
+-- The sky where nothing was drawn, then blended materials lit with the same light loop; the lit
+-- image is kept for the next frame's reflections.
 loop.sky_and_forward()
+ssr.history()
 
 post.chain { input = "hdr", output = "display" }
 rg.output { display = "display", hdr = "hdr", exposure = "exposure" }

@@ -201,16 +201,17 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     for (const auto& pass : p->graph.passes) order.push_back(pass.name);
     // The environment filtering (scripts/ibl.lua, required by render_loop) comes first.
     // Then the sun's shadow map (scripts/shadows.lua), the G-buffer half with the passes inserted
-    // after it (light culling, screen-space AO: scripts/ao.lua) and the lighting.
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 22),
+    // after it (light culling, screen-space AO: scripts/ao.lua), the Hi-Z pyramid and SSR
+    // (scripts/ssr.lua), the lighting and the composition of SSR over the probe.
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 27),
               (std::vector<std::string>{"env_cube", "env_mips", "env_prefilter", "env_irradiance", "dfg_table", "sun_cascades",
                                         "shadow_clear", "shadow_sun", "gbuffer", "light_culling", "gtao", "foliage_fixup", "ao_blur", "decals_copy0", "decals_copy1", "decals_copy2",
-                                        "decals", "lighting_standard", "lighting_clearcoat", "lighting_two_colour",
-                                        "sky", "forward"}));
+                                        "decals", "hiz", "ssr", "lighting_standard", "lighting_clearcoat", "lighting_two_colour",
+                                        "ssr_compose", "sky", "forward", "ssr_history_copy", "ssr_history_mips"}));
     auto plan = compile(graphWithParams(*p), {});
     ASSERT_TRUE(plan.has_value()) << plan.error().message;
     // Every script it pulled in is known, for hot reload.
-    EXPECT_EQ(p->files.size(), 11u);  // deferred, post, lighting, render_loop, ibl, shadows, ao, disney, clearcoat, foliage, two_colour
+    EXPECT_EQ(p->files.size(), 12u);  // deferred, post, lighting, render_loop, ibl, shadows, ao, ssr, disney, clearcoat, foliage, two_colour
 }
 
 TEST(LuaPipeline, ModulesAreNamespacedAndInsertedAfterTheirAnchor) {

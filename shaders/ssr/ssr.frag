@@ -1,0 +1,91 @@
+#version 460
+// Screen-space reflections (seed 002 §4.9.4): the view ray reflected about the G-buffer normal
+// (the specular dominant direction of lib/ibl.glsl), marched through the Hi-Z pyramid from the
+// pixel to where it leaves the view or Params.ssr_distance: the step grows a level each time the
+// ray stays in front of a cell's nearest depth and shrinks when it does not, a hit at level 0.
+// Output: rgb the previous frame's lit image (`hdr_history`, pre-exposed) at the hit, blurred by
+// roughness through its mips; a the confidence: 0 on a miss, fading at the screen's edges, for
+// rays turned towards the camera, for hits far behind the surface, and with roughness (past
+// Params.ssr_max_roughness the probes alone reflect).
+#include "lib/scene.glsl"
+#include "lib/ibl.glsl"
+#include "gbuffer_disney.glsl"
+
+layout(location = 0) in vec2 uv;
+layout(location = 0) out vec4 color;
+layout(set = 0, binding = 0) uniform sampler2D GB0;
+layout(set = 0, binding = 1) uniform sampler2D depth;
+layout(set = 0, binding = 2) uniform sampler2D hiz;
+layout(set = 0, binding = 3) uniform sampler2D hdr_history;
+layout(set = 0, binding = 4) uniform Params {
+    float ssr_steps;
+    float ssr_distance;
+    float ssr_thickness;
+    float ssr_max_roughness;
+} params;
+
+// View position → (screen uv, depth) by the projection.
+vec3 project(vec3 v) {
+    vec4 clip = camera.proj * vec4(v, 1.0);
+    return vec3(clip.xy / clip.w * 0.5 + 0.5, clip.z / clip.w);
+}
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    float z = texelFetch(depth, p, 0).r;
+    color = vec4(0.0);
+    if (z >= 1.0) return;
+    GBuffer_disney g = unpackGBuffer_disney(texelFetch(GB0, p, 0), vec4(0.0), vec4(0.0), vec4(0.0));
+    float linearRoughness = 1.0 - g.smoothness;
+    if (linearRoughness > params.ssr_max_roughness) return;
+    vec2 size = vec2(textureSize(depth, 0));
+    vec3 P = rgViewPosition((vec2(p) + 0.5) / size, z);
+    vec3 N = normalize(mat3(camera.view) * g.normal);
+    vec3 V = normalize(-P);
+    float alpha = linearRoughness * linearRoughness;
+    vec3 R = normalize(rgSpecularDominantDir(N, reflect(-V, N), alpha));
+    // The ray's end: ssr_distance away, or where it meets the near plane.
+    float near = camera.proj[3][2] / camera.proj[2][2];
+    float len = params.ssr_distance;
+    if (P.z + R.z * len > -near) len = (-near - P.z) / R.z * 0.99;
+    vec3 s0 = vec3((vec2(p) + 0.5) / size, z);
+    vec3 s1 = project(P + R * len);
+    vec2 deltaPx = (s1.xy - s0.xy) * size;
+    float lengthPx = max(length(deltaPx), 1.0);
+    int maxLevel = textureQueryLevels(hiz) - 1;
+    int level = 0;
+    float t = 1.5 / lengthPx;  // start a pixel and a half out (no self-hit)
+    bool hit = false;
+    vec3 at = s0;
+    int steps = int(params.ssr_steps + 0.5);
+    for (int i = 0; i < steps && t <= 1.0; ++i) {
+        float tNext = t + exp2(float(level)) / lengthPx;
+        vec3 q = mix(s0, s1, min(tNext, 1.0));
+        if (any(lessThan(q.xy, vec2(0.0))) || any(greaterThanEqual(q.xy, vec2(1.0)))) break;
+        ivec2 cell = ivec2(q.xy * size) >> level;
+        float surface = texelFetch(hiz, cell, level).r;
+        if (q.z < surface) {  // in front of everything in this cell: skip it, then take bigger steps
+            t = tNext;
+            level = min(level + 1, maxLevel);
+        } else if (level > 0) {
+            --level;  // something in the cell may be in the way: look closer
+        } else {
+            at = q;
+            hit = true;
+            break;
+        }
+    }
+    if (!hit) return;
+    // A hit far behind the surface it passed (thin objects seen from behind) is no hit.
+    vec3 surfaceView = rgViewPosition(at.xy, texelFetch(depth, ivec2(at.xy * size), 0).r);
+    vec3 rayView = rgViewPosition(at.xy, at.z);
+    if (surfaceView.z - rayView.z > params.ssr_thickness) return;
+    vec2 edge = smoothstep(vec2(0.0), vec2(0.06), at.xy) * (1.0 - smoothstep(vec2(0.94), vec2(1.0), at.xy));
+    float confidence = edge.x * edge.y;
+    confidence *= 1.0 - smoothstep(0.2, 0.6, R.z);  // towards the camera: what it would see is off screen
+    confidence *= 1.0 - smoothstep(0.6 * params.ssr_max_roughness, params.ssr_max_roughness, linearRoughness);
+    // Roughness widens the reflected cone: its footprint at the hit, in pixels, picks the mip.
+    float footprint = alpha * length((at.xy - s0.xy) * size);
+    float lod = clamp(log2(max(footprint, 1.0)), 0.0, float(textureQueryLevels(hdr_history) - 1));
+    color = vec4(textureLod(hdr_history, at.xy, lod).rgb, confidence);
+}
