@@ -5,7 +5,7 @@
 // (lib/lighting.glsl) multiplies the sun's diffuse and specular illuminance by rgShadow.
 //
 // Filtering: percentage-closer soft shadows for a disk light (the sun of angular radius σ,
-// lst:6): a blocker search finds the occluder nearest the receiver, at depth d_b, the penumbra is
+// lst:6): an 8-tap blocker search finds the occluder nearest the receiver, at depth d_b, the penumbra is
 // then (d_r − d_b) · 2 tan σ wide at the receiver (similar triangles through the disk), and the
 // PCF kernel covers it — contact-hardening: sharp where the caster touches, soft far from it.
 // (PCSS's usual mean blocker depth over-widens the penumbra under a caster tilted against the
@@ -56,19 +56,31 @@ float rgSunShadow(vec3 P, vec3 N) {
     float size = rgCascades.c.info.z;
     // Normal offset: move the lookup off the surface by a few texels (no acne at grazing light).
     vec3 Po = P + N * (rgCascades.c.bias.y * texel);
-    vec4 clip = rgCascades.c.viewProj[ci] * vec4(Po, 1.0);
+    mat4 m = rgCascades.c.viewProj[ci];
+    vec4 clip = m * vec4(Po, 1.0);
     vec2 uv = clip.xy * 0.5 + 0.5;
     float range = rgCascades.c.depthRange[ci];
     float receiver = clip.z - rgCascades.c.bias.x / range;
+    // The receiver's plane in the map (receiver-plane depth bias): the depth a tap at uv offset
+    // δ compares against is receiver + dot(slope, δ), so a wide kernel over a surface tilted
+    // against the light does not shadow the surface itself. The rows of the cascade's matrix are
+    // the light's axes x/r, y/r and its direction f/range; a surface facing the light has n_f < 0.
+    vec3 row0 = vec3(m[0][0], m[1][0], m[2][0]), row1 = vec3(m[0][1], m[1][1], m[2][1]), row2 = vec3(m[0][2], m[1][2], m[2][2]);
+    float r = 1.0 / length(row0);
+    vec2 nxy = vec2(dot(N, row0), dot(N, row1)) * r;  // N · x, N · y
+    float nf = dot(N, row2) * range;                  // N · f
+    nf = sign(nf) * max(abs(nf), 0.2);                // grazing: a bounded slope
+    // A uv offset δ is 2r·δ metres across the light; the plane's depth changes by −(N·Δ)/(N·f).
+    vec2 slope = -2.0 * r * nxy / (nf * range);
     // Blocker search over the widest penumbra a caster at the top of the depth range could cast
     // (radius: distance to the caster × tan σ — half the penumbra's width).
     float tanSigma = rgCascades.c.info.w * rgCascades.c.bias.z;
     float searchTexels = clamp(receiver * range * tanSigma / texel, 1.0, 64.0);
     float blockers = 0.0, blockerDepth = 0.0;
-    for (int k = 0; k < 16; ++k) {
-        vec2 t = uv + rgShadowTap(k) * searchTexels / size;
-        float d = textureLod(sun_shadow, vec3(t, float(ci)), 0.0).r;
-        if (d < receiver) { blockers += 1.0; blockerDepth = max(blockerDepth, d); }
+    for (int k = 0; k < 16; k += 2) {  // every other tap of the spiral: 8 spread over the disk
+        vec2 o = rgShadowTap(k) * searchTexels / size;
+        float d = textureLod(sun_shadow, vec3(uv + o, float(ci)), 0.0).r;
+        if (d < receiver + dot(slope, o)) { blockers += 1.0; blockerDepth = max(blockerDepth, d); }
     }
     if (blockers == 0.0) return 1.0;
     // The kernel's radius at the receiver, in texels: half the penumbra (d_r − d_b) · 2 tan σ, so
@@ -76,9 +88,9 @@ float rgSunShadow(vec3 P, vec3 N) {
     float penumbra = clamp((receiver - blockerDepth) * range * tanSigma / texel, 1.0, 64.0);
     float lit = 0.0;
     for (int k = 0; k < 16; ++k) {
-        vec2 t = uv + rgShadowTap(k) * penumbra / size;
-        float d = textureLod(sun_shadow, vec3(t, float(ci)), 0.0).r;
-        lit += d < receiver ? 0.0 : 1.0;
+        vec2 o = rgShadowTap(k) * penumbra / size;
+        float d = textureLod(sun_shadow, vec3(uv + o, float(ci)), 0.0).r;
+        lit += d < receiver + dot(slope, o) ? 0.0 : 1.0;
     }
     return lit / 16.0;
 }
