@@ -209,14 +209,7 @@ public:
         ri.pDepthAttachment = &depth;
         if (formatInfo(m_depthFormat).stencil) ri.pStencilAttachment = &depth;
         vkCmdBeginRendering(rc.cmd, &ri);
-        VkViewport vp{0, 0, static_cast<float>(m_width), static_cast<float>(m_height), 0, 1};
-        VkRect2D sc{{0, 0}, {m_width, m_height}};
-        vkCmdSetViewport(rc.cmd, 0, 1, &vp);
-        vkCmdSetScissor(rc.cmd, 0, 1, &sc);
-        VkDeviceSize offset = 0;
-        VkBuffer vb = rc.scene->vertexBuffer();
-        vkCmdBindVertexBuffers(rc.cmd, 0, 1, &vb, &offset);
-        vkCmdBindIndexBuffer(rc.cmd, rc.scene->indexBuffer(), 0, VK_INDEX_TYPE_UINT32);
+        bindViewAndGeometry(rc);
         (void)desc;
         if (m_forward) {
             // Blended draws back to front (by the distance of their origin to the camera).
@@ -255,6 +248,18 @@ public:
     }
 
 private:
+    // Inside a render pass: the viewport and scissor over the target, the scene's vertices and indices.
+    void bindViewAndGeometry(RecordContext& rc) const {
+        VkViewport vp{0, 0, static_cast<float>(m_width), static_cast<float>(m_height), 0, 1};
+        VkRect2D sc{{0, 0}, {m_width, m_height}};
+        vkCmdSetViewport(rc.cmd, 0, 1, &vp);
+        vkCmdSetScissor(rc.cmd, 0, 1, &sc);
+        VkDeviceSize offset = 0;
+        VkBuffer vb = rc.scene->vertexBuffer();
+        vkCmdBindVertexBuffers(rc.cmd, 0, 1, &vb, &offset);
+        vkCmdBindIndexBuffer(rc.cmd, rc.scene->indexBuffer(), 0, VK_INDEX_TYPE_UINT32);
+    }
+
     struct Group {
         MaterialInfo info;
         std::unique_ptr<ShaderProgram> program;
@@ -330,14 +335,7 @@ private:
             ri.layerCount = 1;
             ri.pDepthAttachment = &depth;
             vkCmdBeginRendering(rc.cmd, &ri);
-            VkViewport vp{0, 0, static_cast<float>(m_width), static_cast<float>(m_height), 0, 1};
-            VkRect2D sc{{0, 0}, {m_width, m_height}};
-            vkCmdSetViewport(rc.cmd, 0, 1, &vp);
-            vkCmdSetScissor(rc.cmd, 0, 1, &sc);
-            VkDeviceSize offset = 0;
-            VkBuffer vb = rc.scene->vertexBuffer();
-            vkCmdBindVertexBuffers(rc.cmd, 0, 1, &vb, &offset);
-            vkCmdBindIndexBuffer(rc.cmd, rc.scene->indexBuffer(), 0, VK_INDEX_TYPE_UINT32);
+            bindViewAndGeometry(rc);
             vkCmdBindPipeline(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.pipeline.get());
             g.program->bind(rc, VK_PIPELINE_BIND_POINT_GRAPHICS);
             for (size_t i : g.draws) {

@@ -11,6 +11,7 @@
 -- probe's diffuse and, through computeSpecOcclusion, its specular. Direct light is left to the
 -- shadows.
 local rg = require "rg"
+local lighting = require "lighting"
 
 local ao = {}
 
@@ -30,11 +31,7 @@ rg.pass "ao_blur" {
 
 -- A lighting pass's declaration that takes its ambient occlusion from `ssao` too.
 function ao.lit(pass)
-    pass.reads = pass.reads or {}
-    table.insert(pass.reads, "ssao")
-    pass.defines = pass.defines or {}
-    pass.defines.RG_SSAO = true
-    return pass
+    return lighting.extend(pass, { "ssao" }, "RG_SSAO")
 end
 
 return ao

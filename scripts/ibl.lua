@@ -14,6 +14,7 @@
 -- `ibl.lit` makes a lighting pass read them (lib/ibl.glsl with RG_IBL: the distant probe's diffuse
 -- and specular along the seed's dominant directions, with specular occlusion from AO).
 local rg = require "rg"
+local lighting = require "lighting"
 
 local ibl = {}
 
@@ -47,13 +48,7 @@ rg.pass "dfg_table" {
 -- A lighting pass's declaration, lit by the distant probe too: adds the probe's resources to its
 -- reads and RG_IBL to its defines. Returns the table it was given.
 function ibl.lit(pass)
-    pass.reads = pass.reads or {}
-    table.insert(pass.reads, "env_specular")
-    table.insert(pass.reads, { "env_sh", as = "storage" })
-    table.insert(pass.reads, "dfg")
-    pass.defines = pass.defines or {}
-    pass.defines.RG_IBL = true
-    return pass
+    return lighting.extend(pass, { "env_specular", { "env_sh", as = "storage" }, "dfg" }, "RG_IBL")
 end
 
 return ibl

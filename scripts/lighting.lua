@@ -29,14 +29,20 @@ rg.pass "light_culling" {
     dispatch = "depth", tile = 16, insert = { after = "gbuffer" },
 }
 
+-- Adds `reads` to a pass declaration's reads and `define` to its defines: what the `.lit` and
+-- `.tiled` wrappers of the lighting modules (ibl, shadows, ao and this one) do. Returns the pass.
+function lighting.extend(pass, reads, define)
+    pass.reads = pass.reads or {}
+    for _, r in ipairs(reads) do table.insert(pass.reads, r) end
+    pass.defines = pass.defines or {}
+    pass.defines[define] = true
+    return pass
+end
+
 -- A lighting pass's declaration, reading the tile lists: adds `light_tiles` to its reads and
 -- RG_LIGHT_TILES to its defines. Returns the table it was given.
 function lighting.tiled(pass)
-    pass.reads = pass.reads or {}
-    table.insert(pass.reads, { "light_tiles", as = "storage" })
-    pass.defines = pass.defines or {}
-    pass.defines.RG_LIGHT_TILES = true
-    return pass
+    return lighting.extend(pass, { { "light_tiles", as = "storage" } }, "RG_LIGHT_TILES")
 end
 
 return lighting

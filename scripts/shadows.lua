@@ -11,6 +11,7 @@
 -- the scene has no sun or `sun_shadows` is off. `shadows.lit` makes a lighting pass read them: lib/shadows.glsl's PCSS
 -- (blocker search, penumbra from the sun's angular size) multiplies the sun's light.
 local rg = require "rg"
+local lighting = require "lighting"
 
 local shadows = {}
 
@@ -42,12 +43,7 @@ rg.pass "shadow_sun" {
 
 -- A lighting pass's declaration, shadowed: reads the map and the cascades, defines RG_SHADOWS.
 function shadows.lit(pass)
-    pass.reads = pass.reads or {}
-    table.insert(pass.reads, "sun_shadow")
-    table.insert(pass.reads, { "sun_cascades", as = "storage" })
-    pass.defines = pass.defines or {}
-    pass.defines.RG_SHADOWS = true
-    return pass
+    return lighting.extend(pass, { "sun_shadow", { "sun_cascades", as = "storage" } }, "RG_SHADOWS")
 end
 
 -- Per frame: no sun in the scene (or sun_shadows off), no shadow draws — the map is cleared

@@ -4,7 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include <cstring>
+#include <map>
+#include <string>
+#include <vector>
+
 #include "cli/runtime.h"
+#include "cli/session.h"
+#include "image/image.h"
 
 namespace rg {
 
@@ -31,6 +38,46 @@ protected:
             << (s_runtime->gpu().validationMessages().empty() ? "" : s_runtime->gpu().validationMessages().back());
     }
     static Runtime& rt() { return *s_runtime; }
+
+    // What renderAndRead read back: textures by name, buffers' bytes by name, and the
+    // pre-exposure the last frame was rendered with (1 when the pipeline has no exposure state).
+    struct Readback {
+        std::map<std::string, Image> images;
+        std::map<std::string, std::vector<uint8_t>> buffers;
+        float preExposure = 1.0f;
+        const Image& operator[](const std::string& name) const { return images.at(name); }
+    };
+    // Loads `pipeline` with `options` (the resources to read are added to its captures), renders
+    // `frames` frames and reads the textures and buffers back. Failures are test failures; what
+    // could not be read is absent.
+    static Readback renderAndRead(SessionOptions options, const std::string& pipeline, uint32_t frames,
+                                  const std::vector<std::string>& textures, const std::vector<std::string>& buffers = {}) {
+        for (const auto& name : textures) options.captures.push_back(name);
+        for (const auto& name : buffers) options.captures.push_back(name);
+        Session s(*s_runtime, options);
+        Readback out;
+        auto r = s.load(pipeline);
+        EXPECT_TRUE(r.has_value()) << r.error().describe();
+        if (!r) return out;
+        for (uint32_t f = 0; f < frames; ++f) {
+            auto fr = s.frame();
+            EXPECT_TRUE(fr.has_value()) << fr.error().describe();
+            if (!fr) return out;
+        }
+        for (const auto& name : textures) {
+            auto img = s_runtime->executor().readback(name);
+            EXPECT_TRUE(img.has_value()) << name;
+            if (img) out.images[name] = std::move(*img);
+        }
+        for (const auto& name : buffers) {
+            auto bytes = s_runtime->executor().readbackBuffer(name);
+            EXPECT_TRUE(bytes.has_value()) << name;
+            if (bytes) out.buffers[name] = std::move(*bytes);
+        }
+        if (auto state = s_runtime->executor().readbackBuffer("exposure"); state && state->size() >= 16)
+            std::memcpy(&out.preExposure, state->data() + 8, sizeof(float));
+        return out;
+    }
 
     inline static Runtime* s_runtime = nullptr;
     uint32_t m_messagesBefore = 0;

@@ -31,16 +31,8 @@ protected:
         o.compile.outputWidth = N;
         o.compile.outputHeight = N;
         o.scene = kRoot + "/tests/gpu/scenes/ao_corner.lua";
-        o.captures = {"ssao"};
-        Session s(*s_runtime, o);
-        auto r = s.load(kRoot + "/scripts/pipelines/deferred.lua");
-        EXPECT_TRUE(r.has_value()) << r.error().describe();
-        if (!r) return {};
-        auto fr = s.frame();
-        EXPECT_TRUE(fr.has_value()) << fr.error().describe();
-        auto img = s_runtime->executor().readback("ssao");
-        EXPECT_TRUE(img.has_value());
-        return img ? *img : Image();
+        Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 1, {"ssao"});
+        return r.images.empty() ? Image() : r["ssao"];
     }
 };
 

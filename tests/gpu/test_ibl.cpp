@@ -53,33 +53,17 @@ protected:
         o.compile.outputWidth = w;
         o.compile.outputHeight = h;
         o.scene = kRoot + "/tests/gpu/scenes/" + scene;
-        o.captures = {"dfg", "depth"};
         o.params["exposure_mode"] = Value("manual");
         // The probe alone: the reference integrates it unoccluded, so screen-space AO (the spheres
         // occlude their neighbours) is reduced to a 5 cm search.
         o.params["ao_radius"] = Value(0.05);
-        Session s(*s_runtime, o);
+        Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/" + pipeline, frames, {"hdr", "dfg", "depth"});
         Frame out;
-        auto r = s.load(kRoot + "/scripts/pipelines/" + pipeline);
-        EXPECT_TRUE(r.has_value()) << r.error().describe();
-        if (!r) return out;
-        for (uint32_t f = 0; f < frames; ++f) {
-            auto fr = s.frame();
-            EXPECT_TRUE(fr.has_value()) << fr.error().describe();
-            if (!fr) return out;
-        }
-        auto hdr = s_runtime->executor().readback("hdr");
-        auto dfg = s_runtime->executor().readback("dfg");
-        auto depth = s_runtime->executor().readback("depth");
-        auto state = s_runtime->executor().readbackBuffer("exposure");
-        EXPECT_TRUE(hdr && dfg && depth && state);
-        if (!hdr || !dfg || !depth || !state) return out;
-        out.depth = std::move(*depth);
-        float st[4];
-        std::memcpy(st, state->data(), sizeof st);
-        for (float& v : hdr->pixels) v /= st[2];
-        out.hdr = std::move(*hdr);
-        out.dfg = std::move(*dfg);
+        if (r.images.size() != 3) return out;
+        out.hdr = r["hdr"];
+        for (float& v : out.hdr.pixels) v /= r.preExposure;
+        out.dfg = r["dfg"];
+        out.depth = r["depth"];
         return out;
     }
 };

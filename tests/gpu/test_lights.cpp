@@ -794,7 +794,13 @@ TiledFrame renderManyLights(Runtime& rt, uint32_t lights, bool tiled, uint32_t w
         const std::string dir = std::string(RG_TEST_TMP) + "/untiled";
         std::filesystem::create_directories(dir);
         std::ofstream(dir + "/deferred.lua") << readFile(pipeline);
-        std::ofstream(dir + "/lighting.lua") << "local lighting = {}\nfunction lighting.tiled(pass) return pass end\nreturn lighting\n";
+        // A lighting module whose `tiled` adds nothing (the other modules still extend passes).
+        std::ofstream(dir + "/lighting.lua")
+            << "local lighting = {}\n"
+               "function lighting.extend(pass, reads, define)\n"
+               "  pass.reads = pass.reads or {}\n  for _, r in ipairs(reads) do table.insert(pass.reads, r) end\n"
+               "  pass.defines = pass.defines or {}\n  pass.defines[define] = true\n  return pass\nend\n"
+               "function lighting.tiled(pass) return pass end\nreturn lighting\n";
         pipeline = dir + "/deferred.lua";
     }
     SessionOptions o;

@@ -42,30 +42,14 @@ protected:
         o.compile.outputWidth = W;
         o.compile.outputHeight = H;
         o.scene = kRoot + "/tests/gpu/scenes/" + scene;
-        o.captures = {"GB2", "depth"};
         o.params["exposure_mode"] = Value("manual");
-        Session s(*s_runtime, o);
+        Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/" + pipeline, frames, {"hdr", "GB2", "depth"});
         Render out;
-        auto r = s.load(kRoot + "/scripts/pipelines/" + pipeline);
-        EXPECT_TRUE(r.has_value()) << r.error().describe();
-        if (!r) return out;
-        for (uint32_t f = 0; f < frames; ++f) {
-            auto fr = s.frame();
-            EXPECT_TRUE(fr.has_value()) << fr.error().describe();
-            if (!fr) return out;
-        }
-        auto hdr = s_runtime->executor().readback("hdr");
-        auto state = s_runtime->executor().readbackBuffer("exposure");
-        auto gb2 = s_runtime->executor().readback("GB2");
-        auto depth = s_runtime->executor().readback("depth");
-        EXPECT_TRUE(hdr && state && gb2 && depth);
-        if (!hdr || !state || !gb2 || !depth) return out;
-        float st[4];
-        std::memcpy(st, state->data(), sizeof st);
-        for (float& v : hdr->pixels) v /= st[2];  // the pre-exposure this frame was rendered with
-        out.hdr = std::move(*hdr);
-        out.gb2 = std::move(*gb2);
-        out.depth = std::move(*depth);
+        if (r.images.size() != 3) return out;
+        out.hdr = r["hdr"];
+        for (float& v : out.hdr.pixels) v /= r.preExposure;  // the pre-exposure this frame was rendered with
+        out.gb2 = r["GB2"];
+        out.depth = r["depth"];
         return out;
     }
 

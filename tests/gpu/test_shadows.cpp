@@ -43,24 +43,12 @@ protected:
         o.compile.outputWidth = N;
         o.compile.outputHeight = N;
         o.scene = kRoot + "/tests/gpu/scenes/shadow_box.lua";
-        o.captures = {"sun_cascades"};
         o.params["exposure_mode"] = Value("manual");
-        Session s(*s_runtime, o);
+        Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", frames, {"hdr"}, {"sun_cascades"});
         Frame out;
-        auto r = s.load(kRoot + "/scripts/pipelines/deferred.lua");
-        EXPECT_TRUE(r.has_value()) << r.error().describe();
-        if (!r) return out;
-        for (uint32_t f = 0; f < frames; ++f) {
-            auto fr = s.frame();
-            EXPECT_TRUE(fr.has_value()) << fr.error().describe();
-            if (!fr) return out;
-        }
-        auto hdr = s_runtime->executor().readback("hdr");
-        auto cascades = s_runtime->executor().readbackBuffer("sun_cascades");
-        EXPECT_TRUE(hdr && cascades);
-        if (!hdr || !cascades) return out;
-        out.hdr = std::move(*hdr);
-        out.cascades = std::move(*cascades);
+        if (r.images.empty() || r.buffers.empty()) return out;
+        out.hdr = r["hdr"];
+        out.cascades = r.buffers["sun_cascades"];
         return out;
     }
 

@@ -45,24 +45,13 @@ protected:
         o.compile.outputWidth = W;
         o.compile.outputHeight = H;
         o.scene = kRoot + "/tests/gpu/scenes/ssr_mirror.lua";
-        o.captures = {"ssr"};
         o.params["exposure_mode"] = Value("manual");
-        Session s(*s_runtime, o);
+        // Two frames: the second reflects the first's lit image.
+        Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 2, {"hdr", "ssr"});
         Frame out;
-        auto r = s.load(kRoot + "/scripts/pipelines/deferred.lua");
-        EXPECT_TRUE(r.has_value()) << r.error().describe();
-        if (!r) return out;
-        for (int f = 0; f < 2; ++f) {  // the second frame reflects the first's lit image
-            auto fr = s.frame();
-            EXPECT_TRUE(fr.has_value()) << fr.error().describe();
-            if (!fr) return out;
-        }
-        auto hdr = s_runtime->executor().readback("hdr");
-        auto ssr = s_runtime->executor().readback("ssr");
-        EXPECT_TRUE(hdr && ssr);
-        if (!hdr || !ssr) return out;
-        out.hdr = std::move(*hdr);
-        out.ssr = std::move(*ssr);
+        if (r.images.size() != 2) return out;
+        out.hdr = r["hdr"];
+        out.ssr = r["ssr"];
         return out;
     }
 };
