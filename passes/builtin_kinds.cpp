@@ -74,12 +74,19 @@ VkClearColorValue clearColorFor(Format f, const Value& v) {
 // (it starts and ends every frame in ShaderReadOnly).
 class Cadence {
 public:
-    Result<void> parse(const PassDesc& desc) {
+    Result<void> parse(const PassSetup& setup) {
+        const PassDesc& desc = setup.desc;
         const std::string c = desc.params["cadence"].isString() ? desc.params["cadence"].asString() : "frame";
         if (c != "frame" && c != "once")
             return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.cadence: unknown '" + c + "', expected one of: 'frame', 'once'");
         m_once = c == "once";
         m_recorded = false;
+        // What a pass writes once must still be there in the frames it skips.
+        if (m_once)
+            for (const Access& a : desc.accesses)
+                if (usageWrites(a.usage) && !setup.resources.find(a.resource)->plan->persistent)
+                    return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.cadence: 'once' writes only persistent resources; '" +
+                                                             a.resource + "' is not (declare it with persistent = true)");
         return {};
     }
     // True when the pass records this frame (and remembers that it did).
@@ -268,7 +275,7 @@ public:
         ShaderRequest req;
         req.path = *shader;
         req.stage = ShaderStage::Compute;
-        if (auto r = m_cadence.parse(desc); !r) return r;
+        if (auto r = m_cadence.parse(setup); !r) return r;
         const bool perMip = desc.params["per_mip"].asBool(false);
         const PhysicalResource* mipTarget = nullptr;
         if (perMip) {
@@ -470,7 +477,7 @@ public:
         const PhysicalResource* r = setup.resources.find(m_target);
         if (!r->image || formatInfo(r->plan->format).integer || isDepthStencil(r->plan->format))
             return fail(ErrorCode::InvalidInput, passPrefix(setup.desc) + "'" + m_target + "' must be a filterable colour texture to build mips");
-        return m_cadence.parse(setup.desc);
+        return m_cadence.parse(setup);
     }
     void record(RecordContext& rc) override {
         if (!m_cadence.due(rc)) return;

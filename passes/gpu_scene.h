@@ -113,7 +113,6 @@ public:
     // shader's `SceneEnvironment` sampler2D is bound to.
     VkImageView environmentView() const { return m_environment.view(); }
     VkSampler environmentSampler() const { return m_environmentSampler.get(); }
-    bool hasEnvironment() const { return m_scene.environment.has_value(); }
     uint32_t lightCount() const { return m_lightCount; }
     uint32_t iesProfileCount() const { return m_iesProfileCount; }
 

@@ -367,6 +367,18 @@ TEST_F(LuaGpu, CadenceOnceRecordsAfterEachBuildAndEachReset) {
     ASSERT_FALSE(e.has_value());
     EXPECT_NE(e.error().describe().find("pass 'accumulate': params.cadence: unknown 'daily', expected one of: 'frame', 'once'"), std::string::npos)
         << e.error().describe();
+    // A pass run once that writes a transient resource would leave garbage in the frames it skips.
+    const std::string transient = std::string(RG_TEST_TMP) + "/once_transient.lua";
+    std::ofstream(transient) << "local rg = require \"rg\"\n"
+                                "rg.resource \"output\" { format = \"rgba32f\" }\n"
+                                "rg.pass \"fill\" { kind = \"compute\", shader = \"test/pattern.comp\", writes = { \"output\" }, bind = { pattern = \"output\" }, cadence = \"once\" }\n"
+                                "rg.output \"output\"\n";
+    auto t = s.load(transient);
+    Result<void> te = t ? s.frame() : Result<void>(std::unexpected(t.error()));
+    ASSERT_FALSE(te.has_value());
+    EXPECT_NE(te.error().describe().find("params.cadence: 'once' writes only persistent resources; 'output' is not (declare it with persistent = true)"),
+              std::string::npos)
+        << te.error().describe();
 }
 
 TEST_F(LuaGpu, PerMipDispatchWritesEveryMipOfTheChain) {
