@@ -33,12 +33,13 @@ void main() {
     float NdotV = abs(dot(N, V)) + 1e-5;
     vec3 luminance = g.emissive;
     RgLightList list = rgLightList(p);  // the tile's lights (lib/light_tiles.glsl)
+    float sun = rgSunVisibility(position, N);  // the sun's shadow (RG_SHADOWS), once for both lobes
     for (uint k = 0u; k < list.count; ++k) {
         uint i = rgListLight(list, k);
         // Each lobe sees the light from its own representative point (area lights): evaluated
         // with the base's roughness and with the coat's.
-        RgLightSample s = rgEvaluateLight(i, position, N, V, linearRoughness);
-        RgLightSample c = rgEvaluateLight(i, position, N, V, coatRoughness);
+        RgLightSample s = rgEvaluateLight(i, position, N, V, linearRoughness, sun);
+        RgLightSample c = rgEvaluateLight(i, position, N, V, coatRoughness, sun);
         vec3 H = rgSafeNormalize(V + c.Ls, N);
         float NdotL = clamp(dot(N, c.Ls), 0.0, 1.0);
         float NdotH = clamp(dot(N, H), 0.0, 1.0);

@@ -26,8 +26,9 @@ void main() {
     float linearRoughness = 1.0 - g.smoothness;
     vec3 luminance = g.emissive;
     RgLightList list = rgLightList(p);
+    float sun = rgSunVisibility(position, g.normal);  // the sun's shadow (RG_SHADOWS), once
     for (uint k = 0u; k < list.count; ++k) {
-        RgLightSample s = rgEvaluateLight(rgListLight(list, k), position, g.normal, V, linearRoughness);
+        RgLightSample s = rgEvaluateLight(rgListLight(list, k), position, g.normal, V, linearRoughness, sun);
         luminance += rgStandardLighting(s, g.normal, V, g.diffuseColor, g.f0, linearRoughness);
     }
     luminance += rgStandardIbl(g.normal, V, g.diffuseColor, g.f0, linearRoughness, rgAmbientOcclusion(g.ao));  // the distant probe (RG_IBL)

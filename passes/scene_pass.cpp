@@ -111,6 +111,28 @@ std::string forwardSource() {
            "}\n";
 }
 
+// The textures a scene material has, as lib/material.glsl's RG_TEXTURES bits.
+uint32_t textureMask(const Material& m) {
+    const TextureRef* refs[] = {&m.baseColorTex, &m.metallicRoughnessTex, &m.normalTex, &m.occlusionTex, &m.emissiveTex};
+    uint32_t mask = 0;
+    for (uint32_t t = 0; t < 5; ++t)
+        if (refs[t]->valid()) mask |= 1u << t;
+    return mask;
+}
+
+// The scene's draws that `wanted` accepts, split by the textures their materials have (one
+// shader variant each: RG_TEXTURES), in the scene's order within each variant.
+template <typename Wanted>
+std::map<uint32_t, std::vector<size_t>> drawsByTextures(const GpuScene& scene, Wanted wanted) {
+    std::map<uint32_t, std::vector<size_t>> out;
+    const auto& materials = scene.scene().materials;
+    for (size_t d = 0; d < scene.draws().size(); ++d) {
+        const Material& m = materials[scene.draws()[d].material];
+        if (wanted(m)) out[textureMask(m)].push_back(d);
+    }
+    return out;
+}
+
 class ScenePass final : public PassInstance {
 public:
     Result<void> prepare(PassSetup& setup) override {
@@ -137,46 +159,26 @@ public:
         m_depthFormat = depth->plan->format;
 
         if (m_forward) {
-            Group g;
-            g.info.name = "forward";
-            ShaderRequest vert;
-            vert.path = "passes/scene.vert";
-            ShaderRequest frag;
-            frag.source = forwardSource();
-            frag.virtualName = "forward.frag";
-            frag.stage = ShaderStage::Fragment;
-            g.program = std::make_unique<ShaderProgram>();
-            if (auto r = g.program->build(setup, {vert, frag}, {{1u, setup.scene->materialSetLayout()}}); !r) return r;
-            if (auto r = createPipeline(setup, g, attachments); !r) return r;
-            const auto& sceneMaterials = setup.scene->scene().materials;
-            for (size_t d = 0; d < setup.scene->draws().size(); ++d)
-                if (sceneMaterials[setup.scene->draws()[d].material].alphaMode == AlphaMode::Blend) g.draws.push_back(d);
-            m_groups.push_back(std::move(g));
-            return {};
+            MaterialInfo info;
+            info.name = "forward";
+            auto variants = drawsByTextures(*setup.scene, [](const Material& m) { return m.alphaMode == AlphaMode::Blend; });
+            // Blended draws are sorted back to front across variants: one group, every texture.
+            std::vector<size_t> all;
+            for (auto& [mask, draws] : variants) all.insert(all.end(), draws.begin(), draws.end());
+            std::sort(all.begin(), all.end());
+            return addGroup(setup, info, forwardSource(), "forward.frag", 31u, std::move(all), attachments);
         }
         for (const MaterialInfo& info : materialsOf(desc)) {
             for (const auto& t : info.targets)
                 if (std::find(attachments.begin(), attachments.end(), t) == attachments.end())
                     return fail(ErrorCode::InvalidInput, passPrefix(desc) + "material '" + info.name + "' writes layout '" + info.layout +
                                                              "' target '" + t + "', which the pass does not write");
-            Group g;
-            g.info = info;
-            ShaderRequest vert;
-            vert.path = "passes/scene.vert";
-            ShaderRequest frag;
-            frag.source = fragmentSource(info, attachments);
-            frag.virtualName = "material_" + info.name + ".frag";
-            frag.stage = ShaderStage::Fragment;
-            g.program = std::make_unique<ShaderProgram>();
-            if (auto r = g.program->build(setup, {vert, frag}, {{1u, setup.scene->materialSetLayout()}}); !r) return r;
-            if (auto r = createPipeline(setup, g, attachments); !r) return r;
-            // The scene's draws of this material.
-            const auto& sceneMaterials = setup.scene->scene().materials;
-            for (size_t d = 0; d < setup.scene->draws().size(); ++d) {
-                const Material& m = sceneMaterials[setup.scene->draws()[d].material];
-                if (m.model == info.name && m.alphaMode != AlphaMode::Blend) g.draws.push_back(d);
-            }
-            m_groups.push_back(std::move(g));
+            // The scene's draws of this material, one shader variant per set of textures.
+            auto variants = drawsByTextures(*setup.scene, [&](const Material& m) { return m.model == info.name && m.alphaMode != AlphaMode::Blend; });
+            if (variants.empty()) variants[31u];  // no draws: still compiled, so a broken material fails at load
+            for (auto& [mask, draws] : variants)
+                if (auto r = addGroup(setup, info, fragmentSource(info, attachments), "material_" + info.name + ".frag", mask, std::move(draws), attachments); !r)
+                    return r;
         }
         return {};
     }
@@ -258,6 +260,26 @@ private:
         VkBuffer vb = rc.scene->vertexBuffer();
         vkCmdBindVertexBuffers(rc.cmd, 0, 1, &vb, &offset);
         vkCmdBindIndexBuffer(rc.cmd, rc.scene->indexBuffer(), 0, VK_INDEX_TYPE_UINT32);
+    }
+
+    // One pipeline: the scene vertex shader and `fragment` with RG_TEXTURES = `textures`.
+    Result<void> addGroup(PassSetup& setup, const MaterialInfo& info, std::string fragment, const std::string& name, uint32_t textures,
+                          std::vector<size_t> draws, const std::vector<std::string>& attachments) {
+        Group g;
+        g.info = info;
+        ShaderRequest vert;
+        vert.path = "passes/scene.vert";
+        ShaderRequest frag;
+        frag.source = std::move(fragment);
+        frag.virtualName = name;
+        frag.stage = ShaderStage::Fragment;
+        frag.defines.emplace_back("RG_TEXTURES", std::to_string(textures));
+        g.program = std::make_unique<ShaderProgram>();
+        if (auto r = g.program->build(setup, {vert, frag}, {{1u, setup.scene->materialSetLayout()}}); !r) return r;
+        if (auto r = createPipeline(setup, g, attachments); !r) return r;
+        g.draws = std::move(draws);
+        m_groups.push_back(std::move(g));
+        return {};
     }
 
     struct Group {

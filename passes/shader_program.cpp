@@ -96,6 +96,13 @@ Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> s
                                                      v.typeName());
         defines.emplace_back(name, value);
     }
+    // The light types of the scene (lib/scene.glsl RG_SCENE_LIGHT_TYPES): the light loop keeps
+    // only their branches. A new scene is a new build, so the shaders follow it.
+    if (setup.scene) {
+        uint32_t types = 0;
+        for (const Light& l : setup.scene->scene().lights) types |= 1u << static_cast<uint32_t>(l.type);
+        defines.emplace_back("RG_SCENE_LIGHT_TYPES", std::to_string(types));
+    }
 
     for (auto& req : stages) {
         req.passName = desc.name;

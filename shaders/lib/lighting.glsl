@@ -158,9 +158,11 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
     vec3 colour = light.intensity.rgb;
     vec3 dir = light.directionRange.xyz;
     RgLightSample s;
+    s.Ld = s.Ls = N;
+    s.diffuseIlluminance = s.specularIlluminance = vec3(0.0);
     s.specularNormalisation = 1.0;
 
-    if (type == RG_LIGHT_SUN) {
+    if (RG_SCENE_HAS_LIGHT(RG_LIGHT_SUN) && type == RG_LIGHT_SUN) {
         // lst:6: the diffuse part as if the sun were punctual (eq:28), the specular part towards
         // the point of its disk closest to R. params.z, w: sin and cos of the angular radius.
         vec3 D = -dir;
@@ -184,7 +186,7 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
     float invDist = inversesqrt(sqrDist);
     vec3 L = Lu * invDist;
 
-    if (type <= RG_LIGHT_SPOT) {
+    if ((RG_SCENE_HAS_LIGHT(RG_LIGHT_POINT) || RG_SCENE_HAS_LIGHT(RG_LIGHT_SPOT)) && type <= RG_LIGHT_SPOT) {
         // lst:4 (point: scale 0, offset 1), eq:27 / lst:5 for an IES profile.
         float att = getDistanceAtt(Lu, light.directionRange.w);
         att *= getAngleAtt(-L, dir, light.params.x, light.params.y);
@@ -200,7 +202,7 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
     vec3 luminance = colour * rgRangeWindow(sqrDist, light.directionRange.w);  // cd/m²
     float radius = light.params.z;
 
-    if (type == RG_LIGHT_SPHERE) {
+    if (RG_SCENE_HAS_LIGHT(RG_LIGHT_SPHERE) && type == RG_LIGHT_SPHERE) {
         // lst:10, sphere evaluation: clamps keep away from the edge cases and out of the light.
         float sinSigmaSqr = min(radius * radius / sqrDist, 0.9999);
         s.Ld = L;
@@ -212,7 +214,7 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
         s.specularIlluminance = luminance * (RG_PI * sinSigmaSqr);
         float w = rgLobeWidening(alpha, radius * invDist);
         s.specularNormalisation = w * w;
-    } else if (type == RG_LIGHT_DISK) {
+    } else if (RG_SCENE_HAS_LIGHT(RG_LIGHT_DISK) && type == RG_LIGHT_DISK) {
         // lst:10, disk evaluation, times the disk's own orientation. It emits along `dir`.
         float cosLight = clamp(dot(dir, -L), 0.0, 1.0);
         float sqrRadius = radius * radius;
@@ -226,7 +228,7 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
         s.specularIlluminance = luminance * (RG_PI * sinSigmaSqr * cosLight);
         float w = rgLobeWidening(alpha, radius * invDist);
         s.specularNormalisation = w * w;
-    } else if (type == RG_LIGHT_RECT) {
+    } else if (RG_SCENE_HAS_LIGHT(RG_LIGHT_RECT) && type == RG_LIGHT_RECT) {
         // seed 002 §4.7.2.5: one-sided, it emits along `dir`; axis: its height direction.
         s.Ld = L;
         s.Ls = L;
@@ -249,7 +251,7 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
             s.specularIlluminance = luminance * solidAngle;
             s.specularNormalisation = rgLobeWidening(alpha, halfWidth * invDist) * rgLobeWidening(alpha, halfHeight * invDist);
         }
-    } else {  // RG_LIGHT_TUBE
+    } else if (RG_SCENE_HAS_LIGHT(RG_LIGHT_TUBE)) {  // RG_LIGHT_TUBE
         // seed 002 §4.7.2.6: the capsule as a rectangle (length × 2r) facing the point plus its two
         // half-spheres as one sphere at the segment's closest point. dir: along the tube.
         float lightWidth = light.params.w;
@@ -290,14 +292,20 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
 // rgStandardBrdf's two halves, so that each lobe can look at the light from its own direction.
 // Light i as rgEvaluateLightUnshadowed gives it, times its shadow (lib/shadows.glsl: the sun's
 // cascades when the pass is built with RG_SHADOWS, scripts/shadows.lua's `shadows.lit`).
-RgLightSample rgEvaluateLight(uint i, vec3 P, vec3 N, vec3 V, float linearRoughness) {
+// `sunVisibility`: rgSunVisibility(P, N), taken once per shaded point before the light loop —
+// the filtered shadow lookup is the loop's most expensive part, and every light would pay for it.
+RgLightSample rgEvaluateLight(uint i, vec3 P, vec3 N, vec3 V, float linearRoughness, float sunVisibility) {
     RgLightSample s = rgEvaluateLightUnshadowed(i, P, N, V, linearRoughness);
 #ifdef RG_SHADOWS
-    float visibility = rgShadow(i, P, N);
+    float visibility = rgShadow(i, sunVisibility);
     s.diffuseIlluminance *= visibility;
     s.specularIlluminance *= visibility;
 #endif
     return s;
+}
+// The same, looking the sun's shadow up itself (for one light, or where speed does not matter).
+RgLightSample rgEvaluateLight(uint i, vec3 P, vec3 N, vec3 V, float linearRoughness) {
+    return rgEvaluateLight(i, P, N, V, linearRoughness, rgSunVisibility(P, N));
 }
 
 // The diffuse half without ⟨n·l⟩ (the diffuse illuminance carries it): Fr_DisneyDiffuse / π.

@@ -35,26 +35,39 @@ struct RgSurface {
     bool twoColour;     // the material is a two-colour one (its lighting takes diffuseColor and f0)
 };
 
+// Which of the five textures the material has (bits 1 base colour, 2 metallic-roughness,
+// 4 normal, 8 occlusion, 16 emissive): the scene pass compiles one variant per combination its
+// draws use, so an absent texture is not sampled — its default (white; the flat normal) would
+// leave the surface exactly as the factors give it, and on a CPU rasteriser the five filtered
+// samples of tiny triangles are most of the G-buffer's cost. Without it, every texture is sampled.
+#ifndef RG_TEXTURES
+#define RG_TEXTURES 31
+#endif
+
 vec2 rgTextureUv(int texture, vec2 uv0, vec2 uv1) {
     vec4 r0 = material.uvTransform[2 * texture], r1 = material.uvTransform[2 * texture + 1];
     vec2 uv = r0.w > 0.5 ? uv1 : uv0;
     return vec2(dot(r0.xyz, vec3(uv, 1.0)), dot(r1.xyz, vec3(uv, 1.0)));
 }
 
+// Texture `slot` of the material (bit `bit` of RG_TEXTURES), or its default when it has none.
+#define rgSampleMaterialTexture(tex, bit, slot, uv0, uv1, absent) \
+    (((RG_TEXTURES) & (bit)) != 0 ? texture(tex, rgTextureUv(slot, uv0, uv1)) : (absent))
+
 RgSurface rgSampleSurface(vec3 position, vec3 normal, vec4 tangent, vec2 uv0, vec2 uv1, bool frontFacing) {
     RgSurface s;
     s.position = position;
-    vec4 base = texture(baseColorTex, rgTextureUv(0, uv0, uv1));
+    vec4 base = rgSampleMaterialTexture(baseColorTex, 1, 0, uv0, uv1, vec4(1.0));
     s.baseColor = material.baseColorOpacity.rgb * base.rgb;
     s.opacity = material.baseColorOpacity.a * base.a;
-    vec4 mr = texture(metallicRoughnessTex, rgTextureUv(1, uv0, uv1));
+    vec4 mr = rgSampleMaterialTexture(metallicRoughnessTex, 2, 1, uv0, uv1, vec4(1.0));
     // glTF: roughness in G, metallic in B; smoothness = 1 − roughness.
     s.smoothness = 1.0 - (1.0 - material.factors.x) * mr.g;
     s.metalMask = material.factors.y * mr.b;
     s.reflectance = material.factors.z;
-    float occlusion = texture(occlusionTex, rgTextureUv(3, uv0, uv1)).r;
+    float occlusion = rgSampleMaterialTexture(occlusionTex, 8, 3, uv0, uv1, vec4(1.0)).r;
     s.ao = material.factors.w * mix(1.0, occlusion, material.factors2.y);
-    s.emissive = material.emissive.rgb * texture(emissiveTex, rgTextureUv(4, uv0, uv1)).rgb;
+    s.emissive = material.emissive.rgb * rgSampleMaterialTexture(emissiveTex, 16, 4, uv0, uv1, vec4(1.0)).rgb;
     s.diffuseColor = material.diffuseColor.rgb * base.rgb;
     s.f0 = material.f0.rgb;
     s.twoColour = material.diffuseColor.w > 0.5;
@@ -67,7 +80,7 @@ RgSurface rgSampleSurface(vec3 position, vec3 normal, vec4 tangent, vec2 uv0, ve
     vec3 anyT = normalize(abs(n.x) < 0.9 ? cross(n, vec3(1.0, 0.0, 0.0)) : cross(n, vec3(0.0, 1.0, 0.0)));
     t = tl > 1e-12 ? t * inversesqrt(tl) : anyT;
     vec3 b = cross(n, t) * tangent.w;
-    vec3 m = texture(normalTex, rgTextureUv(2, uv0, uv1)).xyz * 2.0 - 1.0;
+    vec3 m = rgSampleMaterialTexture(normalTex, 4, 2, uv0, uv1, vec4(0.5, 0.5, 1.0, 1.0)).xyz * 2.0 - 1.0;
     m.xy *= material.factors2.x;
     s.normal = normalize(mat3(t, b, n) * m);
     return s;

@@ -95,10 +95,16 @@ float rgSunShadow(vec3 P, vec3 N) {
     return lit / 16.0;
 }
 
-float rgShadow(uint light, vec3 P, vec3 N) {
-    if (rgCascades.c.info.x > 0.0 && light == uint(rgCascades.c.info.y + 0.5)) return rgSunShadow(P, N);
-    return 1.0;
+// The sun's visibility at P, once per shaded point (rgEvaluateLight's last argument).
+float rgSunVisibility(vec3 P, vec3 N) { return rgCascades.c.info.x > 0.0 ? rgSunShadow(P, N) : 1.0; }
+
+// The visibility of light i given the sun's (other lights cast no shadow yet).
+float rgShadow(uint light, float sunVisibility) {
+    return rgCascades.c.info.x > 0.0 && light == uint(rgCascades.c.info.y + 0.5) ? sunVisibility : 1.0;
 }
+#else
+float rgSunVisibility(vec3 P, vec3 N) { return 1.0; }
+float rgShadow(uint light, float sunVisibility) { return 1.0; }
 #endif
 
 #endif

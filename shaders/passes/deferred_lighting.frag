@@ -31,9 +31,10 @@ void main() {
     float linearRoughness = 1.0 - g.smoothness;
     vec3 luminance = g.emissive;
     RgLightList list = rgLightList(p);  // the tile's lights (lib/light_tiles.glsl)
+    float sun = rgSunVisibility(position, g.normal);  // the sun's shadow (RG_SHADOWS), once
     for (uint k = 0u; k < list.count; ++k) {
         uint i = rgListLight(list, k);
-        RgLightSample s = rgEvaluateLight(i, position, g.normal, V, linearRoughness);
+        RgLightSample s = rgEvaluateLight(i, position, g.normal, V, linearRoughness, sun);
         luminance += rgStandardLighting(s, g.normal, V, diffuseColor, f0, linearRoughness);
     }
     luminance += rgStandardIbl(g.normal, V, diffuseColor, f0, linearRoughness, rgAmbientOcclusion(g.ao));  // the distant probe (RG_IBL)
