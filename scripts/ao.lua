@@ -17,7 +17,7 @@ local ao = {}
 
 rg.param "ao_radius" { type = "number", default = 1.0, min = 0.05, max = 10, doc = "metres around a point searched for occluders" }
 
-rg.resource "ao_half" { format = "r16f", scale = { 0.5, 0.5 }, doc = "GTAO at half resolution, before its blur" }
+rg.resource "ao_half" { format = "rg16f", scale = { 0.5, 0.5 }, doc = "GTAO at half resolution, before its blur: AO, view distance (m)" }
 rg.resource "ssao" { format = "r8", doc = "screen-space ambient occlusion, 1 open .. 0 closed" }
 
 rg.pass "gtao" {

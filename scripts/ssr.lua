@@ -1,20 +1,18 @@
 -- Screen-space reflections and their composition with the probes (seed 002 §4.9.4, §4.9.5).
 --
 --   local ssr = require "ssr"     -- after the G-buffer and decals: Hi-Z pyramid, SSR
---   rg.pass "lighting_standard" { ... }
---   ssr.compose()                 -- after the lighting: SSR replaces the probe where it hit
+--   rg.pass "lighting_standard" (ssr.lit { ... })  -- the lighting composes SSR over the probe
 --   loop.sky_and_forward()
 --   ssr.history()                 -- the lit image kept for the next frame's SSR
 --
 -- `hiz` (compute, per_mip over its own chain) builds the nearest-depth pyramid; `ssr`
 -- (fullscreen) marches the reflected ray through it and reads the previous frame's lit image
--- (`hdr_history`, persistent, with mips for rough reflections) at the hit, with a confidence in
--- alpha; `ssr_compose` (fullscreen, standard stencil class) blends SSR over the distant probe's
--- specular with that confidence; `ssr_history_copy` + `ssr_history_mips` keep this frame's lit
--- image for the next.
+-- (`hdr_history`, persistent, with mips for rough reflections) at the hit, in nits, with a
+-- confidence in alpha; a lighting pass wrapped in `ssr.lit` (defines RG_SSR) blends it over the
+-- distant probe's specular with that confidence, in the same split-sum (lib/ibl.glsl) — no pass
+-- of its own; `ssr_history_copy` + `ssr_history_mips` keep this frame's lit image for the next.
 local rg = require "rg"
-local ibl = require "ibl"
-local ao = require "ao"
+local lighting = require "lighting"
 
 local ssr = {}
 
@@ -24,7 +22,7 @@ rg.param "ssr_thickness" { type = "number", default = 0.3, min = 0.01, max = 10,
 rg.param "ssr_max_roughness" { type = "number", default = 0.6, min = 0, max = 1, doc = "linear roughness from which the probes alone reflect" }
 
 rg.resource "hiz" { format = "r32f", mips = "full", doc = "nearest depth pyramid (Hi-Z)" }
-rg.resource "ssr" { format = "rgba16f", doc = "screen-space reflection: rgb colour (pre-exposed), a confidence" }
+rg.resource "ssr" { format = "rgba16f", doc = "screen-space reflection: rgb luminance (nits), a confidence" }
 rg.resource "hdr_history" { format = "rgba16f", mips = "full", persistent = true, doc = "the previous frame's lit image, with mips" }
 
 rg.pass "hiz" {
@@ -32,16 +30,14 @@ rg.pass "hiz" {
     per_mip = true, filter = "nearest",
 }
 rg.pass "ssr" {
-    kind = "fullscreen", shader = "ssr/ssr.frag", reads = { "GB0", "depth", "hiz", "hdr_history" }, writes = { "ssr" },
+    kind = "fullscreen", shader = "ssr/ssr.frag", reads = { "GB0", "depth", "hiz", "hdr_history", { "exposure", as = "storage" } },
+    writes = { "ssr" },
 }
 
--- After the lighting passes: SSR over the distant probe on the standard class.
-function ssr.compose()
-    rg.pass "ssr_compose" (ao.lit(ibl.lit {
-        kind = "fullscreen", shader = "ssr/compose.frag",
-        reads = { "GB0", "GB1", "GB2", "depth", { "depth", as = "depth" }, "ssr", { "exposure", as = "storage" } },
-        writes = { { "hdr", load = true } }, blend = "additive", stencil = { class = "lit_standard", mask = 7 },
-    }))
+-- A lighting pass's declaration that composes SSR over the distant probe (lib/ibl.glsl RG_SSR):
+-- reads `ssr`. The `ssr` pass decodes the `disney` layout, so only its lighting paths take it.
+function ssr.lit(pass)
+    return lighting.extend(pass, { "ssr" }, "RG_SSR")
 end
 
 -- After everything that lights the HDR: keep it (and its mips) for the next frame.

@@ -108,7 +108,9 @@ Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string
         PassDesc pass;
         pass.name = "debug_view";
         pass.kind = "fullscreen";
-        pass.accesses = {{"ssr", Usage::Sampled}, {"debug_view", Usage::ColorAttachment}};
+        if (!g.findResource("exposure"))
+            return fail(ErrorCode::InvalidInput, "--view " + view + ": the pipeline has no 'exposure' (post.exposure_state(): the reflection is in nits)");
+        pass.accesses = {{"ssr", Usage::Sampled}, {"exposure", Usage::StorageRead}, {"debug_view", Usage::ColorAttachment}};
         pass.params = Value(Value::Table{{"shader", Value("passes/ssr_view.frag")},
                                          {"uniforms", Value(Value::Table{{"view", Value(view == "ssr" ? 0.0 : 1.0)}})}});
         g.passes.push_back(pass);

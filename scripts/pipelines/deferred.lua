@@ -15,15 +15,13 @@ post.params { exposure_mode = "auto" }
 post.exposure_state()
 
 -- One lighting pass per lighting path, each on its stencil class, each looping over the lights
--- of its pixel's tile (lighting.tiled), then adding the distant probe's light (ibl.lit).
-rg.pass "lighting_standard" (ao.lit(shadows.lit(ibl.lit(lighting.tiled {
+-- of its pixel's tile (lighting.tiled), then adding the distant probe's light (ibl.lit) with the
+-- screen-space reflection over its specular where SSR found the reflected surface (ssr.lit, §4.9.5).
+rg.pass "lighting_standard" (ssr.lit(ao.lit(shadows.lit(ibl.lit(lighting.tiled {
     kind = "fullscreen", shader = "passes/deferred_lighting.frag",
     reads = { "GB0", "GB1", "GB2", "GB3", "depth", { "depth", as = "depth" }, { "exposure", as = "storage" } },
     writes = { "hdr" }, stencil = { class = "lit_standard", mask = 7 },  -- low 3 bits: foliage (9) too
-}))))
-
--- SSR replaces the distant probe's specular where it found the reflected surface (§4.9.5).
-ssr.compose()
+})))))
 
 -- The sky where nothing was drawn, then blended materials lit with the same light loop; the lit
 -- image is kept for the next frame's reflections.

@@ -58,6 +58,18 @@ vec3 rgDfg(float NdotV, float linearRoughness) {
 #endif
 }
 
+// The screen-space reflection of the shaded pixel (scripts/ssr.lua's `ssr` pass: rgb in nits, a
+// its confidence), or none without RG_SSR.
+#ifdef RG_SSR
+#ifndef RG_SSR_BINDING
+#define RG_SSR_BINDING 17
+#endif
+layout(set = 0, binding = RG_SSR_BINDING) uniform sampler2D ssr;
+vec4 rgScreenSpaceReflection() { return texelFetch(ssr, ivec2(gl_FragCoord.xy), 0); }
+#else
+vec4 rgScreenSpaceReflection() { return vec4(0.0); }
+#endif
+
 // The distant probe's lighting of one lobe pair, before occlusion: diffuse (LD · DFG.z, the
 // radiance reflected by a white Disney diffuse) and specular (LD · (f0 DFG.x + f90 DFG.y)), both in
 // cd/m² for an environment in nits.
@@ -80,6 +92,11 @@ RgIbl rgEvaluateIbl(vec3 N, vec3 V, vec3 f0, float f90, float linearRoughness) {
     float mips = float(textureQueryLevels(env_specular));
     vec3 Rd = rgSpecularDominantDir(N, R, alpha);
     vec3 ld = textureLod(env_specular, Rd, sqrt(linearRoughness) * (mips - 1.0)).rgb;
+    // §4.9.5's composition order: the screen-space reflection first, the distant probe for what
+    // it did not find (RG_SSR, scripts/ssr.lua's ssr.lit: the pixel's reflection in nits with
+    // its confidence), through the same split-sum weight and occlusion.
+    vec4 reflection = rgScreenSpaceReflection();
+    ld = mix(ld, reflection.rgb, reflection.a);
     r.specular = ld * (f0 * dfgTerms.x + f90 * dfgTerms.y);
 #endif
     return r;

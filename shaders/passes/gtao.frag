@@ -6,7 +6,7 @@
 // the cosine lobe between the two horizons integrated analytically around the normal projected
 // into the slice:  ¼ (−cos(2h − n) + cos n + 2h sin n)  per side, weighted by the projected
 // normal's length. 1 = open, 0 = closed. Directions turn per pixel (a 4×4 pattern the
-// ao_blur pass averages out).
+// ao_blur pass averages out). Written with the pixel's view distance beside it (rg16f).
 #include "lib/scene.glsl"
 #include "gbuffer_disney.glsl"
 
@@ -33,7 +33,7 @@ void main() {
     ivec2 half_ = ivec2(gl_FragCoord.xy);
     ivec2 full = half_ * 2;
     float z = texelFetch(depth, full, 0).r;
-    if (z >= 1.0) { color = vec4(1.0); return; }
+    if (z >= 1.0) { color = vec4(1.0, 0.0, 0.0, 1.0); return; }
     vec3 P = viewPosition(full);
     vec3 Nw = unpackGBuffer_disney(texelFetch(GB0, full, 0), vec4(0.0), vec4(0.0), vec4(0.0)).normal;
     vec3 N = normalize(mat3(camera.view) * Nw);
@@ -79,5 +79,7 @@ void main() {
         float arc = 0.25 * (-cos(2.0 * h1 - n) + cosN + 2.0 * h1 * sinN) + 0.25 * (-cos(2.0 * h2 - n) + cosN + 2.0 * h2 * sinN);
         visibility += projLen * arc;
     }
-    color = vec4(vec3(clamp(visibility / float(RG_AO_SLICES), 0.0, 1.0)), 1.0);
+    // r: visibility; g: the view distance the blur weighs its taps by (read with the AO, no
+    // second texture and no reconstruction per tap).
+    color = vec4(clamp(visibility / float(RG_AO_SLICES), 0.0, 1.0), -P.z, 0.0, 1.0);
 }

@@ -4,11 +4,13 @@
 // pixel to where it leaves the view or Params.ssr_distance: the step grows a level each time the
 // ray stays in front of a cell's nearest depth and shrinks when it does not, a hit at level 0.
 // Output: rgb the previous frame's lit image (`hdr_history`, pre-exposed) at the hit, blurred by
-// roughness through its mips; a the confidence: 0 on a miss, fading at the screen's edges, for
+// roughness through its mips, in nits (divided by this frame's pre-exposure, as the probes the
+// lighting passes blend it with: lib/ibl.glsl, RG_SSR); a the confidence: 0 on a miss, fading at the screen's edges, for
 // rays turned towards the camera, for hits far behind the surface, and with roughness (past
 // Params.ssr_max_roughness the probes alone reflect).
 #include "lib/scene.glsl"
 #include "lib/ibl.glsl"
+#include "lib/exposure.glsl"
 #include "gbuffer_disney.glsl"
 
 layout(location = 0) in vec2 uv;
@@ -22,7 +24,9 @@ layout(set = 0, binding = 4) uniform Params {
     float ssr_distance;
     float ssr_thickness;
     float ssr_max_roughness;
+    float initial_ev100;
 } params;
+layout(set = 0, binding = 5, std430) readonly buffer exposure { RgExposureState state; } ex;
 
 // View position → (screen uv, depth) by the projection.
 vec3 project(vec3 v) {
@@ -87,5 +91,5 @@ void main() {
     // Roughness widens the reflected cone: its footprint at the hit, in pixels, picks the mip.
     float footprint = alpha * length((at.xy - s0.xy) * size);
     float lod = clamp(log2(max(footprint, 1.0)), 0.0, float(textureQueryLevels(hdr_history) - 1));
-    color = vec4(textureLod(hdr_history, at.xy, lod).rgb, confidence);
+    color = vec4(textureLod(hdr_history, at.xy, lod).rgb / rgPreExposure(ex.state, params.initial_ev100), confidence);
 }

@@ -24,7 +24,8 @@ constexpr uint32_t W = 240, H = 160;
 
 struct Frame {
     Image hdr;  // pre-exposed, as the HDR target holds it
-    Image ssr;
+    Image ssr;  // nits
+    float preExposure = 1.0f;
 };
 
 // The pixel a world point lands on with the scene's camera (as passes/gpu_scene.cpp projects).
@@ -52,6 +53,7 @@ protected:
         if (r.images.size() != 2) return out;
         out.hdr = r["hdr"];
         out.ssr = r["ssr"];
+        out.preExposure = r.preExposure;
         return out;
     }
 };
@@ -70,8 +72,9 @@ TEST_F(Ssr, ReflectionLandsWhereTheMirrorPutsIt) {
                 none.ssr.at(m.x, m.y, 3));
     EXPECT_GT(a, 0.8f);
     EXPECT_GT(r, 5.0f * g);  // the red box
-    // The reflected colour is the box as the previous frame lit it (the mirror's f0 ≈ 0.95).
-    const float boxRed = box.hdr.at(boxPx.x, boxPx.y, 0);
+    // The reflected colour is the box as the previous frame lit it (the mirror's f0 ≈ 0.95), in
+    // nits: SSR divides the pre-exposure out, as the probes it is blended with are.
+    const float boxRed = box.hdr.at(boxPx.x, boxPx.y, 0) / box.preExposure;
     EXPECT_NEAR(r / boxRed, 1.0f, 0.15f);
     // Without the box the ray meets only sky: no hit, the probe reflects.
     EXPECT_EQ(none.ssr.at(m.x, m.y, 3), 0.0f);
