@@ -1,6 +1,7 @@
 #include "gpu_scene.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
@@ -182,6 +183,51 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(Context& ctx, Scene scene, co
     return s;
 }
 
+namespace {
+
+// The world-space box around vertices under `world`.
+std::pair<glm::vec3, glm::vec3> worldBox(const std::vector<Vertex>& vertices, const glm::mat4& world) {
+    if (vertices.empty()) return {glm::vec3(world[3]), glm::vec3(world[3])};
+    glm::vec3 lo(INFINITY), hi(-INFINITY);
+    for (const Vertex& v : vertices) {
+        const glm::vec3 p = glm::vec3(world * glm::vec4(v.position, 1.0f));
+        lo = glm::min(lo, p);
+        hi = glm::max(hi, p);
+    }
+    return {lo, hi};
+}
+
+// The six planes (a, b, c, d: inside where a x + b y + c z + d >= 0) of a clip-space frustum
+// with depth 0..1 (Gribb & Hartmann), normalised.
+std::array<glm::vec4, 6> frustumPlanes(const glm::mat4& m) {
+    const glm::vec4 r0(m[0][0], m[1][0], m[2][0], m[3][0]), r1(m[0][1], m[1][1], m[2][1], m[3][1]),
+        r2(m[0][2], m[1][2], m[2][2], m[3][2]), r3(m[0][3], m[1][3], m[2][3], m[3][3]);
+    std::array<glm::vec4, 6> p = {r3 + r0, r3 - r0, r3 + r1, r3 - r1, r2, r3 - r2};
+    for (auto& q : p) q /= std::max(glm::length(glm::vec3(q)), 1e-20f);
+    return p;
+}
+
+bool sphereMeetsFrustum(const std::array<glm::vec4, 6>& planes, glm::vec3 centre, float radius) {
+    for (const auto& q : planes)
+        if (glm::dot(glm::vec3(q), centre) + q.w < -radius) return false;
+    return true;
+}
+
+// False when the box lies wholly outside one of the planes (its corner furthest along the
+// plane's normal is behind it); conservative near the frustum's edges.
+bool boxMeetsFrustum(const std::array<glm::vec4, 6>& planes, glm::vec3 lo, glm::vec3 hi) {
+    for (const auto& q : planes) {
+        const glm::vec3 corner(q.x >= 0 ? hi.x : lo.x, q.y >= 0 ? hi.y : lo.y, q.z >= 0 ? hi.z : lo.z);
+        if (glm::dot(glm::vec3(q), corner) + q.w < 0.0f) return false;
+    }
+    return true;
+}
+
+// The size of the ShadowViews block: a uvec4 header, the views, then an ivec4 per light.
+constexpr size_t kShadowViewBytes = 16 + size_t(kMaxShadowViews) * sizeof(GpuShadowView) + size_t(kMaxLights) * 16;
+
+}  // namespace
+
 Result<void> GpuScene::uploadGeometry(Context& ctx) {
     std::vector<Vertex> vertices;
     std::vector<uint32_t> indices;
@@ -204,8 +250,12 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
     for (const Node& node : m_scene.nodes) {
         if (node.mesh < 0 || static_cast<size_t>(node.mesh) >= meshRanges.size()) continue;
         const glm::mat4 normal = glm::mat4(glm::transpose(glm::inverse(glm::mat3(node.world))));
-        for (const Range& r : meshRanges[static_cast<size_t>(node.mesh)])
-            if (r.indexCount) m_draws.push_back({r.firstIndex, r.indexCount, r.vertexOffset, r.material, node.world, normal});
+        const auto& ranges = meshRanges[static_cast<size_t>(node.mesh)];
+        for (size_t k = 0; k < ranges.size(); ++k)
+            if (ranges[k].indexCount) {
+                const auto [lo, hi] = worldBox(m_scene.meshes[static_cast<size_t>(node.mesh)].primitives[k].vertices, node.world);
+                m_draws.push_back({ranges[k].firstIndex, ranges[k].indexCount, ranges[k].vertexOffset, ranges[k].material, node.world, normal, lo, hi});
+            }
     }
     if (vertices.empty()) {  // keep valid (empty) buffers for an empty scene
         vertices.resize(1);
@@ -549,6 +599,10 @@ Result<void> GpuScene::createFrameData(Context& ctx, const GpuSceneOptions& opti
         auto cam = Buffer::create(ctx, "scene.camera", sizeof(CameraUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
         if (!cam) return std::unexpected(cam.error());
         m_cameraBuffers.push_back(std::move(*cam));
+        auto views = Buffer::create(ctx, "scene.shadow_views", kShadowViewBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+        if (!views) return std::unexpected(views.error());
+        std::memset(views->mapped(), 0, kShadowViewBytes);
+        m_shadowViewBuffers.push_back(std::move(*views));
         auto lights = Buffer::create(ctx, "scene.lights", bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
         if (!lights) return std::unexpected(lights.error());
         auto* p = static_cast<uint8_t*>(lights->mapped());
@@ -593,6 +647,62 @@ void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
     u.sceneMin = glm::vec4(m_scene.boundsMin, 1.0f);
     u.sceneMax = glm::vec4(m_scene.boundsMax, 1.0f);
     std::memcpy(m_cameraBuffers[slot].mapped(), &u, sizeof u);
+    updateShadowViews(slot, u.viewProj);
+}
+
+std::pair<uint32_t, uint32_t> GpuScene::shadowViewsOf(size_t light) const {
+    return light < m_lightViews.size() ? m_lightViews[light] : std::pair<uint32_t, uint32_t>{0, 0};
+}
+
+void GpuScene::updateShadowViews(uint32_t slot, const glm::mat4& cameraViewProj) {
+    m_shadowViewDraws.clear();
+    m_lightViews.assign(m_scene.lights.size(), {0, 0});
+    std::vector<GpuShadowView> views;
+    std::vector<glm::ivec4> lightViews(kMaxLights, glm::ivec4(-1, 0, 0, 0));
+    const auto camera = frustumPlanes(cameraViewProj);
+    // A light without a range reaches as far as the scene goes.
+    const float sceneSize = glm::length(m_scene.boundsMax - m_scene.boundsMin);
+    const float nearPlane = 0.05f;
+    for (size_t i = 0; i < m_scene.lights.size() && i < kMaxLights; ++i) {
+        const Light& l = m_scene.lights[i];
+        if (!l.castShadows || l.type == LightType::Directional) continue;
+        const float far = l.range > 0.0f ? l.range : std::max(sceneSize, 1.0f) * 2.0f;
+        if (!sphereMeetsFrustum(camera, l.position, far)) continue;  // its light does not reach the view
+        const bool single = l.type == LightType::Spot && l.outerAngle <= glm::radians(60.0f);
+        const uint32_t count = single ? 1 : 6;
+        if (views.size() + count > kMaxShadowViews) continue;
+        // A cube's faces see a little past 90° so that filter taps near a face's edge stay on
+        // its map (16 texels of a 1024 map); a spot's view covers its outer cone.
+        const float tanHalf = single ? std::tan(std::min(l.outerAngle + glm::radians(2.0f), glm::radians(75.0f))) : 1.0f / (1.0f - 32.0f / 1024.0f);
+        const glm::mat4 proj = glm::perspectiveRH_ZO(2.0f * std::atan(tanHalf), 1.0f, nearPlane, far);
+        static const glm::vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+        static const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+        lightViews[i] = glm::ivec4(static_cast<int>(views.size()), static_cast<int>(count), 0, 0);
+        m_lightViews[i] = {static_cast<uint32_t>(views.size()), count};
+        const float radius = std::max({l.radius, 0.5f * std::max(l.width, l.height), 0.5f * l.length});
+        for (uint32_t f = 0; f < count; ++f) {
+            const glm::vec3 axis = single ? l.direction : axes[f];
+            const glm::vec3 up = single ? (std::abs(axis.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0)) : ups[f];
+            GpuShadowView v;
+            v.viewProj = proj * glm::lookAt(l.position, l.position + axis, up);
+            v.position = glm::vec4(l.position, nearPlane);
+            v.params = glm::vec4(far, tanHalf, radius, static_cast<float>(i));
+            views.push_back(v);
+            // The casters this view sees.
+            const auto planes = frustumPlanes(v.viewProj);
+            std::vector<size_t> draws;
+            for (size_t d = 0; d < m_draws.size(); ++d)
+                if (m_scene.materials[m_draws[d].material].alphaMode != AlphaMode::Blend &&
+                    boxMeetsFrustum(planes, m_draws[d].boundsMin, m_draws[d].boundsMax))
+                    draws.push_back(d);
+            m_shadowViewDraws.push_back(std::move(draws));
+        }
+    }
+    auto* p = static_cast<uint8_t*>(m_shadowViewBuffers[slot].mapped());
+    const glm::uvec4 header(static_cast<uint32_t>(views.size()), 0, 0, 0);
+    std::memcpy(p, &header, sizeof header);
+    if (!views.empty()) std::memcpy(p + 16, views.data(), views.size() * sizeof(GpuShadowView));
+    std::memcpy(p + 16 + size_t(kMaxShadowViews) * sizeof(GpuShadowView), lightViews.data(), lightViews.size() * sizeof(glm::ivec4));
 }
 
 }  // namespace rg::passes

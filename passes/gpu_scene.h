@@ -25,6 +25,16 @@ struct DrawItem {
     uint32_t material = 0;  // index into Scene::materials
     glm::mat4 world{1.0f};
     glm::mat4 normalMatrix{1.0f};
+    glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};  // world-space box around its vertices
+};
+
+// The shadow views of the scene's local lights (lib/shadows.glsl's ShadowViews block): how many
+// views a frame can have, and one view as the GPU reads it.
+inline constexpr uint32_t kMaxShadowViews = 48;
+struct GpuShadowView {
+    glm::mat4 viewProj;   // world → the view's clip space (perspective, depth 0..1)
+    glm::vec4 position;   // xyz: the light's position; w: the near plane (m)
+    glm::vec4 params;     // x: the far plane (m); y: tan of half the field of view; z: the light's radius (m); w: light index
 };
 
 // Binding slots of the scene's camera and lights in set 0 (shaders/lib/scene.glsl).
@@ -106,6 +116,16 @@ public:
     void updateFrame(uint32_t slot, uint32_t width, uint32_t height);
     VkBuffer cameraBuffer(uint32_t slot) const { return m_cameraBuffers[slot].buffer(); }
     VkBuffer lightBuffer(uint32_t slot) const { return m_lightBuffers[slot].buffer(); }
+    // Frame slot `slot`'s shadow views (ShadowViews): for every local light with castShadows
+    // whose range reaches the camera's view, one perspective view (a spot of outer angle ≤ 60°)
+    // or six (a cube), in light order, up to kMaxShadowViews; then per light its first view and
+    // count. Written by updateFrame with the draws each view sees.
+    VkBuffer shadowViewBuffer(uint32_t slot) const { return m_shadowViewBuffers[slot].buffer(); }
+    uint32_t shadowViewCount() const { return static_cast<uint32_t>(m_shadowViewDraws.size()); }
+    // The draws whose bounding spheres meet view v's frustum (this frame).
+    const std::vector<size_t>& shadowViewDraws(uint32_t v) const { return m_shadowViewDraws[v]; }
+    // The first of light `light`'s shadow views this frame and how many (0: none).
+    std::pair<uint32_t, uint32_t> shadowViewsOf(size_t light) const;
     // The decals (shaders/lib/scene.glsl's Decals block): a count, then one RgDecal each.
     VkBuffer decalBuffer() const { return m_decals.buffer(); }
     // The environment as an equirectangular RGBA32F image of luminance (nits) in world orientation
@@ -137,7 +157,10 @@ private:
     gpu::OwnedDescriptorPool m_pool;
     std::vector<gpu::Buffer> m_materialBuffers;
     std::vector<VkDescriptorSet> m_materialSets;
-    std::vector<gpu::Buffer> m_cameraBuffers, m_lightBuffers;
+    std::vector<gpu::Buffer> m_cameraBuffers, m_lightBuffers, m_shadowViewBuffers;
+    std::vector<std::vector<size_t>> m_shadowViewDraws;      // per view of this frame
+    std::vector<std::pair<uint32_t, uint32_t>> m_lightViews;  // per light: first view, count
+    void updateShadowViews(uint32_t slot, const glm::mat4& cameraViewProj);
     gpu::Buffer m_decals;
     Result<void> createDecals(gpu::Context& ctx);
     uint32_t m_lightCount = 0;

@@ -310,10 +310,16 @@ private:
         const Value& bias = desc.params["depth_bias"];
         if (!bias.isNil() && !(bias.isList() && bias.asList().size() == 2))
             return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.depth_bias: expected { constant, slope }");
+        const std::string views = desc.params["views"].isString() ? desc.params["views"].asString() : "shader";
+        if (views != "shader" && views != "lights")
+            return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.views: unknown '" + views + "', expected one of: 'shader', 'lights'");
+        m_lightViews = views == "lights";
         Group g;
         g.info.name = "shadow";
         ShaderRequest vert;
-        vert.path = desc.params["shader"].isString() ? desc.params["shader"].asString() : "shadows/shadow.vert";
+        vert.path = desc.params["shader"].isString() ? desc.params["shader"].asString()
+                    : m_lightViews                   ? "shadows/local_shadow.vert"
+                                                     : "shadows/shadow.vert";
         g.program = std::make_unique<ShaderProgram>();
         if (auto r = g.program->build(setup, {vert}); !r) return r;
         GraphicsPipelineDesc d;
@@ -345,7 +351,11 @@ private:
     void recordShadow(RecordContext& rc) {
         const PhysicalResource* d = rc.resources.find(m_depth->resource);
         Group& g = m_groups.front();
-        for (uint32_t layer = 0; layer < m_layers; ++layer) {
+        // views = "lights": the scene's shadow views this frame (GpuScene::updateFrame), each with
+        // the casters its frustum meets; layers past them are neither cleared nor drawn (no
+        // light reads them).
+        const uint32_t layers = m_lightViews ? std::min(m_layers, rc.scene->shadowViewCount()) : m_layers;
+        for (uint32_t layer = 0; layer < layers; ++layer) {
             VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
             depth.imageView = d->image->layerView(layer);
             depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
@@ -360,7 +370,7 @@ private:
             bindViewAndGeometry(rc);
             vkCmdBindPipeline(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.pipeline.get());
             g.program->bind(rc, VK_PIPELINE_BIND_POINT_GRAPHICS);
-            for (size_t i : g.draws) {
+            for (size_t i : m_lightViews ? rc.scene->shadowViewDraws(layer) : g.draws) {
                 const DrawItem& item = rc.scene->draws()[i];
                 struct { glm::mat4 world; glm::vec4 layer; } push{item.world, glm::vec4(static_cast<float>(layer))};
                 vkCmdPushConstants(rc.cmd, g.program->layout(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof push, &push);
@@ -431,6 +441,7 @@ private:
     std::vector<Group> m_groups;
     bool m_forward = false;
     bool m_shadow = false;
+    bool m_lightViews = false;  // shadow: the scene's local-light views rather than the shader's
     uint32_t m_layers = 1;
 };
 
@@ -447,6 +458,7 @@ PassKindInfo scenePassKind() {
           {"shadow", "boolean", "depth only, into each layer of the depth target it writes, from the views its vertex shader computes (scripts/shadows.lua)"},
           {"shader", "string", "shadow: the vertex shader (default shadows/shadow.vert: the matrix of the layer its push constant names, from `sun_cascades`)"},
           {"depth_bias", "list", "shadow: { constant, slope } rasteriser depth bias"},
+          {"views", "string", "shadow: 'shader' (default: the layer's matrix is the vertex shader's business) or 'lights' (the scene's local-light shadow views this frame, one per layer, each drawing only the casters its frustum meets; shader default shadows/local_shadow.vert)"},
           {"rg_materials", "list", "(filled in by rgraph) the resolved materials"}},
          Usage::Sampled, Usage::ColorAttachment},
         [] { return std::make_unique<ScenePass>(); }};

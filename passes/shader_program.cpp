@@ -98,10 +98,17 @@ Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> s
     }
     // The light types of the scene (lib/scene.glsl RG_SCENE_LIGHT_TYPES): the light loop keeps
     // only their branches. A new scene is a new build, so the shaders follow it.
+    // Likewise RG_SCENE_SHADOWED_LIGHTS when a local light casts shadows (lib/shadows.glsl: the
+    // light loop looks its shadow up only then, with a blocker search only for lights with a size).
     if (setup.scene) {
         uint32_t types = 0;
-        for (const Light& l : setup.scene->scene().lights) types |= 1u << static_cast<uint32_t>(l.type);
+        int shadowed = 0;  // 1: only punctual lights cast shadows; 2: a light with a size does
+        for (const Light& l : setup.scene->scene().lights) {
+            types |= 1u << static_cast<uint32_t>(l.type);
+            if (l.castShadows) shadowed = std::max(shadowed, l.type == LightType::Point || l.type == LightType::Spot ? 1 : 2);
+        }
         defines.emplace_back("RG_SCENE_LIGHT_TYPES", std::to_string(types));
+        if (shadowed) defines.emplace_back("RG_SCENE_SHADOWED_LIGHTS", std::to_string(shadowed));
     }
 
     for (auto& req : stages) {
@@ -243,8 +250,9 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
         const bool camera = b.name == "Camera" && b.type == DescriptorType::UniformBuffer;
         const bool lights = b.name == "Lights" && b.type == DescriptorType::StorageBuffer;
         const bool decalList = b.name == "Decals" && b.type == DescriptorType::StorageBuffer;
+        const bool shadowViews = b.name == "ShadowViews" && b.type == DescriptorType::StorageBuffer;
         const bool environment = b.name == "SceneEnvironment" && b.type == DescriptorType::CombinedImageSampler;
-        if (camera || lights || decalList || environment) {
+        if (camera || lights || decalList || shadowViews || environment) {
             if (!setup.scene)
                 return fail(ErrorCode::InvalidInput, passPrefix(desc) + "shader binding '" + b.name +
                                                          "' is the scene's, but no scene is loaded (give --scene)");
@@ -349,9 +357,10 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
                 writes.push_back(w);
                 continue;
             }
-            buffers.push_back({b->name == "Camera"   ? setup.scene->cameraBuffer(s / m_variants)
-                               : b->name == "Lights" ? setup.scene->lightBuffer(s / m_variants)
-                                                     : setup.scene->decalBuffer(),
+            buffers.push_back({b->name == "Camera"        ? setup.scene->cameraBuffer(s / m_variants)
+                               : b->name == "Lights"      ? setup.scene->lightBuffer(s / m_variants)
+                               : b->name == "ShadowViews" ? setup.scene->shadowViewBuffer(s / m_variants)
+                                                          : setup.scene->decalBuffer(),
                                0, VK_WHOLE_SIZE});
             VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
             w.dstSet = m_sets[s][b->set];

@@ -1,4 +1,4 @@
--- Shadows (seed 002 §4.10.4; DESIGN §10): the sun's cascaded shadow map.
+-- Shadows (seed 002 §4.10.4; DESIGN §10): the sun's cascaded shadow map and the local lights' maps.
 --
 --   local shadows = require "shadows"   -- declares the map, its cascades and the passes
 --   rg.pass "lighting_x" (shadows.lit { kind = "fullscreen", shader = ..., reads = { ... }, ... })
@@ -10,6 +10,13 @@
 -- are culled by the graph when nothing reads the map, and skipped (rg.frame: shadows.frame) when
 -- the scene has no sun or `sun_shadows` is off. `shadows.lit` makes a lighting pass read them: lib/shadows.glsl's PCSS
 -- (blocker search, penumbra from the sun's angular size) multiplies the sun's light.
+--
+-- Local lights declared with `shadow = true` in the scene get shadow views each frame their range
+-- reaches the view (passes/gpu_scene.cpp: one perspective view for a spot of outer angle ≤ 60°, a
+-- cube of six otherwise, each with the casters its frustum meets); `shadow_local` (the `scene`
+-- kind, shadow = true, views = "lights") draws them into the layers of `local_shadow`, and the
+-- light loop of a `shadows.lit` pass filters them as it does the sun's, with the penumbra of the
+-- light's radius. A frame without such views draws nothing.
 local rg = require "rg"
 local lighting = require "lighting"
 
@@ -17,6 +24,8 @@ local shadows = {}
 
 shadows.size = 2048    -- texels per side of each cascade
 shadows.cascades = 3   -- 1..4 (3: each costs a draw of every caster)
+shadows.local_size = 1024   -- texels per side of each local light's view
+shadows.local_views = 12    -- layers for local lights' views: two cubes, or twelve spots
 
 rg.param "sun_shadows" { type = "boolean", default = true, doc = "the sun casts shadows (false: the map is only cleared)" }
 rg.param "shadow_distance" { type = "number", default = 40, min = 1, max = 10000, doc = "metres of view the sun's cascades cover" }
@@ -41,9 +50,15 @@ rg.pass "shadow_sun" {
     depth_bias = { 1.0, 1.5 }, after = { "shadow_clear" },
 }
 
--- A lighting pass's declaration, shadowed: reads the map and the cascades, defines RG_SHADOWS.
+rg.resource "local_shadow" { format = "d32f", size = { shadows.local_size, shadows.local_size }, layers = shadows.local_views,
+    doc = "the local lights' shadow maps, one layer per shadow view" }
+rg.pass "shadow_local" {
+    kind = "scene", shadow = true, views = "lights", writes = { "local_shadow" }, depth_bias = { 1.0, 1.5 },
+}
+
+-- A lighting pass's declaration, shadowed: reads the maps and the cascades, defines RG_SHADOWS.
 function shadows.lit(pass)
-    return lighting.extend(pass, { "sun_shadow", { "sun_cascades", as = "storage" } }, "RG_SHADOWS")
+    return lighting.extend(pass, { "sun_shadow", { "sun_cascades", as = "storage" }, "local_shadow" }, "RG_SHADOWS")
 end
 
 -- Per frame: no sun in the scene (or sun_shadows off), no shadow draws — the map is cleared

@@ -56,7 +56,7 @@ const std::vector<std::string> kViews = {"normals", "basecolor", "smoothness", "
 
 // Appends the debug view's passes: a fullscreen decode of the disney G-buffer, or for the
 // stencil one colour per stencil class drawn with that class's stencil test.
-Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string& view) {
+Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string& view, const Scene* scene) {
     for (const char* r : {"GB0", "GB1", "GB2", "GB3", "depth"})
         if (!g.findResource(r))
             return fail(ErrorCode::InvalidInput, "--view " + view + ": the pipeline has no '" + r +
@@ -66,6 +66,31 @@ Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string
     out.texture.format = Format::RGBA8Unorm;
     out.exported = true;
     g.resources.push_back(out);
+    // shadow:LIGHT — that local light's shadow maps this frame (a spot's one, a cube's six).
+    if (view.starts_with("shadow:")) {
+        const std::string name = view.substr(7);
+        if (!g.findResource("local_shadow"))
+            return fail(ErrorCode::InvalidInput, "--view " + view + ": the pipeline has no 'local_shadow' (require \"shadows\")");
+        std::string shadowed;
+        int index = -1;
+        for (size_t i = 0; scene && i < scene->lights.size(); ++i) {
+            const Light& l = scene->lights[i];
+            if (!l.castShadows) continue;
+            shadowed += (shadowed.empty() ? "'" : ", '") + l.name + "'";
+            if (l.name == name) index = static_cast<int>(i);
+        }
+        if (index < 0)
+            return fail(ErrorCode::InvalidInput, "--view " + view + ": the scene has no light '" + name + "' that casts shadows (" +
+                                                     (shadowed.empty() ? std::string("none does: give a local light shadow = true") : "those that do: " + shadowed) + ")");
+        PassDesc pass;
+        pass.name = "debug_view";
+        pass.kind = "fullscreen";
+        pass.accesses = {{"local_shadow", Usage::Sampled}, {"debug_view", Usage::ColorAttachment}};
+        pass.params = Value(Value::Table{{"shader", Value("passes/local_shadow_view.frag")},
+                                         {"uniforms", Value(Value::Table{{"light", Value(static_cast<double>(index))}})}});
+        g.passes.push_back(pass);
+        return {};
+    }
     if (view == "stencil") {
         PassDesc clear;
         clear.name = "debug_view_clear";
@@ -147,7 +172,7 @@ Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string
     }
     auto it = std::find(kViews.begin(), kViews.end(), view);
     if (it == kViews.end()) {
-        std::string all = "'stencil', 'lights', 'ssao', 'ssr', 'ssr_confidence', 'cascades', 'shadow'";
+        std::string all = "'stencil', 'lights', 'ssao', 'ssr', 'ssr_confidence', 'cascades', 'shadow', 'shadow:LIGHT'";
         for (const auto& v : kViews) all += ", '" + v + "'";
         return fail(ErrorCode::InvalidInput, "--view: unknown view '" + view + "'; expected one of: " + all);
     }
@@ -172,7 +197,10 @@ Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string
 // exist next to the pipeline script made absolute (shaders/ and the root are searched anyway).
 GraphDesc Session::buildableGraph(const PipelineDesc& p) const {
     GraphDesc g = graphWithParams(p);
-    if (!m_options.view.empty()) (void)addDebugView(g, p, m_options.view);  // checked in load()
+    if (!m_options.view.empty()) {  // checked in load()
+        const passes::GpuScene* scene = m_runtime.executor().scene();
+        (void)addDebugView(g, p, m_options.view, scene ? &scene->scene() : nullptr);
+    }
     for (auto& r : g.resources) {
         for (const auto& c : m_options.captures)
             if (r.name == c) r.exported = true;
@@ -323,7 +351,7 @@ Result<void> Session::load(const std::string& file) {
     if (scene || previousScene) m_runtime.executor().setScene(scene.get(), m_frameHook);
     if (!m_options.view.empty()) {
         GraphDesc probe = graphWithParams(*pipeline);
-        if (auto r = addDebugView(probe, *pipeline, m_options.view); !r) return r;
+        if (auto r = addDebugView(probe, *pipeline, m_options.view, scene ? &scene->scene() : nullptr); !r) return r;
     }
     std::vector<ChannelCapture> channels;
     for (const auto& c : m_options.captures) {

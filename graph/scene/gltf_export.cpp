@@ -322,6 +322,7 @@ struct Writer {
             if (!l.ies.empty()) x["ies"] = tinygltf::Value(l.ies);
             if (!l.iesMode.empty()) x["ies_mode"] = tinygltf::Value(l.iesMode);
             if (l.exactCone) x["exact_cone"] = tinygltf::Value(true);
+            if (l.castShadows) x["shadow"] = tinygltf::Value(true);
             if (l.type == LightType::Directional) x["angular_radius"] = tinygltf::Value(double(l.sunAngularRadius));
             if (!x.empty()) g.extras = tinygltf::Value(tinygltf::Value::Object{{"rgraph", tinygltf::Value(std::move(x))}});
             model.lights.push_back(g);

@@ -969,6 +969,7 @@ struct Loader {
                     return fail(ErrorCode::InvalidInput, where + ": extras.rgraph.ies_mode '" + out.iesMode + "' is not 'mask' or 'intensity'");
             }
             if (x.Get("exact_cone").IsBool()) out.exactCone = x.Get("exact_cone").Get<bool>();
+            if (x.Get("shadow").IsBool()) out.castShadows = x.Get("shadow").Get<bool>() && out.type != LightType::Directional;
             out.sunAngularRadius = float(number(x.Get("angular_radius"), out.sunAngularRadius));
             // Written by exportGlb for a light declared in lumens (its cd is what rgraph renders).
             if (x.Get("lumens").IsNumber() && (out.type == LightType::Point || out.type == LightType::Spot)) {

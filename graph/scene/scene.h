@@ -189,6 +189,9 @@ struct Light {
     // true = eq:16's exact cone (I = Φ / 2π(1 − cos θ_outer)).
     bool exactCone = false;
     float sunAngularRadius = 0.00465f;    // radians (the sun seen from the earth: 0.2664°)
+    // A local light that casts shadows (a shadow map per frame while its range reaches the view:
+    // scripts/shadows.lua's local maps). The sun's shadow is the pipeline's (`sun_shadows`).
+    bool castShadows = false;
 };
 
 // A physical camera (seed 002 §5.2). Exposure comes from aperture, shutter and ISO.

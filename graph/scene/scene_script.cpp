@@ -423,7 +423,7 @@ struct Builder {
         const Value& b = d.body;
         if (auto r = checkFields(w, b, {"type", "intensity", "unit", "color", "temperature", "position", "direction", "target", "up",
                                         "radius", "width", "height", "length", "inner_angle", "outer_angle", "range", "ies",
-                                        "ies_mode", "exact_cone", "angular_radius", "doc"});
+                                        "ies_mode", "exact_cone", "angular_radius", "shadow", "doc"});
             !r)
             return r;
         Light l;
@@ -459,6 +459,7 @@ struct Builder {
         if (auto r = only("exact_cone", l.type == LightType::Spot, "spot lights"); !r) return r;
         if (auto r = only("angular_radius", sun, "the sun"); !r) return r;
         if (auto r = only("range", !sun, "local lights"); !r) return r;
+        if (auto r = only("shadow", !sun, "local lights; the sun's shadow is the pipeline's sun_shadows parameter"); !r) return r;
         if (auto r = only("direction", l.type != LightType::Sphere, "lights with an orientation"); !r) return r;
         if (auto r = only("target", l.type != LightType::Sphere, "lights with an orientation"); !r) return r;
 
@@ -528,6 +529,7 @@ struct Builder {
         if (b.has("ies")) RG_TRY(l.ies, existingFile(w, b, "ies"));
         if (b.has("ies_mode")) RG_TRY(l.iesMode, choice(w, b, "ies_mode", "", {"mask", "intensity"}, "IES mode"));
         RG_TRY(l.exactCone, boolean(w, b, "exact_cone", false));
+        RG_TRY(l.castShadows, boolean(w, b, "shadow", false));
         float angular = 0.2664f;
         RG_TRY(angular, numberF(w, b, "angular_radius", angular, Range::openLow(0, 10)));
         l.sunAngularRadius = angular * kDegrees;

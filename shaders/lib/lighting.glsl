@@ -297,7 +297,7 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
 RgLightSample rgEvaluateLight(uint i, vec3 P, vec3 N, vec3 V, float linearRoughness, float sunVisibility) {
     RgLightSample s = rgEvaluateLightUnshadowed(i, P, N, V, linearRoughness);
 #ifdef RG_SHADOWS
-    float visibility = rgShadow(i, sunVisibility);
+    float visibility = rgShadow(i, sunVisibility) * rgLocalShadow(i, P, N);
     s.diffuseIlluminance *= visibility;
     s.specularIlluminance *= visibility;
 #endif

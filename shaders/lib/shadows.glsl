@@ -28,6 +28,29 @@ struct RgCascades {
     vec4 bias;        // x: receiver depth bias (m), y: normal offset (texels), z: softness (× the physical penumbra)
 };
 
+// ---- The local lights' shadow views (passes/gpu_scene.cpp updateShadowViews) -------------------
+// Each local light with `shadow = true` whose range reaches the view gets one perspective view (a
+// spot of outer angle ≤ 60°) or six (a cube: +x, −x, +y, −y, +z, −z, each a little wider than
+// 90° so filter taps near a face's edge stay on it), drawn into the layers of `local_shadow` by
+// the scene pass with views = "lights".
+#define RG_MAX_SHADOW_VIEWS 48
+struct RgShadowView {
+    mat4 viewProj;  // world → the view's clip space (perspective, depth 0..1)
+    vec4 position;  // xyz: the light's position; w: the near plane (m)
+    vec4 params;    // x: the far plane (m); y: tan of half the field of view; z: the light's radius (m); w: light index
+};
+#if defined(RG_SHADOW_VIEWS) || (defined(RG_SHADOWS) && defined(RG_SCENE_SHADOWED_LIGHTS))
+#define RG_LOCAL_SHADOWS 1
+#ifndef RG_SHADOW_VIEWS_BINDING
+#define RG_SHADOW_VIEWS_BINDING 18
+#endif
+layout(set = RG_CAMERA_SET, binding = RG_SHADOW_VIEWS_BINDING, std430) readonly buffer ShadowViews {
+    uvec4 count;                       // x: views this frame
+    RgShadowView view[RG_MAX_SHADOW_VIEWS];
+    ivec4 lightViews[RG_MAX_LIGHTS];   // per light: first view (−1: none), how many
+} rgShadowViews;
+#endif
+
 #ifdef RG_SHADOWS
 layout(set = 0, binding = RG_SHADOW_BINDING) uniform sampler2DArray sun_shadow;
 layout(set = 0, binding = RG_SHADOW_BINDING + 1, std430) readonly buffer sun_cascades { RgCascades c; } rgCascades;
@@ -105,6 +128,72 @@ float rgShadow(uint light, float sunVisibility) {
 #else
 float rgSunVisibility(vec3 P, vec3 N) { return 1.0; }
 float rgShadow(uint light, float sunVisibility) { return 1.0; }
+#endif
+
+// Visibility (0 shadowed .. 1 lit) of local light `light` at P with normal N, from its shadow
+// views — 1 for a light without (no shadow, out of view this frame, or beyond the layers the
+// pipeline declared). Percentage-closer soft shadows: a blocker search, then PCF over the half
+// penumbra a light of its radius gives at the receiver, (d_r − d_b) / d_b · radius (similar
+// triangles through the light's disk), at least a texel: hard-edged, filtered, for a punctual
+// light. Here d_b is PCSS's mean blocker distance: under the box of tests/gpu/test_shadows.cpp it
+// gives the geometric penumbra within 2 % (the nearest blocker, the sun's choice, gave 0.59 of it:
+// the cube face's depth axis is not the ray). Depths compare as distances along the view's axis.
+#ifndef RG_LOCAL_SHADOW_NORMAL_OFFSET
+#define RG_LOCAL_SHADOW_NORMAL_OFFSET 1.5  // texels at the receiver
+#endif
+#ifndef RG_LOCAL_SHADOW_BIAS
+#define RG_LOCAL_SHADOW_BIAS 1.5           // texels at the receiver
+#endif
+#if defined(RG_SHADOWS) && defined(RG_LOCAL_SHADOWS)
+#ifndef RG_LOCAL_SHADOW_BINDING
+#define RG_LOCAL_SHADOW_BINDING 19
+#endif
+layout(set = 0, binding = RG_LOCAL_SHADOW_BINDING) uniform sampler2DArray local_shadow;
+
+float rgLocalShadow(uint light, vec3 P, vec3 N) {
+    ivec4 lv = rgShadowViews.lightViews[light];
+    vec3 a = P - rgShadowViews.view[max(lv.x, 0)].position.xyz;
+    vec3 m = abs(a);
+    // A cube's face: the major axis of the direction from the light.
+    int face = lv.y < 6 ? 0 : m.x >= m.y && m.x >= m.z ? (a.x > 0.0 ? 0 : 1) : m.y >= m.z ? (a.y > 0.0 ? 2 : 3) : (a.z > 0.0 ? 4 : 5);
+    int vi = max(lv.x, 0) + face;
+    ivec3 mapSize = textureSize(local_shadow, 0);
+    RgShadowView v = rgShadowViews.view[min(vi, RG_MAX_SHADOW_VIEWS - 1)];
+    float size = float(mapSize.x);
+    float nearPlane = v.position.w, farPlane = v.params.x;
+    float receiverDistance = max((v.viewProj * vec4(P, 1.0)).w, nearPlane);
+    float texel = 2.0 * v.params.y * receiverDistance / size;  // metres a texel spans at the receiver
+    vec4 clip = v.viewProj * vec4(P + N * (RG_LOCAL_SHADOW_NORMAL_OFFSET * texel), 1.0);
+    vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+    float receiver = clip.w - RG_LOCAL_SHADOW_BIAS * texel;
+#if RG_SCENE_SHADOWED_LIGHTS > 1
+    float radius = v.params.z;
+    float searchTexels = clamp(radius / texel, 1.0, 64.0);
+    float blockers = 0.0, blockerDistance = 0.0;
+    for (int k = 0; k < 16; k += 2) {
+        float d = textureLod(local_shadow, vec3(uv + rgShadowTap(k) * searchTexels / size, float(vi)), 0.0).r;
+        float z = nearPlane * farPlane / (farPlane - d * (farPlane - nearPlane));
+        if (z < receiver) { blockers += 1.0; blockerDistance += z; }
+    }
+    blockerDistance /= max(blockers, 1.0);
+    float penumbra = clamp(radius * (receiver - blockerDistance) / max(blockerDistance, nearPlane) / texel, 1.0, 64.0);
+    const int taps = 16, tapStep = 1;
+#else
+    // Only punctual lights cast shadows in this scene: no penumbra to find, a 1.5-texel kernel of
+    // 8 taps (every other of the spiral) filters the edge.
+    float penumbra = 1.5;
+    const int taps = 16, tapStep = 2;
+#endif
+    float lit = 0.0;
+    for (int k = 0; k < taps; k += tapStep) {
+        float d = textureLod(local_shadow, vec3(uv + rgShadowTap(k) * penumbra / size, float(vi)), 0.0).r;
+        lit += nearPlane * farPlane / (farPlane - d * (farPlane - nearPlane)) < receiver ? 0.0 : 1.0;
+    }
+    bool valid = lv.y > 0 && vi < mapSize.z && clip.w > nearPlane;
+    return valid ? lit * float(tapStep) / float(taps) : 1.0;
+}
+#else
+float rgLocalShadow(uint light, vec3 P, vec3 N) { return 1.0; }
 #endif
 
 #endif

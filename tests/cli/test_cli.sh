@@ -61,11 +61,15 @@ check "unlit glb without environment" 0 grep "wrote $tmp/n.exr" -- \
     "$rgraph" render --scene "$tmp/unlit.glb" --environment none --size 48x32 --out "$tmp/n.exr" --png "$tmp/n.png"
 # The box's pixels: lit under the default sky, black with none (relative error of the unlit image against the lit one: 100 %).
 check "sky lights the glb" 0 grep "mean relative error 1" -- "$rgraph" compare "$tmp/n.exr" "$tmp/u.exr"
-check "graph json parses" 0 -- bash -c "'$rgraph' graph --format json --size 64x64 | python3 -c 'import json,sys; p=json.load(sys.stdin); n=[x[\"name\"] for x in p[\"passes\"]]; assert n[:5]==[\"env_cube\",\"env_mips\",\"env_prefilter\",\"env_irradiance\",\"dfg_table\"] and n[5:8]==[\"sun_cascades\",\"shadow_clear\",\"shadow_sun\"] and n[8:13]==[\"gbuffer\",\"light_culling\",\"gtao\",\"foliage_fixup\",\"ao_blur\"] and n[16:24]==[\"decals\",\"hiz\",\"ssr\",\"lighting_standard\",\"lighting_clearcoat\",\"lighting_two_colour\",\"sky\",\"forward\"] and n[-2:]==[\"tonemap\",\"fxaa\"], n'"
+check "graph json parses" 0 -- bash -c "'$rgraph' graph --format json --size 64x64 | python3 -c 'import json,sys; p=json.load(sys.stdin); n=[x[\"name\"] for x in p[\"passes\"]]; assert n[:5]==[\"env_cube\",\"env_mips\",\"env_prefilter\",\"env_irradiance\",\"dfg_table\"] and n[5:9]==[\"sun_cascades\",\"shadow_clear\",\"shadow_sun\",\"shadow_local\"] and n[9:14]==[\"gbuffer\",\"light_culling\",\"gtao\",\"foliage_fixup\",\"ao_blur\"] and n[17:25]==[\"decals\",\"hiz\",\"ssr\",\"lighting_standard\",\"lighting_clearcoat\",\"lighting_two_colour\",\"sky\",\"forward\"] and n[-2:]==[\"tonemap\",\"fxaa\"], n'"
 check "export-scene" 0 grep "wrote $tmp/materials.glb (6 meshes" -- "$rgraph" export-scene --scene tests/gpu/scenes/materials.lua --out "$tmp/materials.glb"
 check "render a glb" 0 grep "wrote $tmp/g.exr" -- "$rgraph" render --scene "$tmp/materials.glb" --size 64x32 --out "$tmp/g.exr" --png "$tmp/g.png"
 check "debug view" 0 grep "wrote $tmp/v.exr" -- "$rgraph" render --scene tests/gpu/scenes/materials.lua --view materialid --size 64x32 --out "$tmp/v.exr" --png "$tmp/v.png"
 check "unknown view" 2 grep "--view: unknown view 'albedo'" -- "$rgraph" render --view albedo --size 8x8
+check "view shadow:LIGHT" 0 grep "wrote $tmp/sl.exr" -- env RG_VALIDATION=1 "$rgraph" render --scene tests/gpu/scenes/local_shadow_box.lua \
+    --view shadow:lamp --size 96x64 --out "$tmp/sl.exr" --png "$tmp/sl.png"
+check "view shadow:LIGHT names the shadowed lights" 2 grep "--view shadow:sun: the scene has no light 'sun' that casts shadows (those that do: 'lamp')" -- \
+    "$rgraph" render --scene tests/gpu/scenes/local_shadow_box.lua --view shadow:sun --size 8x8
 for v in cascades shadow ssao ssr ssr_confidence; do
     check "view $v" 0 grep "wrote $tmp/$v.exr" -- env RG_VALIDATION=1 "$rgraph" render --view $v --size 64x32 --out "$tmp/$v.exr" --png "$tmp/$v.png"
 done
@@ -109,7 +113,7 @@ check "reference vs real time" 0 grep "mean relative error" -- \
 check "luminance beyond half floats" 0 grep "mean relative error 0" -- \
     bash -c "'$rgraph' render --scene tests/gpu/scenes/reference_sun.lua --size 48x32 --out '$tmp/sun.exr' --png '$tmp/sun.png' >/dev/null && '$rgraph' compare '$tmp/sun.exr' '$tmp/sun.exr'"
 check "bench" 0 grep "frame total" -- "$rgraph" bench --size 64x64 --frames 3 --json "$tmp/bench.json"
-check "bench json" 0 -- python3 -c "import json; b=json.load(open('$tmp/bench.json')); assert len(b['passes'])==35 and b['scene']['draws']>0 and b['frames']==3"
+check "bench json" 0 -- python3 -c "import json; b=json.load(open('$tmp/bench.json')); assert len(b['passes'])==36 and b['scene']['draws']>0 and b['frames']==3"
 
 # watch: a valid script, a broken one (reported, old pipeline kept), a fixed one (picked up),
 # then an edited shader (only its pass is rebuilt).

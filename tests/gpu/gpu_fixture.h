@@ -39,6 +39,19 @@ protected:
     }
     static Runtime& rt() { return *s_runtime; }
 
+    // Options to render Lua scene `scene` (with its scene.args) at width x height with manual
+    // exposure (the scene camera's settings, no adaptation), as most GPU tests do.
+    static SessionOptions sceneOptions(const std::string& scene, const std::map<std::string, std::string>& args, uint32_t width,
+                                       uint32_t height) {
+        SessionOptions o;
+        o.scene = scene;
+        o.sceneArgs = args;
+        o.compile.outputWidth = width;
+        o.compile.outputHeight = height;
+        o.params["exposure_mode"] = Value("manual");
+        return o;
+    }
+
     // What renderAndRead read back: textures by name, buffers' bytes by name, and the
     // pre-exposure the last frame was rendered with (1 when the pipeline has no exposure state).
     struct Readback {

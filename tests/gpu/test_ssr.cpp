@@ -41,12 +41,7 @@ glm::ivec2 pixelOf(glm::vec3 p) {
 class Ssr : public GpuFixture {
 protected:
     static Frame render(const std::map<std::string, std::string>& args) {
-        SessionOptions o;
-        o.sceneArgs = args;
-        o.compile.outputWidth = W;
-        o.compile.outputHeight = H;
-        o.scene = kRoot + "/tests/gpu/scenes/ssr_mirror.lua";
-        o.params["exposure_mode"] = Value("manual");
+        SessionOptions o = sceneOptions(kRoot + "/tests/gpu/scenes/ssr_mirror.lua", args, W, H);
         // Two frames: the second reflects the first's lit image.
         Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 2, {"hdr", "ssr"});
         Frame out;

@@ -1034,6 +1034,10 @@ TEST(SceneScript, LightFieldErrorsAndUnitsPerType) {
               "bad.lua:1: scene.light.a.width: not used by a point light (only by rect lights)");
     EXPECT_EQ(lua.error("scene.light \"s\" { type = \"sun\", intensity = 5, direction = { 0, -1, 0 }, range = 3 }"),
               "bad.lua:1: scene.light.s.range: not used by a sun light (only by local lights)");
+    EXPECT_EQ(lua.error("scene.light \"s\" { type = \"sun\", intensity = 5, direction = { 0, -1, 0 }, shadow = true }"),
+              "bad.lua:1: scene.light.s.shadow: not used by a sun light (only by local lights; the sun's shadow is the pipeline's sun_shadows parameter)");
+    EXPECT_EQ(lua.error("scene.light \"a\" { type = \"point\", intensity = 5, shadow = 1 }"),
+              "bad.lua:1: scene.light.a.shadow: expected a boolean, got 1");
     EXPECT_EQ(lua.error("scene.light \"a\" { type = \"spot\", intensity = 5 }"),
               "bad.lua:1: scene.light.a.direction: missing (a spot light needs direction or target)");
     EXPECT_EQ(lua.error("scene.light \"a\" { type = \"spot\", intensity = 5, direction = { 0, -1, 0 }, inner_angle = 40, outer_angle = 30 }"),
@@ -1246,6 +1250,7 @@ TEST(ExportGlb, LumensBecomeTheCandelaRenderedAndComeBack) {
     rg::Light exact = spot;  // eq:16: the flux over the cone, 1000 / (2π (1 − cos 0.5)) cd
     exact.name = "beam";
     exact.exactCone = true;
+    exact.castShadows = true;  // extras.rgraph.shadow
     scene.lights = {point, spot, exact};
     const std::string path = tmpDir("export_lumens") + "/lumens.glb";  // its own folder: tests run in parallel
     std::vector<std::string> warnings;
@@ -1269,6 +1274,8 @@ TEST(ExportGlb, LumensBecomeTheCandelaRenderedAndComeBack) {
     ASSERT_EQ(back->lights.size(), 3u);
     EXPECT_FALSE(back->lights[1].exactCone);
     EXPECT_TRUE(back->lights[2].exactCone);
+    EXPECT_FALSE(back->lights[1].castShadows);
+    EXPECT_TRUE(back->lights[2].castShadows);
     EXPECT_EQ(back->lights[0].unit, "lm");
     EXPECT_FLOAT_EQ(back->lights[0].intensity, 1600.0f);
     EXPECT_EQ(back->lights[1].unit, "lm");
