@@ -10,6 +10,7 @@
 #include "core/light_units.h"
 #include "lighting/area_lights.h"
 #include "lighting/punctual.h"
+#include "scene/bvh.h"
 #include "scene/environment.h"
 
 namespace rg::passes {
@@ -648,6 +649,35 @@ void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
     u.sceneMax = glm::vec4(m_scene.boundsMax, 1.0f);
     std::memcpy(m_cameraBuffers[slot].mapped(), &u, sizeof u);
     updateShadowViews(slot, u.viewProj);
+}
+
+VkBuffer GpuScene::bvhBuffer() const {
+    if (m_bvh.buffer() != VK_NULL_HANDLE) return m_bvh.buffer();
+    std::vector<glm::vec3> corners;
+    // The draws' triangles, from the scene's meshes under each node's transform.
+    for (const Node& node : m_scene.nodes) {
+        if (node.mesh < 0 || static_cast<size_t>(node.mesh) >= m_scene.meshes.size()) continue;
+        for (const Primitive& p : m_scene.meshes[static_cast<size_t>(node.mesh)].primitives) {
+            const uint32_t material = std::min<uint32_t>(p.material, static_cast<uint32_t>(m_scene.materials.size() - 1));
+            if (m_scene.materials[material].alphaMode == AlphaMode::Blend) continue;
+            for (size_t i = 0; i + 2 < p.indices.size(); i += 3)
+                for (int k = 0; k < 3; ++k) {
+                    const uint32_t v = p.indices[i + k];
+                    corners.push_back(v < p.vertices.size() ? glm::vec3(node.world * glm::vec4(p.vertices[v].position, 1.0f)) : glm::vec3(0.0f));
+                }
+        }
+    }
+    const FlatBvh bvh = buildBvh(corners);
+    const glm::uvec4 header(bvh.nodeCount, bvh.triangleCount, bvh.depth, 0u);
+    const size_t bytes = sizeof header + std::max<size_t>(bvh.data.size(), 1) * sizeof(glm::vec4);
+    auto buf = Buffer::create(*m_ctx, "scene.bvh", bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    if (!buf) return VK_NULL_HANDLE;  // ShaderProgram reports it
+    auto* p = static_cast<uint8_t*>(buf->mapped());
+    std::memset(p, 0, bytes);
+    std::memcpy(p, &header, sizeof header);
+    if (!bvh.data.empty()) std::memcpy(p + sizeof header, bvh.data.data(), bvh.data.size() * sizeof(glm::vec4));
+    m_bvh = std::move(*buf);
+    return m_bvh.buffer();
 }
 
 std::pair<uint32_t, uint32_t> GpuScene::shadowViewsOf(size_t light) const {

@@ -124,6 +124,10 @@ public:
     uint32_t shadowViewCount() const { return static_cast<uint32_t>(m_shadowViewDraws.size()); }
     // The draws whose bounding spheres meet view v's frustum (this frame).
     const std::vector<size_t>& shadowViewDraws(uint32_t v) const { return m_shadowViewDraws[v]; }
+    // The opaque triangles in world space as a ray-cast hierarchy (graph/scene/bvh.h) for
+    // shaders that bind `SceneBvh` (lib/bvh.glsl: the reference mode's shadow rays): a uvec4
+    // header (nodes, triangles, depth), then FlatBvh::data. Built on first use.
+    VkBuffer bvhBuffer() const;
     // The first of light `light`'s shadow views this frame and how many (0: none).
     std::pair<uint32_t, uint32_t> shadowViewsOf(size_t light) const;
     // The decals (shaders/lib/scene.glsl's Decals block): a count, then one RgDecal each.
@@ -159,6 +163,7 @@ private:
     std::vector<VkDescriptorSet> m_materialSets;
     std::vector<gpu::Buffer> m_cameraBuffers, m_lightBuffers, m_shadowViewBuffers;
     std::vector<std::vector<size_t>> m_shadowViewDraws;      // per view of this frame
+    mutable gpu::Buffer m_bvh;  // bvhBuffer(), once built
     std::vector<std::pair<uint32_t, uint32_t>> m_lightViews;  // per light: first view, count
     void updateShadowViews(uint32_t slot, const glm::mat4& cameraViewProj);
     gpu::Buffer m_decals;

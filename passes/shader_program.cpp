@@ -251,11 +251,14 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
         const bool lights = b.name == "Lights" && b.type == DescriptorType::StorageBuffer;
         const bool decalList = b.name == "Decals" && b.type == DescriptorType::StorageBuffer;
         const bool shadowViews = b.name == "ShadowViews" && b.type == DescriptorType::StorageBuffer;
+        const bool bvh = b.name == "SceneBvh" && b.type == DescriptorType::StorageBuffer;
         const bool environment = b.name == "SceneEnvironment" && b.type == DescriptorType::CombinedImageSampler;
-        if (camera || lights || decalList || shadowViews || environment) {
+        if (camera || lights || decalList || shadowViews || bvh || environment) {
             if (!setup.scene)
                 return fail(ErrorCode::InvalidInput, passPrefix(desc) + "shader binding '" + b.name +
                                                          "' is the scene's, but no scene is loaded (give --scene)");
+            if (bvh && setup.scene->bvhBuffer() == VK_NULL_HANDLE)
+                return fail(ErrorCode::Device, passPrefix(desc) + "could not build the scene's ray-cast hierarchy (SceneBvh): out of memory");
             sceneBindings.push_back(&b);
             continue;
         }
@@ -360,6 +363,7 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
             buffers.push_back({b->name == "Camera"        ? setup.scene->cameraBuffer(s / m_variants)
                                : b->name == "Lights"      ? setup.scene->lightBuffer(s / m_variants)
                                : b->name == "ShadowViews" ? setup.scene->shadowViewBuffer(s / m_variants)
+                               : b->name == "SceneBvh"    ? setup.scene->bvhBuffer()
                                                           : setup.scene->decalBuffer(),
                                0, VK_WHOLE_SIZE});
             VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};

@@ -1,7 +1,9 @@
 -- The in-engine reference mode (seed 000 §2.3; seed 002 §4.7): the same G-buffer as deferred.lua,
 -- lit by brute-force Monte Carlo integration of every light of the scene instead of the real-time
 -- approximations, so that `rgraph compare deferred.exr reference.exr` measures only the error of
--- the light approximations (same BRDF, same G-buffer, no shadowing in either). Progressive: each
+-- the light approximations (same BRDF, same G-buffer, no shadowing in either — or, with
+-- reference_shadows = true, shadow rays against the scene's triangles: the ground truth for the
+-- shadow maps). Progressive: each
 -- frame adds `reference_samples` samples per pixel to a persistent running mean, so
 --
 --   rgraph render --pipeline scripts/pipelines/reference.lua --scene S --frames 256 --out ref.exr
@@ -23,6 +25,8 @@ rg.param "reference_seed" { type = "integer", default = 0, min = 0, max = 167772
                             doc = "random seed (PCG hash of pixel, frame and this; samples follow in the stream)" }
 rg.param "reference_forward" { type = "boolean", default = true,
                                doc = "draw blended materials with deferred.lua's real-time forward pass (not integrated)" }
+rg.param "reference_shadows" { type = "boolean", default = false,
+                               doc = "shadow rays through the scene's opaque triangles for every light and environment sample (the ground truth for shadowed lights; off: unoccluded like the real-time light approximations it checks)" }
 rg.param "reference_strategy" { type = "choice", default = "mis", choices = { "mis", "light", "brdf" },
                                 doc = "mis: light + BRDF samples, power heuristic; light / brdf: one strategy alone (to check each converges to the same image)" }
 

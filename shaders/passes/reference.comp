@@ -4,8 +4,11 @@
 // every area light; seed 002 §4.7: the area-light integral
 //   L_out = ∫_Ω f(v, l) L_in ⟨n·l⟩ dl = ∫_A f(v, l) L_in ⟨n·l⟩ ⟨n_a·−l⟩ / d² dA,
 // which has no closed form in general but can be integrated by Monte Carlo and importance
-// sampling). Direct lighting only, unoccluded like the real-time approximations
-// (shaders/lib/lighting.glsl), of the standard material with exactly rgStandardBrdf's BRDF:
+// sampling). Direct lighting only — unoccluded like the real-time approximations
+// (shaders/lib/lighting.glsl), or with Params.reference_shadows every light sample, every BRDF
+// sample that meets a light and every environment sample casts a shadow ray through the scene's
+// opaque triangles (lib/bvh.glsl: the same geometry the G-buffer and the shadow maps draw, no
+// alpha test) — of the standard material with exactly rgStandardBrdf's BRDF:
 // renormalised Disney diffuse (lst:1) + GGX / height-correlated Smith / Schlick with f90 (lst:2),
 // so `rgraph compare` against deferred.lua measures only the light approximations.
 //
@@ -49,6 +52,7 @@
 #include "lib/exposure.glsl"
 #include "lib/sampling.glsl"
 #include "lib/environment.glsl"
+#include "lib/bvh.glsl"
 #include "gbuffer_disney.glsl"
 #ifdef RG_TWO_COLOUR_ID
 #include "gbuffer_two_colour.glsl"
@@ -67,6 +71,7 @@ layout(set = 0, binding = 8) uniform Params {
     float reference_samples;  // samples per pixel per frame
     float reference_seed;
     float reference_strategy;  // 0 MIS, 1 light sampling only, 2 BRDF sampling only
+    float reference_shadows;   // 1: every light and environment sample casts a shadow ray
     float initial_ev100;
 } params;
 layout(set = 0, binding = 9) uniform sampler2D SceneEnvironment;  // the scene's (1x1 black without one)
@@ -336,6 +341,37 @@ float lightPdfAlong(RgLight light, int type, vec3 P, vec3 D) {
     return cosLight > 0.0 ? pdfArea * best * best / cosLight : 0.0;
 }
 
+// ---- Shadow rays ---------------------------------------------------------------------------------
+
+// How far along L (unit) from P the light's surface is: where a shadow ray towards it ends. The
+// sun and the environment: nowhere. A tube: its axis's point nearest P, less the radius (geometry
+// inside a light's volume is not meaningful).
+float lightDistance(RgLight light, int type, vec3 P, vec3 L) {
+    if (type == RG_LIGHT_SUN) return 1e30;
+    vec3 c = light.positionType.xyz, dir = light.directionRange.xyz;
+    vec3 Lu = c - P;
+    if (type <= RG_LIGHT_SPOT) return length(Lu);
+    if (type == RG_LIGHT_SPHERE) {
+        float t = raySphere(P, L, c, light.params.z);
+        return t > 0.0 ? t : length(Lu);
+    }
+    if (type == RG_LIGHT_DISK || type == RG_LIGHT_RECT) {
+        float denom = dot(L, dir);
+        return abs(denom) > 1e-7 ? max(dot(c - P, dir) / denom, 0.0) : length(Lu);
+    }
+    float len = light.params.w;
+    vec3 onAxis = c + dir * clamp(dot(P - c, dir), -0.5 * len, 0.5 * len);
+    return max(length(onAxis - P) - light.params.z, 0.0);
+}
+
+// Whether nothing of the scene lies between P and `distance` along L (Params.reference_shadows;
+// always true without). The ray starts 2 mm off the surface, on L's side of it.
+bool unoccluded(Shading s, vec3 L, float distance) {
+    const float offset = 2e-3;
+    vec3 o = s.P + s.N * (dot(s.N, L) >= 0.0 ? offset : -offset) + L * offset;
+    return !rgOccluded(o, L, params.reference_shadows > 0.5 ? distance - 2.0 * offset : 0.0);
+}
+
 // ---- Punctual lights, exactly -------------------------------------------------------------------
 
 // lst:4 / eq:27 / lst:5: the illuminance of a point or spot light at P, on a surface facing it,
@@ -347,7 +383,7 @@ vec3 punctual(Shading s, RgLight light) {
     float att = getDistanceAtt(Lu, light.directionRange.w);
     att *= getAngleAtt(-L, light.directionRange.xyz, light.params.x, light.params.y);
     att *= rgIesAttenuation(light, L);
-    return brdfCos(s, L) * light.intensity.rgb * att;
+    return unoccluded(s, L, sqrt(sqrDist)) ? brdfCos(s, L) * light.intensity.rgb * att : vec3(0.0);
 }
 
 bool finite3(vec3 v) { return !any(isnan(v)) && !any(isinf(v)); }
@@ -429,7 +465,7 @@ void main() {
         vec3 fB = pdfB > 0.0 ? brdfCos(s, Lb) : vec3(0.0);
         bool useB = pdfB > 0.0 && any(greaterThan(fB, vec3(0.0)));
         vec3 estimate = vec3(0.0);
-        if (useB && environment) estimate += fB * textureLod(SceneEnvironment, rgEquirectUv(Lb), 0.0).rgb / pdfB;
+        if (useB && environment && unoccluded(s, Lb, 1e30)) estimate += fB * textureLod(SceneEnvironment, rgEquirectUv(Lb), 0.0).rgb / pdfB;
         for (uint i = 0u; i < count; ++i) {
             RgLight light = lights.light[i];
             int type = rgLightType(light);
@@ -441,7 +477,7 @@ void main() {
             float pdfL = sampleLight(light, type, s.P, u, Ll);
             if (pdfL > 0.0 && strategy != 2) {
                 vec3 f = brdfCos(s, Ll);
-                if (any(greaterThan(f, vec3(0.0)))) {
+                if (any(greaterThan(f, vec3(0.0))) && unoccluded(s, Ll, lightDistance(light, type, s.P, Ll))) {
                     float weight = strategy == 1 ? 1.0 : rgPowerHeuristic(pdfL, brdfPdf(s, Ll));
                     estimate += f * Le * (weight / pdfL);
                 }
@@ -449,7 +485,7 @@ void main() {
             // The BRDF's sample, if its ray meets this light.
             if (useB && strategy != 1) {
                 float pdfLB = lightPdfAlong(light, type, s.P, Lb);
-                if (pdfLB > 0.0) {
+                if (pdfLB > 0.0 && unoccluded(s, Lb, lightDistance(light, type, s.P, Lb))) {
                     float weight = strategy == 2 ? 1.0 : rgPowerHeuristic(pdfB, pdfLB);
                     estimate += fB * Le * (weight / pdfB);
                 }

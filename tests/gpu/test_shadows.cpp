@@ -359,3 +359,46 @@ TEST_F(LocalShadows, ViewsFollowTheLightsInViewAndDrawOnlyTheirCasters) {
     EXPECT_EQ((*gpuAway)->shadowViewCount(), 0u);
     EXPECT_EQ((*gpuAway)->shadowViewsOf(0).second, 0u);
 }
+
+TEST_F(LocalShadows, PenumbraMatchesTheReferenceShadowRays) {
+    // The sphere light of 0.2 m over the box, real time against scripts/pipelines/reference.lua with
+    // reference_shadows (shadow rays through the scene's triangles, the light sampled by solid
+    // angle): the 10–90 % width of the shadow's far edge along z = 0, the box-over-no-box ratio
+    // averaged over the 15 rows around z = 0 to quiet the reference's noise (64 frames × 4 samples).
+    auto render = [](const std::string& pipeline, const std::map<std::string, std::string>& args, uint32_t frames) {
+        SessionOptions o = sceneOptions(kRoot + "/tests/gpu/scenes/local_shadow_box.lua", args, N, N);
+        if (pipeline == "reference") {
+            o.params["reference_shadows"] = Value(true);
+            o.params["reference_forward"] = Value(false);
+        }
+        Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/" + pipeline + ".lua", frames, {"hdr"});
+        return r.images.empty() ? Image{} : r["hdr"];
+    };
+    auto width = [](const Image& with, const Image& without) {
+        float x10 = 0, x90 = 0;
+        for (uint32_t px = 0; px < N; ++px) {
+            const float x = worldX(px);
+            if (x < 1.0f || x > 3.0f) continue;
+            float a = 0, b = 0;
+            for (uint32_t py = N / 2 - 7; py <= N / 2 + 7; ++py) {
+                a += with.at(px, py, 1);
+                b += without.at(px, py, 1);
+            }
+            const float v = a / b;
+            if (v <= 0.1f) x10 = x;
+            if (v <= 0.9f) x90 = x;
+        }
+        return x90 - x10;
+    };
+    const std::map<std::string, std::string> box = {{"radius", "0.2"}}, none = {{"radius", "0.2"}, {"box", "0"}};
+    const Image rt = render("deferred", box, 1), rt0 = render("deferred", none, 1);
+    const Image ref = render("reference", box, 64), ref0 = render("reference", none, 64);
+    ASSERT_EQ(ref.width, N);
+    ASSERT_EQ(ref0.width, N);
+    const float wRt = width(rt, rt0), wRef = width(ref, ref0);
+    // The reference's umbra: the ground right behind the box, far from any edge, gets nothing.
+    const float umbra = ref.at(N / 2 + static_cast<uint32_t>(0.9f / (2.0f * kHalf) * N), N / 2, 1);
+    std::printf("penumbra at the far edge, sphere light 0.2 m: real time %.3f m, reference %.3f m; reference umbra %.3g\n", wRt, wRef, umbra);
+    EXPECT_EQ(umbra, 0.0f);
+    EXPECT_NEAR(wRt / wRef, 1.0f, 0.2f);
+}
