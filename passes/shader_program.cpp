@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 #include <map>
+#include <sstream>
 
 #include "core/check.h"
 #include "gpu_scene.h"
@@ -119,6 +120,33 @@ Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> s
             Error e = mod.error();
             if (!desc.origin.empty()) e.message = desc.origin + ": " + e.message;
             return std::unexpected(e);
+        }
+        // Floor mode (PassSetup::floor): the same outputs or work-group size, no work.
+        if (setup.floor && (mod->reflection.stageMask & (stageBit(ShaderStage::Fragment) | stageBit(ShaderStage::Compute)))) {
+            const ShaderReflection& r = mod->reflection;
+            ShaderRequest floor;
+            floor.passName = desc.name;
+            std::ostringstream src;
+            src << "#version 460\n// rgraph bench --floors: '" << desc.name << "' doing nothing\n";
+            if (r.stageMask & stageBit(ShaderStage::Compute)) {
+                src << "layout(local_size_x = " << r.localSize[0] << ", local_size_y = " << r.localSize[1] << ", local_size_z = "
+                    << r.localSize[2] << ") in;\nvoid main() {}\n";
+                floor.virtualName = "floor.comp";
+                floor.stage = ShaderStage::Compute;
+            } else {
+                std::ostringstream body;
+                for (uint32_t loc : r.colorOutputs) {
+                    const bool integer = std::find(r.integerOutputs.begin(), r.integerOutputs.end(), loc) != r.integerOutputs.end();
+                    src << "layout(location = " << loc << ") out " << (integer ? "uvec4" : "vec4") << " o" << loc << ";\n";
+                    body << "    o" << loc << " = " << (integer ? "uvec4(0u)" : "vec4(0.0)") << ";\n";
+                }
+                src << "void main() {\n" << body.str() << "}\n";
+                floor.virtualName = "floor.frag";
+                floor.stage = ShaderStage::Fragment;
+            }
+            floor.source = src.str();
+            mod = setup.shaders.compile(floor);
+            if (!mod) return std::unexpected(mod.error());
         }
         for (const auto& f : mod->files)
             if (std::find(m_files.begin(), m_files.end(), f) == m_files.end()) m_files.push_back(f);

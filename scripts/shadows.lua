@@ -25,7 +25,7 @@ local shadows = {}
 shadows.size = 2048    -- texels per side of each cascade
 shadows.cascades = 3   -- 1..4 (3: each costs a draw of every caster)
 shadows.local_size = 1024   -- texels per side of each local light's view
-shadows.local_views = 12    -- layers for local lights' views: two cubes, or twelve spots
+shadows.local_views = 6     -- layers for local lights' views: one cube, or six spots (24 MiB at 1024²)
 
 rg.param "sun_shadows" { type = "boolean", default = true, doc = "the sun casts shadows (false: the map is only cleared)" }
 rg.param "shadow_distance" { type = "number", default = 40, min = 1, max = 10000, doc = "metres of view the sun's cascades cover" }

@@ -262,7 +262,7 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
             }
         }
         auto instance = std::shared_ptr<PassInstance>(m_kinds.find(desc.kind)->create());
-        PassSetup setup{m_ctx, m_shaders, *planPtr, pass, desc, built->table, m_scene};
+        PassSetup setup{m_ctx, m_shaders, *planPtr, pass, desc, built->table, m_scene, m_floors};
         if (auto r = instance->prepare(setup); !r) return std::unexpected(r.error());
         built->sourceStamps.push_back(sourceStamp(*instance));
         built->instances.push_back(std::move(instance));
@@ -338,6 +338,11 @@ void Executor::setScene(const passes::GpuScene* scene, std::function<void(uint32
     m_scene = scene;
     m_perFrame = std::move(perFrame);
     m_forceRebuild = true;
+}
+
+void Executor::setFloors(bool on) {
+    if (on != m_floors) m_forceRebuild = true;
+    m_floors = on;
 }
 
 Result<void> Executor::resetPersistent() {

@@ -59,6 +59,8 @@ public:
     // The scene passes draw and bind (camera, lights, materials); the next build prepares every
     // pass anew. `perFrame` runs before each frame is recorded, with its frame-in-flight slot.
     void setScene(const passes::GpuScene* scene, std::function<void(uint32_t slot)> perFrame);
+    // Floor mode for the builds that follow (PassSetup::floor): every pass is prepared again.
+    void setFloors(bool on);
     const passes::GpuScene* scene() const { return m_scene; }
 
     // Contents for an imported texture (uploaded now, then kept in ShaderReadOnly layout).
@@ -110,6 +112,7 @@ private:
     const passes::GpuScene* m_scene = nullptr;
     std::function<void(uint32_t)> m_perFrame;
     bool m_forceRebuild = false;
+    bool m_floors = false;
     BuildStats m_buildStats;
     BuildReport m_lastReport;
     uint32_t m_buildCount = 0;

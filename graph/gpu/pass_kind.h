@@ -54,6 +54,10 @@ struct PassSetup {
     const PassDesc& desc;
     const ResourceTable& resources;
     const passes::GpuScene* scene = nullptr;
+    // Floor mode (rgraph bench --floors): every shader program replaces its fragment shader by one
+    // that writes zeros to the same outputs, and its compute shader by an empty one of the same
+    // work-group size — the pass's cost with the same targets, geometry and dispatches.
+    bool floor = false;
 };
 
 struct FrameInfo {

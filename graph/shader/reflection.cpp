@@ -345,6 +345,9 @@ private:
             // An output array occupies consecutive locations.
             const uint32_t n = std::max(arraySize(list[i].type_id), 1u);
             for (uint32_t k = 0; k < n; ++k) m_out.colorOutputs.push_back(loc + k);
+            const spvc_basetype base = spvc_type_get_basetype(spvc_compiler_get_type_handle(m_compiler, list[i].base_type_id));
+            if (base == SPVC_BASETYPE_INT32 || base == SPVC_BASETYPE_UINT32)
+                for (uint32_t k = 0; k < n; ++k) m_out.integerOutputs.push_back(loc + k);
         }
         std::sort(m_out.colorOutputs.begin(), m_out.colorOutputs.end());
         m_out.colorOutputs.erase(std::unique(m_out.colorOutputs.begin(), m_out.colorOutputs.end()),
@@ -453,6 +456,9 @@ Result<ShaderReflection> mergeReflections(const ShaderReflection& a, const Shade
     std::sort(out.colorOutputs.begin(), out.colorOutputs.end());
     out.colorOutputs.erase(std::unique(out.colorOutputs.begin(), out.colorOutputs.end()),
                            out.colorOutputs.end());
+    for (uint32_t loc : b.integerOutputs) out.integerOutputs.push_back(loc);
+    std::sort(out.integerOutputs.begin(), out.integerOutputs.end());
+    out.integerOutputs.erase(std::unique(out.integerOutputs.begin(), out.integerOutputs.end()), out.integerOutputs.end());
     return out;
 }
 

@@ -114,6 +114,9 @@ check "luminance beyond half floats" 0 grep "mean relative error 0" -- \
     bash -c "'$rgraph' render --scene tests/gpu/scenes/reference_sun.lua --size 48x32 --out '$tmp/sun.exr' --png '$tmp/sun.png' >/dev/null && '$rgraph' compare '$tmp/sun.exr' '$tmp/sun.exr'"
 check "bench" 0 grep "frame total" -- "$rgraph" bench --size 64x64 --frames 3 --json "$tmp/bench.json"
 check "bench json" 0 -- python3 -c "import json; b=json.load(open('$tmp/bench.json')); assert len(b['passes'])==36 and b['scene']['draws']>0 and b['frames']==3"
+# Floors: every pass measured again with shaders that do nothing; the JSON has both.
+check "bench floors" 0 grep "floor" -- "$rgraph" bench --size 64x64 --frames 2 --floors --json "$tmp/floors.json"
+check "bench floors json" 0 -- python3 -c "import json; b=json.load(open('$tmp/floors.json')); p={x['name']: x for x in b['passes']}; assert all('floorMs' in x and x['floorMs'] >= 0 for x in b['passes']) and b['floorTotalMs'] > 0 and 'gbuffer' in p, b"
 
 # watch: a valid script, a broken one (reported, old pipeline kept), a fixed one (picked up),
 # then an edited shader (only its pass is rebuilt).
