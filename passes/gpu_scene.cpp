@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
@@ -257,6 +258,24 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
                 const auto [lo, hi] = worldBox(m_scene.meshes[static_cast<size_t>(node.mesh)].primitives[k].vertices, node.world);
                 m_draws.push_back({ranges[k].firstIndex, ranges[k].indexCount, ranges[k].vertexOffset, ranges[k].material, node.world, normal, lo, hi});
             }
+    }
+    // SceneDraws: a uvec4 header (draw count), then per draw (boxMin, firstIndex), (boxMax,
+    // indexCount), (vertexOffset, material, casts shadows, 0) — 48 bytes.
+    {
+        std::vector<glm::vec4> words(1 + 3 * std::max<size_t>(m_draws.size(), 1), glm::vec4(0.0f));
+        words[0] = glm::vec4(std::bit_cast<float>(static_cast<uint32_t>(m_draws.size())), 0.0f, 0.0f, 0.0f);
+        for (size_t d = 0; d < m_draws.size(); ++d) {
+            const DrawItem& item = m_draws[d];
+            const bool opaque = m_scene.materials[item.material].alphaMode != AlphaMode::Blend;
+            words[1 + 3 * d] = glm::vec4(item.boundsMin, std::bit_cast<float>(item.firstIndex));
+            words[2 + 3 * d] = glm::vec4(item.boundsMax, std::bit_cast<float>(item.indexCount));
+            words[3 + 3 * d] = glm::vec4(std::bit_cast<float>(item.vertexOffset), std::bit_cast<float>(item.material),
+                                         std::bit_cast<float>(opaque ? 1u : 0u), 0.0f);
+        }
+        auto buf = Buffer::create(ctx, "scene.draws", words.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+        if (!buf) return std::unexpected(buf.error());
+        std::memcpy(buf->mapped(), words.data(), words.size() * sizeof(glm::vec4));
+        m_drawBuffer = std::move(*buf);
     }
     if (vertices.empty()) {  // keep valid (empty) buffers for an empty scene
         vertices.resize(1);

@@ -128,6 +128,10 @@ public:
     // shaders that bind `SceneBvh` (lib/bvh.glsl: the reference mode's shadow rays): a uvec4
     // header (nodes, triangles, depth), then FlatBvh::data. Built on first use.
     VkBuffer bvhBuffer() const;
+    // The draws as shaders see them (`SceneDraws`, lib/scene.glsl RgDraw): each draw's world box,
+    // index range and vertex offset, and whether it casts shadows (opaque): what a culling pass
+    // needs to write indirect draw commands (shaders/shadows/cascade_cull.comp).
+    VkBuffer drawBuffer() const { return m_drawBuffer.buffer(); }
     // The first of light `light`'s shadow views this frame and how many (0: none).
     std::pair<uint32_t, uint32_t> shadowViewsOf(size_t light) const;
     // The decals (shaders/lib/scene.glsl's Decals block): a count, then one RgDecal each.
@@ -164,6 +168,7 @@ private:
     std::vector<gpu::Buffer> m_cameraBuffers, m_lightBuffers, m_shadowViewBuffers;
     std::vector<std::vector<size_t>> m_shadowViewDraws;      // per view of this frame
     mutable gpu::Buffer m_bvh;  // bvhBuffer(), once built
+    gpu::Buffer m_drawBuffer;
     std::vector<std::pair<uint32_t, uint32_t>> m_lightViews;  // per light: first view, count
     void updateShadowViews(uint32_t slot, const glm::mat4& cameraViewProj);
     gpu::Buffer m_decals;

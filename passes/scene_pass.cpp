@@ -314,6 +314,18 @@ private:
         if (views != "shader" && views != "lights")
             return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.views: unknown '" + views + "', expected one of: 'shader', 'lights'");
         m_lightViews = views == "lights";
+        // indirect = "buffer": a culling pass wrote one indirect command per layer and draw
+        // (shaders/shadows/cascade_cull.comp); draws past the buffer's slots are drawn directly.
+        if (desc.params["indirect"].isString()) {
+            m_indirect = desc.params["indirect"].asString();
+            const bool read = std::any_of(desc.accesses.begin(), desc.accesses.end(),
+                                          [&](const Access& a) { return a.resource == m_indirect && a.usage == Usage::IndirectRead; });
+            if (!read)
+                return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.indirect: '" + m_indirect +
+                                                         "' must be among the pass's reads as an indirect buffer ({ \"" + m_indirect + "\", as = \"indirect\" })");
+            if (m_lightViews)
+                return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.indirect: views = 'lights' culls on the CPU; give one or the other");
+        }
         Group g;
         g.info.name = "shadow";
         ShaderRequest vert;
@@ -355,6 +367,8 @@ private:
         // the casters its frustum meets; layers past them are neither cleared nor drawn (no
         // light reads them).
         const uint32_t layers = m_lightViews ? std::min(m_layers, rc.scene->shadowViewCount()) : m_layers;
+        const PhysicalResource* indirect = m_indirect.empty() ? nullptr : rc.resources.find(m_indirect);
+        const VkDeviceSize slots = indirect ? indirect->plan->bufferSize / kIndirectCommandBytes / std::max(m_layers, 1u) : 0;
         for (uint32_t layer = 0; layer < layers; ++layer) {
             VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
             depth.imageView = d->image->layerView(layer);
@@ -374,7 +388,11 @@ private:
                 const DrawItem& item = rc.scene->draws()[i];
                 struct { glm::mat4 world; glm::vec4 layer; } push{item.world, glm::vec4(static_cast<float>(layer))};
                 vkCmdPushConstants(rc.cmd, g.program->layout(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof push, &push);
-                vkCmdDrawIndexed(rc.cmd, item.indexCount, 1, item.firstIndex, item.vertexOffset, 0);
+                if (indirect && i < slots)
+                    vkCmdDrawIndexedIndirect(rc.cmd, indirect->buffer->buffer(), (layer * slots + i) * kIndirectCommandBytes, 1,
+                                             kIndirectCommandBytes);
+                else
+                    vkCmdDrawIndexed(rc.cmd, item.indexCount, 1, item.firstIndex, item.vertexOffset, 0);
             }
             vkCmdEndRendering(rc.cmd);
         }
@@ -442,6 +460,8 @@ private:
     bool m_forward = false;
     bool m_shadow = false;
     bool m_lightViews = false;  // shadow: the scene's local-light views rather than the shader's
+    std::string m_indirect;     // shadow: the buffer of indirect commands per layer and draw
+    static constexpr VkDeviceSize kIndirectCommandBytes = sizeof(VkDrawIndexedIndirectCommand);
     uint32_t m_layers = 1;
 };
 
@@ -458,6 +478,7 @@ PassKindInfo scenePassKind() {
           {"shadow", "boolean", "depth only, into each layer of the depth target it writes, from the views its vertex shader computes (scripts/shadows.lua)"},
           {"shader", "string", "shadow: the vertex shader (default shadows/shadow.vert: the matrix of the layer its push constant names, from `sun_cascades`)"},
           {"depth_bias", "list", "shadow: { constant, slope } rasteriser depth bias"},
+          {"indirect", "string", "shadow: a buffer the pass reads as { NAME, as = 'indirect' } holding a VkDrawIndexedIndirectCommand per layer and scene draw (layer-major, the buffer's commands / layers slots each, written by a culling pass such as shadows/cascade_cull.comp): each draw is issued through it, so culled draws cost nothing; draws beyond the slots are drawn directly"},
           {"views", "string", "shadow: 'shader' (default: the layer's matrix is the vertex shader's business) or 'lights' (the scene's local-light shadow views this frame, one per layer, each drawing only the casters its frustum meets; shader default shadows/local_shadow.vert)"},
           {"rg_materials", "list", "(filled in by rgraph) the resolved materials"}},
          Usage::Sampled, Usage::ColorAttachment},

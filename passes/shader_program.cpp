@@ -280,8 +280,9 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
         const bool decalList = b.name == "Decals" && b.type == DescriptorType::StorageBuffer;
         const bool shadowViews = b.name == "ShadowViews" && b.type == DescriptorType::StorageBuffer;
         const bool bvh = b.name == "SceneBvh" && b.type == DescriptorType::StorageBuffer;
+        const bool draws = b.name == "SceneDraws" && b.type == DescriptorType::StorageBuffer;
         const bool environment = b.name == "SceneEnvironment" && b.type == DescriptorType::CombinedImageSampler;
-        if (camera || lights || decalList || shadowViews || bvh || environment) {
+        if (camera || lights || decalList || shadowViews || bvh || draws || environment) {
             if (!setup.scene)
                 return fail(ErrorCode::InvalidInput, passPrefix(desc) + "shader binding '" + b.name +
                                                          "' is the scene's, but no scene is loaded (give --scene)");
@@ -392,6 +393,7 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
                                : b->name == "Lights"      ? setup.scene->lightBuffer(s / m_variants)
                                : b->name == "ShadowViews" ? setup.scene->shadowViewBuffer(s / m_variants)
                                : b->name == "SceneBvh"    ? setup.scene->bvhBuffer()
+                               : b->name == "SceneDraws"  ? setup.scene->drawBuffer()
                                                           : setup.scene->decalBuffer(),
                                0, VK_WHOLE_SIZE});
             VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};

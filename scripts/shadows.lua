@@ -5,8 +5,10 @@
 --
 -- Each frame `sun_cascades` (compute, one invocation: shaders/shadows/sun_cascades.comp) places
 -- shadows.cascades cascades over the view up to `shadow_distance` (practical split scheme,
--- stable by texel snapping), and `shadow_sun` (the `scene` kind with shadow = true) draws every
--- opaque primitive's depth into `sun_shadow`, one layer per cascade. Both
+-- stable by texel snapping), `sun_cull` (compute) writes an indirect draw command per cascade and
+-- draw, with no instance for a draw beside the cascade, and `shadow_sun` (the `scene` kind with
+-- shadow = true, indirect) draws the opaque primitives' depth through them into `sun_shadow`, one
+-- layer per cascade. Both
 -- are culled by the graph when nothing reads the map, and skipped (rg.frame: shadows.frame) when
 -- the scene has no sun or `sun_shadows` is off. `shadows.lit` makes a lighting pass read them: lib/shadows.glsl's PCSS
 -- (blocker search, penumbra from the sun's angular size) multiplies the sun's light.
@@ -45,9 +47,19 @@ rg.pass "sun_cascades" {
 -- Without a sun the map is only cleared (to "nothing in the way"): shadows.frame switches
 -- between the two writers.
 rg.pass "shadow_clear" { kind = "clear", writes = { "sun_shadow" }, depth = 1 }
+-- Caster culling per cascade: one indirect draw command per cascade and scene draw, with no
+-- instance where the draw's box lies beside the cascade (shaders/shadows/cascade_cull.comp); room
+-- for shadows.max_culled_draws draws a cascade, the rest drawn into every cascade.
+shadows.max_culled_draws = 4096
+rg.buffer "sun_shadow_draws" { size = shadows.cascades * shadows.max_culled_draws * 20,
+    doc = "the sun's shadow draws: an indirect command per cascade and draw (VkDrawIndexedIndirectCommand)" }
+rg.pass "sun_cull" {
+    kind = "compute", shader = "shadows/cascade_cull.comp", groups = { 1, 1, 1 }, defines = { RG_CASCADES = shadows.cascades },
+    reads = { { "sun_cascades", as = "storage" } }, writes = { { "sun_shadow_draws", as = "storage" } },
+}
 rg.pass "shadow_sun" {
-    kind = "scene", shadow = true, reads = { { "sun_cascades", as = "storage" } }, writes = { "sun_shadow" },
-    depth_bias = { 1.0, 1.5 }, after = { "shadow_clear" },
+    kind = "scene", shadow = true, reads = { { "sun_cascades", as = "storage" }, { "sun_shadow_draws", as = "indirect" } },
+    writes = { "sun_shadow" }, indirect = "sun_shadow_draws", depth_bias = { 1.0, 1.5 }, after = { "shadow_clear" },
 }
 
 rg.resource "local_shadow" { format = "d32f", size = { shadows.local_size, shadows.local_size }, layers = shadows.local_views,
@@ -66,6 +78,7 @@ end
 function shadows.frame(ctx)
     local draw = ctx.params.sun_shadows and (not ctx.scene or ctx.scene.suns > 0)
     ctx.pass("shadow_sun").enabled = draw
+    ctx.pass("sun_cull").enabled = draw
     ctx.pass("shadow_clear").enabled = not draw
 end
 

@@ -197,12 +197,16 @@ std::string usageConflict(const PassDesc& pass, const Access& a, const ResourceD
     if (isAttachment(a.usage) && pass.type == PassType::Compute)
         return use + " needs a raster pass, but '" + pass.name + "' is a compute pass";
     if (r.kind == ResourceKind::Buffer) {
+        if (a.usage == Usage::IndirectRead && pass.type != PassType::Raster)
+            return use + " needs a raster pass (indirect draws), but '" + pass.name + "' is a " + passTypeName(pass.type) + " pass";
         if (a.usage == Usage::UniformRead || isStorage(a.usage) || a.usage == Usage::CopySrc ||
-            a.usage == Usage::CopyDst)
+            a.usage == Usage::CopyDst || a.usage == Usage::IndirectRead)
             return {};
         return "'" + r.name + "' is a buffer, which cannot be used as " + use +
-               " (expected UniformRead, StorageRead, StorageWrite, StorageReadWrite, CopySrc or CopyDst)";
+               " (expected UniformRead, StorageRead, StorageWrite, StorageReadWrite, IndirectRead, CopySrc or CopyDst)";
     }
+    if (a.usage == Usage::IndirectRead)
+        return "'" + r.name + "' is a texture, which cannot be used as IndirectRead (indirect commands live in buffers)";
     if (a.usage == Usage::UniformRead)
         return "'" + r.name + "' is a texture, which cannot be used as UniformRead (uniform reads are for buffers)";
     const FormatInfo& f = formatInfo(r.texture.format);
@@ -231,7 +235,8 @@ Layout usageLayout(Usage u, PassType type) {
     if (type == PassType::Transfer) return usageWrites(u) ? Layout::TransferDst : Layout::TransferSrc;
     switch (u) {
     case Usage::Sampled: return Layout::ShaderReadOnly;
-    case Usage::UniformRead: return Layout::Undefined;
+    case Usage::UniformRead:
+    case Usage::IndirectRead: return Layout::Undefined;
     case Usage::StorageRead:
     case Usage::StorageWrite:
     case Usage::StorageReadWrite: return Layout::General;
@@ -752,6 +757,10 @@ void describeAccess(PlanAccess& a, PassType type, ResourceKind kind) {
     case Usage::DepthStencilRead:
         a.stages = stage::EarlyFragmentTests | stage::LateFragmentTests;
         a.access = access::DepthStencilRead;
+        break;
+    case Usage::IndirectRead:
+        a.stages = stage::DrawIndirect;
+        a.access = access::IndirectCommandRead;
         break;
     case Usage::CopySrc:
     case Usage::CopyDst: break;  // handled above

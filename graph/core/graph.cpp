@@ -14,6 +14,7 @@ const char* usageName(Usage u) {
     case Usage::DepthStencilRead: return "DepthStencilRead";
     case Usage::CopySrc: return "CopySrc";
     case Usage::CopyDst: return "CopyDst";
+    case Usage::IndirectRead: return "IndirectRead";
     }
     return "?";
 }
@@ -25,6 +26,7 @@ bool usageReads(Usage u, bool load) {
     case Usage::StorageRead:
     case Usage::StorageReadWrite:
     case Usage::DepthStencilRead:
+    case Usage::IndirectRead:
     case Usage::CopySrc: return true;
     // Attachments read what is there only when they keep it (load op LOAD, blending, depth test);
     // a copy destination that loads is a partial write (e.g. mips 1..n written from mip 0).
@@ -48,6 +50,7 @@ bool usageWrites(Usage u) {
     case Usage::UniformRead:
     case Usage::StorageRead:
     case Usage::DepthStencilRead:
+    case Usage::IndirectRead:
     case Usage::CopySrc: return false;
     }
     return false;

@@ -70,6 +70,7 @@ enum class Usage : uint8_t {
     DepthStencilRead,  // read: read-only depth/stencil attachment (depth or stencil test)
     CopySrc,           // read: transfer source
     CopyDst,           // write (+ read when load = true: a partial write such as mip generation)
+    IndirectRead,      // read: a buffer of indirect draw or dispatch commands
 };
 
 const char* usageName(Usage u);

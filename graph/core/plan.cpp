@@ -25,6 +25,7 @@ constexpr BitName kStageNames[] = {
     {stage::Copy, "Copy"},
     {stage::Host, "Host"},
     {stage::AllCommands, "AllCommands"},
+    {stage::DrawIndirect, "DrawIndirect"},
 };
 
 constexpr BitName kAccessNames[] = {
@@ -41,6 +42,7 @@ constexpr BitName kAccessNames[] = {
     {access::HostRead, "HostRead"},
     {access::HostWrite, "HostWrite"},
     {access::MemoryWrite, "MemoryWrite"},
+    {access::IndirectCommandRead, "IndirectCommandRead"},
 };
 
 template <size_t N>

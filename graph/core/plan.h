@@ -23,6 +23,7 @@ enum : uint32_t {
     Copy = 1u << 6,  // transfer: copy, blit, clear
     Host = 1u << 7,
     AllCommands = 1u << 8,
+    DrawIndirect = 1u << 9,
 };
 }  // namespace stage
 
@@ -42,6 +43,7 @@ enum : uint32_t {
     HostRead = 1u << 10,
     HostWrite = 1u << 11,
     MemoryWrite = 1u << 12,
+    IndirectCommandRead = 1u << 13,
 };
 }  // namespace access
 

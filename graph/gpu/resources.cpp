@@ -57,6 +57,7 @@ VkPipelineStageFlags2 toVkStages(uint32_t s) {
     if (s & stage::Copy) f |= VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
     if (s & stage::Host) f |= VK_PIPELINE_STAGE_2_HOST_BIT;
     if (s & stage::AllCommands) f |= VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+    if (s & stage::DrawIndirect) f |= VK_PIPELINE_STAGE_2_DRAW_INDIRECT_BIT;
     return f;
 }
 
@@ -75,6 +76,7 @@ VkAccessFlags2 toVkAccess(uint32_t a) {
     if (a & access::HostRead) f |= VK_ACCESS_2_HOST_READ_BIT;
     if (a & access::HostWrite) f |= VK_ACCESS_2_HOST_WRITE_BIT;
     if (a & access::MemoryWrite) f |= VK_ACCESS_2_MEMORY_WRITE_BIT;
+    if (a & access::IndirectCommandRead) f |= VK_ACCESS_2_INDIRECT_COMMAND_READ_BIT;
     return f;
 }
 
@@ -107,6 +109,7 @@ VkBufferUsageFlags bufferUsageOf(uint32_t mask) {
     if (has(Usage::UniformRead)) usage |= VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT;
     if (has(Usage::StorageRead) || has(Usage::StorageWrite) || has(Usage::StorageReadWrite))
         usage |= VK_BUFFER_USAGE_STORAGE_BUFFER_BIT;
+    if (has(Usage::IndirectRead)) usage |= VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT;
     return usage;
 }
 

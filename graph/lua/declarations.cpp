@@ -277,7 +277,7 @@ struct Builder {
             if (auto f = parseFormat(rd->body["format"].asString())) depthFormat = isDepthStencil(*f);
         static const std::vector<std::pair<std::string, Usage>> readUsages = {
             {"sampled", Usage::Sampled}, {"storage", Usage::StorageRead}, {"uniform", Usage::UniformRead},
-            {"depth", Usage::DepthStencilRead}, {"copy", Usage::CopySrc}};
+            {"depth", Usage::DepthStencilRead}, {"copy", Usage::CopySrc}, {"indirect", Usage::IndirectRead}};
         static const std::vector<std::pair<std::string, Usage>> writeUsages = {
             {"color", Usage::ColorAttachment}, {"depth", Usage::DepthStencilAttachment}, {"storage", Usage::StorageWrite},
             {"storage_rw", Usage::StorageReadWrite}, {"copy", Usage::CopyDst}};

@@ -200,6 +200,29 @@ TEST_F(Shadows, CascadesMoveByWholeTexelsWithTheCamera) {
 
 }  // namespace
 
+TEST_F(Shadows, CascadesSkipTheCastersBesideThem) {
+    // sun_cull's indirect commands (scripts/shadows.lua): the shadow box from above, the light along
+    // (−1, −1, 0). The nearest cascade covers the view 0–3 m from a camera 12 m up: the ground far
+    // below along the light falls in it, the box (7 m across the light from that slice) does not;
+    // the farthest cascade reaches the ground around the box and draws both. Draws: 0 the ground, 1 the box.
+    SessionOptions o = sceneOptions(kRoot + "/tests/gpu/scenes/shadow_box.lua", {{"sun", "x45"}}, N, N);
+    Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 1, {"hdr"}, {"sun_shadow_draws"});
+    ASSERT_EQ(r.buffers.count("sun_shadow_draws"), 1u);
+    const auto& bytes = r.buffers["sun_shadow_draws"];
+    std::vector<uint32_t> words(bytes.size() / 4);
+    std::memcpy(words.data(), bytes.data(), words.size() * 4);
+    const size_t slots = words.size() / 5 / 3;  // commands of 5 words, 3 cascades
+    ASSERT_GE(slots, 2u);
+    auto instances = [&](size_t cascade, size_t draw) { return words[(cascade * slots + draw) * 5 + 1]; };
+    auto indexCount = [&](size_t cascade, size_t draw) { return words[(cascade * slots + draw) * 5]; };
+    EXPECT_EQ(indexCount(0, 0), 6u);   // the plane: two triangles
+    EXPECT_EQ(indexCount(2, 1), 36u);  // the box: twelve
+    EXPECT_EQ(instances(0, 0), 1u);
+    EXPECT_EQ(instances(0, 1), 0u);
+    EXPECT_EQ(instances(2, 0), 1u);
+    EXPECT_EQ(instances(2, 1), 1u);
+}
+
 // ---- Local lights (tests/gpu/scenes/local_shadow_box.lua): a point light and a spot over the box ----
 
 namespace {

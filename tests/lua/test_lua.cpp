@@ -203,9 +203,9 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // Then the sun's and the local lights' shadow maps (scripts/shadows.lua), the G-buffer half with the passes inserted
     // after it (light culling, screen-space AO: scripts/ao.lua), the Hi-Z pyramid and SSR
     // (scripts/ssr.lua), the lighting (which composes SSR over the probe), the sky and forward.
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 27),
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 28),
               (std::vector<std::string>{"env_cube", "env_mips", "env_prefilter", "env_irradiance", "dfg_table", "sun_cascades",
-                                        "shadow_clear", "shadow_sun", "shadow_local", "gbuffer", "light_culling", "gtao", "foliage_fixup", "ao_blur", "decals_copy0", "decals_copy1", "decals_copy2",
+                                        "shadow_clear", "sun_cull", "shadow_sun", "shadow_local", "gbuffer", "light_culling", "gtao", "foliage_fixup", "ao_blur", "decals_copy0", "decals_copy1", "decals_copy2",
                                         "decals", "hiz", "ssr", "lighting_standard", "lighting_clearcoat", "lighting_two_colour",
                                         "sky", "forward", "ssr_history_copy", "ssr_history_mips"}));
     auto plan = compile(graphWithParams(*p), {});

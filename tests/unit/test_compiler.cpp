@@ -339,7 +339,20 @@ TEST(CompilerErrors, KindAndBlendConflicts) {
     g.passes = {raster("p", {sampled("lights")})};
     EXPECT_EQ(compileError(g),
               "pass 'p' field 'accesses[0]': 'lights' is a buffer, which cannot be used as Sampled (expected "
-              "UniformRead, StorageRead, StorageWrite, StorageReadWrite, CopySrc or CopyDst)");
+              "UniformRead, StorageRead, StorageWrite, StorageReadWrite, IndirectRead, CopySrc or CopyDst)");
+    // Indirect commands: a buffer, read by a raster pass.
+    GraphDesc ind;
+    ind.resources = {buffer("commands", 4096), exported(texture("hdr"))};
+    Access cmd{"commands", Usage::IndirectRead};
+    ind.passes = {compute("write", {storageWrite("commands")}), compute("draw", {cmd, storageWrite("hdr")})};
+    EXPECT_EQ(compileError(ind),
+              "pass 'draw' field 'accesses[0]': IndirectRead needs a raster pass (indirect draws), but 'draw' is a compute pass");
+    GraphDesc tex;
+    tex.resources = {texture("commands"), exported(texture("hdr"))};
+    Access texCmd{"commands", Usage::IndirectRead};
+    tex.passes = {raster("fill", {color("commands")}), raster("draw", {texCmd, color("hdr")})};
+    EXPECT_EQ(compileError(tex),
+              "pass 'draw' field 'accesses[0]': 'commands' is a texture, which cannot be used as IndirectRead (indirect commands live in buffers)");
 
     GraphDesc t;
     t.resources = {imported(texture("lut"))};
