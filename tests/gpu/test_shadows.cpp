@@ -291,7 +291,20 @@ TEST_F(LocalShadows, ShadowFallsWhereTheGeometryPutsIt) {
                     if (v > 0.98f) ++litLit;
                 }
             }
-        std::printf("%s light: shadow region %d/%d dark, open ground %d/%d lit\n", light, shadowDark, shadowTotal, litLit, litTotal);
+        // The contact: the nearest ground seen beyond the box's far side (+x) along z = 0 — from
+        // 12 m up the top face hides it to 4.5 cm from the base — is in shadow, to 10 cm: no
+        // peter-panning a camera can see.
+        int contact = 0, contactDark = 0;
+        for (uint32_t px = 0; px < N; ++px) {
+            const float x = worldX(px), v = r[(N / 2) * N + px];
+            if (x < 0.55f || x > 0.60f || v < 0.0f) continue;
+            ++contact;
+            if (v < 0.1f) ++contactDark;
+        }
+        EXPECT_GT(contact, 0) << light;
+        EXPECT_EQ(contactDark, contact) << light << ": contact";
+        std::printf("%s light: shadow region %d/%d dark, open ground %d/%d lit, contact %d/%d dark\n", light, shadowDark, shadowTotal,
+                    litLit, litTotal, contactDark, contact);
         EXPECT_GT(shadowTotal, 1500) << light;
         EXPECT_EQ(shadowDark, shadowTotal) << light;
         EXPECT_GT(litTotal, 10000) << light;
