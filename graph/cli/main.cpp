@@ -409,6 +409,22 @@ Result<Image> writeOutputs(RenderSetup& setup, const std::string& exrPath, const
     return *display;
 }
 
+// The EXR and PNG paths a command writes: --out FILE.exr (default `defaultExr`), and --png
+// FILE.png or, without it, the EXR's path with .png — so an explicit --out never writes into the
+// default folder. Other extensions are refused rather than written under a wrong name.
+Result<std::pair<std::string, std::string>> outputPaths(const Args& args, const std::string& defaultExr) {
+    auto endsWith = [](std::string path, const std::string& ext) {
+        std::transform(path.begin(), path.end(), path.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+        return path.size() > ext.size() && path.compare(path.size() - ext.size(), ext.size(), ext) == 0;
+    };
+    const std::string exr = args.get("out", defaultExr);
+    if (!endsWith(exr, ".exr"))
+        return fail(ErrorCode::InvalidInput, "--out: '" + exr + "' is not an .exr path (rgraph writes OpenEXR there; the PNG goes beside it, or to --png)");
+    std::string png = args.has("png") ? args.get("png") : exr.substr(0, exr.size() - 4) + ".png";
+    if (!endsWith(png, ".png")) return fail(ErrorCode::InvalidInput, "--png: '" + png + "' is not a .png path");
+    return std::pair{exr, png};
+}
+
 int cmdRender(int argc, char** argv) {
     Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "scene-arg", "set", "camera", "environment", "size", "frames", "out", "png", "capture", "view", "device", "verbose"});
     if (args.help) {
@@ -427,7 +443,8 @@ int cmdRender(int argc, char** argv) {
             "--capture gbuffer.CHANNEL: a G-buffer channel, decoded, as an EXR layer (e.g. gbuffer.normal).\n"
             "Renders N frames (default 1) at WxH (default 1280x720) through the pipeline (default\n"
             "scripts/pipelines/deferred.lua), calling its rg.frame(ctx) before each frame. Writes FILE.png (default\n"
-            "out/render.png), the display image, and FILE.exr (default out/render.exr), linear: layer 'hdr' holds\n"
+            "FILE.exr's path with .png, else out/render.png), the display image, and FILE.exr (default out/render.exr; other\n"
+            "extensions are refused), linear: layer 'hdr' holds\n"
             "absolute luminance in cd/m2 (pre-exposure divided out) when the pipeline has a camera (rg.output\n"
             "{ display, hdr, exposure }), else the output itself. Each --capture adds that resource as a layer of\n"
             "its name. Both files record the camera settings and exposure in their metadata.\n");
@@ -435,6 +452,8 @@ int cmdRender(int argc, char** argv) {
     }
     if (!args.error.empty()) return usageError(args.error, "render");
     const auto captures = args.all("capture");
+    auto paths = outputPaths(args, "out/render.exr");
+    if (!paths) return report(paths.error());
     auto setup = setupRun(args, "render", 1, captures, args.has("verbose"));
     if (!setup) return report(setup.error());
     Runtime& rt = *setup->runtime;
@@ -447,8 +466,7 @@ int cmdRender(int argc, char** argv) {
             std::fprintf(stderr, tty ? "\rrgraph: frame %u/%u" : "rgraph: frame %u/%u\n", f + 1, setup->frames);
     }
     if (setup->frames > 1 && !args.has("verbose") && tty) std::fprintf(stderr, "\n");
-    std::string exrPath = args.get("out", "out/render.exr");
-    std::string pngPath = args.get("png", "out/render.png");
+    const auto [exrPath, pngPath] = *paths;
     auto written = writeOutputs(*setup, exrPath, pngPath, captures);
     if (!written) return report(written.error());
     const Image* out = &*written;
@@ -480,10 +498,12 @@ int cmdWatch(int argc, char** argv) {
     if (args.has("interval") && !parseCount(args.get("interval"), interval)) return usageError("--interval must be milliseconds", "watch");
     if (args.has("max-reloads") && !parseCount(args.get("max-reloads"), maxReloads)) return usageError("--max-reloads must be a count", "watch");
     if (isBuiltin(pipelineArg(args))) return usageError("watch needs a pipeline script", "watch");
+    auto paths = outputPaths(args, "out/watch.exr");
+    if (!paths) return report(paths.error());
     auto setup = setupRun(args, "watch", 1, {}, /*verbose=*/true);
     if (!setup) return report(setup.error());
     Session& session = *setup->session;
-    const std::string exrPath = args.get("out", "out/watch.exr"), pngPath = args.get("png", "out/watch.png");
+    const auto [exrPath, pngPath] = *paths;
     auto renderOnce = [&]() -> Result<void> {
         if (auto r = session.frame(); !r) return r;
         auto written = writeOutputs(*setup, exrPath, pngPath, {});

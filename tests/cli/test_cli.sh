@@ -66,6 +66,10 @@ check "export-scene" 0 grep "wrote $tmp/materials.glb (6 meshes" -- "$rgraph" ex
 check "render a glb" 0 grep "wrote $tmp/g.exr" -- "$rgraph" render --scene "$tmp/materials.glb" --size 64x32 --out "$tmp/g.exr" --png "$tmp/g.png"
 check "debug view" 0 grep "wrote $tmp/v.exr" -- "$rgraph" render --scene tests/gpu/scenes/materials.lua --view materialid --size 64x32 --out "$tmp/v.exr" --png "$tmp/v.png"
 check "unknown view" 2 grep "--view: unknown view 'albedo'" -- "$rgraph" render --view albedo --size 8x8
+# An explicit --out puts the PNG beside it (never into ./out); other extensions are refused.
+check "png beside --out" 0 grep "wrote $tmp/beside.exr and $tmp/beside.png" -- "$rgraph" render --size 16x8 --out "$tmp/beside.exr"
+check "--out must be .exr" 2 grep "--out: '$tmp/x.xyz' is not an .exr path" -- "$rgraph" render --size 8x8 --out "$tmp/x.xyz"
+check "--png must be .png" 2 grep "--png: '$tmp/x.jpg' is not a .png path" -- "$rgraph" render --size 8x8 --out "$tmp/x.exr" --png "$tmp/x.jpg"
 check "view shadow:LIGHT" 0 grep "wrote $tmp/sl.exr" -- env RG_VALIDATION=1 "$rgraph" render --scene tests/gpu/scenes/local_shadow_box.lua \
     --view shadow:lamp --size 96x64 --out "$tmp/sl.exr" --png "$tmp/sl.png"
 check "view shadow:LIGHT names the shadowed lights" 2 grep "--view shadow:sun: the scene has no light 'sun' that casts shadows (those that do: 'lamp')" -- \
