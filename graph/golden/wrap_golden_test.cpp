@@ -124,6 +124,7 @@ Result<std::unique_ptr<GoldenScript>> GoldenScript::load(const std::string& file
     std::unique_ptr<GoldenScript> script(new GoldenScript());
     Impl& impl = *script->m;
     impl.budget = lua::Budget{"golden test script", limits.memoryBytes, limits.instructions};
+    impl.budget.file = file;
     lua_State* L = lua::newSandboxedState(impl.budget);
     if (!L) return fail(ErrorCode::Io, "cannot create a Lua state");
     impl.L = L;

@@ -278,6 +278,7 @@ Result<std::vector<Declaration>> LuaHost::loadDeclarations(const std::string& fi
     m->pipelineDir = fs::absolute(file).parent_path().string();
 
     m->budget = lua::Budget{"script", m->options.memoryBytes, m->options.instructions};
+    m->budget.file = file;
     lua_State* L = lua::newSandboxedState(m->budget, /*withOs=*/true);
     if (!L) return fail(ErrorCode::Io, "cannot create a Lua state");
     m->L = L;

@@ -35,9 +35,10 @@ void* allocate(void* ud, void* ptr, size_t osize, size_t nsize) {
     return p;
 }
 
-void countHook(lua_State* L, lua_Debug*) {
+void countHook(lua_State* L, lua_Debug* ar) {
     Budget& budget = budgetOf(L);
     budget.instructions += kHookEvery;
+    if (lua_getinfo(L, "Sl", ar) && ar->currentline > 0) budget.lastWhere = std::string(ar->short_src) + ":" + std::to_string(ar->currentline);
     if (budget.instructions > budget.instructionLimit) {
         // Level 0 inside a count hook is the Lua function that was running.
         luaL_where(L, 0);
@@ -84,13 +85,15 @@ Result<void> protectedCall(lua_State* L, int nargs, int nresults) {
     lua_insert(L, base);
     budget.instructions = 0;
     budget.memoryExceeded = false;
+    budget.lastWhere.clear();
     const int status = lua_pcall(L, nargs, nresults, base);
     lua_remove(L, base);
     if (status == LUA_OK) return {};
     std::string msg = lua_tostring(L, -1) ? lua_tostring(L, -1) : "unknown Lua error";
     lua_pop(L, 1);
     if (status == LUA_ERRMEM || budget.memoryExceeded)
-        msg = budget.who + " stopped: it used more than " + std::to_string(budget.memoryLimit >> 20) + " MiB of Lua memory";
+        msg = (!budget.lastWhere.empty() ? budget.lastWhere + ": " : !budget.file.empty() ? budget.file + ": " : "") + budget.who + " stopped: it used more than " +
+              std::to_string(budget.memoryLimit >> 20) + " MiB of Lua memory" + (budget.lastWhere.empty() ? "" : " (last running here)");
     return fail(ErrorCode::InvalidInput, msg);
 }
 

@@ -31,6 +31,10 @@ struct Budget {
     size_t memory = 0;
     uint64_t instructions = 0;
     bool memoryExceeded = false;
+    // "file:line" of the Lua code last seen running (sampled by the count hook): where a script
+    // that ran out of memory was, since Lua reports that error without a position.
+    std::string lastWhere;
+    std::string file;  // the script the state runs, named when no position is known
 };
 
 // A new state allocating against `budget` (which must outlive it), with the count hook and the
