@@ -122,7 +122,15 @@ private:
     int nextLine() const { return atEnd() ? lastLine() : m_tokens[m_next].line; }
 
     Result<int> header(IesProfile& profile);
-    Result<void> tilt(std::string_view line, int lineNumber);
+    Result<void> tilt(std::string_view line, int lineNumber, IesProfile& profile);
+
+public:
+    Result<void> tiltData(IesProfile& profile);
+    void tokenizeAll() { tokenize(0); }
+    bool atEndOfData() const { return atEnd(); }
+    std::unexpected<Error> failAtNext(std::string message) const { return failAt(nextLine(), std::move(message)); }
+
+private:
     void tokenize(size_t firstLine);
     Result<double> number(std::string_view role);
     Result<int> integer(std::string_view role);
@@ -167,7 +175,7 @@ Result<int> Parser::header(IesProfile& profile) {
         if (startsWithNoCase(line, "TILT")) {
             const std::string_view rest = trim(line.substr(4));
             if (rest.starts_with('=')) {
-                if (auto t = tilt(trim(rest.substr(1)), lineNumber); !t) return std::unexpected(t.error());
+                if (auto t = tilt(trim(rest.substr(1)), lineNumber, profile); !t) return std::unexpected(t.error());
                 return static_cast<int>(i);
             }
         }
@@ -194,13 +202,46 @@ Result<int> Parser::header(IesProfile& profile) {
                   "missing TILT line: expected 'TILT=NONE' before the photometric data, found the end of the file");
 }
 
-Result<void> Parser::tilt(std::string_view value, int lineNumber) {
+Result<void> Parser::tilt(std::string_view value, int lineNumber, IesProfile& profile) {
     if (equalsNoCase(value, "NONE")) return {};
-    if (equalsNoCase(value, "INCLUDE"))
-        return failAt(lineNumber, "TILT=INCLUDE is not supported (only TILT=NONE)", ErrorCode::Unsupported);
-    if (value.empty()) return failAt(lineNumber, "expected 'TILT=NONE', found 'TILT='");
-    return failAt(lineNumber, "TILT=" + shorten(value) + " (a tilt file) is not supported (only TILT=NONE)",
-                  ErrorCode::Unsupported);
+    if (equalsNoCase(value, "INCLUDE")) {
+        profile.tilt = "INCLUDE";
+        return {};
+    }
+    if (value.empty()) return failAt(lineNumber, "expected 'TILT=NONE', 'TILT=INCLUDE' or 'TILT=<file>', found 'TILT='");
+    profile.tilt = std::string(value);  // a tilt file: loadIes reads it
+    return {};
+}
+
+// The tilt block (LM-63-2002 §3.10): lamp-to-luminaire geometry, the number of angles, the angles,
+// their multiplying factors.
+Result<void> Parser::tiltData(IesProfile& profile) {
+    const int geometryLine = nextLine();
+    auto geometry = integer("the lamp-to-luminaire geometry (value 1 of the tilt data)");
+    if (!geometry) return std::unexpected(geometry.error());
+    if (*geometry < 1 || *geometry > 3)
+        return failAt(geometryLine, "expected a lamp-to-luminaire geometry of 1, 2 or 3, found " + std::to_string(*geometry));
+    profile.tiltGeometry = *geometry;
+    const int countLine = nextLine();
+    auto n = integer("the number of tilt angles (value 2 of the tilt data)");
+    if (!n) return std::unexpected(n.error());
+    if (*n < 1 || *n > kMaxAngles)
+        return failAt(countLine, "expected 1.." + std::to_string(kMaxAngles) + " tilt angles, found " + std::to_string(*n));
+    auto tiltAngles = angles(*n, "tilt angles", "tilt angle");
+    if (!tiltAngles) return std::unexpected(tiltAngles.error());
+    if (tiltAngles->front() < 0.0f || tiltAngles->back() > 180.0f)
+        return failAt(countLine, "expected tilt angles within 0..180 degrees, found " + numberText(tiltAngles->front()) + ".." +
+                                     numberText(tiltAngles->back()));
+    profile.tiltAngles = std::move(*tiltAngles);
+    profile.tiltFactors.clear();
+    for (int k = 0; k < *n; ++k) {
+        const int line = nextLine();
+        auto f = number("tilt multiplying factor " + std::to_string(k + 1) + " of " + std::to_string(*n));
+        if (!f) return std::unexpected(f.error());
+        if (!(*f >= 0.0) || !std::isfinite(*f)) return failAt(line, "expected a tilt multiplying factor >= 0, found " + numberText(*f));
+        profile.tiltFactors.push_back(static_cast<float>(*f));
+    }
+    return {};
 }
 
 void Parser::tokenize(size_t firstLine) {
@@ -304,6 +345,13 @@ Result<IesProfile> Parser::parse() {
     auto tiltLine = header(profile);
     if (!tiltLine) return std::unexpected(tiltLine.error());
     tokenize(static_cast<size_t>(*tiltLine) + 1);
+    // TILT=INCLUDE: the tilt block comes first; the counts below start after it.
+    int64_t tiltValues = 0;
+    if (profile.tilt == "INCLUDE") {
+        const size_t before = m_next;
+        if (auto t = tiltData(profile); !t) return std::unexpected(t.error());
+        tiltValues = static_cast<int64_t>(m_next - before);
+    }
 
     // Line 1 after TILT: the lamp and geometry values (LM-63-2002 §3.12–§3.13).
     const int lampsLine = nextLine();
@@ -382,7 +430,7 @@ Result<IesProfile> Parser::parse() {
     }
 
     const int64_t cells = static_cast<int64_t>(*nV) * *nH;
-    m_needed = 13 + *nV + *nH + cells;
+    m_needed = tiltValues + 13 + *nV + *nH + cells;
     if (auto wrong = wrongCount(*nV, *nH); !wrong) return std::unexpected(wrong.error());
 
     // Vertical angles, type C: 0..180 degrees from the nadir.
@@ -513,6 +561,14 @@ Result<IesProfile> parseIes(std::string_view text, const std::string& fileName) 
     return Parser(text, fileName).parse();
 }
 
+Result<void> parseIesTilt(std::string_view text, const std::string& fileName, IesProfile& profile) {
+    Parser p(text, fileName);
+    p.tokenizeAll();
+    if (auto t = p.tiltData(profile); !t) return t;
+    if (!p.atEndOfData()) return p.failAtNext("expected the end of the tilt data, found more values");
+    return {};
+}
+
 Result<IesProfile> loadIes(const std::filesystem::path& path) {
     const std::string name = path.string();
     std::error_code ec;
@@ -526,7 +582,20 @@ Result<IesProfile> loadIes(const std::filesystem::path& path) {
     if (!in) return fail(ErrorCode::Io, "'" + name + "': cannot open the IES file");
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     if (in.bad()) return fail(ErrorCode::Io, "'" + name + "': cannot read the IES file");
-    return parseIes(text, name);
+    auto profile = parseIes(text, name);
+    if (!profile || profile->tilt == "NONE" || profile->tilt == "INCLUDE") return profile;
+    // TILT=<file>: the tilt data in a file of its own, next to the IES file.
+    const std::filesystem::path tiltPath = path.parent_path() / profile->tilt;
+    const std::string tiltName = tiltPath.string();
+    if (!std::filesystem::is_regular_file(tiltPath, ec))
+        return fail(ErrorCode::NotFound, "'" + name + "': TILT=" + profile->tilt + ": no such tilt file '" + tiltName + "'");
+    if (std::filesystem::file_size(tiltPath, ec) > kMaxFileBytes)
+        return fail(ErrorCode::InvalidInput, "'" + tiltName + "': expected a tilt file of at most 64 MiB");
+    std::ifstream tin(tiltPath, std::ios::binary);
+    std::string tiltText((std::istreambuf_iterator<char>(tin)), std::istreambuf_iterator<char>());
+    if (!tin && !tin.eof()) return fail(ErrorCode::Io, "'" + tiltName + "': cannot read the tilt file");
+    if (auto t = parseIesTilt(tiltText, tiltName, *profile); !t) return std::unexpected(t.error());
+    return profile;
 }
 
 double evaluateDegrees(const IesProfile& p, double horizontalDegrees, double verticalDegrees) {

@@ -71,7 +71,18 @@ struct IesProfile {
     std::vector<float> candela;
     float maxCandela = 0.0f;  // cd, the largest entry of `candela`
     IesSymmetry symmetry = IesSymmetry::Rotational;
+    // TILT (LM-63-2002 §3.10): "NONE", "INCLUDE" (the tilt data follows the TILT line) or the name
+    // of a tilt file (read by loadIes from the IES file's folder). The data — lamp-to-luminaire
+    // geometry (1..3), tilt angles (degrees) and their candela multipliers — is kept as read;
+    // rendering uses the luminaire as photometered (no tilt applied).
+    std::string tilt = "NONE";
+    int tiltGeometry = 0;
+    std::vector<float> tiltAngles, tiltFactors;
 };
+
+// Parses the tilt data of a TILT=<file> tilt file (or the block after TILT=INCLUDE): geometry,
+// count, angles, multiplying factors, into `profile`. fileName names it in errors.
+Result<void> parseIesTilt(std::string_view text, const std::string& fileName, IesProfile& profile);
 
 // Parses an LM-63 file's text. fileName is only used in error messages, which read
 // "'<fileName>':<line>: <what was expected>, found <what was there>".

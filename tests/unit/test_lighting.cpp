@@ -7,6 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -845,13 +847,49 @@ TEST(Ies, ErrorMissingTilt) {
     EXPECT_EQ(parseErrorCode(replaceLine(validIes(), 4, "[MORE] x")), ErrorCode::InvalidInput);
 }
 
-TEST(Ies, ErrorTiltIncludeAndTiltFileAreRefusedByName) {
-    EXPECT_EQ(parseError(replaceLine(validIes(), 4, "TILT=INCLUDE")), "'lamp.ies':4: TILT=INCLUDE is not supported (only TILT=NONE)");
-    EXPECT_EQ(parseErrorCode(replaceLine(validIes(), 4, "TILT=INCLUDE")), ErrorCode::Unsupported);
-    EXPECT_EQ(parseError(replaceLine(validIes(), 4, "TILT=lamp_tilt.dat")),
-              "'lamp.ies':4: TILT=lamp_tilt.dat (a tilt file) is not supported (only TILT=NONE)");
-    EXPECT_EQ(parseErrorCode(replaceLine(validIes(), 4, "TILT=lamp_tilt.dat")), ErrorCode::Unsupported);
-    EXPECT_EQ(parseError(replaceLine(validIes(), 4, "TILT=")), "'lamp.ies':4: expected 'TILT=NONE', found 'TILT='");
+TEST(Ies, TiltIncludeAndTiltFileAreReadAndKept) {
+    // LM-63-2002 §3.10: TILT=INCLUDE puts the tilt block (geometry, count, angles, factors) between
+    // the TILT line and the lamp line; the photometry after it reads as usual.
+    const std::string included = replaceLine(validIes(), 4, "TILT=INCLUDE\n1\n3\n0 45 90\n1.0 0.95 0.9");
+    auto p = parseIes(included, "lamp.ies");
+    ASSERT_TRUE(p.has_value()) << p.error().message;
+    EXPECT_EQ(p->tilt, "INCLUDE");
+    EXPECT_EQ(p->tiltGeometry, 1);
+    EXPECT_EQ(p->tiltAngles, (std::vector<float>{0.0f, 45.0f, 90.0f}));
+    EXPECT_EQ(p->tiltFactors, (std::vector<float>{1.0f, 0.95f, 0.9f}));
+    auto plain = parseIes(validIes(), "lamp.ies");
+    ASSERT_TRUE(plain.has_value());
+    EXPECT_EQ(p->candela, plain->candela);  // the tilt is kept, not applied
+    EXPECT_EQ(p->verticalAngles, plain->verticalAngles);
+    // Errors in the block name its line and value.
+    EXPECT_EQ(parseError(replaceLine(validIes(), 4, "TILT=INCLUDE\n4\n3\n0 45 90\n1 1 1")),
+              "'lamp.ies':5: expected a lamp-to-luminaire geometry of 1, 2 or 3, found 4");
+    EXPECT_EQ(parseError(replaceLine(validIes(), 4, "TILT=INCLUDE\n1\n3\n0 90 45\n1 1 1")),
+              "'lamp.ies':7: expected tilt angles in increasing order, found 45 after 90");
+    EXPECT_EQ(parseError(replaceLine(validIes(), 4, "TILT=INCLUDE\n1\n2\n0 90\n1 -0.5")),
+              "'lamp.ies':8: expected a tilt multiplying factor >= 0, found -0.5");
+    EXPECT_EQ(parseError(replaceLine(validIes(), 4, "TILT=")), "'lamp.ies':4: expected 'TILT=NONE', 'TILT=INCLUDE' or 'TILT=<file>', found 'TILT='");
+    // TILT=<file>: parseIes keeps the name; loadIes reads the file beside the IES file.
+    auto named = parseIes(replaceLine(validIes(), 4, "TILT=lamp_tilt.dat"), "lamp.ies");
+    ASSERT_TRUE(named.has_value()) << named.error().message;
+    EXPECT_EQ(named->tilt, "lamp_tilt.dat");
+    const std::filesystem::path dir = std::filesystem::path(RG_TEST_TMP) / "ies_tilt";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir / "lamp.ies") << replaceLine(validIes(), 4, "TILT=lamp_tilt.dat");
+    std::filesystem::remove(dir / "lamp_tilt.dat");
+    auto missing = loadIes(dir / "lamp.ies");
+    ASSERT_FALSE(missing.has_value());
+    EXPECT_NE(missing.error().message.find("TILT=lamp_tilt.dat: no such tilt file"), std::string::npos) << missing.error().message;
+    std::ofstream(dir / "lamp_tilt.dat") << "3\n2\n0 90\n1 0.8\n";
+    auto loaded = loadIes(dir / "lamp.ies");
+    ASSERT_TRUE(loaded.has_value()) << loaded.error().message;
+    EXPECT_EQ(loaded->tiltGeometry, 3);
+    EXPECT_EQ(loaded->tiltFactors, (std::vector<float>{1.0f, 0.8f}));
+    std::ofstream(dir / "lamp_tilt.dat") << "3\n2\n0 90\n1\n";
+    auto truncated = loadIes(dir / "lamp.ies");
+    ASSERT_FALSE(truncated.has_value());
+    EXPECT_NE(truncated.error().message.find("lamp_tilt.dat':4: truncated file: expected tilt multiplying factor 2 of 2"), std::string::npos)
+        << truncated.error().message;
 }
 
 TEST(Ies, ErrorPhotometricTypesAAndBAreRefusedByName) {
