@@ -253,7 +253,7 @@ void writeCapture(Html& html, const TestOutcome& t, const CaptureOutcome& c) {
       << (c.display ? "display" : "linear") << "\" data-exposure=\"" << formatNumber(initialExposure(c)) << "\">\n";
     b << "<h3>" << htmlEscape(c.resource) << " <small>" << htmlEscape(c.format) << " &middot; golden "
       << storageName(c.storage);
-    if (!c.writerPass.empty()) b << " &middot; last written by pass '" << htmlEscape(c.writerPass) << "'";
+    if (!c.writerPass.empty()) b << " &middot; written by " << htmlEscape(c.writerPass);
     b << "</small>" << (first ? " <span class=\"bad\">&larr; first divergent resource in pipeline order</span>" : "")
       << "</h3>\n";
     if (!c.note.empty()) b << "<p class=\"meta\">" << htmlEscape(c.note) << "</p>\n";

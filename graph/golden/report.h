@@ -34,8 +34,8 @@ struct CaptureOutcome {
     std::string format;       // "rgba16f"
     Storage storage = Storage::ExrHalf;
     bool display = false;     // values are display-encoded (shown as they are, no exposure)
-    std::string writerPass;   // the last pass that writes it in the plan ("" when none)
-    int32_t order = -1;       // that pass's index in the plan: pipeline order
+    std::string writerPass;   // the passes that write it in the plan, in execution order ("a, then b"; "" when none)
+    int32_t order = -1;       // the first of them's index in the plan: pipeline order (where a difference can start)
     Image actual;             // quantised to the golden's storage
     Image expected;           // empty (0 x 0) when there is no golden image
     std::string expectedFile; // the golden image's path

@@ -244,12 +244,16 @@ std::expected<std::map<std::string, Capture>, TestError> readCaptures(gpu::Execu
             c.image = std::move(*img);
             if (ri >= 0) c.format = std::string(formatName(plan.resources[static_cast<size_t>(ri)].format));
         }
-        for (size_t i = 0; i < plan.passes.size(); ++i)
-            for (const auto& a : plan.passes[i].accesses)
-                if (static_cast<int32_t>(a.resource) == ri && usageWrites(a.usage)) {
-                    c.order = static_cast<int32_t>(i);
-                    c.writer = plan.passes[i].name;
-                }
+        // Every pass that writes it, in execution order: a difference in the captured (final)
+        // contents can start at the first of them, so that one orders the captures.
+        for (size_t i = 0; i < plan.passes.size(); ++i) {
+            const bool writes = std::any_of(plan.passes[i].accesses.begin(), plan.passes[i].accesses.end(), [&](const auto& a) {
+                return static_cast<int32_t>(a.resource) == ri && usageWrites(a.usage);
+            });
+            if (!writes) continue;
+            if (c.order < 0) c.order = static_cast<int32_t>(i);
+            c.writer += (c.writer.empty() ? "'" : ", then '") + plan.passes[i].name + "'";
+        }
         out[name] = std::move(c);
     }
     return out;
@@ -595,7 +599,8 @@ TestOutcome runOne(Runtime& rt, const std::string& file, const RunnerOptions& op
         }
         t.captures.push_back(std::move(co));
     }
-    // Pipeline order: by the pass that last writes each capture, then by name.
+    // Pipeline order: by the first pass that writes each capture, then by name — so a change in
+    // the G-buffer pass names a G-buffer target first, not a later pass that also writes it.
     std::stable_sort(t.captures.begin(), t.captures.end(), [](const CaptureOutcome& a, const CaptureOutcome& b) {
         return a.order != b.order ? a.order < b.order : a.resource < b.resource;
     });
@@ -623,7 +628,7 @@ TestOutcome runOne(Runtime& rt, const std::string& file, const RunnerOptions& op
         if (t.firstDivergent.empty()) {
             t.firstDivergent = c.resource;
             t.message = "first divergent resource in pipeline order: '" + c.resource + "'" +
-                        (c.writerPass.empty() ? "" : " (last written by pass '" + c.writerPass + "')") + ": " +
+                        (c.writerPass.empty() ? "" : " (written by " + c.writerPass + ")") + ": " +
                         (c.expected.width == 0 ? c.note : verdicts(c));
         }
         writeArtefacts(c, (fs::path(options.outDir) / test.name).string());

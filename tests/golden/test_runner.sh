@@ -24,7 +24,7 @@ must_fail)
   cat "$tmp/log"
   expect_rc $rc 1 "the perturbed test"
   expect_in "$tmp/log" "FAIL  shading_brighter_sun"
-  expect_in "$tmp/log" "first divergent resource in pipeline order: 'hdr' (last written by pass 'lighting'): rel_mean"
+  expect_in "$tmp/log" "first divergent resource in pipeline order: 'hdr' (written by 'lighting'): rel_mean"
   expect_in "$tmp/log" "FAIL  <- first divergent"
   for ok in material normal albedo; do
     grep -E "^ +$ok +.* ok$" "$tmp/log" >/dev/null || fail "$ok should still match its golden"
@@ -68,7 +68,7 @@ update)
   touch "$tmp/images/blessed/stale.exr"
   run
   expect_rc $rc 1 "a changed test"
-  expect_in "$tmp/log" "first divergent resource in pipeline order: 'output' (last written by pass 'transform'): max_abs"
+  expect_in "$tmp/log" "first divergent resource in pipeline order: 'output' (written by 'transform'): max_abs"
   run --update
   expect_rc $rc 0 "--update after the change"
   expect_in "$tmp/log" "update: pattern: unchanged"
