@@ -10,6 +10,7 @@
 
 #include <unistd.h>
 
+#include "core/names.h"
 #include "passes/passes.h"
 #include "scene/environment.h"
 
@@ -290,7 +291,22 @@ Result<std::unique_ptr<passes::GpuScene>> Session::loadScene(PipelineDesc& pipel
             return fail(ErrorCode::InvalidInput, file + ": material '" + m.name + "' uses model '" + m.model +
                                                      "', which the pipeline does not declare (materials: " + names + ")");
         }
-        // Game-team parameters in the order the shaders read them: the pipeline material's.
+        // Game-team parameters by name, in the order the shaders read them (the pipeline
+        // material's), each checked: a key the model does not have, or a value of another type,
+        // is an error naming where the scene declared it.
+        const std::string where = (m.origin.empty() ? file + ": material '" + m.name + "'" : m.origin) + ".params.";
+        std::vector<std::string> known;
+        for (const auto& [key, def] : pm->params.asTable()) known.push_back(key);
+        for (const auto& [key, value] : m.extra.asTable()) {
+            const Value& def = pm->params[key];
+            if (def.isNil())
+                return fail(ErrorCode::InvalidInput, where + key + ": model '" + m.model + "' has no parameter '" + key + "'" +
+                                                         suggestion(key, known) +
+                                                         (known.empty() ? " (it takes none)" : "; its parameters: " + joinQuoted(known)));
+            if (def.isNumber() && !value.isNumber())
+                return fail(ErrorCode::InvalidInput, where + key + ": expected a number (as model '" + m.model + "' declares it), got " +
+                                                         value.typeName());
+        }
         Value::Table custom;
         for (const auto& [key, def] : pm->params.asTable())
             if (def.isNumber()) custom[key] = m.extra[key].isNumber() ? m.extra[key] : def;

@@ -139,6 +139,9 @@ struct Material {
     bool doubleSided = false;
 
     Value extra;  // a table of other parameters for game-team materials (clear coat, foliage, ...)
+    // Where it was declared, for errors found once the pipeline is known: "file:line:
+    // scene.material.NAME" (Lua scenes) or "file: material 'NAME'" (glTF); empty when made in code.
+    std::string origin;
 };
 
 // ---------------------------------------------------------------------------------------------

@@ -273,6 +273,7 @@ struct Builder {
         if (b.has("params") && !b["params"].isTable() && !(b["params"].isList() && b["params"].asList().empty()))
             return w.at("params").error("expected a table of named parameters, got " + describe(b["params"]));
         m.extra = b["params"];
+        m.origin = d.origin + ": " + w.path;
         RG_TRY(m.doubleSided, boolean(w, b, "double_sided", false));
         std::string alpha;
         RG_TRY(alpha, choice(w, b, "alpha", "opaque", {"opaque", "mask", "blend"}, "alpha mode"));

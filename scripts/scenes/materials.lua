@@ -12,7 +12,7 @@ scene.material "sign" { base_color = { 0.1, 0.1, 0.1 }, emissive = { 500, 250, 5
 -- A game-team material: its parameters ride along in Material::extra.
 scene.material "car_paint" {
   model = "clear_coat", base_color = { 0.05, 0.1, 0.6 }, smoothness = 0.6,
-  params = { coat = 1.0, coat_smoothness = 0.95 },
+  params = { coatStrength = 1.0, coatSmoothness = 0.95 },
 }
 scene.material "glass" { base_color = { 0.9, 0.95, 1.0 }, smoothness = 1, alpha = "blend", opacity = 0.3, double_sided = true }
 scene.material "ground" { base_color = { 0.5, 0.5, 0.5 }, smoothness = 0.5 }

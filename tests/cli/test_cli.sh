@@ -66,6 +66,12 @@ check "export-scene" 0 grep "wrote $tmp/materials.glb (6 meshes" -- "$rgraph" ex
 check "render a glb" 0 grep "wrote $tmp/g.exr" -- "$rgraph" render --scene "$tmp/materials.glb" --size 64x32 --out "$tmp/g.exr" --png "$tmp/g.png"
 check "debug view" 0 grep "wrote $tmp/v.exr" -- "$rgraph" render --scene tests/gpu/scenes/materials.lua --view materialid --size 64x32 --out "$tmp/v.exr" --png "$tmp/v.png"
 check "unknown view" 2 grep "--view: unknown view 'albedo'" -- "$rgraph" render --view albedo --size 8x8
+# Every shipped scene loads and renders through the default pipeline (their material parameters
+# are checked by name against the pipeline's materials).
+for sc in scripts/scenes/*.lua; do
+    n=$(basename "$sc" .lua)
+    check "scene $n renders" 0 grep "wrote $tmp/scene_$n.exr" -- "$rgraph" render --scene "$sc" --size 16x8 --out "$tmp/scene_$n.exr"
+done
 # An explicit --out puts the PNG beside it (never into ./out); other extensions are refused.
 check "png beside --out" 0 grep "wrote $tmp/beside.exr and $tmp/beside.png" -- "$rgraph" render --size 16x8 --out "$tmp/beside.exr"
 check "--out must be .exr" 2 grep "--out: '$tmp/x.xyz' is not an .exr path" -- "$rgraph" render --size 8x8 --out "$tmp/x.xyz"

@@ -348,6 +348,32 @@ TEST_F(LuaGpu, PersistentResourcesCarryOverFrames) {
     EXPECT_FLOAT_EQ(output(s).at(4, 4, 0), 2.0f);
 }
 
+TEST_F(LuaGpu, SceneMaterialParametersAreCheckedByName) {
+    // #14: a typo'd game-team parameter, or one of the wrong type, is an error at the scene's
+    // declaration (file:line), with the model's parameters and a did-you-mean; a right one loads.
+    const std::string file = std::string(RG_TEST_TMP) + "/params_scene.lua";
+    auto sceneWith = [&](const std::string& params) {
+        std::ofstream(file) << "local scene = require \"scene\"\n"
+                               "scene.material \"coated\" { model = \"clear_coat\", params = { " << params << " } }\n"
+                               "scene.sphere \"s\" { radius = 0.5, material = \"coated\" }\n";
+        SessionOptions o = small();
+        o.scene = file;
+        Session s(*s_runtime, o);
+        auto r = s.load(std::string(RG_SOURCE_ROOT) + "/scripts/pipelines/deferred.lua");
+        return r.has_value() ? std::string() : r.error().describe();
+    };
+    EXPECT_EQ(sceneWith("coatSmoothness = 0.5, coatStrength = 1"), "");
+    EXPECT_NE(sceneWith("coatSmoothnes = 0.5").find("params_scene.lua:2: scene.material.coated.params.coatSmoothnes: model 'clear_coat' has no "
+                                                    "parameter 'coatSmoothnes' (did you mean 'coatSmoothness'?); its parameters: "
+                                                    "'coatSmoothness', 'coatStrength'"),
+              std::string::npos)
+        << sceneWith("coatSmoothnes = 0.5");
+    EXPECT_NE(sceneWith("coatStrength = \"full\"").find("params_scene.lua:2: scene.material.coated.params.coatStrength: expected a number (as model "
+                                                         "'clear_coat' declares it), got string"),
+              std::string::npos)
+        << sceneWith("coatStrength = \"full\"");
+}
+
 TEST_F(LuaGpu, CadenceOnceRecordsAfterEachBuildAndEachReset) {
     Session s(*s_runtime, small());
     auto r = s.load(script("cadence_once.lua"));
