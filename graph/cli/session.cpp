@@ -209,7 +209,7 @@ GraphDesc Session::buildableGraph(const PipelineDesc& p) const {
             for (const auto& t : ch.layout.targets)
                 if (r.name == t.name) r.exported = true;
     }
-    resolveShaderPaths(g, p.file);
+    resolveShaderPaths(g, p.file, projectRoot());
     return g;
 }
 

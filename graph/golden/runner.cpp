@@ -306,7 +306,7 @@ GraphDesc buildableGraph(const PipelineDesc& p, const std::vector<std::string>& 
     GraphDesc g = graphWithParams(p);
     for (auto& r : g.resources)
         if (std::find(captures.begin(), captures.end(), r.name) != captures.end()) r.exported = true;
-    resolveShaderPaths(g, p.file);
+    resolveShaderPaths(g, p.file, projectRoot());
     return g;
 }
 

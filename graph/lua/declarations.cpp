@@ -4,10 +4,29 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <map>
 #include <set>
 
 namespace rg {
+
+std::string nextToDeclaration(const std::string& origin, const std::string& path, const std::string& root) {
+    if (path.empty() || std::filesystem::path(path).is_absolute()) return path;
+    const size_t colon = origin.rfind(':');
+    if (colon == std::string::npos || colon == 0) return path;
+    const std::filesystem::path script(origin.substr(0, colon));
+    std::vector<std::filesystem::path> folders;
+    if (script.is_absolute()) folders.push_back(script.parent_path());
+    else {
+        if (!root.empty()) folders.push_back((std::filesystem::path(root) / script).parent_path());
+        folders.push_back(std::filesystem::absolute(script).parent_path());
+    }
+    for (const auto& folder : folders) {
+        std::error_code ec;
+        if (std::filesystem::is_regular_file(folder / path, ec)) return std::filesystem::absolute(folder / path).lexically_normal().string();
+    }
+    return path;
+}
 
 const char* declKindName(DeclKind k) {
     switch (k) {
@@ -572,6 +591,9 @@ struct Builder {
             if (b.has(field))
                 if (auto r = expectType(w.at(field), b[field], "string"); !r) return r;
         m.surface = b["surface"].asString();
+        // A surface file next to the declaring script (a game team's folder) is found there;
+        // otherwise the shader include folders are searched (materials/, shaders/).
+        if (!m.surface.empty()) m.surface = nextToDeclaration(d.origin, m.surface, options.projectRoot);
         m.path = b["path"].asString();
         if (!m.path.empty()) {
             auto pit = std::find_if(out.lightingPaths.begin(), out.lightingPaths.end(), [&](auto& p) { return p.name == m.path; });

@@ -22,6 +22,11 @@ enum class DeclKind : uint8_t {
 const char* declKindName(DeclKind k);  // "resource", "buffer", "pass", ..., "scene.sphere", ...
 bool isSceneKind(DeclKind k);
 
+// `path` made absolute when a file of that name sits next to the script of `origin`
+// ("file:line", a declaration's origin, its file relative to `root` — the chunk names of the Lua
+// host — or to the working folder); unchanged otherwise (absolute, or to be searched for).
+std::string nextToDeclaration(const std::string& origin, const std::string& path, const std::string& root = "");
+
 struct Declaration {
     DeclKind kind = DeclKind::Pass;
     std::string name;    // as declared (without the module prefix)
@@ -50,6 +55,7 @@ Result<void> checkFields(const Where& w, const Value& body, const std::vector<st
 struct BuildOptions {
     std::vector<PassKindSchema> kinds;
     uint32_t stencilBits = 4;  // low stencil bits the framework allocates classes from
+    std::string projectRoot;   // what origins' file names are relative to (LuaHostOptions::projectRoot)
 };
 
 // Validates every declaration and assembles the pipeline: names resolved (module-local first),

@@ -261,6 +261,7 @@ Result<PipelineDesc> LuaHost::load(const std::string& file) {
     if (!decls) return std::unexpected(decls.error());
     BuildOptions bo;
     bo.kinds = m->options.kinds;
+    bo.projectRoot = m->options.projectRoot;
     auto pipeline = buildPipeline(m->decls, m->output, bo);
     if (!pipeline) return pipeline;
     pipeline->file = file;

@@ -87,7 +87,7 @@ GraphDesc graphWithParams(const PipelineDesc& pipeline);
 
 // Makes absolute the passes' relative shader paths that name a file next to the pipeline script
 // (shaders/ and the project root are searched by the shader compiler anyway).
-void resolveShaderPaths(GraphDesc& graph, const std::string& pipelineFile);
+void resolveShaderPaths(GraphDesc& graph, const std::string& pipelineFile, const std::string& projectRoot = "");
 
 // The pipeline materials a scene pass draws (params.materials / params.paths; default all that
 // have a surface), each as { name, id, layout, surface, targets, integer, fills, custom,

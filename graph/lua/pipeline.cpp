@@ -129,16 +129,20 @@ GraphDesc graphWithParams(const PipelineDesc& pipeline) {
     return g;
 }
 
-void resolveShaderPaths(GraphDesc& graph, const std::string& pipelineFile) {
+void resolveShaderPaths(GraphDesc& graph, const std::string& pipelineFile, const std::string& projectRoot) {
     const std::filesystem::path dir = std::filesystem::absolute(pipelineFile).parent_path();
     for (auto& pass : graph.passes) {
         const Value& s = pass.params["shader"];
+        if (!s.isString() || s.asString().empty() || std::filesystem::path(s.asString()).is_absolute()) continue;
+        // Next to the script that declared the pass (a module of its own folder), then next to
+        // the pipeline script; else the include folders.
+        std::string resolved = nextToDeclaration(pass.origin, s.asString(), projectRoot);
         std::error_code ec;
-        if (s.isString() && !s.asString().empty() && std::filesystem::path(s.asString()).is_relative() &&
-            std::filesystem::is_regular_file(dir / s.asString(), ec))
-            pass.params.table()["shader"] = Value((dir / s.asString()).string());
+        if (resolved == s.asString() && std::filesystem::is_regular_file(dir / s.asString(), ec)) resolved = (dir / s.asString()).string();
+        pass.params.table()["shader"] = Value(resolved);
     }
 }
+
 
 Value sceneMaterials(const PipelineDesc& pipeline, const Value& params) {
     std::vector<std::string> selected, paths;

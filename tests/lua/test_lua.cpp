@@ -374,6 +374,41 @@ TEST_F(LuaGpu, SceneMaterialParametersAreCheckedByName) {
         << sceneWith("coatStrength = \"full\"");
 }
 
+TEST_F(LuaGpu, SurfaceFilesResolveNextToTheDeclaringScript) {
+    // #14: a game team's material in a folder of its own (outside the repository): its surface
+    // function sits next to the script that declares it, and renders from there.
+    const fs::path dir = fs::path(RG_TEST_TMP) / "team_material";
+    fs::create_directories(dir);
+    std::ofstream(dir / "red.glsl") << "GBuffer_disney rgSurface(RgSurface s) {\n"
+                                       "    GBuffer_disney g;\n    g.normal = s.normal;\n    g.smoothness = 0.5;\n"
+                                       "    g.materialId = RG_MATERIAL_ID;\n    g.baseColor = vec3(1.0, 0.0, 0.0);\n"
+                                       "    g.materialData = 0u;\n    g.normalExtra = 0u;\n    g.reserved = 0.0;\n"
+                                       "    g.metalMask = 0.0;\n    g.reflectance = 0.5;\n    g.ao = 1.0;\n    g.emissive = vec3(0.0);\n"
+                                       "    return g;\n}\n";
+    std::ofstream(dir / "pipeline.lua") << "local rg = require \"rg\"\nrequire \"disney\"\n"
+                                          "rg.material \"red\" { id = 1, layout = \"disney\", path = \"standard\", surface = \"red.glsl\" }\n"
+                                          "rg.resource \"GB0\" { format = \"rgb10a2\" }\nrg.resource \"GB1\" { format = \"rgba8_srgb\" }\n"
+                                          "rg.resource \"GB2\" { format = \"rgba8\" }\nrg.resource \"GB3\" { format = \"rgba16f\" }\n"
+                                          "rg.resource \"depth\" { format = \"d32f_s8\" }\n"
+                                          "rg.pass \"gbuffer\" { kind = \"scene\", writes = { \"GB0\", \"GB1\", \"GB2\", \"GB3\", \"depth\" } }\n"
+                                          "rg.output \"GB1\"\n";
+    std::ofstream(dir / "scene.lua") << "local scene = require \"scene\"\n"
+                                       "scene.material \"m\" { model = \"red\" }\n"
+                                       "scene.plane \"p\" { size = { 10, 10 }, material = \"m\" }\n"
+                                       "scene.camera \"c\" { position = { 0, 3, 0.001 }, target = { 0, 0, 0 }, fov = 60 }\n";
+    SessionOptions o = small();
+    o.scene = (dir / "scene.lua").string();
+    Session s(*s_runtime, o);
+    auto r = s.load((dir / "pipeline.lua").string());
+    ASSERT_TRUE(r.has_value()) << r.error().describe();
+    ASSERT_TRUE(s.frame().has_value());
+    auto gb1 = s_runtime->executor().readback("GB1");
+    ASSERT_TRUE(gb1.has_value()) << gb1.error().describe();
+    // GB1 holds the base colour (sRGB): the red the team's surface wrote, at the plane's centre.
+    EXPECT_NEAR(gb1->at(gb1->width / 2, gb1->height / 2, 0), 1.0f, 1e-3f);
+    EXPECT_NEAR(gb1->at(gb1->width / 2, gb1->height / 2, 1), 0.0f, 1e-3f);
+}
+
 TEST_F(LuaGpu, CadenceOnceRecordsAfterEachBuildAndEachReset) {
     Session s(*s_runtime, small());
     auto r = s.load(script("cadence_once.lua"));

@@ -873,7 +873,7 @@ TEST(SceneScript, MaterialsAndFurnaceScenesLoadWithTheirParameters) {
     EXPECT_EQ(material("rust").f0, glm::vec3(0.35f, 0.25f, 0.2f));
     EXPECT_EQ(material("rust").diffuseColor, glm::vec3(0.30f, 0.12f, 0.05f));
     EXPECT_EQ(material("car_paint").model, "clear_coat");
-    EXPECT_EQ(material("car_paint").extra["coat_smoothness"].asNumber(), 0.95);
+    EXPECT_EQ(material("car_paint").extra["coatSmoothness"].asNumber(), 0.95);
     EXPECT_EQ(material("sign").emissive, glm::vec3(500, 250, 50));
     EXPECT_EQ(material("glass").alphaMode, rg::AlphaMode::Blend);
     EXPECT_FLOAT_EQ(material("glass").opacity, 0.3f);
