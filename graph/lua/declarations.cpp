@@ -630,6 +630,31 @@ struct Builder {
         if (b.has("params"))
             if (auto r = expectType(w.at("params"), b["params"], "table"); !r) return r;
         m.params = b["params"];
+        // Numeric params become `#define NAME material.custom[i][j]` in the generated G-buffer
+        // shader (passes/scene_pass.cpp): a name that is also a layout channel, a field of the
+        // sampled surface or a name of the generated code would rewrite that code.
+        {
+            static const std::vector<std::string> reserved = {
+                "position", "normal", "baseColor", "opacity", "smoothness", "metalMask", "reflectance", "ao", "emissive",
+                "diffuseColor", "f0", "twoColour",  // RgSurface (shaders/lib/material.glsl)
+                "material", "s", "g", "main", "worldPosition", "worldNormal", "worldTangent", "uv0", "uv1"};  // the generated code
+            for (const auto& [name, value] : m.params.asTable()) {
+                const Where pw = w.at("params").at(name);
+                const bool identifier = !name.empty() && (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_') &&
+                                        std::all_of(name.begin(), name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+                if (!identifier) return pw.error("a material parameter's name must be a GLSL identifier (letters, digits, _)");
+                if (name.rfind("rg", 0) == 0 || name.rfind("RG_", 0) == 0 || name.rfind("gl_", 0) == 0)
+                    return pw.error("names starting with 'rg', 'RG_' or 'gl_' are rgraph's and GLSL's; choose another");
+                for (const auto& t : lit->targets)
+                    for (const auto& c : t.channels)
+                        if (c.name == name)
+                            return pw.error("clashes with channel '" + name + "' of layout '" + m.layout + "' (target " + t.name +
+                                            "): the generated shader defines each parameter as a name; choose another");
+                if (std::find(reserved.begin(), reserved.end(), name) != reserved.end())
+                    return pw.error("clashes with '" + name + "' of the generated G-buffer shader (the sampled surface's fields and its variables: " +
+                                    joinQuoted(reserved) + "); choose another");
+            }
+        }
         out.materials.push_back(m);
         return {};
     }

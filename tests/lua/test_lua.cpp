@@ -101,6 +101,18 @@ TEST(LuaErrors, MaterialIdCollisionNamesBothDeclarations) {
                   "id_collision.lua:3)");
 }
 
+TEST(LuaErrors, MaterialParameterNamesCannotClashWithTheGeneratedShader) {
+    // #14: a parameter becomes a #define in the generated G-buffer shader; a layout channel's name
+    // broke it with an error inside the generated file. Now refused where it is declared.
+    EXPECT_EQ(loadError("param_clash.lua"),
+              kScripts + "param_clash.lua:4: materials.toon.params.smoothness: clashes with channel 'smoothness' of layout 'disney' "
+                         "(target GB0): the generated shader defines each parameter as a name; choose another");
+    EXPECT_NE(loadError("param_reserved.lua").find("param_reserved.lua:4: materials.toon.params.uv0: clashes with 'uv0' of the generated "
+                                                   "G-buffer shader"),
+              std::string::npos)
+        << loadError("param_reserved.lua");
+}
+
 TEST(LuaErrors, StencilExhaustion) {
     EXPECT_EQ(loadError("stencil_exhaustion.lua"),
               kScripts + "stencil_exhaustion.lua:4: stencil.class16: no stencil value left: 4 stencil bits hold 15 classes, all "
