@@ -41,7 +41,8 @@ Result<std::unique_ptr<Runtime>> Runtime::create(const RuntimeOptions& options) 
 
     ShaderCompiler::Options so;
     const std::string root = projectRoot();
-    so.includeDirs = {root + "/shaders", root, generatedShaderDir()};
+    so.includeDirs = {root + "/shaders", root};
+    so.generatedDir = generatedShaderDir();  // each pipeline's own folder below it: setGeneratedDir
     so.cacheDir = cacheDir() + "/spirv";
     std::error_code ec;
     fs::create_directories(so.cacheDir, ec);

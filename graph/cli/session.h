@@ -95,7 +95,12 @@ private:
 
 // Writes gbuffer_<layout>.glsl (pack/unpack, generated) for every layout of the pipeline into
 // generatedShaderDir(), which shaders reach with #include "gbuffer_<layout>.glsl".
-Result<void> writeLayoutHeaders(const PipelineDesc& pipeline);
+// Returns the folder it wrote them to: a folder of generatedShaderDir() named by their content, so
+// two pipelines that declare a layout of the same name differently never overwrite each other.
+// useLayoutHeaders points the runtime's shader compiler at it (and has the next build prepare
+// every pass when it changed).
+Result<std::string> writeLayoutHeaders(const PipelineDesc& pipeline);
+void useLayoutHeaders(Runtime& runtime, const std::string& dir);
 
 // Options for a LuaHost that sees the project's scripts/ and materials/ and the runtime's kinds.
 LuaHostOptions luaHostOptions(const Runtime& runtime);

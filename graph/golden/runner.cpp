@@ -327,7 +327,9 @@ std::expected<Rendered, TestError> renderWithoutSession(Runtime& rt, const Prepa
         return testError(Error(ErrorCode::Unsupported, test.file + ": pipeline: '" + test.pipeline + "' draws a scene, which "
                                                                    "needs Session's params/frameHook (graph/cli) in this build"));
     for (const auto& [name, value] : p.params) pipeline.findParam(name)->value = value;
-    if (auto r = writeLayoutHeaders(pipeline); !r) return testError(r.error());
+    auto headers = writeLayoutHeaders(pipeline);
+    if (!headers) return testError(headers.error());
+    useLayoutHeaders(rt, *headers);
 
     const uint32_t validationBefore = rt.gpu().validationMessageCount();
     Rendered result;

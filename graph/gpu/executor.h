@@ -61,6 +61,8 @@ public:
     void setScene(const passes::GpuScene* scene, std::function<void(uint32_t slot)> perFrame);
     // Floor mode for the builds that follow (PassSetup::floor): every pass is prepared again.
     void setFloors(bool on);
+    // The next build prepares every pass again (their shaders' inputs changed place).
+    void forceRebuild() { m_forceRebuild = true; }
     const passes::GpuScene* scene() const { return m_scene; }
 
     // Contents for an imported texture (uploaded now, then kept in ShaderReadOnly layout).

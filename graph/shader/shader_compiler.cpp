@@ -383,7 +383,9 @@ ShaderCompiler::ShaderCompiler(Options options) : m_options(std::move(options)) 
 
 Result<ShaderModule> ShaderCompiler::compile(const ShaderRequest& req) {
     const std::string prefix = passPrefix(req.passName);
-    const IncludePaths paths(m_options.includeDirs);
+    std::vector<std::string> roots = m_options.includeDirs;
+    if (!m_options.generatedDir.empty()) roots.push_back(m_options.generatedDir);
+    const IncludePaths paths(roots);
 
     // Find and read the source.
     SourceSet set;

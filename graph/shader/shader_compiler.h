@@ -61,6 +61,9 @@ public:
         // Search roots, in order, for ShaderRequest::path and for #include. An #include is
         // first looked up in the including file's folder.
         std::vector<std::string> includeDirs;
+        // Searched after includeDirs: the generated code of the pipeline being built (its
+        // G-buffer layouts' headers), switched per pipeline with setGeneratedDir.
+        std::string generatedDir;
         std::string cacheDir;    // "<cacheDir>/<16 hex digits>.spv"; "" disables the disk cache
         bool debugInfo = false;  // OpLine / OpSource with the GLSL text, for debuggers
     };
@@ -80,6 +83,7 @@ public:
     Result<ShaderModule> compile(const ShaderRequest& request);
 
     const Stats& stats() const { return m_stats; }
+    void setGeneratedDir(std::string dir) { m_options.generatedDir = std::move(dir); }
     const Options& options() const { return m_options; }
 
 private:

@@ -421,6 +421,47 @@ TEST_F(LuaGpu, SurfaceFilesResolveNextToTheDeclaringScript) {
     EXPECT_NEAR(gb1->at(gb1->width / 2, gb1->height / 2, 1), 0.0f, 1e-3f);
 }
 
+TEST_F(LuaGpu, LayoutsOfTheSameNameInTwoPipelinesDoNotCollide) {
+    // #14: generated G-buffer headers went to one folder per layout name, so two pipelines that
+    // declare "shared" differently overwrote each other's. Now each set of layouts has a folder
+    // named by its content, and a session switches the compiler to its own.
+    const fs::path dir = fs::path(RG_TEST_TMP) / "layout_collision";
+    fs::create_directories(dir);
+    auto pipeline = [&](const std::string& name, const std::string& channel) {
+        std::ofstream(dir / name) << "local rg = require \"rg\"\n"
+                                     "rg.layout \"shared\" { { \"T\", \"rgba8\", { \"" << channel << ":unorm:8\", \"rest:unorm:8\" } } }\n"
+                                     "rg.resource \"output\" { format = \"rgba32f\" }\n"
+                                     "rg.pass \"fill\" { kind = \"compute\", shader = \"test/pattern.comp\", writes = { \"output\" }, bind = { pattern = \"output\" } }\n"
+                                     "rg.output \"output\"\n";
+        return (dir / name).string();
+    };
+    LuaHost host(luaHostOptionsWithoutDevice());
+    auto a = host.load(pipeline("a.lua", "alpha"));
+    ASSERT_TRUE(a.has_value()) << a.error().message;
+    auto b = host.load(pipeline("b.lua", "beta"));
+    ASSERT_TRUE(b.has_value()) << b.error().message;
+    auto da = writeLayoutHeaders(*a), db = writeLayoutHeaders(*b);
+    ASSERT_TRUE(da.has_value() && db.has_value());
+    EXPECT_NE(*da, *db);
+    auto text = [](const std::string& folder) {
+        std::ifstream in(fs::path(folder) / "gbuffer_shared.glsl");
+        return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    };
+    EXPECT_NE(text(*da).find("alpha"), std::string::npos);
+    EXPECT_EQ(text(*da).find("beta"), std::string::npos);
+    EXPECT_NE(text(*db).find("beta"), std::string::npos);
+    // The same layouts again: the same folder.
+    auto again = writeLayoutHeaders(*a);
+    ASSERT_TRUE(again.has_value());
+    EXPECT_EQ(*again, *da);
+    // A session's build compiles against its own pipeline's folder.
+    Session s(*s_runtime, small());
+    ASSERT_TRUE(s.load(pipeline("a.lua", "alpha")).has_value());
+    EXPECT_EQ(s_runtime->shaders().options().generatedDir, *da);
+    ASSERT_TRUE(s.load(pipeline("b.lua", "beta")).has_value());
+    EXPECT_EQ(s_runtime->shaders().options().generatedDir, *db);
+}
+
 TEST_F(LuaGpu, CadenceOnceRecordsAfterEachBuildAndEachReset) {
     Session s(*s_runtime, small());
     auto r = s.load(script("cadence_once.lua"));
