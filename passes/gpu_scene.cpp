@@ -699,15 +699,25 @@ VkBuffer GpuScene::bvhBuffer() const {
     return m_bvh.buffer();
 }
 
+VkBuffer GpuScene::bindingBuffer(std::string_view name, uint32_t slot) const {
+    if (name == "Camera") return cameraBuffer(slot);
+    if (name == "Lights") return lightBuffer(slot);
+    if (name == "ShadowViews") return shadowViewBuffer(slot);
+    if (name == "Decals") return decalBuffer();
+    if (name == "SceneDraws") return drawBuffer();
+    if (name == "SceneBvh") return bvhBuffer();
+    return VK_NULL_HANDLE;
+}
+
 std::pair<uint32_t, uint32_t> GpuScene::shadowViewsOf(size_t light) const {
-    return light < m_lightViews.size() ? m_lightViews[light] : std::pair<uint32_t, uint32_t>{0, 0};
+    if (light >= m_lightViews.size() || m_lightViews[light].y == 0) return {0, 0};
+    return {static_cast<uint32_t>(m_lightViews[light].x), static_cast<uint32_t>(m_lightViews[light].y)};
 }
 
 void GpuScene::updateShadowViews(uint32_t slot, const glm::mat4& cameraViewProj) {
     m_shadowViewDraws.clear();
-    m_lightViews.assign(m_scene.lights.size(), {0, 0});
+    m_lightViews.assign(kMaxLights, glm::ivec4(-1, 0, 0, 0));
     std::vector<GpuShadowView> views;
-    std::vector<glm::ivec4> lightViews(kMaxLights, glm::ivec4(-1, 0, 0, 0));
     const auto camera = frustumPlanes(cameraViewProj);
     // A light without a range reaches as far as the scene goes.
     const float sceneSize = glm::length(m_scene.boundsMax - m_scene.boundsMin);
@@ -726,8 +736,7 @@ void GpuScene::updateShadowViews(uint32_t slot, const glm::mat4& cameraViewProj)
         const glm::mat4 proj = glm::perspectiveRH_ZO(2.0f * std::atan(tanHalf), 1.0f, nearPlane, far);
         static const glm::vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
         static const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
-        lightViews[i] = glm::ivec4(static_cast<int>(views.size()), static_cast<int>(count), 0, 0);
-        m_lightViews[i] = {static_cast<uint32_t>(views.size()), count};
+        m_lightViews[i] = glm::ivec4(static_cast<int>(views.size()), static_cast<int>(count), 0, 0);
         const float radius = std::max({l.radius, 0.5f * std::max(l.width, l.height), 0.5f * l.length});
         for (uint32_t f = 0; f < count; ++f) {
             const glm::vec3 axis = single ? l.direction : axes[f];
@@ -751,7 +760,7 @@ void GpuScene::updateShadowViews(uint32_t slot, const glm::mat4& cameraViewProj)
     const glm::uvec4 header(static_cast<uint32_t>(views.size()), 0, 0, 0);
     std::memcpy(p, &header, sizeof header);
     if (!views.empty()) std::memcpy(p + 16, views.data(), views.size() * sizeof(GpuShadowView));
-    std::memcpy(p + 16 + size_t(kMaxShadowViews) * sizeof(GpuShadowView), lightViews.data(), lightViews.size() * sizeof(glm::ivec4));
+    std::memcpy(p + 16 + size_t(kMaxShadowViews) * sizeof(GpuShadowView), m_lightViews.data(), m_lightViews.size() * sizeof(glm::ivec4));
 }
 
 }  // namespace rg::passes

@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -122,7 +123,7 @@ public:
     // count. Written by updateFrame with the draws each view sees.
     VkBuffer shadowViewBuffer(uint32_t slot) const { return m_shadowViewBuffers[slot].buffer(); }
     uint32_t shadowViewCount() const { return static_cast<uint32_t>(m_shadowViewDraws.size()); }
-    // The draws whose bounding spheres meet view v's frustum (this frame).
+    // The draws whose world boxes meet view v's frustum (this frame).
     const std::vector<size_t>& shadowViewDraws(uint32_t v) const { return m_shadowViewDraws[v]; }
     // The opaque triangles in world space as a ray-cast hierarchy (graph/scene/bvh.h) for
     // shaders that bind `SceneBvh` (lib/bvh.glsl: the reference mode's shadow rays): a uvec4
@@ -132,6 +133,10 @@ public:
     // index range and vertex offset, and whether it casts shadows (opaque): what a culling pass
     // needs to write indirect draw commands (shaders/shadows/cascade_cull.comp).
     VkBuffer drawBuffer() const { return m_drawBuffer.buffer(); }
+    // The buffer behind scene binding `name` (a shader block of that name: Camera, Lights,
+    // ShadowViews — frame slot `slot`'s — Decals, SceneDraws, SceneBvh), VK_NULL_HANDLE for
+    // another name or a buffer that could not be made.
+    VkBuffer bindingBuffer(std::string_view name, uint32_t slot) const;
     // The first of light `light`'s shadow views this frame and how many (0: none).
     std::pair<uint32_t, uint32_t> shadowViewsOf(size_t light) const;
     // The decals (shaders/lib/scene.glsl's Decals block): a count, then one RgDecal each.
@@ -169,7 +174,7 @@ private:
     std::vector<std::vector<size_t>> m_shadowViewDraws;      // per view of this frame
     mutable gpu::Buffer m_bvh;  // bvhBuffer(), once built
     gpu::Buffer m_drawBuffer;
-    std::vector<std::pair<uint32_t, uint32_t>> m_lightViews;  // per light: first view, count
+    std::vector<glm::ivec4> m_lightViews;  // per light (kMaxLights): first view (−1: none), count — as uploaded
     void updateShadowViews(uint32_t slot, const glm::mat4& cameraViewProj);
     gpu::Buffer m_decals;
     Result<void> createDecals(gpu::Context& ctx);

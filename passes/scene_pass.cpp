@@ -120,16 +120,20 @@ uint32_t textureMask(const Material& m) {
     return mask;
 }
 
-// The scene's draws that `wanted` accepts, split by the textures their materials have (one
-// shader variant each: RG_TEXTURES), in the scene's order within each variant.
+// The scene's draws whose materials `wanted` accepts, in the scene's order.
+template <typename Wanted>
+std::vector<size_t> drawsWhere(const GpuScene& scene, Wanted wanted) {
+    std::vector<size_t> out;
+    for (size_t d = 0; d < scene.draws().size(); ++d)
+        if (wanted(scene.scene().materials[scene.draws()[d].material])) out.push_back(d);
+    return out;
+}
+
+// The same, split by the textures their materials have (one shader variant each: RG_TEXTURES).
 template <typename Wanted>
 std::map<uint32_t, std::vector<size_t>> drawsByTextures(const GpuScene& scene, Wanted wanted) {
     std::map<uint32_t, std::vector<size_t>> out;
-    const auto& materials = scene.scene().materials;
-    for (size_t d = 0; d < scene.draws().size(); ++d) {
-        const Material& m = materials[scene.draws()[d].material];
-        if (wanted(m)) out[textureMask(m)].push_back(d);
-    }
+    for (size_t d : drawsWhere(scene, wanted)) out[textureMask(scene.scene().materials[scene.draws()[d].material])].push_back(d);
     return out;
 }
 
@@ -161,12 +165,9 @@ public:
         if (m_forward) {
             MaterialInfo info;
             info.name = "forward";
-            auto variants = drawsByTextures(*setup.scene, [](const Material& m) { return m.alphaMode == AlphaMode::Blend; });
-            // Blended draws are sorted back to front across variants: one group, every texture.
-            std::vector<size_t> all;
-            for (auto& [mask, draws] : variants) all.insert(all.end(), draws.begin(), draws.end());
-            std::sort(all.begin(), all.end());
-            return addGroup(setup, info, forwardSource(), "forward.frag", 31u, std::move(all), attachments);
+            // Blended draws are sorted back to front across materials: one group, every texture.
+            return addGroup(setup, info, forwardSource(), "forward.frag", 31u,
+                            drawsWhere(*setup.scene, [](const Material& m) { return m.alphaMode == AlphaMode::Blend; }), attachments);
         }
         for (const MaterialInfo& info : materialsOf(desc)) {
             for (const auto& t : info.targets)
@@ -353,9 +354,7 @@ private:
         auto pipeline = createGraphicsPipeline(setup.gpu.device(), d);
         if (!pipeline) return std::unexpected(pipeline.error());
         g.pipeline = std::move(*pipeline);
-        const auto& sceneMaterials = setup.scene->scene().materials;
-        for (size_t i = 0; i < setup.scene->draws().size(); ++i)
-            if (sceneMaterials[setup.scene->draws()[i].material].alphaMode != AlphaMode::Blend) g.draws.push_back(i);
+        g.draws = drawsWhere(*setup.scene, [](const Material& m) { return m.alphaMode != AlphaMode::Blend; });
         m_groups.push_back(std::move(g));
         return {};
     }

@@ -38,6 +38,17 @@ VkDescriptorType toVkDescriptor(DescriptorType t) {
     return VK_DESCRIPTOR_TYPE_MAX_ENUM;
 }
 
+// The scene's bindings (passes/gpu_scene.h bindingBuffer, and its environment), by block name
+// and type: bound whatever the pass declares.
+bool isSceneBinding(const ReflectedBinding& b) {
+    static const std::pair<const char*, DescriptorType> kScene[] = {
+        {"Camera", DescriptorType::UniformBuffer},       {"Lights", DescriptorType::StorageBuffer},
+        {"Decals", DescriptorType::StorageBuffer},       {"ShadowViews", DescriptorType::StorageBuffer},
+        {"SceneDraws", DescriptorType::StorageBuffer},   {"SceneBvh", DescriptorType::StorageBuffer},
+        {"SceneEnvironment", DescriptorType::CombinedImageSampler}};
+    return std::any_of(std::begin(kScene), std::end(kScene), [&](const auto& e) { return b.name == e.first && b.type == e.second; });
+}
+
 bool isParamsBlock(const ReflectedBinding& b) {
     return b.type == DescriptorType::UniformBuffer && b.name == "Params";
 }
@@ -274,20 +285,13 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
     std::vector<const ReflectedBinding*> sceneBindings;
     for (const auto& b : m_reflection.bindings) {
         if (isParamsBlock(b) || m_external.count(b.set)) continue;
-        // The scene's camera and lights, bound whatever the pass declares.
-        const bool camera = b.name == "Camera" && b.type == DescriptorType::UniformBuffer;
-        const bool lights = b.name == "Lights" && b.type == DescriptorType::StorageBuffer;
-        const bool decalList = b.name == "Decals" && b.type == DescriptorType::StorageBuffer;
-        const bool shadowViews = b.name == "ShadowViews" && b.type == DescriptorType::StorageBuffer;
-        const bool bvh = b.name == "SceneBvh" && b.type == DescriptorType::StorageBuffer;
-        const bool draws = b.name == "SceneDraws" && b.type == DescriptorType::StorageBuffer;
-        const bool environment = b.name == "SceneEnvironment" && b.type == DescriptorType::CombinedImageSampler;
-        if (camera || lights || decalList || shadowViews || bvh || draws || environment) {
+        // The scene's camera, lights and the rest, bound whatever the pass declares.
+        if (isSceneBinding(b)) {
             if (!setup.scene)
                 return fail(ErrorCode::InvalidInput, passPrefix(desc) + "shader binding '" + b.name +
                                                          "' is the scene's, but no scene is loaded (give --scene)");
-            if (bvh && setup.scene->bvhBuffer() == VK_NULL_HANDLE)
-                return fail(ErrorCode::Device, passPrefix(desc) + "could not build the scene's ray-cast hierarchy (SceneBvh): out of memory");
+            if (b.type != DescriptorType::CombinedImageSampler && setup.scene->bindingBuffer(b.name, 0) == VK_NULL_HANDLE)
+                return fail(ErrorCode::Device, passPrefix(desc) + "could not make the scene's '" + b.name + "' buffer: out of memory");
             sceneBindings.push_back(&b);
             continue;
         }
@@ -389,13 +393,7 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
                 writes.push_back(w);
                 continue;
             }
-            buffers.push_back({b->name == "Camera"        ? setup.scene->cameraBuffer(s / m_variants)
-                               : b->name == "Lights"      ? setup.scene->lightBuffer(s / m_variants)
-                               : b->name == "ShadowViews" ? setup.scene->shadowViewBuffer(s / m_variants)
-                               : b->name == "SceneBvh"    ? setup.scene->bvhBuffer()
-                               : b->name == "SceneDraws"  ? setup.scene->drawBuffer()
-                                                          : setup.scene->decalBuffer(),
-                               0, VK_WHOLE_SIZE});
+            buffers.push_back({setup.scene->bindingBuffer(b->name, s / m_variants), 0, VK_WHOLE_SIZE});
             VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
             w.dstSet = m_sets[s][b->set];
             w.dstBinding = b->binding;

@@ -55,6 +55,24 @@ namespace {
 const std::vector<std::string> kViews = {"normals", "basecolor", "smoothness", "metalmask", "materialid",
                                          "reflectance", "ao", "emissive"};
 
+// The debug view's fullscreen pass: `reads`, then the view target it writes; `params` its shader
+// and uniforms.
+void addViewPass(GraphDesc& g, std::vector<Access> reads, Value::Table params) {
+    PassDesc pass;
+    pass.name = "debug_view";
+    pass.kind = "fullscreen";
+    pass.accesses = std::move(reads);
+    pass.accesses.push_back({"debug_view", Usage::ColorAttachment});
+    pass.params = Value(std::move(params));
+    g.passes.push_back(std::move(pass));
+}
+
+// A view that needs `resource`: an error naming what provides it when the pipeline lacks it.
+Result<void> needs(const GraphDesc& g, const std::string& view, const std::string& resource, const std::string& hint) {
+    if (g.findResource(resource)) return {};
+    return fail(ErrorCode::InvalidInput, "--view " + view + ": the pipeline has no '" + resource + "' (" + hint + ")");
+}
+
 // Appends the debug view's passes: a fullscreen decode of the disney G-buffer, or for the
 // stencil one colour per stencil class drawn with that class's stencil test.
 Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string& view, const Scene* scene) {
@@ -70,8 +88,7 @@ Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string
     // shadow:LIGHT — that local light's shadow maps this frame (a spot's one, a cube's six).
     if (view.starts_with("shadow:")) {
         const std::string name = view.substr(7);
-        if (!g.findResource("local_shadow"))
-            return fail(ErrorCode::InvalidInput, "--view " + view + ": the pipeline has no 'local_shadow' (require \"shadows\")");
+        if (auto r = needs(g, view, "local_shadow", "require \"shadows\""); !r) return r;
         std::string shadowed;
         int index = -1;
         for (size_t i = 0; scene && i < scene->lights.size(); ++i) {
@@ -83,13 +100,9 @@ Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string
         if (index < 0)
             return fail(ErrorCode::InvalidInput, "--view " + view + ": the scene has no light '" + name + "' that casts shadows (" +
                                                      (shadowed.empty() ? std::string("none does: give a local light shadow = true") : "those that do: " + shadowed) + ")");
-        PassDesc pass;
-        pass.name = "debug_view";
-        pass.kind = "fullscreen";
-        pass.accesses = {{"local_shadow", Usage::Sampled}, {"debug_view", Usage::ColorAttachment}};
-        pass.params = Value(Value::Table{{"shader", Value("passes/local_shadow_view.frag")},
-                                         {"uniforms", Value(Value::Table{{"light", Value(static_cast<double>(index))}})}});
-        g.passes.push_back(pass);
+        addViewPass(g, {{"local_shadow", Usage::Sampled}},
+                    {{"shader", Value("passes/local_shadow_view.frag")},
+                     {"uniforms", Value(Value::Table{{"light", Value(static_cast<double>(index))}})}});
         return {};
     }
     if (view == "stencil") {
@@ -118,57 +131,31 @@ Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string
         return {};
     }
     if (view == "lights") {
-        if (!g.findResource("light_tiles"))
-            return fail(ErrorCode::InvalidInput, "--view lights: the pipeline has no 'light_tiles' (require \"lighting\" and light its passes with lighting.tiled)");
-        PassDesc pass;
-        pass.name = "debug_view";
-        pass.kind = "fullscreen";
-        pass.accesses = {{"light_tiles", Usage::StorageRead}, {"depth", Usage::Sampled}, {"debug_view", Usage::ColorAttachment}};
-        pass.params = Value(Value::Table{{"shader", Value("passes/light_count_view.frag")}, {"defines", Value(Value::Table{{"RG_LIGHT_TILES", Value(true)}})}});
-        g.passes.push_back(pass);
+        if (auto r = needs(g, view, "light_tiles", "require \"lighting\" and light its passes with lighting.tiled"); !r) return r;
+        addViewPass(g, {{"light_tiles", Usage::StorageRead}, {"depth", Usage::Sampled}},
+                    {{"shader", Value("passes/light_count_view.frag")}, {"defines", Value(Value::Table{{"RG_LIGHT_TILES", Value(true)}})}});
         return {};
     }
     if (view == "ssr" || view == "ssr_confidence") {
-        if (!g.findResource("ssr"))
-            return fail(ErrorCode::InvalidInput, "--view " + view + ": the pipeline has no 'ssr' (require \"ssr\")");
-        PassDesc pass;
-        pass.name = "debug_view";
-        pass.kind = "fullscreen";
-        if (!g.findResource("exposure"))
-            return fail(ErrorCode::InvalidInput, "--view " + view + ": the pipeline has no 'exposure' (post.exposure_state(): the reflection is in nits)");
-        pass.accesses = {{"ssr", Usage::Sampled}, {"exposure", Usage::StorageRead}, {"debug_view", Usage::ColorAttachment}};
-        pass.params = Value(Value::Table{{"shader", Value("passes/ssr_view.frag")},
-                                         {"uniforms", Value(Value::Table{{"view", Value(view == "ssr" ? 0.0 : 1.0)}})}});
-        g.passes.push_back(pass);
+        if (auto r = needs(g, view, "ssr", "require \"ssr\""); !r) return r;
+        if (auto r = needs(g, view, "exposure", "post.exposure_state(): the reflection is in nits"); !r) return r;
+        addViewPass(g, {{"ssr", Usage::Sampled}, {"exposure", Usage::StorageRead}},
+                    {{"shader", Value("passes/ssr_view.frag")}, {"uniforms", Value(Value::Table{{"view", Value(view == "ssr" ? 0.0 : 1.0)}})}});
         return {};
     }
     if (view == "ssao") {
-        if (!g.findResource("ssao"))
-            return fail(ErrorCode::InvalidInput, "--view ssao: the pipeline has no 'ssao' (require \"ao\")");
-        PassDesc pass;
-        pass.name = "debug_view";
-        pass.kind = "fullscreen";
-        pass.accesses = {{"ssao", Usage::Sampled}, {"debug_view", Usage::ColorAttachment}};
-        pass.params = Value(Value::Table{{"shader", Value("passes/ssao_view.frag")}});
-        g.passes.push_back(pass);
+        if (auto r = needs(g, view, "ssao", "require \"ao\""); !r) return r;
+        addViewPass(g, {{"ssao", Usage::Sampled}}, {{"shader", Value("passes/ssao_view.frag")}});
         return {};
     }
     if (view == "cascades" || view == "shadow") {
         for (const char* r : {"sun_shadow", "sun_cascades"})
-            if (!g.findResource(r))
-                return fail(ErrorCode::InvalidInput, "--view " + view + ": the pipeline has no '" + r + "' (require \"shadows\")");
-        PassDesc pass;
-        pass.name = "debug_view";
-        pass.kind = "fullscreen";
-        if (view == "shadow") {
-            pass.accesses = {{"sun_shadow", Usage::Sampled}, {"debug_view", Usage::ColorAttachment}};
-            pass.params = Value(Value::Table{{"shader", Value("passes/shadow_map_view.frag")}});
-        } else {
-            pass.accesses = {{"GB0", Usage::Sampled}, {"depth", Usage::Sampled}, {"sun_shadow", Usage::Sampled},
-                             {"sun_cascades", Usage::StorageRead}, {"debug_view", Usage::ColorAttachment}};
-            pass.params = Value(Value::Table{{"shader", Value("passes/cascade_view.frag")}});
-        }
-        g.passes.push_back(pass);
+            if (auto n = needs(g, view, r, "require \"shadows\""); !n) return n;
+        if (view == "shadow")
+            addViewPass(g, {{"sun_shadow", Usage::Sampled}}, {{"shader", Value("passes/shadow_map_view.frag")}});
+        else
+            addViewPass(g, {{"GB0", Usage::Sampled}, {"depth", Usage::Sampled}, {"sun_shadow", Usage::Sampled}, {"sun_cascades", Usage::StorageRead}},
+                        {{"shader", Value("passes/cascade_view.frag")}});
         return {};
     }
     auto it = std::find(kViews.begin(), kViews.end(), view);
@@ -177,18 +164,13 @@ Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string
         for (const auto& v : kViews) all += ", '" + v + "'";
         return fail(ErrorCode::InvalidInput, "--view: unknown view '" + view + "'; expected one of: " + all);
     }
-    PassDesc pass;
-    pass.name = "debug_view";
-    pass.kind = "fullscreen";
-    pass.accesses = {{"GB0", Usage::Sampled}, {"GB1", Usage::Sampled}, {"GB2", Usage::Sampled},
-                     {"GB3", Usage::Sampled}, {"depth", Usage::Sampled}, {"debug_view", Usage::ColorAttachment}};
-    pass.params = Value(Value::Table{{"shader", Value("passes/debug_view.frag")},
-                                     {"uniforms", Value(Value::Table{{"view", Value(static_cast<double>(it - kViews.begin()))}})}});
+    Value::Table params{{"shader", Value("passes/debug_view.frag")},
+                        {"uniforms", Value(Value::Table{{"view", Value(static_cast<double>(it - kViews.begin()))}})}};
     // Pixels of the two-colour material (materials/two_colour.lua) decode with its own layout.
     for (const auto& m : p.materials)
-        if (m.layout == "two_colour")
-            pass.params.table()["defines"] = Value(Value::Table{{"RG_TWO_COLOUR_ID", Value(static_cast<double>(m.id))}});
-    g.passes.push_back(pass);
+        if (m.layout == "two_colour") params["defines"] = Value(Value::Table{{"RG_TWO_COLOUR_ID", Value(static_cast<double>(m.id))}});
+    addViewPass(g, {{"GB0", Usage::Sampled}, {"GB1", Usage::Sampled}, {"GB2", Usage::Sampled}, {"GB3", Usage::Sampled}, {"depth", Usage::Sampled}},
+                std::move(params));
     return {};
 }
 

@@ -49,6 +49,12 @@ layout(set = RG_CAMERA_SET, binding = RG_SHADOW_VIEWS_BINDING, std430) readonly 
     RgShadowView view[RG_MAX_SHADOW_VIEWS];
     ivec4 lightViews[RG_MAX_LIGHTS];   // per light: first view (−1: none), how many
 } rgShadowViews;
+
+// The distance along view v's axis of the depth `d` its map holds (the perspective depth, linearised).
+float rgShadowViewDistance(RgShadowView v, float d) {
+    float nearPlane = v.position.w, farPlane = v.params.x;
+    return nearPlane * farPlane / (farPlane - d * (farPlane - nearPlane));
+}
 #endif
 
 #ifdef RG_SHADOWS
@@ -160,7 +166,7 @@ float rgLocalShadow(uint light, vec3 P, vec3 N) {
     ivec3 mapSize = textureSize(local_shadow, 0);
     RgShadowView v = rgShadowViews.view[min(vi, RG_MAX_SHADOW_VIEWS - 1)];
     float size = float(mapSize.x);
-    float nearPlane = v.position.w, farPlane = v.params.x;
+    float nearPlane = v.position.w;
     float receiverDistance = max((v.viewProj * vec4(P, 1.0)).w, nearPlane);
     float texel = 2.0 * v.params.y * receiverDistance / size;  // metres a texel spans at the receiver
     vec4 clip = v.viewProj * vec4(P + N * (RG_LOCAL_SHADOW_NORMAL_OFFSET * texel), 1.0);
@@ -172,7 +178,7 @@ float rgLocalShadow(uint light, vec3 P, vec3 N) {
     float blockers = 0.0, blockerDistance = 0.0;
     for (int k = 0; k < 16; k += 2) {
         float d = textureLod(local_shadow, vec3(uv + rgShadowTap(k) * searchTexels / size, float(vi)), 0.0).r;
-        float z = nearPlane * farPlane / (farPlane - d * (farPlane - nearPlane));
+        float z = rgShadowViewDistance(v, d);
         if (z < receiver) { blockers += 1.0; blockerDistance += z; }
     }
     blockerDistance /= max(blockers, 1.0);
@@ -187,7 +193,7 @@ float rgLocalShadow(uint light, vec3 P, vec3 N) {
     float lit = 0.0;
     for (int k = 0; k < taps; k += tapStep) {
         float d = textureLod(local_shadow, vec3(uv + rgShadowTap(k) * penumbra / size, float(vi)), 0.0).r;
-        lit += nearPlane * farPlane / (farPlane - d * (farPlane - nearPlane)) < receiver ? 0.0 : 1.0;
+        lit += rgShadowViewDistance(v, d) < receiver ? 0.0 : 1.0;
     }
     bool valid = lv.y > 0 && vi < mapSize.z && clip.w > nearPlane;
     return valid ? lit * float(tapStep) / float(taps) : 1.0;

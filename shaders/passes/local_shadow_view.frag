@@ -24,7 +24,5 @@ void main() {
     int vi = lv.x + face;
     RgShadowView v = rgShadowViews.view[vi];
     float d = textureLod(local_shadow, vec3(t, float(vi)), 0.0).r;
-    float nearPlane = v.position.w, farPlane = v.params.x;
-    float z = nearPlane * farPlane / (farPlane - d * (farPlane - nearPlane));
-    color = vec4(vec3(1.0 - clamp(z / farPlane, 0.0, 1.0)), 1.0);
+    color = vec4(vec3(1.0 - clamp(rgShadowViewDistance(v, d) / v.params.x, 0.0, 1.0)), 1.0);
 }
