@@ -54,8 +54,8 @@ void main() {
     // the coat's own split-sum lobe (f0 0.04, f90 1) with its specular occlusion.
     float FcView = F_Schlick(0.04, 1.0, NdotV) * coatStrength;
     float ao = rgAmbientOcclusion(g.ao);
-    RgIbl coatIbl = rgEvaluateIbl(N, V, vec3(0.04), 1.0, coatRoughness);
-    luminance += rgStandardIbl(N, V, diffuseColor, f0, linearRoughness, ao) * (1.0 - FcView) +
+    RgIbl coatIbl = rgEvaluateIbl(position, N, V, vec3(0.04), 1.0, coatRoughness);
+    luminance += rgStandardIbl(position, N, V, diffuseColor, f0, linearRoughness, ao) * (1.0 - FcView) +
                  coatIbl.specular * coatStrength * rgSpecularOcclusion(NdotV, ao, coatRoughness * coatRoughness);
 #endif
     color = vec4(luminance * rgPreExposure(ex.state, params.initial_ev100), 1.0);

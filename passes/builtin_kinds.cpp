@@ -4,6 +4,7 @@
 #include <cstring>
 #include <optional>
 
+#include "cadence.h"
 #include "core/check.h"
 #include "graphics_pipeline.h"
 #include "passes.h"
@@ -65,42 +66,6 @@ VkClearColorValue clearColorFor(Format f, const Value& v) {
         for (int i = 0; i < 4; ++i) c.uint32[i] = static_cast<uint32_t>(std::max(0.0f, c.float32[i]));
     return c;
 }
-
-// params.cadence of the compute and mips kinds. "frame" (default): the pass records every frame.
-// "once": it records after each prepare (new shader, scene or size) and after each clearing of the
-// persistent resources (FrameInfo::persistentEpoch), then never again until one of those happens —
-// for what depends only on the scene's environment or on nothing (filtered probes, lookup tables).
-// The plan's barriers still run when it skips; a persistent texture keeps its contents through them
-// (it starts and ends every frame in ShaderReadOnly).
-class Cadence {
-public:
-    Result<void> parse(const PassSetup& setup) {
-        const PassDesc& desc = setup.desc;
-        const std::string c = desc.params["cadence"].isString() ? desc.params["cadence"].asString() : "frame";
-        if (c != "frame" && c != "once")
-            return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.cadence: unknown '" + c + "', expected one of: 'frame', 'once'");
-        m_once = c == "once";
-        m_recorded = false;
-        // What a pass writes once must still be there in the frames it skips.
-        if (m_once)
-            for (const Access& a : desc.accesses)
-                if (usageWrites(a.usage) && !setup.resources.find(a.resource)->plan->persistent)
-                    return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.cadence: 'once' writes only persistent resources; '" +
-                                                             a.resource + "' is not (declare it with persistent = true)");
-        return {};
-    }
-    // True when the pass records this frame (and remembers that it did).
-    bool due(const RecordContext& rc) {
-        if (m_once && m_recorded && m_epoch == rc.frame.persistentEpoch) return false;
-        m_recorded = true;
-        m_epoch = rc.frame.persistentEpoch;
-        return true;
-    }
-
-private:
-    bool m_once = false, m_recorded = false;
-    uint64_t m_epoch = 0;
-};
 
 // ---------------------------------------------------------------------------------------------
 // fullscreen: one triangle over the colour attachments, fragment shader from params.shader.

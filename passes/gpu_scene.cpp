@@ -32,6 +32,7 @@ struct CameraUniforms {
     glm::mat4 viewProj, view, proj, invViewProj;
     glm::vec4 position, viewport;
     glm::vec4 sceneMin, sceneMax;  // scene.glsl's Camera: the scene's bounds
+    glm::mat4 previousViewProj;    // the frame before's (reprojection); this frame's on the first
 };
 
 VkFilter toVk(Filter f) { return f == Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR; }
@@ -604,8 +605,47 @@ Result<void> GpuScene::createDecals(Context& ctx) {
     return {};
 }
 
+// std430 RgProbe (shaders/lib/probes.glsl).
+struct GpuProbe {
+    glm::vec4 positionShape;  // xyz: capture point and proxy centre; w: 0 sphere, 1 box
+    glm::vec4 extentFade;     // xyz: box half extents (a sphere: its radius in x); w: fade (m)
+    glm::vec4 axes[3];        // box: its local axes in world space (rows of world → local)
+};
+
+Result<void> GpuScene::createProbes(Context& ctx) {
+    // §4.9.5: the composition takes local probes "from small to large" until the reflection is
+    // complete; a scene's priority goes before size.
+    const auto& probes = m_scene.probes;
+    auto volume = [](const Probe& p) { return p.box ? p.size.x * p.size.y * p.size.z : 4.18879f * p.radius * p.radius * p.radius; };
+    m_probeOrder.resize(probes.size());
+    for (size_t i = 0; i < probes.size(); ++i) m_probeOrder[i] = i;
+    std::stable_sort(m_probeOrder.begin(), m_probeOrder.end(), [&](size_t a, size_t b) {
+        if (probes[a].priority != probes[b].priority) return probes[a].priority > probes[b].priority;
+        return volume(probes[a]) < volume(probes[b]);
+    });
+    std::vector<GpuProbe> out;
+    for (size_t i : m_probeOrder) {
+        const Probe& p = probes[i];
+        GpuProbe g{};
+        g.positionShape = glm::vec4(p.position, p.box ? 1.0f : 0.0f);
+        g.extentFade = glm::vec4(p.box ? 0.5f * p.size : glm::vec3(p.radius), p.fade);
+        for (int a = 0; a < 3; ++a) g.axes[a] = glm::vec4(glm::normalize(p.rotation[a]), 0.0f);
+        out.push_back(g);
+    }
+    auto buf = Buffer::create(ctx, "scene.probes", 16 + kMaxProbes * sizeof(GpuProbe), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    if (!buf) return std::unexpected(buf.error());
+    m_probes = std::move(*buf);
+    auto* bytes = static_cast<uint8_t*>(m_probes.mapped());
+    std::memset(bytes, 0, 16 + kMaxProbes * sizeof(GpuProbe));
+    const uint32_t header[4] = {static_cast<uint32_t>(out.size()), 0, 0, 0};
+    std::memcpy(bytes, header, 16);
+    if (!out.empty()) std::memcpy(bytes + 16, out.data(), out.size() * sizeof(GpuProbe));
+    return {};
+}
+
 Result<void> GpuScene::createFrameData(Context& ctx, const GpuSceneOptions& options) {
     if (auto r = createDecals(ctx); !r) return r;
+    if (auto r = createProbes(ctx); !r) return r;
     auto table = convertLights(m_scene.lights, options.iesMode);
     if (!table) return std::unexpected(table.error());
     m_lightCount = static_cast<uint32_t>(table->lights.size());
@@ -666,6 +706,8 @@ void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
                            1.0f / static_cast<float>(height));
     u.sceneMin = glm::vec4(m_scene.boundsMin, 1.0f);
     u.sceneMax = glm::vec4(m_scene.boundsMax, 1.0f);
+    u.previousViewProj = m_previousViewProj.value_or(u.viewProj);
+    m_previousViewProj = u.viewProj;
     std::memcpy(m_cameraBuffers[slot].mapped(), &u, sizeof u);
     updateShadowViews(slot, u.viewProj);
 }
@@ -704,6 +746,7 @@ VkBuffer GpuScene::bindingBuffer(std::string_view name, uint32_t slot) const {
     if (name == "Lights") return lightBuffer(slot);
     if (name == "ShadowViews") return shadowViewBuffer(slot);
     if (name == "Decals") return decalBuffer();
+    if (name == "Probes") return probeBuffer();
     if (name == "SceneDraws") return drawBuffer();
     if (name == "SceneBvh") return bvhBuffer();
     return VK_NULL_HANDLE;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -134,13 +135,19 @@ public:
     // needs to write indirect draw commands (shaders/shadows/cascade_cull.comp).
     VkBuffer drawBuffer() const { return m_drawBuffer.buffer(); }
     // The buffer behind scene binding `name` (a shader block of that name: Camera, Lights,
-    // ShadowViews — frame slot `slot`'s — Decals, SceneDraws, SceneBvh), VK_NULL_HANDLE for
+    // ShadowViews — frame slot `slot`'s — Decals, Probes, SceneDraws, SceneBvh), VK_NULL_HANDLE for
     // another name or a buffer that could not be made.
     VkBuffer bindingBuffer(std::string_view name, uint32_t slot) const;
     // The first of light `light`'s shadow views this frame and how many (0: none).
     std::pair<uint32_t, uint32_t> shadowViewsOf(size_t light) const;
     // The decals (shaders/lib/scene.glsl's Decals block): a count, then one RgDecal each.
     VkBuffer decalBuffer() const { return m_decals.buffer(); }
+    // The local light probes (shaders/lib/probes.glsl's Probes block): a count, then one RgProbe
+    // each in the order the composition visits them (priority, then the smaller first); probe k
+    // is captured into cubes k of the capture target (layers 6k .. 6k + 5).
+    VkBuffer probeBuffer() const { return m_probes.buffer(); }
+    // The scene's probes in that order (indices into scene().probes).
+    const std::vector<size_t>& probeOrder() const { return m_probeOrder; }
     // The environment as an equirectangular RGBA32F image of luminance (nits) in world orientation
     // (graph/scene/environment.h's mapping; 1x1 black without one), with its sampler: what a
     // shader's `SceneEnvironment` sampler2D is bound to.
@@ -178,9 +185,13 @@ private:
     void updateShadowViews(uint32_t slot, const glm::mat4& cameraViewProj);
     gpu::Buffer m_decals;
     Result<void> createDecals(gpu::Context& ctx);
+    gpu::Buffer m_probes;
+    std::vector<size_t> m_probeOrder;
+    Result<void> createProbes(gpu::Context& ctx);
     uint32_t m_lightCount = 0;
     uint32_t m_iesProfileCount = 0;
     size_t m_camera = 0;
+    std::optional<glm::mat4> m_previousViewProj;  // the last frame's camera (Camera.previousViewProj)
 };
 
 }  // namespace rg::passes

@@ -8,6 +8,7 @@
 #include <map>
 #include <sstream>
 
+#include "cadence.h"
 #include "core/check.h"
 #include "gpu_scene.h"
 #include "graphics_pipeline.h"
@@ -106,7 +107,7 @@ std::string forwardSource() {
            "        vec3 E = rgLightIlluminance(i, worldPosition, L);\n"
            "        luminance += rgStandardBrdf(s.normal, V, L, diffuseColor, f0, 1.0 - s.smoothness) * E;\n"
            "    }\n"
-           "    luminance += rgStandardIbl(s.normal, V, diffuseColor, f0, 1.0 - s.smoothness, s.ao);  // 0 without RG_IBL\n"
+           "    luminance += rgStandardIbl(worldPosition, s.normal, V, diffuseColor, f0, 1.0 - s.smoothness, s.ao);  // 0 without RG_IBL\n"
            "    color = vec4(luminance * rgPreExposure(ex.state, params.initial_ev100), s.opacity);\n"
            "}\n";
 }
@@ -145,7 +146,11 @@ public:
             return fail(ErrorCode::InvalidInput, passPrefix(desc) + "a 'scene' pass needs a scene (give --scene FILE)");
         m_forward = desc.params["forward"].asBool();
         m_shadow = desc.params["shadow"].asBool();
+        m_capture = desc.params["capture"].asBool();
+        if (m_shadow && m_capture) return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.capture: a pass is a shadow pass or a probe capture, not both");
+        if (m_forward && m_capture) return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.capture: a pass is a forward pass or a probe capture, not both");
         if (m_shadow) return prepareShadow(setup);
+        if (auto r = m_cadence.parse(setup); !r) return r;
         for (const Access& a : desc.accesses) {
             if (a.usage == Usage::ColorAttachment) m_colors.push_back(a);
             if (a.usage == Usage::DepthStencilAttachment || (m_forward && a.usage == Usage::DepthStencilRead)) m_depth = a;
@@ -161,6 +166,7 @@ public:
         m_width = depth->plan->width;
         m_height = depth->plan->height;
         m_depthFormat = depth->plan->format;
+        if (m_capture) return prepareCapture(setup, attachments);
 
         if (m_forward) {
             MaterialInfo info;
@@ -186,6 +192,8 @@ public:
 
     void record(RecordContext& rc) override {
         if (m_shadow) return recordShadow(rc);
+        if (!m_cadence.due(rc)) return;
+        if (m_capture) return recordCapture(rc);
         const PassDesc& desc = rc.desc;
         std::vector<VkRenderingAttachmentInfo> colors;
         for (const Access& a : m_colors) {
@@ -263,17 +271,46 @@ private:
         vkCmdBindIndexBuffer(rc.cmd, rc.scene->indexBuffer(), 0, VK_INDEX_TYPE_UINT32);
     }
 
+    // Begins rendering into one layer: `color` (if any) and `depth` cleared (colour to 0, depth to
+    // 1), the depth stored with `depthStore`; then the viewport and the scene's geometry.
+    void beginLayer(RecordContext& rc, VkImageView color, VkImageView depth, VkAttachmentStoreOp depthStore) const {
+        VkRenderingAttachmentInfo c{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        c.imageView = color;
+        c.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        c.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        c.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+        VkRenderingAttachmentInfo d{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+        d.imageView = depth;
+        d.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+        d.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+        d.storeOp = depthStore;
+        d.clearValue.depthStencil = {1.0f, 0};
+        VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+        ri.renderArea = {{0, 0}, {m_width, m_height}};
+        ri.layerCount = 1;
+        ri.colorAttachmentCount = color != VK_NULL_HANDLE ? 1u : 0u;
+        ri.pColorAttachments = &c;
+        ri.pDepthAttachment = &d;
+        if (formatInfo(m_depthFormat).stencil) ri.pStencilAttachment = &d;
+        vkCmdBeginRendering(rc.cmd, &ri);
+        bindViewAndGeometry(rc);
+    }
+
     // One pipeline: the scene vertex shader and `fragment` with RG_TEXTURES = `textures`.
     Result<void> addGroup(PassSetup& setup, const MaterialInfo& info, std::string fragment, const std::string& name, uint32_t textures,
                           std::vector<size_t> draws, const std::vector<std::string>& attachments) {
-        Group g;
-        g.info = info;
-        ShaderRequest vert;
-        vert.path = "passes/scene.vert";
         ShaderRequest frag;
         frag.source = std::move(fragment);
         frag.virtualName = name;
         frag.stage = ShaderStage::Fragment;
+        return addGroup(setup, info, "passes/scene.vert", std::move(frag), textures, std::move(draws), attachments);
+    }
+    Result<void> addGroup(PassSetup& setup, const MaterialInfo& info, const std::string& vertex, ShaderRequest frag, uint32_t textures,
+                          std::vector<size_t> draws, const std::vector<std::string>& attachments) {
+        Group g;
+        g.info = info;
+        ShaderRequest vert;
+        vert.path = vertex;
         frag.defines.emplace_back("RG_TEXTURES", std::to_string(textures));
         g.program = std::make_unique<ShaderProgram>();
         if (auto r = g.program->build(setup, {vert, frag}, {{1u, setup.scene->materialSetLayout()}}); !r) return r;
@@ -289,6 +326,64 @@ private:
         OwnedPipeline pipeline;
         std::vector<size_t> draws;
     };
+
+    // capture = true: the scene's local light probes (scripts/probes.lua), each into six layers
+    // of the colour target (cube k = probe k of GpuScene::probeOrder) with a depth target of as
+    // many layers: every draw that is not blended, through probes/capture.vert (the face's
+    // projection from the probe) and probes/capture.frag (diffuse only, metals with f0 as albedo,
+    // alpha 1 where something is drawn), one variant per set of textures.
+    Result<void> prepareCapture(PassSetup& setup, const std::vector<std::string>& attachments) {
+        const PassDesc& desc = setup.desc;
+        if (m_colors.size() != 1)
+            return fail(ErrorCode::InvalidInput, passPrefix(desc) + "a probe capture writes one colour target (a cube texture, 6 layers per probe)");
+        const PlanResource& color = *setup.resources.find(m_colors.front().resource)->plan;
+        const PlanResource& depth = *setup.resources.find(m_depth->resource)->plan;
+        if (!color.cube)
+            return fail(ErrorCode::InvalidInput, passPrefix(desc) + "a probe capture writes a cube texture; '" + color.name + "' is not one (cube = true)");
+        if (depth.width != color.width || depth.height != color.height || depth.layers < color.layers)
+            return fail(ErrorCode::InvalidInput, passPrefix(desc) + "the depth target '" + depth.name + "' must match '" + color.name +
+                                                     "' in size and have as many layers (" + std::to_string(color.layers) + ")");
+        m_layers = color.layers;
+        const std::string vertex = desc.params["shader"].isString() ? desc.params["shader"].asString() : "probes/capture.vert";
+        const std::string fragment = desc.params["fragment"].isString() ? desc.params["fragment"].asString() : "probes/capture.frag";
+        auto variants = drawsByTextures(*setup.scene, [](const Material& m) { return m.alphaMode != AlphaMode::Blend; });
+        if (variants.empty()) variants[31u];
+        for (auto& [mask, draws] : variants) {
+            MaterialInfo info;
+            info.name = "capture";
+            ShaderRequest frag;
+            frag.path = fragment;
+            if (auto r = addGroup(setup, info, vertex, std::move(frag), mask, std::move(draws), attachments); !r) return r;
+        }
+        return {};
+    }
+
+    void recordCapture(RecordContext& rc) {
+        const PhysicalResource* c = rc.resources.find(m_colors.front().resource);
+        const PhysicalResource* d = rc.resources.find(m_depth->resource);
+        const uint32_t layers = std::min<uint32_t>(m_layers, 6u * static_cast<uint32_t>(rc.scene->probeOrder().size()));
+        for (uint32_t layer = 0; layer < layers; ++layer) {
+            // Cleared to (0, 0, 0, 0): where nothing is drawn, the distant probe shows.
+            beginLayer(rc, c->image->layerView(layer), d->image->layerView(layer), VK_ATTACHMENT_STORE_OP_DONT_CARE);
+            for (Group& g : m_groups) {
+                if (g.draws.empty()) continue;
+                vkCmdBindPipeline(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.pipeline.get());
+                g.program->bind(rc, VK_PIPELINE_BIND_POINT_GRAPHICS);
+                vkCmdSetStencilReference(rc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 0);
+                vkCmdSetCullMode(rc.cmd, VK_CULL_MODE_NONE);  // the faces' projections do not keep one winding
+                for (size_t i : g.draws) {
+                    const DrawItem& item = rc.scene->draws()[i];
+                    VkDescriptorSet set = rc.scene->materialSet(item.material);
+                    vkCmdBindDescriptorSets(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.program->layout(), 1, 1, &set, 0, nullptr);
+                    struct { glm::mat4 world; glm::vec4 layer; } push{item.world, glm::vec4(static_cast<float>(layer))};
+                    vkCmdPushConstants(rc.cmd, g.program->layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                                       sizeof push, &push);
+                    vkCmdDrawIndexed(rc.cmd, item.indexCount, 1, item.firstIndex, item.vertexOffset, 0);
+                }
+            }
+            vkCmdEndRendering(rc.cmd);
+        }
+    }
 
     // shadow = true: depth only, from the light's view, into each layer of the depth target in turn
     // (shadows/shadow.vert takes the matrix of the layer its push constant names from a buffer the
@@ -369,18 +464,7 @@ private:
         const PhysicalResource* indirect = m_indirect.empty() ? nullptr : rc.resources.find(m_indirect);
         const VkDeviceSize slots = indirect ? indirect->plan->bufferSize / kIndirectCommandBytes / std::max(m_layers, 1u) : 0;
         for (uint32_t layer = 0; layer < layers; ++layer) {
-            VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-            depth.imageView = d->image->layerView(layer);
-            depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-            depth.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-            depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-            depth.clearValue.depthStencil = {1.0f, 0};
-            VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-            ri.renderArea = {{0, 0}, {m_width, m_height}};
-            ri.layerCount = 1;
-            ri.pDepthAttachment = &depth;
-            vkCmdBeginRendering(rc.cmd, &ri);
-            bindViewAndGeometry(rc);
+            beginLayer(rc, VK_NULL_HANDLE, d->image->layerView(layer), VK_ATTACHMENT_STORE_OP_STORE);
             vkCmdBindPipeline(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.pipeline.get());
             g.program->bind(rc, VK_PIPELINE_BIND_POINT_GRAPHICS);
             for (size_t i : m_lightViews ? rc.scene->shadowViewDraws(layer) : g.draws) {
@@ -420,7 +504,7 @@ private:
             const bool ofLayout = std::find(g.info.targets.begin(), g.info.targets.end(), name) != g.info.targets.end();
             const bool filled = g.info.fills.empty() || std::find(g.info.fills.begin(), g.info.fills.end(), name) != g.info.fills.end();
             // A material writes only the targets of its layout it fills (the fix-up pass does the rest).
-            b.colorWriteMask = m_forward || (ofLayout && filled) ? 0xfu : 0u;
+            b.colorWriteMask = m_forward || m_capture || (ofLayout && filled) ? 0xfu : 0u;
             d.blends.push_back(b);
         }
         d.depthFormat = toVkFormat(m_depthFormat);
@@ -458,6 +542,8 @@ private:
     std::vector<Group> m_groups;
     bool m_forward = false;
     bool m_shadow = false;
+    bool m_capture = false;  // the scene's light probes, once per build (cadence)
+    Cadence m_cadence;
     bool m_lightViews = false;  // shadow: the scene's local-light views rather than the shader's
     std::string m_indirect;     // shadow: the buffer of indirect commands per layer and draw
     static constexpr VkDeviceSize kIndirectCommandBytes = sizeof(VkDrawIndexedIndirectCommand);
@@ -475,7 +561,10 @@ PassKindInfo scenePassKind() {
           {"paths", "string|list", "draw the materials of these lighting paths"},
           {"defines", "table", "preprocessor defines for its shaders (the forward pass: RG_IBL with scripts/ibl.lua's ibl.lit)"},
           {"shadow", "boolean", "depth only, into each layer of the depth target it writes, from the views its vertex shader computes (scripts/shadows.lua)"},
-          {"shader", "string", "shadow: the vertex shader (default shadows/shadow.vert: the matrix of the layer its push constant names, from `sun_cascades`)"},
+          {"capture", "boolean", "the scene's local light probes: every draw that is not blended into six layers per probe of the cube texture it writes (with a depth target of as many layers), diffuse only (scripts/probes.lua)"},
+          {"cadence", "string", "'frame' (default) or 'once': record only after each build (a probe capture)"},
+          {"fragment", "string", "capture: the fragment shader (default probes/capture.frag)"},
+          {"shader", "string", "shadow: the vertex shader (default shadows/shadow.vert: the matrix of the layer its push constant names, from `sun_cascades`); capture: default probes/capture.vert"},
           {"depth_bias", "list", "shadow: { constant, slope } rasteriser depth bias"},
           {"indirect", "string", "shadow: a buffer the pass reads as { NAME, as = 'indirect' } holding a VkDrawIndexedIndirectCommand per layer and scene draw (layer-major, the buffer's commands / layers slots each, written by a culling pass such as shadows/cascade_cull.comp): each draw is issued through it, so culled draws cost nothing; draws beyond the slots are drawn directly"},
           {"views", "string", "shadow: 'shader' (default: the layer's matrix is the vertex shader's business) or 'lights' (the scene's local-light shadow views this frame, one per layer, each drawing only the casters its frustum meets; shader default shadows/local_shadow.vert)"},

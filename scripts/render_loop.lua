@@ -16,6 +16,7 @@ require "two_colour" -- the two-colour base material (tbl:3) and its lighting pa
 
 local ibl = require "ibl"   -- the distant light probe: the forward pass is lit by it too
 local shadows = require "shadows"  -- the sun's shadow map: and shadowed by it
+local probes = require "probes"    -- the local light probes: reflected by it
 
 local loop = {}
 
@@ -52,17 +53,19 @@ function loop.sky_and_forward()
         reads = { { "depth", as = "depth" }, { "exposure", as = "storage" } }, writes = { { "hdr", load = true } },
         depth = { compare = "less_equal", value = 1 },
     }
-    rg.pass "forward" (shadows.lit(ibl.lit {
+    rg.pass "forward" (shadows.lit(probes.lit(ibl.lit {
         kind = "scene", forward = true,
         reads = { { "depth", as = "depth" }, { "exposure", as = "storage" } }, writes = { { "hdr", load = true } },
-    }))
+    })))
     return "forward"
 end
 
 -- Per frame: a scene without decals skips the decal passes and their copies of the G-buffer (on
--- lavapipe even a pass that discards every pixel loads and stores its three targets: ~30 ms at 720p).
+-- lavapipe even a pass that discards every pixel loads and stores its three targets: ~30 ms at 720p);
+-- without a sun, no shadow draws; without local probes, no capture.
 function loop.frame(ctx)
     shadows.frame(ctx)  -- no sun: the shadow map is only cleared
+    probes.frame(ctx)   -- no local probes: nothing captured
     if ctx.scene then
         for _, pass in ipairs(loop.decal_passes) do ctx.pass(pass).enabled = ctx.scene.decals > 0 end
     end

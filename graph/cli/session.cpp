@@ -143,6 +143,10 @@ Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string
                     {{"shader", Value("passes/ssr_view.frag")}, {"uniforms", Value(Value::Table{{"view", Value(view == "ssr" ? 0.0 : 1.0)}})}});
         return {};
     }
+    if (view == "probes") {
+        addViewPass(g, {{"depth", Usage::Sampled}}, {{"shader", Value("passes/probe_view.frag")}});
+        return {};
+    }
     if (view == "ssao") {
         if (auto r = needs(g, view, "ssao", "require \"ao\""); !r) return r;
         addViewPass(g, {{"ssao", Usage::Sampled}}, {{"shader", Value("passes/ssao_view.frag")}});
@@ -160,7 +164,7 @@ Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string
     }
     auto it = std::find(kViews.begin(), kViews.end(), view);
     if (it == kViews.end()) {
-        std::string all = "'stencil', 'lights', 'ssao', 'ssr', 'ssr_confidence', 'cascades', 'shadow', 'shadow:LIGHT'";
+        std::string all = "'stencil', 'lights', 'ssao', 'ssr', 'ssr_confidence', 'probes', 'cascades', 'shadow', 'shadow:LIGHT'";
         for (const auto& v : kViews) all += ", '" + v + "'";
         return fail(ErrorCode::InvalidInput, "--view: unknown view '" + view + "'; expected one of: " + all);
     }
@@ -437,7 +441,8 @@ Result<void> Session::frame() {
         ctx.scene = FrameContext::SceneFacts{
             static_cast<uint32_t>(m_scene->draws().size()), m_scene->lightCount(), static_cast<uint32_t>(m_scene->scene().decals.size()),
             static_cast<uint32_t>(std::count_if(m_scene->scene().lights.begin(), m_scene->scene().lights.end(),
-                                                [](const Light& l) { return l.type == LightType::Directional; }))};
+                                                [](const Light& l) { return l.type == LightType::Directional; })),
+            static_cast<uint32_t>(m_scene->scene().probes.size())};
     auto changes = m_host->frame(ctx, m_pipeline);
     if (changes && m_options.frameHook) {
         PipelineDesc seen = m_pipeline;

@@ -248,6 +248,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     features.features.samplerAnisotropy = supported.features.samplerAnisotropy;
     features.features.fragmentStoresAndAtomics = supported.features.fragmentStoresAndAtomics;
     features.features.independentBlend = supported.features.independentBlend;
+    features.features.imageCubeArray = supported.features.imageCubeArray;  // cube textures of several cubes (light probes)
 
     VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     info.pNext = &features;

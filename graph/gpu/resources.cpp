@@ -167,7 +167,7 @@ VkMemoryRequirements Image::requirements(Context& ctx, const ImageDesc& desc) {
 Result<void> Image::createViews(Context& ctx) {
     VkDevice dev = ctx.device();
     VkResult r = VK_SUCCESS;
-    VkImageViewType all = m_desc.cube ? VK_IMAGE_VIEW_TYPE_CUBE
+    VkImageViewType all = m_desc.cube ? (m_desc.layers > 6 ? VK_IMAGE_VIEW_TYPE_CUBE_ARRAY : VK_IMAGE_VIEW_TYPE_CUBE)
                           : m_desc.layers > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
                                               : VK_IMAGE_VIEW_TYPE_2D;
     m_view = OwnedImageView(dev, makeView(dev, m_image.get(), m_desc, all, 0, m_desc.mips,

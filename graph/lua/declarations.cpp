@@ -47,6 +47,7 @@ const char* declKindName(DeclKind k) {
     case DeclKind::Camera: return "scene.camera";
     case DeclKind::Environment: return "scene.environment";
     case DeclKind::Decal: return "scene.decal";
+    case DeclKind::Probe: return "scene.probe";
     case DeclKind::Count: break;
     }
     return "?";
@@ -219,7 +220,7 @@ struct Builder {
                 if (auto e = expectType(w.at(flag), b[flag], "boolean"); !e) return e;
         r.texture.cube = b["cube"].asBool();
         r.persistent = b["persistent"].asBool();
-        if (r.texture.cube) r.texture.layers = 6;
+        if (r.texture.cube && !b.has("layers")) r.texture.layers = 6;  // one cube; `layers` = 6 × cubes for an array
         r.exported = b["export"].asBool();
         r.imported = b["import"].asBool();
         out.graph.resources.push_back(r);

@@ -39,6 +39,7 @@ struct FrameContext {
     struct SceneFacts {
         uint32_t draws = 0, lights = 0, decals = 0;
         uint32_t suns = 0;  // directional lights (shadow cascades follow the first)
+        uint32_t probes = 0;  // local light probes
     };
     std::optional<SceneFacts> scene;
 };

@@ -321,6 +321,8 @@ int frameTrampoline(lua_State* L) {
         lua_setfield(L, -2, "decals");
         lua_pushinteger(L, ctx.scene->suns);
         lua_setfield(L, -2, "suns");
+        lua_pushinteger(L, ctx.scene->probes);
+        lua_setfield(L, -2, "probes");
         lua_setfield(L, -2, "scene");
     }
     lua_newtable(L);

@@ -238,9 +238,29 @@ struct Decal {
     float smoothness = 0.5f, metalMask = 0.0f, reflectance = 0.5f;
 };
 
+// A local light probe (seed 002 §4.9.1.2, §4.9.3, appendix F): the scene as seen from `position`,
+// captured into a cube (diffuse only, metals with f0 as albedo, visibility in alpha) and
+// reflected by the surfaces inside its shape: a sphere of `radius` or a box of `size` (turned by
+// `rotation`), which is both the proxy its reflections are parallax-corrected against and its
+// influence, fading to nothing over `fade` metres inside the boundary. Where several hold a point,
+// the higher `priority` goes first, then the smaller.
+inline constexpr size_t kMaxProbes = 8;  // shaders/lib/probes.glsl RG_MAX_PROBES
+struct Probe {
+    std::string name;
+    std::string origin;  // FILE:LINE of the declaration
+    bool box = false;
+    glm::vec3 position{0.0f};
+    float radius = 1.0f;           // sphere
+    glm::vec3 size{1.0f};          // box: full extent along its local axes (metres)
+    glm::mat3 rotation{1.0f};      // box: local axes in world space
+    float fade = 0.25f;            // metres
+    int priority = 0;
+};
+
 struct Scene {
     std::vector<Mesh> meshes;
     std::vector<Decal> decals;
+    std::vector<Probe> probes;
     std::vector<Material> materials;
     std::vector<SceneImage> images;
     std::vector<SamplerDesc> samplers;

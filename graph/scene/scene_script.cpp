@@ -606,6 +606,39 @@ struct Builder {
         return {};
     }
 
+    // scene.probe "name" { position, shape = "sphere" (radius) | "box" (size, rotation), fade, priority }
+    Result<void> probe(const Declaration& d) {
+        Where w = where(d);
+        const Value& b = d.body;
+        if (auto r = checkFields(w, b, {"position", "shape", "radius", "size", "rotation", "fade", "priority", "doc"}); !r) return r;
+        if (scene.probes.size() >= kMaxProbes)
+            return w.error("a scene has at most " + std::to_string(kMaxProbes) + " light probes (shaders/lib/probes.glsl RG_MAX_PROBES)");
+        Probe p;
+        p.name = d.name;
+        p.origin = d.origin;
+        std::string shape;
+        RG_TRY(shape, choice(w, b, "shape", "sphere", {"sphere", "box"}, "probe shape"));
+        p.box = shape == "box";
+        if (p.box && b.has("radius")) return w.at("radius").error("a box probe has a size, not a radius");
+        if (!p.box && (b.has("size") || b.has("rotation"))) return w.at(b.has("size") ? "size" : "rotation").error("a sphere probe has a radius (give shape = \"box\" for a size)");
+        RG_TRY(p.position, vec3(w, b, "position", p.position));
+        RG_TRY(p.radius, numberF(w, b, "radius", p.radius, Range::positive()));
+        RG_TRY(p.size, vec3(w, b, "size", p.size, "{x, y, z} in metres", Range::positive()));
+        glm::vec3 rotation(0.0f);
+        RG_TRY(rotation, vec3(w, b, "rotation", rotation, "{x, y, z} in degrees"));
+        glm::mat4 m(1.0f);
+        m = glm::rotate(m, rotation.z * kDegrees, glm::vec3(0, 0, 1));
+        m = glm::rotate(m, rotation.y * kDegrees, glm::vec3(0, 1, 0));
+        m = glm::rotate(m, rotation.x * kDegrees, glm::vec3(1, 0, 0));
+        p.rotation = glm::mat3(m);
+        RG_TRY(p.fade, numberF(w, b, "fade", p.fade, Range::nonNegative()));
+        float priority = 0.0f;
+        RG_TRY(priority, numberF(w, b, "priority", priority, Range{-1000, 1000, false, false, true}));
+        p.priority = static_cast<int>(priority);
+        scene.probes.push_back(p);
+        return {};
+    }
+
     Result<void> decal(const Declaration& d) {
         Where w = where(d);
         const Value& b = d.body;
@@ -668,6 +701,7 @@ struct Builder {
             case DeclKind::Light: r = light(d); break;
             case DeclKind::Camera: r = camera(d); break;
             case DeclKind::Decal: r = decal(d); break;
+            case DeclKind::Probe: r = probe(d); break;
             default: break;
             }
             if (!r) return std::unexpected(r.error());

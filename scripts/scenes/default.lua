@@ -1,5 +1,6 @@
 -- The default scene: a 7x7 grid of spheres over smoothness (0..1 along +x) and metal mask
--- (0..1 along +z) on a floor, a few props, a sun, a lamp, a sky and a camera exposed for them.
+-- (0..1 along +z) on a floor, a few props, a sun, a lamp, a sky, a local light probe and a
+-- camera exposed for them.
 --
 -- Light levels are physical but not a full summer sun: 100 000 lux needs auto-exposure to look
 -- right next to a lamp, so the sun here is a hazy/overcast-ish 20 000 lux. The camera follows
@@ -59,3 +60,8 @@ scene.camera "main" {
 }
 
 scene.environment "sky" { kind = "sky", intensity = 1, unit = "nits" }
+
+-- A local light probe over the sphere grid and its props (seed 002 §4.9.1.2): captured once from
+-- 1.2 m above the middle of the grid, its box the proxy the reflections are parallax-corrected
+-- against, fading over the outer metre.
+scene.probe "grid" { shape = "box", position = { 0.0, 1.2, 0.0 }, size = { 14, 6, 12 }, fade = 1 }

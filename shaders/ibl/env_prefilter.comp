@@ -5,12 +5,30 @@
 // sampling of the half vector, each sample weighted by N·L (the seed's LD term), and read from the
 // source cube's mip chain at the level whose texel matches the sample's solid angle ("filtered
 // importance sampling", Křivánek & Colbert 2008): few samples, no fireflies.
+//
+// With RG_PROBE_ARRAY (scripts/probes.lua) the same for every cube of the local probes' captures:
+// `probe_radiance` → `probe_specular`, layer z = 6 · probe + face, alpha (the captured
+// visibility) filtered with the radiance.
 #include "lib/environment.glsl"
 #include "lib/sampling.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
+#ifdef RG_PROBE_ARRAY
+#include "lib/probes.glsl"
+layout(set = 0, binding = 0) uniform samplerCubeArray probe_radiance;
+layout(set = 0, binding = 1, rgba16f) uniform writeonly image2DArray probe_specular;
+#define env_specular probe_specular
+int gCube = 0;
+vec4 rgSource(vec3 d, float lod) { return textureLod(probe_radiance, vec4(d, float(gCube)), lod); }
+int rgSourceSize() { return textureSize(probe_radiance, 0).x; }
+int rgSourceLevels() { return textureQueryLevels(probe_radiance); }
+#else
 layout(set = 0, binding = 0) uniform samplerCube env_source;
 layout(set = 0, binding = 1, rgba16f) uniform writeonly image2DArray env_specular;
+vec4 rgSource(vec3 d, float lod) { return vec4(textureLod(env_source, d, lod).rgb, 1.0); }
+int rgSourceSize() { return textureSize(env_source, 0).x; }
+int rgSourceLevels() { return textureQueryLevels(env_source); }
+#endif
 layout(push_constant) uniform Constants { float rg_mip; float rg_mipCount; } pc;
 
 const uint kSamples = 64u;
@@ -22,20 +40,24 @@ void main() {
     ivec3 p = ivec3(gl_GlobalInvocationID);
     ivec2 size = imageSize(env_specular).xy;
     if (any(greaterThanEqual(p.xy, size))) return;
-    vec3 N = rgCubeDirection(uint(p.z), (vec2(p.xy) + 0.5) / vec2(size));
-    int mips = textureQueryLevels(env_source);
+#ifdef RG_PROBE_ARRAY
+    gCube = p.z / 6;
+    if (uint(gCube) >= rgProbes.count.x) return;  // no probe there
+#endif
+    vec3 N = rgCubeDirection(uint(p.z % 6), (vec2(p.xy) + 0.5) / vec2(size));
+    int mips = rgSourceLevels();
     float linearRoughness = pow(pc.rg_mip / max(pc.rg_mipCount - 1.0, 1.0), 2.0);
     float alpha = max(linearRoughness * linearRoughness, 1e-3);
     if (pc.rg_mip == 0.0) {  // a mirror: the source itself, at the matching resolution
-        float lod = log2(float(textureSize(env_source, 0).x) / float(size.x));
-        imageStore(env_specular, p, vec4(textureLod(env_source, N, lod).rgb, 1.0));
+        float lod = log2(float(rgSourceSize()) / float(size.x));
+        imageStore(env_specular, p, rgSource(N, lod));
         return;
     }
     vec3 t, b;
     rgBasis(N, t, b);
-    float sourceSize = float(textureSize(env_source, 0).x);
+    float sourceSize = float(rgSourceSize());
     float texelSolidAngle = 4.0 * RG_PI / (6.0 * sourceSize * sourceSize);
-    vec3 sum = vec3(0.0);
+    vec4 sum = vec4(0.0);
     float weight = 0.0;
     for (uint i = 0u; i < kSamples; ++i) {
         vec2 u = hammersley(i, kSamples);
@@ -51,8 +73,8 @@ void main() {
         float pdf = rgGgxD(cosTheta, alpha) * 0.25;
         float sampleSolidAngle = 1.0 / (float(kSamples) * pdf + 1e-6);
         float lod = clamp(0.5 * log2(sampleSolidAngle / texelSolidAngle) + 1.0, 0.0, float(mips - 1));
-        sum += textureLod(env_source, L, lod).rgb * NdotL;
+        sum += rgSource(L, lod) * NdotL;
         weight += NdotL;
     }
-    imageStore(env_specular, p, vec4(sum / max(weight, 1e-6), 1.0));
+    imageStore(env_specular, p, sum / max(weight, 1e-6));
 }

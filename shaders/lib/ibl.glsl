@@ -70,12 +70,50 @@ vec4 rgScreenSpaceReflection() { return texelFetch(ssr, ivec2(gl_FragCoord.xy), 
 vec4 rgScreenSpaceReflection() { return vec4(0.0); }
 #endif
 
-// The distant probe's lighting of one lobe pair, before occlusion: diffuse (LD · DFG.z, the
-// radiance reflected by a white Disney diffuse) and specular (LD · (f0 DFG.x + f90 DFG.y)), both in
-// cd/m² for an environment in nits.
+// Local light probes (RG_PROBES, scripts/probes.lua's probes.lit): the scene's probes and their
+// pre-filtered captures, cube k for probe k.
+#ifdef RG_PROBES
+#include "lib/probes.glsl"
+#ifndef RG_PROBE_SPECULAR_BINDING
+#define RG_PROBE_SPECULAR_BINDING 23
+#endif
+layout(set = 0, binding = RG_PROBE_SPECULAR_BINDING) uniform samplerCubeArray probe_specular;
+#endif
+
+// §4.9.5's composition of the reflected radiance along the dominant direction Rd from P: the
+// screen-space reflection first (RG_SSR), then the local probes holding P from the first in the
+// scene's order (RG_PROBES: priority, then the smaller) "until Alpha reaches 1", each weighted
+// a = saturate(probe.a − Alpha) as the seed's listing does — probe.a its captured visibility
+// along the lobe times its influence (appendix F) — then the distant probe's `distant` for the rest.
+vec3 rgComposeReflection(vec3 P, vec3 Rd, float linearRoughness, vec3 distant) {
+    vec4 reflection = rgScreenSpaceReflection();
+    vec3 rgb = reflection.rgb * reflection.a;
+    float alpha = reflection.a;
+#ifdef RG_PROBES
+    float mips = float(textureQueryLevels(probe_specular));
+    vec3 R = normalize(Rd);
+    for (uint k = 0u; k < rgProbes.count.x && alpha < 1.0; ++k) {
+        RgProbe probe = rgProbes.probe[k];
+        float influence = rgProbeInfluence(probe, P);
+        vec3 direction;
+        float localRoughness;
+        if (influence <= 0.0 || !rgProbeParallax(probe, P, R, linearRoughness, direction, localRoughness)) continue;
+        vec4 captured = textureLod(probe_specular, vec4(direction, float(k)), sqrt(localRoughness) * (mips - 1.0));
+        float a = clamp(captured.a * influence - alpha, 0.0, 1.0);
+        rgb += captured.rgb / max(captured.a, 1e-4) * a;  // the capture's radiance is 0 where it saw nothing
+        alpha = clamp(alpha + a, 0.0, 1.0);
+    }
+#endif
+    return rgb + distant * (1.0 - alpha);
+}
+
+// The probes' lighting of one lobe pair at P, before occlusion: diffuse (LD · DFG.z, the radiance
+// reflected by a white Disney diffuse, from the distant probe) and specular (LD · (f0 DFG.x + f90
+// DFG.y), LD composed from SSR, the local probes and the distant probe), both in cd/m² for an
+// environment in nits.
 struct RgIbl { vec3 diffuse; vec3 specular; };
 
-RgIbl rgEvaluateIbl(vec3 N, vec3 V, vec3 f0, float f90, float linearRoughness) {
+RgIbl rgEvaluateIbl(vec3 P, vec3 N, vec3 V, vec3 f0, float f90, float linearRoughness) {
     RgIbl r;
     r.diffuse = vec3(0.0);
     r.specular = vec3(0.0);
@@ -92,11 +130,8 @@ RgIbl rgEvaluateIbl(vec3 N, vec3 V, vec3 f0, float f90, float linearRoughness) {
     float mips = float(textureQueryLevels(env_specular));
     vec3 Rd = rgSpecularDominantDir(N, R, alpha);
     vec3 ld = textureLod(env_specular, Rd, sqrt(linearRoughness) * (mips - 1.0)).rgb;
-    // §4.9.5's composition order: the screen-space reflection first, the distant probe for what
-    // it did not find (RG_SSR, scripts/ssr.lua's ssr.lit: the pixel's reflection in nits with
-    // its confidence), through the same split-sum weight and occlusion.
-    vec4 reflection = rgScreenSpaceReflection();
-    ld = mix(ld, reflection.rgb, reflection.a);
+    // §4.9.5: SSR, the local probes, then the distant probe, through the same split-sum weight.
+    ld = rgComposeReflection(P, Rd, linearRoughness, ld);
     r.specular = ld * (f0 * dfgTerms.x + f90 * dfgTerms.y);
 #endif
     return r;
@@ -115,9 +150,9 @@ float rgAmbientOcclusion(float materialAo) { return materialAo; }
 #endif
 
 // The standard material's ambient light: diffuse × colour × AO, specular × specular occlusion.
-vec3 rgStandardIbl(vec3 N, vec3 V, vec3 diffuseColor, vec3 f0, float linearRoughness, float ao) {
+vec3 rgStandardIbl(vec3 P, vec3 N, vec3 V, vec3 diffuseColor, vec3 f0, float linearRoughness, float ao) {
     float f90 = clamp(50.0 * dot(f0, vec3(0.33)), 0.0, 1.0);  // as rgStandardBrdf (§4.10.2)
-    RgIbl ibl = rgEvaluateIbl(N, V, f0, f90, linearRoughness);
+    RgIbl ibl = rgEvaluateIbl(P, N, V, f0, f90, linearRoughness);
     float NdotV = max(dot(N, V), 0.0);
     return diffuseColor * ibl.diffuse * ao + ibl.specular * rgSpecularOcclusion(NdotV, ao, linearRoughness * linearRoughness);
 }

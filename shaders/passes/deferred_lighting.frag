@@ -37,6 +37,6 @@ void main() {
         RgLightSample s = rgEvaluateLight(i, position, g.normal, V, linearRoughness, sun);
         luminance += rgStandardLighting(s, g.normal, V, diffuseColor, f0, linearRoughness);
     }
-    luminance += rgStandardIbl(g.normal, V, diffuseColor, f0, linearRoughness, rgAmbientOcclusion(g.ao));  // the distant probe (RG_IBL)
+    luminance += rgStandardIbl(position, g.normal, V, diffuseColor, f0, linearRoughness, rgAmbientOcclusion(g.ao));  // the probes (RG_IBL, RG_PROBES)
     color = vec4(luminance * rgPreExposure(ex.state, params.initial_ev100), 1.0);
 }

@@ -3,11 +3,13 @@
 // (the specular dominant direction of lib/ibl.glsl), marched through the Hi-Z pyramid from the
 // pixel to where it leaves the view or Params.ssr_distance: the step grows a level each time the
 // ray stays in front of a cell's nearest depth and shrinks when it does not, a hit at level 0.
-// Output: rgb the previous frame's lit image (`hdr_history`, pre-exposed) at the hit, blurred by
+// Output: rgb the previous frame's lit image (`hdr_history`, pre-exposed) at the hit, reprojected
+// by the previous frame's camera (Camera.previousViewProj), blurred by
 // roughness through its mips, in nits (divided by this frame's pre-exposure, as the probes the
 // lighting passes blend it with: lib/ibl.glsl, RG_SSR); a the confidence: 0 on a miss, fading at the screen's edges, for
 // rays turned towards the camera, for hits far behind the surface, and with roughness (past
-// Params.ssr_max_roughness the probes alone reflect).
+// Params.ssr_max_roughness the probes alone reflect); 0 where the history holds nothing yet (its
+// alpha: the first frame) or the previous camera did not see the hit.
 #include "lib/scene.glsl"
 #include "lib/ibl.glsl"
 #include "lib/exposure.glsl"
@@ -91,5 +93,11 @@ void main() {
     // Roughness widens the reflected cone: its footprint at the hit, in pixels, picks the mip.
     float footprint = alpha * length((at.xy - s0.xy) * size);
     float lod = clamp(log2(max(footprint, 1.0)), 0.0, float(textureQueryLevels(hdr_history) - 1));
-    color = vec4(textureLod(hdr_history, at.xy, lod).rgb / rgPreExposure(ex.state, params.initial_ev100), confidence);
+    // The history is the frame before's image: the hit's surface where that frame's camera saw
+    // it. Off its screen, or where it holds nothing yet (alpha 0: the first frame), no reflection.
+    vec4 before = camera.previousViewProj * vec4(rgWorldPosition(at.xy, texelFetch(depth, ivec2(at.xy * size), 0).r), 1.0);
+    vec2 uvBefore = before.xy / before.w * 0.5 + 0.5;
+    if (before.w <= 0.0 || any(lessThan(uvBefore, vec2(0.0))) || any(greaterThan(uvBefore, vec2(1.0)))) return;
+    vec4 history = textureLod(hdr_history, uvBefore, lod);
+    color = vec4(history.rgb / rgPreExposure(ex.state, params.initial_ev100), confidence * clamp(history.a, 0.0, 1.0));
 }

@@ -9,11 +9,27 @@
 #include <string>
 #include <vector>
 
+#include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "cli/runtime.h"
 #include "cli/session.h"
 #include "image/image.h"
 
 namespace rg {
+
+// A scene camera's view-projection at width x height, as passes/gpu_scene.cpp builds it (near
+// 0.05 m, far 1000 m, y down), and the pixel a world point lands on through it.
+inline glm::mat4 cameraViewProj(glm::vec3 eye, glm::vec3 target, float fovDegrees, uint32_t width, uint32_t height) {
+    glm::mat4 proj = glm::perspectiveRH_ZO(glm::radians(fovDegrees), float(width) / float(height), 0.05f, 1000.0f);
+    proj[1][1] *= -1.0f;
+    return proj * glm::lookAt(eye, target, glm::vec3(0, 1, 0));
+}
+inline glm::ivec2 pixelOf(const glm::mat4& viewProj, uint32_t width, uint32_t height, glm::vec3 p) {
+    glm::vec4 c = viewProj * glm::vec4(p, 1.0f);
+    glm::vec2 uv = glm::vec2(c) / c.w * 0.5f + 0.5f;
+    return glm::ivec2(uv * glm::vec2(float(width), float(height)));
+}
 
 class GpuFixture : public ::testing::Test {
 protected:

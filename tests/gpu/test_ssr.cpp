@@ -28,15 +28,8 @@ struct Frame {
     float preExposure = 1.0f;
 };
 
-// The pixel a world point lands on with the scene's camera (as passes/gpu_scene.cpp projects).
-glm::ivec2 pixelOf(glm::vec3 p) {
-    glm::mat4 view = glm::lookAt(glm::vec3(0, 2, 6), glm::vec3(0), glm::vec3(0, 1, 0));
-    glm::mat4 proj = glm::perspectiveRH_ZO(glm::radians(40.0f), float(W) / float(H), 0.05f, 1000.0f);
-    proj[1][1] *= -1.0f;
-    glm::vec4 c = proj * view * glm::vec4(p, 1.0f);
-    glm::vec2 uv = glm::vec2(c) / c.w * 0.5f + 0.5f;
-    return glm::ivec2(uv * glm::vec2(W, H));
-}
+// The pixel a world point lands on with the scene's "main" camera.
+glm::ivec2 pixelOf(glm::vec3 p) { return rg::pixelOf(cameraViewProj(glm::vec3(0, 2, 6), glm::vec3(0), 40.0f, W, H), W, H, p); }
 
 class Ssr : public GpuFixture {
 protected:

@@ -1104,6 +1104,33 @@ TEST(SceneScript, CameraAndEnvironmentFieldErrors) {
     EXPECT_FLOAT_EQ(ok->cameras[0].exposureCompensation, -1.0f);
 }
 
+TEST(SceneScript, ProbesAndTheirFieldErrors) {
+    ScriptRunner lua("probes");
+    // The README's example (scripts/scenes/README.md).
+    auto ok = lua.run("probes.lua", "scene.probe \"room\" { shape = \"box\", position = { 0, 1.5, 0 }, size = { 8, 3, 6 }, fade = 0.5 }\n"
+                                    "scene.probe \"alcove\" { position = { 3, 1, -2 }, radius = 1.5, priority = 1 }");
+    ASSERT_TRUE(ok) << errorOf(ok);
+    ASSERT_EQ(ok->probes.size(), 2u);
+    EXPECT_TRUE(ok->probes[0].box);
+    EXPECT_EQ(ok->probes[0].size, glm::vec3(8, 3, 6));
+    EXPECT_FLOAT_EQ(ok->probes[0].fade, 0.5f);
+    EXPECT_EQ(ok->probes[0].origin, "probes.lua:1");
+    EXPECT_FALSE(ok->probes[1].box);
+    EXPECT_FLOAT_EQ(ok->probes[1].radius, 1.5f);
+    EXPECT_EQ(ok->probes[1].priority, 1);
+    EXPECT_FLOAT_EQ(ok->probes[1].fade, 0.25f);
+    EXPECT_EQ(lua.error("scene.probe \"p\" { size = { 1, 1, 1 } }"),
+              "bad.lua:1: scene.probe.p.size: a sphere probe has a radius (give shape = \"box\" for a size)");
+    EXPECT_EQ(lua.error("scene.probe \"p\" { shape = \"box\", radius = 2 }"), "bad.lua:1: scene.probe.p.radius: a box probe has a size, not a radius");
+    EXPECT_EQ(lua.error("scene.probe \"p\" { shape = \"cone\" }"),
+              "bad.lua:1: scene.probe.p.shape: unknown probe shape 'cone'; expected one of: 'sphere', 'box'");
+    EXPECT_EQ(lua.error("scene.probe \"p\" { priority = 1.5 }"),
+              "bad.lua:1: scene.probe.p.priority: expected a whole number in [-1000, 1000], got 1.5");
+    EXPECT_EQ(lua.error("scene.probe \"p\" { radius = 0 }"), "bad.lua:1: scene.probe.p.radius: expected a number > 0, got 0");
+    EXPECT_EQ(lua.error("for i = 1, 9 do scene.probe(\"p\" .. i) {} end"),
+              "bad.lua:1: scene.probe.p9: a scene has at most 8 light probes (shaders/lib/probes.glsl RG_MAX_PROBES)");
+}
+
 TEST(SceneScript, DefaultCameraFramesTheBounds) {
     ScriptRunner lua("defcam");
     auto scene = lua.run("s.lua", "scene.box \"b\" { size = { 2, 2, 2 }, position = { 10, 1, 0 } }");
