@@ -340,6 +340,7 @@ Result<void> GpuScene::uploadImages(Context& ctx) {
     rg::Image black(1, 1, 4);
     auto env = m_scene.environment ? environmentImage(m_scene) : Result<rg::Image>(std::move(black));
     if (!env) return std::unexpected(env.error());
+    m_environmentCdf = environmentCdf(*env);
     auto envImage = uploadRgba32f(ctx, "scene.environment", *env);
     if (!envImage) return std::unexpected(envImage.error());
     m_environment = std::move(*envImage);
@@ -741,6 +742,19 @@ VkBuffer GpuScene::bvhBuffer() const {
     return m_bvh.buffer();
 }
 
+VkBuffer GpuScene::environmentCdfBuffer() const {
+    if (m_environmentCdfBuffer.buffer() != VK_NULL_HANDLE) return m_environmentCdfBuffer.buffer();
+    const glm::uvec4 header(m_environmentCdf.width, m_environmentCdf.height, 0u, 0u);
+    const size_t bytes = sizeof header + m_environmentCdf.data.size() * sizeof(float);
+    auto buf = Buffer::create(*m_ctx, "scene.environment_cdf", bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    if (!buf) return VK_NULL_HANDLE;  // ShaderProgram reports it
+    auto* p = static_cast<uint8_t*>(buf->mapped());
+    std::memcpy(p, &header, sizeof header);
+    std::memcpy(p + sizeof header, m_environmentCdf.data.data(), m_environmentCdf.data.size() * sizeof(float));
+    m_environmentCdfBuffer = std::move(*buf);
+    return m_environmentCdfBuffer.buffer();
+}
+
 VkBuffer GpuScene::bindingBuffer(std::string_view name, uint32_t slot) const {
     if (name == "Camera") return cameraBuffer(slot);
     if (name == "Lights") return lightBuffer(slot);
@@ -749,6 +763,7 @@ VkBuffer GpuScene::bindingBuffer(std::string_view name, uint32_t slot) const {
     if (name == "Probes") return probeBuffer();
     if (name == "SceneDraws") return drawBuffer();
     if (name == "SceneBvh") return bvhBuffer();
+    if (name == "SceneEnvironmentCdf") return environmentCdfBuffer();
     return VK_NULL_HANDLE;
 }
 

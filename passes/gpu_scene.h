@@ -16,6 +16,7 @@
 #include "gpu/context.h"
 #include "gpu/resources.h"
 #include "lighting/ies.h"
+#include "scene/environment.h"
 #include "scene/scene.h"
 
 namespace rg::passes {
@@ -135,7 +136,7 @@ public:
     // needs to write indirect draw commands (shaders/shadows/cascade_cull.comp).
     VkBuffer drawBuffer() const { return m_drawBuffer.buffer(); }
     // The buffer behind scene binding `name` (a shader block of that name: Camera, Lights,
-    // ShadowViews — frame slot `slot`'s — Decals, Probes, SceneDraws, SceneBvh), VK_NULL_HANDLE for
+    // ShadowViews — frame slot `slot`'s — Decals, Probes, SceneDraws, SceneBvh, SceneEnvironmentCdf), VK_NULL_HANDLE for
     // another name or a buffer that could not be made.
     VkBuffer bindingBuffer(std::string_view name, uint32_t slot) const;
     // The first of light `light`'s shadow views this frame and how many (0: none).
@@ -152,6 +153,10 @@ public:
     // (graph/scene/environment.h's mapping; 1x1 black without one), with its sampler: what a
     // shader's `SceneEnvironment` sampler2D is bound to.
     VkImageView environmentView() const { return m_environment.view(); }
+    // The environment's importance-sampling distribution (graph/scene/environment.h
+    // EnvironmentCdf: a uvec4 header (columns, rows, 0, 0), then its data) for shaders that bind
+    // `SceneEnvironmentCdf` (the reference mode's environment samples). Built on first use.
+    VkBuffer environmentCdfBuffer() const;
     VkSampler environmentSampler() const { return m_environmentSampler.get(); }
     uint32_t lightCount() const { return m_lightCount; }
     uint32_t iesProfileCount() const { return m_iesProfileCount; }
@@ -170,6 +175,8 @@ private:
     std::vector<gpu::Image> m_images;
     gpu::Image m_white, m_flatNormal;  // defaults for missing textures
     gpu::Image m_environment;
+    EnvironmentCdf m_environmentCdf;           // of the uploaded image (a 1x1 black one without an environment)
+    mutable gpu::Buffer m_environmentCdfBuffer;  // environmentCdfBuffer(), once built
     gpu::OwnedSampler m_environmentSampler;
     std::vector<gpu::OwnedSampler> m_samplers;
     gpu::OwnedSampler m_defaultSampler;

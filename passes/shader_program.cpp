@@ -45,7 +45,7 @@ bool isSceneBinding(const ReflectedBinding& b) {
         {"Camera", DescriptorType::UniformBuffer},       {"Lights", DescriptorType::StorageBuffer},
         {"Decals", DescriptorType::StorageBuffer},       {"ShadowViews", DescriptorType::StorageBuffer},
         {"SceneDraws", DescriptorType::StorageBuffer},   {"SceneBvh", DescriptorType::StorageBuffer},
-        {"Probes", DescriptorType::StorageBuffer},
+        {"Probes", DescriptorType::StorageBuffer},       {"SceneEnvironmentCdf", DescriptorType::StorageBuffer},
         {"SceneEnvironment", DescriptorType::CombinedImageSampler}};
     return std::any_of(std::begin(kScene), std::end(kScene), [&](const auto& e) { return b.name == e.first && b.type == e.second; });
 }

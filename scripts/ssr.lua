@@ -1,16 +1,20 @@
 -- Screen-space reflections and their composition with the probes (seed 002 §4.9.4, §4.9.5).
 --
---   local ssr = require "ssr"     -- after the G-buffer and decals: Hi-Z pyramid, SSR
---   rg.pass "lighting_standard" (ssr.lit { ... })  -- the lighting composes SSR over the probe
+--   local ssr = require "ssr"     -- Hi-Z pyramid and SSR, inserted before `lighting_standard`
+--   rg.pass "lighting_standard" (ssr.lit { ... })  -- the lighting composes SSR over the probes
 --   loop.sky_and_forward()
 --   ssr.history()                 -- the lit image kept for the next frame's SSR
 --
 -- `hiz` (compute, per_mip over its own chain) builds the nearest-depth pyramid; `ssr`
 -- (fullscreen) marches the reflected ray through it and reads the previous frame's lit image
--- (`hdr_history`, persistent, with mips for rough reflections) at the hit, in nits, with a
--- confidence in alpha; a lighting pass wrapped in `ssr.lit` (defines RG_SSR) blends it over the
--- distant probe's specular with that confidence, in the same split-sum (lib/ibl.glsl) — no pass
--- of its own; `ssr_history_copy` + `ssr_history_mips` keep this frame's lit image for the next.
+-- (`hdr_history`, persistent, with mips for rough reflections) where the previous frame's camera
+-- saw the hit, in nits, with a confidence in alpha. Both go right before the pass named
+-- `lighting_standard` (after the G-buffer, its fix-up and the decals, whichever module requires
+-- this first: the materials' own lighting passes take SSR too). A lighting pass wrapped in
+-- `ssr.lit` (defines RG_SSR) composes it over the probes' specular, in the same split-sum
+-- (lib/ibl.glsl) — no pass of its own; `ssr_history_copy` + `ssr_history_mips` keep this frame's
+-- lit image for the next. A pipeline that never calls ssr.history() gets no reflections from SSR
+-- (an empty history has confidence 0).
 local rg = require "rg"
 local lighting = require "lighting"
 
@@ -27,15 +31,16 @@ rg.resource "hdr_history" { format = "rgba16f", mips = "full", persistent = true
 
 rg.pass "hiz" {
     kind = "compute", shader = "ssr/hiz.comp", reads = { "depth" }, writes = { { "hiz", as = "storage" } },
-    per_mip = true, filter = "nearest",
+    per_mip = true, filter = "nearest", insert = { before = "lighting_standard" },
 }
 rg.pass "ssr" {
     kind = "fullscreen", shader = "ssr/ssr.frag", reads = { "GB0", "depth", "hiz", "hdr_history", { "exposure", as = "storage" } },
-    writes = { "ssr" },
+    writes = { "ssr" }, insert = { before = "lighting_standard" },
 }
 
--- A lighting pass's declaration that composes SSR over the distant probe (lib/ibl.glsl RG_SSR):
--- reads `ssr`. The `ssr` pass decodes the `disney` layout, so only its lighting paths take it.
+-- A lighting pass's declaration that composes SSR over the probes (lib/ibl.glsl RG_SSR): reads
+-- `ssr`. The `ssr` pass decodes GB0 of the `disney` layout (normal, smoothness), which the
+-- clear-coat and two-colour layouts share, so their lighting paths take it too.
 function ssr.lit(pass)
     return lighting.extend(pass, { "ssr" }, "RG_SSR")
 end

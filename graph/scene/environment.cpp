@@ -209,4 +209,107 @@ Result<void> chooseEnvironment(Scene& scene, const std::string& option, bool lit
     return {};
 }
 
+EnvironmentCdf environmentCdf(const Image& equirect, uint32_t width, uint32_t height) {
+    EnvironmentCdf cdf;
+    cdf.width = width;
+    cdf.height = height;
+    cdf.data.assign(height + 1 + size_t(height) * (width + 1) + size_t(width) * height, 0.0f);
+    // Mean luminance (Rec.709 Y) of the image's texels in each cell (nearest cell for an image
+    // smaller than the grid).
+    std::vector<double> sum(size_t(width) * height, 0.0);
+    std::vector<uint32_t> count(size_t(width) * height, 0);
+    double total = 0.0;
+    const uint32_t channels = equirect.channels;
+    for (uint32_t y = 0; y < equirect.height; ++y)
+        for (uint32_t x = 0; x < equirect.width; ++x) {
+            const float* px = &equirect.pixels[equirect.index(x, y, 0)];
+            const double lum = channels >= 3 ? 0.2126 * px[0] + 0.7152 * px[1] + 0.0722 * px[2] : px[0];
+            const uint32_t cx = std::min(width - 1, uint32_t((x + 0.5) * width / equirect.width));
+            const uint32_t cy = std::min(height - 1, uint32_t((y + 0.5) * height / equirect.height));
+            sum[size_t(cy) * width + cx] += std::max(lum, 0.0);
+            ++count[size_t(cy) * width + cx];
+            total += std::max(lum, 0.0);
+        }
+    const double mean = equirect.width * equirect.height > 0 ? total / (double(equirect.width) * equirect.height) : 0.0;
+    const double floor = std::max(1e-3 * mean, 1e-12);
+    std::vector<double> cellMean(size_t(width) * height, 0.0);
+    for (size_t i = 0; i < cellMean.size(); ++i) cellMean[i] = count[i] ? sum[i] / count[i] : 0.0;
+    // Each cell takes the brightest mean of itself and its eight neighbours (wrapping around in
+    // longitude): the renderer reads the image bilinearly, so a bright texel lights the half texel
+    // around it too, and that ring must not have a dim cell's density (its few samples would be
+    // fireflies).
+    std::vector<double> weight(size_t(width) * height);
+    std::vector<double> rowWeight(height, 0.0);
+    for (uint32_t r = 0; r < height; ++r) {
+        const double sinTheta = std::sin((r + 0.5) / height * M_PI);
+        for (uint32_t c = 0; c < width; ++c) {
+            double brightest = 0.0;
+            for (int dr = -1; dr <= 1; ++dr) {
+                const int rr = int(r) + dr;
+                if (rr < 0 || rr >= int(height)) continue;
+                for (int dc = -1; dc <= 1; ++dc) {
+                    const uint32_t cc = (c + width + uint32_t(dc + 1) - 1u) % width;
+                    brightest = std::max(brightest, cellMean[size_t(rr) * width + cc]);
+                }
+            }
+            const size_t i = size_t(r) * width + c;
+            weight[i] = (brightest + floor) * sinTheta;
+            rowWeight[r] += weight[i];
+        }
+    }
+    double all = 0.0;
+    for (double w : rowWeight) all += w;
+    double running = 0.0;
+    for (uint32_t r = 0; r < height; ++r) {
+        cdf.data[r] = static_cast<float>(running / all);
+        running += rowWeight[r];
+        double inRow = 0.0;
+        for (uint32_t c = 0; c < width; ++c) {
+            cdf.data[cdf.conditional(r) + c] = static_cast<float>(inRow / rowWeight[r]);
+            inRow += weight[size_t(r) * width + c];
+            cdf.data[cdf.cell(c, r)] = static_cast<float>(weight[size_t(r) * width + c] / all);
+        }
+        cdf.data[cdf.conditional(r) + width] = 1.0f;
+    }
+    cdf.data[height] = 1.0f;
+    return cdf;
+}
+
+namespace {
+// The last index i in [0, n) with cdf[i] <= u (cdf ascending from 0).
+uint32_t findInterval(const float* cdf, uint32_t n, float u) {
+    uint32_t lo = 0, hi = n;
+    while (hi - lo > 1) {
+        const uint32_t mid = (lo + hi) / 2;
+        if (cdf[mid] <= u) lo = mid;
+        else hi = mid;
+    }
+    return lo;
+}
+}  // namespace
+
+glm::vec3 EnvironmentCdf::sample(glm::vec2 u, float& density) const {
+    const uint32_t r = findInterval(data.data(), height, u.y);
+    const float r0 = data[r], r1 = data[r + 1];
+    const float fy = r1 > r0 ? (u.y - r0) / (r1 - r0) : 0.5f;
+    const float* row = data.data() + conditional(r);
+    const uint32_t c = findInterval(row, width, u.x);
+    const float fx = row[c + 1] > row[c] ? (u.x - row[c]) / (row[c + 1] - row[c]) : 0.5f;
+    const float w = static_cast<float>(width), h = static_cast<float>(height);
+    const glm::vec2 uv((static_cast<float>(c) + std::clamp(fx, 0.0f, 1.0f)) / w, (static_cast<float>(r) + std::clamp(fy, 0.0f, 1.0f)) / h);
+    const glm::vec3 d = equirectDirection(uv);
+    density = pdf(d);
+    return d;
+}
+
+float EnvironmentCdf::pdf(glm::vec3 direction) const {
+    const glm::vec2 uv = equirectUv(direction);
+    const float w = static_cast<float>(width), h = static_cast<float>(height);
+    const uint32_t c = std::min(width - 1, uint32_t(std::max(uv.x - std::floor(uv.x), 0.0f) * w));
+    const uint32_t r = std::min(height - 1, uint32_t(std::clamp(uv.y, 0.0f, 1.0f) * h));
+    const float sinTheta = std::sin(std::clamp(uv.y, 0.0f, 1.0f) * float(M_PI));
+    if (sinTheta <= 0.0f) return 0.0f;
+    return data[cell(c, r)] * w * h / (2.0f * float(M_PI) * float(M_PI) * sinTheta);
+}
+
 }  // namespace rg

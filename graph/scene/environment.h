@@ -12,6 +12,9 @@
 // Pure functions, thread-safe; no Vulkan.
 #pragma once
 
+#include <cstdint>
+#include <vector>
+
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 
@@ -51,6 +54,25 @@ Image skyImage(const SkyParams& p, uint32_t width = 512);
 // none (the caller binds black). The sky takes its sun from the scene's first sun light (default:
 // 45° up, from +Z, kClearSkySunLux). Errors name the environment and the file.
 Result<Image> environmentImage(const Scene& scene);
+
+// A piecewise-constant importance-sampling distribution of an equirectangular environment over a
+// grid of width × height cells (the reference mode's environment samples, shaders/passes/
+// reference.comp): each cell's probability ∝ (the largest mean luminance of it and its eight
+// neighbours — the image is read bilinearly — + 1e-3 of the image's mean) × sin θ at its centre; a sample picks a cell by the marginal (rows) then the conditional (columns)
+// CDF and a uniform point inside it, so the density over the unit square is
+// cellProbability · width · height and over the sphere that / (2π² sin θ). Flat layout (the GPU's):
+// rows + 1 marginal CDF values, then rows × (columns + 1) conditional CDF values, then
+// rows × columns cell probabilities.
+struct EnvironmentCdf {
+    uint32_t width = 0, height = 0;
+    std::vector<float> data;
+    size_t conditional(uint32_t row) const { return height + 1 + size_t(row) * (width + 1); }
+    size_t cell(uint32_t column, uint32_t row) const { return height + 1 + size_t(height) * (width + 1) + size_t(row) * width + column; }
+    // A direction from two uniform numbers in [0, 1), and its solid-angle density.
+    glm::vec3 sample(glm::vec2 u, float& pdf) const;
+    float pdf(glm::vec3 direction) const;
+};
+EnvironmentCdf environmentCdf(const Image& equirect, uint32_t width = 256, uint32_t height = 128);
 
 // The environment a render uses (the --environment option): "" keeps the scene's — except that,
 // with `litByDefault` (a glTF file, as published), a scene with no light and no environment gets

@@ -28,7 +28,7 @@ rg.param "reference_forward" { type = "boolean", default = true,
 rg.param "reference_shadows" { type = "boolean", default = false,
                                doc = "shadow rays through the scene's opaque triangles for every light and environment sample (the ground truth for shadowed lights; off: unoccluded like the real-time light approximations it checks)" }
 rg.param "reference_strategy" { type = "choice", default = "mis", choices = { "mis", "light", "brdf" },
-                                doc = "mis: light + BRDF samples, power heuristic; light / brdf: one strategy alone (to check each converges to the same image)" }
+                                doc = "mis: light (and environment) + BRDF samples, power heuristic; light / brdf: one strategy alone (to check each converges to the same image)" }
 
 -- The running mean of the unexposed luminance (cd/m²) and, in alpha, how many frames it holds:
 -- carried over frames, zero when created and whenever the session resets its history.

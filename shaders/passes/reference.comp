@@ -33,10 +33,12 @@
 // power heuristic (Veach, β = 2). Area lights keep lighting.glsl's rgRangeWindow of the squared
 // distance to the light's centre (lst:4's window), so the two stay comparable.
 // The environment (the scene's SceneEnvironment, lib/environment.glsl — the distant probe the
-// real-time path pre-filters, scripts/ibl.lua) is integrated with the same BRDF samples: each
-// sample's direction reads the equirectangular radiance there, f · L / pdf, unoccluded like the
-// split sum it checks (importance sampling by the BRDF only, no luminance-CDF sample of the
-// environment: fine for skies and soft HDRIs, noisy for a small bright source in the image).
+// real-time path pre-filters, scripts/ibl.lua) is one more sampled light: each sample draws a
+// direction from its luminance distribution (SceneEnvironmentCdf: graph/scene/environment.h's
+// EnvironmentCdf, cells by (dilated) mean luminance × sin θ, marginal then conditional CDF) and the BRDF's
+// sample reads the radiance where it points, the two combined with the power heuristic as for
+// the lights — so a small bright source in an HDRI converges as fast as a sky. Unoccluded like
+// the split sum it checks, unless reference_shadows.
 // Clear coat (materialId 1, materials/clearcoat.lua) gets its coat lobe too, evaluated per
 // direction as materials/clearcoat_lighting.frag does for one light direction. The two-colour
 // material (materialId RG_TWO_COLOUR_ID, materials/two_colour.lua) is unpacked with its own layout
@@ -75,6 +77,51 @@ layout(set = 0, binding = 8) uniform Params {
     float initial_ev100;
 } params;
 layout(set = 0, binding = 9) uniform sampler2D SceneEnvironment;  // the scene's (1x1 black without one)
+layout(set = 0, binding = 10, std430) readonly buffer SceneEnvironmentCdf {
+    uvec4 size;    // columns, rows
+    float data[];  // rows + 1 marginal CDF values, rows × (columns + 1) conditional ones, rows × columns cell probabilities
+} rgEnvCdf;
+
+// The last i in [0, n) with data[base + i] <= u (the values ascend from 0).
+uint envFindInterval(uint base, uint n, float u) {
+    uint lo = 0u, hi = n;
+    while (hi - lo > 1u) {
+        uint mid = (lo + hi) / 2u;
+        if (rgEnvCdf.data[base + mid] <= u) lo = mid;
+        else hi = mid;
+    }
+    return lo;
+}
+// The environment's sampling density (solid angle) in direction d: the cell's probability ×
+// columns × rows over the unit square, / (2π² sin θ) on the sphere (EnvironmentCdf::pdf).
+float envPdf(vec3 d) {
+    uint w = rgEnvCdf.size.x, h = rgEnvCdf.size.y;
+    // rgEquirectUv's v through atan rather than acos: precise near the poles and at cell edges.
+    vec2 uv = vec2(rgEquirectUv(d).x, atan(length(d.xz), d.y) / RG_PI);
+    float sinTheta = sin(clamp(uv.y, 0.0, 1.0) * RG_PI);
+    if (sinTheta <= 0.0) return 0.0;
+    uint c = min(w - 1u, uint(fract(uv.x) * float(w))), r = min(h - 1u, uint(clamp(uv.y, 0.0, 1.0) * float(h)));
+    return rgEnvCdf.data[h + 1u + h * (w + 1u) + r * w + c] * float(w * h) / (2.0 * RG_PI * RG_PI * sinTheta);
+}
+// A direction drawn from the distribution with two uniform numbers (EnvironmentCdf::sample).
+float sampleEnvironment(vec2 u, out vec3 L) {
+    uint w = rgEnvCdf.size.x, h = rgEnvCdf.size.y;
+    uint r = envFindInterval(0u, h, u.y);
+    float r0 = rgEnvCdf.data[r], r1 = rgEnvCdf.data[r + 1u];
+    float fy = r1 > r0 ? clamp((u.y - r0) / (r1 - r0), 0.0, 1.0) : 0.5;
+    uint row = h + 1u + r * (w + 1u);
+    uint c = envFindInterval(row, w, u.x);
+    float c0 = rgEnvCdf.data[row + c], c1 = rgEnvCdf.data[row + c + 1u];
+    float fx = c1 > c0 ? clamp((u.x - c0) / (c1 - c0), 0.0, 1.0) : 0.5;
+    vec2 uv = vec2((float(c) + fx) / float(w), (float(r) + fy) / float(h));
+    L = rgEquirectDirection(uv);
+    // The density of the cell drawn, not envPdf(L): mapping L back through acos can land a sample
+    // near a cell's edge in its neighbour, and a bright cell's sample weighted by a dim
+    // neighbour's density is a firefly (measured: a 20 000-nit patch read 4.7x too bright).
+    float sinTheta = sin(uv.y * RG_PI);
+    if (sinTheta <= 0.0) return 0.0;
+    return rgEnvCdf.data[h + 1u + h * (w + 1u) + r * w + c] * float(w * h) / (2.0 * RG_PI * RG_PI * sinTheta);
+}
 
 // ---- The shaded point and its BRDF --------------------------------------------------------------
 
@@ -465,7 +512,23 @@ void main() {
         vec3 fB = pdfB > 0.0 ? brdfCos(s, Lb) : vec3(0.0);
         bool useB = pdfB > 0.0 && any(greaterThan(fB, vec3(0.0)));
         vec3 estimate = vec3(0.0);
-        if (useB && environment && unoccluded(s, Lb, 1e30)) estimate += fB * textureLod(SceneEnvironment, rgEquirectUv(Lb), 0.0).rgb / pdfB;
+        if (environment) {
+            // The environment's own sample (not with reference_strategy = brdf) ...
+            vec3 Le;
+            float pdfE = sampleEnvironment(rgRngNext2(rng), Le);
+            if (pdfE > 0.0 && strategy != 2) {
+                vec3 f = brdfCos(s, Le);
+                if (any(greaterThan(f, vec3(0.0))) && unoccluded(s, Le, 1e30)) {
+                    float weight = strategy == 1 ? 1.0 : rgPowerHeuristic(pdfE, brdfPdf(s, Le));
+                    estimate += f * textureLod(SceneEnvironment, rgEquirectUv(Le), 0.0).rgb * (weight / pdfE);
+                }
+            }
+            // ... and the BRDF's (not with reference_strategy = light).
+            if (useB && strategy != 1 && unoccluded(s, Lb, 1e30)) {
+                float weight = strategy == 2 ? 1.0 : rgPowerHeuristic(pdfB, envPdf(Lb));
+                estimate += fB * textureLod(SceneEnvironment, rgEquirectUv(Lb), 0.0).rgb * (weight / pdfB);
+            }
+        }
         for (uint i = 0u; i < count; ++i) {
             RgLight light = lights.light[i];
             int type = rgLightType(light);

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
 #include <map>
 
@@ -214,3 +215,66 @@ TEST_F(Reference, AccumulationKeepsItsFramesUntilTheSceneChanges) {
 }
 
 }  // namespace
+
+// The environment as a light of its own (reference.comp's samples from SceneEnvironmentCdf): a
+// rough sphere under a dim sky (1 nit) with a small bright patch (20 000 nits, 8 x 5 texels of a
+// 256 x 128 image, up and to the front right). Sampling the environment's luminance finds the
+// patch with every sample; sampling the BRDF finds it by chance — the same mean, far more noise.
+TEST_F(Reference, EnvironmentLuminanceSamplingAgreesWithBrdfSamplingWithLessNoise) {
+    namespace fs = std::filesystem;
+    const std::string dir = std::string(RG_TEST_TMP) + "/reference_environment";
+    fs::create_directories(dir);
+    Image env(256, 128, 4);
+    for (uint32_t y = 0; y < 128; ++y)
+        for (uint32_t x = 0; x < 256; ++x)
+            for (uint32_t c = 0; c < 4; ++c)
+                env.pixels[env.index(x, y, c)] = c == 3 ? 1.0f : (x >= 220 && x < 228 && y >= 42 && y < 47) ? 2e4f : 1.0f;
+    ASSERT_TRUE(writeExr(dir + "/patch.exr", {ImageLayer{"", {"R", "G", "B", "A"}, env}}).has_value());
+    std::ofstream(dir + "/scene.lua") << "local scene = require \"scene\"\n"
+                                         "scene.material \"rough\" { base_color = { 0.8, 0.8, 0.8 }, smoothness = 0.3 }\n"
+                                         "scene.sphere \"ball\" { radius = 1, material = \"rough\", segments = 64 }\n"
+                                         "scene.environment \"patch\" { kind = \"hdr\", file = \"patch.exr\" }\n"
+                                         "scene.camera \"c\" { position = { 0, 0, 4 }, target = { 0, 0, 0 }, fov = 35 }\n";
+    constexpr uint32_t w = 96, h = 64;
+    auto render = [&](const std::string& strategy, uint32_t frames, double seed) {
+        SessionOptions o = sceneOptions(dir + "/scene.lua", {}, w, h);
+        o.params["reference_strategy"] = Value(strategy);
+        o.params["reference_seed"] = Value(seed);
+        Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/reference.lua", frames, {"hdr", "depth"});
+        std::pair<Image, Image> out;
+        if (r.images.size() != 2) return out;
+        out.first = r["hdr"];
+        for (float& v : out.first.pixels) v /= r.preExposure;
+        out.second = r["depth"];
+        return out;
+    };
+    // Mean luminance over the sphere, and the noise of one frame: the RMS difference between two
+    // seeds over the sphere, relative to its mean.
+    auto sphereMean = [&](const std::pair<Image, Image>& a) {
+        double sum = 0;
+        size_t n = 0;
+        for (size_t i = 0; i < size_t(w) * h; ++i)
+            if (a.second.pixels[i] < 1.0f) sum += a.first.pixels[i * 4 + 1], ++n;
+        return n ? sum / double(n) : 0.0;
+    };
+    auto noise = [&](const std::string& strategy) {
+        auto a = render(strategy, 1, 0), b = render(strategy, 1, 1);
+        double sum = 0;
+        size_t n = 0;
+        for (size_t i = 0; i < size_t(w) * h; ++i)
+            if (a.second.pixels[i] < 1.0f) {
+                const double d = a.first.pixels[i * 4 + 1] - b.first.pixels[i * 4 + 1];
+                sum += d * d, ++n;
+            }
+        return n ? std::sqrt(sum / double(n)) / std::max(0.5 * (sphereMean(a) + sphereMean(b)), 1e-6) : 0.0;
+    };
+    const double noiseMis = noise("mis"), noiseLight = noise("light"), noiseBrdf = noise("brdf");
+    const double light = sphereMean(render("light", 32, 0)), mis = sphereMean(render("mis", 32, 0)), brdf = sphereMean(render("brdf", 256, 0));
+    std::printf("one frame's noise (RMS of two seeds' difference / mean): %.3f MIS, %.3f environment samples, %.3f BRDF samples; sphere mean "
+                "%.2f (environment, 32 frames), %.2f (MIS, 32), %.2f (BRDF, 256) nits\n",
+                noiseMis, noiseLight, noiseBrdf, light, mis, brdf);
+    ASSERT_GT(brdf, 0.0);
+    EXPECT_LT(noiseMis, 0.25 * noiseBrdf);
+    EXPECT_NEAR(light / brdf, 1.0, 0.03);
+    EXPECT_NEAR(mis / brdf, 1.0, 0.03);
+}

@@ -33,8 +33,9 @@ glm::ivec2 pixelOf(glm::vec3 p) { return rg::pixelOf(cameraViewProj(glm::vec3(0,
 
 class Ssr : public GpuFixture {
 protected:
-    static Frame render(const std::map<std::string, std::string>& args) {
+    static Frame render(const std::map<std::string, std::string>& args, double distance = 20.0) {
         SessionOptions o = sceneOptions(kRoot + "/tests/gpu/scenes/ssr_mirror.lua", args, W, H);
+        o.params["ssr_distance"] = Value(distance);
         // Two frames: the second reflects the first's lit image.
         Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 2, {"hdr", "ssr"});
         Frame out;
@@ -80,6 +81,24 @@ TEST_F(Ssr, ReflectionLandsWhereTheMirrorPutsIt) {
         if (checked > 200) break;
     }
     EXPECT_GT(checked, 50);
+}
+
+TEST_F(Ssr, ClearCoatAndTwoColourPathsTakeTheReflection) {
+    // The same mirror made of the clear-coat and the two-colour materials, each lit by its own
+    // lighting pass: with SSR the box's mirror image is the red box; with rays too short to reach
+    // it (10 cm) the same pixel reflects the sky.
+    const glm::ivec2 m = pixelOf(glm::vec3(0.0f, -0.5f, -1.5f));
+    for (const char* floor : {"clear_coat", "two_colour"}) {
+        Frame with = render({{"floor", floor}}), without = render({{"floor", floor}}, 0.1);
+        ASSERT_EQ(with.hdr.width, W) << floor;
+        ASSERT_EQ(without.hdr.width, W) << floor;
+        const float r = with.hdr.at(m.x, m.y, 0), g = with.hdr.at(m.x, m.y, 1), b = with.hdr.at(m.x, m.y, 2);
+        const float r0 = without.hdr.at(m.x, m.y, 0), b0 = without.hdr.at(m.x, m.y, 2);
+        std::printf("%s: the mirror image with SSR %.3g %.3g %.3g, without %.3g .. %.3g (pre-exposed)\n", floor, r, g, b, r0, b0);
+        EXPECT_GT(with.ssr.at(m.x, m.y, 3), 0.8f) << floor;
+        EXPECT_GT(r, 5.0f * g) << floor;
+        EXPECT_GT(b0, r0) << floor;
+    }
 }
 
 }  // namespace
