@@ -8,6 +8,7 @@ local lighting = require "lighting"
 local ibl = require "ibl"  -- lit by the distant light probe too
 local probes = require "probes"  -- and reflecting the local ones
 local ssr = require "ssr"        -- and the screen-space reflection over them
+local reflections = require "reflections"  -- composed by their own pass
 local ao = require "ao"    -- its ambient occlusion: min(material AO, screen-space AO)
 local shadows = require "shadows"  -- its lights shadowed as the standard path's
 require "disney"
@@ -20,9 +21,9 @@ rg.material "clear_coat" {
 }
 
 -- Lights the clear-coat pixels right after the standard ones (the low 3 stencil bits name the path).
-rg.pass "lighting_clearcoat" (ssr.lit(shadows.lit(ao.lit(probes.lit(ibl.lit(lighting.tiled {
+rg.pass "lighting_clearcoat" (reflections.lit(ssr.lit(shadows.lit(ao.lit(probes.lit(ibl.lit(lighting.tiled {
     kind = "fullscreen", shader = "materials/clearcoat_lighting.frag",
     reads = { "GB0", "GB1", "GB2", "GB3", "depth", { "depth", as = "depth" }, { "exposure", as = "storage" } },
     writes = { { "hdr", load = true } }, stencil = { class = "lit_clearcoat", mask = 7 },
     insert = { after = "lighting_standard" },
-}))))))
+})))))))

@@ -9,8 +9,7 @@
 local rg = require "rg"
 local lighting = require "lighting"
 local ibl = require "ibl"  -- lit by the distant light probe too
-local probes = require "probes"  -- and reflecting the local ones
-local ssr = require "ssr"        -- and the screen-space reflection over them
+local reflections = require "reflections"  -- and the reflection composed from SSR, local and distant probes
 local ao = require "ao"    -- its ambient occlusion: min(material AO, screen-space AO)
 local shadows = require "shadows"  -- its lights shadowed as the standard path's
 require "disney"
@@ -31,9 +30,9 @@ rg.material "two_colour" {
     doc = "two-colour base material, seed 000 tbl:3",
 }
 
-rg.pass "lighting_two_colour" (ssr.lit(shadows.lit(ao.lit(probes.lit(ibl.lit(lighting.tiled {
+rg.pass "lighting_two_colour" (reflections.lit(shadows.lit(ao.lit(ibl.lit(lighting.tiled {
     kind = "fullscreen", shader = "materials/two_colour_lighting.frag",
     reads = { "GB0", "GB1", "GB2", "GB3", "depth", { "depth", as = "depth" }, { "exposure", as = "storage" } },
     writes = { { "hdr", load = true } }, stencil = { class = "lit_two_colour", mask = 7 },
     insert = { after = "lighting_standard" },
-}))))))
+})))))

@@ -12,7 +12,8 @@
 -- `lighting_standard` (after the G-buffer, its fix-up and the decals, whichever module requires
 -- this first: the materials' own lighting passes take SSR too). A lighting pass wrapped in
 -- `ssr.lit` (defines RG_SSR) composes it over the probes' specular, in the same split-sum
--- (lib/ibl.glsl) — no pass of its own; `ssr_history_copy` + `ssr_history_mips` keep this frame's
+-- (lib/ibl.glsl) — scripts/reflections.lua's composition pass does that once per pixel for the
+-- G-buffer's lighting paths; `ssr_history_copy` + `ssr_history_mips` keep this frame's
 -- lit image for the next. A pipeline that never calls ssr.history() gets no reflections from SSR
 -- (an empty history has confidence 0).
 local rg = require "rg"

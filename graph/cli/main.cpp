@@ -439,7 +439,7 @@ int cmdRender(int argc, char** argv) {
             "--scene-arg NAME=VALUE (repeatable): sets scene.args.NAME for a Lua scene (a number when it reads as one).\n"
             "--set NAME=VALUE (repeatable): sets the pipeline parameter NAME (rg.param) before the first frame.\n"
             "--view: write a debug view instead of the image: normals, basecolor, smoothness, metalmask,\n"
-            "materialid, reflectance, ao, emissive, stencil, lights, ssao (screen-space AO), ssr, ssr_confidence,\nprobes (which local light probe reflects each pixel), cascades (the sun's shadow cascades), shadow (its map) or shadow:LIGHT (a local light's maps).\n"
+            "materialid, reflectance, ao, emissive, stencil, lights, ssao (screen-space AO), ssr, ssr_confidence,\nreflection (SSR and the probes composed), probes (which local light probe reflects each pixel), cascades (the sun's shadow cascades), shadow (its map) or shadow:LIGHT (a local light's maps).\n"
             "--capture gbuffer.CHANNEL: a G-buffer channel, decoded, as an EXR layer (e.g. gbuffer.normal).\n"
             "Renders N frames (default 1) at WxH (default 1280x720) through the pipeline (default\n"
             "scripts/pipelines/deferred.lua), calling its rg.frame(ctx) before each frame. Writes FILE.png (default\n"

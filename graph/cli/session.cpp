@@ -143,6 +143,14 @@ Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string
                     {{"shader", Value("passes/ssr_view.frag")}, {"uniforms", Value(Value::Table{{"view", Value(view == "ssr" ? 0.0 : 1.0)}})}});
         return {};
     }
+    if (view == "reflection") {
+        if (auto r = needs(g, view, "reflection", "require \"reflections\""); !r) return r;
+        if (auto r = needs(g, view, "exposure", "post.exposure_state(): the reflection is in nits"); !r) return r;
+        addViewPass(g, {{"reflection", Usage::Sampled}, {"exposure", Usage::StorageRead}},
+                    {{"shader", Value("passes/ssr_view.frag")}, {"bind", Value(Value::Table{{"ssr", Value("reflection")}})},
+                     {"uniforms", Value(Value::Table{{"view", Value(2.0)}})}});
+        return {};
+    }
     if (view == "probes") {
         addViewPass(g, {{"depth", Usage::Sampled}}, {{"shader", Value("passes/probe_view.frag")}});
         return {};
@@ -164,7 +172,7 @@ Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string
     }
     auto it = std::find(kViews.begin(), kViews.end(), view);
     if (it == kViews.end()) {
-        std::string all = "'stencil', 'lights', 'ssao', 'ssr', 'ssr_confidence', 'probes', 'cascades', 'shadow', 'shadow:LIGHT'";
+        std::string all = "'stencil', 'lights', 'ssao', 'ssr', 'ssr_confidence', 'reflection', 'probes', 'cascades', 'shadow', 'shadow:LIGHT'";
         for (const auto& v : kViews) all += ", '" + v + "'";
         return fail(ErrorCode::InvalidInput, "--view: unknown view '" + view + "'; expected one of: " + all);
     }

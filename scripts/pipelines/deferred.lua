@@ -11,19 +11,20 @@ local shadows = require "shadows"  -- the sun's cascaded shadow map (seed 002 §
 local ao = require "ao"  -- screen-space ambient occlusion (seed 002 §4.10.3)
 local ssr = require "ssr"  -- screen-space reflections over the probe (seed 002 §4.9.4, §4.9.5)
 local probes = require "probes"  -- the scene's local light probes, captured once per scene (§4.9.1.2)
+local reflections = require "reflections"  -- SSR, local probes and distant probe composed by their own pass (§4.9.5)
 
 post.params { exposure_mode = "auto" }
 post.exposure_state()
 
 -- One lighting pass per lighting path, each on its stencil class, each looping over the lights
--- of its pixel's tile (lighting.tiled), then adding the probes' light: the distant probe (ibl.lit)
--- and, over its specular, the local probes holding the pixel (probes.lit) and the screen-space
--- reflection where SSR found the reflected surface (ssr.lit), in §4.9.5's order.
-rg.pass "lighting_standard" (ssr.lit(ao.lit(shadows.lit(probes.lit(ibl.lit(lighting.tiled {
+-- of its pixel's tile (lighting.tiled), then adding the probes' light: the distant probe's diffuse
+-- (ibl.lit) and the specular radiance the `reflection_compose` pass composed in §4.9.5's order —
+-- SSR, the local probes, the distant probe (reflections.lit) — weighted by the split-sum DFG.
+rg.pass "lighting_standard" (reflections.lit(ao.lit(shadows.lit(ibl.lit(lighting.tiled {
     kind = "fullscreen", shader = "passes/deferred_lighting.frag",
     reads = { "GB0", "GB1", "GB2", "GB3", "depth", { "depth", as = "depth" }, { "exposure", as = "storage" } },
     writes = { "hdr" }, stencil = { class = "lit_standard", mask = 7 },  -- low 3 bits: foliage (9) too
-}))))))
+})))))
 
 -- The sky where nothing was drawn, then blended materials lit with the same light loop; the lit
 -- image is kept for the next frame's reflections.

@@ -85,7 +85,7 @@ layout(set = 0, binding = RG_PROBE_SPECULAR_BINDING) uniform samplerCubeArray pr
 // scene's order (RG_PROBES: priority, then the smaller) "until Alpha reaches 1", each weighted
 // a = saturate(probe.a − Alpha) as the seed's listing does — probe.a its captured visibility
 // along the lobe times its influence (appendix F) — then the distant probe's `distant` for the rest.
-vec3 rgComposeReflection(vec3 P, vec3 Rd, float linearRoughness, vec3 distant) {
+vec3 rgComposeReflection(vec3 P, vec3 Rd, float linearRoughness, vec3 distant, out float covered) {
     vec4 reflection = rgScreenSpaceReflection();
     vec3 rgb = reflection.rgb * reflection.a;
     float alpha = reflection.a;
@@ -104,8 +104,23 @@ vec3 rgComposeReflection(vec3 P, vec3 Rd, float linearRoughness, vec3 distant) {
         alpha = clamp(alpha + a, 0.0, 1.0);
     }
 #endif
+    covered = alpha;
     return rgb + distant * (1.0 - alpha);
 }
+vec3 rgComposeReflection(vec3 P, vec3 Rd, float linearRoughness, vec3 distant) {
+    float covered;
+    return rgComposeReflection(P, Rd, linearRoughness, distant, covered);
+}
+
+// The composition pass's result for the shaded pixel (RG_REFLECTION, scripts/reflections.lua's
+// reflections.lit: `reflection`, the composed radiance along the dominant direction of the
+// pixel's G-buffer normal and roughness, in nits).
+#ifdef RG_REFLECTION
+#ifndef RG_REFLECTION_BINDING
+#define RG_REFLECTION_BINDING 25
+#endif
+layout(set = 0, binding = RG_REFLECTION_BINDING) uniform sampler2D reflection;
+#endif
 
 // The probes' lighting of one lobe pair at P, before occlusion: diffuse (LD · DFG.z, the radiance
 // reflected by a white Disney diffuse, from the distant probe) and specular (LD · (f0 DFG.x + f90
@@ -113,7 +128,9 @@ vec3 rgComposeReflection(vec3 P, vec3 Rd, float linearRoughness, vec3 distant) {
 // environment in nits.
 struct RgIbl { vec3 diffuse; vec3 specular; };
 
-RgIbl rgEvaluateIbl(vec3 P, vec3 N, vec3 V, vec3 f0, float f90, float linearRoughness) {
+// `pixelLobe`: the lobe of the pixel's own G-buffer normal and roughness, whose composed radiance
+// the composition pass wrote (RG_REFLECTION); any other lobe (a clear coat's) composes its own.
+RgIbl rgEvaluateIblLobe(vec3 P, vec3 N, vec3 V, vec3 f0, float f90, float linearRoughness, bool pixelLobe) {
     RgIbl r;
     r.diffuse = vec3(0.0);
     r.specular = vec3(0.0);
@@ -129,12 +146,22 @@ RgIbl rgEvaluateIbl(vec3 P, vec3 N, vec3 V, vec3 f0, float f90, float linearRoug
     // Specular: the mip of sqrt(linearRoughness) (env_prefilter.comp), along the dominant direction.
     float mips = float(textureQueryLevels(env_specular));
     vec3 Rd = rgSpecularDominantDir(N, R, alpha);
-    vec3 ld = textureLod(env_specular, Rd, sqrt(linearRoughness) * (mips - 1.0)).rgb;
-    // §4.9.5: SSR, the local probes, then the distant probe, through the same split-sum weight.
-    ld = rgComposeReflection(P, Rd, linearRoughness, ld);
+    vec3 ld;
+#ifdef RG_REFLECTION
+    if (pixelLobe) ld = texelFetch(reflection, ivec2(gl_FragCoord.xy), 0).rgb;  // §4.9.5, composed by its own pass
+    else
+#endif
+    {
+        // §4.9.5: SSR, the local probes, then the distant probe, through the same split-sum weight.
+        ld = rgComposeReflection(P, Rd, linearRoughness, textureLod(env_specular, Rd, sqrt(linearRoughness) * (mips - 1.0)).rgb);
+    }
     r.specular = ld * (f0 * dfgTerms.x + f90 * dfgTerms.y);
 #endif
     return r;
+}
+// Any lobe, composed here.
+RgIbl rgEvaluateIbl(vec3 P, vec3 N, vec3 V, vec3 f0, float f90, float linearRoughness) {
+    return rgEvaluateIblLobe(P, N, V, f0, f90, linearRoughness, false);
 }
 
 // The ambient occlusion of the shaded pixel: the material's, or with RG_SSAO (scripts/ao.lua's
@@ -152,7 +179,7 @@ float rgAmbientOcclusion(float materialAo) { return materialAo; }
 // The standard material's ambient light: diffuse × colour × AO, specular × specular occlusion.
 vec3 rgStandardIbl(vec3 P, vec3 N, vec3 V, vec3 diffuseColor, vec3 f0, float linearRoughness, float ao) {
     float f90 = clamp(50.0 * dot(f0, vec3(0.33)), 0.0, 1.0);  // as rgStandardBrdf (§4.10.2)
-    RgIbl ibl = rgEvaluateIbl(P, N, V, f0, f90, linearRoughness);
+    RgIbl ibl = rgEvaluateIblLobe(P, N, V, f0, f90, linearRoughness, true);
     float NdotV = max(dot(N, V), 0.0);
     return diffuseColor * ibl.diffuse * ao + ibl.specular * rgSpecularOcclusion(NdotV, ao, linearRoughness * linearRoughness);
 }

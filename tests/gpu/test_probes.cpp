@@ -29,15 +29,16 @@ glm::ivec2 pixelOf(glm::vec3 p) { return rg::pixelOf(cameraViewProj(glm::vec3(0,
 class Probes : public GpuFixture {
 protected:
     // The lit HDR in nits, SSR kept from finding anything (a 10 cm ray) so the probes reflect.
-    // With the screen-space AO in `ao` (1 open).
-    static Image lit(const std::string& probes, Image* ao = nullptr) {
+    // With the screen-space AO in `ao` (1 open) and the composition pass's result in `reflection`.
+    static Image lit(const std::string& probes, Image* ao = nullptr, Image* reflection = nullptr) {
         SessionOptions o = sceneOptions(kScene, {{"probes", probes}}, W, H);
         o.params["ssr_distance"] = Value(0.1);
-        Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 1, {"hdr", "ssao"});
-        if (r.images.size() != 2) return {};
+        Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 1, {"hdr", "ssao", "reflection"});
+        if (r.images.size() != 3) return {};
         Image hdr = r["hdr"];
         for (float& v : hdr.pixels) v /= r.preExposure;
         if (ao) *ao = r["ssao"];
+        if (reflection) *reflection = r["reflection"];
         return hdr;
     }
     // The `probes` debug view from straight above (N × N): which probe reflects each floor point.
@@ -105,8 +106,8 @@ TEST_F(Probes, TheCaptureReflectsWhatTheProbeSaw) {
     // lit by the sky's SH plus its 200 nits of emission: as the camera sees its front face without
     // the screen-space AO the capture does not have (and the face's small specular) — times the
     // mirror's f0 of 0.95.
-    Image ao;
-    Image none = lit("none"), one = lit("one", &ao);
+    Image ao, reflection, reflectionNone;
+    Image none = lit("none", nullptr, &reflectionNone), one = lit("one", &ao, &reflection);
     ASSERT_EQ(none.width, W);
     ASSERT_EQ(one.width, W);
     const glm::ivec2 m = pixelOf(glm::vec3(0.0f, -0.5f, -1.5f));
@@ -121,7 +122,14 @@ TEST_F(Probes, TheCaptureReflectsWhatTheProbeSaw) {
     const float boxRed = one.at(b.x, b.y, 0), boxAo = ao.at(b.x, b.y, 0);
     std::printf("the box's front face at (%d, %d): %.1f nits red, AO %.3f; mirrored / (direct / AO) %.3f\n", b.x, b.y, boxRed, boxAo,
                 r1 / (boxRed / boxAo));
-    EXPECT_NEAR(r1 / (boxRed / boxAo), 0.95f, 0.06f);  // measured 0.924: the floor's specular occlusion by the box
+    EXPECT_NEAR(r1 / (boxRed / boxAo), 0.95f, 0.06f);
+    // The composition pass (scripts/reflections.lua): there the probe covered the reflection
+    // entirely (its alpha), without the probe nothing but the distant probe did.
+    ASSERT_EQ(reflection.width, W);
+    std::printf("composition at the mirror image: covered %.3f with the probe, %.3f without\n", reflection.at(m.x, m.y, 3),
+                reflectionNone.at(m.x, m.y, 3));
+    EXPECT_GT(reflection.at(m.x, m.y, 3), 0.95f);
+    EXPECT_EQ(reflectionNone.at(m.x, m.y, 3), 0.0f);  // measured 0.924: the floor's specular occlusion by the box
     // Outside the probe's box (x > 2 m) nothing changes: the same arithmetic, bit for bit.
     int outside = 0;
     for (uint32_t y = H / 2; y < H; ++y)
@@ -135,6 +143,7 @@ TEST_F(Probes, TheCaptureReflectsWhatTheProbeSaw) {
             if (floor.x < 2.3f) continue;
             ++outside;
             for (int c = 0; c < 3; ++c) ASSERT_EQ(one.at(x, y, c), none.at(x, y, c)) << x << ", " << y;
+            ASSERT_EQ(reflection.at(x, y, 3), 0.0f) << x << ", " << y;  // the distant probe alone
         }
     EXPECT_GT(outside, 500);
 }

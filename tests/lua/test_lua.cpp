@@ -221,17 +221,17 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // The environment filtering (scripts/ibl.lua, required by render_loop) comes first, then the
     // local probes' capture and filtering (scripts/probes.lua). Then the sun's and the local lights' shadow maps (scripts/shadows.lua), the G-buffer half with the passes inserted
     // after it (light culling, screen-space AO: scripts/ao.lua), the Hi-Z pyramid and SSR
-    // (scripts/ssr.lua), the lighting (which composes SSR over the probe), the sky and forward.
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 31),
+    // (scripts/ssr.lua), the composition of SSR and the probes (scripts/reflections.lua), the lighting, the sky and forward.
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 32),
               (std::vector<std::string>{"env_cube", "env_mips", "env_prefilter", "env_irradiance", "dfg_table", "probe_capture",
                                         "probe_mips", "probe_prefilter", "sun_cascades",
                                         "shadow_clear", "sun_cull", "shadow_sun", "shadow_local", "gbuffer", "light_culling", "gtao", "foliage_fixup", "ao_blur", "decals_copy0", "decals_copy1", "decals_copy2",
-                                        "decals", "hiz", "ssr", "lighting_standard", "lighting_clearcoat", "lighting_two_colour",
+                                        "decals", "hiz", "ssr", "reflection_compose", "lighting_standard", "lighting_clearcoat", "lighting_two_colour",
                                         "sky", "forward", "ssr_history_copy", "ssr_history_mips"}));
     auto plan = compile(graphWithParams(*p), {});
     ASSERT_TRUE(plan.has_value()) << plan.error().message;
     // Every script it pulled in is known, for hot reload.
-    EXPECT_EQ(p->files.size(), 13u);  // deferred, post, lighting, render_loop, ibl, shadows, probes, ao, ssr, disney, clearcoat, foliage, two_colour
+    EXPECT_EQ(p->files.size(), 14u);  // deferred, post, lighting, render_loop, ibl, shadows, probes, ao, ssr, reflections, disney, clearcoat, foliage, two_colour
 }
 
 TEST(LuaPipeline, ModulesAreNamespacedAndInsertedAfterTheirAnchor) {

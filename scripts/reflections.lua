@@ -1,0 +1,36 @@
+-- Image-based lights composition (seed 002 §4.9.5) as a pass of its own.
+--
+--   local reflections = require "reflections"   -- the `reflection_compose` pass, before lighting_standard
+--   rg.pass "lighting_standard" (reflections.lit(ibl.lit { ... }))  -- reads the composed reflection
+--
+-- `reflection_compose` (fullscreen, shaders/passes/reflection_compose.frag) writes `reflection`:
+-- per pixel, the specular radiance along the dominant direction of its G-buffer normal and
+-- roughness, composed in the seed's order — SSR first, then the local probes holding the point by
+-- priority until the reflection is complete, then the distant probe — in nits, alpha how much SSR
+-- and the local probes covered. It goes right before the pass named `lighting_standard`, after
+-- `ssr`. A lighting pass wrapped in `reflections.lit` (defines RG_REFLECTION) weights it by its
+-- split-sum DFG and specular occlusion (lib/ibl.glsl rgStandardIbl) instead of composing its own;
+-- a lobe other than the pixel's (the clear coat's) still composes its own with the same function.
+local rg = require "rg"
+local lighting = require "lighting"
+require "ibl"     -- the distant probe
+require "probes"  -- the local probes
+require "ssr"     -- and the screen-space reflection
+
+local reflections = {}
+
+rg.resource "reflection" { format = "rgba16f",
+    doc = "the composed specular radiance (nits) along each pixel's dominant direction; alpha: SSR and local probes' share" }
+
+rg.pass "reflection_compose" {
+    kind = "fullscreen", shader = "passes/reflection_compose.frag",
+    reads = { "GB0", "depth", "ssr", "env_specular", { "env_sh", as = "storage" }, "dfg", "probe_specular" }, writes = { "reflection" },
+    defines = { RG_IBL = true, RG_SSR = true, RG_PROBES = true }, insert = { before = "lighting_standard" },
+}
+
+-- A lighting pass's declaration that takes its pixels' specular radiance from `reflection`.
+function reflections.lit(pass)
+    return lighting.extend(pass, { "reflection" }, "RG_REFLECTION")
+end
+
+return reflections

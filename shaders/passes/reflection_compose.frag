@@ -1,0 +1,35 @@
+#version 460
+// Image-based lights composition (seed 002 §4.9.5), as a pass of its own: for every pixel with
+// geometry, the specular radiance reflected along the dominant direction of its G-buffer normal
+// and roughness (GB0, shared by the disney, clear-coat and two-colour layouts) — the screen-space
+// reflection first (RG_SSR), then the local probes holding the point by priority until Alpha
+// reaches 1 (RG_PROBES, appendix F's parallax and fade), then the distant probe for the rest —
+// in nits, composed once, for every lighting path to weight by its split-sum DFG (lib/ibl.glsl,
+// RG_REFLECTION). Alpha: how much of it SSR and the local probes covered (the rest is the distant
+// probe's). Pixels without geometry get 0.
+#include "lib/scene.glsl"
+#include "lib/ibl.glsl"
+#include "gbuffer_disney.glsl"
+
+layout(location = 0) in vec2 uv;
+layout(location = 0) out vec4 color;
+layout(set = 0, binding = 0) uniform sampler2D GB0;
+layout(set = 0, binding = 1) uniform sampler2D depth;
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    float z = texelFetch(depth, p, 0).r;
+    color = vec4(0.0);
+    if (z >= 1.0) return;
+    GBuffer_disney g = unpackGBuffer_disney(texelFetch(GB0, p, 0), vec4(0.0), vec4(0.0), vec4(0.0));
+    vec3 P = rgWorldPosition(uv, z);
+    vec3 N = g.normal;
+    vec3 V = normalize(camera.position.xyz - P);
+    float linearRoughness = 1.0 - g.smoothness;
+    vec3 Rd = rgSpecularDominantDir(N, reflect(-V, N), linearRoughness * linearRoughness);
+    float mips = float(textureQueryLevels(env_specular));
+    vec3 distant = textureLod(env_specular, Rd, sqrt(linearRoughness) * (mips - 1.0)).rgb;
+    float covered;
+    vec3 ld = rgComposeReflection(P, Rd, linearRoughness, distant, covered);
+    color = vec4(ld, covered);
+}
