@@ -611,13 +611,22 @@ struct GpuProbe {
     glm::vec4 positionShape;  // xyz: capture point and proxy centre; w: 0 sphere, 1 box
     glm::vec4 extentFade;     // xyz: box half extents (a sphere: its radius in x); w: fade (m)
     glm::vec4 axes[3];        // box: its local axes in world space (rows of world → local)
+    glm::vec4 influence;      // xyz: the influence box's half extents (a sphere: its radius in x)
 };
 
 Result<void> GpuScene::createProbes(Context& ctx) {
     // §4.9.5: the composition takes local probes "from small to large" until the reflection is
     // complete; a scene's priority goes before size.
     const auto& probes = m_scene.probes;
-    auto volume = [](const Probe& p) { return p.box ? p.size.x * p.size.y * p.size.z : 4.18879f * p.radius * p.radius * p.radius; };
+    // Size: the volume it reflects in (its influence).
+    auto volume = [](const Probe& p) {
+        if (p.box) {
+            const glm::vec3 s = p.influenceSize.x > 0.0f ? p.influenceSize : p.size;
+            return s.x * s.y * s.z;
+        }
+        const float r = p.influenceRadius > 0.0f ? p.influenceRadius : p.radius;
+        return 4.18879f * r * r * r;
+    };
     m_probeOrder.resize(probes.size());
     for (size_t i = 0; i < probes.size(); ++i) m_probeOrder[i] = i;
     std::stable_sort(m_probeOrder.begin(), m_probeOrder.end(), [&](size_t a, size_t b) {
@@ -631,6 +640,9 @@ Result<void> GpuScene::createProbes(Context& ctx) {
         g.positionShape = glm::vec4(p.position, p.box ? 1.0f : 0.0f);
         g.extentFade = glm::vec4(p.box ? 0.5f * p.size : glm::vec3(p.radius), p.fade);
         for (int a = 0; a < 3; ++a) g.axes[a] = glm::vec4(glm::normalize(p.rotation[a]), 0.0f);
+        const glm::vec3 influence = p.box ? 0.5f * (p.influenceSize.x > 0.0f ? p.influenceSize : p.size)
+                                          : glm::vec3(p.influenceRadius > 0.0f ? p.influenceRadius : p.radius);
+        g.influence = glm::vec4(influence, 0.0f);
         out.push_back(g);
     }
     auto buf = Buffer::create(ctx, "scene.probes", 16 + kMaxProbes * sizeof(GpuProbe), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);

@@ -241,8 +241,9 @@ struct Decal {
 // A local light probe (seed 002 §4.9.1.2, §4.9.3, appendix F): the scene as seen from `position`,
 // captured into a cube (diffuse only, metals with f0 as albedo, visibility in alpha) and
 // reflected by the surfaces inside its shape: a sphere of `radius` or a box of `size` (turned by
-// `rotation`), which is both the proxy its reflections are parallax-corrected against and its
-// influence, fading to nothing over `fade` metres inside the boundary. Where several hold a point,
+// `rotation`): the proxy its reflections are parallax-corrected against, and — unless an influence
+// of its own is given (`influence`: a sphere's radius or a box's size, same centre and axes) —
+// the volume it reflects in, fading to nothing over `fade` metres inside that volume's boundary. Where several hold a point,
 // the higher `priority` goes first, then the smaller.
 inline constexpr size_t kMaxProbes = 8;  // shaders/lib/probes.glsl RG_MAX_PROBES
 struct Probe {
@@ -253,6 +254,8 @@ struct Probe {
     float radius = 1.0f;           // sphere
     glm::vec3 size{1.0f};          // box: full extent along its local axes (metres)
     glm::mat3 rotation{1.0f};      // box: local axes in world space
+    float influenceRadius = 0.0f;  // sphere: 0 = the proxy's radius
+    glm::vec3 influenceSize{0.0f}; // box: 0 = the proxy's size
     float fade = 0.25f;            // metres
     int priority = 0;
 };

@@ -610,7 +610,7 @@ struct Builder {
     Result<void> probe(const Declaration& d) {
         Where w = where(d);
         const Value& b = d.body;
-        if (auto r = checkFields(w, b, {"position", "shape", "radius", "size", "rotation", "fade", "priority", "doc"}); !r) return r;
+        if (auto r = checkFields(w, b, {"position", "shape", "radius", "size", "rotation", "influence", "fade", "priority", "doc"}); !r) return r;
         if (scene.probes.size() >= kMaxProbes)
             return w.error("a scene has at most " + std::to_string(kMaxProbes) + " light probes (shaders/lib/probes.glsl RG_MAX_PROBES)");
         Probe p;
@@ -631,6 +631,10 @@ struct Builder {
         m = glm::rotate(m, rotation.y * kDegrees, glm::vec3(0, 1, 0));
         m = glm::rotate(m, rotation.x * kDegrees, glm::vec3(1, 0, 0));
         p.rotation = glm::mat3(m);
+        if (b.has("influence")) {
+            if (p.box) RG_TRY(p.influenceSize, vec3(w, b, "influence", p.size, "{x, y, z} in metres (the box of influence)", Range::positive()));
+            else RG_TRY(p.influenceRadius, numberF(w, b, "influence", p.radius, Range::positive()));
+        }
         RG_TRY(p.fade, numberF(w, b, "fade", p.fade, Range::nonNegative()));
         float priority = 0.0f;
         RG_TRY(priority, numberF(w, b, "priority", priority, Range{-1000, 1000, false, false, true}));

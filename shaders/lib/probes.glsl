@@ -15,6 +15,7 @@ struct RgProbe {
     vec4 positionShape;  // xyz: capture point and proxy centre (world); w: 0 sphere, 1 box
     vec4 extentFade;     // xyz: the box's half extents (a sphere: radius in x); w: fade distance (m)
     vec4 axes[3];        // the box's local axes in world space
+    vec4 influence;      // xyz: the influence box's half extents (a sphere: its radius in x), same centre and axes
 };
 
 layout(set = 0, binding = RG_PROBES_BINDING, std430) readonly buffer Probes {
@@ -28,20 +29,20 @@ bool rgProbeIsBox(RgProbe p) { return p.positionShape.w > 0.5; }
 vec3 rgProbeLocal(RgProbe p, vec3 v) { return vec3(dot(p.axes[0].xyz, v), dot(p.axes[1].xyz, v), dot(p.axes[2].xyz, v)); }
 vec3 rgProbeWorld(RgProbe p, vec3 v) { return v.x * p.axes[0].xyz + v.y * p.axes[1].xyz + v.z * p.axes[2].xyz; }
 
-// Appendix F's influence: 1 inside, fading over `fade` metres inside the boundary (the sphere's
-// radius, the box's faces: distanceBoxPoint from the box shrunk by the fade), 0 outside, through a
-// smoothstep "for a nicer transition".
+// Appendix F's influence: 1 inside the influence volume, fading over `fade` metres inside its
+// boundary (a sphere's radius, a box's faces: distanceBoxPoint from the box shrunk by the fade), 0
+// outside, through a smoothstep "for a nicer transition".
 float rgProbeInfluence(RgProbe p, vec3 P) {
     vec3 d = P - p.positionShape.xyz;
     float fade = max(p.extentFade.w, 1e-4);
     float alpha;
     if (rgProbeIsBox(p)) {
         vec3 local = abs(rgProbeLocal(p, d));
-        if (any(greaterThan(local, p.extentFade.xyz))) return 0.0;
-        vec3 inner = max(p.extentFade.xyz - vec3(fade), vec3(0.0));
+        if (any(greaterThan(local, p.influence.xyz))) return 0.0;
+        vec3 inner = max(p.influence.xyz - vec3(fade), vec3(0.0));
         alpha = 1.0 - clamp(length(max(local - inner, vec3(0.0))) / fade, 0.0, 1.0);
     } else {
-        alpha = clamp((p.extentFade.x - length(d)) / fade, 0.0, 1.0);
+        alpha = clamp((p.influence.x - length(d)) / fade, 0.0, 1.0);
     }
     return smoothstep(0.0, 1.0, alpha);
 }

@@ -97,6 +97,11 @@ TEST_F(Probes, TheHigherPriorityGoesFirstThenTheSmaller) {
     EXPECT_GT(edge.r, kSecond.r + 0.02f);
     EXPECT_GT(edge.g, kFirst.g + 0.02f);
     EXPECT_NEAR(edge.b, 0.2f, 0.01f);  // both palette entries have blue 0.2
+    // An influence volume larger than the proxy: a sphere of radius 1 reflecting within 3 m.
+    Image i = probeView("influence");
+    ASSERT_EQ(i.width, N);
+    expectColour(at(i, 2.4f, 0.0f), kFirst, "inside the influence, outside the proxy");
+    expectColour(at(i, 3.2f, 0.0f), kDistant, "outside the influence");
 }
 
 TEST_F(Probes, TheCaptureReflectsWhatTheProbeSaw) {

@@ -1108,7 +1108,7 @@ TEST(SceneScript, ProbesAndTheirFieldErrors) {
     ScriptRunner lua("probes");
     // The README's example (scripts/scenes/README.md).
     auto ok = lua.run("probes.lua", "scene.probe \"room\" { shape = \"box\", position = { 0, 1.5, 0 }, size = { 8, 3, 6 }, fade = 0.5 }\n"
-                                    "scene.probe \"alcove\" { position = { 3, 1, -2 }, radius = 1.5, priority = 1 }");
+                                    "scene.probe \"alcove\" { position = { 3, 1, -2 }, radius = 1.5, influence = 2.5, priority = 1 }");
     ASSERT_TRUE(ok) << errorOf(ok);
     ASSERT_EQ(ok->probes.size(), 2u);
     EXPECT_TRUE(ok->probes[0].box);
@@ -1119,6 +1119,14 @@ TEST(SceneScript, ProbesAndTheirFieldErrors) {
     EXPECT_FLOAT_EQ(ok->probes[1].radius, 1.5f);
     EXPECT_EQ(ok->probes[1].priority, 1);
     EXPECT_FLOAT_EQ(ok->probes[1].fade, 0.25f);
+    EXPECT_FLOAT_EQ(ok->probes[1].influenceRadius, 2.5f);
+    EXPECT_EQ(ok->probes[0].influenceSize, glm::vec3(0.0f));  // the proxy's
+    auto wide = lua.run("wide.lua", "scene.probe \"s\" { radius = 1, influence = 3 }\n"
+                                    "scene.probe \"b\" { shape = \"box\", size = { 1, 2, 3 }, influence = { 4, 5, 6 } }");
+    ASSERT_TRUE(wide) << errorOf(wide);
+    EXPECT_FLOAT_EQ(wide->probes[0].influenceRadius, 3.0f);
+    EXPECT_EQ(wide->probes[1].influenceSize, glm::vec3(4, 5, 6));
+    EXPECT_EQ(lua.error("scene.probe \"p\" { influence = 0 }"), "bad.lua:1: scene.probe.p.influence: expected a number > 0, got 0");
     EXPECT_EQ(lua.error("scene.probe \"p\" { size = { 1, 1, 1 } }"),
               "bad.lua:1: scene.probe.p.size: a sphere probe has a radius (give shape = \"box\" for a size)");
     EXPECT_EQ(lua.error("scene.probe \"p\" { shape = \"box\", radius = 2 }"), "bad.lua:1: scene.probe.p.radius: a box probe has a size, not a radius");

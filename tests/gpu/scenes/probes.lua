@@ -7,7 +7,9 @@
 --   "priority"        two sphere probes of radius 3 at x = ∓1.5, 1 m up: "right" has priority 2,
 --                     "left" priority 1 (the floor: discs of radius 2.83 around x = ∓1.5);
 --   "size"            two sphere probes of the same priority: "big" (radius 4 at x = −1) and
---                     "small" (radius 2 at x = 1; its floor disc has radius 1.73).
+--                     "small" (radius 2 at x = 1; its floor disc has radius 1.73);
+--   "influence"       one sphere probe of radius 1, 1 m up, reflecting within 3 m (its floor disc:
+--                     radius 2.83).
 -- Cameras: "main" oblique (as ssr_mirror.lua), "top" straight down from 12 m over ±6.93 m.
 local scene = require "scene"
 scene.material "mirror" { base_color = { 0.95, 0.95, 0.95 }, metal_mask = 1, smoothness = 1 }
@@ -28,6 +30,8 @@ elseif probes == "priority" then
 elseif probes == "size" then
   scene.probe "big" { position = { -1, 1, 0 }, radius = 4, fade = 0.25 }
   scene.probe "small" { position = { 1, 1, 0 }, radius = 2, fade = 0.25 }
+elseif probes == "influence" then
+  scene.probe "wide" { position = { 0, 1, 0 }, radius = 1, influence = 3, fade = 0.25 }
 else
-  assert(probes == "none", "scene.args.probes: expected none, one, priority or size")
+  assert(probes == "none", "scene.args.probes: expected none, one, priority, size or influence")
 end
