@@ -210,7 +210,7 @@ private:
             d.depthStencil.front = d.depthStencil.back = op;
             d.dynamicStates.push_back(VK_DYNAMIC_STATE_STENCIL_REFERENCE);
         }
-        auto pipeline = createGraphicsPipeline(setup.gpu.device(), d);
+        auto pipeline = createGraphicsPipeline(setup.gpu, d);
         if (!pipeline) return std::unexpected(pipeline.error());
         m_pipeline = std::move(*pipeline);
         return {};
@@ -297,7 +297,7 @@ public:
         ci.stage = m_program.stageInfos()[0];
         ci.layout = m_program.layout();
         VkPipeline pipeline = VK_NULL_HANDLE;
-        RG_VK_TRY(vkCreateComputePipelines(setup.gpu.device(), VK_NULL_HANDLE, 1, &ci, nullptr, &pipeline));
+        RG_VK_TRY(vkCreateComputePipelines(setup.gpu.device(), setup.gpu.pipelineCache(), 1, &ci, nullptr, &pipeline));
         m_pipeline = OwnedPipeline(setup.gpu.device(), pipeline);
         return {};
     }

@@ -17,7 +17,8 @@ VkPipelineColorBlendAttachmentState blendState(const std::string& mode, bool alp
     return b;
 }
 
-Result<gpu::OwnedPipeline> createGraphicsPipeline(VkDevice device, const GraphicsPipelineDesc& desc) {
+Result<gpu::OwnedPipeline> createGraphicsPipeline(gpu::Context& ctx, const GraphicsPipelineDesc& desc) {
+    VkDevice device = ctx.device();
     VkPipelineRenderingCreateInfo rendering{VK_STRUCTURE_TYPE_PIPELINE_RENDERING_CREATE_INFO};
     rendering.colorAttachmentCount = static_cast<uint32_t>(desc.colorFormats.size());
     rendering.pColorAttachmentFormats = desc.colorFormats.data();
@@ -62,7 +63,7 @@ Result<gpu::OwnedPipeline> createGraphicsPipeline(VkDevice device, const Graphic
     gp.pDynamicState = &dy;
     gp.layout = desc.program->layout();
     VkPipeline pipeline = VK_NULL_HANDLE;
-    RG_VK_TRY(vkCreateGraphicsPipelines(device, VK_NULL_HANDLE, 1, &gp, nullptr, &pipeline));
+    RG_VK_TRY(vkCreateGraphicsPipelines(device, ctx.pipelineCache(), 1, &gp, nullptr, &pipeline));
     return gpu::OwnedPipeline(device, pipeline);
 }
 

@@ -6,6 +6,7 @@
 
 #include <vector>
 
+#include "gpu/context.h"
 #include "gpu/vk.h"
 #include "shader_program.h"
 
@@ -32,6 +33,6 @@ struct GraphicsPipelineDesc {
 // image whose alpha means something else).
 VkPipelineColorBlendAttachmentState blendState(const std::string& mode, bool alphaKeepsDestination = false);
 
-Result<gpu::OwnedPipeline> createGraphicsPipeline(VkDevice device, const GraphicsPipelineDesc& desc);
+Result<gpu::OwnedPipeline> createGraphicsPipeline(gpu::Context& ctx, const GraphicsPipelineDesc& desc);  // through ctx's pipeline cache
 
 }  // namespace rg::passes

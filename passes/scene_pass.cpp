@@ -446,7 +446,7 @@ private:
             d.depthBiasConstant = static_cast<float>(bias.asList()[0].asNumber(0));
             d.depthBiasSlope = static_cast<float>(bias.asList()[1].asNumber(0));
         }
-        auto pipeline = createGraphicsPipeline(setup.gpu.device(), d);
+        auto pipeline = createGraphicsPipeline(setup.gpu, d);
         if (!pipeline) return std::unexpected(pipeline.error());
         g.pipeline = std::move(*pipeline);
         g.draws = drawsWhere(*setup.scene, [](const Material& m) { return m.alphaMode != AlphaMode::Blend; });
@@ -529,7 +529,7 @@ private:
             d.depthStencil.front = d.depthStencil.back = op;
         }
         d.dynamicStates = {VK_DYNAMIC_STATE_STENCIL_REFERENCE, VK_DYNAMIC_STATE_CULL_MODE};
-        auto pipeline = createGraphicsPipeline(setup.gpu.device(), d);
+        auto pipeline = createGraphicsPipeline(setup.gpu, d);
         if (!pipeline) return std::unexpected(pipeline.error());
         g.pipeline = std::move(*pipeline);
         return {};

@@ -35,6 +35,7 @@ Result<std::unique_ptr<Runtime>> Runtime::create(const RuntimeOptions& options) 
     co.deviceIndex = options.device;
     co.validation = options.validation;
     co.framesInFlight = options.framesInFlight;
+    co.pipelineCachePath = cacheDir() + "/pipelines.bin";
     auto ctx = gpu::Context::create(co);
     if (!ctx) return std::unexpected(ctx.error());
     rt->m_context = std::move(*ctx);

@@ -4,6 +4,10 @@
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
+#include <fstream>
+#include <iterator>
+
+#include <unistd.h>
 
 #include "core/check.h"
 
@@ -264,13 +268,55 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     VkCommandPool pool = VK_NULL_HANDLE;
     RG_VK_TRY(vkCreateCommandPool(ctx->m_device, &poolInfo, nullptr, &pool));
     ctx->m_oneShotPool = OwnedCommandPool(ctx->m_device, pool);
+
+    // The pipeline cache, from its file when that holds this device's and driver's data (the
+    // header's vendor, device and cache UUID; anything else starts empty).
+    ctx->m_pipelineCachePath = options.pipelineCachePath;
+    std::vector<char> initial;
+    if (!options.pipelineCachePath.empty()) {
+        std::ifstream in(options.pipelineCachePath, std::ios::binary);
+        initial.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+        VkPipelineCacheHeaderVersionOne header{};
+        const bool fits = initial.size() >= sizeof header && (std::memcpy(&header, initial.data(), sizeof header), true) &&
+                          header.headerVersion == VK_PIPELINE_CACHE_HEADER_VERSION_ONE && header.vendorID == ctx->m_properties.vendorID &&
+                          header.deviceID == ctx->m_properties.deviceID &&
+                          std::memcmp(header.pipelineCacheUUID, ctx->m_properties.pipelineCacheUUID, VK_UUID_SIZE) == 0;
+        if (!fits) initial.clear();
+    }
+    VkPipelineCacheCreateInfo cacheInfo{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
+    cacheInfo.initialDataSize = initial.size();
+    cacheInfo.pInitialData = initial.empty() ? nullptr : initial.data();
+    RG_VK_TRY(vkCreatePipelineCache(ctx->m_device, &cacheInfo, nullptr, &ctx->m_pipelineCache));
     return ctx;
+}
+
+Result<void> Context::savePipelineCache() const {
+    if (m_pipelineCachePath.empty() || !m_pipelineCache) return {};
+    size_t size = 0;
+    RG_VK_TRY(vkGetPipelineCacheData(m_device, m_pipelineCache, &size, nullptr));
+    std::vector<char> data(size);
+    RG_VK_TRY(vkGetPipelineCacheData(m_device, m_pipelineCache, &size, data.data()));
+    const std::string tmp = m_pipelineCachePath + ".tmp" + std::to_string(::getpid());
+    {
+        std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+        out.write(data.data(), static_cast<std::streamsize>(size));
+        if (!out) return fail(ErrorCode::Io, "cannot write the pipeline cache '" + tmp + "'");
+    }
+    if (std::rename(tmp.c_str(), m_pipelineCachePath.c_str()) != 0) {
+        std::remove(tmp.c_str());
+        return fail(ErrorCode::Io, "cannot replace the pipeline cache '" + m_pipelineCachePath + "'");
+    }
+    return {};
 }
 
 Context::~Context() {
     if (m_device) {
         vkDeviceWaitIdle(m_device);
         for (uint32_t s = 0; s < m_deletions.size(); ++s) collectGarbage(s);
+        if (m_pipelineCache) {
+            (void)savePipelineCache();  // best effort: a cache that cannot be written is only slower next time
+            vkDestroyPipelineCache(m_device, m_pipelineCache, nullptr);
+        }
         m_oneShotPool.reset();
         m_allocator.reset();
         vkDestroyDevice(m_device, nullptr);

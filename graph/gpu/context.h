@@ -34,6 +34,9 @@ struct ContextOptions {
     std::optional<uint32_t> deviceIndex;  // --device N
     std::optional<bool> validation;       // default: RG_VALIDATION environment variable
     uint32_t framesInFlight = 2;
+    // A file the VkPipelineCache starts from (when it exists and was written by the same device
+    // and driver) and is saved to when the context ends; "" keeps it in memory.
+    std::string pipelineCachePath;
 };
 
 class Context {
@@ -55,6 +58,10 @@ public:
     Allocator& allocator() { return *m_allocator; }
     uint32_t framesInFlight() const { return m_framesInFlight; }
     double timestampPeriodNs() const { return m_properties.limits.timestampPeriod; }
+    // Every pipeline is created through it (ContextOptions::pipelineCachePath).
+    VkPipelineCache pipelineCache() const { return m_pipelineCache; }
+    // Writes the cache to its file (atomically: a temporary, then a rename); also done on destruction.
+    Result<void> savePipelineCache() const;
 
     bool validationEnabled() const { return m_validation; }
     uint32_t validationMessageCount() const { return m_validationMessages; }
@@ -91,6 +98,8 @@ private:
     DeviceInfo m_info;
     VkPhysicalDeviceProperties m_properties{};
     std::unique_ptr<Allocator> m_allocator;
+    VkPipelineCache m_pipelineCache = VK_NULL_HANDLE;
+    std::string m_pipelineCachePath;
     OwnedCommandPool m_oneShotPool;
     uint32_t m_framesInFlight = 2;
     uint32_t m_currentSlot = 0;

@@ -5,7 +5,11 @@
 #include "gpu_fixture.h"
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <vector>
 
 #include "cli/runtime.h"
 #include "image/image.h"
@@ -241,3 +245,37 @@ TEST_F(GpuTest, UnknownPassKindSuggestsTheClosest) {
 }
 
 }  // namespace
+
+// The persistent VkPipelineCache (ContextOptions::pipelineCachePath): a file that is not this
+// device's cache (garbage here) is ignored, and the context writes its own when it ends — a
+// VkPipelineCacheHeaderVersionOne of this device and driver, which the next context takes.
+TEST(PipelineCache, ForeignDataIsIgnoredAndTheCacheIsWrittenOnExit) {
+    namespace fs = std::filesystem;
+    const std::string dir = std::string(RG_TEST_TMP) + "/pipeline_cache";
+    fs::create_directories(dir);
+    const std::string path = dir + "/pipelines.bin";
+    {
+        std::ofstream out(path, std::ios::binary | std::ios::trunc);
+        out << "not a pipeline cache, but long enough to look like a header at first";
+    }
+    gpu::ContextOptions o;
+    o.pipelineCachePath = path;
+    uint32_t vendor = 0, device = 0;
+    {
+        auto ctx = gpu::Context::create(o);
+        ASSERT_TRUE(ctx.has_value()) << ctx.error().describe();
+        ASSERT_NE((*ctx)->pipelineCache(), VK_NULL_HANDLE);
+        vendor = (*ctx)->properties().vendorID;
+        device = (*ctx)->properties().deviceID;
+    }
+    std::ifstream in(path, std::ios::binary);
+    std::vector<char> data((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    VkPipelineCacheHeaderVersionOne header{};
+    ASSERT_GE(data.size(), sizeof header);
+    std::memcpy(&header, data.data(), sizeof header);
+    EXPECT_EQ(header.headerVersion, VK_PIPELINE_CACHE_HEADER_VERSION_ONE);
+    EXPECT_EQ(header.vendorID, vendor);
+    EXPECT_EQ(header.deviceID, device);
+    auto again = gpu::Context::create(o);  // starts from it
+    ASSERT_TRUE(again.has_value()) << again.error().describe();
+}
