@@ -1,0 +1,111 @@
+#!/usr/bin/env bash
+# The benchmark suite (issue: performance): runs `rgraph bench` and friends on this machine and
+# writes OUT/bench.json and OUT/bench.md — figures, never pass/fail.
+#
+#   tools/bench.sh [--out DIR] [--frames N] [--quick]
+#
+#   default frame   the default pipeline and scene at 1280x720, N frames (default 10), with floors
+#   many lights     scripts/scenes/many_lights.lua at 640x360 with 16 / 64 / 256 / 1024 lights:
+#                   light_culling + lighting_standard, and its ratio 1024 / 64
+#   compile         a generated 200-pass pipeline (a chain of compute passes): graph compile time
+#   start-up        wall time of `rgraph render --frames 1` of the default scene, cold (empty
+#                   caches) and warm (the run after it): process start to the image written
+#   reload          pipeline load when everything is cached (`rgraph bench`'s "pipeline load")
+#
+# --quick: tiny sizes and 2 frames (what the test suite runs to check the script works).
+# Uses build/rgraph (tools/setup.sh builds it) unless RGRAPH is set.
+set -euo pipefail
+root=$(cd "$(dirname "$0")/.." && pwd)
+rgraph=${RGRAPH:-$root/build/rgraph}
+out=$root/build/bench
+frames=10
+quick=0
+while [ $# -gt 0 ]; do
+    case $1 in
+        --out) out=$2; shift 2 ;;
+        --frames) frames=$2; shift 2 ;;
+        --quick) quick=1; shift ;;
+        -h|--help) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        *) echo "tools/bench.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
+    esac
+done
+[ -x "$rgraph" ] || { echo "tools/bench.sh: no rgraph at $rgraph (run tools/setup.sh)" >&2; exit 2; }
+mkdir -p "$out"
+size=1280x720 lights_size=640x360 counts="16 64 256 1024"
+if [ $quick = 1 ]; then size=96x64 lights_size=64x48 frames=2 counts="16 64"; fi
+
+now_ms() { date +%s%3N; }
+step() { echo "tools/bench.sh: $*" >&2; }
+
+step "default frame at $size, $frames frames, with floors"
+"$rgraph" bench --size "$size" --frames "$frames" --floors --json "$out/default.json" >"$out/default.txt"
+
+for n in $counts; do
+    step "many lights: $n at $lights_size"
+    "$rgraph" bench --scene "$root/scripts/scenes/many_lights.lua" --scene-arg lights="$n" --size "$lights_size" \
+        --frames "$frames" --json "$out/lights_$n.json" >"$out/lights_$n.txt"
+done
+
+step "compile: a generated 200-pass pipeline"
+{
+    echo 'local rg = require "rg"'
+    echo 'rg.resource "r0" { format = "rgba8", size = { 8, 8 } }'
+    echo 'rg.pass "p0" { kind = "clear", writes = { "r0" }, value = { 0, 0, 0, 1 } }'
+    for i in $(seq 1 199); do
+        echo "rg.resource \"r$i\" { format = \"rgba8\", size = { 8, 8 } }"
+        echo "rg.pass \"p$i\" { kind = \"copy\", reads = { \"r$((i - 1))\" }, writes = { \"r$i\" } }"
+    done
+    echo 'rg.output "r199"'
+} >"$out/passes200.lua"
+"$rgraph" bench --pipeline "$out/passes200.lua" --size 8x8 --frames 2 --json "$out/compile.json" >"$out/compile.txt"
+
+step "start-up: cold and warm"
+cache=$(mktemp -d)
+t0=$(now_ms); RG_CACHE_DIR=$cache "$rgraph" render --size "$size" --out "$out/startup.exr" >/dev/null; t1=$(now_ms)
+RG_CACHE_DIR=$cache "$rgraph" render --size "$size" --out "$out/startup.exr" >/dev/null; t2=$(now_ms)
+rm -rf "$cache"
+echo "{\"coldMs\": $((t1 - t0)), \"warmMs\": $((t2 - t1))}" >"$out/startup.json"
+
+python3 - "$out" "$counts" <<'EOF'
+import json, sys
+out, counts = sys.argv[1], [int(c) for c in sys.argv[2].split()]
+load = lambda name: json.load(open(f"{out}/{name}"))
+default = load("default.json")
+lights = {n: load(f"lights_{n}.json") for n in counts}
+compile_ = load("compile.json")
+startup = load("startup.json")
+def lighting(b):
+    p = {x["name"]: x["medianMs"] for x in b["passes"]}
+    return p.get("light_culling", 0.0) + p.get("lighting_standard", 0.0)
+suite = {
+    "device": default["device"],
+    "default": {"size": default["size"], "frames": default["frames"], "frameTotalMs": default["frameTotalMs"],
+                "floorTotalMs": default.get("floorTotalMs"), "passes": default["passes"], "loadMs": default.get("loadMs"),
+                "transientBytesAliased": default["transientBytesAliased"], "transientBytesUnaliased": default["transientBytesUnaliased"]},
+    "manyLights": {str(n): {"lightingMs": lighting(lights[n]), "frameMs": lights[n]["frameTotalMs"]["median"]} for n in counts},
+    "compile200Ms": compile_["compileMs"],
+    "startupMs": startup,
+}
+if 1024 in lights and 64 in lights:
+    suite["manyLights"]["ratio1024to64"] = lighting(lights[1024]) / max(lighting(lights[64]), 1e-9)
+json.dump(suite, open(f"{out}/bench.json", "w"), indent=2)
+a, u = default["transientBytesAliased"], default["transientBytesUnaliased"]
+md = [f"# rgraph bench: {default['device']}", "",
+      f"Default frame, {default['size'][0]}x{default['size'][1]}, median of {default['frames']} frames: "
+      f"**{default['frameTotalMs']['median']:.1f} ms** (floor {default.get('floorTotalMs', 0):.1f} ms)", "",
+      "| pass | median ms | min ms | floor ms | first ms |", "| --- | ---: | ---: | ---: | ---: |"]
+for p in default["passes"]:
+    md.append(f"| {p['name']} | {p['medianMs']:.2f} | {p['minMs']:.2f} | {p.get('floorMs', 0):.2f} | {p['firstMs']:.2f} |")
+md += ["", "| many lights | light culling + lighting ms | frame ms |", "| --- | ---: | ---: |"]
+for n in counts:
+    md.append(f"| {n} | {lighting(lights[n]):.2f} | {lights[n]['frameTotalMs']['median']:.2f} |")
+if "ratio1024to64" in suite["manyLights"]:
+    md.append(f"\n1024 / 64 lights: {suite['manyLights']['ratio1024to64']:.2f}x")
+md += ["", f"200-pass graph compile: {compile_['compileMs']:.3f} ms",
+       f"Start-up to the first image written: cold {startup['coldMs']} ms, warm {startup['warmMs']} ms",
+       f"Pipeline load (warm): {default.get('loadMs', 0):.1f} ms",
+       f"Transient memory: {a / 2**20:.1f} MiB aliased, {u / 2**20:.1f} MiB without ({100 * (1 - a / max(u, 1)):.1f} % saved)", ""]
+open(f"{out}/bench.md", "w").write("\n".join(md))
+print("\n".join(md))
+EOF
+step "wrote $out/bench.json and $out/bench.md"
