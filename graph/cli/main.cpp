@@ -76,18 +76,21 @@ struct Args {
                 a.values[name].push_back("1");
                 continue;
             }
-            if (auto eq = name.find('='); eq != std::string::npos) {
+            const auto eq = name.find('=');
+            if (eq != std::string::npos) {
                 value = name.substr(eq + 1);
                 name = name.substr(0, eq);
-            } else if (i + 1 < argc) {
-                value = argv[++i];
-            } else {
-                a.error = "option --" + name + " needs a value";
-                return a;
             }
             if (std::find(known.begin(), known.end(), name) == known.end()) {
                 a.error = "unknown option --" + name;
                 return a;
+            }
+            if (eq == std::string::npos) {
+                if (i + 1 >= argc) {
+                    a.error = "option --" + name + " needs a value";
+                    return a;
+                }
+                value = argv[++i];
             }
             a.values[name].push_back(value);
         }
@@ -201,7 +204,7 @@ int cmdGraph(int argc, char** argv) {
     if (format != "dot" && format != "json") return usageError("--format must be 'dot' or 'json'", "graph");
     CompileOptions opts;
     if (args.has("size") && !parseSize(args.get("size"), opts.outputWidth, opts.outputHeight))
-        return usageError("--size must be WIDTHxHEIGHT, e.g. 1280x720", "graph");
+        return usageError("--size must be WIDTHxHEIGHT with each side in 1..16384, e.g. 1280x720; got '" + args.get("size") + "'", "graph");
     auto graph = loadGraph(args);
     if (!graph) return report(graph.error());
     for (const auto& c : args.all("capture")) {
@@ -233,7 +236,8 @@ Result<RenderSetup> setupRun(const Args& args, const char* command, uint32_t def
     s.pipeline = pipelineArg(args);
     CompileOptions opts;
     if (args.has("size") && !parseSize(args.get("size"), opts.outputWidth, opts.outputHeight))
-        return fail(ErrorCode::InvalidInput, std::string(command) + ": --size must be WIDTHxHEIGHT, e.g. 1280x720");
+        return fail(ErrorCode::InvalidInput, std::string(command) + ": --size must be WIDTHxHEIGHT with each side in 1..16384, e.g. 1280x720; got '" +
+                                                 args.get("size") + "'");
     if (args.has("frames") && !parseCount(args.get("frames"), s.frames))
         return fail(ErrorCode::InvalidInput, std::string(command) + ": --frames must be a positive whole number");
     RuntimeOptions ro;

@@ -763,12 +763,12 @@ struct Builder {
 
         out.output = output.empty() ? "output" : output;
         auto it = std::find_if(out.graph.resources.begin(), out.graph.resources.end(), [&](auto& r) { return r.name == out.output; });
+        const std::string where = names.origin.empty() ? "rg.output" : names.origin + ": rg.output";
         if (it == out.graph.resources.end())
             return fail(ErrorCode::InvalidInput, output.empty() ? "the pipeline declares no output: call rg.output \"resource\" (or name a resource 'output')"
-                                                                : "rg.output: unknown resource '" + output + "'" + suggestion(output, resourceNames));
-        if (it->kind != ResourceKind::Texture) return fail(ErrorCode::InvalidInput, "rg.output: '" + out.output + "' is a buffer, not a texture");
+                                                                : where + ": unknown resource '" + output + "'" + suggestion(output, resourceNames));
+        if (it->kind != ResourceKind::Texture) return fail(ErrorCode::InvalidInput, where + ": '" + out.output + "' is a buffer, not a texture");
         it->exported = true;
-        const std::string where = names.origin.empty() ? "rg.output" : names.origin + ": rg.output";
         if (!names.hdr.empty()) {
             auto h = std::find_if(out.graph.resources.begin(), out.graph.resources.end(), [&](auto& r) { return r.name == names.hdr; });
             if (h == out.graph.resources.end() || h->kind != ResourceKind::Texture)

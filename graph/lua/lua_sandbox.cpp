@@ -51,7 +51,19 @@ void countHook(lua_State* L, lua_Debug* ar) {
 
 int messageHandler(lua_State* L) {
     const char* msg = lua_tostring(L, 1);
-    if (!msg) msg = luaL_tolstring(L, 1, nullptr);
+    if (!msg) {
+        // error(value) with a table, nil, a boolean...: where it was raised and what it was.
+        const char* type = luaL_typename(L, 1);
+        for (int level = 1; level <= 3; ++level) {
+            luaL_where(L, level);
+            if (lua_rawlen(L, -1) > 0) break;
+            lua_pop(L, 1);
+            if (level == 3) lua_pushliteral(L, "");
+        }
+        lua_pushfstring(L, "the script raised an error with a %s value, not a message (error(\"...\") takes a string)", type);
+        lua_concat(L, 2);
+        msg = lua_tostring(L, -1);
+    }
     luaL_traceback(L, L, msg, 1);
     return 1;
 }

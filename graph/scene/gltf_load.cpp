@@ -218,6 +218,19 @@ struct Loader {
         return what + " " + std::to_string(index) + (name.empty() ? "" : " '" + name + "'");
     }
     std::string resolve(const std::string& uri) const { return (dir / percentDecode(uri)).string(); }
+    // A file URI stays inside the glTF file's folder (a relative path that does not climb out of
+    // it with ".."); absolute paths and other schemes (http:, file:) are refused: a model names
+    // its own files, and rgraph downloads nothing.
+    Result<std::string> resolveInside(const std::string& uri, const std::string& label) const {
+        const std::string decoded = percentDecode(uri);
+        const auto colon = decoded.find(':'), slash = decoded.find('/');
+        if (colon != std::string::npos && (slash == std::string::npos || colon < slash))
+            return error(ErrorCode::InvalidInput, label + ": only relative file names and data: URIs are read, not '" + uri.substr(0, colon + 1) + "' URIs");
+        const fs::path relative = fs::path(decoded).lexically_normal();
+        if (relative.is_absolute() || (!relative.empty() && *relative.begin() == ".."))
+            return error(ErrorCode::InvalidInput, label + ": the URI leaves the glTF file's folder; rgraph reads only files in or below it");
+        return (dir / relative).string();
+    }
     void addFile(const std::string& p) {
         std::string a = absolutePath(p);
         if (std::find(scene.files.begin(), scene.files.end(), a) == scene.files.end()) scene.files.push_back(a);
@@ -298,8 +311,10 @@ struct Loader {
                 return error(ErrorCode::InvalidInput, "buffer " + std::to_string(i) + ": byteLength is " + len->dump() + ", expected a whole number >= 1");
             auto uri = b.find("uri");
             if (uri == b.end() || !uri->is_string() || isDataUri(uri->get<std::string>())) continue;
-            const std::string file = resolve(uri->get<std::string>());
             const std::string label = "buffer " + std::to_string(i) + " '" + uri->get<std::string>() + "'";
+            auto inside = resolveInside(uri->get<std::string>(), label);
+            if (!inside) return std::unexpected(inside.error());
+            const std::string file = *inside;
             std::error_code ec;
             if (!fs::is_regular_file(file, ec)) {
                 auto r = readFile(file);  // for the OS's reason
@@ -679,7 +694,9 @@ struct Loader {
                 return error(ErrorCode::InvalidInput, label + ": " + e->second);
             std::vector<unsigned char> bytes = img.image;
             if (bytes.empty() && !img.uri.empty() && !isDataUri(img.uri)) {
-                const std::string file = resolve(img.uri);
+                auto inside = resolveInside(img.uri, label);
+                if (!inside) return std::unexpected(inside.error());
+                const std::string file = *inside;
                 auto r = readFile(file);
                 if (!r) return error(ErrorCode::InvalidInput, label + ": " + r.error().message);
                 bytes = std::move(*r);

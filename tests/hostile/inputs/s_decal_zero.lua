@@ -1,0 +1,1 @@
+scene.decal "d" { size = { 0, 1, 1 } }

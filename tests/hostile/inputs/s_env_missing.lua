@@ -1,0 +1,1 @@
+scene.environment "e" { kind = "hdr", file = "nope.hdr" }

@@ -1,0 +1,1 @@
+scene.sphere "ball" { segments = 1e9 }

@@ -1,0 +1,1 @@
+scene.light "l" { type = "point", intensity = 100, unit = "lux" }

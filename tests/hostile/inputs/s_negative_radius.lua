@@ -1,0 +1,1 @@
+scene.sphere "ball" { radius = -1 }

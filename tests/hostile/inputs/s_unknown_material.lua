@@ -1,0 +1,1 @@
+scene.sphere "ball" { material = "nope" }
