@@ -22,7 +22,7 @@ void main() {
     GBuffer_two_colour g = unpackGBuffer_two_colour(texelFetch(GB0, p, 0), texelFetch(GB1, p, 0), texelFetch(GB2, p, 0),
                                                     texelFetch(GB3, p, 0));
     vec3 position = rgWorldPosition(uv, texelFetch(depth, p, 0).r);
-    vec3 V = normalize(camera.position.xyz - position);
+    vec3 V = rgViewDirection(position);
     float linearRoughness = 1.0 - g.smoothness;
     vec3 luminance = g.emissive;
     RgLightList list = rgLightList(p);

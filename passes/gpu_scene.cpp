@@ -710,7 +710,12 @@ void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
     const float fovy = c.focalLength > 0 ? 2.0f * std::atan(c.sensorHeight / (2.0f * c.focalLength)) : c.verticalFov;
     CameraUniforms u{};
     u.view = glm::lookAt(c.position, c.target, c.up);
-    u.proj = glm::perspectiveRH_ZO(fovy, aspect, c.nearPlane, c.farPlane);
+    if (c.orthographic) {
+        const float h = 0.5f * c.orthoHeight, w = h * aspect;
+        u.proj = glm::orthoRH_ZO(-w, w, -h, h, c.nearPlane, c.farPlane);
+    } else {
+        u.proj = glm::perspectiveRH_ZO(fovy, aspect, c.nearPlane, c.farPlane);
+    }
     u.proj[1][1] *= -1.0f;  // Vulkan's y points down
     u.viewProj = u.proj * u.view;
     u.invViewProj = glm::inverse(u.viewProj);

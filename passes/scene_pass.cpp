@@ -98,7 +98,7 @@ std::string forwardSource() {
            "layout(set = 0, binding = 1) uniform Params { float initial_ev100; } params;\n"
            "void main() {\n"
            "    RgSurface s = rgSampleSurface(worldPosition, worldNormal, worldTangent, uv0, uv1, gl_FrontFacing);\n"
-           "    vec3 V = normalize(camera.position.xyz - worldPosition);\n"
+           "    vec3 V = rgViewDirection(worldPosition);\n"
            "    vec3 diffuseColor = s.twoColour ? s.diffuseColor : s.baseColor * (1.0 - s.metalMask);\n"
            "    vec3 f0 = s.twoColour ? s.f0 : mix(vec3(rgDielectricF0(s.reflectance)), s.baseColor, s.metalMask);\n"
            "    vec3 luminance = s.emissive;\n"

@@ -24,5 +24,5 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRG_WERROR="${RG_WERROR:-OFF}" >/dev/null
+cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRG_WERROR="${RG_WERROR:-OFF}" -DRG_SANITIZE="${RG_SANITIZE:-OFF}" >/dev/null
 cmake --build "$build" --parallel "$(nproc)"

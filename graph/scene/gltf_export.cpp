@@ -273,10 +273,18 @@ struct Writer {
         for (const auto& c : scene.cameras) {
             tinygltf::Camera g;
             g.name = c.name;
-            g.type = "perspective";
-            g.perspective.yfov = c.verticalFov;
-            g.perspective.znear = c.nearPlane;
-            g.perspective.zfar = c.farPlane;
+            if (c.orthographic) {
+                // glTF wants xmag too: the aspect is the render's, so 1:1 here (rgraph reads ymag).
+                g.type = "orthographic";
+                g.orthographic.xmag = g.orthographic.ymag = 0.5 * c.orthoHeight;
+                g.orthographic.znear = c.nearPlane;
+                g.orthographic.zfar = c.farPlane;
+            } else {
+                g.type = "perspective";
+                g.perspective.yfov = c.verticalFov;
+                g.perspective.znear = c.nearPlane;
+                g.perspective.zfar = c.farPlane;
+            }
             tinygltf::Value::Object x;
             x["aperture"] = tinygltf::Value(double(c.aperture));
             x["shutter"] = tinygltf::Value(double(c.shutter));

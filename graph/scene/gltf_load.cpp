@@ -919,15 +919,26 @@ struct Loader {
         const auto& c = model.cameras[size_t(n.camera)];
         Camera cam;
         cam.name = !c.name.empty() ? c.name : !n.name.empty() ? n.name : "camera " + std::to_string(n.camera);
-        if (c.type != "perspective") {
-            warn(named("camera", size_t(n.camera), c.name) + ": " + c.type + " cameras are not supported; skipped");
-            return {};
-        }
         const std::string where = named("camera", size_t(n.camera), c.name);
-        RG_TRY(cam.verticalFov, ranged(where + ": yfov", c.perspective.yfov, 1e-6, 3.14159));
-        RG_TRY(cam.nearPlane, ranged(where + ": znear", c.perspective.znear, 1e-9, 1e30));
-        // glTF: no zfar means an infinite projection; we keep the finite default.
-        if (c.perspective.zfar > 0) RG_TRY(cam.farPlane, ranged(where + ": zfar", c.perspective.zfar, c.perspective.znear, 1e30));
+        if (c.type == "orthographic") {
+            // glTF: xmag, ymag are half the view's width and height in metres; rgraph keeps the
+            // height and takes the width from the image's aspect.
+            float ymag = 1.0f;
+            RG_TRY(ymag, ranged(where + ": ymag", c.orthographic.ymag, 1e-9, 1e30));
+            cam.orthographic = true;
+            cam.orthoHeight = 2.0f * ymag;
+            RG_TRY(cam.nearPlane, ranged(where + ": znear", c.orthographic.znear, 0, 1e30));
+            cam.nearPlane = std::max(cam.nearPlane, 1e-4f);
+            RG_TRY(cam.farPlane, ranged(where + ": zfar", c.orthographic.zfar, c.orthographic.znear, 1e30));
+            if (cam.farPlane <= cam.nearPlane) return error(ErrorCode::InvalidInput, where + ": zfar must lie beyond znear");
+        } else if (c.type == "perspective") {
+            RG_TRY(cam.verticalFov, ranged(where + ": yfov", c.perspective.yfov, 1e-6, 3.14159));
+            RG_TRY(cam.nearPlane, ranged(where + ": znear", c.perspective.znear, 1e-9, 1e30));
+            // glTF: no zfar means an infinite projection; we keep the finite default.
+            if (c.perspective.zfar > 0) RG_TRY(cam.farPlane, ranged(where + ": zfar", c.perspective.zfar, c.perspective.znear, 1e30));
+        } else {
+            return error(ErrorCode::InvalidInput, where + ": unknown camera type '" + c.type + "' (glTF has 'perspective' and 'orthographic')");
+        }
         cam.position = glm::vec3(world[3]);
         cam.target = cam.position + glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
         cam.up = glm::normalize(glm::vec3(world * glm::vec4(0, 1, 0, 0)));

@@ -204,6 +204,8 @@ struct Camera {
     glm::vec3 target{0.0f};
     glm::vec3 up{0.0f, 1.0f, 0.0f};
     float verticalFov = 0.785398f;   // radians
+    bool orthographic = false;       // a parallel projection of `orthoHeight` metres (glTF: 2 ymag)
+    float orthoHeight = 2.0f;
     float focalLength = 0.0f;        // metres; 0 = derived from verticalFov
     float sensorHeight = 0.024f;     // metres (full frame)
     float nearPlane = 0.05f, farPlane = 1000.0f;  // metres

@@ -541,8 +541,8 @@ struct Builder {
     Result<void> camera(const Declaration& d) {
         Where w = where(d);
         const Value& b = d.body;
-        if (auto r = checkFields(w, b, {"position", "target", "up", "fov", "focal_length", "sensor_height", "aperture", "shutter", "iso",
-                                        "ec", "near", "far", "doc"});
+        if (auto r = checkFields(w, b, {"position", "target", "up", "fov", "focal_length", "sensor_height", "height", "aperture", "shutter",
+                                        "iso", "ec", "near", "far", "doc"});
             !r)
             return r;
         Camera c;
@@ -566,6 +566,13 @@ struct Builder {
             c.focalLength = focalMm / 1000.0f;
             c.sensorHeight = sensorMm / 1000.0f;
             c.verticalFov = 2.0f * std::atan(c.sensorHeight / (2.0f * c.focalLength));
+        }
+        // height = metres: an orthographic camera showing that much of the scene top to bottom.
+        if (b.has("height")) {
+            if (b.has("fov") || b.has("focal_length"))
+                return w.at("height").error("an orthographic camera (height) has no fov or focal_length");
+            RG_TRY(c.orthoHeight, numberF(w, b, "height", c.orthoHeight, Range::positive()));
+            c.orthographic = true;
         }
         RG_TRY(c.aperture, numberF(w, b, "aperture", c.aperture, Range::closed(0.5, 128)));
         RG_TRY(c.shutter, numberF(w, b, "shutter", c.shutter, Range::openLow(0, 60)));

@@ -13,7 +13,7 @@ void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     float z = texelFetch(depth, p, 0).r;
     if (z >= 1.0) { color = vec4(1.0); return; }
-    float d0 = camera.proj[3][2] / (z + camera.proj[2][2]);  // rgViewPosition's distance
+    float d0 = rgViewDistance(z);
     ivec2 h = p / 2;
     ivec2 halfSize = textureSize(ao_half, 0);
     float sum = 0.0, weight = 0.0;

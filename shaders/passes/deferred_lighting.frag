@@ -24,7 +24,7 @@ void main() {
     GBuffer_disney g = unpackGBuffer_disney(texelFetch(GB0, p, 0), texelFetch(GB1, p, 0), texelFetch(GB2, p, 0),
                                             texelFetch(GB3, p, 0));
     vec3 position = rgWorldPosition(uv, texelFetch(depth, p, 0).r);
-    vec3 V = normalize(camera.position.xyz - position);
+    vec3 V = rgViewDirection(position);
     // §3.2.1: metals take their f0 from the base colour, dielectrics 0.16 · reflectance².
     vec3 diffuseColor = g.baseColor * (1.0 - g.metalMask);
     vec3 f0 = mix(vec3(rgDielectricF0(g.reflectance)), g.baseColor, g.metalMask);

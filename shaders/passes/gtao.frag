@@ -37,9 +37,9 @@ void main() {
     vec3 P = viewPosition(full);
     vec3 Nw = unpackGBuffer_disney(texelFetch(GB0, full, 0), vec4(0.0), vec4(0.0), vec4(0.0)).normal;
     vec3 N = normalize(mat3(camera.view) * Nw);
-    vec3 V = normalize(-P);
+    vec3 V = rgCameraOrthographic() ? vec3(0.0, 0.0, 1.0) : normalize(-P);
     // The radius on screen, in full-resolution pixels (the projection's y scale).
-    float radiusPx = clamp(params.ao_radius * abs(camera.proj[1][1]) * 0.5 * camera.viewport.y / max(-P.z, 1e-3), 2.0, 96.0);
+    float radiusPx = clamp(params.ao_radius * abs(camera.proj[1][1]) * 0.5 * camera.viewport.y / (rgCameraOrthographic() ? 1.0 : max(-P.z, 1e-3)), 2.0, 96.0);
     // 4×4 interleaved rotations and step offsets.
     int k = (half_.x & 3) + 4 * (half_.y & 3);
     float rotation = float(k) / 16.0 * 3.14159265 / float(RG_AO_SLICES);

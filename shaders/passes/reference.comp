@@ -455,7 +455,7 @@ void main() {
     vec2 uv = (vec2(p) + 0.5) / vec2(size);
     s.P = rgWorldPosition(uv, z);
     s.N = g.normal;
-    s.V = normalize(camera.position.xyz - s.P);
+    s.V = rgViewDirection(s.P);
     // §3.2.1, as deferred_lighting.frag and rgStandardBrdf.
     s.diffuseColor = g.baseColor * (1.0 - g.metalMask);
     s.f0 = mix(vec3(rgDielectricF0(g.reflectance)), g.baseColor, g.metalMask);

@@ -24,7 +24,7 @@ void main() {
     GBuffer_disney g = unpackGBuffer_disney(texelFetch(GB0, p, 0), vec4(0.0), vec4(0.0), vec4(0.0));
     vec3 P = rgWorldPosition(uv, z);
     vec3 N = g.normal;
-    vec3 V = normalize(camera.position.xyz - P);
+    vec3 V = rgViewDirection(P);
     float linearRoughness = 1.0 - g.smoothness;
     vec3 Rd = rgSpecularDominantDir(N, reflect(-V, N), linearRoughness * linearRoughness);
     float mips = float(textureQueryLevels(env_specular));

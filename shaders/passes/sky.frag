@@ -14,8 +14,8 @@ layout(set = 0, binding = 1) uniform Params { float initial_ev100; } params;
 layout(set = 0, binding = 2) uniform sampler2D SceneEnvironment;
 
 void main() {
-    vec3 far = rgWorldPosition(uv, 1.0);
-    vec3 d = normalize(far - camera.position.xyz);
+    // Through the pixel: from the eye to the far plane; an orthographic camera looks along its axis.
+    vec3 d = rgCameraOrthographic() ? -rgViewDirection(vec3(0.0)) : normalize(rgWorldPosition(uv, 1.0) - camera.position.xyz);
     vec3 sky = textureLod(SceneEnvironment, rgEquirectUv(d), 0.0).rgb;
     color = vec4(sky * rgPreExposure(ex.state, params.initial_ev100), 1.0);
 }

@@ -38,9 +38,11 @@ void main() {
     vec3 x = normalize(cross(f, abs(f.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
     vec3 y = cross(x, f);
 
-    // The camera: near plane and field of view from its projection (perspective, depth 0..1).
+    // The camera: near and far planes and the field of view (a perspective's tangents, an
+    // orthographic view's half extents) from its projection (depth 0..1).
+    bool ortho = rgCameraOrthographic();
     float near = camera.proj[3][2] / camera.proj[2][2];
-    float far = camera.proj[3][2] / (camera.proj[2][2] + 1.0);
+    float far = ortho ? (camera.proj[3][2] - 1.0) / camera.proj[2][2] : camera.proj[3][2] / (camera.proj[2][2] + 1.0);
     float tanX = 1.0 / abs(camera.proj[0][0]), tanY = 1.0 / abs(camera.proj[1][1]);
     float k2 = tanX * tanX + tanY * tanY;
     mat4 invView = inverse(camera.view);
@@ -52,7 +54,10 @@ void main() {
         float split = mix(near + (end - near) * t, near * pow(end / near, t), params.shadow_split_lambda);
         // The slice's bounding sphere (centre on the view axis at distance cz).
         float cz, radius;
-        if (k2 >= (split - start) / (split + start)) {
+        if (ortho) {  // a box of the view's half extents between start and split
+            cz = 0.5 * (split + start);
+            radius = sqrt(k2 + 0.25 * (split - start) * (split - start));
+        } else if (k2 >= (split - start) / (split + start)) {
             cz = split;
             radius = split * sqrt(k2);
         } else {

@@ -47,7 +47,7 @@ void main() {
     vec2 size = vec2(textureSize(depth, 0));
     vec3 P = rgViewPosition((vec2(p) + 0.5) / size, z);
     vec3 N = normalize(mat3(camera.view) * g.normal);
-    vec3 V = normalize(-P);
+    vec3 V = rgCameraOrthographic() ? vec3(0.0, 0.0, 1.0) : normalize(-P);
     float alpha = linearRoughness * linearRoughness;
     vec3 R = normalize(rgSpecularDominantDir(N, reflect(-V, N), alpha));
     // The ray's end: ssr_distance away, or where it meets the near plane.

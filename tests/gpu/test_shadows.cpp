@@ -94,6 +94,34 @@ TEST_F(Shadows, BoxShadowFallsWhereTheGeometryPutsIt) {
     }
 }
 
+TEST_F(Shadows, AnOrthographicCameraSeesTheSameShadow) {
+    // The top view through an orthographic camera (scene.camera { height = ... }: the same ground
+    // extent, so the same pixel ↔ ground map): every pass that rebuilds positions from depth
+    // (lighting, SSR, GTAO, the cascades' fit, the sky) takes the parallel projection. The shadow
+    // of the x45 sun falls where the geometry puts it and the open ground is lit — evenly, since
+    // V is the same for every pixel (within 0.1 %).
+    Frame f = render({{"sun", "x45"}}, 1, "ortho");
+    ASSERT_EQ(f.hdr.width, N);
+    const float litLevel = f.hdr.at(5, 5, 1);
+    ASSERT_GT(litLevel, 0.0f);
+    const float m = 0.08f;
+    const Count shadow = classify(f.hdr, litLevel, [=](float x, float z) { return x > -1.5f + m && x < -0.5f - m && std::abs(z) < 0.5f - m; });
+    const Count lit = classify(f.hdr, litLevel, [=](float x, float z) { return x < -1.5f - m || x > 0.5f + m || std::abs(z) > 0.5f + m; });
+    std::printf("orthographic: shadow region %d/%d dark, open ground %d/%d lit\n", shadow.shadowed, shadow.total, lit.lit, lit.total);
+    EXPECT_GT(shadow.total, 500);
+    EXPECT_EQ(shadow.shadowed, shadow.total);
+    EXPECT_EQ(lit.lit, lit.total);
+    // Far from the box (no AO, no shadow): the same luminance everywhere.
+    float lo = litLevel, hi = litLevel;
+    for (uint32_t py = 0; py < N; py += 4)
+        for (uint32_t px = 0; px < N; px += 4)
+            if (std::abs(worldX(px)) > 2.2f && std::abs(worldZ(py)) > 2.2f) {
+                lo = std::min(lo, f.hdr.at(px, py, 1));
+                hi = std::max(hi, f.hdr.at(px, py, 1));
+            }
+    EXPECT_LT(hi / lo - 1.0f, 1e-3f);
+}
+
 TEST_F(Shadows, NoAcneOnAnOpenPlaneUnderAGrazingSun) {
     // The plane alone, the sun 30° above it: every ground pixel lit, within 1 % of the corner's level
     // (the sun at 30° on a 0.5 grey: no shadow-map self-shadowing anywhere in view).

@@ -494,6 +494,40 @@ TEST(GltfLoad, PerspectiveCameraFromItsNode) {
     EXPECT_FLOAT_EQ(c.shutter, 0.008f);
 }
 
+TEST(GltfLoad, OrthographicAndUnnamedCamerasAreKeptAndNamed) {
+    // A perspective and an orthographic camera, both unnamed: both kept (the orthographic one was
+    // dropped), named so that --camera can pick each, and the orthographic one's ymag is half its
+    // height. An unknown type is an error naming the camera.
+    const std::string dir = tmpDir("ortho_camera");
+    GltfBuilder g;
+    g.j["cameras"] = json::array({{{"type", "perspective"}, {"perspective", {{"yfov", 0.6}, {"znear", 0.1}}}},
+                                  {{"type", "orthographic"}, {"orthographic", {{"xmag", 4}, {"ymag", 3}, {"znear", 0}, {"zfar", 100}}}}});
+    g.scene({g.node({{"camera", 0}}), g.node({{"camera", 1}, {"translation", {0, 10, 0}}})});
+    auto scene = rg::loadGltf(g.writeGltf(dir, "c"));
+    ASSERT_TRUE(scene) << errorOf(scene);
+    ASSERT_EQ(scene->cameras.size(), 2u);
+    EXPECT_EQ(scene->cameras[0].name, "camera 0");
+    EXPECT_FALSE(scene->cameras[0].orthographic);
+    EXPECT_EQ(scene->cameras[1].name, "camera 1");
+    EXPECT_TRUE(scene->cameras[1].orthographic);
+    EXPECT_FLOAT_EQ(scene->cameras[1].orthoHeight, 6.0f);
+    EXPECT_FLOAT_EQ(scene->cameras[1].farPlane, 100.0f);
+    EXPECT_GT(scene->cameras[1].nearPlane, 0.0f);  // znear 0 is kept just above it
+    // Written back out and read again: still orthographic, the same height.
+    ASSERT_TRUE(rg::exportGlb(*scene, dir + "/c.glb").has_value());
+    auto again = rg::loadGltf(dir + "/c.glb");
+    ASSERT_TRUE(again) << errorOf(again);
+    ASSERT_EQ(again->cameras.size(), 2u);
+    EXPECT_TRUE(again->cameras[1].orthographic);
+    EXPECT_FLOAT_EQ(again->cameras[1].orthoHeight, 6.0f);
+    GltfBuilder bad;
+    bad.j["cameras"] = json::array({{{"name", "fish"}, {"type", "fisheye"}}});
+    bad.scene({bad.node({{"camera", 0}})});
+    auto refused = rg::loadGltf(bad.writeGltf(dir, "bad"));
+    ASSERT_FALSE(refused);
+    EXPECT_NE(refused.error().message.find("fisheye"), std::string::npos) << refused.error().message;
+}
+
 TEST(GltfLoad, GlbWithAnEmbeddedImage) {
     const std::string dir = tmpDir("glb");
     writeTestPng(dir + "/t.png", 1, 1, {1, 0, 0, 1});
@@ -1079,6 +1113,8 @@ TEST(SceneScript, CameraAndEnvironmentFieldErrors) {
     EXPECT_EQ(lua.error("scene.camera \"c\" { position = { 0, 10, 0 } }"),
               "bad.lua:1: scene.camera.c.up: is parallel to the view direction (or zero); e.g. up = {0, 0, -1} for a camera looking straight down");
     EXPECT_EQ(lua.error("scene.camera \"c\" { aperture = 0 }"), "bad.lua:1: scene.camera.c.aperture: expected a number in [0.5, 128], got 0");
+    EXPECT_EQ(lua.error("scene.camera \"c\" { height = 4, fov = 30 }"), "bad.lua:1: scene.camera.c.height: an orthographic camera (height) has no fov or focal_length");
+    EXPECT_EQ(lua.error("scene.camera \"c\" { height = 0 }"), "bad.lua:1: scene.camera.c.height: expected a number > 0, got 0");
     EXPECT_EQ(lua.error("scene.environment \"e\" { kind = \"hdri\" }"),
               "bad.lua:1: scene.environment.e.kind: unknown environment kind 'hdri' (did you mean 'hdr'?); expected one of: 'sky', "
               "'hdr', 'color'");

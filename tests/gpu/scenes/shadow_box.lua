@@ -19,5 +19,9 @@ scene.light "sun" { type = "sun", intensity = 50000, unit = "lux", direction = d
 local dx = scene.args.dx or 0
 scene.camera "top" { position = { dx, 12, 0.0001 }, target = { dx, 0, 0 }, up = { 0, 0, -1 }, fov = 30,
                      aperture = 16, shutter = 1 / 125, iso = 100 }
+-- The same view through an orthographic camera of the same ground extent (±3.215 m: the
+-- perspective view's at the ground), so pixel ↔ world x, z is the same linear map.
+scene.camera "ortho" { position = { dx, 12, 0.0001 }, target = { dx, 0, 0 }, up = { 0, 0, -1 }, height = 6.4308,
+                       aperture = 16, shutter = 1 / 125, iso = 100 }
 -- A low view from the side (the nearest cascades: the ground within 2 m of the camera).
 scene.camera "near" { position = { 0, 1.2, 3.4 }, target = { 0, 0.45, 0 }, fov = 45, aperture = 16, shutter = 1 / 125, iso = 100 }
