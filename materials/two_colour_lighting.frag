@@ -31,6 +31,6 @@ void main() {
         RgLightSample s = rgEvaluateLight(rgListLight(list, k), position, g.normal, V, linearRoughness, sun);
         luminance += rgStandardLighting(s, g.normal, V, g.diffuseColor, g.f0, linearRoughness);
     }
-    luminance += rgStandardIbl(position, g.normal, V, g.diffuseColor, g.f0, linearRoughness, rgAmbientOcclusion(g.ao));  // the probes (RG_IBL, RG_PROBES)
+    luminance += rgStandardIbl(position, g.normal, V, g.diffuseColor, g.f0, linearRoughness, rgAmbientOcclusion(g.ao));  // the probes (RG_IBL, RG_REFLECTION)
     color = vec4(luminance * rgPreExposure(ex.state, params.initial_ev100), 1.0);
 }

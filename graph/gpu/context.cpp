@@ -105,6 +105,7 @@ DeviceInfo describe(VkPhysicalDevice pd, uint32_t index) {
     if (!f13.dynamicRendering) d.whyNot = "no dynamicRendering";
     else if (!f13.synchronization2) d.whyNot = "no synchronization2";
     else if (!f13.maintenance4) d.whyNot = "no maintenance4";
+    else if (!f.features.imageCubeArray) d.whyNot = "no imageCubeArray (the local light probes' cube arrays)";
     uint32_t n = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, nullptr);
     std::vector<VkQueueFamilyProperties> families(n);
@@ -252,7 +253,7 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     features.features.samplerAnisotropy = supported.features.samplerAnisotropy;
     features.features.fragmentStoresAndAtomics = supported.features.fragmentStoresAndAtomics;
     features.features.independentBlend = supported.features.independentBlend;
-    features.features.imageCubeArray = supported.features.imageCubeArray;  // cube textures of several cubes (light probes)
+    features.features.imageCubeArray = VK_TRUE;  // cube textures of several cubes (light probes); required by describe()
 
     VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     info.pNext = &features;

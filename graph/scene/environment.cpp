@@ -298,7 +298,10 @@ glm::vec3 EnvironmentCdf::sample(glm::vec2 u, float& density) const {
     const float w = static_cast<float>(width), h = static_cast<float>(height);
     const glm::vec2 uv((static_cast<float>(c) + std::clamp(fx, 0.0f, 1.0f)) / w, (static_cast<float>(r) + std::clamp(fy, 0.0f, 1.0f)) / h);
     const glm::vec3 d = equirectDirection(uv);
-    density = pdf(d);
+    // The drawn cell's density at the sample's own θ (not pdf(d): mapping d back through acos can
+    // land an edge sample in the neighbouring cell).
+    const float sinTheta = std::sin(uv.y * float(M_PI));
+    density = sinTheta > 0.0f ? data[cell(c, r)] * w * h / (2.0f * float(M_PI) * float(M_PI) * sinTheta) : 0.0f;
     return d;
 }
 

@@ -77,6 +77,16 @@ struct Writer {
     std::vector<int> images;                // Scene image -> glTF image (-1: not written)
     std::map<std::pair<int, int>, int> textures;  // (glTF image, glTF sampler) -> glTF texture
     bool usesTransform = false, usesStrength = false;
+    std::filesystem::path outDir;  // the .glb's folder: files the scene names are written relative to it
+
+    // A file the scene names (an IES profile, an environment image) as the .glb will name it:
+    // relative to the .glb's folder (the loader resolves it from there), so no machine path is kept.
+    std::string relativeName(const std::string& file) const {
+        if (file.empty() || outDir.empty()) return file;
+        std::error_code ec;
+        const auto rel = std::filesystem::absolute(file, ec).lexically_relative(outDir);
+        return ec || rel.empty() ? file : rel.generic_string();
+    }
 
     void warn(const std::string& msg) {
         if (warnings) warnings->push_back(msg);
@@ -327,7 +337,7 @@ struct Writer {
             tinygltf::Value::Object x;
             if (l.temperatureK > 0) x["temperature"] = tinygltf::Value(double(l.temperatureK));
             if (l.unit == "lm") x["lumens"] = tinygltf::Value(double(l.intensity));  // as declared
-            if (!l.ies.empty()) x["ies"] = tinygltf::Value(l.ies);
+            if (!l.ies.empty()) x["ies"] = tinygltf::Value(relativeName(l.ies));
             if (!l.iesMode.empty()) x["ies_mode"] = tinygltf::Value(l.iesMode);
             if (l.exactCone) x["exact_cone"] = tinygltf::Value(true);
             if (l.castShadows) x["shadow"] = tinygltf::Value(true);
@@ -347,7 +357,7 @@ struct Writer {
             tinygltf::Value::Object x;
             x["name"] = tinygltf::Value(e.name);
             x["kind"] = tinygltf::Value(e.kind);
-            x["file"] = tinygltf::Value(e.file);
+            x["file"] = tinygltf::Value(relativeName(e.file));
             x["color"] = jsonOf(e.color);
             x["intensity"] = tinygltf::Value(double(e.intensity));
             x["unit"] = tinygltf::Value(e.unit);
@@ -385,7 +395,9 @@ struct Writer {
 }  // namespace
 
 Result<void> exportGlb(const Scene& scene, const std::string& path, std::vector<std::string>* warnings) {
-    Writer w{scene, warnings, {}, {}, {}, false, false};
+    Writer w{scene, warnings, {}, {}, {}, false, false, {}};
+    std::error_code dirError;
+    w.outDir = std::filesystem::absolute(std::filesystem::path(path).parent_path(), dirError).lexically_normal();
     auto bytes = w.run();
     if (!bytes) return fail(bytes.error().code, quote(path) + ": " + bytes.error().message);
     // Write beside the target and rename: a failed write never leaves half a file at `path`.

@@ -221,6 +221,15 @@ struct Loader {
     // A file URI stays inside the glTF file's folder (a relative path that does not climb out of
     // it with ".."); absolute paths and other schemes (http:, file:) are refused: a model names
     // its own files, and rgraph downloads nothing.
+    // A file rgraph's extras name (an IES profile, an environment image): relative to the glTF
+    // file's folder, as export-scene writes them; an absolute path is refused (a model carries no
+    // machine paths).
+    Result<std::string> extrasFile(const std::string& name, const std::string& label) const {
+        if (name.empty()) return name;
+        if (fs::path(name).is_absolute())
+            return error(ErrorCode::InvalidInput, label + ": '" + name + "' is an absolute path; name the file relative to the glTF file");
+        return (dir / fs::path(name)).lexically_normal().string();
+    }
     Result<std::string> resolveInside(const std::string& uri, const std::string& label) const {
         const std::string decoded = percentDecode(uri);
         const auto colon = decoded.find(':'), slash = decoded.find('/');
@@ -990,7 +999,11 @@ struct Loader {
         if (l.extras.IsObject() && l.extras.Get("rgraph").IsObject()) {
             const auto& x = l.extras.Get("rgraph");
             out.temperatureK = float(number(x.Get("temperature"), 0.0));
-            if (x.Get("ies").IsString()) out.ies = x.Get("ies").Get<std::string>();
+            if (x.Get("ies").IsString()) {
+                auto file = extrasFile(x.Get("ies").Get<std::string>(), where + ": extras.rgraph.ies");
+                if (!file) return std::unexpected(file.error());
+                out.ies = *file;
+            }
             if (x.Get("ies_mode").IsString()) {
                 out.iesMode = x.Get("ies_mode").Get<std::string>();
                 if (out.iesMode != "mask" && out.iesMode != "intensity")
@@ -1043,20 +1056,25 @@ struct Loader {
     }
 
     // exportGlb keeps a scene's environment in the glTF scene's extras.
-    void environment(const tinygltf::Value& extras) {
-        if (!extras.IsObject() || !extras.Get("rgraph").IsObject() || !extras.Get("rgraph").Get("environment").IsObject()) return;
+    Result<void> environment(const tinygltf::Value& extras) {
+        if (!extras.IsObject() || !extras.Get("rgraph").IsObject() || !extras.Get("rgraph").Get("environment").IsObject()) return {};
         const auto& x = extras.Get("rgraph").Get("environment");
         Environment e;
         auto str = [&](const char* k, const std::string& def) { return x.Get(k).IsString() ? x.Get(k).Get<std::string>() : def; };
         e.name = str("name", e.name);
         e.kind = str("kind", e.kind);
-        e.file = str("file", e.file);
+        if (x.Get("file").IsString()) {
+            auto file = extrasFile(x.Get("file").Get<std::string>(), "scene extras.rgraph.environment.file");
+            if (!file) return std::unexpected(file.error());
+            e.file = *file;
+        }
         e.unit = str("unit", e.unit);
         e.color = vec3Of(x.Get("color"), e.color);
         e.intensity = float(number(x.Get("intensity"), e.intensity));
         e.rotation = float(number(x.Get("rotation"), e.rotation));
         e.turbidity = std::clamp(float(number(x.Get("turbidity"), e.turbidity)), 1.7f, 10.0f);
         scene.environment = e;
+        return {};
     }
 
     Result<void> nodes() {
@@ -1064,7 +1082,7 @@ struct Loader {
         if (!model.scenes.empty()) {
             const size_t s = model.defaultScene >= 0 && size_t(model.defaultScene) < model.scenes.size() ? size_t(model.defaultScene) : 0;
             roots = model.scenes[s].nodes;
-            environment(model.scenes[s].extras);
+            if (auto r = environment(model.scenes[s].extras); !r) return r;
         } else {
             std::vector<bool> child(model.nodes.size(), false);
             for (const auto& n : model.nodes)

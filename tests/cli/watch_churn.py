@@ -101,7 +101,9 @@ for i in range(count):
     if not expect_valid:
         if "failed" not in verdict:
             sys.exit(f"edit {i}: an invalid script was accepted: {verdict}")
-        after = "\n".join(lines[lines.index(verdict):])
+        # This edit's report: from its verdict to the next one (or the end).
+        start = [k for k, l in enumerate(lines) if l.startswith("rgraph watch: ") and ("reloaded" in l or "failed" in l)][before]
+        after = "\n".join(lines[start:])
         if "watched.lua" not in after and "no_such_shader" not in after:
             sys.exit(f"edit {i}: the report does not name the script:\n{after}")
     ok += expect_valid

@@ -12,6 +12,7 @@ rm -rf "$tmp"
 mkdir -p "$tmp"
 cp -r "$inputs/." "$tmp/"
 cd "$tmp" || exit 1
+rm -f /tmp/rgraph_hostile_pwned
 export RG_VALIDATION=1
 limit=60  # seconds per case (a memory or instruction bomb stops at the sandbox's limits well before)
 tried=0 passed=0
@@ -29,7 +30,7 @@ hostile() {
     if [ $rc = 124 ]; then why="did not finish in $limit s"
     elif [ $rc != 2 ]; then why="exit $rc, expected 2"
     elif ! grep -qF -- "$expected" <<<"$out"; then why="the message does not name '$expected'"
-    elif grep -qi "validation error\|segmentation\|core dumped\|terminate called" <<<"$out"; then why="crash or validation message"
+    elif grep -qiE "validation (error|warning)|segmentation|core dumped|terminate called|AddressSanitizer|runtime error" <<<"$out"; then why="crash, sanitizer or validation message"
     elif [ -e out.exr ] || [ -e out.png ]; then why="left an output file behind"
     fi
     [ -n "${HOSTILE_VERBOSE:-}" ] && printf "%-45s %s\n" "$name" "$(head -1 <<<"$out" | cut -c1-200)"
@@ -103,12 +104,13 @@ hostile "glTF: broken JSON" "g_bad_json.gltf" -- $(render --scene g_bad_json.glt
 hostile "glTF: accessor past its buffer" "g_accessor_overflow.gltf" -- $(render --scene g_accessor_overflow.gltf)
 hostile "glTF: index out of range" "g_index_out_of_range.gltf" -- $(render --scene g_index_out_of_range.gltf)
 hostile "glTF: missing buffer file" "no_such_buffer.bin" -- $(render --scene g_missing_buffer.gltf)
-hostile "glTF: URI escaping its folder" "g_escaping_uri.gltf" -- $(render --scene g_escaping_uri.gltf)
-hostile "glTF: network URI" "http:" -- $(render --scene g_network_uri.gltf)
-hostile "glTF: absolute URI" "g_absolute_uri.gltf" -- $(render --scene g_absolute_uri.gltf)
+hostile "glTF: URI escaping its folder" "leaves the glTF file's folder" -- $(render --scene g_escaping_uri.gltf)
+hostile "glTF: network URI" "only relative file names and data: URIs" -- $(render --scene g_network_uri.gltf)
+hostile "glTF: absolute URI" "leaves the glTF file's folder" -- $(render --scene g_absolute_uri.gltf)
 hostile "glTF: accessor count 2^31" "g_huge_count.gltf" -- $(render --scene g_huge_count.gltf)
 hostile "glTF: bad base64" "g_bad_base64.gltf" -- $(render --scene g_bad_base64.gltf)
 hostile "glTF: primitive without positions" "g_no_position.gltf" -- $(render --scene g_no_position.gltf)
+hostile "glTF: extras name an absolute IES path" "is an absolute path" -- $(render --scene g_extras_absolute_ies.gltf)
 hostile "glTF: node names a missing mesh" "g_bad_node_mesh.gltf" -- $(render --scene g_bad_node_mesh.gltf)
 
 # ---- IES profiles (through a scene light that names each)

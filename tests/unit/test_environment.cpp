@@ -207,13 +207,21 @@ TEST(Environment, ImportanceSamplingDistributionIsADensityThatFollowsTheLuminanc
             float pdf = 0.0f;
             const glm::vec3 d = cdf.sample(glm::vec2((static_cast<float>(i) + 0.5f) / n, (static_cast<float>(j) + 0.5f) / n), pdf);
             ASSERT_GT(pdf, 0.0f);
-            EXPECT_NEAR(pdf, cdf.pdf(d), 1e-3f * pdf);  // the density the sample reports is the one pdf() gives
+            EXPECT_NEAR(pdf, cdf.pdf(d), 1e-3f * pdf);  // away from cell edges, the density pdf() gives
             const glm::vec2 uv = equirectUv(d);
             const uint32_t x = std::min(511u, uint32_t(uv.x * 512.0f)), y = std::min(255u, uint32_t(uv.y * 256.0f));
             estimate += env.pixels[env.index(x, y, 0)] / pdf;
             if (env.pixels[env.index(x, y, 0)] > 1.0f) inPatch += 1.0;
         }
     estimate /= n * n;
+    // At a cell's very edge (u on a CDF step) the sample still reports the drawn cell's density:
+    // the patch's, not its dim neighbour's (reading it back from the direction could give the latter).
+    {
+        float pdf = 0.0f;
+        const float rowStart = cdf.data[30];  // the first row of the patch's cells (texel rows 60..67 / 2)
+        cdf.sample(glm::vec2(cdf.data[cdf.conditional(30) + 150], rowStart), pdf);
+        EXPECT_GT(pdf, 100.0f * cdf.pdf(glm::vec3(0.0f, 1.0f, 0.0f)));  // far above the dim sky's density
+    }
     std::printf("sphere integral %.6g, estimate from %d samples %.6g (%.2f %%), %.0f of them in the patch\n", exact, n * n, estimate,
                 100.0 * (estimate / exact - 1.0), inPatch);
     EXPECT_NEAR(estimate / exact, 1.0, 0.01);

@@ -1391,6 +1391,45 @@ TEST(ExportGlb, TexturesSamplersAndTransformsRoundTrip) {
     EXPECT_EQ(b.baseColorTex.sampler, 0);
 }
 
+TEST(ExportGlb, FilesTheSceneNamesAreWrittenRelativeToTheGlb) {
+    // An IES profile and an environment image: the .glb names them relative to its own folder
+    // (no machine path), and reading it back finds the same files; an absolute path in those
+    // extras is refused.
+    const std::string dir = tmpDir("export_relative");
+    fs::create_directories(dir + "/assets");
+    fs::copy_file(std::string(RG_SOURCE_ROOT) + "/tests/unit/ies/downlight_2002.ies", dir + "/assets/d.ies", fs::copy_options::overwrite_existing);
+    rg::Scene scene;
+    rg::Light l;
+    l.name = "lamp";
+    l.type = rg::LightType::Point;
+    l.unit = "lm";
+    l.intensity = 800;
+    l.ies = dir + "/assets/d.ies";
+    scene.lights.push_back(l);
+    rg::Environment e;
+    e.kind = "hdr";
+    e.file = dir + "/assets/sky.exr";
+    scene.environment = e;
+    fs::create_directories(dir + "/out");
+    ASSERT_TRUE(rg::exportGlb(scene, dir + "/out/s.glb"));
+    const auto raw = readBytes(dir + "/out/s.glb");
+    const std::string bytes(raw.begin(), raw.end());
+    EXPECT_NE(bytes.find("\"../assets/d.ies\""), std::string::npos);
+    EXPECT_EQ(bytes.find(dir), std::string::npos);  // no machine path
+    auto back = rg::loadGltf(dir + "/out/s.glb");
+    ASSERT_TRUE(back) << errorOf(back);
+    ASSERT_EQ(back->lights.size(), 1u);
+    EXPECT_EQ(fs::path(back->lights[0].ies).lexically_normal(), fs::path(dir + "/assets/d.ies").lexically_normal());
+    ASSERT_TRUE(back->environment.has_value());
+    EXPECT_EQ(fs::path(back->environment->file).lexically_normal(), fs::path(dir + "/assets/sky.exr").lexically_normal());
+    GltfBuilder g;
+    g.j["scenes"] = json::array({{{"nodes", json::array()}, {"extras", {{"rgraph", {{"environment", {{"kind", "hdr"}, {"file", "/etc/passwd"}}}}}}}}});
+    g.j["scene"] = 0;
+    auto refused = rg::loadGltf(g.writeGltf(dir, "abs"));
+    ASSERT_FALSE(refused);
+    EXPECT_NE(refused.error().message.find("'/etc/passwd' is an absolute path"), std::string::npos) << refused.error().message;
+}
+
 TEST(ExportGlb, FailedWriteLeavesNothingBehind) {
     const std::string dir = tmpDir("export_fail");
     rg::Scene empty;
