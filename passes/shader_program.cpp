@@ -428,7 +428,7 @@ void putFloats(std::vector<uint8_t>& bytes, uint32_t offset, uint32_t size, cons
     else
         for (const auto& e : v.asList()) f.push_back(static_cast<float>(e.asNumber()));
     size_t n = std::min<size_t>(f.size(), size / sizeof(float));
-    if (offset + n * sizeof(float) <= bytes.size()) std::memcpy(bytes.data() + offset, f.data(), n * sizeof(float));
+    if (n > 0 && offset + n * sizeof(float) <= bytes.size()) std::memcpy(bytes.data() + offset, f.data(), n * sizeof(float));
 }
 
 }  // namespace

@@ -1023,8 +1023,9 @@ struct Loader {
     }
 
     // Each node once: glTF nodes have at most one parent, and a node reached twice (a shared
-    // child, a cycle) would repeat or never end.
-    Result<void> visit(size_t index, const glm::mat4& parent, std::vector<bool>& onPath, std::vector<bool>& seen, size_t depth) {
+    // child, a cycle) would repeat or never end. Depth first with a stack of its own (not the
+    // call stack: a hostile hierarchy thousands deep must not overflow it).
+    Result<void> enter(size_t index, const glm::mat4& parent, std::vector<bool>& onPath, std::vector<bool>& seen, size_t depth, glm::mat4& world) {
         if (onPath[index]) return error(ErrorCode::InvalidInput, named("node", index, model.nodes[index].name) + " is its own ancestor (the node hierarchy has a cycle)");
         if (seen[index])
             return error(ErrorCode::InvalidInput, named("node", index, model.nodes[index].name) +
@@ -1035,7 +1036,7 @@ struct Loader {
         const auto& n = model.nodes[index];
         auto local = localTransform(index);
         if (!local) return std::unexpected(local.error());
-        const glm::mat4 world = parent * *local;
+        world = parent * *local;
         if (n.mesh >= 0) {
             if (size_t(n.mesh) >= scene.meshes.size())
                 return error(ErrorCode::InvalidInput, named("node", index, n.name) + ": mesh " + std::to_string(n.mesh) + " does not exist (" +
@@ -1044,14 +1045,30 @@ struct Loader {
         }
         if (n.camera >= 0)
             if (auto r = camera(index, world); !r) return r;
-        if (auto r = light(index, world); !r) return r;
-        for (int child : n.children) {
+        return light(index, world);
+    }
+    Result<void> visit(size_t root, const glm::mat4& parent, std::vector<bool>& onPath, std::vector<bool>& seen, size_t depth) {
+        struct Frame { size_t index; glm::mat4 world; size_t next; };
+        std::vector<Frame> stack;
+        glm::mat4 world;
+        if (auto r = enter(root, parent, onPath, seen, depth, world); !r) return r;
+        stack.push_back({root, world, 0});
+        while (!stack.empty()) {
+            Frame& f = stack.back();
+            const auto& n = model.nodes[f.index];
+            if (f.next == n.children.size()) {
+                onPath[f.index] = false;
+                stack.pop_back();
+                continue;
+            }
+            const int child = n.children[f.next++];
             if (child < 0 || size_t(child) >= model.nodes.size())
-                return error(ErrorCode::InvalidInput, named("node", index, n.name) + ": child " + std::to_string(child) + " does not exist (" +
+                return error(ErrorCode::InvalidInput, named("node", f.index, n.name) + ": child " + std::to_string(child) + " does not exist (" +
                                                           std::to_string(model.nodes.size()) + " nodes)");
-            if (auto r = visit(size_t(child), world, onPath, seen, depth + 1); !r) return r;
+            const glm::mat4 parentWorld = f.world;
+            if (auto r = enter(size_t(child), parentWorld, onPath, seen, depth + stack.size(), world); !r) return r;
+            stack.push_back({size_t(child), world, 0});
         }
-        onPath[index] = false;
         return {};
     }
 
