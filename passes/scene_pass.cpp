@@ -149,8 +149,8 @@ public:
         m_capture = desc.params["capture"].asBool();
         if (m_shadow && m_capture) return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.capture: a pass is a shadow pass or a probe capture, not both");
         if (m_forward && m_capture) return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.capture: a pass is a forward pass or a probe capture, not both");
-        if (m_shadow) return prepareShadow(setup);
         if (auto r = m_cadence.parse(setup); !r) return r;
+        if (m_shadow) return prepareShadow(setup);
         for (const Access& a : desc.accesses) {
             if (a.usage == Usage::ColorAttachment) m_colors.push_back(a);
             if (a.usage == Usage::DepthStencilAttachment || (m_forward && a.usage == Usage::DepthStencilRead)) m_depth = a;
@@ -191,8 +191,8 @@ public:
     }
 
     void record(RecordContext& rc) override {
-        if (m_shadow) return recordShadow(rc);
         if (!m_cadence.due(rc)) return;
+        if (m_shadow) return recordShadow(rc);
         if (m_capture) return recordCapture(rc);
         const PassDesc& desc = rc.desc;
         std::vector<VkRenderingAttachmentInfo> colors;
