@@ -297,6 +297,18 @@ Result<RenderSetup> setupRun(const Args& args, const char* command, uint32_t def
     return s;
 }
 
+// A file as the outputs name it: relative to the project root when inside it
+// ("scripts/pipelines/deferred.lua"), else its file name — never a machine path.
+std::string logicalName(const std::string& path) {
+    if (isBuiltin(path)) return path;
+    std::error_code ec;
+    const fs::path abs = fs::weakly_canonical(fs::absolute(path, ec), ec);
+    const fs::path root = fs::weakly_canonical(fs::path(projectRoot()), ec);
+    const fs::path rel = abs.lexically_relative(root);
+    if (!rel.empty() && *rel.begin() != "..") return rel.generic_string();
+    return abs.filename().string();
+}
+
 std::string exrMetaDevice(Runtime& rt) { return rt.gpu().deviceInfo().name + " (" + rt.gpu().deviceInfo().driver + ")"; }
 
 std::vector<std::string> rgbaNames(uint32_t n) {
@@ -322,9 +334,9 @@ Result<Image> writeOutputs(RenderSetup& setup, const std::string& exrPath, const
     auto display = ex.readback(displayName);
     if (!display) return std::unexpected(display.error());
     ExrWriteOptions eo;
-    eo.metadata["rgraph.pipeline"] = setup.pipeline;
+    eo.metadata["rgraph.pipeline"] = logicalName(setup.pipeline);
     eo.metadata["rgraph.device"] = exrMetaDevice(*setup.runtime);
-    eo.metadata["rgraph.frames"] = std::to_string(setup.frames);
+    eo.ints["rgraph.frames"] = static_cast<int>(setup.frames);
     std::vector<ImageLayer> layers;
     const PipelineDesc* pipeline = setup.session ? &setup.session->pipeline() : nullptr;
     Image png = *display;
@@ -343,12 +355,15 @@ Result<Image> writeOutputs(RenderSetup& setup, const std::string& exrPath, const
         for (size_t i = 0; i < hdr->pixels.size(); ++i)
             if (i % hdr->channels < 3) hdr->pixels[i] /= preExposure;
         layers.push_back({"hdr", rgbaNames(hdr->channels), *hdr});
-        eo.metadata["rgraph.ev100"] = number(s[0]);
-        eo.metadata["rgraph.exposure"] = number(s[1]);
-        eo.metadata["rgraph.preExposure"] = number(preExposure);
+        eo.floats["rgraph.ev100"] = s[0];
+        eo.floats["rgraph.exposure"] = s[1];
+        eo.floats["rgraph.preExposure"] = preExposure;
         for (const char* p : {"exposure_mode", "aperture", "shutter", "iso", "ec", "tonemap", "bloom_ec"})
-            if (const ParamDesc* d = pipeline->findParam(p))
-                eo.metadata[std::string("rgraph.camera.") + p] = d->value.isString() ? d->value.asString() : number(d->value.asNumber());
+            if (const ParamDesc* d = pipeline->findParam(p)) {
+                const std::string key = std::string("rgraph.camera.") + p;
+                if (d->value.isString()) eo.metadata[key] = d->value.asString();
+                else eo.floats[key] = static_cast<float>(d->value.asNumber());
+            }
     } else {
         layers.push_back({"hdr", rgbaNames(display->channels), *display});
         // A pipeline without a camera: its output is shown clamped, sRGB-encoded.

@@ -7,6 +7,9 @@
 #include <ImfIO.h>
 #include <ImfInputFile.h>
 #include <ImfOutputFile.h>
+#include <ImfDoubleAttribute.h>
+#include <ImfFloatAttribute.h>
+#include <ImfIntAttribute.h>
 #include <ImfStringAttribute.h>
 #include <ImfVersion.h>
 #include <half.h>
@@ -155,12 +158,21 @@ Result<void> validateLayers(const std::string& path, const std::vector<ImageLaye
                             file + ": channel '" + full + "' appears twice");
         }
     }
-    for (const auto& [key, value] : opts.metadata) {
+    std::set<std::string> keys;
+    auto checkKey = [&](const std::string& key) -> Result<void> {
         if (key.empty()) return fail(ErrorCode::InvalidInput, file + ": empty metadata key");
         if (isReservedAttribute(key))
             return fail(ErrorCode::InvalidInput,
                         file + ": metadata key '" + key + "' is a standard OpenEXR attribute");
-    }
+        if (!keys.insert(key).second) return fail(ErrorCode::InvalidInput, file + ": metadata key '" + key + "' is given twice");
+        return {};
+    };
+    for (const auto& [key, value] : opts.metadata)
+        if (auto r = checkKey(key); !r) return r;
+    for (const auto& [key, value] : opts.floats)
+        if (auto r = checkKey(key); !r) return r;
+    for (const auto& [key, value] : opts.ints)
+        if (auto r = checkKey(key); !r) return r;
     return {};
 }
 
@@ -216,6 +228,10 @@ Result<void> writeExr(const std::string& path, const std::vector<ImageLayer>& la
         header.compression() = opts.compress ? Imf::ZIP_COMPRESSION : Imf::NO_COMPRESSION;
         for (const auto& [key, value] : opts.metadata)
             header.insert(key, Imf::StringAttribute(value));
+        for (const auto& [key, value] : opts.floats)
+            header.insert(key, Imf::FloatAttribute(value));
+        for (const auto& [key, value] : opts.ints)
+            header.insert(key, Imf::IntAttribute(value));
 
         Imf::FrameBuffer frameBuffer;
         for (const ImageLayer& layer : layers) {
@@ -320,6 +336,12 @@ Result<ExrFile> readExr(const std::string& path) {
         for (auto it = header.begin(); it != header.end(); ++it)
             if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
                 result.metadata[it.name()] = s->value();
+            else if (const auto* f = dynamic_cast<const Imf::FloatAttribute*>(&it.attribute()))
+                result.floats[it.name()] = f->value();
+            else if (const auto* d = dynamic_cast<const Imf::DoubleAttribute*>(&it.attribute()))
+                result.floats[it.name()] = d->value();
+            else if (const auto* i = dynamic_cast<const Imf::IntAttribute*>(&it.attribute()))
+                result.ints[it.name()] = i->value();
         return result;
     } catch (const std::bad_alloc&) {
         return fail(ErrorCode::Io, "cannot read " + file + ": out of memory");

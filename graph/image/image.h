@@ -58,6 +58,8 @@ struct ExrWriteOptions {
     ExrPixelType pixelType = ExrPixelType::Half;  // Half: values beyond ±65504 become ±inf
     bool compress = true;                         // lossless ZIP when true, else uncompressed
     std::map<std::string, std::string> metadata;  // written as string attributes of the header
+    std::map<std::string, float> floats;           // written as float attributes
+    std::map<std::string, int> ints;               // written as int attributes
 };
 
 // Writes a single-part scanline EXR. All layers must have the same size (at least 1x1), channel
@@ -68,6 +70,8 @@ Result<void> writeExr(const std::string& path, const std::vector<ImageLayer>& la
 struct ExrFile {
     std::vector<ImageLayer> layers;               // ordered by name ("" first)
     std::map<std::string, std::string> metadata;  // every string attribute of the header
+    std::map<std::string, double> floats;         // every float and double attribute
+    std::map<std::string, int> ints;              // every int attribute
 };
 
 // Reads the data window of the first part of an EXR (scanline or tiled; not deep). Channels are

@@ -42,6 +42,8 @@ check "missing scene" 2 grep "nope.gltf" -- "$rgraph" render --scene nope.gltf -
 check "render" 0 grep "wrote $tmp/r.exr and $tmp/r.png (64x32" -- \
     env RG_VALIDATION=1 "$rgraph" render --size 64x32 --frames 3 --out "$tmp/r.exr" --png "$tmp/r.png" --capture GB0
 check "render wrote files" 0 -- test -s "$tmp/r.exr" -a -s "$tmp/r.png"
+# Its header: numbers as typed attributes (name, NUL, type, NUL), the pipeline by its name in the project.
+check "render metadata is typed" 0 -- python3 -c "d=open('$tmp/r.exr','rb').read(4096); assert b'rgraph.ev100\0float\0' in d and b'rgraph.frames\0int\0' in d and b'rgraph.camera.aperture\0float\0' in d and b'rgraph.pipeline\0string\0' in d and b'scripts/pipelines/deferred.lua' in d and b'$root' not in d, d[:400]"
 # --environment: replaces the scene's distant probe; a published glTF with no light is lit by the sky.
 check "environment none" 0 grep "wrote $tmp/e.exr" -- \
     env RG_VALIDATION=1 "$rgraph" render --environment none --size 32x16 --out "$tmp/e.exr" --png "$tmp/e.png"

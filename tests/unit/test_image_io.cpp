@@ -181,6 +181,29 @@ TEST(ExrTest, MetadataRoundTrips) {
     EXPECT_EQ(file->metadata.size(), opts.metadata.size());
 }
 
+TEST(ExrTest, NumbersAreWrittenAsTypedAttributes) {
+    // What `rgraph render` records (rgraph.ev100, rgraph.frames, ...): float and int attributes,
+    // so compositing tools read numbers; a key given twice is refused.
+    const std::string path = tmpPath("typed.exr");
+    rg::ExrWriteOptions opts;
+    opts.floats = {{"rgraph.ev100", 13.25f}, {"rgraph.exposure", 1.0f / 9600.0f}};
+    opts.ints = {{"rgraph.frames", 3}};
+    opts.metadata = {{"rgraph.pipeline", "scripts/pipelines/deferred.lua"}};
+    Image img(2, 2, 1);
+    ASSERT_TRUE(rg::writeExr(path, {ImageLayer{"", {"Y"}, img}}, opts));
+    auto file = rg::readExr(path);
+    ASSERT_TRUE(file) << file.error().describe();
+    EXPECT_FLOAT_EQ(float(file->floats.at("rgraph.ev100")), 13.25f);
+    EXPECT_FLOAT_EQ(float(file->floats.at("rgraph.exposure")), 1.0f / 9600.0f);
+    EXPECT_EQ(file->ints.at("rgraph.frames"), 3);
+    EXPECT_EQ(file->metadata.at("rgraph.pipeline"), "scripts/pipelines/deferred.lua");
+    EXPECT_FALSE(file->metadata.contains("rgraph.ev100"));
+    opts.metadata["rgraph.frames"] = "3";
+    auto twice = rg::writeExr(tmpPath("twice.exr"), {ImageLayer{"", {"Y"}, img}}, opts);
+    ASSERT_FALSE(twice);
+    EXPECT_NE(twice.error().message.find("'rgraph.frames' is given twice"), std::string::npos) << twice.error().message;
+}
+
 TEST(ExrTest, ChannelOrderIsRgbaFirstThenAlphabetical) {
     const std::string path = tmpPath("order.exr");
     Image img(1, 1, 6);
