@@ -121,6 +121,27 @@ uint32_t textureMask(const Material& m) {
     return mask;
 }
 
+// Whether a world box can show in cube face `face` seen from `eye` (the faces of
+// shaders/lib/environment.glsl's rgCubeDirection: forward F, and the axes U, V along which the
+// face's s and t grow): not when all eight corners lie outside one of the face's four side planes
+// |r·U| <= r·F, |r·V| <= r·F. Conservative: a box that straddles is kept.
+bool boxInCubeFace(const glm::vec3& lo, const glm::vec3& hi, const glm::vec3& eye, uint32_t face) {
+    static const glm::vec3 kAxes[6][3] = {{{1, 0, 0}, {0, 0, -1}, {0, -1, 0}}, {{-1, 0, 0}, {0, 0, 1}, {0, -1, 0}},
+                                          {{0, 1, 0}, {1, 0, 0}, {0, 0, 1}},   {{0, -1, 0}, {1, 0, 0}, {0, 0, -1}},
+                                          {{0, 0, 1}, {1, 0, 0}, {0, -1, 0}},  {{0, 0, -1}, {-1, 0, 0}, {0, -1, 0}}};
+    const glm::vec3 F = kAxes[face][0], U = kAxes[face][1], V = kAxes[face][2];
+    const glm::vec3 planes[4] = {F - U, F + U, F - V, F + V};  // inside: dot(r, plane) >= 0
+    for (const glm::vec3& n : planes) {
+        bool allOutside = true;
+        for (int c = 0; c < 8 && allOutside; ++c) {
+            const glm::vec3 corner((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y, (c & 4) ? hi.z : lo.z);
+            allOutside = glm::dot(corner - eye, n) < 0.0f;
+        }
+        if (allOutside) return false;
+    }
+    return true;
+}
+
 // The scene's draws whose materials `wanted` accepts, in the scene's order.
 template <typename Wanted>
 std::vector<size_t> drawsWhere(const GpuScene& scene, Wanted wanted) {
@@ -362,6 +383,8 @@ private:
         const PhysicalResource* c = rc.resources.find(m_colors.front().resource);
         const PhysicalResource* d = rc.resources.find(m_depth->resource);
         const uint32_t layers = std::min<uint32_t>(m_layers, 6u * static_cast<uint32_t>(rc.scene->probeOrder().size()));
+        const auto& probes = rc.scene->scene().probes;
+        const auto& order = rc.scene->probeOrder();
         for (uint32_t layer = 0; layer < layers; ++layer) {
             // Cleared to (0, 0, 0, 0): where nothing is drawn, the distant probe shows.
             beginLayer(rc, c->image->layerView(layer), d->image->layerView(layer), VK_ATTACHMENT_STORE_OP_DONT_CARE);
@@ -371,8 +394,10 @@ private:
                 g.program->bind(rc, VK_PIPELINE_BIND_POINT_GRAPHICS);
                 vkCmdSetStencilReference(rc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, 0);
                 vkCmdSetCullMode(rc.cmd, VK_CULL_MODE_NONE);  // the faces' projections do not keep one winding
+                const glm::vec3 eye = probes[order[layer / 6]].position;
                 for (size_t i : g.draws) {
                     const DrawItem& item = rc.scene->draws()[i];
+                    if (!boxInCubeFace(item.boundsMin, item.boundsMax, eye, layer % 6)) continue;  // beside this face
                     VkDescriptorSet set = rc.scene->materialSet(item.material);
                     vkCmdBindDescriptorSets(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.program->layout(), 1, 1, &set, 0, nullptr);
                     struct { glm::mat4 world; glm::vec4 layer; } push{item.world, glm::vec4(static_cast<float>(layer))};
