@@ -104,6 +104,20 @@ TEST_F(Probes, TheHigherPriorityGoesFirstThenTheSmaller) {
     expectColour(at(i, 3.2f, 0.0f), kDistant, "outside the influence");
 }
 
+TEST_F(Probes, TheComposedReflectionTakesTheHigherPriorityProbe) {
+    // Radiance, not the debug view: the box's mirror image lies inside two probes that both saw
+    // something there — the front one the red box, the back one the green wall behind it. With
+    // the front probe first the reflection is red; with the back probe first, green.
+    const glm::ivec2 m = pixelOf(glm::vec3(0.0f, -0.5f, -1.5f));
+    Image front = lit("front_first"), back = lit("back_first");
+    ASSERT_EQ(front.width, W);
+    ASSERT_EQ(back.width, W);
+    const float rf = front.at(m.x, m.y, 0), gf = front.at(m.x, m.y, 1), rb = back.at(m.x, m.y, 0), gb = back.at(m.x, m.y, 1);
+    std::printf("mirror image: front probe first %.0f %.0f (red, green), back probe first %.0f %.0f\n", rf, gf, rb, gb);
+    EXPECT_GT(rf, 3.0f * gf);
+    EXPECT_GT(gb, 3.0f * rb);
+}
+
 TEST_F(Probes, TheCaptureReflectsWhatTheProbeSaw) {
     // The box's mirror image in the floor (the front face's centre (0, 0.5, −1.5) mirrored to
     // (0, −0.5, −1.5)), SSR out of the way: without a local probe the floor reflects the sky there;

@@ -9,7 +9,11 @@
 --   "size"            two sphere probes of the same priority: "big" (radius 4 at x = −1) and
 --                     "small" (radius 2 at x = 1; its floor disc has radius 1.73);
 --   "influence"       one sphere probe of radius 1, 1 m up, reflecting within 3 m (its floor disc:
---                     radius 2.83).
+--                     radius 2.83);
+--   "front_first", "back_first"  a green emissive wall behind the box (z = −6) and two sphere
+--                     probes of radius 6 that both hold the box's mirror image: "front" (in front
+--                     of the box: it sees the red box there) and "back" (behind the box: it sees the
+--                     green wall there); the first named has the higher priority.
 -- Cameras: "main" oblique (as ssr_mirror.lua), "top" straight down from 12 m over ±6.93 m.
 local scene = require "scene"
 scene.material "mirror" { base_color = { 0.95, 0.95, 0.95 }, metal_mask = 1, smoothness = 1 }
@@ -32,6 +36,12 @@ elseif probes == "size" then
   scene.probe "small" { position = { 1, 1, 0 }, radius = 2, fade = 0.25 }
 elseif probes == "influence" then
   scene.probe "wide" { position = { 0, 1, 0 }, radius = 1, influence = 3, fade = 0.25 }
+elseif probes == "front_first" or probes == "back_first" then
+  scene.material "green" { base_color = { 0.05, 0.8, 0.05 }, smoothness = 0.3, emissive = { 10, 400, 10 } }
+  scene.box "wall" { size = { 6, 4, 0.2 }, position = { 0, 2, -6 }, material = "green" }
+  local front = probes == "front_first" and 2 or 1
+  scene.probe "front" { position = { 0, 0.3, -0.5 }, radius = 6, priority = front, fade = 0.25 }
+  scene.probe "back" { position = { 0, 0.5, -4.5 }, radius = 6, priority = 3 - front, fade = 0.25 }
 else
-  assert(probes == "none", "scene.args.probes: expected none, one, priority, size or influence")
+  assert(probes == "none", "scene.args.probes: expected none, one, priority, size, influence, front_first or back_first")
 end
