@@ -1,0 +1,33 @@
+// Spherical Gaussians (seed 003, "Basic Mathematical Properties" and "Lighting with SGs"; the
+// baked-GI lightmaps of Ready At Dawn): G(x) = A e^{λ (μ·x − 1)} with μ the unit mean (axis), λ the
+// sharpness (the seed's 1 / W, its "width") and A the amplitude (RGB). The algebra the seed relies
+// on, in closed form: evaluation, the integral over the sphere, the product of two SGs (another
+// SG) and their inner product; and the irradiance an SG of radiance gives a surface, via the
+// clamped cosine lobe as one SG (λ 2.133, A 1.17: Wang et al. 2009's fit, the usual choice).
+#pragma once
+
+#include <glm/vec3.hpp>
+
+namespace rg::lighting {
+
+struct SphericalGaussian {
+    glm::vec3 axis{0.0f, 0.0f, 1.0f};  // μ, unit
+    float sharpness = 1.0f;            // λ > 0
+    glm::vec3 amplitude{1.0f};         // A
+};
+
+// G(x) for unit x.
+glm::vec3 evaluate(const SphericalGaussian& g, const glm::vec3& x);
+// ∫ G dω over the sphere: 2π A / λ · (1 − e^{−2λ}).
+glm::vec3 integral(const SphericalGaussian& g);
+// G1 · G2 as one SG: axis ∝ λ1 μ1 + λ2 μ2, sharpness |λ1 μ1 + λ2 μ2|, amplitude A1 A2 e^{λm − λ1 − λ2}.
+SphericalGaussian product(const SphericalGaussian& a, const SphericalGaussian& b);
+// ∫ G1 G2 dω (the integral of the product).
+glm::vec3 innerProduct(const SphericalGaussian& a, const SphericalGaussian& b);
+// The clamped cosine lobe max(0, n·x) around n, approximated as an SG.
+SphericalGaussian cosineLobe(const glm::vec3& n);
+// Irradiance ∫ L(x) max(0, n·x) dω of the radiance SG `radiance` on a surface of normal n: the
+// inner product with cosineLobe(n).
+glm::vec3 irradiance(const SphericalGaussian& radiance, const glm::vec3& n);
+
+}  // namespace rg::lighting
