@@ -1,5 +1,6 @@
 #include "sg.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include <glm/geometric.hpp>
@@ -39,5 +40,32 @@ glm::vec3 innerProduct(const SphericalGaussian& a, const SphericalGaussian& b) {
 SphericalGaussian cosineLobe(const glm::vec3& n) { return SphericalGaussian{glm::normalize(n), 2.133f, glm::vec3(1.17f)}; }
 
 glm::vec3 irradiance(const SphericalGaussian& radiance, const glm::vec3& n) { return innerProduct(radiance, cosineLobe(n)); }
+
+std::vector<glm::vec3> goldenSpiralAxes(int n, bool hemisphere) {
+    std::vector<glm::vec3> out;
+    const float goldenAngle = kPi * (3.0f - std::sqrt(5.0f));
+    for (int i = 0; i < n; ++i) {
+        // Sphere: z from 1 − 1/n to −1 + 1/n; hemisphere: z from 1 − 1/(2n) to 1/(2n).
+        const float t = (static_cast<float>(i) + 0.5f) / static_cast<float>(n);
+        const float z = hemisphere ? 1.0f - t : 1.0f - 2.0f * t;
+        const float r = std::sqrt(std::max(0.0f, 1.0f - z * z));
+        const float phi = goldenAngle * static_cast<float>(i);
+        out.emplace_back(r * std::cos(phi), r * std::sin(phi), z);
+    }
+    return out;
+}
+
+float basisSharpness(const std::vector<glm::vec3>& axes) {
+    // The mean angle from each axis to its nearest neighbour.
+    float sum = 0.0f;
+    for (size_t i = 0; i < axes.size(); ++i) {
+        float best = -1.0f;
+        for (size_t j = 0; j < axes.size(); ++j)
+            if (j != i) best = std::max(best, glm::dot(axes[i], axes[j]));
+        sum += std::acos(std::clamp(best, -1.0f, 1.0f));
+    }
+    const float theta = axes.size() > 1 ? sum / static_cast<float>(axes.size()) : kPi;
+    return std::log(2.0f) / (1.0f - std::cos(0.5f * theta));
+}
 
 }  // namespace rg::lighting

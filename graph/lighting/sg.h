@@ -6,6 +6,8 @@
 // clamped cosine lobe as one SG (λ 2.133, A 1.17: Wang et al. 2009's fit, the usual choice).
 #pragma once
 
+#include <vector>
+
 #include <glm/vec3.hpp>
 
 namespace rg::lighting {
@@ -29,5 +31,15 @@ SphericalGaussian cosineLobe(const glm::vec3& n);
 // Irradiance ∫ L(x) max(0, n·x) dω of the radiance SG `radiance` on a surface of normal n: the
 // inner product with cosineLobe(n).
 glm::vec3 irradiance(const SphericalGaussian& radiance, const glm::vec3& n);
+
+// The seed's fixed lightmap basis ("Fixed Directions", "Fixed Widths"): n lobe axes spread evenly
+// over the sphere by the golden-ratio spiral (z from 1 − 1/n down to −1 + 1/n in equal steps, the
+// azimuth turning by the golden angle π (3 − √5) each step; `hemisphere` keeps z > 0 for a
+// tangent-space basis), and one sharpness for them all, chosen so that neither gaps nor blur
+// dominate: a lobe falls to one half at half the mean angle between neighbouring axes,
+// λ = ln 2 / (1 − cos(θ̄ / 2)) — the lobes then overlap just enough for their sum to stay nearly
+// flat (tests/unit/test_sg.cpp measures it for n = 5, 6, 9, 12).
+std::vector<glm::vec3> goldenSpiralAxes(int n, bool hemisphere = false);
+float basisSharpness(const std::vector<glm::vec3>& axes);
 
 }  // namespace rg::lighting

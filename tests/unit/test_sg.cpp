@@ -84,3 +84,42 @@ TEST(SphericalGaussian, IrradianceThroughTheCosineLobeSgAgainstNumericalIntegrat
     EXPECT_LT(sum / count, 0.06);
     EXPECT_LT(worst, 0.15);
 }
+
+TEST(SphericalGaussian, GoldenSpiralBasisCoversTheSphereWithoutGapsOrBlur) {
+    // The seed's fixed basis for N = 5, 6, 9, 12: unit axes on the golden-ratio spiral, and the
+    // sharpness at which each lobe is one half at half the mean neighbour angle. With it the sum
+    // of the N unit lobes stays within a factor of its mean everywhere (no gaps), and one lobe
+    // keeps most of its energy near its axis (not over-blurred: it is still a direction).
+    for (int n : {5, 6, 9, 12}) {
+        const auto axes = rg::lighting::goldenSpiralAxes(n);
+        ASSERT_EQ(axes.size(), size_t(n));
+        for (const auto& a : axes) EXPECT_NEAR(glm::length(a), 1.0f, 1e-5f);
+        const float lambda = rg::lighting::basisSharpness(axes);
+        double lo = 1e30, hi = 0.0, mean = 0.0;
+        int samples = 0;
+        for (int j = 0; j < 64; ++j)
+            for (int i = 0; i < 128; ++i) {
+                const double z = -1.0 + (j + 0.5) / 32.0, r = std::sqrt(std::max(0.0, 1.0 - z * z)), phi = (i + 0.5) * 2.0 * kPi / 128;
+                const glm::vec3 x(float(r * std::cos(phi)), float(r * std::sin(phi)), float(z));
+                double sum = 0.0;
+                for (const auto& a : axes) sum += rg::lighting::evaluate(SphericalGaussian{a, lambda, glm::vec3(1.0f)}, x).x;
+                lo = std::min(lo, sum);
+                hi = std::max(hi, sum);
+                mean += sum;
+                ++samples;
+            }
+        mean /= samples;
+        // The share of one lobe's integral within the mean neighbour angle of its axis.
+        const SphericalGaussian one{axes[0], lambda, glm::vec3(1.0f)};
+        const double total = rg::lighting::integral(one).x;
+        double cosMean = 0.0;
+        for (size_t i = 1; i < axes.size(); ++i) cosMean = std::max(cosMean, double(glm::dot(axes[0], axes[i])));
+        const double near =
+            sphereIntegral([&](const glm::vec3& x) { return glm::dot(x, axes[0]) >= cosMean ? double(rg::lighting::evaluate(one, x).x) : 0.0; });
+        std::printf("N = %2d: sharpness %.2f, lobe sum %.2f .. %.2f (mean %.2f), %.0f %% of a lobe within its nearest neighbour's angle\n", n,
+                    lambda, lo, hi, mean, 100.0 * near / total);
+        EXPECT_GT(lo / mean, 0.5) << n;   // no gap: nowhere below half the mean
+        EXPECT_LT(hi / mean, 1.6) << n;   // nor a peak of one lobe standing out
+        EXPECT_GT(near / total, 0.5) << n;  // most of a lobe stays near its axis
+    }
+}
