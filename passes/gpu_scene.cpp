@@ -620,12 +620,8 @@ Result<void> GpuScene::createProbes(Context& ctx) {
     const auto& probes = m_scene.probes;
     // Size: the volume it reflects in (its influence).
     auto volume = [](const Probe& p) {
-        if (p.box) {
-            const glm::vec3 s = p.influenceSize.x > 0.0f ? p.influenceSize : p.size;
-            return s.x * s.y * s.z;
-        }
-        const float r = p.influenceRadius > 0.0f ? p.influenceRadius : p.radius;
-        return 4.18879f * r * r * r;
+        const glm::vec3 h = p.influenceHalfExtents();
+        return p.box ? 8.0f * h.x * h.y * h.z : 4.18879f * h.x * h.x * h.x;
     };
     m_probeOrder.resize(probes.size());
     for (size_t i = 0; i < probes.size(); ++i) m_probeOrder[i] = i;
@@ -640,9 +636,7 @@ Result<void> GpuScene::createProbes(Context& ctx) {
         g.positionShape = glm::vec4(p.position, p.box ? 1.0f : 0.0f);
         g.extentFade = glm::vec4(p.box ? 0.5f * p.size : glm::vec3(p.radius), p.fade);
         for (int a = 0; a < 3; ++a) g.axes[a] = glm::vec4(glm::normalize(p.rotation[a]), 0.0f);
-        const glm::vec3 influence = p.box ? 0.5f * (p.influenceSize.x > 0.0f ? p.influenceSize : p.size)
-                                          : glm::vec3(p.influenceRadius > 0.0f ? p.influenceRadius : p.radius);
-        g.influence = glm::vec4(influence, 0.0f);
+        g.influence = glm::vec4(p.influenceHalfExtents(), 0.0f);
         out.push_back(g);
     }
     auto buf = Buffer::create(ctx, "scene.probes", 16 + kMaxProbes * sizeof(GpuProbe), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);

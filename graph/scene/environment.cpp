@@ -300,8 +300,7 @@ glm::vec3 EnvironmentCdf::sample(glm::vec2 u, float& density) const {
     const glm::vec3 d = equirectDirection(uv);
     // The drawn cell's density at the sample's own θ (not pdf(d): mapping d back through acos can
     // land an edge sample in the neighbouring cell).
-    const float sinTheta = std::sin(uv.y * float(M_PI));
-    density = sinTheta > 0.0f ? data[cell(c, r)] * w * h / (2.0f * float(M_PI) * float(M_PI) * sinTheta) : 0.0f;
+    density = cellDensity(c, r, std::sin(uv.y * float(M_PI)));
     return d;
 }
 
@@ -310,9 +309,12 @@ float EnvironmentCdf::pdf(glm::vec3 direction) const {
     const float w = static_cast<float>(width), h = static_cast<float>(height);
     const uint32_t c = std::min(width - 1, uint32_t(std::max(uv.x - std::floor(uv.x), 0.0f) * w));
     const uint32_t r = std::min(height - 1, uint32_t(std::clamp(uv.y, 0.0f, 1.0f) * h));
-    const float sinTheta = std::sin(std::clamp(uv.y, 0.0f, 1.0f) * float(M_PI));
+    return cellDensity(c, r, std::sin(std::clamp(uv.y, 0.0f, 1.0f) * float(M_PI)));
+}
+
+float EnvironmentCdf::cellDensity(uint32_t column, uint32_t row, float sinTheta) const {
     if (sinTheta <= 0.0f) return 0.0f;
-    return data[cell(c, r)] * w * h / (2.0f * float(M_PI) * float(M_PI) * sinTheta);
+    return data[cell(column, row)] * static_cast<float>(width) * static_cast<float>(height) / (2.0f * float(M_PI) * float(M_PI) * sinTheta);
 }
 
 }  // namespace rg

@@ -68,6 +68,8 @@ struct EnvironmentCdf {
     std::vector<float> data;
     size_t conditional(uint32_t row) const { return height + 1 + size_t(row) * (width + 1); }
     size_t cell(uint32_t column, uint32_t row) const { return height + 1 + size_t(height) * (width + 1) + size_t(row) * width + column; }
+    // The solid-angle density of a direction in cell (column, row) at polar angle θ (sin θ given).
+    float cellDensity(uint32_t column, uint32_t row, float sinTheta) const;
     // A direction from two uniform numbers in [0, 1), and its solid-angle density.
     glm::vec3 sample(glm::vec2 u, float& pdf) const;
     float pdf(glm::vec3 direction) const;

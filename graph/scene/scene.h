@@ -260,6 +260,11 @@ struct Probe {
     glm::vec3 influenceSize{0.0f}; // box: 0 = the proxy's size
     float fade = 0.25f;            // metres
     int priority = 0;
+    // The influence volume's half extents (a sphere: its radius on every axis), the proxy's unless given.
+    glm::vec3 influenceHalfExtents() const {
+        if (box) return 0.5f * (influenceSize.x > 0.0f ? influenceSize : size);
+        return glm::vec3(influenceRadius > 0.0f ? influenceRadius : radius);
+    }
 };
 
 struct Scene {

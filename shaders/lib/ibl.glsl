@@ -122,6 +122,15 @@ vec3 rgComposeReflection(vec3 P, vec3 Rd, float linearRoughness, vec3 distant) {
 layout(set = 0, binding = RG_REFLECTION_BINDING) uniform sampler2D reflection;
 #endif
 
+// The distant probe's pre-filtered radiance along Rd for a linear roughness: the mip of
+// sqrt(linearRoughness) (env_prefilter.comp).
+#ifdef RG_IBL
+vec3 rgDistantSpecular(vec3 Rd, float linearRoughness) {
+    float mips = float(textureQueryLevels(env_specular));
+    return textureLod(env_specular, Rd, sqrt(linearRoughness) * (mips - 1.0)).rgb;
+}
+#endif
+
 // The probes' lighting of one lobe pair at P, before occlusion: diffuse (LD · DFG.z, the radiance
 // reflected by a white Disney diffuse, from the distant probe) and specular (LD · (f0 DFG.x + f90
 // DFG.y), LD composed from SSR, the local probes and the distant probe), both in cd/m² for an
@@ -143,8 +152,7 @@ RgIbl rgEvaluateIblLobe(vec3 P, vec3 N, vec3 V, vec3 f0, float f90, float linear
     // renormalised Disney diffuse's.
     vec3 Nd = normalize(rgDiffuseDominantDir(N, V, NdotV, alpha));
     r.diffuse = rgShIrradiance(rgEnvSh.coefficients, Nd) / RG_PI * dfgTerms.z;
-    // Specular: the mip of sqrt(linearRoughness) (env_prefilter.comp), along the dominant direction.
-    float mips = float(textureQueryLevels(env_specular));
+    // Specular: along the dominant direction.
     vec3 Rd = rgSpecularDominantDir(N, R, alpha);
     vec3 ld;
 #ifdef RG_REFLECTION
@@ -153,7 +161,7 @@ RgIbl rgEvaluateIblLobe(vec3 P, vec3 N, vec3 V, vec3 f0, float f90, float linear
 #endif
     {
         // §4.9.5: SSR, the local probes, then the distant probe, through the same split-sum weight.
-        ld = rgComposeReflection(P, Rd, linearRoughness, textureLod(env_specular, Rd, sqrt(linearRoughness) * (mips - 1.0)).rgb);
+        ld = rgComposeReflection(P, Rd, linearRoughness, rgDistantSpecular(Rd, linearRoughness));
     }
     r.specular = ld * (f0 * dfgTerms.x + f90 * dfgTerms.y);
 #endif

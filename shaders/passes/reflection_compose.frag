@@ -27,9 +27,7 @@ void main() {
     vec3 V = rgViewDirection(P);
     float linearRoughness = 1.0 - g.smoothness;
     vec3 Rd = rgSpecularDominantDir(N, reflect(-V, N), linearRoughness * linearRoughness);
-    float mips = float(textureQueryLevels(env_specular));
-    vec3 distant = textureLod(env_specular, Rd, sqrt(linearRoughness) * (mips - 1.0)).rgb;
     float covered;
-    vec3 ld = rgComposeReflection(P, Rd, linearRoughness, distant, covered);
+    vec3 ld = rgComposeReflection(P, Rd, linearRoughness, rgDistantSpecular(Rd, linearRoughness), covered);
     color = vec4(ld, covered);
 }

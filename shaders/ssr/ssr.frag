@@ -83,7 +83,8 @@ void main() {
     }
     if (!hit) return;
     // A hit far behind the surface it passed (thin objects seen from behind) is no hit.
-    vec3 surfaceView = rgViewPosition(at.xy, texelFetch(depth, ivec2(at.xy * size), 0).r);
+    float hitDepth = texelFetch(depth, ivec2(at.xy * size), 0).r;
+    vec3 surfaceView = rgViewPosition(at.xy, hitDepth);
     vec3 rayView = rgViewPosition(at.xy, at.z);
     if (surfaceView.z - rayView.z > params.ssr_thickness) return;
     vec2 edge = smoothstep(vec2(0.0), vec2(0.06), at.xy) * (1.0 - smoothstep(vec2(0.94), vec2(1.0), at.xy));
@@ -95,7 +96,7 @@ void main() {
     float lod = clamp(log2(max(footprint, 1.0)), 0.0, float(textureQueryLevels(hdr_history) - 1));
     // The history is the frame before's image: the hit's surface where that frame's camera saw
     // it. Off its screen, or where it holds nothing yet (alpha 0: the first frame), no reflection.
-    vec4 before = camera.previousViewProj * vec4(rgWorldPosition(at.xy, texelFetch(depth, ivec2(at.xy * size), 0).r), 1.0);
+    vec4 before = camera.previousViewProj * vec4(rgWorldPosition(at.xy, hitDepth), 1.0);
     vec2 uvBefore = before.xy / before.w * 0.5 + 0.5;
     if (before.w <= 0.0 || any(lessThan(uvBefore, vec2(0.0))) || any(greaterThan(uvBefore, vec2(1.0)))) return;
     vec4 history = textureLod(hdr_history, uvBefore, lod);
