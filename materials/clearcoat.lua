@@ -24,6 +24,6 @@ rg.material "clear_coat" {
 rg.pass "lighting_clearcoat" (reflections.lit(ssr.lit(shadows.lit(ao.lit(probes.lit(ibl.lit(lighting.tiled {
     kind = "fullscreen", shader = "materials/clearcoat_lighting.frag",
     reads = { "GB0", "GB1", "GB2", "GB3", "depth", { "depth", as = "depth" }, { "exposure", as = "storage" } },
-    writes = { { "hdr", load = true } }, stencil = { class = "lit_clearcoat", mask = 7 },
+    writes = { { "hdr", load = true } }, stencil = { class = "lit_clearcoat" },
     insert = { after = "lighting_standard" },
 })))))))

@@ -16,7 +16,10 @@ rg.stencil "lit_standard" { doc = "standard Disney BRDF lighting" }
 rg.path "standard" { stencil = "lit_standard", doc = "Disney diffuse + GGX specular, seed 000 §3.1" }
 
 -- materialId 0: BaseColor, Smoothness, MetalMask, Reflectance (f0 = 0.16 * reflectance^2), AO.
+-- Decals blend MetalMask and Reflectance on the base material only (000 §3.3), beside the common
+-- Normal, BaseColor and Smoothness every material takes by default.
 rg.material "standard" {
     id = 0, layout = "disney", path = "standard", surface = "materials/standard.glsl",
+    decals = { "normal", "baseColor", "smoothness", "metalMask", "reflectance" },
     doc = "the standard Disney base material, seed 000 §3.2.1",
 }

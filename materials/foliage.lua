@@ -2,17 +2,19 @@
 -- geometry-heavy G-buffer pass fills only GB0 and GB1; a fix-up pass fills GB2 and GB3 for its
 -- pixels afterwards (global smoothness-free parameters: no metal, one reflectance, AO 1, and the
 -- indirect light of a uniform sky into GB3's radiosity), so foliage shares the standard lighting
--- pass. Its stencil class is the standard class's value plus bit 3: the standard lighting
--- (testing the low 3 bits) lights it, the fix-up (testing all 4) finds it.
+-- pass. Its stencil class is a variant of the standard class (variant_of: the same low bits, a
+-- value of its own in the high bits): the standard lighting, testing the low bits, lights it; the
+-- fix-up, testing all eight, finds it. After the fix-up its pixels decode as the standard
+-- material's, so it shares materialId 0 (and with it how decals and debug views treat them).
 local rg = require "rg"
 require "disney"
 
-rg.stencil "foliage" { value = 9, doc = "needs the G-buffer fix-up, then standard lighting" }
+rg.stencil "foliage" { variant_of = "lit_standard", doc = "needs the G-buffer fix-up, then standard lighting" }
 rg.param "foliage_reflectance" { type = "number", default = 0.35, min = 0, max = 1, doc = "fix-up: reflectance of all foliage" }
 rg.param "foliage_ambient" { type = "number", default = 5000, min = 0, max = 1e6, doc = "fix-up: sky illuminance for foliage radiosity, lux" }
 
 rg.material "foliage" {
-    id = 2, layout = "disney", stencil = "foliage", surface = "materials/foliage.glsl",
+    id = 0, layout = "disney", stencil = "foliage", surface = "materials/foliage.glsl",
     fills = { "GB0", "GB1" }, fixup = "foliage_fixup",
 }
 

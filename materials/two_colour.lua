@@ -26,13 +26,16 @@ rg.layout "two_colour" {
 rg.stencil "lit_two_colour" { doc = "two-colour base material: standard BRDF from diffuse and f0 colours" }
 rg.path "two_colour" { stencil = "lit_two_colour", doc = "the standard light loop over the two_colour layout" }
 rg.material "two_colour" {
-    id = 3, layout = "two_colour", path = "two_colour", surface = "materials/two_colour.glsl",
+    id = 2, layout = "two_colour", path = "two_colour", surface = "materials/two_colour.glsl",
+    -- Decals blend their base colour into the diffuse colour; debug views show it as base colour
+    -- and the f0 colour (its own name) as reflectance.
+    channels = { baseColor = "diffuseColor" },
     doc = "two-colour base material, seed 000 tbl:3",
 }
 
 rg.pass "lighting_two_colour" (reflections.lit(shadows.lit(ao.lit(ibl.lit(lighting.tiled {
     kind = "fullscreen", shader = "materials/two_colour_lighting.frag",
     reads = { "GB0", "GB1", "GB2", "GB3", "depth", { "depth", as = "depth" }, { "exposure", as = "storage" } },
-    writes = { { "hdr", load = true } }, stencil = { class = "lit_two_colour", mask = 7 },
+    writes = { { "hdr", load = true } }, stencil = { class = "lit_two_colour" },
     insert = { after = "lighting_standard" },
 })))))

@@ -178,9 +178,6 @@ Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string
     }
     Value::Table params{{"shader", Value("passes/debug_view.frag")},
                         {"uniforms", Value(Value::Table{{"view", Value(static_cast<double>(it - kViews.begin()))}})}};
-    // Pixels of the two-colour material (materials/two_colour.lua) decode with its own layout.
-    for (const auto& m : p.materials)
-        if (m.layout == "two_colour") params["defines"] = Value(Value::Table{{"RG_TWO_COLOUR_ID", Value(static_cast<double>(m.id))}});
     addViewPass(g, {{"GB0", Usage::Sampled}, {"GB1", Usage::Sampled}, {"GB2", Usage::Sampled}, {"GB3", Usage::Sampled}, {"depth", Usage::Sampled}},
                 std::move(params));
     return {};
@@ -219,6 +216,11 @@ Result<std::string> writeLayoutHeaders(const PipelineDesc& pipeline) {
         for (const std::string* part : {&headers.back().first, &headers.back().second})
             for (unsigned char c : *part) hash = (hash ^ c) * 1099511628211ull;
     }
+    // Every material's pixels decoded by materialId (decals, debug views, the reference).
+    auto dispatch = generatePipelineGlsl(pipeline);
+    if (!dispatch) return std::unexpected(dispatch.error());
+    headers.emplace_back("gbuffer_pipeline.glsl", *dispatch);
+    for (unsigned char c : *dispatch) hash = (hash ^ c) * 1099511628211ull;
     char name[17];
     std::snprintf(name, sizeof name, "%016llx", static_cast<unsigned long long>(hash));
     const fs::path dir = fs::path(generatedShaderDir()) / name;

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <set>
 
 namespace rg {
@@ -492,39 +493,71 @@ struct Builder {
         return {};
     }
 
+    // Classes of their own take the low `stencilBits` (explicit values first, then the lowest
+    // free value in declaration order); variants (`variant_of`) keep their base's low bits and
+    // take the lowest free value in the high bits, so a class's value never depends on another
+    // class's explicit value.
     Result<void> stencils() {
-        const uint32_t capacity = (1u << options.stencilBits) - 1;
+        const uint32_t bits = options.stencilBits;
+        const uint32_t capacity = (1u << bits) - 1;
+        const uint32_t variants = (1u << (8 - bits)) - 1;
         std::map<uint32_t, const Declaration*> taken;
-        // Explicit values first, then the others take the lowest free value in declaration order.
-        for (int pass = 0; pass < 2; ++pass) {
+        std::map<std::string, const Declaration*> byName;
+        for (int pass = 0; pass < 3; ++pass) {
             for (const auto& d : decls) {
                 if (d.kind != DeclKind::Stencil) continue;
                 Where w = where(d);
-                if (pass == 0)
-                    if (auto r = checkFields(w, d.body, {"value", "doc"}); !r) return r;
+                if (pass == 0) {
+                    if (auto r = checkFields(w, d.body, {"value", "variant_of", "doc"}); !r) return r;
+                    if (d.body.has("variant_of") && d.body.has("value"))
+                        return w.at("value").error("a variant takes its base's value in the low bits and is allocated the high bits; give no value");
+                    if (d.body.has("doc"))
+                        if (auto r = expectType(w.at("doc"), d.body["doc"], "string"); !r) return r;
+                }
+                const bool variant = d.body.has("variant_of");
                 const bool explicitValue = d.body.has("value");
-                if ((pass == 0) != explicitValue) continue;
-                uint32_t value = 0;
-                if (explicitValue) {
+                if (pass != (variant ? 2 : explicitValue ? 0 : 1)) continue;
+                StencilClassDesc c{fullName(d), 0, capacity, "", d.body["doc"].asString(), d.origin};
+                if (variant) {
+                    if (auto r = expectType(w.at("variant_of"), d.body["variant_of"], "string"); !r) return r;
+                    const std::string baseName = d.body["variant_of"].asString();
+                    auto base = std::find_if(out.stencilClasses.begin(), out.stencilClasses.end(), [&](auto& s) { return s.name == baseName; });
+                    if (base == out.stencilClasses.end()) {
+                        std::vector<std::string> names;
+                        for (const auto& s : out.stencilClasses) names.push_back(s.name);
+                        return w.at("variant_of").error("unknown stencil class '" + baseName + "'" + suggestion(baseName, names) +
+                                                        (names.empty() ? "" : "; expected one of: " + joinQuoted(names)));
+                    }
+                    if (!base->base.empty())
+                        return w.at("variant_of").error("'" + baseName + "' is itself a variant of '" + base->base + "'; name a class of its own");
+                    uint32_t k = 1;
+                    while (k <= variants && taken.count(base->value | (k << bits))) ++k;
+                    if (k > variants)
+                        return w.error("no variant of '" + baseName + "' left: the high " + std::to_string(8 - bits) + " stencil bits hold " +
+                                       std::to_string(variants) + " variants per class");
+                    c.value = base->value | (k << bits);
+                    c.mask = 0xFFu;
+                    c.base = base->name;
+                } else if (explicitValue) {
                     const Value& v = d.body["value"];
                     if (!isInteger(v) || v.asNumber() < 1 || v.asNumber() > capacity)
-                        return w.at("value").error("expected a whole number in 1.." + std::to_string(capacity) + " (" +
-                                                   std::to_string(options.stencilBits) + " stencil bits)");
-                    value = static_cast<uint32_t>(v.asNumber());
-                    if (taken.count(value))
-                        return w.at("value").error(std::to_string(value) + " is already the value of stencil class '" +
-                                                   fullName(*taken[value]) + "' (" + taken[value]->origin + ")");
+                        return w.at("value").error("expected a whole number in 1.." + std::to_string(capacity) + " (" + std::to_string(bits) +
+                                                   " stencil bits for classes; a class lit as another is a variant: variant_of = \"class\")");
+                    c.value = static_cast<uint32_t>(v.asNumber());
+                    if (taken.count(c.value))
+                        return w.at("value").error(std::to_string(c.value) + " is already the value of stencil class '" +
+                                                   fullName(*taken[c.value]) + "' (" + taken[c.value]->origin + ")");
                 } else {
-                    for (value = 1; value <= capacity && taken.count(value); ++value) {}
-                    if (value > capacity) {
+                    for (c.value = 1; c.value <= capacity && taken.count(c.value); ++c.value) {}
+                    if (c.value > capacity) {
                         std::vector<std::string> names;
                         for (auto& [_, td] : taken) names.push_back(fullName(*td));
-                        return w.error("no stencil value left: " + std::to_string(options.stencilBits) + " stencil bits hold " +
+                        return w.error("no stencil value left: " + std::to_string(bits) + " stencil bits hold " +
                                        std::to_string(capacity) + " classes, all taken by " + joinQuoted(names));
                     }
                 }
-                taken[value] = &d;
-                out.stencilClasses.push_back({fullName(d), value, capacity, d.origin});
+                taken[c.value] = &d;
+                out.stencilClasses.push_back(c);
             }
         }
         // Keep declaration order in the result.
@@ -547,29 +580,108 @@ struct Builder {
 
     Result<void> path(const Declaration& d) {
         Where w = where(d);
-        if (auto r = checkFields(w, d.body, {"stencil", "doc"}); !r) return r;
+        if (auto r = checkFields(w, d.body, {"stencil", "shading", "doc"}); !r) return r;
         auto stencil = requireString(w, d.body, "stencil");
         if (!stencil) return std::unexpected(stencil.error());
         if (!hasStencil(*stencil))
             return w.at("stencil").error("unknown stencil class '" + *stencil + "'" + suggestion(*stencil, stencilNames()));
-        out.lightingPaths.push_back({fullName(d), *stencil, d.body["doc"].asString(), d.origin});
+        std::string shading;
+        if (d.body.has("shading")) {
+            if (auto r = expectType(w.at("shading"), d.body["shading"], "string"); !r) return r;
+            // Next to the declaring script (a game team's folder), else the shader include folders.
+            shading = nextToDeclaration(d.origin, d.body["shading"].asString(), options.projectRoot);
+        }
+        out.lightingPaths.push_back({fullName(d), *stencil, shading, d.body["doc"].asString(), d.origin});
+        return {};
+    }
+
+    // `channels = { baseColor = "diffuseColor" }`: which of the layout's channels holds each
+    // standard parameter (kStandardChannels) where the name differs; the rest by their own name.
+    // `decals = { "normal", ... }` (or false): the standard parameters decals blend; by default
+    // the seed's common set that the layout holds (000 §3.3: Normal, BaseColor, Smoothness).
+    Result<void> standardChannels(const Where& w, const Value& b, const LayoutDesc& layout, MaterialDesc& m) {
+        auto channel = [&](const std::string& name) -> const ChannelDesc* {
+            for (const auto& t : layout.targets)
+                for (const auto& c : t.channels)
+                    if (c.name == name) return &c;
+            return nullptr;
+        };
+        auto components = [](const ChannelDesc& c) {
+            if (c.encoding == Encoding::Oct || c.encoding == Encoding::Srgb) return 3u;
+            return c.components ? c.components : 1u;
+        };
+        // What each standard parameter needs of its channel: components, and a float encoding.
+        auto fits = [&](const std::string& standard, const ChannelDesc& c) {
+            const bool vec3 = standard == "normal" || standard == "baseColor" || standard == "f0" || standard == "emissive";
+            if (c.encoding == Encoding::Uint) return false;
+            if (standard == "normal") return c.encoding == Encoding::Oct || (c.encoding == Encoding::Snorm && components(c) == 3);
+            return components(c) == (vec3 ? 3u : 1u);
+        };
+        std::vector<std::string> standard(std::begin(kStandardChannels), std::end(kStandardChannels));
+        if (b.has("channels")) {
+            if (auto r = expectType(w.at("channels"), b["channels"], "table"); !r) return r;
+            for (const auto& [key, value] : b["channels"].asTable()) {
+                const Where cw = w.at("channels").at(key);
+                if (std::find(standard.begin(), standard.end(), key) == standard.end())
+                    return cw.error("not a standard parameter" + suggestion(key, standard) + "; expected one of: " + joinQuoted(standard));
+                if (!value.isString()) return cw.error("expected the name of a channel of layout '" + layout.name + "'");
+                m.channels[key] = value.asString();
+            }
+        }
+        for (const auto& s : standard) {
+            const bool declared = m.channels.count(s) > 0;
+            const std::string name = declared ? m.channels[s] : s;
+            const ChannelDesc* c = channel(name);
+            if (!c) {
+                if (declared) {
+                    std::vector<std::string> names;
+                    for (const auto& t : layout.targets)
+                        for (const auto& ch : t.channels) names.push_back(ch.name);
+                    return w.at("channels").at(s).error("layout '" + layout.name + "' has no channel '" + name + "'" + suggestion(name, names));
+                }
+                continue;
+            }
+            if (!fits(s, *c)) {
+                if (declared)
+                    return w.at("channels").at(s).error("channel '" + name + "' (" + std::string(encodingName(c->encoding)) + ", " +
+                                                        std::to_string(components(*c)) + " components) cannot hold " + s);
+                continue;  // a channel of the same name but another meaning: not the standard one
+            }
+            m.channels[s] = name;
+        }
+        std::vector<std::string> allowed(std::begin(kDecalParameters), std::end(kDecalParameters));
+        if (!b.has("decals")) {
+            for (const char* s : {"normal", "baseColor", "smoothness"})
+                if (m.channels.count(s)) m.decals.push_back(s);
+            return {};
+        }
+        const Value& dv = b["decals"];
+        if (dv.isBool() && !dv.asBool()) return {};
+        auto list = stringList(w.at("decals"), dv);
+        if (!list) return std::unexpected(list.error());
+        for (size_t i = 0; i < list->size(); ++i) {
+            const std::string& s = (*list)[i];
+            if (std::find(allowed.begin(), allowed.end(), s) == allowed.end())
+                return w.at("decals").index(i).error("decals blend " + joinQuoted(allowed) + suggestion(s, allowed) + "; not '" + s + "'");
+            if (!m.channels.count(s))
+                return w.at("decals").index(i).error("layout '" + layout.name + "' has no channel for " + s +
+                                                     " (name it in channels = { " + s + " = \"...\" }), so decals cannot blend it");
+            m.decals.push_back(s);
+        }
         return {};
     }
 
     Result<void> material(const Declaration& d, std::map<uint32_t, const Declaration*>& ids) {
         Where w = where(d);
         const Value& b = d.body;
-        if (auto r = checkFields(w, b, {"id", "layout", "surface", "path", "stencil", "fills", "fixup", "params", "doc"}); !r) return r;
+        if (auto r = checkFields(w, b, {"id", "layout", "surface", "path", "stencil", "fills", "fixup", "params", "channels", "decals", "doc"}); !r)
+            return r;
         MaterialDesc m;
         m.name = fullName(d);
         m.origin = d.origin;
         if (!b.has("id")) return w.at("id").error("missing (expected the materialId, a whole number)");
         if (!isInteger(b["id"]) || b["id"].asNumber() < 0) return w.at("id").error("expected a whole number >= 0");
         m.id = static_cast<uint32_t>(b["id"].asNumber());
-        if (ids.count(m.id))
-            return w.at("id").error(std::to_string(m.id) + " is already the id of material '" + fullName(*ids[m.id]) + "' (" +
-                                    ids[m.id]->origin + ")");
-        ids[m.id] = &d;
         auto layoutName = requireString(w, b, "layout");
         if (!layoutName) return std::unexpected(layoutName.error());
         auto lit = std::find_if(out.layouts.begin(), out.layouts.end(),
@@ -628,6 +740,21 @@ struct Builder {
         }
         if (!m.fills.empty() && m.fills.size() < lit->targets.size() && m.fixup.empty())
             return w.at("fixup").error("material fills only part of layout '" + m.layout + "': name the fix-up pass that fills the rest");
+        if (auto r = standardChannels(w, b, *lit, m); !r) return r;
+        // A materialId names how its pixels decode (decals, debug views): materials may share
+        // one when they decode alike, as foliage shares the standard material's after its fix-up.
+        if (ids.count(m.id)) {
+            const MaterialDesc& first = *std::find_if(out.materials.begin(), out.materials.end(), [&](auto& x) { return x.id == m.id; });
+            const std::string shared = std::to_string(m.id) + " is the id of material '" + first.name + "' (" + first.origin + ")";
+            if (first.layout != m.layout)
+                return w.at("id").error(shared + " of layout '" + first.layout + "': materials share an id only when their pixels decode alike (the same layout); choose a free id");
+            if (!b.has("channels") && !b.has("decals")) {
+                m.channels = first.channels;
+                m.decals = first.decals;
+            } else if (first.channels != m.channels || first.decals != m.decals)
+                return w.at(b.has("decals") ? "decals" : "channels").error(shared + " with other channels or decals: materials sharing an id decode alike; match them or choose a free id");
+        }
+        ids.emplace(m.id, &d);
         if (b.has("params"))
             if (auto r = expectType(w.at("params"), b["params"], "table"); !r) return r;
         m.params = b["params"];
@@ -657,6 +784,47 @@ struct Builder {
             }
         }
         out.materials.push_back(m);
+        return {};
+    }
+
+    // Decals and debug views find a pixel's layout from its materialId, so every layout a
+    // material uses keeps materialId in the same place (000 §3.2: "MaterialId at the same place
+    // for every material", to interpret MaterialData): the same target, bits and width.
+    Result<void> checkMaterialIdPlacement() {
+        struct Place {
+            std::string target;
+            uint32_t component = 0, bitOffset = 0, bits = 0;
+            Encoding encoding = Encoding::Uint;
+            bool operator==(const Place&) const = default;
+        };
+        auto describe = [](const Place& p) {
+            static const char* comps = "RGBA";
+            return "target " + p.target + "." + comps[p.component] + " bits " + std::to_string(p.bitOffset) + ".." +
+                   std::to_string(p.bitOffset + p.bits - 1) + " (" + std::string(encodingName(p.encoding)) + ")";
+        };
+        std::optional<Place> first;
+        const MaterialDesc* firstMaterial = nullptr;
+        for (const MaterialDesc& m : out.materials) {
+            const LayoutDesc& l = *std::find_if(out.layouts.begin(), out.layouts.end(), [&](auto& x) { return x.name == m.layout; });
+            auto info = analyzeLayout(l);
+            if (!info) return std::unexpected(info.error());
+            const int c = info->find("materialId");
+            const Declaration& d = *std::find_if(decls.begin(), decls.end(), [&](auto& x) { return x.kind == DeclKind::Material && fullName(x) == m.name; });
+            if (c < 0)
+                return where(d).at("layout").error("layout '" + l.name + "' has no materialId channel: decals and debug views tell a pixel's layout by it (declare \"materialId:uint:2\" where the other layouts keep it)");
+            const ChannelPlacement& pl = info->channels[static_cast<size_t>(c)];
+            Place p{l.targets[pl.target].name, pl.component, pl.bitOffset, info->channelDesc(static_cast<size_t>(c)).bits,
+                    info->channelDesc(static_cast<size_t>(c)).encoding};
+            if (p.encoding != Encoding::Uint)
+                return where(d).at("layout").error("layout '" + l.name + "' keeps materialId as " + std::string(encodingName(p.encoding)) + "; it must be a uint field");
+            if (!first) {
+                first = p;
+                firstMaterial = &m;
+            } else if (!(p == *first))
+                return where(d).at("layout").error("layout '" + l.name + "' keeps materialId in " + describe(p) + ", but layout '" + firstMaterial->layout +
+                                                   "' (material '" + firstMaterial->name + "', " + firstMaterial->origin + ") keeps it in " + describe(*first) +
+                                                   ": every layout of a pipeline keeps materialId in the same place");
+        }
         return {};
     }
 
@@ -758,6 +926,7 @@ struct Builder {
         for (const auto& d : decls)
             if (d.kind == DeclKind::Material)
                 if (auto r = material(d, ids); !r) return std::unexpected(r.error());
+        if (auto r = checkMaterialIdPlacement(); !r) return std::unexpected(r.error());
         if (auto r = insertModulePasses(); !r) return std::unexpected(r.error());
         if (auto r = checkMaterialReferences(); !r) return std::unexpected(r.error());
 

@@ -28,21 +28,34 @@ struct ParamDesc {
     std::string origin;
 };
 
-// A named class of pixels in the stencil buffer. The framework allocates each class a value in
-// the low bits; classes are told apart by (value & mask).
+// A named class of pixels in the stencil buffer (8 bits). The framework allocates the values:
+// a class of its own takes a value 1..15 in the low four bits (the lighting-path bits); a
+// variant of a class (`variant_of`, e.g. foliage: lit as standard, found by its fix-up) keeps its
+// base's low bits and takes 1..15 in the high four. A pass on a class tests (stencil & mask) ==
+// value: a class's mask is the low bits (so its variants are lit with it), a variant's all eight.
 struct StencilClassDesc {
     std::string name;
     uint32_t value = 0;
     uint32_t mask = 0;
+    std::string base;  // the class this one is a variant of, or ""
+    std::string doc;
     std::string origin;
 };
+inline constexpr uint32_t kStencilPathBits = 4;   // low bits: up to 15 classes
+inline constexpr uint32_t kStencilVariantBits = 4;  // high bits: up to 15 variants per class
 
 struct LightingPathDesc {
     std::string name;
     std::string stencil;  // the stencil class its lighting pass runs on
+    std::string shading;  // GLSL file defining rgShade(GBuffer_<layout>, ...) (forward shading), or ""
     std::string doc;
     std::string origin;
 };
+
+// The standard parameters decals blend and debug views show, by the name a layout's channel for
+// them has (MaterialDesc::channels maps them when a layout names them otherwise).
+inline const char* const kStandardChannels[] = {"normal", "baseColor", "smoothness", "metalMask", "reflectance", "f0", "ao", "emissive"};
+inline const char* const kDecalParameters[] = {"normal", "baseColor", "smoothness", "metalMask", "reflectance"};
 
 struct MaterialDesc {
     std::string name;
@@ -54,6 +67,10 @@ struct MaterialDesc {
     std::vector<std::string> fills;  // targets it writes; empty = all targets of the layout
     std::string fixup;               // pass that fills the rest, when fills is partial
     Value params;                    // material parameters and their defaults
+    // Standard name (kStandardChannels) -> the layout's channel holding it, resolved: every
+    // standard name the layout has under its own name or under the declared `channels` name.
+    std::map<std::string, std::string> channels;
+    std::vector<std::string> decals;  // the standard parameters decals blend on its pixels
     std::string origin;
 };
 
@@ -77,6 +94,16 @@ struct PipelineDesc {
     const ParamDesc* findParam(const std::string& name) const;
     ParamDesc* findParam(const std::string& name);
 };
+
+// The GLSL (for #include "gbuffer_pipeline.glsl") that decodes any pixel of the pipeline's
+// G-buffer by its materialId with that material's own layout: `#define RG_MATERIAL_<name> <id>u`
+// per material; `struct RgGBufferView` (the standard parameters, RG_VIEW_* bits of the ones the
+// layout holds in `has` and of the ones decals blend in `decals`); `RgGBufferView
+// rgDecodeGBuffer(t0, ...)` and `void rgEncodeDecals(RgGBufferView v, t0..., out o0...)`, which
+// re-packs the pixel's own layout with v's decal parameters written over their channels. The
+// targets are the first material's layout's, in its order; every material's layout must use
+// only those (an error names the layout and target otherwise).
+Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline);
 
 // Checks `v` against the parameter's type and range; an error says what was expected.
 Result<Value> checkParamValue(const ParamDesc& p, const Value& v);

@@ -23,7 +23,7 @@ post.exposure_state()
 rg.pass "lighting_standard" (reflections.lit(ao.lit(shadows.lit(ibl.lit(lighting.tiled {
     kind = "fullscreen", shader = "passes/deferred_lighting.frag",
     reads = { "GB0", "GB1", "GB2", "GB3", "depth", { "depth", as = "depth" }, { "exposure", as = "storage" } },
-    writes = { "hdr" }, stencil = { class = "lit_standard", mask = 7 },  -- low 3 bits: foliage (9) too
+    writes = { "hdr" }, stencil = { class = "lit_standard" },  -- and its variants: foliage
 })))))
 
 -- The sky where nothing was drawn, then blended materials lit with the same light loop; the lit

@@ -1,13 +1,15 @@
 #version 460
 // Deferred decals (seed 000 §3.3): every scene decal whose box encloses the pixel's surface
-// blends the common parameters with linear alpha blending, in decoded form (no programmable
-// blending here: the pass reads copies of the targets and re-packs): BaseColor, Smoothness and
-// the Normal (towards the box's +Y axis); MetalMask and Reflectance only on materialId 0 (the
-// base material); MaterialId and MaterialData are never blended. Pixels no decal touches keep
-// the G-buffer as it is (discard, the targets are loaded).
+// blends the standard parameters with linear alpha blending, in decoded form (no programmable
+// blending here: the pass reads copies of the targets and re-packs). Each pixel is decoded and
+// re-packed with its own material's layout (gbuffer_pipeline.glsl, generated from the pipeline's
+// materials: RgGBufferView by materialId) and only the parameters its material lets decals blend
+// (rg.material's `decals`: by default the common Normal, BaseColor and Smoothness; MetalMask and
+// Reflectance on the standard material) change; MaterialId, MaterialData and a layout's own
+// channels are never blended. Pixels no decal touches keep the G-buffer as it is (discard).
 #define RG_WITH_DECALS
 #include "lib/scene.glsl"
-#include "gbuffer_disney.glsl"
+#include "gbuffer_pipeline.glsl"
 
 layout(location = 0) in vec2 uv;
 layout(location = 0) out vec4 gb0;
@@ -23,7 +25,9 @@ void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
     float d = texelFetch(depth, p, 0).r;
     if (d >= 1.0) discard;
-    GBuffer_disney g = unpackGBuffer_disney(texelFetch(GB0_in, p, 0), texelFetch(GB1_in, p, 0), texelFetch(GB2_in, p, 0), vec4(0.0));
+    vec4 t0 = texelFetch(GB0_in, p, 0), t1 = texelFetch(GB1_in, p, 0), t2 = texelFetch(GB2_in, p, 0);
+    RgGBufferView g = rgDecodeGBuffer(t0, t1, t2, vec4(0.0));
+    if (g.decals == 0u) discard;  // a material decals leave alone
     vec3 position = rgWorldPosition(uv, d);
     bool touched = false;
     for (uint i = 0u; i < decals.count.x; ++i) {
@@ -33,14 +37,12 @@ void main() {
         float a = decal.baseColorOpacity.a;
         if (decal.flags.x > 0.5) g.baseColor = mix(g.baseColor, decal.baseColorOpacity.rgb, a);
         if (decal.flags.y > 0.5) g.smoothness = mix(g.smoothness, decal.params.x, a);
-        if (g.materialId == 0u) {
-            if (decal.flags.z > 0.5) g.metalMask = mix(g.metalMask, decal.params.y, a);
-            if (decal.flags.w > 0.5) g.reflectance = mix(g.reflectance, decal.params.z, a);
-        }
+        if (decal.flags.z > 0.5) g.metalMask = mix(g.metalMask, decal.params.y, a);
+        if (decal.flags.w > 0.5) g.reflectance = mix(g.reflectance, decal.params.z, a);
         if (decal.axis.w > 0.5) g.normal = normalize(mix(g.normal, decal.axis.xyz, a));
         touched = true;
     }
     if (!touched) discard;
-    vec4 t3;
-    packGBuffer_disney(g, gb0, gb1, gb2, t3);
+    vec4 o3;
+    rgEncodeDecals(g, t0, t1, t2, vec4(0.0), gb0, gb1, gb2, o3);  // only the material's decal parameters are written back
 }

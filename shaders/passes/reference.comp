@@ -39,10 +39,10 @@
 // sample reads the radiance where it points, the two combined with the power heuristic as for
 // the lights — so a small bright source in an HDRI converges as fast as a sky. Unoccluded like
 // the split sum it checks, unless reference_shadows.
-// Clear coat (materialId 1, materials/clearcoat.lua) gets its coat lobe too, evaluated per
+// Clear coat (RG_MATERIAL_clear_coat, materials/clearcoat.lua) gets its coat lobe too, evaluated per
 // direction as materials/clearcoat_lighting.frag does for one light direction. The two-colour
-// material (materialId RG_TWO_COLOUR_ID, materials/two_colour.lua) is unpacked with its own layout
-// into the same diffuse colour and f0.
+// material (materials/two_colour.lua) is unpacked with its own layout into the same diffuse colour
+// and f0.
 //
 // Progressive: each frame adds Params.reference_samples samples to the running mean in the
 // persistent `reference_accum` (rgb: absolute cd/m²; a: how many frames it holds — the target
@@ -55,10 +55,7 @@
 #include "lib/sampling.glsl"
 #include "lib/environment.glsl"
 #include "lib/bvh.glsl"
-#include "gbuffer_disney.glsl"
-#ifdef RG_TWO_COLOUR_ID
-#include "gbuffer_two_colour.glsl"
-#endif
+#include "gbuffer_pipeline.glsl"
 
 layout(local_size_x = 8, local_size_y = 8) in;
 layout(set = 0, binding = 0) uniform sampler2D GB0;
@@ -133,7 +130,7 @@ struct Shading {
     vec3 Vs;          // V lifted above the horizon for sampling the GGX visible normals
     float NdotVs;
     vec3 T, B;        // tangent frame around N
-    bool coat;        // materialId 1 (materials/clearcoat.lua): a second GGX lobe on top
+    bool coat;        // RG_MATERIAL_clear_coat (materials/clearcoat.lua): a second GGX lobe on top
     float coatStrength, coatAlpha;
     vec3 lobeProbability;  // of picking the diffuse, GGX and coat lobes for the BRDF sample
 };
@@ -459,14 +456,13 @@ void main() {
     // §3.2.1, as deferred_lighting.frag and rgStandardBrdf.
     s.diffuseColor = g.baseColor * (1.0 - g.metalMask);
     s.f0 = mix(vec3(rgDielectricF0(g.reflectance)), g.baseColor, g.metalMask);
-#ifdef RG_TWO_COLOUR_ID
-    if (g.materialId == uint(RG_TWO_COLOUR_ID)) {
-        GBuffer_two_colour t = unpackGBuffer_two_colour(texelFetch(GB0, p, 0), texelFetch(GB1, p, 0), texelFetch(GB2, p, 0),
-                                                        texelFetch(GB3, p, 0));
-        s.diffuseColor = t.diffuseColor;
-        s.f0 = t.f0;
+    // A layout that keeps an f0 colour (the two-colour material) gives its diffuse and f0 colours
+    // as stored (gbuffer_pipeline.glsl decodes the pixel with its own layout).
+    RgGBufferView view = rgDecodeGBuffer(texelFetch(GB0, p, 0), texelFetch(GB1, p, 0), texelFetch(GB2, p, 0), texelFetch(GB3, p, 0));
+    if ((view.has & RG_VIEW_F0) != 0u) {
+        s.diffuseColor = view.baseColor;
+        s.f0 = view.f0;
     }
-#endif
     s.f90 = clamp(50.0 * dot(s.f0, vec3(0.33)), 0.0, 1.0);
     s.linearRoughness = 1.0 - g.smoothness;
     s.alpha = max(s.linearRoughness * s.linearRoughness, 1e-3);
@@ -478,7 +474,11 @@ void main() {
     s.NdotVs = max(dot(s.N, s.Vs), 1e-3);
     rgBasis(s.N, s.T, s.B);
     // materials/clearcoat_lighting.frag's coat: strength in MaterialData, smoothness in GB2.r.
-    s.coat = g.materialId == 1u;
+#ifdef RG_MATERIAL_clear_coat
+    s.coat = g.materialId == RG_MATERIAL_clear_coat;
+#else
+    s.coat = false;
+#endif
     s.coatStrength = float(g.materialData) / 31.0;
     s.coatAlpha = max((1.0 - g.reserved) * (1.0 - g.reserved), 1e-3);
     // Lobe selection by the lobes' albedo estimates (diffuse colour, Schlick at N·V for the GGX

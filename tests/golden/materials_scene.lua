@@ -1,7 +1,8 @@
 -- The default pipeline on the material-system scene (tests/gpu/scenes/materials.lua): the
 -- standard material, a game team's clear coat (its own lighting path) and foliage (G-buffer
 -- fix-up), a blended glass pane drawn by the forward pass, and a decal across the floor and the
--- clear-coat sphere (metal mask blended on the floor only: materialId 0). Tolerances as deferred_pipeline.lua
+-- clear-coat sphere (metal mask blended on the floor and the foliage, which decode as the
+-- standard material, materialId 0; not on the clear coat). Tolerances as deferred_pipeline.lua
 -- (measured there across thread counts and host CPU features).
 local display = {
     { metric = "flip", channels = "rgb", display = "srgb", tolerance = 0.01 },
@@ -16,7 +17,7 @@ return {
     captures = {
         GB0 = {
             { metric = "angular", channels = "rg", encoding = "oct_unorm", tolerance = 0.5 },
-            { metric = "exact", channels = "a" },  -- materialId: 0 standard, 1 clear coat, 2 foliage
+            { metric = "exact", channels = "a" },  -- materialId: 0 standard and foliage, 1 clear coat, 2 two-colour
         },
         GB1 = { metric = "max_abs", tolerance = 1 / 255 },
         GB2 = { metric = "max_abs", tolerance = 1 / 255 },  -- foliage pixels: written by the fix-up

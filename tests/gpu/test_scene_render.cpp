@@ -109,7 +109,7 @@ TEST_F(SceneRender, FoliageIsFixedUpAfterFillingOnlyTwoTargets) {
         LayoutInfo info;
         auto g = gbufferAt(*s, pixelOf(*s, kBush), info);
         auto ch = [&](const char* n) { return g[static_cast<size_t>(info.find(n))]; };
-        EXPECT_EQ(ch("materialId").u[0], 2u);
+        EXPECT_EQ(ch("materialId").u[0], 0u);  // foliage decodes as the standard material
         EXPECT_NEAR(ch("reflectance").v[0], 0.5f, 0.5f / 255 + 1e-5f);
         EXPECT_EQ(ch("ao").v[0], 1.0f);
         EXPECT_EQ(ch("emissive").v[1], 0.0f);
@@ -119,7 +119,7 @@ TEST_F(SceneRender, FoliageIsFixedUpAfterFillingOnlyTwoTargets) {
         LayoutInfo info;
         auto g = gbufferAt(*s, pixelOf(*s, kBush), info);
         auto ch = [&](const char* n) { return g[static_cast<size_t>(info.find(n))]; };
-        EXPECT_EQ(ch("materialId").u[0], 2u);
+        EXPECT_EQ(ch("materialId").u[0], 0u);  // foliage decodes as the standard material
         EXPECT_NEAR(ch("reflectance").v[0], 0.35f, 0.5f / 255 + 1e-5f);  // foliage_reflectance
         EXPECT_EQ(ch("metalMask").v[0], 0.0f);
         EXPECT_NEAR(ch("ao").v[0], 1.0f, 1e-6f);
@@ -235,7 +235,7 @@ TEST_F(SceneRender, TwoColourMaterialFillsItsLayout) {
     // Above the decal: the material as declared, each channel within its encoding.
     auto g = at(kOxideEdge);
     auto ch = [&](const char* n) { return g[static_cast<size_t>(info->find(n))]; };
-    EXPECT_EQ(ch("materialId").u[0], 3u);
+    EXPECT_EQ(ch("materialId").u[0], 2u);
     EXPECT_NEAR(srgbEncode(ch("diffuseColor").v[0]), srgbEncode(0.30f), 0.5f / 255 + 1e-4f);
     EXPECT_NEAR(srgbEncode(ch("diffuseColor").v[1]), srgbEncode(0.12f), 0.5f / 255 + 1e-4f);
     EXPECT_NEAR(srgbEncode(ch("diffuseColor").v[2]), srgbEncode(0.05f), 0.5f / 255 + 1e-4f);
@@ -249,7 +249,7 @@ TEST_F(SceneRender, TwoColourMaterialFillsItsLayout) {
     // specular, like MetalMask/Reflectance on the base material — is left exactly as it was.
     auto d = at(kOxide);
     auto dc = [&](const char* n) { return d[static_cast<size_t>(info->find(n))]; };
-    EXPECT_EQ(dc("materialId").u[0], 3u);
+    EXPECT_EQ(dc("materialId").u[0], 2u);
     EXPECT_NEAR(srgbEncode(dc("diffuseColor").v[2]), srgbEncode(0.05f * 0.5f + 0.8f * 0.5f), 1.0f / 255);
     EXPECT_NEAR(dc("smoothness").v[0], 0.5f * 0.5f + 0.9f * 0.5f, 1.0f / 1023);
     for (int c = 0; c < 3; ++c) EXPECT_EQ(dc("f0").v[c], ch("f0").v[c]) << "f0[" << c << "]";

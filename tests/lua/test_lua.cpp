@@ -96,9 +96,28 @@ TEST(LuaErrors, CycleIsReportedByTheCompiler) {
 }
 
 TEST(LuaErrors, MaterialIdCollisionNamesBothDeclarations) {
+    // Materials share an id only when their pixels decode alike: the same layout...
     EXPECT_EQ(loadError("id_collision.lua"),
-              kScripts + "id_collision.lua:4: materials.foliage.id: 1 is already the id of material 'clearcoat' (" + kScripts +
-                  "id_collision.lua:3)");
+              kScripts + "id_collision.lua:5: materials.toon.id: 1 is the id of material 'clearcoat' (" + kScripts +
+                  "id_collision.lua:4) of layout 'disney': materials share an id only when their pixels decode alike (the same layout); choose a free id");
+    // ...and the same decal parameters.
+    EXPECT_EQ(loadError("id_decals_differ.lua"),
+              kScripts + "id_decals_differ.lua:4: materials.glossy.decals: 0 is the id of material 'standard' (materials/disney.lua:21) with other channels "
+                         "or decals: materials sharing an id decode alike; match them or choose a free id");
+}
+
+TEST(LuaErrors, MaterialIdKeptInDifferentBitsIsRefused) {
+    EXPECT_EQ(loadError("id_placement.lua"),
+              kScripts + "id_placement.lua:8: materials.wide.layout: layout 'wide' keeps materialId in target GB0.A bits 0..2 (uint), but layout "
+                         "'disney' (material 'standard', materials/disney.lua:21) keeps it in target GB0.A bits 0..1 (uint): every layout of a "
+                         "pipeline keeps materialId in the same place");
+}
+
+TEST(LuaErrors, StencilVariantsKeepTheirBase) {
+    // A variant's value does not depend on which values other classes took.
+    EXPECT_EQ(loadError("stencil_variant_unknown.lua"),
+              kScripts + "stencil_variant_unknown.lua:3: stencil.wet.variant_of: unknown stencil class 'lit_standrd' (did you mean 'lit_standard'?); "
+                         "expected one of: 'lit_standard'");
 }
 
 TEST(LuaErrors, MaterialParameterNamesCannotClashWithTheGeneratedShader) {
@@ -205,13 +224,25 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     EXPECT_EQ(p->materials[2].fills, (std::vector<std::string>{"GB0", "GB1"}));
     EXPECT_EQ(p->materials[2].fixup, "foliage_fixup");
     EXPECT_EQ(p->materials[3].name, "two_colour");
-    EXPECT_EQ(p->materials[3].id, 3u);
+    EXPECT_EQ(p->materials[2].id, 0u);  // decodes as the standard material after its fix-up
+    EXPECT_EQ(p->materials[2].stencil, "foliage");
+    EXPECT_EQ(p->materials[3].id, 2u);  // id 3 is left free for a game team
     EXPECT_EQ(p->materials[3].stencil, "lit_two_colour");
     ASSERT_EQ(p->stencilClasses.size(), 4u);
     EXPECT_EQ(p->stencilClasses[0].value, 1u);  // lit_standard, allocated
     EXPECT_EQ(p->stencilClasses[1].value, 2u);  // lit_clearcoat, allocated
-    EXPECT_EQ(p->stencilClasses[2].value, 9u);  // foliage, explicit: standard | bit 3
+    EXPECT_EQ(p->stencilClasses[2].value, 0x11u);  // foliage: a variant of lit_standard (high bits 1)
+    EXPECT_EQ(p->stencilClasses[2].mask, 0xFFu);
+    EXPECT_EQ(p->stencilClasses[2].base, "lit_standard");
+    EXPECT_EQ(p->stencilClasses[0].mask, 0x0Fu);   // a class's pass lights its variants too
     EXPECT_EQ(p->stencilClasses[3].value, 3u);  // lit_two_colour, allocated
+    // Decals: the standard material takes all five parameters, the others the common three,
+    // the two-colour material's base colour into its diffuse colour.
+    EXPECT_EQ(p->materials[0].decals, (std::vector<std::string>{"normal", "baseColor", "smoothness", "metalMask", "reflectance"}));
+    EXPECT_EQ(p->materials[1].decals, (std::vector<std::string>{"normal", "baseColor", "smoothness"}));
+    EXPECT_EQ(p->materials[2].decals, p->materials[0].decals);  // shares id 0: decodes alike
+    EXPECT_EQ(p->materials[3].channels.at("baseColor"), "diffuseColor");
+    EXPECT_EQ(p->materials[3].channels.at("f0"), "f0");
     EXPECT_EQ(p->output, "display");
     EXPECT_EQ(p->hdr, "hdr");
     EXPECT_EQ(p->exposure, "exposure");
