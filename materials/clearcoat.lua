@@ -14,7 +14,7 @@ local shadows = require "shadows"  -- its lights shadowed as the standard path's
 require "disney"
 
 rg.stencil "lit_clearcoat" { doc = "clear coat: two specular lobes" }
-rg.path "clearcoat" { stencil = "lit_clearcoat" }
+rg.path "clearcoat" { stencil = "lit_clearcoat", shading = "clearcoat_shading.glsl" }
 rg.material "clear_coat" {
     id = 1, layout = "disney", path = "clearcoat", surface = "materials/clearcoat.glsl",
     params = { coatSmoothness = 0.9, coatStrength = 1.0 },

@@ -13,7 +13,9 @@ rg.layout "disney" {
 
 -- Pixels lit by the standard lighting path carry this stencil class (value allocated by rgraph).
 rg.stencil "lit_standard" { doc = "standard Disney BRDF lighting" }
-rg.path "standard" { stencil = "lit_standard", doc = "Disney diffuse + GGX specular, seed 000 §3.1" }
+-- `shading` is the path's lighting function (rgShade over the layout's unpacked G-buffer): the
+-- deferred lighting pass calls it on the G-buffer, the forward pass on blended surfaces.
+rg.path "standard" { stencil = "lit_standard", shading = "standard_shading.glsl", doc = "Disney diffuse + GGX specular, seed 000 §3.1" }
 
 -- materialId 0: BaseColor, Smoothness, MetalMask, Reflectance (f0 = 0.16 * reflectance^2), AO.
 -- Decals blend MetalMask and Reflectance on the base material only (000 §3.3), beside the common

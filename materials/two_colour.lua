@@ -24,7 +24,7 @@ rg.layout "two_colour" {
 }
 
 rg.stencil "lit_two_colour" { doc = "two-colour base material: standard BRDF from diffuse and f0 colours" }
-rg.path "two_colour" { stencil = "lit_two_colour", doc = "the standard light loop over the two_colour layout" }
+rg.path "two_colour" { stencil = "lit_two_colour", shading = "two_colour_shading.glsl", doc = "the standard light loop over the two_colour layout" }
 rg.material "two_colour" {
     id = 2, layout = "two_colour", path = "two_colour", surface = "materials/two_colour.glsl",
     -- Decals blend their base colour into the diffuse colour; debug views show it as base colour

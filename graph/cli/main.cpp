@@ -193,15 +193,27 @@ int cmdDevices(int argc, char** argv) {
 int cmdGraph(int argc, char** argv) {
     Args args = Args::parse(argc, argv, 2, {"pipeline", "format", "size", "capture"});
     if (args.help) {
-        std::printf("usage: rgraph graph [--pipeline FILE.lua|builtin:NAME] [--format dot|json] [--size WxH] [--capture RESOURCE]...\n\n"
+        std::printf("usage: rgraph graph [--pipeline FILE.lua|builtin:NAME] [--format dot|json|materials] [--size WxH] [--capture RESOURCE]...\n\n"
                     "Compiles the pipeline (no GPU needed; memory sizes are estimated) and prints the plan:\n"
                     "passes in order, culled passes and why, resources with lifetimes and memory offsets,\n"
-                    "barriers. Default format: dot.\n");
+                    "barriers. Default format: dot. '--format materials' prints the material system instead:\n"
+                    "each material's id, layout, lighting path and stencil value, how they were assigned,\n"
+                    "and how many ids and stencil classes are left.\n");
         return kOk;
     }
     if (!args.error.empty()) return usageError(args.error, "graph");
     std::string format = args.get("format", "dot");
-    if (format != "dot" && format != "json") return usageError("--format must be 'dot' or 'json'", "graph");
+    if (format != "dot" && format != "json" && format != "materials")
+        return usageError("--format must be 'dot', 'json' or 'materials'", "graph");
+    if (format == "materials") {
+        const std::string pipeline = pipelineArg(args);
+        if (isBuiltin(pipeline)) return usageError("--format materials: built-in graphs declare no materials", "graph");
+        LuaHost host(luaHostOptionsWithoutDevice());
+        auto p = host.load(pipeline);
+        if (!p) return report(p.error());
+        std::printf("%s", describeMaterialSystem(*p).c_str());
+        return kOk;
+    }
     CompileOptions opts;
     if (args.has("size") && !parseSize(args.get("size"), opts.outputWidth, opts.outputHeight))
         return usageError("--size must be WIDTHxHEIGHT with each side in 1..16384, e.g. 1280x720; got '" + args.get("size") + "'", "graph");

@@ -245,6 +245,60 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
     return o.str();
 }
 
+std::string describeMaterialSystem(const PipelineDesc& p) {
+    std::ostringstream o;
+    char line[512];
+    // materialId: its width from the first material's layout (all layouts agree: checked).
+    uint32_t idBits = 0;
+    for (const MaterialDesc& m : p.materials) {
+        for (const LayoutDesc& l : p.layouts)
+            if (l.name == m.layout)
+                for (const TargetDesc& t : l.targets)
+                    for (const ChannelDesc& c : t.channels)
+                        if (c.name == "materialId") idBits = c.bits;
+        if (idBits) break;
+    }
+    const uint32_t ids = idBits ? (idBits >= 31 ? 0x7FFFFFFFu : 1u << idBits) : 0u;
+    o << "materialIds (" << idBits << " bits: " << ids << " ids; an id names how a pixel decodes, so materials of one layout and the same\n"
+      << "decal parameters may share one):\n";
+    std::map<uint32_t, std::vector<const MaterialDesc*>> byId;
+    for (const MaterialDesc& m : p.materials) byId[m.id].push_back(&m);
+    for (const auto& [id, ms] : byId) {
+        std::string names, decals;
+        for (const MaterialDesc* m : ms) names += (names.empty() ? "" : ", ") + m->name;
+        for (const std::string& d : ms.front()->decals) decals += (decals.empty() ? "" : " ") + d;
+        std::snprintf(line, sizeof line, "  %3u  layout %-12s decals %-48s materials %s\n", id, ms.front()->layout.c_str(),
+                      decals.empty() ? "(none)" : decals.c_str(), names.c_str());
+        o << line;
+    }
+    std::vector<uint32_t> free;
+    for (uint32_t i = 0; i < ids && free.size() < 8; ++i)
+        if (!byId.count(i)) free.push_back(i);
+    o << "  free: ";
+    if (free.empty()) o << "none";
+    for (size_t i = 0; i < free.size(); ++i) o << (i ? ", " : "") << free[i];
+    if (ids > byId.size() + free.size()) o << ", ...";
+    o << " (" << (ids - static_cast<uint32_t>(byId.size())) << " of " << ids << ")\n\n";
+    o << "stencil classes (8 bits: a class takes 1..15 in the low 4 bits and its pass tests them, so it lights\n"
+      << "its variants too; a variant keeps its base's low bits and takes 1..15 in the high 4):\n";
+    uint32_t classes = 0;
+    for (const StencilClassDesc& c : p.stencilClasses) {
+        std::string paths, materials;
+        for (const LightingPathDesc& lp : p.lightingPaths)
+            if (lp.stencil == (c.base.empty() ? c.name : c.base)) paths += (paths.empty() ? "" : ", ") + lp.name;
+        for (const MaterialDesc& m : p.materials)
+            if (m.stencil == c.name) materials += (materials.empty() ? "" : ", ") + m.name;
+        std::snprintf(line, sizeof line, "  0x%02X mask 0x%02X  %-16s %-24s lit by %-12s materials %s\n", c.value, c.mask, c.name.c_str(),
+                      c.base.empty() ? "" : ("variant of " + c.base).c_str(), paths.empty() ? "-" : paths.c_str(),
+                      materials.empty() ? "-" : materials.c_str());
+        o << line;
+        if (c.base.empty()) ++classes;
+    }
+    o << "  free: " << ((1u << kStencilPathBits) - 1 - classes) << " of " << ((1u << kStencilPathBits) - 1) << " classes, each with up to "
+      << ((1u << kStencilVariantBits) - 1) << " variants\n";
+    return o.str();
+}
+
 Value sceneMaterials(const PipelineDesc& pipeline, const Value& params) {
     std::vector<std::string> selected, paths;
     auto names = [](const Value& v, std::vector<std::string>& out) {
@@ -264,6 +318,10 @@ Value sceneMaterials(const PipelineDesc& pipeline, const Value& params) {
         t["id"] = Value(static_cast<double>(m.id));
         t["layout"] = Value(m.layout);
         t["surface"] = Value(m.surface);
+        t["origin"] = Value(m.origin);
+        for (const LightingPathDesc& lp : pipeline.lightingPaths)
+            if (lp.name == m.path) t["shading"] = Value(lp.shading);
+        if (!m.fixup.empty()) t["fixup"] = Value(m.fixup);
         Value::List targets, integer, fills, custom;
         for (const LayoutDesc& l : pipeline.layouts)
             if (l.name == m.layout)

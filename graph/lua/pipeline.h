@@ -105,6 +105,11 @@ struct PipelineDesc {
 // only those (an error names the layout and target otherwise).
 Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline);
 
+// The material system in words (`rgraph graph --format materials`): the materialIds with the
+// materials that share each and their layout and decal parameters, the stencil classes with
+// their values, masks and lighting paths, and what is left free.
+std::string describeMaterialSystem(const PipelineDesc& pipeline);
+
 // Checks `v` against the parameter's type and range; an error says what was expected.
 Result<Value> checkParamValue(const ParamDesc& p, const Value& v);
 

@@ -102,14 +102,14 @@ TEST(LuaErrors, MaterialIdCollisionNamesBothDeclarations) {
                   "id_collision.lua:4) of layout 'disney': materials share an id only when their pixels decode alike (the same layout); choose a free id");
     // ...and the same decal parameters.
     EXPECT_EQ(loadError("id_decals_differ.lua"),
-              kScripts + "id_decals_differ.lua:4: materials.glossy.decals: 0 is the id of material 'standard' (materials/disney.lua:21) with other channels "
+              kScripts + "id_decals_differ.lua:4: materials.glossy.decals: 0 is the id of material 'standard' (materials/disney.lua:23) with other channels "
                          "or decals: materials sharing an id decode alike; match them or choose a free id");
 }
 
 TEST(LuaErrors, MaterialIdKeptInDifferentBitsIsRefused) {
     EXPECT_EQ(loadError("id_placement.lua"),
               kScripts + "id_placement.lua:8: materials.wide.layout: layout 'wide' keeps materialId in target GB0.A bits 0..2 (uint), but layout "
-                         "'disney' (material 'standard', materials/disney.lua:21) keeps it in target GB0.A bits 0..1 (uint): every layout of a "
+                         "'disney' (material 'standard', materials/disney.lua:23) keeps it in target GB0.A bits 0..1 (uint): every layout of a "
                          "pipeline keeps materialId in the same place");
 }
 

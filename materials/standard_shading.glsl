@@ -1,0 +1,24 @@
+// Shading of the standard lighting path (seed 000 §3.1, §4): the Disney diffuse and GGX specular
+// of every light (shaders/lib/lighting.glsl: punctual, sun and area lights; the diffuse lobe from
+// the light's illuminance, the specular lobe from its representative point), the probes
+// (lib/ibl.glsl, with RG_IBL / RG_PROBES / RG_REFLECTION) and emissive, as absolute luminance.
+// One function for both halves of the render loop (fig:14): the deferred lighting pass
+// (shaders/passes/deferred_lighting.frag) calls it on the unpacked G-buffer, the forward pass on the
+// material's own surface function's output (rgraph generates that shader from the lighting path's
+// `shading`). `pixel` finds the tile's lights (RG_LIGHT_TILES) and the screen-space terms.
+vec3 rgShade(GBuffer_disney g, vec3 position, vec3 V, ivec2 pixel) {
+    // §3.2.1: metals take their f0 from the base colour, dielectrics 0.16 · reflectance².
+    vec3 diffuseColor = g.baseColor * (1.0 - g.metalMask);
+    vec3 f0 = mix(vec3(rgDielectricF0(g.reflectance)), g.baseColor, g.metalMask);
+    float linearRoughness = 1.0 - g.smoothness;
+    vec3 luminance = g.emissive;
+    RgLightList list = rgLightList(pixel);  // the tile's lights (lib/light_tiles.glsl); every light without tiles
+    float sun = rgSunVisibility(position, g.normal);  // the sun's shadow (RG_SHADOWS), once
+    for (uint k = 0u; k < list.count; ++k) {
+        uint i = rgListLight(list, k);
+        RgLightSample s = rgEvaluateLight(i, position, g.normal, V, linearRoughness, sun);
+        luminance += rgStandardLighting(s, g.normal, V, diffuseColor, f0, linearRoughness);
+    }
+    luminance += rgStandardIbl(position, g.normal, V, diffuseColor, f0, linearRoughness, rgAmbientOcclusion(g.ao));  // the probes (RG_IBL, RG_PROBES)
+    return luminance;
+}
