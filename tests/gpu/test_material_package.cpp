@@ -1,0 +1,215 @@
+// A game team's material package used as a team would (materials/examples/toon, copied to a
+// folder outside the repository): its own layout, stencil class, lighting path (deferred and
+// forward) and decal behaviour on top of the default pipeline; and five more materials with
+// their own lighting paths on top of the four built-ins (seed 000 §3.2: materialId + stencil-
+// routed lighting paths; §3.3: decals restricted to the parameters a material shares).
+#include <gtest/gtest.h>
+
+#include "gpu_fixture.h"
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+
+#include "cli/runtime.h"
+#include "cli/session.h"
+#include "image/image.h"
+#include "layout/layout.h"
+#include "lua/lua_host.h"
+
+using namespace rg;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kRoot = RG_SOURCE_ROOT;
+constexpr uint32_t W = 192, H = 160;
+constexpr float kPi = 3.14159265358979f;
+
+// A fresh folder outside the repository, removed afterwards.
+struct TempFolder {
+    fs::path dir;
+    explicit TempFolder(const std::string& name) : dir(fs::temp_directory_path() / ("rgraph_" + name + "_" + std::to_string(::getpid()))) {
+        fs::remove_all(dir);
+        fs::create_directories(dir);
+    }
+    ~TempFolder() {
+        std::error_code ec;
+        fs::remove_all(dir, ec);
+    }
+};
+
+// Seen from straight above: two thin toon slabs (grey tint 0.5, two bands, no wrap, no rim), the
+// left one opaque (G-buffer + the toon lighting pass), the right one blended at opacity 1 (the
+// forward pass, generated from the toon path's shading), a decal painting red over the left
+// slab's far half, and a 10 000 lux sun at cos 0.6 to the slabs' normal. No environment.
+const char* kToonScene = R"(local scene = require "scene"
+scene.material "grey" { model = "toon", base_color = { 0.5, 0.5, 0.5 }, params = { toonBands = 2, toonWrap = 0, toonRim = 0 } }
+scene.material "glass" { model = "toon", base_color = { 0.5, 0.5, 0.5 }, alpha = "blend", opacity = 1, params = { toonBands = 2, toonWrap = 0, toonRim = 0 } }
+scene.box "opaque" { size = { 1, 0.02, 1.6 }, position = { -0.7, 0, 0 }, material = "grey" }
+scene.box "blended" { size = { 1, 0.02, 1.6 }, position = { 0.7, 0, 0 }, material = "glass" }
+scene.decal "paint" { position = { -0.7, 0, -0.5 }, size = { 1.2, 0.4, 0.6 }, base_color = { 0.9, 0.1, 0.1 }, smoothness = 1, metal_mask = 1, opacity = 1 }
+scene.light "sun" { type = "sun", intensity = 10000, unit = "lux", direction = { -0.8, -0.6, 0 } }
+scene.camera "main" { position = { 0, 4, 0.001 }, target = { 0, 0, 0 }, fov = 40, aperture = 16, shutter = 1 / 125, iso = 100 }
+)";
+
+class MaterialPackage : public GpuFixture {
+protected:
+    static glm::ivec2 px(glm::vec3 p) { return pixelOf(cameraViewProj(glm::vec3(0, 4, 0.001f), glm::vec3(0), 40.0f, W, H), W, H, p); }
+};
+
+TEST_F(MaterialPackage, ToonRendersFromAFolderOutsideTheRepository) {
+    TempFolder tmp("toon");
+    for (const auto& e : fs::directory_iterator(kRoot + "/materials/examples/toon")) fs::copy(e.path(), tmp.dir / e.path().filename());
+    std::ofstream(tmp.dir / "test_scene.lua") << kToonScene;
+    SessionOptions o = sceneOptions((tmp.dir / "test_scene.lua").string(), {}, W, H);
+    Readback r = renderAndRead(o, (tmp.dir / "pipeline.lua").string(), 1, {"hdr", "GB0", "GB1", "GB2", "GB3"});
+    ASSERT_EQ(r.images.size(), 5u);
+    auto nits = [&](glm::vec3 p, int c) { glm::ivec2 q = px(p); return r["hdr"].at(q.x, q.y, c) / r.preExposure; };
+    // Two bands, N·L = 0.6: ceil(0.6 · 2) / 2 = 1, so the slab takes the whole E/π · tint (a
+    // Lambert surface would give 0.6 of it: the toon path, not the standard one, lit it).
+    const float toon = 0.5f / kPi * 10000.0f;  // 1591.5 nits
+    const glm::vec3 opaque(-0.7f, 0.01f, 0.45f), blended(0.7f, 0.01f, 0.3f), painted(-0.7f, 0.01f, -0.5f);
+    EXPECT_NEAR(nits(opaque, 1), toon, toon * 0.01f) << "deferred toon lighting";
+    EXPECT_NEAR(nits(blended, 1), toon, toon * 0.01f) << "forward toon shading (generated from the path's rgShade)";
+    // The decal painted the toon's tint (its channels = { baseColor = "tint" }) and nothing else:
+    // bands, wrap and the spare channels are the toon's own and stay as they were; decoded with
+    // the toon layout as the package declares it.
+    LuaHost host(luaHostOptionsWithoutDevice());
+    auto pipeline = host.load((tmp.dir / "pipeline.lua").string());
+    ASSERT_TRUE(pipeline.has_value()) << pipeline.error().message;
+    auto layout = std::find_if(pipeline->layouts.begin(), pipeline->layouts.end(), [](auto& l) { return l.name == "toon"; });
+    ASSERT_NE(layout, pipeline->layouts.end());
+    LayoutInfo info = *analyzeLayout(*layout);
+    auto gbuffer = [&](glm::vec3 p) {
+        glm::ivec2 q = px(p);
+        std::vector<TexelValue> texels;
+        for (const auto& t : info.desc.targets) {
+            const Image& img = r[t.name];
+            texels.push_back(texelFromFloats(t.format, &img.pixels[(size_t(q.y) * W + q.x) * img.channels], img.channels));
+        }
+        auto values = unpackTexel(info, texels);
+        return [values, &info](const char* n) { return values[static_cast<size_t>(info.find(n))]; };
+    };
+    auto clean = gbuffer(opaque), paint = gbuffer(painted);
+    EXPECT_EQ(clean("materialId").u[0], 3u);  // the id the default loop leaves free
+    EXPECT_EQ(paint("materialId").u[0], 3u);
+    const float q = 0.5f / 255 + 1e-4f;  // the sRGB 8-bit encoding's bound
+    EXPECT_NEAR(srgbEncode(clean("tint").v[0]), srgbEncode(0.5f), q);
+    EXPECT_NEAR(srgbEncode(paint("tint").v[0]), srgbEncode(0.9f), q);  // opacity 1: the decal's colour
+    EXPECT_NEAR(srgbEncode(paint("tint").v[1]), srgbEncode(0.1f), q);
+    for (const char* own : {"steps", "spare"}) EXPECT_EQ(paint(own).u[0], clean(own).u[0]) << own;
+    for (const char* own : {"wrap", "rim", "ao"}) EXPECT_EQ(paint(own).v[0], clean(own).v[0]) << own;
+    EXPECT_EQ(paint("reserved").v[0], clean("reserved").v[0]);  // where the disney layout's MetalMask would go
+    EXPECT_EQ(clean("steps").u[0], 2u);
+    // Lit red by the same bands: E/π · 0.9 in red.
+    EXPECT_NEAR(nits(painted, 0), 0.9f / kPi * 10000.0f, 0.9f / kPi * 10000.0f * 0.01f);
+}
+
+// The debug views decode each pixel with its own material's layout: the toon's tint is its base
+// colour, and it has no smoothness (striped magenta, not a value).
+TEST_F(MaterialPackage, DebugViewsDecodeTheToonLayout) {
+    TempFolder tmp("toon_views");
+    for (const auto& e : fs::directory_iterator(kRoot + "/materials/examples/toon")) fs::copy(e.path(), tmp.dir / e.path().filename());
+    std::ofstream(tmp.dir / "test_scene.lua") << kToonScene;
+    auto view = [&](const std::string& name) {
+        SessionOptions o = sceneOptions((tmp.dir / "test_scene.lua").string(), {}, W, H);
+        o.view = name;
+        Session s(*s_runtime, o);
+        auto r = s.load((tmp.dir / "pipeline.lua").string());
+        EXPECT_TRUE(r.has_value()) << r.error().describe();
+        if (!r) return Image{};
+        auto f = s.frame();
+        EXPECT_TRUE(f.has_value()) << f.error().describe();
+        auto img = s_runtime->executor().readback("debug_view");
+        EXPECT_TRUE(img.has_value());
+        return img ? std::move(*img) : Image{};
+    };
+    Image base = view("basecolor"), smooth = view("smoothness");
+    ASSERT_FALSE(base.pixels.empty());
+    ASSERT_FALSE(smooth.pixels.empty());
+    glm::ivec2 q = px(glm::vec3(-0.7f, 0.01f, 0.45f));
+    EXPECT_NEAR(base.at(q.x, q.y, 0), srgbEncode(0.5f), 2.0f / 255);
+    // Stripes: every pixel of the slab is magenta (1, 0, 1) or black.
+    int magenta = 0;
+    for (int dy = 0; dy < 8; ++dy) {
+        const float rch = smooth.at(q.x, q.y + dy, 0), g = smooth.at(q.x, q.y + dy, 1), b = smooth.at(q.x, q.y + dy, 2);
+        EXPECT_EQ(g, 0.0f);
+        EXPECT_EQ(rch, b);
+        magenta += rch > 0.5f;
+    }
+    EXPECT_GT(magenta, 0);
+}
+
+// Five more materials in one pipeline on top of the four built-ins, each with a lighting path
+// of its own (a shading function that returns 100 · k nits, so each sphere shows which pass lit
+// it): declared from a folder outside the repository; ids and stencil values assigned and shown.
+TEST_F(MaterialPackage, FiveMoreMaterialsEachLitByItsOwnPath) {
+    TempFolder tmp("five");
+    std::ofstream(tmp.dir / "flat.lua") << R"(local rg = require "rg"
+require "disney"
+for k = 1, 5 do
+    rg.stencil("lit_flat" .. k) { doc = "flat " .. k }
+    rg.path("flat" .. k) { stencil = "lit_flat" .. k, shading = "flat_shading.glsl" }
+    -- Decodes as the clear coat's disney pixels do: shares its id.
+    rg.material("flat" .. k) { id = 1, layout = "disney", path = "flat" .. k, surface = "materials/standard.glsl" }
+    rg.pass("lighting_flat" .. k) {
+        kind = "fullscreen", shader = "flat_lighting.frag", defines = { FLAT_K = k },
+        reads = { { "depth", as = "depth" }, { "exposure", as = "storage" } },
+        writes = { { "hdr", load = true } }, stencil = { class = "lit_flat" .. k },
+        insert = { after = "lighting_standard" },
+    }
+end
+)";
+    std::ofstream(tmp.dir / "flat_shading.glsl") << "vec3 rgShade(GBuffer_disney g, vec3 position, vec3 V, ivec2 pixel) { return vec3(100.0 * float(FLAT_K)); }\n";
+    std::ofstream(tmp.dir / "flat_lighting.frag") << R"(#version 460
+#include "lib/exposure.glsl"
+#include "gbuffer_disney.glsl"
+#include "flat_shading.glsl"
+layout(location = 0) in vec2 uv;
+layout(location = 0) out vec4 color;
+layout(set = 0, binding = 0, std430) readonly buffer exposure { RgExposureState state; } ex;
+layout(set = 0, binding = 1) uniform Params { float initial_ev100; } params;
+void main() {
+    GBuffer_disney g;
+    color = vec4(rgShade(g, vec3(0.0), vec3(0.0, 0.0, 1.0), ivec2(gl_FragCoord.xy)) * rgPreExposure(ex.state, params.initial_ev100), 1.0);
+}
+)";
+    std::ofstream(tmp.dir / "pipeline.lua") << "require \"pipelines.deferred\"\nrequire \"flat\"\n";
+    std::ofstream(tmp.dir / "scene.lua") << R"(local scene = require "scene"
+scene.material "floor" { base_color = { 0.5, 0.5, 0.5 } }
+scene.plane "floor" { size = { 8, 8 }, material = "floor" }
+for k = 1, 5 do
+    scene.material("m" .. k) { model = "flat" .. k, base_color = { 0.5, 0.5, 0.5 } }
+    scene.sphere("s" .. k) { radius = 0.25, position = { (k - 3) * 0.6, 0.3, 0 }, material = "m" .. k }
+end
+scene.light "sun" { type = "sun", intensity = 10000, unit = "lux", direction = { -0.3, -0.8, -0.5 } }
+scene.camera "main" { position = { 0, 4, 0.001 }, target = { 0, 0, 0 }, fov = 40, aperture = 16, shutter = 1 / 125, iso = 100 }
+)";
+    LuaHost host(luaHostOptionsWithoutDevice());
+    auto p = host.load((tmp.dir / "pipeline.lua").string());
+    ASSERT_TRUE(p.has_value()) << p.error().message;
+    ASSERT_EQ(p->materials.size(), 9u);
+    for (int k = 1; k <= 5; ++k) {
+        auto c = std::find_if(p->stencilClasses.begin(), p->stencilClasses.end(), [&](auto& x) { return x.name == "lit_flat" + std::to_string(k); });
+        ASSERT_NE(c, p->stencilClasses.end());
+        EXPECT_EQ(c->value, 3u + static_cast<uint32_t>(k));  // after lit_standard 1, lit_clearcoat 2, lit_two_colour 3
+        EXPECT_EQ(c->mask, 0x0Fu);
+    }
+    const std::string text = describeMaterialSystem(*p);
+    EXPECT_NE(text.find("materials clear_coat, flat1, flat2, flat3, flat4, flat5"), std::string::npos) << text;
+    EXPECT_NE(text.find("0x08 mask 0x0F  lit_flat5"), std::string::npos) << text;
+    EXPECT_NE(text.find("free: 7 of 15 classes"), std::string::npos) << text;
+    EXPECT_NE(text.find("free: 3 (1 of 4)"), std::string::npos) << text;
+
+    SessionOptions o = sceneOptions((tmp.dir / "scene.lua").string(), {}, W, H);
+    Readback r = renderAndRead(o, (tmp.dir / "pipeline.lua").string(), 1, {"hdr"});
+    ASSERT_EQ(r.images.size(), 1u);
+    for (int k = 1; k <= 5; ++k) {
+        glm::ivec2 q = px(glm::vec3(float(k - 3) * 0.6f, 0.55f, 0.0f));
+        EXPECT_NEAR(r["hdr"].at(q.x, q.y, 1) / r.preExposure, 100.0f * float(k), 0.5f * float(k)) << "flat" << k;
+    }
+}
+
+}  // namespace
