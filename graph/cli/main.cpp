@@ -386,33 +386,13 @@ Result<Image> writeOutputs(RenderSetup& setup, const std::string& exrPath, const
     if (setup.session)
         for (const auto& ch : setup.session->channelCaptures()) {
             channelNames.push_back(ch.name);
-            auto info = analyzeLayout(ch.layout);
-            if (!info) return std::unexpected(info.error());
-            std::vector<Image> targets;
-            for (const auto& t : ch.layout.targets) {
-                auto img = ex.readback(t.name);
-                if (!img) return std::unexpected(img.error());
-                targets.push_back(std::move(*img));
-            }
-            const int index = info->find(ch.channel);
-            const ChannelPlacement& pl = info->channels[static_cast<size_t>(index)];
-            const bool integer = info->channelDesc(static_cast<size_t>(index)).encoding == Encoding::Uint;
-            const uint32_t comps = info->channelDesc(static_cast<size_t>(index)).encoding == Encoding::Oct ? 3u : pl.components;
-            Image out(targets[0].width, targets[0].height, comps);
-            std::vector<TexelValue> texels(targets.size());
-            for (uint32_t y = 0; y < out.height; ++y)
-                for (uint32_t x = 0; x < out.width; ++x) {
-                    for (size_t t = 0; t < targets.size(); ++t)
-                        texels[t] = texelFromFloats(ch.layout.targets[t].format, &targets[t].pixels[(size_t(y) * out.width + x) * targets[t].channels],
-                                                    targets[t].channels);
-                    auto values = unpackTexel(*info, texels);
-                    for (uint32_t c = 0; c < comps; ++c)
-                        out.at(x, y, c) = integer ? static_cast<float>(values[static_cast<size_t>(index)].u[c]) : values[static_cast<size_t>(index)].v[c];
-                }
+            auto out = setup.session->channelImage(ch);
+            if (!out) return std::unexpected(out.error());
+            const uint32_t comps = out->channels;
             static const char* xyz[] = {"x", "y", "z", "w"};
             std::vector<std::string> names;
             for (uint32_t c = 0; c < comps; ++c) names.push_back(comps == 1 ? "Y" : xyz[c]);
-            layers.push_back({ch.name, names, out});
+            layers.push_back({ch.name, names, std::move(*out)});
         }
     for (const auto& c : captures) {
         if (c == setup.output() || (pipeline && c == pipeline->hdr)) continue;

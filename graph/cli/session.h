@@ -59,12 +59,19 @@ public:
     double lastSceneLoadMs() const { return m_sceneLoadMs; }
     // A capture that names a G-buffer channel ("gbuffer.smoothness" or "<layout>.<channel>"):
     // the layout that holds it. Its targets are exported; `render` decodes the channel.
+    // `--capture gbuffer.X` / `LAYOUT.X`: decoded per pixel by its materialId with that
+    // material's layout (`layout` tells the id; `byId` gives each id's layout and channel —
+    // gbuffer.X maps a standard name through the material's `channels`); pixels whose material
+    // has no such channel are NaN.
     struct ChannelCapture {
         std::string name;
         LayoutDesc layout;
         std::string channel;
+        std::map<uint32_t, std::pair<LayoutDesc, std::string>> byId;
     };
     const std::vector<ChannelCapture>& channelCaptures() const { return m_channels; }
+    // A channel capture read back and decoded, after a frame: see ChannelCapture.
+    Result<Image> channelImage(const ChannelCapture& capture) const;
     // The image `render` shows: the view's when a view is set, else the pipeline's display.
     std::string displayResource() const { return m_options.view.empty() ? m_pipeline.output : "debug_view"; }
     // Scripts and shaders the running pipeline was built from (what `watch` polls).

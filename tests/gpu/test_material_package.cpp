@@ -10,6 +10,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <unistd.h>
 
 #include "cli/runtime.h"
@@ -140,6 +141,36 @@ TEST_F(MaterialPackage, DebugViewsDecodeTheToonLayout) {
         magenta += rch > 0.5f;
     }
     EXPECT_GT(magenta, 0);
+}
+
+// `--capture gbuffer.X` decodes each pixel with its own material's layout: the toon's tint is
+// its base colour, its `steps` are its own, and a channel its layout lacks is NaN, not a value.
+TEST_F(MaterialPackage, ChannelCapturesDecodeEachPixelsLayout) {
+    TempFolder tmp("toon_captures");
+    for (const auto& e : fs::directory_iterator(kRoot + "/materials/examples/toon")) fs::copy(e.path(), tmp.dir / e.path().filename());
+    std::ofstream(tmp.dir / "test_scene.lua") << std::string(kToonScene) +
+        "scene.material \"std\" { base_color = { 0.2, 0.4, 0.6 }, smoothness = 0.7 }\n"
+        "scene.box \"standard\" { size = { 0.4, 0.02, 0.4 }, position = { 0, 0, 0 }, material = \"std\" }\n";
+    SessionOptions o = sceneOptions((tmp.dir / "test_scene.lua").string(), {}, W, H);
+    o.captures = {"gbuffer.baseColor", "gbuffer.smoothness", "toon.steps"};
+    Session s(*s_runtime, o);
+    ASSERT_TRUE(s.load((tmp.dir / "pipeline.lua").string()).has_value());
+    ASSERT_TRUE(s.frame().has_value());
+    std::map<std::string, Image> images;
+    for (const auto& c : s.channelCaptures()) {
+        auto img = s.channelImage(c);
+        ASSERT_TRUE(img.has_value()) << img.error().message;
+        images[c.name] = std::move(*img);
+    }
+    ASSERT_EQ(images.size(), 3u);
+    const glm::ivec2 toon = px(glm::vec3(-0.7f, 0.01f, 0.45f)), standard = px(glm::vec3(0.0f, 0.01f, 0.0f));
+    const float q = 0.5f / 255 + 1e-4f;
+    EXPECT_NEAR(srgbEncode(images["gbuffer.baseColor"].at(toon.x, toon.y, 0)), srgbEncode(0.5f), q);  // the tint
+    EXPECT_NEAR(srgbEncode(images["gbuffer.baseColor"].at(standard.x, standard.y, 2)), srgbEncode(0.6f), q);
+    EXPECT_TRUE(std::isnan(images["gbuffer.smoothness"].at(toon.x, toon.y, 0)));  // the toon has none
+    EXPECT_NEAR(images["gbuffer.smoothness"].at(standard.x, standard.y, 0), 0.7f, 0.5f / 1023 + 1e-5f);
+    EXPECT_EQ(images["toon.steps"].at(toon.x, toon.y, 0), 2.0f);
+    EXPECT_TRUE(std::isnan(images["toon.steps"].at(standard.x, standard.y, 0)));  // a disney pixel
 }
 
 // Five more materials in one pipeline on top of the four built-ins, each with a lighting path
