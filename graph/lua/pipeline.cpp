@@ -322,6 +322,9 @@ Value sceneMaterials(const PipelineDesc& pipeline, const Value& params) {
         for (const LightingPathDesc& lp : pipeline.lightingPaths)
             if (lp.name == m.path) t["shading"] = Value(lp.shading);
         if (!m.fixup.empty()) t["fixup"] = Value(m.fixup);
+        Value::Table channels;
+        for (const auto& [standard, channel] : m.channels) channels[standard] = Value(channel);
+        t["channels"] = Value(channels);
         Value::List targets, integer, fills, custom;
         for (const LayoutDesc& l : pipeline.layouts)
             if (l.name == m.layout)

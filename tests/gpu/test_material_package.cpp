@@ -173,6 +173,45 @@ TEST_F(MaterialPackage, ChannelCapturesDecodeEachPixelsLayout) {
     EXPECT_TRUE(std::isnan(images["toon.steps"].at(standard.x, standard.y, 0)));  // a disney pixel
 }
 
+// The local probe captures a material as its own surface function and layout give it, not as
+// the scene material's standard parameters: a "painted" material whose surface function glows
+// green whatever the scene says (here a red, red-glowing box) is green in the mirror floor's
+// reflection, which comes from the probe (SSR kept from finding anything).
+TEST_F(MaterialPackage, ProbeCaptureShadesTheMaterialsOwnSurface) {
+    TempFolder tmp("painted");
+    std::ofstream(tmp.dir / "painted.lua") << R"(local rg = require "rg"
+require "disney"
+rg.material "painted" { id = 3, layout = "disney", path = "standard", surface = "painted.glsl" }
+)";
+    std::ofstream(tmp.dir / "painted.glsl") << R"(GBuffer_disney rgSurface(RgSurface s) {
+    GBuffer_disney g;
+    g.normal = s.normal; g.smoothness = 0.3; g.materialId = RG_MATERIAL_ID;
+    g.baseColor = vec3(0.05, 0.8, 0.05); g.materialData = 0u; g.normalExtra = 0u; g.reserved = 0.0;
+    g.metalMask = 0.0; g.reflectance = 0.5; g.ao = 1.0; g.emissive = vec3(10.0, 200.0, 10.0);
+    return g;
+}
+)";
+    std::ofstream(tmp.dir / "pipeline.lua") << "require \"pipelines.deferred\"\nrequire \"painted\"\n";
+    std::ofstream(tmp.dir / "scene.lua") << R"(local scene = require "scene"
+scene.material "mirror" { base_color = { 0.95, 0.95, 0.95 }, metal_mask = 1, smoothness = 1 }
+scene.plane "floor" { size = { 20, 20 }, material = "mirror" }
+scene.material "red" { model = "painted", base_color = { 0.8, 0.05, 0.05 }, emissive = { 200, 10, 10 } }
+scene.box "box" { size = { 1, 1, 1 }, position = { 0, 0.5, -2 }, material = "red" }
+scene.environment "sky" { kind = "sky" }
+scene.camera "main" { position = { 0, 2, 6 }, target = { 0, 0, 0 }, fov = 40, aperture = 4, shutter = 1 / 60, iso = 100 }
+scene.probe "front" { shape = "box", position = { 0, 0.5, -1 }, size = { 4, 3, 6 }, fade = 0.25 }
+)";
+    SessionOptions o = sceneOptions((tmp.dir / "scene.lua").string(), {}, W, H);
+    o.params["ssr_distance"] = Value(0.1);
+    Readback r = renderAndRead(o, (tmp.dir / "pipeline.lua").string(), 1, {"hdr"});
+    ASSERT_EQ(r.images.size(), 1u);
+    const glm::mat4 viewProj = cameraViewProj(glm::vec3(0, 2, 6), glm::vec3(0), 40.0f, W, H);
+    const glm::ivec2 mirror = pixelOf(viewProj, W, H, glm::vec3(0.0f, -0.5f, -1.5f)), face = pixelOf(viewProj, W, H, glm::vec3(0.0f, 0.5f, -1.5f));
+    const Image& hdr = r["hdr"];
+    EXPECT_GT(hdr.at(face.x, face.y, 1), 10.0f * hdr.at(face.x, face.y, 0));      // the camera sees it green
+    EXPECT_GT(hdr.at(mirror.x, mirror.y, 1), 10.0f * hdr.at(mirror.x, mirror.y, 0));  // and so did the probe
+}
+
 // Five more materials in one pipeline on top of the four built-ins, each with a lighting path
 // of its own (a shading function that returns 100 · k nits, so each sphere shows which pass lit
 // it): declared from a folder outside the repository; ids and stencil values assigned and shown.
