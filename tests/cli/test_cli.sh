@@ -64,6 +64,9 @@ check "unlit glb without environment" 0 grep "wrote $tmp/n.exr" -- \
 # The box's pixels: lit under the default sky, black with none (relative error of the unlit image against the lit one: 100 %).
 check "sky lights the glb" 0 grep "mean relative error 1" -- "$rgraph" compare "$tmp/n.exr" "$tmp/u.exr"
 check "graph json parses" 0 -- bash -c "'$rgraph' graph --format json --size 64x64 | python3 -c 'import json,sys; p=json.load(sys.stdin); n=[x[\"name\"] for x in p[\"passes\"]]; assert n[:5]==[\"env_cube\",\"env_mips\",\"env_prefilter\",\"env_irradiance\",\"dfg_table\"] and n[5:8]==[\"probe_capture\",\"probe_mips\",\"probe_prefilter\"] and n[8:13]==[\"sun_cascades\",\"shadow_clear\",\"sun_cull\",\"shadow_sun\",\"shadow_local\"] and n[13:18]==[\"gbuffer\",\"light_culling\",\"gtao\",\"foliage_fixup\",\"ao_blur\"] and n[21:30]==[\"decals\",\"hiz\",\"ssr\",\"reflection_compose\",\"lighting_standard\",\"lighting_clearcoat\",\"lighting_two_colour\",\"sky\",\"forward\"] and n[-2:]==[\"tonemap\",\"fxaa\"], n'"
+check "graph materials" 0 grep "  free: 3 (1 of 4)" -- "$rgraph" graph --format materials
+check "graph materials: foliage is a variant" 0 grep "0x11 mask 0xFF  foliage          variant of lit_standard" -- "$rgraph" graph --format materials
+check "graph materials of a built-in graph" 2 grep "built-in graphs declare no materials" -- "$rgraph" graph --pipeline builtin:triangle --format materials
 check "export-scene" 0 grep "wrote $tmp/materials.glb (6 meshes" -- "$rgraph" export-scene --scene tests/gpu/scenes/materials.lua --out "$tmp/materials.glb"
 check "render a glb" 0 grep "wrote $tmp/g.exr" -- "$rgraph" render --scene "$tmp/materials.glb" --size 64x32 --out "$tmp/g.exr" --png "$tmp/g.png"
 check "debug view" 0 grep "wrote $tmp/v.exr" -- "$rgraph" render --scene tests/gpu/scenes/materials.lua --view materialid --size 64x32 --out "$tmp/v.exr" --png "$tmp/v.png"
