@@ -1,6 +1,7 @@
 #include "runtime.h"
 
 #include <cstdlib>
+#include <dlfcn.h>
 #include <filesystem>
 
 #include "passes/passes.h"
@@ -9,14 +10,45 @@ namespace rg {
 
 namespace fs = std::filesystem;
 
+namespace {
+std::string& rootOverride() {
+    static std::string dir;
+    return dir;
+}
+std::string& cacheOverride() {
+    static std::string dir;
+    return dir;
+}
+// <prefix>/share/rgraph when this code runs from <prefix>/bin or <prefix>/lib (an installed copy).
+std::string installedRoot() {
+    Dl_info info{};
+    if (!dladdr(reinterpret_cast<void*>(&installedRoot), &info) || !info.dli_fname) return {};
+    std::error_code ec;
+    const fs::path self = fs::canonical(fs::path(info.dli_fname), ec);
+    if (ec) return {};
+    const fs::path share = self.parent_path().parent_path() / "share" / "rgraph";
+    return fs::is_directory(share / "scripts", ec) ? share.string() : std::string();
+}
+}  // namespace
+
+void setProjectRoot(std::string dir) { rootOverride() = std::move(dir); }
+void setCacheDir(std::string dir) { cacheOverride() = std::move(dir); }
+
 std::string projectRoot() {
     if (const char* r = std::getenv("RG_ROOT"); r && *r) return r;
-    return RG_SOURCE_ROOT;
+    if (!rootOverride().empty()) return rootOverride();
+    static const std::string installed = installedRoot();
+    return installed.empty() ? std::string(RG_SOURCE_ROOT) : installed;
 }
 
 std::string cacheDir() {
     if (const char* c = std::getenv("RG_CACHE_DIR"); c && *c) return c;
-    return RG_DEFAULT_CACHE_DIR;
+    if (!cacheOverride().empty()) return cacheOverride();
+    static const std::string installed = installedRoot();
+    if (installed.empty()) return RG_DEFAULT_CACHE_DIR;
+    if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x) return std::string(x) + "/rgraph";
+    if (const char* h = std::getenv("HOME"); h && *h) return std::string(h) + "/.cache/rgraph";
+    return (fs::temp_directory_path() / "rgraph-cache").string();
 }
 
 std::string generatedShaderDir() { return cacheDir() + "/generated"; }
@@ -36,6 +68,7 @@ Result<std::unique_ptr<Runtime>> Runtime::create(const RuntimeOptions& options) 
     co.validation = options.validation;
     co.framesInFlight = options.framesInFlight;
     co.pipelineCachePath = cacheDir() + "/pipelines.bin";
+    co.external = options.external;
     auto ctx = gpu::Context::create(co);
     if (!ctx) return std::unexpected(ctx.error());
     rt->m_context = std::move(*ctx);

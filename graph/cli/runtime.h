@@ -15,8 +15,14 @@
 
 namespace rg {
 
+// The folder with scripts/, materials/ and shaders/: RG_ROOT when set, else setProjectRoot's,
+// else <prefix>/share/rgraph beside an installed binary or library, else the source tree.
 std::string projectRoot();
+// Caches: RG_CACHE_DIR when set, else setCacheDir's, else the build tree's cache/ (an installed
+// copy: $XDG_CACHE_HOME/rgraph or ~/.cache/rgraph).
 std::string cacheDir();
+void setProjectRoot(std::string dir);
+void setCacheDir(std::string dir);
 // Generated GLSL (G-buffer pack/unpack of each layout): <cacheDir>/generated, on the include path.
 std::string generatedShaderDir();
 // Sets MESA_SHADER_CACHE_DIR (unless set) before any Vulkan call.
@@ -26,6 +32,7 @@ struct RuntimeOptions {
     std::optional<uint32_t> device;
     std::optional<bool> validation;
     uint32_t framesInFlight = 2;
+    std::optional<gpu::ExternalDevice> external;  // the host's device (the library's HostDevice)
 };
 
 class Runtime {

@@ -340,6 +340,7 @@ Result<Scene> readScene(const std::string& file, const std::map<std::string, std
     if (ext == ".lua") {
         SceneScriptOptions o;
         o.args = args;
+        o.projectRoot = projectRoot();
         return loadSceneScript(file, o);
     }
     if (ext == ".gltf" || ext == ".glb") {
@@ -367,10 +368,11 @@ Result<Scene> readScene(const std::string& file, const std::map<std::string, std
 // Loads the scene the pipeline's scene passes draw, matches its materials to the pipeline's, and
 // takes the camera's exposure settings into the camera parameters.
 Result<std::unique_ptr<passes::GpuScene>> Session::loadScene(PipelineDesc& pipeline) {
-    const std::string file = m_options.scene.empty() ? defaultScene() : m_options.scene;
-    auto scene = readScene(file, m_options.sceneArgs);
+    // A scene built in code (the library's setScene) or read from its file.
+    const std::string file = m_options.sceneData ? std::string("the host's scene") : m_options.scene.empty() ? defaultScene() : m_options.scene;
+    auto scene = m_options.sceneData ? Result<Scene>(*m_options.sceneData) : readScene(file, m_options.sceneArgs);
     if (!scene) return std::unexpected(scene.error());
-    const std::string ext = fs::path(file).extension().string();
+    const std::string ext = m_options.sceneData ? std::string() : fs::path(file).extension().string();
     if (auto r = chooseEnvironment(*scene, m_options.environment, /*litByDefault=*/ext == ".gltf" || ext == ".glb"); !r)
         return std::unexpected(r.error());
     for (Material& m : scene->materials) {
@@ -493,7 +495,20 @@ Result<void> Session::load(const std::string& file) {
                     channels.push_back({c, l, name, {}});
                     found = true;
                 }
-                channels.back().byId.emplace(m.id, std::make_pair(l, name));
+                // Only channels of the same shape as the first (components, integer or not); the
+                // others' pixels stay NaN.
+                auto shape = [](const LayoutDesc& ld, const std::string& ch) {
+                    for (const auto& t : ld.targets)
+                        for (const auto& cd : t.channels)
+                            if (cd.name == ch) {
+                                const uint32_t n = cd.encoding == Encoding::Oct || cd.encoding == Encoding::Srgb ? 3u : std::max(cd.components, 1u);
+                                return std::make_pair(n, cd.encoding == Encoding::Uint);
+                            }
+                    return std::make_pair(0u, false);
+                };
+                const auto& first = channels.back().byId.empty() ? std::make_pair(channels.back().layout, channels.back().channel)
+                                                                 : channels.back().byId.begin()->second;
+                if (shape(l, name) == shape(first.first, first.second)) channels.back().byId.emplace(m.id, std::make_pair(l, name));
             }
             if (found && !channels.back().byId.empty()) {
                 // The layout that tells the id: the first material's (every one keeps materialId alike).
@@ -523,6 +538,7 @@ Result<void> Session::load(const std::string& file) {
     if (scene) {
         for (const auto& [k, v] : m_options.sceneArgs) sceneKey += k + "=" + v + ";";
         sceneKey += "environment=" + m_options.environment + ";";
+        if (m_options.sceneData) sceneKey += "memory=" + std::to_string(reinterpret_cast<uintptr_t>(m_options.sceneData.get())) + ";";
         for (const auto& f : scene->scene().files) {
             std::ifstream in(f, std::ios::binary);
             sceneKey += f + ":" + std::to_string(std::hash<std::string>{}(std::string((std::istreambuf_iterator<char>(in)), {}))) + ";";

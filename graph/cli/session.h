@@ -21,6 +21,8 @@ struct SessionOptions {
     // The scene (.lua, .gltf, .glb) the pipeline's `scene` passes draw; "" = the default scene
     // (scripts/scenes/default.lua) when the pipeline has a scene pass.
     std::string scene;
+    // A scene made in memory (the library's Renderer::setScene): drawn instead of `scene`.
+    std::shared_ptr<const Scene> sceneData;
     std::string camera;  // a camera of the scene by name; "" = its first
     std::map<std::string, std::string> sceneArgs;  // a Lua scene's `scene.args` (--scene-arg)
     // --environment: "" = the scene's own (a glTF scene with no light and no environment gets the

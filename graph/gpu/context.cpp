@@ -134,10 +134,44 @@ Result<std::vector<DeviceInfo>> Context::listDevices() {
     return out;
 }
 
+// The host's device (ContextOptions::external): checked as far as Vulkan lets us, then adopted.
+Result<void> Context::adopt(const ExternalDevice& e) {
+    if (!e.instance || !e.physicalDevice || !e.device || !e.queue)
+        return fail(ErrorCode::InvalidInput, "host device: instance, physical device, device and queue must all be given");
+    m_ownsDevice = false;
+    m_instance = e.instance;
+    m_physical = e.physicalDevice;
+    m_device = e.device;
+    m_queue = e.queue;
+    m_queueFamily = e.queueFamily;
+    m_info = describe(e.physicalDevice, 0);
+    if (!m_info.usable) return fail(ErrorCode::Device, "host device '" + m_info.name + "' cannot be used: " + m_info.whyNot);
+    uint32_t nf = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(m_physical, &nf, nullptr);
+    std::vector<VkQueueFamilyProperties> families(nf);
+    vkGetPhysicalDeviceQueueFamilyProperties(m_physical, &nf, families.data());
+    if (e.queueFamily >= nf || !(families[e.queueFamily].queueFlags & VK_QUEUE_GRAPHICS_BIT) ||
+        !(families[e.queueFamily].queueFlags & VK_QUEUE_COMPUTE_BIT) || !families[e.queueFamily].timestampValidBits)
+        return fail(ErrorCode::InvalidInput, "host device: queue family " + std::to_string(e.queueFamily) +
+                                                 " must support graphics, compute and timestamps");
+    // Debug labels and names when the host's instance has the extension (null otherwise).
+    m_beginLabel = reinterpret_cast<PFN_vkCmdBeginDebugUtilsLabelEXT>(vkGetInstanceProcAddr(m_instance, "vkCmdBeginDebugUtilsLabelEXT"));
+    m_endLabel = reinterpret_cast<PFN_vkCmdEndDebugUtilsLabelEXT>(vkGetInstanceProcAddr(m_instance, "vkCmdEndDebugUtilsLabelEXT"));
+    m_setName = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(vkGetInstanceProcAddr(m_instance, "vkSetDebugUtilsObjectNameEXT"));
+    m_debugUtils = m_beginLabel && m_endLabel && m_setName;
+    return {};
+}
+
 Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) {
     std::unique_ptr<Context> ctx(new Context());
     ctx->m_framesInFlight = std::max(1u, options.framesInFlight);
     ctx->m_deletions.resize(ctx->m_framesInFlight);
+    if (options.external) {
+        if (auto r = ctx->adopt(*options.external); !r) return std::unexpected(r.error());
+        vkGetPhysicalDeviceProperties(ctx->m_physical, &ctx->m_properties);
+        if (auto r = ctx->createDeviceObjects(options); !r) return std::unexpected(r.error());
+        return ctx;
+    }
     bool wantValidation = options.validation.value_or(envFlag("RG_VALIDATION"));
     if (wantValidation && !hasLayer(kValidationLayer))
         return fail(ErrorCode::Device,
@@ -261,34 +295,41 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     info.pQueueCreateInfos = &queueInfo;
     RG_VK_TRY(vkCreateDevice(ctx->m_physical, &info, nullptr, &ctx->m_device));
     vkGetDeviceQueue(ctx->m_device, ctx->m_queueFamily, 0, &ctx->m_queue);
-    ctx->m_allocator = std::make_unique<Allocator>(ctx->m_physical, ctx->m_device);
+    if (auto r = ctx->createDeviceObjects(options); !r) return std::unexpected(r.error());
+    return ctx;
+}
+
+// What rgraph creates on the device, its own or the host's: the allocator, the one-shot command
+// pool and the pipeline cache.
+Result<void> Context::createDeviceObjects(const ContextOptions& options) {
+    m_allocator = std::make_unique<Allocator>(m_physical, m_device);
 
     VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;
-    poolInfo.queueFamilyIndex = ctx->m_queueFamily;
+    poolInfo.queueFamilyIndex = m_queueFamily;
     VkCommandPool pool = VK_NULL_HANDLE;
-    RG_VK_TRY(vkCreateCommandPool(ctx->m_device, &poolInfo, nullptr, &pool));
-    ctx->m_oneShotPool = OwnedCommandPool(ctx->m_device, pool);
+    RG_VK_TRY(vkCreateCommandPool(m_device, &poolInfo, nullptr, &pool));
+    m_oneShotPool = OwnedCommandPool(m_device, pool);
 
     // The pipeline cache, from its file when that holds this device's and driver's data (the
     // header's vendor, device and cache UUID; anything else starts empty).
-    ctx->m_pipelineCachePath = options.pipelineCachePath;
+    m_pipelineCachePath = options.pipelineCachePath;
     std::vector<char> initial;
     if (!options.pipelineCachePath.empty()) {
         std::ifstream in(options.pipelineCachePath, std::ios::binary);
         initial.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
         VkPipelineCacheHeaderVersionOne header{};
         const bool fits = initial.size() >= sizeof header && (std::memcpy(&header, initial.data(), sizeof header), true) &&
-                          header.headerVersion == VK_PIPELINE_CACHE_HEADER_VERSION_ONE && header.vendorID == ctx->m_properties.vendorID &&
-                          header.deviceID == ctx->m_properties.deviceID &&
-                          std::memcmp(header.pipelineCacheUUID, ctx->m_properties.pipelineCacheUUID, VK_UUID_SIZE) == 0;
+                          header.headerVersion == VK_PIPELINE_CACHE_HEADER_VERSION_ONE && header.vendorID == m_properties.vendorID &&
+                          header.deviceID == m_properties.deviceID &&
+                          std::memcmp(header.pipelineCacheUUID, m_properties.pipelineCacheUUID, VK_UUID_SIZE) == 0;
         if (!fits) initial.clear();
     }
     VkPipelineCacheCreateInfo cacheInfo{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
     cacheInfo.initialDataSize = initial.size();
     cacheInfo.pInitialData = initial.empty() ? nullptr : initial.data();
-    RG_VK_TRY(vkCreatePipelineCache(ctx->m_device, &cacheInfo, nullptr, &ctx->m_pipelineCache));
-    return ctx;
+    RG_VK_TRY(vkCreatePipelineCache(m_device, &cacheInfo, nullptr, &m_pipelineCache));
+    return {};
 }
 
 Result<void> Context::savePipelineCache() const {
@@ -320,14 +361,14 @@ Context::~Context() {
         }
         m_oneShotPool.reset();
         m_allocator.reset();
-        vkDestroyDevice(m_device, nullptr);
+        if (m_ownsDevice) vkDestroyDevice(m_device, nullptr);
     }
     if (m_messenger) {
         auto destroy = reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
             vkGetInstanceProcAddr(m_instance, "vkDestroyDebugUtilsMessengerEXT"));
         if (destroy) destroy(m_instance, m_messenger, nullptr);
     }
-    if (m_instance) vkDestroyInstance(m_instance, nullptr);
+    if (m_instance && m_ownsDevice) vkDestroyInstance(m_instance, nullptr);
 }
 
 VKAPI_ATTR VkBool32 VKAPI_CALL Context::debugCallback(

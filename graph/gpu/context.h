@@ -30,6 +30,18 @@ struct DeviceInfo {
     std::string whyNot;  // reason when not usable
 };
 
+// A device the host application created and owns: rgraph renders with it and never destroys it.
+// The device must be Vulkan 1.3 with dynamicRendering, synchronization2, maintenance4,
+// hostQueryReset and imageCubeArray enabled; the queue family must do graphics, compute and
+// timestamps.
+struct ExternalDevice {
+    VkInstance instance = VK_NULL_HANDLE;
+    VkPhysicalDevice physicalDevice = VK_NULL_HANDLE;
+    VkDevice device = VK_NULL_HANDLE;
+    uint32_t queueFamily = 0;
+    VkQueue queue = VK_NULL_HANDLE;
+};
+
 struct ContextOptions {
     std::optional<uint32_t> deviceIndex;  // --device N
     std::optional<bool> validation;       // default: RG_VALIDATION environment variable
@@ -37,11 +49,14 @@ struct ContextOptions {
     // A file the VkPipelineCache starts from (when it exists and was written by the same device
     // and driver) and is saved to when the context ends; "" keeps it in memory.
     std::string pipelineCachePath;
+    // Use the host's device instead of creating one (validation is then the host's choice).
+    std::optional<ExternalDevice> external;
 };
 
 class Context {
 public:
     static Result<std::unique_ptr<Context>> create(const ContextOptions& options = {});
+    bool ownsDevice() const { return m_ownsDevice; }
     // Lists physical devices (and why any is unusable) without creating a device.
     static Result<std::vector<DeviceInfo>> listDevices();
     ~Context();
@@ -83,6 +98,8 @@ public:
     Result<void> waitIdle();
 
 private:
+    Result<void> adopt(const ExternalDevice& device);
+    Result<void> createDeviceObjects(const ContextOptions& options);
     Context() = default;
     static VKAPI_ATTR VkBool32 VKAPI_CALL debugCallback(VkDebugUtilsMessageSeverityFlagBitsEXT,
                                                         VkDebugUtilsMessageTypeFlagsEXT,
@@ -107,6 +124,7 @@ private:
     std::vector<std::vector<std::function<void()>>> m_deletions;
 
     bool m_validation = false;
+    bool m_ownsDevice = true;  // false: the host's instance and device (ContextOptions::external)
     bool m_debugUtils = false;
     uint32_t m_validationMessages = 0;
     std::vector<std::string> m_messages;

@@ -741,6 +741,13 @@ struct Builder {
         if (!m.fills.empty() && m.fills.size() < lit->targets.size() && m.fixup.empty())
             return w.at("fixup").error("material fills only part of layout '" + m.layout + "': name the fix-up pass that fills the rest");
         if (auto r = standardChannels(w, b, *lit, m); !r) return r;
+        // A lighting path's pass and shading function decode one layout.
+        if (!m.path.empty())
+            for (const MaterialDesc& other : out.materials)
+                if (other.path == m.path && other.layout != m.layout)
+                    return w.at("path").error("lighting path '" + m.path + "' lights layout '" + other.layout + "' (material '" + other.name + "', " +
+                                              other.origin + "); this material's layout is '" + m.layout +
+                                              "': a path's lighting pass and shading function decode one layout, so declare a path of its own");
         // A materialId names how its pixels decode (decals, debug views): materials may share
         // one when they decode alike, as foliage shares the standard material's after its fix-up.
         if (ids.count(m.id)) {

@@ -158,44 +158,56 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
     auto bit = [&](const std::string& s) { return 1u << (std::find(standard.begin(), standard.end(), s) - standard.begin()); };
     for (size_t i = 0; i < standard.size(); ++i) o << "#define RG_VIEW_" << kBits[i] << " " << (1u << i) << "u\n";
     std::vector<const LayoutDesc*> layouts;
+    std::map<std::string, const MaterialDesc*> defines;
     for (const MaterialDesc& m : pipeline.materials) {
         auto l = std::find_if(pipeline.layouts.begin(), pipeline.layouts.end(), [&](auto& x) { return x.name == m.layout; });
         if (l != pipeline.layouts.end() && std::find(layouts.begin(), layouts.end(), &*l) == layouts.end()) layouts.push_back(&*l);
         std::string id;
         for (char c : m.name) id += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-        o << "#define RG_MATERIAL_" << id << " " << m.id << "u\n";
+        if (defines.count(id))
+            return fail(ErrorCode::InvalidInput, m.origin + ": material '" + m.name + "' and material '" + defines[id]->name + "' (" + defines[id]->origin +
+                                                     ") both become RG_MATERIAL_ID_" + id + " in the generated GLSL; rename one");
+        defines[id] = &m;
+        o << "#define RG_MATERIAL_ID_" << id << " " << m.id << "u\n";
     }
     for (const LayoutDesc* l : layouts) o << "#include \"gbuffer_" << l->name << ".glsl\"\n";
     o << "struct RgGBufferView {\n    uint materialId;\n    uint has;     // RG_VIEW_* of the parameters its layout holds\n"
          "    uint decals;  // RG_VIEW_* of the parameters decals blend on it\n"
          "    vec3 normal;\n    vec3 baseColor;\n    float smoothness;\n    float metalMask;\n    float reflectance;\n"
          "    vec3 f0;\n    float ao;\n    vec3 emissive;\n};\n";
+    // The targets: every material layout's, by name (so declaration order does not matter),
+    // passed as four floats texels (t0..t3, vec4(0) beyond them) as the decal pass, the debug
+    // views and the reference read GB0..GB3. A target name keeps one format in every layout.
+    std::map<std::string, std::pair<Format, const LayoutDesc*>> byName;
+    for (const LayoutDesc* l : layouts)
+        for (const TargetDesc& t : l->targets) {
+            auto [it, added] = byName.emplace(t.name, std::make_pair(t.format, l));
+            if (!added && it->second.first != t.format)
+                return fail(ErrorCode::InvalidInput, (l->origin.empty() ? "" : l->origin + ": ") + "layout '" + l->name + "' makes target '" + t.name +
+                                                         "' " + std::string(formatName(t.format)) + ", layout '" + it->second.second->name + "' " +
+                                                         std::string(formatName(it->second.first)) + ": a target has one format in every layout");
+            if (formatInfo(t.format).integer)
+                return fail(ErrorCode::InvalidInput, (l->origin.empty() ? "" : l->origin + ": ") + "layout '" + l->name + "' target '" + t.name +
+                                                         "' is an integer format: decals, debug views and the reference read a material's targets as float texels");
+        }
+    std::vector<std::string> targets;
+    for (const auto& [name, _] : byName) targets.push_back(name);
+    if (targets.size() > 4)
+        return fail(ErrorCode::InvalidInput, "the pipeline's material layouts use " + std::to_string(targets.size()) + " targets (" + joinQuoted(targets) +
+                                                 "): decals, debug views and the reference read at most four (GB0..GB3 in the default loop)");
+    const std::string params4 = "vec4 t0, vec4 t1, vec4 t2, vec4 t3";
     if (layouts.empty()) {
-        o << "RgGBufferView rgDecodeGBuffer(vec4 t0, vec4 t1, vec4 t2, vec4 t3) {\n    RgGBufferView v;\n    v.materialId = 0u; v.has = 0u; v.decals = 0u;\n"
+        o << "RgGBufferView rgDecodeGBuffer(" << params4 << ") {\n    RgGBufferView v;\n    v.materialId = 0u; v.has = 0u; v.decals = 0u;\n"
              "    v.normal = vec3(0.0, 0.0, 1.0); v.baseColor = vec3(0.0); v.smoothness = 0.0; v.metalMask = 0.0;\n"
              "    v.reflectance = 0.0; v.f0 = vec3(0.0); v.ao = 1.0; v.emissive = vec3(0.0);\n    return v;\n}\n"
-             "void rgEncodeDecals(RgGBufferView v, vec4 t0, vec4 t1, vec4 t2, vec4 t3, out vec4 o0, out vec4 o1, out vec4 o2, out vec4 o3) {\n"
-             "    o0 = t0; o1 = t1; o2 = t2; o3 = t3;\n}\n#endif\n";
+             "void rgEncodeDecals(RgGBufferView v, " << params4 << ", out vec4 o0, out vec4 o1, out vec4 o2, out vec4 o3) {\n"
+             "    o0 = t0; o1 = t1; o2 = t2; o3 = t3;\n}\n#define RG_DECAL_TARGETS 0\n#endif\n";
         return o.str();
     }
-    // The targets: the first material's layout's; the others' must be among them.
     const LayoutDesc& first = *layouts.front();
-    std::vector<std::string> targets;
-    std::vector<bool> integer;
-    for (const TargetDesc& t : first.targets) {
-        targets.push_back(t.name);
-        integer.push_back(formatInfo(t.format).integer);
-    }
-    for (const LayoutDesc* l : layouts)
-        for (const TargetDesc& t : l->targets)
-            if (std::find(targets.begin(), targets.end(), t.name) == targets.end())
-                return fail(ErrorCode::InvalidInput, (l->origin.empty() ? "" : l->origin + ": ") + "layout '" + l->name + "' has target '" + t.name +
-                                                         "', which layout '" + first.name + "' (materialId of material '" + pipeline.materials.front().name +
-                                                         "') has not: decals and debug views decode every material's pixels over the same targets");
-    auto type = [&](size_t i) { return integer[i] ? std::string("uvec4") : std::string("vec4"); };
     auto params = [&](const std::string& prefix, bool out) {
         std::string s;
-        for (size_t i = 0; i < targets.size(); ++i) s += std::string(i ? ", " : "") + (out ? "out " : "") + type(i) + " " + prefix + std::to_string(i);
+        for (size_t i = 0; i < 4; ++i) s += std::string(i ? ", " : "") + (out ? "out " : "") + "vec4 " + prefix + std::to_string(i);
         return s;
     };
     // Arguments of one layout's unpack/pack, by target name.
@@ -230,7 +242,7 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
     }
     o << "\n    return v;\n}\n";
     o << "void rgEncodeDecals(RgGBufferView v, " << params("t", false) << ", " << params("o", true) << ") {\n";
-    for (size_t i = 0; i < targets.size(); ++i) o << "    o" << i << " = t" << i << ";\n";
+    for (size_t i = 0; i < 4; ++i) o << "    o" << i << " = t" << i << ";\n";
     sep = "    ";
     for (const auto& [id, m] : byId) {
         if (m->decals.empty()) continue;
@@ -241,7 +253,18 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
         o << "        packGBuffer_" << l.name << "(g" << args(l, "o") << ");\n    }";
         sep = " else ";
     }
-    o << "\n}\n#endif\n";
+    o << "\n}\n";
+    // Which of t0..t3 hold a channel decals blend (the decal pass writes the ones it binds).
+    uint32_t decalTargets = 0;
+    for (const MaterialDesc& m : pipeline.materials) {
+        const LayoutDesc& l = **std::find_if(layouts.begin(), layouts.end(), [&](auto* x) { return x->name == m.layout; });
+        for (const auto& d : m.decals)
+            for (const TargetDesc& t : l.targets)
+                for (const ChannelDesc& c : t.channels)
+                    if (c.name == m.channels.at(d))
+                        decalTargets |= 1u << (std::find(targets.begin(), targets.end(), t.name) - targets.begin());
+    }
+    o << "#define RG_DECAL_TARGETS " << decalTargets << "\n#endif\n";
     return o.str();
 }
 
@@ -285,7 +308,7 @@ std::string describeMaterialSystem(const PipelineDesc& p) {
     for (const StencilClassDesc& c : p.stencilClasses) {
         std::string paths, materials;
         for (const LightingPathDesc& lp : p.lightingPaths)
-            if (lp.stencil == (c.base.empty() ? c.name : c.base)) paths += (paths.empty() ? "" : ", ") + lp.name;
+            if (lp.stencil == c.name || (!c.base.empty() && lp.stencil == c.base)) paths += (paths.empty() ? "" : ", ") + lp.name;
         for (const MaterialDesc& m : p.materials)
             if (m.stencil == c.name) materials += (materials.empty() ? "" : ", ") + m.name;
         std::snprintf(line, sizeof line, "  0x%02X mask 0x%02X  %-16s %-24s lit by %-12s materials %s\n", c.value, c.mask, c.name.c_str(),

@@ -10,6 +10,9 @@
 #define RG_WITH_DECALS
 #include "lib/scene.glsl"
 #include "gbuffer_pipeline.glsl"
+#if (RG_DECAL_TARGETS & 8) != 0
+#error a material lets decals blend a channel of its layout's fourth G-buffer target, which this pass does not write (it writes GB0..GB2): keep decal channels in the first three targets or leave them out of the material's decals
+#endif
 
 layout(location = 0) in vec2 uv;
 layout(location = 0) out vec4 gb0;

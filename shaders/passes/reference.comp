@@ -39,7 +39,7 @@
 // sample reads the radiance where it points, the two combined with the power heuristic as for
 // the lights — so a small bright source in an HDRI converges as fast as a sky. Unoccluded like
 // the split sum it checks, unless reference_shadows.
-// Clear coat (RG_MATERIAL_clear_coat, materials/clearcoat.lua) gets its coat lobe too, evaluated per
+// Clear coat (RG_MATERIAL_ID_clear_coat, materials/clearcoat.lua) gets its coat lobe too, evaluated per
 // direction as materials/clearcoat_lighting.frag does for one light direction. The two-colour
 // material (materials/two_colour.lua) is unpacked with its own layout into the same diffuse colour
 // and f0.
@@ -130,7 +130,7 @@ struct Shading {
     vec3 Vs;          // V lifted above the horizon for sampling the GGX visible normals
     float NdotVs;
     vec3 T, B;        // tangent frame around N
-    bool coat;        // RG_MATERIAL_clear_coat (materials/clearcoat.lua): a second GGX lobe on top
+    bool coat;        // RG_MATERIAL_ID_clear_coat (materials/clearcoat.lua): a second GGX lobe on top
     float coatStrength, coatAlpha;
     vec3 lobeProbability;  // of picking the diffuse, GGX and coat lobes for the BRDF sample
 };
@@ -446,22 +446,24 @@ void main() {
         imageStore(hdr, p, vec4(0.0, 0.0, 0.0, 1.0));
         return;
     }
-    GBuffer_disney g = unpackGBuffer_disney(texelFetch(GB0, p, 0), texelFetch(GB1, p, 0), texelFetch(GB2, p, 0),
-                                            texelFetch(GB3, p, 0));
+    // Each pixel decoded with its own material's layout (gbuffer_pipeline.glsl): the standard
+    // parameters it holds, neutral values for those it does not.
+    vec4 t0 = texelFetch(GB0, p, 0), t1 = texelFetch(GB1, p, 0), t2 = texelFetch(GB2, p, 0), t3 = texelFetch(GB3, p, 0);
+    RgGBufferView g = rgDecodeGBuffer(t0, t1, t2, t3);
+    if ((g.has & RG_VIEW_SMOOTHNESS) == 0u) g.smoothness = 0.5;
+    if ((g.has & RG_VIEW_REFLECTANCE) == 0u) g.reflectance = 0.5;
     Shading s;
     vec2 uv = (vec2(p) + 0.5) / vec2(size);
     s.P = rgWorldPosition(uv, z);
     s.N = g.normal;
     s.V = rgViewDirection(s.P);
-    // §3.2.1, as deferred_lighting.frag and rgStandardBrdf.
+    // §3.2.1, as deferred_lighting.frag and rgStandardBrdf; a layout that keeps an f0 colour (the
+    // two-colour material) gives its diffuse and f0 colours as stored.
     s.diffuseColor = g.baseColor * (1.0 - g.metalMask);
     s.f0 = mix(vec3(rgDielectricF0(g.reflectance)), g.baseColor, g.metalMask);
-    // A layout that keeps an f0 colour (the two-colour material) gives its diffuse and f0 colours
-    // as stored (gbuffer_pipeline.glsl decodes the pixel with its own layout).
-    RgGBufferView view = rgDecodeGBuffer(texelFetch(GB0, p, 0), texelFetch(GB1, p, 0), texelFetch(GB2, p, 0), texelFetch(GB3, p, 0));
-    if ((view.has & RG_VIEW_F0) != 0u) {
-        s.diffuseColor = view.baseColor;
-        s.f0 = view.f0;
+    if ((g.has & RG_VIEW_F0) != 0u) {
+        s.diffuseColor = g.baseColor;
+        s.f0 = g.f0;
     }
     s.f90 = clamp(50.0 * dot(s.f0, vec3(0.33)), 0.0, 1.0);
     s.linearRoughness = 1.0 - g.smoothness;
@@ -474,13 +476,17 @@ void main() {
     s.NdotVs = max(dot(s.N, s.Vs), 1e-3);
     rgBasis(s.N, s.T, s.B);
     // materials/clearcoat_lighting.frag's coat: strength in MaterialData, smoothness in GB2.r.
-#ifdef RG_MATERIAL_clear_coat
-    s.coat = g.materialId == RG_MATERIAL_clear_coat;
+    // The clear coat's own channels (materials/clearcoat.lua: the disney layout's MaterialData and GB2.r).
+#ifdef RG_MATERIAL_ID_clear_coat
+    s.coat = g.materialId == RG_MATERIAL_ID_clear_coat;
+    GBuffer_disney coat = unpackGBuffer_disney(t0, t1, t2, t3);
+    s.coatStrength = float(coat.materialData) / 31.0;
+    s.coatAlpha = max((1.0 - coat.reserved) * (1.0 - coat.reserved), 1e-3);
 #else
     s.coat = false;
+    s.coatStrength = 0.0;
+    s.coatAlpha = 1.0;
 #endif
-    s.coatStrength = float(g.materialData) / 31.0;
-    s.coatAlpha = max((1.0 - g.reserved) * (1.0 - g.reserved), 1e-3);
     // Lobe selection by the lobes' albedo estimates (diffuse colour, Schlick at N·V for the GGX
     // lobes), each present lobe picked with probability at least 0.1 so that none is starved.
     const vec3 luma = vec3(0.2126, 0.7152, 0.0722);

@@ -212,6 +212,31 @@ scene.probe "front" { shape = "box", position = { 0, 0.5, -1 }, size = { 4, 3, 6
     EXPECT_GT(hdr.at(mirror.x, mirror.y, 1), 10.0f * hdr.at(mirror.x, mirror.y, 0));  // and so did the probe
 }
 
+// A blended clear coat goes through the forward shader generated from its path's shading
+// function, whose local variables share the names of the material's parameters (coatStrength,
+// coatSmoothness): the parameter names reach the surface function only. Lit by the coat: brighter
+// than the same blended surface without a coat.
+TEST_F(MaterialPackage, BlendedClearCoatIsShadedByItsPath) {
+    TempFolder tmp("coat");
+    auto render = [&](double strength) {
+        std::ofstream(tmp.dir / "scene.lua") << "local scene = require \"scene\"\n"
+            "scene.material \"glaze\" { model = \"clear_coat\", base_color = { 0.5, 0.1, 0.1 }, alpha = \"blend\", opacity = 1,\n"
+            "    params = { coatStrength = " << strength << ", coatSmoothness = 0.9 } }\n"
+            "scene.box \"slab\" { size = { 1, 0.02, 1 }, position = { 0, 0, 0 }, material = \"glaze\" }\n"
+            "scene.light \"sun\" { type = \"sun\", intensity = 10000, unit = \"lux\", direction = { 0, -0.6, -0.8 } }\n"
+            "scene.camera \"main\" { position = { 0, 4, 0.001 }, target = { 0, 0, 0 }, fov = 40, aperture = 16, shutter = 1 / 125, iso = 100 }\n";
+        SessionOptions o = sceneOptions((tmp.dir / "scene.lua").string(), {}, W, H);
+        Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 1, {"hdr"});
+        if (r.images.empty()) return -1.0f;
+        glm::ivec2 q = px(glm::vec3(0.0f, 0.01f, 0.0f));
+        return r["hdr"].at(q.x, q.y, 0) / r.preExposure;
+    };
+    const float bare = render(0.0), coated = render(1.0);
+    ASSERT_GT(bare, 0.0f);
+    EXPECT_TRUE(std::isfinite(coated));
+    EXPECT_NE(coated, bare);
+}
+
 // Five more materials in one pipeline on top of the four built-ins, each with a lighting path
 // of its own (a shading function that returns 100 · k nits, so each sphere shows which pass lit
 // it): declared from a folder outside the repository; ids and stencil values assigned and shown.

@@ -113,6 +113,13 @@ TEST(LuaErrors, MaterialIdKeptInDifferentBitsIsRefused) {
                          "pipeline keeps materialId in the same place");
 }
 
+TEST(LuaErrors, PathDecodesOneLayout) {
+    EXPECT_EQ(loadError("path_layout.lua"),
+              kScripts + "path_layout.lua:5: materials.toon.path: lighting path 'standard' lights layout 'disney' (material 'standard', "
+                         "materials/disney.lua:23); this material's layout is 'toon': a path's lighting pass and shading function decode one "
+                         "layout, so declare a path of its own");
+}
+
 TEST(LuaErrors, StencilVariantsKeepTheirBase) {
     // A variant's value does not depend on which values other classes took.
     EXPECT_EQ(loadError("stencil_variant_unknown.lua"),

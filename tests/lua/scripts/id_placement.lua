@@ -5,4 +5,4 @@ rg.layout "wide" {
     { "GB1", "rgba8_srgb", { "baseColor:srgb:24", "rest:uint:8" } },
 }
 -- The standard material keeps materialId in 2 bits; this layout widens it to 3.
-rg.material "wide" { id = 5, layout = "wide", path = "standard" }
+rg.material "wide" { id = 5, layout = "wide", stencil = "lit_standard" }

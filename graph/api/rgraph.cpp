@@ -1,0 +1,315 @@
+// The library's public interface (include/rgraph/rgraph.h) over the runtime the command line
+// uses: a Runtime (its own device or the host's), a Session per loaded pipeline, scenes from
+// files or from code, parameters and pass toggles applied as rg.frame's changes are.
+#include "rgraph/rgraph.h"
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include <glm/glm.hpp>
+#include <glm/gtc/type_ptr.hpp>
+
+#include "cli/runtime.h"
+#include "cli/session.h"
+#include "image/image.h"
+#include "scene/scene.h"
+
+namespace rgraph {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+[[noreturn]] void raise(const rg::Error& e) { throw Error(e.describe()); }
+
+template <typename T>
+T check(rg::Result<T> r) {
+    if (!r) raise(r.error());
+    if constexpr (!std::is_void_v<T>) return std::move(*r);
+}
+
+Image toImage(const rg::Image& i) { return {i.width, i.height, i.channels, i.pixels}; }
+rg::Image fromImage(const Image& i) {
+    rg::Image out(i.width, i.height, i.channels);
+    if (i.pixels.size() != out.pixels.size()) throw Error("image: " + std::to_string(i.pixels.size()) + " floats for " + std::to_string(i.width) + "x" +
+                                                          std::to_string(i.height) + "x" + std::to_string(i.channels));
+    out.pixels = i.pixels;
+    return out;
+}
+
+Mesh fromPrimitive(const std::string& name, const rg::Primitive& p) {
+    Mesh m;
+    m.name = name;
+    for (const rg::Vertex& v : p.vertices) {
+        m.positions.insert(m.positions.end(), {v.position.x, v.position.y, v.position.z});
+        m.normals.insert(m.normals.end(), {v.normal.x, v.normal.y, v.normal.z});
+        m.uvs.insert(m.uvs.end(), {v.uv0.x, v.uv0.y});
+    }
+    m.indices = p.indices;
+    return m;
+}
+
+glm::vec3 vec3(const float* v) { return {v[0], v[1], v[2]}; }
+
+// The host's scene as rgraph's: meshes with tangents generated, materials by name, lights in
+// the units they say, the camera; checked as a Lua scene's fields are.
+rg::Scene toScene(const Scene& in) {
+    rg::Scene s;
+    std::map<std::string, uint32_t> materials;
+    for (const Material& m : in.materials) {
+        if (materials.count(m.name)) throw Error("scene.materials: two materials named '" + m.name + "'");
+        rg::Material r;
+        r.name = m.name;
+        r.model = m.model;
+        r.baseColor = vec3(m.baseColor);
+        r.smoothness = m.smoothness;
+        r.metalMask = m.metalMask;
+        r.reflectance = m.reflectance;
+        r.ao = m.ao;
+        r.emissive = vec3(m.emissive);
+        r.opacity = m.opacity;
+        r.alphaMode = m.blended ? rg::AlphaMode::Blend : rg::AlphaMode::Opaque;
+        rg::Value::Table params;
+        for (const auto& [k, v] : m.params) params[k] = rg::Value(v);
+        r.extra = rg::Value(params);
+        r.origin = "scene material '" + m.name + "'";
+        materials[m.name] = static_cast<uint32_t>(s.materials.size());
+        s.materials.push_back(std::move(r));
+    }
+    for (const Mesh& m : in.meshes) {
+        const std::string where = "scene mesh '" + m.name + "'";
+        const size_t n = m.positions.size() / 3;
+        if (m.positions.size() % 3 || m.normals.size() != m.positions.size() || (!m.uvs.empty() && m.uvs.size() != 2 * n))
+            throw Error(where + ": positions and normals need 3 floats per vertex (and uvs 2), the same number of vertices");
+        if (m.indices.empty() || m.indices.size() % 3) throw Error(where + ": indices must be whole triangles");
+        for (uint32_t i : m.indices)
+            if (i >= n) throw Error(where + ": index " + std::to_string(i) + " beyond its " + std::to_string(n) + " vertices");
+        auto mat = materials.find(m.material);
+        if (mat == materials.end()) throw Error(where + ": unknown material '" + m.material + "'");
+        rg::Primitive p;
+        p.material = mat->second;
+        p.indices = m.indices;
+        p.vertices.resize(n);
+        for (size_t v = 0; v < n; ++v) {
+            p.vertices[v].position = vec3(&m.positions[3 * v]);
+            p.vertices[v].normal = vec3(&m.normals[3 * v]);
+            if (!m.uvs.empty()) p.vertices[v].uv0 = {m.uvs[2 * v], m.uvs[2 * v + 1]};
+        }
+        rg::generateTangents(p);
+        rg::Mesh mesh;
+        mesh.name = m.name;
+        mesh.primitives.push_back(std::move(p));
+        s.nodes.push_back({m.name, glm::make_mat4(m.transform), static_cast<int32_t>(s.meshes.size())});
+        s.meshes.push_back(std::move(mesh));
+    }
+    static const rg::LightType kTypes[] = {rg::LightType::Point, rg::LightType::Spot, rg::LightType::Directional, rg::LightType::Sphere,
+                                           rg::LightType::Disk,  rg::LightType::Rect, rg::LightType::Tube};
+    for (size_t i = 0; i < in.lights.size(); ++i) {
+        const Light& l = in.lights[i];
+        rg::Light r;
+        r.name = "light" + std::to_string(i);
+        r.type = kTypes[static_cast<int>(l.type)];
+        r.position = vec3(l.position);
+        r.direction = glm::normalize(vec3(l.direction));
+        r.color = vec3(l.color);
+        r.intensity = l.intensity;
+        r.unit = l.unit;
+        r.radius = l.radius;
+        r.width = l.width;
+        r.height = l.height;
+        r.length = l.length;
+        r.innerAngle = l.innerAngle;
+        r.outerAngle = l.outerAngle;
+        r.range = l.range;
+        r.castShadows = l.shadows;
+        s.lights.push_back(r);
+    }
+    rg::Camera c;
+    c.name = "main";
+    c.position = vec3(in.camera.position);
+    c.target = vec3(in.camera.target);
+    c.verticalFov = glm::radians(in.camera.verticalFovDegrees);
+    c.aperture = in.camera.aperture;
+    c.shutter = in.camera.shutter;
+    c.iso = in.camera.iso;
+    s.cameras.push_back(c);
+    if (in.environment == "sky") s.environment = rg::Environment{};
+    else if (in.environment != "none" && !in.environment.empty()) {
+        rg::Environment e;
+        e.kind = "hdr";
+        e.file = fs::absolute(in.environment).string();
+        s.environment = e;
+    }
+    rg::computeBounds(s);
+    return s;
+}
+
+}  // namespace
+
+Mesh makeSphere(float radius, uint32_t segments) { return fromPrimitive("sphere", rg::makeSphere(radius, segments, 0)); }
+Mesh makePlane(float width, float depth) { return fromPrimitive("plane", rg::makePlane(width, depth, 0)); }
+Mesh makeBox(float width, float height, float depth) { return fromPrimitive("box", rg::makeBox({width, height, depth}, 0)); }
+
+void writePng(const std::string& path, const Image& display) { check(rg::writePng(path, fromImage(display))); }
+void writeExr(const std::string& path, const Image& image) {
+    static const char* names[] = {"R", "G", "B", "A"};
+    std::vector<std::string> channels(names, names + std::min<uint32_t>(image.channels, 4));
+    check(rg::writeExr(path, {{"hdr", channels, fromImage(image)}}));
+}
+
+struct Renderer::Impl {
+    std::unique_ptr<rg::Runtime> runtime;
+    std::unique_ptr<rg::Session> session;
+    rg::SessionOptions options;
+    std::string pipeline;
+    // What the host set: applied every frame after the script's rg.frame.
+    std::map<std::string, rg::Value> params;
+    std::map<std::string, bool> enabled;
+
+    void load() {
+        if (pipeline.empty()) return;
+        rg::SessionOptions o = options;
+        o.frameHook = [this](const rg::FrameContext&, const rg::PipelineDesc&) -> rg::Result<rg::FrameChanges> {
+            rg::FrameChanges c;
+            c.params = params;
+            c.enabled = enabled;
+            return c;
+        };
+        auto s = std::make_unique<rg::Session>(*runtime, o);
+        check(s->load(pipeline));
+        session = std::move(s);
+    }
+    const rg::Session& loaded() const {
+        if (!session) throw Error("no pipeline loaded (loadPipeline first)");
+        return *session;
+    }
+};
+
+Renderer::Renderer(std::unique_ptr<Impl> impl) : m(std::move(impl)) {}
+Renderer::~Renderer() = default;
+
+namespace {
+std::unique_ptr<rg::Runtime> makeRuntime(const Options& options, const HostDevice* host) {
+    if (!options.dataDir.empty()) rg::setProjectRoot(options.dataDir);
+    if (!options.cacheDir.empty()) rg::setCacheDir(options.cacheDir);
+    rg::RuntimeOptions ro;
+    if (options.device >= 0) ro.device = static_cast<uint32_t>(options.device);
+    ro.validation = options.validation;
+    if (host) ro.external = rg::gpu::ExternalDevice{host->instance, host->physicalDevice, host->device, host->queueFamily, host->queue};
+    return check(rg::Runtime::create(ro));
+}
+}  // namespace
+
+std::unique_ptr<Renderer> Renderer::create(const Options& options) {
+    auto impl = std::make_unique<Impl>();
+    impl->runtime = makeRuntime(options, nullptr);
+    return std::unique_ptr<Renderer>(new Renderer(std::move(impl)));
+}
+
+std::unique_ptr<Renderer> Renderer::create(const HostDevice& device, const Options& options) {
+    auto impl = std::make_unique<Impl>();
+    impl->runtime = makeRuntime(options, &device);
+    return std::unique_ptr<Renderer>(new Renderer(std::move(impl)));
+}
+
+std::string Renderer::dataDir() { return rg::projectRoot(); }
+
+void Renderer::loadPipeline(const std::string& file) {
+    const std::string previous = m->pipeline;
+    m->pipeline = fs::absolute(file).string();
+    try {
+        m->load();
+    } catch (...) {
+        m->pipeline = previous;  // the previous session keeps running
+        throw;
+    }
+}
+
+void Renderer::loadPipelineSource(const std::string& name, const std::string& lua) {
+    // Written where its errors can point: <cache>/sources/NAME.lua.
+    const fs::path dir = fs::path(rg::cacheDir()) / "sources";
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    std::string safe;
+    for (char c : name) safe += std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' ? c : '_';
+    const fs::path file = dir / (safe.empty() ? "pipeline.lua" : safe + ".lua");
+    std::ofstream(file) << lua;
+    loadPipeline(file.string());
+}
+
+void Renderer::loadScene(const std::string& file) {
+    m->options.sceneData.reset();
+    m->options.scene = fs::absolute(file).string();
+    if (m->session) m->load();
+}
+
+void Renderer::setScene(const Scene& scene) {
+    m->options.sceneData = std::make_shared<const rg::Scene>(toScene(scene));
+    m->options.scene.clear();
+    if (m->session) m->load();
+}
+
+void Renderer::setSize(uint32_t width, uint32_t height) {
+    if (width == 0 || height == 0 || width > 16384 || height > 16384)
+        throw Error("setSize: each side must be in 1..16384, got " + std::to_string(width) + "x" + std::to_string(height));
+    m->options.compile.outputWidth = width;
+    m->options.compile.outputHeight = height;
+    if (m->session) m->load();
+}
+
+void Renderer::setParameter(const std::string& name, const Value& value) {
+    const rg::ParamDesc* p = m->loaded().pipeline().findParam(name);
+    if (!p) throw Error("setParameter: the pipeline has no parameter '" + name + "'");
+    rg::Value v = std::visit([](const auto& x) { return rg::Value(x); }, value);
+    m->params[name] = check(rg::checkParamValue(*p, v));
+}
+
+void Renderer::setPassEnabled(const std::string& pass, bool enabled) {
+    if (!m->loaded().pipeline().graph.findPass(pass)) throw Error("setPassEnabled: the pipeline has no pass '" + pass + "'");
+    m->enabled[pass] = enabled;
+}
+
+void Renderer::render(uint32_t frames) {
+    m->loaded();
+    for (uint32_t f = 0; f < frames; ++f) check(m->session->frame());
+    check(m->runtime->executor().finish());
+}
+
+Image Renderer::readDisplay() const { return toImage(check(m->runtime->executor().readback(m->loaded().pipeline().output))); }
+
+Image Renderer::readHdr() const {
+    const rg::PipelineDesc& p = m->loaded().pipeline();
+    if (p.hdr.empty()) throw Error("readHdr: the pipeline names no HDR output (rg.output { hdr = ..., exposure = ... })");
+    rg::Image hdr = check(m->runtime->executor().readback(p.hdr));
+    auto state = check(m->runtime->executor().readbackBuffer(p.exposure));
+    float s[4] = {};
+    std::memcpy(s, state.data(), std::min<size_t>(sizeof s, state.size()));
+    const float preExposure = s[2] > 0 ? s[2] : 1.0f;  // lib/exposure.glsl: ev100, exposure, pre-exposure
+    for (size_t i = 0; i < hdr.pixels.size(); ++i)
+        if (i % hdr.channels < 3) hdr.pixels[i] /= preExposure;
+    return toImage(hdr);
+}
+
+void Renderer::keep(const std::string& resource) {
+    m->options.captures.push_back(resource);
+    if (m->session) m->load();
+}
+
+Image Renderer::readResource(const std::string& name) const {
+    m->loaded();
+    return toImage(check(m->runtime->executor().readback(name)));
+}
+
+std::vector<PassTiming> Renderer::timings() const {
+    std::vector<PassTiming> out;
+    for (const auto& t : m->runtime->executor().lastTimings()) out.push_back({t.name, t.gpuMs});
+    return out;
+}
+
+std::string Renderer::planJson() const {
+    m->loaded();
+    return m->runtime->executor().plan().toJson();
+}
+
+}  // namespace rgraph
