@@ -26,8 +26,13 @@ std::string installedRoot() {
     std::error_code ec;
     const fs::path self = fs::canonical(fs::path(info.dli_fname), ec);
     if (ec) return {};
-    const fs::path share = self.parent_path().parent_path() / "share" / "rgraph";
-    return fs::is_directory(share / "scripts", ec) ? share.string() : std::string();
+    // bin/, lib/ or lib/<multiarch>/ below the prefix.
+    for (fs::path dir = self.parent_path(); dir.has_parent_path() && dir != dir.parent_path(); dir = dir.parent_path()) {
+        const fs::path share = dir.parent_path() / "share" / "rgraph";
+        if (fs::is_directory(share / "scripts", ec)) return share.string();
+        if (dir.filename() != "lib" && dir.parent_path().filename() != "lib") break;
+    }
+    return {};
 }
 }  // namespace
 

@@ -1,0 +1,176 @@
+// rgraph as a library (include/rgraph/rgraph.h), through its public interface only: a device the
+// host owns, a scene built in code against the same scene from its Lua file, parameters and pass
+// toggles between frames, and errors as exceptions with the command line's file:line messages.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <unistd.h>
+#include <vector>
+
+#include <rgraph/rgraph.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+const std::string kRoot = RG_SOURCE_ROOT;
+
+rgraph::Options options() {
+    rgraph::Options o;
+    o.dataDir = kRoot;  // the source tree (an installed copy finds its own share/rgraph)
+    o.validation = true;
+    return o;
+}
+
+// The host's Vulkan 1.3 device with what rgraph::HostDevice asks for.
+struct HostVulkan {
+    VkInstance instance = VK_NULL_HANDLE;
+    VkPhysicalDevice physical = VK_NULL_HANDLE;
+    VkDevice device = VK_NULL_HANDLE;
+    uint32_t family = 0;
+    VkQueue queue = VK_NULL_HANDLE;
+    HostVulkan() {
+        VkApplicationInfo app{VK_STRUCTURE_TYPE_APPLICATION_INFO};
+        app.apiVersion = VK_API_VERSION_1_3;
+        VkInstanceCreateInfo ii{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
+        ii.pApplicationInfo = &app;
+        if (vkCreateInstance(&ii, nullptr, &instance) != VK_SUCCESS) return;
+        uint32_t n = 1;
+        vkEnumeratePhysicalDevices(instance, &n, &physical);
+        float priority = 1.0f;
+        VkDeviceQueueCreateInfo qi{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
+        qi.queueFamilyIndex = 0;
+        qi.queueCount = 1;
+        qi.pQueuePriorities = &priority;
+        VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
+        f13.dynamicRendering = f13.synchronization2 = f13.maintenance4 = VK_TRUE;
+        VkPhysicalDeviceVulkan12Features f12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
+        f12.pNext = &f13;
+        f12.hostQueryReset = VK_TRUE;
+        VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+        vkGetPhysicalDeviceFeatures2(physical, &f);
+        f.pNext = &f12;
+        VkDeviceCreateInfo di{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
+        di.pNext = &f;
+        di.queueCreateInfoCount = 1;
+        di.pQueueCreateInfos = &qi;
+        if (vkCreateDevice(physical, &di, nullptr, &device) != VK_SUCCESS) return;
+        vkGetDeviceQueue(device, family, 0, &queue);
+    }
+    ~HostVulkan() {
+        if (device) vkDestroyDevice(device, nullptr);
+        if (instance) vkDestroyInstance(instance, nullptr);
+    }
+};
+
+// The same scene twice: in code, and as a Lua scene file.
+rgraph::Scene sceneInCode() {
+    rgraph::Scene s;
+    rgraph::Material floor{"floor"};
+    floor.smoothness = 0.3f;
+    rgraph::Material red{"red"};
+    red.baseColor[0] = 0.8f, red.baseColor[1] = 0.1f, red.baseColor[2] = 0.1f;
+    red.smoothness = 0.6f;
+    s.materials = {floor, red};
+    rgraph::Mesh ball = rgraph::makeSphere(0.5f);
+    ball.material = "red";
+    ball.transform[13] = 0.5f;
+    rgraph::Mesh plane = rgraph::makePlane(6.0f, 6.0f);
+    plane.material = "floor";
+    s.meshes = {ball, plane};
+    rgraph::Light sun;
+    sun.type = rgraph::Light::Type::Sun;
+    sun.intensity = 20000.0f;
+    sun.unit = "lux";
+    sun.direction[0] = -0.4f, sun.direction[1] = -0.8f, sun.direction[2] = -0.45f;
+    s.lights = {sun};
+    s.camera.position[1] = 1.2f, s.camera.position[2] = 3.0f;
+    s.camera.target[1] = 0.4f;
+    return s;
+}
+const char* kSceneLua = R"(local scene = require "scene"
+scene.material "floor" { smoothness = 0.3 }
+scene.material "red" { base_color = { 0.8, 0.1, 0.1 }, smoothness = 0.6 }
+scene.sphere "ball" { radius = 0.5, position = { 0, 0.5, 0 }, material = "red" }
+scene.plane "plane" { size = { 6, 6 }, material = "floor" }
+scene.light "sun" { type = "sun", intensity = 20000, unit = "lux", direction = { -0.4, -0.8, -0.45 } }
+scene.camera "main" { position = { 0, 1.2, 3 }, target = { 0, 0.4, 0 }, fov = 45, aperture = 16, shutter = 1 / 125, iso = 100 }
+scene.environment "sky" { kind = "sky" }
+)";
+
+TEST(Library, RendersOnTheHostsDeviceAndTheHostReadsTheImage) {
+    HostVulkan host;
+    ASSERT_TRUE(host.device) << "no Vulkan 1.3 device for the host";
+    auto r = rgraph::Renderer::create(rgraph::HostDevice{host.instance, host.physical, host.device, host.family, host.queue}, options());
+    r->setSize(160, 90);
+    r->setScene(sceneInCode());
+    r->loadPipeline(kRoot + "/scripts/pipelines/deferred.lua");
+    r->render(2);
+    rgraph::Image hdr = r->readHdr(), display = r->readDisplay();
+    ASSERT_EQ(hdr.width, 160u);
+    ASSERT_EQ(display.height, 90u);
+    // The ball's centre is red and lit, in nits.
+    const float* ball = &hdr.pixels[(45u * 160u + 80u) * hdr.channels];
+    EXPECT_GT(ball[0], 100.0f);
+    EXPECT_GT(ball[0], 3.0f * ball[1]);
+    EXPECT_FALSE(r->timings().empty());
+    EXPECT_NE(r->planJson().find("\"passes\""), std::string::npos);
+    // A parameter and a pass toggle between frames: without the sky pass the sky is black.
+    const float sky = display.pixels[(5u * 160u + 80u) * display.channels + 2];
+    EXPECT_GT(sky, 0.1f);
+    r->setPassEnabled("sky", false);
+    r->setParameter("bloom_ec", -8.0);
+    r->render(1);
+    rgraph::Image after = r->readDisplay();
+    EXPECT_LT(after.pixels[(5u * 160u + 80u) * after.channels + 2], 0.02f);
+}
+
+TEST(Library, ASceneInCodeRendersAsTheSameSceneFromItsLuaFile) {
+    const fs::path dir = fs::temp_directory_path() / ("rgraph_library_" + std::to_string(::getpid()));
+    fs::create_directories(dir);
+    std::ofstream(dir / "scene.lua") << kSceneLua;
+    auto render = [&](bool inCode) {
+        auto r = rgraph::Renderer::create(options());
+        r->setSize(160, 90);
+        if (inCode) r->setScene(sceneInCode());
+        else r->loadScene((dir / "scene.lua").string());
+        r->loadPipeline(kRoot + "/scripts/pipelines/deferred.lua");
+        r->setParameter("exposure_mode", std::string("manual"));
+        r->render(1);
+        return r->readHdr();
+    };
+    rgraph::Image a = render(true), b = render(false);
+    fs::remove_all(dir);
+    ASSERT_EQ(a.pixels.size(), b.pixels.size());
+    double worst = 0, sum = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) {
+        const double d = std::fabs(a.pixels[i] - b.pixels[i]) / std::max(std::fabs(b.pixels[i]), 1e-3f);
+        worst = std::max(worst, d);
+        sum += d;
+    }
+    const double mean = sum / static_cast<double>(a.pixels.size());
+    std::printf("in code vs Lua file: mean relative difference %.3g, worst %.3g\n", mean, worst);
+    EXPECT_LT(mean, 1e-5);  // the golden suite's HDR bound
+    EXPECT_LT(worst, 0.02);
+}
+
+TEST(Library, ErrorsAreExceptionsWithFileAndLine) {
+    auto r = rgraph::Renderer::create(options());
+    try {
+        r->loadPipelineSource("broken", "local rg = require \"rg\"\nrg.resource \"x\" { format = \"rgba9\" }\n");
+        FAIL() << "a broken script loaded";
+    } catch (const rgraph::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("broken.lua:2:"), std::string::npos) << e.what();
+        EXPECT_NE(std::string(e.what()).find("rgba9"), std::string::npos) << e.what();
+    }
+    r->loadPipeline(kRoot + "/scripts/pipelines/deferred.lua");
+    EXPECT_THROW(r->setParameter("no_such_param", 1.0), rgraph::Error);
+    EXPECT_THROW(r->setParameter("ec", 100.0), rgraph::Error);  // out of range
+    EXPECT_THROW(r->setPassEnabled("no_such_pass", false), rgraph::Error);
+    rgraph::Scene bad = sceneInCode();
+    bad.meshes[0].indices.push_back(100000);
+    EXPECT_THROW(r->setScene(bad), rgraph::Error);
+}
+
+}  // namespace
