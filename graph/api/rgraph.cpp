@@ -291,6 +291,20 @@ Image Renderer::readHdr() const {
     return toImage(hdr);
 }
 
+void Renderer::record(VkCommandBuffer commandBuffer) {
+    if (!commandBuffer) throw Error("record: no command buffer");
+    m->loaded();
+    check(m->session->frame(commandBuffer));
+}
+
+void Renderer::importImage(const std::string& resource, const HostImage& image) {
+    m->runtime->executor().setHostImport(resource, {image.image, image.width, image.height, image.layout});
+}
+
+void Renderer::exportImage(const std::string& resource, const HostImage& image) {
+    m->runtime->executor().setHostExport(resource, {image.image, image.width, image.height, image.layout});
+}
+
 void Renderer::keep(const std::string& resource) {
     m->options.captures.push_back(resource);
     if (m->session) m->load();

@@ -560,7 +560,7 @@ Result<void> Session::load(const std::string& file) {
     return {};
 }
 
-Result<void> Session::frame() {
+Result<void> Session::frame(VkCommandBuffer hostCmd) {
     if (!m_host) return fail(ErrorCode::InvalidInput, "no pipeline loaded");
     auto t0 = Clock::now();
     FrameContext ctx{m_frame, static_cast<double>(m_frame) / 60.0, std::nullopt};
@@ -612,7 +612,7 @@ Result<void> Session::frame() {
         }
         m_pipeline = std::move(next);
     }
-    if (auto r = m_runtime.executor().frame(); !r) return r;
+    if (auto r = m_runtime.executor().frame(hostCmd); !r) return r;
     ++m_frame;
     return {};
 }

@@ -47,7 +47,9 @@ public:
     ~Session();
 
     Result<void> load(const std::string& pipelineFile);
-    Result<void> frame();
+    // One frame: rg.frame's changes, then recorded and submitted — or, with `hostCmd`, recorded
+    // into the host's command buffer for the host to submit (Executor::frame).
+    Result<void> frame(VkCommandBuffer hostCmd = VK_NULL_HANDLE);
 
     const PipelineDesc& pipeline() const { return m_pipeline; }
     uint64_t framesRendered() const { return m_frame; }

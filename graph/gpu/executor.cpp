@@ -273,7 +273,7 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
     // Upload imported contents into resources that are new.
     for (size_t i = 0; i < planPtr->resources.size(); ++i) {
         const PlanResource& r = planPtr->resources[i];
-        if (!r.imported || resourceReused[i]) continue;
+        if (!r.imported || resourceReused[i] || m_hostImports.count(r.name)) continue;  // the host's image comes in each frame
         if (!m_importData.count(r.name))
             return fail(ErrorCode::InvalidInput, "imported resource '" + r.name + "' has no contents (nothing was uploaded for it)");
     }
@@ -289,7 +289,7 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
     ++m_buildCount;
     for (size_t i = 0; i < m_built->plan.resources.size(); ++i) {
         const PlanResource& r = m_built->plan.resources[i];
-        if (r.imported && !resourceReused[i])
+        if (r.imported && !resourceReused[i] && !m_hostImports.count(r.name))
             if (auto u = setImport(r.name, m_importData[r.name]); !u) return u;
         if (r.persistent && !resourceReused[i])
             if (auto u = clearPersistent(i); !u) return u;
@@ -461,7 +461,7 @@ Result<void> Executor::collect(FrameSlot& slot) {
     return {};
 }
 
-Result<void> Executor::frame() {
+Result<void> Executor::frame(VkCommandBuffer hostCmd) {
     RG_CHECK(m_built) << "Executor::frame() before build()";
     const uint32_t slotIndex = static_cast<uint32_t>(m_frameIndex % m_slots.size());
     FrameSlot& slot = m_slots[slotIndex];
@@ -472,7 +472,7 @@ Result<void> Executor::frame() {
     auto t0 = Clock::now();
     if (m_perFrame) m_perFrame(slotIndex);
     VkDevice dev = m_ctx.device();
-    const uint32_t queries = static_cast<uint32_t>(m_built->plan.passes.size() * 2);
+    const uint32_t queries = hostCmd ? 0u : static_cast<uint32_t>(m_built->plan.passes.size() * 2);
     if (queries > slot.queryCount || !slot.queries) {
         VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
         qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
@@ -484,11 +484,13 @@ Result<void> Executor::frame() {
     slot.queryCount = queries;
     slot.passNames.clear();
 
-    RG_VK_TRY(vkResetCommandPool(dev, slot.pool.get(), 0));
-    VkCommandBuffer cmd = slot.cmd;
-    VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
-    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
-    RG_VK_TRY(vkBeginCommandBuffer(cmd, &begin));
+    VkCommandBuffer cmd = hostCmd ? hostCmd : slot.cmd;
+    if (!hostCmd) {
+        RG_VK_TRY(vkResetCommandPool(dev, slot.pool.get(), 0));
+        VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+        begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+        RG_VK_TRY(vkBeginCommandBuffer(cmd, &begin));
+    }
     if (queries) vkCmdResetQueryPool(cmd, slot.queries.get(), 0, queries);
 
     // Frames in flight share the plan's resources: the previous frame must be done with
@@ -502,24 +504,30 @@ Result<void> Executor::frame() {
     dep.memoryBarrierCount = 1;
     dep.pMemoryBarriers = &frameBarrier;
     vkCmdPipelineBarrier2(cmd, &dep);
+    if (auto r = recordHostCopies(cmd, /*imports=*/true); !r) return r;
 
     FrameInfo info{m_frameIndex, static_cast<double>(m_frameIndex) / 60.0, slotIndex, m_persistentEpoch};
     for (size_t i = 0; i < m_built->plan.passes.size(); ++i) {
         const PlanPass& pass = m_built->plan.passes[i];
         m_ctx.beginLabel(cmd, pass.name);
         recordBarriers(cmd, pass.barriers);
-        vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.queries.get(),
-                             static_cast<uint32_t>(2 * i));
+        if (queries)
+            vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.queries.get(), static_cast<uint32_t>(2 * i));
         RecordContext rc{m_ctx, cmd, pass, m_built->graph.passes[pass.desc], m_built->table, m_built->plan, info, m_scene};
         m_built->instances[i]->record(rc);
-        vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.queries.get(),
-                             static_cast<uint32_t>(2 * i + 1));
+        if (queries)
+            vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.queries.get(), static_cast<uint32_t>(2 * i + 1));
         m_ctx.endLabel(cmd);
         slot.passNames.push_back(pass.name);
     }
     recordBarriers(cmd, m_built->plan.finalBarriers);
-    RG_VK_TRY(vkEndCommandBuffer(cmd));
+    if (auto r = recordHostCopies(cmd, /*imports=*/false); !r) return r;
     m_lastRecordMs = msSince(t0);
+    if (hostCmd) {  // the host submits
+        ++m_frameIndex;
+        return {};
+    }
+    RG_VK_TRY(vkEndCommandBuffer(cmd));
 
     VkFence fence = slot.fence.get();
     RG_VK_TRY(vkResetFences(dev, 1, &fence));
@@ -531,6 +539,56 @@ Result<void> Executor::frame() {
     RG_VK_TRY(vkQueueSubmit2(m_ctx.queue(), 1, &submit, fence));
     slot.pending = true;
     ++m_frameIndex;
+    return {};
+}
+
+void Executor::setHostImport(const std::string& name, const HostImage& image) {
+    if (image.image) m_hostImports[name] = image;
+    else m_hostImports.erase(name);
+}
+void Executor::setHostExport(const std::string& name, const HostImage& image) {
+    if (image.image) m_hostExports[name] = image;
+    else m_hostExports.erase(name);
+}
+
+// The host's images in or out: a blit each (nearest, equal sizes: a copy with format conversion),
+// the host image from and back to its own layout; an import overwrites the imported texture and
+// leaves it ShaderReadOnly (where every frame expects it), an export reads a texture from its
+// final layout and puts it back there.
+Result<void> Executor::recordHostCopies(VkCommandBuffer cmd, bool imports) {
+    for (const auto& [name, host] : imports ? m_hostImports : m_hostExports) {
+        const PhysicalResource* phys = m_built->table.find(name);
+        const std::string what = std::string(imports ? "host image imported as '" : "host image exported from '") + name + "'";
+        if (!phys || !phys->image) return fail(ErrorCode::InvalidInput, what + ": the plan has no texture of that name");
+        const PlanResource& r = *phys->plan;
+        if (imports && !r.imported) return fail(ErrorCode::InvalidInput, what + ": declare it imported (rg.resource { import = true })");
+        if (!imports && !r.exported && !r.persistent && !r.imported)
+            return fail(ErrorCode::InvalidInput, what + ": it is transient (its memory is reused within the frame): export it (capture it, or Renderer::keep)");
+        if (host.width != r.width || host.height != r.height)
+            return fail(ErrorCode::InvalidInput, what + ": the host image is " + std::to_string(host.width) + "x" + std::to_string(host.height) +
+                                                     ", the texture " + std::to_string(r.width) + "x" + std::to_string(r.height));
+        const VkImageAspectFlags aspect = aspectOf(r.format);
+        VkImage graph = phys->image->image();
+        const VkImageLayout graphBefore = imports ? VK_IMAGE_LAYOUT_UNDEFINED : toVkLayout(r.finalLayout);
+        const VkImageLayout graphAfter = imports ? VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL : toVkLayout(r.finalLayout);
+        VkImage src = imports ? host.image : graph, dst = imports ? graph : host.image;
+        const VkImageLayout srcLayout = imports ? host.layout : graphBefore, dstLayout = imports ? graphBefore : host.layout;
+        constexpr auto all = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+        constexpr auto rw = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
+        imageBarrier(cmd, src, aspect, all, rw, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, srcLayout,
+                     VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+        imageBarrier(cmd, dst, aspect, all, rw, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                     imports ? VK_IMAGE_LAYOUT_UNDEFINED : dstLayout, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        VkImageBlit blit{};
+        blit.srcSubresource = {aspect, 0, 0, 1};
+        blit.dstSubresource = {aspect, 0, 0, 1};
+        blit.srcOffsets[1] = blit.dstOffsets[1] = {static_cast<int32_t>(r.width), static_cast<int32_t>(r.height), 1};
+        vkCmdBlitImage(cmd, src, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, dst, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_NEAREST);
+        imageBarrier(cmd, src, aspect, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, all, rw, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+                     imports ? host.layout : graphAfter);
+        imageBarrier(cmd, dst, aspect, VK_PIPELINE_STAGE_2_BLIT_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, all, rw, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                     imports ? graphAfter : host.layout);
+    }
     return {};
 }
 

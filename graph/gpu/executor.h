@@ -36,6 +36,15 @@ struct BuildReport {
     std::string summary() const;
 };
 
+// An image of the host application's (a swapchain image, its own target), in `layout` before a
+// frame and left in it after: rgraph copies it into an imported texture at the frame's start, or
+// an exported texture into it at the frame's end (a blit: formats may differ, sizes must match).
+struct HostImage {
+    VkImage image = VK_NULL_HANDLE;
+    uint32_t width = 0, height = 0;
+    VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL;
+};
+
 class Executor {
 public:
     Executor(Context& ctx, ShaderCompiler& shaders, const PassRegistry& kinds);
@@ -68,7 +77,15 @@ public:
     // Contents for an imported texture (uploaded now, then kept in ShaderReadOnly layout).
     Result<void> setImport(const std::string& name, const rg::Image& data);
 
-    Result<void> frame();
+    // The host's images: copied into `name` (an imported texture) at every frame's start, or
+    // `name` (any texture of the plan) copied into them at its end. An empty image removes it.
+    void setHostImport(const std::string& name, const HostImage& image);
+    void setHostExport(const std::string& name, const HostImage& image);
+
+    // Records and submits one frame on rgraph's queue. With `hostCmd`, records it into the
+    // host's command buffer instead (no timestamps); the host submits it and must have waited
+    // for the frame before the one it records next (the frames-in-flight slots are reused).
+    Result<void> frame(VkCommandBuffer hostCmd = VK_NULL_HANDLE);
     Result<void> finish();  // waits for every submitted frame and gathers their timings
 
     // Reads mip 0 / layer 0 of an exported texture after finish().
@@ -109,6 +126,8 @@ private:
     std::unique_ptr<Built> m_built;
     std::vector<FrameSlot> m_slots;
     std::map<std::string, rg::Image> m_importData;
+    std::map<std::string, HostImage> m_hostImports, m_hostExports;
+    Result<void> recordHostCopies(VkCommandBuffer cmd, bool imports);
     uint64_t m_frameIndex = 0;
     uint64_t m_persistentEpoch = 0;  // FrameInfo::persistentEpoch
     const passes::GpuScene* m_scene = nullptr;

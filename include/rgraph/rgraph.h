@@ -111,6 +111,16 @@ struct Image {
 void writePng(const std::string& path, const Image& display);  // display values in [0, 1]
 void writeExr(const std::string& path, const Image& image);    // linear floats (layer "hdr")
 
+// An image of the host's (a swapchain image, one of its own targets) that rgraph copies into an
+// imported texture at each frame's start, or an exported texture into at its end. `layout` is the
+// image's layout before the frame, and rgraph leaves it so after; the sizes must match the
+// texture's (formats may differ: it is a blit).
+struct HostImage {
+    VkImage image = VK_NULL_HANDLE;
+    uint32_t width = 0, height = 0;
+    VkImageLayout layout = VK_IMAGE_LAYOUT_GENERAL;
+};
+
 struct PassTiming {
     std::string name;
     double gpuMs = 0.0;
@@ -148,6 +158,16 @@ public:
 
     // Renders `frames` frames (submitting on rgraph's queue, or the host's) and waits for them.
     void render(uint32_t frames = 1);
+    // Records one frame into the host's command buffer (begun, outside a render pass) for the host
+    // to submit on the queue it gave; the host waits for it before recording the next but one.
+    // No per-pass timings for such frames.
+    void record(VkCommandBuffer commandBuffer);
+    // The host's images in and out of the graph, every frame from the next (see HostImage): into
+    // an imported texture (rg.resource { import = true }; give it before loadPipeline, as its
+    // contents), or from an exported texture (the output, or one named by keep()). An image with
+    // a null handle stops it.
+    void importImage(const std::string& resource, const HostImage& image);
+    void exportImage(const std::string& resource, const HostImage& image);
     Image readDisplay() const;                        // the display image (tone-mapped, sRGB-encoded)
     Image readHdr() const;                            // the HDR image in absolute nits (cd/m²)
     Image readResource(const std::string& name) const;  // a texture named by keep(), as stored

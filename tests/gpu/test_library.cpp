@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <unistd.h>
@@ -23,8 +24,18 @@ rgraph::Options options() {
     return o;
 }
 
+// Validation messages on the host's instance (a test fails on any).
+int g_validationMessages = 0;
+VKAPI_ATTR VkBool32 VKAPI_CALL onValidation(VkDebugUtilsMessageSeverityFlagBitsEXT, VkDebugUtilsMessageTypeFlagsEXT,
+                                            const VkDebugUtilsMessengerCallbackDataEXT* data, void*) {
+    ++g_validationMessages;
+    std::fprintf(stderr, "host validation: %s\n", data && data->pMessage ? data->pMessage : "");
+    return VK_FALSE;
+}
+
 // The host's Vulkan 1.3 device with what rgraph::HostDevice asks for.
 struct HostVulkan {
+    VkDebugUtilsMessengerEXT messenger = VK_NULL_HANDLE;
     VkInstance instance = VK_NULL_HANDLE;
     VkPhysicalDevice physical = VK_NULL_HANDLE;
     VkDevice device = VK_NULL_HANDLE;
@@ -35,7 +46,20 @@ struct HostVulkan {
         app.apiVersion = VK_API_VERSION_1_3;
         VkInstanceCreateInfo ii{VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO};
         ii.pApplicationInfo = &app;
+        // The validation layer on the host's instance too (it reports to stdout: ctest shows it).
+        const char* layer = "VK_LAYER_KHRONOS_validation";
+        ii.enabledLayerCount = 1;
+        ii.ppEnabledLayerNames = &layer;
+        const char* extension = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+        ii.enabledExtensionCount = 1;
+        ii.ppEnabledExtensionNames = &extension;
         if (vkCreateInstance(&ii, nullptr, &instance) != VK_SUCCESS) return;
+        VkDebugUtilsMessengerCreateInfoEXT mi{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+        mi.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+        mi.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT;
+        mi.pfnUserCallback = &onValidation;
+        auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
+        if (create) create(instance, &mi, nullptr, &messenger);
         uint32_t n = 1;
         vkEnumeratePhysicalDevices(instance, &n, &physical);
         float priority = 1.0f;
@@ -60,7 +84,10 @@ struct HostVulkan {
     }
     ~HostVulkan() {
         if (device) vkDestroyDevice(device, nullptr);
+        auto destroy = instance ? reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT")) : nullptr;
+        if (destroy && messenger) destroy(instance, messenger, nullptr);
         if (instance) vkDestroyInstance(instance, nullptr);
+        EXPECT_EQ(g_validationMessages, 0) << "validation messages on the host's device";
     }
 };
 
@@ -171,6 +198,129 @@ TEST(Library, ErrorsAreExceptionsWithFileAndLine) {
     rgraph::Scene bad = sceneInCode();
     bad.meshes[0].indices.push_back(100000);
     EXPECT_THROW(r->setScene(bad), rgraph::Error);
+}
+
+// The host's own images through the graph, in the host's command buffer: the host clears image A,
+// rgraph copies it into its imported texture `src`, a copy pass writes `output`, rgraph copies
+// that into the host's image B; the host submits, reads B back and finds A's colour.
+TEST(Library, HostImagesInAndOutThroughTheHostsCommandBuffer) {
+    HostVulkan host;
+    ASSERT_TRUE(host.device);
+    constexpr uint32_t w = 64, h = 32;
+    VkPhysicalDeviceMemoryProperties mem;
+    vkGetPhysicalDeviceMemoryProperties(host.physical, &mem);
+    auto memoryType = [&](uint32_t bits, VkMemoryPropertyFlags want) {
+        for (uint32_t i = 0; i < mem.memoryTypeCount; ++i)
+            if ((bits & (1u << i)) && (mem.memoryTypes[i].propertyFlags & want) == want) return i;
+        return 0u;
+    };
+    std::vector<VkDeviceMemory> memories;
+    auto image = [&]() {
+        VkImageCreateInfo ii{VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO};
+        ii.imageType = VK_IMAGE_TYPE_2D;
+        ii.format = VK_FORMAT_R8G8B8A8_UNORM;
+        ii.extent = {w, h, 1};
+        ii.mipLevels = ii.arrayLayers = 1;
+        ii.samples = VK_SAMPLE_COUNT_1_BIT;
+        ii.usage = VK_IMAGE_USAGE_TRANSFER_SRC_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+        VkImage img = VK_NULL_HANDLE;
+        vkCreateImage(host.device, &ii, nullptr, &img);
+        VkMemoryRequirements req;
+        vkGetImageMemoryRequirements(host.device, img, &req);
+        VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+        ai.allocationSize = req.size;
+        ai.memoryTypeIndex = memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+        VkDeviceMemory m = VK_NULL_HANDLE;
+        vkAllocateMemory(host.device, &ai, nullptr, &m);
+        vkBindImageMemory(host.device, img, m, 0);
+        memories.push_back(m);
+        return img;
+    };
+    VkImage a = image(), b = image();
+    VkBufferCreateInfo bi{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
+    bi.size = w * h * 4;
+    bi.usage = VK_BUFFER_USAGE_TRANSFER_DST_BIT;
+    VkBuffer readback = VK_NULL_HANDLE;
+    vkCreateBuffer(host.device, &bi, nullptr, &readback);
+    VkMemoryRequirements req;
+    vkGetBufferMemoryRequirements(host.device, readback, &req);
+    VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
+    ai.allocationSize = req.size;
+    ai.memoryTypeIndex = memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    VkDeviceMemory readbackMemory = VK_NULL_HANDLE;
+    vkAllocateMemory(host.device, &ai, nullptr, &readbackMemory);
+    vkBindBufferMemory(host.device, readback, readbackMemory, 0);
+    {
+        auto r = rgraph::Renderer::create(rgraph::HostDevice{host.instance, host.physical, host.device, host.family, host.queue}, options());
+        r->setSize(w, h);
+        r->importImage("src", {a, w, h, VK_IMAGE_LAYOUT_GENERAL});  // before the load: the import is the texture's contents
+        r->exportImage("output", {b, w, h, VK_IMAGE_LAYOUT_GENERAL});
+        r->loadPipelineSource("host_images", R"(local rg = require "rg"
+rg.resource "src" { format = "rgba8", import = true }
+rg.resource "output" { format = "rgba8" }
+rg.pass "copy" { kind = "copy", reads = { "src" }, writes = { "output" } }
+rg.output "output"
+)");
+        VkCommandPoolCreateInfo pi{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
+        pi.queueFamilyIndex = host.family;
+        VkCommandPool pool = VK_NULL_HANDLE;
+        vkCreateCommandPool(host.device, &pi, nullptr, &pool);
+        VkCommandBufferAllocateInfo ci{VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO};
+        ci.commandPool = pool;
+        ci.commandBufferCount = 1;
+        VkCommandBuffer cmd = VK_NULL_HANDLE;
+        vkAllocateCommandBuffers(host.device, &ci, &cmd);
+        VkCommandBufferBeginInfo begin{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
+        vkBeginCommandBuffer(cmd, &begin);
+        VkImageMemoryBarrier2 toGeneral{VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER_2};
+        toGeneral.srcStageMask = toGeneral.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+        toGeneral.dstAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT | VK_ACCESS_2_MEMORY_READ_BIT;
+        toGeneral.oldLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+        toGeneral.newLayout = VK_IMAGE_LAYOUT_GENERAL;
+        toGeneral.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        VkImageMemoryBarrier2 barriers[2] = {toGeneral, toGeneral};
+        barriers[0].image = a;
+        barriers[1].image = b;
+        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep.imageMemoryBarrierCount = 2;
+        dep.pImageMemoryBarriers = barriers;
+        vkCmdPipelineBarrier2(cmd, &dep);
+        const VkClearColorValue colour{{0.25f, 0.5f, 0.75f, 1.0f}};
+        const VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        vkCmdClearColorImage(cmd, a, VK_IMAGE_LAYOUT_GENERAL, &colour, 1, &range);
+        r->record(cmd);  // rgraph's frame, into the host's command buffer
+        VkBufferImageCopy copy{};
+        copy.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+        copy.imageExtent = {w, h, 1};
+        VkMemoryBarrier2 done{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
+        done.srcStageMask = done.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
+        done.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
+        done.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT;
+        VkDependencyInfo dep2{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
+        dep2.memoryBarrierCount = 1;
+        dep2.pMemoryBarriers = &done;
+        vkCmdPipelineBarrier2(cmd, &dep2);
+        vkCmdCopyImageToBuffer(cmd, b, VK_IMAGE_LAYOUT_GENERAL, readback, 1, &copy);
+        vkEndCommandBuffer(cmd);
+        VkSubmitInfo submit{VK_STRUCTURE_TYPE_SUBMIT_INFO};
+        submit.commandBufferCount = 1;
+        submit.pCommandBuffers = &cmd;
+        ASSERT_EQ(vkQueueSubmit(host.queue, 1, &submit, VK_NULL_HANDLE), VK_SUCCESS);
+        vkQueueWaitIdle(host.queue);
+        void* data = nullptr;
+        vkMapMemory(host.device, readbackMemory, 0, VK_WHOLE_SIZE, 0, &data);
+        const uint8_t* px = static_cast<const uint8_t*>(data) + (h / 2 * w + w / 2) * 4;
+        EXPECT_EQ(px[0], 64);   // 0.25 · 255, rounded
+        EXPECT_EQ(px[1], 128);
+        EXPECT_EQ(px[2], 191);
+        vkUnmapMemory(host.device, readbackMemory);
+        vkDestroyCommandPool(host.device, pool, nullptr);
+    }
+    vkDestroyBuffer(host.device, readback, nullptr);
+    vkFreeMemory(host.device, readbackMemory, nullptr);
+    vkDestroyImage(host.device, a, nullptr);
+    vkDestroyImage(host.device, b, nullptr);
+    for (VkDeviceMemory m : memories) vkFreeMemory(host.device, m, nullptr);
 }
 
 }  // namespace
