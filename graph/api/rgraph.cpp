@@ -3,6 +3,8 @@
 // files or from code, parameters and pass toggles applied as rg.frame's changes are.
 #include "rgraph/rgraph.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -107,6 +109,21 @@ rg::Scene toScene(const Scene& in) {
                                            rg::LightType::Disk,  rg::LightType::Rect, rg::LightType::Tube};
     for (size_t i = 0; i < in.lights.size(); ++i) {
         const Light& l = in.lights[i];
+        const std::string where = "scene light " + std::to_string(i);
+        // The units each type can have (as the Lua scenes check them, seed 000 tbl:8).
+        const bool punctual = l.type == Light::Type::Point || l.type == Light::Type::Spot, sun = l.type == Light::Type::Sun;
+        const std::vector<std::string> units = punctual ? std::vector<std::string>{"lm", "cd"}
+                                               : sun    ? std::vector<std::string>{"lux"}
+                                                        : std::vector<std::string>{"lm", "nits", "ev100"};
+        if (std::find(units.begin(), units.end(), l.unit) == units.end()) {
+            std::string list;
+            for (const auto& u : units) list += (list.empty() ? "'" : ", '") + u + "'";
+            throw Error(where + ": unit '" + l.unit + "' is not one this light type can have (" + list + ")");
+        }
+        if (!std::isfinite(l.intensity) || (l.unit != "ev100" && l.intensity < 0))
+            throw Error(where + ": intensity must be finite and not negative");
+        const float size = l.type == Light::Type::Rect ? std::min(l.width, l.height) : l.type == Light::Type::Tube ? std::min(l.radius, l.length) : l.radius;
+        if (!punctual && !sun && !(size > 0)) throw Error(where + ": an area light needs its size (radius, width and height, or radius and length) above 0");
         rg::Light r;
         r.name = "light" + std::to_string(i);
         r.type = kTypes[static_cast<int>(l.type)];

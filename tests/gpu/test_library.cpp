@@ -198,6 +198,14 @@ TEST(Library, ErrorsAreExceptionsWithFileAndLine) {
     rgraph::Scene bad = sceneInCode();
     bad.meshes[0].indices.push_back(100000);
     EXPECT_THROW(r->setScene(bad), rgraph::Error);
+    rgraph::Scene lumens = sceneInCode();
+    lumens.lights[0].unit = "lm";  // a sun is given in lux (seed 000 tbl:8)
+    try {
+        r->setScene(lumens);
+        FAIL() << "a sun in lumens was accepted";
+    } catch (const rgraph::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("unit 'lm'"), std::string::npos) << e.what();
+    }
 }
 
 // The host's own images through the graph, in the host's command buffer: the host clears image A,
