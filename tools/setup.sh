@@ -11,6 +11,7 @@ packages=(
   glslang-dev glslang-tools spirv-tools libspirv-cross-c-shared-dev
   libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
   libopenexr-dev liblua5.4-dev libpng-dev zlib1g-dev libgtest-dev
+  libcpp-httplib-dev  # rgraph serve
   chromium  # the golden-test report is checked in a real (headless) browser
 )
 missing=()

@@ -21,6 +21,7 @@
 #include "golden/command.h"
 #include "golden/metrics.h"
 #include "runtime.h"
+#include "serve.h"
 #include "session.h"
 
 #include <thread>
@@ -118,10 +119,10 @@ bool parseSize(const std::string& s, uint32_t& w, uint32_t& h) {
     return true;
 }
 
-bool parseCount(const std::string& s, uint32_t& n) {
+bool parseCount(const std::string& s, uint32_t& n, bool allowZero = false) {
     char* end = nullptr;
     unsigned long v = std::strtoul(s.c_str(), &end, 10);
-    if (s.empty() || *end || v == 0 || v > 1000000) return false;
+    if (s.empty() || s[0] == '-' || *end || (v == 0 && !allowZero) || v > 1000000) return false;
     n = static_cast<uint32_t>(v);
     return true;
 }
@@ -151,6 +152,7 @@ const char* kMainHelp =
     "  graph     print the compiled plan of a pipeline as DOT or JSON\n"
     "  bench     time every pass over several frames\n"
     "  watch     re-render whenever a script or shader of the pipeline changes\n"
+    "  serve     render continuously and serve a live page: graph, timings, controls, any image\n"
     "  export-scene  write a Lua scene as binary glTF (.glb)\n"
     "  test      run the golden-image tests (tests/golden/*.lua): --update, --report DIR, --junit FILE\n"
     "  compare   error between two EXR renders: relative error, RMSE, PSNR, heat map\n"
@@ -555,6 +557,36 @@ int cmdWatch(int argc, char** argv) {
     return kOk;
 }
 
+int cmdServe(int argc, char** argv) {
+    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "scene-arg", "set", "camera", "environment", "size", "device", "port", "host", "interval"});
+    if (args.help) {
+        std::printf(
+            "usage: rgraph serve [--pipeline FILE.lua] [--scene FILE] [--size WxH] [--port N] [--host ADDRESS] [--interval MS]\n"
+            "                    [--scene-arg NAME=VALUE]... [--set NAME=VALUE]... [--environment FILE|sky|none]\n\n"
+            "Renders the pipeline continuously (headless) and serves a page at http://HOST:PORT/ (default\n"
+            "127.0.0.1:8080; --port 0 takes a free port; the address is printed) showing the compiled graph,\n"
+            "per-pass GPU times, every parameter and pass switch as a control, any texture or G-buffer\n"
+            "channel as an image with an exposure slider (EXR download), and script errors with file:line\n"
+            "while the last good plan keeps rendering; scripts are reloaded when they change, as `watch`\n"
+            "does. The page uses only the JSON API beneath it (README: rgraph serve). Stops on SIGINT/SIGTERM.\n");
+        return kOk;
+    }
+    if (!args.error.empty()) return usageError(args.error, "serve");
+    ServeOptions so;
+    uint32_t port = 8080, interval = 100;
+    if (args.has("port") && (!parseCount(args.get("port"), port, /*allowZero=*/true) || port > 65535))
+        return usageError("--port must be a TCP port in 0..65535 (0: any free port)", "serve");
+    if (args.has("interval") && !parseCount(args.get("interval"), interval)) return usageError("--interval must be milliseconds", "serve");
+    so.port = static_cast<int>(port);
+    so.frameIntervalMs = interval;
+    if (args.has("host")) so.host = args.get("host");
+    if (isBuiltin(pipelineArg(args))) return usageError("serve needs a pipeline script", "serve");
+    auto setup = setupRun(args, "serve", 1, {}, /*verbose=*/false);
+    if (!setup) return report(setup.error());
+    so.pipeline = setup->pipeline;
+    return serve(*setup->runtime, *setup->session, so);
+}
+
 int cmdExportScene(int argc, char** argv) {
     Args args = Args::parse(argc, argv, 2, {"scene", "out"});
     if (args.help) {
@@ -797,6 +829,7 @@ int main(int argc, char** argv) {
     if (cmd == "graph") return cmdGraph(argc, argv);
     if (cmd == "bench") return cmdBench(argc, argv);
     if (cmd == "watch") return cmdWatch(argc, argv);
+    if (cmd == "serve") return cmdServe(argc, argv);
     if (cmd == "export-scene") return cmdExportScene(argc, argv);
     if (cmd == "test") return goldenCommand(argc, argv);
     if (cmd == "compare") return cmdCompare(argc, argv);

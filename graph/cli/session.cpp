@@ -553,6 +553,9 @@ Result<void> Session::load(const std::string& file) {
     m_sceneKey = sceneKey;
     m_host = std::move(host);
     m_pipeline = std::move(*pipeline);
+    // Overrides of parameters and passes the new script no longer has are dropped.
+    std::erase_if(m_overrides.params, [&](const auto& o) { return !m_pipeline.findParam(o.first); });
+    std::erase_if(m_overrides.enabled, [&](const auto& o) { return !m_pipeline.graph.findPass(o.first); });
     m_rebuilds = 0;
     m_loadMs = msSince(t0);
     note("loaded " + file + ": " + std::to_string(m_runtime.executor().plan().passes.size()) + " passes (" +
@@ -571,11 +574,13 @@ Result<void> Session::frame(VkCommandBuffer hostCmd) {
                                                 [](const Light& l) { return l.type == LightType::Directional; })),
             static_cast<uint32_t>(m_scene->scene().probes.size())};
     auto changes = m_host->frame(ctx, m_pipeline);
-    if (changes && m_options.frameHook) {
+    if (changes && (m_options.frameHook || !m_overrides.empty())) {
         PipelineDesc seen = m_pipeline;
         applyFrameChanges(seen, *changes);
-        auto more = m_options.frameHook(ctx, seen);
+        auto more = m_options.frameHook ? m_options.frameHook(ctx, seen) : Result<FrameChanges>(FrameChanges{});
         if (!more) return std::unexpected(more.error());
+        for (const auto& [k, v] : m_overrides.params) more->params[k] = v;
+        for (const auto& [k, v] : m_overrides.enabled) more->enabled[k] = v;
         for (const auto& [k, v] : more->params) changes->params[k] = v;
         for (const auto& [k, v] : more->enabled) changes->enabled[k] = v;
         for (const auto& [k, v] : more->shaders) changes->shaders[k] = v;
@@ -614,6 +619,29 @@ Result<void> Session::frame(VkCommandBuffer hostCmd) {
     }
     if (auto r = m_runtime.executor().frame(hostCmd); !r) return r;
     ++m_frame;
+    return {};
+}
+
+Result<void> Session::setOverride(const std::string& param, const Value& value) {
+    const ParamDesc* p = m_pipeline.findParam(param);
+    if (!p) {
+        std::vector<std::string> names;
+        for (const auto& d : m_pipeline.params) names.push_back(d.name);
+        return fail(ErrorCode::NotFound, "params." + param + ": the pipeline has no parameter '" + param + "'" + suggestion(param, names));
+    }
+    auto checked = checkParamValue(*p, value);
+    if (!checked) return fail(ErrorCode::InvalidInput, "params." + param + ": " + checked.error().message);
+    m_overrides.params[param] = *checked;
+    return {};
+}
+
+Result<void> Session::setPassOverride(const std::string& pass, bool enabled) {
+    if (!m_pipeline.graph.findPass(pass)) {
+        std::vector<std::string> names;
+        for (const auto& d : m_pipeline.graph.passes) names.push_back(d.name);
+        return fail(ErrorCode::NotFound, "passes." + pass + ": the pipeline has no pass '" + pass + "'" + suggestion(pass, names));
+    }
+    m_overrides.enabled[pass] = enabled;
     return {};
 }
 

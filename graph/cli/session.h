@@ -4,6 +4,7 @@
 // enabling/disabling a pass or swapping its shader: an incremental rebuild) and renders.
 #pragma once
 
+#include <algorithm>
 #include <functional>
 #include <map>
 #include <memory>
@@ -50,6 +51,19 @@ public:
     // One frame: rg.frame's changes, then recorded and submitted — or, with `hostCmd`, recorded
     // into the host's command buffer for the host to submit (Executor::frame).
     Result<void> frame(VkCommandBuffer hostCmd = VK_NULL_HANDLE);
+    // Parameter values and pass switches that hold over the script's rg.frame from the next frame
+    // on (applied after it each frame, as SessionOptions::frameHook's are): `rgraph serve`'s
+    // controls. Checked: an unknown parameter or pass, a wrong type or a value out of range is an
+    // error and nothing changes.
+    Result<void> setOverride(const std::string& param, const Value& value);
+    Result<void> setPassOverride(const std::string& pass, bool enabled);
+    const FrameChanges& overrides() const { return m_overrides; }
+    // Exports one more resource for readback (or decodes one more G-buffer channel) from the
+    // next load on.
+    void addCapture(const std::string& name) {
+        if (std::find(m_options.captures.begin(), m_options.captures.end(), name) == m_options.captures.end()) m_options.captures.push_back(name);
+    }
+    const std::vector<std::string>& captures() const { return m_options.captures; }
 
     const PipelineDesc& pipeline() const { return m_pipeline; }
     uint64_t framesRendered() const { return m_frame; }
@@ -102,6 +116,7 @@ private:
     double m_loadMs = 0.0;
     std::vector<std::string> m_log;
     std::vector<ChannelCapture> m_channels;
+    FrameChanges m_overrides;
 };
 
 // Writes gbuffer_<layout>.glsl (pack/unpack, generated) for every layout of the pipeline into
