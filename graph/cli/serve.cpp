@@ -67,13 +67,17 @@ json stateJson(Runtime& runtime, const Session& session, uint64_t frames, const 
     state["rebuilt"] = report.passesPrepared.size();
     state["reused"] = report.passesReused.size();
     state["buildSummary"] = report.summary();
-    std::map<std::string, double> gpu;
-    for (const auto& t : ex.lastTimings()) gpu[t.name] = t.gpuMs;
+    std::map<std::string, double> gpu, cpu;
+    for (const auto& t : ex.lastTimings()) {
+        gpu[t.name] = t.gpuMs;
+        cpu[t.name] = t.cpuMs;
+    }
     json passes = json::array();
     for (const PassDesc& d : p.graph.passes) {
         const bool kept = std::any_of(ex.plan().passes.begin(), ex.plan().passes.end(), [&](const PlanPass& q) { return q.name == d.name; });
         passes.push_back({{"name", d.name}, {"kind", d.kind}, {"enabled", d.enabled}, {"kept", kept},
-                          {"gpuMs", gpu.count(d.name) ? json(gpu[d.name]) : json(nullptr)}, {"origin", d.origin}});
+                          {"gpuMs", gpu.count(d.name) ? json(gpu[d.name]) : json(nullptr)},
+                          {"cpuMs", cpu.count(d.name) ? json(cpu[d.name]) : json(nullptr)}, {"origin", d.origin}});
     }
     state["passes"] = passes;
     json params = json::array();

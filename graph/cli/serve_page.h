@@ -30,7 +30,7 @@ img#view { max-width: 100%; image-rendering: pixelated; border: 1px solid #ccc; 
   <div id="status">connecting…</div>
   <div id="error"></div>
   <h2>Passes</h2>
-  <table id="passes"><thead><tr><th>on</th><th>pass</th><th>kind</th><th>GPU ms</th></tr></thead><tbody></tbody></table>
+  <table id="passes"><thead><tr><th>on</th><th>pass</th><th>kind</th><th>GPU ms</th><th>CPU ms</th></tr></thead><tbody></tbody></table>
   <h2>Parameters</h2>
   <table id="params"><tbody></tbody></table>
 </div>
@@ -74,6 +74,7 @@ function renderPasses() {
     cell(tr, p.name); cell(tr, p.kind);
     const t = cell(tr, p.gpuMs == null ? "-" : p.gpuMs.toFixed(2) + " ");
     if (p.gpuMs != null) { const bar = document.createElement("span"); bar.className = "bar"; bar.style.width = (60 * p.gpuMs / slowest) + "px"; t.appendChild(bar); }
+    cell(tr, p.cpuMs == null ? "-" : p.cpuMs.toFixed(3));
     body.appendChild(tr);
   }
 }

@@ -456,7 +456,7 @@ Result<void> Executor::collect(FrameSlot& slot) {
     m_lastTimings.clear();
     for (size_t i = 0; i < slot.passNames.size(); ++i) {
         double ns = static_cast<double>(stamps[2 * i + 1] - stamps[2 * i]) * m_ctx.timestampPeriodNs();
-        m_lastTimings.push_back({slot.passNames[i], ns * 1e-6});
+        m_lastTimings.push_back({slot.passNames[i], ns * 1e-6, i < slot.passCpuMs.size() ? slot.passCpuMs[i] : 0.0});
     }
     return {};
 }
@@ -483,6 +483,7 @@ Result<void> Executor::frame(VkCommandBuffer hostCmd) {
     }
     slot.queryCount = queries;
     slot.passNames.clear();
+    slot.passCpuMs.clear();
 
     VkCommandBuffer cmd = hostCmd ? hostCmd : slot.cmd;
     if (!hostCmd) {
@@ -514,7 +515,9 @@ Result<void> Executor::frame(VkCommandBuffer hostCmd) {
         if (queries)
             vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.queries.get(), static_cast<uint32_t>(2 * i));
         RecordContext rc{m_ctx, cmd, pass, m_built->graph.passes[pass.desc], m_built->table, m_built->plan, info, m_scene};
+        const auto recordStart = Clock::now();
         m_built->instances[i]->record(rc);
+        slot.passCpuMs.push_back(msSince(recordStart));
         if (queries)
             vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.queries.get(), static_cast<uint32_t>(2 * i + 1));
         m_ctx.endLabel(cmd);

@@ -19,6 +19,7 @@ namespace rg::gpu {
 struct PassTiming {
     std::string name;
     double gpuMs = 0.0;
+    double cpuMs = 0.0;  // recording its commands (the pass instance's record())
 };
 
 struct BuildStats {
@@ -111,6 +112,7 @@ private:
         uint32_t queryCount = 0;
         bool pending = false;  // submitted, timings not yet read
         std::vector<std::string> passNames;
+        std::vector<double> passCpuMs;
     };
     struct Built;  // physical resources + pass instances of one plan
 

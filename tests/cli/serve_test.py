@@ -80,7 +80,8 @@ threading.Thread(target=lambda: shutil.copyfileobj(server.stdout, log), daemon=T
 
 s = wait_for(base, lambda s: s.get("frame", 0) >= 2)
 check("renders continuously", s.get("frame", 0) >= 2, s.get("frame"))
-check("state lists passes with GPU times", any(p["name"] == "gbuffer" and p["gpuMs"] is not None for p in s["passes"]), s.get("passes", [])[:3])
+check("state lists passes with GPU and CPU times", any(p["name"] == "gbuffer" and p["gpuMs"] is not None and p["cpuMs"] is not None for p in s["passes"]),
+      s.get("passes", [])[:3])
 params = {p["name"]: p for p in s["params"]}
 check("state lists typed parameters with ranges", params.get("ec", {}).get("type") == "number" and params["ec"].get("min") == -16, params.get("ec"))
 code, ctype, body = request(base + "/")
