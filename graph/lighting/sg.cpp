@@ -68,4 +68,103 @@ float basisSharpness(const std::vector<glm::vec3>& axes) {
     return std::log(2.0f) / (1.0f - std::cos(0.5f * theta));
 }
 
+namespace {
+
+// Least squares on the passive set P only: minimise |A_P z - b| by the normal equations
+// (A_Pᵀ A_P) z = A_Pᵀ b, Cholesky-factored (the basis has at most a few dozen lobes).
+std::vector<double> solvePassive(const std::vector<double>& ata, const std::vector<double>& atb, const std::vector<int>& passive, size_t n) {
+    const size_t m = passive.size();
+    std::vector<double> l(m * m, 0.0), z(n, 0.0), y(m, 0.0);
+    for (size_t i = 0; i < m; ++i)
+        for (size_t j = 0; j <= i; ++j) {
+            double sum = ata[size_t(passive[i]) * n + size_t(passive[j])];
+            for (size_t k = 0; k < j; ++k) sum -= l[i * m + k] * l[j * m + k];
+            if (i == j) l[i * m + i] = std::sqrt(std::max(sum, 1e-300));
+            else l[i * m + j] = sum / l[j * m + j];
+        }
+    for (size_t i = 0; i < m; ++i) {
+        double sum = atb[size_t(passive[i])];
+        for (size_t k = 0; k < i; ++k) sum -= l[i * m + k] * y[k];
+        y[i] = sum / l[i * m + i];
+    }
+    for (size_t i = m; i-- > 0;) {
+        double sum = y[i];
+        for (size_t k = i + 1; k < m; ++k) sum -= l[k * m + i] * z[size_t(passive[k])];
+        z[size_t(passive[i])] = sum / l[i * m + i];
+    }
+    return z;
+}
+
+// Lawson-Hanson NNLS on the normal equations: min |Ax - b|², x ≥ 0.
+std::vector<double> nnls(const std::vector<double>& ata, const std::vector<double>& atb, size_t n) {
+    std::vector<double> x(n, 0.0);
+    std::vector<bool> inP(n, false);
+    auto gradient = [&](size_t j) {  // wⱼ = (Aᵀ(b − Ax))ⱼ
+        double w = atb[j];
+        for (size_t k = 0; k < n; ++k) w -= ata[j * n + k] * x[k];
+        return w;
+    };
+    for (int outer = 0; outer < 3 * static_cast<int>(n) + 10; ++outer) {
+        int best = -1;
+        double bestW = 1e-12;
+        for (size_t j = 0; j < n; ++j)
+            if (!inP[j] && gradient(j) > bestW) bestW = gradient(j), best = static_cast<int>(j);
+        if (best < 0) break;  // KKT: every free coefficient's gradient ≤ 0
+        inP[size_t(best)] = true;
+        for (int inner = 0; inner < 3 * static_cast<int>(n) + 10; ++inner) {
+            std::vector<int> passive;
+            for (size_t j = 0; j < n; ++j)
+                if (inP[j]) passive.push_back(static_cast<int>(j));
+            std::vector<double> z = solvePassive(ata, atb, passive, n);
+            bool feasible = true;
+            for (int j : passive) feasible = feasible && z[size_t(j)] > 0.0;
+            if (feasible) {
+                x = z;
+                break;
+            }
+            // Step towards z until a coefficient reaches 0; it leaves the passive set.
+            double alpha = 1.0;
+            for (int j : passive)
+                if (z[size_t(j)] <= 0.0) alpha = std::min(alpha, x[size_t(j)] / (x[size_t(j)] - z[size_t(j)]));
+            for (size_t j = 0; j < n; ++j) {
+                x[j] += alpha * (z[j] - x[j]);
+                if (inP[j] && x[j] <= 1e-12) {
+                    x[j] = 0.0;
+                    inP[j] = false;
+                }
+            }
+        }
+    }
+    return x;
+}
+
+}  // namespace
+
+std::vector<glm::vec3> fitNonNegative(const std::vector<glm::vec3>& axes, float sharpness, const std::vector<glm::vec3>& directions,
+                                      const std::vector<glm::vec3>& radiance) {
+    const size_t n = axes.size();
+    std::vector<double> ata(n * n, 0.0);
+    std::vector<std::vector<double>> atb(3, std::vector<double>(n, 0.0));
+    std::vector<double> row(n);
+    for (size_t s = 0; s < directions.size(); ++s) {
+        for (size_t k = 0; k < n; ++k) row[k] = std::exp(double(sharpness) * (double(glm::dot(axes[k], directions[s])) - 1.0));
+        for (size_t i = 0; i < n; ++i) {
+            for (size_t j = 0; j < n; ++j) ata[i * n + j] += row[i] * row[j];
+            for (int c = 0; c < 3; ++c) atb[size_t(c)][i] += row[i] * double(radiance[s][c]);
+        }
+    }
+    std::vector<glm::vec3> out(n, glm::vec3(0.0f));
+    for (int c = 0; c < 3; ++c) {
+        const std::vector<double> x = nnls(ata, atb[size_t(c)], n);
+        for (size_t k = 0; k < n; ++k) out[k][c] = static_cast<float>(x[k]);
+    }
+    return out;
+}
+
+glm::vec3 evaluateBasis(const std::vector<glm::vec3>& axes, float sharpness, const std::vector<glm::vec3>& amplitudes, const glm::vec3& x) {
+    glm::vec3 sum(0.0f);
+    for (size_t k = 0; k < axes.size(); ++k) sum += amplitudes[k] * std::exp(sharpness * (glm::dot(axes[k], x) - 1.0f));
+    return sum;
+}
+
 }  // namespace rg::lighting

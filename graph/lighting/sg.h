@@ -42,4 +42,16 @@ glm::vec3 irradiance(const SphericalGaussian& radiance, const glm::vec3& n);
 std::vector<glm::vec3> goldenSpiralAxes(int n, bool hemisphere = false);
 float basisSharpness(const std::vector<glm::vec3>& axes);
 
+// The seed's coefficients are non-negative ("positive values only, which helps compression and
+// precision"): the least-squares fit of radiance samples by the fixed basis under amplitudes ≥ 0,
+// solved per colour channel by Lawson and Hanson's active-set NNLS (Solving Least Squares
+// Problems, 1974, ch. 23) on the samples' design matrix. `directions` should cover the sphere
+// (or the hemisphere) evenly: each sample weighs the same.
+std::vector<glm::vec3> fitNonNegative(const std::vector<glm::vec3>& axes, float sharpness, const std::vector<glm::vec3>& directions,
+                                      const std::vector<glm::vec3>& radiance);
+// Σ_k amplitude_k e^{λ (axis_k · x − 1)}: the fitted radiance in direction x.
+glm::vec3 evaluateBasis(const std::vector<glm::vec3>& axes, float sharpness, const std::vector<glm::vec3>& amplitudes, const glm::vec3& x);
+// n directions spread evenly over the sphere (the golden spiral with n points): sample sets.
+inline std::vector<glm::vec3> sphereSamples(int n) { return goldenSpiralAxes(n); }
+
 }  // namespace rg::lighting
