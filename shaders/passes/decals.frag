@@ -11,7 +11,7 @@
 #include "lib/scene.glsl"
 #include "gbuffer_pipeline.glsl"
 #if (RG_DECAL_TARGETS & 8) != 0
-#error a material lets decals blend a channel of its layout's fourth G-buffer target, which this pass does not write (it writes GB0..GB2): keep decal channels in the first three targets or leave them out of the material's decals
+#error a material lets decals blend a channel in the fourth target (GB3), which the decal pass does not write: keep decal channels in GB0, GB1 or GB2, or leave them out of the material decals
 #endif
 
 layout(location = 0) in vec2 uv;

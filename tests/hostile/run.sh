@@ -73,6 +73,11 @@ hostile "pipeline: rg.frame sets a wrong type" "p_frame_param_type.lua" -- $(ren
 hostile "pipeline: string.rep separator bomb" "p_rep_separator_bomb.lua" -- $(render --pipeline p_rep_separator_bomb.lua)
 hostile "pipeline: binary chunk" "p_binary_chunk.lua" -- $(render --pipeline p_binary_chunk.lua)
 hostile "pipeline: endless coroutine" "p_coroutine_loop.lua" -- $(render --pipeline p_coroutine_loop.lua)
+# ---- the material system: a team's layouts and materials that the generated code cannot serve
+hostile "material: integer target" "m_integer_target.lua:3" -- $(render --pipeline m_integer_target.lua)
+hostile "material: define collision" "m_name_collision.lua:4" -- $(render --pipeline m_name_collision.lua)
+hostile "material: decal channel in GB3" "fourth target" -- $(render --pipeline m_decal_fourth_target.lua)
+hostile "material: variant of a variant" "m_variant_of_variant.lua:3" -- $(render --pipeline m_variant_of_variant.lua)
 hostile "pipeline: zero layers" "p_zero_layers.lua:2" -- $(render --pipeline p_zero_layers.lua)
 hostile "pipeline: pass reads what it writes" "p_read_own_write.lua" -- $(render --pipeline p_read_own_write.lua)
 
