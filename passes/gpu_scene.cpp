@@ -472,6 +472,8 @@ Result<GpuLightTable> convertLights(const std::vector<Light>& lights, IesMode ie
             for (const auto& u : units) list += (list.empty() ? "'" : ", '") + u + "'";
             return fail(ErrorCode::InvalidInput, label + ": unit '" + l.unit + "' is not one of " + list + " (seed 000 tbl:8)");
         }
+        if (!std::isfinite(l.intensity) || (l.unit != "ev100" && l.intensity < 0.0f))
+            return fail(ErrorCode::InvalidInput, label + ": intensity must be a finite number, not negative (" + l.unit + ")");
         if (!l.ies.empty() && !punctual)
             return fail(ErrorCode::InvalidInput, label + ": an IES profile applies to point and spot lights only");
         const glm::vec3 direction = glm::length(l.direction) > 0.0f ? glm::normalize(l.direction) : glm::vec3(0, -1, 0);

@@ -109,21 +109,8 @@ rg::Scene toScene(const Scene& in) {
                                            rg::LightType::Disk,  rg::LightType::Rect, rg::LightType::Tube};
     for (size_t i = 0; i < in.lights.size(); ++i) {
         const Light& l = in.lights[i];
-        const std::string where = "scene light " + std::to_string(i);
-        // The units each type can have (as the Lua scenes check them, seed 000 tbl:8).
-        const bool punctual = l.type == Light::Type::Point || l.type == Light::Type::Spot, sun = l.type == Light::Type::Sun;
-        const std::vector<std::string> units = punctual ? std::vector<std::string>{"lm", "cd"}
-                                               : sun    ? std::vector<std::string>{"lux"}
-                                                        : std::vector<std::string>{"lm", "nits", "ev100"};
-        if (std::find(units.begin(), units.end(), l.unit) == units.end()) {
-            std::string list;
-            for (const auto& u : units) list += (list.empty() ? "'" : ", '") + u + "'";
-            throw Error(where + ": unit '" + l.unit + "' is not one this light type can have (" + list + ")");
-        }
-        if (!std::isfinite(l.intensity) || (l.unit != "ev100" && l.intensity < 0))
-            throw Error(where + ": intensity must be finite and not negative");
-        const float size = l.type == Light::Type::Rect ? std::min(l.width, l.height) : l.type == Light::Type::Tube ? std::min(l.radius, l.length) : l.radius;
-        if (!punctual && !sun && !(size > 0)) throw Error(where + ": an area light needs its size (radius, width and height, or radius and length) above 0");
+        // Units, sizes and intensities are checked where every scene's lights become the GPU's
+        // (passes/gpu_scene.cpp convertLights, seed 000 tbl:8).
         rg::Light r;
         r.name = "light" + std::to_string(i);
         r.type = kTypes[static_cast<int>(l.type)];
@@ -180,21 +167,16 @@ struct Renderer::Impl {
     std::unique_ptr<rg::Session> session;
     rg::SessionOptions options;
     std::string pipeline;
-    // What the host set: applied every frame after the script's rg.frame.
-    std::map<std::string, rg::Value> params;
-    std::map<std::string, bool> enabled;
-
+    // A new session (a new scene, size or captures): the host's parameters and pass switches
+    // carry over as its overrides, as far as the pipeline still has them.
     void load() {
         if (pipeline.empty()) return;
-        rg::SessionOptions o = options;
-        o.frameHook = [this](const rg::FrameContext&, const rg::PipelineDesc&) -> rg::Result<rg::FrameChanges> {
-            rg::FrameChanges c;
-            c.params = params;
-            c.enabled = enabled;
-            return c;
-        };
-        auto s = std::make_unique<rg::Session>(*runtime, o);
+        auto s = std::make_unique<rg::Session>(*runtime, options);
         check(s->load(pipeline));
+        if (session)
+            for (const auto& [name, value] : session->overrides().params) (void)s->setOverride(name, value);
+        if (session)
+            for (const auto& [pass, on] : session->overrides().enabled) (void)s->setPassOverride(pass, on);
         session = std::move(s);
     }
     const rg::Session& loaded() const {
@@ -276,15 +258,13 @@ void Renderer::setSize(uint32_t width, uint32_t height) {
 }
 
 void Renderer::setParameter(const std::string& name, const Value& value) {
-    const rg::ParamDesc* p = m->loaded().pipeline().findParam(name);
-    if (!p) throw Error("setParameter: the pipeline has no parameter '" + name + "'");
-    rg::Value v = std::visit([](const auto& x) { return rg::Value(x); }, value);
-    m->params[name] = check(rg::checkParamValue(*p, v));
+    m->loaded();
+    check(m->session->setOverride(name, std::visit([](const auto& x) { return rg::Value(x); }, value)));
 }
 
 void Renderer::setPassEnabled(const std::string& pass, bool enabled) {
-    if (!m->loaded().pipeline().graph.findPass(pass)) throw Error("setPassEnabled: the pipeline has no pass '" + pass + "'");
-    m->enabled[pass] = enabled;
+    m->loaded();
+    check(m->session->setPassOverride(pass, enabled));
 }
 
 void Renderer::render(uint32_t frames) {

@@ -275,13 +275,13 @@ int serve(Runtime& runtime, Session& session, const ServeOptions& options) {
     auto files = stamp();
     auto lastPoll = std::chrono::steady_clock::now();
     while (!g_stop) {
-        std::deque<std::function<void()>> todo;
+        std::deque<std::function<void()>> due;
         {
             std::lock_guard lock(mutex);
-            todo.swap(jobs);
+            due.swap(jobs);
         }
-        for (auto& job : todo) job();
-        if (!todo.empty()) files = stamp();  // a job may have reloaded (an image export): its files are the new ones
+        for (auto& job : due) job();
+        if (!due.empty()) files = stamp();  // a job may have reloaded (an image export): its files are the new ones
         if (std::chrono::steady_clock::now() - lastPoll > std::chrono::milliseconds(options.pollMs)) {
             lastPoll = std::chrono::steady_clock::now();
             auto now = stamp();

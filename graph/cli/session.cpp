@@ -297,7 +297,7 @@ Result<Image> Session::channelImage(const ChannelCapture& ch) const {
     const ChannelDesc& desc = main->index >= 0 ? main->info.channelDesc(static_cast<size_t>(main->index))
                                                : byId.begin()->second.info.channelDesc(static_cast<size_t>(byId.begin()->second.index));
     const bool integer = desc.encoding == Encoding::Uint;
-    const uint32_t comps = desc.encoding == Encoding::Oct || desc.encoding == Encoding::Srgb ? 3u : std::max(desc.components, 1u);
+    const uint32_t comps = valueComponents(desc);
     Image out(targets[0].width, targets[0].height, comps);
     auto decode = [&](const Decoder& d, uint32_t x, uint32_t y) {
         std::vector<TexelValue> texels(d.targets.size());
@@ -328,6 +328,20 @@ Result<Image> Session::channelImage(const ChannelCapture& ch) const {
 const Scene* Session::scene() const { return m_scene ? &m_scene->scene() : nullptr; }
 
 namespace {
+
+// A value for parameter `name` of `pipeline`, checked against its type and range: what --set,
+// the golden tests' params and `rgraph serve`'s controls all go through.
+Result<Value> checkedParam(const PipelineDesc& pipeline, const std::string& name, const Value& value) {
+    const ParamDesc* p = pipeline.findParam(name);
+    if (!p) {
+        std::vector<std::string> names;
+        for (const auto& d : pipeline.params) names.push_back(d.name);
+        return fail(ErrorCode::NotFound, "params." + name + ": the pipeline has no parameter '" + name + "'" + suggestion(name, names));
+    }
+    auto checked = checkParamValue(*p, value);
+    if (!checked) return fail(ErrorCode::InvalidInput, "params." + name + ": " + checked.error().message);
+    return *checked;
+}
 
 std::string defaultScene() { return projectRoot() + "/scripts/scenes/default.lua"; }
 
@@ -442,11 +456,9 @@ Result<void> Session::load(const std::string& file) {
         return fail(ErrorCode::InvalidInput, "--scene: pipeline '" + file + "' has no scene pass to draw it");
     }
     for (const auto& [name, value] : m_options.params) {
-        ParamDesc* p = pipeline->findParam(name);
-        if (!p) return fail(ErrorCode::NotFound, "params." + name + ": the pipeline has no parameter '" + name + "'");
-        auto checked = checkParamValue(*p, value);
-        if (!checked) return fail(ErrorCode::InvalidInput, "params." + name + ": " + checked.error().message);
-        p->value = *checked;
+        auto checked = checkedParam(*pipeline, name, value);
+        if (!checked) return std::unexpected(checked.error());
+        pipeline->findParam(name)->value = *checked;
     }
     // The new scene is what the build prepares against; if the build fails, the executor goes
     // back to the scene its previous (still running) build uses.
@@ -501,8 +513,7 @@ Result<void> Session::load(const std::string& file) {
                     for (const auto& t : ld.targets)
                         for (const auto& cd : t.channels)
                             if (cd.name == ch) {
-                                const uint32_t n = cd.encoding == Encoding::Oct || cd.encoding == Encoding::Srgb ? 3u : std::max(cd.components, 1u);
-                                return std::make_pair(n, cd.encoding == Encoding::Uint);
+                                return std::make_pair(valueComponents(cd), cd.encoding == Encoding::Uint);
                             }
                     return std::make_pair(0u, false);
                 };
@@ -623,14 +634,8 @@ Result<void> Session::frame(VkCommandBuffer hostCmd) {
 }
 
 Result<void> Session::setOverride(const std::string& param, const Value& value) {
-    const ParamDesc* p = m_pipeline.findParam(param);
-    if (!p) {
-        std::vector<std::string> names;
-        for (const auto& d : m_pipeline.params) names.push_back(d.name);
-        return fail(ErrorCode::NotFound, "params." + param + ": the pipeline has no parameter '" + param + "'" + suggestion(param, names));
-    }
-    auto checked = checkParamValue(*p, value);
-    if (!checked) return fail(ErrorCode::InvalidInput, "params." + param + ": " + checked.error().message);
+    auto checked = checkedParam(m_pipeline, param, value);
+    if (!checked) return std::unexpected(checked.error());
     m_overrides.params[param] = *checked;
     return {};
 }

@@ -175,6 +175,11 @@ int LayoutInfo::find(std::string_view channelName) const {
     return -1;
 }
 
+uint32_t valueComponents(const ChannelDesc& c) {
+    if (c.encoding == Encoding::Oct || c.encoding == Encoding::Srgb) return 3;
+    return c.components ? c.components : 1;
+}
+
 Result<LayoutInfo> analyzeLayout(const LayoutDesc& desc) {
     using K = TexelComponents::Kind;
     Blame blame(desc);

@@ -115,6 +115,10 @@ struct LayoutInfo {
     int find(std::string_view channelName) const;
 };
 
+// Components of a channel's unpacked value (its GBuffer_<layout> member, ChannelValue): 3 for
+// oct (the normal) and srgb (the colour), else its declared count (1 by default).
+uint32_t valueComponents(const ChannelDesc& c);
+
 // Validates and places every channel. Errors (InvalidInput, Unsupported for depth formats) name
 // the layout, the target and the channel and say what was expected; the message starts with
 // "origin: " of the most specific declaration that has one (channel, then target, then layout).

@@ -606,16 +606,12 @@ struct Builder {
                     if (c.name == name) return &c;
             return nullptr;
         };
-        auto components = [](const ChannelDesc& c) {
-            if (c.encoding == Encoding::Oct || c.encoding == Encoding::Srgb) return 3u;
-            return c.components ? c.components : 1u;
-        };
         // What each standard parameter needs of its channel: components, and a float encoding.
         auto fits = [&](const std::string& standard, const ChannelDesc& c) {
             const bool vec3 = standard == "normal" || standard == "baseColor" || standard == "f0" || standard == "emissive";
             if (c.encoding == Encoding::Uint) return false;
-            if (standard == "normal") return c.encoding == Encoding::Oct || (c.encoding == Encoding::Snorm && components(c) == 3);
-            return components(c) == (vec3 ? 3u : 1u);
+            if (standard == "normal") return c.encoding == Encoding::Oct || (c.encoding == Encoding::Snorm && valueComponents(c) == 3);
+            return valueComponents(c) == (vec3 ? 3u : 1u);
         };
         std::vector<std::string> standard(std::begin(kStandardChannels), std::end(kStandardChannels));
         if (b.has("channels")) {
@@ -644,7 +640,7 @@ struct Builder {
             if (!fits(s, *c)) {
                 if (declared)
                     return w.at("channels").at(s).error("channel '" + name + "' (" + std::string(encodingName(c->encoding)) + ", " +
-                                                        std::to_string(components(*c)) + " components) cannot hold " + s);
+                                                        std::to_string(valueComponents(*c)) + " components) cannot hold " + s);
                 continue;  // a channel of the same name but another meaning: not the standard one
             }
             m.channels[s] = name;
