@@ -723,6 +723,9 @@ void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
     u.previousViewProj = m_previousViewProj.value_or(u.viewProj);
     m_previousViewProj = u.viewProj;
     std::memcpy(m_cameraBuffers[slot].mapped(), &u, sizeof u);
+    const auto planes = frustumPlanes(u.viewProj);
+    m_drawInView.resize(m_draws.size());
+    for (size_t d = 0; d < m_draws.size(); ++d) m_drawInView[d] = boxMeetsFrustum(planes, m_draws[d].boundsMin, m_draws[d].boundsMax);
     updateShadowViews(slot, u.viewProj);
 }
 

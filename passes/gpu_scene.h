@@ -107,6 +107,9 @@ public:
 
     const Scene& scene() const { return m_scene; }
     const std::vector<DrawItem>& draws() const { return m_draws; }
+    // Whether draw d's world box meets the camera's frustum this frame (updateFrame): the camera's
+    // scene passes skip the draws it does not.
+    bool drawInView(size_t d) const { return d >= m_drawInView.size() || m_drawInView[d] != 0; }
     VkBuffer vertexBuffer() const { return m_vertices.buffer(); }
     VkBuffer indexBuffer() const { return m_indices.buffer(); }
     VkDescriptorSetLayout materialSetLayout() const { return m_materialLayout.get(); }
@@ -188,6 +191,7 @@ private:
     std::vector<std::vector<size_t>> m_shadowViewDraws;      // per view of this frame
     mutable gpu::Buffer m_bvh;  // bvhBuffer(), once built
     gpu::Buffer m_drawBuffer;
+    std::vector<char> m_drawInView;        // per draw: its box meets the camera's frustum (updateFrame)
     std::vector<glm::ivec4> m_lightViews;  // per light (kMaxLights): first view (−1: none), count — as uploaded
     void updateShadowViews(uint32_t slot, const glm::mat4& cameraViewProj);
     gpu::Buffer m_decals;

@@ -99,7 +99,7 @@ std::string fragmentSource(const MaterialInfo& m, const std::vector<std::string>
     }
     s << "void main() {\n"
       << "    RgSurface s = rgSampleSurface(worldPosition, worldNormal, worldTangent, uv0, uv1, gl_FrontFacing);\n"
-      << "    if (material.factors2.w == 1.0 && s.opacity < material.factors2.z) discard;  // alpha mask\n"
+      << "#if RG_ALPHA_MASK\n    if (s.opacity < material.factors2.z) discard;  // alpha mask\n#endif\n"
       << "    GBuffer_" << m.layout << " g = rgSurface(s);\n";
     for (size_t t = 0; t < m.targets.size(); ++t) s << "    " << (m.targetInteger[t] ? "uvec4" : "vec4") << " t" << t << ";\n";
     s << "    packGBuffer_" << m.layout << "(g";
@@ -160,13 +160,19 @@ std::string captureSource(const MaterialInfo& m) {
     return s.str();
 }
 
-// The textures a scene material has, as lib/material.glsl's RG_TEXTURES bits.
-uint32_t textureMask(const Material& m) {
+// A scene material's shader variant: the textures it has, as lib/material.glsl's RG_TEXTURES bits,
+// and kAlphaMaskVariant when it is alpha-tested (RG_ALPHA_MASK). Only that variant may discard: a
+// shader that can discard makes the rasteriser test and write depth after shading, so every
+// fragment of an opaque draw would be shaded even where a nearer surface hides it (on lavapipe,
+// 3× the G-buffer's cost in the default scene).
+constexpr uint32_t kTextureBits = 31u, kAlphaMaskVariant = 32u;
+uint32_t variantKey(const Material& m) {
     const TextureRef* refs[] = {&m.baseColorTex, &m.metallicRoughnessTex, &m.normalTex, &m.occlusionTex, &m.emissiveTex};
-    uint32_t mask = 0;
+    uint32_t key = 0;
     for (uint32_t t = 0; t < 5; ++t)
-        if (refs[t]->valid()) mask |= 1u << t;
-    return mask;
+        if (refs[t]->valid()) key |= 1u << t;
+    if (m.alphaMode == AlphaMode::Mask) key |= kAlphaMaskVariant;
+    return key;
 }
 
 // Whether a world box can show in cube face `face` seen from `eye` (the faces of
@@ -199,11 +205,11 @@ std::vector<size_t> drawsWhere(const GpuScene& scene, Wanted wanted) {
     return out;
 }
 
-// The same, split by the textures their materials have (one shader variant each: RG_TEXTURES).
+// The same, split by shader variant (variantKey: RG_TEXTURES, RG_ALPHA_MASK).
 template <typename Wanted>
 std::map<uint32_t, std::vector<size_t>> drawsByTextures(const GpuScene& scene, Wanted wanted) {
     std::map<uint32_t, std::vector<size_t>> out;
-    for (size_t d : drawsWhere(scene, wanted)) out[textureMask(scene.scene().materials[scene.draws()[d].material])].push_back(d);
+    for (size_t d : drawsWhere(scene, wanted)) out[variantKey(scene.scene().materials[scene.draws()[d].material])].push_back(d);
     return out;
 }
 
@@ -265,7 +271,7 @@ public:
                                                              "' target '" + t + "', which the pass does not write");
             // The scene's draws of this material, one shader variant per set of textures.
             auto variants = drawsByTextures(*setup.scene, [&](const Material& m) { return m.model == info.name && m.alphaMode != AlphaMode::Blend; });
-            if (variants.empty()) variants[31u];  // no draws: still compiled, so a broken material fails at load
+            if (variants.empty()) variants[kTextureBits | kAlphaMaskVariant];  // no draws: still compiled, so a broken material fails at load
             for (auto& [mask, draws] : variants)
                 if (auto r = addGroup(setup, info, fragmentSource(info, attachments), "material_" + info.name + ".frag", mask, std::move(draws), attachments); !r)
                     return r;
@@ -305,18 +311,26 @@ public:
         vkCmdBeginRendering(rc.cmd, &ri);
         bindViewAndGeometry(rc);
         (void)desc;
-        // (group, draw) in drawing order: per group; blended draws back to front across every
-        // group (by the distance of their origin to the camera), switching shaders as needed.
+        // (group, draw) in drawing order, the draws outside the camera's frustum left out. Opaque
+        // draws: per group (one pipeline bind each), front to back within it by the distance
+        // from the eye to their boxes, so the depth test rejects hidden fragments before they are
+        // shaded. Blended draws: back to front across every group (by the distance of their
+        // origin to the camera), switching shaders as needed.
+        const glm::vec3 eye = rc.scene->camera().position;
         std::vector<std::pair<size_t, size_t>> order;
+        std::vector<float> distance(rc.scene->draws().size(), 0.0f);
         for (size_t gi = 0; gi < m_groups.size(); ++gi)
-            for (size_t i : m_groups[gi].draws) order.emplace_back(gi, i);
-        if (m_forward) {
-            const glm::vec3 eye = rc.scene->camera().position;
-            std::stable_sort(order.begin(), order.end(), [&](const auto& a, const auto& b) {
-                return glm::distance(glm::vec3(rc.scene->draws()[a.second].world[3]), eye) >
-                       glm::distance(glm::vec3(rc.scene->draws()[b.second].world[3]), eye);
-            });
-        }
+            for (size_t i : m_groups[gi].draws) {
+                if (!rc.scene->drawInView(i)) continue;
+                const DrawItem& item = rc.scene->draws()[i];
+                distance[i] = m_forward ? glm::distance(glm::vec3(item.world[3]), eye)
+                                        : glm::distance(glm::clamp(eye, item.boundsMin, item.boundsMax), eye);
+                order.emplace_back(gi, i);
+            }
+        std::stable_sort(order.begin(), order.end(), [&](const auto& a, const auto& b) {
+            if (m_forward) return distance[a.second] > distance[b.second];
+            return a.first != b.first ? a.first < b.first : distance[a.second] < distance[b.second];
+        });
         size_t bound = SIZE_MAX;
         for (const auto& [gi, i] : order) {
             Group& g = m_groups[gi];
@@ -399,7 +413,8 @@ private:
         g.info = info;
         ShaderRequest vert;
         vert.path = vertex;
-        frag.defines.emplace_back("RG_TEXTURES", std::to_string(textures));
+        frag.defines.emplace_back("RG_TEXTURES", std::to_string(textures & kTextureBits));
+        frag.defines.emplace_back("RG_ALPHA_MASK", (textures & kAlphaMaskVariant) ? "1" : "0");
         g.program = std::make_unique<ShaderProgram>();
         if (auto r = g.program->build(setup, {vert, frag}, {{1u, setup.scene->materialSetLayout()}}); !r) return r;
         if (auto r = createPipeline(setup, g, attachments); !r) return r;

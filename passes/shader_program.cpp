@@ -111,16 +111,20 @@ Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> s
     }
     // The light types of the scene (lib/scene.glsl RG_SCENE_LIGHT_TYPES): the light loop keeps
     // only their branches. A new scene is a new build, so the shaders follow it.
+    // RG_SCENE_IES: whether any light has an IES profile (without, no profile lookup at all).
     // Likewise RG_SCENE_SHADOWED_LIGHTS when a local light casts shadows (lib/shadows.glsl: the
     // light loop looks its shadow up only then, with a blocker search only for lights with a size).
     if (setup.scene) {
         uint32_t types = 0;
         int shadowed = 0;  // 1: only punctual lights cast shadows; 2: a light with a size does
+        bool ies = false;
         for (const Light& l : setup.scene->scene().lights) {
             types |= 1u << static_cast<uint32_t>(l.type);
+            ies = ies || !l.ies.empty();
             if (l.castShadows) shadowed = std::max(shadowed, l.type == LightType::Point || l.type == LightType::Spot ? 1 : 2);
         }
         defines.emplace_back("RG_SCENE_LIGHT_TYPES", std::to_string(types));
+        defines.emplace_back("RG_SCENE_IES", ies ? "1" : "0");
         if (shadowed) defines.emplace_back("RG_SCENE_SHADOWED_LIGHTS", std::to_string(shadowed));
     }
 

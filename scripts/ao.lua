@@ -1,7 +1,7 @@
 -- Screen-space ambient occlusion (seed 002 §4.10.1–4.10.3): GTAO at half resolution from the
--- depth buffer and the G-buffer's normals (shaders/passes/gtao.frag), then a depth-aware blur back to
--- full resolution (ao_blur.frag) into `ssao` (r8: 1 open, 0 closed), inserted after the pass
--- named "gbuffer" (as the light culling).
+-- depth buffer and the G-buffer's normals (shaders/passes/gtao.frag), a depth-aware 4×4 filter at
+-- half resolution (ao_blur.frag), then a depth-aware upsample to full resolution (ao_upsample.frag)
+-- into `ssao` (r8: 1 open, 0 closed), inserted after the pass named "gbuffer" (as the light culling).
 --
 --   local ao = require "ao"
 --   rg.pass "lighting_x" (ao.lit { ... })   -- the lighting takes min(material AO, ssao)
@@ -18,6 +18,7 @@ local ao = {}
 rg.param "ao_radius" { type = "number", default = 1.0, min = 0.05, max = 10, doc = "metres around a point searched for occluders" }
 
 rg.resource "ao_half" { format = "rg16f", scale = { 0.5, 0.5 }, doc = "GTAO at half resolution, before its blur: AO, view distance (m)" }
+rg.resource "ao_filtered" { format = "rg16f", scale = { 0.5, 0.5 }, doc = "the half-resolution AO after its bilateral filter: AO, view distance (m)" }
 rg.resource "ssao" { format = "r8", doc = "screen-space ambient occlusion, 1 open .. 0 closed" }
 
 rg.pass "gtao" {
@@ -25,8 +26,12 @@ rg.pass "gtao" {
     insert = { after = "gbuffer" }, filter = "nearest",
 }
 rg.pass "ao_blur" {
-    kind = "fullscreen", shader = "passes/ao_blur.frag", reads = { "ao_half", "depth" }, writes = { "ssao" },
+    kind = "fullscreen", shader = "passes/ao_blur.frag", reads = { "ao_half" }, writes = { "ao_filtered" },
     insert = { after = "gtao" }, filter = "nearest",
+}
+rg.pass "ao_upsample" {
+    kind = "fullscreen", shader = "passes/ao_upsample.frag", reads = { "ao_filtered", "depth" }, writes = { "ssao" },
+    insert = { after = "ao_blur" }, filter = "nearest",
 }
 
 -- A lighting pass's declaration that takes its ambient occlusion from `ssao` too.

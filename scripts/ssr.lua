@@ -27,7 +27,8 @@ rg.param "ssr_thickness" { type = "number", default = 0.3, min = 0.01, max = 10,
 rg.param "ssr_max_roughness" { type = "number", default = 0.6, min = 0, max = 1, doc = "linear roughness from which the probes alone reflect" }
 
 rg.resource "hiz" { format = "r32f", mips = "full", doc = "nearest depth pyramid (Hi-Z)" }
-rg.resource "ssr" { format = "rgba16f", doc = "screen-space reflection: rgb luminance (nits), a confidence" }
+rg.resource "ssr" { format = "rgba16f", scale = { 0.5, 0.5 },
+    doc = "screen-space reflection at half resolution (the composition reads it bilinearly): rgb luminance (nits), a confidence" }
 rg.resource "hdr_history" { format = "rgba16f", mips = "full", persistent = true, doc = "the previous frame's lit image, with mips" }
 
 rg.pass "hiz" {

@@ -65,7 +65,9 @@ vec3 rgDfg(float NdotV, float linearRoughness) {
 #define RG_SSR_BINDING 17
 #endif
 layout(set = 0, binding = RG_SSR_BINDING) uniform sampler2D ssr;
-vec4 rgScreenSpaceReflection() { return texelFetch(ssr, ivec2(gl_FragCoord.xy), 0); }
+// `ssr` is traced at half resolution (one ray per 2×2 pixels: the march is the frame's most
+// expensive loop) and filtered bilinearly back to the pixel.
+vec4 rgScreenSpaceReflection() { return textureLod(ssr, gl_FragCoord.xy * camera.viewport.zw, 0.0); }
 #else
 vec4 rgScreenSpaceReflection() { return vec4(0.0); }
 #endif

@@ -54,6 +54,9 @@ vec3 rgSafeNormalize(vec3 v, vec3 fallback) {
 // axis (horizontal angle 0°), +y = z × x. The bilinear lookup is written out (repeat in θ,
 // clamp-to-edge in cos φ, texel centres): the arithmetic of graph/lighting's sampleIesTexture.
 float rgIesAttenuation(RgLight light, vec3 L) {
+#if !RG_SCENE_IES
+    return 1.0;
+#endif
     if (light.intensity.a < 0.0) return 1.0;
     vec3 z = light.directionRange.xyz, x = light.axis.xyz;
     vec3 y = cross(z, x);

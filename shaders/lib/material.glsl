@@ -43,6 +43,11 @@ struct RgSurface {
 #ifndef RG_TEXTURES
 #define RG_TEXTURES 31
 #endif
+// 1 for an alpha-tested material's variant: the only one whose fragment shader may discard
+// (passes/scene_pass.cpp variantKey: a shader that can discard loses the early depth test).
+#ifndef RG_ALPHA_MASK
+#define RG_ALPHA_MASK 0
+#endif
 
 vec2 rgTextureUv(int texture, vec2 uv0, vec2 uv1) {
     vec4 r0 = material.uvTransform[2 * texture], r1 = material.uvTransform[2 * texture + 1];

@@ -23,13 +23,35 @@ layout(set = 0, binding = 0) uniform sampler2D depth;
 layout(set = 0, binding = 1) uniform sampler2D GB0;
 layout(set = 0, binding = 2) uniform Params { float ao_radius; } params;
 
+// What rgViewPosition computes, with the per-frame constants hoisted out of the march (its 48
+// taps a pixel are the pass's cost): x, y = (ndc − offset) · scale · (perspective: the distance).
+struct Reconstruction {
+    ivec2 size;
+    vec2 ndcScale, ndcOffset;  // pixel → ndc: (q + 0.5) · ndcScale − 1
+    vec2 xyScale, xyOffset;    // 1 / proj[0][0], 1 / proj[1][1]; orthographic: proj[3][0], proj[3][1]
+    float perspective;         // 1 perspective, 0 orthographic
+    vec4 distance;             // rgViewDistance(z) = (x + y·z) / (z + w·z) of this vector: one division for either projection
+};
+Reconstruction reconstruction;
+
 vec3 viewPosition(ivec2 fullPixel) {
-    ivec2 size = textureSize(depth, 0);
-    ivec2 q = clamp(fullPixel, ivec2(0), size - 1);
-    return rgViewPosition((vec2(q) + 0.5) / vec2(size), texelFetch(depth, q, 0).r);
+    ivec2 q = clamp(fullPixel, ivec2(0), reconstruction.size - 1);
+    float z = texelFetch(depth, q, 0).r;
+    float d = (reconstruction.distance.x + reconstruction.distance.y * z) / (reconstruction.distance.z + reconstruction.distance.w * z);
+    vec2 ndc = (vec2(q) + 0.5) * reconstruction.ndcScale - 1.0;
+    vec2 xy = (ndc - reconstruction.xyOffset) * reconstruction.xyScale * mix(1.0, d, reconstruction.perspective);
+    return vec3(xy, -d);
 }
 
 void main() {
+    reconstruction.size = textureSize(depth, 0);
+    reconstruction.ndcScale = 2.0 / vec2(reconstruction.size);
+    reconstruction.perspective = rgCameraOrthographic() ? 0.0 : 1.0;
+    reconstruction.xyScale = 1.0 / vec2(camera.proj[0][0], camera.proj[1][1]);
+    reconstruction.xyOffset = rgCameraOrthographic() ? vec2(camera.proj[3][0], camera.proj[3][1]) : vec2(0.0);
+    // Perspective d = proj[3][2] / (z + proj[2][2]); orthographic d = (proj[3][2] − z) / proj[2][2].
+    reconstruction.distance = rgCameraOrthographic() ? vec4(camera.proj[3][2], -1.0, camera.proj[2][2], 0.0)
+                                                     : vec4(camera.proj[3][2], 0.0, camera.proj[2][2], 1.0);
     ivec2 half_ = ivec2(gl_FragCoord.xy);
     ivec2 full = half_ * 2;
     float z = texelFetch(depth, full, 0).r;

@@ -10,7 +10,7 @@ layout(set = 0, binding = 1) uniform Params { float view; float initial_ev100; }
 layout(set = 0, binding = 2, std430) readonly buffer exposure { RgExposureState state; } ex;
 
 void main() {
-    vec4 r = texelFetch(ssr, ivec2(gl_FragCoord.xy), 0);
+    vec4 r = texture(ssr, uv);  // `ssr` is at half resolution: bilinear, as the composition reads it
     vec3 c = r.rgb * r.a * rgPreExposure(ex.state, params.initial_ev100);
     if (params.view > 1.5) c = r.rgb * rgPreExposure(ex.state, params.initial_ev100);
     color = params.view < 0.5 || params.view > 1.5 ? vec4(c / (1.0 + c), 1.0) : vec4(vec3(r.a), 1.0);

@@ -42,7 +42,9 @@ void main() {
     // The facing from the geometry: the capture's face projections do not keep one winding.
     vec3 V = normalize(eye - worldPosition);
     RgSurface s = rgSampleSurface(worldPosition, worldNormal, worldTangent, uv0, uv1, dot(worldNormal, V) >= 0.0);
-    if (material.factors2.w > 0.5 && material.factors2.w < 1.5 && s.opacity < material.factors2.z) discard;  // alpha mask
+#if RG_ALPHA_MASK
+    if (s.opacity < material.factors2.z) discard;  // alpha mask (only this variant discards: passes/scene_pass.cpp variantKey)
+#endif
     vec3 N, albedo, emissive;
     float linearRoughness, ao;
     rgCaptureSurface(s, N, albedo, linearRoughness, ao, emissive);

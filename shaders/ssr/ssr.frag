@@ -37,7 +37,8 @@ vec3 project(vec3 v) {
 }
 
 void main() {
-    ivec2 p = ivec2(gl_FragCoord.xy);
+    // Half resolution: one ray for each 2×2 block of pixels, from its top-left pixel's surface.
+    ivec2 p = ivec2(gl_FragCoord.xy) * 2;
     float z = texelFetch(depth, p, 0).r;
     color = vec4(0.0);
     if (z >= 1.0) return;
