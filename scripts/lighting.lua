@@ -3,30 +3,49 @@
 --   local lighting = require "lighting"   -- declares `light_tiles` and the `light_culling` pass
 --   rg.pass "lighting_x" (lighting.tiled { kind = "fullscreen", shader = ..., reads = { ... }, ... })
 --
--- The culling pass (shaders/passes/light_culling.comp) runs after the pass named "gbuffer", reads
--- its depth and lists, per 16x16-pixel tile, the lights whose range reaches the tile's surfaces.
--- `lighting.tiled` makes a lighting pass read that list (the shader's light loop, through
--- lib/light_tiles.glsl, then visits only the tile's lights). A pipeline that never uses
--- `lighting.tiled` loses the culling pass to the graph's culling, and its shaders loop over all.
+-- Culling runs in two levels after the pass named "gbuffer" (shaders/passes/light_culling.comp),
+-- each reading its depth: `light_culling_coarse` lists, per 32x32-pixel tile, the ranged lights
+-- whose range reaches the tile's surfaces out of all of the scene's; `light_culling` then lists, per
+-- 8x8-pixel tile, those of its coarse tile's list that reach its own surfaces. Small tiles keep
+-- each pixel's loop to the lights near it; the coarse level keeps their test from costing
+-- tiles × lights. `lighting.tiled` makes a lighting pass read the fine lists (the shader's light
+-- loop, through lib/light_tiles.glsl, then visits only the tile's lights). A pipeline that never
+-- uses `lighting.tiled` loses both passes to the graph's culling, and its shaders loop over all.
 local rg = require "rg"
 
 local lighting = {}
 
--- Words per tile: the count, then up to 255 indices of ranged lights (1 KiB per tile; 3.5 MiB at
--- 1280x720). Lights without a range and the sun reach every pixel and are listed once, in the
--- global list (count + up to 1024 indices, shaders/lib/scene.glsl's RG_MAX_LIGHTS). A tile
--- reached by more than 255 ranged lights keeps the first 255 (the `lights` view shows them).
-lighting.tile_words = 256
+lighting.tile = 8            -- pixels per side of the tiles the lighting passes read
+lighting.coarse_tile = 32    -- pixels per side of the coarse level's tiles
+-- Words per fine tile: the count, then up to 126 indices of ranged lights, 16 bits each (256 B per
+-- tile; 3.5 MiB at 1280x720); per coarse tile up to 255, a word each (1 KiB per tile). Lights without a range and the sun
+-- reach every pixel and are listed once, in the global list (count + up to 1024 indices,
+-- shaders/lib/scene.glsl's RG_MAX_LIGHTS). A tile reached by more ranged lights than its list
+-- holds keeps the lowest indices (the `lights` view shows them); a fine tile under an overflowing
+-- coarse tile tests every light.
+lighting.tile_words = 64
+lighting.coarse_words = 256
 lighting.max_lights = 1024
 
+rg.buffer "light_tiles_coarse" {
+    size = 16, tile = lighting.coarse_tile, tile_bytes = 4 * lighting.coarse_words,
+    doc = "per 32x32 tile the ranged lights that reach it (light_culling.comp's coarse level)",
+}
 rg.buffer "light_tiles" {
-    size = 16 + 4 * (lighting.max_lights + 1), tile = 16, tile_bytes = 4 * lighting.tile_words,
-    doc = "the lights that reach every pixel, then per 16x16 tile the ranged lights that reach it (light_culling.comp)",
+    size = 16 + 4 * (lighting.max_lights + 1), tile = lighting.tile, tile_bytes = 4 * lighting.tile_words,
+    doc = "the lights that reach every pixel, then per 8x8 tile the ranged lights that reach it (light_culling.comp)",
+}
+rg.pass "light_culling_coarse" {
+    kind = "compute", shader = "passes/light_culling.comp",
+    reads = { "depth" }, writes = { { "light_tiles_coarse", as = "storage" } },
+    dispatch = "depth", tile = lighting.coarse_tile, insert = { after = "gbuffer" },
+    defines = { RG_CULL_COARSE = true, RG_COARSE_TILE_SIZE = lighting.coarse_tile },
 }
 rg.pass "light_culling" {
     kind = "compute", shader = "passes/light_culling.comp",
-    reads = { "depth" }, writes = { { "light_tiles", as = "storage" } },
-    dispatch = "depth", tile = 16, insert = { after = "gbuffer" },
+    reads = { "depth", { "light_tiles_coarse", as = "storage" } }, writes = { { "light_tiles", as = "storage" } },
+    dispatch = "depth", tile = lighting.tile, insert = { after = "light_culling_coarse" },
+    defines = { RG_TILE_SIZE = lighting.tile },
 }
 
 -- Adds `reads` to a pass declaration's reads and `define` to its defines: what the `.lit` and

@@ -12,25 +12,35 @@
 #include "lib/scene.glsl"
 
 // Pixels per tile side; the culling pass runs one invocation per tile. The light_tiles buffer is
-// declared with the same tile size (rg.buffer { tile = 16, tile_bytes = ... }, scripts/lighting.lua)
-// and room for the global list: size = 16 + 4 · (RG_MAX_LIGHTS + 1).
-#define RG_TILE_SIZE 16
+// declared with the same tile size (rg.buffer { tile = 8, tile_bytes = ... }, scripts/lighting.lua)
+// and room for the global list: size = 16 + 4 · (RG_MAX_LIGHTS + 1). The coarse level
+// (light_tiles_coarse, written first) has tiles of RG_COARSE_TILE_SIZE pixels.
+#ifndef RG_TILE_SIZE
+#define RG_TILE_SIZE 8
+#endif
+#ifndef RG_COARSE_TILE_SIZE
+#define RG_COARSE_TILE_SIZE 32
+#endif
 
 #ifndef RG_LIGHT_TILES_BINDING
 #define RG_LIGHT_TILES_BINDING 12
 #endif
 
 struct RgLightList {
-    uint base;    // index of the tile's first light in light_tiles.data
+    uint base;    // index of the tile's first word after its count in light_tiles.data
     uint count;   // global lights + the tile's
     uint global;  // how many of them come from the global list
 };
+
+// A tile's list holds two 16-bit light indices per word (RG_MAX_LIGHTS ≤ 65536), the lower half
+// first: `stride` words hold the count and 2 (stride − 1) lights.
+uint rgTileCapacity(uint stride) { return 2u * (stride - 1u); }
 
 #if defined(RG_LIGHT_TILES) && !defined(RG_LIGHT_TILES_WRITER)
 layout(set = 0, binding = RG_LIGHT_TILES_BINDING, std430) readonly buffer light_tiles {
     uvec4 header;                    // tiles x, tiles y, stride (words per tile), tile size
     uint global[RG_MAX_LIGHTS + 1];  // count, then the lights that reach every pixel
-    uint data[];                     // per tile: count, then the ranged lights that reach it
+    uint data[];                     // per tile: count, then the ranged lights that reach it (16 bits each)
 } lightTiles;
 
 uint rgLightTileIndex(ivec2 pixel) {
@@ -46,10 +56,12 @@ RgLightList rgLightList(ivec2 pixel) {
     uint global = lightTiles.global[0];
     if (stride < 2u) return RgLightList(0u, global, global);  // no room for tile lists
     uint base = rgLightTileIndex(pixel) * stride;
-    return RgLightList(base + 1u, global + min(lightTiles.data[base], stride - 1u), global);
+    return RgLightList(base + 1u, global + min(lightTiles.data[base], rgTileCapacity(stride)), global);
 }
 uint rgListLight(RgLightList list, uint k) {
-    return k < list.global ? lightTiles.global[1u + k] : lightTiles.data[list.base + k - list.global];
+    if (k < list.global) return lightTiles.global[1u + k];
+    uint j = k - list.global;
+    return (lightTiles.data[list.base + (j >> 1u)] >> ((j & 1u) * 16u)) & 0xFFFFu;
 }
 #else
 RgLightList rgLightList(ivec2 pixel) { return RgLightList(0u, lights.count.x, 0u); }

@@ -9,22 +9,28 @@ layout(set = 0, binding = 0) uniform sampler2D source;
 layout(set = 0, binding = 1) uniform Params { float fxaa_threshold; float fxaa_subpixel; } params;
 
 float luma(vec3 c) { return dot(c, vec3(0.299, 0.587, 0.114)); }
-float lumaAt(vec2 q) { return luma(texture(source, q).rgb); }
+float lumaAt(vec2 q) { return luma(texture(source, q).rgb); }  // between texels: filtered
+// The 3×3 neighbourhood sits on texel centres: unfiltered fetches (a filtered tap costs a CPU
+// rasteriser four fetches and their blend).
+ivec2 pixel, last;
+float lumaNear(int dx, int dy) { return luma(texelFetch(source, clamp(pixel + ivec2(dx, dy), ivec2(0), last), 0).rgb); }
 
 void main() {
     vec2 t = 1.0 / vec2(textureSize(source, 0));
-    vec3 center = texture(source, uv).rgb;
+    pixel = ivec2(gl_FragCoord.xy);
+    last = textureSize(source, 0) - 1;
+    vec3 center = texelFetch(source, pixel, 0).rgb;
     float m = luma(center);
-    float n = lumaAt(uv + vec2(0, -t.y)), s = lumaAt(uv + vec2(0, t.y));
-    float w = lumaAt(uv + vec2(-t.x, 0)), e = lumaAt(uv + vec2(t.x, 0));
+    float n = lumaNear(0, -1), s = lumaNear(0, 1);
+    float w = lumaNear(-1, 0), e = lumaNear(1, 0);
     float hi = max(m, max(max(n, s), max(w, e))), lo = min(m, min(min(n, s), min(w, e)));
     float range = hi - lo;
     if (range < max(0.0312, hi * params.fxaa_threshold)) {
         color = vec4(center, 1.0);
         return;
     }
-    float nw = lumaAt(uv + vec2(-t.x, -t.y)), ne = lumaAt(uv + vec2(t.x, -t.y));
-    float sw = lumaAt(uv + vec2(-t.x, t.y)), se = lumaAt(uv + vec2(t.x, t.y));
+    float nw = lumaNear(-1, -1), ne = lumaNear(1, -1);
+    float sw = lumaNear(-1, 1), se = lumaNear(1, 1);
     // Sub-pixel aliasing: how much the centre differs from its 3x3 neighbourhood.
     float average = (2.0 * (n + s + w + e) + nw + ne + sw + se) / 12.0;
     float sub = clamp(abs(average - m) / range, 0.0, 1.0);

@@ -260,10 +260,10 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // local probes' capture and filtering (scripts/probes.lua). Then the sun's and the local lights' shadow maps (scripts/shadows.lua), the G-buffer half with the passes inserted
     // after it (light culling, screen-space AO: scripts/ao.lua), the Hi-Z pyramid and SSR
     // (scripts/ssr.lua), the composition of SSR and the probes (scripts/reflections.lua), the lighting, the sky and forward.
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 33),
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 34),
               (std::vector<std::string>{"env_cube", "env_mips", "env_prefilter", "env_irradiance", "dfg_table", "probe_capture",
                                         "probe_mips", "probe_prefilter", "sun_cascades",
-                                        "shadow_clear", "sun_cull", "shadow_sun", "shadow_local", "gbuffer", "light_culling", "gtao", "foliage_fixup", "ao_blur", "ao_upsample", "decals_copy0", "decals_copy1", "decals_copy2",
+                                        "shadow_clear", "sun_cull", "shadow_sun", "shadow_local", "gbuffer", "light_culling_coarse", "gtao", "foliage_fixup", "ao_blur", "ao_upsample", "light_culling", "decals_copy0", "decals_copy1", "decals_copy2",
                                         "decals", "hiz", "ssr", "reflection_compose", "lighting_standard", "lighting_clearcoat", "lighting_two_colour",
                                         "sky", "forward", "ssr_history_copy", "ssr_history_mips"}));
     auto plan = compile(graphWithParams(*p), {});
