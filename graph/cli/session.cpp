@@ -43,8 +43,12 @@ LuaHostOptions luaHostOptionsWithoutDevice() {
 
 Session::Session(Runtime& runtime, SessionOptions options) : m_runtime(runtime), m_options(std::move(options)) {}
 Session::~Session() {
-    // The executor must not keep drawing (or calling back into) a scene that goes away with us.
-    if (m_scene && m_runtime.executor().scene() == m_scene.get()) m_runtime.executor().setScene(nullptr, {});
+    // The executor must not keep drawing (or calling back into) a scene that goes away with us,
+    // and the frames still in flight draw with its buffers: they finish first.
+    if (m_scene && m_runtime.executor().scene() == m_scene.get()) {
+        (void)m_runtime.executor().finish();
+        m_runtime.executor().setScene(nullptr, {});
+    }
 }
 
 void Session::note(const std::string& line) {

@@ -629,6 +629,14 @@ bool rangesOverlap(const PlanResource& a, const PlanResource& b) {
 void alias(Compiler& c) {
     auto& resources = c.plan.resources;
     const MemoryRequirementsFn& query = c.options.memoryRequirements;
+    // A reconfiguration keeps the usages a resource had (options.previous): a pass switched off
+    // must not make its resources new images of fewer usages, and more usages are harmless.
+    if (const Plan* previous = c.options.previous)
+        for (PlanResource& r : resources)
+            if (const int32_t o = previous->findResource(r.name); o >= 0) {
+                const PlanResource& was = previous->resources[static_cast<size_t>(o)];
+                if (was.kind == r.kind && was.format == r.format && was.transient == r.transient) r.usageMask |= was.usageMask;
+            }
     for (PlanResource& r : resources)
         if (!r.imported) r.memory = query ? query(r) : estimateMemoryRequirements(r);
 
@@ -653,13 +661,43 @@ void alias(Compiler& c) {
     for (size_t h = 0; h < members.size(); ++h) {
         std::vector<uint32_t>& list = members[h];
         uint64_t heapSize = 0;
+        // The previous plan's heap of this memory class (options.previous).
+        const Plan* previous = c.options.previous;
+        const TransientHeap* previousHeap = nullptr;
+        if (previous && h < previous->heaps.size() && previous->heaps[h].memoryTypeBits == c.plan.heaps[h].memoryTypeBits &&
+            previous->heaps[h].buffers == c.plan.heaps[h].buffers)
+            previousHeap = &previous->heaps[h];
         if (c.options.alias) {
             // Largest first packs best; declaration order keeps equal sizes deterministic.
             std::stable_sort(list.begin(), list.end(), [&](uint32_t a, uint32_t b) {
                 return resources[a].memory.size > resources[b].memory.size;
             });
-            std::vector<uint32_t> placed;
-            for (uint32_t ri : list) {
+            std::vector<uint32_t> placed, toPlace = list;
+            // First the transients that can stay where the previous plan had them.
+            if (previousHeap) {
+                std::vector<uint32_t> rest;
+                for (uint32_t ri : list) {
+                    PlanResource& r = resources[ri];
+                    const int32_t o = previous->findResource(r.name);
+                    const PlanResource* was = o >= 0 ? &previous->resources[static_cast<size_t>(o)] : nullptr;
+                    bool kept = was && was->transient && was->heap == static_cast<int32_t>(h) && was->memory.size == r.memory.size &&
+                                was->memory.alignment == r.memory.alignment && was->offset + r.memory.size <= previousHeap->size;
+                    if (kept) {
+                        r.offset = was->offset;
+                        kept = std::none_of(placed.begin(), placed.end(), [&](uint32_t q) {
+                            return lifetimesIntersect(r, resources[q]) && rangesOverlap(r, resources[q]);
+                        });
+                    }
+                    if (!kept) {
+                        rest.push_back(ri);
+                        continue;
+                    }
+                    placed.push_back(ri);
+                    heapSize = std::max(heapSize, r.offset + alignUp(r.memory.size, r.memory.alignment));
+                }
+                toPlace = std::move(rest);
+            }
+            for (uint32_t ri : toPlace) {
                 PlanResource& r = resources[ri];
                 std::vector<uint64_t> candidates{0};
                 std::vector<uint32_t> live;
@@ -679,6 +717,8 @@ void alias(Compiler& c) {
                 placed.push_back(ri);
                 heapSize = std::max(heapSize, r.offset + alignUp(r.memory.size, r.memory.alignment));
             }
+            // A heap the new placement fits in is kept whole (its memory and what lies in it).
+            if (previousHeap && heapSize <= previousHeap->size) heapSize = previousHeap->size;
         } else {
             // Largest alignment first, so every aligned size keeps the next offset aligned: no gaps.
             std::stable_sort(list.begin(), list.end(), [&](uint32_t a, uint32_t b) {

@@ -18,6 +18,11 @@ struct CompileOptions {
     uint32_t outputHeight = 720;
     bool alias = true;                      // share memory between non-overlapping transients
     MemoryRequirementsFn memoryRequirements;  // default: estimateMemoryRequirements
+    // The plan this one replaces (a reconfiguration: passes toggled, a parameter that changes the
+    // graph): a transient of the same name, size and memory class keeps its heap offset when no
+    // resource live beside it is there, and a heap keeps its size when the new one fits in it, so
+    // the executor reuses the images and the passes over them. Unset: the tightest packing.
+    const Plan* previous = nullptr;
 };
 
 // Size = texels * bytes per texel over all mips and layers, rounded to 64 KiB alignment.

@@ -167,6 +167,9 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
         else req = Buffer::requirements(ctx, r.bufferSize, bufferUsageOf(r.usageMask));
         return MemoryRequirements{req.size, req.alignment, req.memoryTypeBits};
     };
+    // A rebuild keeps the previous build's memory placement where it can (a toggled pass moves
+    // no other resource), so the passes over unchanged resources are reused, not prepared again.
+    if (m_built && !options.previous) options.previous = &m_built->plan;
     auto plan = compile(graph, options);
     if (!plan) return std::unexpected(plan.error());
     m_buildStats.compileMs = msSince(t0);

@@ -193,6 +193,32 @@ TEST_F(SceneRender, ClearCoatAddsItsSecondLobe) {
         for (float v : img->pixels) ASSERT_TRUE(std::isfinite(v));
 }
 
+TEST_F(SceneRender, TogglingPassesPreparesNoOtherPass) {
+    // The default pipeline on the default scene: its first frame switches the decal passes and
+    // the shadow clear off (rg.frame: the scene has no decals, and a sun). The rebuild keeps the
+    // memory placement (CompileOptions::previous), so no resource is created anew and no pass is
+    // prepared again; switching a pass off and on again prepares that pass alone.
+    SessionOptions o;
+    o.compile.outputWidth = 96;
+    o.compile.outputHeight = 64;
+    o.scene = kRoot + "/scripts/scenes/default.lua";
+    Session s(*s_runtime, o);
+    auto r = s.load(kRoot + "/scripts/pipelines/deferred.lua");
+    ASSERT_TRUE(r.has_value()) << r.error().describe();
+    ASSERT_TRUE(s.frame().has_value());
+    const gpu::BuildReport& first = s_runtime->executor().lastBuildReport();
+    EXPECT_EQ(s.rebuilds(), 1u);
+    EXPECT_TRUE(first.passesPrepared.empty()) << first.summary();
+    EXPECT_EQ(first.resourcesCreated, 0u) << first.summary();
+    ASSERT_TRUE(s.setPassOverride("sky", false).has_value());
+    ASSERT_TRUE(s.frame().has_value());
+    EXPECT_TRUE(s_runtime->executor().lastBuildReport().passesPrepared.empty()) << s_runtime->executor().lastBuildReport().summary();
+    ASSERT_TRUE(s.setPassOverride("sky", true).has_value());
+    ASSERT_TRUE(s.frame().has_value());
+    EXPECT_EQ(s_runtime->executor().lastBuildReport().passesPrepared, (std::vector<std::string>{"sky"}));
+    EXPECT_EQ(s_runtime->executor().lastBuildReport().resourcesCreated, 0u);
+}
+
 TEST_F(SceneRender, DecalsBlendTheCommonParametersOnly) {
     // materials.lua's "stain" decal (red, smoothness 0.9, metal 1, opacity 0.8) covers part of the
     // floor (materialId 0) and of the clear-coat sphere (materialId 1).

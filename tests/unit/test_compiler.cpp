@@ -523,6 +523,32 @@ TEST(CompilerAlias, DisjointLifetimesShareMemory) {
     EXPECT_EQ(first.oldLayout, Layout::Undefined);
 }
 
+TEST(CompilerAlias, AReconfigurationKeepsThePreviousPlacementWhereItIsValid) {
+    // CompileOptions::previous: a transient keeps its offset when nothing live beside it is there,
+    // and the heap keeps its size when the new placement fits (the executor then reuses the
+    // images and the passes over them); a placement no longer valid is packed anew.
+    Plan fresh = compileOk(chainGraph());
+    const uint64_t unit = fresh.resources[0].memory.size;
+    ASSERT_EQ(fresh.resources[2].offset, 0u);  // c shares a's memory
+    Plan previous = fresh;
+    previous.resources[2].offset = 2 * unit;  // c had a range of its own
+    previous.resources[1].offset = 0;         // b sat where a is: invalid now, a lives beside it
+    previous.heaps[0].size = 3 * unit;
+    previous.resources[1].usageMask |= 1u << static_cast<uint32_t>(Usage::StorageWrite);
+    CompileOptions o;
+    o.previous = &previous;
+    Plan p = compileOk(chainGraph(), o);
+    EXPECT_EQ(p.resources[0].offset, 0u);         // a: kept
+    EXPECT_EQ(p.resources[2].offset, 2 * unit);   // c: kept
+    EXPECT_EQ(p.resources[1].offset, unit);       // b: moved beside a
+    EXPECT_EQ(p.heaps[0].size, 3 * unit);         // the heap it fits in is kept whole
+    EXPECT_EQ(p.transientBytesAliased, 3 * unit);
+    // b keeps the usage it had (a resource of fewer usages would be a new image).
+    EXPECT_NE(p.resources[1].usageMask & (1u << static_cast<uint32_t>(Usage::StorageWrite)), 0u);
+    // Without it: the tightest packing.
+    EXPECT_EQ(compileOk(chainGraph()).heaps[0].size, 2 * unit);
+}
+
 TEST(CompilerAlias, OverlappingLifetimesNeverShare) {
     GraphDesc g;
     g.resources = {texture("a"), texture("b"), exported(texture("out"))};
