@@ -8,6 +8,8 @@
 #include <limits>
 #include <sstream>
 
+#include <glm/geometric.hpp>
+
 #include "core/check.h"
 
 namespace rg {
@@ -150,7 +152,10 @@ private:
 Result<int> Parser::header(IesProfile& profile) {
     size_t first = 0;
     const std::string_view formatLine = m_lines.empty() ? std::string_view() : trim(m_lines[0]);
-    if (formatLine == "IESNA:LM-63-2002") {
+    if (formatLine == "IES:LM-63-2019") {
+        profile.format = IesFormat::Lm63_2019;
+        first = 1;
+    } else if (formatLine == "IESNA:LM-63-2002") {
         profile.format = IesFormat::Lm63_2002;
         first = 1;
     } else if (formatLine == "IESNA:LM-63-1995") {
@@ -162,8 +167,8 @@ Result<int> Parser::header(IesProfile& profile) {
     } else if (startsWithNoCase(formatLine, "IESNA") || startsWithNoCase(formatLine, "IES:")) {
         return failAt(1,
                       "unknown IES format '" + shorten(formatLine) +
-                          "', expected one of: 'IESNA:LM-63-2002', 'IESNA:LM-63-1995', 'IESNA91', or no format line "
-                          "(LM-63-1986)",
+                          "', expected one of: 'IES:LM-63-2019', 'IESNA:LM-63-2002', 'IESNA:LM-63-1995', 'IESNA91', or no "
+                          "format line (LM-63-1986)",
                       ErrorCode::Unsupported);
     } else {
         profile.format = IesFormat::Lm63_1986;  // no format line: the first line is already a label
@@ -393,11 +398,7 @@ Result<IesProfile> Parser::parse() {
     const int typeLine = nextLine();
     auto type = integer("the photometric type (value 6 of 10 after TILT)");
     if (!type) return std::unexpected(type.error());
-    if (*type == 2)
-        return failAt(typeLine, "photometric type B (2) is not supported (only type C, 1)", ErrorCode::Unsupported);
-    if (*type == 3)
-        return failAt(typeLine, "photometric type A (3) is not supported (only type C, 1)", ErrorCode::Unsupported);
-    if (*type != 1)
+    if (*type != 1 && *type != 2 && *type != 3)
         return failAt(typeLine, "expected photometric type 1 (C), 2 (B) or 3 (A), found " + std::to_string(*type));
     profile.photometricType = *type;
 
@@ -418,10 +419,14 @@ Result<IesProfile> Parser::parse() {
         *geometry[i] = static_cast<float>(*v);
     }
 
-    // Line 2 after TILT: ballast factor, ballast-lamp photometric factor ("future use"), input watts.
-    float* const electrical[] = {&profile.ballastFactor, &profile.ballastLampFactor, &profile.inputWatts};
+    // Line 2 after TILT: ballast factor, ballast-lamp photometric factor ("future use"; LM-63-2019:
+    // the file generation type), input watts.
+    const bool lm2019 = profile.format == IesFormat::Lm63_2019;
+    float* const electrical[] = {&profile.ballastFactor, lm2019 ? &profile.fileGenerationType : &profile.ballastLampFactor,
+                                 &profile.inputWatts};
     const char* const electricalRoles[] = {"the ballast factor (value 1 of 3 on the second line after TILT)",
-                                           "the ballast-lamp photometric factor (value 2 of 3 on the second line after TILT)",
+                                           lm2019 ? "the file generation type (value 2 of 3 on the second line after TILT)"
+                                                  : "the ballast-lamp photometric factor (value 2 of 3 on the second line after TILT)",
                                            "the input watts (value 3 of 3 on the second line after TILT)"};
     for (int i = 0; i < 3; ++i) {
         auto v = number(electricalRoles[i]);
@@ -433,13 +438,28 @@ Result<IesProfile> Parser::parse() {
     m_needed = tiltValues + 13 + *nV + *nH + cells;
     if (auto wrong = wrongCount(*nV, *nH); !wrong) return std::unexpected(wrong.error());
 
+    // Types A and B (LM-63-2002 §3.16, §3.17): both angles within −90..90 degrees of the aiming
+    // axis, starting at −90, or at 0 for a distribution the same on both sides (mirrored).
+    const bool typeC = profile.photometricType == 1;
+    const char* const typeName = profile.photometricType == 2 ? "type B" : "type A";
+    const auto checkAB = [&](const std::vector<float>& a, int line, const char* which, bool& mirrored) -> Result<void> {
+        if ((a.front() != -90.0f && a.front() != 0.0f) || a.back() > 90.0f)
+            return failAt(line, "expected " + std::string(which) + " angles from -90 or 0 to at most 90 degrees (" + typeName +
+                                    "), found " + numberText(a.front()) + ".." + numberText(a.back()));
+        mirrored = a.front() == 0.0f;
+        return {};
+    };
+
     // Vertical angles, type C: 0..180 degrees from the nadir.
     const int verticalLine = nextLine();
     auto vertical = angles(*nV, "vertical angles", "vertical angle");
     if (!vertical) return std::unexpected(vertical.error());
-    if (vertical->front() < 0.0f || vertical->back() > 180.0f)
+    if (!typeC) {
+        if (auto r = checkAB(*vertical, verticalLine, "vertical", profile.mirrorVertical); !r) return std::unexpected(r.error());
+    } else if (vertical->front() < 0.0f || vertical->back() > 180.0f) {
         return failAt(verticalLine, "expected vertical angles within 0..180 degrees (type C), found " +
                                         numberText(vertical->front()) + ".." + numberText(vertical->back()));
+    }
     profile.verticalAngles = std::move(*vertical);
 
     // Horizontal angles and the symmetry they imply.
@@ -447,7 +467,10 @@ Result<IesProfile> Parser::parse() {
     auto horizontal = angles(*nH, "horizontal angles", "horizontal angle");
     if (!horizontal) return std::unexpected(horizontal.error());
     const float hFirst = horizontal->front(), hLast = horizontal->back();
-    if (horizontal->size() == 1) {
+    if (!typeC) {
+        if (auto r = checkAB(*horizontal, horizontalLine, "horizontal", profile.mirrorHorizontal); !r) return std::unexpected(r.error());
+        profile.symmetry = IesSymmetry::None;
+    } else if (horizontal->size() == 1) {
         profile.symmetry = IesSymmetry::Rotational;
     } else if (hFirst == 0.0f && hLast == 90.0f) {
         profile.symmetry = IesSymmetry::Quadrant;
@@ -542,6 +565,7 @@ std::string_view toString(IesFormat format) {
         case IesFormat::Lm63_1991: return "LM-63-1991";
         case IesFormat::Lm63_1995: return "LM-63-1995";
         case IesFormat::Lm63_2002: return "LM-63-2002";
+        case IesFormat::Lm63_2019: return "LM-63-2019";
     }
     return "?";
 }
@@ -598,9 +622,49 @@ Result<IesProfile> loadIes(const std::filesystem::path& path) {
     return profile;
 }
 
+namespace {
+
+// Types A and B: the table's bilinear value at its own angles (h lateral, v vertical, degrees),
+// mirrored onto the negative side when the table starts at 0, 0 outside it.
+double evaluateAimedTable(const IesProfile& p, double h, double v) {
+    const size_t nV = p.verticalAngles.size(), nH = p.horizontalAngles.size();
+    if (p.mirrorHorizontal) h = std::abs(h);
+    if (p.mirrorVertical) v = std::abs(v);
+    if (h < p.horizontalAngles.front() - kAngleEpsilon || h > p.horizontalAngles.back() + kAngleEpsilon ||
+        v < p.verticalAngles.front() - kAngleEpsilon || v > p.verticalAngles.back() + kAngleEpsilon)
+        return 0.0;
+    size_t iv, ih;
+    double wv, wh;
+    bracket(p.verticalAngles, std::clamp<double>(v, p.verticalAngles.front(), p.verticalAngles.back()), iv, wv);
+    bracket(p.horizontalAngles, std::clamp<double>(h, p.horizontalAngles.front(), p.horizontalAngles.back()), ih, wh);
+    const size_t iv1 = std::min(iv + 1, nV - 1), ih1 = std::min(ih + 1, nH - 1);
+    const auto at = [&](size_t i, size_t j) { return static_cast<double>(p.candela[i * nV + j]); };
+    const double c0 = (1.0 - wv) * at(ih, iv) + wv * at(ih, iv1);
+    const double c1 = (1.0 - wv) * at(ih1, iv) + wv * at(ih1, iv1);
+    return (1.0 - wh) * c0 + wh * c1;
+}
+
+}  // namespace
+
+glm::dvec2 aimedAngles(int photometricType, glm::dvec3 d) {
+    constexpr double toDegrees = 180.0 / kPi;
+    d = glm::normalize(d);
+    if (photometricType == 2)  // type B: the polar axis is x; V turns the plane about it, H leaves the plane towards x
+        return {std::asin(std::clamp(d.x, -1.0, 1.0)) * toDegrees, std::atan2(d.y, d.z) * toDegrees};
+    // type A: the polar axis is y; H turns the plane about it, V leaves the plane towards y
+    return {std::atan2(d.x, d.z) * toDegrees, std::asin(std::clamp(d.y, -1.0, 1.0)) * toDegrees};
+}
+
 double evaluateDegrees(const IesProfile& p, double horizontalDegrees, double verticalDegrees) {
     const size_t nV = p.verticalAngles.size(), nH = p.horizontalAngles.size();
     if (nV == 0 || nH == 0 || p.candela.size() != nV * nH) return 0.0;
+    if (p.photometricType == 2 || p.photometricType == 3) {
+        // The light-space direction of these type C angles, then the table's own angles.
+        constexpr double toRadians = kPi / 180.0;
+        const double h = horizontalDegrees * toRadians, v = verticalDegrees * toRadians;
+        const glm::dvec2 aimed = aimedAngles(p.photometricType, {std::sin(v) * std::cos(h), std::sin(v) * std::sin(h), std::cos(v)});
+        return evaluateAimedTable(p, aimed.x, aimed.y);
+    }
     // Outside the measured vertical range the luminaire sends nothing (e.g. above a downlight).
     if (verticalDegrees < p.verticalAngles.front() - kAngleEpsilon || verticalDegrees > p.verticalAngles.back() + kAngleEpsilon)
         return 0.0;
@@ -638,6 +702,7 @@ float evaluate(const IesProfile& profile, float theta, float phi) {
 
 IesProfile expandSymmetry(const IesProfile& p) {
     IesProfile out = p;
+    if (p.photometricType != 1) return out;  // types A and B mirror in evaluation
     if (p.symmetry == IesSymmetry::None && !p.horizontalAngles.empty() && p.horizontalAngles.back() == 360.0f) return out;
     // Every image of a table angle under the symmetry, plus both ends of the circle.
     std::vector<double> hs = {0.0, 360.0};

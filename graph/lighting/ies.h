@@ -1,10 +1,11 @@
 // IES photometric profiles (seed 000 §4.5, eq:27, lst:5): an IESNA LM-63 parser, evaluation of the
 // candela table, and the baked, max-normalised 2D texture that the shaders sample as an attenuation.
 //
-// Formats read: LM-63-1986 (no format line), LM-63-1991 ("IESNA91"), LM-63-1995 ("IESNA:LM-63-1995")
-// and LM-63-2002 ("IESNA:LM-63-2002"); keyword lines ([TEST], [MANUFAC], … with [MORE]
-// continuations) are kept. Refused by name: TILT=INCLUDE and TILT=<file> (only TILT=NONE), and
-// photometric types A (3) and B (2) — only type C (1), the one computer graphics uses (§4.5).
+// Formats read: LM-63-1986 (no format line), LM-63-1991 ("IESNA91"), LM-63-1995 ("IESNA:LM-63-1995"),
+// LM-63-2002 ("IESNA:LM-63-2002") and LM-63-2019 ("IES:LM-63-2019", whose second value after the
+// ballast factor is the file generation type); keyword lines ([TEST], [MANUFAC], … with [MORE]
+// continuations) are kept. TILT=NONE, TILT=INCLUDE and TILT=<file> (the tilt data is read and kept;
+// rendering uses the luminaire as photometered). Photometric types C (1), B (2) and A (3).
 // Numbers may be split across any number of lines and separated by blanks and/or commas.
 //
 // Angles: IES tables are in degrees. Type C: the vertical angle is measured from the nadir (0°, the
@@ -12,6 +13,15 @@
 // vertical axis, 0° along the luminaire's length. In the light space of lst:5 the nadir is +z,
 // horizontal 0° is +x and horizontal 90° is +y, so the seed's φ is the vertical angle
 // (cos φ = z) and its θ the horizontal one (θ = atan2(y, x)).
+//
+// Types A and B (floodlights, automotive lamps) are measured around the aiming axis, which rgraph
+// puts where type C puts the nadir (+z, the light's direction), with positive horizontal angles
+// towards +x (the light's axis) and positive vertical angles towards +y. Type B's polar axis is x:
+// a vertical angle V turns the measuring plane about it, a horizontal angle H leaves that plane
+// towards x, so d = (sin H, cos H sin V, cos H cos V). Type A is type B turned a quarter about the
+// aiming axis, its polar axis y: d = (cos V sin H, sin V, cos V cos H). Both tables span −90..90°
+// of each angle, or 0..90° for a distribution mirrored onto the negative side; directions outside
+// them (behind the luminaire) get no light.
 //
 // Ownership: IesProfile and IesTexture are plain values. Thread-safe: no shared state.
 #pragma once
@@ -30,8 +40,8 @@
 
 namespace rg {
 
-enum class IesFormat { Lm63_1986, Lm63_1991, Lm63_1995, Lm63_2002 };
-// "LM-63-1986" … "LM-63-2002".
+enum class IesFormat { Lm63_1986, Lm63_1991, Lm63_1995, Lm63_2002, Lm63_2019 };
+// "LM-63-1986" … "LM-63-2019".
 std::string_view toString(IesFormat format);
 
 // How the horizontal angles cover the full circle (type C, LM-63-2002 §3.20).
@@ -57,11 +67,12 @@ struct IesProfile {
     int numberOfLamps = 1;
     float lumens = 0.0f;      // lumens per lamp as declared; -1 means absolute photometry
     float multiplier = 1.0f;  // the candela multiplier as declared (already applied to `candela`)
-    int photometricType = 1;  // 1 = type C (the only one accepted)
+    int photometricType = 1;  // 1 = type C, 2 = type B, 3 = type A
     int unitsType = 2;        // 1 = feet, 2 = metres (of the luminous opening below)
     float width = 0.0f, length = 0.0f, height = 0.0f;  // luminous opening, in unitsType
     float ballastFactor = 1.0f;
     float ballastLampFactor = 1.0f;  // "future use" since LM-63-1995; kept as read
+    float fileGenerationType = 0.0f; // LM-63-2019's value in that place (e.g. 1.00001), kept as read
     float inputWatts = 0.0f;
 
     std::vector<float> verticalAngles;    // degrees, increasing, within 0..180
@@ -70,7 +81,9 @@ struct IesProfile {
     // candela[h * verticalAngles.size() + v]. Ballast factors are not applied.
     std::vector<float> candela;
     float maxCandela = 0.0f;  // cd, the largest entry of `candela`
-    IesSymmetry symmetry = IesSymmetry::Rotational;
+    IesSymmetry symmetry = IesSymmetry::Rotational;  // type C; types A and B: None
+    // Types A and B: the table starts at 0° and is mirrored onto the negative side.
+    bool mirrorHorizontal = false, mirrorVertical = false;
     // TILT (LM-63-2002 §3.10): "NONE", "INCLUDE" (the tilt data follows the TILT line) or the name
     // of a tilt file (read by loadIes from the IES file's folder). The data — lamp-to-luminaire
     // geometry (1..3), tilt angles (degrees) and their candela multipliers — is kept as read;
@@ -96,7 +109,12 @@ Result<IesProfile> loadIes(const std::filesystem::path& path);
 // 0°..90° downlight) the intensity is 0.
 float evaluate(const IesProfile& profile, float theta, float phi);
 // The same with angles in degrees, in double: at table angles it returns the table's value exactly.
+// The angles are always type C's in light space (the parametrisation of the baked texture); a type
+// A or B profile is looked up at the same direction's own angles (aimedAngles).
 double evaluateDegrees(const IesProfile& profile, double horizontalDegrees, double verticalDegrees);
+// A light-space direction's (horizontal, vertical) angles in degrees for photometric type B (2)
+// or A (3), as the header above defines them.
+glm::dvec2 aimedAngles(int photometricType, glm::dvec3 direction);
 
 // The profile with its symmetry unfolded: horizontal angles from 0° to 360° (both included: the
 // 360° column repeats 0°), every mirrored table angle kept, values copied from the table.

@@ -503,6 +503,47 @@ TEST_F(Lights, IesProfileShapesTheSpot) {
     EXPECT_NEAR(ratio, 409.7 / 149.9, 0.03 * ratio);  // the 256 × 256 (θ, cos φ) texture vs the table
 }
 
+TEST_F(Lights, IesTypeBFloodlightThrowsTowardsPositiveH) {
+    // A type B profile (a floodlight, graph/lighting/ies.h): 1000 cd at H = +30°, 250 cd at −30°,
+    // 500 cd on the aim, 0 at ±90°, mirrored nowhere. The spot points straight down; its light space's +x
+    // (horizontal 0° of type C, positive H of type B) is +z here, as in lights_ies.lua. At 30° from
+    // the aim the floor towards +z must be 4x brighter than towards −z (the table's ratio), and
+    // the same 30° towards ±x (positive and negative V) gets the aim's row, 500 vs 500.
+    const std::string dir = std::string(RG_TEST_TMP) + "/ies_type_b";
+    std::filesystem::create_directories(dir);
+    std::ofstream(dir + "/flood.ies") << "IESNA:LM-63-2002\n[TEST] type B\nTILT=NONE\n"
+                                         "1 -1 1 5 5 2 2 0 0 0\n1 1 10\n"
+                                         "-90 -30 0 30 90\n"  // vertical angles
+                                         "-90 -30 0 30 90\n"  // horizontal angles
+                                         "0 0 0 0 0\n"        // H = −90
+                                         "0 250 250 250 0\n"  // H = −30
+                                         "0 500 500 500 0\n"  // H = 0
+                                         "0 1000 1000 1000 0\n"  // H = +30
+                                         "0 0 0 0 0\n";       // H = +90
+    std::ofstream(dir + "/flood.lua")
+        << "local scene = require 'scene'\n"
+           "scene.material 'white' { base_color = { 1, 1, 1 }, metal_mask = 0, smoothness = 0, reflectance = 0 }\n"
+           "scene.plane 'floor' { size = { 12, 12 }, material = 'white' }\n"
+           "scene.camera 'top' { position = { 0, 5, 0 }, target = { 0, 0, 0 }, up = { 0, 0, -1 }, fov = 60, near = 0.5, far = 100,"
+           " aperture = 2.8, shutter = 1 / 60, iso = 100 }\n"
+           "scene.light 'flood' { type = 'spot', intensity = 1, unit = 'cd', position = { 0, 1.5, 0 }, direction = { 0, -1, 0 },"
+           " inner_angle = 80, outer_angle = 85, ies = 'flood.ies', ies_mode = 'intensity' }\n";
+    Frame f = render(dir + "/flood.lua");
+    ASSERT_TRUE(f.finite);
+    const double t = 1.5 * std::tan(25.0 * kPi / 180.0);  // inside the table's ±30°
+    auto at = [&](glm::dvec3 p) { return luminanceAt(f, pixelOf(f.view, p)); };
+    const double plusH = at({0, 0, t}), minusH = at({0, 0, -t}), plusV = at({t, 0, 0}), minusV = at({-t, 0, 0});
+    // At 25° of H the table gives 500 + (25/30)·500 and 500 − (25/30)·250.
+    const double want = (500.0 + 25.0 / 30.0 * 500.0) / (500.0 - 25.0 / 30.0 * 250.0);
+    std::printf("ies type B: +H %.4f, -H %.4f (ratio %.3f, table %.3f), +V %.4f, -V %.4f\n", plusH, minusH, plusH / minusH, want, plusV, minusV);
+    EXPECT_NEAR(plusH / minusH, want, 0.03 * want);
+    EXPECT_NEAR(plusV / minusV, 1.0, 0.03);
+    // Beyond 30° the table falls to 0 at 90°: at 60° towards +H, (90 − 60) / 60 of 1000 cd.
+    const double far = at({0, 0, 1.5 * std::tan(60.0 * kPi / 180.0)}), near = at({0, 0, 1.5 * std::tan(30.0 * kPi / 180.0)});
+    const double cos60 = 0.5, cos30 = std::sqrt(3.0) / 2.0;  // E ∝ I cos³θ / h² on the floor
+    EXPECT_NEAR(far / near, (0.5 * 1000.0 * cos60 * cos60 * cos60) / (1000.0 * cos30 * cos30 * cos30), 0.05 * far / near);
+}
+
 TEST_F(Lights, IesModeMaskOrIntensity) {
     // eq:27: the same profile as a mask (the declared 1000 lm → Φ / π cd) or as the intensity (its
     // own 470 cd maximum). No GPU: the conversion alone.

@@ -119,7 +119,7 @@ hostile "glTF: extras name an absolute IES path" "is an absolute path" -- $(rend
 hostile "glTF: node names a missing mesh" "g_bad_node_mesh.gltf" -- $(render --scene g_bad_node_mesh.gltf)
 
 # ---- IES profiles (through a scene light that names each)
-for f in i_truncated i_negative i_nan i_no_tilt i_tilt_file_missing i_garbage i_bad_type i_huge_angles; do
+for f in i_truncated i_negative i_nan i_no_tilt i_tilt_file_missing i_garbage i_bad_type i_huge_angles i_type_b_range i_2019_truncated; do
     hostile "IES: ${f#i_}" "$f.ies" -- $(render --scene "$f.lua")
 done
 

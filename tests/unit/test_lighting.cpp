@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -892,14 +893,116 @@ TEST(Ies, TiltIncludeAndTiltFileAreReadAndKept) {
         << truncated.error().message;
 }
 
-TEST(Ies, ErrorPhotometricTypesAAndBAreRefusedByName) {
-    EXPECT_EQ(parseError(replaceLine(validIes(), 5, "1 1000 1 5 2 2 2 0 0 0")),
-              "'lamp.ies':5: photometric type B (2) is not supported (only type C, 1)");
-    EXPECT_EQ(parseError(replaceLine(validIes(), 5, "1 1000 1 5 2 3 2 0 0 0")),
-              "'lamp.ies':5: photometric type A (3) is not supported (only type C, 1)");
-    EXPECT_EQ(parseErrorCode(replaceLine(validIes(), 5, "1 1000 1 5 2 2 2 0 0 0")), ErrorCode::Unsupported);
+TEST(Ies, ErrorUnknownPhotometricType) {
     EXPECT_EQ(parseError(replaceLine(validIes(), 5, "1 1000 1 5 2 4 2 0 0 0")),
               "'lamp.ies':5: expected photometric type 1 (C), 2 (B) or 3 (A), found 4");
+}
+
+TEST(Ies, ParsesLm63_2019) {
+    // "IES:LM-63-2019"; the second value after the ballast factor is the file generation type.
+    std::string text = replaceLine(validIes(), 1, "IES:LM-63-2019");
+    text = replaceLine(text, 6, "1 1.00001 10");
+    auto p = parseIes(text, "lamp.ies");
+    ASSERT_TRUE(p.has_value()) << p.error().message;
+    EXPECT_EQ(p->format, IesFormat::Lm63_2019);
+    EXPECT_EQ(toString(p->format), "LM-63-2019");
+    EXPECT_FLOAT_EQ(p->fileGenerationType, 1.00001f);
+    EXPECT_FLOAT_EQ(p->ballastLampFactor, 1.0f);
+    EXPECT_EQ(p->candela.size(), 10u);
+}
+
+// A type A or B table over −90..90° in 30° steps, each value telling its angles apart.
+std::string aimedIes(int type, const std::string& horizontal = "-90 -60 -30 0 30 60 90", const std::string& vertical = "-90 -60 -30 0 30 60 90",
+                     bool uniform = false) {
+    std::istringstream hs(horizontal), vs(vertical);
+    std::vector<double> h, v;
+    for (double x; hs >> x;) h.push_back(x);
+    for (double x; vs >> x;) v.push_back(x);
+    std::ostringstream o;
+    o << "IESNA:LM-63-2002\n[TEST] aimed\nTILT=NONE\n1 -1 1 " << v.size() << " " << h.size() << " " << type << " 2 0 0 0\n1 1 10\n"
+      << vertical << "\n" << horizontal << "\n";
+    for (double a : h) {
+        for (double b : v) o << (uniform ? 100.0 : 1000.0 + 10.0 * a + b) << " ";
+        o << "\n";
+    }
+    return o.str();
+}
+
+// The type C angles (degrees) of light-space direction d, as evaluateDegrees takes them.
+std::pair<double, double> typeCAngles(glm::dvec3 d) {
+    d = glm::normalize(d);
+    return {std::atan2(d.y, d.x) * 180.0 / kPi, std::acos(std::clamp(d.z, -1.0, 1.0)) * 180.0 / kPi};
+}
+
+TEST(Ies, TypesAAndBAimAlongTheLightsDirection) {
+    // Type B: polar axis x, d = (sin H, cos H sin V, cos H cos V); type A: polar axis y,
+    // d = (cos V sin H, sin V, cos V cos H) (graph/lighting/ies.h). At every table direction
+    // (poles excluded: there one angle is undefined) the light-space lookup returns the table's value.
+    for (int type : {2, 3}) {
+        auto p = parseIes(aimedIes(type), "aimed.ies");
+        ASSERT_TRUE(p.has_value()) << p.error().message;
+        EXPECT_EQ(p->photometricType, type);
+        EXPECT_FALSE(p->mirrorHorizontal);
+        int checked = 0;
+        for (double H = -60; H <= 60; H += 30)
+            for (double V = -60; V <= 60; V += 30) {
+                const double h = deg(H), v = deg(V);
+                const glm::dvec3 d = type == 2 ? glm::dvec3(std::sin(h), std::cos(h) * std::sin(v), std::cos(h) * std::cos(v))
+                                               : glm::dvec3(std::cos(v) * std::sin(h), std::sin(v), std::cos(v) * std::cos(h));
+                const glm::dvec2 back = aimedAngles(type, d);
+                EXPECT_NEAR(back.x, H, 1e-9);
+                EXPECT_NEAR(back.y, V, 1e-9);
+                const auto [ch, cv] = typeCAngles(d);
+                EXPECT_NEAR(evaluateDegrees(*p, ch, cv), 1000.0 + 10.0 * H + V, 1e-6) << "type " << type << " H " << H << " V " << V;
+                ++checked;
+            }
+        EXPECT_EQ(checked, 25);
+        // The aiming axis is the light's direction (type C's nadir); behind the luminaire, nothing.
+        EXPECT_NEAR(evaluateDegrees(*p, 0.0, 0.0), 1000.0, 1e-9);
+        EXPECT_EQ(evaluateDegrees(*p, 0.0, 135.0), 0.0);
+        EXPECT_EQ(evaluateDegrees(*p, 77.0, 180.0), 0.0);
+        // Positive H towards +x (the light's axis), positive V towards +y.
+        const double towardsX = evaluateDegrees(*p, 0.0, 30.0), towardsY = evaluateDegrees(*p, 90.0, 30.0);
+        EXPECT_NEAR(towardsX, 1000.0 + 10.0 * 30.0, 1e-6) << type;
+        EXPECT_NEAR(towardsY, 1000.0 + 30.0, 1e-6) << type;
+    }
+    // The two differ off the axes: 45° between +x and +y at 40° from the aim.
+    auto b = parseIes(aimedIes(2), "b.ies"), a = parseIes(aimedIes(3), "a.ies");
+    ASSERT_TRUE(a && b);
+    const glm::dvec3 d(std::sin(deg(40)) * std::cos(deg(45)), std::sin(deg(40)) * std::sin(deg(45)), std::cos(deg(40)));
+    const glm::dvec2 angB = aimedAngles(2, d), angA = aimedAngles(3, d);
+    EXPECT_NEAR(angB.x, angA.y, 1e-9);  // the quarter turn swaps the roles...
+    EXPECT_NEAR(angB.y, angA.x, 1e-9);  // ...for a direction on the diagonal
+    EXPECT_GT(std::abs(angB.x - angB.y), 1.0);
+}
+
+TEST(Ies, TypeBMirrorsATableThatStartsAtZero) {
+    auto p = parseIes(aimedIes(2, "0 30 60 90", "0 30 60 90"), "half.ies");
+    ASSERT_TRUE(p.has_value()) << p.error().message;
+    EXPECT_TRUE(p->mirrorHorizontal);
+    EXPECT_TRUE(p->mirrorVertical);
+    for (double H : {-60.0, -30.0, 30.0, 60.0})
+        for (double V : {-60.0, -30.0, 30.0, 60.0}) {
+            const double h = deg(H), v = deg(V);
+            const auto [ch, cv] = typeCAngles({std::sin(h), std::cos(h) * std::sin(v), std::cos(h) * std::cos(v)});
+            EXPECT_NEAR(evaluateDegrees(*p, ch, cv), 1000.0 + 10.0 * std::abs(H) + std::abs(V), 1e-6) << H << " " << V;
+        }
+}
+
+TEST(Ies, TypeBUniformTableSendsHalfAnIsotropicSourcesFlux) {
+    // 100 cd over |H|, |V| ≤ 90°: exactly the front hemisphere, 2π · 100 lm.
+    for (int type : {2, 3}) {
+        auto p = parseIes(aimedIes(type, "-90 -60 -30 0 30 60 90", "-90 -60 -30 0 30 60 90", true), "flood.ies");
+        ASSERT_TRUE(p.has_value()) << p.error().message;
+        EXPECT_NEAR(integrateLumens(*p), 2.0 * kPi * 100.0, 0.005 * 2.0 * kPi * 100.0) << type;
+    }
+}
+
+TEST(Ies, ErrorTypeBAnglesOutsideTheAimedRange) {
+    EXPECT_EQ(parseError(aimedIes(2, "-90 0 90", "-45 0 45"), "flood.ies"),
+              "'flood.ies':6: expected vertical angles from -90 or 0 to at most 90 degrees (type B), found -45..45");
+    EXPECT_EQ(parseError(aimedIes(3, "0 90 120", "0 45 90"), "flood.ies"),
+              "'flood.ies':7: expected horizontal angles from -90 or 0 to at most 90 degrees (type A), found 0..120");
 }
 
 TEST(Ies, ErrorNonNumericValues) {
@@ -950,8 +1053,8 @@ TEST(Ies, ErrorTruncatedFile) {
 
 TEST(Ies, ErrorUnknownFormatLineAndBadHeaderValues) {
     EXPECT_EQ(parseError(replaceLine(validIes(), 1, "IESNA:LM-63-2019")),
-              "'lamp.ies':1: unknown IES format 'IESNA:LM-63-2019', expected one of: 'IESNA:LM-63-2002', 'IESNA:LM-63-1995', "
-              "'IESNA91', or no format line (LM-63-1986)");
+              "'lamp.ies':1: unknown IES format 'IESNA:LM-63-2019', expected one of: 'IES:LM-63-2019', 'IESNA:LM-63-2002', "
+              "'IESNA:LM-63-1995', 'IESNA91', or no format line (LM-63-1986)");
     EXPECT_EQ(parseErrorCode(replaceLine(validIes(), 1, "IESNA:LM-63-2019")), ErrorCode::Unsupported);
     EXPECT_EQ(parseError(replaceLine(validIes(), 2, "[TEST nothing closes")),
               "'lamp.ies':2: expected a keyword line '[KEYWORD] text', found '[TEST nothing closes'");
