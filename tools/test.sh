@@ -19,4 +19,17 @@ if [ "${1:-}" = --sanitize ]; then
   export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 fi
 tools/setup.sh "$build"
-ctest --test-dir "$build" --output-on-failure -j "$(nproc)" "$@"
+# Every validated device of the suite (GPU tests, and rgraph runs with RG_VALIDATION=1) appends its
+# validation-message count here; the total is printed at the end, and any message fails the run.
+export RG_VALIDATION_LOG="$PWD/$build/validation.log"
+rm -f "$RG_VALIDATION_LOG"
+status=0
+ctest --test-dir "$build" --output-on-failure -j "$(nproc)" "$@" || status=$?
+devices=0 messages=0
+if [ -f "$RG_VALIDATION_LOG" ]; then
+  devices=$(grep -c '^messages ' "$RG_VALIDATION_LOG" || true)
+  messages=$(awk '/^messages /{n += $2} END {print n + 0}' "$RG_VALIDATION_LOG")
+fi
+echo "validation layer: $messages messages from $devices validated Vulkan devices"
+[ "$messages" -eq 0 ] || status=1
+exit $status

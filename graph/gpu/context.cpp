@@ -369,6 +369,15 @@ Context::~Context() {
         if (destroy) destroy(m_instance, m_messenger, nullptr);
     }
     if (m_instance && m_ownsDevice) vkDestroyInstance(m_instance, nullptr);
+    // RG_VALIDATION_LOG=FILE: one line per validated device, "messages N", appended (O_APPEND
+    // writes of one short line do not interleave), so a test suite can print its total
+    // (tools/test.sh) — messages at device destruction (leaked objects) included.
+    if (const char* log = std::getenv("RG_VALIDATION_LOG"); log && *log && m_validation) {
+        if (std::FILE* f = std::fopen(log, "a")) {
+            std::fprintf(f, "messages %u\n", m_validationMessages);
+            std::fclose(f);
+        }
+    }
 }
 
 VKAPI_ATTR VkBool32 VKAPI_CALL Context::debugCallback(
