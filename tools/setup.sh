@@ -14,16 +14,7 @@ packages=(
   libcpp-httplib-dev  # rgraph serve
   chromium  # the golden-test report is checked in a real (headless) browser
 )
-missing=()
-for p in "${packages[@]}"; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  echo "rgraph setup: installing ${missing[*]}"
-  sudo=""; [ "$(id -u)" = 0 ] || sudo=sudo
-  $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
-fi
+tools/install_packages.sh "rgraph setup" "${packages[@]}"
 
 cmake -S . -B "$build" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRG_WERROR="${RG_WERROR:-OFF}" -DRG_SANITIZE="${RG_SANITIZE:-OFF}" >/dev/null
 cmake --build "$build" --parallel "$(nproc)"

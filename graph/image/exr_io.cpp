@@ -15,6 +15,7 @@
 #include <half.h>
 
 #include <algorithm>
+#include <map>
 #include <array>
 #include <cerrno>
 #include <climits>
@@ -208,6 +209,139 @@ std::string exrReason(const std::string& path, const std::string& what) {
     return action + ": " + reason;
 }
 
+// The header's attribute sizes against the file (OpenEXR layout: magic, version, then per part
+// attributes "name\0type\0" + int32 size + value, ended by an empty name; a multi-part file ends
+// its list of headers with one more empty name). OpenEXR allocates an attribute's claimed size
+// before it reads it, so a 300-byte file claiming a 2 GB string attribute costs 2 GB before it
+// fails (tools/fuzz.sh image found such files); this refuses them first.
+// At most 2^28 samples (1 GiB of floats: an 8192 x 8192 RGBA environment), and no more than the
+// file could hold at 65536 samples per byte — beyond any OpenEXR codec's ratio on real images
+// (DEFLATE's is ~1000:1) — so a 300-byte file cannot claim gigabytes (tools/fuzz.sh image found
+// such headers).
+constexpr int64_t kMaxExrSamples = int64_t(1) << 28;
+constexpr int64_t kMaxExrSamplesPerByte = 65536;
+
+// The size in bytes of an OpenEXR attribute type's value when it is fixed (OpenEXR 3.1's
+// predefined types), or -1.
+int32_t exrFixedAttributeSize(const std::string& type) {
+    static const std::map<std::string, int32_t> sizes = {
+        {"box2i", 16},  {"box2f", 16},   {"v2i", 8},         {"v2f", 8},         {"v2d", 16},      {"v3i", 12},
+        {"v3f", 12},    {"v3d", 24},     {"m33f", 36},       {"m33d", 72},       {"m44f", 64},     {"m44d", 128},
+        {"int", 4},     {"float", 4},    {"double", 8},      {"rational", 8},    {"timecode", 8},  {"keycode", 28},
+        {"compression", 1}, {"lineOrder", 1}, {"envmap", 1}, {"deepImageState", 1}, {"tiledesc", 9}, {"chromaticities", 32}};
+    auto it = sizes.find(type);
+    return it == sizes.end() ? -1 : it->second;
+}
+
+Result<void> checkExrHeaderSizes(const std::string& file, const std::vector<char>& data) {
+    size_t pos = 8;
+    const auto bad = [&](const std::string& what) {
+        return fail(ErrorCode::InvalidInput, file + ": invalid OpenEXR header: " + what);
+    };
+    // The version field is OpenEXR's to judge (it names the version it cannot read).
+    if (data.size() < 8 || data[4] != 2) return {};
+    std::string nameError;
+    const auto readName = [&](std::string& out) -> bool {
+        const size_t end = std::find(data.begin() + static_cast<std::ptrdiff_t>(std::min(pos, data.size())), data.end(), '\0') -
+                           data.begin();
+        if (end - std::min(pos, end) > 255) {
+            nameError = "an attribute name is more than 255 characters long";
+            return false;
+        }
+        if (end >= data.size()) {
+            nameError = "truncated file: an attribute name runs past its end";
+            return false;
+        }
+        out.assign(data.data() + pos, end - pos);
+        pos = end + 1;
+        return true;
+    };
+    const bool multipart = data.size() >= 8 && (static_cast<unsigned char>(data[5]) & 0x10) != 0;  // version bit 12
+    // Each part's data window times its channels, against what a file of this size can hold:
+    // OpenEXR sizes its decompression buffers from them when it opens the file.
+    int64_t width = 0, height = 0, channels = 0;
+    const auto checkSamples = [&]() -> Result<void> {
+        const int64_t plausible = std::min(kMaxExrSamples, int64_t(data.size()) * kMaxExrSamplesPerByte);
+        if (width > 0 && height > 0 && channels > 0 && (width > plausible || height > plausible || width * height > plausible / channels))
+            return fail(ErrorCode::InvalidInput, file + ": the header claims " + std::to_string(width) + "x" + std::to_string(height) +
+                                                     "x" + std::to_string(channels) + " samples, more than a " +
+                                                     std::to_string(data.size()) + "-byte file can hold or rgraph reads (truncated or corrupt?)");
+        width = height = channels = 0;
+        return {};
+    };
+    for (;;) {
+        std::string name, type;
+        if (!readName(name)) return bad(nameError);
+        if (name.empty()) return {};  // the end of the list of headers (or an empty one: OpenEXR says what is wrong)
+        for (;;) {
+            if (!readName(type)) return bad(nameError + " (the type of attribute '" + name + "')");
+            if (pos + 4 > data.size()) return bad("truncated file: attribute '" + name + "' has no size");
+            int32_t size = 0;
+            std::memcpy(&size, data.data() + pos, 4);
+            pos += 4;
+            if (size < 0 || static_cast<uint64_t>(size) > data.size() - pos)
+                return bad((size < 0 ? "" : "truncated file: ") + std::string("attribute '") + name + "' claims " + std::to_string(size) +
+                           " bytes, " + std::to_string(data.size() - pos) + " are left in the file");
+            // OpenEXR reads a fixed-size type's value whatever size the file states, so a wrong
+            // size would put this walk out of step with it: refuse one.
+            if (const int32_t fixed = exrFixedAttributeSize(type); fixed >= 0 && size != fixed)
+                return bad("attribute '" + name + "' of type " + type + " is " + std::to_string(fixed) + " bytes, the file says " +
+                           std::to_string(size));
+            // A channel list is read entry by entry up to an empty name, whatever its size says:
+            // the entries (name, then 16 bytes) must end exactly at its end. A string vector is
+            // read as lengths and strings: they must tile it.
+            if (type == "chlist" || type == "stringvector") {
+                const size_t end = pos + static_cast<size_t>(size);
+                size_t p = pos;
+                bool closed = false;
+                while (p < end && !closed) {
+                    if (type == "chlist") {
+                        const size_t nul = std::find(data.begin() + static_cast<std::ptrdiff_t>(p), data.begin() + static_cast<std::ptrdiff_t>(end), '\0') -
+                                           data.begin();
+                        if (nul >= end) break;
+                        closed = nul == p;
+                        p = closed ? nul + 1 : nul + 1 + 16;
+                    } else {
+                        int32_t length = 0;
+                        if (p + 4 > end) break;
+                        std::memcpy(&length, data.data() + p, 4);
+                        if (length < 0) break;
+                        p += 4 + static_cast<size_t>(length);
+                    }
+                }
+                if (p != end || (type == "chlist" && !closed))
+                    return bad("attribute '" + name + "' (" + type + ") does not fill its " + std::to_string(size) + " bytes exactly");
+                if (type == "chlist" && name == "channels") {
+                    channels = 0;
+                    for (size_t q = pos; q < end && data[q] != '\0'; ++channels)
+                        q = static_cast<size_t>(std::find(data.begin() + static_cast<std::ptrdiff_t>(q), data.end(), '\0') - data.begin()) + 1 + 16;
+                }
+            }
+            if (type == "box2i" && name == "dataWindow") {
+                int32_t box[4];
+                std::memcpy(box, data.data() + pos, 16);
+                width = int64_t(box[2]) - box[0] + 1;
+                height = int64_t(box[3]) - box[1] + 1;
+            }
+            // A preview image allocates its own width x height, which must be what follows.
+            if (type == "preview") {
+                uint32_t w = 0, h = 0;
+                if (size < 8) return bad("attribute '" + name + "' (preview) is shorter than its size fields");
+                std::memcpy(&w, data.data() + pos, 4);
+                std::memcpy(&h, data.data() + pos + 4, 4);
+                if (uint64_t(w) * h * 4 + 8 != uint64_t(size))
+                    return bad("attribute '" + name + "' (preview) claims " + std::to_string(w) + "x" + std::to_string(h) + " pixels in " +
+                               std::to_string(size) + " bytes");
+            }
+            pos += static_cast<size_t>(size);
+            if (!readName(name)) return bad(nameError);
+            if (name.empty()) break;  // the end of this part's header
+        }
+        if (auto r = checkSamples(); !r) return r;
+        if (!multipart) return {};
+    }
+}
+
 }  // namespace
 
 Result<void> writeExr(const std::string& path, const std::vector<ImageLayer>& layers,
@@ -278,6 +412,7 @@ Result<ExrFile> readExr(const std::string& path) {
     if (data->size() < 4 || !Imf::isImfMagic(data->data()))
         return fail(ErrorCode::InvalidInput, file + ": not an OpenEXR file");
 
+    if (auto sizes = checkExrHeaderSizes(file, *data); !sizes) return std::unexpected(sizes.error());
     try {
         MemoryIStream stream(path, *data);
         Imf::InputFile input(stream);
@@ -306,14 +441,21 @@ Result<ExrFile> readExr(const std::string& path) {
         }
         if (layerChannels.empty()) return fail(ErrorCode::InvalidInput, file + ": no channels");
 
-        // A garbage header can claim any size; refuse before allocating rather than die in it.
-        constexpr int64_t maxSamples = int64_t(1) << 31;
+        // A garbage header can claim any size; refuse before allocating rather than die in it
+        // (checkExrHeaderSizes did for the data window OpenEXR opened; this is what we allocate).
+        constexpr int64_t maxSamples = kMaxExrSamples;
+        const int64_t plausibleSamples = int64_t(data->size()) * kMaxExrSamplesPerByte;
         int64_t channelCount = 0;
         for (const auto& [name, channels] : layerChannels) channelCount += int64_t(channels.size());
         if (width > INT32_MAX || height > INT32_MAX || width * height > maxSamples / channelCount)
             return fail(ErrorCode::Unsupported,
                         file + ": " + std::to_string(width) + "x" + std::to_string(height) + "x" +
-                            std::to_string(channelCount) + " samples is too large to read");
+                            std::to_string(channelCount) + " samples is too large to read (at most 2^28)");
+        if (width * height > plausibleSamples / channelCount)
+            return fail(ErrorCode::InvalidInput,
+                        file + ": the header claims " + std::to_string(width) + "x" + std::to_string(height) + "x" +
+                            std::to_string(channelCount) + " samples, more than a " + std::to_string(data->size()) +
+                            "-byte file can hold (truncated or corrupt?)");
 
         ExrFile result;
         result.layers.reserve(layerChannels.size());  // the slices point into these images

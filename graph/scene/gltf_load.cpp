@@ -279,6 +279,12 @@ struct Loader {
             const size_t at = what.find(marker);
             return error(ErrorCode::InvalidInput,
                          at == std::string::npos ? "invalid JSON: " + what : "invalid JSON at " + what.substr(at + marker.size()));
+        } catch (const nlohmann::json::exception& e) {
+            // Not a syntax error but a value JSON cannot hold, e.g. out_of_range.406 "number
+            // overflow parsing '1e400'" (found by tools/fuzz.sh gltf).
+            std::string what = e.what();
+            const size_t close = what.find("] ");
+            return error(ErrorCode::InvalidInput, "invalid JSON: " + (close == std::string::npos ? what : what.substr(close + 2)));
         }
         if (!pf.json.is_object()) return error(ErrorCode::InvalidInput, "invalid glTF: the top level is not a JSON object");
         auto asset = pf.json.find("asset");

@@ -314,9 +314,8 @@ TEST(ExrTest, GarbageAfterMagic) {
     writeBytes(path, bytes);
     r = rg::readExr(path);
     ASSERT_FALSE(r);
-    EXPECT_EQ(r.error().message, "'" + path +
-                                     "': invalid OpenEXR file: Invalid attribute name: it is "
-                                     "more than 255 characters long.");
+    // rgraph walks the header before OpenEXR allocates what it claims (tools/fuzz.sh image).
+    EXPECT_EQ(r.error().message, "'" + path + "': invalid OpenEXR header: an attribute name is more than 255 characters long");
 
     // A wrong version field is reported as such.
     bytes[4] = 7;
@@ -345,7 +344,7 @@ TEST(ExrTest, TruncatedFile) {
     r = rg::readExr(cut);
     ASSERT_FALSE(r);
     EXPECT_EQ(r.error().message,
-              "'" + cut + "': invalid OpenEXR file: unexpected end of file (truncated?)");
+              "'" + cut + "': invalid OpenEXR header: truncated file: attribute 'channels' claims 188 bytes, 12 are left in the file");
 }
 
 TEST(ExrTest, TruncatedFileAtManyLengths) {

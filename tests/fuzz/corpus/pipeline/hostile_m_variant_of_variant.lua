@@ -1,0 +1,3 @@
+require "pipelines.deferred"
+local rg = require "rg"
+rg.stencil "wet_foliage" { variant_of = "foliage" }

@@ -1,0 +1,4 @@
+local rg = require "rg"
+rg.resource "r" { format = "rgba8" }
+rg.resource "r" { format = "rgba16f" }
+rg.output "r"

@@ -1,0 +1,1 @@
+os.execute("touch /tmp/rgraph_hostile_pwned")

@@ -1,0 +1,2 @@
+local rg = require "rg"
+rg.pass "a" {

@@ -1,0 +1,3 @@
+local rg = require "rg"
+rg.resource "r" { format = "rgb9" }
+rg.output "r"

@@ -1,0 +1,3 @@
+local rg = require "rg"
+rg.resource "r" { format = 5 }
+rg.output "r"
