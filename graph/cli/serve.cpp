@@ -281,7 +281,15 @@ int serve(Runtime& runtime, Session& session, const ServeOptions& options) {
             due.swap(jobs);
         }
         for (auto& job : due) job();
-        if (!due.empty()) files = stamp();  // a job may have reloaded (an image export): its files are the new ones
+        if (!due.empty()) {
+            // A job may have reloaded (an image export): its new files are watched from now, the
+            // ones it no longer uses are dropped. Files watched before keep their old stamps, so a
+            // script saved while the job ran (its HTTP answer goes out before this) is still
+            // seen as changed at the next poll.
+            auto now = stamp();
+            std::erase_if(files, [&](const auto& e) { return !now.contains(e.first); });
+            for (const auto& [f, t] : now) files.try_emplace(f, t);
+        }
         if (std::chrono::steady_clock::now() - lastPoll > std::chrono::milliseconds(options.pollMs)) {
             lastPoll = std::chrono::steady_clock::now();
             auto now = stamp();
