@@ -32,4 +32,25 @@ if [ -f "$RG_VALIDATION_LOG" ]; then
 fi
 echo "validation layer: $messages messages from $devices validated Vulkan devices"
 [ "$messages" -eq 0 ] || status=1
+
+# The sanitizer subset every run (CI included) takes: the parsers and the graph compiler — the
+# compiler, image, layout, lighting and photometry unit tests and the replay of the IES, EXR/HDR
+# and layout fuzz corpora and crashes — built with AddressSanitizer and UndefinedBehaviorSanitizer
+# in build-sanitize-core (a few minutes; the whole suite under them, --sanitize, takes ~30).
+if [ "$build" = build ]; then
+  sub=build-sanitize-core
+  echo "tools/test.sh: the parsers and the compiler under ASan + UBSan ($sub)"
+  cmake -S . -B "$sub" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DRG_SANITIZE=ON >/dev/null
+  units="test_compiler test_image_io test_layout test_lighting test_photometry"
+  fuzzers="ies image layout"
+  cmake --build "$sub" --parallel "$(nproc)" --target $units $(for f in $fuzzers; do echo "fuzz_$f"; done) >/dev/null
+  export ASAN_OPTIONS=detect_leaks=0:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
+  for t in $units; do
+    (cd "$sub/tests" && "./$t" --gtest_brief=1 >"$t.log" 2>&1) && echo "  $t: passed" || { echo "  $t: FAILED ($sub/tests/$t.log)"; status=1; }
+  done
+  for f in $fuzzers; do
+    if out=$("$sub/tests/fuzz_$f" "tests/fuzz/corpus/$f" "tests/fuzz/crashes/$f" 2>&1); then echo "  fuzz_replay.$f: ${out##*$'\n'}"
+    else echo "$out" | tail -20; echo "  fuzz_replay.$f: FAILED"; status=1; fi
+  done
+fi
 exit $status
