@@ -46,16 +46,24 @@ echo "tools/fuzz.sh: building fuzz_$target"
 cmake --build "$build" --target "fuzz_$target" --parallel "$(nproc)" >/dev/null
 
 corpus=$root/tests/fuzz/corpus/$target
+# The inputs other tests keep start the corpus too, read where they are (tests/CMakeLists.txt's SEEDS).
+case $target in
+  ies) seeds="tests/unit/ies tests/hostile/inputs" ;;
+  gltf) seeds="tests/hostile/inputs" ;;
+  image) seeds="tests/hostile/inputs tests/golden/images/stencil_depth" ;;
+  pipeline) seeds="tests/hostile/inputs tests/lua/scripts scripts/pipelines" ;;
+  layout) seeds="" ;;
+esac
 crashes=$root/tests/fuzz/crashes/$target
 work=$build/findings/$target
 rm -rf "$work"
 mkdir -p "$work/queue" "$work/artifacts" "$crashes"
 export TMPDIR=$work/tmp && mkdir -p "$TMPDIR"
 export ASAN_OPTIONS=detect_leaks=0:abort_on_error=0 UBSAN_OPTIONS=print_stacktrace=1
-echo "tools/fuzz.sh: fuzzing $target for $seconds s from $(ls "$corpus" | wc -l) corpus inputs"
+echo "tools/fuzz.sh: fuzzing $target for $seconds s from $(ls "$corpus" | wc -l) corpus inputs and the seeds in ${seeds:-no other folder}"
 # -fork keeps fuzzing past a crash (each one is an artifact), so one run reports them all.
 set +e
-"$build/tests/fuzz_$target" "$work/queue" "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+"$build/tests/fuzz_$target" "$work/queue" "$corpus" $seeds -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
   -max_len=65536 -fork=1 -ignore_crashes=1 -ignore_timeouts=1 -ignore_ooms=1 \
   -artifact_prefix="$work/artifacts/" >"$work/log" 2>&1
 status=$?

@@ -49,7 +49,9 @@ if [ "$build" = build ]; then
     (cd "$sub/tests" && "./$t" --gtest_brief=1 >"$t.log" 2>&1) && echo "  $t: passed" || { echo "  $t: FAILED ($sub/tests/$t.log)"; status=1; }
   done
   for f in $fuzzers; do
-    if out=$("$sub/tests/fuzz_$f" "tests/fuzz/corpus/$f" "tests/fuzz/crashes/$f" 2>&1); then echo "  fuzz_replay.$f: ${out##*$'\n'}"
+    # fuzz_replay.$f as ctest runs it (the corpus, the crashes and the seed folders).
+    replay=$(ctest --test-dir "$build" -N -V -R "^fuzz_replay\.$f\$" | sed -n 's/^.*Test command: [^ ]* //p' | tr -d '"')
+    if out=$("$sub/tests/fuzz_$f" $replay 2>&1); then echo "  fuzz_replay.$f: ${out##*$'\n'}"
     else echo "$out" | tail -20; echo "  fuzz_replay.$f: FAILED"; status=1; fi
   done
 fi

@@ -294,12 +294,14 @@ Result<void> checkExrHeaderSizes(const std::string& file, const std::vector<char
                 const size_t end = pos + static_cast<size_t>(size);
                 size_t p = pos;
                 bool closed = false;
+                int64_t entries = 0;
                 while (p < end && !closed) {
                     if (type == "chlist") {
                         const size_t nul = std::find(data.begin() + static_cast<std::ptrdiff_t>(p), data.begin() + static_cast<std::ptrdiff_t>(end), '\0') -
                                            data.begin();
                         if (nul >= end) break;
                         closed = nul == p;
+                        entries += closed ? 0 : 1;
                         p = closed ? nul + 1 : nul + 1 + 16;
                     } else {
                         int32_t length = 0;
@@ -311,11 +313,7 @@ Result<void> checkExrHeaderSizes(const std::string& file, const std::vector<char
                 }
                 if (p != end || (type == "chlist" && !closed))
                     return bad("attribute '" + name + "' (" + type + ") does not fill its " + std::to_string(size) + " bytes exactly");
-                if (type == "chlist" && name == "channels") {
-                    channels = 0;
-                    for (size_t q = pos; q < end && data[q] != '\0'; ++channels)
-                        q = static_cast<size_t>(std::find(data.begin() + static_cast<std::ptrdiff_t>(q), data.end(), '\0') - data.begin()) + 1 + 16;
-                }
+                if (type == "chlist" && name == "channels") channels = entries;
             }
             if (type == "box2i" && name == "dataWindow") {
                 int32_t box[4];

@@ -1,4 +1,0 @@
-local rg = require "rg"
-rg.resource "r" { format = "rgba8" }
-rg.resource "r" { format = "rgba16f" }
-rg.output "r"

@@ -1,1 +1,0 @@
-error({ "a table, not a message" })

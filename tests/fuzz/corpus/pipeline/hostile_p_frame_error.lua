@@ -1,5 +1,0 @@
-local rg = require "rg"
-rg.resource "r" { format = "rgba8" }
-rg.pass "a" { kind = "clear", writes = { "r" } }
-rg.output "r"
-function rg.frame(ctx) error("boom in frame") end

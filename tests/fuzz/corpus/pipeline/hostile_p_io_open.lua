@@ -1,1 +1,0 @@
-io.open("/etc/passwd")

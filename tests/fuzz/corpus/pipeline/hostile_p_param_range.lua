@@ -1,2 +1,0 @@
-local rg = require "rg"
-rg.param "x" { type = "number", default = 5, min = 0, max = 1 }

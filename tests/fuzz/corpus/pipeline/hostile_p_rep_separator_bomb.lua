@@ -1,1 +1,0 @@
-local s = ("x"):rep(1e6, ("y"):rep(1e4))

@@ -1,1 +1,0 @@
-require "no_such_module"

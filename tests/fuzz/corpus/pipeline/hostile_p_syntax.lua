@@ -1,2 +1,0 @@
-local rg = require "rg"
-rg.pass "a" {

@@ -1,3 +1,0 @@
-local rg = require "rg"
-rg.resource "r" { format = "rgb9" }
-rg.output "r"

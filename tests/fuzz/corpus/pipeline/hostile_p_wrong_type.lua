@@ -1,3 +1,0 @@
-local rg = require "rg"
-rg.resource "r" { format = 5 }
-rg.output "r"

@@ -1,3 +1,0 @@
-local rg = require "rg"
-rg.resource "r" { format = "rgba8", layers = 0 }
-rg.output "r"
