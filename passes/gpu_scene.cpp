@@ -13,6 +13,7 @@
 #include "lighting/punctual.h"
 #include "scene/bvh.h"
 #include "scene/environment.h"
+#include <glm/gtc/packing.hpp>
 
 namespace rg::passes {
 
@@ -169,6 +170,36 @@ Result<gpu::Image> uploadRgba32f(Context& ctx, const std::string& name, const rg
     return img;
 }
 
+// The baked lightmap's lobes as the layers of an RGBA16F array (amplitudes beyond half precision's
+// range clamped to 65504); none: a 1×1×2 black array, so the view stays an array.
+Result<gpu::Image> uploadLightmap(Context& ctx, const Lightmap* lm) {
+    ImageDesc d;
+    d.name = "scene.lightmap";
+    d.format = Format::RGBA16F;
+    d.width = lm ? std::max(lm->width, 1u) : 1;
+    d.height = lm ? std::max(lm->height, 1u) : 1;
+    d.layers = lm ? std::max<uint32_t>(2, static_cast<uint32_t>(lm->lobes.size())) : 2;
+    d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    auto img = gpu::Image::create(ctx, d);
+    if (!img) return std::unexpected(img.error());
+    const size_t texels = size_t(d.width) * d.height;
+    auto staging = Buffer::create(ctx, "scene.lightmap.staging", texels * d.layers * 8, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    if (!staging) return std::unexpected(staging.error());
+    auto* dst = static_cast<uint16_t*>(staging->mapped());
+    for (uint32_t layer = 0; layer < d.layers; ++layer)
+        for (size_t i = 0; i < texels; ++i) {
+            const glm::vec3 a = lm && layer < lm->lobes.size() && i < lm->lobes[layer].size() ? lm->lobes[layer][i] : glm::vec3(0.0f);
+            for (int c = 0; c < 4; ++c)
+                dst[(size_t(layer) * texels + i) * 4 + size_t(c)] =
+                    glm::packHalf1x16(c < 3 ? std::clamp(std::isfinite(a[c]) ? a[c] : 0.0f, 0.0f, 65504.0f) : 1.0f);
+        }
+    VkBufferImageCopy r{};
+    r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, d.layers};
+    r.imageExtent = {d.width, d.height, 1};
+    if (auto sub = copyToImage(ctx, img->image(), *staging, {r}); !sub) return std::unexpected(sub.error());
+    return img;
+}
+
 }  // namespace
 
 GpuScene::~GpuScene() = default;
@@ -257,7 +288,8 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
         for (size_t k = 0; k < ranges.size(); ++k)
             if (ranges[k].indexCount) {
                 const auto [lo, hi] = worldBox(m_scene.meshes[static_cast<size_t>(node.mesh)].primitives[k].vertices, node.world);
-                m_draws.push_back({ranges[k].firstIndex, ranges[k].indexCount, ranges[k].vertexOffset, ranges[k].material, node.world, normal, lo, hi});
+                m_draws.push_back({ranges[k].firstIndex, ranges[k].indexCount, ranges[k].vertexOffset, ranges[k].material, node.world, normal, lo, hi,
+                                   node.lightmapRect});
             }
     }
     // SceneDraws: a uvec4 header (draw count), then per draw (boxMin, firstIndex), (boxMax,
@@ -350,6 +382,9 @@ Result<void> GpuScene::uploadImages(Context& ctx) {
     auto es = makeSampler(ctx.device(), envSampler);
     if (!es) return std::unexpected(es.error());
     m_environmentSampler = std::move(*es);
+    auto lightmap = uploadLightmap(ctx, m_scene.bakedLightmap.get());
+    if (!lightmap) return std::unexpected(lightmap.error());
+    m_lightmap = std::move(*lightmap);
     return {};
 }
 
@@ -657,6 +692,11 @@ Result<void> GpuScene::createFrameData(Context& ctx, const GpuSceneOptions& opti
     if (auto r = createProbes(ctx); !r) return r;
     auto table = convertLights(m_scene.lights, options.iesMode);
     if (!table) return std::unexpected(table.error());
+    // With a baked lightmap, a light marked baked is in it, direct light included: the real-time
+    // loop must not add it again.
+    if (m_scene.bakedLightmap)
+        for (size_t i = 0; i < m_scene.lights.size(); ++i)
+            if (m_scene.lights[i].baked) table->lights[i].intensity = glm::vec4(0.0f, 0.0f, 0.0f, table->lights[i].intensity.a);
     m_lightCount = static_cast<uint32_t>(table->lights.size());
     m_iesProfileCount = static_cast<uint32_t>(table->profiles.size());
     // scene.glsl's Lights block: a uvec4 header, RG_MAX_LIGHTS lights, then every profile's texels

@@ -29,6 +29,7 @@ struct DrawItem {
     glm::mat4 world{1.0f};
     glm::mat4 normalMatrix{1.0f};
     glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};  // world-space box around its vertices
+    glm::vec4 lightmapRect{0.0f};  // its node's Node::lightmapRect
 };
 
 // The shadow views of the scene's local lights (lib/shadows.glsl's ShadowViews block): how many
@@ -161,6 +162,12 @@ public:
     // `SceneEnvironmentCdf` (the reference mode's environment samples). Built on first use.
     VkBuffer environmentCdfBuffer() const;
     VkSampler environmentSampler() const { return m_environmentSampler.get(); }
+    // The baked SG lightmap (Scene::bakedLightmap) as an RGBA16F 2D array, one layer per lobe (rgb:
+    // the lobe's amplitude, nits), with a linear, clamping sampler: what a shader's `SceneLightmap`
+    // sampler2DArray is bound to (lib/lightmap.glsl); 1×1×2 black without one. Lights marked baked
+    // are uploaded dark when the scene has one (the lightmap holds their light).
+    bool hasLightmap() const { return m_scene.bakedLightmap != nullptr; }
+    VkImageView lightmapView() const { return m_lightmap.view(); }
     uint32_t lightCount() const { return m_lightCount; }
     uint32_t iesProfileCount() const { return m_iesProfileCount; }
 
@@ -181,6 +188,7 @@ private:
     EnvironmentCdf m_environmentCdf;           // of the uploaded image (a 1x1 black one without an environment)
     mutable gpu::Buffer m_environmentCdfBuffer;  // environmentCdfBuffer(), once built
     gpu::OwnedSampler m_environmentSampler;
+    gpu::Image m_lightmap;
     std::vector<gpu::OwnedSampler> m_samplers;
     gpu::OwnedSampler m_defaultSampler;
     gpu::OwnedDescriptorSetLayout m_materialLayout;

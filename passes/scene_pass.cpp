@@ -62,6 +62,20 @@ std::vector<MaterialInfo> materialsOf(const PassDesc& desc) {
     return out;
 }
 
+// With a baked lightmap (lib/lightmap.glsl), the surface's radiosity joins its emission before the
+// material's surface function runs: whatever layout it packs, the light leaves the surface as the
+// emissive term does (GB3 in the disney layout, seed 000 tbl:2).
+// RG_LIGHTMAP_VIEW (`rgraph render --view lightmap` / `sgN`) writes the lightmap instead: the
+// irradiance, or lobe N's amplitude, as the emission the debug view decodes.
+constexpr const char* kLightmapRadiosity =
+    "#if RG_SCENE_LIGHTMAP\n"
+    "#if defined(RG_LIGHTMAP_VIEW) && RG_LIGHTMAP_VIEW > 0\n"
+    "    s.emissive = rgLightmapView(RG_LIGHTMAP_VIEW - 1, s, worldNormal, worldTangent, lightmapUv, gl_FrontFacing);\n"
+    "#else\n"
+    "    s.emissive += rgLightmapRadiosity(s, worldNormal, worldTangent, lightmapUv, gl_FrontFacing);\n"
+    "#endif\n"
+    "#endif\n";
+
 // The start of every shader rgraph generates for a material: the version, what it is, its id.
 std::string materialPrologue(const MaterialInfo& m, const std::string& what) {
     std::ostringstream s;
@@ -88,10 +102,11 @@ std::string surfaceInclude(const MaterialInfo& m) {
 std::string fragmentSource(const MaterialInfo& m, const std::vector<std::string>& attachments) {
     std::ostringstream s;
     s << materialPrologue(m, "G-buffer shader");
-    s << "#include \"lib/scene.glsl\"\n#include \"lib/material.glsl\"\n#include \"gbuffer_" << m.layout << ".glsl\"\n"
+    s << "#include \"lib/scene.glsl\"\n#include \"lib/material.glsl\"\n#include \"lib/lightmap.glsl\"\n#include \"gbuffer_" << m.layout << ".glsl\"\n"
       << surfaceInclude(m)
       << "layout(location = 0) in vec3 worldPosition;\nlayout(location = 1) in vec3 worldNormal;\n"
-      << "layout(location = 2) in vec4 worldTangent;\nlayout(location = 3) in vec2 uv0;\nlayout(location = 4) in vec2 uv1;\n";
+      << "layout(location = 2) in vec4 worldTangent;\nlayout(location = 3) in vec2 uv0;\nlayout(location = 4) in vec2 uv1;\n"
+      << "layout(location = 5) in vec2 lightmapUv;\n";
     for (size_t t = 0; t < m.targets.size(); ++t) {
         auto it = std::find(attachments.begin(), attachments.end(), m.targets[t]);
         size_t location = static_cast<size_t>(it - attachments.begin());
@@ -100,6 +115,7 @@ std::string fragmentSource(const MaterialInfo& m, const std::vector<std::string>
     s << "void main() {\n"
       << "    RgSurface s = rgSampleSurface(worldPosition, worldNormal, worldTangent, uv0, uv1, gl_FrontFacing);\n"
       << "#if RG_ALPHA_MASK\n    if (s.opacity < material.factors2.z) discard;  // alpha mask\n#endif\n"
+      << kLightmapRadiosity
       << "    GBuffer_" << m.layout << " g = rgSurface(s);\n";
     for (size_t t = 0; t < m.targets.size(); ++t) s << "    " << (m.targetInteger[t] ? "uvec4" : "vec4") << " t" << t << ";\n";
     s << "    packGBuffer_" << m.layout << "(g";
@@ -119,14 +135,17 @@ std::string forwardSource(const MaterialInfo& m) {
     std::ostringstream s;
     s << materialPrologue(m, "forward shading");
     s << "#include \"lib/material.glsl\"\n#include \"lib/lighting.glsl\"\n#include \"lib/exposure.glsl\"\n#include \"lib/ibl.glsl\"\n"
+      << "#include \"lib/lightmap.glsl\"\n"
       << "#include \"gbuffer_" << m.layout << ".glsl\"\n" << surfaceInclude(m) << "#include \"" << m.shading << "\"\n"
       << "layout(location = 0) in vec3 worldPosition;\nlayout(location = 1) in vec3 worldNormal;\n"
       << "layout(location = 2) in vec4 worldTangent;\nlayout(location = 3) in vec2 uv0;\nlayout(location = 4) in vec2 uv1;\n"
+      << "layout(location = 5) in vec2 lightmapUv;\n"
       << "layout(location = 0) out vec4 color;\n"
       << "layout(set = 0, binding = 0, std430) readonly buffer exposure { RgExposureState state; } ex;\n"
       << "layout(set = 0, binding = 1) uniform Params { float initial_ev100; } params;\n"
       << "void main() {\n"
       << "    RgSurface s = rgSampleSurface(worldPosition, worldNormal, worldTangent, uv0, uv1, gl_FrontFacing);\n"
+      << kLightmapRadiosity
       << "    GBuffer_" << m.layout << " g = rgSurface(s);\n"
       << "    vec3 luminance = rgShade(g, worldPosition, rgViewDirection(worldPosition), ivec2(gl_FragCoord.xy));\n"
       << "    color = vec4(luminance * rgPreExposure(ex.state, params.initial_ev100), s.opacity);\n"
@@ -345,7 +364,9 @@ public:
             VkDescriptorSet set = rc.scene->materialSet(item.material);
             vkCmdBindDescriptorSets(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.program->layout(), 1, 1, &set, 0, nullptr);
             vkCmdSetCullMode(rc.cmd, m.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT);
-            glm::mat4 push[2] = {item.world, item.normalMatrix};
+            // scene.vert's Draw: world, the normal matrix's three columns, the lightmap rect.
+            glm::vec4 push[8] = {item.world[0], item.world[1], item.world[2], item.world[3], item.normalMatrix[0], item.normalMatrix[1],
+                                 item.normalMatrix[2], item.lightmapRect};
             vkCmdPushConstants(rc.cmd, g.program->layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                                sizeof push, push);
             vkCmdDrawIndexed(rc.cmd, item.indexCount, 1, item.firstIndex, item.vertexOffset, 0);

@@ -1,6 +1,7 @@
 #include "shader_program.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
 #include <map>
 #include <sstream>
@@ -46,7 +47,7 @@ bool isSceneBinding(const ReflectedBinding& b) {
         {"Decals", DescriptorType::StorageBuffer},       {"ShadowViews", DescriptorType::StorageBuffer},
         {"SceneDraws", DescriptorType::StorageBuffer},   {"SceneBvh", DescriptorType::StorageBuffer},
         {"Probes", DescriptorType::StorageBuffer},       {"SceneEnvironmentCdf", DescriptorType::StorageBuffer},
-        {"SceneEnvironment", DescriptorType::CombinedImageSampler}};
+        {"SceneEnvironment", DescriptorType::CombinedImageSampler}, {"SceneLightmap", DescriptorType::CombinedImageSampler}};
     return std::any_of(std::begin(kScene), std::end(kScene), [&](const auto& e) { return b.name == e.first && b.type == e.second; });
 }
 
@@ -126,6 +127,15 @@ Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> s
         defines.emplace_back("RG_SCENE_LIGHT_TYPES", std::to_string(types));
         defines.emplace_back("RG_SCENE_IES", ies ? "1" : "0");
         if (shadowed) defines.emplace_back("RG_SCENE_SHADOWED_LIGHTS", std::to_string(shadowed));
+        // RG_SCENE_LIGHTMAP: the scene has a baked SG lightmap (lib/lightmap.glsl): the G-buffer
+        // pass adds its radiosity, the distant probe's diffuse light is left out (the lightmap holds it).
+        if (const Lightmap* lm = setup.scene->scene().bakedLightmap.get()) {
+            char sharpness[32];
+            std::snprintf(sharpness, sizeof sharpness, "%.9g", double(lm->sharpness));
+            defines.emplace_back("RG_SCENE_LIGHTMAP", "1");
+            defines.emplace_back("RG_LIGHTMAP_LOBES", std::to_string(lm->axes.size()));
+            defines.emplace_back("RG_LIGHTMAP_SHARPNESS", sharpness);
+        }
     }
 
     for (auto& req : stages) {
@@ -387,8 +397,11 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
             writes.push_back(w);
         }
         for (const ReflectedBinding* b : sceneBindings) {
-            if (b->type == DescriptorType::CombinedImageSampler) {  // SceneEnvironment
-                images.push_back({setup.scene->environmentSampler(), setup.scene->environmentView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+            if (b->type == DescriptorType::CombinedImageSampler) {  // SceneEnvironment, SceneLightmap
+                if (b->name == "SceneLightmap")
+                    images.push_back({m_linear.get(), setup.scene->lightmapView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+                else
+                    images.push_back({setup.scene->environmentSampler(), setup.scene->environmentView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
                 VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
                 w.dstSet = m_sets[s][b->set];
                 w.dstBinding = b->binding;

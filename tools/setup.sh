@@ -12,6 +12,7 @@ packages=(
   libglm-dev libtinygltf-dev nlohmann-json3-dev libstb-dev
   libopenexr-dev liblua5.4-dev libpng-dev zlib1g-dev libgtest-dev
   libcpp-httplib-dev  # rgraph serve
+  libembree-dev  # rgraph bake: the lightmap baker's ray casts
   chromium  # the golden-test report is checked in a real (headless) browser
 )
 tools/install_packages.sh "rgraph setup" "${packages[@]}"

@@ -12,6 +12,7 @@
 
 #include <unistd.h>
 
+#include "bake/lightmap.h"
 #include "core/names.h"
 #include "passes/passes.h"
 #include "scene/environment.h"
@@ -176,9 +177,39 @@ Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string
                         {{"shader", Value("passes/cascade_view.frag")}});
         return {};
     }
+    // lightmap / sgN: the G-buffer pass writes the baked lightmap — the irradiance at the shaded
+    // normal, or lobe N's amplitude — as the emission (RG_LIGHTMAP_VIEW), shown in colour.
+    if (view == "lightmap" || (view.size() > 2 && view.starts_with("sg") && view.find_first_not_of("0123456789", 2) == std::string::npos)) {
+        const Lightmap* lm = scene ? scene->bakedLightmap.get() : nullptr;
+        if (!lm)
+            return fail(ErrorCode::InvalidInput, "--view " + view + ": the scene has no baked lightmap (declare scene.lightmap; the pipeline's "
+                                                                     "lightmap parameter must be on)");
+        int what = 0;
+        if (view != "lightmap") {
+            const int lobe = std::atoi(view.c_str() + 2);
+            if (lobe < 0 || size_t(lobe) >= lm->axes.size())
+                return fail(ErrorCode::InvalidInput, "--view " + view + ": the lightmap has lobes sg0 .. sg" + std::to_string(lm->axes.size() - 1));
+            what = lobe + 1;
+        }
+        bool found = false;
+        for (PassDesc& pass : g.passes)
+            if (pass.name == "gbuffer") {
+                Value::Table params = pass.params.isTable() ? pass.params.asTable() : Value::Table{};
+                Value::Table defines = params["defines"].isTable() ? params["defines"].asTable() : Value::Table{};
+                defines["RG_LIGHTMAP_VIEW"] = Value(static_cast<double>(what + 1));
+                params["defines"] = Value(defines);
+                pass.params = Value(params);
+                found = true;
+            }
+        if (!found) return fail(ErrorCode::InvalidInput, "--view " + view + ": the pipeline has no 'gbuffer' scene pass");
+        addViewPass(g, {{"GB0", Usage::Sampled}, {"GB1", Usage::Sampled}, {"GB2", Usage::Sampled}, {"GB3", Usage::Sampled}, {"depth", Usage::Sampled}},
+                    {{"shader", Value("passes/debug_view.frag")}, {"uniforms", Value(Value::Table{{"view", Value(8.0)}})}});
+        return {};
+    }
     auto it = std::find(kViews.begin(), kViews.end(), view);
     if (it == kViews.end()) {
-        std::string all = "'stencil', 'lights', 'ssao', 'ssr', 'ssr_confidence', 'reflection', 'probes', 'cascades', 'shadow', 'shadow:LIGHT'";
+        std::string all = "'stencil', 'lights', 'ssao', 'ssr', 'ssr_confidence', 'reflection', 'probes', 'cascades', 'shadow', 'shadow:LIGHT', "
+                          "'lightmap', 'sgN'";
         for (const auto& v : kViews) all += ", '" + v + "'";
         return fail(ErrorCode::InvalidInput, "--view: unknown view '" + view + "'; expected one of: " + all);
     }
@@ -421,6 +452,23 @@ Result<std::unique_ptr<passes::GpuScene>> Session::loadScene(PipelineDesc& pipel
         for (const auto& [key, def] : pm->params.asTable())
             if (def.isNumber()) custom[key] = m.extra[key].isNumber() ? m.extra[key] : def;
         m.extra = Value(custom);
+    }
+    // Baked GI (scene.lightmap): from the cache, or baked now; the pipeline's `lightmap` parameter
+    // (scripts/lightmap.lua) turns it off.
+    if (scene->lightmap) {
+        const ParamDesc* use = pipeline.findParam("lightmap");
+        Value on = use ? use->value : Value(true);
+        if (auto set = m_options.params.find("lightmap"); use && set != m_options.params.end()) {  // --set lightmap=...
+            auto checked = checkedParam(pipeline, "lightmap", set->second);
+            if (!checked) return std::unexpected(checked.error());
+            on = *checked;
+        }
+        if (!on.isBool() || on.asBool()) {
+            bake::PrepareOptions po;
+            po.cacheDir = cacheDir() + "/lightmaps";
+            if (auto r = bake::prepareLightmap(*scene, po); !r)
+                return fail(r.error().code, scene->lightmap->origin + ": scene.lightmap." + scene->lightmap->name + ": " + r.error().message);
+        }
     }
     auto gpuScene = passes::GpuScene::create(m_runtime.gpu(), std::move(*scene));
     if (!gpuScene) return std::unexpected(gpuScene.error());

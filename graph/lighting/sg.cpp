@@ -140,25 +140,48 @@ std::vector<double> nnls(const std::vector<double>& ata, const std::vector<doubl
 
 }  // namespace
 
+std::vector<glm::vec3> fitNonNegative(const std::vector<double>& gram, const std::vector<glm::dvec3>& projections) {
+    const size_t n = projections.size();
+    std::vector<glm::vec3> out(n, glm::vec3(0.0f));
+    std::vector<double> atb(n);
+    for (int c = 0; c < 3; ++c) {
+        for (size_t k = 0; k < n; ++k) atb[k] = projections[k][c];
+        const std::vector<double> x = nnls(gram, atb, n);
+        for (size_t k = 0; k < n; ++k) out[k][c] = static_cast<float>(x[k]);
+    }
+    return out;
+}
+
 std::vector<glm::vec3> fitNonNegative(const std::vector<glm::vec3>& axes, float sharpness, const std::vector<glm::vec3>& directions,
                                       const std::vector<glm::vec3>& radiance) {
     const size_t n = axes.size();
     std::vector<double> ata(n * n, 0.0);
-    std::vector<std::vector<double>> atb(3, std::vector<double>(n, 0.0));
+    std::vector<glm::dvec3> atb(n, glm::dvec3(0.0));
     std::vector<double> row(n);
     for (size_t s = 0; s < directions.size(); ++s) {
         for (size_t k = 0; k < n; ++k) row[k] = std::exp(double(sharpness) * (double(glm::dot(axes[k], directions[s])) - 1.0));
         for (size_t i = 0; i < n; ++i) {
             for (size_t j = 0; j < n; ++j) ata[i * n + j] += row[i] * row[j];
-            for (int c = 0; c < 3; ++c) atb[size_t(c)][i] += row[i] * double(radiance[s][c]);
+            atb[i] += row[i] * glm::dvec3(radiance[s]);
         }
     }
-    std::vector<glm::vec3> out(n, glm::vec3(0.0f));
-    for (int c = 0; c < 3; ++c) {
-        const std::vector<double> x = nnls(ata, atb[size_t(c)], n);
-        for (size_t k = 0; k < n; ++k) out[k][c] = static_cast<float>(x[k]);
+    return fitNonNegative(ata, atb);
+}
+
+std::vector<double> basisGram(const std::vector<glm::vec3>& axes, float sharpness, bool hemisphere) {
+    // Quadrature over 2^16 golden-spiral directions (each 4π / count of solid angle); the
+    // hemisphere keeps those with z > 0. Lobes this wide vary slowly at that spacing (< 1e-4).
+    const size_t n = axes.size();
+    const std::vector<glm::vec3> dirs = goldenSpiralAxes(1 << 16);
+    const double w = 4.0 * double(kPi) / double(dirs.size());
+    std::vector<double> gram(n * n, 0.0), row(n);
+    for (const auto& d : dirs) {
+        if (hemisphere && d.z <= 0.0f) continue;
+        for (size_t k = 0; k < n; ++k) row[k] = std::exp(double(sharpness) * (double(glm::dot(axes[k], d)) - 1.0));
+        for (size_t i = 0; i < n; ++i)
+            for (size_t j = 0; j < n; ++j) gram[i * n + j] += w * row[i] * row[j];
     }
-    return out;
+    return gram;
 }
 
 glm::vec3 evaluateBasis(const std::vector<glm::vec3>& axes, float sharpness, const std::vector<glm::vec3>& amplitudes, const glm::vec3& x) {

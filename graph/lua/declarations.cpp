@@ -49,6 +49,7 @@ const char* declKindName(DeclKind k) {
     case DeclKind::Environment: return "scene.environment";
     case DeclKind::Decal: return "scene.decal";
     case DeclKind::Probe: return "scene.probe";
+    case DeclKind::Lightmap: return "scene.lightmap";
     case DeclKind::Count: break;
     }
     return "?";

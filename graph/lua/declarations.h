@@ -16,7 +16,7 @@ enum class DeclKind : uint8_t {
     // Pipelines (rg.*)
     Texture, Buffer, Pass, Param, Layout, Stencil, Path, Material,
     // Scenes (scene.*): graph/scene builds a Scene from these
-    SceneMaterial, Sphere, Plane, Box, Gltf, Light, Camera, Environment, Decal, Probe,
+    SceneMaterial, Sphere, Plane, Box, Gltf, Light, Camera, Environment, Decal, Probe, Lightmap,
     Count
 };
 const char* declKindName(DeclKind k);  // "resource", "buffer", "pass", ..., "scene.sphere", ...

@@ -332,7 +332,8 @@ Result<std::vector<Declaration>> LuaHost::loadDeclarations(const std::string& fi
         {"material", DeclKind::SceneMaterial}, {"sphere", DeclKind::Sphere}, {"plane", DeclKind::Plane},
         {"box", DeclKind::Box},                {"gltf", DeclKind::Gltf},     {"light", DeclKind::Light},
         {"camera", DeclKind::Camera},          {"environment", DeclKind::Environment},
-        {"decal", DeclKind::Decal},            {"probe", DeclKind::Probe}};
+        {"decal", DeclKind::Decal},            {"probe", DeclKind::Probe},
+        {"lightmap", DeclKind::Lightmap}};
     for (const auto& [name, kind] : sceneFns) {
         lua_pushinteger(L, static_cast<lua_Integer>(kind));
         lua_pushstring(L, "");

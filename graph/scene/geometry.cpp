@@ -121,6 +121,9 @@ Primitive makeSphere(float radius, uint32_t segments, uint32_t material) {
             p.vertices.push_back(vert);
         }
     }
+    // The lightmap chart is the uv square itself: one chart, its border the atlas rect's (the seam
+    // at u = 0 / 1 and the poles are where the bake's texels meet).
+    p.lightmapUv = true;
     const uint32_t row = segments + 1;
     for (uint32_t r = 0; r < rings; ++r)
         for (uint32_t s = 0; s < segments; ++s) {
@@ -148,6 +151,7 @@ Primitive makePlane(float width, float depth, uint32_t material) {
         p.vertices.push_back(v);
     }
     p.indices = {0, 3, 2, 0, 2, 1};
+    p.lightmapUv = true;  // one chart: the uv square
     return p;
 }
 
@@ -158,7 +162,13 @@ Primitive makeBox(glm::vec3 size, uint32_t material) {
     // Each face: its normal and the direction u grows in (seen from outside, v grows downwards).
     const glm::vec3 faces[6][2] = {{{1, 0, 0}, {0, 0, -1}}, {{-1, 0, 0}, {0, 0, 1}}, {{0, 1, 0}, {1, 0, 0}},
                                    {{0, -1, 0}, {1, 0, 0}}, {{0, 0, 1}, {1, 0, 0}},  {{0, 0, -1}, {-1, 0, 0}}};
+    // Lightmap uvs: the six faces in a 3 × 2 grid of cells, each face inset by kBoxChartInset of its
+    // cell so that neighbouring charts keep a gutter (packLightmap gives a box at least
+    // kMinBoxLightmapTexels per side: ≥ 2 texels between faces).
+    int face = 0;
     for (const auto& f : faces) {
+        const glm::vec2 cell(float(face % 3) / 3.0f, float(face / 3) / 2.0f), cellSize(1.0f / 3.0f, 0.5f);
+        ++face;
         const glm::vec3 n = f[0], right = f[1], up = glm::cross(n, right);
         const uint32_t base = static_cast<uint32_t>(p.vertices.size());
         const glm::vec2 uv[4] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
@@ -167,13 +177,15 @@ Primitive makeBox(glm::vec3 size, uint32_t material) {
             Vertex v;
             v.position = (n + right * sx + up * sy) * h;
             v.normal = n;
-            v.uv0 = v.uv1 = uv[i];
+            v.uv0 = uv[i];
+            v.uv1 = cell + cellSize * (kBoxChartInset + uv[i] * (1.0f - 2.0f * kBoxChartInset));
             v.tangent = glm::vec4(right, 1.0f);  // bitangent cross(n, right) = up = -dP/dv
             p.vertices.push_back(v);
         }
         // (0,0) top-left, (1,0) top-right, (1,1) bottom-right, (0,1) bottom-left: CCW from outside.
         p.indices.insert(p.indices.end(), {base, base + 3, base + 2, base, base + 2, base + 1});
     }
+    p.lightmapUv = true;
     return p;
 }
 

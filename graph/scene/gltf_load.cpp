@@ -580,6 +580,8 @@ struct Loader {
             if (!uv0->empty()) v.uv0 = glm::vec2((*uv0)[2 * i], (*uv0)[2 * i + 1]);
             if (!uv1->empty()) v.uv1 = glm::vec2((*uv1)[2 * i], (*uv1)[2 * i + 1]);
         }
+        // TEXCOORD_1 is the lightmap parameterisation game teams author (charts in [0, 1]²).
+        p.lightmapUv = !uv1->empty();
 
         std::vector<uint32_t> idx;
         if (prim.indices >= 0) {

@@ -20,6 +20,7 @@
 
 #include <cstdint>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -48,6 +49,9 @@ struct Primitive {
     std::vector<Vertex> vertices;
     std::vector<uint32_t> indices;
     uint32_t material = 0;  // index into Scene::materials
+    // Whether uv1 is a lightmap parameterisation: charts inside [0, 1]², not overlapping, with a
+    // gutter between them (glTF TEXCOORD_1, or the Lua scene's generated shapes).
+    bool lightmapUv = false;
 };
 
 struct Mesh {
@@ -152,6 +156,9 @@ struct Node {
     std::string name;
     glm::mat4 world{1.0f};
     int32_t mesh = -1;  // index into Scene::meshes
+    // Where the node's uv1 square lands in the scene's lightmap atlas: atlas uv = uv1 * xy + zw
+    // (packLightmap); zero when the node has no lightmap.
+    glm::vec4 lightmapRect{0.0f};
 };
 
 enum class LightType : uint8_t {
@@ -195,6 +202,10 @@ struct Light {
     // A local light that casts shadows (a shadow map per frame while its range reaches the view:
     // scripts/shadows.lua's local maps). The sun's shadow is the pipeline's (`sun_shadows`).
     bool castShadows = false;
+    // Baked into the scene's lightmap (scene.lightmap): its direct and indirect light are in the
+    // lightmap and the real-time light loop skips it. A light that is not baked stays dynamic: the
+    // lightmap holds only its indirect light (what it bounces off the scene's surfaces).
+    bool baked = false;
 };
 
 // A physical camera (seed 002 §5.2). Exposure comes from aperture, shutter and ISO.
@@ -267,6 +278,32 @@ struct Probe {
     }
 };
 
+// Baked global illumination (seed 003, "SG Lightmaps"): the settings of the scene's lightmap,
+// declared by scene.lightmap. graph/bake bakes it (rgraph bake); the G-buffer pass reads it.
+struct LightmapSettings {
+    std::string name;
+    std::string origin;        // FILE:LINE of the declaration
+    float density = 4.0f;      // lightmap texels per metre of surface
+    int lobes = 9;             // SG lobes per texel: 5, 6, 9 or 12 (seed 003 "Light Map Data")
+    int samples = 128;         // paths per texel
+    int bounces = 2;           // indirect bounces after the first hit (>= 2 gives two-bounce GI)
+    int maxSize = 2048;        // the atlas's largest side; a scene too large for it gets a lower density
+};
+
+// A baked SG lightmap (graph/bake): per texel, the radiance arriving over the upper hemisphere as
+// N spherical Gaussians G_k(x) = A_k e^{λ (μ_k · x − 1)} in the texel's tangent frame (z the
+// normal); only the amplitudes A_k (RGB, ≥ 0, nits) vary per texel. Nodes map into it by
+// Node::lightmapRect.
+struct Lightmap {
+    uint32_t width = 0, height = 0;
+    std::vector<glm::vec3> axes;                 // μ_k, tangent space
+    float sharpness = 0.0f;                      // λ
+    std::vector<std::vector<glm::vec3>> lobes;   // [k][y * width + x]: A_k
+    std::vector<uint8_t> coverage;               // 1: a surface's texel (0: border or gutter, dilated)
+    float density = 0.0f;                        // texels per metre
+    std::string key;                             // the content hash it was baked for
+};
+
 struct Scene {
     std::vector<Mesh> meshes;
     std::vector<Decal> decals;
@@ -278,6 +315,8 @@ struct Scene {
     std::vector<Light> lights;
     std::vector<Camera> cameras;
     std::optional<Environment> environment;
+    std::optional<LightmapSettings> lightmap;
+    std::shared_ptr<const Lightmap> bakedLightmap;  // the lightmap the G-buffer pass reads (none: not used)
     std::vector<std::string> files;  // every file read (absolute paths), for hot reload
     glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};  // world-space box around every node's mesh
 };
@@ -351,6 +390,10 @@ void generateFlatNormals(Primitive& primitive);
 Primitive makeSphere(float radius, uint32_t segments, uint32_t material);  // segments around, segments/2 rings
 Primitive makePlane(float width, float depth, uint32_t material);           // XZ plane, normal +Y
 Primitive makeBox(glm::vec3 size, uint32_t material);
+// Generated shapes carry lightmap uvs (Primitive::lightmapUv): a plane and a sphere their uv square,
+// a box its faces in a 3 × 2 grid, each inset by this fraction of its cell.
+inline constexpr float kBoxChartInset = 0.1f;
+inline constexpr uint32_t kMinBoxLightmapTexels = 32;
 
 // Recomputes Scene::boundsMin/boundsMax from the nodes' meshes.
 void computeBounds(Scene& scene);

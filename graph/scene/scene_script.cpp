@@ -150,6 +150,7 @@ struct Builder {
     std::vector<std::string> materialNames;
     std::map<std::string, const Declaration*> seen[static_cast<size_t>(DeclKind::Count)];
     const Declaration* firstEnvironment = nullptr;
+    const Declaration* firstLightmap = nullptr;
     size_t generatedVertices = 0;  // budget for sphere/plane/box meshes (a script is a loop away from millions)
     static constexpr size_t kMaxGeneratedVertices = size_t(1) << 24;
 
@@ -233,6 +234,10 @@ struct Builder {
             auto [it, fresh] = seen[static_cast<size_t>(slot)].emplace(d.name, &d);
             if (!fresh)
                 return w.error(std::string(declKindName(it->second->kind)) + " '" + d.name + "' is already declared (at " + it->second->origin + ")");
+            if (d.kind == DeclKind::Lightmap) {
+                if (firstLightmap) return w.error("a scene has one lightmap; '" + firstLightmap->name + "' is declared at " + firstLightmap->origin);
+                firstLightmap = &d;
+            }
             if (d.kind == DeclKind::Environment) {
                 if (firstEnvironment)
                     return w.error("a scene has one environment; '" + firstEnvironment->name + "' is declared at " + firstEnvironment->origin);
@@ -422,7 +427,7 @@ struct Builder {
     Result<void> light(const Declaration& d) {
         Where w = where(d);
         const Value& b = d.body;
-        if (auto r = checkFields(w, b, {"type", "intensity", "unit", "color", "temperature", "position", "direction", "target", "up",
+        if (auto r = checkFields(w, b, {"type", "intensity", "unit", "color", "temperature", "position", "direction", "target", "up", "baked",
                                         "radius", "width", "height", "length", "inner_angle", "outer_angle", "range", "ies",
                                         "ies_mode", "exact_cone", "angular_radius", "shadow", "doc"});
             !r)
@@ -531,6 +536,7 @@ struct Builder {
         if (b.has("ies_mode")) RG_TRY(l.iesMode, choice(w, b, "ies_mode", "", {"mask", "intensity"}, "IES mode"));
         RG_TRY(l.exactCone, boolean(w, b, "exact_cone", false));
         RG_TRY(l.castShadows, boolean(w, b, "shadow", false));
+        RG_TRY(l.baked, boolean(w, b, "baked", false));
         float angular = 0.2664f;
         RG_TRY(angular, numberF(w, b, "angular_radius", angular, Range::openLow(0, 10)));
         l.sunAngularRadius = angular * kDegrees;
@@ -610,6 +616,31 @@ struct Builder {
         RG_TRY(rotation, numberF(w, b, "rotation", rotation, Range::closed(-360, 360)));
         e.rotation = rotation * kDegrees;
         scene.environment = e;
+        return {};
+    }
+
+    // scene.lightmap "name" { density, lobes, samples, bounces, max_size }
+    Result<void> lightmap(const Declaration& d) {
+        Where w = where(d);
+        const Value& b = d.body;
+        if (auto r = checkFields(w, b, {"density", "lobes", "samples", "bounces", "max_size", "doc"}); !r) return r;
+        LightmapSettings s;
+        s.name = d.name;
+        s.origin = d.origin;
+        RG_TRY(s.density, numberF(w, b, "density", s.density, Range::openLow(0, 1024)));
+        double lobes = s.lobes;
+        RG_TRY(lobes, number(w, b, "lobes", lobes, Range{1, 64, false, false, true}));
+        if (lobes != 5 && lobes != 6 && lobes != 9 && lobes != 12)
+            return w.at("lobes").error("expected 5, 6, 9 or 12 (seed 003 \"Light Map Data\"), got " + formatNumber(lobes));
+        s.lobes = static_cast<int>(lobes);
+        double samples = s.samples, bounces = s.bounces, maxSize = s.maxSize;
+        RG_TRY(samples, number(w, b, "samples", samples, Range{1, 65536, false, false, true}));
+        RG_TRY(bounces, number(w, b, "bounces", bounces, Range{0, 16, false, false, true}));
+        RG_TRY(maxSize, number(w, b, "max_size", maxSize, Range{64, 8192, false, false, true}));
+        s.samples = static_cast<int>(samples);
+        s.bounces = static_cast<int>(bounces);
+        s.maxSize = static_cast<int>(maxSize);
+        scene.lightmap = s;
         return {};
     }
 
@@ -713,6 +744,7 @@ struct Builder {
             case DeclKind::Camera: r = camera(d); break;
             case DeclKind::Decal: r = decal(d); break;
             case DeclKind::Probe: r = probe(d); break;
+            case DeclKind::Lightmap: r = lightmap(d); break;
             default: break;
             }
             if (!r) return std::unexpected(r.error());
@@ -751,7 +783,7 @@ Result<Scene> loadSceneScript(const std::string& path, const SceneScriptOptions&
     std::vector<std::string> files;
     auto decls = host.loadDeclarations(path, &files);
     if (!decls) return std::unexpected(decls.error());
-    Builder b{path, options, {}, {}, {}, {}, nullptr};
+    Builder b{path, options, {}, {}, {}, {}, nullptr, nullptr};
     for (const auto& f : files) b.addFile(f);
     return b.build(*decls);
 }

@@ -12,6 +12,7 @@ local ao = require "ao"  -- screen-space ambient occlusion (seed 002 §4.10.3)
 local ssr = require "ssr"  -- screen-space reflections over the probe (seed 002 §4.9.4, §4.9.5)
 local probes = require "probes"  -- the scene's local light probes, captured once per scene (§4.9.1.2)
 local reflections = require "reflections"  -- SSR, local probes and distant probe composed by their own pass (§4.9.5)
+require "lightmap"  -- the scene's baked SG lightmap, when it declares one (seed 003)
 
 post.params { exposure_mode = "auto" }
 post.exposure_state()

@@ -153,7 +153,13 @@ RgIbl rgEvaluateIblLobe(vec3 P, vec3 N, vec3 V, vec3 f0, float f90, float linear
     // Diffuse: irradiance / π is the radiance a white Lambertian reflects; DFG.z turns it into the
     // renormalised Disney diffuse's.
     vec3 Nd = normalize(rgDiffuseDominantDir(N, V, NdotV, alpha));
+#if defined(RG_SCENE_LIGHTMAP) && RG_SCENE_LIGHTMAP
+    // The baked lightmap holds the environment's diffuse light (and its bounces) as radiosity
+    // (lib/lightmap.glsl, added to the emission by the G-buffer pass).
+    r.diffuse = vec3(0.0);
+#else
     r.diffuse = rgShIrradiance(rgEnvSh.coefficients, Nd) / RG_PI * dfgTerms.z;
+#endif
     // Specular: along the dominant direction.
     vec3 Rd = rgSpecularDominantDir(N, R, alpha);
     vec3 ld;

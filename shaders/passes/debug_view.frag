@@ -3,7 +3,8 @@
 // own material's layout (gbuffer_pipeline.glsl, generated: RgGBufferView by materialId):
 // 0 normals (world, 0.5 + 0.5·n), 1 base colour, 2 smoothness, 3 metal mask, 4 materialId (a
 // distinct colour per id), 5 reflectance (a layout's f0 colour where it keeps one), 6 ambient
-// occlusion, 7 emissive (log-scaled nits). A parameter the pixel's layout does not hold shows as
+// occlusion, 7 emissive (log-scaled nits), 8 the baked lightmap (the G-buffer pass wrote it as the
+// emission with RG_LIGHTMAP_VIEW: lux or nits, in colour, x / (1 + x) of x = value / 300). A parameter the pixel's layout does not hold shows as
 // magenta-and-black stripes, so it is not mistaken for a value.
 #include "lib/photometry.glsl"
 #include "gbuffer_pipeline.glsl"
@@ -35,8 +36,12 @@ void main() {
         c = palette[g.materialId & 7u];
     } else if (v == 5) c = (g.has & RG_VIEW_F0) != 0u ? rgLinearToSrgb(g.f0) : vec3(g.reflectance);
     else if (v == 6) c = vec3(g.ao);
-    else c = vec3(clamp(log2(1.0 + rgLuminance(g.emissive)) / 16.0, 0.0, 1.0));
-    if (v != 4 && (g.has & needs[clamp(v, 0, 7)]) == 0u)
+    else if (v == 7) c = vec3(clamp(log2(1.0 + rgLuminance(g.emissive)) / 16.0, 0.0, 1.0));
+    else {
+        vec3 x = max(g.emissive, vec3(0.0)) / 300.0;
+        c = rgLinearToSrgb(x / (1.0 + x));
+    }
+    if (v != 4 && (g.has & needs[clamp(v == 8 ? 7 : v, 0, 7)]) == 0u)
         c = ((p.x + p.y) / 4) % 2 == 0 ? vec3(1.0, 0.0, 1.0) : vec3(0.0);
     color = vec4(c, 1.0);
 }

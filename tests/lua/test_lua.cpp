@@ -269,7 +269,7 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     auto plan = compile(graphWithParams(*p), {});
     ASSERT_TRUE(plan.has_value()) << plan.error().message;
     // Every script it pulled in is known, for hot reload.
-    EXPECT_EQ(p->files.size(), 14u);  // deferred, post, lighting, render_loop, ibl, shadows, probes, ao, ssr, reflections, disney, clearcoat, foliage, two_colour
+    EXPECT_EQ(p->files.size(), 15u);  // deferred, post, lighting, render_loop, ibl, shadows, probes, ao, ssr, reflections, lightmap, disney, clearcoat, foliage, two_colour
 }
 
 TEST(LuaPipeline, ModulesAreNamespacedAndInsertedAfterTheirAnchor) {

@@ -1,0 +1,133 @@
+// Baked global illumination as spherical-Gaussian lightmaps (seed 003, "SG Lightmaps"): the atlas
+// the scene's nodes are packed into, the CPU baker (Intel Embree for the ray casts) and the EXR file
+// the bake is kept in.
+//
+// What a texel holds: the radiance arriving at the surface over its upper hemisphere, as the sum of
+// N spherical Gaussians with fixed axes and one fixed sharpness (the seed's "Fixed Directions",
+// "Fixed Widths") in the texel's tangent frame (tangent, bitangent, normal: the vertex normal and
+// tangent interpolated, exactly as lib/material.glsl builds the frame the normal map turns); only
+// the N RGB amplitudes are stored, all ≥ 0. The G-buffer pass integrates them against the
+// clamped cosine of the shaded normal (lib/lightmap.glsl): the irradiance, × the diffuse albedo / π,
+// is the radiosity Frostbite's GB3 holds (seed 000 tbl:2).
+//
+// Which light goes in (scene API, Light::baked):
+//   - the environment (sky) and emissive surfaces: always, directly and bounced;
+//   - a light marked `baked = true`: its direct light at the texel and its bounces — the real-time
+//     light loop then skips it;
+//   - any other light stays dynamic: the real-time loop lights the texel directly, the lightmap holds
+//     only what it bounces off other surfaces.
+// Surfaces bounce light as Lambertian reflectors of their Disney diffuse albedo (base colour ×
+// (1 − metal mask), a two-colour material's diffuse colour); metals are black to the diffuse
+// bounce. IES profiles do not shape baked light (a baked IES light is refused).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "core/result.h"
+#include "scene/scene.h"
+
+namespace rg::bake {
+
+// Where every node lands in the atlas: a square of `side` texels per node with one texel of border
+// around it, side = ceil(sqrt(world area) × density) (at least kMinBoxLightmapTexels), shelf-packed
+// by height; a scene that does not fit maxSize² at its density is packed again at 0.85× the density
+// until it does (LightmapAtlas::density says what was used).
+struct LightmapAtlas {
+    uint32_t width = 0, height = 0;
+    float density = 0.0f;                 // texels per metre actually used
+    std::vector<glm::vec4> rects;         // per Scene::nodes entry: Node::lightmapRect (zero: none)
+    std::vector<glm::uvec4> texelRects;   // per node: x, y, side (texels, without the border), 0
+};
+
+// Errors name the node and its mesh when a mesh has no lightmap uvs (glTF: no TEXCOORD_1).
+Result<LightmapAtlas> packLightmap(const Scene& scene, const LightmapSettings& settings);
+// Writes the atlas into the scene's nodes (Node::lightmapRect).
+void applyAtlas(Scene& scene, const LightmapAtlas& atlas);
+
+// The fixed basis of a lightmap of n lobes: golden-spiral axes over the tangent-space hemisphere,
+// and the sharpness of lightmapSharpness.
+std::vector<glm::vec3> lightmapAxes(int lobes);
+// The seed's fixed width ("not so small that gaps appear, not so wide that it over-blurs"):
+// lighting::basisSharpness of the hemisphere axes (a lobe falls to half at half the mean angle to
+// its neighbours) × kLightmapSharpnessScale, the scale at which the fit reconstructs irradiance best
+// over skies, a window, a sun and their mix (tests/unit/test_lightmap.cpp sweeps it).
+inline constexpr float kLightmapSharpnessScale = 1.4f;
+float lightmapSharpness(int lobes);
+
+// How a texel's amplitudes are fitted: non-negative least squares (lighting::fitNonNegative, Lawson
+// and Hanson's active set) on two terms,
+//   ‖Σ A_k G_k − L‖² over the hemisphere × radianceWeight  +  Σ_j w_j (Σ_k A_k I_k(n_j) − E(n_j))²,
+// the radiance the lobes stand for (the seed's fit) and the irradiance they give — I_k(n) the
+// unit lobe k's SG–cosine irradiance, exactly what the G-buffer pass evaluates — at J normals up
+// to 70° from the surface normal (a normal map's range), the surface normal itself weighing as much
+// as all the others (w_j). The second term is what the lightmap is
+// read for; without it a delta light (a sun, a small lamp) projected onto a few wide lobes lands
+// 10–40 % off in irradiance depending on where it falls between the axes. Both terms are linear in
+// the radiance, so per texel the baker only accumulates the projections ∫ G_k L dω and the
+// irradiances E(n_j) (Monte Carlo, delta lights exactly); the normal matrix is shared.
+struct LightmapFit {
+    std::vector<glm::vec3> axes;
+    float sharpness = 0.0f;
+    std::vector<glm::vec3> normals;   // n_j; n_0 = (0, 0, 1)
+    std::vector<double> weights;      // w_j
+    std::vector<double> irradiance;   // [j * N + k]: I_k(n_j)
+    double radianceWeight = 0.0;
+    std::vector<double> gram;         // N × N: radianceWeight ∫ G_i G_j + Σ_j I_i(n_j) I_k(n_j)
+    // The amplitudes from a texel's projections (N, RGB) and irradiances (J, RGB).
+    std::vector<glm::vec3> solve(const std::vector<glm::dvec3>& projections, const std::vector<glm::dvec3>& irradiances) const;
+};
+LightmapFit lightmapFit(int lobes, float sharpness);
+
+// The fitted radiance's irradiance at texel (x, y) for the tangent-space normal n (the SG–cosine
+// product, as lib/lightmap.glsl), lux.
+glm::vec3 lightmapIrradiance(const Lightmap& lightmap, uint32_t x, uint32_t y, glm::vec3 n);
+
+struct BakeStats {
+    double seconds = 0.0;
+    uint64_t rays = 0;      // Embree ray casts: intersections and shadow rays
+    uint32_t texels = 0;    // covered texels baked
+};
+
+struct BakeOptions {
+    unsigned threads = 0;   // 0: every core
+    uint32_t seed = 1;
+    // Called from the baking threads' coordinator about twice a second: the fraction done and the
+    // estimated seconds left.
+    std::function<void(double fraction, double secondsLeft)> progress;
+};
+
+// Bakes the scene's lightmap (scene.lightmap's settings, the atlas from packLightmap). Errors name
+// what cannot be baked (an IES light marked baked, a light the GPU tables refuse).
+Result<Lightmap> bakeLightmap(const Scene& scene, const LightmapAtlas& atlas, const LightmapSettings& settings,
+                              const BakeOptions& options = {}, BakeStats* stats = nullptr);
+
+// The content hash a lightmap is cached under: the nodes' geometry and transforms, the materials'
+// diffuse albedo and emission (texture contents included), the lights, the environment (its file's
+// bytes too), the bake settings and the baker's version; 16 hex digits.
+std::string lightmapKey(const Scene& scene, const LightmapSettings& settings);
+
+// One EXR per scene: a layer per lobe, "sg0.R", "sg0.G", "sg0.B", ... "sg8.B" (32-bit float), and
+// "coverage.Y"; the header says the basis: rgraph.lightmap.lobes, .sharpness, .axes ("x y z" per
+// lobe, ';'-separated, tangent space), .density, .key, .space = "tangent".
+Result<void> writeLightmapExr(const std::string& path, const Lightmap& lightmap);
+Result<Lightmap> readLightmapExr(const std::string& path);
+
+// What a renderer calls for a scene with scene.lightmap: packs the atlas into the nodes, then reads
+// <cacheDir>/<lightmapKey>.exr, or bakes it (progress and ETA on stderr unless quiet) and writes it
+// there; the result goes to scene.bakedLightmap. `rebake`: bake even when the cache has it.
+struct PrepareOptions {
+    std::string cacheDir;
+    bool quiet = false;
+    bool rebake = false;
+    BakeStats* stats = nullptr;       // filled when it baked
+    bool* fromCache = nullptr;        // set to whether it came from the cache
+    std::string* path = nullptr;      // the cache file
+};
+Result<void> prepareLightmap(Scene& scene, const PrepareOptions& options);
+
+}  // namespace rg::bake

@@ -1,0 +1,240 @@
+// The lightmap's EXR file, its cache key and its CPU evaluation.
+#include <cstdio>
+#include <filesystem>
+#include <unistd.h>
+#include <cstring>
+#include <sstream>
+
+#include "bake/lightmap.h"
+#include "scene/scene_detail.h"
+#include "image/image.h"
+#include "lighting/sg.h"
+
+namespace rg::bake {
+
+namespace {
+
+// Bumped whenever the baker's output for the same input changes.
+constexpr uint32_t kBakerVersion = 1;
+
+// FNV-1a, 64 bits.
+struct Hasher {
+    uint64_t h = 1469598103934665603ull;
+    void bytes(const void* p, size_t n) {
+        const auto* b = static_cast<const uint8_t*>(p);
+        for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
+    }
+    template <class T> void pod(const T& v) { bytes(&v, sizeof v); }
+    void str(const std::string& s) {
+        pod(s.size());
+        bytes(s.data(), s.size());
+    }
+};
+
+}  // namespace
+
+std::string lightmapKey(const Scene& scene, const LightmapSettings& s) {
+    Hasher h;
+    h.pod(kBakerVersion);
+    h.pod(s.density), h.pod(s.lobes), h.pod(s.samples), h.pod(s.bounces), h.pod(s.maxSize);
+    for (const Node& n : scene.nodes) {
+        h.pod(n.world), h.pod(n.mesh);
+        if (n.mesh < 0 || size_t(n.mesh) >= scene.meshes.size()) continue;
+        for (const auto& p : scene.meshes[size_t(n.mesh)].primitives) {
+            h.pod(p.material), h.pod(p.lightmapUv);
+            h.bytes(p.vertices.data(), p.vertices.size() * sizeof(Vertex));
+            h.bytes(p.indices.data(), p.indices.size() * sizeof(uint32_t));
+        }
+    }
+    for (const Material& m : scene.materials) {
+        h.str(m.model);
+        h.pod(m.baseColor), h.pod(m.metalMask), h.pod(m.emissive), h.pod(m.diffuseColor), h.pod(m.doubleSided);
+        for (const TextureRef* t : {&m.baseColorTex, &m.emissiveTex, &m.metallicRoughnessTex}) {
+            h.pod(t->texCoord), h.pod(t->transform);
+            if (t->image >= 0 && size_t(t->image) < scene.images.size()) {
+                const auto& px = scene.images[size_t(t->image)].pixels;
+                h.pod(px.width), h.pod(px.height), h.bytes(px.pixels.data(), px.pixels.size() * sizeof(float));
+            }
+        }
+    }
+    for (const Light& l : scene.lights) {
+        h.pod(l.type), h.pod(l.position), h.pod(l.direction), h.pod(l.up), h.pod(l.color), h.pod(l.temperatureK), h.pod(l.intensity);
+        h.str(l.unit), h.pod(l.radius), h.pod(l.width), h.pod(l.height), h.pod(l.length), h.pod(l.innerAngle), h.pod(l.outerAngle);
+        h.pod(l.range), h.pod(l.exactCone), h.pod(l.sunAngularRadius), h.pod(l.baked), h.str(l.ies);
+    }
+    if (scene.environment) {
+        const Environment& e = *scene.environment;
+        h.str(e.kind), h.pod(e.color), h.pod(e.intensity), h.pod(e.rotation), h.pod(e.turbidity);
+        if (!e.file.empty())
+            if (auto bytes = scene_detail::readFile(e.file)) h.bytes(bytes->data(), bytes->size());
+    }
+    char buf[17];
+    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h.h));
+    return buf;
+}
+
+glm::vec3 lightmapIrradiance(const Lightmap& lm, uint32_t x, uint32_t y, glm::vec3 n) {
+    glm::vec3 e(0.0f);
+    const size_t i = size_t(y) * lm.width + x;
+    for (size_t k = 0; k < lm.axes.size(); ++k) e += lighting::irradiance({lm.axes[k], lm.sharpness, lm.lobes[k][i]}, n);
+    return e;
+}
+
+Result<void> writeLightmapExr(const std::string& path, const Lightmap& lm) {
+    std::vector<ImageLayer> layers;
+    for (size_t k = 0; k < lm.lobes.size(); ++k) {
+        ImageLayer layer{"sg" + std::to_string(k), {"R", "G", "B"}, Image(lm.width, lm.height, 3)};
+        for (size_t i = 0; i < lm.lobes[k].size(); ++i)
+            for (int c = 0; c < 3; ++c) layer.image.pixels[i * 3 + size_t(c)] = lm.lobes[k][i][c];
+        layers.push_back(std::move(layer));
+    }
+    ImageLayer coverage{"coverage", {"Y"}, Image(lm.width, lm.height, 1)};
+    for (size_t i = 0; i < lm.coverage.size(); ++i) coverage.image.pixels[i] = lm.coverage[i] ? 1.0f : 0.0f;
+    layers.push_back(std::move(coverage));
+    ExrWriteOptions o;
+    o.pixelType = ExrPixelType::Float;
+    std::ostringstream axes;
+    for (size_t k = 0; k < lm.axes.size(); ++k) axes << (k ? "; " : "") << lm.axes[k].x << ' ' << lm.axes[k].y << ' ' << lm.axes[k].z;
+    o.metadata["rgraph.lightmap.axes"] = axes.str();
+    o.metadata["rgraph.lightmap.key"] = lm.key;
+    o.metadata["rgraph.lightmap.space"] = "tangent";
+    o.ints["rgraph.lightmap.lobes"] = static_cast<int>(lm.axes.size());
+    o.floats["rgraph.lightmap.sharpness"] = lm.sharpness;
+    o.floats["rgraph.lightmap.density"] = lm.density;
+    return writeExr(path, layers, o);
+}
+
+Result<Lightmap> readLightmapExr(const std::string& path) {
+    auto file = readExr(path);
+    if (!file) return std::unexpected(file.error());
+    auto bad = [&](const std::string& why) { return fail(ErrorCode::InvalidInput, path + ": not an rgraph lightmap: " + why); };
+    Lightmap lm;
+    auto lobes = file->ints.find("rgraph.lightmap.lobes");
+    auto sharp = file->floats.find("rgraph.lightmap.sharpness");
+    auto axesAttr = file->metadata.find("rgraph.lightmap.axes");
+    if (lobes == file->ints.end() || sharp == file->floats.end() || axesAttr == file->metadata.end())
+        return bad("its header lacks rgraph.lightmap.lobes, .sharpness or .axes");
+    if (lobes->second < 1 || lobes->second > 64) return bad("rgraph.lightmap.lobes is " + std::to_string(lobes->second));
+    lm.sharpness = static_cast<float>(sharp->second);
+    if (auto d = file->floats.find("rgraph.lightmap.density"); d != file->floats.end()) lm.density = static_cast<float>(d->second);
+    if (auto k = file->metadata.find("rgraph.lightmap.key"); k != file->metadata.end()) lm.key = k->second;
+    std::istringstream axes(axesAttr->second);
+    for (int k = 0; k < lobes->second; ++k) {
+        glm::vec3 a;
+        char sep = ';';
+        if (k > 0 && !(axes >> sep)) return bad("rgraph.lightmap.axes has fewer than " + std::to_string(lobes->second) + " axes");
+        if (sep != ';' || !(axes >> a.x >> a.y >> a.z)) return bad("rgraph.lightmap.axes is not 'x y z; x y z; ...'");
+        lm.axes.push_back(a);
+    }
+    auto layer = [&](const std::string& name) -> const ImageLayer* {
+        for (const auto& l : file->layers)
+            if (l.name == name) return &l;
+        return nullptr;
+    };
+    for (int k = 0; k < lobes->second; ++k) {
+        const ImageLayer* l = layer("sg" + std::to_string(k));
+        if (!l || l->image.channels < 3) return bad("no RGB layer sg" + std::to_string(k));
+        if (k == 0) lm.width = l->image.width, lm.height = l->image.height;
+        std::vector<glm::vec3> v(size_t(lm.width) * lm.height);
+        for (size_t i = 0; i < v.size(); ++i)
+            for (uint32_t c = 0; c < 3; ++c) v[i][int(c)] = l->image.pixels[i * l->image.channels + c];
+        lm.lobes.push_back(std::move(v));
+    }
+    lm.coverage.assign(size_t(lm.width) * lm.height, 1);
+    if (const ImageLayer* c = layer("coverage"))
+        for (size_t i = 0; i < lm.coverage.size() && i < c->image.pixels.size(); ++i) lm.coverage[i] = c->image.pixels[i] > 0.5f;
+    return lm;
+}
+
+Result<void> prepareLightmap(Scene& scene, const PrepareOptions& options) {
+    if (!scene.lightmap) return {};
+    const LightmapSettings& settings = *scene.lightmap;
+    auto atlas = packLightmap(scene, settings);
+    if (!atlas) return std::unexpected(atlas.error());
+    applyAtlas(scene, *atlas);
+    const std::string key = lightmapKey(scene, settings);
+    const std::string path = options.cacheDir + "/" + key + ".exr";
+    if (options.path) *options.path = path;
+    std::error_code ec;
+    if (!options.rebake && std::filesystem::is_regular_file(path, ec)) {
+        auto cached = readLightmapExr(path);
+        if (cached && cached->key == key && cached->width == atlas->width && cached->height == atlas->height &&
+            int(cached->axes.size()) == settings.lobes) {
+            if (options.fromCache) *options.fromCache = true;
+            scene.bakedLightmap = std::make_shared<const Lightmap>(std::move(*cached));
+            return {};
+        }
+    }
+    if (options.fromCache) *options.fromCache = false;
+    BakeOptions bo;
+    const bool tty = isatty(fileno(stderr));
+    if (!options.quiet) {
+        std::fprintf(stderr, "rgraph: baking lightmap '%s': %ux%u texels, %d lobes, %d paths per texel, %d bounces\n", settings.name.c_str(),
+                     atlas->width, atlas->height, settings.lobes, settings.samples, settings.bounces);
+        bo.progress = [tty, last = -1](double fraction, double left) mutable {
+            const int percent = static_cast<int>(fraction * 100.0);
+            if (!tty && percent / 10 == last / 10) return;
+            last = percent;
+            std::fprintf(stderr, tty ? "\rrgraph: baking %3d %%, %.0f s left   " : "rgraph: baking %3d %%, %.0f s left\n", percent, left);
+        };
+    }
+    BakeStats stats;
+    auto baked = bakeLightmap(scene, *atlas, settings, bo, &stats);
+    if (!options.quiet && tty) std::fprintf(stderr, "\n");
+    if (!baked) return std::unexpected(baked.error());
+    if (options.stats) *options.stats = stats;
+    if (!options.quiet)
+        std::fprintf(stderr, "rgraph: baked %u texels in %.1f s (%.2f M rays/s)\n", stats.texels, stats.seconds,
+                     stats.seconds > 0 ? double(stats.rays) / stats.seconds * 1e-6 : 0.0);
+    std::filesystem::create_directories(options.cacheDir, ec);
+    if (auto r = writeLightmapExr(path, *baked); !r) return std::unexpected(r.error());
+    scene.bakedLightmap = std::make_shared<const Lightmap>(std::move(*baked));
+    return {};
+}
+
+std::vector<glm::vec3> lightmapAxes(int lobes) { return lighting::goldenSpiralAxes(lobes, true); }
+
+LightmapFit lightmapFit(int lobes, float sharpness) {
+    LightmapFit f;
+    f.axes = lightmapAxes(lobes);
+    f.sharpness = sharpness;
+    // The surface normal itself first, weighing as much as all the others together: an unmapped
+    // surface — most of a lightmap — gets its irradiance nearly exact; then normals within 70°.
+    f.normals.push_back(glm::vec3(0.0f, 0.0f, 1.0f));
+    for (const auto& n : lighting::goldenSpiralAxes(48, true))
+        if (n.z >= 0.34f) f.normals.push_back(n);
+    const size_t N = f.axes.size(), J = f.normals.size();
+    f.weights.assign(J, 1.0);
+    f.weights[0] = double(J - 1);
+    f.irradiance.resize(J * N);
+    for (size_t j = 0; j < J; ++j)
+        for (size_t k = 0; k < N; ++k) f.irradiance[j * N + k] = lighting::irradiance({f.axes[k], sharpness, glm::vec3(1.0f)}, f.normals[j]).x;
+    const std::vector<double> radiance = lighting::basisGram(f.axes, sharpness, true);
+    f.gram.assign(N * N, 0.0);
+    double traceIrr = 0.0, traceRad = 0.0;
+    for (size_t i = 0; i < N; ++i) {
+        for (size_t k = 0; k < N; ++k)
+            for (size_t j = 0; j < J; ++j) f.gram[i * N + k] += f.weights[j] * f.irradiance[j * N + i] * f.irradiance[j * N + k];
+        traceIrr += f.gram[i * N + i], traceRad += radiance[i * N + i];
+    }
+    // The radiance term at a tenth of the irradiance term's weight: enough to keep the lobes a
+    // plausible radiance (smooth, where the light comes from), little enough not to pull the
+    // irradiance off (tests/unit/test_lightmap.cpp measures both).
+    f.radianceWeight = 0.1 * traceIrr / traceRad;
+    for (size_t i = 0; i < N * N; ++i) f.gram[i] += f.radianceWeight * radiance[i];
+    return f;
+}
+
+std::vector<glm::vec3> LightmapFit::solve(const std::vector<glm::dvec3>& projections, const std::vector<glm::dvec3>& irradiances) const {
+    const size_t N = axes.size(), J = normals.size();
+    std::vector<glm::dvec3> atb(N, glm::dvec3(0.0));
+    for (size_t k = 0; k < N; ++k) {
+        atb[k] = radianceWeight * projections[k];
+        for (size_t j = 0; j < J; ++j) atb[k] += weights[j] * irradiance[j * N + k] * irradiances[j];
+    }
+    return lighting::fitNonNegative(gram, atb);
+}
+
+float lightmapSharpness(int lobes) { return lighting::basisSharpness(lightmapAxes(lobes)) * kLightmapSharpnessScale; }
+
+}  // namespace rg::bake

@@ -1,0 +1,18 @@
+-- Baked global illumination: the scene's SG lightmap (seed 003, "SG Lightmaps"; graph/bake).
+--
+--   local lightmap = require "lightmap"   -- declares the pipeline's switch for it
+--
+-- A scene that declares scene.lightmap (scripts/scenes/README.md) gets it baked — or read from the
+-- cache — when it is loaded, and every scene pass then sees RG_SCENE_LIGHTMAP: the G-buffer pass
+-- adds the surface's radiosity from the lightmap (shaders/lib/lightmap.glsl: the SG irradiance at
+-- the shaded normal × the diffuse albedo / π) to its emission, and the lighting passes leave out
+-- the distant probe's diffuse light, which the lightmap holds. Lights the scene marks `baked` are
+-- in the lightmap and dark in the real-time light loop.
+local rg = require "rg"
+
+local lightmap = {}
+
+rg.param "lightmap" { type = "boolean", default = true,
+    doc = "use the scene's baked SG lightmap (scene.lightmap) when it has one; read when the scene loads" }
+
+return lightmap

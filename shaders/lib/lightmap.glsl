@@ -1,0 +1,72 @@
+// Baked global illumination from the scene's SG lightmap (seed 003, "SG Lightmaps", "Lighting with
+// SGs"; graph/bake/lightmap.h): per texel, N spherical Gaussians G_k(x) = A_k e^{λ (μ_k · x − 1)} of
+// incoming radiance in the texel's tangent frame — the axes μ_k fixed on the golden-ratio spiral over
+// the hemisphere, one fixed sharpness λ, only the amplitudes A_k stored (the layers of
+// SceneLightmap). Included with RG_SCENE_LIGHTMAP (set by the GPU scene when it has a lightmap).
+#ifndef RG_LIGHTMAP_GLSL
+#define RG_LIGHTMAP_GLSL
+
+#ifndef RG_SCENE_LIGHTMAP
+#define RG_SCENE_LIGHTMAP 0
+#endif
+
+#if RG_SCENE_LIGHTMAP
+#ifndef RG_LIGHTMAP_BINDING
+#define RG_LIGHTMAP_BINDING 20
+#endif
+layout(set = 0, binding = RG_LIGHTMAP_BINDING) uniform sampler2DArray SceneLightmap;
+
+// Axis k of n on the hemisphere's golden spiral (lighting::goldenSpiralAxes(n, true)): z from
+// 1 − 1/2n down in steps of 1/n, the azimuth turning by the golden angle π (3 − √5).
+vec3 rgLightmapAxis(int k) {
+    float z = 1.0 - (float(k) + 0.5) / float(RG_LIGHTMAP_LOBES);
+    float r = sqrt(max(0.0, 1.0 - z * z));
+    float phi = 2.39996322972865 * float(k);
+    return vec3(r * cos(phi), r * sin(phi), z);
+}
+
+// ∫ G_k(x) max(0, n·x) dω for all lobes: the SG–cosine product of the seed's "Lighting with SGs",
+// the clamped cosine as one SG (λc 2.133, Ac 1.17) and the closed-form integral of the two lobes'
+// product, 2π A / λm (1 − e^{−2 λm}) · e^{λm − λ − λc} (lighting::irradiance). n in tangent space; lux.
+vec3 rgLightmapIrradiance(vec2 uv, vec3 n) {
+    const float lambdaC = 2.133, ampC = 1.17;
+    vec3 e = vec3(0.0);
+    for (int k = 0; k < RG_LIGHTMAP_LOBES; ++k) {
+        vec3 a = texture(SceneLightmap, vec3(uv, float(k))).rgb;
+        vec3 um = RG_LIGHTMAP_SHARPNESS * rgLightmapAxis(k) + lambdaC * n;
+        float lm = max(length(um), 1e-4);
+        e += a * (ampC * 6.28318530717959 / lm * (1.0 - exp(-2.0 * lm)) * exp(lm - RG_LIGHTMAP_SHARPNESS - lambdaC));
+    }
+    return e;
+}
+
+// The shaded normal N in the tangent frame the baker used (lib/material.glsl's: the interpolated
+// normal, the tangent made perpendicular, the bitangent by its handedness).
+vec3 rgLightmapTangentNormal(vec3 N, vec3 normal, vec4 tangent, bool frontFacing) {
+    vec3 n = normalize(normal);
+    if (!frontFacing) n = -n;
+    vec3 t = tangent.xyz - n * dot(n, tangent.xyz);
+    float tl = dot(t, t);
+    vec3 anyT = normalize(abs(n.x) < 0.9 ? cross(n, vec3(1.0, 0.0, 0.0)) : cross(n, vec3(0.0, 1.0, 0.0)));
+    t = tl > 1e-12 ? t * inversesqrt(tl) : anyT;
+    vec3 b = cross(n, t) * tangent.w;
+    return vec3(dot(N, t), dot(N, b), dot(N, n));
+}
+
+// The radiosity a surface sends out from the baked light (seed 000 tbl:2's GB3): irradiance at its
+// shaded normal × its diffuse albedo / π × its AO, in nits.
+vec3 rgLightmapRadiosity(RgSurface s, vec3 normal, vec4 tangent, vec2 lightmapUv, bool frontFacing) {
+    vec3 e = rgLightmapIrradiance(lightmapUv, rgLightmapTangentNormal(s.normal, normal, tangent, frontFacing));
+    vec3 albedo = s.twoColour ? s.diffuseColor : s.baseColor * (1.0 - s.metalMask);
+    return albedo * (1.0 / 3.14159265358979) * e * s.ao;
+}
+
+// The debug views (session.cpp, --view lightmap / sgN): what = 0 the irradiance at the shaded
+// normal (lux), k + 1 lobe k's amplitude (nits).
+vec3 rgLightmapView(int what, RgSurface s, vec3 normal, vec4 tangent, vec2 lightmapUv, bool frontFacing) {
+    if (what == 0) return rgLightmapIrradiance(lightmapUv, rgLightmapTangentNormal(s.normal, normal, tangent, frontFacing));
+    return texture(SceneLightmap, vec3(lightmapUv, float(what - 1))).rgb;
+}
+#endif
+
+#endif

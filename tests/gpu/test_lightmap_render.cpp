@@ -1,0 +1,153 @@
+// Baked GI at run time (scripts/lightmap.lua, shaders/lib/lightmap.glsl): the deferred pipeline's
+// render of the Cornell box, lit only by its baked lightmap (the ceiling light is `baked`), against
+// a Monte Carlo reference image with indirect light computed here (tests/unit/gi_reference.h) from
+// the same camera; the debug views of the lightmap; the pipeline switch.
+#include <gtest/gtest.h>
+
+#include "gpu_fixture.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "../unit/gi_reference.h"
+#include "cli/runtime.h"
+#include "cli/session.h"
+#include "image/image.h"
+#include "scene/scene.h"
+
+using namespace rg;
+
+namespace {
+
+const std::string kRoot = RG_SOURCE_ROOT;
+constexpr uint32_t N = 128;
+
+class LightmapRender : public GpuFixture {
+protected:
+    static SessionOptions options() {
+        SessionOptions o;
+        o.scene = kRoot + "/scripts/scenes/cornell.lua";
+        o.compile.outputWidth = N;
+        o.compile.outputHeight = N;
+        o.params["exposure_mode"] = Value("manual");
+        return o;
+    }
+};
+
+TEST_F(LightmapRender, CornellBoxMatchesAMonteCarloReferenceWithIndirectLight) {
+    Readback r = renderAndRead(options(), kRoot + "/scripts/pipelines/deferred.lua", 1, {"hdr"});
+    ASSERT_EQ(r.images.count("hdr"), 1u);
+    const Image& hdr = r["hdr"];
+    ASSERT_EQ(hdr.width, N);
+
+    SceneScriptOptions so;
+    so.projectRoot = kRoot;
+    auto scene = loadSceneScript(kRoot + "/scripts/scenes/cornell.lua", so);
+    ASSERT_TRUE(scene);
+    const test::BruteForceGi truth(*scene);
+    const Camera& cam = scene->cameras.at(0);
+    const glm::vec3 fwd = glm::normalize(cam.target - cam.position), right = glm::normalize(glm::cross(fwd, cam.up)),
+                    up = glm::cross(right, fwd);
+    const float t = std::tan(cam.verticalFov * 0.5f);
+    // Per pixel: the surface at the pixel's centre, its luminance Le + ρ/π E with E from 2 × 32
+    // paths (two halves, to state the reference's own noise).
+    std::vector<glm::vec3> refA(size_t(N) * N, glm::vec3(-1.0f)), refB(refA.size(), glm::vec3(-1.0f));
+    std::mt19937 rng(11);
+    for (uint32_t y = 0; y < N; ++y)
+        for (uint32_t x = 0; x < N; ++x) {
+            const float sx = ((float(x) + 0.5f) / float(N) * 2.0f - 1.0f) * t, sy = (1.0f - (float(y) + 0.5f) / float(N) * 2.0f) * t;
+            const glm::vec3 d = glm::normalize(fwd + right * sx + up * sy);
+            const auto [i, dist] = truth.hit(cam.position, d, 1e30f);
+            if (i < 0) continue;
+            const auto& tri = truth.tris[size_t(i)];
+            if (glm::dot(tri.n, d) > 0.0f) continue;
+            const glm::vec3 p = cam.position + d * dist + tri.n * 1e-4f;
+            refA[size_t(y) * N + x] = tri.emission + tri.albedo / float(test::kGiPi) * truth.irradiance(p, tri.n, 32, static_cast<uint32_t>(rng()));
+            refB[size_t(y) * N + x] = tri.emission + tri.albedo / float(test::kGiPi) * truth.irradiance(p, tri.n, 32, static_cast<uint32_t>(rng()));
+        }
+    // Compared over 8×8-pixel blocks (each 4096 reference paths), over blocks whose 64 pixels all
+    // hit the room and are above 1 % of the peak: the lightmap's error, not the reference's noise.
+    auto lum = [](glm::vec3 c) { return 0.2126f * c.r + 0.7152f * c.g + 0.0722f * c.b; };
+    double peak = 0.0;
+    for (const auto& c : refA) peak = std::max(peak, double(lum(c)));
+    double sumErr = 0.0, sumNoise = 0.0, energyRender = 0.0, energyRef = 0.0, worst = 0.0;
+    int blocks = 0;
+    for (uint32_t by = 0; by < N; by += 8)
+        for (uint32_t bx = 0; bx < N; bx += 8) {
+            double render = 0.0, a = 0.0, b = 0.0;
+            bool ok = true;
+            for (uint32_t y = by; y < by + 8; ++y)
+                for (uint32_t x = bx; x < bx + 8; ++x) {
+                    const size_t i = size_t(y) * N + x;
+                    if (refA[i].r < 0.0f) ok = false;
+                    const glm::vec3 c(hdr.at(x, y, 0), hdr.at(x, y, 1), hdr.at(x, y, 2));
+                    render += lum(c) / r.preExposure;
+                    a += lum(refA[i]), b += lum(refB[i]);
+                }
+            const double ref = 0.5 * (a + b);
+            if (!ok || ref / 64.0 < 0.01 * peak) continue;
+            const double err = std::abs(render - ref) / ref;
+            sumErr += err, worst = std::max(worst, err);
+            sumNoise += std::abs(a - b) / (a + b);  // the half-difference: one standard error of the mean, roughly
+            energyRender += render, energyRef += ref;
+            ++blocks;
+        }
+    ASSERT_GT(blocks, 100);
+    const double mean = sumErr / blocks, noise = sumNoise / blocks, energy = energyRender / energyRef - 1.0;
+    std::printf("Cornell box, lightmap render vs Monte Carlo reference (%d blocks of 8×8 px): mean error %.2f %%, worst block %.2f %%, "
+                "energy %+.2f %%; the reference's own noise %.2f %%\n",
+                blocks, mean * 100.0, worst * 100.0, energy * 100.0, noise * 100.0);
+    EXPECT_LT(mean, 0.08);
+    EXPECT_LT(std::abs(energy), 0.05);
+}
+
+TEST_F(LightmapRender, ViewsShowTheIrradianceAndEachLobe) {
+    auto view = [&](const std::string& name) -> Result<Image> {
+        SessionOptions o = options();
+        o.view = name;
+        Session s(*s_runtime, o);
+        if (auto r = s.load(kRoot + "/scripts/pipelines/deferred.lua"); !r) return std::unexpected(r.error());
+        if (auto f = s.frame(); !f) return std::unexpected(f.error());
+        return s_runtime->executor().readback("debug_view");
+    };
+    auto irr = view("lightmap");
+    ASSERT_TRUE(irr) << irr.error().message;
+    // Irradiance, not radiosity: on the red wall it is the light arriving (white-ish from the
+    // panel, bounced green from across the room), not the wall's red.
+    const uint32_t fx = 37, fy = 118, wx = 20, wy = 64;
+    auto at = [](const Image& v, uint32_t x, uint32_t y) { return glm::vec3(v.at(x, y, 0), v.at(x, y, 1), v.at(x, y, 2)); };
+    const glm::vec3 floor = at(*irr, fx, fy), wall = at(*irr, wx, wy);
+    std::printf("lightmap view: floor %.2f %.2f %.2f, red wall %.2f %.2f %.2f\n", floor.r, floor.g, floor.b, wall.r, wall.g, wall.b);
+    EXPECT_GT(floor.g, 0.2f);
+    EXPECT_GT(wall.g, 0.2f);
+    EXPECT_LT(wall.r / wall.g, 1.2f);
+    // One lobe: sg0 (the lobe nearest the normal) is lit on the floor; every lobe is in 0..1 once displayed.
+    auto lobe = view("sg0");
+    ASSERT_TRUE(lobe) << lobe.error().message;
+    EXPECT_GT(at(*lobe, fx, fy).g, 0.05f);
+    EXPECT_NE(at(*lobe, fx, fy), floor);
+    auto bad = view("sg9");  // 9 lobes: sg0 .. sg8
+    ASSERT_FALSE(bad);
+    EXPECT_NE(bad.error().message.find("sg0 .. sg8"), std::string::npos) << bad.error().message;
+}
+
+TEST_F(LightmapRender, ThePipelineSwitchTurnsItOff) {
+    // lightmap = false: no radiosity, and the baked light is real-time again — direct light only.
+    // The ceiling, which only bounced light reaches (the panel faces down, there is no
+    // environment), goes black; the floor under the light stays lit.
+    SessionOptions o = options();
+    o.params["lightmap"] = Value(false);
+    Readback off = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 1, {"hdr"});
+    Readback on = renderAndRead(options(), kRoot + "/scripts/pipelines/deferred.lua", 1, {"hdr"});
+    ASSERT_EQ(off.images.count("hdr"), 1u);
+    ASSERT_EQ(on.images.count("hdr"), 1u);
+    auto nits = [](const Readback& r, uint32_t x, uint32_t y) { return r["hdr"].at(x, y, 1) / r.preExposure; };
+    const uint32_t fx = 37, fy = 118, cy = 4;  // the floor at (-0.5, 0, 0.5); the ceiling above the front
+    std::printf("with the lightmap: floor %.2f, ceiling %.2f nits; without: floor %.2f, ceiling %.3f nits\n", nits(on, fx, fy),
+                nits(on, fx, cy), nits(off, fx, fy), nits(off, fx, cy));
+    EXPECT_GT(nits(on, fx, cy), 2.0f);
+    EXPECT_LT(nits(off, fx, cy), 0.01f);
+    EXPECT_GT(nits(off, fx, fy), 5.0f);
+}
+
+}  // namespace
