@@ -11,6 +11,7 @@
 #include "core/light_units.h"
 #include "lighting/area_lights.h"
 #include "lighting/punctual.h"
+#include "lighting/sg.h"
 #include "scene/bvh.h"
 #include "scene/environment.h"
 #include <glm/gtc/packing.hpp>
@@ -171,14 +172,17 @@ Result<gpu::Image> uploadRgba32f(Context& ctx, const std::string& name, const rg
 }
 
 // The baked lightmap's lobes as the layers of an RGBA16F array (amplitudes beyond half precision's
-// range clamped to 65504); none: a 1×1×2 black array, so the view stays an array.
+// range clamped to 65504), then one more layer: the irradiance at the surface normal itself,
+// Σ_k A_k I_k(0, 0, 1), which a surface without a normal map reads instead of evaluating every
+// lobe (the sum is linear in the amplitudes, so filtering it is filtering them); none: a 1×1×2
+// black array, so the view stays an array.
 Result<gpu::Image> uploadLightmap(Context& ctx, const Lightmap* lm) {
     ImageDesc d;
     d.name = "scene.lightmap";
     d.format = Format::RGBA16F;
     d.width = lm ? std::max(lm->width, 1u) : 1;
     d.height = lm ? std::max(lm->height, 1u) : 1;
-    d.layers = lm ? std::max<uint32_t>(2, static_cast<uint32_t>(lm->lobes.size())) : 2;
+    d.layers = lm ? static_cast<uint32_t>(lm->lobes.size()) + 1 : 2;
     d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     auto img = gpu::Image::create(ctx, d);
     if (!img) return std::unexpected(img.error());
@@ -186,9 +190,15 @@ Result<gpu::Image> uploadLightmap(Context& ctx, const Lightmap* lm) {
     auto staging = Buffer::create(ctx, "scene.lightmap.staging", texels * d.layers * 8, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
     if (!staging) return std::unexpected(staging.error());
     auto* dst = static_cast<uint16_t*>(staging->mapped());
+    std::vector<float> flat;  // I_k((0, 0, 1)) of the unit lobes
+    if (lm)
+        for (const glm::vec3& axis : lm->axes) flat.push_back(lighting::irradiance({axis, lm->sharpness, glm::vec3(1.0f)}, glm::vec3(0, 0, 1)).x);
     for (uint32_t layer = 0; layer < d.layers; ++layer)
         for (size_t i = 0; i < texels; ++i) {
-            const glm::vec3 a = lm && layer < lm->lobes.size() && i < lm->lobes[layer].size() ? lm->lobes[layer][i] : glm::vec3(0.0f);
+            glm::vec3 a(0.0f);
+            if (lm && layer < lm->lobes.size() && i < lm->lobes[layer].size()) a = lm->lobes[layer][i];
+            else if (lm && layer == lm->lobes.size())
+                for (size_t k = 0; k < lm->lobes.size(); ++k) a += flat[k] * lm->lobes[k][i];
             for (int c = 0; c < 4; ++c)
                 dst[(size_t(layer) * texels + i) * 4 + size_t(c)] =
                     glm::packHalf1x16(c < 3 ? std::clamp(std::isfinite(a[c]) ? a[c] : 0.0f, 0.0f, 65504.0f) : 1.0f);

@@ -183,7 +183,7 @@ Result<void> prepareLightmap(Scene& scene, const PrepareOptions& options) {
     if (!options.quiet && tty) std::fprintf(stderr, "\n");
     if (!baked) return std::unexpected(baked.error());
     if (options.stats) *options.stats = stats;
-    if (!options.quiet)
+    if (!options.quiet && !options.stats)  // a caller that takes the figures prints them
         std::fprintf(stderr, "rgraph: baked %u texels in %.1f s (%.2f M rays/s)\n", stats.texels, stats.seconds,
                      stats.seconds > 0 ? double(stats.rays) / stats.seconds * 1e-6 : 0.0);
     std::filesystem::create_directories(options.cacheDir, ec);

@@ -61,7 +61,7 @@ struct Args {
     std::string error;
 
     static Args parse(int argc, char** argv, int first, const std::vector<std::string>& known) {
-        static const std::vector<std::string> flags = {"verbose", "floors"};  // options without a value
+        static const std::vector<std::string> flags = {"verbose", "floors", "rebake"};  // options without a value
         Args a;
         for (int i = first; i < argc; ++i) {
             std::string arg = argv[i];
@@ -616,7 +616,7 @@ int cmdExportScene(int argc, char** argv) {
 }
 
 int cmdBake(int argc, char** argv) {
-    Args args = Args::parse(argc, argv, 2, {"scene", "scene-arg", "out", "rebake", "threads"});
+    Args args = Args::parse(argc, argv, 2, {"scene", "scene-arg", "out", "rebake"});
     if (args.help) {
         std::printf("usage: rgraph bake [--scene FILE.lua] [--scene-arg NAME=VALUE]... [--out FILE.exr] [--rebake]\n\n"
                     "Bakes the scene's spherical-Gaussian lightmap (its scene.lightmap declaration; seed 003) on the CPU:\n"
@@ -663,7 +663,7 @@ int cmdBake(int argc, char** argv) {
     if (fromCache)
         std::printf("rgraph: up to date in the cache: %s\n", path.c_str());
     else
-        std::printf("rgraph: baked %u texels in %.2f s: %.1f M rays, %.2f M rays/s; cached as %s\n", stats.texels, stats.seconds,
+        std::printf("rgraph: baked %u texels in %.2f s: %.1f M rays (Embree), %.2f M rays/s; cached as %s\n", stats.texels, stats.seconds,
                     double(stats.rays) * 1e-6, stats.seconds > 0 ? double(stats.rays) / stats.seconds * 1e-6 : 0.0, path.c_str());
     if (args.has("out")) {
         if (auto r = bake::writeLightmapExr(args.get("out"), lm); !r) return report(r.error());

@@ -65,3 +65,9 @@ scene.environment "sky" { kind = "sky", intensity = 1, unit = "nits" }
 -- 1.2 m above the middle of the grid, its box the proxy the reflections are parallax-corrected
 -- against, fading over the outer metre.
 scene.probe "grid" { shape = "box", position = { 0.0, 1.2, 0.0 }, size = { 14, 6, 12 }, fade = 1 }
+
+-- Baked GI (seed 003's SG lightmaps), on request: --scene-arg lightmap=1 (rgraph bake, then render).
+-- The sun and the lamp stay dynamic; the lightmap holds the sky and their bounces.
+if scene.args.lightmap then
+  scene.lightmap "gi" { density = tonumber(scene.args.lightmap_density) or 4, lobes = tonumber(scene.args.lobes) or 9, samples = 128, bounces = 2 }
+end

@@ -1,8 +1,8 @@
 // Baked global illumination from the scene's SG lightmap (seed 003, "SG Lightmaps", "Lighting with
 // SGs"; graph/bake/lightmap.h): per texel, N spherical Gaussians G_k(x) = A_k e^{λ (μ_k · x − 1)} of
 // incoming radiance in the texel's tangent frame — the axes μ_k fixed on the golden-ratio spiral over
-// the hemisphere, one fixed sharpness λ, only the amplitudes A_k stored (the layers of
-// SceneLightmap). Included with RG_SCENE_LIGHTMAP (set by the GPU scene when it has a lightmap).
+// the hemisphere, one fixed sharpness λ, only the amplitudes A_k stored (layers 0 .. N − 1 of
+// SceneLightmap; layer N: the irradiance at the frame's normal, passes/gpu_scene.cpp). Included with RG_SCENE_LIGHTMAP (set by the GPU scene when it has a lightmap).
 #ifndef RG_LIGHTMAP_GLSL
 #define RG_LIGHTMAP_GLSL
 
@@ -55,8 +55,16 @@ vec3 rgLightmapTangentNormal(vec3 N, vec3 normal, vec4 tangent, bool frontFacing
 
 // The radiosity a surface sends out from the baked light (seed 000 tbl:2's GB3): irradiance at its
 // shaded normal × its diffuse albedo / π × its AO, in nits.
+// A material variant without a normal map (RG_TEXTURES bit 4 clear) shades with the interpolated
+// normal, (0, 0, 1) in the frame: it reads the irradiance the GPU scene precomputed for it in the
+// layer after the lobes — one fetch instead of N (on a CPU rasteriser the N-lobe sum costs ~40 ms
+// per 1280×720 G-buffer).
 vec3 rgLightmapRadiosity(RgSurface s, vec3 normal, vec4 tangent, vec2 lightmapUv, bool frontFacing) {
+#if defined(RG_TEXTURES) && (RG_TEXTURES & 4) == 0
+    vec3 e = texture(SceneLightmap, vec3(lightmapUv, float(RG_LIGHTMAP_LOBES))).rgb;
+#else
     vec3 e = rgLightmapIrradiance(lightmapUv, rgLightmapTangentNormal(s.normal, normal, tangent, frontFacing));
+#endif
     vec3 albedo = s.twoColour ? s.diffuseColor : s.baseColor * (1.0 - s.metalMask);
     return albedo * (1.0 / 3.14159265358979) * e * s.ao;
 }
