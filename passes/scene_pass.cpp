@@ -76,6 +76,12 @@ constexpr const char* kLightmapRadiosity =
     "#endif\n"
     "#endif\n";
 
+// A G-buffer attachment of this name (scripts/render_loop.lua) receives, from every material, the
+// baked lightmap's pre-filtered specular radiance along the surface's reflection (lib/lightmap.glsl
+// rgLightmapSpecular; black without a lightmap), which the reflection composition uses where SSR
+// and the local probes leave off, instead of the distant probe.
+constexpr const char* kLightmapSpecularTarget = "lightmap_specular";
+
 // The start of every shader rgraph generates for a material: the version, what it is, its id.
 std::string materialPrologue(const MaterialInfo& m, const std::string& what) {
     std::ostringstream s;
@@ -112,6 +118,10 @@ std::string fragmentSource(const MaterialInfo& m, const std::vector<std::string>
         size_t location = static_cast<size_t>(it - attachments.begin());
         s << "layout(location = " << location << ") out " << (m.targetInteger[t] ? "uvec4" : "vec4") << " target" << t << ";\n";
     }
+    // The lightmap's specular radiance (render_loop.lua's `lightmap_specular`), when the pass writes it.
+    const auto spec = std::find(attachments.begin(), attachments.end(), kLightmapSpecularTarget);
+    const int specularLocation = spec == attachments.end() ? -1 : static_cast<int>(spec - attachments.begin());
+    if (specularLocation >= 0) s << "layout(location = " << specularLocation << ") out vec4 lightmapSpecular;\n";
     s << "void main() {\n"
       << "    RgSurface s = rgSampleSurface(worldPosition, worldNormal, worldTangent, uv0, uv1, gl_FrontFacing);\n"
       << "#if RG_ALPHA_MASK\n    if (s.opacity < material.factors2.z) discard;  // alpha mask\n#endif\n"
@@ -122,6 +132,11 @@ std::string fragmentSource(const MaterialInfo& m, const std::vector<std::string>
     for (size_t t = 0; t < m.targets.size(); ++t) s << ", t" << t;
     s << ");\n";
     for (size_t t = 0; t < m.targets.size(); ++t) s << "    target" << t << " = t" << t << ";\n";
+    if (specularLocation >= 0)
+        s << "#if RG_SCENE_LIGHTMAP\n"
+          << "    lightmapSpecular = vec4(rgLightmapSpecular(s, worldNormal, worldTangent, lightmapUv, gl_FrontFacing, "
+             "normalize(camera.position.xyz - worldPosition)), 1.0);\n"
+          << "#else\n    lightmapSpecular = vec4(0.0);\n#endif\n";
     s << "}\n";
     return s.str();
 }
@@ -651,7 +666,7 @@ private:
             const bool ofLayout = std::find(g.info.targets.begin(), g.info.targets.end(), name) != g.info.targets.end();
             const bool filled = g.info.fills.empty() || std::find(g.info.fills.begin(), g.info.fills.end(), name) != g.info.fills.end();
             // A material writes only the targets of its layout it fills (the fix-up pass does the rest).
-            b.colorWriteMask = m_forward || m_capture || (ofLayout && filled) ? 0xfu : 0u;
+            b.colorWriteMask = m_forward || m_capture || (ofLayout && filled) || name == kLightmapSpecularTarget ? 0xfu : 0u;
             d.blends.push_back(b);
         }
         d.depthFormat = toVkFormat(m_depthFormat);

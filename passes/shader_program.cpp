@@ -135,6 +135,12 @@ Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> s
             defines.emplace_back("RG_SCENE_LIGHTMAP", "1");
             defines.emplace_back("RG_LIGHTMAP_LOBES", std::to_string(lm->axes.size()));
             defines.emplace_back("RG_LIGHTMAP_SHARPNESS", sharpness);
+            std::string unit = "float[](";
+            for (size_t k = 0; k < lm->unit.size(); ++k) {
+                std::snprintf(sharpness, sizeof sharpness, "%s%.9g", k ? ", " : "", double(lm->unit[k]));
+                unit += sharpness;
+            }
+            defines.emplace_back("RG_LIGHTMAP_UNIT", unit + ")");
         }
     }
 

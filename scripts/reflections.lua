@@ -12,6 +12,7 @@
 -- split-sum DFG and specular occlusion (lib/ibl.glsl rgStandardIbl) instead of composing its own;
 -- a lobe other than the pixel's (the clear coat's) still composes its own with the same function.
 local rg = require "rg"
+require "lightmap"  -- its lightmap_specular parameter: the composition takes the lightmap's reflection
 local lighting = require "lighting"
 require "ibl"     -- the distant probe
 require "probes"  -- the local probes
@@ -24,7 +25,7 @@ rg.resource "reflection" { format = "rgba16f",
 
 rg.pass "reflection_compose" {
     kind = "fullscreen", shader = "passes/reflection_compose.frag",
-    reads = { "GB0", "depth", "ssr", "env_specular", { "env_sh", as = "storage" }, "dfg", "probe_specular" }, writes = { "reflection" },
+    reads = { "GB0", "depth", "ssr", "env_specular", { "env_sh", as = "storage" }, "dfg", "probe_specular", "lightmap_specular" }, writes = { "reflection" },
     defines = { RG_IBL = true, RG_SSR = true, RG_PROBES = true }, insert = { before = "lighting_standard" },
 }
 

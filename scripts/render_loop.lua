@@ -27,7 +27,12 @@ rg.resource "GB3" { format = "rgba16f" }
 rg.resource "depth" { format = "d32f_s8" }
 rg.resource "hdr" { format = "rgba16f" }
 
-rg.pass "gbuffer" { kind = "scene", writes = { "GB0", "GB1", "GB2", "GB3", "depth" } }
+-- The baked lightmap's specular radiance along each pixel's reflection (seed 003; lib/lightmap.glsl),
+-- written by every material when the scene has a lightmap (black otherwise); the reflection
+-- composition takes it instead of the distant probe where SSR and the local probes leave off.
+rg.resource "lightmap_specular" { format = "rgba16f" }
+
+rg.pass "gbuffer" { kind = "scene", writes = { "GB0", "GB1", "GB2", "GB3", "lightmap_specular", "depth" } }
 
 -- Deferred decals (seed 000 §3.3) after the fix-up: the pass reads copies of GB0..GB2 (there is no
 -- programmable blending), blends Normal/BaseColor/Smoothness (MetalMask/Reflectance on materialId

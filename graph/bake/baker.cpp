@@ -485,6 +485,7 @@ Result<Lightmap> bakeLightmap(const Scene& scene, const LightmapAtlas& atlas, co
         if (owner[i].distance < 1e29f) work.push_back(i);
 
     const LightmapFit fit = lightmapFit(settings.lobes, lm.sharpness);
+    lm.unit = fit.unit;
     const Context ctx{scene, tracer, allLights, environment, std::max(settings.bounces, 0)};
     const int samples = std::max(settings.samples, 1);
     const int strata = std::max(1, int(std::sqrt(double(samples))));

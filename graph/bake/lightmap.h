@@ -78,6 +78,7 @@ struct LightmapFit {
     std::vector<double> irradiance;   // [j * N + k]: I_k(n_j)
     double radianceWeight = 0.0;
     std::vector<double> gram;         // N × N: radianceWeight ∫ G_i G_j + Σ_j I_i(n_j) I_k(n_j)
+    std::vector<float> unit;          // the amplitudes of a uniform radiance of 1 over the hemisphere
     // The amplitudes from a texel's projections (N, RGB) and irradiances (J, RGB).
     std::vector<glm::vec3> solve(const std::vector<glm::dvec3>& projections, const std::vector<glm::dvec3>& irradiances) const;
 };
@@ -113,7 +114,8 @@ std::string lightmapKey(const Scene& scene, const LightmapSettings& settings);
 
 // One EXR per scene: a layer per lobe, "sg0.R", "sg0.G", "sg0.B", ... "sg8.B" (32-bit float), and
 // "coverage.Y"; the header says the basis: rgraph.lightmap.lobes, .sharpness, .axes ("x y z" per
-// lobe, ';'-separated, tangent space), .density, .key, .space = "tangent".
+// lobe, ';'-separated, tangent space), .unit (the amplitudes of a uniform 1-nit hemisphere), .density,
+// .key, .space = "tangent".
 Result<void> writeLightmapExr(const std::string& path, const Lightmap& lightmap);
 Result<Lightmap> readLightmapExr(const std::string& path);
 

@@ -15,7 +15,7 @@ namespace rg::bake {
 namespace {
 
 // Bumped whenever the baker's output for the same input changes.
-constexpr uint32_t kBakerVersion = 1;
+constexpr uint32_t kBakerVersion = 2;
 
 // FNV-1a, 64 bits.
 struct Hasher {
@@ -98,6 +98,9 @@ Result<void> writeLightmapExr(const std::string& path, const Lightmap& lm) {
     o.metadata["rgraph.lightmap.axes"] = axes.str();
     o.metadata["rgraph.lightmap.key"] = lm.key;
     o.metadata["rgraph.lightmap.space"] = "tangent";
+    std::ostringstream unit;
+    for (size_t k = 0; k < lm.unit.size(); ++k) unit << (k ? " " : "") << lm.unit[k];
+    o.metadata["rgraph.lightmap.unit"] = unit.str();
     o.ints["rgraph.lightmap.lobes"] = static_cast<int>(lm.axes.size());
     o.floats["rgraph.lightmap.sharpness"] = lm.sharpness;
     o.floats["rgraph.lightmap.density"] = lm.density;
@@ -126,6 +129,12 @@ Result<Lightmap> readLightmapExr(const std::string& path) {
         if (sep != ';' || !(axes >> a.x >> a.y >> a.z)) return bad("rgraph.lightmap.axes is not 'x y z; x y z; ...'");
         lm.axes.push_back(a);
     }
+    if (auto u = file->metadata.find("rgraph.lightmap.unit"); u != file->metadata.end()) {
+        std::istringstream in(u->second);
+        float v = 0.0f;
+        while (in >> v) lm.unit.push_back(v);
+    }
+    if (lm.unit.size() != lm.axes.size()) return bad("rgraph.lightmap.unit does not hold one amplitude per lobe");
     auto layer = [&](const std::string& name) -> const ImageLayer* {
         for (const auto& l : file->layers)
             if (l.name == name) return &l;
@@ -222,6 +231,16 @@ LightmapFit lightmapFit(int lobes, float sharpness) {
     // irradiance off (tests/unit/test_lightmap.cpp measures both).
     f.radianceWeight = 0.1 * traceIrr / traceRad;
     for (size_t i = 0; i < N * N; ++i) f.gram[i] += f.radianceWeight * radiance[i];
+    // A uniform 1 nit over the hemisphere, by quadrature.
+    std::vector<glm::dvec3> proj(N, glm::dvec3(0.0)), irr(J, glm::dvec3(0.0));
+    const std::vector<glm::vec3> dirs = lighting::goldenSpiralAxes(1 << 14);
+    const double dw = 4.0 * 3.14159265358979323846 / double(dirs.size());
+    for (const auto& d : dirs) {
+        if (d.z <= 0.0f) continue;
+        for (size_t k = 0; k < N; ++k) proj[k] += glm::dvec3(dw * std::exp(double(sharpness) * (double(glm::dot(f.axes[k], d)) - 1.0)));
+        for (size_t j = 0; j < J; ++j) irr[j] += glm::dvec3(dw * double(std::max(0.0f, glm::dot(f.normals[j], d))));
+    }
+    for (const glm::vec3& a : f.solve(proj, irr)) f.unit.push_back(a.x);
     return f;
 }
 

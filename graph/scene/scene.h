@@ -299,6 +299,9 @@ struct Lightmap {
     std::vector<glm::vec3> axes;                 // μ_k, tangent space
     float sharpness = 0.0f;                      // λ
     std::vector<std::vector<glm::vec3>> lobes;   // [k][y * width + x]: A_k
+    // The amplitudes the fit gives a uniform 1-nit hemisphere: what the specular term divides by,
+    // so that the lobes' ripple and the part of a wide lobe below the horizon cancel out.
+    std::vector<float> unit;
     std::vector<uint8_t> coverage;               // 1: a surface's texel (0: border or gutter, dilated)
     float density = 0.0f;                        // texels per metre
     std::string key;                             // the content hash it was baked for

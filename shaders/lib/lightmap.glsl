@@ -69,6 +69,43 @@ vec3 rgLightmapRadiosity(RgSurface s, vec3 normal, vec4 tangent, vec2 lightmapUv
     return albedo * (1.0 / 3.14159265358979) * e * s.ao;
 }
 
+// The specular light of the lightmap (seed 003 "Lighting with SGs"): the radiance SGs integrated
+// against the GGX lobe as one SG (the seed's "Beckmann = 1 SG" for the NDF: D(h) ≈ e^{(2/α²)(h·n − 1)}
+// / (π α²)), warped from half-vector space to directions around the reflection (the spherical warp
+// of Wang et al. 2009: sharpness 2/α² / (4 |n·v|)) and normalised by the same integral of a
+// uniform 1-nit hemisphere — the average radiance over the lobe's part above the horizon, the
+// pre-filtered term ("LD") the distant probe's mips give, which the composition weights by the
+// split-sum DFG. Tangent space; nits.
+vec3 rgLightmapSpecular(RgSurface s, vec3 normal, vec4 tangent, vec2 lightmapUv, bool frontFacing, vec3 V) {
+    vec3 n = normalize(normal);
+    if (!frontFacing) n = -n;
+    vec3 t = tangent.xyz - n * dot(n, tangent.xyz);
+    float tl = dot(t, t);
+    vec3 anyT = normalize(abs(n.x) < 0.9 ? cross(n, vec3(1.0, 0.0, 0.0)) : cross(n, vec3(0.0, 1.0, 0.0)));
+    t = tl > 1e-12 ? t * inversesqrt(tl) : anyT;
+    vec3 b = cross(n, t) * tangent.w;
+    mat3 toTangent = transpose(mat3(t, b, n));
+    vec3 N = toTangent * s.normal, v = toTangent * V;
+    float linearRoughness = 1.0 - s.smoothness;
+    float alpha = max(linearRoughness * linearRoughness, 0.02);
+    vec3 R = reflect(-v, N);
+    float lambdaW = 2.0 / (alpha * alpha) / (4.0 * max(dot(N, v), 0.05));
+    const float unit[RG_LIGHTMAP_LOBES] = RG_LIGHTMAP_UNIT;
+    vec3 ld = vec3(0.0);
+    float one = 0.0;
+    for (int k = 0; k < RG_LIGHTMAP_LOBES; ++k) {
+        vec3 a = texture(SceneLightmap, vec3(lightmapUv, float(k))).rgb;
+        vec3 um = RG_LIGHTMAP_SHARPNESS * rgLightmapAxis(k) + lambdaW * R;
+        float lm = max(length(um), 1e-4);
+        float w = 6.28318530717959 / lm * (1.0 - exp(-2.0 * lm)) * exp(lm - RG_LIGHTMAP_SHARPNESS - lambdaW);
+        ld += a * w;
+        one += unit[k] * w;
+    }
+    // Divided by what a uniform 1-nit hemisphere gives through the same lobes: the lobes' ripple
+    // and the part of the GGX lobe below the horizon (where the lightmap holds nothing) cancel.
+    return ld / max(one, 1e-6);
+}
+
 // The debug views (session.cpp, --view lightmap / sgN): what = 0 the irradiance at the shaded
 // normal (lux), k + 1 lobe k's amplitude (nits).
 vec3 rgLightmapView(int what, RgSurface s, vec3 normal, vec4 tangent, vec2 lightmapUv, bool frontFacing) {

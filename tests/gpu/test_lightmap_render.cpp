@@ -35,7 +35,11 @@ protected:
 };
 
 TEST_F(LightmapRender, CornellBoxMatchesAMonteCarloReferenceWithIndirectLight) {
-    Readback r = renderAndRead(options(), kRoot + "/scripts/pipelines/deferred.lua", 1, {"hdr"});
+    // The reference is Lambertian: the lightmap's specular reflection is left out here (the
+    // furnace test below checks it).
+    SessionOptions o = options();
+    o.params["lightmap_specular"] = Value(false);
+    Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 1, {"hdr"});
     ASSERT_EQ(r.images.count("hdr"), 1u);
     const Image& hdr = r["hdr"];
     ASSERT_EQ(hdr.width, N);
@@ -129,6 +133,32 @@ TEST_F(LightmapRender, ViewsShowTheIrradianceAndEachLobe) {
     auto bad = view("sg9");  // 9 lobes: sg0 .. sg8
     ASSERT_FALSE(bad);
     EXPECT_NE(bad.error().message.find("sg0 .. sg8"), std::string::npos) << bad.error().message;
+}
+
+TEST_F(LightmapRender, SpecularIsThePrefilteredRadianceInAFurnace) {
+    // Uniform 1-nit light over the hemisphere: the lightmap's specular term (the radiance SGs
+    // integrated against the warped GGX lobe, normalised) is 1 for every roughness and view, but
+    // where the lobe reaches below the horizon (grazing views of a rough plane).
+    for (const char* smoothness : {"0.9", "0.5", "0.2"}) {
+        SessionOptions o = options();
+        o.scene = kRoot + "/tests/gpu/scenes/lightmap_furnace.lua";
+        o.sceneArgs = {{"smoothness", smoothness}};
+        Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 1, {"lightmap_specular", "hdr"});
+        ASSERT_EQ(r.images.count("lightmap_specular"), 1u);
+        const Image& ld = r["lightmap_specular"];
+        // Rows from the middle of the image (n·v ≈ 0.6) to its bottom (≈ 0.8).
+        double sum = 0.0, lo = 1e9, hi = 0.0;
+        int count = 0;
+        for (uint32_t y = N / 2; y < N; y += 4)
+            for (uint32_t x = N / 4; x < 3 * N / 4; x += 4) {
+                const double v = ld.at(x, y, 1);
+                sum += v, lo = std::min(lo, v), hi = std::max(hi, v), ++count;
+            }
+        std::printf("furnace, smoothness %s: lightmap specular %.3f (%.3f .. %.3f) nits\n", smoothness, sum / count, lo, hi);
+        EXPECT_NEAR(sum / count, 1.0, 0.06) << smoothness;
+        EXPECT_GT(lo, 0.85) << smoothness;
+        EXPECT_LT(hi, 1.1) << smoothness;
+    }
 }
 
 TEST_F(LightmapRender, ThePipelineSwitchTurnsItOff) {
