@@ -15,6 +15,10 @@ local rg = require "rg"
 
 local lightmap = {}
 
+-- Set by a module whose G-buffer pass writes `lightmap_specular` (render_loop.lua); the reflection
+-- composition (reflections.lua) reads it only then.
+lightmap.gbuffer_writes_specular = false
+
 rg.param "lightmap" { type = "boolean", default = true,
     doc = "use the scene's baked SG lightmap (scene.lightmap) when it has one; read when the scene loads" }
 rg.param "lightmap_specular" { type = "boolean", default = true,

@@ -12,7 +12,7 @@
 -- split-sum DFG and specular occlusion (lib/ibl.glsl rgStandardIbl) instead of composing its own;
 -- a lobe other than the pixel's (the clear coat's) still composes its own with the same function.
 local rg = require "rg"
-require "lightmap"  -- its lightmap_specular parameter: the composition takes the lightmap's reflection
+local lightmap = require "lightmap"  -- the lightmap's reflection, where the G-buffer writes it (render_loop.lua)
 local lighting = require "lighting"
 require "ibl"     -- the distant probe
 require "probes"  -- the local probes
@@ -23,11 +23,17 @@ local reflections = {}
 rg.resource "reflection" { format = "rgba16f",
     doc = "the composed specular radiance (nits) along each pixel's dominant direction; alpha: SSR and local probes' share" }
 
-rg.pass "reflection_compose" {
+local compose = {
     kind = "fullscreen", shader = "passes/reflection_compose.frag",
-    reads = { "GB0", "depth", "ssr", "env_specular", { "env_sh", as = "storage" }, "dfg", "probe_specular", "lightmap_specular" }, writes = { "reflection" },
+    reads = { "GB0", "depth", "ssr", "env_specular", { "env_sh", as = "storage" }, "dfg", "probe_specular" }, writes = { "reflection" },
     defines = { RG_IBL = true, RG_SSR = true, RG_PROBES = true }, insert = { before = "lighting_standard" },
 }
+-- With a scene's baked lightmap, its specular radiance takes the distant probe's share.
+if lightmap.gbuffer_writes_specular then
+    table.insert(compose.reads, "lightmap_specular")
+    compose.defines.RG_LIGHTMAP_SPECULAR = true
+end
+rg.pass "reflection_compose" (compose)
 
 -- A lighting pass's declaration that takes its pixels' specular radiance from `reflection`.
 function reflections.lit(pass)

@@ -31,6 +31,7 @@ rg.resource "hdr" { format = "rgba16f" }
 -- written by every material when the scene has a lightmap (black otherwise); the reflection
 -- composition takes it instead of the distant probe where SSR and the local probes leave off.
 rg.resource "lightmap_specular" { format = "rgba16f" }
+require("lightmap").gbuffer_writes_specular = true
 
 rg.pass "gbuffer" { kind = "scene", writes = { "GB0", "GB1", "GB2", "GB3", "lightmap_specular", "depth" } }
 

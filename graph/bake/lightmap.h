@@ -112,6 +112,11 @@ Result<Lightmap> bakeLightmap(const Scene& scene, const LightmapAtlas& atlas, co
 // bytes too), the bake settings and the baker's version; 16 hex digits.
 std::string lightmapKey(const Scene& scene, const LightmapSettings& settings);
 
+// The lightmap's pre-filtered specular radiance at texel i for shaded normal N and view V (tangent
+// space, unit) and linear roughness: lib/lightmap.glsl's rgLightmapSpecular on the CPU (the GGX NDF
+// as 3 SGs, warped to the reflection, over the radiance lobes, normalised by a uniform hemisphere).
+glm::vec3 lightmapSpecular(const Lightmap& lightmap, size_t texel, glm::vec3 N, glm::vec3 V, float linearRoughness);
+
 // One EXR per scene: a layer per lobe, "sg0.R", "sg0.G", "sg0.B", ... "sg8.B" (32-bit float), and
 // "coverage.Y"; the header says the basis: rgraph.lightmap.lobes, .sharpness, .axes ("x y z" per
 // lobe, ';'-separated, tangent space), .unit (the amplitudes of a uniform 1-nit hemisphere), .density,

@@ -80,6 +80,24 @@ glm::vec3 lightmapIrradiance(const Lightmap& lm, uint32_t x, uint32_t y, glm::ve
     return e;
 }
 
+glm::vec3 lightmapSpecular(const Lightmap& lm, size_t texel, glm::vec3 N, glm::vec3 V, float linearRoughness) {
+    // The GGX shape 1 / (1 + t)², t = tan²θ_h / α², as Σ c_i e^{−b_i t} (lib/lightmap.glsl).
+    constexpr float kB[3] = {0.191f, 0.909f, 2.776f}, kC[3] = {0.0612f, 0.4119f, 0.5163f};
+    const float alpha = std::max(linearRoughness * linearRoughness, 0.02f);
+    const glm::vec3 R = glm::reflect(-V, N);
+    const float warp = 2.0f / (alpha * alpha) / (4.0f * std::max(glm::dot(N, V), 0.05f));
+    glm::vec3 ld(0.0f);
+    float one = 0.0f;
+    for (size_t k = 0; k < lm.axes.size(); ++k) {
+        float w = 0.0f;
+        for (int i = 0; i < 3; ++i)
+            w += kC[i] * lighting::innerProduct({lm.axes[k], lm.sharpness, glm::vec3(1.0f)}, {R, kB[i] * warp, glm::vec3(1.0f)}).x;
+        ld += lm.lobes[k][texel] * w;
+        one += (k < lm.unit.size() ? lm.unit[k] : 0.0f) * w;
+    }
+    return ld / std::max(one, 1e-6f);
+}
+
 Result<void> writeLightmapExr(const std::string& path, const Lightmap& lm) {
     std::vector<ImageLayer> layers;
     for (size_t k = 0; k < lm.lobes.size(); ++k) {

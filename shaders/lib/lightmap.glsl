@@ -69,13 +69,16 @@ vec3 rgLightmapRadiosity(RgSurface s, vec3 normal, vec4 tangent, vec2 lightmapUv
     return albedo * (1.0 / 3.14159265358979) * e * s.ao;
 }
 
-// The specular light of the lightmap (seed 003 "Lighting with SGs"): the radiance SGs integrated
-// against the GGX lobe as one SG (the seed's "Beckmann = 1 SG" for the NDF: D(h) ≈ e^{(2/α²)(h·n − 1)}
-// / (π α²)), warped from half-vector space to directions around the reflection (the spherical warp
-// of Wang et al. 2009: sharpness 2/α² / (4 |n·v|)) and normalised by the same integral of a
-// uniform 1-nit hemisphere — the average radiance over the lobe's part above the horizon, the
+// The specular light of the lightmap (seed 003 "Lighting with SGs": "GGX = 3 SGs"): the GGX NDF as
+// three SGs over the half vector — its shape 1 / (1 + t)², t = tan²θ_h / α², fitted once as
+// Σ c_i e^{−b_i t} (b = 0.191, 0.909, 2.776; c = 0.0612, 0.4119, 0.5163; 1.0 % relative RMS over
+// t in 0..40), i.e. sharpness λ_i = 2 b_i / α² near the normal — each warped to directions around the
+// reflection (Wang et al. 2009's spherical warp: sharpness λ_i / (4 |n·v|)), integrated against the
+// radiance SGs in closed form, and normalised by the same integral of a uniform 1-nit hemisphere
+// (RG_LIGHTMAP_UNIT): the average radiance over the lobe's part above the horizon — the
 // pre-filtered term ("LD") the distant probe's mips give, which the composition weights by the
-// split-sum DFG. Tangent space; nits.
+// split-sum DFG. The lobes' ripple and the part of a wide lobe below the horizon cancel in the ratio.
+// Tangent space; nits.
 vec3 rgLightmapSpecular(RgSurface s, vec3 normal, vec4 tangent, vec2 lightmapUv, bool frontFacing, vec3 V) {
     vec3 n = normalize(normal);
     if (!frontFacing) n = -n;
@@ -89,20 +92,23 @@ vec3 rgLightmapSpecular(RgSurface s, vec3 normal, vec4 tangent, vec2 lightmapUv,
     float linearRoughness = 1.0 - s.smoothness;
     float alpha = max(linearRoughness * linearRoughness, 0.02);
     vec3 R = reflect(-v, N);
-    float lambdaW = 2.0 / (alpha * alpha) / (4.0 * max(dot(N, v), 0.05));
+    const float ggxB[3] = float[](0.191, 0.909, 2.776), ggxC[3] = float[](0.0612, 0.4119, 0.5163);
     const float unit[RG_LIGHTMAP_LOBES] = RG_LIGHTMAP_UNIT;
+    float warp = 2.0 / (alpha * alpha) / (4.0 * max(dot(N, v), 0.05));
     vec3 ld = vec3(0.0);
     float one = 0.0;
     for (int k = 0; k < RG_LIGHTMAP_LOBES; ++k) {
         vec3 a = texture(SceneLightmap, vec3(lightmapUv, float(k))).rgb;
-        vec3 um = RG_LIGHTMAP_SHARPNESS * rgLightmapAxis(k) + lambdaW * R;
-        float lm = max(length(um), 1e-4);
-        float w = 6.28318530717959 / lm * (1.0 - exp(-2.0 * lm)) * exp(lm - RG_LIGHTMAP_SHARPNESS - lambdaW);
+        vec3 axis = RG_LIGHTMAP_SHARPNESS * rgLightmapAxis(k);
+        float w = 0.0;
+        for (int i = 0; i < 3; ++i) {
+            float lambdaW = ggxB[i] * warp;
+            float lm = max(length(axis + lambdaW * R), 1e-4);
+            w += ggxC[i] * (6.28318530717959 / lm * (1.0 - exp(-2.0 * lm)) * exp(lm - RG_LIGHTMAP_SHARPNESS - lambdaW));
+        }
         ld += a * w;
         one += unit[k] * w;
     }
-    // Divided by what a uniform 1-nit hemisphere gives through the same lobes: the lobes' ripple
-    // and the part of the GGX lobe below the horizon (where the lightmap holds nothing) cancel.
     return ld / max(one, 1e-6);
 }
 

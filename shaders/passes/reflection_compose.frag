@@ -15,10 +15,14 @@ layout(location = 0) in vec2 uv;
 layout(location = 0) out vec4 color;
 layout(set = 0, binding = 0) uniform sampler2D GB0;
 layout(set = 0, binding = 1) uniform sampler2D depth;
-// The baked lightmap's specular radiance (lib/lightmap.glsl, written by the G-buffer pass): with
-// RG_SCENE_LIGHTMAP, what the rest of the reflection takes instead of the distant probe.
+// The baked lightmap's specular radiance (lib/lightmap.glsl, written by the G-buffer pass when the
+// pipeline's G-buffer has it: RG_LIGHTMAP_SPECULAR): with a scene lightmap, what the rest of the
+// reflection takes instead of the distant probe, unless the lightmap_specular parameter is off.
+#if defined(RG_LIGHTMAP_SPECULAR) && defined(RG_SCENE_LIGHTMAP) && RG_SCENE_LIGHTMAP
+#define RG_USE_LIGHTMAP_SPECULAR 1
 layout(set = 0, binding = 26) uniform sampler2D lightmap_specular;
 layout(set = 0, binding = 27) uniform Params { float lightmap_specular; } params;
+#endif
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
@@ -32,7 +36,7 @@ void main() {
     float linearRoughness = 1.0 - g.smoothness;
     vec3 Rd = rgSpecularDominantDir(N, reflect(-V, N), linearRoughness * linearRoughness);
     float covered;
-#if defined(RG_SCENE_LIGHTMAP) && RG_SCENE_LIGHTMAP
+#ifdef RG_USE_LIGHTMAP_SPECULAR
     vec3 rest = params.lightmap_specular > 0.5 ? texelFetch(lightmap_specular, p, 0).rgb : rgDistantSpecular(Rd, linearRoughness);
 #else
     vec3 rest = rgDistantSpecular(Rd, linearRoughness);

@@ -203,6 +203,70 @@ TEST(LightmapBasis, FixedWidthIsTheMeasuredBest) {
     EXPECT_NEAR(rg::bake::lightmapSharpness(9), basisSharpness(rg::bake::lightmapAxes(9)) * rg::bake::kLightmapSharpnessScale, 1e-5);
 }
 
+// The lightmap's specular term (3 SGs for GGX, warped to the reflection; lib/lightmap.glsl and its
+// CPU twin) against the GGX pre-filtering of the radiance the lightmap was fitted to, by quadrature:
+//   LD = ∫_H L(l) D(h) / (4 v·h) dl / ∫_H D(h) / (4 v·h) dl,  h = (v + l) / |v + l|,
+// for radiance fields fitted by the baker's fit (a sky, a window, a sky and a sun), smooth to rough,
+// head-on to grazing.
+TEST(LightmapSpecular, ThreeSgGgxMatchesQuadrature) {
+    using namespace rg::lighting;
+    const int lobes = 9;
+    const float lambda = rg::bake::lightmapSharpness(lobes);
+    const rg::bake::LightmapFit fit = rg::bake::lightmapFit(lobes, lambda);
+    std::vector<glm::vec3> dirs;
+    const std::vector<glm::vec3> all = goldenSpiralAxes(1 << 16);
+    for (const auto& d : all)
+        if (d.z > 0.0f) dirs.push_back(d);
+    const double dw = 4.0 * kPi / double(all.size());
+    const glm::vec3 window = glm::normalize(glm::vec3(-0.5f, 0.3f, 0.7f));
+    // Two smooth fields (a sky gradient, a tilted one) and two the basis cannot hold (a small bright
+    // window, a sun-like peak), stated but not bounded: 9 lobes are low frequency, which is why the
+    // composition takes SSR and the local probes first.
+    const std::function<double(const glm::vec3&)> fields[] = {
+        [](const glm::vec3& d) { return 0.3 + d.z; },
+        [](const glm::vec3& d) { return 1.0 + 0.6 * d.x + 0.3 * d.y; },
+        [&](const glm::vec3& d) { return glm::dot(d, window) > 0.85f ? 5.0 : 0.1; },
+        [&](const glm::vec3& d) { return 0.2 + 20.0 * std::exp(30.0 * (glm::dot(d, glm::normalize(glm::vec3(0.4f, 0.1f, 0.8f))) - 1.0f)); },
+    };
+    const size_t smoothFields = 2;
+    double sumErr = 0.0, worst = 0.0, sumSharp = 0.0;
+    int count = 0, sharpCount = 0;
+    for (size_t f = 0; f < std::size(fields); ++f) {
+        std::vector<glm::dvec3> proj(fit.axes.size(), glm::dvec3(0.0)), irr(fit.normals.size(), glm::dvec3(0.0));
+        for (const auto& w : dirs) {
+            for (size_t k = 0; k < fit.axes.size(); ++k) proj[k] += glm::dvec3(fields[f](w) * dw * std::exp(lambda * (glm::dot(fit.axes[k], w) - 1.0f)));
+            for (size_t j = 0; j < fit.normals.size(); ++j) irr[j] += glm::dvec3(fields[f](w) * dw * std::max(0.0f, glm::dot(fit.normals[j], w)));
+        }
+        rg::Lightmap lm;
+        lm.axes = fit.axes, lm.sharpness = lambda, lm.unit = fit.unit;
+        for (const auto& a : fit.solve(proj, irr)) lm.lobes.push_back({a});
+        for (float roughness : {0.25f, 0.5f, 0.75f})
+            for (float viewAngle : {0.0f, 30.0f, 60.0f}) {
+                const float th = viewAngle * float(kPi) / 180.0f;
+                const glm::vec3 N(0, 0, 1), V(std::sin(th) * 0.8f, std::sin(th) * 0.6f, std::cos(th));
+                const double a2 = std::pow(std::max(roughness * roughness, 0.02f), 2.0f);
+                double num = 0.0, den = 0.0;
+                for (const auto& l : dirs) {
+                    const glm::vec3 h = glm::normalize(V + l);
+                    const double nh = h.z, vh = std::max(1e-4f, glm::dot(V, h));
+                    const double D = a2 / (kPi * std::pow(nh * nh * (a2 - 1.0) + 1.0, 2.0));
+                    num += fields[f](l) * D / (4.0 * vh);  // the radiance the lightmap was fitted to
+                    den += D / (4.0 * vh);
+                }
+                const double truth = num / den;
+                const double ld = rg::bake::lightmapSpecular(lm, 0, N, V, roughness).x;
+                const double err = std::abs(ld - truth) / truth;
+                if (f < smoothFields) sumErr += err, worst = std::max(worst, err), ++count;
+                else sumSharp += err, ++sharpCount;
+                std::printf("  field %zu, roughness %.2f, view %2.0f°: LD %.4f, quadrature %.4f (%.1f %%)\n", f, roughness, viewAngle, ld, truth, err * 100.0);
+            }
+    }
+    std::printf("lightmap specular vs GGX quadrature, smooth fields: mean %.2f %%, worst %.2f %%; sharp fields: mean %.1f %%\n",
+                sumErr / count * 100.0, worst * 100.0, sumSharp / sharpCount * 100.0);
+    EXPECT_LT(sumErr / count, 0.08);
+    EXPECT_LT(worst, 0.20);
+}
+
 TEST(LightmapFile, RoundTripsThroughExr) {
     rg::Lightmap lm;
     lm.width = 3, lm.height = 2;
@@ -216,6 +280,7 @@ TEST(LightmapFile, RoundTripsThroughExr) {
         lm.lobes.push_back(v);
     }
     lm.coverage = {1, 1, 0, 1, 0, 1};
+    lm.unit = {0.1f, 0.2f, 0.3f, 0.4f, 0.5f};
     const std::string path = std::string(RG_TEST_TMP) + "/lightmap_roundtrip.exr";
     ASSERT_TRUE(rg::bake::writeLightmapExr(path, lm));
     auto back = rg::bake::readLightmapExr(path);
@@ -225,6 +290,7 @@ TEST(LightmapFile, RoundTripsThroughExr) {
     EXPECT_FLOAT_EQ(back->sharpness, lm.sharpness);
     EXPECT_EQ(back->key, lm.key);
     EXPECT_EQ(back->coverage, lm.coverage);
+    EXPECT_EQ(back->unit, lm.unit);
     for (int k = 0; k < 5; ++k) {
         EXPECT_NEAR(glm::length(back->axes[size_t(k)] - lm.axes[size_t(k)]), 0.0f, 1e-5f);
         for (int i = 0; i < 6; ++i) EXPECT_EQ(back->lobes[size_t(k)][size_t(i)], lm.lobes[size_t(k)][size_t(i)]);
