@@ -26,7 +26,7 @@ check() {  # check NAME EXPECTED_RC [grep PATTERN] -- command...
 check "help" 0 grep "usage: rgraph COMMAND" -- "$rgraph" --help
 check "no command" 2 grep "commands:" -- "$rgraph"
 check "unknown command" 2 grep "unknown command 'rendr'" -- "$rgraph" rendr
-for c in devices render graph bench watch export-scene compare test; do
+for c in devices render graph bench watch export-scene bake compare test; do
     check "$c --help" 0 grep "usage: rgraph $c" -- "$rgraph" $c --help
 done
 check "devices" 0 grep "*" -- "$rgraph" devices
@@ -48,6 +48,17 @@ check "render metadata is typed" 0 -- python3 -c "d=open('$tmp/r.exr','rb').read
 check "environment none" 0 grep "wrote $tmp/e.exr" -- \
     env RG_VALIDATION=1 "$rgraph" render --environment none --size 32x16 --out "$tmp/e.exr" --png "$tmp/e.png"
 check "environment missing file" 2 grep "--environment: cannot open 'nowhere.hdr'" -- "$rgraph" render --environment nowhere.hdr --size 8x8
+# Baked GI: rgraph bake's progress, figures, cache (by content hash) and EXR (a layer per lobe).
+lm=(--scene scripts/scenes/cornell.lua --scene-arg samples=16 --scene-arg density=8)
+check "bake" 0 grep "rgraph: baked " -- env RG_CACHE_DIR="$tmp/cache" "$rgraph" bake "${lm[@]}" --out "$tmp/lm.exr"
+check "bake progress" 0 grep "rgraph: baking 100 %" -- env RG_CACHE_DIR="$tmp/cache" "$rgraph" bake "${lm[@]}" --rebake
+check "bake cached" 0 grep "up to date in the cache" -- env RG_CACHE_DIR="$tmp/cache" "$rgraph" bake "${lm[@]}"
+check "bake rebakes a changed scene" 0 grep "rgraph: baked " -- env RG_CACHE_DIR="$tmp/cache" "$rgraph" bake "${lm[@]}" --scene-arg light=dynamic
+check "bake EXR layers" 0 -- python3 -c "d=open('$tmp/lm.exr','rb').read(8192); assert b'sg0.R' in d and b'sg8.B' in d and b'rgraph.lightmap.axes' in d and b'rgraph.lightmap.sharpness' in d, d[:300]"
+check "bake without a lightmap" 2 grep "declares no scene.lightmap" -- "$rgraph" bake --scene scripts/scenes/furnace.lua
+check "lightmap view of a lobe it lacks" 2 grep "the lightmap has lobes sg0 .. sg8" -- \
+    env RG_CACHE_DIR="$tmp/cache" "$rgraph" render "${lm[@]}" --view sg9 --size 8x8 --out "$tmp/v.exr"
+check "lightmap view without a lightmap" 2 grep "--view lightmap: the scene has no baked lightmap" -- "$rgraph" render --view lightmap --size 8x8 --out "$tmp/v.exr"
 check "environment wrong type" 2 grep "expected an equirectangular .hdr or .exr file, 'sky' or 'none', got 'sky.png'" -- \
     "$rgraph" render --environment sky.png --size 8x8
 cat >"$tmp/unlit.lua" <<'LUA'
