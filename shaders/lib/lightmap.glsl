@@ -40,17 +40,9 @@ vec3 rgLightmapIrradiance(vec2 uv, vec3 n) {
     return e;
 }
 
-// The shaded normal N in the tangent frame the baker used (lib/material.glsl's: the interpolated
-// normal, the tangent made perpendicular, the bitangent by its handedness).
+// The shaded normal N in the tangent frame the baker used (lib/material.glsl's rgTangentFrame).
 vec3 rgLightmapTangentNormal(vec3 N, vec3 normal, vec4 tangent, bool frontFacing) {
-    vec3 n = normalize(normal);
-    if (!frontFacing) n = -n;
-    vec3 t = tangent.xyz - n * dot(n, tangent.xyz);
-    float tl = dot(t, t);
-    vec3 anyT = normalize(abs(n.x) < 0.9 ? cross(n, vec3(1.0, 0.0, 0.0)) : cross(n, vec3(0.0, 1.0, 0.0)));
-    t = tl > 1e-12 ? t * inversesqrt(tl) : anyT;
-    vec3 b = cross(n, t) * tangent.w;
-    return vec3(dot(N, t), dot(N, b), dot(N, n));
+    return N * rgTangentFrame(normal, tangent, frontFacing);  // (N·t, N·b, N·n)
 }
 
 // The radiosity a surface sends out from the baked light (seed 000 tbl:2's GB3): irradiance at its
@@ -80,15 +72,8 @@ vec3 rgLightmapRadiosity(RgSurface s, vec3 normal, vec4 tangent, vec2 lightmapUv
 // split-sum DFG. The lobes' ripple and the part of a wide lobe below the horizon cancel in the ratio.
 // Tangent space; nits.
 vec3 rgLightmapSpecular(RgSurface s, vec3 normal, vec4 tangent, vec2 lightmapUv, bool frontFacing, vec3 V) {
-    vec3 n = normalize(normal);
-    if (!frontFacing) n = -n;
-    vec3 t = tangent.xyz - n * dot(n, tangent.xyz);
-    float tl = dot(t, t);
-    vec3 anyT = normalize(abs(n.x) < 0.9 ? cross(n, vec3(1.0, 0.0, 0.0)) : cross(n, vec3(0.0, 1.0, 0.0)));
-    t = tl > 1e-12 ? t * inversesqrt(tl) : anyT;
-    vec3 b = cross(n, t) * tangent.w;
-    mat3 toTangent = transpose(mat3(t, b, n));
-    vec3 N = toTangent * s.normal, v = toTangent * V;
+    mat3 frame = rgTangentFrame(normal, tangent, frontFacing);
+    vec3 N = s.normal * frame, v = V * frame;  // tangent space
     float linearRoughness = 1.0 - s.smoothness;
     float alpha = max(linearRoughness * linearRoughness, 0.02);
     vec3 R = reflect(-v, N);

@@ -59,6 +59,20 @@ vec2 rgTextureUv(int texture, vec2 uv0, vec2 uv1) {
 #define rgSampleMaterialTexture(tex, bit, slot, uv0, uv1, absent) \
     (((RG_TEXTURES) & (bit)) != 0 ? texture(tex, rgTextureUv(slot, uv0, uv1)) : (absent))
 
+// The surface's tangent frame (tangent, bitangent, normal as columns) from the interpolated
+// vertex normal and tangent, facing the viewer: the normal map's frame, and the baked lightmap's
+// (graph/bake builds the same). Gram-Schmidt; a degenerate tangent (at a sphere's pole, or none at
+// all) falls back to any vector perpendicular to n, so no NaN reaches the G-buffer.
+mat3 rgTangentFrame(vec3 normal, vec4 tangent, bool frontFacing) {
+    vec3 n = normalize(normal);
+    if (!frontFacing) n = -n;
+    vec3 t = tangent.xyz - n * dot(n, tangent.xyz);
+    float tl = dot(t, t);
+    vec3 anyT = normalize(abs(n.x) < 0.9 ? cross(n, vec3(1.0, 0.0, 0.0)) : cross(n, vec3(0.0, 1.0, 0.0)));
+    t = tl > 1e-12 ? t * inversesqrt(tl) : anyT;
+    return mat3(t, cross(n, t) * tangent.w, n);
+}
+
 RgSurface rgSampleSurface(vec3 position, vec3 normal, vec4 tangent, vec2 uv0, vec2 uv1, bool frontFacing) {
     RgSurface s;
     s.position = position;
@@ -76,18 +90,9 @@ RgSurface rgSampleSurface(vec3 position, vec3 normal, vec4 tangent, vec2 uv0, ve
     s.diffuseColor = material.diffuseColor.rgb * base.rgb;
     s.f0 = material.f0.rgb;
     s.twoColour = material.diffuseColor.w > 0.5;
-    vec3 n = normalize(normal);
-    if (!frontFacing) n = -n;
-    // Gram-Schmidt; a degenerate tangent (at a sphere's pole, or none at all) falls back to
-    // any vector perpendicular to n, so no NaN reaches the G-buffer.
-    vec3 t = tangent.xyz - n * dot(n, tangent.xyz);
-    float tl = dot(t, t);
-    vec3 anyT = normalize(abs(n.x) < 0.9 ? cross(n, vec3(1.0, 0.0, 0.0)) : cross(n, vec3(0.0, 1.0, 0.0)));
-    t = tl > 1e-12 ? t * inversesqrt(tl) : anyT;
-    vec3 b = cross(n, t) * tangent.w;
     vec3 m = rgSampleMaterialTexture(normalTex, 4, 2, uv0, uv1, vec4(0.5, 0.5, 1.0, 1.0)).xyz * 2.0 - 1.0;
     m.xy *= material.factors2.x;
-    s.normal = normalize(mat3(t, b, n) * m);
+    s.normal = normalize(rgTangentFrame(normal, tangent, frontFacing) * m);
     return s;
 }
 
