@@ -206,6 +206,9 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
     float radius = light.params.z;
 
     if (RG_SCENE_HAS_LIGHT(RG_LIGHT_SPHERE) && type == RG_LIGHT_SPHERE) {
+        // A point inside the sphere: its surface emits outwards, so nothing reaches the point (as in
+        // the reference mode) — not the blow-up the formulas below give there.
+        if (sqrDist < radius * radius) return s;
         // lst:10, sphere evaluation: clamps keep away from the edge cases and out of the light.
         float sinSigmaSqr = min(radius * radius / sqrDist, 0.9999);
         s.Ld = L;
@@ -263,6 +266,8 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
         float t = dot(-L0, ab) / max(dot(ab, ab), 1e-20);
         vec3 closestOnLine = L0 + t * ab;
         vec3 closestOnSegment = L0 + clamp(t, 0.0, 1.0) * ab;
+        // Inside the capsule: nothing reaches the point (it emits outwards), as for the sphere.
+        if (dot(closestOnSegment, closestOnSegment) < radius * radius) return s;
         vec3 forward = rgSafeNormalize(closestOnLine, normalize(cross(dir, abs(dir.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0))));
         vec3 up = cross(dir, forward);
         vec3 p0 = Lu - dir * (0.5 * lightWidth) + radius * up;

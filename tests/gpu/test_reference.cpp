@@ -177,6 +177,24 @@ TEST_F(Reference, LightsAcrossTheHorizon) {
     }
 }
 
+TEST_F(Reference, PointsInsideASphereOrTubeGetNothing) {
+    // reference_horizon.lua: the floor under the sphere's centre (0.2 m up, 0.5 m radius) and the
+    // tube's axis (0.05 m up, 0.1 m radius) lies inside the light. Its surface emits outwards, so
+    // the reference gives those points 0; the real-time evaluation gives 0 too (before: lst:10's and
+    // the capsule's formulas blew up there).
+    for (const char* light : {"sphere", "tube"}) {
+        Render rt = render("deferred.lua", "reference_horizon.lua", 1, {{"light", light}});
+        Render ref = render("reference.lua", "reference_horizon.lua", 16, {{"light", light}});
+        ASSERT_FALSE(rt.hdr.pixels.empty());
+        ASSERT_FALSE(ref.hdr.pixels.empty());
+        // The camera looks at the origin: the image's centre is the floor right under the light.
+        const size_t i = (size_t(H / 2) * W + W / 2) * 4;
+        std::printf("%s: the floor inside the light: real-time %.4g, reference %.4g nits\n", light, rt.hdr.pixels[i + 1], ref.hdr.pixels[i + 1]);
+        EXPECT_EQ(rt.hdr.pixels[i + 1], 0.0f) << light;
+        EXPECT_LT(ref.hdr.pixels[i + 1], 1e-3f) << light;
+    }
+}
+
 TEST_F(Reference, AccumulationKeepsItsFramesUntilTheSceneChanges) {
     // The accumulator's alpha counts its frames. A reload of the same pipeline and scene (watch)
     // keeps them; a scene whose file changed starts again (the old frames show another scene).
