@@ -525,7 +525,11 @@ Result<GpuLightTable> convertLights(const std::vector<Light>& lights, IesMode ie
 
         glm::vec3 color = l.color;
         if (l.temperatureK > 0) {
-            auto rgb = lights::colorTemperatureToRgb(l.temperatureK);
+            if (!lights::colorTemperatureInRange(l.temperatureK, l.daylight))
+                return fail(ErrorCode::InvalidInput, label + ": temperature " + std::to_string(l.temperatureK) + " K is outside the " +
+                                                         (l.daylight ? "daylight locus's 4000-25000 K" : "black body's 1667-25000 K") +
+                                                         " that colour temperature converts");
+            auto rgb = lights::colorTemperatureToRgb(l.temperatureK, l.daylight);
             color *= glm::vec3(static_cast<float>(rgb[0]), static_cast<float>(rgb[1]), static_cast<float>(rgb[2]));
         }
         GpuLight g{};
@@ -603,7 +607,14 @@ Result<GpuLightTable> convertLights(const std::vector<Light>& lights, IesMode ie
                 shape.radius = l.radius;
                 shape.length = l.length;
                 type = l.type == LightType::Sphere ? GpuLightType::Sphere : l.type == LightType::Disk ? GpuLightType::Disk : GpuLightType::Tube;
-                g.params = glm::vec4(0.0f, 0.0f, l.radius, l.type == LightType::Tube ? l.length : 0.0f);
+                // A disk's cone (lst:9): the spot's scale and offset, and in axis.w how far behind
+                // the disk its virtual apex lies (r / tan θ_outer); without one, scale 0, offset 1.
+                lighting::AngleScaleOffset cone;
+                if (l.type == LightType::Disk && l.cone) {
+                    cone = lighting::spotAngleScaleOffset(l.innerAngle, l.outerAngle);
+                    g.axis = glm::vec4(0.0f, 0.0f, 0.0f, l.radius / std::tan(std::clamp(l.outerAngle, 1e-3f, 1.5707f)));
+                }
+                g.params = glm::vec4(cone.scale, cone.offset, l.radius, l.type == LightType::Tube ? l.length : 0.0f);
             }
             const lighting::AreaUnit unit = l.unit == "lm"     ? lighting::AreaUnit::Lumens
                                             : l.unit == "nits" ? lighting::AreaUnit::Nits

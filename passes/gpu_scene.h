@@ -93,9 +93,10 @@ struct GpuLightTable {
 //   (1, 0, 0): +z for a light pointing down.
 // - sun: lux perpendicular to its rays; sin and cos of its angular radius (lst:6).
 // - sphere, disk, rect, tube: luminance in cd/m² from lm (tbl:12), nits or EV100 (eq:12) by
-//   lighting::areaLightLuminance. A rect's up is made perpendicular to its direction. Disks have
-//   no cone (lst:9 needs a spot's angles, which Light gives spots only); range windows every
-//   local light by the distance to its centre (lst:4).
+//   lighting::areaLightLuminance. A rect's up is made perpendicular to its direction. A disk with
+//   a cone (Light::cone, lst:9) gets the spot's angle scale and offset in params.xy and the
+//   distance from its centre back to the cone's apex in axis.w; range windows every local light by
+//   the distance to its centre (lst:4).
 // Colour temperature multiplies the colour (tbl:4). Errors name the light: a unit its type cannot
 // have, a size that is not positive, an IES file that does not load, more than kMaxLights lights
 // or kMaxIesProfiles profiles.

@@ -288,7 +288,7 @@ LightSample sampleLight(const GpuLight& g, glm::vec3 p, Rng& rng) {
         q = pos + radius * nq;
         area = 4.0f * kPi * radius * radius;
     } else if (type == GpuLightType::Disk || type == GpuLightType::Rect) {
-        const Frame f = tangentFrame(dir, glm::vec4(type == GpuLightType::Rect ? glm::vec3(g.axis) : glm::vec3(1, 0, 0), 1.0f));
+        const Frame f = tangentFrame(dir, glm::vec4(type == GpuLightType::Rect ? glm::vec3(g.axis) : glm::vec3(1, 0, 0), 1.0f));  // disks: any frame
         if (type == GpuLightType::Disk) {
             const float r = radius * std::sqrt(u1), phi = 2.0f * kPi * u2;
             q = pos + f.t * (r * std::cos(phi)) + f.b * (r * std::sin(phi));
@@ -324,7 +324,12 @@ LightSample sampleLight(const GpuLight& g, glm::vec3 p, Rng& rng) {
     if (oneSided ? cosLight <= 0.0f : cosLight <= 0.0f) return s;
     // lst:4's window by the distance to the light's centre, as the real-time loop does.
     const glm::vec3 toCentre = pos - p;
-    const float window = invSqrRange > 0.0f ? lighting::smoothDistanceAtt(glm::dot(toCentre, toCentre), invSqrRange) : 1.0f;
+    float window = invSqrRange > 0.0f ? lighting::smoothDistanceAtt(glm::dot(toCentre, toCentre), invSqrRange) : 1.0f;
+    if (type == GpuLightType::Disk) {  // its cone (lst:9), as lighting.glsl's rgDiskCone
+        const glm::vec3 apex = pos - dir * g.axis.w, toApex = apex - p;
+        const float len = glm::length(toApex);
+        window *= lighting::getAngleAtt(len > 0.0f ? -toApex / len : dir, dir, g.params.x, g.params.y);
+    }
     s.illuminance = colour * (cosLight * area / d2 * window);
     return s;
 }

@@ -60,7 +60,7 @@ std::string lightmapKey(const Scene& scene, const LightmapSettings& s) {
     for (const Light& l : scene.lights) {
         h.pod(l.type), h.pod(l.position), h.pod(l.direction), h.pod(l.up), h.pod(l.color), h.pod(l.temperatureK), h.pod(l.intensity);
         h.str(l.unit), h.pod(l.radius), h.pod(l.width), h.pod(l.height), h.pod(l.length), h.pod(l.innerAngle), h.pod(l.outerAngle);
-        h.pod(l.range), h.pod(l.exactCone), h.pod(l.sunAngularRadius), h.pod(l.baked), h.str(l.ies);
+        h.pod(l.range), h.pod(l.exactCone), h.pod(l.sunAngularRadius), h.pod(l.baked), h.str(l.ies), h.pod(l.cone), h.pod(l.daylight);
     }
     if (scene.environment) {
         const Environment& e = *scene.environment;

@@ -23,7 +23,19 @@ double spotIntensityFromLumens(double lumens, double outerHalfAngle, bool exactC
 double luminanceFromEv100(double ev100);
 // Illuminance (lux) at distance d (m) and incidence cosine from an intensity (cd): E = I cosθ / d².
 double illuminance(double candela, double distance, double cosine = 1.0);
-// Linear Rec.709 RGB of a black body at `kelvin`, scaled to luminance 1 (tbl:4: 1000 K–40000 K).
-std::array<double, 3> colorTemperatureToRgb(double kelvin);
+// Colour temperature (tbl:4; the seed takes only the hue from it, §4.1). Two loci:
+// - the black body (Planckian locus), for incandescent and halogen lamps and the seed's table: CIE
+//   1931 xy by the cubic-spline fit of Kang et al. 2002, defined over 1667–25000 K (CIE illuminant
+//   A, 2856 K: within 5e-4 of its xy);
+// - the CIE daylight locus (the D illuminants, CIE 15:2004 §3.1), for daylight and "daylight" lamps
+//   — their CCT is off the black body's locus — defined over 4000–25000 K (D65 is 6504 K).
+// Outside those ranges there is no conversion: callers refuse the value (no silent clamp).
+inline constexpr double kMinColorTemperature = 1667.0, kMaxColorTemperature = 25000.0;
+inline constexpr double kMinDaylightTemperature = 4000.0;
+std::array<double, 2> colorTemperatureXy(double kelvin, bool daylight = false);
+// Linear Rec.709 RGB of that chromaticity, scaled to luminance 1 (negative components clipped).
+std::array<double, 3> colorTemperatureToRgb(double kelvin, bool daylight = false);
+// Whether `kelvin` lies in the range the locus converts.
+bool colorTemperatureInRange(double kelvin, bool daylight = false);
 
 }  // namespace rg::lights

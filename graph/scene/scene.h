@@ -181,14 +181,20 @@ struct Light {
     glm::vec3 direction{0.0f, -1.0f, 0.0f};
     glm::vec3 up{0.0f, 1.0f, 0.0f};       // rect lights: the direction of `height`
     glm::vec3 color{1.0f};                // linear RGB, multiplies the intensity
-    float temperatureK = 0.0f;            // kelvin; 0 = use color
+    float temperatureK = 0.0f;            // kelvin; 0 = use color (lights::colorTemperatureXy's ranges)
+    bool daylight = false;                // temperatureK on the CIE daylight locus, not the black body's
     float intensity = 1.0f;               // in `unit`
     std::string unit = "lm";              // "lm", "cd", "lux", "nits", "ev100" (as declared)
     float radius = 0.0f;                  // sphere, disk, tube (metres)
     float width = 0.0f, height = 0.0f;    // rect (metres)
     float length = 0.0f;                  // tube (metres)
-    float innerAngle = 0.0f;              // spot half-angles (radians)
+    float innerAngle = 0.0f;              // spot half-angles (radians); a disk's cone when `cone`
     float outerAngle = 0.785398f;
+    // A disk light with a cone (seed 000 lst:9, "the disk is like a spot"): its illuminance is
+    // attenuated as a spot's by innerAngle/outerAngle, seen from the apex of the cone of half-angle
+    // outerAngle through its rim (lighting::diskVirtualPosition). Not physical: the seed's way of
+    // giving the disk a spot's smooth edge.
+    bool cone = false;
     float range = 0.0f;                   // metres; 0 = unlimited (windowed falloff otherwise)
     std::string ies;                      // path of an IES (LM-63) profile, "" for none
     // How the profile sets the intensity (seed 000 §4.5, eq:27, lst:5): "mask" (the declared

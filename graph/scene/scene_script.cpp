@@ -12,6 +12,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "core/light_units.h"
 #include "lua/declarations.h"
 #include "lua/lua_host.h"
 #include "scene.h"
@@ -427,7 +428,7 @@ struct Builder {
     Result<void> light(const Declaration& d) {
         Where w = where(d);
         const Value& b = d.body;
-        if (auto r = checkFields(w, b, {"type", "intensity", "unit", "color", "temperature", "position", "direction", "target", "up", "baked",
+        if (auto r = checkFields(w, b, {"type", "intensity", "unit", "color", "temperature", "locus", "position", "direction", "target", "up", "baked",
                                         "radius", "width", "height", "length", "inner_angle", "outer_angle", "range", "ies",
                                         "ies_mode", "exact_cone", "angular_radius", "shadow", "doc"});
             !r)
@@ -457,8 +458,10 @@ struct Builder {
         if (auto r = only("height", l.type == LightType::Rect, "rect lights"); !r) return r;
         if (auto r = only("up", l.type == LightType::Rect, "rect lights"); !r) return r;
         if (auto r = only("length", l.type == LightType::Tube, "tube lights"); !r) return r;
-        if (auto r = only("inner_angle", l.type == LightType::Spot, "spot lights"); !r) return r;
-        if (auto r = only("outer_angle", l.type == LightType::Spot, "spot lights"); !r) return r;
+        if (auto r = only("inner_angle", l.type == LightType::Spot || l.type == LightType::Disk, "spot and disk lights"); !r) return r;
+        if (auto r = only("outer_angle", l.type == LightType::Spot || l.type == LightType::Disk, "spot and disk lights"); !r) return r;
+        if (l.type == LightType::Disk && b.has("inner_angle") && !b.has("outer_angle"))
+            return w.at("inner_angle").error("a disk's cone needs its outer_angle too (seed 000 lst:9)");
         if (auto r = only("ies", punctual, "point and spot lights"); !r) return r;
         if (auto r = only("ies_mode", punctual, "point and spot lights with an IES profile"); !r) return r;
         if (b.has("ies_mode") && !b.has("ies")) return w.at("ies_mode").error("needs an ies profile to apply");
@@ -485,7 +488,13 @@ struct Builder {
 
         if (b.has("color") && b.has("temperature")) return w.at("temperature").error("give either color or temperature, not both");
         RG_TRY(l.color, colour(w, b, "color", l.color, Range::nonNegative()));
-        RG_TRY(l.temperatureK, numberF(w, b, "temperature", 0.0f, Range::closed(1000, 40000)));
+        // The ranges lights::colorTemperatureXy converts: the black body 1667–25000 K, daylight 4000–25000 K.
+        std::string locus;
+        RG_TRY(locus, choice(w, b, "locus", "blackbody", {"blackbody", "daylight"}, "colour temperature locus"));
+        if (b.has("locus") && !b.has("temperature")) return w.at("locus").error("applies with a temperature only");
+        l.daylight = locus == "daylight";
+        RG_TRY(l.temperatureK, numberF(w, b, "temperature", 0.0f,
+                                       Range::closed(l.daylight ? lights::kMinDaylightTemperature : lights::kMinColorTemperature, lights::kMaxColorTemperature)));
 
         RG_TRY(l.position, vec3(w, b, "position", l.position));
         if (b.has("direction") && b.has("target")) return w.at("target").error("give either direction or target, not both");
@@ -522,7 +531,8 @@ struct Builder {
         }
         if (l.type == LightType::Tube)
             if (auto r = need("length", l.length); !r) return r;
-        if (l.type == LightType::Spot) {
+        if (l.type == LightType::Spot || (l.type == LightType::Disk && b.has("outer_angle"))) {
+            l.cone = l.type == LightType::Disk;
             float inner = 0.0f, outer = 45.0f;
             RG_TRY(inner, numberF(w, b, "inner_angle", inner, Range::closed(0, 90)));
             RG_TRY(outer, numberF(w, b, "outer_angle", outer, Range::openLow(0, 90)));

@@ -135,6 +135,15 @@ vec3 rgRayOnPlane(vec3 centre, vec3 n, vec3 R) {
     return hit - dot(hit - centre, n) * n;  // back on the plane
 }
 
+// seed 000 lst:9: a disk light's cone, a spot's angle attenuation seen from the cone's apex behind
+// the disk (r / tan θ_outer back along its direction, axis.w): applied to its illuminance as is,
+// "without regard for realism". A disk without a cone has scale 0, offset 1: 1.
+float rgDiskCone(RgLight light, vec3 P) {
+    vec3 dir = light.directionRange.xyz;
+    vec3 apex = light.positionType.xyz - dir * light.axis.w;
+    return getAngleAtt(-rgSafeNormalize(apex - P, -dir), dir, light.params.x, light.params.y);
+}
+
 // ---- One light at one point --------------------------------------------------------------------
 
 // What light i gives a point: the diffuse lobe sees `diffuseIlluminance` (lux, per channel; the
@@ -221,8 +230,9 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
         float w = rgLobeWidening(alpha, radius * invDist);
         s.specularNormalisation = w * w;
     } else if (RG_SCENE_HAS_LIGHT(RG_LIGHT_DISK) && type == RG_LIGHT_DISK) {
-        // lst:10, disk evaluation, times the disk's own orientation. It emits along `dir`.
-        float cosLight = clamp(dot(dir, -L), 0.0, 1.0);
+        // lst:10, disk evaluation, times the disk's own orientation. It emits along `dir`; its cone
+        // (lst:9) attenuates the illuminance.
+        float cosLight = clamp(dot(dir, -L), 0.0, 1.0) * rgDiskCone(light, P);
         float sqrRadius = radius * radius;
         float sinSigmaSqr = sqrRadius / (sqrRadius + max(sqrRadius, sqrDist));
         s.Ld = L;

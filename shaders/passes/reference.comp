@@ -198,7 +198,9 @@ vec3 lightRadiance(RgLight light, int type, vec3 P) {
         return light.intensity.rgb / (RG_PI * light.params.z * light.params.z);
     }
     vec3 Lu = light.positionType.xyz - P;
-    return light.intensity.rgb * rgRangeWindow(max(dot(Lu, Lu), 1e-12), light.directionRange.w);
+    // A disk's cone (lst:9) attenuates what it gives the point, as in the real-time evaluation.
+    float cone = type == RG_LIGHT_DISK ? rgDiskCone(light, P) : 1.0;
+    return light.intensity.rgb * (rgRangeWindow(max(dot(Lu, Lu), 1e-12), light.directionRange.w) * cone);
 }
 
 // Area sampling, as a direction: pdf_ω = pdf_A · d² / ⟨n_a·−l⟩; 0 where the sampled point shows

@@ -366,6 +366,34 @@ TEST_F(Lights, DiskLightMatchesListing10) {
     }
 }
 
+TEST_F(Lights, DiskConeAttenuatesLikeASpotFromItsApex) {
+    // seed 000 lst:9: a disk 1 m up facing down with a cone (inner 20°, outer 35°): each floor point
+    // gets the cone-less disk's light × getAngleAtt seen from the apex r / tan(35°) behind the disk —
+    // all of it under the disk, none beyond the outer cone, the smooth edge between.
+    const std::string base = "scene.light \"area\" { type = \"disk\", intensity = 1500, unit = \"lm\", radius = 0.3, position = { 0, 1, 0 }, "
+                             "direction = { 0, -1, 0 }";
+    Frame plain = render(withLight("lights_area.lua", base + " }", "disk_plain"));
+    Frame coned = render(withLight("lights_area.lua", base + ", inner_angle = 20, outer_angle = 35 }", "disk_cone"));
+    ASSERT_TRUE(plain.finite && coned.finite);
+    ASSERT_TRUE(coned.scene.lights.front().cone);
+    const auto cone = lighting::spotAngleScaleOffset(20.0f * float(kPi) / 180.0f, 35.0f * float(kPi) / 180.0f);
+    const glm::dvec3 apex = lighting::diskVirtualPosition({0, 1, 0}, {0, -1, 0}, 0.3, 35.0 * kPi / 180.0);
+    int inside = 0, outside = 0, edge = 0;
+    for (double x : {0.0, 0.2, 0.45, 0.6, 0.75, 0.9, 1.2}) {
+        const glm::ivec2 px = pixelOf(plain.view, {x, 0.0, 0.1});
+        const glm::dvec3 P = floorAt(plain.view, px);
+        const double att = lighting::getAngleAtt(glm::vec3(-glm::normalize(apex - P)), glm::vec3(0, -1, 0), cone.scale, cone.offset);
+        const double want = luminanceAt(plain, px) * att, got = luminanceAt(coned, px);
+        std::printf("disk cone at x = %.2f: attenuation %.3f, cone-less %.4f, expected %.4f, got %.4f cd/m²\n", P.x, att,
+                    luminanceAt(plain, px), want, got);
+        EXPECT_NEAR(got, want, 0.01 * luminanceAt(plain, px) + 1e-5) << P.x;
+        (att > 0.999 ? inside : att < 1e-4 ? outside : edge) += 1;
+    }
+    EXPECT_GE(inside, 1);
+    EXPECT_GE(outside, 1);
+    EXPECT_GE(edge, 1);
+}
+
 TEST_F(Lights, RectangleLightMatchesStructuredSampling) {
     const char* rects[] = {
         "scene.light \"area\" { type = \"rect\", intensity = 3000, unit = \"lm\", width = 1.0, height = 0.5, position = { 0, 1, 0 }, direction = { 0, -1, 0 }, up = { 0, 0, 1 } }",

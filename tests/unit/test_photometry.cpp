@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 
+#include "core/light_units.h"
 #include "core/photometry.h"
 
 using namespace rg::photometry;
@@ -43,4 +45,30 @@ TEST(Photometry, BloomLuminanceIsRelativeToTheCurrentEv) {
     // seed 002 §5.1.3: colour · 2^(EV + bloomEC − 3); at EC 0 it is the luminance of the EV.
     EXPECT_NEAR(bloomLuminance(1.0, 0.0, 10.0), luminanceFromEv100(10.0), 1e-12);
     EXPECT_NEAR(bloomLuminance(0.5, -2.0, 10.0), 0.5 * luminanceFromEv100(8.0), 1e-12);
+}
+
+// Colour temperature (seed 000 tbl:4) against the CIE's illuminants: A is a black body at 2856 K,
+// D65 the daylight illuminant of CCT 6504 K (off the black body's locus: 6504 K there is 5e-3
+// greener in y). xy within 1e-3; and the ranges are exactly those the fits cover.
+TEST(ColourTemperature, MatchesCieIlluminantsAAndD65) {
+    using namespace rg::lights;
+    const auto a = colorTemperatureXy(2856.0);
+    EXPECT_NEAR(a[0], 0.44757, 1e-3);
+    EXPECT_NEAR(a[1], 0.40745, 1e-3);
+    const auto d65 = colorTemperatureXy(6504.0, /*daylight=*/true);
+    EXPECT_NEAR(d65[0], 0.31271, 1e-3);
+    EXPECT_NEAR(d65[1], 0.32902, 1e-3);
+    const auto planck6504 = colorTemperatureXy(6504.0);
+    EXPECT_GT(std::abs(planck6504[1] - 0.32902), 3e-3);  // the black body at 6504 K is not D65
+    std::printf("A: xy %.5f %.5f (CIE 0.44757 0.40745); D65: %.5f %.5f (CIE 0.31271 0.32902); black body at 6504 K: %.5f %.5f\n", a[0], a[1],
+                d65[0], d65[1], planck6504[0], planck6504[1]);
+    EXPECT_TRUE(colorTemperatureInRange(1667.0));
+    EXPECT_FALSE(colorTemperatureInRange(1000.0));   // rendered as 1667 K before: now refused
+    EXPECT_FALSE(colorTemperatureInRange(40000.0));
+    EXPECT_FALSE(colorTemperatureInRange(3000.0, true));  // the daylight locus starts at 4000 K
+    // RGB at luminance 1: A is warm, D65 near white (Rec.709's white point is D65).
+    const auto rgbA = colorTemperatureToRgb(2856.0), rgbD = colorTemperatureToRgb(6504.0, true);
+    EXPECT_NEAR(0.2126 * rgbA[0] + 0.7152 * rgbA[1] + 0.0722 * rgbA[2], 1.0, 1e-9);
+    EXPECT_GT(rgbA[0], rgbA[2] * 2.0);
+    for (double c : rgbD) EXPECT_NEAR(c, 1.0, 0.01);
 }

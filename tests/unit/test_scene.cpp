@@ -1064,6 +1064,14 @@ TEST(SceneScript, LightFieldErrorsAndUnitsPerType) {
               "bad.lua:1: scene.light.a.intensity: expected a number >= 0, got -5");
     EXPECT_EQ(lua.error("scene.light \"a\" { type = \"point\", intensity = 5, color = { 1, 1, 1 }, temperature = 3000 }"),
               "bad.lua:1: scene.light.a.temperature: give either color or temperature, not both");
+    EXPECT_EQ(lua.error("scene.light \"a\" { type = \"point\", intensity = 5, temperature = 1000 }"),
+              "bad.lua:1: scene.light.a.temperature: expected a number in [1667, 25000], got 1000");
+    EXPECT_EQ(lua.error("scene.light \"a\" { type = \"point\", intensity = 5, temperature = 3000, locus = \"daylight\" }"),
+              "bad.lua:1: scene.light.a.temperature: expected a number in [4000, 25000], got 3000");
+    EXPECT_EQ(lua.error("scene.light \"a\" { type = \"point\", intensity = 5, locus = \"daylight\" }"),
+              "bad.lua:1: scene.light.a.locus: applies with a temperature only");
+    EXPECT_EQ(lua.error("scene.light \"a\" { type = \"disk\", intensity = 5, radius = 0.1, direction = { 0, -1, 0 }, inner_angle = 10 }"),
+              "bad.lua:1: scene.light.a.inner_angle: a disk's cone needs its outer_angle too (seed 000 lst:9)");
     EXPECT_EQ(lua.error("scene.light \"a\" { type = \"point\", intensity = 5, width = 1 }"),
               "bad.lua:1: scene.light.a.width: not used by a point light (only by rect lights)");
     EXPECT_EQ(lua.error("scene.light \"s\" { type = \"sun\", intensity = 5, direction = { 0, -1, 0 }, range = 3 }"),
