@@ -110,7 +110,10 @@ double illuminanceSphereOrDisk(double cosTheta, double sinSigmaSqr) {
 }
 
 double sphereIlluminance(double radius, double sqrDist, double cosTheta) {
-    // seed 000 lst:10, sphere evaluation: clamps avoid the edge cases and a point inside the light.
+    // A point inside the sphere gets nothing: its surface emits outwards (as lighting.glsl and the
+    // reference mode).
+    if (sqrDist < radius * radius) return 0.0;
+    // seed 000 lst:10, sphere evaluation: clamps avoid the edge cases.
     const double c = std::clamp(cosTheta, -0.999, 0.999);
     const double sinSigmaSqr = std::min(radius * radius / sqrDist, 0.9999);
     return illuminanceSphereOrDisk(c, sinSigmaSqr);
@@ -231,6 +234,8 @@ double tubeIlluminance(const glm::dvec3& worldPos, const glm::dvec3& worldNormal
     const double t = glm::dot(worldPos - p0, ab) / lengthSq;
     const glm::dvec3 closestOnLine = p0 + t * ab;
     const glm::dvec3 closestOnSegment = p0 + std::clamp(t, 0.0, 1.0) * ab;
+    // Inside the capsule: nothing (it emits outwards), as lighting.glsl and the reference mode.
+    if (glm::dot(closestOnSegment - worldPos, closestOnSegment - worldPos) < radius * radius) return 0.0;
     const glm::dvec3 lightPos = 0.5 * (p0 + p1);
     const double lightWidth = std::sqrt(lengthSq);
     const glm::dvec3 left = ab / lightWidth;

@@ -74,7 +74,7 @@ double illuminanceSphereOrDisk(double cosTheta, double sinSigmaSqr);
 
 // lst:10, sphere evaluation: cos θ clamped to ±0.999 and sin²σ to 0.9999 (edge cases, and the point
 // must not enter the light).
-double sphereIlluminance(double radius, double sqrDist, double cosTheta);
+double sphereIlluminance(double radius, double sqrDist, double cosTheta);  // 0 inside the sphere
 
 // ---- Disk lights (lst:8, lst:9, lst:10) ---------------------------------------------------------
 

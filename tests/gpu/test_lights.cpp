@@ -339,8 +339,9 @@ TEST_F(Lights, PointLightGivesTable10) {
 // ---- Area lights (diffuse): graph/lighting --------------------------------------------------------
 
 TEST_F(Lights, SphereLightMatchesListing10AcrossTheHorizon) {
-    // lights_area.lua: a 0.5 m sphere whose centre is 0.4 m above the floor. Right below it, the
-    // sphere covers the zenith; 1.5 m aside it straddles the horizon (cos θ 0.26 < sin σ 0.32).
+    // lights_area.lua: a 0.5 m sphere whose centre is 0.4 m above the floor. Right below it the floor
+    // is inside the sphere: nothing reaches it (the surface emits outwards); 1.5 m aside it
+    // straddles the horizon (cos θ 0.26 < sin σ 0.32).
     Frame f = render(kScenes + "lights_area.lua");
     ASSERT_TRUE(f.finite);
     const Light& l = f.scene.lights.front();
