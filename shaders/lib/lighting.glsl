@@ -124,6 +124,8 @@ vec3 rgSpecularDominantDirArea(vec3 N, vec3 R, float alpha) { return normalize(m
 // Karis (the reference of §4.7.5): moving the light to its representative point widens the lobe
 // as if α became α' = saturate(α + ½ · subtended angle); GGX's normalisation 1/(π α²) then asks
 // for (α / α')² for a sphere. Per widened dimension: α / α'. `angle` ≈ half extent / distance.
+// Not in the seeds; kept by measurement (rgraph accuracy): without it a glossy metal under an area
+// light gets +280 % to +3000 % of the reference's energy, a glossy dielectric +10 % to +330 %.
 float rgLobeWidening(float alpha, float angle) { return alpha / clamp(alpha + 0.5 * clamp(angle, 0.0, 1.0), 0.0, 1.0); }
 
 // The point of a plane (through `centre`, normal n; vectors relative to the shaded point) the ray
