@@ -645,7 +645,7 @@ struct Builder {
         s.lobes = static_cast<int>(lobes);
         double samples = s.samples, bounces = s.bounces, maxSize = s.maxSize;
         RG_TRY(samples, number(w, b, "samples", samples, Range{1, 65536, false, false, true}));
-        RG_TRY(bounces, number(w, b, "bounces", bounces, Range{0, 16, false, false, true}));
+        RG_TRY(bounces, number(w, b, "bounces", bounces, Range{1, 16, false, false, true}));
         RG_TRY(maxSize, number(w, b, "max_size", maxSize, Range{64, 8192, false, false, true}));
         s.samples = static_cast<int>(samples);
         s.bounces = static_cast<int>(bounces);
