@@ -22,6 +22,6 @@ lightmap.gbuffer_writes_specular = false
 rg.param "lightmap" { type = "boolean", default = true,
     doc = "use the scene's baked SG lightmap (scene.lightmap) when it has one; read when the scene loads" }
 rg.param "lightmap_specular" { type = "boolean", default = true,
-    doc = "with a lightmap, reflect its light (the SG lobes through the GGX lobe) where SSR and the local probes leave off, instead of the distant probe" }
+    doc = "with a lightmap, reflect its light (the SG lobes through the GGX lobe) where SSR and the local probes leave off, instead of the distant probe; off: the G-buffer does not compute it" }
 
 return lightmap

@@ -660,7 +660,7 @@ int cmdBake(int argc, char** argv) {
         return report(Error(r.error().code, scene->lightmap->origin + ": scene.lightmap." + scene->lightmap->name + ": " + r.error().message));
     const Lightmap& lm = *scene->bakedLightmap;
     const double mib = double(lm.width) * lm.height * double(lm.axes.size()) * 3 * 4 / (1 << 20);
-    const double gpuMib = double(lm.width) * lm.height * double(lm.axes.size()) * 8 / (1 << 20);
+    const double gpuMib = double(lm.width) * lm.height * double(lm.axes.size() + 1) * 8 / (1 << 20);  // + the flat normal's irradiance
     std::printf("rgraph: lightmap %ux%u, %zu lobes (sharpness %.3f), %.2f texels/m: %.2f MiB as 32-bit floats, %.2f MiB on the GPU (RGBA16F)\n",
                 lm.width, lm.height, lm.axes.size(), double(lm.sharpness), double(lm.density), mib, gpuMib);
     if (fromCache)

@@ -230,11 +230,23 @@ GraphDesc Session::buildableGraph(const PipelineDesc& p) const {
     // generated shaders know by name) exists only while the scene has a baked lightmap: without
     // one, the target and every access to it leave the graph, so it costs no attachment traffic
     // (~10 ms of a 1280×720 G-buffer on lavapipe).
+    // The same when the pipeline's lightmap_specular parameter is off: then the passes that read it
+    // lose its define (RG_LIGHTMAP_SPECULAR) too and reflect the distant probe.
     const passes::GpuScene* gpuScene = m_runtime.executor().scene();
-    if (!gpuScene || !gpuScene->hasLightmap()) {
+    const ParamDesc* specular = p.findParam("lightmap_specular");
+    const bool specularOff = specular && specular->value.isBool() && !specular->value.asBool();
+    if (!gpuScene || !gpuScene->hasLightmap() || specularOff) {
         const std::string target = "lightmap_specular";
         std::erase_if(g.resources, [&](const ResourceDesc& r) { return r.name == target; });
-        for (auto& pass : g.passes) std::erase_if(pass.accesses, [&](const Access& a) { return a.resource == target; });
+        for (auto& pass : g.passes) {
+            const size_t before = pass.accesses.size();
+            std::erase_if(pass.accesses, [&](const Access& a) { return a.resource == target; });
+            if (pass.accesses.size() != before && pass.params.isTable() && pass.params["defines"].isTable()) {
+                Value::Table defines = pass.params["defines"].asTable();
+                defines.erase("RG_LIGHTMAP_SPECULAR");
+                pass.params.table()["defines"] = Value(defines);
+            }
+        }
     }
     if (!m_options.view.empty()) {  // checked in load()
         const passes::GpuScene* scene = m_runtime.executor().scene();
