@@ -318,11 +318,15 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
         }
         // A sampler named `<image>_previous` for an image the pass writes as storage: in
         // per-mip variant m, mip m − 1 of it (a mip chain built from itself, e.g. a depth pyramid).
+        // `bind` may name the image for `<name>` (e.g. bind = { target = "env_source" }).
         if (b.type == DescriptorType::CombinedImageSampler && b.name.size() > 9 && b.name.ends_with("_previous")) {
             const std::string base = b.name.substr(0, b.name.size() - 9);
+            const std::string named = bindMap[base].isString() ? bindMap[base].asString() : "";
             const Access* chain = nullptr;
             for (const auto& a : desc.accesses)
-                if (glslName(a.resource) == base && (a.usage == Usage::StorageWrite || a.usage == Usage::StorageReadWrite)) chain = &a;
+                if ((named.empty() ? glslName(a.resource) == base : a.resource == named) &&
+                    (a.usage == Usage::StorageWrite || a.usage == Usage::StorageReadWrite))
+                    chain = &a;
             if (chain) {
                 bound.push_back({&b, setup.resources.find(chain->resource), chain->usage, true});
                 continue;

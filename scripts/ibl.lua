@@ -32,7 +32,10 @@ rg.resource "dfg" { format = "rgba16f", size = { 128, 128 }, persistent = true,
 rg.pass "env_cube" {
     kind = "compute", shader = "ibl/env_cube.comp", writes = { { "env_source", as = "storage" } }, cadence = "once",
 }
-rg.pass "env_mips" { kind = "mips", writes = { "env_source" }, cadence = "once" }
+rg.pass "env_mips" {  -- the cube's mip chain from mip 0 (a compute pass: lavapipe's blits recompile every run)
+    kind = "compute", shader = "post/downsample.comp", writes = { { "env_source", as = "storage_rw" } }, bind = { target = "env_source" },
+    defines = { RG_LAYERED = true }, per_mip = true, cadence = "once",
+}
 rg.pass "env_prefilter" {
     kind = "compute", shader = "ibl/env_prefilter.comp", reads = { "env_source" },
     writes = { { "env_specular", as = "storage" } }, per_mip = true, cadence = "once",

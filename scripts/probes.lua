@@ -37,7 +37,10 @@ rg.pass "probe_capture" {
     kind = "scene", capture = true, cadence = "once",
     reads = { { "env_sh", as = "storage" }, "dfg" }, writes = { "probe_radiance", "probe_depth" },
 }
-rg.pass "probe_mips" { kind = "mips", writes = { "probe_radiance" }, cadence = "once" }
+rg.pass "probe_mips" {  -- the captures' mip chains (post/downsample.comp, as env_mips)
+    kind = "compute", shader = "post/downsample.comp", writes = { { "probe_radiance", as = "storage_rw" } }, bind = { target = "probe_radiance" },
+    defines = { RG_LAYERED = true }, per_mip = true, cadence = "once",
+}
 rg.pass "probe_prefilter" {
     kind = "compute", shader = "ibl/env_prefilter.comp", defines = { RG_PROBE_ARRAY = true }, cadence = "once",
     reads = { "probe_radiance" }, writes = { { "probe_specular", as = "storage" } }, per_mip = true,

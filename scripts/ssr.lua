@@ -50,7 +50,8 @@ end
 -- After everything that lights the HDR: keep it (and its mips) for the next frame.
 function ssr.history()
     rg.pass "ssr_history_copy" { kind = "copy", reads = { "hdr" }, writes = { "hdr_history" } }
-    rg.pass "ssr_history_mips" { kind = "mips", writes = { "hdr_history" } }
+    rg.pass "ssr_history_mips" { kind = "compute", shader = "post/downsample.comp", writes = { { "hdr_history", as = "storage_rw" } },
+                                 bind = { target = "hdr_history" }, per_mip = true }
 end
 
 return ssr

@@ -1,0 +1,29 @@
+#version 460
+// A mip chain from mip 0, as a compute pass (per_mip): each mip m ≥ 1 resampled from mip m − 1 at
+// its texel centres with the linear filter — a 2×2 box where the size halves exactly — the same
+// image vkCmdBlitImage with VK_FILTER_LINEAR gives. As a shader it is compiled once and then found
+// in the driver's shader cache; lavapipe's blits build their own shaders anew in every process
+// (~110 ms for the environment cube's chain, ~85 ms for the HDR history's, at start-up).
+// RG_LAYERED: a cube or an array (image2DArray, z over the layers). Bind the image as `target`.
+layout(local_size_x = 8, local_size_y = 8) in;
+#ifdef RG_LAYERED
+layout(set = 0, binding = 0, rgba16f) uniform image2DArray target;
+layout(set = 0, binding = 1) uniform sampler2DArray target_previous;
+#else
+layout(set = 0, binding = 0, rgba16f) uniform image2D target;
+layout(set = 0, binding = 1) uniform sampler2D target_previous;
+#endif
+layout(push_constant) uniform Constants { float rg_mip; } pc;
+
+void main() {
+    if (pc.rg_mip < 0.5) return;  // mip 0 is the source
+    ivec3 p = ivec3(gl_GlobalInvocationID);
+    ivec2 size = imageSize(target).xy;
+    if (any(greaterThanEqual(p.xy, size))) return;
+    vec2 uv = (vec2(p.xy) + 0.5) / vec2(size);
+#ifdef RG_LAYERED
+    imageStore(target, p, textureLod(target_previous, vec3(uv, float(p.z)), 0.0));
+#else
+    imageStore(target, p.xy, textureLod(target_previous, uv, 0.0));
+#endif
+}
