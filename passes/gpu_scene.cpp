@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/packing.hpp>
 
 #include "core/check.h"
 #include "core/light_units.h"
@@ -14,7 +15,6 @@
 #include "lighting/sg.h"
 #include "scene/bvh.h"
 #include "scene/environment.h"
-#include <glm/gtc/packing.hpp>
 
 namespace rg::passes {
 
