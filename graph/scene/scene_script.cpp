@@ -646,7 +646,7 @@ struct Builder {
         double samples = s.samples, bounces = s.bounces, maxSize = s.maxSize;
         RG_TRY(samples, number(w, b, "samples", samples, Range{1, 65536, false, false, true}));
         RG_TRY(bounces, number(w, b, "bounces", bounces, Range{1, 16, false, false, true}));
-        RG_TRY(maxSize, number(w, b, "max_size", maxSize, Range{64, 8192, false, false, true}));
+        RG_TRY(maxSize, number(w, b, "max_size", maxSize, Range{64, 4096, false, false, true}));  // 4096² × 13 layers is ~1.7 GiB on the GPU
         s.samples = static_cast<int>(samples);
         s.bounces = static_cast<int>(bounces);
         s.maxSize = static_cast<int>(maxSize);

@@ -374,3 +374,30 @@ TEST(LightmapBake, CornellBoxMatchesAnIndependentMonteCarloEstimate) {
     EXPECT_NEAR(redBake, redTruth, 0.05f * redTruth);
     EXPECT_NEAR(greenBake, greenTruth, 0.05f * greenTruth);
 }
+
+TEST(LightmapCache, ABrokenCacheFileIsBakedAgainNotTrusted) {
+    // A cache file that is not a lightmap (truncated, overwritten) under the scene's key: the
+    // renderer bakes again and replaces it, with no error for the user.
+    rg::Scene scene = loadScene("cornell.lua", {{"samples", "4"}, {"density", "4"}});
+    ASSERT_TRUE(scene.lightmap);
+    const std::string dir = std::string(RG_TEST_TMP) + "/lightmap_cache";
+    fs::remove_all(dir);
+    rg::bake::PrepareOptions o;
+    o.cacheDir = dir;
+    o.quiet = true;
+    bool fromCache = true;
+    std::string path;
+    o.fromCache = &fromCache;
+    o.path = &path;
+    ASSERT_TRUE(rg::bake::prepareLightmap(scene, o));
+    EXPECT_FALSE(fromCache);
+    rg::Scene again = loadScene("cornell.lua", {{"samples", "4"}, {"density", "4"}});
+    ASSERT_TRUE(rg::bake::prepareLightmap(again, o));
+    EXPECT_TRUE(fromCache);  // the same content: read back
+    std::ofstream(path, std::ios::trunc) << "not an EXR";
+    rg::Scene third = loadScene("cornell.lua", {{"samples", "4"}, {"density", "4"}});
+    ASSERT_TRUE(rg::bake::prepareLightmap(third, o));
+    EXPECT_FALSE(fromCache);
+    ASSERT_TRUE(third.bakedLightmap);
+    EXPECT_TRUE(rg::bake::readLightmapExr(path));  // replaced by a good one
+}
