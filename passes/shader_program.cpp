@@ -130,16 +130,16 @@ Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> s
         // RG_SCENE_LIGHTMAP: the scene has a baked SG lightmap (lib/lightmap.glsl): the G-buffer
         // pass adds its radiosity, the distant probe's diffuse light is left out (the lightmap holds it).
         if (const Lightmap* lm = setup.scene->scene().bakedLightmap.get()) {
-            char sharpness[32];
-            std::snprintf(sharpness, sizeof sharpness, "%.9g", double(lm->sharpness));
+            auto number = [](double v) {
+                char buf[32];
+                std::snprintf(buf, sizeof buf, "%.9g", v);
+                return std::string(buf);
+            };
             defines.emplace_back("RG_SCENE_LIGHTMAP", "1");
             defines.emplace_back("RG_LIGHTMAP_LOBES", std::to_string(lm->axes.size()));
-            defines.emplace_back("RG_LIGHTMAP_SHARPNESS", sharpness);
+            defines.emplace_back("RG_LIGHTMAP_SHARPNESS", number(lm->sharpness));
             std::string unit = "float[](";
-            for (size_t k = 0; k < lm->unit.size(); ++k) {
-                std::snprintf(sharpness, sizeof sharpness, "%s%.9g", k ? ", " : "", double(lm->unit[k]));
-                unit += sharpness;
-            }
+            for (size_t k = 0; k < lm->unit.size(); ++k) unit += (k ? ", " : "") + number(lm->unit[k]);
             defines.emplace_back("RG_LIGHTMAP_UNIT", unit + ")");
         }
     }

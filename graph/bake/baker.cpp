@@ -127,21 +127,6 @@ glm::vec3 emission(const Scene& scene, const Material& m, glm::vec2 uv0) {
     return m.emissive * textureRgb(scene, m.emissiveTex, uv0);
 }
 
-// Bilinear lookup of the equirectangular environment (environment.h's mapping).
-glm::vec3 environmentRadiance(const Image& env, glm::vec3 d) {
-    if (env.width == 0) return glm::vec3(0.0f);
-    const glm::vec2 uv = equirectUv(d);
-    const float x = uv.x * float(env.width) - 0.5f, y = uv.y * float(env.height) - 0.5f;
-    const int x0 = int(std::floor(x)), y0 = int(std::floor(y));
-    const float fx = x - float(x0), fy = y - float(y0);
-    auto at = [&](int xi, int yi) {
-        xi = ((xi % int(env.width)) + int(env.width)) % int(env.width);
-        yi = std::clamp(yi, 0, int(env.height) - 1);
-        return glm::vec3(env.at(uint32_t(xi), uint32_t(yi), 0), env.at(uint32_t(xi), uint32_t(yi), 1), env.at(uint32_t(xi), uint32_t(yi), 2));
-    };
-    return glm::mix(glm::mix(at(x0, y0), at(x0 + 1, y0), fx), glm::mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), fx), fy);
-}
-
 class Tracer {
 public:
     Tracer(const Scene& scene) : m_scene(scene) {}
@@ -282,7 +267,6 @@ LightSample sampleLight(const GpuLight& g, glm::vec3 p, Rng& rng) {
         return glm::vec3(r * std::cos(phi), r * std::sin(phi), z);
     };
     const float radius = g.params.z;
-    bool oneSided = false;
     if (type == GpuLightType::Sphere) {
         nq = onSphere(u1, u2);
         q = pos + radius * nq;
@@ -298,8 +282,7 @@ LightSample sampleLight(const GpuLight& g, glm::vec3 p, Rng& rng) {
             q = pos + f.t * ((u1 - 0.5f) * height) + f.b * ((u2 - 0.5f) * width);
             area = width * height;
         }
-        nq = dir;
-        oneSided = true;
+        nq = dir;  // one-sided: it emits along its direction
     } else {  // tube: a capsule along `dir`, its cylinder and its two half-sphere caps by area
         const float length = g.params.w;
         const float side = 2.0f * kPi * radius * length, caps = 4.0f * kPi * radius * radius;
@@ -320,8 +303,9 @@ LightSample sampleLight(const GpuLight& g, glm::vec3 p, Rng& rng) {
     if (!(d2 > 1e-12f)) return s;
     s.distance = std::sqrt(d2);
     s.direction = v / s.distance;
-    float cosLight = glm::dot(nq, -s.direction);
-    if (oneSided ? cosLight <= 0.0f : cosLight <= 0.0f) return s;
+    // The sampled point's own cosine: a sphere's or tube's far side and a disk's or rect's back emit nothing.
+    const float cosLight = glm::dot(nq, -s.direction);
+    if (cosLight <= 0.0f) return s;
     // lst:4's window by the distance to the light's centre, as the real-time loop does.
     const glm::vec3 toCentre = pos - p;
     float window = invSqrRange > 0.0f ? lighting::smoothDistanceAtt(glm::dot(toCentre, toCentre), invSqrRange) : 1.0f;
@@ -366,7 +350,7 @@ glm::vec3 directLight(const Context& c, glm::vec3 p, glm::vec3 n, Rng& rng, uint
 // `depth` more bounces.
 glm::vec3 radiance(const Context& c, glm::vec3 o, glm::vec3 d, int depth, Rng& rng, uint64_t& rays) {
     const Tracer::Hit h = c.tracer.intersect(o, d, rays);
-    if (!h.hit) return environmentRadiance(c.environment, d);
+    if (!h.hit) return c.environment.width ? sampleEquirect(c.environment, equirectUv(d)) : glm::vec3(0.0f);
     const Part& part = c.tracer.parts()[h.geom];
     const Surface s = surfaceAt(part, h.prim, h.u, h.v);
     glm::vec3 ng = s.geometricNormal;
@@ -447,8 +431,7 @@ Result<Lightmap> bakeLightmap(const Scene& scene, const LightmapAtlas& atlas, co
     lm.height = atlas.height;
     lm.axes = lightmapAxes(settings.lobes);
     lm.sharpness = lightmapSharpness(settings.lobes);
-    lm.density = atlas.density;
-    lm.key = lightmapKey(scene, settings);
+    lm.density = atlas.density;  // lm.key: prepareLightmap's, which hashed the scene already
     const size_t texels = size_t(lm.width) * lm.height;
     lm.lobes.assign(lm.axes.size(), std::vector<glm::vec3>(texels, glm::vec3(0.0f)));
     lm.coverage.assign(texels, 0);

@@ -103,7 +103,8 @@ struct BakeOptions {
 };
 
 // Bakes the scene's lightmap (scene.lightmap's settings, the atlas from packLightmap). Errors name
-// what cannot be baked (an IES light marked baked, a light the GPU tables refuse).
+// what cannot be baked (an IES light marked baked, a light the GPU tables refuse). Lightmap::key is
+// left empty (prepareLightmap sets the key it looked the cache up with).
 Result<Lightmap> bakeLightmap(const Scene& scene, const LightmapAtlas& atlas, const LightmapSettings& settings,
                               const BakeOptions& options = {}, BakeStats* stats = nullptr);
 

@@ -209,6 +209,7 @@ Result<void> prepareLightmap(Scene& scene, const PrepareOptions& options) {
     auto baked = bakeLightmap(scene, *atlas, settings, bo, &stats);
     if (!options.quiet && tty) std::fprintf(stderr, "\n");
     if (!baked) return std::unexpected(baked.error());
+    baked->key = key;
     if (options.stats) *options.stats = stats;
     if (!options.quiet && !options.stats)  // a caller that takes the figures prints them
         std::fprintf(stderr, "rgraph: baked %u texels in %.1f s (%.2f M rays/s)\n", stats.texels, stats.seconds,

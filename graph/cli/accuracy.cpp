@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -37,15 +36,11 @@ Result<Frame> renderCase(Runtime& rt, const AccuracyOptions& o, const AccuracyCa
     for (uint32_t f = 0; f < frames; ++f)
         if (auto r = s.frame(); !r) return std::unexpected(r.error());
     Frame out;
-    auto hdr = rt.executor().readback("hdr");
+    auto hdr = readAbsoluteHdr(rt.executor(), s.pipeline());
     auto depth = rt.executor().readback("depth");
     if (!hdr) return std::unexpected(hdr.error());
     if (!depth) return std::unexpected(depth.error());
-    float preExposure = 1.0f;
-    if (auto state = rt.executor().readbackBuffer("exposure"); state && state->size() >= 16)
-        std::memcpy(&preExposure, state->data() + 8, sizeof(float));
-    out.hdr = std::move(*hdr);
-    for (float& v : out.hdr.pixels) v /= preExposure;
+    out.hdr = std::move(hdr->image);
     out.depth = std::move(*depth);
     return out;
 }

@@ -364,19 +364,12 @@ Result<Image> writeOutputs(RenderSetup& setup, const std::string& exrPath, const
         layers.push_back({"view", rgbaNames(display->channels), *display});
     } else if (pipeline && !pipeline->hdr.empty()) {
         // Absolute luminance: the pre-exposure this frame was rendered with divided out.
-        auto hdr = ex.readback(pipeline->hdr);
+        auto hdr = readAbsoluteHdr(ex, *pipeline);
         if (!hdr) return std::unexpected(hdr.error());
-        auto state = ex.readbackBuffer(pipeline->exposure);
-        if (!state) return std::unexpected(state.error());
-        float s[4] = {};
-        std::memcpy(s, state->data(), std::min<size_t>(sizeof s, state->size()));
-        const float preExposure = s[2] > 0 ? s[2] : 1.0f;
-        for (size_t i = 0; i < hdr->pixels.size(); ++i)
-            if (i % hdr->channels < 3) hdr->pixels[i] /= preExposure;
-        layers.push_back({"hdr", rgbaNames(hdr->channels), *hdr});
-        eo.floats["rgraph.ev100"] = s[0];
-        eo.floats["rgraph.exposure"] = s[1];
-        eo.floats["rgraph.preExposure"] = preExposure;
+        layers.push_back({"hdr", rgbaNames(hdr->image.channels), hdr->image});
+        eo.floats["rgraph.ev100"] = hdr->ev100;
+        eo.floats["rgraph.exposure"] = hdr->exposure;
+        eo.floats["rgraph.preExposure"] = hdr->preExposure;
         for (const char* p : {"exposure_mode", "aperture", "shutter", "iso", "ec", "tonemap", "bloom_ec"})
             if (const ParamDesc* d = pipeline->findParam(p)) {
                 const std::string key = std::string("rgraph.camera.") + p;

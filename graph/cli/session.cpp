@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -33,6 +34,23 @@ LuaHostOptions hostOptions(std::vector<PassKindSchema> kinds) {
     return o;
 }
 }  // namespace
+
+Result<AbsoluteHdr> readAbsoluteHdr(gpu::Executor& executor, const PipelineDesc& pipeline) {
+    auto hdr = executor.readback(pipeline.hdr);
+    if (!hdr) return std::unexpected(hdr.error());
+    auto state = executor.readbackBuffer(pipeline.exposure);
+    if (!state) return std::unexpected(state.error());
+    float s[4] = {};
+    std::memcpy(s, state->data(), std::min<size_t>(sizeof s, state->size()));
+    AbsoluteHdr out;
+    out.ev100 = s[0];
+    out.exposure = s[1];
+    out.preExposure = s[2] > 0 ? s[2] : 1.0f;
+    out.image = std::move(*hdr);
+    for (size_t i = 0; i < out.image.pixels.size(); ++i)
+        if (i % out.image.channels < 3) out.image.pixels[i] /= out.preExposure;
+    return out;
+}
 
 LuaHostOptions luaHostOptions(const Runtime& runtime) { return hostOptions(runtime.kinds().schemas()); }
 

@@ -128,6 +128,15 @@ private:
 Result<std::string> writeLayoutHeaders(const PipelineDesc& pipeline);
 void useLayoutHeaders(Runtime& runtime, const std::string& dir);
 
+// The pipeline's HDR output as absolute luminance (cd/m²): read back and divided by the
+// pre-exposure it was rendered with (rg.output's `hdr` and `exposure`; colour channels only), with
+// the exposure state beside it (post.lua's RgExposureState: EV100, exposure, pre-exposure).
+struct AbsoluteHdr {
+    Image image;
+    float ev100 = 0.0f, exposure = 0.0f, preExposure = 1.0f;
+};
+Result<AbsoluteHdr> readAbsoluteHdr(gpu::Executor& executor, const PipelineDesc& pipeline);
+
 // Options for a LuaHost that sees the project's scripts/ and materials/ and the runtime's kinds.
 LuaHostOptions luaHostOptions(const Runtime& runtime);
 // Same, without a GPU: the built-in kinds' schemas.

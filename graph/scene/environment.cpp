@@ -32,7 +32,8 @@ glm::vec3 xyzToRec709(glm::vec3 c) {
             0.0556434f * c.x - 0.2040259f * c.y + 1.0572252f * c.z};
 }
 
-// Bilinear lookup with wrap in u and clamp in v (the equirectangular seam).
+}  // namespace
+
 glm::vec3 sampleEquirect(const Image& img, glm::vec2 uv) {
     const float x = uv.x * static_cast<float>(img.width) - 0.5f;
     const float y = std::clamp(uv.y * static_cast<float>(img.height) - 0.5f, 0.0f, static_cast<float>(img.height - 1));
@@ -50,8 +51,6 @@ glm::vec3 sampleEquirect(const Image& img, glm::vec2 uv) {
     }
     return out;
 }
-
-}  // namespace
 
 glm::vec2 equirectUv(glm::vec3 d) {
     return {0.5f + std::atan2(d.x, -d.z) / (2.0f * kPi), std::acos(std::clamp(d.y, -1.0f, 1.0f)) / kPi};

@@ -26,6 +26,8 @@ namespace rg {
 
 glm::vec2 equirectUv(glm::vec3 direction);
 glm::vec3 equirectDirection(glm::vec2 uv);
+// Bilinear lookup of an equirectangular image's RGB at uv, wrapping in u and clamped in v (the seam).
+glm::vec3 sampleEquirect(const Image& img, glm::vec2 uv);
 
 // The clear-sky sun that Preetham's zenith luminance goes with: direct illuminance perpendicular
 // to the rays for a high sun on a clear day — seed 000 tbl:11 measured 106 500 to 123 100 lux

@@ -25,6 +25,14 @@ vec3 rgLightmapAxis(int k) {
     return vec3(r * cos(phi), r * sin(phi), z);
 }
 
+// ∫ G_k G dω of lobe k (unit amplitude) and a unit SG of sharpness λ around unit `dir`: their
+// product is one SG of sharpness λm = |λ_k μ_k + λ dir|, integrated in closed form,
+// 2π / λm (1 − e^{−2 λm}) · e^{λm − λ_k − λ} (lighting::innerProduct).
+float rgLightmapLobeProduct(int k, float lambda, vec3 dir) {
+    float lm = max(length(RG_LIGHTMAP_SHARPNESS * rgLightmapAxis(k) + lambda * dir), 1e-4);
+    return 6.28318530717959 / lm * (1.0 - exp(-2.0 * lm)) * exp(lm - RG_LIGHTMAP_SHARPNESS - lambda);
+}
+
 // ∫ G_k(x) max(0, n·x) dω for all lobes: the SG–cosine product of the seed's "Lighting with SGs",
 // the clamped cosine as one SG (λc 2.133, Ac 1.17) and the closed-form integral of the two lobes'
 // product, 2π A / λm (1 − e^{−2 λm}) · e^{λm − λ − λc} (lighting::irradiance). n in tangent space; lux.
@@ -32,10 +40,7 @@ vec3 rgLightmapIrradiance(vec2 uv, vec3 n) {
     const float lambdaC = 2.133, ampC = 1.17;
     vec3 e = vec3(0.0);
     for (int k = 0; k < RG_LIGHTMAP_LOBES; ++k) {
-        vec3 a = texture(SceneLightmap, vec3(uv, float(k))).rgb;
-        vec3 um = RG_LIGHTMAP_SHARPNESS * rgLightmapAxis(k) + lambdaC * n;
-        float lm = max(length(um), 1e-4);
-        e += a * (ampC * 6.28318530717959 / lm * (1.0 - exp(-2.0 * lm)) * exp(lm - RG_LIGHTMAP_SHARPNESS - lambdaC));
+        e += texture(SceneLightmap, vec3(uv, float(k))).rgb * (ampC * rgLightmapLobeProduct(k, lambdaC, n));
     }
     return e;
 }
@@ -83,15 +88,9 @@ vec3 rgLightmapSpecular(RgSurface s, vec3 normal, vec4 tangent, vec2 lightmapUv,
     vec3 ld = vec3(0.0);
     float one = 0.0;
     for (int k = 0; k < RG_LIGHTMAP_LOBES; ++k) {
-        vec3 a = texture(SceneLightmap, vec3(lightmapUv, float(k))).rgb;
-        vec3 axis = RG_LIGHTMAP_SHARPNESS * rgLightmapAxis(k);
         float w = 0.0;
-        for (int i = 0; i < 3; ++i) {
-            float lambdaW = ggxB[i] * warp;
-            float lm = max(length(axis + lambdaW * R), 1e-4);
-            w += ggxC[i] * (6.28318530717959 / lm * (1.0 - exp(-2.0 * lm)) * exp(lm - RG_LIGHTMAP_SHARPNESS - lambdaW));
-        }
-        ld += a * w;
+        for (int i = 0; i < 3; ++i) w += ggxC[i] * rgLightmapLobeProduct(k, ggxB[i] * warp, R);
+        ld += texture(SceneLightmap, vec3(lightmapUv, float(k))).rgb * w;
         one += unit[k] * w;
     }
     return ld / max(one, 1e-6);
