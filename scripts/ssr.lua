@@ -50,8 +50,10 @@ end
 -- After everything that lights the HDR: keep it (and its mips) for the next frame.
 function ssr.history()
     rg.pass "ssr_history_copy" { kind = "copy", reads = { "hdr" }, writes = { "hdr_history" } }
-    rg.pass "ssr_history_mips" { kind = "compute", shader = "post/downsample.comp", writes = { { "hdr_history", as = "storage_rw" } },
-                                 bind = { target = "hdr_history" }, per_mip = true }
+    -- A blit chain (the mips kind), not post/downsample.comp as env_mips: per frame the blits cost
+    -- ~2.3 ms and the per-mip compute ~5.3 (its dispatches and barriers); only the first frame pays
+    -- lavapipe's blit-shader build (~65 ms).
+    rg.pass "ssr_history_mips" { kind = "mips", writes = { "hdr_history" } }
 end
 
 return ssr

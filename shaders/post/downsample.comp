@@ -3,7 +3,8 @@
 // its texel centres with the linear filter — a 2×2 box where the size halves exactly — the same
 // image vkCmdBlitImage with VK_FILTER_LINEAR gives. As a shader it is compiled once and then found
 // in the driver's shader cache; lavapipe's blits build their own shaders anew in every process
-// (~110 ms for the environment cube's chain, ~85 ms for the HDR history's, at start-up).
+// (~110 ms for the environment cube's chain at start-up). For once-per-scene chains: per frame its
+// per-mip dispatches cost more than blits (the HDR history's chain stays a blit, scripts/ssr.lua).
 // RG_LAYERED: a cube or an array (image2DArray, z over the layers). Bind the image as `target`.
 layout(local_size_x = 8, local_size_y = 8) in;
 #ifdef RG_LAYERED
