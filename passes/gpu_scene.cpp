@@ -11,6 +11,7 @@
 #include "core/check.h"
 #include "core/light_units.h"
 #include "lighting/area_lights.h"
+#include "lighting/ltc.h"
 #include "lighting/punctual.h"
 #include "lighting/sg.h"
 #include "scene/bvh.h"
@@ -720,9 +721,11 @@ Result<void> GpuScene::createFrameData(Context& ctx, const GpuSceneOptions& opti
             if (m_scene.lights[i].baked) table->lights[i].intensity = glm::vec4(0.0f, 0.0f, 0.0f, table->lights[i].intensity.a);
     m_lightCount = static_cast<uint32_t>(table->lights.size());
     m_iesProfileCount = static_cast<uint32_t>(table->profiles.size());
-    // scene.glsl's Lights block: a uvec4 header, RG_MAX_LIGHTS lights, then every profile's texels
-    // (one float more, so the runtime array is never empty).
-    const size_t lightBytes = 16 + size_t(kMaxLights) * sizeof(GpuLight);
+    // scene.glsl's Lights block: a uvec4 header, RG_MAX_LIGHTS lights, the LTC table (two vec4 per
+    // entry), then every profile's texels (one float more, so the runtime array is never empty).
+    const size_t ltcBytes = size_t(ltc::kSize) * ltc::kSize * 32;
+    const size_t ltcOffset = 16 + size_t(kMaxLights) * sizeof(GpuLight);
+    const size_t lightBytes = ltcOffset + ltcBytes;
     const size_t texelCount = size_t(kIesWidth) * kIesHeight;
     const size_t bytes = lightBytes + (m_iesProfileCount * texelCount + 1) * sizeof(float);
     for (uint32_t s = 0; s < ctx.framesInFlight(); ++s) {
@@ -737,9 +740,15 @@ Result<void> GpuScene::createFrameData(Context& ctx, const GpuSceneOptions& opti
         if (!lights) return std::unexpected(lights.error());
         auto* p = static_cast<uint8_t*>(lights->mapped());
         std::memset(p, 0, bytes);
-        const uint32_t header[4] = {m_lightCount, m_iesProfileCount, kIesWidth, kIesHeight};
+        const uint32_t header[4] = {m_lightCount, m_areaLightModel, kIesWidth, kIesHeight};
         std::memcpy(p, header, sizeof header);
         if (m_lightCount) std::memcpy(p + 16, table->lights.data(), table->lights.size() * sizeof(GpuLight));
+        float* ltcOut = reinterpret_cast<float*>(p + ltcOffset);
+        for (const ltc::Entry& e : ltc::table()) {
+            const float entry[8] = {e.inverse[0], e.inverse[1], e.inverse[2], e.inverse[3], e.magnitude, e.fresnel, 0.0f, 0.0f};
+            std::memcpy(ltcOut, entry, sizeof entry);
+            ltcOut += 8;
+        }
         for (size_t i = 0; i < table->profiles.size(); ++i) {
             const IesTexture& t = table->profiles[i];
             RG_CHECK(t.texels.size() == texelCount) << "IES profile baked at " << t.width << " x " << t.height;
@@ -788,6 +797,7 @@ void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
     m_drawInView.resize(m_draws.size());
     for (size_t d = 0; d < m_draws.size(); ++d) m_drawInView[d] = boxMeetsFrustum(planes, m_draws[d].boundsMin, m_draws[d].boundsMax);
     updateShadowViews(slot, u.viewProj);
+    std::memcpy(static_cast<uint8_t*>(m_lightBuffers[slot].mapped()) + 4, &m_areaLightModel, sizeof m_areaLightModel);
 }
 
 VkBuffer GpuScene::bvhBuffer() const {

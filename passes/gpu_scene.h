@@ -124,6 +124,10 @@ public:
     void updateFrame(uint32_t slot, uint32_t width, uint32_t height);
     VkBuffer cameraBuffer(uint32_t slot) const { return m_cameraBuffers[slot].buffer(); }
     VkBuffer lightBuffer(uint32_t slot) const { return m_lightBuffers[slot].buffer(); }
+    // Which area-light model the light loop evaluates (lib/scene.glsl's Lights.count.y): 0 Frostbite's
+    // (seed 002 §4.7), 1 linearly transformed cosines (lib/ltc.glsl). Written into each frame slot's
+    // Lights block by updateFrame; a session sets it from the pipeline's `area_lights` parameter.
+    void setAreaLightModel(uint32_t model) { m_areaLightModel = model; }
     // Frame slot `slot`'s shadow views (ShadowViews): for every local light with castShadows
     // whose range reaches the camera's view, one perspective view (a spot of outer angle ≤ 60°)
     // or six (a cube), in light order, up to kMaxShadowViews; then per light its first view and
@@ -210,6 +214,7 @@ private:
     Result<void> createProbes(gpu::Context& ctx);
     uint32_t m_lightCount = 0;
     uint32_t m_iesProfileCount = 0;
+    uint32_t m_areaLightModel = 0;
     size_t m_camera = 0;
     std::optional<glm::mat4> m_previousViewProj;  // the last frame's camera (Camera.previousViewProj)
 };

@@ -27,6 +27,13 @@ lighting.tile_words = 64
 lighting.coarse_words = 256
 lighting.max_lights = 1024
 
+-- How the light loop (shaders/lib/lighting.glsl) evaluates sphere, disk, rectangle and tube lights:
+-- "frostbite", the seed's approximations (000 lst:10, 002 §4.7: structured sampling, representative
+-- points); "ltc", linearly transformed cosines (shaders/lib/ltc.glsl), the lobe integrated over the
+-- light with the horizon clipped. A field of the scene's light block: switching it rebuilds nothing.
+rg.param "area_lights" { type = "choice", default = "frostbite", choices = { "frostbite", "ltc" },
+    doc = "area-light model: frostbite (seed 002 §4.7) or ltc (linearly transformed cosines)" }
+
 rg.buffer "light_tiles_coarse" {
     size = 16, tile = lighting.coarse_tile, tile_bytes = 4 * lighting.coarse_words,
     doc = "per 32x32 tile the ranged lights that reach it (light_culling.comp's coarse level)",

@@ -20,7 +20,8 @@ struct Frame {
     Image depth;
 };
 
-Result<Frame> renderCase(Runtime& rt, const AccuracyOptions& o, const AccuracyCase& c, bool reference, uint32_t seed) {
+Result<Frame> renderCase(Runtime& rt, const AccuracyOptions& o, const AccuracyCase& c, const std::string& model, bool reference,
+                         uint32_t seed) {
     SessionOptions so;
     so.compile.outputWidth = o.width;
     so.compile.outputHeight = o.height;
@@ -28,7 +29,11 @@ Result<Frame> renderCase(Runtime& rt, const AccuracyOptions& o, const AccuracyCa
     so.sceneArgs = {{"light", c.light}, {"placement", c.placement}, {"material", c.material}};
     so.captures = {"hdr", "depth"};
     so.params["exposure_mode"] = Value("manual");
-    if (reference) so.params["reference_seed"] = Value(static_cast<double>(seed));
+    if (reference) {
+        so.params["reference_seed"] = Value(static_cast<double>(seed));
+        so.params["reference_samples"] = Value(static_cast<double>(o.samples));
+    }
+    else so.params["area_lights"] = Value(model);
     Session s(rt, so);
     if (auto r = s.load(projectRoot() + (reference ? "/scripts/pipelines/reference.lua" : "/scripts/pipelines/deferred.lua")); !r)
         return std::unexpected(r.error());
@@ -49,66 +54,74 @@ Result<Frame> renderCase(Runtime& rt, const AccuracyOptions& o, const AccuracyCa
 
 Result<std::vector<AccuracyCase>> runAccuracy(Runtime& rt, const AccuracyOptions& o) {
     std::vector<AccuracyCase> cases;
+    const size_t count = o.lights.size() * o.placements.size() * o.materials.size();
+    size_t index = 0;
     for (const auto& l : o.lights)
         for (const auto& p : o.placements)
-            for (const auto& m : o.materials) cases.push_back({l, p, m});
-    for (size_t ci = 0; ci < cases.size(); ++ci) {
-        AccuracyCase& c = cases[ci];
-        if (o.progress) o.progress(c.name(), ci, cases.size());
-        auto realtime = renderCase(rt, o, c, false, 0);
-        if (!realtime) return std::unexpected(realtime.error());
-        auto a = renderCase(rt, o, c, true, 1);
-        if (!a) return std::unexpected(a.error());
-        auto b = renderCase(rt, o, c, true, 2);
-        if (!b) return std::unexpected(b.error());
-        const size_t n = size_t(o.width) * o.height;
-        c.realtime = realtime->hdr;
-        c.reference = a->hdr;
-        for (size_t i = 0; i < c.reference.pixels.size(); ++i) c.reference.pixels[i] = 0.5f * (a->hdr.pixels[i] + b->hdr.pixels[i]);
-        c.error = Image(o.width, o.height, 1);
-        double peak = 0.0;
-        for (size_t i = 0; i < n; ++i)
-            if (a->depth.pixels[i] < 1.0f)
-                for (int ch = 0; ch < 3; ++ch) peak = std::max(peak, double(c.reference.pixels[i * 4 + size_t(ch)]));
-        std::vector<double> errors;
-        double rtSum = 0.0, refSum = 0.0, noise = 0.0;
-        for (size_t i = 0; i < n; ++i) {
-            if (a->depth.pixels[i] >= 1.0f) continue;
-            double pixelError = 0.0;
-            int lit = 0;
-            for (int ch = 0; ch < 3; ++ch) {
-                const size_t k = i * 4 + size_t(ch);
-                const double ref = c.reference.pixels[k], rtv = c.realtime.pixels[k];
-                if (!(ref >= 0.01 * peak) || !std::isfinite(rtv)) continue;
-                const double e = std::abs(rtv - ref) / ref;
-                errors.push_back(e);
-                pixelError += e, ++lit;
-                rtSum += rtv, refSum += ref;
-                noise += std::abs(double(a->hdr.pixels[k]) - double(b->hdr.pixels[k])) / (2.0 * ref);
+            for (const auto& m : o.materials) {
+                AccuracyCase scene{l, p, m};
+                if (o.progress) o.progress(scene.name(), index++, count);
+                // The reference once, in two independent halves; each model against it.
+                auto a = renderCase(rt, o, scene, "", true, 1);
+                if (!a) return std::unexpected(a.error());
+                auto b = renderCase(rt, o, scene, "", true, 2);
+                if (!b) return std::unexpected(b.error());
+                const size_t n = size_t(o.width) * o.height;
+                Image reference = a->hdr;
+                for (size_t i = 0; i < reference.pixels.size(); ++i) reference.pixels[i] = 0.5f * (a->hdr.pixels[i] + b->hdr.pixels[i]);
+                double peak = 0.0;
+                for (size_t i = 0; i < n; ++i)
+                    if (a->depth.pixels[i] < 1.0f)
+                        for (int ch = 0; ch < 3; ++ch) peak = std::max(peak, double(reference.pixels[i * 4 + size_t(ch)]));
+                for (const auto& model : o.models) {
+                    AccuracyCase c = scene;
+                    c.model = model;
+                    auto realtime = renderCase(rt, o, c, model, false, 0);
+                    if (!realtime) return std::unexpected(realtime.error());
+                    c.realtime = realtime->hdr;
+                    c.reference = reference;
+                    c.error = Image(o.width, o.height, 1);
+                    std::vector<double> errors;
+                    double rtSum = 0.0, refSum = 0.0, noise = 0.0;
+                    for (size_t i = 0; i < n; ++i) {
+                        if (a->depth.pixels[i] >= 1.0f) continue;
+                        double pixelError = 0.0;
+                        int lit = 0;
+                        for (int ch = 0; ch < 3; ++ch) {
+                            const size_t k = i * 4 + size_t(ch);
+                            const double ref = c.reference.pixels[k], rtv = c.realtime.pixels[k];
+                            if (!(ref >= 0.01 * peak) || !std::isfinite(rtv)) continue;
+                            const double e = std::abs(rtv - ref) / ref;
+                            errors.push_back(e);
+                            pixelError += e, ++lit;
+                            rtSum += rtv, refSum += ref;
+                            noise += std::abs(double(a->hdr.pixels[k]) - double(b->hdr.pixels[k])) / (2.0 * ref);
+                        }
+                        if (lit) c.error.pixels[i] = static_cast<float>(pixelError / lit);
+                    }
+                    c.pixels = errors.size();
+                    if (!errors.empty()) {
+                        double sum = 0.0;
+                        for (double e : errors) sum += e;
+                        c.meanError = sum / double(errors.size());
+                        c.referenceNoise = noise / double(errors.size());
+                        std::sort(errors.begin(), errors.end());
+                        c.p95Error = errors[std::min(errors.size() - 1, size_t(0.95 * double(errors.size())))];
+                        c.energyError = refSum > 0.0 ? rtSum / refSum - 1.0 : 0.0;
+                    }
+                    cases.push_back(std::move(c));
+                }
             }
-            if (lit) c.error.pixels[i] = static_cast<float>(pixelError / lit);
-        }
-        c.pixels = errors.size();
-        if (!errors.empty()) {
-            double sum = 0.0;
-            for (double e : errors) sum += e;
-            c.meanError = sum / double(errors.size());
-            c.referenceNoise = noise / double(errors.size());
-            std::sort(errors.begin(), errors.end());
-            c.p95Error = errors[std::min(errors.size() - 1, size_t(0.95 * double(errors.size())))];
-            c.energyError = refSum > 0.0 ? rtSum / refSum - 1.0 : 0.0;
-        }
-    }
     return cases;
 }
 
 std::string accuracyTable(const std::vector<AccuracyCase>& cases) {
     std::string out;
     char line[256];
-    std::snprintf(line, sizeof line, "%-26s %10s %10s %10s %12s\n", "case", "mean", "p95", "energy", "ref. noise");
+    std::snprintf(line, sizeof line, "%-36s %10s %10s %10s %12s\n", "case", "mean", "p95", "energy", "ref. noise");
     out += line;
     for (const auto& c : cases) {
-        std::snprintf(line, sizeof line, "%-26s %9.2f%% %9.2f%% %+9.2f%% %11.2f%%\n", c.name().c_str(), c.meanError * 100.0, c.p95Error * 100.0,
+        std::snprintf(line, sizeof line, "%-36s %9.2f%% %9.2f%% %+9.2f%% %11.2f%%\n", c.name().c_str(), c.meanError * 100.0, c.p95Error * 100.0,
                       c.energyError * 100.0, c.referenceNoise * 100.0);
         out += line;
     }
@@ -129,7 +142,7 @@ Result<void> writeAccuracyReport(const std::vector<AccuracyCase>& cases, const s
          << "<p>Relative error over the pixels the reference lights above 1 % of its peak; heat map 0 (black) to 20 % (yellow) and beyond.</p>\n"
          << "<table><tr><th>case</th><th>mean</th><th>p95</th><th>energy</th><th>reference noise</th><th>heat map</th></tr>\n";
     for (const auto& c : cases) {
-        std::string file = c.light + "_" + c.placement + "_" + c.material + ".png";
+        std::string file = c.light + "_" + c.placement + "_" + c.material + "_" + c.model + ".png";
         Image map = golden::heatMap(c.error, 0.2f);
         if (auto r = writePng(dir + "/" + file, map); !r) return r;
         char row[512];

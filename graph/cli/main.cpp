@@ -669,12 +669,14 @@ int cmdBake(int argc, char** argv) {
 }
 
 int cmdAccuracy(int argc, char** argv) {
-    Args args = Args::parse(argc, argv, 2, {"size", "frames", "light", "placement", "material", "report"});
+    Args args = Args::parse(argc, argv, 2, {"size", "frames", "samples", "light", "placement", "material", "model", "report"});
     if (args.help) {
-        std::printf("usage: rgraph accuracy [--size WxH] [--frames N] [--light L]... [--placement P]... [--material M]... [--report DIR]\n\n"
+        std::printf("usage: rgraph accuracy [--size WxH] [--frames N] [--samples S] [--light L]... [--placement P]... [--material M]... [--model M]...\n"
+                    "                       [--report DIR]\n\n"
                     "Renders every area light type (sphere, disk, rect, tube) x placement (facing, grazing, horizon: crossing\n"
                     "the floor's plane) x material (rough, glossy dielectric, glossy metal) of scripts/scenes/accuracy.lua\n"
-                    "with the real-time pipeline and with the reference mode (reference.lua, N frames of 4 samples, in\n"
+                    "with the real-time pipeline under each area-light model (frostbite, ltc: the pipeline's area_lights)\n"
+                    "and with the reference mode (reference.lua, N frames of S samples (default 4), in\n"
                     "two independent halves), and prints per case the mean and 95th-percentile relative error and the\n"
                     "energy error over the pixels the reference lights above 1 %% of its peak, beside the reference's\n"
                     "own noise (the halves' mean relative difference / 2). --report DIR writes DIR/index.html with a\n"
@@ -686,6 +688,8 @@ int cmdAccuracy(int argc, char** argv) {
     if (args.has("size") && !parseSize(args.get("size"), o.width, o.height))
         return usageError("--size must be WIDTHxHEIGHT, e.g. 160x120; got '" + args.get("size") + "'", "accuracy");
     if (args.has("frames") && !parseCount(args.get("frames"), o.frames)) return usageError("--frames must be a positive whole number", "accuracy");
+    if (args.has("samples") && (!parseCount(args.get("samples"), o.samples) || o.samples > 1024))
+        return usageError("--samples must be a whole number from 1 to 1024", "accuracy");
     auto pick = [&](const char* option, std::vector<std::string>& list) -> bool {
         const auto chosen = args.all(option);
         if (chosen.empty()) return true;
@@ -699,7 +703,8 @@ int cmdAccuracy(int argc, char** argv) {
         list = chosen;
         return true;
     };
-    if (!pick("light", o.lights) || !pick("placement", o.placements) || !pick("material", o.materials)) return kUsage;
+    if (!pick("light", o.lights) || !pick("placement", o.placements) || !pick("material", o.materials) || !pick("model", o.models))
+        return kUsage;
     auto rt = Runtime::create({});
     if (!rt) return report(rt.error());
     const bool tty = isatty(fileno(stderr));

@@ -720,6 +720,12 @@ Result<void> Session::frame(VkCommandBuffer hostCmd) {
         }
         m_pipeline = std::move(next);
     }
+    // The area-light model of the light loop (scripts/lighting.lua's area_lights): a field of the
+    // scene's Lights block, so switching it rebuilds nothing.
+    if (m_scene) {
+        const ParamDesc* model = m_pipeline.findParam("area_lights");
+        m_scene->setAreaLightModel(model && model->value.isString() && model->value.asString() == "ltc" ? 1u : 0u);
+    }
     if (auto r = m_runtime.executor().frame(hostCmd); !r) return r;
     ++m_frame;
     return {};

@@ -9,6 +9,12 @@
 //   rect, tube    seed 002 §4.7.2.5, §4.7.2.6 (structured sampling: 4 corners + centre × Ω)
 //   specular      seed 002 §4.7.5: Karis' representative point (the light's point closest to the
 //                 reflection ray, here the area dominant direction), energy normalised.
+// With area_lights = "ltc" (scripts/lighting.lua; Lights.count.y = 1) the area lights' GGX lobe is
+// instead integrated over the light by linearly transformed cosines (lib/ltc.glsl), and the
+// diffuse lobe sees the exact cosine-weighted form factor (the same integral with M = identity;
+// the sphere keeps lst:10, exact), both horizon clipped; rgStandardLighting then takes the
+// integrated lobe. (An LTC fitted to the Disney diffuse lobe was measured worse than the form
+// factor × Disney at the light's mean direction: 1.2–1.5 % against 0.2–0.6 % facing.)
 // The CPU twins are graph/lighting's area_lights.h, punctual.h and ies.h; tests/gpu/test_lights.cpp
 // compares the two. Intensities arrive converted (passes/gpu_scene.cpp): cd, lux or cd/m².
 #ifndef RG_LIGHTING_GLSL
@@ -116,6 +122,8 @@ float rgStructuredQuadIlluminance(vec3 N, float solidAngle, vec3 centre, vec3 p0
             clamp(dot(normalize(centre), N), 0.0, 1.0));
 }
 
+#include "lib/ltc.glsl"
+
 // ---- Specular area lights (seed 002 §4.7.5) ----------------------------------------------------
 
 // The area-light dominant direction: normalize(lerp(N, R, 1 − roughness)), roughness = α.
@@ -152,12 +160,20 @@ float rgDiskCone(RgLight light, vec3 P) {
 // cosine and the horizon already in it) from direction Ld; the specular lobe sees
 // `specularIlluminance` (lux on a surface facing the light, before ⟨n·Ls⟩) from the representative
 // direction Ls, times `specularNormalisation` (1 for punctual lights). See rgStandardLighting.
+// An area light under the LTC model also gives its GGX lobe integrated over its shape, at the
+// roughness it was evaluated with: the lobe's luminance is specularLtc · (f0 · ltcAlbedo.x + f90 ·
+// ltcAlbedo.y) (ltcAlbedo.xy: the lobe's albedo split for Schlick's Fresnel; 0 for other lights).
+// Its diffuse lobe sees the exact (horizon-clipped) illuminance from the mean direction Ld of the
+// light's visible part; Ls, specularIlluminance and specularNormalisation stay Frostbite's, for
+// lobes other than the standard one (a clear coat).
 struct RgLightSample {
     vec3 Ld;
     vec3 diffuseIlluminance;
     vec3 Ls;
     vec3 specularIlluminance;
     float specularNormalisation;
+    vec3 specularLtc;
+    vec2 ltcAlbedo;
 };
 
 int rgLightType(RgLight light) { return int(light.positionType.w + 0.5); }
@@ -175,6 +191,8 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
     s.Ld = s.Ls = N;
     s.diffuseIlluminance = s.specularIlluminance = vec3(0.0);
     s.specularNormalisation = 1.0;
+    s.specularLtc = vec3(0.0);
+    s.ltcAlbedo = vec2(0.0);
 
     if (RG_SCENE_HAS_LIGHT(RG_LIGHT_SUN) && type == RG_LIGHT_SUN) {
         // lst:6: the diffuse part as if the sun were punctual (eq:28), the specular part towards
@@ -215,6 +233,15 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
 
     vec3 luminance = colour * rgRangeWindow(sqrDist, light.directionRange.w);  // cd/m²
     float radius = light.params.z;
+    // LTC: the world → (T1, T2, N) rotation (the diffuse lobe's cosine), the GGX lobe's M⁻¹
+    // composed with it, and the lobe's albedo split for Schlick's Fresnel.
+    bool ltc = lights.count.y == 1u;
+    mat3 toLocal = mat3(1.0), Minv = mat3(1.0);
+    if (ltc) {
+        toLocal = rgLtcFrame(N, V);
+        rgLtcLookup(linearRoughness, clamp(dot(N, V), 0.0, 1.0), Minv, s.ltcAlbedo);
+        Minv = Minv * toLocal;
+    }
 
     if (RG_SCENE_HAS_LIGHT(RG_LIGHT_SPHERE) && type == RG_LIGHT_SPHERE) {
         // A point inside the sphere: its surface emits outwards, so nothing reaches the point (as in
@@ -231,6 +258,12 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
         s.specularIlluminance = luminance * (RG_PI * sinSigmaSqr);
         float w = rgLobeWidening(alpha, radius * invDist);
         s.specularNormalisation = w * w;
+        if (ltc) {
+            // The disk through the centre that spans the sphere's cone: radius r / cos σ.
+            float rho = radius * inversesqrt(1.0 - sinSigmaSqr);
+            vec3 T = normalize(cross(L, abs(L.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0))) * rho, B = cross(L, T), unused;
+            s.specularLtc = luminance * rgLtcEllipse(Minv * Lu, Minv * T, Minv * B, unused);
+        }
     } else if (RG_SCENE_HAS_LIGHT(RG_LIGHT_DISK) && type == RG_LIGHT_DISK) {
         // lst:10, disk evaluation, times the disk's own orientation. It emits along `dir`; its cone
         // (lst:9) attenuates the illuminance.
@@ -246,6 +279,18 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
         s.specularIlluminance = luminance * (RG_PI * sinSigmaSqr * cosLight);
         float w = rgLobeWidening(alpha, radius * invDist);
         s.specularNormalisation = w * w;
+        if (ltc) {
+            // The disk itself (one-sided), through the cosine (diffuse) and through the lobe's M⁻¹.
+            s.diffuseIlluminance = vec3(0.0);
+            if (dot(-Lu, dir) > 0.0) {
+                float cone = rgDiskCone(light, P);
+                vec3 T = normalize(cross(dir, abs(dir.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0))) * radius;
+                vec3 B = cross(dir, T), towards, unused;
+                s.diffuseIlluminance = luminance * (RG_PI * cone * rgLtcEllipse(toLocal * Lu, toLocal * T, toLocal * B, towards));
+                s.Ld = towards * toLocal;  // back to world: toLocal is a rotation
+                s.specularLtc = luminance * (cone * rgLtcEllipse(Minv * Lu, Minv * T, Minv * B, unused));
+            }
+        }
     } else if (RG_SCENE_HAS_LIGHT(RG_LIGHT_RECT) && type == RG_LIGHT_RECT) {
         // seed 002 §4.7.2.5: one-sided, it emits along `dir`; axis: its height direction.
         s.Ld = L;
@@ -268,6 +313,12 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
             s.Ls = rgSafeNormalize(closest, L);
             s.specularIlluminance = luminance * solidAngle;
             s.specularNormalisation = rgLobeWidening(alpha, halfWidth * invDist) * rgLobeWidening(alpha, halfHeight * invDist);
+            if (ltc) {
+                vec3 towards, unused;
+                s.diffuseIlluminance = luminance * (RG_PI * rgLtcQuad(toLocal * p0, toLocal * p1, toLocal * p2, toLocal * p3, towards));
+                s.Ld = rgSafeNormalize(towards * toLocal, L);
+                s.specularLtc = luminance * rgLtcQuad(Minv * p0, Minv * p1, Minv * p2, Minv * p3, unused);
+            }
         }
     } else if (RG_SCENE_HAS_LIGHT(RG_LIGHT_TUBE)) {  // RG_LIGHT_TUBE
         // seed 002 §4.7.2.6: the capsule as a rectangle (length × 2r) facing the point plus its two
@@ -303,6 +354,34 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
         s.specularIlluminance = luminance * (solidAngle + RG_PI * min(sphereFactor, 1.0));
         float w = rgLobeWidening(alpha, radius * invDist);
         s.specularNormalisation = w * w * rgLobeWidening(alpha, lightWidth * invDist);  // sphere × line
+        if (ltc) {
+            // The capsule's outline seen from the point: the cylinder's as a rectangle along the
+            // segment, as wide as the tangent planes from the point (r / cos of their half-angle),
+            // and each end's half-sphere as half of the disk that spans its sphere's cone.
+            float sqrLineDistance = max(dot(closestOnLine, closestOnLine), radius * radius * 1.0001);
+            vec3 side = up * (radius * inversesqrt(1.0 - radius * radius / sqrLineDistance));
+            vec3 q0 = L0 + side, q1 = L0 - side, q2 = L1 - side, q3 = L1 + side;
+            vec3 towards, unused;
+            float quadD = rgLtcQuad(toLocal * q0, toLocal * q1, toLocal * q2, toLocal * q3, towards);
+            float quadS = rgLtcQuad(Minv * q0, Minv * q1, Minv * q2, Minv * q3, unused);
+            float capD = 0.0, capS = 0.0;
+            vec3 capTowards = vec3(0.0);
+            for (int end = 0; end < 2; ++end) {
+                vec3 c = end == 0 ? L0 : L1;
+                float sqrEnd = max(dot(c, c), radius * radius * 1.0001);
+                float rho = radius * inversesqrt(1.0 - radius * radius / sqrEnd);
+                vec3 toC = c * inversesqrt(sqrEnd);
+                vec3 T = normalize(cross(toC, abs(toC.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0))) * rho, B = cross(toC, T);
+                vec3 e;
+                float d = 0.5 * rgLtcEllipse(toLocal * c, toLocal * T, toLocal * B, e);
+                capD += d;
+                capTowards += e * d;
+                capS += 0.5 * rgLtcEllipse(Minv * c, Minv * T, Minv * B, unused);
+            }
+            s.diffuseIlluminance = luminance * (RG_PI * (quadD + capD));
+            s.Ld = rgSafeNormalize((rgSafeNormalize(towards, vec3(0.0)) * quadD + capTowards) * toLocal, sphereL);
+            s.specularLtc = luminance * (quadS + capS);
+        }
     }
     return s;
 }
@@ -351,9 +430,16 @@ vec3 rgSpecularBrdf(vec3 N, vec3 V, vec3 L, vec3 f0, float linearRoughness) {
 
 // Luminance (cd/m²) the standard material reflects from one evaluated light. For a punctual light
 // (Ld = Ls, diffuse = specular illuminance × ⟨n·l⟩) it is rgStandardBrdf × the illuminance.
+// An area light under the LTC model: its integrated lobe, with Schlick's F(f0, f90) integrated.
 vec3 rgStandardLighting(RgLightSample s, vec3 N, vec3 V, vec3 diffuseColor, vec3 f0, float linearRoughness) {
-    return diffuseColor * rgDiffuseBrdf(N, V, s.Ld, linearRoughness) * s.diffuseIlluminance +
-           rgSpecularBrdf(N, V, s.Ls, f0, linearRoughness) * s.specularIlluminance * s.specularNormalisation;
+    vec3 specular;
+    if (s.ltcAlbedo.x + s.ltcAlbedo.y > 0.0) {
+        float f90 = clamp(50.0 * dot(f0, vec3(0.33)), 0.0, 1.0);
+        specular = s.specularLtc * (f0 * s.ltcAlbedo.x + f90 * s.ltcAlbedo.y);
+    } else {
+        specular = rgSpecularBrdf(N, V, s.Ls, f0, linearRoughness) * s.specularIlluminance * s.specularNormalisation;
+    }
+    return diffuseColor * rgDiffuseBrdf(N, V, s.Ld, linearRoughness) * s.diffuseIlluminance + specular;
 }
 
 uint rgLightCount() { return lights.count.x; }
