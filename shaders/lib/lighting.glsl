@@ -259,6 +259,7 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
         float w = rgLobeWidening(alpha, radius * invDist);
         s.specularNormalisation = w * w;
         if (ltc) {
+            s.Ld = rgHorizonCentroid(L, N, radius * invDist);
             // The disk through the centre that spans the sphere's cone: radius r / cos σ.
             float rho = radius * inversesqrt(1.0 - sinSigmaSqr);
             vec3 T = normalize(cross(L, abs(L.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0))) * rho, B = cross(L, T), unused;

@@ -64,11 +64,36 @@ float rgLtcQuad(vec3 p0, vec3 p1, vec3 p2, vec3 p3, out vec3 direction) {
 
 float illuminanceSphereOrDisk(float cosTheta, float sinSigmaSqr);  // lib/lighting.glsl (seed 000 lst:10)
 
+// The mean direction of the part of a cone (unit axis, half-angle σ) above the plane normal to
+// `up`, weighted by the cosine to `up`: where the diffuse lobe looks at a light that crosses the
+// horizon. Small-angle model: the cone's section a disk of radius σ around the axis's elevation e
+// in (azimuth, elevation); the weighted mean elevation ∫ y² w / ∫ y w over 0 < y < e + σ,
+// w(y) = √(σ² − (y − e)²), by the midpoint rule (8 points). The axis itself when the cone is
+// wholly above the horizon (or wholly below).
+vec3 rgHorizonCentroid(vec3 axis, vec3 up, float sinSigma) {
+    float sinE = clamp(dot(axis, up), -1.0, 1.0);
+    float e = asin(sinE), sigma = asin(clamp(sinSigma, 0.0, 1.0)), top = e + sigma;
+    if (e >= sigma || top <= 0.0) return axis;
+    float num = 0.0, den = 0.0;
+    for (int i = 0; i < 8; ++i) {
+        float y = top * (float(i) + 0.5) / 8.0;
+        float w = sqrt(max(sigma * sigma - (y - e) * (y - e), 0.0));
+        num += y * y * w;
+        den += y * w;
+    }
+    float elevation = den > 0.0 ? num / den : 0.5 * top;
+    vec3 level = axis - up * sinE;
+    float l2 = dot(level, level);
+    if (l2 < 1e-12) return axis;
+    return level * (cos(elevation) * inversesqrt(l2)) + up * sin(elevation);
+}
+
 // The same for the ellipse centre + cos t · axis1 + sin t · axis2 (any conjugate pair of half-axes):
 // its cone of directions is an elliptic cone with tan² half-angles L1², L2² around an axis; the
 // form factor of that cone, L1 L2 / √((1 + L1²)(1 + L2²)), is the sin²σ of the sphere whose
 // horizon-clipped integral (lst:10) stands for the ellipse's. ltc.cpp's ellipseIntegral derives
 // the quadric's smallest eigenvalue λ3 ∈ [−1, −1/(1 + x0² + y0²)], found here by bracketed Newton.
+// `direction`: where the diffuse lobe looks at it (rgHorizonCentroid of the equivalent sphere).
 float rgLtcEllipse(vec3 centre, vec3 axis1, vec3 axis2, out vec3 direction) {
     float d11 = dot(axis1, axis1), d22 = dot(axis2, axis2), d12 = dot(axis1, axis2);
     vec3 t1 = axis1, t2 = axis2;
@@ -103,8 +128,9 @@ float rgLtcEllipse(vec3 centre, vec3 axis1, vec3 axis2, out vec3 direction) {
     float productTan = -lambda * lambda * lambda * k3;
     float sumTan = lambda * lambda * (k2 - lambda * k3);
     float formFactor = sqrt(max(productTan, 0.0) / (1.0 + sumTan + productTan));
-    direction = normalize(t1 * (x0 / (1.0 - lambda * a1s)) + t2 * (y0 / (1.0 - lambda * a2s)) + t3);
-    return illuminanceSphereOrDisk(clamp(direction.z, -0.9999, 0.9999), min(formFactor, 0.9999)) / RG_PI;
+    vec3 axis = normalize(t1 * (x0 / (1.0 - lambda * a1s)) + t2 * (y0 / (1.0 - lambda * a2s)) + t3);
+    direction = rgHorizonCentroid(axis, vec3(0.0, 0.0, 1.0), sqrt(formFactor));
+    return illuminanceSphereOrDisk(clamp(axis.z, -0.9999, 0.9999), min(formFactor, 0.9999)) / RG_PI;
 }
 
 #endif

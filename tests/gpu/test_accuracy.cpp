@@ -1,9 +1,9 @@
 // The area-light accuracy suite (rgraph accuracy, graph/cli/accuracy.h) at a small size: every
-// light type × placement × material runs, every case lights enough pixels to measure, and today's
-// errors stay where they were measured (64×48, 16 reference frames per half; printed). These are
-// today's levels, not the targets (#15: sphere ≤ 1 %, disk ≤ 3 %, rect and tube ≤ 5 % in every
-// case): the horizon and glossy-metal cases are far from them until the lights move to linearly
-// transformed cosines.
+// light type × placement × material runs under both area-light models against one reference, every
+// case lights enough pixels to measure, and each model's errors stay where they were measured
+// (64×48, 2 × 8 × 128 reference samples per pixel; printed). The bounds (sphere ≤ 1 %, disk
+// ≤ 3 %, rect and tube ≤ 5 %) hold for LTC in most cases; the README's table (96×72, 2 × 4096
+// samples) says which not, and by how much.
 #include <gtest/gtest.h>
 
 #include "gpu_fixture.h"
@@ -24,30 +24,37 @@ TEST_F(Accuracy, EveryCaseRunsAndStaysWithinTodaysErrors) {
     AccuracyOptions o;
     o.width = 64;
     o.height = 48;
-    o.frames = 16;
+    o.frames = 8;
+    o.samples = 128;
     auto cases = runAccuracy(*s_runtime, o);
     ASSERT_TRUE(cases) << cases.error().message;
-    ASSERT_EQ(cases->size(), 36u);
+    ASSERT_EQ(cases->size(), 72u);
     std::printf("%s", accuracyTable(*cases).c_str());
-    // Measured mean error (%) of the real-time lights, rough / glossy / metal, worst placement,
-    // with room for the reference's noise at this sample count.
-    const std::map<std::string, std::array<double, 3>> bound = {
-        {"sphere", {8, 11, 45}}, {"disk", {15, 19, 55}}, {"rect", {14, 12, 65}}, {"tube", {14, 16, 70}}};
+    // Measured mean error (%), rough / glossy / metal, worst placement, with room for the
+    // reference's noise at this sample count (~0.5–2 %).
+    const std::map<std::string, std::array<double, 3>> frostbite = {
+        {"sphere", {5, 8, 50}}, {"disk", {12, 17, 50}}, {"rect", {13, 8, 60}}, {"tube", {8, 10, 65}}};
+    const std::map<std::string, std::array<double, 3>> ltc = {
+        {"sphere", {3, 5, 10}}, {"disk", {3, 5, 7}}, {"rect", {3, 7, 7}}, {"tube", {3, 3, 12}}};
+    std::map<std::string, double> metalFrostbite;
     for (const auto& c : *cases) {
         SCOPED_TRACE(c.name());
         EXPECT_GT(c.pixels, 100u);  // lit pixel-channels: a glossy metal's highlight is small (~150 at 64×48)
         EXPECT_TRUE(std::isfinite(c.meanError) && std::isfinite(c.energyError));
-        EXPECT_LT(c.referenceNoise, 0.16);
+        EXPECT_LT(c.referenceNoise, 0.04);
         const int m = c.material == "rough" ? 0 : c.material == "glossy" ? 1 : 2;
+        const auto& bound = c.model == "ltc" ? ltc : frostbite;
         EXPECT_LT(c.meanError * 100.0, bound.at(c.light)[size_t(m)]);
-        if (c.placement == "facing" && c.material == "rough") {
-            EXPECT_LT(c.meanError, c.light == "sphere" ? 0.02 : 0.08);
-        }
+        if (c.model == "ltc") EXPECT_LT(std::abs(c.energyError), 0.04);  // the 3 %, with the noise
+        const std::string key = c.light + c.placement;
+        if (c.material == "metal" && c.model == "frostbite") metalFrostbite[key] = c.meanError;
+        // LTC's point: the glossy metal's highlight, several times closer than the representative point.
+        if (c.material == "metal" && c.model == "ltc") EXPECT_LT(c.meanError * 3.0, metalFrostbite.at(key));
     }
     const std::string dir = std::string(RG_TEST_TMP) + "/accuracy";
     ASSERT_TRUE(writeAccuracyReport(*cases, dir));
     EXPECT_TRUE(std::filesystem::exists(dir + "/index.html"));
-    EXPECT_TRUE(std::filesystem::exists(dir + "/rect_horizon_metal.png"));
+    EXPECT_TRUE(std::filesystem::exists(dir + "/rect_horizon_metal_ltc.png"));
 }
 
 }  // namespace
