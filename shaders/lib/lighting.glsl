@@ -358,7 +358,8 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
         if (ltc) {
             // The capsule's outline seen from the point: the cylinder's as a rectangle along the
             // segment, as wide as the tangent planes from the point (r / cos of their half-angle),
-            // and each end's half-sphere as half of the disk that spans its sphere's cone.
+            // and each end's half-sphere by the disk that spans its sphere's cone, less what of it
+            // the rectangle covers (all of it seen from beyond the end, along the axis).
             float sqrLineDistance = max(dot(closestOnLine, closestOnLine), radius * radius * 1.0001);
             vec3 side = up * (radius * inversesqrt(1.0 - radius * radius / sqrLineDistance));
             vec3 q0 = L0 + side, q1 = L0 - side, q2 = L1 - side, q3 = L1 + side;
@@ -368,16 +369,37 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
             float capD = 0.0, capS = 0.0;
             vec3 capTowards = vec3(0.0);
             for (int end = 0; end < 2; ++end) {
-                vec3 c = end == 0 ? L0 : L1;
+                vec3 c = end == 0 ? L0 : L1, other = end == 0 ? L1 : L0;
                 float sqrEnd = max(dot(c, c), radius * radius * 1.0001);
                 float rho = radius * inversesqrt(1.0 - radius * radius / sqrEnd);
                 vec3 toC = c * inversesqrt(sqrEnd);
-                vec3 T = normalize(cross(toC, abs(toC.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0))) * rho, B = cross(toC, T);
-                vec3 e;
-                float d = 0.5 * rgLtcEllipse(toLocal * c, toLocal * T, toLocal * B, e);
+                // In the plane of the end's disk (through c, facing the point): the rectangle's
+                // direction from c (the other end seen through that plane) and its length there.
+                float otherDepth = dot(other, toC);
+                vec3 inward = otherDepth > 1e-6 ? other * (dot(c, toC) / otherDepth) - c : -c;
+                inward -= toC * dot(inward, toC);
+                float len = length(inward);
+                vec3 T = normalize(cross(toC, abs(toC.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
+                vec3 outward = len > 1e-9 ? -inward / len : T;
+                vec3 side = cross(toC, outward);
+                // The disk's outer half as a half-octagon of the same area (two quads), plus the
+                // share of its inner half the rectangle does not cover: the strip of depth len,
+                // t = len / ρ, covers (t √(1 − t²) + asin t) / π of the disk (½ for t ≥ 1).
+                float t = min(len / rho, 1.0);
+                float uncovered = 0.5 - (t * sqrt(1.0 - t * t) + asin(t)) / RG_PI;
+                float R = rho * 1.05390;  // √(π / (2√2)): the half-octagon's area is the half-disk's
+                vec3 p90 = c + side * R, p45 = c + (side + outward) * (0.70710678 * R), p0 = c + outward * R;
+                vec3 m45 = c + (outward - side) * (0.70710678 * R), m90 = c - side * R;
+                vec3 Tr = T * rho, Br = cross(toC, Tr), e, towardsA, towardsB;
+                float fullD = rgLtcEllipse(toLocal * c, toLocal * Tr, toLocal * Br, e);
+                float halfD = rgLtcQuad(toLocal * c, toLocal * m90, toLocal * m45, toLocal * p0, towardsA) +
+                              rgLtcQuad(toLocal * c, toLocal * p0, toLocal * p45, toLocal * p90, towardsB);
+                float d = halfD + uncovered * fullD;
                 capD += d;
                 capTowards += e * d;
-                capS += 0.5 * rgLtcEllipse(Minv * c, Minv * T, Minv * B, unused);
+                capS += rgLtcQuad(Minv * c, Minv * m90, Minv * m45, Minv * p0, unused) +
+                        rgLtcQuad(Minv * c, Minv * p0, Minv * p45, Minv * p90, unused) +
+                        uncovered * rgLtcEllipse(Minv * c, Minv * Tr, Minv * Br, unused);
             }
             s.diffuseIlluminance = luminance * (RG_PI * (quadD + capD));
             s.Ld = rgSafeNormalize((rgSafeNormalize(towards, vec3(0.0)) * quadD + capTowards) * toLocal, sphereL);
