@@ -46,11 +46,15 @@ TEST_F(Accuracy, EveryCaseRunsAndStaysWithinTodaysErrors) {
         const int m = c.material == "rough" ? 0 : c.material == "glossy" ? 1 : 2;
         const auto& bound = c.model == "ltc" ? ltc : frostbite;
         EXPECT_LT(c.meanError * 100.0, bound.at(c.light)[size_t(m)]);
-        if (c.model == "ltc") EXPECT_LT(std::abs(c.energyError), 0.04);  // the 3 %, with the noise
+        if (c.model == "ltc") {
+            EXPECT_LT(std::abs(c.energyError), 0.04);  // the 3 %, with the noise
+        }
         const std::string key = c.light + c.placement;
         if (c.material == "metal" && c.model == "frostbite") metalFrostbite[key] = c.meanError;
         // LTC's point: the glossy metal's highlight, several times closer than the representative point.
-        if (c.material == "metal" && c.model == "ltc") EXPECT_LT(c.meanError * 3.0, metalFrostbite.at(key));
+        if (c.material == "metal" && c.model == "ltc") {
+            EXPECT_LT(c.meanError * 3.0, metalFrostbite.at(key));
+        }
     }
     const std::string dir = std::string(RG_TEST_TMP) + "/accuracy";
     ASSERT_TRUE(writeAccuracyReport(*cases, dir));

@@ -145,7 +145,9 @@ TEST(Ltc, EllipseIntegralMatchesItsPolygonAboveTheHorizon) {
         glm::vec3 d1, d2;
         const float p = ltc::polygonIntegral(poly, &d1), e = ltc::ellipseIntegral(c.c, c.a1, c.a2, &d2);
         EXPECT_NEAR(e, p, c.tolerance * p);
-        if (c.tolerance < 0.01f) EXPECT_GT(glm::dot(glm::normalize(d1), d2), 0.9999f);
+        if (c.tolerance < 0.01f) {
+            EXPECT_GT(glm::dot(glm::normalize(d1), d2), 0.9999f);
+        }
         std::printf("ellipse %zu: polygon %.6f, closed form %.6f\n", k, p, e);
     }
 }
