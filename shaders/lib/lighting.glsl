@@ -381,19 +381,19 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
                 float len = length(inward);
                 vec3 T = normalize(cross(toC, abs(toC.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0)));
                 vec3 outward = len > 1e-9 ? -inward / len : T;
-                vec3 side = cross(toC, outward);
+                vec3 across = cross(toC, outward);
                 // The disk's outer half as a half-octagon of the same area (two quads), plus the
                 // share of its inner half the rectangle does not cover: the strip of depth len,
                 // t = len / ρ, covers (t √(1 − t²) + asin t) / π of the disk (½ for t ≥ 1).
                 float t = min(len / rho, 1.0);
                 float uncovered = 0.5 - (t * sqrt(1.0 - t * t) + asin(t)) / RG_PI;
                 float R = rho * 1.05390;  // √(π / (2√2)): the half-octagon's area is the half-disk's
-                vec3 p90 = c + side * R, p45 = c + (side + outward) * (0.70710678 * R), p0 = c + outward * R;
-                vec3 m45 = c + (outward - side) * (0.70710678 * R), m90 = c - side * R;
-                vec3 Tr = T * rho, Br = cross(toC, Tr), e, towardsA, towardsB;
+                vec3 p90 = c + across * R, p45 = c + (across + outward) * (0.70710678 * R), p0 = c + outward * R;
+                vec3 m45 = c + (outward - across) * (0.70710678 * R), m90 = c - across * R;
+                vec3 Tr = T * rho, Br = cross(toC, Tr), e;
                 float fullD = rgLtcEllipse(toLocal * c, toLocal * Tr, toLocal * Br, e);
-                float halfD = rgLtcQuad(toLocal * c, toLocal * m90, toLocal * m45, toLocal * p0, towardsA) +
-                              rgLtcQuad(toLocal * c, toLocal * p0, toLocal * p45, toLocal * p90, towardsB);
+                float halfD = rgLtcQuad(toLocal * c, toLocal * m90, toLocal * m45, toLocal * p0, unused) +
+                              rgLtcQuad(toLocal * c, toLocal * p0, toLocal * p45, toLocal * p90, unused);
                 float d = halfD + uncovered * fullD;
                 capD += d;
                 capTowards += e * d;
