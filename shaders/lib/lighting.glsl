@@ -12,8 +12,9 @@
 // With area_lights = "ltc" (scripts/lighting.lua; Lights.count.y = 1) the area lights' GGX lobe is
 // instead integrated over the light by linearly transformed cosines (lib/ltc.glsl), and the
 // diffuse lobe sees the exact cosine-weighted form factor (the same integral with M = identity;
-// the sphere keeps lst:10, exact), both horizon clipped; rgStandardLighting then takes the
-// integrated lobe. (An LTC fitted to the Disney diffuse lobe was measured worse than the form
+// the sphere keeps lst:10, exact), both horizon clipped, with the Disney term averaged over the
+// light's visible part (lib/ltc.glsl's rgHorizonDisney); rgStandardLighting then takes the
+// integrated lobes. (An LTC fitted to the Disney diffuse lobe was measured worse than the form
 // factor × Disney at the light's mean direction: 1.2–1.5 % against 0.2–0.6 % facing.)
 // The CPU twins are graph/lighting's area_lights.h, punctual.h and ies.h; tests/gpu/test_lights.cpp
 // compares the two. Intensities arrive converted (passes/gpu_scene.cpp): cd, lux or cd/m².
@@ -164,8 +165,10 @@ float rgDiskCone(RgLight light, vec3 P) {
 // roughness it was evaluated with: the lobe's luminance is specularLtc · (f0 · ltcAlbedo.x + f90 ·
 // ltcAlbedo.y) (ltcAlbedo.xy: the lobe's albedo split for Schlick's Fresnel; 0 for other lights).
 // Its diffuse lobe sees the exact (horizon-clipped) illuminance from the mean direction Ld of the
-// light's visible part; Ls, specularIlluminance and specularNormalisation stay Frostbite's, for
-// lobes other than the standard one (a clear coat).
+// light's visible part; for a sphere, a disk or a rect, ltcAlbedo.z > 0 holds the Disney diffuse term
+// (without 1/π) averaged over that part (lib/ltc.glsl's rgHorizonDisney), which the standard
+// lighting then uses instead of the term at Ld. Ls, specularIlluminance and
+// specularNormalisation stay Frostbite's, for lobes other than the standard one (a clear coat).
 struct RgLightSample {
     vec3 Ld;
     vec3 diffuseIlluminance;
@@ -173,7 +176,7 @@ struct RgLightSample {
     vec3 specularIlluminance;
     float specularNormalisation;
     vec3 specularLtc;
-    vec2 ltcAlbedo;
+    vec3 ltcAlbedo;
 };
 
 int rgLightType(RgLight light) { return int(light.positionType.w + 0.5); }
@@ -192,7 +195,7 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
     s.diffuseIlluminance = s.specularIlluminance = vec3(0.0);
     s.specularNormalisation = 1.0;
     s.specularLtc = vec3(0.0);
-    s.ltcAlbedo = vec2(0.0);
+    s.ltcAlbedo = vec3(0.0);
 
     if (RG_SCENE_HAS_LIGHT(RG_LIGHT_SUN) && type == RG_LIGHT_SUN) {
         // lst:6: the diffuse part as if the sun were punctual (eq:28), the specular part towards
@@ -239,8 +242,10 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
     mat3 toLocal = mat3(1.0), Minv = mat3(1.0);
     if (ltc) {
         toLocal = rgLtcFrame(N, V);
-        rgLtcLookup(linearRoughness, clamp(dot(N, V), 0.0, 1.0), Minv, s.ltcAlbedo);
+        vec2 albedo;
+        rgLtcLookup(linearRoughness, clamp(dot(N, V), 0.0, 1.0), Minv, albedo);
         Minv = Minv * toLocal;
+        s.ltcAlbedo = vec3(albedo, 0.0);
     }
 
     if (RG_SCENE_HAS_LIGHT(RG_LIGHT_SPHERE) && type == RG_LIGHT_SPHERE) {
@@ -260,10 +265,12 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
         s.specularNormalisation = w * w;
         if (ltc) {
             s.Ld = rgHorizonCentroid(L, N, radius * invDist);
+            s.ltcAlbedo.z = rgHorizonDisney(L, N, radius * invDist, V, linearRoughness);
             // The disk through the centre that spans the sphere's cone: radius r / cos σ.
             float rho = radius * inversesqrt(1.0 - sinSigmaSqr);
             vec3 T = normalize(cross(L, abs(L.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0))) * rho, B = cross(L, T), unused;
-            s.specularLtc = luminance * rgLtcEllipse(Minv * Lu, Minv * T, Minv * B, unused);
+            float unusedSin;
+            s.specularLtc = luminance * rgLtcEllipse(Minv * Lu, Minv * T, Minv * B, unused, unusedSin);
         }
     } else if (RG_SCENE_HAS_LIGHT(RG_LIGHT_DISK) && type == RG_LIGHT_DISK) {
         // lst:10, disk evaluation, times the disk's own orientation. It emits along `dir`; its cone
@@ -286,10 +293,13 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
             if (dot(-Lu, dir) > 0.0) {
                 float cone = rgDiskCone(light, P);
                 vec3 T = normalize(cross(dir, abs(dir.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0))) * radius;
-                vec3 B = cross(dir, T), towards, unused;
-                s.diffuseIlluminance = luminance * (RG_PI * cone * rgLtcEllipse(toLocal * Lu, toLocal * T, toLocal * B, towards));
-                s.Ld = towards * toLocal;  // back to world: toLocal is a rotation
-                s.specularLtc = luminance * (cone * rgLtcEllipse(Minv * Lu, Minv * T, Minv * B, unused));
+                vec3 B = cross(dir, T), axis, unused;
+                float sinSq, unusedSin;
+                s.diffuseIlluminance = luminance * (RG_PI * cone * rgLtcEllipse(toLocal * Lu, toLocal * T, toLocal * B, axis, sinSq));
+                axis = axis * toLocal;  // back to world: toLocal is a rotation
+                s.Ld = rgHorizonCentroid(axis, N, sqrt(sinSq));
+                s.ltcAlbedo.z = rgHorizonDisney(axis, N, sqrt(sinSq), V, linearRoughness);
+                s.specularLtc = luminance * (cone * rgLtcEllipse(Minv * Lu, Minv * T, Minv * B, unused, unusedSin));
             }
         }
     } else if (RG_SCENE_HAS_LIGHT(RG_LIGHT_RECT) && type == RG_LIGHT_RECT) {
@@ -318,6 +328,10 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
                 vec3 towards, unused;
                 s.diffuseIlluminance = luminance * (RG_PI * rgLtcQuad(toLocal * p0, toLocal * p1, toLocal * p2, toLocal * p3, towards));
                 s.Ld = rgSafeNormalize(towards * toLocal, L);
+                // The Disney term averaged over its part above the horizon, by the equivalent sphere.
+                vec3 F = rgLtcQuadVector(p0, p1, p2, p3);
+                float sinSq = length(F);
+                if (sinSq > 0.0) s.ltcAlbedo.z = rgHorizonDisney(F / sinSq, N, sqrt(min(sinSq, 0.9999)), V, linearRoughness);
                 s.specularLtc = luminance * rgLtcQuad(Minv * p0, Minv * p1, Minv * p2, Minv * p3, unused);
             }
         }
@@ -391,7 +405,8 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
                 vec3 p90 = c + across * R, p45 = c + (across + outward) * (0.70710678 * R), p0 = c + outward * R;
                 vec3 m45 = c + (outward - across) * (0.70710678 * R), m90 = c - across * R;
                 vec3 Tr = T * rho, Br = cross(toC, Tr), e;
-                float fullD = rgLtcEllipse(toLocal * c, toLocal * Tr, toLocal * Br, e);
+                float unusedSin;
+                float fullD = rgLtcEllipse(toLocal * c, toLocal * Tr, toLocal * Br, e, unusedSin);
                 float halfD = rgLtcQuad(toLocal * c, toLocal * m90, toLocal * m45, toLocal * p0, unused) +
                               rgLtcQuad(toLocal * c, toLocal * p0, toLocal * p45, toLocal * p90, unused);
                 float d = halfD + uncovered * fullD;
@@ -399,7 +414,7 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
                 capTowards += e * d;
                 capS += rgLtcQuad(Minv * c, Minv * m90, Minv * m45, Minv * p0, unused) +
                         rgLtcQuad(Minv * c, Minv * p0, Minv * p45, Minv * p90, unused) +
-                        uncovered * rgLtcEllipse(Minv * c, Minv * Tr, Minv * Br, unused);
+                        uncovered * rgLtcEllipse(Minv * c, Minv * Tr, Minv * Br, unused, unusedSin);
             }
             s.diffuseIlluminance = luminance * (RG_PI * (quadD + capD));
             s.Ld = rgSafeNormalize((rgSafeNormalize(towards, vec3(0.0)) * quadD + capTowards) * toLocal, sphereL);
@@ -455,6 +470,7 @@ vec3 rgSpecularBrdf(vec3 N, vec3 V, vec3 L, vec3 f0, float linearRoughness) {
 // (Ld = Ls, diffuse = specular illuminance × ⟨n·l⟩) it is rgStandardBrdf × the illuminance.
 // An area light under the LTC model: its integrated lobe, with Schlick's F(f0, f90) integrated.
 vec3 rgStandardLighting(RgLightSample s, vec3 N, vec3 V, vec3 diffuseColor, vec3 f0, float linearRoughness) {
+    float diffuse = s.ltcAlbedo.z > 0.0 ? s.ltcAlbedo.z / RG_PI : rgDiffuseBrdf(N, V, s.Ld, linearRoughness);
     vec3 specular;
     if (s.ltcAlbedo.x + s.ltcAlbedo.y > 0.0) {
         float f90 = clamp(50.0 * dot(f0, vec3(0.33)), 0.0, 1.0);
@@ -462,7 +478,7 @@ vec3 rgStandardLighting(RgLightSample s, vec3 N, vec3 V, vec3 diffuseColor, vec3
     } else {
         specular = rgSpecularBrdf(N, V, s.Ls, f0, linearRoughness) * s.specularIlluminance * s.specularNormalisation;
     }
-    return diffuseColor * rgDiffuseBrdf(N, V, s.Ld, linearRoughness) * s.diffuseIlluminance + specular;
+    return diffuseColor * diffuse * s.diffuseIlluminance + specular;
 }
 
 uint rgLightCount() { return lights.count.x; }

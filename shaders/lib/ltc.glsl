@@ -62,14 +62,30 @@ float rgLtcQuad(vec3 p0, vec3 p1, vec3 p2, vec3 p3, out vec3 direction) {
     return abs(sum.z) * (0.5 / RG_PI);
 }
 
+// The unclipped quad's vector form factor over 2π, pointing towards the quad: its length is the
+// sin²σ, its direction the axis, of the sphere with the same form factor (Hill & Heitz's
+// equivalent sphere), which rgHorizonDisney takes for a quad that crosses the horizon.
+vec3 rgLtcQuadVector(vec3 p0, vec3 p1, vec3 p2, vec3 p3) {
+    vec3 v0 = normalize(p0), v1 = normalize(p1), v2 = normalize(p2), v3 = normalize(p3);
+    vec3 sum = rgLtcEdge(v0, v1) + rgLtcEdge(v1, v2) + rgLtcEdge(v2, v3) + rgLtcEdge(v3, v0);
+    return (dot(sum, p0 + p2) < 0.0 ? -sum : sum) * (0.5 / RG_PI);
+}
+
 float illuminanceSphereOrDisk(float cosTheta, float sinSigmaSqr);  // lib/lighting.glsl (seed 000 lst:10)
 
-// The mean direction of the part of a cone (unit axis, half-angle σ) above the plane normal to
-// `up`, weighted by the cosine to `up`: where the diffuse lobe looks at a light that crosses the
-// horizon. Small-angle model: the cone's section a disk of radius σ around the axis's elevation e
-// in (azimuth, elevation); the weighted mean elevation ∫ y² w / ∫ y w over 0 < y < e + σ,
-// w(y) = √(σ² − (y − e)²), by the midpoint rule (8 points). The axis itself when the cone is
-// wholly above the horizon (or wholly below).
+// A cone (unit axis, half-angle σ) that crosses the plane normal to `up`: the part above it seen
+// as a band of elevations 0 < y < e + σ (e: the axis's elevation; small-angle model, the cone's
+// section a disk of radius σ around e, so the band's width at y is w(y) = √(σ² − (y − e)²)),
+// sampled at 8 elevations along the axis's azimuth (the midpoint rule). rgHorizonCentroid: the
+// cosine-weighted mean direction of that part, where the diffuse lobe looks at the light;
+// rgHorizonDisney: the renormalised Disney diffuse (lst:1, without its 1/π) averaged over it with
+// the same weights — not the term at the mean direction, which is off by its curvature near the
+// horizon (too bright for a smooth surface, too dark for a rough one). Wholly above the horizon
+// (or below): the axis, and the term there.
+vec3 rgHorizonDirection(vec3 level, float sinE, vec3 axis, vec3 up, float y) {
+    float l2 = dot(level, level);
+    return l2 < 1e-12 ? axis : level * (cos(y) * inversesqrt(l2)) + up * sin(y);
+}
 vec3 rgHorizonCentroid(vec3 axis, vec3 up, float sinSigma) {
     float sinE = clamp(dot(axis, up), -1.0, 1.0);
     float e = asin(sinE), sigma = asin(clamp(sinSigma, 0.0, 1.0)), top = e + sigma;
@@ -77,15 +93,31 @@ vec3 rgHorizonCentroid(vec3 axis, vec3 up, float sinSigma) {
     float num = 0.0, den = 0.0;
     for (int i = 0; i < 8; ++i) {
         float y = top * (float(i) + 0.5) / 8.0;
-        float w = sqrt(max(sigma * sigma - (y - e) * (y - e), 0.0));
-        num += y * y * w;
-        den += y * w;
+        float w = sqrt(max(sigma * sigma - (y - e) * (y - e), 0.0)) * sin(y);
+        num += y * w;
+        den += w;
     }
-    float elevation = den > 0.0 ? num / den : 0.5 * top;
+    return rgHorizonDirection(axis - up * sinE, sinE, axis, up, den > 0.0 ? num / den : 0.5 * top);
+}
+float rgHorizonDisney(vec3 axis, vec3 up, float sinSigma, vec3 V, float linearRoughness) {
+    float NdotV = abs(dot(up, V)) + 1e-5;  // lst:2, as rgDiffuseBrdf
+    float sinE = clamp(dot(axis, up), -1.0, 1.0);
+    float e = asin(sinE), sigma = asin(clamp(sinSigma, 0.0, 1.0)), top = e + sigma;
+    if (e >= sigma || top <= 0.0) {
+        vec3 H = normalize(V + axis);
+        return Fr_DisneyDiffuse(NdotV, clamp(sinE, 0.0, 1.0), clamp(dot(axis, H), 0.0, 1.0), linearRoughness);
+    }
     vec3 level = axis - up * sinE;
-    float l2 = dot(level, level);
-    if (l2 < 1e-12) return axis;
-    return level * (cos(elevation) * inversesqrt(l2)) + up * sin(elevation);
+    float num = 0.0, den = 0.0;
+    for (int i = 0; i < 8; ++i) {
+        float y = top * (float(i) + 0.5) / 8.0;
+        float w = sqrt(max(sigma * sigma - (y - e) * (y - e), 0.0)) * sin(y);
+        vec3 L = rgHorizonDirection(level, sinE, axis, up, y);
+        vec3 H = normalize(V + L);
+        num += w * Fr_DisneyDiffuse(NdotV, sin(y), clamp(dot(L, H), 0.0, 1.0), linearRoughness);
+        den += w;
+    }
+    return den > 0.0 ? num / den : 1.0;
 }
 
 // The same for the ellipse centre + cos t · axis1 + sin t · axis2 (any conjugate pair of half-axes):
@@ -93,8 +125,8 @@ vec3 rgHorizonCentroid(vec3 axis, vec3 up, float sinSigma) {
 // form factor of that cone, L1 L2 / √((1 + L1²)(1 + L2²)), is the sin²σ of the sphere whose
 // horizon-clipped integral (lst:10) stands for the ellipse's. ltc.cpp's ellipseIntegral derives
 // the quadric's smallest eigenvalue λ3 ∈ [−1, −1/(1 + x0² + y0²)], found here by bracketed Newton.
-// `direction`: where the diffuse lobe looks at it (rgHorizonCentroid of the equivalent sphere).
-float rgLtcEllipse(vec3 centre, vec3 axis1, vec3 axis2, out vec3 direction) {
+// `direction`, `sinSigmaSqr`: the axis and sin²σ of that sphere.
+float rgLtcEllipse(vec3 centre, vec3 axis1, vec3 axis2, out vec3 direction, out float sinSigmaSqr) {
     float d11 = dot(axis1, axis1), d22 = dot(axis2, axis2), d12 = dot(axis1, axis2);
     vec3 t1 = axis1, t2 = axis2;
     float e1 = d11, e2 = d22;
@@ -111,6 +143,7 @@ float rgLtcEllipse(vec3 centre, vec3 axis1, vec3 axis2, out vec3 direction) {
     float h = dot(t3, centre);
     if (h < 0.0) { t3 = -t3; h = -h; }
     direction = vec3(0.0, 0.0, 1.0);
+    sinSigmaSqr = 0.0;
     if (h < 1e-7 * sqrt(e1)) return 0.0;  // seen edge on
     float x0 = dot(t1, centre) / h, y0 = dot(t2, centre) / h;
     float a1s = e1 / (h * h), a2s = e2 / (h * h);
@@ -128,9 +161,9 @@ float rgLtcEllipse(vec3 centre, vec3 axis1, vec3 axis2, out vec3 direction) {
     float productTan = -lambda * lambda * lambda * k3;
     float sumTan = lambda * lambda * (k2 - lambda * k3);
     float formFactor = sqrt(max(productTan, 0.0) / (1.0 + sumTan + productTan));
-    vec3 axis = normalize(t1 * (x0 / (1.0 - lambda * a1s)) + t2 * (y0 / (1.0 - lambda * a2s)) + t3);
-    direction = rgHorizonCentroid(axis, vec3(0.0, 0.0, 1.0), sqrt(formFactor));
-    return illuminanceSphereOrDisk(clamp(axis.z, -0.9999, 0.9999), min(formFactor, 0.9999)) / RG_PI;
+    direction = normalize(t1 * (x0 / (1.0 - lambda * a1s)) + t2 * (y0 / (1.0 - lambda * a2s)) + t3);
+    sinSigmaSqr = min(formFactor, 0.9999);
+    return illuminanceSphereOrDisk(clamp(direction.z, -0.9999, 0.9999), sinSigmaSqr) / RG_PI;
 }
 
 #endif
