@@ -82,32 +82,43 @@ glm::vec3 rgStandardBrdf(glm::vec3 N, glm::vec3 V, glm::vec3 L, glm::vec3 diffus
     return (diffuseColor * Fd + Fr) * NdotL;
 }
 
+VisibleNormals::VisibleNormals(const glm::dvec3& view, double alpha) : a(alpha), v(view) {
+    vh = glm::normalize(glm::dvec3(a * v.x, a * v.y, v.z));
+    const double lenSq = vh.x * vh.x + vh.y * vh.y;
+    t1 = lenSq > 0.0 ? glm::dvec3(-vh.y, vh.x, 0.0) / std::sqrt(lenSq) : glm::dvec3(1.0, 0.0, 0.0);
+    t2 = glm::cross(vh, t1);
+    const double nv = std::max(v.z, 1e-7);
+    g1 = 2.0 * nv / (nv + std::sqrt(a * a + (1.0 - a * a) * nv * nv));
+}
+
+glm::dvec3 VisibleNormals::halfVector(double u1, double u2) const {
+    const double r = std::sqrt(u1), phi = 2.0 * kPiD * u2;
+    const double p1 = r * std::cos(phi);
+    double p2 = r * std::sin(phi);
+    const double s = 0.5 * (1.0 + vh.z);
+    p2 = (1.0 - s) * std::sqrt(std::max(0.0, 1.0 - p1 * p1)) + s * p2;
+    const glm::dvec3 nh = p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
+    return glm::normalize(glm::dvec3(a * nh.x, a * nh.y, std::max(0.0, nh.z)));
+}
+
+double VisibleNormals::pdf(const glm::dvec3& l) const {
+    const glm::dvec3 h = glm::normalize(v + l);
+    if (h.z <= 0.0) return 0.0;
+    const double c = h.z * h.z, a2 = a * a, f = c * (a2 - 1.0) + 1.0;
+    const double D = a2 / (kPiD * f * f);
+    return g1 * D / (4.0 * std::max(v.z, 1e-7));
+}
+
 double specularAlbedo(float NdotV, float linearRoughness, float f0, float f90, int samples) {
     RG_CHECK(samples > 0) << "specularAlbedo needs at least one sample, got " << samples;
     const float alpha = standardAlpha(linearRoughness);
-    const double a = alpha;
     const glm::dvec3 v = viewVector(NdotV);
-    // Sample the distribution of visible normals (Heitz 2018): pdf(l) = G₁(v) D(h)/π / (4 NdotV), so
-    // f·⟨n·l⟩/pdf = F · G₂/G₁(v) — bounded, which keeps grazing views and rough lobes low-variance.
-    // Hemisphere configuration: stretch the view by alpha, then a disk sample warped onto the
-    // projected half of the visible hemisphere.
-    const glm::dvec3 vh = glm::normalize(glm::dvec3(a * v.x, a * v.y, v.z));
-    const double lenSq = vh.x * vh.x + vh.y * vh.y;
-    const glm::dvec3 t1 = lenSq > 0.0 ? glm::dvec3(-vh.y, vh.x, 0.0) / std::sqrt(lenSq) : glm::dvec3(1.0, 0.0, 0.0);
-    const glm::dvec3 t2 = glm::cross(vh, t1);
+    const VisibleNormals vn(v, alpha);  // f·⟨n·l⟩/pdf = F · G₂/G₁(v)
     const double nv = std::max(static_cast<double>(NdotV), 1e-7);
-    const double g1 = 2.0 * nv / (nv + std::sqrt(a * a + (1.0 - a * a) * nv * nv));  // 1 / (1 + Λ(v))
     double sum = 0.0;
-    for (int i = 0; i < samples; ++i) {
-        const double r = std::sqrt((i + 0.5) / samples);
+    for (int i = 0; i < samples; ++i)
         for (int j = 0; j < samples; ++j) {
-            const double phi = 2.0 * kPiD * (j + 0.5) / samples;
-            const double p1 = r * std::cos(phi);
-            double p2 = r * std::sin(phi);
-            const double s = 0.5 * (1.0 + vh.z);
-            p2 = (1.0 - s) * std::sqrt(std::max(0.0, 1.0 - p1 * p1)) + s * p2;
-            const glm::dvec3 nh = p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
-            const glm::dvec3 h = glm::normalize(glm::dvec3(a * nh.x, a * nh.y, std::max(0.0, nh.z)));
+            const glm::dvec3 h = vn.halfVector((i + 0.5) / samples, (j + 0.5) / samples);
             const double VdotH = glm::dot(v, h);
             if (VdotH <= 0.0) continue;
             const glm::dvec3 l = 2.0 * VdotH * h - v;
@@ -115,9 +126,8 @@ double specularAlbedo(float NdotV, float linearRoughness, float f0, float f90, i
             const float F = F_Schlick(f0, f90, static_cast<float>(VdotH));
             const float Vis = V_SmithGGXCorrelated(static_cast<float>(l.z), NdotV, alpha);
             const double g2 = 4.0 * static_cast<double>(Vis) * l.z * nv;  // Vis = G₂ / (4 NdotL NdotV)
-            sum += static_cast<double>(F) * g2 / g1;
+            sum += static_cast<double>(F) * g2 / vn.g1;
         }
-    }
     return sum / (static_cast<double>(samples) * samples);
 }
 

@@ -49,6 +49,21 @@ glm::vec3 rgStandardBrdf(glm::vec3 N, glm::vec3 V, glm::vec3 L, glm::vec3 diffus
 
 // ---- Numerical integration (tests, tools, documentation; not for per-pixel use) ----------------
 
+// Sampling GGX's distribution of visible normals (Heitz 2018) for a unit view v (tangent frame,
+// n = +z) and alpha: halfVector(u1, u2) maps a point of the unit square to a half vector h (the
+// hemisphere configuration: the view stretched by alpha, a disk sample warped onto the projected
+// half of the visible hemisphere); the light l = reflect(−v, h) then has the density
+// pdf(l) = G₁(v) D(h)/π / (4 NdotV), and f·⟨n·l⟩/pdf = F · G₂/G₁(v) — bounded, which keeps grazing
+// views and rough lobes low-variance. g1 = G₁(v) = 1 / (1 + Λ(v)).
+struct VisibleNormals {
+    double a;
+    glm::dvec3 v, vh, t1, t2;
+    double g1;
+    VisibleNormals(const glm::dvec3& view, double alpha);
+    glm::dvec3 halfVector(double u1, double u2) const;
+    double pdf(const glm::dvec3& l) const;
+};
+
 // Directional albedo of the specular lobe, ∫ D/π · F · V ⟨n·l⟩ dl, for a view at NdotV (0..1],
 // alpha = standardAlpha(linearRoughness) and Schlick's F(f0, f90). Estimated by importance
 // sampling the GGX distribution of half vectors on a deterministic samples × samples stratified

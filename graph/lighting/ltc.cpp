@@ -39,46 +39,13 @@ const std::array<Entry, size_t(kSize) * kSize>& fittedTable() {
 // The view of a cell: in the plane xz, θv from the normal z.
 glm::dvec3 viewVector(double NdotV) { return {std::sqrt(std::max(0.0, 1.0 - NdotV * NdotV)), 0.0, NdotV}; }
 
-// Sampling the distribution of visible normals (Heitz 2018) for the lobe: pdf(l) = G₁(v) D(h) / (4 ⟨n·v⟩)
-// (D with its 1/π), reflecting v about h.
-struct VisibleNormals {
-    double a;
-    glm::dvec3 v, vh, t1, t2;
-    double g1;
-    VisibleNormals(const glm::dvec3& view, double alpha) : a(alpha), v(view) {
-        vh = glm::normalize(glm::dvec3(a * v.x, a * v.y, v.z));
-        const double lenSq = vh.x * vh.x + vh.y * vh.y;
-        t1 = lenSq > 0.0 ? glm::dvec3(-vh.y, vh.x, 0.0) / std::sqrt(lenSq) : glm::dvec3(1.0, 0.0, 0.0);
-        t2 = glm::cross(vh, t1);
-        const double nv = std::max(v.z, 1e-7);
-        g1 = 2.0 * nv / (nv + std::sqrt(a * a + (1.0 - a * a) * nv * nv));
-    }
-    glm::dvec3 sample(double u1, double u2) const {
-        const double r = std::sqrt(u1), phi = 2.0 * kPiD * u2;
-        const double p1 = r * std::cos(phi);
-        double p2 = r * std::sin(phi);
-        const double s = 0.5 * (1.0 + vh.z);
-        p2 = (1.0 - s) * std::sqrt(std::max(0.0, 1.0 - p1 * p1)) + s * p2;
-        const glm::dvec3 nh = p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
-        const glm::dvec3 h = glm::normalize(glm::dvec3(a * nh.x, a * nh.y, std::max(0.0, nh.z)));
-        return 2.0 * glm::dot(v, h) * h - v;
-    }
-    double pdf(const glm::dvec3& l) const {
-        const glm::dvec3 h = glm::normalize(v + l);
-        if (h.z <= 0.0) return 0.0;
-        const double c = h.z * h.z, a2 = a * a, f = c * (a2 - 1.0) + 1.0;
-        const double D = a2 / (kPiD * f * f);
-        return g1 * D / (4.0 * std::max(v.z, 1e-7));
-    }
-};
-
 // The GGX lobe of brdf.glsl times ⟨n·l⟩ for one cell, D/π · Vis · ⟨n·l⟩ (F = 1), sampled by
 // its visible normals.
 struct LobeModel {
-    float linearRoughness, alpha;
+    float alpha;
     glm::dvec3 v;
-    VisibleNormals vn;
-    LobeModel(float r, double NdotV) : linearRoughness(r), alpha(brdf::standardAlpha(r)), v(viewVector(NdotV)), vn(v, alpha) {}
+    brdf::VisibleNormals vn;
+    LobeModel(float linearRoughness, double NdotV) : alpha(brdf::standardAlpha(linearRoughness)), v(viewVector(NdotV)), vn(v, alpha) {}
     double value(const glm::dvec3& l) const {
         if (l.z <= 0.0) return 0.0;
         const glm::dvec3 h = glm::normalize(v + l);
@@ -86,7 +53,10 @@ struct LobeModel {
         const float Vis = brdf::V_SmithGGXCorrelated(static_cast<float>(l.z), static_cast<float>(v.z), alpha);
         return double(D) / kPiD * double(Vis) * l.z;
     }
-    glm::dvec3 sample(double u1, double u2) const { return vn.sample(u1, u2); }
+    glm::dvec3 sample(double u1, double u2) const {  // the light reflected about a visible normal
+        const glm::dvec3 h = vn.halfVector(u1, u2);
+        return 2.0 * glm::dot(v, h) * h - v;
+    }
     double pdf(const glm::dvec3& l) const { return vn.pdf(l); }
 };
 
@@ -211,15 +181,15 @@ double distribution(const glm::dmat3& inverse, const glm::dvec3& w) {
 
 namespace {
 
-// ∫ |D − f/magnitude|^power dω by multiple importance sampling of the LTC and the lobe.
-double difference(const LobeModel& lobe, const glm::dmat3& inverse, double magnitude, int samples, double power) {
+// ∫ |D − f/magnitude| dω by multiple importance sampling of the LTC and the lobe.
+double difference(const LobeModel& lobe, const glm::dmat3& inverse, double magnitude, int samples) {
     const glm::dmat3 M = glm::inverse(inverse);
     double error = 0.0;
     auto term = [&](const glm::dvec3& l) {
         const double d = distribution(inverse, l);
         const double b = lobe.value(l) / magnitude;
         const double pdf = 0.5 * d + 0.5 * lobe.pdf(l);
-        return pdf > 0.0 ? std::pow(std::abs(d - b), power) / pdf : 0.0;
+        return pdf > 0.0 ? std::abs(d - b) / pdf : 0.0;
     };
     for (int i = 0; i < samples; ++i)
         for (int j = 0; j < samples; ++j) {
@@ -237,7 +207,7 @@ double difference(const LobeModel& lobe, const glm::dmat3& inverse, double magni
 
 double fitDistance(float linearRoughness, float NdotV, const glm::mat3& inverse, int samples) {
     const LobeModel lobe(linearRoughness, NdotV);
-    return difference(lobe, glm::dmat3(inverse), lobeMoments(linearRoughness, NdotV).magnitude, samples, 1.0);
+    return difference(lobe, glm::dmat3(inverse), lobeMoments(linearRoughness, NdotV).magnitude, samples);
 }
 
 Fit fitCell(float linearRoughness, float NdotV, const glm::dvec4* start, glm::dvec4* parameters, int samples) {
@@ -254,7 +224,7 @@ Fit fitCell(float linearRoughness, float NdotV, const glm::dvec4* start, glm::dv
     // than Heitz et al.'s cubed one, which favours the peak.
     auto objective = [&](const glm::dvec4& p) {
         if (p.x <= 1e-6 || p.y <= 1e-6 || std::abs(p.w) > 1.0) return 1e30;
-        return difference(lobe, glm::inverse(matrix(p)), m.magnitude, samples, 1.0);
+        return difference(lobe, glm::inverse(matrix(p)), m.magnitude, samples);
     };
     Fit fit;
     const glm::dvec4 step(0.05 * std::max(1e-3, first.x), 0.05 * std::max(1e-3, first.y), 0.05 * std::max(1e-3, std::abs(first.z)) + 1e-3, 0.02);

@@ -264,8 +264,7 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
         float w = rgLobeWidening(alpha, radius * invDist);
         s.specularNormalisation = w * w;
         if (ltc) {
-            s.Ld = rgHorizonCentroid(L, N, radius * invDist);
-            s.ltcAlbedo.z = rgHorizonDisney(L, N, radius * invDist, V, linearRoughness);
+            s.ltcAlbedo.z = rgHorizonDisney(L, N, radius * invDist, V, linearRoughness, s.Ld);
             // The disk through the centre that spans the sphere's cone: radius r / cos σ.
             float rho = radius * inversesqrt(1.0 - sinSigmaSqr);
             vec3 T = normalize(cross(L, abs(L.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0))) * rho, B = cross(L, T), unused;
@@ -297,8 +296,7 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
                 float sinSq, unusedSin;
                 s.diffuseIlluminance = luminance * (RG_PI * cone * rgLtcEllipse(toLocal * Lu, toLocal * T, toLocal * B, axis, sinSq));
                 axis = axis * toLocal;  // back to world: toLocal is a rotation
-                s.Ld = rgHorizonCentroid(axis, N, sqrt(sinSq));
-                s.ltcAlbedo.z = rgHorizonDisney(axis, N, sqrt(sinSq), V, linearRoughness);
+                s.ltcAlbedo.z = rgHorizonDisney(axis, N, sqrt(sinSq), V, linearRoughness, s.Ld);
                 s.specularLtc = luminance * (cone * rgLtcEllipse(Minv * Lu, Minv * T, Minv * B, unused, unusedSin));
             }
         }
@@ -331,7 +329,8 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
                 // The Disney term averaged over its part above the horizon, by the equivalent sphere.
                 vec3 F = rgLtcQuadVector(p0, p1, p2, p3);
                 float sinSq = length(F);
-                if (sinSq > 0.0) s.ltcAlbedo.z = rgHorizonDisney(F / sinSq, N, sqrt(min(sinSq, 0.9999)), V, linearRoughness);
+                vec3 meanDirection;  // the clipped polygon's mean direction (Ld) is exact already
+                if (sinSq > 0.0) s.ltcAlbedo.z = rgHorizonDisney(F / sinSq, N, sqrt(min(sinSq, 0.9999)), V, linearRoughness, meanDirection);
                 s.specularLtc = luminance * rgLtcQuad(Minv * p0, Minv * p1, Minv * p2, Minv * p3, unused);
             }
         }

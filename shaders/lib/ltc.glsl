@@ -76,48 +76,38 @@ float illuminanceSphereOrDisk(float cosTheta, float sinSigmaSqr);  // lib/lighti
 // A cone (unit axis, half-angle σ) that crosses the plane normal to `up`: the part above it seen
 // as a band of elevations 0 < y < e + σ (e: the axis's elevation; small-angle model, the cone's
 // section a disk of radius σ around e, so the band's width at y is w(y) = √(σ² − (y − e)²)),
-// sampled at 8 elevations along the axis's azimuth (the midpoint rule). rgHorizonCentroid: the
-// cosine-weighted mean direction of that part, where the diffuse lobe looks at the light;
-// rgHorizonDisney: the renormalised Disney diffuse (lst:1, without its 1/π) averaged over it with
-// the same weights — not the term at the mean direction, which is off by its curvature near the
-// horizon (too bright for a smooth surface, too dark for a rough one). Wholly above the horizon
-// (or below): the axis, and the term there.
-vec3 rgHorizonDirection(vec3 level, float sinE, vec3 axis, vec3 up, float y) {
-    float l2 = dot(level, level);
-    return l2 < 1e-12 ? axis : level * (cos(y) * inversesqrt(l2)) + up * sin(y);
-}
-vec3 rgHorizonCentroid(vec3 axis, vec3 up, float sinSigma) {
-    float sinE = clamp(dot(axis, up), -1.0, 1.0);
-    float e = asin(sinE), sigma = asin(clamp(sinSigma, 0.0, 1.0)), top = e + sigma;
-    if (e >= sigma || top <= 0.0) return axis;
-    float num = 0.0, den = 0.0;
-    for (int i = 0; i < 8; ++i) {
-        float y = top * (float(i) + 0.5) / 8.0;
-        float w = sqrt(max(sigma * sigma - (y - e) * (y - e), 0.0)) * sin(y);
-        num += y * w;
-        den += w;
-    }
-    return rgHorizonDirection(axis - up * sinE, sinE, axis, up, den > 0.0 ? num / den : 0.5 * top);
-}
-float rgHorizonDisney(vec3 axis, vec3 up, float sinSigma, vec3 V, float linearRoughness) {
+// sampled at 8 elevations along the axis's azimuth (the midpoint rule), each weighted by
+// w(y) sin y (its share of the cosine-weighted light). Returns the renormalised Disney diffuse
+// (lst:1, without its 1/π) averaged over that part — not the term at the mean direction, which is
+// off by its curvature near the horizon (too bright for a smooth surface, too dark for a rough
+// one) — and gives in `meanDirection` the part's mean direction, where the diffuse lobe looks at the
+// light. Wholly above the horizon (or below): the term at the axis, and the axis.
+float rgHorizonDisney(vec3 axis, vec3 up, float sinSigma, vec3 V, float linearRoughness, out vec3 meanDirection) {
     float NdotV = abs(dot(up, V)) + 1e-5;  // lst:2, as rgDiffuseBrdf
     float sinE = clamp(dot(axis, up), -1.0, 1.0);
     float e = asin(sinE), sigma = asin(clamp(sinSigma, 0.0, 1.0)), top = e + sigma;
-    if (e >= sigma || top <= 0.0) {
+    vec3 level = axis - up * sinE;
+    float l2 = dot(level, level);
+    meanDirection = axis;
+    if (e >= sigma || top <= 0.0 || l2 < 1e-12) {
         vec3 H = normalize(V + axis);
         return Fr_DisneyDiffuse(NdotV, clamp(sinE, 0.0, 1.0), clamp(dot(axis, H), 0.0, 1.0), linearRoughness);
     }
-    vec3 level = axis - up * sinE;
-    float num = 0.0, den = 0.0;
+    level *= inversesqrt(l2);
+    float disney = 0.0, elevation = 0.0, weights = 0.0;
     for (int i = 0; i < 8; ++i) {
         float y = top * (float(i) + 0.5) / 8.0;
         float w = sqrt(max(sigma * sigma - (y - e) * (y - e), 0.0)) * sin(y);
-        vec3 L = rgHorizonDirection(level, sinE, axis, up, y);
+        vec3 L = level * cos(y) + up * sin(y);
         vec3 H = normalize(V + L);
-        num += w * Fr_DisneyDiffuse(NdotV, sin(y), clamp(dot(L, H), 0.0, 1.0), linearRoughness);
-        den += w;
+        disney += w * Fr_DisneyDiffuse(NdotV, sin(y), clamp(dot(L, H), 0.0, 1.0), linearRoughness);
+        elevation += w * y;
+        weights += w;
     }
-    return den > 0.0 ? num / den : 1.0;
+    if (weights <= 0.0) return 1.0;
+    elevation /= weights;
+    meanDirection = level * cos(elevation) + up * sin(elevation);
+    return disney / weights;
 }
 
 // The same for the ellipse centre + cos t · axis1 + sin t · axis2 (any conjugate pair of half-axes):
