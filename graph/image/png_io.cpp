@@ -111,6 +111,11 @@ bool runPngWrite(PngContext& ctx) {
     png_set_IHDR(ctx.png, ctx.info, ctx.width, ctx.height, 8, ctx.colorType, PNG_INTERLACE_NONE,
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
     if (!ctx.texts.empty()) png_set_text(ctx.png, ctx.info, ctx.texts.data(), int(ctx.texts.size()));
+    // zlib's fastest level with the Sub filter alone: the default frame at 1280x720 writes in
+    // ~55 ms rather than ~260 with libpng's defaults (level 6, every filter tried per row), a file
+    // ~18 % larger; the pixels are the same (PNG is lossless).
+    png_set_compression_level(ctx.png, 1);
+    png_set_filter(ctx.png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
     png_write_info(ctx.png, ctx.info);
     png_write_image(ctx.png, ctx.rows.data());
     png_write_end(ctx.png, ctx.info);

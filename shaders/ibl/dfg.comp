@@ -36,7 +36,7 @@ void main() {
         float NdotL = L.z, NdotH = H.z;
         if (NdotL > 0.0 && VdotH > 0.0) {
             float Gv = V_SmithGGXCorrelated(NdotL, NdotV, alpha) * 4.0 * NdotL * VdotH / NdotH;
-            float Fc = pow(1.0 - VdotH, 5.0);
+            float Fc = rgPow5(1.0 - VdotH);
             r.x += Gv * (1.0 - Fc);
             r.y += Gv * Fc;
         }

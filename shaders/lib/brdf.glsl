@@ -7,10 +7,15 @@
 
 #define RG_PI 3.14159265358979
 
-// lst:2. u may exceed 1 by the 1e-5 lst:2 adds to NdotV; pow of a negative base is undefined
-// in GLSL (NaN on lavapipe), so the base is clamped at 0.
-vec3 F_Schlick(vec3 f0, float f90, float u) { return f0 + (f90 - f0) * pow(max(1.0 - u, 0.0), 5.0); }
-float F_Schlick(float f0, float f90, float u) { return f0 + (f90 - f0) * pow(max(1.0 - u, 0.0), 5.0); }
+// lst:2. u may exceed 1 by the 1e-5 lst:2 adds to NdotV, so the base is clamped at 0. The fifth
+// power is multiplied out: pow() is exp2(5 · log2 x), two polynomial approximations on a CPU
+// rasteriser, and the light loop takes three per light (−5 ms on the default frame's lighting).
+float rgPow5(float x) {
+    float x2 = x * x;
+    return x2 * x2 * x;
+}
+vec3 F_Schlick(vec3 f0, float f90, float u) { return f0 + (f90 - f0) * rgPow5(max(1.0 - u, 0.0)); }
+float F_Schlick(float f0, float f90, float u) { return f0 + (f90 - f0) * rgPow5(max(1.0 - u, 0.0)); }
 
 // lst:1 — Disney diffuse with the energy renormalisation; divide by π for the BRDF.
 float Fr_DisneyDiffuse(float NdotV, float NdotL, float LdotH, float linearRoughness) {

@@ -67,9 +67,12 @@ void main() {
     float rotation = float(k) / 16.0 * 3.14159265 / float(RG_AO_SLICES);
     float jitter = float((k * 7) & 15) / 16.0;
     float visibility = 0.0;
-    for (int s = 0; s < RG_AO_SLICES; ++s) {
-        float phi = rotation + float(s) * 3.14159265 / float(RG_AO_SLICES);
-        vec2 d = vec2(cos(phi), sin(phi));        // screen direction (y down)
+    // Slice s's screen direction (y down) at angle rotation + s π / slices: the first's, turned by
+    // a constant step per slice (one sine and cosine a pixel rather than one a slice).
+    vec2 d = vec2(cos(rotation), sin(rotation));
+    const float step = 3.14159265 / float(RG_AO_SLICES);
+    const mat2 turn = mat2(cos(step), sin(step), -sin(step), cos(step));
+    for (int s = 0; s < RG_AO_SLICES; ++s, d = turn * d) {
         vec3 dir = vec3(d.x, -d.y, 0.0);          // the same in view space (y up)
         vec3 axis = normalize(cross(dir, V));
         vec3 projN = N - axis * dot(N, axis);
@@ -78,23 +81,23 @@ void main() {
         vec3 ortho = normalize(dir - V * dot(dir, V));
         float cosN = clamp(dot(projN / projLen, V), -1.0, 1.0);
         float n = sign(dot(projN, ortho)) * acos(cosN);
-        float best[2] = float[2](-1.0, -1.0);  // cos of the highest horizon on each side
-        for (int side = 0; side < 2; ++side) {
-            vec2 sd = side == 0 ? d : -d;
-            for (int i = 0; i < RG_AO_STEPS; ++i) {
-                float t = (float(i) + jitter) / float(RG_AO_STEPS);
-                ivec2 q = full + ivec2(round(sd * max(t * radiusPx, 1.0 + float(i))));
-                vec3 S = viewPosition(q) - P;
-                float len = length(S);
-                // Occluders within the radius, and above the tangent plane by more than the depth
-                // buffer's reconstruction noise (a flat floor must not occlude itself).
-                if (len < 1e-4 || len > params.ao_radius || dot(S / len, N) < 0.05) continue;
-                best[side] = max(best[side], dot(S / len, V));
-            }
+        // The cosine of the highest horizon on each side: both sides in one loop, the step's
+        // offset shared (an array indexed by a side loop costs a scatter on a CPU rasteriser).
+        float best0 = -1.0, best1 = -1.0;
+        for (int i = 0; i < RG_AO_STEPS; ++i) {
+            float t = (float(i) + jitter) / float(RG_AO_STEPS);
+            vec2 offset = d * max(t * radiusPx, 1.0 + float(i));
+            vec3 S0 = viewPosition(full + ivec2(round(offset))) - P;
+            vec3 S1 = viewPosition(full + ivec2(round(-offset))) - P;
+            float len0 = length(S0), len1 = length(S1);
+            // Occluders within the radius, and above the tangent plane by more than the depth
+            // buffer's reconstruction noise (a flat floor must not occlude itself).
+            if (len0 >= 1e-4 && len0 <= params.ao_radius && dot(S0, N) >= 0.05 * len0) best0 = max(best0, dot(S0, V) / len0);
+            if (len1 >= 1e-4 && len1 <= params.ao_radius && dot(S1, N) >= 0.05 * len1) best1 = max(best1, dot(S1, V) / len1);
         }
         // Side 0 is along +ortho (h2 > 0), side 1 along −ortho (h1 < 0); clamped to the hemisphere around n.
-        float h2 = acos(clamp(best[0], -1.0, 1.0));
-        float h1 = -acos(clamp(best[1], -1.0, 1.0));
+        float h2 = acos(clamp(best0, -1.0, 1.0));
+        float h1 = -acos(clamp(best1, -1.0, 1.0));
         h1 = n + max(h1 - n, -1.5707963);
         h2 = n + min(h2 - n, 1.5707963);
         float sinN = sin(n);
