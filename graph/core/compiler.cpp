@@ -220,7 +220,7 @@ std::string usageConflict(const PassDesc& pass, const Access& a, const ResourceD
     }
     if (a.usage == Usage::DepthStencilAttachment || a.usage == Usage::DepthStencilRead)
         return "'" + r.name + "' has colour format " + fmt + ", which cannot be used as " + use +
-               " (needs a depth format: d32f, d24_s8 or d32f_s8)";
+               " (needs a depth format: d16, d32f, d24_s8 or d32f_s8)";
     if (f.srgb && isStorage(a.usage))
         return "'" + r.name + "' has sRGB format " + fmt + ", which cannot be used as " + use +
                " (sRGB formats cannot be storage images; use a UNORM format and encode in the shader)";

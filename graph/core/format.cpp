@@ -24,6 +24,7 @@ constexpr std::array<FormatInfo, static_cast<size_t>(Format::Count)> kFormats{{
     {Format::R8Uint, "r8ui", 1, 1, false, false, false, true, false},
     {Format::R32Uint, "r32ui", 4, 1, false, false, false, true, false},
     {Format::RGBA32Uint, "rgba32ui", 16, 4, false, false, false, true, false},
+    {Format::D16, "d16", 2, 1, true, false, false, false, false},
     {Format::D32F, "d32f", 4, 1, true, false, false, false, true},
     {Format::D24S8, "d24_s8", 4, 2, true, true, false, false, false},
     {Format::D32FS8, "d32f_s8", 8, 2, true, true, false, false, true},

@@ -26,6 +26,7 @@ enum class Format : uint8_t {
     R8Uint,
     R32Uint,
     RGBA32Uint,
+    D16,
     D32F,
     D24S8,
     D32FS8,

@@ -25,6 +25,7 @@ VkFormat toVkFormat(Format f) {
     case Format::R8Uint: return VK_FORMAT_R8_UINT;
     case Format::R32Uint: return VK_FORMAT_R32_UINT;
     case Format::RGBA32Uint: return VK_FORMAT_R32G32B32A32_UINT;
+    case Format::D16: return VK_FORMAT_D16_UNORM;
     case Format::D32F: return VK_FORMAT_D32_SFLOAT;
     case Format::D24S8: return VK_FORMAT_D24_UNORM_S8_UINT;
     case Format::D32FS8: return VK_FORMAT_D32_SFLOAT_S8_UINT;
@@ -393,6 +394,12 @@ void decodeTexels(Format format, const void* src, size_t count, float* dst) {
                 dst[i * n + c] = static_cast<float>(v);
             }
             break;
+        case Format::D16: {
+            uint16_t v;
+            std::memcpy(&v, b + i * 2, 2);
+            dst[i] = static_cast<float>(v) / 65535.0f;
+            break;
+        }
         case Format::D24S8: {
             uint32_t v;
             std::memcpy(&v, b + i * 4, 4);

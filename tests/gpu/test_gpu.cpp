@@ -214,6 +214,27 @@ TEST_F(GpuTest, ClearCopyAndMipsKinds) {
     EXPECT_FLOAT_EQ(img->at(0, 0, 2), 0.75f);
 }
 
+// Every depth format clears and reads back as depth in [0, 1] (d16: to 1/65535).
+TEST_F(GpuTest, DepthFormatsClearAndReadBack) {
+    for (Format f : {Format::D16, Format::D32F, Format::D24S8, Format::D32FS8}) {
+        SCOPED_TRACE(formatName(f));
+        GraphDesc g;
+        ResourceDesc d = texture("depth", f, /*exported=*/true);
+        d.texture.sizeMode = SizeMode::Absolute;
+        d.texture.width = 8;
+        d.texture.height = 4;
+        g.resources = {d};
+        g.passes = {pass("clear", "clear", {{"depth", Usage::CopyDst}}, {{"depth", Value(0.25)}})};
+        auto& ex = rt().executor();
+        auto built = ex.build(g, {});
+        ASSERT_TRUE(built.has_value()) << built.error().describe();
+        ASSERT_TRUE(ex.frame().has_value());
+        auto img = ex.readback("depth");
+        ASSERT_TRUE(img.has_value()) << img.error().describe();
+        EXPECT_NEAR(img->at(7, 3, 0), 0.25f, 1.0f / 65535.0f);
+    }
+}
+
 TEST_F(GpuTest, ShaderErrorNamesFileLineAndPass) {
     GraphDesc g;
     g.resources = {texture("out", Format::RGBA8Unorm, true)};

@@ -330,7 +330,7 @@ TEST(CompilerErrors, DepthFormatAsColourAttachmentAndBack) {
     c.passes = {raster("prepass", {depth("hdr")})};
     EXPECT_EQ(compileError(c),
               "pass 'prepass' field 'accesses[0]': 'hdr' has colour format 'rgba16f', which cannot be used as "
-              "DepthStencilAttachment (needs a depth format: d32f, d24_s8 or d32f_s8)");
+              "DepthStencilAttachment (needs a depth format: d16, d32f, d24_s8 or d32f_s8)");
 }
 
 TEST(CompilerErrors, KindAndBlendConflicts) {

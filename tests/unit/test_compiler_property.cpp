@@ -126,7 +126,7 @@ private:
                                              Format::RGB10A2Unorm, Format::R11G11B10F, Format::RGBA16F,
                                              Format::R32F,      Format::RG16F,      Format::R32Uint,
                                              Format::RGBA32F};
-        static constexpr Format kDepth[] = {Format::D32F, Format::D24S8, Format::D32FS8};
+        static constexpr Format kDepth[] = {Format::D32F, Format::D24S8, Format::D32FS8, Format::D16};
         ResourceDesc r;
         r.name = "r" + std::to_string(i);
         r.imported = chance(0.1);
@@ -137,7 +137,7 @@ private:
             m_sizeClass.push_back(-1);
             return r;
         }
-        r.texture.format = chance(0.15) ? kDepth[range(0, 2)] : kColour[range(0, 9)];
+        r.texture.format = chance(0.15) ? kDepth[range(0, 3)] : kColour[range(0, 9)];
         const uint32_t sizeClass = range(0, 3);
         switch (sizeClass) {
         case 0: break;  // output size
