@@ -94,7 +94,10 @@ vec3 rgComposeReflection(vec3 P, vec3 Rd, float linearRoughness, vec3 distant, o
 #ifdef RG_PROBES
     float mips = float(textureQueryLevels(probe_specular));
     vec3 R = normalize(Rd);
-    for (uint k = 0u; k < rgProbes.count.x && alpha < 1.0; ++k) {
+    // A constant bound (the scene's probe count, RG_SCENE_PROBES): a CPU rasteriser runs a loop's
+    // body at least once even when no lane enters it, and a scene without probes compiles none.
+    for (uint k = 0u; k < uint(RG_SCENE_PROBES); ++k) {
+        if (k >= rgProbes.count.x || alpha >= 1.0) break;
         RgProbe probe = rgProbes.probe[k];
         float influence = rgProbeInfluence(probe, P);
         vec3 direction;

@@ -7,6 +7,10 @@
 #define RG_PROBES_GLSL
 
 #define RG_MAX_PROBES 8  // graph/scene/scene.h kMaxProbes
+// The scene's probe count (rgraph defines it for passes with a scene): loops' constant bound.
+#ifndef RG_SCENE_PROBES
+#define RG_SCENE_PROBES RG_MAX_PROBES
+#endif
 #ifndef RG_PROBES_BINDING
 #define RG_PROBES_BINDING 22
 #endif
