@@ -30,6 +30,7 @@ for c in devices render graph bench watch export-scene bake compare test; do
     check "$c --help" 0 grep "usage: rgraph $c" -- "$rgraph" $c --help
 done
 check "devices" 0 grep "*" -- "$rgraph" devices
+check "render --verbose timings" 0 grep "rgraph: timings: device" -- "$rgraph" render --pipeline builtin:test --size 16x8 --out "$tmp/v.exr" --verbose
 check "bad size" 2 grep "--size must be WIDTHxHEIGHT" -- "$rgraph" render --size 12
 check "unknown option" 2 grep "unknown option --sise" -- "$rgraph" render --sise 12x12
 check "bad device" 2 grep "--device 7: only" -- "$rgraph" render --device 7 --size 8x8 --out "$tmp/x.exr" --png "$tmp/x.png"
