@@ -128,7 +128,7 @@ Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> s
         defines.emplace_back("RG_SCENE_IES", ies ? "1" : "0");
         // RG_SCENE_PROBES: how many local light probes the scene has (lib/ibl.glsl's composition
         // loops that many times at most: none compiles no loop at all).
-        defines.emplace_back("RG_SCENE_PROBES", std::to_string(std::min<size_t>(setup.scene->scene().probes.size(), 8)));
+        defines.emplace_back("RG_SCENE_PROBES", std::to_string(std::min(setup.scene->scene().probes.size(), kMaxProbes)));
         if (shadowed) defines.emplace_back("RG_SCENE_SHADOWED_LIGHTS", std::to_string(shadowed));
         // RG_SCENE_LIGHTMAP: the scene has a baked SG lightmap (lib/lightmap.glsl): the G-buffer
         // pass adds its radiosity, the distant probe's diffuse light is left out (the lightmap holds it).

@@ -354,7 +354,7 @@ Result<void> writeExr(const std::string& path, const std::vector<ImageLayer>& la
     const Imf::PixelType type = half ? Imf::HALF : Imf::FLOAT;
 
     // OpenEXR compresses a file's line blocks on its own thread pool, which is empty unless asked
-    // for: one thread a core (the default frame's EXR: ~120 -> ~70 ms on two cores).
+    // for: one thread a core (the default frame's EXR: ~120 -> ~80 ms on two cores).
     static std::once_flag threads;
     std::call_once(threads, [] { Imf::setGlobalThreadCount(int(std::max(1u, std::thread::hardware_concurrency()))); });
 

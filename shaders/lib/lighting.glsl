@@ -238,7 +238,7 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
     float radius = light.params.z;
     // LTC: the world → (T1, T2, N) rotation (the diffuse lobe's cosine), the GGX lobe's M⁻¹
     // composed with it, and the lobe's albedo split for Schlick's Fresnel.
-    bool ltc = (RG_SCENE_LIGHT_TYPES & 0x78) != 0 && lights.count.y == 1u;  // only with area lights (sphere, disk, rect, tube)
+    bool ltc = RG_SCENE_HAS_AREA_LIGHT && lights.count.y == 1u;  // compiled only for a scene with area lights
     mat3 toLocal = mat3(1.0), Minv = mat3(1.0);
     if (ltc) {
         toLocal = rgLtcFrame(N, V);
