@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include <glm/geometric.hpp>
 #include <glm/mat3x3.hpp>
@@ -318,6 +319,42 @@ float ellipseIntegral(glm::vec3 centre, glm::vec3 axis1, glm::vec3 axis2, glm::v
     const glm::vec3 axis = glm::normalize(t1 * (x0 / (1.0f - lambda * a1s)) + t2 * (y0 / (1.0f - lambda * a2s)) + t3);
     if (direction) *direction = axis;
     return float(lighting::illuminanceSphereOrDisk(std::clamp(double(axis.z), -0.9999, 0.9999), std::min(double(formFactor), 0.9999)) / kPiD);
+}
+
+float horizonPolygonIntegral(std::span<const glm::vec3> local, const glm::mat3& tableInverse, glm::vec3* direction) {
+    std::vector<glm::vec3> above;
+    const size_t n = local.size();
+    for (size_t i = 0; i < n; ++i) {
+        const glm::vec3 a = local[i], b = local[(i + 1) % n];
+        if (a.z > 0.0f) above.push_back(tableInverse * a);
+        if ((a.z > 0.0f) != (b.z > 0.0f)) above.push_back(tableInverse * (a + (b - a) * (a.z / (a.z - b.z))));
+    }
+    if (above.empty()) {
+        if (direction) *direction = glm::vec3(0.0f);
+        return 0.0f;
+    }
+    return polygonIntegral(above, direction);
+}
+
+float lobeRatio(const glm::mat3& inverse, glm::vec3 N, glm::vec3 V, float alpha, float magnitude, glm::vec3 mean) {
+    const float det = std::abs(glm::determinant(inverse));
+    if (magnitude <= 0.0f || det <= 0.0f || glm::dot(mean, mean) <= 0.0f) return 1.0f;
+    const glm::vec3 L = glm::normalize(glm::inverse(inverse) * mean);
+    const float D = float(distribution(glm::dmat3(inverse), glm::dvec3(L)));
+    const float NdotL = glm::dot(N, L);
+    if (D <= 0.0f || NdotL <= 0.0f) return 1.0f;  // (the fade below is 0 there)
+    const float NdotV = std::abs(glm::dot(N, V)) + 1e-5f;
+    const float NdotH = std::clamp(glm::dot(N, glm::normalize(V + L)), 0.0f, 1.0f);
+    const float lobe = brdf::D_GGX(NdotH, alpha) * brdf::V_SmithGGXCorrelated(NdotL, NdotV, alpha) / float(kPiD) * NdotL;
+    // Faded out towards either horizon, where the ratio changes too fast across a light for one
+    // direction to stand for it, or D → 0 (smoothstep over ⟨n·l⟩ and the cosine-space elevation 0..0.25).
+    const glm::vec3 o = inverse * L;
+    const auto step = [](float x) {
+        const float t = std::clamp(x / 0.25f, 0.0f, 1.0f);
+        return t * t * (3.0f - 2.0f * t);
+    };
+    const float fade = step(NdotL) * step(o.z / glm::length(o));
+    return 1.0f + (lobe / (magnitude * D) - 1.0f) * fade;
 }
 
 }  // namespace rg::ltc

@@ -88,4 +88,16 @@ float polygonIntegral(std::span<const glm::vec3> vertices, glm::vec3* direction 
 // receives the cone's axis (unit).
 float ellipseIntegral(glm::vec3 centre, glm::vec3 axis1, glm::vec3 axis2, glm::vec3* direction = nullptr);
 
+// ∫ of the GGX lobe's D over the polygon `local` (in the shaded point's frame (T1, T2, N)): the
+// polygon clipped to the shading horizon first, then through the table's M⁻¹ (`tableInverse`) and
+// polygonIntegral. The fitted D leaks below the shading horizon, where the lobe is 0; a light
+// crossing the surface's plane would get that leak as light (lib/ltc.glsl's rgLtcQuadHorizon).
+float horizonPolygonIntegral(std::span<const glm::vec3> local, const glm::mat3& tableInverse, glm::vec3* direction = nullptr);
+
+// The factor on a closed-form integral that corrects the fitted cosine's shape to GGX's (lib/ltc.glsl's
+// rgLtcRatio, after Heitz et al.'s 2018 ratio estimator): f(ω)⟨n·l⟩ / (magnitude · D(ω)) at the
+// closed form's mean direction `mean` (cosine's space), faded to 1 as ⟨n·l⟩ or the elevation in the cosine's space there falls below 0.25. `inverse`: world → cosine's space (the
+// table's M⁻¹ after the frame's rotation); N, V world; f the standard lobe with F = 1.
+float lobeRatio(const glm::mat3& inverse, glm::vec3 N, glm::vec3 V, float alpha, float magnitude, glm::vec3 mean);
+
 }  // namespace rg::ltc

@@ -239,12 +239,12 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
     // LTC: the world → (T1, T2, N) rotation (the diffuse lobe's cosine), the GGX lobe's M⁻¹
     // composed with it, and the lobe's albedo split for Schlick's Fresnel.
     bool ltc = RG_SCENE_HAS_AREA_LIGHT && lights.count.y == 1u;  // compiled only for a scene with area lights
-    mat3 toLocal = mat3(1.0), Minv = mat3(1.0);
+    mat3 toLocal = mat3(1.0), Minv = mat3(1.0), MinvTable = mat3(1.0);
     if (ltc) {
         toLocal = rgLtcFrame(N, V);
         vec2 albedo;
-        rgLtcLookup(linearRoughness, clamp(dot(N, V), 0.0, 1.0), Minv, albedo);
-        Minv = Minv * toLocal;
+        rgLtcLookup(linearRoughness, clamp(dot(N, V), 0.0, 1.0), MinvTable, albedo);
+        Minv = MinvTable * toLocal;
         s.ltcAlbedo = vec3(albedo, 0.0);
     }
 
@@ -269,7 +269,11 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
             float rho = radius * inversesqrt(1.0 - sinSigmaSqr);
             vec3 T = normalize(cross(L, abs(L.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0))) * rho, B = cross(L, T), unused;
             float unusedSin;
-            s.specularLtc = luminance * rgLtcEllipse(Minv * Lu, Minv * T, Minv * B, unused, unusedSin);
+            vec3 mean;
+            vec3 cL = toLocal * Lu, TL = toLocal * T, BL = toLocal * B;
+            s.specularLtc = luminance * (rgLtcCrossesHorizon(cL, TL, BL) ? rgLtcEllipseHorizon(cL, TL, BL, MinvTable, mean)
+                                                                          : rgLtcEllipse(Minv * Lu, Minv * T, Minv * B, mean, unusedSin));
+            s.specularLtc *= rgLtcRatio(Minv, N, V, alpha, s.ltcAlbedo.x + s.ltcAlbedo.y, mean);
         }
     } else if (RG_SCENE_HAS_LIGHT(RG_LIGHT_DISK) && type == RG_LIGHT_DISK) {
         // lst:10, disk evaluation, times the disk's own orientation. It emits along `dir`; its cone
@@ -292,12 +296,18 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
             if (dot(-Lu, dir) > 0.0) {
                 float cone = rgDiskCone(light, P);
                 vec3 T = normalize(cross(dir, abs(dir.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0))) * radius;
-                vec3 B = cross(dir, T), axis, unused;
+                vec3 B = cross(dir, T), axis, lobeMean;
                 float sinSq, unusedSin;
-                s.diffuseIlluminance = luminance * (RG_PI * cone * rgLtcEllipse(toLocal * Lu, toLocal * T, toLocal * B, axis, sinSq));
+                vec3 cL = toLocal * Lu, TL = toLocal * T, BL = toLocal * B;
+                bool crosses = rgLtcCrossesHorizon(cL, TL, BL);
+                float formFactor = rgLtcEllipse(cL, TL, BL, axis, sinSq);
                 axis = axis * toLocal;  // back to world: toLocal is a rotation
                 s.ltcAlbedo.z = rgHorizonDisney(axis, N, sqrt(sinSq), V, linearRoughness, s.Ld);
-                s.specularLtc = luminance * (cone * rgLtcEllipse(Minv * Lu, Minv * T, Minv * B, unused, unusedSin));
+                if (crosses) formFactor = rgLtcEllipseHorizon(cL, TL, BL, mat3(1.0), lobeMean);  // exact clipping
+                s.diffuseIlluminance = luminance * (RG_PI * cone * formFactor);
+                s.specularLtc = luminance * (cone * (crosses ? rgLtcEllipseHorizon(cL, TL, BL, MinvTable, lobeMean)
+                                                             : rgLtcEllipse(Minv * Lu, Minv * T, Minv * B, lobeMean, unusedSin)));
+                s.specularLtc *= rgLtcRatio(Minv, N, V, alpha, s.ltcAlbedo.x + s.ltcAlbedo.y, lobeMean);
             }
         }
     } else if (RG_SCENE_HAS_LIGHT(RG_LIGHT_RECT) && type == RG_LIGHT_RECT) {
@@ -331,7 +341,9 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
                 float sinSq = length(F);
                 vec3 meanDirection;  // the clipped polygon's mean direction (Ld) is exact already
                 if (sinSq > 0.0) s.ltcAlbedo.z = rgHorizonDisney(F / sinSq, N, sqrt(min(sinSq, 0.9999)), V, linearRoughness, meanDirection);
-                s.specularLtc = luminance * rgLtcQuad(Minv * p0, Minv * p1, Minv * p2, Minv * p3, unused);
+                vec3 lobeMean;
+                s.specularLtc = luminance * rgLtcQuadHorizon(toLocal * p0, toLocal * p1, toLocal * p2, toLocal * p3, MinvTable, lobeMean);
+                s.specularLtc *= rgLtcRatio(Minv, N, V, alpha, s.ltcAlbedo.x + s.ltcAlbedo.y, lobeMean);
             }
         }
     } else if (RG_SCENE_HAS_LIGHT(RG_LIGHT_TUBE)) {  // RG_LIGHT_TUBE
@@ -378,7 +390,8 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
             vec3 q0 = L0 + side, q1 = L0 - side, q2 = L1 - side, q3 = L1 + side;
             vec3 towards, unused;
             float quadD = rgLtcQuad(toLocal * q0, toLocal * q1, toLocal * q2, toLocal * q3, towards);
-            float quadS = rgLtcQuad(Minv * q0, Minv * q1, Minv * q2, Minv * q3, unused);
+            vec3 quadMean;
+            float quadS = rgLtcQuadHorizon(toLocal * q0, toLocal * q1, toLocal * q2, toLocal * q3, MinvTable, quadMean);
             float capD = 0.0, capS = 0.0;
             vec3 capTowards = vec3(0.0);
             for (int end = 0; end < 2; ++end) {
@@ -418,6 +431,7 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
             s.diffuseIlluminance = luminance * (RG_PI * (quadD + capD));
             s.Ld = rgSafeNormalize((rgSafeNormalize(towards, vec3(0.0)) * quadD + capTowards) * toLocal, sphereL);
             s.specularLtc = luminance * (quadS + capS);
+            s.specularLtc *= rgLtcRatio(Minv, N, V, alpha, s.ltcAlbedo.x + s.ltcAlbedo.y, quadMean);
         }
     }
     return s;
