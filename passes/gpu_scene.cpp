@@ -854,6 +854,20 @@ VkBuffer GpuScene::bindingBuffer(std::string_view name, uint32_t slot) const {
     return VK_NULL_HANDLE;
 }
 
+uint32_t shadowViewsNeeded(const Light& l) {
+    if (!l.castShadows || l.type == LightType::Directional) return 0;
+    return l.type == LightType::Spot && l.outerAngle <= glm::radians(60.0f) ? 1 : 6;
+}
+
+uint32_t shadowViewCapacity(const Scene& scene) {
+    uint32_t views = 0;
+    for (size_t i = 0; i < scene.lights.size() && i < kMaxLights; ++i) {
+        const uint32_t count = shadowViewsNeeded(scene.lights[i]);
+        if (views + count <= kMaxShadowViews) views += count;
+    }
+    return views;
+}
+
 std::pair<uint32_t, uint32_t> GpuScene::shadowViewsOf(size_t light) const {
     if (light >= m_lightViews.size() || m_lightViews[light].y == 0) return {0, 0};
     return {static_cast<uint32_t>(m_lightViews[light].x), static_cast<uint32_t>(m_lightViews[light].y)};
@@ -869,11 +883,11 @@ void GpuScene::updateShadowViews(uint32_t slot, const glm::mat4& cameraViewProj)
     const float nearPlane = 0.05f;
     for (size_t i = 0; i < m_scene.lights.size() && i < kMaxLights; ++i) {
         const Light& l = m_scene.lights[i];
-        if (!l.castShadows || l.type == LightType::Directional) continue;
+        const uint32_t count = shadowViewsNeeded(l);
+        if (count == 0) continue;
         const float far = l.range > 0.0f ? l.range : std::max(sceneSize, 1.0f) * 2.0f;
         if (!sphereMeetsFrustum(camera, l.position, far)) continue;  // its light does not reach the view
-        const bool single = l.type == LightType::Spot && l.outerAngle <= glm::radians(60.0f);
-        const uint32_t count = single ? 1 : 6;
+        const bool single = count == 1;
         if (views.size() + count > kMaxShadowViews) continue;
         // A cube's faces see a little past 90° so that filter taps near a face's edge stay on
         // its map (16 texels of a 1024 map); a spot's view covers its outer cone.

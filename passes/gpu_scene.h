@@ -40,6 +40,13 @@ struct GpuShadowView {
     glm::vec4 position;   // xyz: the light's position; w: the near plane (m)
     glm::vec4 params;     // x: the far plane (m); y: tan of half the field of view; z: the light's radius (m); w: light index
 };
+// The views a local light with castShadows gets when its range reaches the view: one for a spot of
+// outer angle ≤ 60°, six (a cube) otherwise; 0 for a light without shadows or the sun.
+uint32_t shadowViewsNeeded(const Light& light);
+// The most views a frame of the scene can have (its shadowed local lights' views in light order,
+// as updateFrame places them, up to kMaxShadowViews): what a `scene_layers = "shadow_views"`
+// resource is given (Executor::build).
+uint32_t shadowViewCapacity(const Scene& scene);
 
 // Binding slots of the scene's camera and lights in set 0 (shaders/lib/scene.glsl).
 inline constexpr uint32_t kCameraBinding = 15;

@@ -27,7 +27,7 @@ local shadows = {}
 shadows.size = 2048    -- texels per side of each cascade
 shadows.cascades = 3   -- 1..4 (3: each costs a draw of every caster)
 shadows.local_size = 1024   -- texels per side of each local light's view
-shadows.local_views = 6     -- layers for local lights' views: one cube, or six spots (24 MiB at 1024²)
+shadows.local_views = 6     -- at most this many layers for local lights' views: one cube, or six spots (24 MiB at 1024²)
 
 rg.param "sun_shadows" { type = "boolean", default = true, doc = "the sun casts shadows (false: the map is only cleared)" }
 rg.param "shadow_distance" { type = "number", default = 40, min = 1, max = 10000, doc = "metres of view the sun's cascades cover" }
@@ -65,8 +65,10 @@ rg.pass "shadow_sun" {
     writes = { "sun_shadow" }, indirect = "sun_shadow_draws", depth_bias = { 1.0, 1.5 }, after = { "shadow_clear" },
 }
 
+-- Sized by the scene (scene_layers): as many layers as its shadowed local lights can have views, up
+-- to shadows.local_views; a scene without any gets one 1×1 layer instead of 24 MiB.
 rg.resource "local_shadow" { format = "d32f", size = { shadows.local_size, shadows.local_size }, layers = shadows.local_views,
-    doc = "the local lights' shadow maps, one layer per shadow view" }
+    scene_layers = "shadow_views", doc = "the local lights' shadow maps, one layer per shadow view" }
 rg.pass "shadow_local" {
     kind = "scene", shadow = true, views = "lights", writes = { "local_shadow" }, depth_bias = { 1.0, 1.5 },
 }

@@ -562,7 +562,9 @@ Result<void> Session::load(const std::string& file) {
         const uint32_t w = m_options.compile.outputWidth, h = m_options.compile.outputHeight;
         m_frameHook = [raw, w, h](uint32_t slot) { raw->updateFrame(slot, w, h); };
     }
-    if (scene || previousScene) m_runtime.executor().setScene(scene.get(), m_frameHook);
+    const uint32_t previousViews = m_runtime.executor().sceneShadowViews();
+    if (scene || previousScene)
+        m_runtime.executor().setScene(scene.get(), m_frameHook, scene ? passes::shadowViewCapacity(scene->scene()) : 0);
     if (!m_options.view.empty()) {
         GraphDesc probe = graphWithParams(*pipeline);
         if (auto r = addDebugView(probe, *pipeline, m_options.view, scene ? &scene->scene() : nullptr); !r) return r;
@@ -627,7 +629,7 @@ Result<void> Session::load(const std::string& file) {
     // The executor keeps its previous build when this one fails.
     if (auto r = m_runtime.executor().build(buildableGraph(*pipeline), m_options.compile); !r) {
         m_frameHook = previousHook;
-        if (scene || previousScene) m_runtime.executor().setScene(previousScene, previousHook);
+        if (scene || previousScene) m_runtime.executor().setScene(previousScene, previousHook, previousViews);
         return r;
     }
     // The previous scene may still be in use by frames in flight: retire it through the

@@ -589,6 +589,7 @@ void computeLifetimes(Compiler& c) {
             r.width = e.width;
             r.height = e.height;
             r.cube = d.texture.cube;
+            r.array = !d.texture.sceneLayers.empty();
             r.layers = resolvedLayers(d.texture);
             r.mips = d.texture.mips == 0 ? fullMipChain(e) : d.texture.mips;
         }

@@ -110,6 +110,7 @@ struct PlanResource {
     Format format = Format::Undefined;
     uint32_t width = 0, height = 0, layers = 1, mips = 1;  // resolved against the output size
     bool cube = false;
+    bool array = false;  // sampled as an array even with one layer (a scene_layers texture)
     uint64_t bufferSize = 0;
     uint32_t usageMask = 0;    // bit (1 << Usage) for every usage in kept passes (image/buffer creation flags)
     bool transient = true;     // false for imported and exported resources

@@ -26,6 +26,7 @@ ImageDesc imageDescOf(const PlanResource& r) {
     d.layers = r.layers;
     d.mips = r.mips;
     d.cube = r.cube;
+    d.array = r.array;
     d.usage = imageUsageOf(r.usageMask, r.format);
     if (r.imported) d.usage |= VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     return d;
@@ -55,7 +56,7 @@ bool sameHeap(const TransientHeap& a, const TransientHeap& b) {
 // Same physical shape: a resource built for `a` serves `b`.
 bool sameShape(const PlanResource& a, const PlanResource& b) {
     return a.kind == b.kind && a.format == b.format && a.width == b.width && a.height == b.height &&
-           a.layers == b.layers && a.mips == b.mips && a.cube == b.cube && a.bufferSize == b.bufferSize &&
+           a.layers == b.layers && a.mips == b.mips && a.cube == b.cube && a.array == b.array && a.bufferSize == b.bufferSize &&
            a.usageMask == b.usageMask && a.transient == b.transient && a.imported == b.imported &&
            a.persistent == b.persistent;
 }
@@ -157,6 +158,20 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
         if (auto r = createSlots(); !r) return r;
     GraphDesc graph = graphIn;
     if (auto r = resolveKinds(graph); !r) return r;
+    // Resources the scene sizes: a shadow-view array gets the layers the scene's shadowed local
+    // lights can use (at most those declared); a scene without any gets one 1×1 layer, not the
+    // declared capacity (24 MiB at 1024² × 6 in d32f).
+    if (m_scene)
+        for (ResourceDesc& r : graph.resources) {
+            if (r.kind != ResourceKind::Texture || r.texture.sceneLayers != "shadow_views") continue;
+            const uint32_t views = m_sceneShadowViews;
+            r.texture.layers = std::clamp(views, 1u, r.texture.layers);
+            if (views == 0) {
+                r.texture.sizeMode = SizeMode::Absolute;
+                r.texture.width = r.texture.height = 1;
+                r.texture.mips = 1;
+            }
+        }
 
     auto t0 = Clock::now();
     CompileOptions options = optionsIn;
@@ -337,8 +352,9 @@ Result<void> Executor::clearPersistent(size_t index) {
     });
 }
 
-void Executor::setScene(const passes::GpuScene* scene, std::function<void(uint32_t)> perFrame) {
+void Executor::setScene(const passes::GpuScene* scene, std::function<void(uint32_t)> perFrame, uint32_t shadowViews) {
     m_scene = scene;
+    m_sceneShadowViews = shadowViews;
     m_perFrame = std::move(perFrame);
     m_forceRebuild = true;
 }

@@ -68,12 +68,15 @@ public:
 
     // The scene passes draw and bind (camera, lights, materials); the next build prepares every
     // pass anew. `perFrame` runs before each frame is recorded, with its frame-in-flight slot.
-    void setScene(const passes::GpuScene* scene, std::function<void(uint32_t slot)> perFrame);
+    // shadowViews: the most shadow views a frame of the scene can have (passes::shadowViewCapacity),
+    // the layers a `scene_layers = "shadow_views"` resource gets.
+    void setScene(const passes::GpuScene* scene, std::function<void(uint32_t slot)> perFrame, uint32_t shadowViews = 0);
     // Floor mode for the builds that follow (PassSetup::floor): every pass is prepared again.
     void setFloors(bool on);
     // The next build prepares every pass again (their shaders' inputs changed place).
     void forceRebuild() { m_forceRebuild = true; }
     const passes::GpuScene* scene() const { return m_scene; }
+    uint32_t sceneShadowViews() const { return m_sceneShadowViews; }
 
     // Contents for an imported texture (uploaded now, then kept in ShaderReadOnly layout).
     Result<void> setImport(const std::string& name, const rg::Image& data);
@@ -133,6 +136,7 @@ private:
     uint64_t m_frameIndex = 0;
     uint64_t m_persistentEpoch = 0;  // FrameInfo::persistentEpoch
     const passes::GpuScene* m_scene = nullptr;
+    uint32_t m_sceneShadowViews = 0;
     std::function<void(uint32_t)> m_perFrame;
     bool m_forceRebuild = false;
     bool m_floors = false;

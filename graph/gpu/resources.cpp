@@ -169,7 +169,7 @@ Result<void> Image::createViews(Context& ctx) {
     VkDevice dev = ctx.device();
     VkResult r = VK_SUCCESS;
     VkImageViewType all = m_desc.cube ? (m_desc.layers > 6 ? VK_IMAGE_VIEW_TYPE_CUBE_ARRAY : VK_IMAGE_VIEW_TYPE_CUBE)
-                          : m_desc.layers > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
+                          : m_desc.layers > 1 || m_desc.array ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
                                               : VK_IMAGE_VIEW_TYPE_2D;
     m_view = OwnedImageView(dev, makeView(dev, m_image.get(), m_desc, all, 0, m_desc.mips,
                                           m_desc.layers, r));
@@ -192,7 +192,7 @@ Result<void> Image::createViews(Context& ctx) {
         }
     }
     for (uint32_t m = 0; m < m_desc.mips; ++m) {
-        VkImageViewType t = m_desc.layers > 1 ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
+        VkImageViewType t = m_desc.layers > 1 || m_desc.array ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
         m_mipViews.emplace_back(dev, makeView(dev, m_image.get(), m_desc, t, m, 1, m_desc.layers, r));
         RG_VK_TRY(r);
     }

@@ -23,6 +23,7 @@ struct ImageDesc {
     Format format = Format::RGBA8Unorm;
     uint32_t width = 1, height = 1, layers = 1, mips = 1;
     bool cube = false;
+    bool array = false;  // array views even with one layer
     VkImageUsageFlags usage = 0;
 };
 

@@ -172,7 +172,8 @@ struct Builder {
     Result<void> texture(const Declaration& d) {
         Where w = where(d);
         const Value& b = d.body;
-        if (auto r = checkFields(w, b, {"format", "size", "scale", "mips", "layers", "cube", "export", "import", "persistent", "doc"}); !r) return r;
+        if (auto r = checkFields(w, b, {"format", "size", "scale", "mips", "layers", "scene_layers", "cube", "export", "import", "persistent", "doc"}); !r)
+            return r;
         ResourceDesc r;
         r.name = fullName(d);
         r.origin = d.origin;
@@ -216,6 +217,12 @@ struct Builder {
             if (!isInteger(b["layers"]) || b["layers"].asNumber() < 1 || b["layers"].asNumber() > 2048)
                 return w.at("layers").error("expected a whole number in 1..2048");
             r.texture.layers = static_cast<uint32_t>(b["layers"].asNumber());
+        }
+        if (b.has("scene_layers")) {
+            if (!b["scene_layers"].isString() || b["scene_layers"].asString() != "shadow_views")
+                return w.at("scene_layers").error("expected \"shadow_views\" (the layers the scene's shadowed local lights need, at most `layers`)");
+            if (b["cube"].asBool()) return w.at("scene_layers").error("a cube's layers are fixed; scene_layers is for arrays");
+            r.texture.sceneLayers = b["scene_layers"].asString();
         }
         for (const char* flag : {"cube", "export", "import", "persistent"})
             if (b.has(flag))

@@ -466,3 +466,32 @@ TEST_F(LocalShadows, PenumbraMatchesTheReferenceShadowRays) {
     EXPECT_EQ(umbra, 0.0f);
     EXPECT_NEAR(wRt / wRef, 1.0f, 0.2f);
 }
+
+TEST_F(LocalShadows, TheMapHasTheLayersTheScenesLightsNeed) {
+    // local_shadow is declared with scene_layers = "shadow_views", at most 6 layers of 1024²: a
+    // point light's cube gets six, a spot of 55° one, a scene without shadowed local lights one
+    // 1×1 layer (24 MiB less transient memory); the spot's single layer is still sampled as an array
+    // (the validation layer checks the view type the shader declares). The spot's shadow is drawn:
+    // it darkens the ground beyond the box.
+    struct Case { const char* light; const char* shadow; uint32_t layers, size; };
+    for (const Case& c : {Case{"point", "1", 6, 1024}, Case{"spot", "1", 1, 1024}, Case{"point", "0", 1, 1}}) {
+        SessionOptions o = sceneOptions(kRoot + "/tests/gpu/scenes/local_shadow_box.lua", {{"light", c.light}, {"shadow", c.shadow}}, N, N);
+        Session s(*s_runtime, o);
+        auto r = s.load(kRoot + "/scripts/pipelines/deferred.lua");
+        ASSERT_TRUE(r.has_value()) << r.error().describe();
+        ASSERT_TRUE(s.frame().has_value());
+        const Plan& plan = s_runtime->executor().plan();
+        const int32_t i = plan.findResource("local_shadow");
+        ASSERT_GE(i, 0);
+        const PlanResource& res = plan.resources[static_cast<size_t>(i)];
+        std::printf("%s light, shadow %s: local_shadow %ux%u, %u layer(s)\n", c.light, c.shadow, res.width, res.height, res.layers);
+        EXPECT_EQ(res.layers, c.layers) << c.light;
+        EXPECT_EQ(res.width, c.size) << c.light;
+        EXPECT_TRUE(res.array);
+    }
+    const Image with = render({{"light", "spot"}}), without = render({{"light", "spot"}, {"box", "0"}});
+    ASSERT_EQ(with.width, N);
+    int dark = 0;
+    for (float v : ratios(with, without)) dark += v >= 0.0f && v < 0.1f;
+    EXPECT_GT(dark, 1000);
+}

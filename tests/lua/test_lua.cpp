@@ -62,6 +62,12 @@ TEST(LuaErrors, WrongType) {
     EXPECT_EQ(loadError("wrong_type.lua"), kScripts + "wrong_type.lua:2: resources.output.format: expected a string, got number");
 }
 
+TEST(LuaErrors, SceneLayersNamesWhatTheSceneCanSize) {
+    EXPECT_EQ(loadError("scene_layers_unknown.lua"),
+              kScripts + "scene_layers_unknown.lua:2: resources.maps.scene_layers: expected \"shadow_views\" (the layers the scene's "
+                         "shadowed local lights need, at most `layers`)");
+}
+
 TEST(LuaErrors, OutOfRangeValue) {
     EXPECT_EQ(loadError("out_of_range.lua"), kScripts + "out_of_range.lua:2: params.exposure.default: parameter 'exposure' expects a "
                                                         "number in [-6, 16], got 20");

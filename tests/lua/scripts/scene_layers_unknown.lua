@@ -1,0 +1,3 @@
+local rg = require "rg"
+rg.resource "maps" { format = "d32f", size = { 64, 64 }, layers = 4, scene_layers = "lights" }
+rg.output "maps"
