@@ -562,7 +562,6 @@ Result<void> Session::load(const std::string& file) {
         const uint32_t w = m_options.compile.outputWidth, h = m_options.compile.outputHeight;
         m_frameHook = [raw, w, h](uint32_t slot) { raw->updateFrame(slot, w, h); };
     }
-    const uint32_t previousViews = m_runtime.executor().sceneShadowViews();
     if (scene || previousScene)
         m_runtime.executor().setScene(scene.get(), m_frameHook, scene ? passes::shadowViewCapacity(scene->scene()) : 0);
     if (!m_options.view.empty()) {
@@ -629,7 +628,7 @@ Result<void> Session::load(const std::string& file) {
     // The executor keeps its previous build when this one fails.
     if (auto r = m_runtime.executor().build(buildableGraph(*pipeline), m_options.compile); !r) {
         m_frameHook = previousHook;
-        if (scene || previousScene) m_runtime.executor().setScene(previousScene, previousHook, previousViews);
+        if (scene || previousScene) m_runtime.executor().setScene(previousScene, previousHook, previousScene ? passes::shadowViewCapacity(previousScene->scene()) : 0);
         return r;
     }
     // The previous scene may still be in use by frames in flight: retire it through the

@@ -164,9 +164,8 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
     if (m_scene)
         for (ResourceDesc& r : graph.resources) {
             if (r.kind != ResourceKind::Texture || r.texture.sceneLayers != "shadow_views") continue;
-            const uint32_t views = m_sceneShadowViews;
-            r.texture.layers = std::clamp(views, 1u, r.texture.layers);
-            if (views == 0) {
+            r.texture.layers = std::clamp(m_sceneShadowViews, 1u, r.texture.layers);
+            if (m_sceneShadowViews == 0) {
                 r.texture.sizeMode = SizeMode::Absolute;
                 r.texture.width = r.texture.height = 1;
                 r.texture.mips = 1;

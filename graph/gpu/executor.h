@@ -76,7 +76,6 @@ public:
     // The next build prepares every pass again (their shaders' inputs changed place).
     void forceRebuild() { m_forceRebuild = true; }
     const passes::GpuScene* scene() const { return m_scene; }
-    uint32_t sceneShadowViews() const { return m_sceneShadowViews; }
 
     // Contents for an imported texture (uploaded now, then kept in ShaderReadOnly layout).
     Result<void> setImport(const std::string& name, const rg::Image& data);

@@ -42,6 +42,11 @@ glm::dvec3 viewVector(double NdotV) { return {std::sqrt(std::max(0.0, 1.0 - Ndot
 
 // The GGX lobe of brdf.glsl times ⟨n·l⟩ for one cell, D/π · Vis · ⟨n·l⟩ (F = 1), sampled by
 // its visible normals.
+// The standard GGX lobe with F = 1 times ⟨n·l⟩ (lst:2): D / π · Vis · ⟨n·l⟩.
+double lobeValue(float NdotH, double NdotL, float NdotV, float alpha) {
+    return double(brdf::D_GGX(NdotH, alpha)) / kPiD * double(brdf::V_SmithGGXCorrelated(float(NdotL), NdotV, alpha)) * NdotL;
+}
+
 struct LobeModel {
     float alpha;
     glm::dvec3 v;
@@ -50,9 +55,7 @@ struct LobeModel {
     double value(const glm::dvec3& l) const {
         if (l.z <= 0.0) return 0.0;
         const glm::dvec3 h = glm::normalize(v + l);
-        const float D = brdf::D_GGX(static_cast<float>(std::max(h.z, 0.0)), alpha);
-        const float Vis = brdf::V_SmithGGXCorrelated(static_cast<float>(l.z), static_cast<float>(v.z), alpha);
-        return double(D) / kPiD * double(Vis) * l.z;
+        return lobeValue(static_cast<float>(std::max(h.z, 0.0)), l.z, static_cast<float>(v.z), alpha);
     }
     glm::dvec3 sample(double u1, double u2) const {  // the light reflected about a visible normal
         const glm::dvec3 h = vn.halfVector(u1, u2);
@@ -255,15 +258,24 @@ glm::vec3 edgeVector(const glm::vec3& v1, const glm::vec3& v2) {
 
 }  // namespace
 
-float polygonIntegral(std::span<const glm::vec3> vertices, glm::vec3* direction) {
-    // Sutherland–Hodgman against the plane z = 0.
-    std::vector<glm::vec3> clipped;
+namespace {
+
+// Sutherland–Hodgman against the plane z = 0; what it keeps, taken through `m`.
+std::vector<glm::vec3> keepAbove(std::span<const glm::vec3> vertices, const glm::mat3& m = glm::mat3(1.0f)) {
+    std::vector<glm::vec3> kept;
     const size_t n = vertices.size();
     for (size_t i = 0; i < n; ++i) {
         const glm::vec3 a = vertices[i], b = vertices[(i + 1) % n];
-        if (a.z > 0.0f) clipped.push_back(a);
-        if ((a.z > 0.0f) != (b.z > 0.0f)) clipped.push_back(a + (b - a) * (a.z / (a.z - b.z)));
+        if (a.z > 0.0f) kept.push_back(m * a);
+        if ((a.z > 0.0f) != (b.z > 0.0f)) kept.push_back(m * (a + (b - a) * (a.z / (a.z - b.z))));
     }
+    return kept;
+}
+
+}  // namespace
+
+float polygonIntegral(std::span<const glm::vec3> vertices, glm::vec3* direction) {
+    const std::vector<glm::vec3> clipped = keepAbove(vertices);
     glm::vec3 sum(0.0f);
     for (size_t i = 0; i < clipped.size(); ++i)
         sum += edgeVector(glm::normalize(clipped[i]), glm::normalize(clipped[(i + 1) % clipped.size()]));
@@ -322,13 +334,7 @@ float ellipseIntegral(glm::vec3 centre, glm::vec3 axis1, glm::vec3 axis2, glm::v
 }
 
 float horizonPolygonIntegral(std::span<const glm::vec3> local, const glm::mat3& tableInverse, glm::vec3* direction) {
-    std::vector<glm::vec3> above;
-    const size_t n = local.size();
-    for (size_t i = 0; i < n; ++i) {
-        const glm::vec3 a = local[i], b = local[(i + 1) % n];
-        if (a.z > 0.0f) above.push_back(tableInverse * a);
-        if ((a.z > 0.0f) != (b.z > 0.0f)) above.push_back(tableInverse * (a + (b - a) * (a.z / (a.z - b.z))));
-    }
+    const std::vector<glm::vec3> above = keepAbove(local, tableInverse);
     if (above.empty()) {
         if (direction) *direction = glm::vec3(0.0f);
         return 0.0f;
@@ -345,7 +351,7 @@ float lobeRatio(const glm::mat3& inverse, glm::vec3 N, glm::vec3 V, float alpha,
     if (D <= 0.0f || NdotL <= 0.0f) return 1.0f;  // (the fade below is 0 there)
     const float NdotV = std::abs(glm::dot(N, V)) + 1e-5f;
     const float NdotH = std::clamp(glm::dot(N, glm::normalize(V + L)), 0.0f, 1.0f);
-    const float lobe = brdf::D_GGX(NdotH, alpha) * brdf::V_SmithGGXCorrelated(NdotL, NdotV, alpha) / float(kPiD) * NdotL;
+    const float lobe = float(lobeValue(NdotH, NdotL, NdotV, alpha));
     // Faded out towards either horizon, where the ratio changes too fast across a light for one
     // direction to stand for it, or D → 0 (smoothstep over ⟨n·l⟩ and the cosine-space elevation 0..0.25).
     const glm::vec3 o = inverse * L;

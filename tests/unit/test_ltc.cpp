@@ -209,8 +209,8 @@ TEST(Ltc, TheRatioAndTheHorizonClipFollowTheLobe) {
     // matrix is furthest from GGX: the light where the view reflects, off to the side, half-way
     // out of the lobe, and crossing the surface's plane (on the lobe's far tail, ~1 % of its peak,
     // where neither is close: the fitted D leaks below the horizon, +7 to +11 %, and the lobe above
-    // it is not the cosine's shape, −5 to −10 % once clipped, which the ratio over-corrects, +9 to
-    // +11 %). Printed; each case away from the horizon at least as close as the closed form alone,
+    // it is not the cosine's shape, −5 to −10 % once clipped, which the faded ratio over-corrects, +4
+    // to +9 %). Printed; each case away from the horizon at least as close as the closed form alone,
     // and every case within the level measured.
     const glm::dvec3 N(0, 0, 1), V = glm::normalize(glm::dvec3(-1, 0, 1));
     struct Case { float r; glm::dvec3 centre, u, w; double tolerance; };
