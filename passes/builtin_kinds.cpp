@@ -6,6 +6,7 @@
 
 #include "cadence.h"
 #include "core/check.h"
+#include "gpu/compile_scope.h"
 #include "graphics_pipeline.h"
 #include "passes.h"
 #include "scene_pass.h"
@@ -297,7 +298,10 @@ public:
         ci.stage = m_program.stageInfos()[0];
         ci.layout = m_program.layout();
         VkPipeline pipeline = VK_NULL_HANDLE;
-        RG_VK_TRY(vkCreateComputePipelines(setup.gpu.device(), setup.gpu.pipelineCache(), 1, &ci, nullptr, &pipeline));
+        {
+            gpu::UnlockedForCompile compiling;
+            RG_VK_TRY(vkCreateComputePipelines(setup.gpu.device(), setup.gpu.pipelineCache(), 1, &ci, nullptr, &pipeline));
+        }
         m_pipeline = OwnedPipeline(setup.gpu.device(), pipeline);
         return {};
     }
@@ -335,6 +339,10 @@ private:
     std::array<uint32_t, 3> m_groups{1, 1, 1};
     uint32_t m_mips = 1;
     std::vector<std::array<uint32_t, 3>> m_mipGroups;  // per_mip: the work groups of each mip
+public:
+    bool dueOnce(uint64_t epoch) const override { return m_cadence.dueOnce(epoch); }
+    void restoredOnce(uint64_t epoch) override { m_cadence.restored(epoch); }
+private:
     Cadence m_cadence;
 };
 
@@ -474,6 +482,10 @@ public:
 
 private:
     std::string m_target;
+public:
+    bool dueOnce(uint64_t epoch) const override { return m_cadence.dueOnce(epoch); }
+    void restoredOnce(uint64_t epoch) override { m_cadence.restored(epoch); }
+private:
     Cadence m_cadence;
 };
 
@@ -511,15 +523,7 @@ public:
             vkCmdCopyImageToBuffer(rc.cmd, r->image->image(), VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, host.buffer(), 1, &region);
         }
         // Make the copy visible to the host once the frame's fence has signalled.
-        VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-        mb.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
-        mb.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-        mb.dstStageMask = VK_PIPELINE_STAGE_2_HOST_BIT;
-        mb.dstAccessMask = VK_ACCESS_2_HOST_READ_BIT;
-        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dep.memoryBarrierCount = 1;
-        dep.pMemoryBarriers = &mb;
-        vkCmdPipelineBarrier2(rc.cmd, &dep);
+        memoryBarrier(rc.cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
         m_lastSlot = static_cast<int>(rc.frame.slot);
     }
     std::optional<rg::Image> hostResult() const override {

@@ -44,6 +44,14 @@ public:
         return true;
     }
 
+    // The disk cache of once-per-build outputs (Executor::setOnceCache): whether the pass records
+    // once and has yet to for `epoch`, and the cache's telling it that its outputs were restored.
+    bool dueOnce(uint64_t epoch) const { return m_once && !(m_recorded && m_epoch == epoch); }
+    void restored(uint64_t epoch) {
+        m_recorded = true;
+        m_epoch = epoch;
+    }
+
 private:
     bool m_once = false, m_recorded = false;
     uint64_t m_epoch = 0;

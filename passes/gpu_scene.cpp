@@ -9,6 +9,7 @@
 #include <glm/gtc/packing.hpp>
 
 #include "core/check.h"
+#include "core/hash.h"
 #include "core/light_units.h"
 #include "lighting/area_lights.h"
 #include "lighting/ltc.h"
@@ -177,7 +178,7 @@ Result<gpu::Image> uploadRgba32f(Context& ctx, const std::string& name, const rg
 // Σ_k A_k I_k(0, 0, 1), which a surface without a normal map reads instead of evaluating every
 // lobe (the sum is linear in the amplitudes, so filtering it is filtering them); none: a 1×1×2
 // black array, so the view stays an array.
-Result<gpu::Image> uploadLightmap(Context& ctx, const Lightmap* lm) {
+Result<gpu::Image> uploadLightmap(Context& ctx, const Lightmap* lm, ContentHash& hash) {
     ImageDesc d;
     d.name = "scene.lightmap";
     d.format = Format::RGBA16F;
@@ -204,6 +205,9 @@ Result<gpu::Image> uploadLightmap(Context& ctx, const Lightmap* lm) {
                 dst[(size_t(layer) * texels + i) * 4 + size_t(c)] =
                     glm::packHalf1x16(c < 3 ? std::clamp(std::isfinite(a[c]) ? a[c] : 0.0f, 0.0f, 65504.0f) : 1.0f);
         }
+    hash.u64(d.width);
+    hash.u64(d.height);
+    hash.bytes(dst, texels * d.layers * 8);
     VkBufferImageCopy r{};
     r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, d.layers};
     r.imageExtent = {d.width, d.height, 1};
@@ -319,6 +323,8 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
         auto buf = Buffer::create(ctx, "scene.draws", words.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
         if (!buf) return std::unexpected(buf.error());
         std::memcpy(buf->mapped(), words.data(), words.size() * sizeof(glm::vec4));
+        m_staticHash.bytes(words.data(), words.size() * sizeof(glm::vec4));
+        for (const DrawItem& item : m_draws) m_staticHash.bytes(&item.world, sizeof item.world);
         m_drawBuffer = std::move(*buf);
     }
     if (vertices.empty()) {  // keep valid (empty) buffers for an empty scene
@@ -336,17 +342,11 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
         return ctx.submitNow([&](VkCommandBuffer cmd) {
             VkBufferCopy region{0, 0, bytes};
             vkCmdCopyBuffer(cmd, src, dst, 1, &region);
-            VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-            mb.srcStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-            mb.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-            mb.dstStageMask = VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT;
-            mb.dstAccessMask = VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_2_INDEX_READ_BIT;
-            VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-            dep.memoryBarrierCount = 1;
-            dep.pMemoryBarriers = &mb;
-            vkCmdPipelineBarrier2(cmd, &dep);
+            memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT, VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_2_INDEX_READ_BIT);
         });
     };
+    m_staticHash.bytes(vertices.data(), vertices.size() * sizeof(Vertex));
+    m_staticHash.bytes(indices.data(), indices.size() * sizeof(uint32_t));
     if (auto r = upload(m_vertices, vertices.data(), vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "scene.vertices"); !r) return r;
     return upload(m_indices, indices.data(), indices.size() * sizeof(uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "scene.indices");
 }
@@ -360,6 +360,13 @@ Result<void> GpuScene::uploadImages(Context& ctx) {
         }
         if (levels.empty() || levels[0]->width == 0)
             return fail(ErrorCode::InvalidInput, "scene image '" + si.name + "' has no pixels");
+        m_staticHash.u64(si.srgb);
+        for (const rg::Image* level : levels) {
+            m_staticHash.u64(level->width);
+            m_staticHash.u64(level->height);
+            m_staticHash.u64(level->channels);
+            m_staticHash.bytes(level->pixels.data(), level->pixels.size() * sizeof(float));
+        }
         auto img = uploadRgba8(ctx, "scene." + si.name, si.srgb, levels);
         if (!img) return std::unexpected(img.error());
         m_images.push_back(std::move(*img));
@@ -371,6 +378,7 @@ Result<void> GpuScene::uploadImages(Context& ctx) {
     if (!flat) return std::unexpected(flat.error());
     m_flatNormal = std::move(*flat);
     for (const SamplerDesc& d : m_scene.samplers) {
+        for (auto v : {uint64_t(d.magFilter), uint64_t(d.minFilter), uint64_t(d.mipmapMode), uint64_t(d.wrapS), uint64_t(d.wrapT)}) m_staticHash.u64(v);
         auto s = makeSampler(ctx.device(), d);
         if (!s) return std::unexpected(s.error());
         m_samplers.push_back(std::move(*s));
@@ -383,6 +391,9 @@ Result<void> GpuScene::uploadImages(Context& ctx) {
     rg::Image black(1, 1, 4);
     auto env = m_scene.environment ? environmentImage(m_scene) : Result<rg::Image>(std::move(black));
     if (!env) return std::unexpected(env.error());
+    m_staticHash.u64(env->width);
+    m_staticHash.u64(env->height);
+    m_staticHash.bytes(env->pixels.data(), env->pixels.size() * sizeof(float));
     m_environmentCdf = environmentCdf(*env);
     auto envImage = uploadRgba32f(ctx, "scene.environment", *env);
     if (!envImage) return std::unexpected(envImage.error());
@@ -393,7 +404,7 @@ Result<void> GpuScene::uploadImages(Context& ctx) {
     auto es = makeSampler(ctx.device(), envSampler);
     if (!es) return std::unexpected(es.error());
     m_environmentSampler = std::move(*es);
-    auto lightmap = uploadLightmap(ctx, m_scene.bakedLightmap.get());
+    auto lightmap = uploadLightmap(ctx, m_scene.bakedLightmap.get(), m_staticHash);
     if (!lightmap) return std::unexpected(lightmap.error());
     m_lightmap = std::move(*lightmap);
     return {};
@@ -451,6 +462,11 @@ Result<void> GpuScene::createMaterials(Context& ctx) {
             if (!value.isNumber() || slot >= 16) continue;
             u.custom[slot / 4][static_cast<int>(slot % 4)] = static_cast<float>(value.asNumber());
             ++slot;
+        }
+        m_staticHash.bytes(&u, sizeof u);
+        for (const TextureRef* ref : refs) {
+            m_staticHash.u64(static_cast<uint64_t>(static_cast<int64_t>(ref->image)));
+            m_staticHash.u64(static_cast<uint64_t>(static_cast<int64_t>(ref->sampler)));
         }
         auto buf = Buffer::create(ctx, "material." + m.name, sizeof u, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
         if (!buf) return std::unexpected(buf.error());
@@ -798,6 +814,14 @@ void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
     for (size_t d = 0; d < m_draws.size(); ++d) m_drawInView[d] = boxMeetsFrustum(planes, m_draws[d].boundsMin, m_draws[d].boundsMax);
     updateShadowViews(slot, u.viewProj);
     std::memcpy(static_cast<uint8_t*>(m_lightBuffers[slot].mapped()) + 4, &m_areaLightModel, sizeof m_areaLightModel);
+}
+
+uint64_t GpuScene::contentHash(uint32_t slot) const {
+    ContentHash h;
+    h.u64(m_staticHash.value());
+    for (const Buffer* b : {&m_cameraBuffers[slot], &m_lightBuffers[slot], &m_shadowViewBuffers[slot], &m_decals, &m_probes})
+        h.bytes(b->mapped(), b->size());
+    return h.value();
 }
 
 VkBuffer GpuScene::bvhBuffer() const {

@@ -13,6 +13,7 @@
 
 #include <glm/glm.hpp>
 
+#include "core/hash.h"
 #include "gpu/context.h"
 #include "gpu/resources.h"
 #include "lighting/ies.h"
@@ -129,6 +130,11 @@ public:
     Result<void> selectCamera(const std::string& name);
     // Writes frame slot `slot`'s camera for an output of width x height.
     void updateFrame(uint32_t slot, uint32_t width, uint32_t height);
+    // A key of everything the scene gives the GPU as frame slot `slot` holds it now: geometry,
+    // images and samplers, materials, the environment and lightmap (hashed as uploaded), and the
+    // slot's camera, lights, shadow views, decals and probes — what the disk cache of
+    // once-per-build outputs (Executor::setOnceCache) keys a scene by.
+    uint64_t contentHash(uint32_t slot) const;
     VkBuffer cameraBuffer(uint32_t slot) const { return m_cameraBuffers[slot].buffer(); }
     VkBuffer lightBuffer(uint32_t slot) const { return m_lightBuffers[slot].buffer(); }
     // Which area-light model the light loop evaluates (lib/scene.glsl's Lights.count.y): 0 Frostbite's
@@ -210,6 +216,7 @@ private:
     std::vector<gpu::Buffer> m_cameraBuffers, m_lightBuffers, m_shadowViewBuffers;
     std::vector<std::vector<size_t>> m_shadowViewDraws;      // per view of this frame
     mutable gpu::Buffer m_bvh;  // bvhBuffer(), once built
+    ContentHash m_staticHash;   // what was uploaded at creation (contentHash)
     gpu::Buffer m_drawBuffer;
     std::vector<char> m_drawInView;        // per draw: its box meets the camera's frustum (updateFrame)
     std::vector<glm::ivec4> m_lightViews;  // per light (kMaxLights): first view (−1: none), count — as uploaded

@@ -1,5 +1,7 @@
 #include "graphics_pipeline.h"
 
+#include "gpu/compile_scope.h"
+
 namespace rg::passes {
 
 VkPipelineColorBlendAttachmentState blendState(const std::string& mode, bool alphaKeepsDestination) {
@@ -63,7 +65,10 @@ Result<gpu::OwnedPipeline> createGraphicsPipeline(gpu::Context& ctx, const Graph
     gp.pDynamicState = &dy;
     gp.layout = desc.program->layout();
     VkPipeline pipeline = VK_NULL_HANDLE;
-    RG_VK_TRY(vkCreateGraphicsPipelines(device, ctx.pipelineCache(), 1, &gp, nullptr, &pipeline));
+    {
+        gpu::UnlockedForCompile compiling;
+        RG_VK_TRY(vkCreateGraphicsPipelines(device, ctx.pipelineCache(), 1, &gp, nullptr, &pipeline));
+    }
     return gpu::OwnedPipeline(device, pipeline);
 }
 

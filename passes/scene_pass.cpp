@@ -721,6 +721,10 @@ private:
     bool m_forward = false;
     bool m_shadow = false;
     bool m_capture = false;  // the scene's light probes, once per build (cadence)
+public:
+    bool dueOnce(uint64_t epoch) const override { return m_cadence.dueOnce(epoch); }
+    void restoredOnce(uint64_t epoch) override { m_cadence.restored(epoch); }
+private:
     Cadence m_cadence;
     bool m_lightViews = false;  // shadow: the scene's local-light views rather than the shader's
     std::string m_indirect;     // shadow: the buffer of indirect commands per layer and draw

@@ -63,7 +63,7 @@ struct Args {
     std::string error;
 
     static Args parse(int argc, char** argv, int first, const std::vector<std::string>& known) {
-        static const std::vector<std::string> flags = {"verbose", "floors", "rebake"};  // options without a value
+        static const std::vector<std::string> flags = {"verbose", "floors", "rebake", "no-cache"};  // options without a value
         Args a;
         for (int i = first; i < argc; ++i) {
             std::string arg = argv[i];
@@ -294,6 +294,8 @@ Result<RenderSetup> setupRun(const Args& args, const char* command, uint32_t def
     so.camera = args.get("camera");
     so.environment = args.get("environment");
     so.verbose = verbose;
+    // The once-per-build outputs' disk cache: not for bench, whose first-frame column times those passes.
+    if (std::string(command) != "bench" && !args.has("no-cache")) so.onceCache = cacheDir();
     // NAME=VALUE pairs: --scene-arg for the scene script's `scene.args`, --set for pipeline parameters.
     auto pair = [&](const std::string& option, const std::string& text) -> Result<std::pair<std::string, std::string>> {
         const auto eq = text.find('=');
@@ -445,12 +447,13 @@ Result<std::pair<std::string, std::string>> outputPaths(const Args& args, const 
 }
 
 int cmdRender(int argc, char** argv) {
-    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "scene-arg", "set", "camera", "environment", "size", "frames", "out", "png", "capture", "view", "device", "verbose"});
+    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "scene-arg", "set", "camera", "environment", "size", "frames", "out", "png", "capture", "view", "device", "verbose", "no-cache"});
     if (args.help) {
         std::printf(
             "usage: rgraph render [--pipeline FILE.lua|builtin:NAME] [--scene FILE] [--camera NAME] [--size WxH] [--frames N]\n"
             "                     [--out FILE.exr] [--png FILE.png] [--capture RESOURCE|gbuffer.CHANNEL]... [--view VIEW]\n"
-            "                     [--scene-arg NAME=VALUE]... [--set NAME=VALUE]... [--environment FILE|sky|none] [--device N] [--verbose]\n\n"
+            "                     [--scene-arg NAME=VALUE]... [--set NAME=VALUE]... [--environment FILE|sky|none] [--device N] [--verbose]\n"
+            "                     [--no-cache]\n\n"
             "--scene: a Lua scene (scripts/scenes/*.lua), .gltf or .glb (default scripts/scenes/default.lua).\n"
             "--environment FILE|sky|none: replaces the scene's environment (the distant light probe and the sky):\n"
             "an equirectangular .hdr/.exr in nits, the Preetham sky of the scene's sun, or none. A glTF scene\n"
@@ -467,7 +470,10 @@ int cmdRender(int argc, char** argv) {
             "extensions are refused), linear: layer 'hdr' holds\n"
             "absolute luminance in cd/m2 (pre-exposure divided out) when the pipeline has a camera (rg.output\n"
             "{ display, hdr, exposure }), else the output itself. Each --capture adds that resource as a layer of\n"
-            "its name. Both files record the camera settings and exposure in their metadata.\n");
+            "its name. Both files record the camera settings and exposure in their metadata.\n"
+            "The passes that run once per build (cadence = \"once\": environment filtering, probe capture, lookup\n"
+            "tables) restore their outputs from the cache folder (RG_CACHE_DIR)/once when the same passes, shaders,\n"
+            "scene and device made them before, and save them there otherwise; --no-cache always records them.\n");
         return kOk;
     }
     if (!args.error.empty()) return usageError(args.error, "render");
@@ -496,6 +502,11 @@ int cmdRender(int argc, char** argv) {
     auto written = writeOutputs(*setup, exrPath, pngPath, captures);
     if (!written) return report(written.error());
     const Image* out = &*written;
+    if (const auto& once = rt.executor().onceCacheStats(); args.has("verbose") && (once.restoredPasses || once.savedPasses))
+        std::fprintf(stderr, once.restoredPasses ? "rgraph: once-per-build passes: %u restored from %s (%.0f ms)\n"
+                                                 : "rgraph: once-per-build passes: %u recorded, saved to %s (%.0f ms)\n",
+                     once.restoredPasses ? once.restoredPasses : once.savedPasses, once.file.c_str(),
+                     once.restoredPasses ? once.restoreMs : once.saveMs);
     if (args.has("verbose"))
         std::fprintf(stderr, "rgraph: timings: device %.0f ms, pipeline and scene load %.0f ms, %u frame%s %.0f ms, writing %.0f ms\n",
                      setup->deviceMs, ms(t0, t1) - setup->deviceMs, setup->frames, setup->frames == 1 ? "" : "s", ms(t1, t2), ms(t2, Clock::now()));
@@ -509,7 +520,7 @@ int cmdRender(int argc, char** argv) {
 }
 
 int cmdWatch(int argc, char** argv) {
-    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "scene-arg", "set", "camera", "environment", "size", "out", "png", "device", "interval", "max-reloads"});
+    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "scene-arg", "set", "camera", "environment", "size", "out", "png", "device", "interval", "max-reloads", "no-cache"});
     if (args.help) {
         std::printf(
             "usage: rgraph watch [--pipeline FILE.lua] [--scene FILE] [--size WxH] [--out FILE.exr] [--png FILE.png]\n"
@@ -574,7 +585,7 @@ int cmdWatch(int argc, char** argv) {
 }
 
 int cmdServe(int argc, char** argv) {
-    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "scene-arg", "set", "camera", "environment", "size", "device", "port", "host", "interval"});
+    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "scene-arg", "set", "camera", "environment", "size", "device", "port", "host", "interval", "no-cache"});
     if (args.help) {
         std::printf(
             "usage: rgraph serve [--pipeline FILE.lua] [--scene FILE] [--size WxH] [--port N] [--host ADDRESS] [--interval MS]\n"

@@ -564,6 +564,11 @@ Result<void> Session::load(const std::string& file) {
     }
     if (scene || previousScene)
         m_runtime.executor().setScene(scene.get(), m_frameHook, scene ? passes::shadowViewCapacity(scene->scene()) : 0);
+    {
+        gpu::Executor& executor = m_runtime.executor();
+        executor.setOnceCache(m_options.onceCache,
+                              [&executor](uint32_t slot) { return executor.scene() ? executor.scene()->contentHash(slot) : 0; });
+    }
     if (!m_options.view.empty()) {
         GraphDesc probe = graphWithParams(*pipeline);
         if (auto r = addDebugView(probe, *pipeline, m_options.view, scene ? &scene->scene() : nullptr); !r) return r;

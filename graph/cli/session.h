@@ -34,6 +34,9 @@ struct SessionOptions {
     std::string view;
     std::vector<std::string> captures;  // resources to export for readback
     bool verbose = false;               // print what each rebuild reused
+    // The folder whose once/ holds the outputs of passes with cadence = "once", restored from there
+    // and saved there (gpu::Executor::setOnceCache); "" (the default: tests, bench) records them.
+    std::string onceCache;
     // Parameter values set when a script loads (after the scene's camera settings), checked like
     // ctx.params: the golden tests' `params` and determinism profile.
     std::map<std::string, Value> params;

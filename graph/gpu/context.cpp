@@ -6,6 +6,7 @@
 #include <cstring>
 #include <fstream>
 #include <iterator>
+#include <mutex>
 
 #include <unistd.h>
 
@@ -384,6 +385,7 @@ VKAPI_ATTR VkBool32 VKAPI_CALL Context::debugCallback(
     VkDebugUtilsMessageSeverityFlagBitsEXT severity, VkDebugUtilsMessageTypeFlagsEXT,
     const VkDebugUtilsMessengerCallbackDataEXT* data, void* user) {
     auto* self = static_cast<Context*>(user);
+    std::lock_guard<std::mutex> guard(self->m_messageLock);  // pipelines compile on several threads
     self->m_validationMessages++;
     std::string msg = std::string(severity >= VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT
                                       ? "validation error: "

@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <mutex>
 #include <optional>
 #include <string>
 #include <vector>
@@ -126,6 +127,7 @@ private:
     bool m_validation = false;
     bool m_ownsDevice = true;  // false: the host's instance and device (ContextOptions::external)
     bool m_debugUtils = false;
+    std::mutex m_messageLock;
     uint32_t m_validationMessages = 0;
     std::vector<std::string> m_messages;
     PFN_vkCmdBeginDebugUtilsLabelEXT m_beginLabel = nullptr;

@@ -1,12 +1,23 @@
 #include "executor.h"
 
 #include <algorithm>
+#include <bit>
 #include <chrono>
 #include <cstring>
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+#include <unistd.h>
 
 #include "core/check.h"
+#include "core/hash.h"
 #include "core/names.h"
+#include "gpu/compile_scope.h"
 
 namespace rg::gpu {
 
@@ -256,9 +267,14 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
     m_buildStats.resourcesMs = msSince(t1);
 
     // Pass instances: an unchanged pass over unchanged resources keeps its pipeline and
-    // descriptor sets.
+    // descriptor sets; the others are prepared on several threads (prepareInParallel).
     auto t2 = Clock::now();
-    for (const auto& pass : planPtr->passes) {
+    const size_t passCount = planPtr->passes.size();
+    built->instances.resize(passCount);
+    built->sourceStamps.resize(passCount);
+    std::vector<size_t> toPrepare;
+    for (size_t p = 0; p < passCount; ++p) {
+        const PlanPass& pass = planPtr->passes[p];
         const PassDesc& desc = built->graph.passes[pass.desc];
         if (oldPasses) {
             int32_t o = old->plan.findPass(pass.name);
@@ -271,19 +287,19 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
                 if (od.kind == desc.kind && sameAccesses(od.accesses, desc.accesses) && resourcesKept &&
                     withoutUniforms(od.params) == withoutUniforms(desc.params) &&
                     sourceStamp(*instance) == old->sourceStamps[static_cast<size_t>(o)]) {
-                    built->instances.push_back(instance);
-                    built->sourceStamps.push_back(old->sourceStamps[static_cast<size_t>(o)]);
-                    report.passesReused.push_back(pass.name);
+                    built->instances[p] = instance;
+                    built->sourceStamps[p] = old->sourceStamps[static_cast<size_t>(o)];
                     continue;
                 }
             }
         }
-        auto instance = std::shared_ptr<PassInstance>(m_kinds.find(desc.kind)->create());
-        PassSetup setup{m_ctx, m_shaders, *planPtr, pass, desc, built->table, m_scene, m_floors};
-        if (auto r = instance->prepare(setup); !r) return std::unexpected(r.error());
-        built->sourceStamps.push_back(sourceStamp(*instance));
-        built->instances.push_back(std::move(instance));
-        report.passesPrepared.push_back(pass.name);
+        toPrepare.push_back(p);
+    }
+    if (auto r = prepareInParallel(*built, *planPtr, toPrepare); !r) return std::unexpected(r.error());
+    for (size_t p = 0; p < passCount; ++p) {
+        const std::string& name = planPtr->passes[p].name;
+        if (std::find(toPrepare.begin(), toPrepare.end(), p) != toPrepare.end()) report.passesPrepared.push_back(name);
+        else report.passesReused.push_back(name);
     }
     m_buildStats.prepareMs = msSince(t2);
 
@@ -314,6 +330,57 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
     return {};
 }
 
+// Prepares the listed passes of `built` (indices into plan.passes), in order of their indices as
+// far as anything but the pipeline compiles goes: each worker prepares one pass at a time under
+// one lock and gives it up inside vkCreate*Pipelines (gpu/compile_scope.h), so the driver's
+// compiles overlap — on lavapipe most of the set-up time (2 threads: the default pipeline's
+// ~500 ms → ~300 ms). RG_PREPARE_THREADS=N sets the thread count (1: serial). The first failing
+// pass in plan order gives the error, whichever thread met it first.
+Result<void> Executor::prepareInParallel(Built& built, const Plan& plan, const std::vector<size_t>& passes) {
+    std::vector<std::optional<Error>> errors(passes.size());
+    auto prepareOne = [&](size_t k) {
+        const size_t p = passes[k];
+        const PlanPass& pass = plan.passes[p];
+        const PassDesc& desc = built.graph.passes[pass.desc];
+        auto instance = std::shared_ptr<PassInstance>(m_kinds.find(desc.kind)->create());
+        PassSetup setup{m_ctx, m_shaders, plan, pass, desc, built.table, m_scene, m_floors};
+        if (auto r = instance->prepare(setup); !r) {
+            errors[k] = r.error();
+            return;
+        }
+        built.sourceStamps[p] = sourceStamp(*instance);
+        built.instances[p] = std::move(instance);
+    };
+    unsigned threads = std::max(1u, std::thread::hardware_concurrency());
+    if (const char* env = std::getenv("RG_PREPARE_THREADS"); env && std::atoi(env) > 0) threads = static_cast<unsigned>(std::atoi(env));
+    threads = static_cast<unsigned>(std::min<size_t>({threads, 8, passes.size()}));
+    if (threads <= 1) {
+        for (size_t k = 0; k < passes.size() && !std::any_of(errors.begin(), errors.end(), [](const auto& e) { return e.has_value(); }); ++k)
+            prepareOne(k);
+    } else {
+        std::mutex lock;
+        size_t next = 0;
+        bool failed = false;
+        auto worker = [&] {
+            std::unique_lock<std::mutex> held(lock);
+            t_prepareLock = &held;
+            while (next < passes.size() && !failed) {
+                const size_t k = next++;
+                prepareOne(k);
+                if (errors[k]) failed = true;
+            }
+            t_prepareLock = nullptr;
+        };
+        std::vector<std::thread> pool;
+        for (unsigned t = 1; t < threads; ++t) pool.emplace_back(worker);
+        worker();
+        for (auto& t : pool) t.join();
+    }
+    for (auto& e : errors)
+        if (e) return std::unexpected(*e);
+    return {};
+}
+
 // A new persistent resource starts as zeros, in the state every frame expects it in.
 Result<void> Executor::clearPersistent(size_t index) {
     ++m_persistentEpoch;
@@ -323,15 +390,7 @@ Result<void> Executor::clearPersistent(size_t index) {
     return m_ctx.submitNow([&](VkCommandBuffer cmd) {
         if (buffer) {
             vkCmdFillBuffer(cmd, buffer->buffer(), 0, VK_WHOLE_SIZE, 0);
-            VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-            mb.srcStageMask = VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT;
-            mb.srcAccessMask = VK_ACCESS_2_TRANSFER_WRITE_BIT;
-            mb.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-            mb.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
-            VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-            dep.memoryBarrierCount = 1;
-            dep.pMemoryBarriers = &mb;
-            vkCmdPipelineBarrier2(cmd, &dep);
+            memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
             return;
         }
         VkImageAspectFlags aspect = aspectOf(r.format);
@@ -489,6 +548,8 @@ Result<void> Executor::frame(VkCommandBuffer hostCmd) {
 
     auto t0 = Clock::now();
     if (m_perFrame) m_perFrame(slotIndex);
+    if (!m_onceDir.empty() && !m_floors && !hostCmd)
+        if (auto r = onceCacheBeforeFrame(slotIndex); !r) return r;
     VkDevice dev = m_ctx.device();
     const uint32_t queries = hostCmd ? 0u : static_cast<uint32_t>(m_built->plan.passes.size() * 2);
     if (queries > slot.queryCount || !slot.queries) {
@@ -514,15 +575,7 @@ Result<void> Executor::frame(VkCommandBuffer hostCmd) {
 
     // Frames in flight share the plan's resources: the previous frame must be done with
     // them before this one starts overwriting (its first barriers come from UNDEFINED).
-    VkMemoryBarrier2 frameBarrier{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-    frameBarrier.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    frameBarrier.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
-    frameBarrier.dstStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-    frameBarrier.dstAccessMask = VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT;
-    VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-    dep.memoryBarrierCount = 1;
-    dep.pMemoryBarriers = &frameBarrier;
-    vkCmdPipelineBarrier2(cmd, &dep);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
     if (auto r = recordHostCopies(cmd, /*imports=*/true); !r) return r;
 
     FrameInfo info{m_frameIndex, static_cast<double>(m_frameIndex) / 60.0, slotIndex, m_persistentEpoch};
@@ -560,6 +613,321 @@ Result<void> Executor::frame(VkCommandBuffer hostCmd) {
     RG_VK_TRY(vkQueueSubmit2(m_ctx.queue(), 1, &submit, fence));
     slot.pending = true;
     ++m_frameIndex;
+    if (m_onceToSave) return onceCacheAfterFrame(fence);
+    return {};
+}
+
+// ---- The disk cache of once-per-build outputs (setOnceCache) -------------------------------
+
+void Executor::setOnceCache(std::string dir, std::function<uint64_t(uint32_t)> sceneKey) {
+    m_onceDir = std::move(dir);
+    m_onceSceneKey = std::move(sceneKey);
+}
+
+namespace {
+
+void hashValue(ContentHash& h, const Value& v) {
+    if (v.isBool()) {
+        h.u64(1);
+        h.u64(v.asBool());
+    } else if (v.isNumber()) {
+        h.u64(2);
+        h.u64(std::bit_cast<uint64_t>(v.asNumber()));
+    } else if (v.isString()) {
+        h.u64(3);
+        h.str(v.asString());
+    } else if (v.isList()) {
+        h.u64(4 + (v.asList().size() << 8));
+        for (const Value& e : v.asList()) hashValue(h, e);
+    } else if (v.isTable()) {
+        h.u64(5 + (v.asTable().size() << 8));
+        for (const auto& [k, e] : v.asTable()) {
+            h.str(k);
+            hashValue(h, e);
+        }
+    } else {
+        h.u64(0);
+    }
+}
+
+void hashFile(ContentHash& h, const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    h.str(path);
+    h.str(text);
+}
+
+// Bytes of a resource as the cache stores it: every mip of every layer, tightly packed (the depth
+// aspect of a depth format), or the whole buffer.
+uint64_t cachedBytes(const PlanResource& r) {
+    if (r.kind == ResourceKind::Buffer) return r.bufferSize;
+    uint64_t bytes = 0;
+    for (uint32_t m = 0; m < r.mips; ++m)
+        bytes += uint64_t(std::max(1u, r.width >> m)) * std::max(1u, r.height >> m) * r.layers * copyTexelBytes(r.format);
+    return bytes;
+}
+
+std::vector<VkBufferImageCopy> cachedRegions(const PlanResource& r, VkDeviceSize offset) {
+    std::vector<VkBufferImageCopy> regions;
+    for (uint32_t m = 0; m < r.mips; ++m) {
+        VkBufferImageCopy c{};
+        c.bufferOffset = offset;
+        c.imageSubresource = {aspectOf(r.format) & ~VkImageAspectFlags(VK_IMAGE_ASPECT_STENCIL_BIT), m, 0, r.layers};
+        c.imageExtent = {std::max(1u, r.width >> m), std::max(1u, r.height >> m), 1};
+        regions.push_back(c);
+        offset += VkDeviceSize(c.imageExtent.width) * c.imageExtent.height * r.layers * copyTexelBytes(r.format);
+    }
+    return regions;
+}
+
+constexpr char kOnceMagic[8] = {'R', 'G', 'O', 'N', 'C', 'E', '0', '1'};
+
+}  // namespace
+
+// The once passes due now whose outputs are a function of what the key covers: start from every
+// due once pass and drop, until none is dropped, each that touches a resource written by a pass
+// outside the set (a per-frame pass, a once pass not due), a transient, a host image or a stencil
+// format. Its resources: everything the set writes.
+Executor::OnceSet Executor::cacheableOncePasses(uint32_t slot) const {
+    OnceSet set;
+    const Plan& plan = m_built->plan;
+    const size_t n = plan.passes.size();
+    std::vector<std::vector<size_t>> writers(plan.resources.size());
+    for (size_t p = 0; p < n; ++p)
+        for (const PlanAccess& a : plan.passes[p].accesses)
+            if (usageWrites(a.usage)) writers[a.resource].push_back(p);
+    std::vector<char> in(n, 0);
+    for (size_t p = 0; p < n; ++p) in[p] = m_built->instances[p]->dueOnce(m_persistentEpoch);
+    for (bool changed = true; changed;) {
+        changed = false;
+        for (size_t p = 0; p < n; ++p) {
+            if (!in[p]) continue;
+            for (const PlanAccess& a : plan.passes[p].accesses) {
+                const PlanResource& r = plan.resources[a.resource];
+                bool ok = (r.persistent || r.imported) && !m_hostImports.count(r.name) && !formatInfo(r.format).stencil;
+                for (size_t w : writers[a.resource]) ok = ok && in[w];
+                if (!ok) {
+                    in[p] = 0;
+                    changed = true;
+                    break;
+                }
+            }
+        }
+    }
+    std::vector<char> written(plan.resources.size(), 0), touched(plan.resources.size(), 0);
+    for (size_t p = 0; p < n; ++p) {
+        if (!in[p]) continue;
+        set.passes.push_back(p);
+        for (const PlanAccess& a : plan.passes[p].accesses) {
+            touched[a.resource] = 1;
+            if (usageWrites(a.usage)) written[a.resource] = 1;
+        }
+    }
+    if (set.passes.empty()) return set;
+    ContentHash h;
+    h.str("rgraph once-per-build outputs, format 1");
+    std::error_code ec;  // this build of the code: a pass kind's C++ may change what it writes
+    h.u64(std::filesystem::file_size("/proc/self/exe", ec));
+    h.u64(static_cast<uint64_t>(std::filesystem::last_write_time("/proc/self/exe", ec).time_since_epoch().count()));
+    const VkPhysicalDeviceProperties& props = m_ctx.properties();
+    h.u64((uint64_t(props.vendorID) << 32) | props.deviceID);
+    h.u64(props.driverVersion);
+    h.str(props.deviceName);
+    h.str(m_ctx.deviceInfo().driver);
+    for (size_t p : set.passes) {
+        const PlanPass& pass = plan.passes[p];
+        const PassDesc& desc = m_built->graph.passes[pass.desc];
+        h.str(pass.name);
+        h.str(desc.kind);
+        hashValue(h, desc.params);
+        for (const Access& a : desc.accesses) {
+            h.str(a.resource);
+            h.u64((uint64_t(a.usage) << 1) | uint64_t(a.load));
+        }
+        for (const std::string& f : m_built->instances[p]->files()) hashFile(h, f);
+    }
+    for (size_t i = 0; i < plan.resources.size(); ++i) {
+        if (!touched[i]) continue;
+        const PlanResource& r = plan.resources[i];
+        h.str(r.name);
+        for (uint64_t v : {uint64_t(r.kind), uint64_t(r.format), uint64_t(r.width), uint64_t(r.height), uint64_t(r.layers),
+                           uint64_t(r.mips), uint64_t(r.cube), uint64_t(r.array), r.bufferSize, uint64_t(r.persistent)})
+            h.u64(v);
+        if (auto d = m_importData.find(r.name); r.imported && d != m_importData.end()) {
+            h.u64(d->second.width);
+            h.u64(d->second.height);
+            h.u64(d->second.channels);
+            h.bytes(d->second.pixels.data(), d->second.pixels.size() * sizeof(float));
+        }
+        if (written[i]) set.resources.push_back(i);
+    }
+    h.u64(m_scene && m_onceSceneKey ? m_onceSceneKey(slot) : 0);
+    set.key = h.value();
+    return set;
+}
+
+namespace {
+
+std::string onceCachePath(const std::string& dir, uint64_t key) {
+    char name[32];
+    std::snprintf(name, sizeof name, "%016llx.bin", static_cast<unsigned long long>(key));
+    return (std::filesystem::path(dir) / "once" / name).string();
+}
+
+}  // namespace
+
+// Restores the due once passes' outputs when the cache has them (they then skip), else marks them
+// to be saved after the frame. A missing, short or mismatched file is a miss, never an error.
+Result<void> Executor::onceCacheBeforeFrame(uint32_t slot) {
+    m_onceToSave.reset();
+    OnceSet set = cacheableOncePasses(slot);
+    if (set.passes.empty()) return {};
+    m_onceStats = {};
+    const auto t0 = Clock::now();
+    const Plan& plan = m_built->plan;
+    const std::string path = onceCachePath(m_onceDir, set.key);
+    m_onceStats.file = path;
+    std::ifstream in(path, std::ios::binary);
+    uint64_t total = 0;
+    for (size_t i : set.resources) total += cachedBytes(plan.resources[i]);
+    bool hit = false;
+    std::optional<Buffer> staging;
+    if (in) {
+        char magic[8] = {};
+        uint64_t key = 0, count = 0;
+        in.read(magic, 8);
+        in.read(reinterpret_cast<char*>(&key), 8);
+        in.read(reinterpret_cast<char*>(&count), 8);
+        hit = in && std::equal(magic, magic + 8, kOnceMagic) && key == set.key && count == set.resources.size();
+        if (hit) {
+            auto buf = Buffer::create(m_ctx, "once_cache.upload", std::max<uint64_t>(total, 4), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+            if (!buf) return std::unexpected(buf.error());
+            staging = std::move(*buf);
+            auto* dst = static_cast<char*>(staging->mapped());
+            for (size_t i : set.resources) {
+                uint64_t bytes = 0;
+                in.read(reinterpret_cast<char*>(&bytes), 8);
+                if (!in || bytes != cachedBytes(plan.resources[i])) {
+                    hit = false;
+                    break;
+                }
+                in.read(dst, static_cast<std::streamsize>(bytes));
+                dst += bytes;
+            }
+            hit = hit && in;
+        }
+    }
+    if (!hit) {
+        m_onceToSave = std::move(set);
+        return {};
+    }
+    auto uploaded = m_ctx.submitNow([&](VkCommandBuffer cmd) {
+        VkDeviceSize offset = 0;
+        for (size_t i : set.resources) {
+            const PlanResource& r = plan.resources[i];
+            if (r.kind == ResourceKind::Buffer) {
+                VkBufferCopy c{offset, 0, r.bufferSize};
+                vkCmdCopyBuffer(cmd, staging->buffer(), m_built->buffers[i]->buffer(), 1, &c);
+            } else {
+                VkImage image = m_built->images[i]->image();
+                const VkImageAspectFlags aspect = aspectOf(r.format);
+                imageBarrier(cmd, image, aspect, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
+                             VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                             VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+                const auto regions = cachedRegions(r, offset);
+                vkCmdCopyBufferToImage(cmd, staging->buffer(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                       static_cast<uint32_t>(regions.size()), regions.data());
+                imageBarrier(cmd, image, aspect, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                             VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+            }
+            offset += cachedBytes(r);
+        }
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
+    });
+    if (!uploaded) return uploaded;
+    for (size_t p : set.passes) m_built->instances[p]->restoredOnce(m_persistentEpoch);
+    std::error_code ec;  // the entry's time orders the cache's eviction: this one is in use
+    std::filesystem::last_write_time(path, std::filesystem::file_time_type::clock::now(), ec);
+    m_onceStats.restoredPasses = static_cast<uint32_t>(set.passes.size());
+    m_onceStats.restoreMs = msSince(t0);
+    return {};
+}
+
+// Once the frame that recorded them is done: the set's outputs read back and written to the cache
+// (a temporary file renamed into place, so a reader never sees half an entry), then the oldest
+// entries beyond kOnceCacheEntries removed. A cache that cannot be written is skipped with a
+// warning: the frame was rendered.
+Result<void> Executor::onceCacheAfterFrame(VkFence fence) {
+    OnceSet set = std::move(*m_onceToSave);
+    m_onceToSave.reset();
+    RG_VK_TRY(vkWaitForFences(m_ctx.device(), 1, &fence, VK_TRUE, UINT64_MAX));
+    const auto t0 = Clock::now();
+    const Plan& plan = m_built->plan;
+    uint64_t total = 0;
+    for (size_t i : set.resources) total += cachedBytes(plan.resources[i]);
+    auto staging = Buffer::create(m_ctx, "once_cache.readback", std::max<uint64_t>(total, 4), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    if (!staging) return std::unexpected(staging.error());
+    auto copied = m_ctx.submitNow([&](VkCommandBuffer cmd) {
+        VkDeviceSize offset = 0;
+        for (size_t i : set.resources) {
+            const PlanResource& r = plan.resources[i];
+            if (r.kind == ResourceKind::Buffer) {
+                memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+                VkBufferCopy c{0, offset, r.bufferSize};
+                vkCmdCopyBuffer(cmd, m_built->buffers[i]->buffer(), staging->buffer(), 1, &c);
+            } else {
+                VkImage image = m_built->images[i]->image();
+                const VkImageAspectFlags aspect = aspectOf(r.format);
+                imageBarrier(cmd, image, aspect, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+                             VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
+                             VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
+                const auto regions = cachedRegions(r, offset);
+                vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging->buffer(),
+                                       static_cast<uint32_t>(regions.size()), regions.data());
+                imageBarrier(cmd, image, aspect, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                             VK_ACCESS_2_MEMORY_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+            }
+            offset += cachedBytes(r);
+        }
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+    });
+    if (!copied) return copied;
+    const std::filesystem::path path = onceCachePath(m_onceDir, set.key);
+    std::error_code ec;
+    std::filesystem::create_directories(path.parent_path(), ec);
+    const std::filesystem::path temp = path.string() + ".tmp" + std::to_string(::getpid());
+    {
+        std::ofstream out(temp, std::ios::binary | std::ios::trunc);
+        const uint64_t count = set.resources.size();
+        out.write(kOnceMagic, 8);
+        out.write(reinterpret_cast<const char*>(&set.key), 8);
+        out.write(reinterpret_cast<const char*>(&count), 8);
+        const auto* src = static_cast<const char*>(staging->mapped());
+        for (size_t i : set.resources) {
+            const uint64_t bytes = cachedBytes(plan.resources[i]);
+            out.write(reinterpret_cast<const char*>(&bytes), 8);
+            out.write(src, static_cast<std::streamsize>(bytes));
+            src += bytes;
+        }
+        if (!out) {
+            std::fprintf(stderr, "rgraph: warning: could not write the once-per-build cache entry %s\n", temp.c_str());
+            std::filesystem::remove(temp, ec);
+            return {};
+        }
+    }
+    std::filesystem::rename(temp, path, ec);
+    if (ec) {
+        std::filesystem::remove(temp, ec);
+        return {};
+    }
+    std::vector<std::pair<std::filesystem::file_time_type, std::filesystem::path>> entries;
+    for (const auto& e : std::filesystem::directory_iterator(path.parent_path(), ec))
+        if (e.path().extension() == ".bin") entries.emplace_back(e.last_write_time(ec), e.path());
+    std::sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    for (size_t k = kOnceCacheEntries; k < entries.size(); ++k) std::filesystem::remove(entries[k].second, ec);
+    m_onceStats.savedPasses = static_cast<uint32_t>(set.passes.size());
+    m_onceStats.saveMs = msSince(t0);
     return {};
 }
 
@@ -685,15 +1053,7 @@ Result<std::vector<uint8_t>> Executor::readbackBuffer(const std::string& name) {
     if (!host) return std::unexpected(host.error());
     VkBuffer src = phys->buffer->buffer();
     auto sub = m_ctx.submitNow([&](VkCommandBuffer cmd) {
-        VkMemoryBarrier2 mb{VK_STRUCTURE_TYPE_MEMORY_BARRIER_2};
-        mb.srcStageMask = VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT;
-        mb.srcAccessMask = VK_ACCESS_2_MEMORY_WRITE_BIT;
-        mb.dstStageMask = VK_PIPELINE_STAGE_2_COPY_BIT;
-        mb.dstAccessMask = VK_ACCESS_2_TRANSFER_READ_BIT;
-        VkDependencyInfo dep{VK_STRUCTURE_TYPE_DEPENDENCY_INFO};
-        dep.memoryBarrierCount = 1;
-        dep.pMemoryBarriers = &mb;
-        vkCmdPipelineBarrier2(cmd, &dep);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
         VkBufferCopy region{0, 0, size};
         vkCmdCopyBuffer(cmd, src, host->buffer(), 1, &region);
     });

@@ -7,6 +7,7 @@
 
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -97,6 +98,25 @@ public:
     // What a readback pass copied in the last finished frame.
     Result<rg::Image> passResult(const std::string& pass);
 
+    // The disk cache of once-per-build outputs (off until set; never in floor mode or for frames
+    // the host records). Before a frame in which passes with cadence = "once" are due, their
+    // outputs are restored from `dir`/once/KEY.bin when it exists — the passes then skip, as if
+    // they had recorded — else they record and their outputs are written there once the frame is
+    // done. KEY hashes what those outputs are a function of: the device and driver, the passes
+    // (kind, parameters, accesses, shader sources with their includes), the resources'
+    // descriptions, imported contents and `sceneKey(slot)` (passes::GpuScene::contentHash), so a
+    // change to any of them makes a new entry. A once pass that reads anything else (an output of
+    // a per-frame pass, a host image) is never cached, nor is what reads its outputs. The newest
+    // kOnceCacheEntries entries are kept.
+    void setOnceCache(std::string dir, std::function<uint64_t(uint32_t slot)> sceneKey);
+    struct OnceCacheStats {
+        uint32_t restoredPasses = 0, savedPasses = 0;  // in the last frame that had any due
+        double restoreMs = 0.0, saveMs = 0.0;
+        std::string file;  // the entry they were restored from or saved to
+    };
+    const OnceCacheStats& onceCacheStats() const { return m_onceStats; }
+    static constexpr size_t kOnceCacheEntries = 8;
+
     const Plan& plan() const;
     const GraphDesc& graph() const;
     const BuildStats& buildStats() const { return m_buildStats; }
@@ -122,7 +142,15 @@ private:
     Result<void> collect(FrameSlot& slot);
     void recordBarriers(VkCommandBuffer cmd, const std::vector<Barrier>& barriers);
     Result<void> clearPersistent(size_t index);
+    Result<void> prepareInParallel(Built& built, const Plan& plan, const std::vector<size_t>& passes);
     Result<const PhysicalResource*> exportedResource(const std::string& name);
+    struct OnceSet {
+        std::vector<size_t> passes, resources;  // plan indices
+        uint64_t key = 0;
+    };
+    OnceSet cacheableOncePasses(uint32_t slot) const;
+    Result<void> onceCacheBeforeFrame(uint32_t slot);
+    Result<void> onceCacheAfterFrame(VkFence fence);
 
     Context& m_ctx;
     ShaderCompiler& m_shaders;
@@ -144,6 +172,10 @@ private:
     uint32_t m_buildCount = 0;
     std::vector<PassTiming> m_lastTimings;
     double m_lastRecordMs = 0.0;
+    std::string m_onceDir;
+    std::function<uint64_t(uint32_t)> m_onceSceneKey;
+    std::optional<OnceSet> m_onceToSave;  // recorded this frame: written after it
+    OnceCacheStats m_onceStats;
 };
 
 }  // namespace rg::gpu

@@ -89,6 +89,11 @@ public:
     virtual void record(RecordContext& ctx) = 0;
     // Files this pass was built from (shaders and their includes), for hot reload.
     virtual std::vector<std::string> files() const { return {}; }
+    // A pass that records once per build (cadence = "once") and has yet to for this persistent
+    // epoch; restoredOnce tells it that the executor restored its outputs from the disk cache
+    // instead (Executor::setOnceCache), so it does not record until the next epoch or build.
+    virtual bool dueOnce(uint64_t /*epoch*/) const { return false; }
+    virtual void restoredOnce(uint64_t /*epoch*/) {}
     // Data a pass copied to the host in the last finished frame (the readback kind).
     virtual std::optional<rg::Image> hostResult() const { return std::nullopt; }
 };

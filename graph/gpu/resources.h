@@ -86,6 +86,10 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageAspectFlags aspect,
                   VkImageLayout newLayout, uint32_t baseMip = 0,
                   uint32_t mipCount = VK_REMAINING_MIP_LEVELS);
 
+// One global memory barrier (every resource), recorded with vkCmdPipelineBarrier2.
+void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags2 srcStage, VkAccessFlags2 srcAccess,
+                   VkPipelineStageFlags2 dstStage, VkAccessFlags2 dstAccess);
+
 // Texels of `format` (tightly packed as vkCmdCopyImageToBuffer writes them) to float RGBA-ish:
 // `components` floats per texel; sRGB is decoded to linear, unorm to [0,1], integers as values,
 // depth as depth. Depth/stencil formats give depth only.
