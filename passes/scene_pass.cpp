@@ -588,6 +588,14 @@ private:
         if (views != "shader" && views != "lights")
             return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.views: unknown '" + views + "', expected one of: 'shader', 'lights'");
         m_lightViews = views == "lights";
+        // cull: which winding, as the views' matrices land faces in the map, single-sided
+        // materials' faces are not drawn with (double-sided ones always draw both).
+        const std::string cull = desc.params["cull"].isString() ? desc.params["cull"].asString() : "none";
+        if (cull != "none" && cull != "clockwise" && cull != "counter_clockwise")
+            return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.cull: unknown '" + cull +
+                                                     "', expected one of: 'none', 'clockwise', 'counter_clockwise'");
+        // With the front face counter-clockwise: FRONT culls counter-clockwise faces, BACK clockwise ones.
+        m_shadowCull = cull == "none" ? VK_CULL_MODE_NONE : cull == "counter_clockwise" ? VK_CULL_MODE_FRONT_BIT : VK_CULL_MODE_BACK_BIT;
         // indirect = "buffer": a culling pass wrote one indirect command per layer and draw
         // (shaders/shadows/cascade_cull.comp); draws past the buffer's slots are drawn directly.
         if (desc.params["indirect"].isString()) {
@@ -616,7 +624,10 @@ private:
         static const VkVertexInputAttributeDescription position{0, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, position))};
         static const VkPipelineVertexInputStateCreateInfo positions{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO, nullptr, 0, 1, &binding, 1, &position};
         d.vertexInput = &positions;
+        // params.cull, set per draw (double-sided materials draw both sides).
         d.cullMode = VK_CULL_MODE_NONE;
+        d.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+        d.dynamicStates = {VK_DYNAMIC_STATE_CULL_MODE};
         d.depthStencil.depthTestEnable = VK_TRUE;
         d.depthStencil.depthWriteEnable = VK_TRUE;
         d.depthStencil.depthCompareOp = VK_COMPARE_OP_LESS;
@@ -647,6 +658,7 @@ private:
             g.program->bind(rc, VK_PIPELINE_BIND_POINT_GRAPHICS);
             for (size_t i : m_lightViews ? rc.scene->shadowViewDraws(layer) : g.draws) {
                 const DrawItem& item = rc.scene->draws()[i];
+                vkCmdSetCullMode(rc.cmd, rc.scene->scene().materials[item.material].doubleSided ? VkCullModeFlags(VK_CULL_MODE_NONE) : m_shadowCull);
                 struct { glm::mat4 world; glm::vec4 layer; } push{item.world, glm::vec4(static_cast<float>(layer))};
                 vkCmdPushConstants(rc.cmd, g.program->layout(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof push, &push);
                 if (indirect && i < slots)
@@ -727,6 +739,7 @@ public:
 private:
     Cadence m_cadence;
     bool m_lightViews = false;  // shadow: the scene's local-light views rather than the shader's
+    VkCullModeFlags m_shadowCull = VK_CULL_MODE_NONE;  // shadow: params.cull for single-sided materials
     std::string m_indirect;     // shadow: the buffer of indirect commands per layer and draw
     static constexpr VkDeviceSize kIndirectCommandBytes = sizeof(VkDrawIndexedIndirectCommand);
     uint32_t m_layers = 1;
@@ -748,6 +761,7 @@ PassKindInfo scenePassKind() {
           {"fragment", "string", "capture: the fragment shader (default probes/capture.frag)"},
           {"shader", "string", "shadow: the vertex shader (default shadows/shadow.vert: the matrix of the layer its push constant names, from `sun_cascades`); capture: default probes/capture.vert"},
           {"depth_bias", "list", "shadow: { constant, slope } rasteriser depth bias"},
+          {"cull", "string", "shadow: 'none' (default), 'clockwise' or 'counter_clockwise': single-sided materials' faces of that winding in the map are not drawn (the faces turned away from the light, for a closed mesh never the nearest)"},
           {"indirect", "string", "shadow: a buffer the pass reads as { NAME, as = 'indirect' } holding a VkDrawIndexedIndirectCommand per layer and scene draw (layer-major, the buffer's commands / layers slots each, written by a culling pass such as shadows/cascade_cull.comp): each draw is issued through it, so culled draws cost nothing; draws beyond the slots are drawn directly"},
           {"views", "string", "shadow: 'shader' (default: the layer's matrix is the vertex shader's business) or 'lights' (the scene's local-light shadow views this frame, one per layer, each drawing only the casters its frustum meets; shader default shadows/local_shadow.vert)"},
           {"rg_materials", "list", "(filled in by rgraph) the resolved materials"}},

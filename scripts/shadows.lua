@@ -60,9 +60,15 @@ rg.pass "sun_cull" {
     kind = "compute", shader = "shadows/cascade_cull.comp", groups = { 1, 1, 1 }, defines = { RG_CASCADES = shadows.cascades },
     reads = { { "sun_cascades", as = "storage" } }, writes = { { "sun_shadow_draws", as = "storage" } },
 }
+-- Only the faces towards the sun (cull): for a closed mesh the nearest surface along the light is
+-- one of them anyway, and the faces turned away were half the triangles the rasteriser set up
+-- (shadow_sun 38–44 → 24–27 ms on the default frame; the image differs in a few silhouette pixels,
+-- PSNR 116 dB). sun_cascades.comp's basis (x, y = x × f, depth along f) has no y flip, so a face
+-- counter-clockwise towards the sun lands clockwise in the map. Double-sided materials draw both.
 rg.pass "shadow_sun" {
     kind = "scene", shadow = true, reads = { { "sun_cascades", as = "storage" }, { "sun_shadow_draws", as = "indirect" } },
     writes = { "sun_shadow" }, indirect = "sun_shadow_draws", depth_bias = { 1.0, 1.5 }, after = { "shadow_clear" },
+    cull = "counter_clockwise",
 }
 
 -- Sized by the scene (scene_layers): as many layers as its shadowed local lights can have views, up

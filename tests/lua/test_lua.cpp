@@ -547,6 +547,27 @@ TEST_F(LuaGpu, CadenceOnceRecordsAfterEachBuildAndEachReset) {
         << te.error().describe();
 }
 
+TEST_F(LuaGpu, AShadowPassNamesABadCull) {
+    SessionOptions o = small();
+    o.scene = std::string(RG_SOURCE_ROOT) + "/tests/gpu/scenes/shadow_box.lua";
+    const std::string file = std::string(RG_TEST_TMP) + "/bad_cull.lua";
+    fs::create_directories(RG_TEST_TMP);
+    std::ofstream(file) << "local rg = require \"rg\"\n"
+                           "require \"disney\"\n"
+                           "rg.resource \"maps\" { format = \"d32f\", size = { 64, 64 } }\n"
+                           "rg.resource \"out\" { format = \"rgba8\" }\n"
+                           "rg.pass \"casters\" { kind = \"scene\", shadow = true, writes = { \"maps\" }, cull = \"sideways\" }\n"
+                           "rg.pass \"show\" { kind = \"fullscreen\", shader = \"test/tint.frag\", reads = { \"maps\" }, writes = { \"out\" } }\n"
+                           "rg.output \"out\"\n";
+    Session s(*s_runtime, o);
+    auto loaded = s.load(file);
+    Result<void> e = loaded ? s.frame() : Result<void>(std::unexpected(loaded.error()));
+    ASSERT_FALSE(e.has_value());
+    EXPECT_NE(e.error().describe().find("pass 'casters': params.cull: unknown 'sideways', expected one of: 'none', 'clockwise', 'counter_clockwise'"),
+              std::string::npos)
+        << e.error().describe();
+}
+
 TEST_F(LuaGpu, PerMipDispatchWritesEveryMipOfTheChain) {
     Session s(*s_runtime, small());
     auto r = s.load(script("per_mip.lua"));
