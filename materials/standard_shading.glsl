@@ -14,11 +14,27 @@ vec3 rgShade(GBuffer_disney g, vec3 position, vec3 V, ivec2 pixel) {
     vec3 luminance = g.emissive;
     RgLightList list = rgLightList(pixel);  // the tile's lights (lib/light_tiles.glsl); every light without tiles
     float sun = rgSunVisibility(position, g.normal);  // the sun's shadow (RG_SHADOWS), once
+#if defined(RG_LIGHT_TILES) && defined(RG_SCENE_GLOBAL_LIGHTS)
+    // The lights that reach every pixel, known per scene with their types (passes/shader_program.cpp):
+    // unrolled, each read at a constant index (one load on a CPU rasteriser, not one per pixel) and
+    // evaluated with only its type's branch; then the tile's lights with only the ranged types.
+    const uint globalLights[] = uint[](RG_SCENE_GLOBAL_LIGHT_INDICES);
+    const uint globalTypes[] = uint[](RG_SCENE_GLOBAL_LIGHT_TYPE_LIST);
+    for (int k = 0; k < RG_SCENE_GLOBAL_LIGHTS; ++k) {
+        RgLightSample s = rgEvaluateLightOf(globalLights[k], 1u << globalTypes[k], position, g.normal, V, linearRoughness, sun);
+        luminance += rgStandardLighting(s, g.normal, V, diffuseColor, f0, linearRoughness);
+    }
+    for (uint k = list.global; k < list.count; ++k) {
+        RgLightSample s = rgEvaluateLightOf(rgListLight(list, k), uint(RG_SCENE_TILE_LIGHT_TYPES), position, g.normal, V, linearRoughness, sun);
+        luminance += rgStandardLighting(s, g.normal, V, diffuseColor, f0, linearRoughness);
+    }
+#else
     for (uint k = 0u; k < list.count; ++k) {
         uint i = rgListLight(list, k);
         RgLightSample s = rgEvaluateLight(i, position, g.normal, V, linearRoughness, sun);
         luminance += rgStandardLighting(s, g.normal, V, diffuseColor, f0, linearRoughness);
     }
+#endif
     luminance += rgStandardIbl(position, g.normal, V, diffuseColor, f0, linearRoughness, rgAmbientOcclusion(g.ao));  // the probes (RG_IBL, RG_PROBES)
     return luminance;
 }

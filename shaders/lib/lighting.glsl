@@ -183,7 +183,12 @@ int rgLightType(RgLight light) { return int(light.positionType.w + 0.5); }
 
 // P: world position (m), N: unit normal, V: unit direction to the viewer, linearRoughness of the
 // specular lobe (1 − smoothness; its α = max(linearRoughness², 1e-3) as rgStandardBrdf's).
-RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float linearRoughness) {
+// Which of light types `types` (bits 1 << RG_LIGHT_*) the scene has: rgEvaluateLightUnshadowedOf
+// compiles only those branches (`types` is a constant at every call).
+#define RG_LIGHT_IN(types, t) (RG_SCENE_HAS_LIGHT(t) && ((types) & (1u << uint(t))) != 0u)
+#define RG_AREA_LIGHT_TYPES ((1u << uint(RG_LIGHT_SPHERE)) | (1u << uint(RG_LIGHT_DISK)) | (1u << uint(RG_LIGHT_RECT)) | (1u << uint(RG_LIGHT_TUBE)))
+
+RgLightSample rgEvaluateLightUnshadowedOf(uint i, uint types, vec3 P, vec3 N, vec3 V, float linearRoughness) {
     RgLight light = lights.light[i];
     int type = rgLightType(light);
     float alpha = max(linearRoughness * linearRoughness, 1e-3);
@@ -197,7 +202,7 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
     s.specularLtc = vec3(0.0);
     s.ltcAlbedo = vec3(0.0);
 
-    if (RG_SCENE_HAS_LIGHT(RG_LIGHT_SUN) && type == RG_LIGHT_SUN) {
+    if (RG_LIGHT_IN(types, RG_LIGHT_SUN) && type == RG_LIGHT_SUN) {
         // lst:6: the diffuse part as if the sun were punctual (eq:28), the specular part towards
         // the point of its disk closest to R. params.z, w: sin and cos of the angular radius.
         vec3 D = -dir;
@@ -221,7 +226,7 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
     float invDist = inversesqrt(sqrDist);
     vec3 L = Lu * invDist;
 
-    if ((RG_SCENE_HAS_LIGHT(RG_LIGHT_POINT) || RG_SCENE_HAS_LIGHT(RG_LIGHT_SPOT)) && type <= RG_LIGHT_SPOT) {
+    if ((RG_LIGHT_IN(types, RG_LIGHT_POINT) || RG_LIGHT_IN(types, RG_LIGHT_SPOT)) && type <= RG_LIGHT_SPOT) {
         // lst:4 (point: scale 0, offset 1), eq:27 / lst:5 for an IES profile.
         float att = getDistanceAtt(Lu, light.directionRange.w);
         att *= getAngleAtt(-L, dir, light.params.x, light.params.y);
@@ -238,7 +243,7 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
     float radius = light.params.z;
     // LTC: the world → (T1, T2, N) rotation (the diffuse lobe's cosine), the GGX lobe's M⁻¹
     // composed with it, and the lobe's albedo split for Schlick's Fresnel.
-    bool ltc = RG_SCENE_HAS_AREA_LIGHT && lights.count.y == 1u;  // compiled only for a scene with area lights
+    bool ltc = RG_SCENE_HAS_AREA_LIGHT && (types & RG_AREA_LIGHT_TYPES) != 0u && lights.count.y == 1u;  // compiled only for area lights
     mat3 toLocal = mat3(1.0), Minv = mat3(1.0), MinvTable = mat3(1.0);
     if (ltc) {
         toLocal = rgLtcFrame(N, V);
@@ -248,7 +253,7 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
         s.ltcAlbedo = vec3(albedo, 0.0);
     }
 
-    if (RG_SCENE_HAS_LIGHT(RG_LIGHT_SPHERE) && type == RG_LIGHT_SPHERE) {
+    if (RG_LIGHT_IN(types, RG_LIGHT_SPHERE) && type == RG_LIGHT_SPHERE) {
         // A point inside the sphere: its surface emits outwards, so nothing reaches the point (as in
         // the reference mode) — not the blow-up the formulas below give there.
         if (sqrDist < radius * radius) return s;
@@ -275,7 +280,7 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
                                                                           : rgLtcEllipse(Minv * Lu, Minv * T, Minv * B, mean, unusedSin));
             s.specularLtc *= rgLtcRatio(Minv, N, V, alpha, s.ltcAlbedo.x + s.ltcAlbedo.y, mean);
         }
-    } else if (RG_SCENE_HAS_LIGHT(RG_LIGHT_DISK) && type == RG_LIGHT_DISK) {
+    } else if (RG_LIGHT_IN(types, RG_LIGHT_DISK) && type == RG_LIGHT_DISK) {
         // lst:10, disk evaluation, times the disk's own orientation. It emits along `dir`; its cone
         // (lst:9) attenuates the illuminance.
         float cosLight = clamp(dot(dir, -L), 0.0, 1.0) * rgDiskCone(light, P);
@@ -310,7 +315,7 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
                 s.specularLtc *= rgLtcRatio(Minv, N, V, alpha, s.ltcAlbedo.x + s.ltcAlbedo.y, lobeMean);
             }
         }
-    } else if (RG_SCENE_HAS_LIGHT(RG_LIGHT_RECT) && type == RG_LIGHT_RECT) {
+    } else if (RG_LIGHT_IN(types, RG_LIGHT_RECT) && type == RG_LIGHT_RECT) {
         // seed 002 §4.7.2.5: one-sided, it emits along `dir`; axis: its height direction.
         s.Ld = L;
         s.Ls = L;
@@ -346,7 +351,7 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
                 s.specularLtc *= rgLtcRatio(Minv, N, V, alpha, s.ltcAlbedo.x + s.ltcAlbedo.y, lobeMean);
             }
         }
-    } else if (RG_SCENE_HAS_LIGHT(RG_LIGHT_TUBE)) {  // RG_LIGHT_TUBE
+    } else if (RG_LIGHT_IN(types, RG_LIGHT_TUBE)) {  // RG_LIGHT_TUBE
         // seed 002 §4.7.2.6: the capsule as a rectangle (length × 2r) facing the point plus its two
         // half-spheres as one sphere at the segment's closest point. dir: along the tube.
         float lightWidth = light.params.w;
@@ -444,14 +449,23 @@ RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float li
 // cascades when the pass is built with RG_SHADOWS, scripts/shadows.lua's `shadows.lit`).
 // `sunVisibility`: rgSunVisibility(P, N), taken once per shaded point before the light loop —
 // the filtered shadow lookup is the loop's most expensive part, and every light would pay for it.
-RgLightSample rgEvaluateLight(uint i, vec3 P, vec3 N, vec3 V, float linearRoughness, float sunVisibility) {
-    RgLightSample s = rgEvaluateLightUnshadowed(i, P, N, V, linearRoughness);
+
+// Light i whatever its type (every type the scene has).
+RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float linearRoughness) {
+    return rgEvaluateLightUnshadowedOf(i, uint(RG_SCENE_LIGHT_TYPES), P, N, V, linearRoughness);
+}
+
+RgLightSample rgEvaluateLightOf(uint i, uint types, vec3 P, vec3 N, vec3 V, float linearRoughness, float sunVisibility) {
+    RgLightSample s = rgEvaluateLightUnshadowedOf(i, types, P, N, V, linearRoughness);
 #ifdef RG_SHADOWS
     float visibility = rgShadow(i, sunVisibility) * rgLocalShadow(i, P, N);
     s.diffuseIlluminance *= visibility;
     s.specularIlluminance *= visibility;
 #endif
     return s;
+}
+RgLightSample rgEvaluateLight(uint i, vec3 P, vec3 N, vec3 V, float linearRoughness, float sunVisibility) {
+    return rgEvaluateLightOf(i, uint(RG_SCENE_LIGHT_TYPES), P, N, V, linearRoughness, sunVisibility);
 }
 // The same, looking the sun's shadow up itself (for one light, or where speed does not matter).
 RgLightSample rgEvaluateLight(uint i, vec3 P, vec3 N, vec3 V, float linearRoughness) {
