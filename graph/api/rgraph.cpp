@@ -203,12 +203,14 @@ std::unique_ptr<rg::Runtime> makeRuntime(const Options& options, const HostDevic
 std::unique_ptr<Renderer> Renderer::create(const Options& options) {
     auto impl = std::make_unique<Impl>();
     impl->runtime = makeRuntime(options, nullptr);
+    if (options.onceCache) impl->options.onceCache = rg::cacheDir();
     return std::unique_ptr<Renderer>(new Renderer(std::move(impl)));
 }
 
 std::unique_ptr<Renderer> Renderer::create(const HostDevice& device, const Options& options) {
     auto impl = std::make_unique<Impl>();
     impl->runtime = makeRuntime(options, &device);
+    if (options.onceCache) impl->options.onceCache = rg::cacheDir();
     return std::unique_ptr<Renderer>(new Renderer(std::move(impl)));
 }
 

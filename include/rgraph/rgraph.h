@@ -46,6 +46,11 @@ struct Options {
     bool validation = false;  // the Khronos validation layer, when rgraph creates the instance
     std::string dataDir;      // scripts/, materials/, shaders/ ("" = the installed ones: dataDir())
     std::string cacheDir;     // SPIR-V, pipeline and generated-shader caches ("" = the default)
+    // Restore what the passes that run once per build write (environment filtering, probe capture,
+    // lookup tables) from cacheDir's once/ when the same passes, shaders, scene and device made it
+    // before, and save it there otherwise (`rgraph render` does the same). Not for frames the host
+    // records into its own command buffer.
+    bool onceCache = true;
 };
 
 // A scene made in code. Units: metres, lumens/candela/lux/nits as the light says, seconds.

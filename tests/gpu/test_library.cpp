@@ -182,6 +182,43 @@ TEST(Library, ASceneInCodeRendersAsTheSameSceneFromItsLuaFile) {
     EXPECT_LT(worst, 0.02);
 }
 
+TEST(Library, TheNextRendererRestoresWhatOncePassesWrote) {
+    // Options::onceCache (on by default): the first renderer saves what the once-per-build passes
+    // wrote (environment filtering, the probe capture, the DFG table) in cacheDir/once, the next
+    // one restores it and renders the same image as a renderer that records them.
+    const fs::path cache = fs::temp_directory_path() / ("rgraph_library_once_" + std::to_string(::getpid()));
+    fs::remove_all(cache);
+    auto render = [&](bool onceCache) {
+        rgraph::Options o = options();
+        o.cacheDir = cache.string();
+        o.onceCache = onceCache;
+        auto r = rgraph::Renderer::create(o);
+        r->setSize(160, 90);
+        r->loadPipeline(kRoot + "/scripts/pipelines/deferred.lua");
+        r->setParameter("exposure_mode", std::string("manual"));
+        r->render(1);
+        return r->readHdr();
+    };
+    auto entries = [&] {
+        size_t n = 0;
+        std::error_code ec;
+        for (const auto& e : fs::directory_iterator(cache / "once", ec)) n += e.path().extension() == ".bin";
+        return n;
+    };
+    const rgraph::Image recorded = render(false);
+    EXPECT_EQ(entries(), 0u);
+    const rgraph::Image saved = render(true);
+    EXPECT_EQ(entries(), 1u);
+    const rgraph::Image restored = render(true);
+    EXPECT_EQ(entries(), 1u);
+    fs::remove_all(cache);
+    ASSERT_EQ(recorded.pixels.size(), restored.pixels.size());
+    ASSERT_EQ(recorded.pixels.size(), saved.pixels.size());
+    size_t differ = 0;
+    for (size_t i = 0; i < recorded.pixels.size(); ++i) differ += recorded.pixels[i] != restored.pixels[i] || recorded.pixels[i] != saved.pixels[i];
+    EXPECT_EQ(differ, 0u);
+}
+
 TEST(Library, ErrorsAreExceptionsWithFileAndLine) {
     auto r = rgraph::Renderer::create(options());
     try {
