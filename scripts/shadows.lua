@@ -75,8 +75,12 @@ rg.pass "shadow_sun" {
 -- to shadows.local_views; a scene without any gets one 1×1 layer instead of 24 MiB.
 rg.resource "local_shadow" { format = "d32f", size = { shadows.local_size, shadows.local_size }, layers = shadows.local_views,
     scene_layers = "shadow_views", doc = "the local lights' shadow maps, one layer per shadow view" }
+-- The faces towards the light only, as the sun's (its views, lookAt and a projection without a y
+-- flip, land those faces clockwise too): the default scene with its lamp shadowed (six cube faces)
+-- 24.7–25.4 → 14.4–15.5 ms, the image within PSNR 176 dB.
 rg.pass "shadow_local" {
     kind = "scene", shadow = true, views = "lights", writes = { "local_shadow" }, depth_bias = { 1.0, 1.5 },
+    cull = "counter_clockwise",
 }
 
 -- A lighting pass's declaration, shadowed: reads the maps and the cascades, defines RG_SHADOWS.
