@@ -467,6 +467,22 @@ TEST_F(LocalShadows, PenumbraMatchesTheReferenceShadowRays) {
     EXPECT_NEAR(wRt / wRef, 1.0f, 0.2f);
 }
 
+TEST_F(LocalShadows, TheMapsHoldTheFacesTowardsTheLight) {
+    // shadows.lua's shadow_local draws only the faces towards the light (cull = "counter_clockwise"
+    // for its views' winding). The point light's −y face (the `shadow:lamp` view's lower left cell)
+    // looks straight down at the floor 2.5 m below: white at 1 − 2.5 / 30 (near, over the range).
+    // With the winding wrong the floor, a plane facing the light, would be culled: black.
+    SessionOptions o = sceneOptions(kRoot + "/tests/gpu/scenes/local_shadow_box.lua", {}, 300, 200);
+    o.view = "shadow:lamp";
+    Session s(rt(), o);
+    ASSERT_TRUE(s.load(kRoot + "/scripts/pipelines/deferred.lua").has_value());
+    ASSERT_TRUE(s.frame().has_value());
+    auto view = rt().executor().readback("debug_view");
+    ASSERT_TRUE(view.has_value());
+    const float centre = view->at(50, 150, 0);  // the middle of the cell below on the left
+    EXPECT_NEAR(centre, 1.0f - 2.5f / 30.0f, 0.01f);
+}
+
 TEST_F(LocalShadows, TheMapHasTheLayersTheScenesLightsNeed) {
     // local_shadow is declared with scene_layers = "shadow_views", at most 6 layers of 1024²: a
     // point light's cube gets six, a spot of 55° one, a scene without shadowed local lights one
