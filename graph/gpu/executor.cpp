@@ -344,8 +344,16 @@ Result<void> Executor::prepareInParallel(Built& built, const Plan& plan, const s
         const PassDesc& desc = built.graph.passes[pass.desc];
         auto instance = std::shared_ptr<PassInstance>(m_kinds.find(desc.kind)->create());
         PassSetup setup{m_ctx, m_shaders, plan, pass, desc, built.table, m_scene, m_floors};
-        if (auto r = instance->prepare(setup); !r) {
-            errors[k] = r.error();
+        // An exception must not leave a worker thread (that would end the process): it becomes
+        // the pass's error, as a failed prepare's.
+        Result<void> prepared = fail(ErrorCode::Device, "pass '" + pass.name + "': set-up failed");
+        try {
+            prepared = instance->prepare(setup);
+        } catch (const std::exception& e) {
+            prepared = fail(ErrorCode::Device, "pass '" + pass.name + "': set-up failed: " + e.what());
+        }
+        if (!prepared) {
+            errors[k] = prepared.error();
             return;
         }
         built.sourceStamps[p] = sourceStamp(*instance);
