@@ -123,38 +123,35 @@ Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> s
         uint32_t types = 0;
         int shadowed = 0;  // 1: only punctual lights cast shadows; 2: a light with a size does
         bool ies = false;
-        for (const Light& l : setup.scene->scene().lights) {
-            types |= 1u << static_cast<uint32_t>(l.type);
-            ies = ies || !l.ies.empty();
-            if (l.castShadows) shadowed = std::max(shadowed, l.type == LightType::Point || l.type == LightType::Spot ? 1 : 2);
-        }
-        defines.emplace_back("RG_SCENE_LIGHT_TYPES", std::to_string(types));
         // The lights that reach every pixel (the sun, lights without a range: light_culling.comp's
         // global list, in scene order) with their types, when there are a few: the standard light
         // loop unrolls them, each read at a constant index and evaluated with only its type's
         // branch, then loops over the tile's lights with only the types of ranged lights
         // (RG_SCENE_TILE_LIGHT_TYPES). On lavapipe a load at a constant index is one load where a
         // per-pixel index is one per pixel (materials/standard_shading.glsl).
-        {
-            std::string indices, typeList;
-            uint32_t count = 0, tileTypes = 0;
-            const auto& lights = setup.scene->scene().lights;
-            for (size_t i = 0; i < lights.size(); ++i) {
-                const uint32_t type = static_cast<uint32_t>(lights[i].type);
-                if (lights[i].type == LightType::Directional || !(lights[i].range > 0.0f)) {
-                    indices += (count ? "," : "") + std::to_string(i) + "u";
-                    typeList += (count ? "," : "") + std::to_string(type) + "u";
-                    ++count;
-                } else {
-                    tileTypes |= 1u << type;
-                }
+        std::string globalIndices, globalTypes;
+        uint32_t globalCount = 0, tileTypes = 0;
+        const auto& lights = setup.scene->scene().lights;
+        for (size_t i = 0; i < lights.size(); ++i) {
+            const Light& l = lights[i];
+            const uint32_t type = static_cast<uint32_t>(l.type);
+            types |= 1u << type;
+            ies = ies || !l.ies.empty();
+            if (l.castShadows) shadowed = std::max(shadowed, l.type == LightType::Point || l.type == LightType::Spot ? 1 : 2);
+            if (l.type == LightType::Directional || !(l.range > 0.0f)) {
+                globalIndices += (globalCount ? "," : "") + std::to_string(i) + "u";
+                globalTypes += (globalCount ? "," : "") + std::to_string(type) + "u";
+                ++globalCount;
+            } else {
+                tileTypes |= 1u << type;
             }
-            if (count >= 1 && count <= kMaxUnrolledGlobalLights) {
-                defines.emplace_back("RG_SCENE_GLOBAL_LIGHTS", std::to_string(count));
-                defines.emplace_back("RG_SCENE_GLOBAL_LIGHT_INDICES", indices);
-                defines.emplace_back("RG_SCENE_GLOBAL_LIGHT_TYPE_LIST", typeList);
-                defines.emplace_back("RG_SCENE_TILE_LIGHT_TYPES", std::to_string(tileTypes));
-            }
+        }
+        defines.emplace_back("RG_SCENE_LIGHT_TYPES", std::to_string(types));
+        if (globalCount >= 1 && globalCount <= kMaxUnrolledGlobalLights) {
+            defines.emplace_back("RG_SCENE_GLOBAL_LIGHTS", std::to_string(globalCount));
+            defines.emplace_back("RG_SCENE_GLOBAL_LIGHT_INDICES", globalIndices);
+            defines.emplace_back("RG_SCENE_GLOBAL_LIGHT_TYPE_LIST", globalTypes);
+            defines.emplace_back("RG_SCENE_TILE_LIGHT_TYPES", std::to_string(tileTypes));
         }
         defines.emplace_back("RG_SCENE_IES", ies ? "1" : "0");
         // RG_SCENE_PROBES: how many local light probes the scene has (lib/ibl.glsl's composition

@@ -273,6 +273,7 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
     built->instances.resize(passCount);
     built->sourceStamps.resize(passCount);
     std::vector<size_t> toPrepare;
+    std::vector<char> prepared(passCount, 0);
     for (size_t p = 0; p < passCount; ++p) {
         const PlanPass& pass = planPtr->passes[p];
         const PassDesc& desc = built->graph.passes[pass.desc];
@@ -294,13 +295,11 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
             }
         }
         toPrepare.push_back(p);
+        prepared[p] = 1;
     }
     if (auto r = prepareInParallel(*built, *planPtr, toPrepare); !r) return std::unexpected(r.error());
-    for (size_t p = 0; p < passCount; ++p) {
-        const std::string& name = planPtr->passes[p].name;
-        if (std::find(toPrepare.begin(), toPrepare.end(), p) != toPrepare.end()) report.passesPrepared.push_back(name);
-        else report.passesReused.push_back(name);
-    }
+    for (size_t p = 0; p < passCount; ++p)
+        (prepared[p] ? report.passesPrepared : report.passesReused).push_back(planPtr->passes[p].name);
     m_buildStats.prepareMs = msSince(t2);
 
     // Upload imported contents into resources that are new.
@@ -346,7 +345,7 @@ Result<void> Executor::prepareInParallel(Built& built, const Plan& plan, const s
         PassSetup setup{m_ctx, m_shaders, plan, pass, desc, built.table, m_scene, m_floors};
         // An exception must not leave a worker thread (that would end the process): it becomes
         // the pass's error, as a failed prepare's.
-        Result<void> prepared = fail(ErrorCode::Device, "pass '" + pass.name + "': set-up failed");
+        Result<void> prepared;
         try {
             prepared = instance->prepare(setup);
         } catch (const std::exception& e) {
@@ -363,8 +362,7 @@ Result<void> Executor::prepareInParallel(Built& built, const Plan& plan, const s
     if (const char* env = std::getenv("RG_PREPARE_THREADS"); env && std::atoi(env) > 0) threads = static_cast<unsigned>(std::atoi(env));
     threads = static_cast<unsigned>(std::min<size_t>({threads, 8, passes.size()}));
     if (threads <= 1) {
-        for (size_t k = 0; k < passes.size() && !std::any_of(errors.begin(), errors.end(), [](const auto& e) { return e.has_value(); }); ++k)
-            prepareOne(k);
+        for (size_t k = 0; k < passes.size() && !(k > 0 && errors[k - 1]); ++k) prepareOne(k);
     } else {
         std::mutex lock;
         size_t next = 0;
@@ -700,12 +698,13 @@ Executor::OnceSet Executor::cacheableOncePasses(uint32_t slot) const {
     OnceSet set;
     const Plan& plan = m_built->plan;
     const size_t n = plan.passes.size();
+    std::vector<char> in(n, 0);
+    for (size_t p = 0; p < n; ++p) in[p] = m_built->instances[p]->dueOnce(m_persistentEpoch);
+    if (std::find(in.begin(), in.end(), 1) == in.end()) return set;  // every frame but the first after a build
     std::vector<std::vector<size_t>> writers(plan.resources.size());
     for (size_t p = 0; p < n; ++p)
         for (const PlanAccess& a : plan.passes[p].accesses)
             if (usageWrites(a.usage)) writers[a.resource].push_back(p);
-    std::vector<char> in(n, 0);
-    for (size_t p = 0; p < n; ++p) in[p] = m_built->instances[p]->dueOnce(m_persistentEpoch);
     for (bool changed = true; changed;) {
         changed = false;
         for (size_t p = 0; p < n; ++p) {
@@ -767,7 +766,10 @@ Executor::OnceSet Executor::cacheableOncePasses(uint32_t slot) const {
             h.u64(d->second.channels);
             h.bytes(d->second.pixels.data(), d->second.pixels.size() * sizeof(float));
         }
-        if (written[i]) set.resources.push_back(i);
+        if (written[i]) {
+            set.resources.push_back(i);
+            set.bytes += cachedBytes(r);
+        }
     }
     h.u64(m_scene && m_onceSceneKey ? m_onceSceneKey(slot) : 0);
     set.key = h.value();
@@ -784,6 +786,42 @@ std::string onceCachePath(const std::string& dir, uint64_t key) {
 
 }  // namespace
 
+// Records the copies between the set's resources and `staging` (their bytes back to back, as
+// cachedBytes and cachedRegions lay them out), in either direction; the images go from and back to
+// ShaderReadOnly, where every frame leaves a persistent texture.
+void Executor::recordOnceCopies(VkCommandBuffer cmd, const OnceSet& set, VkBuffer staging, bool restore) {
+    const Plan& plan = m_built->plan;
+    const VkImageLayout transfer = restore ? VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    const VkAccessFlags2 transferAccess = restore ? VK_ACCESS_2_TRANSFER_WRITE_BIT : VK_ACCESS_2_TRANSFER_READ_BIT;
+    if (!restore)
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+    VkDeviceSize offset = 0;
+    for (size_t i : set.resources) {
+        const PlanResource& r = plan.resources[i];
+        if (r.kind == ResourceKind::Buffer) {
+            VkBuffer buffer = m_built->buffers[i]->buffer();
+            VkBufferCopy c{restore ? offset : 0, restore ? 0 : offset, r.bufferSize};
+            vkCmdCopyBuffer(cmd, restore ? staging : buffer, restore ? buffer : staging, 1, &c);
+        } else {
+            VkImage image = m_built->images[i]->image();
+            const VkImageAspectFlags aspect = aspectOf(r.format);
+            imageBarrier(cmd, image, aspect, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
+                         VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, transferAccess, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, transfer);
+            const auto regions = cachedRegions(r, offset);
+            if (restore) vkCmdCopyBufferToImage(cmd, staging, image, transfer, static_cast<uint32_t>(regions.size()), regions.data());
+            else vkCmdCopyImageToBuffer(cmd, image, transfer, staging, static_cast<uint32_t>(regions.size()), regions.data());
+            imageBarrier(cmd, image, aspect, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, restore ? VK_ACCESS_2_TRANSFER_WRITE_BIT : VK_ACCESS_2_NONE,
+                         VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT, transfer, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        }
+        offset += cachedBytes(r);
+    }
+    if (restore)
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                      VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
+    else
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+}
+
 // Restores the due once passes' outputs when the cache has them (they then skip), else marks them
 // to be saved after the frame. A missing, short or mismatched file is a miss, never an error.
 Result<void> Executor::onceCacheBeforeFrame(uint32_t slot) {
@@ -796,8 +834,6 @@ Result<void> Executor::onceCacheBeforeFrame(uint32_t slot) {
     const std::string path = onceCachePath(m_onceDir, set.key);
     m_onceStats.file = path;
     std::ifstream in(path, std::ios::binary);
-    uint64_t total = 0;
-    for (size_t i : set.resources) total += cachedBytes(plan.resources[i]);
     bool hit = false;
     std::optional<Buffer> staging;
     if (in) {
@@ -808,7 +844,7 @@ Result<void> Executor::onceCacheBeforeFrame(uint32_t slot) {
         in.read(reinterpret_cast<char*>(&count), 8);
         hit = in && std::equal(magic, magic + 8, kOnceMagic) && key == set.key && count == set.resources.size();
         if (hit) {
-            auto buf = Buffer::create(m_ctx, "once_cache.upload", std::max<uint64_t>(total, 4), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+            auto buf = Buffer::create(m_ctx, "once_cache.upload", std::max<uint64_t>(set.bytes, 4), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
             if (!buf) return std::unexpected(buf.error());
             staging = std::move(*buf);
             auto* dst = static_cast<char*>(staging->mapped());
@@ -829,30 +865,7 @@ Result<void> Executor::onceCacheBeforeFrame(uint32_t slot) {
         m_onceToSave = std::move(set);
         return {};
     }
-    auto uploaded = m_ctx.submitNow([&](VkCommandBuffer cmd) {
-        VkDeviceSize offset = 0;
-        for (size_t i : set.resources) {
-            const PlanResource& r = plan.resources[i];
-            if (r.kind == ResourceKind::Buffer) {
-                VkBufferCopy c{offset, 0, r.bufferSize};
-                vkCmdCopyBuffer(cmd, staging->buffer(), m_built->buffers[i]->buffer(), 1, &c);
-            } else {
-                VkImage image = m_built->images[i]->image();
-                const VkImageAspectFlags aspect = aspectOf(r.format);
-                imageBarrier(cmd, image, aspect, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
-                             VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                             VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-                const auto regions = cachedRegions(r, offset);
-                vkCmdCopyBufferToImage(cmd, staging->buffer(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                                       static_cast<uint32_t>(regions.size()), regions.data());
-                imageBarrier(cmd, image, aspect, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                             VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
-                             VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-            }
-            offset += cachedBytes(r);
-        }
-        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
-    });
+    auto uploaded = m_ctx.submitNow([&](VkCommandBuffer cmd) { recordOnceCopies(cmd, set, staging->buffer(), /*restore=*/true); });
     if (!uploaded) return uploaded;
     for (size_t p : set.passes) m_built->instances[p]->restoredOnce(m_persistentEpoch);
     std::error_code ec;  // the entry's time orders the cache's eviction: this one is in use
@@ -872,34 +885,9 @@ Result<void> Executor::onceCacheAfterFrame(VkFence fence) {
     RG_VK_TRY(vkWaitForFences(m_ctx.device(), 1, &fence, VK_TRUE, UINT64_MAX));
     const auto t0 = Clock::now();
     const Plan& plan = m_built->plan;
-    uint64_t total = 0;
-    for (size_t i : set.resources) total += cachedBytes(plan.resources[i]);
-    auto staging = Buffer::create(m_ctx, "once_cache.readback", std::max<uint64_t>(total, 4), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    auto staging = Buffer::create(m_ctx, "once_cache.readback", std::max<uint64_t>(set.bytes, 4), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     if (!staging) return std::unexpected(staging.error());
-    auto copied = m_ctx.submitNow([&](VkCommandBuffer cmd) {
-        VkDeviceSize offset = 0;
-        for (size_t i : set.resources) {
-            const PlanResource& r = plan.resources[i];
-            if (r.kind == ResourceKind::Buffer) {
-                memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
-                VkBufferCopy c{0, offset, r.bufferSize};
-                vkCmdCopyBuffer(cmd, m_built->buffers[i]->buffer(), staging->buffer(), 1, &c);
-            } else {
-                VkImage image = m_built->images[i]->image();
-                const VkImageAspectFlags aspect = aspectOf(r.format);
-                imageBarrier(cmd, image, aspect, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
-                             VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
-                             VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
-                const auto regions = cachedRegions(r, offset);
-                vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, staging->buffer(),
-                                       static_cast<uint32_t>(regions.size()), regions.data());
-                imageBarrier(cmd, image, aspect, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
-                             VK_ACCESS_2_MEMORY_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
-            }
-            offset += cachedBytes(r);
-        }
-        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
-    });
+    auto copied = m_ctx.submitNow([&](VkCommandBuffer cmd) { recordOnceCopies(cmd, set, staging->buffer(), /*restore=*/false); });
     if (!copied) return copied;
     const std::filesystem::path path = onceCachePath(m_onceDir, set.key);
     std::error_code ec;

@@ -146,11 +146,13 @@ private:
     Result<const PhysicalResource*> exportedResource(const std::string& name);
     struct OnceSet {
         std::vector<size_t> passes, resources;  // plan indices
+        uint64_t bytes = 0;                     // the resources' contents, back to back
         uint64_t key = 0;
     };
     OnceSet cacheableOncePasses(uint32_t slot) const;
     Result<void> onceCacheBeforeFrame(uint32_t slot);
     Result<void> onceCacheAfterFrame(VkFence fence);
+    void recordOnceCopies(VkCommandBuffer cmd, const OnceSet& set, VkBuffer staging, bool restore);
 
     Context& m_ctx;
     ShaderCompiler& m_shaders;
