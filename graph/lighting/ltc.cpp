@@ -363,4 +363,26 @@ float lobeRatio(const glm::mat3& inverse, glm::vec3 N, glm::vec3 V, float alpha,
     return 1.0f + (lobe / (magnitude * D) - 1.0f) * fade;
 }
 
+float sphereRatio(const glm::mat3& inverse, glm::vec3 N, glm::vec3 V, float alpha, float magnitude, glm::vec3 L, float sinSigmaSqr) {
+    const float det = std::abs(glm::determinant(inverse));
+    if (magnitude <= 0.0f || det <= 0.0f) return 1.0f;
+    const float oneMinusCos = 1.0f - std::sqrt(1.0f - sinSigmaSqr);
+    const glm::vec3 t1 = glm::normalize(glm::cross(L, std::abs(L.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0)));
+    const glm::vec3 t2 = glm::cross(L, t1);
+    const float NdotV = std::abs(glm::dot(N, V)) + 1e-5f;
+    double lobe = 0.0, fitted = 0.0;
+    for (int k = 0; k < kSphereRatioTaps; ++k) {
+        const float cosTheta = 1.0f - oneMinusCos * (float(k) + 0.5f) / float(kSphereRatioTaps);
+        const float sinTheta = std::sqrt(std::max(1.0f - cosTheta * cosTheta, 0.0f));
+        const float phi = float(k) * 2.39996323f;
+        const glm::vec3 l = L * cosTheta + (t1 * std::cos(phi) + t2 * std::sin(phi)) * sinTheta;
+        const float NdotL = glm::dot(N, l);
+        if (NdotL <= 0.0f) continue;  // both are 0 below the shading horizon
+        const float NdotH = std::clamp(glm::dot(N, glm::normalize(V + l)), 0.0f, 1.0f);
+        lobe += lobeValue(NdotH, NdotL, NdotV, alpha);
+        fitted += distribution(glm::dmat3(inverse), glm::dvec3(l));
+    }
+    return fitted > 0.0 ? float(lobe / (double(magnitude) * fitted)) : 1.0f;
+}
+
 }  // namespace rg::ltc

@@ -100,4 +100,11 @@ float horizonPolygonIntegral(std::span<const glm::vec3> local, const glm::mat3& 
 // table's M⁻¹ after the frame's rotation); N, V world; f the standard lobe with F = 1.
 float lobeRatio(const glm::mat3& inverse, glm::vec3 N, glm::vec3 V, float alpha, float magnitude, glm::vec3 mean);
 
+// The same correction for a sphere light, the cap of half-angle σ (sin²σ = `sinSigmaSqr`) around
+// the unit direction L (lib/ltc.glsl's rgLtcSphereRatio): the lobe's integral over the cap over
+// magnitude × D's, both by one quadrature of kSphereRatioTaps directions of equal solid angle on a
+// golden-angle spiral; D counted above the shading horizon only. 1 where D is 0 at every tap.
+inline constexpr int kSphereRatioTaps = 32;
+float sphereRatio(const glm::mat3& inverse, glm::vec3 N, glm::vec3 V, float alpha, float magnitude, glm::vec3 L, float sinSigmaSqr);
+
 }  // namespace rg::ltc

@@ -278,7 +278,7 @@ RgLightSample rgEvaluateLightUnshadowedOf(uint i, uint types, vec3 P, vec3 N, ve
             vec3 cL = toLocal * Lu, TL = toLocal * T, BL = toLocal * B;
             s.specularLtc = luminance * (rgLtcCrossesHorizon(cL, TL, BL) ? rgLtcEllipseHorizon(cL, TL, BL, MinvTable, mean)
                                                                           : rgLtcEllipse(Minv * Lu, Minv * T, Minv * B, mean, unusedSin));
-            s.specularLtc *= rgLtcRatio(Minv, N, V, alpha, s.ltcAlbedo.x + s.ltcAlbedo.y, mean);
+            s.specularLtc *= rgLtcSphereRatio(Minv, N, V, alpha, s.ltcAlbedo.x + s.ltcAlbedo.y, L, sinSigmaSqr);
         }
     } else if (RG_LIGHT_IN(types, RG_LIGHT_DISK) && type == RG_LIGHT_DISK) {
         // lst:10, disk evaluation, times the disk's own orientation. It emits along `dir`; its cone

@@ -253,4 +253,33 @@ float rgLtcRatio(mat3 Minv, vec3 N, vec3 V, float alpha, float albedo, vec3 mean
     return fade > 0.0 ? mix(1.0, rgLtcLobe(N, V, L, alpha) / (albedo * D), fade) : 1.0;
 }
 
+// The same correction for a sphere, whose light is a cap of directions (half-angle σ around L):
+// the ratio of the lobe's integral over the cap to the fitted D's, both by one quadrature — 32
+// directions of equal solid angle on a golden-angle spiral over the cap (cos θ_k = 1 − (1 − cos σ)
+// (k + ½)/32) — so that where f/D varies across a cap larger than the lobe the ratio is D's
+// average of it, not its value at one direction. Only points above the shading horizon count for
+// D (the closed form is clipped there; the lobe is 0 below it). Measured on the accuracy suite's
+// glossy metal by the CPU twin (ltc::sphereRatio, brute-force cap integral, mean relative error,
+// facing / grazing / horizon): 0.64 / 1.92 / 3.5 % at the mean direction, 0.16 / 0.53 / 1.08 %
+// with 16 directions, 0.08 / 0.26 / 0.50 % with 32. `albedo`: the lobe's with F = 1.
+#define RG_LTC_SPHERE_TAPS 32
+float rgLtcSphereRatio(mat3 Minv, vec3 N, vec3 V, float alpha, float albedo, vec3 L, float sinSigmaSqr) {
+    float det = abs(determinant(Minv));
+    if (albedo <= 0.0 || det <= 0.0) return 1.0;
+    float oneMinusCos = 1.0 - sqrt(1.0 - sinSigmaSqr);
+    vec3 t1 = normalize(cross(L, abs(L.y) < 0.99 ? vec3(0.0, 1.0, 0.0) : vec3(1.0, 0.0, 0.0))), t2 = cross(L, t1);
+    float lobe = 0.0, fitted = 0.0;
+    for (int k = 0; k < RG_LTC_SPHERE_TAPS; ++k) {
+        float cosTheta = 1.0 - oneMinusCos * (float(k) + 0.5) / float(RG_LTC_SPHERE_TAPS);
+        float sinTheta = sqrt(max(1.0 - cosTheta * cosTheta, 0.0));
+        float phi = float(k) * 2.39996323;
+        vec3 l = L * cosTheta + (t1 * cos(phi) + t2 * sin(phi)) * sinTheta;
+        lobe += rgLtcLobe(N, V, l, alpha);
+        vec3 o = Minv * l;
+        float lo2 = dot(o, o);
+        fitted += dot(N, l) > 0.0 ? max(o.z, 0.0) * det / (RG_PI * lo2 * lo2) : 0.0;
+    }
+    return fitted > 0.0 ? lobe / (albedo * fitted) : 1.0;
+}
+
 #endif

@@ -36,7 +36,7 @@ TEST_F(Accuracy, EveryCaseRunsAndStaysWithinTodaysErrors) {
     const std::map<std::string, std::array<double, 3>> frostbite = {
         {"sphere", {5, 8, 50}}, {"disk", {12, 17, 50}}, {"rect", {13, 8, 60}}, {"tube", {8, 10, 65}}};
     const std::map<std::string, std::array<double, 3>> ltc = {
-        {"sphere", {2.5, 2.5, 5}}, {"disk", {3, 3.5, 4.5}}, {"rect", {3, 4, 5}}, {"tube", {4, 4, 7}}};
+        {"sphere", {2.5, 2.5, 3.5}}, {"disk", {3, 3.5, 4.5}}, {"rect", {3, 4, 5}}, {"tube", {4, 4, 7}}};
     std::map<std::string, double> metalFrostbite;
     for (const auto& c : *cases) {
         SCOPED_TRACE(c.name());
@@ -60,6 +60,34 @@ TEST_F(Accuracy, EveryCaseRunsAndStaysWithinTodaysErrors) {
     ASSERT_TRUE(writeAccuracyReport(*cases, dir));
     EXPECT_TRUE(std::filesystem::exists(dir + "/index.html"));
     EXPECT_TRUE(std::filesystem::exists(dir + "/rect_horizon_metal_ltc.png"));
+}
+
+TEST_F(Accuracy, TheSphereMeetsItsBoundOnTheGlossyMetal) {
+    // The sphere's hardest cases, the glossy metal facing, grazing and crossing the horizon, under
+    // LTC (rgLtcSphereRatio's 32-tap ratio) against a reference converged far enough that the
+    // issue's 1 % bound means something: 64×48, 2 × 32768 samples per pixel, its own noise
+    // 0.3–0.4 %, which the measured error includes. Measured: 0.30 / 0.50 / 0.70 %; the ratio at
+    // the closed form's mean direction alone (rgLtcRatio, as the other lights use) gave 0.72 / 1.99
+    // / 2.93 % here, and fails.
+    AccuracyOptions o;
+    o.width = 64;
+    o.height = 48;
+    o.frames = 64;
+    o.samples = 512;
+    o.lights = {"sphere"};
+    o.materials = {"metal"};
+    o.models = {"ltc"};
+    auto cases = runAccuracy(*s_runtime, o);
+    ASSERT_TRUE(cases) << cases.error().message;
+    ASSERT_EQ(cases->size(), 3u);
+    std::printf("%s", accuracyTable(*cases).c_str());
+    for (const auto& c : *cases) {
+        SCOPED_TRACE(c.name());
+        EXPECT_GT(c.pixels, 100u);
+        EXPECT_LT(c.referenceNoise, 0.005);
+        EXPECT_LT(c.meanError, 0.01);
+        EXPECT_LT(std::abs(c.energyError), 0.03);
+    }
 }
 
 }  // namespace
