@@ -28,7 +28,7 @@ void main() {
     r.texelWorld = vec4(1.0);
     r.depthRange = vec4(1.0);
     r.info = vec4(0.0, 0.0, float(RG_SHADOW_SIZE), 0.0);
-    r.bias = vec4(params.shadow_depth_bias, params.shadow_normal_offset, params.shadow_softness, 0.0);
+    r.bias = vec4(params.shadow_depth_bias, params.shadow_normal_offset, params.shadow_softness, float(RG_SUN_PCF_TAPS));
     int sun = -1;
     for (uint i = 0u; i < lights.count.x; ++i)
         if (int(lights.light[i].positionType.w + 0.5) == RG_LIGHT_SUN) { sun = int(i); break; }
