@@ -1,5 +1,5 @@
 #version 460
-// The `lights` debug view: how many lights reach each 8x8 tile (light_culling.comp's lists: the
+// The `lights` debug view: how many lights reach each 4x4 tile (scripts/lighting.lua's tile) (light_culling.comp's lists: the
 // global ones plus the tile's): black 0, then blue -> green -> yellow -> red at 32 and more;
 // magenta where more ranged lights reach the tile than its list holds. Pixels where nothing was drawn are dimmed.
 #include "lib/lighting.glsl"
