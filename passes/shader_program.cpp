@@ -157,6 +157,11 @@ Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> s
         // RG_SCENE_PROBES: how many local light probes the scene has (lib/ibl.glsl's composition
         // loops that many times at most: none compiles no loop at all).
         defines.emplace_back("RG_SCENE_PROBES", std::to_string(std::min(setup.scene->scene().probes.size(), kMaxProbes)));
+        // RG_SCENE_PROBE_SHAPES: which shapes its probes have (1 sphere, 2 box, 3 both): a scene of
+        // one shape compiles only that shape's influence and parallax (lib/probes.glsl).
+        int probeShapes = 0;
+        for (const Probe& probe : setup.scene->scene().probes) probeShapes |= probe.box ? 2 : 1;
+        if (probeShapes) defines.emplace_back("RG_SCENE_PROBE_SHAPES", std::to_string(probeShapes));
         if (shadowed) defines.emplace_back("RG_SCENE_SHADOWED_LIGHTS", std::to_string(shadowed));
         // RG_SCENE_LIGHTMAP: the scene has a baked SG lightmap (lib/lightmap.glsl): the G-buffer
         // pass adds its radiosity, the distant probe's diffuse light is left out (the lightmap holds it).

@@ -27,7 +27,21 @@ layout(set = 0, binding = RG_PROBES_BINDING, std430) readonly buffer Probes {
     RgProbe probe[RG_MAX_PROBES];
 } rgProbes;
 
-bool rgProbeIsBox(RgProbe p) { return p.positionShape.w > 0.5; }
+// The scene's probe shapes (rgraph defines it for passes with a scene: 1 spheres only, 2 boxes
+// only, 3 both): with one shape the other's branch compiles away — both sides of a branch run on a
+// CPU rasteriser (reflection_compose −1 to −2 ms at 1280×720 with the default scene's box).
+#ifndef RG_SCENE_PROBE_SHAPES
+#define RG_SCENE_PROBE_SHAPES 3
+#endif
+bool rgProbeIsBox(RgProbe p) {
+#if RG_SCENE_PROBE_SHAPES == 1
+    return false;
+#elif RG_SCENE_PROBE_SHAPES == 2
+    return true;
+#else
+    return p.positionShape.w > 0.5;
+#endif
+}
 
 // World offset → the box's local frame (rotation only).
 vec3 rgProbeLocal(RgProbe p, vec3 v) { return vec3(dot(p.axes[0].xyz, v), dot(p.axes[1].xyz, v), dot(p.axes[2].xyz, v)); }
