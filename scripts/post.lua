@@ -97,11 +97,26 @@ function post.chain(o)
     if fxaa then rg.resource(output) { format = "rgba8" } end
     rg.pass "tonemap" {
         kind = "fullscreen", shader = "post/tonemap.frag",
-        reads = reads, writes = { mapped },
+        reads = reads, writes = fxaa and { mapped, output } or { mapped },
+        defines = fxaa and { RG_TONEMAP_COPY = true } or nil,
         bind = { hdr = input, bloom = levels >= 1 and lower or input }, uniforms = { bloom_levels = levels },
     }
     if fxaa then
-        rg.pass "fxaa" { kind = "fullscreen", shader = "post/fxaa.frag", reads = { mapped }, writes = { output }, bind = { source = mapped } }
+        -- FXAA on the blocks that have an edge only: `fxaa_edges` marks the pixels FXAA's contrast
+        -- test would filter (depth 0; 1 elsewhere) and `fxaa` runs depth-tested over the tone
+        -- mapping's copy in `output` — lavapipe's depth test drops the other blocks before
+        -- shading them (a branch cannot), and they keep the copy, which is what FXAA writes for a
+        -- pixel without an edge: the same image for ~6.5 ms (mask 3, filter 2.2, the copy 1.3) instead
+        -- of ~12.5 at 1280x720.
+        rg.resource "fxaa_edges" { format = "d16", doc = "FXAA's edge mask: depth 0 where its contrast test finds an edge" }
+        rg.pass "fxaa_edges" {
+            kind = "fullscreen", shader = "post/fxaa_edges.frag", reads = { mapped }, writes = { { "fxaa_edges", as = "depth" } },
+            bind = { source = mapped }, depth = { compare = "always", value = 1, write = true },
+        }
+        rg.pass "fxaa" {
+            kind = "fullscreen", shader = "post/fxaa.frag", reads = { mapped, { "fxaa_edges", as = "depth" } },
+            writes = { { output, load = true } }, bind = { source = mapped }, depth = { compare = "greater", value = 1 },
+        }
     end
 end
 

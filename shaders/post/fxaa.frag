@@ -2,18 +2,16 @@
 // Fast approximate antialiasing on the display image (after tone mapping, as FXAA expects):
 // find the local luma contrast, decide whether the edge runs horizontally or vertically, walk
 // along it both ways to its ends, and blend towards the neighbour across the edge by how far the
-// pixel is from the nearer end, plus a sub-pixel term for isolated features.
+// pixel is from the nearer end, plus a sub-pixel term for isolated features. In post.chain it
+// runs depth-tested over fxaa_edges.frag's mask, so only blocks with an edge pixel are shaded; the
+// others keep the tone mapping's copy (what this shader would write there: the centre).
 layout(location = 0) in vec2 uv;
 layout(location = 0) out vec4 color;
 layout(set = 0, binding = 0) uniform sampler2D source;
 layout(set = 0, binding = 1) uniform Params { float fxaa_threshold; float fxaa_subpixel; } params;
 
-float luma(vec3 c) { return dot(c, vec3(0.299, 0.587, 0.114)); }
+#include "fxaa_contrast.glsl"
 float lumaAt(vec2 q) { return luma(texture(source, q).rgb); }  // between texels: filtered
-// The 3×3 neighbourhood sits on texel centres: unfiltered fetches (a filtered tap costs a CPU
-// rasteriser four fetches and their blend).
-ivec2 pixel, last;
-float lumaNear(int dx, int dy) { return luma(texelFetch(source, clamp(pixel + ivec2(dx, dy), ivec2(0), last), 0).rgb); }
 
 void main() {
     vec2 t = 1.0 / vec2(textureSize(source, 0));
@@ -25,7 +23,7 @@ void main() {
     float w = lumaNear(-1, 0), e = lumaNear(1, 0);
     float hi = max(m, max(max(n, s), max(w, e))), lo = min(m, min(min(n, s), min(w, e)));
     float range = hi - lo;
-    if (range < max(0.0312, hi * params.fxaa_threshold)) {
+    if (!fxaaEdge(hi, range, params.fxaa_threshold)) {
         color = vec4(center, 1.0);
         return;
     }

@@ -12,6 +12,11 @@
 
 layout(location = 0) in vec2 uv;
 layout(location = 0) out vec4 color;
+// RG_TONEMAP_COPY (post.chain with FXAA): the same display image to a second target, the one FXAA
+// then filters in place on its edge blocks only (fxaa_edges.frag).
+#ifdef RG_TONEMAP_COPY
+layout(location = 1) out vec4 copy;
+#endif
 layout(set = 0, binding = 0) uniform sampler2D hdr;
 layout(set = 0, binding = 1) uniform sampler2D bloom;
 layout(set = 0, binding = 2, std430) readonly buffer exposure { RgExposureState state; } ex;
@@ -68,4 +73,7 @@ void main() {
         display += (hash(seed) + hash(seed + 7919u) - 1.0) / 255.0;
     }
     color = vec4(clamp(display, 0.0, 1.0), 1.0);
+#ifdef RG_TONEMAP_COPY
+    copy = color;
+#endif
 }
