@@ -83,7 +83,7 @@ check "unlit glb without environment" 0 grep "wrote $tmp/n.exr" -- \
     "$rgraph" render --scene "$tmp/unlit.glb" --environment none --size 48x32 --out "$tmp/n.exr" --png "$tmp/n.png"
 # The box's pixels: lit under the default sky, black with none (relative error of the unlit image against the lit one: 100 %).
 check "sky lights the glb" 0 grep "mean relative error 1" -- "$rgraph" compare "$tmp/n.exr" "$tmp/u.exr"
-check "graph json parses" 0 -- bash -c "'$rgraph' graph --format json --size 64x64 | python3 -c 'import json,sys; p=json.load(sys.stdin); n=[x[\"name\"] for x in p[\"passes\"]]; assert n[:5]==[\"env_cube\",\"env_mips\",\"env_prefilter\",\"env_irradiance\",\"dfg_table\"] and n[5:8]==[\"probe_capture\",\"probe_mips\",\"probe_prefilter\"] and n[8:13]==[\"sun_cascades\",\"shadow_clear\",\"sun_cull\",\"shadow_sun\",\"shadow_local\"] and n[13:20]==[\"gbuffer\",\"light_culling_coarse\",\"gtao\",\"foliage_fixup\",\"ao_blur\",\"ao_upsample\",\"light_culling\"] and n[23:32]==[\"decals\",\"hiz\",\"ssr\",\"reflection_compose\",\"lighting_standard\",\"lighting_clearcoat\",\"lighting_two_colour\",\"sky\",\"forward\"] and n[-2:]==[\"tonemap\",\"fxaa\"], n'"
+check "graph json parses" 0 -- bash -c "'$rgraph' graph --format json --size 64x64 | python3 -c 'import json,sys; p=json.load(sys.stdin); n=[x[\"name\"] for x in p[\"passes\"]]; assert n[:5]==[\"env_cube\",\"env_mips\",\"env_prefilter\",\"env_irradiance\",\"dfg_table\"] and n[5:8]==[\"probe_capture\",\"probe_mips\",\"probe_prefilter\"] and n[8:13]==[\"sun_cascades\",\"shadow_clear\",\"sun_cull\",\"shadow_sun\",\"shadow_local\"] and n[13:20]==[\"gbuffer\",\"light_culling_coarse\",\"gtao\",\"foliage_fixup\",\"ao_blur\",\"ao_upsample\",\"light_culling\"] and n[23:32]==[\"decals\",\"hiz\",\"ssr\",\"reflection_compose\",\"lighting_standard\",\"lighting_clearcoat\",\"lighting_two_colour\",\"sky\",\"forward\"] and n[-3:]==[\"tonemap\",\"fxaa_edges\",\"fxaa\"], n'"
 check "graph materials" 0 grep "  free: 3 (1 of 4)" -- "$rgraph" graph --format materials
 check "graph materials: foliage is a variant" 0 grep "0x11 mask 0xFF  foliage          variant of lit_standard" -- "$rgraph" graph --format materials
 check "graph materials of a built-in graph" 2 grep "built-in graphs declare no materials" -- "$rgraph" graph --pipeline builtin:triangle --format materials
@@ -148,7 +148,7 @@ check "reference vs real time" 0 grep "mean relative error" -- \
 check "luminance beyond half floats" 0 grep "mean relative error 0" -- \
     bash -c "'$rgraph' render --scene tests/gpu/scenes/reference_sun.lua --size 48x32 --out '$tmp/sun.exr' --png '$tmp/sun.png' >/dev/null && '$rgraph' compare '$tmp/sun.exr' '$tmp/sun.exr'"
 check "bench" 0 grep "frame total" -- "$rgraph" bench --size 64x64 --frames 3 --json "$tmp/bench.json"
-check "bench json" 0 -- python3 -c "import json; b=json.load(open('$tmp/bench.json')); assert len(b['passes'])==43 and b['scene']['draws']>0 and b['frames']==3"
+check "bench json" 0 -- python3 -c "import json; b=json.load(open('$tmp/bench.json')); assert len(b['passes'])==44 and b['scene']['draws']>0 and b['frames']==3"
 # Floors: every pass measured again with shaders that do nothing; the JSON has both.
 check "bench floors" 0 grep "floor" -- "$rgraph" bench --size 64x64 --frames 2 --floors --json "$tmp/floors.json"
 check "bench floors json" 0 -- python3 -c "import json; b=json.load(open('$tmp/floors.json')); p={x['name']: x for x in b['passes']}; assert all('floorMs' in x and x['floorMs'] >= 0 for x in b['passes']) and b['floorTotalMs'] > 0 and 'gbuffer' in p, b"
