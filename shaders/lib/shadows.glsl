@@ -121,12 +121,12 @@ float rgSunShadow(vec3 P, vec3 N) {
     // (lavapipe runs both sides of a branch for its block of pixels), but it leaves a loop as
     // soon as no pixel of the block is still in it — so the kernel is a loop whose bound the
     // compiler cannot unroll (the tap count, read from the cascades), left at its first tap where
-    // no pixel of the block found a blocker: most of a sunlit frame (lighting_standard −6 to −9 ms
+    // no pixel of the block found a blocker: most of a sunlit frame (lighting_standard −4.5 to −9 ms
     // at 1280×720, the same image). The taps walk the spiral of rgShadowTap by turning one step of
     // the golden angle each (its sine and cosine once, not per tap).
     const float golden = 2.39996323;
     const mat2 turn = mat2(cos(golden), sin(golden), -sin(golden), cos(golden));
-    int taps = int(rgCascades.c.bias.w);
+    int taps = max(int(rgCascades.c.bias.w), 1);
     vec2 direction = vec2(1.0, 0.0);
     float lit = 0.0;
     for (int k = 0; k < taps; ++k, direction = turn * direction) {
@@ -135,7 +135,7 @@ float rgSunShadow(vec3 P, vec3 N) {
         float d = textureLod(sun_shadow, vec3(uv + o, float(ci)), 0.0).r;
         lit += d < receiver + dot(slope, o) ? 0.0 : 1.0;
     }
-    return lit / max(float(taps), 1.0);
+    return lit / float(taps);
 }
 
 // The sun's visibility at P, once per shaded point (rgEvaluateLight's last argument).
