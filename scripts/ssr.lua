@@ -35,9 +35,17 @@ rg.pass "hiz" {
     kind = "compute", shader = "ssr/hiz.comp", reads = { "depth" }, writes = { { "hiz", as = "storage" } },
     per_mip = true, filter = "nearest", insert = { before = "lighting_standard" },
 }
+-- Only the pixels that trace a ray: `ssr_mask` marks them in a half-resolution depth mask (0:
+-- something drawn, smooth enough) and `ssr` runs depth-tested over it, so the blocks without a ray
+-- (the sky, rough surfaces) are never shaded and keep the cleared 0 — what ssr.frag writes there.
+rg.resource "ssr_mask" { format = "d16", scale = { 0.5, 0.5 }, doc = "SSR's half-resolution pixels that trace a ray: depth 0" }
+rg.pass "ssr_mask" {
+    kind = "fullscreen", shader = "ssr/ssr_mask.frag", reads = { "GB0", "depth" }, writes = { { "ssr_mask", as = "depth" } },
+    filter = "nearest", insert = { before = "lighting_standard" }, depth = { compare = "always", value = 1, write = true },
+}
 rg.pass "ssr" {
-    kind = "fullscreen", shader = "ssr/ssr.frag", reads = { "GB0", "depth", "hiz", "hdr_history", { "exposure", as = "storage" } },
-    writes = { "ssr" }, insert = { before = "lighting_standard" },
+    kind = "fullscreen", shader = "ssr/ssr.frag", reads = { "GB0", "depth", "hiz", "hdr_history", { "exposure", as = "storage" }, { "ssr_mask", as = "depth" } },
+    writes = { "ssr" }, insert = { before = "lighting_standard" }, depth = { compare = "greater", value = 0.5 },
 }
 
 -- A lighting pass's declaration that composes SSR over the probes (lib/ibl.glsl RG_SSR): reads

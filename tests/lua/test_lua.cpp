@@ -264,13 +264,13 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     for (const auto& pass : p->graph.passes) order.push_back(pass.name);
     // The environment filtering (scripts/ibl.lua, required by render_loop) comes first, then the
     // local probes' capture and filtering (scripts/probes.lua). Then the sun's and the local lights' shadow maps (scripts/shadows.lua), the G-buffer half with the passes inserted
-    // after it (light culling, screen-space AO: scripts/ao.lua), the Hi-Z pyramid and SSR
+    // after it (light culling, screen-space AO: scripts/ao.lua), the Hi-Z pyramid, SSR's mask and SSR
     // (scripts/ssr.lua), the composition of SSR and the probes (scripts/reflections.lua), the lighting, the sky and forward.
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 34),
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 35),
               (std::vector<std::string>{"env_cube", "env_mips", "env_prefilter", "env_irradiance", "dfg_table", "probe_capture",
                                         "probe_mips", "probe_prefilter", "sun_cascades",
                                         "shadow_clear", "sun_cull", "shadow_sun", "shadow_local", "gbuffer", "light_culling_coarse", "gtao", "foliage_fixup", "ao_blur", "ao_upsample", "light_culling", "decals_copy0", "decals_copy1", "decals_copy2",
-                                        "decals", "hiz", "ssr", "reflection_compose", "lighting_standard", "lighting_clearcoat", "lighting_two_colour",
+                                        "decals", "hiz", "ssr_mask", "ssr", "reflection_compose", "lighting_standard", "lighting_clearcoat", "lighting_two_colour",
                                         "sky", "forward", "ssr_history_copy", "ssr_history_mips"}));
     auto plan = compile(graphWithParams(*p), {});
     ASSERT_TRUE(plan.has_value()) << plan.error().message;
