@@ -18,12 +18,9 @@ void main() {
     pixel = ivec2(gl_FragCoord.xy);
     last = textureSize(source, 0) - 1;
     vec3 center = texelFetch(source, pixel, 0).rgb;
-    float m = luma(center);
-    float n = lumaNear(0, -1), s = lumaNear(0, 1);
-    float w = lumaNear(-1, 0), e = lumaNear(1, 0);
-    float hi = max(m, max(max(n, s), max(w, e))), lo = min(m, min(min(n, s), min(w, e)));
-    float range = hi - lo;
-    if (!fxaaEdge(hi, range, params.fxaa_threshold)) {
+    FxaaCross around = fxaaCross(luma(center));
+    float m = around.m, n = around.n, s = around.s, w = around.w, e = around.e, range = around.range;
+    if (!fxaaEdge(around, params.fxaa_threshold)) {
         color = vec4(center, 1.0);
         return;
     }

@@ -8,8 +8,21 @@ float luma(vec3 c) { return dot(c, vec3(0.299, 0.587, 0.114)); }
 // rasteriser four fetches and their blend).
 ivec2 pixel, last;
 float lumaNear(int dx, int dy) { return luma(texelFetch(source, clamp(pixel + ivec2(dx, dy), ivec2(0), last), 0).rgb); }
-// Whether the centre and its four neighbours span enough luma to be an edge worth filtering:
-// `hi` their largest luma, `range` largest − smallest.
-bool fxaaEdge(float hi, float range, float threshold) { return range >= max(0.0312, hi * threshold); }
+// The luma of the centre `pixel` (m) and of its four neighbours, their largest (hi) and their
+// range (largest − smallest); `pixel` and `last` set first.
+struct FxaaCross { float m, n, s, w, e, hi, range; };
+FxaaCross fxaaCross(float m) {
+    FxaaCross c;
+    c.m = m;
+    c.n = lumaNear(0, -1);
+    c.s = lumaNear(0, 1);
+    c.w = lumaNear(-1, 0);
+    c.e = lumaNear(1, 0);
+    c.hi = max(m, max(max(c.n, c.s), max(c.w, c.e)));
+    c.range = c.hi - min(m, min(min(c.n, c.s), min(c.w, c.e)));
+    return c;
+}
+// Whether the cross spans enough luma to be an edge worth filtering.
+bool fxaaEdge(FxaaCross c, float threshold) { return c.range >= max(0.0312, c.hi * threshold); }
 
 #endif

@@ -12,9 +12,5 @@ layout(set = 0, binding = 1) uniform Params { float fxaa_threshold; } params;
 void main() {
     pixel = ivec2(gl_FragCoord.xy);
     last = textureSize(source, 0) - 1;
-    float m = luma(texelFetch(source, pixel, 0).rgb);
-    float n = lumaNear(0, -1), s = lumaNear(0, 1);
-    float w = lumaNear(-1, 0), e = lumaNear(1, 0);
-    float hi = max(m, max(max(n, s), max(w, e))), lo = min(m, min(min(n, s), min(w, e)));
-    gl_FragDepth = fxaaEdge(hi, hi - lo, params.fxaa_threshold) ? 0.0 : 1.0;
+    gl_FragDepth = fxaaEdge(fxaaCross(luma(texelFetch(source, pixel, 0).rgb)), params.fxaa_threshold) ? 0.0 : 1.0;
 }
