@@ -18,9 +18,9 @@ local lighting = {}
 -- Pixels per side of the tiles the lighting passes read. Every pixel of a tile loops over the
 -- whole list (a pixel out of a light's range still evaluates it: both sides of a branch run on a
 -- CPU rasteriser), so the list should hold what reaches the pixel: in the many-lights scene at
--- 640x360 (about four lights a pixel), lighting + culling cost 7.5 ms at 64 lights and 9.6 at
--- 1024 with 8x8 tiles (1.27x: at 1024 the ranges are a quarter as wide, so a tile's footprint
--- adds more lights around them), 7.1 and 8.1 with 4x4 tiles (1.13x).
+-- 640x360 (about four lights a pixel), lighting + culling cost 7.3 ms at 64 lights and 9.8 at
+-- 1024 with 8x8 tiles (1.34x: at 1024 the ranges are a quarter as wide, so a tile's footprint
+-- adds more lights around them), 7.3-7.9 and 9.2 with 4x4 tiles (~1.21x).
 lighting.tile = 4
 lighting.coarse_tile = 32    -- pixels per side of the coarse level's tiles
 -- Words per fine tile: the count, then up to 62 indices of ranged lights, 16 bits each (128 B per

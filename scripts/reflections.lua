@@ -25,11 +25,7 @@ rg.resource "reflection" { format = "rgba16f",
 
 local compose = {
     kind = "fullscreen", shader = "passes/reflection_compose.frag",
-    reads = { "GB0", "depth", { "depth", as = "depth" }, "ssr", "env_specular", { "env_sh", as = "storage" }, "dfg", "probe_specular" }, writes = { "reflection" },
-    -- Only where something was drawn (the depth buffer short of the far plane; the sky keeps the
-    -- cleared 0): lavapipe's depth test drops whole blocks of sky before the shader runs, which a
-    -- branch in the shader cannot (−3.3 ms at 1280×720 on the default scene, the same image).
-    depth = { compare = "greater", value = 1 },
+    reads = { "GB0", "depth", "ssr", "env_specular", { "env_sh", as = "storage" }, "dfg", "probe_specular" }, writes = { "reflection" },
     defines = { RG_IBL = true, RG_SSR = true, RG_PROBES = true }, insert = { before = "lighting_standard" },
 }
 -- With a scene's baked lightmap, its specular radiance takes the distant probe's share.
