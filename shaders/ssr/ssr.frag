@@ -7,7 +7,8 @@
 // by the previous frame's camera (Camera.previousViewProj), blurred by
 // roughness through its mips, in nits (divided by this frame's pre-exposure, as the probes the
 // lighting passes blend it with: lib/ibl.glsl, RG_SSR); a the confidence: 0 on a miss, fading at the screen's edges, for
-// rays turned towards the camera, for hits far behind the surface, and with roughness (past
+// rays turned towards the camera, for hits far behind the surface, for hits the march found late
+// in its step budget (Params.ssr_steps), and with roughness (past
 // Params.ssr_max_roughness the probes alone reflect); 0 where the history holds nothing yet (its
 // alpha: the first frame) or the previous camera did not see the hit.
 #include "lib/scene.glsl"
@@ -65,7 +66,9 @@ void main() {
     bool hit = false;
     vec3 at = s0;
     int steps = int(params.ssr_steps + 0.5);
+    int used = 0;  // iterations the march took
     for (int i = 0; i < steps && t <= 1.0; ++i) {
+        used = i + 1;
         float tNext = t + exp2(float(level)) / lengthPx;
         vec3 q = mix(s0, s1, min(tNext, 1.0));
         if (any(lessThan(q.xy, vec2(0.0))) || any(greaterThanEqual(q.xy, vec2(1.0)))) break;
@@ -90,6 +93,11 @@ void main() {
     if (surfaceView.z - rayView.z > params.ssr_thickness) return;
     vec2 edge = smoothstep(vec2(0.0), vec2(0.06), at.xy) * (1.0 - smoothstep(vec2(0.94), vec2(1.0), at.xy));
     float confidence = edge.x * edge.y;
+    // A hit found near the end of the step budget stands beside neighbours whose march ran out
+    // first: alone it is a speck (the default scene's steel pillar, marching over the floor at a
+    // grazing angle, hit in scattered rays at 32 steps and in all of them at 128). Such hits fade
+    // out over the budget's second half, to the probes' reflection that the misses beside them show.
+    confidence *= 1.0 - smoothstep(0.5, 1.0, float(used) / float(steps));
     confidence *= 1.0 - smoothstep(0.2, 0.6, R.z);  // towards the camera: what it would see is off screen
     confidence *= 1.0 - smoothstep(0.6 * params.ssr_max_roughness, params.ssr_max_roughness, linearRoughness);
     // Roughness widens the reflected cone: its footprint at the hit, in pixels, picks the mip.
