@@ -3,6 +3,7 @@
 // material's G-buffer layout and its GLSL surface function; per-material descriptor sets
 // (lavapipe has no descriptor indexing); the stencil buffer gets each material's stencil class.
 #include <algorithm>
+#include <cmath>
 #include <glm/glm.hpp>
 #include <cstdio>
 #include <map>
@@ -245,6 +246,12 @@ std::map<uint32_t, std::vector<size_t>> drawsByTextures(const GpuScene& scene, W
     std::map<uint32_t, std::vector<size_t>> out;
     for (size_t d : drawsWhere(scene, wanted)) out[variantKey(scene.scene().materials[scene.draws()[d].material])].push_back(d);
     return out;
+}
+
+std::string numberText(double v) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%g", v);
+    return text;
 }
 
 class ScenePass final : public PassInstance {
@@ -588,6 +595,22 @@ private:
         if (views != "shader" && views != "lights")
             return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.views: unknown '" + views + "', expected one of: 'shader', 'lights'");
         m_lightViews = views == "lights";
+        // view = { first, count }: layer l of the target is view first + l of count (the matrix the
+        // push constant names, the indirect buffer's slots): one cascade per pass, each into a map
+        // of its own that the graph can alias with the next cascade's (scripts/shadows.lua).
+        m_firstView = 0;
+        m_viewCount = m_layers;
+        if (const Value& view = desc.params["view"]; !view.isNil()) {
+            if (!view.isList() || view.asList().size() != 2 || !view.asList()[0].isNumber() || !view.asList()[1].isNumber())
+                return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.view: expected { first, count }");
+            const double first = view.asList()[0].asNumber(0), count = view.asList()[1].asNumber(0);
+            if (first < 0 || count < 1 || first != std::floor(first) || count != std::floor(count) || first + m_layers > count)
+                return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.view: { " + numberText(first) + ", " + numberText(count) +
+                                                         " } does not hold the target's " + std::to_string(m_layers) + " layer(s) from view 'first' on");
+            if (m_lightViews) return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.view: views = 'lights' places its own views; give one or the other");
+            m_firstView = static_cast<uint32_t>(first);
+            m_viewCount = static_cast<uint32_t>(count);
+        }
         // cull: which winding, as the views' matrices land faces in the map, single-sided
         // materials' faces are not drawn with (double-sided ones always draw both).
         const std::string cull = desc.params["cull"].isString() ? desc.params["cull"].asString() : "none";
@@ -651,18 +674,19 @@ private:
         // light reads them).
         const uint32_t layers = m_lightViews ? std::min(m_layers, rc.scene->shadowViewCount()) : m_layers;
         const PhysicalResource* indirect = m_indirect.empty() ? nullptr : rc.resources.find(m_indirect);
-        const VkDeviceSize slots = indirect ? indirect->plan->bufferSize / kIndirectCommandBytes / std::max(m_layers, 1u) : 0;
+        const VkDeviceSize slots = indirect ? indirect->plan->bufferSize / kIndirectCommandBytes / std::max(m_viewCount, 1u) : 0;
         for (uint32_t layer = 0; layer < layers; ++layer) {
+            const uint32_t view = m_firstView + layer;
             beginLayer(rc, VK_NULL_HANDLE, d->image->layerView(layer), VK_ATTACHMENT_STORE_OP_STORE);
             vkCmdBindPipeline(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.pipeline.get());
             g.program->bind(rc, VK_PIPELINE_BIND_POINT_GRAPHICS);
             for (size_t i : m_lightViews ? rc.scene->shadowViewDraws(layer) : g.draws) {
                 const DrawItem& item = rc.scene->draws()[i];
                 vkCmdSetCullMode(rc.cmd, rc.scene->scene().materials[item.material].doubleSided ? VkCullModeFlags(VK_CULL_MODE_NONE) : m_shadowCull);
-                struct { glm::mat4 world; glm::vec4 layer; } push{item.world, glm::vec4(static_cast<float>(layer))};
+                struct { glm::mat4 world; glm::vec4 layer; } push{item.world, glm::vec4(static_cast<float>(view))};
                 vkCmdPushConstants(rc.cmd, g.program->layout(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof push, &push);
                 if (indirect && i < slots)
-                    vkCmdDrawIndexedIndirect(rc.cmd, indirect->buffer->buffer(), (layer * slots + i) * kIndirectCommandBytes, 1,
+                    vkCmdDrawIndexedIndirect(rc.cmd, indirect->buffer->buffer(), (view * slots + i) * kIndirectCommandBytes, 1,
                                              kIndirectCommandBytes);
                 else
                     vkCmdDrawIndexed(rc.cmd, item.indexCount, 1, item.firstIndex, item.vertexOffset, 0);
@@ -743,6 +767,8 @@ private:
     std::string m_indirect;     // shadow: the buffer of indirect commands per layer and draw
     static constexpr VkDeviceSize kIndirectCommandBytes = sizeof(VkDrawIndexedIndirectCommand);
     uint32_t m_layers = 1;
+    uint32_t m_firstView = 0;  // shadow: params.view, the view of the target's layer 0
+    uint32_t m_viewCount = 1;  // shadow: the views the indirect buffer holds slots for
 };
 
 }  // namespace
@@ -763,6 +789,7 @@ PassKindInfo scenePassKind() {
           {"depth_bias", "list", "shadow: { constant, slope } rasteriser depth bias"},
           {"cull", "string", "shadow: 'none' (default), 'clockwise' or 'counter_clockwise': single-sided materials' faces of that winding in the map are not drawn (the faces turned away from the light, for a closed mesh never the nearest)"},
           {"indirect", "string", "shadow: a buffer the pass reads as { NAME, as = 'indirect' } holding a VkDrawIndexedIndirectCommand per layer and scene draw (layer-major, the buffer's commands / layers slots each, written by a culling pass such as shadows/cascade_cull.comp): each draw is issued through it, so culled draws cost nothing; draws beyond the slots are drawn directly"},
+          {"view", "list", "shadow: { first, count }: the target's layer l is view first + l of count (its matrix, its indirect slots), default { 0, the target's layers }: one cascade a pass, into a map of its own"},
           {"views", "string", "shadow: 'shader' (default: the layer's matrix is the vertex shader's business) or 'lights' (the scene's local-light shadow views this frame, one per layer, each drawing only the casters its frustum meets; shader default shadows/local_shadow.vert)"},
           {"rg_materials", "list", "(filled in by rgraph) the resolved materials"}},
          Usage::Sampled, Usage::ColorAttachment},

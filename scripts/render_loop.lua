@@ -63,6 +63,7 @@ function loop.sky_and_forward()
         kind = "scene", forward = true,
         reads = { { "depth", as = "depth" }, { "exposure", as = "storage" } }, writes = { { "hdr", load = true } },
     })))
+    loop.forward_pass = "forward"
     return "forward"
 end
 
@@ -74,6 +75,9 @@ function loop.frame(ctx)
     probes.frame(ctx)   -- no local probes: nothing captured
     if ctx.scene then
         for _, pass in ipairs(loop.decal_passes) do ctx.pass(pass).enabled = ctx.scene.decals > 0 end
+        -- No blended draws, no forward pass: nothing then keeps the sun's maps alive past their
+        -- mask passes (scripts/shadows.lua).
+        if loop.forward_pass then ctx.pass(loop.forward_pass).enabled = ctx.scene.blended > 0 end
     end
 end
 

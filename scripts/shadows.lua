@@ -1,17 +1,23 @@
--- Shadows (seed 002 §4.10.4; DESIGN §10): the sun's cascaded shadow map and the local lights' maps.
+-- Shadows (seed 002 §4.10.4; DESIGN §10): the sun's cascaded shadow maps, its shadow mask and the
+-- local lights' maps.
 --
---   local shadows = require "shadows"   -- declares the map, its cascades and the passes
---   rg.pass "lighting_x" (shadows.lit { kind = "fullscreen", shader = ..., reads = { ... }, ... })
+--   local shadows = require "shadows"   -- declares the maps, the cascades, the mask and the passes
+--   rg.pass "lighting_x" (shadows.masked { kind = "fullscreen", ... })  -- deferred: reads the mask
+--   rg.pass "forward_x" (shadows.lit { kind = "scene", forward = true, ... })  -- reads the maps
 --
 -- Each frame `sun_cascades` (compute, one invocation: shaders/shadows/sun_cascades.comp) places
 -- shadows.cascades cascades over the view up to `shadow_distance` (practical split scheme,
--- stable by texel snapping), `sun_cull` (compute) writes an indirect draw command per cascade and
--- draw, with no instance for a draw beside the cascade, and `shadow_sun` (the `scene` kind with
--- shadow = true, indirect) draws the opaque primitives' depth through them into `sun_shadow`, one
--- layer per cascade. Both
--- are culled by the graph when nothing reads the map, and skipped (rg.frame: shadows.frame) when
--- the scene has no sun or `sun_shadows` is off. `shadows.lit` makes a lighting pass read them: lib/shadows.glsl's PCSS
--- (blocker search, penumbra from the sun's angular size) multiplies the sun's light.
+-- stable by texel snapping) and `sun_cull` (compute) writes an indirect draw command per cascade
+-- and draw, with no instance for a draw beside the cascade. After the pass named "gbuffer",
+-- `sun_classify` writes each pixel's cascade as a depth code, then for each cascade N
+-- `shadow_sunN` (the `scene` kind with shadow = true, indirect, view = { N, cascades }) draws the
+-- opaque primitives' depth into `sun_shadowN` and `sun_maskN` filters it at once — lib/shadows.glsl's
+-- PCSS (blocker search, penumbra from the sun's angular size) at that cascade's pixels — into
+-- `sun_visibility`. Each map is dead after its mask pass, so the graph gives the next one its
+-- memory. `shadows.masked` makes a deferred lighting pass multiply the sun's light by the mask;
+-- `shadows.lit` makes a pass filter the maps at its own pixels (the forward pass). The passes are
+-- culled by the graph when nothing reads what they write, and skipped (rg.frame: shadows.frame)
+-- when the scene has no sun or `sun_shadows` is off.
 --
 -- Local lights declared with `shadow = true` in the scene get shadow views each frame their range
 -- reaches the view (passes/gpu_scene.cpp: one perspective view for a spot of outer angle ≤ 60°, a
@@ -37,39 +43,65 @@ rg.param "shadow_normal_offset" { type = "number", default = 1.5, min = 0, max =
 rg.param "shadow_softness" { type = "number", default = 1, min = 0, max = 16, doc = "penumbra width × the sun's physical one (0: hard)" }
 
 rg.buffer "sun_cascades" { size = 4 * 64 + 5 * 16, doc = "the sun's cascades this frame (lib/shadows.glsl's RgCascades)" }
+-- One map per cascade, each a texture of its own: `shadow_sunN` draws cascade N's casters into
+-- `sun_shadowN` right after the G-buffer, and `sun_maskN` filters it at once for the pixels of
+-- cascade N into `sun_visibility` (the sun's shadow mask, r16f: the PCF's k/16 exactly), which the
+-- deferred lighting passes read (shadows.masked) instead of the maps. A map is dead once its
+-- pixels are filtered, so the graph places the next cascade's in the same memory: 8 MiB live at a
+-- time rather than 24 (at 2048², d16), and none of it beside the lighting's targets. A forward pass
+-- (shadows.lit) reads every map, which then lives until it.
 -- 16-bit depth: the cascades are orthographic, so depth is linear along the light and 1/65535 of a
--- cascade's depth range is a millimetre or two (the receiver bias is 2 cm); half of d32f's memory
--- (24 MiB at 2048² × 3), the default frame's image within 7/255 of d32f's in 71 of 2.8 M channels.
-rg.resource "sun_shadow" { format = "d16", size = { shadows.size, shadows.size }, layers = shadows.cascades,
-    doc = "the sun's shadow map, one layer per cascade" }
-
-rg.pass "sun_cascades" {
-    kind = "compute", shader = "shadows/sun_cascades.comp", writes = { { "sun_cascades", as = "storage" } }, groups = { 1, 1, 1 },
-    defines = { RG_CASCADES = shadows.cascades, RG_SHADOW_SIZE = shadows.size },
-}
--- Without a sun the map is only cleared (to "nothing in the way"): shadows.frame switches
--- between the two writers.
-rg.pass "shadow_clear" { kind = "clear", writes = { "sun_shadow" }, depth = 1 }
+-- cascade's depth range is a millimetre or two (the receiver bias is 2 cm); half of d32f's memory,
+-- the default frame's image within 7/255 of d32f's in 71 of 2.8 M channels.
 -- Caster culling per cascade: one indirect draw command per cascade and scene draw, with no
 -- instance where the draw's box lies beside the cascade (shaders/shadows/cascade_cull.comp); room
 -- for shadows.max_culled_draws draws a cascade, the rest drawn into every cascade.
 shadows.max_culled_draws = 4096
 rg.buffer "sun_shadow_draws" { size = shadows.cascades * shadows.max_culled_draws * 20,
     doc = "the sun's shadow draws: an indirect command per cascade and draw (VkDrawIndexedIndirectCommand)" }
+
+rg.pass "sun_cascades" {
+    kind = "compute", shader = "shadows/sun_cascades.comp", writes = { { "sun_cascades", as = "storage" } }, groups = { 1, 1, 1 },
+    defines = { RG_CASCADES = shadows.cascades, RG_SHADOW_SIZE = shadows.size },
+}
 rg.pass "sun_cull" {
     kind = "compute", shader = "shadows/cascade_cull.comp", groups = { 1, 1, 1 }, defines = { RG_CASCADES = shadows.cascades },
     reads = { { "sun_cascades", as = "storage" } }, writes = { { "sun_shadow_draws", as = "storage" } },
 }
--- Only the faces towards the sun (cull): for a closed mesh the nearest surface along the light is
--- one of them anyway, and the faces turned away were half the triangles the rasteriser set up
--- (shadow_sun 38–44 → 24–27 ms on the default frame; the image differs in a few silhouette pixels,
--- PSNR 116 dB). sun_cascades.comp's basis (x, y = x × f, depth along f) has no y flip, so a face
--- counter-clockwise towards the sun lands clockwise in the map. Double-sided materials draw both.
-rg.pass "shadow_sun" {
-    kind = "scene", shadow = true, reads = { { "sun_cascades", as = "storage" }, { "sun_shadow_draws", as = "indirect" } },
-    writes = { "sun_shadow" }, indirect = "sun_shadow_draws", depth_bias = { 1.0, 1.5 }, after = { "shadow_clear" },
-    cull = "counter_clockwise",
+
+-- The cascade code of each pixel (a depth mask for the mask passes' equal test, so that each
+-- shades only its own cascade's pixels) and the mask set to lit: sun_classify.frag.
+rg.resource "sun_visibility" { format = "r16f", doc = "the sun's visibility at each pixel (0 shadowed .. 1 lit), for the deferred lighting" }
+rg.resource "sun_cascade_mask" { format = "d16", doc = "each pixel's sun cascade as a depth code: (N + 1) / 8, 1 for none" }
+rg.pass "sun_visibility_clear" { kind = "clear", writes = { "sun_visibility" }, value = 1, insert = { after = "gbuffer" } }
+rg.pass "sun_classify" {
+    kind = "fullscreen", shader = "shadows/sun_classify.frag", reads = { "depth", { "sun_cascades", as = "storage" } },
+    writes = { { "sun_cascade_mask", as = "depth" } }, depth = { compare = "always", value = 1, write = true },
+    insert = { after = "gbuffer" },
 }
+for i = 0, shadows.cascades - 1 do
+    local map = "sun_shadow" .. i
+    rg.resource (map) { format = "d16", size = { shadows.size, shadows.size }, doc = "the sun's shadow map of cascade " .. i }
+    -- Without a sun the map is only cleared (to "nothing in the way"): shadows.frame switches
+    -- between the two writers.
+    rg.pass ("shadow_clear" .. i) { kind = "clear", writes = { map }, depth = 1 }
+    -- Only the faces towards the sun (cull): for a closed mesh the nearest surface along the light is
+    -- one of them anyway, and the faces turned away were half the triangles the rasteriser set up
+    -- (shadow_sun 38–44 → 24–27 ms on the default frame; the image differs in a few silhouette pixels,
+    -- PSNR 116 dB). sun_cascades.comp's basis (x, y = x × f, depth along f) has no y flip, so a face
+    -- counter-clockwise towards the sun lands clockwise in the map. Double-sided materials draw both.
+    rg.pass ("shadow_sun" .. i) {
+        kind = "scene", shadow = true, reads = { { "sun_cascades", as = "storage" }, { "sun_shadow_draws", as = "indirect" } },
+        writes = { map }, indirect = "sun_shadow_draws", view = { i, shadows.cascades }, depth_bias = { 1.0, 1.5 },
+        after = { "shadow_clear" .. i }, cull = "counter_clockwise", insert = { after = "gbuffer" },
+    }
+    rg.pass ("sun_mask" .. i) {
+        kind = "fullscreen", shader = "shadows/sun_mask.frag", defines = { RG_SUN_CASCADE = i },
+        reads = { "GB0", "depth", { "sun_cascades", as = "storage" }, map, { "sun_cascade_mask", as = "depth" } },
+        writes = { { "sun_visibility", load = true } }, bind = { sun_shadow = map },
+        depth = { compare = "equal", value = (i + 1) / 8 }, insert = { after = "gbuffer" },
+    }
+end
 
 -- Sized by the scene (scene_layers): as many layers as its shadowed local lights can have views, up
 -- to shadows.local_views; a scene without any gets one 1×1 layer instead of 24 MiB.
@@ -83,18 +115,34 @@ rg.pass "shadow_local" {
     cull = "counter_clockwise",
 }
 
--- A lighting pass's declaration, shadowed: reads the maps and the cascades, defines RG_SHADOWS.
+-- A lighting pass's declaration, shadowed by the maps themselves (a forward pass: its pixels are
+-- not the G-buffer's): reads every cascade's map and the cascades, defines RG_SHADOWS.
 function shadows.lit(pass)
-    return lighting.extend(pass, { "sun_shadow", { "sun_cascades", as = "storage" }, "local_shadow" }, "RG_SHADOWS")
+    local reads = { { "sun_cascades", as = "storage" }, "local_shadow" }
+    for i = 0, shadows.cascades - 1 do table.insert(reads, "sun_shadow" .. i) end
+    lighting.extend(pass, reads, "RG_SHADOWS")
+    pass.defines.RG_SUN_CASCADES = shadows.cascades
+    return pass
 end
 
--- Per frame: no sun in the scene (or sun_shadows off), no shadow draws — the map is cleared
--- instead, and everything reads as lit.
+-- A deferred lighting pass's declaration, shadowed: reads the sun's visibility the mask passes
+-- filtered at its pixels (RG_SUN_MASK) and the local lights' maps, defines RG_SHADOWS.
+function shadows.masked(pass)
+    lighting.extend(pass, { "sun_visibility", { "sun_cascades", as = "storage" }, "local_shadow" }, "RG_SHADOWS")
+    pass.defines.RG_SUN_MASK = true
+    return pass
+end
+
+-- Per frame: no sun in the scene (or sun_shadows off), no shadow draws — the maps are cleared
+-- instead, the mask stays lit, and everything reads as lit.
 function shadows.frame(ctx)
     local draw = ctx.params.sun_shadows and (not ctx.scene or ctx.scene.suns > 0)
-    ctx.pass("shadow_sun").enabled = draw
     ctx.pass("sun_cull").enabled = draw
-    ctx.pass("shadow_clear").enabled = not draw
+    for i = 0, shadows.cascades - 1 do
+        ctx.pass("shadow_sun" .. i).enabled = draw
+        ctx.pass("sun_mask" .. i).enabled = draw
+        ctx.pass("shadow_clear" .. i).enabled = not draw
+    end
 end
 
 return shadows

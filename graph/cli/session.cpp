@@ -186,13 +186,20 @@ Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string
         return {};
     }
     if (view == "cascades" || view == "shadow") {
-        for (const char* r : {"sun_shadow", "sun_cascades"})
+        for (const char* r : {"sun_shadow0", "sun_cascades"})
             if (auto n = needs(g, view, r, "require \"shadows\""); !n) return n;
-        if (view == "shadow")
-            addViewPass(g, {{"sun_shadow", Usage::Sampled}}, {{"shader", Value("passes/shadow_map_view.frag")}});
-        else
-            addViewPass(g, {{"GB0", Usage::Sampled}, {"depth", Usage::Sampled}, {"sun_shadow", Usage::Sampled}, {"sun_cascades", Usage::StorageRead}},
-                        {{"shader", Value("passes/cascade_view.frag")}});
+        // The maps, one per cascade (scripts/shadows.lua): sun_shadow0 ..
+        std::vector<Access> maps;
+        while (maps.size() < 4 && g.findResource("sun_shadow" + std::to_string(maps.size())))
+            maps.push_back({"sun_shadow" + std::to_string(maps.size()), Usage::Sampled});
+        Value::Table defines{{"RG_SUN_CASCADES", Value(static_cast<double>(maps.size()))}};
+        if (view == "shadow") {
+            addViewPass(g, maps, {{"shader", Value("passes/shadow_map_view.frag")}, {"defines", Value(defines)}});
+        } else {
+            std::vector<Access> reads{{"GB0", Usage::Sampled}, {"depth", Usage::Sampled}, {"sun_cascades", Usage::StorageRead}};
+            reads.insert(reads.end(), maps.begin(), maps.end());
+            addViewPass(g, reads, {{"shader", Value("passes/cascade_view.frag")}, {"defines", Value(defines)}});
+        }
         return {};
     }
     // lightmap / sgN: the G-buffer pass writes the baked lightmap — the irradiance at the shaded
@@ -630,6 +637,26 @@ Result<void> Session::load(const std::string& file) {
                                                  "' (nor a G-buffer channel: use gbuffer.<channel>)");
     }
     m_channels = channels;
+    // The first frame's rg.frame runs now, on the new pipeline and scene, and the plan is built
+    // with what it changes (frame() then takes that frame as done): passes it switches off (no
+    // decals, no blended draws, no sun) are never prepared, and the transient heaps are placed
+    // for the passes that run, not for everything the script declares, then kept at that size
+    // by the rebuilds that follow.
+    std::erase_if(m_overrides.params, [&](const auto& o) { return !pipeline->findParam(o.first); });
+    std::erase_if(m_overrides.enabled, [&](const auto& o) { return !pipeline->graph.findPass(o.first); });
+    auto tc = Clock::now();
+    auto first = frameChanges(*host, frameContext(scene ? scene.get() : nullptr), *pipeline);
+    if (!first) {
+        m_frameHook = previousHook;
+        if (scene || previousScene) m_runtime.executor().setScene(previousScene, previousHook, previousScene ? passes::shadowViewCapacity(previousScene->scene()) : 0);
+        return std::unexpected(first.error());
+    }
+    const double firstCallbackMs = msSince(tc);
+    applyFrameChanges(*pipeline, *first);
+    std::string firstChanges;
+    for (const auto& [pass, on] : first->enabled)
+        firstChanges += (firstChanges.empty() ? "" : ", ") + std::string(on ? "enabled '" : "disabled '") + pass + "'";
+    for (const auto& [pass, shader] : first->shaders) firstChanges += (firstChanges.empty() ? "" : ", ") + ("'" + pass + "' uses " + shader);
     // The executor keeps its previous build when this one fails.
     if (auto r = m_runtime.executor().build(buildableGraph(*pipeline), m_options.compile); !r) {
         m_frameHook = previousHook;
@@ -666,25 +693,33 @@ Result<void> Session::load(const std::string& file) {
     std::erase_if(m_overrides.params, [&](const auto& o) { return !m_pipeline.findParam(o.first); });
     std::erase_if(m_overrides.enabled, [&](const auto& o) { return !m_pipeline.graph.findPass(o.first); });
     m_rebuilds = 0;
+    m_framePrepared = m_frame;
+    m_callbackMs = firstCallbackMs;
     m_loadMs = msSince(t0);
     note("loaded " + file + ": " + std::to_string(m_runtime.executor().plan().passes.size()) + " passes (" +
-         m_runtime.executor().lastBuildReport().summary() + ")");
+         m_runtime.executor().lastBuildReport().summary() + ")" +
+         (firstChanges.empty() ? std::string() : "; frame " + std::to_string(m_frame) + "'s rg.frame: " + firstChanges));
     return {};
 }
 
-Result<void> Session::frame(VkCommandBuffer hostCmd) {
-    if (!m_host) return fail(ErrorCode::InvalidInput, "no pipeline loaded");
-    auto t0 = Clock::now();
+FrameContext Session::frameContext(const passes::GpuScene* scene) const {
     FrameContext ctx{m_frame, static_cast<double>(m_frame) / 60.0, std::nullopt};
-    if (m_scene)
+    if (scene)
         ctx.scene = FrameContext::SceneFacts{
-            static_cast<uint32_t>(m_scene->draws().size()), m_scene->lightCount(), static_cast<uint32_t>(m_scene->scene().decals.size()),
-            static_cast<uint32_t>(std::count_if(m_scene->scene().lights.begin(), m_scene->scene().lights.end(),
+            static_cast<uint32_t>(scene->draws().size()), scene->lightCount(), static_cast<uint32_t>(scene->scene().decals.size()),
+            static_cast<uint32_t>(std::count_if(scene->scene().lights.begin(), scene->scene().lights.end(),
                                                 [](const Light& l) { return l.type == LightType::Directional; })),
-            static_cast<uint32_t>(m_scene->scene().probes.size())};
-    auto changes = m_host->frame(ctx, m_pipeline);
+            static_cast<uint32_t>(scene->scene().probes.size()),
+            static_cast<uint32_t>(std::count_if(scene->draws().begin(), scene->draws().end(), [&](const passes::DrawItem& d) {
+                return scene->scene().materials[d.material].alphaMode == AlphaMode::Blend;
+            }))};
+    return ctx;
+}
+
+Result<FrameChanges> Session::frameChanges(LuaHost& host, const FrameContext& ctx, const PipelineDesc& pipeline) {
+    auto changes = host.frame(ctx, pipeline);
     if (changes && (m_options.frameHook || !m_overrides.empty())) {
-        PipelineDesc seen = m_pipeline;
+        PipelineDesc seen = pipeline;
         applyFrameChanges(seen, *changes);
         auto more = m_options.frameHook ? m_options.frameHook(ctx, seen) : Result<FrameChanges>(FrameChanges{});
         if (!more) return std::unexpected(more.error());
@@ -695,16 +730,27 @@ Result<void> Session::frame(VkCommandBuffer hostCmd) {
         for (const auto& [k, v] : more->shaders) changes->shaders[k] = v;
         // A pass the two callbacks leave as it was is no change (no rebuild).
         std::erase_if(changes->enabled, [&](const auto& e) {
-            const PassDesc* p = m_pipeline.graph.findPass(e.first);
+            const PassDesc* p = pipeline.graph.findPass(e.first);
             return p && p->enabled == e.second;
         });
         std::erase_if(changes->shaders, [&](const auto& e) {
-            const PassDesc* p = m_pipeline.graph.findPass(e.first);
+            const PassDesc* p = pipeline.graph.findPass(e.first);
             return p && p->params["shader"].asString() == e.second;
         });
     }
-    m_callbackMs = msSince(t0);
+    return changes;
+}
+
+Result<void> Session::frame(VkCommandBuffer hostCmd) {
+    if (!m_host) return fail(ErrorCode::InvalidInput, "no pipeline loaded");
+    auto t0 = Clock::now();
+    // The load ran this frame's rg.frame already and built its plan with what it changed.
+    Result<FrameChanges> changes = FrameChanges{};
+    if (m_framePrepared == m_frame) m_framePrepared.reset();
+    else changes = frameChanges(*m_host, frameContext(m_scene.get()), m_pipeline);
     if (!changes) return std::unexpected(changes.error());
+    m_callbackMs = msSince(t0);
+
     if (!changes->empty()) {
         PipelineDesc next = m_pipeline;
         applyFrameChanges(next, *changes);

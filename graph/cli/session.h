@@ -8,6 +8,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -101,6 +102,10 @@ public:
 
 private:
     GraphDesc buildableGraph(const PipelineDesc& p) const;
+    // The frame context of frame m_frame for `scene` (ctx in rg.frame), and what the script's
+    // rg.frame, the frame hook and the overrides change for it in `pipeline`.
+    FrameContext frameContext(const passes::GpuScene* scene) const;
+    Result<FrameChanges> frameChanges(LuaHost& host, const FrameContext& ctx, const PipelineDesc& pipeline);
     Result<std::unique_ptr<passes::GpuScene>> loadScene(PipelineDesc& pipeline);
     void note(const std::string& line);
 
@@ -114,6 +119,8 @@ private:
     std::function<void(uint32_t)> m_frameHook;  // writes the scene's camera for a frame slot
     PipelineDesc m_pipeline;
     uint64_t m_frame = 0;
+    // The frame whose rg.frame the last load already ran (its changes are in m_pipeline).
+    std::optional<uint64_t> m_framePrepared;
     uint32_t m_rebuilds = 0;
     double m_callbackMs = 0.0;
     double m_loadMs = 0.0;

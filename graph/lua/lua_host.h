@@ -40,6 +40,7 @@ struct FrameContext {
         uint32_t draws = 0, lights = 0, decals = 0;
         uint32_t suns = 0;  // directional lights (shadow cascades follow the first)
         uint32_t probes = 0;  // local light probes
+        uint32_t blended = 0;  // draws of blended materials (the forward pass's)
     };
     std::optional<SceneFacts> scene;
 };

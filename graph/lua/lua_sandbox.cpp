@@ -335,6 +335,8 @@ int frameTrampoline(lua_State* L) {
         lua_setfield(L, -2, "suns");
         lua_pushinteger(L, ctx.scene->probes);
         lua_setfield(L, -2, "probes");
+        lua_pushinteger(L, ctx.scene->blended);
+        lua_setfield(L, -2, "blended");
         lua_setfield(L, -2, "scene");
     }
     lua_newtable(L);

@@ -261,8 +261,18 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
         for (const auto& d : m.decals)
             for (const TargetDesc& t : l.targets)
                 for (const ChannelDesc& c : t.channels)
-                    if (c.name == m.channels.at(d))
-                        decalTargets |= 1u << (std::find(targets.begin(), targets.end(), t.name) - targets.begin());
+                    if (c.name == m.channels.at(d)) {
+                        const size_t k = static_cast<size_t>(std::find(targets.begin(), targets.end(), t.name) - targets.begin());
+                        // The decal pass writes the first three targets (passes/decals.frag): said
+                        // at the load, whether or not the scene has decals for it to run.
+                        if (k >= 3)
+                            return fail(ErrorCode::InvalidInput, m.origin + ": material '" + m.name + "': decals blend " + d + ", which layout '" +
+                                                                     l.name + "' keeps in '" + t.name + "' (channel '" + c.name +
+                                                                     "'), the pipeline's fourth target; the decal pass writes the first three (" +
+                                                                     targets[0] + ", " + targets[1] + ", " + targets[2] +
+                                                                     "): keep decal channels in those, or leave " + d + " out of the material's decals");
+                        decalTargets |= 1u << k;
+                    }
     }
     o << "#define RG_DECAL_TARGETS " << decalTargets << "\n#endif\n";
     return o.str();

@@ -21,7 +21,7 @@ post.exposure_state()
 -- of its pixel's tile (lighting.tiled), then adding the probes' light: the distant probe's diffuse
 -- (ibl.lit) and the specular radiance the `reflection_compose` pass composed in §4.9.5's order —
 -- SSR, the local probes, the distant probe (reflections.lit) — weighted by the split-sum DFG.
-rg.pass "lighting_standard" (reflections.lit(ao.lit(shadows.lit(ibl.lit(lighting.tiled {
+rg.pass "lighting_standard" (reflections.lit(ao.lit(shadows.masked(ibl.lit(lighting.tiled {
     kind = "fullscreen", shader = "passes/deferred_lighting.frag",
     reads = { "GB0", "GB1", "GB2", "GB3", "depth", { "depth", as = "depth" }, { "exposure", as = "storage" } },
     writes = { "hdr" }, stencil = { class = "lit_standard" },  -- and its variants: foliage

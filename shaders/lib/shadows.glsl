@@ -1,8 +1,10 @@
-// Shadows of the lights (seed 002 §4.10.4): today the sun's cascaded shadow map
+// Shadows of the lights (seed 002 §4.10.4): the sun's cascaded shadow maps and the local lights'
 // (scripts/shadows.lua). A lighting shader built with RG_SHADOWS reads the cascades
-// (`sun_cascades`, written each frame by shaders/shadows/sun_cascades.comp) and the map
-// (`sun_shadow`, one layer per cascade, drawn by the shadow scene pass), and rgEvaluateLight
-// (lib/lighting.glsl) multiplies the sun's diffuse and specular illuminance by rgShadow.
+// (`sun_cascades`, written each frame by shaders/shadows/sun_cascades.comp) and either the maps
+// (`sun_shadow0` .. one per cascade, each drawn by a shadow scene pass: a forward pass) or, with
+// RG_SUN_MASK, the sun's visibility per pixel that the mask passes filtered from them before the
+// lighting (`sun_visibility`: a deferred lighting pass), and rgEvaluateLight (lib/lighting.glsl)
+// multiplies the sun's diffuse and specular illuminance by rgShadow.
 //
 // Filtering: percentage-closer soft shadows for a disk light (the sun of angular radius σ,
 // lst:6): an 8-tap blocker search finds the occluder nearest the receiver, at depth d_b, the penumbra is
@@ -61,8 +63,41 @@ float rgShadowViewDistance(RgShadowView v, float d) {
 #endif
 
 #ifdef RG_SHADOWS
-layout(set = 0, binding = RG_SHADOW_BINDING) uniform sampler2DArray sun_shadow;
+// The maps: one per cascade, each a texture of its own (scripts/shadows.lua), so that the graph can
+// place a cascade's map in the memory of the one before once that one's pixels are filtered.
+#ifndef RG_SUN_CASCADES
+#define RG_SUN_CASCADES 1
+#endif
+#ifndef RG_SUN_MAPS_BINDING
+#define RG_SUN_MAPS_BINDING 28  // sun_shadow1 .. sun_shadow3 at 28, 29, 30 (sun_shadow0 at RG_SHADOW_BINDING)
+#endif
+#ifndef RG_SUN_VISIBILITY_BINDING
+#define RG_SUN_VISIBILITY_BINDING 31
+#endif
 layout(set = 0, binding = RG_SHADOW_BINDING + 1, std430) readonly buffer sun_cascades { RgCascades c; } rgCascades;
+#if defined(RG_SUN_CASCADES_ONLY)
+// The cascades alone (shaders/shadows/sun_classify.frag): no map.
+#elif defined(RG_SUN_MASK_WRITER)
+// The mask pass of one cascade (shaders/shadows/sun_mask.frag): that cascade's map, bound by the
+// pass (bind = { sun_shadow = "sun_shadowN" }).
+layout(set = 0, binding = RG_SHADOW_BINDING) uniform sampler2D sun_shadow;
+#elif defined(RG_SUN_MASK)
+// A deferred lighting pass (shadows.masked): the sun's visibility per pixel, filtered by the mask
+// passes before the lighting; no map.
+layout(set = 0, binding = RG_SUN_VISIBILITY_BINDING) uniform sampler2D sun_visibility;
+#else
+// Every cascade's map (a forward pass, the debug views).
+layout(set = 0, binding = RG_SHADOW_BINDING) uniform sampler2D sun_shadow0;
+#if RG_SUN_CASCADES > 1
+layout(set = 0, binding = RG_SUN_MAPS_BINDING) uniform sampler2D sun_shadow1;
+#endif
+#if RG_SUN_CASCADES > 2
+layout(set = 0, binding = RG_SUN_MAPS_BINDING + 1) uniform sampler2D sun_shadow2;
+#endif
+#if RG_SUN_CASCADES > 3
+layout(set = 0, binding = RG_SUN_MAPS_BINDING + 2) uniform sampler2D sun_shadow3;
+#endif
+#endif
 
 // 16 points of a golden-angle spiral in the unit disk (equal area per point).
 vec2 rgShadowTap(int k) {
@@ -78,12 +113,12 @@ int rgCascadeOf(float viewDepth) {
         if (viewDepth < rgCascades.c.splitFar[i]) return i;
     return RG_MAX_CASCADES;
 }
+// The cascade of world position P.
+int rgCascadeAt(vec3 P) { return rgCascadeOf(-(camera.view * vec4(P, 1.0)).z); }
 
-// Visibility of the sun (0 shadowed .. 1 lit) at world position P with normal N.
-float rgSunShadow(vec3 P, vec3 N) {
-    float viewDepth = -(camera.view * vec4(P, 1.0)).z;
-    int ci = rgCascadeOf(viewDepth);
-    if (ci >= RG_MAX_CASCADES) return 1.0;  // beyond the shadow distance
+// Visibility of the sun (0 shadowed .. 1 lit) at world position P with normal N in cascade ci,
+// whose map is `map`.
+float rgSunShadowIn(sampler2D map, int ci, vec3 P, vec3 N) {
     float texel = rgCascades.c.texelWorld[ci];
     float size = rgCascades.c.info.z;
     // Normal offset: move the lookup off the surface by a few texels (no acne at grazing light).
@@ -111,7 +146,7 @@ float rgSunShadow(vec3 P, vec3 N) {
     float blockers = 0.0, blockerDepth = 0.0;
     for (int k = 0; k < 16; k += 2) {  // every other tap of the spiral: 8 spread over the disk
         vec2 o = rgShadowTap(k) * searchTexels / size;
-        float d = textureLod(sun_shadow, vec3(uv + o, float(ci)), 0.0).r;
+        float d = textureLod(map, uv + o, 0.0).r;
         if (d < receiver + dot(slope, o)) { blockers += 1.0; blockerDepth = max(blockerDepth, d); }
     }
     // The kernel's radius at the receiver, in texels: half the penumbra (d_r − d_b) · 2 tan σ, so
@@ -132,14 +167,35 @@ float rgSunShadow(vec3 P, vec3 N) {
     for (int k = 0; k < taps; ++k, direction = turn * direction) {
         if (blockers == 0.0) { lit = float(taps); break; }
         vec2 o = sqrt((float(k) + 0.5) / float(taps)) * direction * penumbra / size;
-        float d = textureLod(sun_shadow, vec3(uv + o, float(ci)), 0.0).r;
+        float d = textureLod(map, uv + o, 0.0).r;
         lit += d < receiver + dot(slope, o) ? 0.0 : 1.0;
     }
     return lit / float(taps);
 }
 
+#if defined(RG_SUN_MASK)
+// The sun's visibility at the shaded pixel, as the mask passes filtered it at its G-buffer normal.
+float rgSunVisibility(vec3 P, vec3 N) { return texelFetch(sun_visibility, ivec2(gl_FragCoord.xy), 0).r; }
+#elif !defined(RG_SUN_MASK_WRITER) && !defined(RG_SUN_CASCADES_ONLY)
+// The sun's visibility at P from the map of P's cascade, 1 beyond the shadow distance.
+float rgSunShadow(vec3 P, vec3 N) {
+    int ci = rgCascadeAt(P);
+    float v = 1.0;
+    if (ci == 0) v = rgSunShadowIn(sun_shadow0, 0, P, N);
+#if RG_SUN_CASCADES > 1
+    else if (ci == 1) v = rgSunShadowIn(sun_shadow1, 1, P, N);
+#endif
+#if RG_SUN_CASCADES > 2
+    else if (ci == 2) v = rgSunShadowIn(sun_shadow2, 2, P, N);
+#endif
+#if RG_SUN_CASCADES > 3
+    else if (ci == 3) v = rgSunShadowIn(sun_shadow3, 3, P, N);
+#endif
+    return v;
+}
 // The sun's visibility at P, once per shaded point (rgEvaluateLight's last argument).
 float rgSunVisibility(vec3 P, vec3 N) { return rgCascades.c.info.x > 0.0 ? rgSunShadow(P, N) : 1.0; }
+#endif
 
 // The visibility of light i given the sun's (other lights cast no shadow yet).
 float rgShadow(uint light, float sunVisibility) {

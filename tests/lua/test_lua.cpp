@@ -263,13 +263,18 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     std::vector<std::string> order;
     for (const auto& pass : p->graph.passes) order.push_back(pass.name);
     // The environment filtering (scripts/ibl.lua, required by render_loop) comes first, then the
-    // local probes' capture and filtering (scripts/probes.lua). Then the sun's and the local lights' shadow maps (scripts/shadows.lua), the G-buffer half with the passes inserted
-    // after it (light culling, screen-space AO: scripts/ao.lua), the Hi-Z pyramid, SSR's mask and SSR
-    // (scripts/ssr.lua), the composition of SSR and the probes (scripts/reflections.lua), the lighting, the sky and forward.
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 35),
+    // local probes' capture and filtering (scripts/probes.lua). Then the sun's cascades, its caster
+    // culling, its maps' clears (without a sun) and the local lights' maps (scripts/shadows.lua), the
+    // G-buffer half with the passes inserted after it (light culling, screen-space AO:
+    // scripts/ao.lua; each cascade's map drawn and filtered into the sun's mask at once), the Hi-Z
+    // pyramid, SSR's mask and SSR (scripts/ssr.lua), the composition of SSR and the probes
+    // (scripts/reflections.lua), the lighting, the sky and forward.
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 44),
               (std::vector<std::string>{"env_cube", "env_mips", "env_prefilter", "env_irradiance", "dfg_table", "probe_capture",
-                                        "probe_mips", "probe_prefilter", "sun_cascades",
-                                        "shadow_clear", "sun_cull", "shadow_sun", "shadow_local", "gbuffer", "light_culling_coarse", "gtao", "foliage_fixup", "ao_blur", "ao_upsample", "light_culling", "decals_copy0", "decals_copy1", "decals_copy2",
+                                        "probe_mips", "probe_prefilter", "sun_cascades", "sun_cull",
+                                        "shadow_clear0", "shadow_clear1", "shadow_clear2", "shadow_local", "gbuffer", "light_culling_coarse", "gtao",
+                                        "sun_visibility_clear", "sun_classify", "shadow_sun0", "sun_mask0", "shadow_sun1", "sun_mask1", "shadow_sun2", "sun_mask2",
+                                        "foliage_fixup", "ao_blur", "ao_upsample", "light_culling", "decals_copy0", "decals_copy1", "decals_copy2",
                                         "decals", "hiz", "ssr_mask", "ssr", "reflection_compose", "lighting_standard", "lighting_clearcoat", "lighting_two_colour",
                                         "sky", "forward", "ssr_history_copy", "ssr_history_mips"}));
     auto plan = compile(graphWithParams(*p), {});
@@ -598,13 +603,53 @@ TEST_F(LuaGpu, ParameterChangeRebuildsNothing) {
     EXPECT_FLOAT_EQ(b.at(0, 0, 3), 2.0f);
 }
 
+// A pipeline of one compute pass writing `pattern`, with a `scale` parameter and rg.frame's body
+// as given, written into the tests' temporary folder; returns its path.
+std::string patternScript(const std::string& name, const std::string& frameBody) {
+    fs::create_directories(RG_TEST_TMP);
+    const std::string file = std::string(RG_TEST_TMP) + "/" + name;
+    std::ofstream(file) << "local rg = require 'rg'\n"
+                           "rg.param 'scale' { type = 'number', default = 1, min = 0, max = 16 }\n"
+                           "rg.resource 'pattern' { format = 'rgba16f' }\n"
+                           "rg.pass 'generate' { kind = 'compute', shader = 'test/pattern.comp', writes = { 'pattern' } }\n"
+                           "rg.output 'pattern'\n"
+                           "function rg.frame(ctx)\n" + frameBody + "end\n";
+    return file;
+}
+
+// The first frame's rg.frame runs at the load (its plan is built with what it changes): an error
+// there fails the load, naming the line; a later frame's error fails that frame.
 TEST_F(LuaGpu, FrameCallbackErrorsAreReported) {
     Session s(*s_runtime, small());
-    ASSERT_TRUE(s.load(script("bad_frame.lua")).has_value());
-    auto r = s.frame();
+    auto r = s.load(script("bad_frame.lua"));
     ASSERT_FALSE(r.has_value());
     EXPECT_EQ(firstLine(r.error()),
               "rg.frame: " + kScripts + "bad_frame.lua:9: ctx.params: unknown parameter 'scael' (did you mean 'scale'?)");
+    EXPECT_FALSE(s.loaded());
+    const std::string file = patternScript("bad_second_frame.lua", "    if ctx.frame == 1 then ctx.params.scael = 2 end\n");
+    ASSERT_TRUE(s.load(file).has_value());
+    ASSERT_TRUE(s.frame().has_value());
+    auto second = s.frame();
+    ASSERT_FALSE(second.has_value());
+    const std::string message = firstLine(second.error());
+    EXPECT_TRUE(message.starts_with("rg.frame: ") &&
+                message.ends_with("bad_second_frame.lua:7: ctx.params: unknown parameter 'scael' (did you mean 'scale'?)"))
+        << message;
+}
+
+// rg.frame runs once a frame, the first at the load: a script counting its calls sees one per frame.
+TEST_F(LuaGpu, FrameCallbackRunsOncePerFrame) {
+    const std::string file = patternScript("count_frames.lua",
+                                           "    calls = (calls or 0) + 1\n"
+                                           "    ctx.params.scale = calls\n"
+                                           "    assert(calls == ctx.frame + 1, 'called ' .. calls .. ' times by frame ' .. ctx.frame)\n");
+    Session s(*s_runtime, small());
+    ASSERT_TRUE(s.load(file).has_value());
+    for (int f = 0; f < 3; ++f) {
+        auto r = s.frame();
+        ASSERT_TRUE(r.has_value()) << r.error().message;
+        EXPECT_DOUBLE_EQ(s.pipeline().findParam("scale")->value.asNumber(0), f + 1.0);
+    }
 }
 
 TEST_F(LuaGpu, ReloadIsTransactional) {

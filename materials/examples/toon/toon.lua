@@ -31,7 +31,7 @@ rg.material "toon" {
     doc = "cel-shaded: N·L wrapped and cut into toonBands bands",
 }
 
-rg.pass "lighting_toon" (ao.lit(shadows.lit(ibl.lit(lighting.tiled {
+rg.pass "lighting_toon" (ao.lit(shadows.masked(ibl.lit(lighting.tiled {
     kind = "fullscreen", shader = "toon_lighting.frag",
     reads = { "GB0", "GB1", "GB2", "GB3", "depth", { "depth", as = "depth" }, { "exposure", as = "storage" } },
     writes = { { "hdr", load = true } }, stencil = { class = "lit_toon" },

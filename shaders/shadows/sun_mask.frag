@@ -1,0 +1,28 @@
+#version 460
+// The sun's shadow mask (scripts/shadows.lua): the sun's visibility (lib/shadows.glsl's PCSS) at
+// each pixel of cascade RG_SUN_CASCADE — the pixels whose code sun_classify.frag wrote, which the
+// pass's equal depth test selects — from that cascade's map, at the G-buffer's position and normal,
+// into `sun_visibility`; the deferred lighting passes read it (RG_SUN_MASK) instead of the maps.
+// One pass per cascade, right after its map is drawn: the map is dead once its pixels are filtered,
+// and the next cascade's map takes its memory (3 × 8 MiB at 2048² d16 → 8 MiB live at a time).
+#define RG_SHADOWS 1
+#define RG_SUN_MASK_WRITER 1
+#include "lib/scene.glsl"
+#include "lib/shadows.glsl"
+#include "gbuffer_disney.glsl"
+
+#ifndef RG_SUN_CASCADE
+#define RG_SUN_CASCADE 0
+#endif
+
+layout(location = 0) in vec2 uv;
+layout(location = 0) out vec4 color;
+layout(set = 0, binding = 0) uniform sampler2D GB0;
+layout(set = 0, binding = 1) uniform sampler2D depth;
+
+void main() {
+    ivec2 p = ivec2(gl_FragCoord.xy);
+    vec3 P = rgWorldPosition(uv, texelFetch(depth, p, 0).r);
+    vec3 N = unpackGBuffer_disney(texelFetch(GB0, p, 0), vec4(0.0), vec4(0.0), vec4(0.0)).normal;
+    color = vec4(rgSunShadowIn(sun_shadow, RG_SUN_CASCADE, P, N));
+}
