@@ -72,7 +72,9 @@ rg.pass "sun_cull" {
 -- The cascade code of each pixel (a depth mask for the mask passes' equal test, so that each
 -- shades only its own cascade's pixels) and the mask set to lit: sun_classify.frag.
 rg.resource "sun_visibility" { format = "r16f", doc = "the sun's visibility at each pixel (0 shadowed .. 1 lit), for the deferred lighting" }
-rg.resource "sun_cascade_mask" { format = "d16", doc = "each pixel's sun cascade as a depth code: (N + 1) / 8, 1 for none" }
+-- d32f: the codes are exact floats, written and tested without a conversion that might round one
+-- of the two another way (in d16, (N + 1) / 8 · 65535 is not a whole number).
+rg.resource "sun_cascade_mask" { format = "d32f", doc = "each pixel's sun cascade as a depth code: (N + 1) / 8, 1 for none" }
 rg.pass "sun_visibility_clear" { kind = "clear", writes = { "sun_visibility" }, value = 1, insert = { after = "gbuffer" } }
 rg.pass "sun_classify" {
     kind = "fullscreen", shader = "shadows/sun_classify.frag", reads = { "depth", { "sun_cascades", as = "storage" } },

@@ -642,10 +642,13 @@ Result<void> Session::load(const std::string& file) {
     // decals, no blended draws, no sun) are never prepared, and the transient heaps are placed
     // for the passes that run, not for everything the script declares, then kept at that size
     // by the rebuilds that follow.
-    std::erase_if(m_overrides.params, [&](const auto& o) { return !pipeline->findParam(o.first); });
-    std::erase_if(m_overrides.enabled, [&](const auto& o) { return !pipeline->graph.findPass(o.first); });
+    // Overrides of parameters and passes the new script no longer has are dropped (kept as they
+    // are if the load fails).
+    FrameChanges overrides = m_overrides;
+    std::erase_if(overrides.params, [&](const auto& o) { return !pipeline->findParam(o.first); });
+    std::erase_if(overrides.enabled, [&](const auto& o) { return !pipeline->graph.findPass(o.first); });
     auto tc = Clock::now();
-    auto first = frameChanges(*host, frameContext(scene ? scene.get() : nullptr), *pipeline);
+    auto first = frameChanges(*host, frameContext(scene ? scene.get() : nullptr), *pipeline, overrides);
     if (!first) {
         m_frameHook = previousHook;
         if (scene || previousScene) m_runtime.executor().setScene(previousScene, previousHook, previousScene ? passes::shadowViewCapacity(previousScene->scene()) : 0);
@@ -689,9 +692,7 @@ Result<void> Session::load(const std::string& file) {
     m_sceneKey = sceneKey;
     m_host = std::move(host);
     m_pipeline = std::move(*pipeline);
-    // Overrides of parameters and passes the new script no longer has are dropped.
-    std::erase_if(m_overrides.params, [&](const auto& o) { return !m_pipeline.findParam(o.first); });
-    std::erase_if(m_overrides.enabled, [&](const auto& o) { return !m_pipeline.graph.findPass(o.first); });
+    m_overrides = std::move(overrides);
     m_rebuilds = 0;
     m_framePrepared = m_frame;
     m_callbackMs = firstCallbackMs;
@@ -716,15 +717,15 @@ FrameContext Session::frameContext(const passes::GpuScene* scene) const {
     return ctx;
 }
 
-Result<FrameChanges> Session::frameChanges(LuaHost& host, const FrameContext& ctx, const PipelineDesc& pipeline) {
+Result<FrameChanges> Session::frameChanges(LuaHost& host, const FrameContext& ctx, const PipelineDesc& pipeline, const FrameChanges& overrides) {
     auto changes = host.frame(ctx, pipeline);
-    if (changes && (m_options.frameHook || !m_overrides.empty())) {
+    if (changes && (m_options.frameHook || !overrides.empty())) {
         PipelineDesc seen = pipeline;
         applyFrameChanges(seen, *changes);
         auto more = m_options.frameHook ? m_options.frameHook(ctx, seen) : Result<FrameChanges>(FrameChanges{});
         if (!more) return std::unexpected(more.error());
-        for (const auto& [k, v] : m_overrides.params) more->params[k] = v;
-        for (const auto& [k, v] : m_overrides.enabled) more->enabled[k] = v;
+        for (const auto& [k, v] : overrides.params) more->params[k] = v;
+        for (const auto& [k, v] : overrides.enabled) more->enabled[k] = v;
         for (const auto& [k, v] : more->params) changes->params[k] = v;
         for (const auto& [k, v] : more->enabled) changes->enabled[k] = v;
         for (const auto& [k, v] : more->shaders) changes->shaders[k] = v;
@@ -744,12 +745,19 @@ Result<FrameChanges> Session::frameChanges(LuaHost& host, const FrameContext& ct
 Result<void> Session::frame(VkCommandBuffer hostCmd) {
     if (!m_host) return fail(ErrorCode::InvalidInput, "no pipeline loaded");
     auto t0 = Clock::now();
-    // The load ran this frame's rg.frame already and built its plan with what it changed.
     Result<FrameChanges> changes = FrameChanges{};
-    if (m_framePrepared == m_frame) m_framePrepared.reset();
-    else changes = frameChanges(*m_host, frameContext(m_scene.get()), m_pipeline);
-    if (!changes) return std::unexpected(changes.error());
-    m_callbackMs = msSince(t0);
+    if (m_framePrepared == m_frame) {
+        // The load ran this frame's rg.frame already and built its plan with what it changed:
+        // only overrides set since (setOverride, setPassOverride) remain to apply.
+        m_framePrepared.reset();
+        changes->params = m_overrides.params;
+        for (const auto& [pass, on] : m_overrides.enabled)
+            if (const PassDesc* p = m_pipeline.graph.findPass(pass); p && p->enabled != on) changes->enabled[pass] = on;
+    } else {
+        changes = frameChanges(*m_host, frameContext(m_scene.get()), m_pipeline, m_overrides);
+        if (!changes) return std::unexpected(changes.error());
+        m_callbackMs = msSince(t0);
+    }
 
     if (!changes->empty()) {
         PipelineDesc next = m_pipeline;

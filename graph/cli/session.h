@@ -1,7 +1,9 @@
 // Session: a pipeline script running on the executor. load() is transactional — a script that
-// fails to load or compile leaves the previous pipeline running and returns the error. frame()
-// calls the script's rg.frame(ctx), applies what it changed (parameters: uniforms only;
-// enabling/disabling a pass or swapping its shader: an incremental rebuild) and renders.
+// fails to load or compile leaves the previous pipeline running and returns the error. Each frame
+// calls the script's rg.frame(ctx) once and applies what it changed (parameters: uniforms only;
+// enabling/disabling a pass or swapping its shader: an incremental rebuild) before rendering; the
+// first frame after a load has its callback run by load(), whose build already holds what it
+// changed, so frame() then applies only overrides set since.
 #pragma once
 
 #include <algorithm>
@@ -105,7 +107,7 @@ private:
     // The frame context of frame m_frame for `scene` (ctx in rg.frame), and what the script's
     // rg.frame, the frame hook and the overrides change for it in `pipeline`.
     FrameContext frameContext(const passes::GpuScene* scene) const;
-    Result<FrameChanges> frameChanges(LuaHost& host, const FrameContext& ctx, const PipelineDesc& pipeline);
+    Result<FrameChanges> frameChanges(LuaHost& host, const FrameContext& ctx, const PipelineDesc& pipeline, const FrameChanges& overrides);
     Result<std::unique_ptr<passes::GpuScene>> loadScene(PipelineDesc& pipeline);
     void note(const std::string& line);
 

@@ -256,6 +256,9 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
     o << "\n}\n";
     // Which of t0..t3 hold a channel decals blend (the decal pass writes the ones it binds).
     uint32_t decalTargets = 0;
+    const bool decalPass = std::any_of(pipeline.graph.passes.begin(), pipeline.graph.passes.end(), [](const PassDesc& p) {
+        return p.params["shader"].isString() && p.params["shader"].asString() == "passes/decals.frag";
+    });
     for (const MaterialDesc& m : pipeline.materials) {
         const LayoutDesc& l = **std::find_if(layouts.begin(), layouts.end(), [&](auto* x) { return x->name == m.layout; });
         for (const auto& d : m.decals)
@@ -265,7 +268,7 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
                         const size_t k = static_cast<size_t>(std::find(targets.begin(), targets.end(), t.name) - targets.begin());
                         // The decal pass writes the first three targets (passes/decals.frag): said
                         // at the load, whether or not the scene has decals for it to run.
-                        if (k >= 3)
+                        if (k >= 3 && decalPass)
                             return fail(ErrorCode::InvalidInput, m.origin + ": material '" + m.name + "': decals blend " + d + ", which layout '" +
                                                                      l.name + "' keeps in '" + t.name + "' (channel '" + c.name +
                                                                      "'), the pipeline's fourth target; the decal pass writes the first three (" +

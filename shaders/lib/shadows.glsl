@@ -44,7 +44,9 @@ struct RgShadowView {
     vec4 position;  // xyz: the light's position; w: the near plane (m)
     vec4 params;    // x: the far plane (m); y: tan of half the field of view; z: the light's radius (m); w: light index
 };
-#if defined(RG_SHADOW_VIEWS) || (defined(RG_SHADOWS) && defined(RG_SCENE_SHADOWED_LIGHTS))
+// (Not in the sun's mask passes, which filter the sun alone: sun_classify.frag, sun_mask.frag.)
+#if defined(RG_SHADOW_VIEWS) || \
+    (defined(RG_SHADOWS) && defined(RG_SCENE_SHADOWED_LIGHTS) && !defined(RG_SUN_CASCADES_ONLY) && !defined(RG_SUN_MASK_WRITER))
 #define RG_LOCAL_SHADOWS 1
 #ifndef RG_SHADOW_VIEWS_BINDING
 #define RG_SHADOW_VIEWS_BINDING 18

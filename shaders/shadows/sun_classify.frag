@@ -1,10 +1,10 @@
 #version 460
 // The sun's shadow mask, first step (scripts/shadows.lua): each pixel's cascade as a depth code in
-// `sun_cascade_mask` — (i + 1) / 8 for cascade i, 1 for the sky and beyond the shadow distance — and
-// `sun_visibility` set to 1 (lit) everywhere. Each mask pass then draws at its cascade's code with
-// an equal test, so lavapipe's early depth test keeps the blocks of other cascades from being
-// shaded at all (a branch in the shader cannot: both sides run for a block). Codes are multiples of
-// 1/8, exact in float and identically rounded to d16 in both the write and the test.
+// `sun_cascade_mask` — (i + 1) / 8 for cascade i, 1 for the sky and beyond the shadow distance
+// (`sun_visibility_clear` has set the mask itself to 1, lit). Each mask pass then draws at its
+// cascade's code with an equal test, so lavapipe's early depth test keeps the blocks of other
+// cascades from being shaded at all (a branch in the shader cannot: both sides run for a block).
+// The codes are multiples of 1/8, exact in the d32f target and in the triangle's depth.
 #define RG_SHADOWS 1
 #define RG_SUN_CASCADES_ONLY 1
 #include "lib/scene.glsl"

@@ -96,8 +96,9 @@ void main() {
     // A hit found near the end of the step budget stands beside neighbours whose march ran out
     // first: alone it is a speck (the default scene's steel pillar, marching over the floor at a
     // grazing angle, hit in scattered rays at 32 steps and in all of them at 128). Such hits fade
-    // out over the budget's second half, to the probes' reflection that the misses beside them show.
-    confidence *= 1.0 - smoothstep(0.5, 1.0, float(used) / float(steps));
+    // out over the budget's second half, to the probes' reflection that the misses beside them show
+    // (a budget under 8 steps keeps every hit: there every hit is late).
+    if (steps >= 8) confidence *= 1.0 - smoothstep(0.5, 1.0, float(used) / float(steps));
     confidence *= 1.0 - smoothstep(0.2, 0.6, R.z);  // towards the camera: what it would see is off screen
     confidence *= 1.0 - smoothstep(0.6 * params.ssr_max_roughness, params.ssr_max_roughness, linearRoughness);
     // Roughness widens the reflected cone: its footprint at the hit, in pixels, picks the mip.

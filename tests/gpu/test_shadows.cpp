@@ -296,6 +296,38 @@ protected:
     }
 };
 
+TEST_F(LocalShadows, TheSunsMaskBesideALampsMaps) {
+    // A sun (scene.args.sun = 1: 45° up, travelling along −x) over the lamp's scene: the sun's mask
+    // passes and the lamp's cube map in one frame. What the sun adds is its light where the box does
+    // not stand between the ground and it, and none where it does; the lamp's shadow is the same
+    // in both images and cancels.
+    const Image lamp = render({}), both = render({{"sun", "1"}});
+    ASSERT_EQ(lamp.width, N);
+    ASSERT_EQ(both.width, N);
+    const glm::vec3 toSun = glm::normalize(glm::vec3(1.0f, 1.0f, 0.0f));
+    float peak = 0.0f;
+    for (uint32_t i = 0; i < N * N; ++i) peak = std::max(peak, both.pixels[4 * i + 1] - lamp.pixels[4 * i + 1]);
+    ASSERT_GT(peak, 0.0f);
+    int shadowTotal = 0, shadowDark = 0, litTotal = 0, litLit = 0;
+    for (uint32_t py = 0; py < N; ++py)
+        for (uint32_t px = 0; px < N; ++px) {
+            const float x = worldX(px), z = worldZ(py);
+            if (std::abs(x) < 0.58f && std::abs(z) < 0.58f) continue;
+            const float added = both.pixels[4 * (py * N + px) + 1] - lamp.pixels[4 * (py * N + px) + 1];
+            const glm::vec3 sun = glm::vec3(x, 0.0f, z) + 50.0f * toSun;
+            if (boxBetween(x, z, sun, -0.08f)) {
+                ++shadowTotal;
+                if (added < 0.05f * peak) ++shadowDark;
+            } else if (!boxBetween(x, z, sun, 0.08f)) {
+                ++litTotal;
+                if (added > 0.5f * peak) ++litLit;
+            }
+        }
+    EXPECT_GT(shadowTotal, 100);
+    EXPECT_GE(shadowDark, shadowTotal * 95 / 100) << shadowDark << " of " << shadowTotal;
+    EXPECT_GE(litLit, litTotal * 95 / 100) << litLit << " of " << litTotal;
+}
+
 TEST_F(LocalShadows, ShadowFallsWhereTheGeometryPutsIt) {
     // The light at (−1.5, 2.5, 0): a ground point is in shadow when the segment to the light meets
     // the box. Margins of 8 cm (four pixels) each way around the predicted edge; the box's own

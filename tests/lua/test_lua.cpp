@@ -637,6 +637,28 @@ TEST_F(LuaGpu, FrameCallbackErrorsAreReported) {
         << message;
 }
 
+// An override set between the load and the first frame holds from that frame on, though the
+// first frame's rg.frame ran at the load.
+TEST_F(LuaGpu, OverridesSetAfterTheLoadHoldFromTheFirstFrame) {
+    Session s(*s_runtime, small());
+    ASSERT_TRUE(s.load(patternScript("override_first.lua", "")).has_value());
+    ASSERT_TRUE(s.setOverride("scale", Value(3.0)).has_value());
+    ASSERT_TRUE(s.frame().has_value());
+    EXPECT_DOUBLE_EQ(s.pipeline().findParam("scale")->value.asNumber(0), 3.0);
+    // A reload that fails keeps the running pipeline and its overrides, also those of parameters
+    // the failed script does not declare.
+    const std::string broken = std::string(RG_TEST_TMP) + "/override_broken.lua";
+    std::ofstream(broken) << "local rg = require 'rg'\n"
+                             "rg.resource 'pattern' { format = 'rgba16f' }\n"
+                             "rg.pass 'generate' { kind = 'compute', shader = 'test/pattern.comp', writes = { 'pattern' } }\n"
+                             "rg.output 'pattern'\n"
+                             "function rg.frame(ctx) ctx.params.gain = 2 end\n";
+    ASSERT_FALSE(s.load(broken).has_value());
+    EXPECT_EQ(s.overrides().params.count("scale"), 1u);
+    ASSERT_TRUE(s.frame().has_value());
+    EXPECT_DOUBLE_EQ(s.pipeline().findParam("scale")->value.asNumber(0), 3.0);
+}
+
 // rg.frame runs once a frame, the first at the load: a script counting its calls sees one per frame.
 TEST_F(LuaGpu, FrameCallbackRunsOncePerFrame) {
     const std::string file = patternScript("count_frames.lua",

@@ -3,7 +3,8 @@
 -- scene.args.light: "point" (default) or "spot" (aimed at the ground beyond the box, 55° cone);
 -- scene.args.box = 0 leaves the plane alone (the reference without a caster, and the acne test);
 -- scene.args.x, y move the light (default −1.5, 2.5); scene.args.radius makes it a sphere light of
--- that radius (metres); scene.args.shadow = 0 turns its shadow off.
+-- that radius (metres); scene.args.shadow = 0 turns its shadow off; scene.args.sun = 1 adds a sun
+-- (1000 lux, 45° above the ground, travelling along −x) with its own cascaded shadows.
 local scene = require "scene"
 local kind = scene.args.light or "point"
 scene.material "ground" { base_color = { 0.5, 0.5, 0.5 }, smoothness = 0.2 }
@@ -23,6 +24,9 @@ elseif kind == "spot" then
                        inner_angle = 50, outer_angle = 55, range = 30, shadow = shadow }
 else
   error("scene.args.light: expected 'point' or 'spot'")
+end
+if scene.args.sun == 1 then
+  scene.light "sun" { type = "sun", intensity = 1000, unit = "lux", direction = { -1, -1, 0 } }
 end
 scene.camera "top" { position = { 0, 12, 0.0001 }, target = { 0, 0, 0 }, up = { 0, 0, -1 }, fov = 30,
                      aperture = 4, shutter = 1 / 60, iso = 100 }
