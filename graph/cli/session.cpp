@@ -535,6 +535,18 @@ Result<std::unique_ptr<passes::GpuScene>> Session::loadScene(PipelineDesc& pipel
     return std::move(*gpuScene);
 }
 
+namespace {
+
+// What a frame's changes do to the graph, for the log: "disabled 'decals', 'sky' uses X.frag".
+std::string describeStructural(const FrameChanges& changes) {
+    std::string what;
+    for (const auto& [pass, on] : changes.enabled) what += (what.empty() ? "" : ", ") + std::string(on ? "enabled '" : "disabled '") + pass + "'";
+    for (const auto& [pass, shader] : changes.shaders) what += (what.empty() ? "" : ", ") + ("'" + pass + "' uses " + shader);
+    return what;
+}
+
+}  // namespace
+
 Result<void> Session::load(const std::string& file) {
     auto t0 = Clock::now();
     auto host = std::make_unique<LuaHost>(luaHostOptions(m_runtime));
@@ -649,21 +661,21 @@ Result<void> Session::load(const std::string& file) {
     std::erase_if(overrides.enabled, [&](const auto& o) { return !pipeline->graph.findPass(o.first); });
     auto tc = Clock::now();
     auto first = frameChanges(*host, frameContext(scene ? scene.get() : nullptr), *pipeline, overrides);
-    if (!first) {
+    // A failure from here on gives the executor back the scene its previous build uses.
+    auto restorePrevious = [&] {
         m_frameHook = previousHook;
         if (scene || previousScene) m_runtime.executor().setScene(previousScene, previousHook, previousScene ? passes::shadowViewCapacity(previousScene->scene()) : 0);
+    };
+    if (!first) {
+        restorePrevious();
         return std::unexpected(first.error());
     }
     const double firstCallbackMs = msSince(tc);
     applyFrameChanges(*pipeline, *first);
-    std::string firstChanges;
-    for (const auto& [pass, on] : first->enabled)
-        firstChanges += (firstChanges.empty() ? "" : ", ") + std::string(on ? "enabled '" : "disabled '") + pass + "'";
-    for (const auto& [pass, shader] : first->shaders) firstChanges += (firstChanges.empty() ? "" : ", ") + ("'" + pass + "' uses " + shader);
+    const std::string firstChanges = describeStructural(*first);
     // The executor keeps its previous build when this one fails.
     if (auto r = m_runtime.executor().build(buildableGraph(*pipeline), m_options.compile); !r) {
-        m_frameHook = previousHook;
-        if (scene || previousScene) m_runtime.executor().setScene(previousScene, previousHook, previousScene ? passes::shadowViewCapacity(previousScene->scene()) : 0);
+        restorePrevious();
         return r;
     }
     // The previous scene may still be in use by frames in flight: retire it through the
@@ -768,9 +780,7 @@ Result<void> Session::frame(VkCommandBuffer hostCmd) {
             if (auto r = m_runtime.executor().build(graph, m_options.compile); !r) return r;
             const double buildMs = msSince(tb);
             ++m_rebuilds;
-            std::string what;
-            for (const auto& [pass, on] : changes->enabled) what += (what.empty() ? "" : ", ") + std::string(on ? "enabled '" : "disabled '") + pass + "'";
-            for (const auto& [pass, shader] : changes->shaders) what += (what.empty() ? "" : ", ") + ("'" + pass + "' uses " + shader);
+            const std::string what = describeStructural(*changes);
             char ms[32];
             std::snprintf(ms, sizeof ms, "%.2f ms", buildMs);
             note("frame " + std::to_string(m_frame) + ": " + what + "; recompiled in " + ms + ": " +

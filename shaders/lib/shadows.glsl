@@ -108,12 +108,12 @@ vec2 rgShadowTap(int k) {
     return r * vec2(cos(a), sin(a));
 }
 
-// The cascade a point at view distance `viewDepth` falls in, RG_MAX_CASCADES beyond the last.
+// The cascade a point at view distance `viewDepth` falls in, RG_MAX_CASCADES beyond the last:
+// the splits ascend, so it is how many of the used ones lie at or before it (no loop).
 int rgCascadeOf(float viewDepth) {
-    int count = int(rgCascades.c.info.x + 0.5);
-    for (int i = 0; i < count; ++i)
-        if (viewDepth < rgCascades.c.splitFar[i]) return i;
-    return RG_MAX_CASCADES;
+    vec4 used = step(vec4(0.5, 1.5, 2.5, 3.5), vec4(rgCascades.c.info.x));
+    float passed = dot(step(rgCascades.c.splitFar, vec4(viewDepth)), used);
+    return passed < rgCascades.c.info.x - 0.5 ? int(passed) : RG_MAX_CASCADES;
 }
 // The cascade of world position P.
 int rgCascadeAt(vec3 P) { return rgCascadeOf(-(camera.view * vec4(P, 1.0)).z); }

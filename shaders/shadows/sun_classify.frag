@@ -15,10 +15,6 @@ layout(set = 0, binding = 0) uniform sampler2D depth;
 
 void main() {
     float z = texelFetch(depth, ivec2(gl_FragCoord.xy), 0).r;
-    // rgCascadeOf without its loop: the splits ascend, so the cascade is how many of the used ones
-    // lie at or before the pixel's view distance.
-    vec4 used = step(vec4(0.5, 1.5, 2.5, 3.5), vec4(rgCascades.c.info.x));
-    float passed = dot(step(rgCascades.c.splitFar, vec4(rgViewDistance(z))), used);
-    bool inside = z < 1.0 && passed < rgCascades.c.info.x - 0.5;
-    gl_FragDepth = inside ? (passed + 1.0) * 0.125 : 1.0;
+    int ci = z < 1.0 ? rgCascadeOf(rgViewDistance(z)) : RG_MAX_CASCADES;
+    gl_FragDepth = ci < RG_MAX_CASCADES ? float(ci + 1) * 0.125 : 1.0;
 }
