@@ -40,6 +40,8 @@ rg.param "shadow_distance" { type = "number", default = 40, min = 1, max = 10000
 rg.param "shadow_split_lambda" { type = "number", default = 0.8, min = 0, max = 1, doc = "cascade splits: 0 uniform .. 1 logarithmic (practical split scheme)" }
 rg.param "shadow_depth_bias" { type = "number", default = 0.02, min = 0, max = 1, doc = "receiver depth bias, metres along the light" }
 rg.param "shadow_normal_offset" { type = "number", default = 1.5, min = 0, max = 16, doc = "lookup offset along the normal, in texels of the cascade" }
+rg.param "sun_mask" { type = "choice", default = "auto", choices = { "auto", "full", "half" },
+    doc = "resolution of the sun's shadow mask: full, half (a quarter of its cost; thin shadows need the pixels), auto (half from 720 rows up)" }
 rg.param "shadow_softness" { type = "number", default = 1, min = 0, max = 16, doc = "penumbra width × the sun's physical one (0: hard)" }
 
 rg.buffer "sun_cascades" { size = 4 * 64 + 5 * 16, doc = "the sun's cascades this frame (lib/shadows.glsl's RgCascades)" }
@@ -81,6 +83,25 @@ rg.pass "sun_classify" {
     writes = { { "sun_cascade_mask", as = "depth" } }, depth = { compare = "always", value = 1, write = true },
     insert = { after = "gbuffer" },
 }
+-- The same mask at half resolution (the `sun_mask` parameter; "auto": from 720 rows up): texel h
+-- holds the visibility at full-resolution pixel 2h and that pixel's view distance, which the
+-- lighting's depth-aware upsample weighs the four texels around a pixel by (lib/upsample.glsl).
+-- The PCSS per texel is the mask's cost: ~21 ms for every pixel at 1280×720 on lavapipe, ~6 for a
+-- quarter of them, the upsample in the lighting ~3. Below 720 rows a texel grows coarse enough to
+-- step over thin shadows (a panel's edge-on shadow breaks into dots at 192×128), so "auto" keeps
+-- full resolution there. The lighting reads both masks and takes the smaller: the one not in use
+-- stays cleared to lit.
+rg.resource "sun_visibility_half" { format = "rg16f", scale = { 0.5, 0.5 },
+    doc = "the sun's visibility at half resolution (0 shadowed .. 1 lit) and the view distance (m) it was filtered at" }
+rg.resource "sun_cascade_mask_half" { format = "d32f", scale = { 0.5, 0.5 }, doc = "sun_cascade_mask at half resolution" }
+-- Lit, at no distance: a texel no mask pass writes (the sky, beyond the shadow distance) weighs
+-- next to nothing beside a surface's own texels, and all such upsample to 1.
+rg.pass "sun_visibility_half_clear" { kind = "clear", writes = { "sun_visibility_half" }, value = { 1, 0, 0, 0 }, insert = { after = "gbuffer" } }
+rg.pass "sun_classify_half" {
+    kind = "fullscreen", shader = "shadows/sun_classify.frag", reads = { "depth", { "sun_cascades", as = "storage" } },
+    writes = { { "sun_cascade_mask_half", as = "depth" } }, depth = { compare = "always", value = 1, write = true },
+    defines = { RG_SUN_MASK_HALF = true }, insert = { after = "gbuffer" },
+}
 for i = 0, shadows.cascades - 1 do
     local map = "sun_shadow" .. i
     rg.resource (map) { format = "d16", size = { shadows.size, shadows.size }, doc = "the sun's shadow map of cascade " .. i }
@@ -101,6 +122,12 @@ for i = 0, shadows.cascades - 1 do
         kind = "fullscreen", shader = "shadows/sun_mask.frag", defines = { RG_SUN_CASCADE = i },
         reads = { "GB0", "depth", { "sun_cascades", as = "storage" }, map, { "sun_cascade_mask", as = "depth" } },
         writes = { { "sun_visibility", load = true } }, bind = { sun_shadow = map },
+        depth = { compare = "equal", value = (i + 1) / 8 }, insert = { after = "gbuffer" },
+    }
+    rg.pass ("sun_mask_half" .. i) {
+        kind = "fullscreen", shader = "shadows/sun_mask.frag", defines = { RG_SUN_CASCADE = i, RG_SUN_MASK_HALF = true },
+        reads = { "GB0", "depth", { "sun_cascades", as = "storage" }, map, { "sun_cascade_mask_half", as = "depth" } },
+        writes = { { "sun_visibility_half", load = true } }, bind = { sun_shadow = map },
         depth = { compare = "equal", value = (i + 1) / 8 }, insert = { after = "gbuffer" },
     }
 end
@@ -130,19 +157,25 @@ end
 -- A deferred lighting pass's declaration, shadowed: reads the sun's visibility the mask passes
 -- filtered at its pixels (RG_SUN_MASK) and the local lights' maps, defines RG_SHADOWS.
 function shadows.masked(pass)
-    lighting.extend(pass, { "sun_visibility", { "sun_cascades", as = "storage" }, "local_shadow" }, "RG_SHADOWS")
+    lighting.extend(pass, { "sun_visibility", "sun_visibility_half", { "sun_cascades", as = "storage" }, "local_shadow" }, "RG_SHADOWS")
     pass.defines.RG_SUN_MASK = true
     return pass
 end
 
 -- Per frame: no sun in the scene (or sun_shadows off), no shadow draws — the maps are cleared
 -- instead, the mask stays lit, and everything reads as lit.
+-- The mask at full or half resolution (the `sun_mask` parameter): the other's passes are switched
+-- off, and its mask stays cleared.
 function shadows.frame(ctx)
     local draw = ctx.params.sun_shadows and (not ctx.scene or ctx.scene.suns > 0)
+    local half = ctx.params.sun_mask == "half" or (ctx.params.sun_mask == "auto" and ctx.height >= 720)
     ctx.pass("sun_cull").enabled = draw
+    ctx.pass("sun_classify").enabled = draw and not half
+    ctx.pass("sun_classify_half").enabled = draw and half
     for i = 0, shadows.cascades - 1 do
         ctx.pass("shadow_sun" .. i).enabled = draw
-        ctx.pass("sun_mask" .. i).enabled = draw
+        ctx.pass("sun_mask" .. i).enabled = draw and not half
+        ctx.pass("sun_mask_half" .. i).enabled = draw and half
         ctx.pass("shadow_clear" .. i).enabled = not draw
     end
 end

@@ -716,7 +716,7 @@ Result<void> Session::load(const std::string& file) {
 }
 
 FrameContext Session::frameContext(const passes::GpuScene* scene) const {
-    FrameContext ctx{m_frame, static_cast<double>(m_frame) / 60.0, std::nullopt};
+    FrameContext ctx{m_frame, static_cast<double>(m_frame) / 60.0, std::nullopt, m_options.compile.outputWidth, m_options.compile.outputHeight};
     if (scene)
         ctx.scene = FrameContext::SceneFacts{
             static_cast<uint32_t>(scene->draws().size()), scene->lightCount(), static_cast<uint32_t>(scene->scene().decals.size()),

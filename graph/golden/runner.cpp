@@ -339,7 +339,7 @@ std::expected<Rendered, TestError> renderWithoutSession(Runtime& rt, const Prepa
     compile.outputHeight = test.height;
     if (auto r = executor.build(buildableGraph(pipeline, p.captures), compile); !r) return testError(r.error());
     for (uint32_t f = 0; f < test.frames; ++f) {
-        const FrameContext ctx{f, static_cast<double>(f) * kFrameTime};
+        const FrameContext ctx{f, static_cast<double>(f) * kFrameTime, std::nullopt, test.width, test.height};
         // The pipeline's own rg.frame first, then the test's frame(ctx), which sees its changes.
         auto own = host.frame(ctx, pipeline);
         if (!own) return testError(own.error());

@@ -43,6 +43,7 @@ struct FrameContext {
         uint32_t blended = 0;  // draws of blended materials (the forward pass's)
     };
     std::optional<SceneFacts> scene;
+    uint32_t width = 0, height = 0;  // the output's size in pixels (ctx.width, ctx.height; 0: not known)
 };
 
 // What rg.frame(ctx) changed. Parameters are applied without recompiling; enabling,

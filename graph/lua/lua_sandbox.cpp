@@ -323,6 +323,10 @@ int frameTrampoline(lua_State* L) {
     lua_setfield(L, -2, "frame");
     lua_pushnumber(L, ctx.time);
     lua_setfield(L, -2, "time");
+    lua_pushinteger(L, static_cast<lua_Integer>(ctx.width));
+    lua_setfield(L, -2, "width");
+    lua_pushinteger(L, static_cast<lua_Integer>(ctx.height));
+    lua_setfield(L, -2, "height");
     if (ctx.scene) {
         lua_newtable(L);
         lua_pushinteger(L, ctx.scene->draws);

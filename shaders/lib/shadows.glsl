@@ -74,7 +74,7 @@ float rgShadowViewDistance(RgShadowView v, float d) {
 #define RG_SUN_MAPS_BINDING 28  // sun_shadow1 .. sun_shadow3 at 28, 29, 30 (sun_shadow0 at RG_SHADOW_BINDING)
 #endif
 #ifndef RG_SUN_VISIBILITY_BINDING
-#define RG_SUN_VISIBILITY_BINDING 31
+#define RG_SUN_VISIBILITY_BINDING 31  // sun_visibility_half at 32
 #endif
 layout(set = 0, binding = RG_SHADOW_BINDING + 1, std430) readonly buffer sun_cascades { RgCascades c; } rgCascades;
 #if defined(RG_SUN_CASCADES_ONLY)
@@ -87,6 +87,8 @@ layout(set = 0, binding = RG_SHADOW_BINDING) uniform sampler2D sun_shadow;
 // A deferred lighting pass (shadows.masked): the sun's visibility per pixel, filtered by the mask
 // passes before the lighting; no map.
 layout(set = 0, binding = RG_SUN_VISIBILITY_BINDING) uniform sampler2D sun_visibility;
+layout(set = 0, binding = RG_SUN_VISIBILITY_BINDING + 1) uniform sampler2D sun_visibility_half;
+#include "lib/upsample.glsl"
 #else
 // Every cascade's map (a forward pass, the debug views).
 layout(set = 0, binding = RG_SHADOW_BINDING) uniform sampler2D sun_shadow0;
@@ -176,8 +178,15 @@ float rgSunShadowIn(sampler2D map, int ci, vec3 P, vec3 N) {
 }
 
 #if defined(RG_SUN_MASK)
-// The sun's visibility at the shaded pixel, as the mask passes filtered it at its G-buffer normal.
-float rgSunVisibility(vec3 P, vec3 N) { return texelFetch(sun_visibility, ivec2(gl_FragCoord.xy), 0).r; }
+// The sun's visibility at the shaded pixel, as the mask passes filtered it at its G-buffer normal:
+// per pixel in `sun_visibility`, or at half resolution in `sun_visibility_half`, upsampled by view
+// distance. The mode not in use leaves its mask cleared to lit (1; the half one at no distance,
+// which upsamples to 1), so the smaller of the two is the one in use, whichever it is — no
+// parameter to read, and a CPU rasteriser would run both sides of a branch anyway.
+float rgSunVisibility(vec3 P, vec3 N) {
+    ivec2 pixel = ivec2(gl_FragCoord.xy);
+    return min(texelFetch(sun_visibility, pixel, 0).r, rgUpsampleHalf(sun_visibility_half, pixel, -(camera.view * vec4(P, 1.0)).z));
+}
 #elif !defined(RG_SUN_MASK_WRITER) && !defined(RG_SUN_CASCADES_ONLY)
 // The sun's visibility at P from the map of P's cascade, 1 beyond the shadow distance.
 float rgSunShadow(vec3 P, vec3 N) {

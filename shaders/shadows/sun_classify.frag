@@ -14,7 +14,11 @@ layout(location = 0) in vec2 uv;
 layout(set = 0, binding = 0) uniform sampler2D depth;
 
 void main() {
+#ifdef RG_SUN_MASK_HALF
+    float z = texelFetch(depth, ivec2(gl_FragCoord.xy) * 2, 0).r;  // half resolution: texel h samples pixel 2h
+#else
     float z = texelFetch(depth, ivec2(gl_FragCoord.xy), 0).r;
+#endif
     int ci = z < 1.0 ? rgCascadeOf(rgViewDistance(z)) : RG_MAX_CASCADES;
     gl_FragDepth = ci < RG_MAX_CASCADES ? float(ci + 1) * 0.125 : 1.0;
 }

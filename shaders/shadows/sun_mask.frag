@@ -3,6 +3,8 @@
 // each pixel of cascade RG_SUN_CASCADE — the pixels whose code sun_classify.frag wrote, which the
 // pass's equal depth test selects — from that cascade's map, at the G-buffer's position and normal,
 // into `sun_visibility`; the deferred lighting passes read it (RG_SUN_MASK) instead of the maps.
+// With RG_SUN_MASK_HALF (the `sun_mask_halfN` passes) the same at half resolution, into
+// `sun_visibility_half`: a quarter of the PCSS lookups, the mask's cost.
 // One pass per cascade, right after its map is drawn: the map is dead once its pixels are filtered,
 // and the next cascade's map takes its memory (3 × 8 MiB at 2048² d16 → 8 MiB live at a time).
 #define RG_SHADOWS 1
@@ -21,8 +23,18 @@ layout(set = 0, binding = 0) uniform sampler2D GB0;
 layout(set = 0, binding = 1) uniform sampler2D depth;
 
 void main() {
+#ifdef RG_SUN_MASK_HALF
+    // Texel h of the half-resolution mask: full-resolution pixel 2h, its view distance beside it
+    // for the lighting's depth-aware upsample (lib/upsample.glsl).
+    ivec2 q = ivec2(gl_FragCoord.xy) * 2;
+    float z = texelFetch(depth, q, 0).r;
+    vec3 P = rgWorldPosition((vec2(q) + 0.5) * camera.viewport.zw, z);
+    vec3 N = unpackGBuffer_disney(texelFetch(GB0, q, 0), vec4(0.0), vec4(0.0), vec4(0.0)).normal;
+    color = vec4(rgSunShadowIn(sun_shadow, RG_SUN_CASCADE, P, N), rgViewDistance(z), 0.0, 1.0);
+#else
     ivec2 p = ivec2(gl_FragCoord.xy);
     vec3 P = rgWorldPosition(uv, texelFetch(depth, p, 0).r);
     vec3 N = unpackGBuffer_disney(texelFetch(GB0, p, 0), vec4(0.0), vec4(0.0), vec4(0.0)).normal;
     color = vec4(rgSunShadowIn(sun_shadow, RG_SUN_CASCADE, P, N));
+#endif
 }

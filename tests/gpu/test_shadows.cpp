@@ -38,10 +38,11 @@ float worldZ(uint32_t py) { return ((static_cast<float>(py) + 0.5f) / N * 2.0f -
 class Shadows : public GpuFixture {
 protected:
     static Frame render(const std::map<std::string, std::string>& args, uint32_t frames = 1, const std::string& camera = "top",
-                        bool sunShadows = true) {
+                        bool sunShadows = true, const std::string& sunMask = "auto") {
         SessionOptions o = sceneOptions(kRoot + "/tests/gpu/scenes/shadow_box.lua", args, N, N);
         o.camera = camera;
         o.params["sun_shadows"] = Value(sunShadows);
+        o.params["sun_mask"] = Value(sunMask);
         Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", frames, {"hdr"}, {"sun_cascades"});
         Frame out;
         if (r.images.empty() || r.buffers.empty()) return out;
@@ -194,6 +195,46 @@ TEST_F(Shadows, ContactHasNoGapAndPenumbraGrowsWithTheSun) {
     // texel-quantised edge and 1.5-texel normal offset add about 4 cm to the 10–90 % width.
     EXPECT_GT(wSoft, 0.75f * predicted);
     EXPECT_LT(wSoft, 1.3f * predicted);
+}
+
+TEST_F(Shadows, TheHalfResolutionMaskKeepsTheShadowsPlaceAndEdges) {
+    // sun_mask = "half" (the default from 720 rows up) filters the sun's PCSS at every other pixel
+    // of every other row and the lighting upsamples it by depth: the box's shadow falls where the
+    // geometry puts it, as with the per-pixel mask; at the pixels the half mask samples (even x
+    // and y) the two agree, and elsewhere they differ only along the shadow's edges.
+    Frame full = render({{"sun", "x45"}}, 1, "top", true, "full");
+    Frame half = render({{"sun", "x45"}}, 1, "top", true, "half");
+    Frame automatic = render({{"sun", "x45"}});  // 320 rows: full resolution
+    ASSERT_EQ(full.hdr.width, N);
+    ASSERT_EQ(half.hdr.width, N);
+    ASSERT_EQ(automatic.hdr.width, N);
+    const float lit = full.hdr.at(5, 5, 1);
+    ASSERT_GT(lit, 0.0f);
+    EXPECT_EQ(half.hdr.at(5, 5, 1), lit);
+    const float m = 0.08f;
+    const Count shadow = classify(half.hdr, lit, [=](float x, float z) { return x > -1.5f + m && x < -0.5f - m && std::abs(z) < 0.5f - m; });
+    const Count open = classify(half.hdr, lit, [=](float x, float z) { return x < -1.5f - m || x > 0.5f + m || std::abs(z) > 0.5f + m; });
+    EXPECT_GT(shadow.total, 500);
+    EXPECT_EQ(shadow.shadowed, shadow.total);
+    EXPECT_EQ(open.lit, open.total);
+    int sampled = 0, sampledOff = 0, between = 0, betweenOff = 0, autoOff = 0;
+    double meanDiff = 0.0;
+    for (uint32_t py = 0; py < N; ++py)
+        for (uint32_t px = 0; px < N; ++px) {
+            const float d = std::abs(half.hdr.at(px, py, 1) - full.hdr.at(px, py, 1)) / lit;
+            meanDiff += d;
+            const bool off = d > 0.05f;
+            if (px % 2 == 0 && py % 2 == 0) { ++sampled; sampledOff += off; }
+            else { ++between; betweenOff += off; }
+            autoOff += automatic.hdr.at(px, py, 1) != full.hdr.at(px, py, 1);
+        }
+    meanDiff /= static_cast<double>(N) * N;
+    std::printf("half mask against full: mean |diff| %.4f of the lit level; over 5 %%: %d of %d sampled pixels, %d of %d between\n",
+                meanDiff, sampledOff, sampled, betweenOff, between);
+    EXPECT_EQ(autoOff, 0) << "auto at 320 rows is the full-resolution mask";
+    EXPECT_LE(sampledOff, sampled / 1000);  // ≤ 0.1 %
+    EXPECT_LT(betweenOff, between / 100);   // < 1 %: the edges
+    EXPECT_LT(meanDiff, 0.002);
 }
 
 TEST_F(Shadows, CascadesMoveByWholeTexelsWithTheCamera) {
