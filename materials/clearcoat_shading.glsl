@@ -34,7 +34,7 @@ vec3 rgShade(GBuffer_disney g, vec3 position, vec3 V, ivec2 pixel) {
     // The distant probe, both lobes: the base attenuated by the coat's Fresnel at the view angle,
     // the coat's own split-sum lobe (f0 0.04, f90 1) with its specular occlusion.
     float FcView = F_Schlick(0.04, 1.0, NdotV) * coatStrength;
-    float ao = rgAmbientOcclusion(g.ao);
+    float ao = rgAmbientOcclusion(g.ao, position);
     RgIbl coatIbl = rgEvaluateIbl(position, N, V, vec3(0.04), 1.0, coatRoughness);
     luminance += rgStandardIbl(position, N, V, diffuseColor, f0, linearRoughness, ao) * (1.0 - FcView) +
                  coatIbl.specular * coatStrength * rgSpecularOcclusion(NdotV, ao, coatRoughness * coatRoughness);

@@ -35,6 +35,6 @@ vec3 rgShade(GBuffer_disney g, vec3 position, vec3 V, ivec2 pixel) {
         luminance += rgStandardLighting(s, g.normal, V, diffuseColor, f0, linearRoughness);
     }
 #endif
-    luminance += rgStandardIbl(position, g.normal, V, diffuseColor, f0, linearRoughness, rgAmbientOcclusion(g.ao));  // the probes (RG_IBL, RG_PROBES)
+    luminance += rgStandardIbl(position, g.normal, V, diffuseColor, f0, linearRoughness, rgAmbientOcclusion(g.ao, position));  // the probes (RG_IBL, RG_PROBES)
     return luminance;
 }

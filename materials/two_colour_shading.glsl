@@ -10,6 +10,6 @@ vec3 rgShade(GBuffer_two_colour g, vec3 position, vec3 V, ivec2 pixel) {
         RgLightSample s = rgEvaluateLight(rgListLight(list, k), position, g.normal, V, linearRoughness, sun);
         luminance += rgStandardLighting(s, g.normal, V, g.diffuseColor, g.f0, linearRoughness);
     }
-    luminance += rgStandardIbl(position, g.normal, V, g.diffuseColor, g.f0, linearRoughness, rgAmbientOcclusion(g.ao));  // the probes (RG_IBL, RG_REFLECTION)
+    luminance += rgStandardIbl(position, g.normal, V, g.diffuseColor, g.f0, linearRoughness, rgAmbientOcclusion(g.ao, position));  // the probes (RG_IBL, RG_REFLECTION)
     return luminance;
 }

@@ -183,16 +183,21 @@ RgIbl rgEvaluateIbl(vec3 P, vec3 N, vec3 V, vec3 f0, float f90, float linearRoug
     return rgEvaluateIblLobe(P, N, V, f0, f90, linearRoughness, false);
 }
 
-// The ambient occlusion of the shaded pixel: the material's, or with RG_SSAO (scripts/ao.lua's
-// ao.lit) the smaller of it and the screen-space AO (seed 002 §4.10.3: combined by min).
+// The ambient occlusion of the shaded pixel at world position P: the material's, or with RG_SSAO
+// (scripts/ao.lua's ao.lit) the smaller of it and the screen-space AO (seed 002 §4.10.3: combined
+// by min), upsampled here from the filtered half-resolution AO by view distance (lib/upsample.glsl;
+// the same as the `ssao` view's, without a full-resolution pass between).
 #ifdef RG_SSAO
+#include "lib/upsample.glsl"
 #ifndef RG_SSAO_BINDING
 #define RG_SSAO_BINDING 16
 #endif
-layout(set = 0, binding = RG_SSAO_BINDING) uniform sampler2D ssao;
-float rgAmbientOcclusion(float materialAo) { return min(materialAo, texelFetch(ssao, ivec2(gl_FragCoord.xy), 0).r); }
+layout(set = 0, binding = RG_SSAO_BINDING) uniform sampler2D ao_filtered;
+float rgAmbientOcclusion(float materialAo, vec3 P) {
+    return min(materialAo, rgUpsampleHalf(ao_filtered, ivec2(gl_FragCoord.xy), -(camera.view * vec4(P, 1.0)).z));
+}
 #else
-float rgAmbientOcclusion(float materialAo) { return materialAo; }
+float rgAmbientOcclusion(float materialAo, vec3 P) { return materialAo; }
 #endif
 
 // The standard material's ambient light: diffuse × colour × AO, specular × specular occlusion.

@@ -269,7 +269,7 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // scripts/ao.lua; each cascade's map drawn and filtered into the sun's mask at once), the Hi-Z
     // pyramid, SSR's mask and SSR (scripts/ssr.lua), the composition of SSR and the probes
     // (scripts/reflections.lua), the lighting, the sky and forward.
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 50),
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 49),
               (std::vector<std::string>{"env_cube", "env_mips", "env_prefilter", "env_irradiance", "dfg_table", "probe_capture",
                                         "probe_mips", "probe_prefilter", "sun_cascades", "sun_cull",
                                         "shadow_clear0", "shadow_clear1", "shadow_clear2", "shadow_local", "gbuffer", "light_culling_coarse", "gtao",

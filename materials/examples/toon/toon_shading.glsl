@@ -20,6 +20,6 @@ vec3 rgShade(GBuffer_toon g, vec3 position, vec3 V, ivec2 pixel) {
         float band = ceil(w * steps) / steps;
         luminance += g.tint / RG_PI * f.diffuseIlluminance * (band + rim * step(0.0, w - 1e-4));
     }
-    luminance += rgStandardIbl(position, N, V, g.tint, vec3(0.0), 1.0, rgAmbientOcclusion(g.ao));  // ambient: no specular
+    luminance += rgStandardIbl(position, N, V, g.tint, vec3(0.0), 1.0, rgAmbientOcclusion(g.ao, position));  // ambient: no specular
     return luminance;
 }
