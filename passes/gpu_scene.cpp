@@ -1,6 +1,8 @@
 #include "gpu_scene.h"
 
 #include <algorithm>
+#include <cstdlib>
+#include <limits>
 #include <array>
 #include <bit>
 #include <cmath>
@@ -225,6 +227,8 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(Context& ctx, Scene scene, co
     s->m_scene = std::move(scene);
     if (s->m_scene.cameras.empty()) return fail(ErrorCode::InvalidInput, "the scene has no camera");
     if (s->m_scene.materials.empty()) s->m_scene.materials.push_back(Material{});
+    const char* lodEnv = std::getenv("RG_LOD");
+    s->m_levelsOfDetail = options.levelsOfDetail && !(lodEnv && std::string_view(lodEnv) == "0");
     if (auto r = s->uploadGeometry(ctx); !r) return std::unexpected(r.error());
     if (auto r = s->uploadImages(ctx); !r) return std::unexpected(r.error());
     if (auto r = s->createMaterials(ctx); !r) return std::unexpected(r.error());
@@ -284,15 +288,21 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
         uint32_t firstIndex, indexCount;
         int32_t vertexOffset;
         uint32_t material;
+        std::vector<DrawLod> lods;  // the coarser index lists after the full one, errors in the primitive's space
     };
     std::vector<std::vector<Range>> meshRanges;
     for (const Mesh& mesh : m_scene.meshes) {
         std::vector<Range> ranges;
         for (const Primitive& p : mesh.primitives) {
             ranges.push_back({static_cast<uint32_t>(indices.size()), static_cast<uint32_t>(p.indices.size()),
-                              static_cast<int32_t>(vertices.size()), std::min<uint32_t>(p.material, static_cast<uint32_t>(m_scene.materials.size() - 1))});
+                              static_cast<int32_t>(vertices.size()), std::min<uint32_t>(p.material, static_cast<uint32_t>(m_scene.materials.size() - 1)),
+                              {}});
             vertices.insert(vertices.end(), p.vertices.begin(), p.vertices.end());
             indices.insert(indices.end(), p.indices.begin(), p.indices.end());
+            for (size_t l = 0; l < p.lods.size() && l + 1 < kMaxDrawLods; ++l) {
+                ranges.back().lods.push_back({static_cast<uint32_t>(indices.size()), static_cast<uint32_t>(p.lods[l].indices.size()), p.lods[l].error});
+                indices.insert(indices.end(), p.lods[l].indices.begin(), p.lods[l].indices.end());
+            }
         }
         meshRanges.push_back(std::move(ranges));
     }
@@ -303,22 +313,36 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
         for (size_t k = 0; k < ranges.size(); ++k)
             if (ranges[k].indexCount) {
                 const auto [lo, hi] = worldBox(m_scene.meshes[static_cast<size_t>(node.mesh)].primitives[k].vertices, node.world);
-                m_draws.push_back({ranges[k].firstIndex, ranges[k].indexCount, ranges[k].vertexOffset, ranges[k].material, node.world, normal, lo, hi,
-                                   node.lightmapRect});
+                DrawItem& item = m_draws.emplace_back(DrawItem{ranges[k].firstIndex, ranges[k].indexCount, ranges[k].vertexOffset,
+                                                               ranges[k].material, node.world, normal, lo, hi, node.lightmapRect});
+                item.lods[0] = {item.firstIndex, item.indexCount, 0.0f};
+                // An error in the primitive's space, in the world: times the node's largest axis scale.
+                const float scale = std::max({glm::length(glm::vec3(node.world[0])), glm::length(glm::vec3(node.world[1])),
+                                              glm::length(glm::vec3(node.world[2]))});
+                if (m_levelsOfDetail)
+                    for (const DrawLod& lod : ranges[k].lods) item.lods[item.lodCount++] = {lod.firstIndex, lod.indexCount, lod.error * scale};
             }
     }
     // SceneDraws: a uvec4 header (draw count), then per draw (boxMin, firstIndex), (boxMax,
-    // indexCount), (vertexOffset, material, casts shadows, 0) — 48 bytes.
+    // indexCount), (vertexOffset, material, casts shadows, level-of-detail count), then the levels'
+    // first indices, index counts and errors (lib/scene.glsl RgDraw) — 96 bytes.
     {
-        std::vector<glm::vec4> words(1 + 3 * std::max<size_t>(m_draws.size(), 1), glm::vec4(0.0f));
+        constexpr size_t kWords = 6;
+        std::vector<glm::vec4> words(1 + kWords * std::max<size_t>(m_draws.size(), 1), glm::vec4(0.0f));
         words[0] = glm::vec4(std::bit_cast<float>(static_cast<uint32_t>(m_draws.size())), 0.0f, 0.0f, 0.0f);
         for (size_t d = 0; d < m_draws.size(); ++d) {
             const DrawItem& item = m_draws[d];
             const bool opaque = m_scene.materials[item.material].alphaMode != AlphaMode::Blend;
-            words[1 + 3 * d] = glm::vec4(item.boundsMin, std::bit_cast<float>(item.firstIndex));
-            words[2 + 3 * d] = glm::vec4(item.boundsMax, std::bit_cast<float>(item.indexCount));
-            words[3 + 3 * d] = glm::vec4(std::bit_cast<float>(item.vertexOffset), std::bit_cast<float>(item.material),
-                                         std::bit_cast<float>(opaque ? 1u : 0u), 0.0f);
+            glm::vec4* w = &words[1 + kWords * d];
+            w[0] = glm::vec4(item.boundsMin, std::bit_cast<float>(item.firstIndex));
+            w[1] = glm::vec4(item.boundsMax, std::bit_cast<float>(item.indexCount));
+            w[2] = glm::vec4(std::bit_cast<float>(item.vertexOffset), std::bit_cast<float>(item.material),
+                             std::bit_cast<float>(opaque ? 1u : 0u), std::bit_cast<float>(item.lodCount));
+            for (uint32_t l = 0; l < kMaxDrawLods; ++l) {
+                w[3][static_cast<int>(l)] = std::bit_cast<float>(item.lods[l].firstIndex);
+                w[4][static_cast<int>(l)] = std::bit_cast<float>(item.lods[l].indexCount);
+                w[5][static_cast<int>(l)] = item.lods[l].error;
+            }
         }
         auto buf = Buffer::create(ctx, "scene.draws", words.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
         if (!buf) return std::unexpected(buf.error());
@@ -812,6 +836,29 @@ void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
     const auto planes = frustumPlanes(u.viewProj);
     m_drawInView.resize(m_draws.size());
     for (size_t d = 0; d < m_draws.size(); ++d) m_drawInView[d] = boxMeetsFrustum(planes, m_draws[d].boundsMin, m_draws[d].boundsMax);
+    // Levels of detail: a world length L at view depth z spans L · |proj[1][1]| · height / (2z)
+    // pixels (orthographic: without the z); each draw takes the coarsest level whose error spans at
+    // most half a pixel at the nearest depth of its box (the full one where the box reaches the
+    // near plane).
+    const glm::vec3 forward = glm::normalize(c.target - c.position);
+    const float pixelsPerMetre = std::abs(u.proj[1][1]) * static_cast<float>(height) * 0.5f;
+    m_drawLod.assign(m_draws.size(), 0);
+    for (size_t d = 0; d < m_draws.size(); ++d) {
+        const DrawItem& item = m_draws[d];
+        if (item.lodCount < 2) continue;
+        float nearest = std::numeric_limits<float>::max();
+        for (int k = 0; k < 8; ++k) {
+            const glm::vec3 corner((k & 1) ? item.boundsMax.x : item.boundsMin.x, (k & 2) ? item.boundsMax.y : item.boundsMin.y,
+                                   (k & 4) ? item.boundsMax.z : item.boundsMin.z);
+            nearest = std::min(nearest, glm::dot(corner - c.position, forward));
+        }
+        if (!c.orthographic && nearest <= c.nearPlane) continue;
+        const float scale = c.orthographic ? pixelsPerMetre : pixelsPerMetre / nearest;
+        uint8_t level = 0;
+        for (uint32_t l = 1; l < item.lodCount; ++l)
+            if (item.lods[l].error * scale <= 1.0f) level = static_cast<uint8_t>(l);
+        m_drawLod[d] = level;
+    }
     updateShadowViews(slot, u.viewProj);
     std::memcpy(static_cast<uint8_t*>(m_lightBuffers[slot].mapped()) + 4, &m_areaLightModel, sizeof m_areaLightModel);
 }

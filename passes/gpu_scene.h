@@ -5,6 +5,7 @@
 // convertLights — followed by their baked IES profiles).
 #pragma once
 
+#include <array>
 #include <memory>
 #include <optional>
 #include <string>
@@ -22,8 +23,16 @@
 
 namespace rg::passes {
 
+// One level of detail of a draw: its index range and how far its surface lies from the full one
+// (world metres).
+struct DrawLod {
+    uint32_t firstIndex = 0, indexCount = 0;
+    float error = 0.0f;
+};
+inline constexpr uint32_t kMaxDrawLods = 4;  // the full range and up to three coarser ones
+
 struct DrawItem {
-    uint32_t firstIndex = 0;
+    uint32_t firstIndex = 0;  // the full index range (lods[0])
     uint32_t indexCount = 0;
     int32_t vertexOffset = 0;
     uint32_t material = 0;  // index into Scene::materials
@@ -31,6 +40,10 @@ struct DrawItem {
     glm::mat4 normalMatrix{1.0f};
     glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};  // world-space box around its vertices
     glm::vec4 lightmapRect{0.0f};  // its node's Node::lightmapRect
+    // Levels of detail, finest first: lods[0] is the full range (error 0), then the primitive's
+    // coarser index lists (Primitive::lods) with their error scaled by the node's largest axis.
+    std::array<DrawLod, kMaxDrawLods> lods{};
+    uint32_t lodCount = 1;
 };
 
 // The shadow views of the scene's local lights (lib/shadows.glsl's ShadowViews block): how many
@@ -82,6 +95,9 @@ enum class IesMode {
 
 struct GpuSceneOptions {
     IesMode iesMode = IesMode::Mask;
+    // Draw the primitives' coarser levels of detail where their error stays under half a pixel
+    // or texel (false: always the full meshes; the environment's RG_LOD=0 sets it false too).
+    bool levelsOfDetail = true;
 };
 
 // The scene's lights as the shaders take them, converted once (what GpuScene uploads).
@@ -120,6 +136,15 @@ public:
     // Whether draw d's world box meets the camera's frustum this frame (updateFrame): the camera's
     // scene passes skip the draws it does not.
     bool drawInView(size_t d) const { return d >= m_drawInView.size() || m_drawInView[d] != 0; }
+    // The level of detail the camera's scene passes draw draw d with this frame (updateFrame): the
+    // coarsest whose error, at the nearest depth of the draw's box, projects under half a pixel.
+    const DrawLod& viewLod(size_t d) const {
+        return m_draws[d].lods[d < m_drawLod.size() && !m_fullMeshes ? m_drawLod[d] : 0];
+    }
+    // From now on the camera's passes draw the full meshes (a pass traces the scene's triangles
+    // every frame from the G-buffer's surfaces: they must be the same). The sun's cascades may
+    // stay coarser: a caster inside its receiver shadows nothing the full one would not.
+    void drawFullMeshes() const { m_fullMeshes = true; }
     VkBuffer vertexBuffer() const { return m_vertices.buffer(); }
     VkBuffer indexBuffer() const { return m_indices.buffer(); }
     VkDescriptorSetLayout materialSetLayout() const { return m_materialLayout.get(); }
@@ -219,6 +244,9 @@ private:
     ContentHash m_staticHash;   // what was uploaded at creation (contentHash)
     gpu::Buffer m_drawBuffer;
     std::vector<char> m_drawInView;        // per draw: its box meets the camera's frustum (updateFrame)
+    std::vector<uint8_t> m_drawLod;        // per draw: the level of detail viewLod gives (updateFrame)
+    bool m_levelsOfDetail = true;          // GpuSceneOptions::levelsOfDetail
+    mutable bool m_fullMeshes = false;     // drawFullMeshes()
     std::vector<glm::ivec4> m_lightViews;  // per light (kMaxLights): first view (−1: none), count — as uploaded
     void updateShadowViews(uint32_t slot, const glm::mat4& cameraViewProj);
     gpu::Buffer m_decals;

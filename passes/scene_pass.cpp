@@ -391,7 +391,9 @@ public:
                                  item.normalMatrix[2], item.lightmapRect};
             vkCmdPushConstants(rc.cmd, g.program->layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                                sizeof push, push);
-            vkCmdDrawIndexed(rc.cmd, item.indexCount, 1, item.firstIndex, item.vertexOffset, 0);
+            // The level of detail for the camera (GpuScene::viewLod: under half a pixel of error).
+            const DrawLod& lod = rc.scene->viewLod(i);
+            vkCmdDrawIndexed(rc.cmd, lod.indexCount, 1, lod.firstIndex, item.vertexOffset, 0);
         }
         vkCmdEndRendering(rc.cmd);
     }
@@ -685,11 +687,15 @@ private:
                 vkCmdSetCullMode(rc.cmd, rc.scene->scene().materials[item.material].doubleSided ? VkCullModeFlags(VK_CULL_MODE_NONE) : m_shadowCull);
                 struct { glm::mat4 world; glm::vec4 layer; } push{item.world, glm::vec4(static_cast<float>(view))};
                 vkCmdPushConstants(rc.cmd, g.program->layout(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof push, &push);
-                if (indirect && i < slots)
+                if (indirect && i < slots) {
                     vkCmdDrawIndexedIndirect(rc.cmd, indirect->buffer->buffer(), (view * slots + i) * kIndirectCommandBytes, 1,
                                              kIndirectCommandBytes);
-                else
-                    vkCmdDrawIndexed(rc.cmd, item.indexCount, 1, item.firstIndex, item.vertexOffset, 0);
+                } else {
+                    // The camera's level of detail: a caster finer than its receiver (the G-buffer's
+                    // surface) would stand in front of it by up to the coarser one's error.
+                    const DrawLod& lod = rc.scene->viewLod(i);
+                    vkCmdDrawIndexed(rc.cmd, lod.indexCount, 1, lod.firstIndex, item.vertexOffset, 0);
+                }
             }
             vkCmdEndRendering(rc.cmd);
         }

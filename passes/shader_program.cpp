@@ -349,6 +349,9 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
                                                          "' is the scene's, but no scene is loaded (give --scene)");
             if (b.type != DescriptorType::CombinedImageSampler && setup.scene->bindingBuffer(b.name, 0) == VK_NULL_HANDLE)
                 return fail(ErrorCode::Device, passPrefix(desc) + "could not make the scene's '" + b.name + "' buffer: out of memory");
+            // A pass that traces the scene's triangles every frame (the reference mode) starts its
+            // rays on the G-buffer's surfaces: those must be the traced ones, the full meshes.
+            if (b.name == "SceneBvh" && desc.params["cadence"].asString() != "once") setup.scene->drawFullMeshes();
             sceneBindings.push_back(&b);
             continue;
         }

@@ -49,6 +49,7 @@ Mesh fromPrimitive(const std::string& name, const rg::Primitive& p) {
         m.uvs.insert(m.uvs.end(), {v.uv0.x, v.uv0.y});
     }
     m.indices = p.indices;
+    for (const rg::PrimitiveLod& lod : p.lods) m.lods.push_back({lod.indices, lod.error});
     return m;
 }
 
@@ -89,9 +90,16 @@ rg::Scene toScene(const Scene& in) {
             if (i >= n) throw Error(where + ": index " + std::to_string(i) + " beyond its " + std::to_string(n) + " vertices");
         auto mat = materials.find(m.material);
         if (mat == materials.end()) throw Error(where + ": unknown material '" + m.material + "'");
+        for (const MeshLod& lod : m.lods) {
+            if (lod.indices.empty() || lod.indices.size() % 3 || !(lod.error >= 0.0f))
+                throw Error(where + ": a level of detail needs whole triangles and an error >= 0");
+            for (uint32_t i : lod.indices)
+                if (i >= n) throw Error(where + ": level-of-detail index " + std::to_string(i) + " beyond its " + std::to_string(n) + " vertices");
+        }
         rg::Primitive p;
         p.material = mat->second;
         p.indices = m.indices;
+        for (const MeshLod& lod : m.lods) p.lods.push_back({lod.indices, lod.error});
         p.vertices.resize(n);
         for (size_t v = 0; v < n; ++v) {
             p.vertices[v].position = vec3(&m.positions[3 * v]);

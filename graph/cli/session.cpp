@@ -517,7 +517,9 @@ Result<std::unique_ptr<passes::GpuScene>> Session::loadScene(PipelineDesc& pipel
                 return fail(r.error().code, scene->lightmap->origin + ": scene.lightmap." + scene->lightmap->name + ": " + r.error().message);
         }
     }
-    auto gpuScene = passes::GpuScene::create(m_runtime.gpu(), std::move(*scene));
+    passes::GpuSceneOptions sceneOptions;
+    sceneOptions.levelsOfDetail = m_options.levelsOfDetail;
+    auto gpuScene = passes::GpuScene::create(m_runtime.gpu(), std::move(*scene), sceneOptions);
     if (!gpuScene) return std::unexpected(gpuScene.error());
     if (!m_options.camera.empty())
         if (auto r = (*gpuScene)->selectCamera(m_options.camera); !r) return std::unexpected(r.error());

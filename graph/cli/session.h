@@ -37,6 +37,7 @@ struct SessionOptions {
     std::string view;
     std::vector<std::string> captures;  // resources to export for readback
     bool verbose = false;               // print what each rebuild reused
+    bool levelsOfDetail = true;         // the primitives' coarser levels where they stay within a pixel (GpuSceneOptions)
     // The folder whose once/ holds the outputs of passes with cadence = "once", restored from there
     // and saved there (gpu::Executor::setOnceCache); "" (the default: tests, bench) records them.
     std::string onceCache;

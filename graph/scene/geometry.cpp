@@ -124,14 +124,33 @@ Primitive makeSphere(float radius, uint32_t segments, uint32_t material) {
     // The lightmap chart is the uv square itself: one chart, its border the atlas rect's (the seam
     // at u = 0 / 1 and the poles are where the bake's texels meet).
     p.lightmapUv = true;
+    // The triangles over every `stride`-th ring and segment of the grid (1: all of them).
     const uint32_t row = segments + 1;
-    for (uint32_t r = 0; r < rings; ++r)
-        for (uint32_t s = 0; s < segments; ++s) {
-            const uint32_t a = r * row + s, b = a + 1, c = a + row, d = c + 1;
-            // a-b on the upper ring, c-d below; u grows to the right seen from outside.
-            if (r != 0) p.indices.insert(p.indices.end(), {a, c, b});
-            if (r != rings - 1) p.indices.insert(p.indices.end(), {b, c, d});
-        }
+    auto triangles = [&](uint32_t stride) {
+        std::vector<uint32_t> out;
+        const uint32_t ringsAt = rings / stride, segmentsAt = segments / stride;
+        for (uint32_t r = 0; r < ringsAt; ++r)
+            for (uint32_t s = 0; s < segmentsAt; ++s) {
+                const uint32_t a = r * stride * row + s * stride, b = a + stride, c = a + stride * row, d = c + stride;
+                // a-b on the upper ring, c-d below; u grows to the right seen from outside.
+                if (r != 0) out.insert(out.end(), {a, c, b});
+                if (r != ringsAt - 1) out.insert(out.end(), {b, c, d});
+            }
+        return out;
+    };
+    p.indices = triangles(1);
+    // Levels of detail on every 2nd, 4th, 8th ring and segment, down to 24 segments: the same
+    // vertices, so normals, uvs and the lightmap chart stay exact. A triangle of the grid spans at
+    // most Δ = 2π / segments along each direction, so the sphere bulges above it by at most the
+    // sagitta of its circumcircle, r (1 − cos(Δ / √2)) — which bounds its distance from the full
+    // mesh too (the full mesh lies between the sphere and the coarser chords). The floor of 24
+    // segments (Δ = 15°) bounds what the distance cannot: the shading normal interpolated across a
+    // triangle, which at 8 segments (45°) turned a mirror-like sphere's point-light highlight into
+    // a broad grey one however small the sphere was on screen.
+    for (uint32_t stride = 2; stride <= 8 && segments % stride == 0 && rings % stride == 0 && segments / stride >= 24; stride *= 2) {
+        const float delta = 2.0f * pi / float(segments / stride);
+        p.lods.push_back({triangles(stride), radius * (1.0f - std::cos(delta / std::sqrt(2.0f)))});
+    }
     return p;
 }
 

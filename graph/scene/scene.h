@@ -45,9 +45,20 @@ struct Vertex {
 };
 
 // A triangle list: every 3 indices are one counter-clockwise triangle.
+// A coarser index list over a primitive's vertices and its geometric error: the farthest its
+// surface lies from the full one (metres, in the primitive's own space).
+struct PrimitiveLod {
+    std::vector<uint32_t> indices;
+    float error = 0.0f;
+};
+
 struct Primitive {
     std::vector<Vertex> vertices;
     std::vector<uint32_t> indices;
+    // Levels of detail, finest first, where a shape can drop rows of its vertices exactly (the
+    // generated sphere): passes that draw it from a view take the coarsest whose error, projected,
+    // stays under half a pixel or texel (passes/gpu_scene.h DrawItem::lods).
+    std::vector<PrimitiveLod> lods;
     uint32_t material = 0;  // index into Scene::materials
     // Whether uv1 is a lightmap parameterisation: charts inside [0, 1]², not overlapping, with a
     // gutter between them (glTF TEXCOORD_1, or the Lua scene's generated shapes).

@@ -54,12 +54,20 @@ struct Options {
 };
 
 // A scene made in code. Units: metres, lumens/candela/lux/nits as the light says, seconds.
+// A coarser index list over a mesh's vertices, and how far its surface lies from the full one
+// (metres, in the mesh's own space): the camera's passes draw the coarsest whose error spans at
+// most a pixel, the sun's shadow maps the coarsest within a texel (and never finer than the camera's).
+struct MeshLod {
+    std::vector<uint32_t> indices;
+    float error = 0.0f;
+};
 struct Mesh {
     std::string name;
     std::vector<float> positions;  // xyz per vertex
     std::vector<float> normals;    // xyz per vertex (unit)
     std::vector<float> uvs;        // uv per vertex, or empty
     std::vector<uint32_t> indices; // triangles, counter-clockwise seen from outside
+    std::vector<MeshLod> lods;     // levels of detail, finest first (makeSphere fills them), or empty
     std::string material;          // a Material's name
     float transform[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};  // column-major, model to world
 };

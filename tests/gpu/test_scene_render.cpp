@@ -17,6 +17,8 @@
 #include "cli/session.h"
 #include "image/image.h"
 #include "layout/layout.h"
+#include "passes/gpu_scene.h"
+#include "scene/scene.h"
 
 using namespace rg;
 
@@ -421,3 +423,74 @@ TEST_F(SceneRender, BlendedMaterialsGoForwardOverTheLitImage) {
 }
 
 }  // namespace
+
+TEST_F(SceneRender, LevelsOfDetailFollowTheProjectedErrorAndKeepTheImage) {
+    // The default scene's 48-segment spheres carry a 24-segment level (graph/scene makeSphere).
+    // Each frame the camera's passes take, per draw, the coarsest level whose error spans at most
+    // a pixel at the nearest view depth of its box — computed here again from the camera: at
+    // 1280×720 every sphere takes 24 segments, and with the camera 1.5 m from the front row the
+    // spheres within ~7.7 m keep their full mesh.
+    auto scene = loadSceneScript(kRoot + "/scripts/scenes/default.lua", {});
+    ASSERT_TRUE(scene.has_value()) << scene.error().describe();
+    auto levels = [&](const Scene& sc, uint32_t w, uint32_t h) {
+        auto gpu = passes::GpuScene::create(s_runtime->gpu(), sc);
+        EXPECT_TRUE(gpu.has_value()) << gpu.error().describe();
+        passes::GpuScene& g = **gpu;
+        g.updateFrame(0, w, h);
+        const Camera& c = sc.cameras.front();
+        const glm::vec3 forward = glm::normalize(c.target - c.position);
+        const float pixelsPerMetre = 0.5f * float(h) / std::tan(0.5f * c.verticalFov);  // at a depth of 1 m
+        std::vector<uint32_t> out;
+        for (size_t d = 0; d < g.draws().size(); ++d) {
+            const passes::DrawItem& item = g.draws()[d];
+            uint32_t level = 0;
+            while (level < item.lodCount && item.lods[level].firstIndex != g.viewLod(d).firstIndex) ++level;
+            EXPECT_LT(level, item.lodCount) << "draw " << d;
+            float nearest = 1e30f;
+            for (int k = 0; k < 8; ++k)
+                nearest = std::min(nearest, glm::dot(glm::vec3(k & 1 ? item.boundsMax.x : item.boundsMin.x, k & 2 ? item.boundsMax.y : item.boundsMin.y,
+                                                               k & 4 ? item.boundsMax.z : item.boundsMin.z) - c.position, forward));
+            uint32_t expected = 0;
+            for (uint32_t l = 1; l < item.lodCount; ++l)
+                if (nearest > c.nearPlane && item.lods[l].error * pixelsPerMetre / nearest <= 1.0f) expected = l;
+            EXPECT_EQ(level, expected) << "draw " << d << " at " << w << "x" << h;
+            if (item.lodCount > 1) out.push_back(level);
+        }
+        return out;
+    };
+    const auto hd = levels(*scene, 1280, 720);
+    ASSERT_EQ(hd.size(), 49u);  // the spheres
+    EXPECT_EQ(std::count(hd.begin(), hd.end(), 1u), 49);
+    Scene close = *scene;
+    close.cameras.front().position = glm::vec3(-3.3f, 0.45f, 4.8f);  // 1.5 m in front of the front row's first sphere
+    close.cameras.front().target = glm::vec3(-3.3f, 0.45f, 3.3f);
+    const auto near = levels(close, 1280, 720);
+    EXPECT_GE(std::count(near.begin(), near.end(), 0u), 1) << "the spheres near the camera keep their full mesh";
+
+    // The image with and without them (RG_LOD=0): silhouettes move by under a pixel and the
+    // shading follows the coarser triangles' interpolated normals, which the mirror-like spheres'
+    // reflections show most.
+    auto hdr = [&](bool lod) {
+        if (!lod) setenv("RG_LOD", "0", 1);
+        SessionOptions o = sceneOptions(kRoot + "/scripts/scenes/default.lua", {}, 640, 360);
+        Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 1, {"hdr"});
+        unsetenv("RG_LOD");
+        return r.images.empty() ? Image() : r["hdr"];
+    };
+    const Image a = hdr(true), b = hdr(false);
+    ASSERT_EQ(a.width, 640u);
+    ASSERT_EQ(b.width, 640u);
+    size_t off = 0;
+    double diff = 0.0, sum = 0.0;
+    for (size_t i = 0; i < a.pixels.size(); i += a.channels) {
+        const float x = a.pixels[i + 1], y = b.pixels[i + 1];
+        off += std::abs(x - y) > 0.05f * std::max({x, y, 1e-3f});
+        diff += std::abs(x - y);
+        sum += y;
+    }
+    const double share = double(off) / double(a.pixels.size() / a.channels);
+    std::printf("with levels of detail: mean |difference| %.3f %% of the mean, %.2f %% of pixels off by more than 5 %%\n",
+                100.0 * diff / sum, 100.0 * share);
+    EXPECT_LT(diff / sum, 0.02);
+    EXPECT_LT(share, 0.04);
+}

@@ -1453,3 +1453,45 @@ TEST(ExportGlb, FailedWriteLeavesNothingBehind) {
 }
 
 }  // namespace
+
+TEST(SceneGeometry, SphereLevelsOfDetailDropRowsAndStayWithinTheirError) {
+    // A 96-segment sphere carries 48- and 24-segment levels over the same vertices (12 segments
+    // would be under the floor of 24). Each level's triangles are the full grid's every 2nd / 4th
+    // ring and segment, so every corner is a vertex of the sphere; the stated error bounds how far
+    // the sphere bulges above any triangle (the plane's distance from the centre).
+    const float radius = 0.45f;
+    const rg::Primitive p = rg::makeSphere(radius, 96, 0);
+    ASSERT_EQ(p.lods.size(), 2u);
+    EXPECT_EQ(rg::makeSphere(radius, 48, 0).lods.size(), 1u);  // 24 segments only
+    EXPECT_EQ(p.indices.size(), size_t(3 * (96 * 48 * 2 - 2 * 96)));  // the poles' rows have one triangle a quad
+    const uint32_t row = 97;
+    float previous = 0.0f;
+    for (size_t l = 0; l < p.lods.size(); ++l) {
+        const uint32_t stride = 2u << l, segments = 96 / stride, rings = 48 / stride;
+        const rg::PrimitiveLod& lod = p.lods[l];
+        EXPECT_EQ(lod.indices.size(), size_t(3 * (segments * rings * 2 - 2 * segments))) << "level " << l + 1;
+        EXPECT_GT(lod.error, previous);
+        previous = lod.error;
+        float bulge = 0.0f;
+        for (size_t t = 0; t + 2 < lod.indices.size(); t += 3) {
+            glm::vec3 c[3];
+            for (size_t k = 0; k < 3; ++k) {
+                const uint32_t v = lod.indices[t + k];
+                ASSERT_EQ(v / row % stride, 0u) << "ring of vertex " << v;
+                ASSERT_EQ(v % row % stride, 0u) << "segment of vertex " << v;
+                c[k] = p.vertices[v].position;
+            }
+            const glm::vec3 n = glm::cross(c[1] - c[0], c[2] - c[0]);
+            ASSERT_GT(glm::length(n), 0.0f) << "degenerate triangle at " << t;
+            // Outward-facing (counter-clockwise seen from outside), as the full mesh's.
+            EXPECT_GT(glm::dot(n, c[0] + c[1] + c[2]), 0.0f);
+            bulge = std::max(bulge, radius - std::abs(glm::dot(glm::normalize(n), c[0])));
+        }
+        std::printf("level %zu: %u segments, %zu triangles, error %.2f mm, largest bulge %.2f mm\n", l + 1, segments,
+                    lod.indices.size() / 3, lod.error * 1e3f, bulge * 1e3f);
+        EXPECT_LE(bulge, lod.error);
+        EXPECT_GT(bulge, 0.5f * lod.error);  // and the bound is not loose by more than 2x
+    }
+    // A sphere whose grid cannot drop every other ring has none (30 segments: 15 rings).
+    EXPECT_TRUE(rg::makeSphere(1.0f, 30, 0).lods.empty());
+}
