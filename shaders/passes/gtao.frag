@@ -5,13 +5,20 @@
 // within Params.ao_radius metres, the highest horizon on each side kept, and the visible part of
 // the cosine lobe between the two horizons integrated analytically around the normal projected
 // into the slice:  ¼ (−cos(2h − n) + cos n + 2h sin n)  per side, weighted by the projected
-// normal's length. 1 = open, 0 = closed. Directions turn per pixel (a 4×4 pattern the
+// normal's length, over the same unoccluded (below). 1 = open, 0 = closed. Directions turn per pixel (a 4×4 pattern the
 // ao_blur pass averages out). Written with the pixel's view distance beside it (rg16f).
 #include "lib/scene.glsl"
 #include "gbuffer_disney.glsl"
 
+// The estimate is the ratio of the slices' visible cosine-weighted arcs to what the same slices
+// would see unoccluded (cos n + n sin n each, times its projected normal's length): both sums
+// tend to their integrals as slices are added, and an open plane reads exactly 1 however few there
+// are (the plain mean over 3 slices read 0.961 on a floor seen at a grazing angle). Against a
+// 16 × 32 reference of the default frame at 1280×720 (its `ssao`, mean relative error / RMSE):
+// the plain mean over 4 slices × 6 steps 0.0279 / 0.0366, the ratio 0.0260 / 0.0358 with 4
+// slices and 0.0261 / 0.0361 with 3 — a quarter of the taps for the same error.
 #ifndef RG_AO_SLICES
-#define RG_AO_SLICES 4
+#define RG_AO_SLICES 3
 #endif
 #ifndef RG_AO_STEPS
 #define RG_AO_STEPS 6
@@ -66,7 +73,7 @@ void main() {
     int k = (half_.x & 3) + 4 * (half_.y & 3);
     float rotation = float(k) / 16.0 * 3.14159265 / float(RG_AO_SLICES);
     float jitter = float((k * 7) & 15) / 16.0;
-    float visibility = 0.0;
+    float visibility = 0.0, unoccluded = 0.0;
     // Slice s's screen direction (y down) at angle rotation + s π / slices: the first's, turned by
     // a constant step per slice (one sine and cosine a pixel rather than one a slice).
     vec2 d = vec2(cos(rotation), sin(rotation));
@@ -77,7 +84,7 @@ void main() {
         vec3 axis = normalize(cross(dir, V));
         vec3 projN = N - axis * dot(N, axis);
         float projLen = length(projN);
-        if (projLen < 1e-4) { visibility += 1.0; continue; }
+        if (projLen < 1e-4) { visibility += 1.0; unoccluded += 1.0; continue; }
         vec3 ortho = normalize(dir - V * dot(dir, V));
         float cosN = clamp(dot(projN / projLen, V), -1.0, 1.0);
         float n = sign(dot(projN, ortho)) * acos(cosN);
@@ -103,8 +110,9 @@ void main() {
         float sinN = sin(n);
         float arc = 0.25 * (-cos(2.0 * h1 - n) + cosN + 2.0 * h1 * sinN) + 0.25 * (-cos(2.0 * h2 - n) + cosN + 2.0 * h2 * sinN);
         visibility += projLen * arc;
+        unoccluded += projLen * (cosN + n * sinN);
     }
     // r: visibility; g: the view distance the blur weighs its taps by (read with the AO, no
     // second texture and no reconstruction per tap).
-    color = vec4(clamp(visibility / float(RG_AO_SLICES), 0.0, 1.0), -P.z, 0.0, 1.0);
+    color = vec4(clamp(visibility / max(unoccluded, 1e-4), 0.0, 1.0), -P.z, 0.0, 1.0);
 }
