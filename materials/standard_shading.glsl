@@ -24,10 +24,12 @@ vec3 rgShade(GBuffer_disney g, vec3 position, vec3 V, ivec2 pixel) {
         RgLightSample s = rgEvaluateLightOf(globalLights[k], 1u << globalTypes[k], position, g.normal, V, linearRoughness, sun);
         luminance += rgStandardLighting(s, g.normal, V, diffuseColor, f0, linearRoughness);
     }
+#if RG_SCENE_TILE_LIGHT_TYPES != 0  // 0: every light is unrolled above, the tiles' lists hold nothing more
     for (uint k = list.global; k < list.count; ++k) {
         RgLightSample s = rgEvaluateLightOf(rgListLight(list, k), uint(RG_SCENE_TILE_LIGHT_TYPES), position, g.normal, V, linearRoughness, sun);
         luminance += rgStandardLighting(s, g.normal, V, diffuseColor, f0, linearRoughness);
     }
+#endif
 #else
     for (uint k = 0u; k < list.count; ++k) {
         uint i = rgListLight(list, k);

@@ -38,4 +38,28 @@ TEST_F(LightLoop, UnrolledGlobalLightsLightTheSceneAsTheGenericLoop) {
     EXPECT_LT(worst, 1e-4) << "largest relative difference between the two loops";
 }
 
+TEST_F(LightLoop, LargeRangedLightsUnrolledLightTheSceneAsTheTilesLists) {
+    // At most four lights, every ranged one reaching a quarter of the scene's diagonal: all are
+    // unrolled and no tile loop is compiled (passes/shader_program.cpp). The window ends each light
+    // at its range exactly, so pixels beyond it get what the tiles' lists gave them: nothing.
+    // Against the same lights through the generic loop (two dark lights more make five).
+    const Image unrolled = hdr({{"few", "1"}});
+    const Image generic = hdr({{"few", "1"}, {"more", "1"}});
+    ASSERT_EQ(unrolled.width, 160u);
+    ASSERT_EQ(generic.pixels.size(), unrolled.pixels.size());
+    double worst = 0.0, peak = 0.0;
+    size_t reached = 0;
+    for (size_t i = 0; i < unrolled.pixels.size(); ++i) {
+        peak = std::max(peak, double(generic.pixels[i]));
+        worst = std::max(worst, std::abs(double(unrolled.pixels[i]) - double(generic.pixels[i])) / std::max(1e-3, double(generic.pixels[i])));
+    }
+    // The ranged lights do light the scene (against the sun alone, brighter somewhere).
+    const Image sunAlone = hdr({{"few", "1"}, {"dark", "1"}});
+    ASSERT_EQ(sunAlone.pixels.size(), unrolled.pixels.size());
+    for (size_t i = 0; i < unrolled.pixels.size(); ++i) reached += unrolled.pixels[i] > 1.05f * sunAlone.pixels[i] + 1e-3f;
+    EXPECT_GT(peak, 0.0);
+    EXPECT_GT(reached, 100u) << "pixels the ranged lights brighten";
+    EXPECT_LT(worst, 1e-4) << "largest relative difference between the unrolled and the generic loop";
+}
+
 }  // namespace
