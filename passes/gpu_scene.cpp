@@ -1,11 +1,11 @@
 #include "gpu_scene.h"
 
 #include <algorithm>
-#include <cstdlib>
-#include <limits>
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cstdlib>
+#include <limits>
 #include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/packing.hpp>
@@ -838,7 +838,7 @@ void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
     for (size_t d = 0; d < m_draws.size(); ++d) m_drawInView[d] = boxMeetsFrustum(planes, m_draws[d].boundsMin, m_draws[d].boundsMax);
     // Levels of detail: a world length L at view depth z spans L · |proj[1][1]| · height / (2z)
     // pixels (orthographic: without the z); each draw takes the coarsest level whose error spans at
-    // most half a pixel at the nearest depth of its box (the full one where the box reaches the
+    // most a pixel at the nearest depth of its box (the full one where the box reaches the
     // near plane).
     const glm::vec3 forward = glm::normalize(c.target - c.position);
     const float pixelsPerMetre = std::abs(u.proj[1][1]) * static_cast<float>(height) * 0.5f;

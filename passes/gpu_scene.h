@@ -95,7 +95,7 @@ enum class IesMode {
 
 struct GpuSceneOptions {
     IesMode iesMode = IesMode::Mask;
-    // Draw the primitives' coarser levels of detail where their error stays under half a pixel
+    // Draw the primitives' coarser levels of detail where their error stays within a pixel
     // or texel (false: always the full meshes; the environment's RG_LOD=0 sets it false too).
     bool levelsOfDetail = true;
 };
@@ -137,7 +137,7 @@ public:
     // scene passes skip the draws it does not.
     bool drawInView(size_t d) const { return d >= m_drawInView.size() || m_drawInView[d] != 0; }
     // The level of detail the camera's scene passes draw draw d with this frame (updateFrame): the
-    // coarsest whose error, at the nearest depth of the draw's box, projects under half a pixel.
+    // coarsest whose error, at the nearest depth of the draw's box, projects to at most a pixel.
     const DrawLod& viewLod(size_t d) const {
         return m_draws[d].lods[d < m_drawLod.size() && !m_fullMeshes ? m_drawLod[d] : 0];
     }

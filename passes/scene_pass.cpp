@@ -391,7 +391,7 @@ public:
                                  item.normalMatrix[2], item.lightmapRect};
             vkCmdPushConstants(rc.cmd, g.program->layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                                sizeof push, push);
-            // The level of detail for the camera (GpuScene::viewLod: under half a pixel of error).
+            // The level of detail for the camera (GpuScene::viewLod: at most a pixel of error).
             const DrawLod& lod = rc.scene->viewLod(i);
             vkCmdDrawIndexed(rc.cmd, lod.indexCount, 1, lod.firstIndex, item.vertexOffset, 0);
         }

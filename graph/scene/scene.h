@@ -57,7 +57,7 @@ struct Primitive {
     std::vector<uint32_t> indices;
     // Levels of detail, finest first, where a shape can drop rows of its vertices exactly (the
     // generated sphere): passes that draw it from a view take the coarsest whose error, projected,
-    // stays under half a pixel or texel (passes/gpu_scene.h DrawItem::lods).
+    // stays within a pixel or texel (passes/gpu_scene.h DrawItem::lods).
     std::vector<PrimitiveLod> lods;
     uint32_t material = 0;  // index into Scene::materials
     // Whether uv1 is a lightmap parameterisation: charts inside [0, 1]², not overlapping, with a

@@ -194,7 +194,7 @@ RgIbl rgEvaluateIbl(vec3 P, vec3 N, vec3 V, vec3 f0, float f90, float linearRoug
 #endif
 layout(set = 0, binding = RG_SSAO_BINDING) uniform sampler2D ao_filtered;
 float rgAmbientOcclusion(float materialAo, vec3 P) {
-    return min(materialAo, rgUpsampleHalf(ao_filtered, ivec2(gl_FragCoord.xy), -(camera.view * vec4(P, 1.0)).z));
+    return min(materialAo, rgUpsampleHalf(ao_filtered, ivec2(gl_FragCoord.xy), rgViewDepth(P)));
 }
 #else
 float rgAmbientOcclusion(float materialAo, vec3 P) { return materialAo; }

@@ -118,7 +118,7 @@ int rgCascadeOf(float viewDepth) {
     return passed < rgCascades.c.info.x - 0.5 ? int(passed) : RG_MAX_CASCADES;
 }
 // The cascade of world position P.
-int rgCascadeAt(vec3 P) { return rgCascadeOf(-(camera.view * vec4(P, 1.0)).z); }
+int rgCascadeAt(vec3 P) { return rgCascadeOf(rgViewDepth(P)); }
 
 // Visibility of the sun (0 shadowed .. 1 lit) at world position P with normal N in cascade ci,
 // whose map is `map`.
@@ -185,7 +185,7 @@ float rgSunShadowIn(sampler2D map, int ci, vec3 P, vec3 N) {
 // parameter to read, and a CPU rasteriser would run both sides of a branch anyway.
 float rgSunVisibility(vec3 P, vec3 N) {
     ivec2 pixel = ivec2(gl_FragCoord.xy);
-    return min(texelFetch(sun_visibility, pixel, 0).r, rgUpsampleHalf(sun_visibility_half, pixel, -(camera.view * vec4(P, 1.0)).z));
+    return min(texelFetch(sun_visibility, pixel, 0).r, rgUpsampleHalf(sun_visibility_half, pixel, rgViewDepth(P)));
 }
 #elif !defined(RG_SUN_MASK_WRITER) && !defined(RG_SUN_CASCADES_ONLY)
 // The sun's visibility at P from the map of P's cascade, 1 beyond the shadow distance.

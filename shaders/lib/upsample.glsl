@@ -1,5 +1,6 @@
 // Depth-aware (bilateral) upsampling of a signal computed at half resolution, read where a
-// full-resolution pass needs it (the sun's shadow mask in the deferred lighting: lib/shadows.glsl).
+// full-resolution pass needs it (the deferred lighting's sun shadow mask, lib/shadows.glsl, and
+// screen-space AO, lib/ibl.glsl; the `ssao` view's pass).
 // Texel h of the half-resolution target holds, in r, the signal at full-resolution pixel 2h and,
 // in g, that pixel's view distance (m; 0 where nothing was computed: the clear). A pixel p takes
 // the four texels around p / 2 — its own sample exactly at even pixels, the mean of two or four
