@@ -23,10 +23,14 @@ local reflections = {}
 rg.resource "reflection" { format = "rgba16f",
     doc = "the composed specular radiance (nits) along each pixel's dominant direction; alpha: SSR and local probes' share" }
 
+-- Depth-tested against the triangle at depth 1 ("greater": where something was drawn), so that
+-- lavapipe's early depth test drops the sky's blocks before shading them (a branch in the shader
+-- cannot) and they keep the clear, 0 — what the shader writes there (~23 -> ~19.5 ms at 1280x720).
 local compose = {
     kind = "fullscreen", shader = "passes/reflection_compose.frag",
-    reads = { "GB0", "depth", "ssr", "env_specular", { "env_sh", as = "storage" }, "dfg", "probe_specular" }, writes = { "reflection" },
+    reads = { "GB0", "depth", { "depth", as = "depth" }, "ssr", "env_specular", { "env_sh", as = "storage" }, "dfg", "probe_specular" }, writes = { "reflection" },
     defines = { RG_IBL = true, RG_SSR = true, RG_PROBES = true }, insert = { before = "lighting_standard" },
+    depth = { compare = "greater", value = 1 },
 }
 -- With a scene's baked lightmap, its specular radiance takes the distant probe's share.
 if lightmap.gbuffer_writes_specular then

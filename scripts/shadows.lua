@@ -96,6 +96,9 @@ rg.resource "sun_visibility_half" { format = "rg16f", scale = { 0.5, 0.5 },
 rg.resource "sun_cascade_mask_half" { format = "d32f", scale = { 0.5, 0.5 }, doc = "sun_cascade_mask at half resolution" }
 -- Lit, at no distance: a texel no mask pass writes (the sky, beyond the shadow distance) weighs
 -- next to nothing beside a surface's own texels, and all such upsample to 1.
+-- Announced to the AO module (scripts/ao.lua), which copies it into its own half-resolution target
+-- when it is loaded after this one, so that the lighting upsamples the two at once.
+lighting.sun_visibility_half = "sun_visibility_half"
 rg.pass "sun_visibility_half_clear" { kind = "clear", writes = { "sun_visibility_half" }, value = { 1, 0, 0, 0 }, insert = { after = "gbuffer" } }
 rg.pass "sun_classify_half" {
     kind = "fullscreen", shader = "shadows/sun_classify.frag", reads = { "depth", { "sun_cascades", as = "storage" } },

@@ -188,13 +188,9 @@ RgIbl rgEvaluateIbl(vec3 P, vec3 N, vec3 V, vec3 f0, float f90, float linearRoug
 // by min), upsampled here from the filtered half-resolution AO by view distance (lib/upsample.glsl;
 // the same as the `ssao` view's, without a full-resolution pass between).
 #ifdef RG_SSAO
-#include "lib/upsample.glsl"
-#ifndef RG_SSAO_BINDING
-#define RG_SSAO_BINDING 16
-#endif
-layout(set = 0, binding = RG_SSAO_BINDING) uniform sampler2D ao_filtered;
+#include "lib/upsample.glsl"  // and `ao_filtered`
 float rgAmbientOcclusion(float materialAo, vec3 P) {
-    return min(materialAo, rgUpsampleHalf(ao_filtered, ivec2(gl_FragCoord.xy), rgViewDepth(P)));
+    return min(materialAo, rgUpsampleHalf4(ao_filtered, ivec2(gl_FragCoord.xy), rgViewDepth(P)).r);
 }
 #else
 float rgAmbientOcclusion(float materialAo, vec3 P) { return materialAo; }

@@ -7,13 +7,23 @@
 layout(location = 0) in vec2 uv;
 layout(location = 0) out vec4 color;
 layout(set = 0, binding = 0) uniform sampler2D ao_half;
+// RG_AO_SUN (scripts/ao.lua): the sun's half-resolution visibility, copied into b at each texel
+// (the same pixel 2h), for the lighting to upsample with the AO.
+#ifdef RG_AO_SUN
+layout(set = 0, binding = 1) uniform sampler2D sun_visibility_half;
+#endif
 
 void main() {
     ivec2 h = ivec2(gl_FragCoord.xy);
     ivec2 halfSize = textureSize(ao_half, 0);
     vec2 centre = texelFetch(ao_half, h, 0).rg;  // AO, view distance (0: no geometry)
     float d0 = centre.g;
-    if (d0 <= 0.0) { color = vec4(1.0, 0.0, 0.0, 1.0); return; }
+#ifdef RG_AO_SUN
+    float sun = texelFetch(sun_visibility_half, h, 0).r;
+#else
+    float sun = 1.0;
+#endif
+    if (d0 <= 0.0) { color = vec4(1.0, 0.0, sun, 1.0); return; }
     float sum = 0.0, weight = 0.0;
     float falloff = 1.0 / (0.05 * d0 + 0.05);  // loose enough for a floor at grazing view
     for (int j = -2; j < 2; ++j)
@@ -23,5 +33,5 @@ void main() {
             sum += aoDepth.r * w;
             weight += w;
         }
-    color = vec4(sum / weight, d0, 0.0, 1.0);
+    color = vec4(sum / weight, d0, sun, 1.0);
 }

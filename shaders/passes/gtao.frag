@@ -1,7 +1,8 @@
 #version 460
 // Screen-space ambient occlusion (seed 002 §4.10.1, §4.10.3): ground-truth AO (Jimenez et al.
 // 2016, "Practical Realtime Strategies for Accurate Indirect Occlusion") at half resolution. For
-// RG_AO_SLICES screen directions per pixel the depth buffer is marched RG_AO_STEPS times each way
+// RG_AO_SLICES screen directions per pixel the half-resolution view distances of ao_depth.frag
+// (a quarter of the depth buffer's footprint, no division a tap) are marched RG_AO_STEPS times each way
 // within Params.ao_radius metres, the highest horizon on each side kept, and the visible part of
 // the cosine lobe between the two horizons integrated analytically around the normal projected
 // into the slice:  ¼ (−cos(2h − n) + cos n + 2h sin n)  per side, weighted by the projected
@@ -26,44 +27,40 @@
 
 layout(location = 0) in vec2 uv;
 layout(location = 0) out vec4 color;
-layout(set = 0, binding = 0) uniform sampler2D depth;
+layout(set = 0, binding = 0) uniform sampler2D ao_depth;  // the view distance at every half-resolution texel's pixel 2h
 layout(set = 0, binding = 1) uniform sampler2D GB0;
 layout(set = 0, binding = 2) uniform Params { float ao_radius; } params;
 
-// What rgViewPosition computes, with the per-frame constants hoisted out of the march (its 48
-// taps a pixel are the pass's cost): x, y = (ndc − offset) · scale · (perspective: the distance).
+// What rgViewPosition computes for texel h's pixel 2h, with the per-frame constants hoisted out
+// of the march (its 36 taps a pixel are the pass's cost) and the view distance read as it is
+// (ao_depth.frag wrote it): x, y = (ndc − offset) · scale · (perspective: the distance).
 struct Reconstruction {
-    ivec2 size;
-    vec2 ndcScale, ndcOffset;  // pixel → ndc: (q + 0.5) · ndcScale − 1
-    vec2 xyScale, xyOffset;    // 1 / proj[0][0], 1 / proj[1][1]; orthographic: proj[3][0], proj[3][1]
-    float perspective;         // 1 perspective, 0 orthographic
-    vec4 distance;             // rgViewDistance(z) = (x + y·z) / (z + w·z) of this vector: one division for either projection
+    ivec2 last;             // the last half-resolution texel
+    vec2 ndcScale;          // texel → ndc: (2h + 0.5) · ndcScale − 1
+    vec2 xyScale, xyOffset; // 1 / proj[0][0], 1 / proj[1][1]; orthographic: proj[3][0], proj[3][1]
+    float perspective;      // 1 perspective, 0 orthographic
 };
 Reconstruction reconstruction;
 
-vec3 viewPosition(ivec2 fullPixel) {
-    ivec2 q = clamp(fullPixel, ivec2(0), reconstruction.size - 1);
-    float z = texelFetch(depth, q, 0).r;
-    float d = (reconstruction.distance.x + reconstruction.distance.y * z) / (reconstruction.distance.z + reconstruction.distance.w * z);
-    vec2 ndc = (vec2(q) + 0.5) * reconstruction.ndcScale - 1.0;
+vec3 viewPosition(ivec2 h) {
+    ivec2 q = clamp(h, ivec2(0), reconstruction.last);
+    float d = texelFetch(ao_depth, q, 0).r;
+    vec2 ndc = (vec2(q * 2) + 0.5) * reconstruction.ndcScale - 1.0;
     vec2 xy = (ndc - reconstruction.xyOffset) * reconstruction.xyScale * mix(1.0, d, reconstruction.perspective);
     return vec3(xy, -d);
 }
 
 void main() {
-    reconstruction.size = textureSize(depth, 0);
-    reconstruction.ndcScale = 2.0 / vec2(reconstruction.size);
+    reconstruction.last = textureSize(ao_depth, 0) - 1;
+    reconstruction.ndcScale = 2.0 / camera.viewport.xy;
     reconstruction.perspective = rgCameraOrthographic() ? 0.0 : 1.0;
     reconstruction.xyScale = 1.0 / vec2(camera.proj[0][0], camera.proj[1][1]);
     reconstruction.xyOffset = rgCameraOrthographic() ? vec2(camera.proj[3][0], camera.proj[3][1]) : vec2(0.0);
-    // Perspective d = proj[3][2] / (z + proj[2][2]); orthographic d = (proj[3][2] − z) / proj[2][2].
-    reconstruction.distance = rgCameraOrthographic() ? vec4(camera.proj[3][2], -1.0, camera.proj[2][2], 0.0)
-                                                     : vec4(camera.proj[3][2], 0.0, camera.proj[2][2], 1.0);
+    // Texels without geometry never get here: the pass is depth-tested against ao_mask (ao.lua)
+    // and they keep the clear, (1, 0): open, no distance.
     ivec2 half_ = ivec2(gl_FragCoord.xy);
     ivec2 full = half_ * 2;
-    float z = texelFetch(depth, full, 0).r;
-    if (z >= 1.0) { color = vec4(1.0, 0.0, 0.0, 1.0); return; }
-    vec3 P = viewPosition(full);
+    vec3 P = viewPosition(half_);
     vec3 Nw = unpackGBuffer_disney(texelFetch(GB0, full, 0), vec4(0.0), vec4(0.0), vec4(0.0)).normal;
     vec3 N = normalize(mat3(camera.view) * Nw);
     vec3 V = rgCameraOrthographic() ? vec3(0.0, 0.0, 1.0) : normalize(-P);
@@ -93,9 +90,10 @@ void main() {
         float best0 = -1.0, best1 = -1.0;
         for (int i = 0; i < RG_AO_STEPS; ++i) {
             float t = (float(i) + jitter) / float(RG_AO_STEPS);
-            vec2 offset = d * max(t * radiusPx, 1.0 + float(i));
-            vec3 S0 = viewPosition(full + ivec2(round(offset))) - P;
-            vec3 S1 = viewPosition(full + ivec2(round(-offset))) - P;
+            // In half-resolution texels: radiusPx / 2, at least a texel a step.
+            vec2 offset = d * max(t * 0.5 * radiusPx, 1.0 + float(i));
+            vec3 S0 = viewPosition(half_ + ivec2(round(offset))) - P;
+            vec3 S1 = viewPosition(half_ + ivec2(round(-offset))) - P;
             float len0 = length(S0), len1 = length(S1);
             // Occluders within the radius, and above the tangent plane by more than the depth
             // buffer's reconstruction noise (a flat floor must not occlude itself).

@@ -265,18 +265,19 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // The environment filtering (scripts/ibl.lua, required by render_loop) comes first, then the
     // local probes' capture and filtering (scripts/probes.lua). Then the sun's cascades, its caster
     // culling, its maps' clears (without a sun) and the local lights' maps (scripts/shadows.lua), the
-    // G-buffer half with the passes inserted after it (light culling, screen-space AO:
-    // scripts/ao.lua; each cascade's map drawn and filtered into the sun's mask at once), the Hi-Z
+    // G-buffer half with the passes inserted after it (light culling, screen-space AO's
+    // half-resolution depths, each cascade's map drawn and filtered into the sun's mask at once, the
+    // foliage fix-up, then the AO itself on the fixed-up normals: scripts/ao.lua), the Hi-Z
     // pyramid, SSR's mask and SSR (scripts/ssr.lua), the composition of SSR and the probes
     // (scripts/reflections.lua), the lighting, the sky and forward.
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 49),
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 50),
               (std::vector<std::string>{"env_cube", "env_mips", "env_prefilter", "env_irradiance", "dfg_table", "probe_capture",
                                         "probe_mips", "probe_prefilter", "sun_cascades", "sun_cull",
-                                        "shadow_clear0", "shadow_clear1", "shadow_clear2", "shadow_local", "gbuffer", "light_culling_coarse", "gtao",
+                                        "shadow_clear0", "shadow_clear1", "shadow_clear2", "shadow_local", "gbuffer", "light_culling_coarse", "ao_depth",
                                         "sun_visibility_clear", "sun_classify", "sun_visibility_half_clear", "sun_classify_half",
                                         "shadow_sun0", "sun_mask0", "sun_mask_half0", "shadow_sun1", "sun_mask1", "sun_mask_half1",
                                         "shadow_sun2", "sun_mask2", "sun_mask_half2",
-                                        "foliage_fixup", "ao_blur", "ao_upsample", "light_culling", "decals_copy0", "decals_copy1", "decals_copy2",
+                                        "foliage_fixup", "gtao", "ao_blur", "ao_upsample", "light_culling", "decals_copy0", "decals_copy1", "decals_copy2",
                                         "decals", "hiz", "ssr_mask", "ssr", "reflection_compose", "lighting_standard", "lighting_clearcoat", "lighting_two_colour",
                                         "sky", "forward", "ssr_history_copy", "ssr_history_mips"}));
     auto plan = compile(graphWithParams(*p), {});
