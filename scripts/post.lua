@@ -63,7 +63,10 @@ function post.chain(o)
     for i = 1, levels do
         local name = "bloom_down" .. i
         rg.resource(name) { format = "rgba16f", scale = 0.5 ^ i }
-        rg.pass(name) { kind = "fullscreen", shader = "post/bloom_down.frag", reads = { previous }, writes = { name }, bind = { source = previous } }
+        rg.pass(name) {
+            kind = "fullscreen", shader = "post/bloom_down.frag", reads = { previous }, writes = { name }, bind = { source = previous },
+            defines = i == 1 and { RG_BLOOM_BOX = true } or nil,
+        }
         previous = name
     end
 
