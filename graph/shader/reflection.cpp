@@ -428,7 +428,17 @@ Result<ShaderReflection> reflectSpirv(std::span<const uint32_t> spirv) {
         return fail(ErrorCode::InvalidInput,
                     std::string("cannot parse SPIR-V: ") + (why && *why ? why : "unknown error"));
     }
-    return Reflector(raw, compiler).run();
+    auto out = Reflector(raw, compiler).run();
+    if (!out) return out;
+    // Whether the module can discard a fragment: a pass drawn over every pixel may then leave
+    // some as they were, so its targets' previous (cleared) contents still count.
+    for (size_t i = 5; i < spirv.size();) {
+        const uint32_t words = spirv[i] >> 16, op = spirv[i] & 0xffffu;
+        if (op == 252 || op == 4416 || op == 5380) out->discards = true;  // OpKill, OpTerminateInvocation, OpDemoteToHelperInvocation
+        if (words == 0) break;
+        i += words;
+    }
+    return out;
 }
 
 Result<ShaderReflection> mergeReflections(const ShaderReflection& a, const ShaderReflection& b,
@@ -459,6 +469,7 @@ Result<ShaderReflection> mergeReflections(const ShaderReflection& a, const Shade
     for (uint32_t loc : b.integerOutputs) out.integerOutputs.push_back(loc);
     std::sort(out.integerOutputs.begin(), out.integerOutputs.end());
     out.integerOutputs.erase(std::unique(out.integerOutputs.begin(), out.integerOutputs.end()), out.integerOutputs.end());
+    out.discards = a.discards || b.discards;
     return out;
 }
 

@@ -80,6 +80,7 @@ struct ShaderReflection {
     std::array<uint32_t, 3> localSize{0, 0, 0};  // compute work-group size; 0s for other stages
     std::vector<uint32_t> colorOutputs;      // fragment output locations, ascending
     std::vector<uint32_t> integerOutputs;    // those of them with an integer type (uvec4, ivec4)
+    bool discards = false;                   // a stage can discard (OpKill, OpTerminateInvocation, OpDemoteToHelperInvocation)
 
     bool operator==(const ShaderReflection&) const = default;
 

@@ -214,6 +214,39 @@ TEST_F(GpuTest, ClearCopyAndMipsKinds) {
     EXPECT_FLOAT_EQ(img->at(0, 0, 2), 0.75f);
 }
 
+// A fullscreen pass clears the targets it does not load, unless nothing of them could show: with
+// a shader that discards, the pixels it leaves keep the clear colour, frame after frame; without,
+// every pixel is the shader's (and the targets are not cleared first).
+TEST_F(GpuTest, FullscreenPassKeepsItsClearWhereItsShaderDiscards) {
+    for (const char* shader : {"test/checker_cutout.frag", "test/tint.frag"}) {
+        SCOPED_TRACE(shader);
+        const bool cutout = std::string(shader) == "test/checker_cutout.frag";
+        GraphDesc g;
+        ResourceDesc out = texture("out", Format::RGBA16F, /*exported=*/true);
+        out.texture.sizeMode = SizeMode::Absolute;
+        out.texture.width = 8;
+        out.texture.height = 4;
+        g.resources = {out};
+        g.passes = {pass("draw", "fullscreen", {{"out", Usage::ColorAttachment}},
+                         {{"shader", Value(shader)},
+                          {"clear", Value(Value::List{Value(0.25), Value(0.5), Value(0.75), Value(1.0)})},
+                          {"uniforms", Value(Value::Table{{"tint", Value(Value::List{Value(1.0), Value(0.0), Value(0.0), Value(1.0)})}})}})};
+        auto& ex = rt().executor();
+        ASSERT_TRUE(ex.build(g, {}).has_value());
+        for (int frame = 0; frame < 2; ++frame) {
+            ASSERT_TRUE(ex.frame().has_value());
+            auto img = ex.readback("out");
+            ASSERT_TRUE(img.has_value());
+            for (uint32_t y = 0; y < 4; ++y)
+                for (uint32_t x = 0; x < 8; ++x) {
+                    const bool kept = cutout && ((x + y) & 1u) == 1u;
+                    EXPECT_FLOAT_EQ(img->at(x, y, 0), kept ? 0.25f : 1.0f) << x << "," << y;
+                    EXPECT_FLOAT_EQ(img->at(x, y, 1), kept ? 0.5f : 0.0f) << x << "," << y;
+                }
+        }
+    }
+}
+
 // Every depth format clears and reads back as depth in [0, 1] (d16: to 1/65535).
 TEST_F(GpuTest, DepthFormatsClearAndReadBack) {
     for (Format f : {Format::D16, Format::D32F, Format::D24S8, Format::D32FS8}) {

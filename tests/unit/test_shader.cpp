@@ -235,6 +235,22 @@ TEST(ShaderCompiler, ReflectsVertexAndFragmentAndMerges) {
     EXPECT_EQ(merged->colorOutputs, (std::vector<uint32_t>{0, 1}));
 }
 
+// Whether a stage can discard: a fullscreen pass whose shader cannot (and with no test or blend)
+// writes every pixel and leaves its targets uncleared (passes/builtin_kinds.cpp).
+TEST(ShaderCompiler, ReflectsWhetherAStageCanDiscard) {
+    ShaderCompiler compiler(options({kShaders}));
+    auto opaque = compiler.compile(request("tri.frag"));
+    auto cutout = compiler.compile(request("cutout.frag"));
+    auto vert = compiler.compile(request("tri.vert"));
+    ASSERT_TRUE(opaque && cutout && vert);
+    EXPECT_FALSE(opaque->reflection.discards);
+    EXPECT_TRUE(cutout->reflection.discards);
+    EXPECT_FALSE(vert->reflection.discards);
+    auto merged = mergeReflections(vert->reflection, cutout->reflection, "cutout");
+    ASSERT_TRUE(merged) << merged.error().describe();
+    EXPECT_TRUE(merged->discards);
+}
+
 TEST(ShaderCompiler, MergeRejectsConflictingBindingTypes) {
     ShaderCompiler compiler(options({kShaders}));
     auto vert = compiler.compile(request("tri.vert"));
