@@ -168,10 +168,15 @@ public:
             depth.imageView = r->image->attachmentView();
             depth.imageLayout = readOnly ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL
                                          : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-            depth.loadOp = readOnly || m_depth->load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
+            const FormatInfo& fi = formatInfo(r->plan->format);
+            // A depth-only target the triangle writes at every pixel needs no clear either (one
+            // with stencil keeps it: the pass does not write the stencil).
+            const bool overwritten = m_writesEveryPixel && m_depthWrite && !fi.stencil;
+            depth.loadOp = readOnly || m_depth->load ? VK_ATTACHMENT_LOAD_OP_LOAD
+                           : overwritten           ? VK_ATTACHMENT_LOAD_OP_DONT_CARE
+                                                   : VK_ATTACHMENT_LOAD_OP_CLEAR;
             depth.storeOp = readOnly ? VK_ATTACHMENT_STORE_OP_NONE : VK_ATTACHMENT_STORE_OP_STORE;
             depth.clearValue.depthStencil = {1.0f, 0};
-            const FormatInfo& fi = formatInfo(r->plan->format);
             if (fi.depth) ri.pDepthAttachment = &depth;
             if (fi.stencil) ri.pStencilAttachment = &depth;
         }
