@@ -576,6 +576,7 @@ std::vector<ParamSpec> shaderParams() {
     return {
         {"shader", "string", "GLSL file, relative to shaders/, the project root or the pipeline's folder"},
         {"defines", "table", "preprocessor defines: NAME = number, boolean or string"},
+        {"switches", "table", "parameters compiled in as defines: PARAM = 'NAME' (a choice: its index; a boolean: 0 or 1; a number: its value); changing one rebuilds the pass"},
         {"bind", "table", "maps a GLSL binding name to a resource name when they differ"},
         {"uniforms", "table", "values for the members of the shader's `Params` uniform block"},
         {"constants", "table", "values for push-constant members"},

@@ -43,6 +43,7 @@ function post.params(o)
     rg.param "dither" { type = "boolean", default = o.dither ~= false, doc = "triangular dither before 8-bit quantisation" }
     rg.param "fxaa_threshold" { type = "number", default = 0.125, min = 0, max = 1 }
     rg.param "fxaa_subpixel" { type = "number", default = 0.75, min = 0, max = 1 }
+    post.declared = true
 end
 
 -- The persistent exposure state (shaders/lib/exposure.glsl, RgExposureState: 4 floats).
@@ -103,6 +104,9 @@ function post.chain(o)
         reads = reads, writes = fxaa and { mapped, output } or { mapped },
         defines = fxaa and { RG_TONEMAP_COPY = true } or nil,
         bind = { hdr = input, bloom = levels >= 1 and lower or input }, uniforms = { bloom_levels = levels },
+        -- The curve and the dither compiled in when post.params declared them (a change rebuilds
+        -- this pass only): the curves not chosen would run anyway on a CPU rasteriser.
+        switches = post.declared and { tonemap = "RG_TONEMAP_CURVE", dither = "RG_DITHER" } or nil,
     }
     if fxaa then
         -- FXAA on the blocks that have an edge only: `fxaa_edges` marks the pixels FXAA's contrast

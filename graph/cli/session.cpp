@@ -777,12 +777,23 @@ Result<void> Session::frame(VkCommandBuffer hostCmd) {
         PipelineDesc next = m_pipeline;
         applyFrameChanges(next, *changes);
         GraphDesc graph = buildableGraph(next);
-        if (changes->structural()) {
+        // A parameter some pass compiles in (switches) rebuilds that pass, as a shader swap does.
+        std::vector<std::string> switched;
+        for (const auto& [name, value] : changes->params)
+            if (isSwitch(m_pipeline, name)) {
+                const ParamDesc* before = m_pipeline.findParam(name);
+                if (!before || !(before->value == value)) switched.push_back(name);
+            }
+        if (changes->structural() || !switched.empty()) {
             auto tb = Clock::now();
             if (auto r = m_runtime.executor().build(graph, m_options.compile); !r) return r;
             const double buildMs = msSince(tb);
             ++m_rebuilds;
-            const std::string what = describeStructural(*changes);
+            std::string what = describeStructural(*changes);
+            for (const auto& name : switched) {
+                const Value& v = next.findParam(name)->value;
+                what += (what.empty() ? "" : ", ") + ("switch " + name + " = " + (v.isString() ? v.asString() : v.isBool() ? (v.asBool() ? "true" : "false") : std::to_string(v.asNumber())));
+            }
             char ms[32];
             std::snprintf(ms, sizeof ms, "%.2f ms", buildMs);
             note("frame " + std::to_string(m_frame) + ": " + what + "; recompiled in " + ms + ": " +

@@ -912,6 +912,33 @@ struct Builder {
         return {};
     }
 
+    // switches = { param = "DEFINE" }: parameters compiled into a pass's shaders as defines
+    // (graphWithParams), named by the pipeline's parameters, each a GLSL identifier given once.
+    Result<void> checkSwitches() {
+        for (const auto& p : out.graph.passes) {
+            const Value& switches = p.params["switches"];
+            if (switches.isNil()) continue;
+            Where w = where(*passes[p.name]).at("switches");
+            std::vector<std::string> params, defines;
+            for (const auto& q : out.params) params.push_back(q.name);
+            for (const auto& [param, define] : switches.asTable()) {
+                const Where sw = w.at(param);
+                if (std::find(params.begin(), params.end(), param) == params.end())
+                    return sw.error("unknown parameter '" + param + "'" + suggestion(param, params) + " (declare it with rg.param)");
+                if (const ParamDesc* d = out.findParam(param); d && d->type == ParamType::Vec3)
+                    return sw.error("parameter '" + param + "' is a vec3; a switch takes a number, an integer, a boolean or a choice");
+                const std::string name = define.isString() ? define.asString() : "";
+                const bool identifier = !name.empty() && (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_') &&
+                                        std::all_of(name.begin(), name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+                if (!identifier) return sw.error("expected the name of a define (a GLSL identifier), got " + (define.isString() ? "'" + name + "'" : std::string(define.typeName())));
+                if (std::find(defines.begin(), defines.end(), name) != defines.end()) return sw.error("define '" + name + "' is already another parameter's switch");
+                if (p.params["defines"].has(name)) return sw.error("define '" + name + "' is also in the pass's defines");
+                defines.push_back(name);
+            }
+        }
+        return {};
+    }
+
     Result<PipelineDesc> build(const OutputNames& names) {
         const std::string& output = names.display;
         if (auto r = collectNames(); !r) return std::unexpected(r.error());
@@ -940,6 +967,7 @@ struct Builder {
         if (auto r = checkMaterialIdPlacement(); !r) return std::unexpected(r.error());
         if (auto r = insertModulePasses(); !r) return std::unexpected(r.error());
         if (auto r = checkMaterialReferences(); !r) return std::unexpected(r.error());
+        if (auto r = checkSwitches(); !r) return std::unexpected(r.error());
 
         out.output = output.empty() ? "output" : output;
         auto it = std::find_if(out.graph.resources.begin(), out.graph.resources.end(), [&](auto& r) { return r.name == out.output; });

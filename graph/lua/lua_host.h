@@ -85,8 +85,13 @@ void applyFrameChanges(PipelineDesc& pipeline, const FrameChanges& changes);
 // The GraphDesc to build: the pipeline's graph with every parameter merged into each pass's
 // `uniforms` (a pass's own uniforms win), and the output exported.
 // Also resolves stencil = { class = "name" } to the class's ref and mask, and gives each
-// `scene` pass its materials (params.rg_materials, see sceneMaterials).
+// `scene` pass its materials (params.rg_materials, see sceneMaterials), and the parameters a
+// pass names in `switches` into its defines.
 GraphDesc graphWithParams(const PipelineDesc& pipeline);
+
+// Whether some pass compiles `param` into its shaders (switches = { param = "DEFINE" }): a
+// change to it rebuilds those passes rather than updating uniforms.
+bool isSwitch(const PipelineDesc& pipeline, const std::string& param);
 
 // Makes absolute the passes' relative shader paths that name a file next to the pipeline script
 // (shaders/ and the project root are searched by the shader compiler anyway).

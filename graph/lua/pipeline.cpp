@@ -91,24 +91,42 @@ void applyFrameChanges(PipelineDesc& pipeline, const FrameChanges& changes) {
     }
 }
 
+namespace {
+// A parameter as a Params-block float: booleans as 0/1, choices as their index.
+Value paramAsNumber(const ParamDesc& p) {
+    if (p.type == ParamType::Boolean) return Value(p.value.asBool() ? 1.0 : 0.0);
+    if (p.type == ParamType::Choice) {
+        double index = 0;
+        for (size_t i = 0; i < p.choices.size(); ++i)
+            if (p.choices[i] == p.value.asString()) index = static_cast<double>(i);
+        return Value(index);
+    }
+    return p.value;
+}
+}  // namespace
+
+bool isSwitch(const PipelineDesc& pipeline, const std::string& param) {
+    for (const auto& pass : pipeline.graph.passes)
+        if (pass.params["switches"].has(param)) return true;
+    return false;
+}
+
 GraphDesc graphWithParams(const PipelineDesc& pipeline) {
     GraphDesc g = pipeline.graph;
     for (auto& pass : g.passes) {
         if (!pass.params.isTable()) pass.params = Value(Value::Table{});
         Value::Table uniforms;
-        for (const auto& p : pipeline.params) {
-            // Params blocks hold floats: booleans as 0/1; choices as their index.
-            if (p.type == ParamType::Boolean) uniforms[p.name] = Value(p.value.asBool() ? 1.0 : 0.0);
-            else if (p.type == ParamType::Choice) {
-                double index = 0;
-                for (size_t i = 0; i < p.choices.size(); ++i)
-                    if (p.choices[i] == p.value.asString()) index = static_cast<double>(i);
-                uniforms[p.name] = Value(index);
-            } else
-                uniforms[p.name] = p.value;
-        }
+        for (const auto& p : pipeline.params) uniforms[p.name] = paramAsNumber(p);
         for (const auto& [k, v] : pass.params["uniforms"].asTable()) uniforms[k] = v;
         pass.params.table()["uniforms"] = Value(uniforms);
+        // switches = { param = "DEFINE" }: the parameter's value compiled in (the pass is rebuilt
+        // when it changes: Session::frame).
+        if (pass.params["switches"].isTable()) {
+            Value::Table defines = pass.params["defines"].isTable() ? pass.params["defines"].asTable() : Value::Table{};
+            for (const auto& [param, define] : pass.params["switches"].asTable())
+                if (const ParamDesc* p = pipeline.findParam(param); p && define.isString()) defines[define.asString()] = paramAsNumber(*p);
+            pass.params.table()["defines"] = Value(defines);
+        }
     }
     for (auto& r : g.resources)
         if (r.name == pipeline.output) r.exported = true;

@@ -8,6 +8,9 @@
 //  - curves: 0 ACES (Narkowicz's fit of the ACES RRT+ODT), 1 Khronos PBR Neutral (keeps base
 //    colours up to its compression start), 2 linear (clamped);
 //  - sRGB: exact piecewise function (seed 002 §5.1.5), then triangular dither when `dither`.
+// The curve and the dither are compiled in when the pass declares them as switches
+// (RG_TONEMAP_CURVE, RG_DITHER: scripts/post.lua) — a CPU rasteriser runs every side of a branch,
+// so the curves not chosen cost ~1 ms at 1280×720 on lavapipe — and read from Params otherwise.
 #include "lib/exposure.glsl"
 
 layout(location = 0) in vec2 uv;
@@ -66,9 +69,21 @@ void main() {
         float w = exp2(params.bloom_ec);
         image = mix(image, blur, w);
     }
+#if defined(RG_TONEMAP_CURVE) && RG_TONEMAP_CURVE == 0
+    vec3 mapped = acesFit(image);
+#elif defined(RG_TONEMAP_CURVE) && RG_TONEMAP_CURVE == 1
+    vec3 mapped = pbrNeutral(image);
+#elif defined(RG_TONEMAP_CURVE)
+    vec3 mapped = clamp(image, 0.0, 1.0);
+#else
     vec3 mapped = params.tonemap < 0.5 ? acesFit(image) : params.tonemap < 1.5 ? pbrNeutral(image) : clamp(image, 0.0, 1.0);
+#endif
     vec3 display = rgLinearToSrgb(mapped);
+#ifdef RG_DITHER
+    if (RG_DITHER != 0) {
+#else
     if (params.dither > 0.5) {
+#endif
         uvec3 seed = uvec3(uvec2(p), uint(pc.rg_frame));
         display += (hash(seed) + hash(seed + 7919u) - 1.0) / 255.0;
     }

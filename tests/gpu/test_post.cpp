@@ -197,6 +197,41 @@ TEST_F(PostGpu, FxaaSmoothsAnAliasedEdgeOnly) {
     EXPECT_EQ(changedAway, 0);
 }
 
+// The tone curve is a switch of the tonemap pass (scripts/post.lua: compiled in): changing it at
+// run time rebuilds that pass alone and gives the image a load with that curve gives; a
+// highlight of 8× the metered grey separates the curves (ACES compresses it, linear clips).
+TEST_F(PostGpu, SwitchingTheToneCurveRebuildsTheTonemapPassOnly) {
+    auto displayAfterLoad = [&](const char* curve) {
+        SessionOptions o;
+        o.compile.outputWidth = 64;
+        o.compile.outputHeight = 48;
+        o.params["tonemap"] = Value(curve);
+        o.params["exposure_mode"] = Value("manual");
+        Session s(*s_runtime, o);
+        EXPECT_TRUE(s.load(kScripts + "post_uniform.lua").has_value());
+        EXPECT_TRUE(s.frame().has_value());
+        return *s_runtime->executor().readback("display");
+    };
+    const Image aces = displayAfterLoad("aces"), linear = displayAfterLoad("linear");
+    SessionOptions o;
+    o.compile.outputWidth = 64;
+    o.compile.outputHeight = 48;
+    o.params["exposure_mode"] = Value("manual");
+    Session s(*s_runtime, o);
+    ASSERT_TRUE(s.load(kScripts + "post_uniform.lua").has_value());
+    ASSERT_TRUE(s.frame().has_value());
+    EXPECT_EQ(s_runtime->executor().readback("display")->pixels, aces.pixels);  // the default curve
+    ASSERT_TRUE(s.setOverride("tonemap", Value("linear")).has_value());
+    ASSERT_TRUE(s.frame().has_value());
+    EXPECT_EQ(s.rebuilds(), 1u);
+    EXPECT_EQ(s_runtime->executor().lastBuildReport().passesPrepared, (std::vector<std::string>{"tonemap"}));
+    EXPECT_EQ(s_runtime->executor().readback("display")->pixels, linear.pixels);
+    EXPECT_NE(aces.pixels, linear.pixels);
+    // The same value again is no change.
+    ASSERT_TRUE(s.frame().has_value());
+    EXPECT_EQ(s.rebuilds(), 1u);
+}
+
 TEST_F(PostGpu, GlslSrgbMatchesItsDefinition) {
     GraphDesc g;
     ResourceDesc out;

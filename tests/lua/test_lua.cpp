@@ -55,7 +55,25 @@ TEST(LuaErrors, UnknownFieldSuggestsTheClosest) {
     EXPECT_EQ(loadError("unknown_field.lua"),
               kScripts + "unknown_field.lua:3: passes.tonemap.shadr: unknown field (did you mean 'shader'?); expected one of: "
                          "'kind', 'reads', 'writes', 'after', 'enabled', 'side_effect', 'doc', 'insert', 'shader', 'defines', "
-                         "'bind', 'uniforms', 'constants', 'filter', 'clear', 'blend', 'stencil', 'depth'");
+                         "'switches', 'bind', 'uniforms', 'constants', 'filter', 'clear', 'blend', 'stencil', 'depth'");
+}
+
+// switches = { param = "DEFINE" } names a declared parameter and a define (a GLSL identifier).
+TEST(LuaErrors, SwitchesNameParametersAndDefines) {
+    EXPECT_EQ(loadError("switch_unknown.lua"),
+              kScripts + "switch_unknown.lua:4: passes.tonemap.switches.curv: unknown parameter 'curv' (did you mean 'curve'?) "
+                         "(declare it with rg.param)");
+    EXPECT_EQ(loadError("switch_bad_define.lua"),
+              kScripts + "switch_bad_define.lua:4: passes.tonemap.switches.curve: expected the name of a define (a GLSL "
+                         "identifier), got '2CURVE'");
+    auto p = load("switch_ok.lua");
+    ASSERT_TRUE(p.has_value()) << p.error().message;
+    GraphDesc g = graphWithParams(*p);
+    EXPECT_EQ(g.findPass("tonemap")->params["defines"]["RG_CURVE"], Value(1.0));  // "neutral": the index of the choice
+    EXPECT_EQ(g.findPass("tonemap")->params["defines"]["RG_DITHER"], Value(0.0));
+    EXPECT_EQ(g.findPass("tonemap")->params["defines"]["KEEP"], Value(true));
+    EXPECT_TRUE(isSwitch(*p, "curve"));
+    EXPECT_FALSE(isSwitch(*p, "other"));
 }
 
 TEST(LuaErrors, WrongType) {
