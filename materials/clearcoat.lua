@@ -27,3 +27,4 @@ rg.pass "lighting_clearcoat" (reflections.lit(ssr.lit(shadows.masked(ao.lit(prob
     writes = { { "hdr", load = true } }, stencil = { class = "lit_clearcoat" },
     insert = { after = "lighting_standard" },
 })))))))
+lighting.per_class("lighting_clearcoat", "lit_clearcoat")  -- off while the scene has no clear coat

@@ -24,3 +24,4 @@ rg.pass "foliage_fixup" {
     writes = { { "GB2", load = true }, { "GB3", load = true } },
     stencil = { class = "foliage" }, insert = { after = "gbuffer" },
 }
+require("lighting").per_class("foliage_fixup", "foliage")  -- off while the scene has no foliage

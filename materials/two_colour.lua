@@ -39,3 +39,4 @@ rg.pass "lighting_two_colour" (reflections.lit(shadows.masked(ao.lit(ibl.lit(lig
     writes = { { "hdr", load = true } }, stencil = { class = "lit_two_colour" },
     insert = { after = "lighting_standard" },
 })))))
+lighting.per_class("lighting_two_colour", "lit_two_colour")  -- off while the scene has no two-colour material

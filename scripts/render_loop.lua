@@ -69,10 +69,12 @@ end
 
 -- Per frame: a scene without decals skips the decal passes and their copies of the G-buffer (on
 -- lavapipe even a pass that discards every pixel loads and stores its three targets: ~30 ms at 720p);
--- without a sun, no shadow draws; without local probes, no capture.
+-- without a sun, no shadow draws; without local probes, no capture; without draws of a material's
+-- stencil class, its lighting pass (and the foliage's fix-up).
 function loop.frame(ctx)
     shadows.frame(ctx)  -- no sun: the shadow map is only cleared
     probes.frame(ctx)   -- no local probes: nothing captured
+    require("lighting").frame(ctx)  -- no draws of a class: its lighting pass and fix-up are off
     if ctx.scene then
         for _, pass in ipairs(loop.decal_passes) do ctx.pass(pass).enabled = ctx.scene.decals > 0 end
         -- No blended draws, no forward pass: nothing then keeps the sun's maps alive past their

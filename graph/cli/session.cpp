@@ -662,7 +662,7 @@ Result<void> Session::load(const std::string& file) {
     std::erase_if(overrides.params, [&](const auto& o) { return !pipeline->findParam(o.first); });
     std::erase_if(overrides.enabled, [&](const auto& o) { return !pipeline->graph.findPass(o.first); });
     auto tc = Clock::now();
-    auto first = frameChanges(*host, frameContext(scene ? scene.get() : nullptr), *pipeline, overrides);
+    auto first = frameChanges(*host, frameContext(scene ? scene.get() : nullptr, *pipeline), *pipeline, overrides);
     // A failure from here on gives the executor back the scene its previous build uses.
     auto restorePrevious = [&] {
         m_frameHook = previousHook;
@@ -717,7 +717,7 @@ Result<void> Session::load(const std::string& file) {
     return {};
 }
 
-FrameContext Session::frameContext(const passes::GpuScene* scene) const {
+FrameContext Session::frameContext(const passes::GpuScene* scene, const PipelineDesc& pipeline) const {
     FrameContext ctx{m_frame, static_cast<double>(m_frame) / 60.0, std::nullopt, m_options.compile.outputWidth, m_options.compile.outputHeight};
     if (scene)
         ctx.scene = FrameContext::SceneFacts{
@@ -728,6 +728,12 @@ FrameContext Session::frameContext(const passes::GpuScene* scene) const {
             static_cast<uint32_t>(std::count_if(scene->draws().begin(), scene->draws().end(), [&](const passes::DrawItem& d) {
                 return scene->scene().materials[d.material].alphaMode == AlphaMode::Blend;
             }))};
+    if (scene)
+        for (const auto& d : scene->draws()) {
+            const std::string& model = scene->scene().materials[d.material].model;
+            for (const auto& m : pipeline.materials)
+                if (m.name == model && !m.stencil.empty()) ++ctx.scene->classes[m.stencil];
+        }
     return ctx;
 }
 
@@ -768,7 +774,7 @@ Result<void> Session::frame(VkCommandBuffer hostCmd) {
         for (const auto& [pass, on] : m_overrides.enabled)
             if (const PassDesc* p = m_pipeline.graph.findPass(pass); p && p->enabled != on) changes->enabled[pass] = on;
     } else {
-        changes = frameChanges(*m_host, frameContext(m_scene.get()), m_pipeline, m_overrides);
+        changes = frameChanges(*m_host, frameContext(m_scene.get(), m_pipeline), m_pipeline, m_overrides);
         if (!changes) return std::unexpected(changes.error());
         m_callbackMs = msSince(t0);
     }

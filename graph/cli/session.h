@@ -107,7 +107,7 @@ private:
     GraphDesc buildableGraph(const PipelineDesc& p) const;
     // The frame context of frame m_frame for `scene` (ctx in rg.frame), and what the script's
     // rg.frame, the frame hook and the overrides change for it in `pipeline`.
-    FrameContext frameContext(const passes::GpuScene* scene) const;
+    FrameContext frameContext(const passes::GpuScene* scene, const PipelineDesc& pipeline) const;
     Result<FrameChanges> frameChanges(LuaHost& host, const FrameContext& ctx, const PipelineDesc& pipeline, const FrameChanges& overrides);
     Result<std::unique_ptr<passes::GpuScene>> loadScene(PipelineDesc& pipeline);
     void note(const std::string& line);

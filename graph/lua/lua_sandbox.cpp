@@ -341,6 +341,12 @@ int frameTrampoline(lua_State* L) {
         lua_setfield(L, -2, "probes");
         lua_pushinteger(L, ctx.scene->blended);
         lua_setfield(L, -2, "blended");
+        lua_newtable(L);
+        for (const auto& [cls, draws] : ctx.scene->classes) {
+            lua_pushinteger(L, draws);
+            lua_setfield(L, -2, cls.c_str());
+        }
+        lua_setfield(L, -2, "classes");
         lua_setfield(L, -2, "scene");
     }
     lua_newtable(L);

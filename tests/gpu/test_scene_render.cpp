@@ -210,7 +210,9 @@ TEST_F(SceneRender, TogglingPassesPreparesNoOtherPass) {
     auto r = s.load(kRoot + "/scripts/pipelines/deferred.lua");
     ASSERT_TRUE(r.has_value()) << r.error().describe();
     const std::vector<std::string> loaded = s_runtime->executor().lastBuildReport().passesPrepared;
-    for (const char* off : {"decals", "decals_copy0", "forward", "shadow_clear0"})
+    // The scene's materials are all standard: the clear-coat and two-colour lighting passes and the
+    // foliage fix-up, which work on their stencil classes' pixels only, are off too.
+    for (const char* off : {"decals", "decals_copy0", "forward", "shadow_clear0", "lighting_clearcoat", "lighting_two_colour", "foliage_fixup"})
         EXPECT_EQ(std::count(loaded.begin(), loaded.end(), off), 0) << off << " was prepared";
     EXPECT_EQ(std::count(loaded.begin(), loaded.end(), "gbuffer"), 1);
     ASSERT_TRUE(s.frame().has_value());
@@ -222,6 +224,20 @@ TEST_F(SceneRender, TogglingPassesPreparesNoOtherPass) {
     ASSERT_TRUE(s.frame().has_value());
     EXPECT_EQ(s_runtime->executor().lastBuildReport().passesPrepared, (std::vector<std::string>{"sky"}));
     EXPECT_EQ(s_runtime->executor().lastBuildReport().resourcesCreated, 0u);
+}
+
+// A scene that draws the clear-coat, two-colour and foliage materials (materials.lua) keeps the
+// passes of their stencil classes (lighting.per_class), and its rg.frame sees the draws per class.
+TEST_F(SceneRender, PassesOfTheSceneStencilClassesRun) {
+    SessionOptions o;
+    o.compile.outputWidth = 96;
+    o.compile.outputHeight = 64;
+    o.scene = kRoot + "/tests/gpu/scenes/materials.lua";
+    Session s(*s_runtime, o);
+    ASSERT_TRUE(s.load(kRoot + "/scripts/pipelines/deferred.lua").has_value());
+    const std::vector<std::string> loaded = s_runtime->executor().lastBuildReport().passesPrepared;
+    for (const char* on : {"lighting_clearcoat", "lighting_two_colour", "foliage_fixup"})
+        EXPECT_EQ(std::count(loaded.begin(), loaded.end(), on), 1) << on << " was not prepared";
 }
 
 TEST_F(SceneRender, DecalsBlendTheCommonParametersOnly) {

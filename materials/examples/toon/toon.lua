@@ -37,3 +37,4 @@ rg.pass "lighting_toon" (ao.lit(shadows.masked(ibl.lit(lighting.tiled {
     writes = { { "hdr", load = true } }, stencil = { class = "lit_toon" },
     insert = { after = "lighting_standard" },
 }))))
+lighting.per_class("lighting_toon", "lit_toon")  -- off while the scene has no toon material
