@@ -316,6 +316,7 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
                 DrawItem& item = m_draws.emplace_back(DrawItem{ranges[k].firstIndex, ranges[k].indexCount, ranges[k].vertexOffset,
                                                                ranges[k].material, node.world, normal, lo, hi, node.lightmapRect});
                 item.lods[0] = {item.firstIndex, item.indexCount, 0.0f};
+                item.castsShadows = node.castShadows && m_scene.materials[item.material].alphaMode != AlphaMode::Blend;
                 // An error in the primitive's space, in the world: times the node's largest axis scale.
                 const float scale = std::max({glm::length(glm::vec3(node.world[0])), glm::length(glm::vec3(node.world[1])),
                                               glm::length(glm::vec3(node.world[2]))});
@@ -332,12 +333,11 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
         words[0] = glm::vec4(std::bit_cast<float>(static_cast<uint32_t>(m_draws.size())), 0.0f, 0.0f, 0.0f);
         for (size_t d = 0; d < m_draws.size(); ++d) {
             const DrawItem& item = m_draws[d];
-            const bool opaque = m_scene.materials[item.material].alphaMode != AlphaMode::Blend;
             glm::vec4* w = &words[1 + kWords * d];
             w[0] = glm::vec4(item.boundsMin, std::bit_cast<float>(item.firstIndex));
             w[1] = glm::vec4(item.boundsMax, std::bit_cast<float>(item.indexCount));
             w[2] = glm::vec4(std::bit_cast<float>(item.vertexOffset), std::bit_cast<float>(item.material),
-                             std::bit_cast<float>(opaque ? 1u : 0u), std::bit_cast<float>(item.lodCount));
+                             std::bit_cast<float>(item.castsShadows ? 1u : 0u), std::bit_cast<float>(item.lodCount));
             for (uint32_t l = 0; l < kMaxDrawLods; ++l) {
                 w[3][static_cast<int>(l)] = std::bit_cast<float>(item.lods[l].firstIndex);
                 w[4][static_cast<int>(l)] = std::bit_cast<float>(item.lods[l].indexCount);
@@ -980,8 +980,7 @@ void GpuScene::updateShadowViews(uint32_t slot, const glm::mat4& cameraViewProj)
             const auto planes = frustumPlanes(v.viewProj);
             std::vector<size_t> draws;
             for (size_t d = 0; d < m_draws.size(); ++d)
-                if (m_scene.materials[m_draws[d].material].alphaMode != AlphaMode::Blend &&
-                    boxMeetsFrustum(planes, m_draws[d].boundsMin, m_draws[d].boundsMax))
+                if (m_draws[d].castsShadows && boxMeetsFrustum(planes, m_draws[d].boundsMin, m_draws[d].boundsMax))
                     draws.push_back(d);
             m_shadowViewDraws.push_back(std::move(draws));
         }

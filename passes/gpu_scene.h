@@ -44,6 +44,8 @@ struct DrawItem {
     // coarser index lists (Primitive::lods) with their error scaled by the node's largest axis.
     std::array<DrawLod, kMaxDrawLods> lods{};
     uint32_t lodCount = 1;
+    // Drawn into the shadow maps: an opaque material's draw whose node casts shadows (Node::castShadows).
+    bool castsShadows = true;
 };
 
 // The shadow views of the scene's local lights (lib/shadows.glsl's ShadowViews block): how many

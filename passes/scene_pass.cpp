@@ -663,7 +663,8 @@ private:
         auto pipeline = createGraphicsPipeline(setup.gpu, d);
         if (!pipeline) return std::unexpected(pipeline.error());
         g.pipeline = std::move(*pipeline);
-        g.draws = drawsWhere(*setup.scene, [](const Material& m) { return m.alphaMode != AlphaMode::Blend; });
+        for (size_t d = 0; d < setup.scene->draws().size(); ++d)
+            if (setup.scene->draws()[d].castsShadows) g.draws.push_back(d);
         m_groups.push_back(std::move(g));
         return {};
     }

@@ -170,6 +170,11 @@ struct Node {
     // Where the node's uv1 square lands in the scene's lightmap atlas: atlas uv = uv1 * xy + zw
     // (packLightmap); zero when the node has no lightmap.
     glm::vec4 lightmapRect{0.0f};
+    // Whether it is drawn into the rasterised shadow maps (the sun's cascades, the local lights'
+    // views). Off for a surface nothing can stand behind — a ground plane under a sky — it spares
+    // the maps its depth fill; it still receives shadows, and the ray casts (the reference mode,
+    // the probe capture's shadow rays, the lightmap bake) still see it.
+    bool castShadows = true;
 };
 
 enum class LightType : uint8_t {

@@ -325,7 +325,7 @@ struct Builder {
     Result<void> object(const Declaration& d) {
         Where w = where(d);
         const Value& b = d.body;
-        std::vector<std::string> fields = {"position", "rotation", "scale", "material", "doc"};
+        std::vector<std::string> fields = {"position", "rotation", "scale", "material", "cast_shadows", "doc"};
         if (d.kind == DeclKind::Sphere) fields.insert(fields.end(), {"radius", "segments"});
         else fields.push_back("size");
         if (auto r = checkFields(w, b, fields); !r) return r;
@@ -354,11 +354,14 @@ struct Builder {
             RG_TRY(size, vec3(w, b, "size", size, "{x, y, z} in metres", Range::positive()));
             p = makeBox(size, material);
         }
+        bool castShadows = true;
+        RG_TRY(castShadows, boolean(w, b, "cast_shadows", true));
         generatedVertices += p.vertices.size();
         Mesh mesh;
         mesh.name = d.name;
         mesh.primitives.push_back(std::move(p));
         scene.nodes.push_back({d.name, world, static_cast<int32_t>(scene.meshes.size())});
+        scene.nodes.back().castShadows = castShadows;
         scene.meshes.push_back(std::move(mesh));
         return {};
     }
@@ -411,7 +414,7 @@ struct Builder {
     Result<void> gltf(const Declaration& d) {
         Where w = where(d);
         const Value& b = d.body;
-        if (auto r = checkFields(w, b, {"file", "position", "rotation", "scale", "doc"}); !r) return r;
+        if (auto r = checkFields(w, b, {"file", "position", "rotation", "scale", "cast_shadows", "doc"}); !r) return r;
         if (!b.has("file")) return w.at("file").error("missing (expected a .gltf or .glb file, relative to the script)");
         if (!b["file"].isString()) return w.at("file").error("expected a file name, got " + describe(b["file"]));
         glm::mat4 t;
@@ -419,9 +422,14 @@ struct Builder {
         GltfOptions go;
         go.loadImages = options.loadImages;
         go.generateMips = options.generateMips;
+        bool castShadows = true;
+        RG_TRY(castShadows, boolean(w, b, "cast_shadows", true));
         auto sub = loadGltf(resolve(b["file"].asString()), go);
         if (!sub) return fail(sub.error().code, d.origin + ": " + w.at("file").path + ": " + sub.error().message, sub.error().reasons);
+        const size_t firstNode = scene.nodes.size();
         merge(std::move(*sub), t, d.name);
+        if (!castShadows)
+            for (size_t n = firstNode; n < scene.nodes.size(); ++n) scene.nodes[n].castShadows = false;
         return {};
     }
 

@@ -32,7 +32,10 @@ for i = 0, N - 1 do
 end
 
 scene.material "floor" { base_color = { 0.18, 0.18, 0.18 }, smoothness = 0.35 }
-scene.plane "floor" { size = { 24, 24 }, material = "floor" }
+-- The ground casts no shadow: everything stands on it and every light is above it, so its depth in
+-- the shadow maps could never hide anything (it still receives shadows); leaving it out spares
+-- each sun cascade the fill of a plane that covers the whole map (~3 ms at 1280x720 on lavapipe).
+scene.plane "floor" { size = { 24, 24 }, material = "floor", cast_shadows = false }
 
 scene.material "crate" { base_color = { 0.55, 0.38, 0.22 }, smoothness = 0.2 }
 scene.box "crate" { size = { 1.2, 1.2, 1.2 }, position = { 5.5, 0.6, -2.0 }, rotation = { 0, 30, 0 }, material = "crate" }

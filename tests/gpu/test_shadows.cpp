@@ -95,6 +95,24 @@ TEST_F(Shadows, BoxShadowFallsWhereTheGeometryPutsIt) {
     }
 }
 
+// cast_shadows = false takes an object out of the shadow maps and nothing else: the ground's own
+// depth there changes no shadow (the box's falls as before), the box's leaves the ground lit.
+TEST_F(Shadows, AnObjectThatCastsNoShadowLeavesTheMapsOnly) {
+    const float m = 0.08f;
+    auto shadowRegion = [=](float x, float z) { return x > -1.5f + m && x < -0.5f - m && std::abs(z) < 0.5f - m; };
+    for (const char* cast : {"ground", "box"}) {
+        Frame f = render({{"sun", "x45"}, {"cast", cast}});
+        ASSERT_EQ(f.hdr.width, N);
+        const float litLevel = f.hdr.at(5, 5, 1);
+        ASSERT_GT(litLevel, 0.0f);
+        const Count c = classify(f.hdr, litLevel, shadowRegion);
+        std::printf("%s casts no shadow: the box's shadow region %d dark, %d lit of %d\n", cast, c.shadowed, c.lit, c.total);
+        EXPECT_GT(c.total, 500);
+        if (std::string(cast) == "ground") EXPECT_EQ(c.shadowed, c.total);
+        else EXPECT_EQ(c.lit, c.total);
+    }
+}
+
 TEST_F(Shadows, AnOrthographicCameraSeesTheSameShadow) {
     // The top view through an orthographic camera (scene.camera { height = ... }: the same ground
     // extent, so the same pixel ↔ ground map): every pass that rebuilds positions from depth

@@ -948,7 +948,7 @@ TEST(SceneScript, ObjectFieldErrors) {
               "bad.lua:1: scene.sphere.ball.radius: expected a number > 0, got \"big\"");
     EXPECT_EQ(lua.error("\nscene.sphere \"ball\" { radus = 1 }"),
               "bad.lua:2: scene.sphere.ball.radus: unknown field (did you mean 'radius'?); expected one of: 'position', 'rotation', "
-              "'scale', 'material', 'doc', 'radius', 'segments'");
+              "'scale', 'material', 'cast_shadows', 'doc', 'radius', 'segments'");
     EXPECT_EQ(lua.error("scene.sphere \"ball\" { segments = 2.5 }"),
               "bad.lua:1: scene.sphere.ball.segments: expected a whole number in [3, 1024], got 2.5");
     EXPECT_EQ(lua.error("scene.box \"b\" { size = { 1, 0, 1 } }"),
@@ -967,7 +967,8 @@ TEST(SceneScript, ObjectFieldErrors) {
               "bad.lua:2: scene.box.a: scene.sphere 'a' is already declared (at bad.lua:1)");
     EXPECT_EQ(lua.error("scene.sphere \"a\" { 1, radius = 2 }"),
               "bad.lua:1: scene.sphere.a: unexpected positional value 1; expected named fields: 'position', 'rotation', 'scale', "
-              "'material', 'doc', 'radius', 'segments'");
+              "'material', 'cast_shadows', 'doc', 'radius', 'segments'");
+    EXPECT_EQ(lua.error("scene.box \"b\" { cast_shadows = 0 }"), "bad.lua:1: scene.box.b.cast_shadows: expected a boolean, got 0");
     EXPECT_EQ(lua.error("scene.sphere \"a\" { 1, 2 }"), "bad.lua:1: scene.sphere.a: expected a table of fields after scene.sphere \"a\", got {1, 2}");
     EXPECT_EQ(lua.error("rg.pass \"gbuffer\" {}"), "bad.lua:1: rg.pass \"gbuffer\" belongs in a pipeline script, not in a scene");
     EXPECT_EQ(lua.error("scene.gltf \"g\" { file = \"nope.glb\" }"),

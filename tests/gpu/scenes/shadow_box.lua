@@ -1,14 +1,15 @@
 -- A unit box on a plane under the sun, seen from straight above (pixel ↔ world x, z): the shadow
 -- test scene. scene.args.sun = "x45" (default: the light travels along (−1, −1, 0), 45° up from +x)
 -- or "z30" (along (0, −1, √3)/2: 30° up, from −z: a long shadow towards +z). scene.args.box = 0
--- leaves the plane alone (acne test); scene.args.size scales the sun's angular radius.
+-- leaves the plane alone (acne test); scene.args.size scales the sun's angular radius;
+-- scene.args.cast = "box" or "ground" names the one object that casts no shadow (cast_shadows = false).
 local scene = require "scene"
 local sun = scene.args.sun or "x45"
 scene.material "ground" { base_color = { 0.5, 0.5, 0.5 }, smoothness = 0.2 }
-scene.plane "ground" { size = { 40, 40 }, material = "ground" }
+scene.plane "ground" { size = { 40, 40 }, material = "ground", cast_shadows = scene.args.cast ~= "ground" }
 if scene.args.box ~= 0 then
   scene.material "box" { base_color = { 0.7, 0.2, 0.1 }, smoothness = 0.3 }
-  scene.box "box" { size = { 1, 1, 1 }, position = { 0, 0.5, 0 }, material = "box" }
+  scene.box "box" { size = { 1, 1, 1 }, position = { 0, 0.5, 0 }, material = "box", cast_shadows = scene.args.cast ~= "box" }
 end
 local directions = { x45 = { -1, -1, 0 }, z30 = { 0, -0.57735, 1 } }
 assert(directions[sun], "scene.args.sun: expected 'x45' or 'z30'")
