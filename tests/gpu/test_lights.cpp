@@ -873,7 +873,8 @@ TiledFrame renderManyLights(Runtime& rt, uint32_t lights, bool tiled, uint32_t w
                "function lighting.extend(pass, reads, define)\n"
                "  pass.reads = pass.reads or {}\n  for _, r in ipairs(reads) do table.insert(pass.reads, r) end\n"
                "  pass.defines = pass.defines or {}\n  pass.defines[define] = true\n  return pass\nend\n"
-               "function lighting.tiled(pass) return pass end\nreturn lighting\n";
+               "function lighting.tiled(pass) return pass end\n"
+               "function lighting.per_class(pass, class) end\nfunction lighting.frame(ctx) end\nreturn lighting\n";
         pipeline = dir + "/deferred.lua";
     }
     SessionOptions o;
