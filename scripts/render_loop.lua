@@ -17,6 +17,7 @@ require "two_colour" -- the two-colour base material (tbl:3) and its lighting pa
 local ibl = require "ibl"   -- the distant light probe: the forward pass is lit by it too
 local shadows = require "shadows"  -- the sun's shadow map: and shadowed by it
 local probes = require "probes"    -- the local light probes: reflected by it
+local lighting = require "lighting"  -- the passes of each material's stencil class (lighting.per_class)
 
 local loop = {}
 
@@ -74,7 +75,7 @@ end
 function loop.frame(ctx)
     shadows.frame(ctx)  -- no sun: the shadow map is only cleared
     probes.frame(ctx)   -- no local probes: nothing captured
-    require("lighting").frame(ctx)  -- no draws of a class: its lighting pass and fix-up are off
+    lighting.frame(ctx)  -- no draws of a class: its lighting pass and fix-up are off
     if ctx.scene then
         for _, pass in ipairs(loop.decal_passes) do ctx.pass(pass).enabled = ctx.scene.decals > 0 end
         -- No blended draws, no forward pass: nothing then keeps the sun's maps alive past their

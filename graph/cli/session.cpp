@@ -539,6 +539,18 @@ Result<std::unique_ptr<passes::GpuScene>> Session::loadScene(PipelineDesc& pipel
 
 namespace {
 
+// The scene's draws per stencil class of the pipeline's materials (ctx.scene.classes): fixed
+// while the two stay loaded, so counted once per load.
+std::map<std::string, uint32_t> drawsPerClass(const passes::GpuScene& scene, const PipelineDesc& pipeline) {
+    std::map<std::string, std::string> classOf;  // material name -> its stencil class
+    for (const auto& m : pipeline.materials)
+        if (!m.stencil.empty()) classOf[m.name] = m.stencil;
+    std::map<std::string, uint32_t> classes;
+    for (const auto& d : scene.draws())
+        if (auto it = classOf.find(scene.scene().materials[d.material].model); it != classOf.end()) ++classes[it->second];
+    return classes;
+}
+
 // What a frame's changes do to the graph, for the log: "disabled 'decals', 'sky' uses X.frag".
 std::string describeStructural(const FrameChanges& changes) {
     std::string what;
@@ -662,7 +674,8 @@ Result<void> Session::load(const std::string& file) {
     std::erase_if(overrides.params, [&](const auto& o) { return !pipeline->findParam(o.first); });
     std::erase_if(overrides.enabled, [&](const auto& o) { return !pipeline->graph.findPass(o.first); });
     auto tc = Clock::now();
-    auto first = frameChanges(*host, frameContext(scene ? scene.get() : nullptr, *pipeline), *pipeline, overrides);
+    std::map<std::string, uint32_t> classes = scene ? drawsPerClass(*scene, *pipeline) : std::map<std::string, uint32_t>{};
+    auto first = frameChanges(*host, frameContext(scene ? scene.get() : nullptr, classes), *pipeline, overrides);
     // A failure from here on gives the executor back the scene its previous build uses.
     auto restorePrevious = [&] {
         m_frameHook = previousHook;
@@ -698,6 +711,7 @@ Result<void> Session::load(const std::string& file) {
         }
     }
     m_scene = std::move(scene);
+    m_classes = std::move(classes);
     m_sceneLoadMs = sceneMs;
     // History (exposure, previous frames, a reference accumulation) carries over a reload of the
     // same pipeline drawing the same scene, not to another pipeline or a changed scene.
@@ -717,7 +731,7 @@ Result<void> Session::load(const std::string& file) {
     return {};
 }
 
-FrameContext Session::frameContext(const passes::GpuScene* scene, const PipelineDesc& pipeline) const {
+FrameContext Session::frameContext(const passes::GpuScene* scene, const std::map<std::string, uint32_t>& classes) const {
     FrameContext ctx{m_frame, static_cast<double>(m_frame) / 60.0, std::nullopt, m_options.compile.outputWidth, m_options.compile.outputHeight};
     if (scene)
         ctx.scene = FrameContext::SceneFacts{
@@ -728,12 +742,7 @@ FrameContext Session::frameContext(const passes::GpuScene* scene, const Pipeline
             static_cast<uint32_t>(std::count_if(scene->draws().begin(), scene->draws().end(), [&](const passes::DrawItem& d) {
                 return scene->scene().materials[d.material].alphaMode == AlphaMode::Blend;
             }))};
-    if (scene)
-        for (const auto& d : scene->draws()) {
-            const std::string& model = scene->scene().materials[d.material].model;
-            for (const auto& m : pipeline.materials)
-                if (m.name == model && !m.stencil.empty()) ++ctx.scene->classes[m.stencil];
-        }
+    if (scene) ctx.scene->classes = classes;
     return ctx;
 }
 
@@ -774,7 +783,7 @@ Result<void> Session::frame(VkCommandBuffer hostCmd) {
         for (const auto& [pass, on] : m_overrides.enabled)
             if (const PassDesc* p = m_pipeline.graph.findPass(pass); p && p->enabled != on) changes->enabled[pass] = on;
     } else {
-        changes = frameChanges(*m_host, frameContext(m_scene.get(), m_pipeline), m_pipeline, m_overrides);
+        changes = frameChanges(*m_host, frameContext(m_scene.get(), m_classes), m_pipeline, m_overrides);
         if (!changes) return std::unexpected(changes.error());
         m_callbackMs = msSince(t0);
     }

@@ -105,9 +105,9 @@ public:
 
 private:
     GraphDesc buildableGraph(const PipelineDesc& p) const;
-    // The frame context of frame m_frame for `scene` (ctx in rg.frame), and what the script's
+    // The frame context of frame m_frame for `scene` and its draws per stencil class (ctx in rg.frame), and what the script's
     // rg.frame, the frame hook and the overrides change for it in `pipeline`.
-    FrameContext frameContext(const passes::GpuScene* scene, const PipelineDesc& pipeline) const;
+    FrameContext frameContext(const passes::GpuScene* scene, const std::map<std::string, uint32_t>& classes) const;
     Result<FrameChanges> frameChanges(LuaHost& host, const FrameContext& ctx, const PipelineDesc& pipeline, const FrameChanges& overrides);
     Result<std::unique_ptr<passes::GpuScene>> loadScene(PipelineDesc& pipeline);
     void note(const std::string& line);
@@ -116,6 +116,7 @@ private:
     SessionOptions m_options;
     std::unique_ptr<LuaHost> m_host;
     std::unique_ptr<passes::GpuScene> m_scene;
+    std::map<std::string, uint32_t> m_classes;  // m_scene's draws per stencil class of the pipeline's materials (ctx.scene.classes)
     std::string m_sceneFile;
     double m_sceneLoadMs = 0;
     std::string m_sceneKey;  // the scene's files (contents) and arguments at the last load

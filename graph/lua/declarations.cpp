@@ -59,6 +59,12 @@ bool isSceneKind(DeclKind k) { return k >= DeclKind::SceneMaterial && k < DeclKi
 
 namespace {
 
+// A name GLSL accepts as an identifier: a letter or '_', then letters, digits and '_'.
+bool isGlslIdentifier(const std::string& name) {
+    return !name.empty() && (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_') &&
+           std::all_of(name.begin(), name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
+}
+
 std::string typeOf(const Value& v) {
     if (v.isNumber()) return "number";
     if (v.isBool()) return "boolean";
@@ -779,9 +785,7 @@ struct Builder {
                 "material", "s", "g", "main", "worldPosition", "worldNormal", "worldTangent", "uv0", "uv1"};  // the generated code
             for (const auto& [name, value] : m.params.asTable()) {
                 const Where pw = w.at("params").at(name);
-                const bool identifier = !name.empty() && (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_') &&
-                                        std::all_of(name.begin(), name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
-                if (!identifier) return pw.error("a material parameter's name must be a GLSL identifier (letters, digits, _)");
+                if (!isGlslIdentifier(name)) return pw.error("a material parameter's name must be a GLSL identifier (letters, digits, _)");
                 if (name.rfind("rg", 0) == 0 || name.rfind("RG_", 0) == 0 || name.rfind("gl_", 0) == 0)
                     return pw.error("names starting with 'rg', 'RG_' or 'gl_' are rgraph's and GLSL's; choose another");
                 for (const auto& t : lit->targets)
@@ -919,18 +923,19 @@ struct Builder {
             const Value& switches = p.params["switches"];
             if (switches.isNil()) continue;
             Where w = where(*passes[p.name]).at("switches");
-            std::vector<std::string> params, defines;
-            for (const auto& q : out.params) params.push_back(q.name);
+            std::vector<std::string> defines;
             for (const auto& [param, define] : switches.asTable()) {
                 const Where sw = w.at(param);
-                if (std::find(params.begin(), params.end(), param) == params.end())
+                const ParamDesc* d = out.findParam(param);
+                if (!d) {
+                    std::vector<std::string> params;
+                    for (const auto& q : out.params) params.push_back(q.name);
                     return sw.error("unknown parameter '" + param + "'" + suggestion(param, params) + " (declare it with rg.param)");
-                if (const ParamDesc* d = out.findParam(param); d && d->type == ParamType::Vec3)
+                }
+                if (d->type == ParamType::Vec3)
                     return sw.error("parameter '" + param + "' is a vec3; a switch takes a number, an integer, a boolean or a choice");
                 const std::string name = define.isString() ? define.asString() : "";
-                const bool identifier = !name.empty() && (std::isalpha(static_cast<unsigned char>(name[0])) || name[0] == '_') &&
-                                        std::all_of(name.begin(), name.end(), [](char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; });
-                if (!identifier) return sw.error("expected the name of a define (a GLSL identifier), got " + (define.isString() ? "'" + name + "'" : std::string(define.typeName())));
+                if (!isGlslIdentifier(name)) return sw.error("expected the name of a define (a GLSL identifier), got " + (define.isString() ? "'" + name + "'" : std::string(define.typeName())));
                 if (std::find(defines.begin(), defines.end(), name) != defines.end()) return sw.error("define '" + name + "' is already another parameter's switch");
                 if (p.params["defines"].has(name)) return sw.error("define '" + name + "' is also in the pass's defines");
                 defines.push_back(name);

@@ -16,14 +16,14 @@ layout(set = 0, binding = 1) uniform sampler2D sun_visibility_half;
 void main() {
     ivec2 h = ivec2(gl_FragCoord.xy);
     ivec2 halfSize = textureSize(ao_half, 0);
-    vec2 centre = texelFetch(ao_half, h, 0).rg;  // AO, view distance (0: no geometry)
-    float d0 = centre.g;
+    // The view distance of the texel: it has geometry (the pass is depth-tested over ao_mask,
+    // scripts/ao.lua; the others keep the clear).
+    float d0 = texelFetch(ao_half, h, 0).g;
 #ifdef RG_AO_SUN
     float sun = texelFetch(sun_visibility_half, h, 0).r;
 #else
     float sun = 1.0;
 #endif
-    if (d0 <= 0.0) { color = vec4(1.0, 0.0, sun, 1.0); return; }
     float sum = 0.0, weight = 0.0;
     float falloff = 1.0 / (0.05 * d0 + 0.05);  // loose enough for a floor at grazing view
     for (int j = -2; j < 2; ++j)

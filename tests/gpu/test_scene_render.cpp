@@ -229,11 +229,7 @@ TEST_F(SceneRender, TogglingPassesPreparesNoOtherPass) {
 // A scene that draws the clear-coat, two-colour and foliage materials (materials.lua) keeps the
 // passes of their stencil classes (lighting.per_class), and its rg.frame sees the draws per class.
 TEST_F(SceneRender, PassesOfTheSceneStencilClassesRun) {
-    SessionOptions o;
-    o.compile.outputWidth = 96;
-    o.compile.outputHeight = 64;
-    o.scene = kRoot + "/tests/gpu/scenes/materials.lua";
-    Session s(*s_runtime, o);
+    Session s(*s_runtime, sceneOptions(kRoot + "/tests/gpu/scenes/materials.lua", {}, 96, 64));
     ASSERT_TRUE(s.load(kRoot + "/scripts/pipelines/deferred.lua").has_value());
     const std::vector<std::string> loaded = s_runtime->executor().lastBuildReport().passesPrepared;
     for (const char* on : {"lighting_clearcoat", "lighting_two_colour", "foliage_fixup"})
