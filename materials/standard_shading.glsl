@@ -16,12 +16,13 @@ vec3 rgShade(GBuffer_disney g, vec3 position, vec3 V, ivec2 pixel) {
     float sun = rgSunVisibility(position, g.normal);  // the sun's shadow (RG_SHADOWS), once
 #if defined(RG_LIGHT_TILES) && defined(RG_SCENE_GLOBAL_LIGHTS)
     // The lights that reach every pixel, known per scene with their types (passes/shader_program.cpp):
-    // unrolled, each read at a constant index (one load on a CPU rasteriser, not one per pixel) and
-    // evaluated with only its type's branch; then the tile's lights with only the ranged types.
+    // unrolled, each read at a constant index from the uniform window (lib/lighting.glsl's
+    // rgGlobalLight: one load on a CPU rasteriser, not one per pixel) and evaluated with only its
+    // type's branch; then the tile's lights with only the ranged types.
     const uint globalLights[] = uint[](RG_SCENE_GLOBAL_LIGHT_INDICES);
     const uint globalTypes[] = uint[](RG_SCENE_GLOBAL_LIGHT_TYPE_LIST);
     for (int k = 0; k < RG_SCENE_GLOBAL_LIGHTS; ++k) {
-        RgLightSample s = rgEvaluateLightOf(globalLights[k], 1u << globalTypes[k], position, g.normal, V, linearRoughness, sun);
+        RgLightSample s = rgEvaluateLightOf(rgGlobalLight(globalLights[k]), globalLights[k], 1u << globalTypes[k], position, g.normal, V, linearRoughness, sun);
         luminance += rgStandardLighting(s, g.normal, V, diffuseColor, f0, linearRoughness);
     }
 #if RG_SCENE_TILE_LIGHT_TYPES != 0  // 0: every light is unrolled above, the tiles' lists hold nothing more

@@ -738,7 +738,7 @@ Result<void> GpuScene::createProbes(Context& ctx) {
         g.influence = glm::vec4(p.influenceHalfExtents(), 0.0f);
         out.push_back(g);
     }
-    auto buf = Buffer::create(ctx, "scene.probes", 16 + kMaxProbes * sizeof(GpuProbe), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    auto buf = Buffer::create(ctx, "scene.probes", 16 + kMaxProbes * sizeof(GpuProbe), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
     if (!buf) return std::unexpected(buf.error());
     m_probes = std::move(*buf);
     auto* bytes = static_cast<uint8_t*>(m_probes.mapped());
@@ -776,7 +776,7 @@ Result<void> GpuScene::createFrameData(Context& ctx, const GpuSceneOptions& opti
         if (!views) return std::unexpected(views.error());
         std::memset(views->mapped(), 0, kShadowViewBytes);
         m_shadowViewBuffers.push_back(std::move(*views));
-        auto lights = Buffer::create(ctx, "scene.lights", bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+        auto lights = Buffer::create(ctx, "scene.lights", bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
         if (!lights) return std::unexpected(lights.error());
         auto* p = static_cast<uint8_t*>(lights->mapped());
         std::memset(p, 0, bytes);
@@ -915,7 +915,7 @@ VkBuffer GpuScene::environmentCdfBuffer() const {
 
 VkBuffer GpuScene::bindingBuffer(std::string_view name, uint32_t slot) const {
     if (name == "Camera") return cameraBuffer(slot);
-    if (name == "Lights") return lightBuffer(slot);
+    if (name == "Lights" || name == "LightsWindow") return lightBuffer(slot);
     if (name == "ShadowViews") return shadowViewBuffer(slot);
     if (name == "Decals") return decalBuffer();
     if (name == "Probes") return probeBuffer();

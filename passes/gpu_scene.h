@@ -69,6 +69,12 @@ inline constexpr uint32_t kCameraBinding = 15;
 inline constexpr uint32_t kLightsBinding = 14;
 // The Lights block's fixed light array (scene.glsl's RG_MAX_LIGHTS, the same number).
 inline constexpr uint32_t kMaxLights = 1024;
+// The lights the `LightsWindow` uniform block holds (lib/lighting.glsl RG_LIGHTS_WINDOW): the head
+// of each Lights buffer again, 16 + 204 · 80 bytes — within the 16 KiB maxUniformBufferRange
+// every Vulkan device has.
+inline constexpr uint32_t kLightsWindow = 204;
+inline constexpr VkDeviceSize kLightsWindowBytes = 16 + VkDeviceSize(kLightsWindow) * 80;
+static_assert(kLightsWindowBytes <= 16384, "the lights' uniform window must fit the smallest maxUniformBufferRange");
 // IES profiles are baked at this size (bakeIes' θ × cos φ texels, seed 000 lst:5), each 256 KiB
 // in every frame slot's light buffer; a scene may use this many different profile files.
 inline constexpr uint32_t kIesWidth = 256, kIesHeight = 256;
@@ -184,10 +190,13 @@ public:
     // index range and vertex offset, and whether it casts shadows (opaque): what a culling pass
     // needs to write indirect draw commands (shaders/shadows/cascade_cull.comp).
     VkBuffer drawBuffer() const { return m_drawBuffer.buffer(); }
-    // The buffer behind scene binding `name` (a shader block of that name: Camera, Lights,
-    // ShadowViews — frame slot `slot`'s — Decals, Probes, SceneDraws, SceneBvh, SceneEnvironmentCdf), VK_NULL_HANDLE for
+    // The buffer behind scene binding `name` (a shader block of that name: Camera, Lights and
+    // LightsWindow, ShadowViews — frame slot `slot`'s — Decals, Probes, SceneDraws, SceneBvh, SceneEnvironmentCdf), VK_NULL_HANDLE for
     // another name or a buffer that could not be made.
     VkBuffer bindingBuffer(std::string_view name, uint32_t slot) const;
+    // How much of it the binding sees: kLightsWindowBytes for LightsWindow (the Lights buffer's
+    // head, as a uniform block), the whole buffer otherwise.
+    static VkDeviceSize bindingRange(std::string_view name) { return name == "LightsWindow" ? kLightsWindowBytes : VK_WHOLE_SIZE; }
     // The first of light `light`'s shadow views this frame and how many (0: none).
     std::pair<uint32_t, uint32_t> shadowViewsOf(size_t light) const;
     // The decals (shaders/lib/scene.glsl's Decals block): a count, then one RgDecal each.

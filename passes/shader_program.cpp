@@ -48,9 +48,10 @@ VkDescriptorType toVkDescriptor(DescriptorType t) {
 bool isSceneBinding(const ReflectedBinding& b) {
     static const std::pair<const char*, DescriptorType> kScene[] = {
         {"Camera", DescriptorType::UniformBuffer},       {"Lights", DescriptorType::StorageBuffer},
+        {"LightsWindow", DescriptorType::UniformBuffer},
         {"Decals", DescriptorType::StorageBuffer},       {"ShadowViews", DescriptorType::StorageBuffer},
         {"SceneDraws", DescriptorType::StorageBuffer},   {"SceneBvh", DescriptorType::StorageBuffer},
-        {"Probes", DescriptorType::StorageBuffer},       {"SceneEnvironmentCdf", DescriptorType::StorageBuffer},
+        {"Probes", DescriptorType::UniformBuffer},       {"SceneEnvironmentCdf", DescriptorType::StorageBuffer},
         {"SceneEnvironment", DescriptorType::CombinedImageSampler}, {"SceneLightmap", DescriptorType::CombinedImageSampler}};
     return std::any_of(std::begin(kScene), std::end(kScene), [&](const auto& e) { return b.name == e.first && b.type == e.second; });
 }
@@ -473,7 +474,7 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
                 writes.push_back(w);
                 continue;
             }
-            buffers.push_back({setup.scene->bindingBuffer(b->name, s / m_variants), 0, VK_WHOLE_SIZE});
+            buffers.push_back({setup.scene->bindingBuffer(b->name, s / m_variants), 0, GpuScene::bindingRange(b->name)});
             VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
             w.dstSet = m_sets[s][b->set];
             w.dstBinding = b->binding;

@@ -51,7 +51,7 @@ rg.pass "dfg_table" {
 -- A lighting pass's declaration, lit by the distant probe too: adds the probe's resources to its
 -- reads and RG_IBL to its defines. Returns the table it was given.
 function ibl.lit(pass)
-    return lighting.extend(pass, { "env_specular", { "env_sh", as = "storage" }, "dfg" }, "RG_IBL")
+    return lighting.extend(pass, { "env_specular", { "env_sh", as = "uniform" }, "dfg" }, "RG_IBL")
 end
 
 return ibl

@@ -35,7 +35,7 @@ rg.resource "probe_specular" { format = "rgba16f", size = { probes.size, probes.
 
 rg.pass "probe_capture" {
     kind = "scene", capture = true, cadence = "once",
-    reads = { { "env_sh", as = "storage" }, "dfg" }, writes = { "probe_radiance", "probe_depth" },
+    reads = { { "env_sh", as = "uniform" }, "dfg" }, writes = { "probe_radiance", "probe_depth" },
 }
 rg.pass "probe_mips" {  -- the captures' mip chains (post/downsample.comp, as env_mips)
     kind = "compute", shader = "post/downsample.comp", writes = { { "probe_radiance", as = "storage_rw" } }, bind = { target = "probe_radiance" },

@@ -28,7 +28,7 @@ rg.resource "reflection" { format = "rgba16f",
 -- cannot) and they keep the clear, 0 — what the shader writes there (~23 -> ~19.5 ms at 1280x720).
 local compose = {
     kind = "fullscreen", shader = "passes/reflection_compose.frag",
-    reads = { "GB0", "depth", { "depth", as = "depth" }, "ssr", "env_specular", { "env_sh", as = "storage" }, "dfg", "probe_specular" }, writes = { "reflection" },
+    reads = { "GB0", "depth", { "depth", as = "depth" }, "ssr", "env_specular", { "env_sh", as = "uniform" }, "dfg", "probe_specular" }, writes = { "reflection" },
     defines = { RG_IBL = true, RG_SSR = true, RG_PROBES = true }, insert = { before = "lighting_standard" },
     depth = { compare = "greater", value = 1 },
 }

@@ -79,7 +79,7 @@ rg.resource "sun_visibility" { format = "r16f", doc = "the sun's visibility at e
 rg.resource "sun_cascade_mask" { format = "d32f", doc = "each pixel's sun cascade as a depth code: (N + 1) / 8, 1 for none" }
 rg.pass "sun_visibility_clear" { kind = "clear", writes = { "sun_visibility" }, value = 1, insert = { after = "gbuffer" } }
 rg.pass "sun_classify" {
-    kind = "fullscreen", shader = "shadows/sun_classify.frag", reads = { "depth", { "sun_cascades", as = "storage" } },
+    kind = "fullscreen", shader = "shadows/sun_classify.frag", reads = { "depth", { "sun_cascades", as = "uniform" } },
     writes = { { "sun_cascade_mask", as = "depth" } }, depth = { compare = "always", value = 1, write = true },
     insert = { after = "gbuffer" },
 }
@@ -101,7 +101,7 @@ rg.resource "sun_cascade_mask_half" { format = "d32f", scale = { 0.5, 0.5 }, doc
 lighting.sun_visibility_half = "sun_visibility_half"
 rg.pass "sun_visibility_half_clear" { kind = "clear", writes = { "sun_visibility_half" }, value = { 1, 0, 0, 0 }, insert = { after = "gbuffer" } }
 rg.pass "sun_classify_half" {
-    kind = "fullscreen", shader = "shadows/sun_classify.frag", reads = { "depth", { "sun_cascades", as = "storage" } },
+    kind = "fullscreen", shader = "shadows/sun_classify.frag", reads = { "depth", { "sun_cascades", as = "uniform" } },
     writes = { { "sun_cascade_mask_half", as = "depth" } }, depth = { compare = "always", value = 1, write = true },
     defines = { RG_SUN_MASK_HALF = true }, insert = { after = "gbuffer" },
 }
@@ -123,13 +123,13 @@ for i = 0, shadows.cascades - 1 do
     }
     rg.pass ("sun_mask" .. i) {
         kind = "fullscreen", shader = "shadows/sun_mask.frag", defines = { RG_SUN_CASCADE = i },
-        reads = { "GB0", "depth", { "sun_cascades", as = "storage" }, map, { "sun_cascade_mask", as = "depth" } },
+        reads = { "GB0", "depth", { "sun_cascades", as = "uniform" }, map, { "sun_cascade_mask", as = "depth" } },
         writes = { { "sun_visibility", load = true } }, bind = { sun_shadow = map },
         depth = { compare = "equal", value = (i + 1) / 8 }, insert = { after = "gbuffer" },
     }
     rg.pass ("sun_mask_half" .. i) {
         kind = "fullscreen", shader = "shadows/sun_mask.frag", defines = { RG_SUN_CASCADE = i, RG_SUN_MASK_HALF = true },
-        reads = { "GB0", "depth", { "sun_cascades", as = "storage" }, map, { "sun_cascade_mask_half", as = "depth" } },
+        reads = { "GB0", "depth", { "sun_cascades", as = "uniform" }, map, { "sun_cascade_mask_half", as = "depth" } },
         writes = { { "sun_visibility_half", load = true } }, bind = { sun_shadow = map },
         depth = { compare = "equal", value = (i + 1) / 8 }, insert = { after = "gbuffer" },
     }
@@ -150,7 +150,7 @@ rg.pass "shadow_local" {
 -- A lighting pass's declaration, shadowed by the maps themselves (a forward pass: its pixels are
 -- not the G-buffer's): reads every cascade's map and the cascades, defines RG_SHADOWS.
 function shadows.lit(pass)
-    local reads = { { "sun_cascades", as = "storage" }, "local_shadow" }
+    local reads = { { "sun_cascades", as = "uniform" }, "local_shadow" }
     for i = 0, shadows.cascades - 1 do table.insert(reads, "sun_shadow" .. i) end
     lighting.extend(pass, reads, "RG_SHADOWS")
     pass.defines.RG_SUN_CASCADES = shadows.cascades
@@ -160,7 +160,7 @@ end
 -- A deferred lighting pass's declaration, shadowed: reads the sun's visibility the mask passes
 -- filtered at its pixels (RG_SUN_MASK) and the local lights' maps, defines RG_SHADOWS.
 function shadows.masked(pass)
-    lighting.extend(pass, { "sun_visibility", "sun_visibility_half", { "sun_cascades", as = "storage" }, "local_shadow" }, "RG_SHADOWS")
+    lighting.extend(pass, { "sun_visibility", "sun_visibility_half", { "sun_cascades", as = "uniform" }, "local_shadow" }, "RG_SHADOWS")
     pass.defines.RG_SUN_MASK = true
     return pass
 end

@@ -196,7 +196,7 @@ Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string
         if (view == "shadow") {
             addViewPass(g, maps, {{"shader", Value("passes/shadow_map_view.frag")}, {"defines", Value(defines)}});
         } else {
-            std::vector<Access> reads{{"GB0", Usage::Sampled}, {"depth", Usage::Sampled}, {"sun_cascades", Usage::StorageRead}};
+            std::vector<Access> reads{{"GB0", Usage::Sampled}, {"depth", Usage::Sampled}, {"sun_cascades", Usage::UniformRead}};
             reads.insert(reads.end(), maps.begin(), maps.end());
             addViewPass(g, reads, {{"shader", Value("passes/cascade_view.frag")}, {"defines", Value(defines)}});
         }

@@ -23,7 +23,7 @@
 
 #ifdef RG_IBL
 layout(set = RG_IBL_SET, binding = RG_IBL_BINDING) uniform samplerCube env_specular;
-layout(set = RG_IBL_SET, binding = RG_IBL_BINDING + 1, std430) readonly buffer env_sh { vec4 coefficients[9]; } rgEnvSh;
+layout(set = RG_IBL_SET, binding = RG_IBL_BINDING + 1, std140) uniform env_sh { vec4 coefficients[9]; } rgEnvSh;
 layout(set = RG_IBL_SET, binding = RG_IBL_BINDING + 2) uniform sampler2D dfg;
 #endif
 

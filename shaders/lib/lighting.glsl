@@ -125,6 +125,38 @@ float rgStructuredQuadIlluminance(vec3 N, float solidAngle, vec3 centre, vec3 p0
 
 #include "lib/ltc.glsl"
 
+// ---- The lights that reach every pixel ---------------------------------------------------------
+
+// The first RG_LIGHTS_WINDOW lights again, as a uniform block over the same buffer (the scene binds
+// `LightsWindow` to the head of its Lights buffer: 16 + 204 · 80 bytes, within the 16 KiB every
+// Vulkan device allows a uniform block). Lavapipe reads a uniform block at a constant offset once
+// for all the pixels it shades together, but a storage buffer lane by lane in a fragment shader
+// (its first lane may be inactive there): the default frame's two lights' 20-odd floats cost
+// lighting_standard ~1 ms at 1280×720 as storage reads.
+#ifndef RG_LIGHTS_WINDOW_BINDING
+#define RG_LIGHTS_WINDOW_BINDING 24
+#endif
+#define RG_LIGHTS_WINDOW 204  // passes/gpu_scene.h kLightsWindow
+layout(set = RG_CAMERA_SET, binding = RG_LIGHTS_WINDOW_BINDING, std140) uniform LightsWindow {
+    uvec4 count;
+    RgLight light[RG_LIGHTS_WINDOW];
+} lightsWindow;
+
+// Light i's data, for an i the compiler knows (the unrolled loop over the lights that reach every
+// pixel, materials/standard_shading.glsl): from the uniform window when it holds it, the storage
+// block otherwise — the other side folds away. (A varying i would pay for both reads.) Copied
+// member by member: the two blocks' RgLight types differ in layout, which SPIR-V cannot store as one.
+RgLight rgGlobalLight(uint i) {
+    if (i >= uint(RG_LIGHTS_WINDOW)) return lights.light[i];
+    RgLight light;
+    light.positionType = lightsWindow.light[i].positionType;
+    light.directionRange = lightsWindow.light[i].directionRange;
+    light.intensity = lightsWindow.light[i].intensity;
+    light.params = lightsWindow.light[i].params;
+    light.axis = lightsWindow.light[i].axis;
+    return light;
+}
+
 // ---- Specular area lights (seed 002 §4.7.5) ----------------------------------------------------
 
 // The area-light dominant direction: normalize(lerp(N, R, 1 − roughness)), roughness = α.
@@ -188,8 +220,7 @@ int rgLightType(RgLight light) { return int(light.positionType.w + 0.5); }
 #define RG_LIGHT_IN(types, t) (RG_SCENE_HAS_LIGHT(t) && ((types) & (1u << uint(t))) != 0u)
 #define RG_AREA_LIGHT_TYPES ((1u << uint(RG_LIGHT_SPHERE)) | (1u << uint(RG_LIGHT_DISK)) | (1u << uint(RG_LIGHT_RECT)) | (1u << uint(RG_LIGHT_TUBE)))
 
-RgLightSample rgEvaluateLightUnshadowedOf(uint i, uint types, vec3 P, vec3 N, vec3 V, float linearRoughness) {
-    RgLight light = lights.light[i];
+RgLightSample rgEvaluateLightUnshadowedOf(RgLight light, uint types, vec3 P, vec3 N, vec3 V, float linearRoughness) {
     int type = rgLightType(light);
     float alpha = max(linearRoughness * linearRoughness, 1e-3);
     vec3 R = rgSpecularDominantDirArea(N, reflect(-V, N), alpha);
@@ -450,19 +481,27 @@ RgLightSample rgEvaluateLightUnshadowedOf(uint i, uint types, vec3 P, vec3 N, ve
 // `sunVisibility`: rgSunVisibility(P, N), taken once per shaded point before the light loop —
 // the filtered shadow lookup is the loop's most expensive part, and every light would pay for it.
 
+RgLightSample rgEvaluateLightUnshadowedOf(uint i, uint types, vec3 P, vec3 N, vec3 V, float linearRoughness) {
+    return rgEvaluateLightUnshadowedOf(lights.light[i], types, P, N, V, linearRoughness);
+}
+
 // Light i whatever its type (every type the scene has).
 RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float linearRoughness) {
     return rgEvaluateLightUnshadowedOf(i, uint(RG_SCENE_LIGHT_TYPES), P, N, V, linearRoughness);
 }
 
-RgLightSample rgEvaluateLightOf(uint i, uint types, vec3 P, vec3 N, vec3 V, float linearRoughness, float sunVisibility) {
-    RgLightSample s = rgEvaluateLightUnshadowedOf(i, types, P, N, V, linearRoughness);
+// Light i, its data `light` (lights.light[i], or rgGlobalLight(i)).
+RgLightSample rgEvaluateLightOf(RgLight light, uint i, uint types, vec3 P, vec3 N, vec3 V, float linearRoughness, float sunVisibility) {
+    RgLightSample s = rgEvaluateLightUnshadowedOf(light, types, P, N, V, linearRoughness);
 #ifdef RG_SHADOWS
     float visibility = rgShadow(i, sunVisibility) * rgLocalShadow(i, P, N);
     s.diffuseIlluminance *= visibility;
     s.specularIlluminance *= visibility;
 #endif
     return s;
+}
+RgLightSample rgEvaluateLightOf(uint i, uint types, vec3 P, vec3 N, vec3 V, float linearRoughness, float sunVisibility) {
+    return rgEvaluateLightOf(lights.light[i], i, types, P, N, V, linearRoughness, sunVisibility);
 }
 RgLightSample rgEvaluateLight(uint i, vec3 P, vec3 N, vec3 V, float linearRoughness, float sunVisibility) {
     return rgEvaluateLightOf(i, uint(RG_SCENE_LIGHT_TYPES), P, N, V, linearRoughness, sunVisibility);

@@ -22,7 +22,7 @@ struct RgProbe {
     vec4 influence;      // xyz: the influence box's half extents (a sphere: its radius in x), same centre and axes
 };
 
-layout(set = 0, binding = RG_PROBES_BINDING, std430) readonly buffer Probes {
+layout(set = 0, binding = RG_PROBES_BINDING, std140) uniform Probes {
     uvec4 count;
     RgProbe probe[RG_MAX_PROBES];
 } rgProbes;

@@ -76,7 +76,10 @@ float rgShadowViewDistance(RgShadowView v, float d) {
 #ifndef RG_SUN_VISIBILITY_BINDING
 #define RG_SUN_VISIBILITY_BINDING 31  // sun_visibility_half at 32
 #endif
-layout(set = 0, binding = RG_SHADOW_BINDING + 1, std430) readonly buffer sun_cascades { RgCascades c; } rgCascades;
+// A uniform block (the passes read `sun_cascades` as = "uniform"): every pixel reads it at the
+// same offsets, which lavapipe loads once for all the pixels it shades together — a storage
+// buffer it reads lane by lane in a fragment shader (the mask passes' ~25 floats).
+layout(set = 0, binding = RG_SHADOW_BINDING + 1, std140) uniform sun_cascades { RgCascades c; } rgCascades;
 #if defined(RG_SUN_CASCADES_ONLY)
 // The cascades alone (shaders/shadows/sun_classify.frag): no map.
 #elif defined(RG_SUN_MASK_WRITER)

@@ -23,7 +23,7 @@ layout(location = 3) in vec2 uv0;
 layout(location = 4) in vec2 uv1;
 layout(location = 5) flat in vec3 eye;
 layout(location = 0) out vec4 color;
-layout(set = 0, binding = 0, std430) readonly buffer env_sh { vec4 coefficients[9]; } rgEnvSh;
+layout(set = 0, binding = 0, std140) uniform env_sh { vec4 coefficients[9]; } rgEnvSh;
 layout(set = 0, binding = 1) uniform sampler2D dfg;
 
 #ifndef RG_CAPTURE_MATERIAL
