@@ -92,7 +92,7 @@ function post.chain(o)
         }
         lower = name
     end
-    local reads = { input, { "exposure", as = "storage" } }
+    local reads = { input, { "exposure", as = "uniform" } }
     if levels >= 1 then table.insert(reads, 2, lower) end
 
     local fxaa = o.fxaa ~= false

@@ -57,7 +57,7 @@ rg.pass "decals" {
 function loop.sky_and_forward()
     rg.pass "sky" {
         kind = "fullscreen", shader = "passes/sky.frag",
-        reads = { { "depth", as = "depth" }, { "exposure", as = "storage" } }, writes = { { "hdr", load = true } },
+        reads = { { "depth", as = "depth" }, { "exposure", as = "uniform" } }, writes = { { "hdr", load = true } },
         depth = { compare = "less_equal", value = 1 },
     }
     rg.pass "forward" (shadows.lit(probes.lit(ibl.lit {

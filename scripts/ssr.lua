@@ -44,7 +44,7 @@ rg.pass "ssr_mask" {
     filter = "nearest", insert = { before = "lighting_standard" }, depth = { compare = "always", value = 1, write = true },
 }
 rg.pass "ssr" {
-    kind = "fullscreen", shader = "ssr/ssr.frag", reads = { "GB0", "depth", "hiz", "hdr_history", { "exposure", as = "storage" }, { "ssr_mask", as = "depth" } },
+    kind = "fullscreen", shader = "ssr/ssr.frag", reads = { "GB0", "depth", "hiz", "hdr_history", { "exposure", as = "uniform" }, { "ssr_mask", as = "depth" } },
     writes = { "ssr" }, insert = { before = "lighting_standard" }, depth = { compare = "greater", value = 0.5 },
 }
 

@@ -9,7 +9,7 @@
 
 layout(location = 0) in vec2 uv;
 layout(location = 0) out vec4 color;
-layout(set = 0, binding = 0, std430) readonly buffer exposure { RgExposureState state; } ex;
+layout(set = 0, binding = 0, std140) uniform exposure { RgExposureState state; } ex;  // a uniform block: read once per block of pixels
 layout(set = 0, binding = 1) uniform Params { float initial_ev100; } params;
 layout(set = 0, binding = 2) uniform sampler2D SceneEnvironment;
 

@@ -22,7 +22,7 @@ layout(location = 1) out vec4 copy;
 #endif
 layout(set = 0, binding = 0) uniform sampler2D hdr;
 layout(set = 0, binding = 1) uniform sampler2D bloom;
-layout(set = 0, binding = 2, std430) readonly buffer exposure { RgExposureState state; } ex;
+layout(set = 0, binding = 2, std140) uniform exposure { RgExposureState state; } ex;  // a uniform block: read once per block of pixels
 layout(set = 0, binding = 3) uniform Params {
     float tonemap;
     float bloom_ec;

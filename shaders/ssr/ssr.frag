@@ -29,7 +29,7 @@ layout(set = 0, binding = 4) uniform Params {
     float ssr_max_roughness;
     float initial_ev100;
 } params;
-layout(set = 0, binding = 5, std430) readonly buffer exposure { RgExposureState state; } ex;
+layout(set = 0, binding = 5, std140) uniform exposure { RgExposureState state; } ex;  // a uniform block: read once per block of pixels
 
 // View position → (screen uv, depth) by the projection.
 vec3 project(vec3 v) {
