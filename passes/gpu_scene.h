@@ -69,12 +69,6 @@ inline constexpr uint32_t kCameraBinding = 15;
 inline constexpr uint32_t kLightsBinding = 14;
 // The Lights block's fixed light array (scene.glsl's RG_MAX_LIGHTS, the same number).
 inline constexpr uint32_t kMaxLights = 1024;
-// The lights the `LightsWindow` uniform block holds (lib/lighting.glsl RG_LIGHTS_WINDOW): the head
-// of each Lights buffer again, 16 + 204 · 80 bytes — within the 16 KiB maxUniformBufferRange
-// every Vulkan device has.
-inline constexpr uint32_t kLightsWindow = 204;
-inline constexpr VkDeviceSize kLightsWindowBytes = 16 + VkDeviceSize(kLightsWindow) * 80;
-static_assert(kLightsWindowBytes <= 16384, "the lights' uniform window must fit the smallest maxUniformBufferRange");
 // IES profiles are baked at this size (bakeIes' θ × cos φ texels, seed 000 lst:5), each 256 KiB
 // in every frame slot's light buffer; a scene may use this many different profile files.
 inline constexpr uint32_t kIesWidth = 256, kIesHeight = 256;
@@ -89,6 +83,12 @@ struct GpuLight {
     glm::vec4 axis{0.0f};
 };
 static_assert(sizeof(GpuLight) == 80, "GpuLight must match RgLight's std430 layout");
+// The lights the `LightsWindow` uniform block holds (lib/lighting.glsl RG_LIGHTS_WINDOW): the head
+// of each Lights buffer again, its 16-byte header and 204 lights — within the 16 KiB
+// maxUniformBufferRange every Vulkan device has.
+inline constexpr uint32_t kLightsWindow = 204;
+inline constexpr VkDeviceSize kLightsWindowBytes = 16 + VkDeviceSize(kLightsWindow) * sizeof(GpuLight);
+static_assert(kLightsWindowBytes <= 16384, "the lights' uniform window must fit the smallest maxUniformBufferRange");
 
 // scene.glsl's RG_LIGHT_* codes (GpuLight::positionType.w).
 enum class GpuLightType : uint8_t { Point = 0, Spot = 1, Sun = 2, Sphere = 3, Disk = 4, Rect = 5, Tube = 6 };

@@ -481,13 +481,9 @@ RgLightSample rgEvaluateLightUnshadowedOf(RgLight light, uint types, vec3 P, vec
 // `sunVisibility`: rgSunVisibility(P, N), taken once per shaded point before the light loop —
 // the filtered shadow lookup is the loop's most expensive part, and every light would pay for it.
 
-RgLightSample rgEvaluateLightUnshadowedOf(uint i, uint types, vec3 P, vec3 N, vec3 V, float linearRoughness) {
-    return rgEvaluateLightUnshadowedOf(lights.light[i], types, P, N, V, linearRoughness);
-}
-
 // Light i whatever its type (every type the scene has).
 RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float linearRoughness) {
-    return rgEvaluateLightUnshadowedOf(i, uint(RG_SCENE_LIGHT_TYPES), P, N, V, linearRoughness);
+    return rgEvaluateLightUnshadowedOf(lights.light[i], uint(RG_SCENE_LIGHT_TYPES), P, N, V, linearRoughness);
 }
 
 // Light i, its data `light` (lights.light[i], or rgGlobalLight(i)).
