@@ -176,16 +176,27 @@ struct Renderer::Impl {
     rg::SessionOptions options;
     std::string pipeline;
     // A new session (a new scene, size or captures): the host's parameters and pass switches
-    // carry over as its overrides, as far as the pipeline still has them.
+    // carry over as its overrides, as far as the pipeline still has and accepts them.
     void load() {
         if (pipeline.empty()) return;
         auto s = std::make_unique<rg::Session>(*runtime, options);
+        if (session) s->carryOverrides(session->overrides());
         check(s->load(pipeline));
-        if (session)
-            for (const auto& [name, value] : session->overrides().params) (void)s->setOverride(name, value);
-        if (session)
-            for (const auto& [pass, on] : session->overrides().enabled) (void)s->setPassOverride(pass, on);
         session = std::move(s);
+    }
+    // Changes the session's options and loads anew; when the load fails, the options are as they
+    // were and the running session goes on (Session::load leaves the runtime to it).
+    template <typename Change>
+    void reloadWith(Change change) {
+        const rg::SessionOptions previous = options;
+        change(options);
+        if (!session) return;
+        try {
+            load();
+        } catch (...) {
+            options = previous;
+            throw;
+        }
     }
     const rg::Session& loaded() const {
         if (!session) throw Error("no pipeline loaded (loadPipeline first)");
@@ -248,23 +259,27 @@ void Renderer::loadPipelineSource(const std::string& name, const std::string& lu
 }
 
 void Renderer::loadScene(const std::string& file) {
-    m->options.sceneData.reset();
-    m->options.scene = fs::absolute(file).string();
-    if (m->session) m->load();
+    m->reloadWith([&](rg::SessionOptions& o) {
+        o.sceneData.reset();
+        o.scene = fs::absolute(file).string();
+    });
 }
 
 void Renderer::setScene(const Scene& scene) {
-    m->options.sceneData = std::make_shared<const rg::Scene>(toScene(scene));
-    m->options.scene.clear();
-    if (m->session) m->load();
+    auto data = std::make_shared<const rg::Scene>(toScene(scene));
+    m->reloadWith([&](rg::SessionOptions& o) {
+        o.sceneData = data;
+        o.scene.clear();
+    });
 }
 
 void Renderer::setSize(uint32_t width, uint32_t height) {
     if (width == 0 || height == 0 || width > 16384 || height > 16384)
         throw Error("setSize: each side must be in 1..16384, got " + std::to_string(width) + "x" + std::to_string(height));
-    m->options.compile.outputWidth = width;
-    m->options.compile.outputHeight = height;
-    if (m->session) m->load();
+    m->reloadWith([&](rg::SessionOptions& o) {
+        o.compile.outputWidth = width;
+        o.compile.outputHeight = height;
+    });
 }
 
 void Renderer::setParameter(const std::string& name, const Value& value) {
@@ -313,8 +328,8 @@ void Renderer::exportImage(const std::string& resource, const HostImage& image) 
 }
 
 void Renderer::keep(const std::string& resource) {
-    m->options.captures.push_back(resource);
-    if (m->session) m->load();
+    if (std::find(m->options.captures.begin(), m->options.captures.end(), resource) != m->options.captures.end()) return;
+    m->reloadWith([&](rg::SessionOptions& o) { o.captures.push_back(resource); });
 }
 
 Image Renderer::readResource(const std::string& name) const {

@@ -25,6 +25,7 @@
 #include "golden/metrics.h"
 #include "accuracy.h"
 #include "runtime.h"
+#include "file_watch.h"
 #include "serve.h"
 #include "session.h"
 
@@ -550,23 +551,14 @@ int cmdWatch(int argc, char** argv) {
         if (!written) return std::unexpected(written.error());
         return {};
     };
-    auto stamp = [&]() {
-        std::map<std::string, fs::file_time_type> t;
-        for (const auto& f : session.files()) {
-            std::error_code ec;
-            t[f] = fs::last_write_time(f, ec);
-        }
-        return t;
-    };
     if (auto r = renderOnce(); !r) return report(r.error());
     std::printf("rgraph watch: rendered %s; watching %zu files\n", pngPath.c_str(), session.files().size());
     std::fflush(stdout);
-    auto last = stamp();
+    FileWatch watched;
+    watched.changed(session.files());
     for (uint32_t reloads = 0; maxReloads == 0 || reloads < maxReloads;) {
         std::this_thread::sleep_for(std::chrono::milliseconds(interval));
-        auto now = stamp();
-        if (now == last) continue;
-        last = now;
+        if (!watched.changed(session.files())) continue;
         ++reloads;
         if (auto r = session.load(setup->pipeline); !r) {
             std::printf("rgraph watch: reload failed, the previous pipeline keeps running:\n%s\n", r.error().describe().c_str());
@@ -585,17 +577,20 @@ int cmdWatch(int argc, char** argv) {
 }
 
 int cmdServe(int argc, char** argv) {
-    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "scene-arg", "set", "camera", "environment", "size", "device", "port", "host", "interval", "no-cache"});
+    Args args = Args::parse(argc, argv, 2, {"pipeline", "scene", "scene-arg", "set", "camera", "environment", "size", "device", "port", "host", "token", "interval", "no-cache"});
     if (args.help) {
         std::printf(
-            "usage: rgraph serve [--pipeline FILE.lua] [--scene FILE] [--size WxH] [--port N] [--host ADDRESS] [--interval MS]\n"
+            "usage: rgraph serve [--pipeline FILE.lua] [--scene FILE] [--size WxH] [--port N] [--host ADDRESS] [--token TOKEN] [--interval MS]\n"
             "                    [--scene-arg NAME=VALUE]... [--set NAME=VALUE]... [--environment FILE|sky|none]\n\n"
             "Renders the pipeline continuously (headless) and serves a page at http://HOST:PORT/ (default\n"
             "127.0.0.1:8080; --port 0 takes a free port; the address is printed) showing the compiled graph,\n"
             "per-pass GPU times, every parameter and pass switch as a control, any texture or G-buffer\n"
             "channel as an image with an exposure slider (EXR download), and script errors with file:line\n"
             "while the last good plan keeps rendering; scripts are reloaded when they change, as `watch`\n"
-            "does. The page uses only the JSON API beneath it (README: rgraph serve). Stops on SIGINT/SIGTERM.\n");
+            "does. The page uses only the JSON API beneath it (README: rgraph serve). Stops on SIGINT/SIGTERM.\n\n"
+            "Every request needs a token: a random one per run, printed in the address (…/?token=TOKEN;\n"
+            "the page keeps it as a cookie), or --token TOKEN. API clients send `Authorization: Bearer TOKEN`.\n"
+            "A --host that is not a loopback address is refused unless --token is given.\n");
         return kOk;
     }
     if (!args.error.empty()) return usageError(args.error, "serve");
@@ -607,6 +602,11 @@ int cmdServe(int argc, char** argv) {
     so.port = static_cast<int>(port);
     so.frameIntervalMs = interval;
     if (args.has("host")) so.host = args.get("host");
+    if (args.has("token")) {
+        so.token = args.get("token");
+        so.tokenGiven = true;
+        if (so.token.empty()) return usageError("--token must not be empty", "serve");
+    }
     if (isBuiltin(pipelineArg(args))) return usageError("serve needs a pipeline script", "serve");
     auto setup = setupRun(args, "serve", 1, {}, /*verbose=*/false);
     if (!setup) return report(setup.error());

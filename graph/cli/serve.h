@@ -11,15 +11,20 @@
 namespace rg {
 
 struct ServeOptions {
-    std::string host = "127.0.0.1";  // loopback unless asked otherwise
+    std::string host = "127.0.0.1";  // loopback unless asked otherwise (then only with a token given)
+    // Every request needs this token (README: rgraph serve); without tokenGiven a random one is
+    // made per run and printed in the address.
+    std::string token;
+    bool tokenGiven = false;
     int port = 8080;                 // 0: any free port (printed)
     std::string pipeline;            // the script (reloaded when it or its files change)
     uint32_t frameIntervalMs = 100;  // pause between frames
     uint32_t pollMs = 300;           // how often the pipeline's files are checked
 };
 
-// Serves until SIGINT or SIGTERM; returns the process exit code. Prints
-// "rgraph serve: http://HOST:PORT/" once listening.
+// Serves until SIGINT or SIGTERM; returns the process exit code (0 after a signal, within a
+// second or two: requests still waiting are answered 503 "shutting down"). Prints
+// "rgraph serve: http://HOST:PORT/?token=TOKEN" once listening.
 int serve(Runtime& runtime, Session& session, const ServeOptions& options);
 
 }  // namespace rg

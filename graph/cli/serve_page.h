@@ -51,7 +51,7 @@ img#view { max-width: 100%; image-rendering: pixelated; border: 1px solid #ccc; 
 const $ = (id) => document.getElementById(id);
 let state = null, built = "", controls = {};
 function post(url, body) {
-  return fetch(url, { method: "POST", body: JSON.stringify(body) }).then(async (r) => {
+  return fetch(url, { method: "POST", headers: { "Content-Type": "application/json" }, body: JSON.stringify(body) }).then(async (r) => {
     const j = await r.json();
     if (!r.ok) showError(j.error);
     return j;

@@ -64,9 +64,10 @@ Session::Session(Runtime& runtime, SessionOptions options) : m_runtime(runtime),
 Session::~Session() {
     // The executor must not keep drawing (or calling back into) a scene that goes away with us,
     // and the frames still in flight draw with its buffers: they finish first.
-    if (m_scene && m_runtime.executor().scene() == m_scene.get()) {
-        (void)m_runtime.executor().finish();
-        m_runtime.executor().setScene(nullptr, {});
+    // (Also when another session's scene has replaced ours: frames recorded before that drew ours.)
+    if (m_scene) {
+        if (auto r = m_runtime.executor().finish(); !r) std::fprintf(stderr, "rgraph: %s\n", r.error().describe().c_str());
+        if (m_runtime.executor().scene() == m_scene.get()) m_runtime.executor().setScene(nullptr, {});
     }
 }
 
@@ -249,7 +250,7 @@ Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string
 
 // The pipeline's graph with parameters as uniforms, captures exported, and shader paths that
 // exist next to the pipeline script made absolute (shaders/ and the root are searched anyway).
-GraphDesc Session::buildableGraph(const PipelineDesc& p) const {
+GraphDesc Session::buildableGraph(const PipelineDesc& p, bool keepMissingShaders) {
     GraphDesc g = graphWithParams(p);
     // The lightmap's specular target (render_loop.lua's `lightmap_specular`, which the G-buffer's
     // generated shaders know by name) exists only while the scene has a baked lightmap: without
@@ -284,7 +285,22 @@ GraphDesc Session::buildableGraph(const PipelineDesc& p) const {
             for (const auto& t : ch.layout.targets)
                 if (r.name == t.name) r.exported = true;
     }
+    std::vector<std::string> declared;  // each pass's shader as the script names it
+    for (const auto& pass : g.passes) declared.push_back(pass.params["shader"].isString() ? pass.params["shader"].asString() : "");
     resolveShaderPaths(g, p.file, projectRoot());
+    // keepMissingShaders: a shader file that went away since a pass was built with it (deleted,
+    // or mid-save) keeps the path it had, so that the executor keeps the pass as it runs and
+    // rebuilding others (a switch, a parameter) goes on; a load compiles it anew and reports it
+    // missing.
+    for (size_t i = 0; i < g.passes.size(); ++i) {
+        PassDesc& pass = g.passes[i];
+        if (declared[i].empty() || fs::path(declared[i]).is_absolute()) continue;
+        const std::string key = pass.origin + "\n" + pass.name + "\n" + declared[i];
+        const std::string now = pass.params["shader"].asString();
+        if (fs::path(now).is_absolute()) m_shaderPaths[key] = now;
+        else if (auto it = m_shaderPaths.find(key); keepMissingShaders && it != m_shaderPaths.end())
+            pass.params.table()["shader"] = Value(it->second);
+    }
     return g;
 }
 
@@ -325,9 +341,9 @@ Result<std::string> writeLayoutHeaders(const PipelineDesc& pipeline) {
 }
 
 void useLayoutHeaders(Runtime& runtime, const std::string& dir) {
-    if (runtime.shaders().options().generatedDir == dir) return;
+    // The executor's next build prepares every pass again when the folder is not the one its
+    // running build was prepared with.
     runtime.shaders().setGeneratedDir(dir);
-    runtime.executor().forceRebuild();
 }
 
 // One `--capture gbuffer.X` / `LAYOUT.X` as an image: each pixel decoded on the CPU with its
@@ -561,54 +577,14 @@ std::string describeStructural(const FrameChanges& changes) {
 
 }  // namespace
 
-Result<void> Session::load(const std::string& file) {
-    auto t0 = Clock::now();
-    auto host = std::make_unique<LuaHost>(luaHostOptions(m_runtime));
-    auto pipeline = host->load(file);
-    if (!pipeline) return std::unexpected(pipeline.error());
-    auto headers = writeLayoutHeaders(*pipeline);
-    if (!headers) return std::unexpected(headers.error());
-    useLayoutHeaders(m_runtime, *headers);
-    std::unique_ptr<passes::GpuScene> scene;
-    double sceneMs = 0;
-    if (hasScenePass(*pipeline)) {
-        auto s0 = Clock::now();
-        auto loaded = loadScene(*pipeline);
-        if (!loaded) return std::unexpected(loaded.error());
-        scene = std::move(*loaded);
-        sceneMs = std::chrono::duration<double, std::milli>(Clock::now() - s0).count();
-    } else if (!m_options.scene.empty()) {
-        return fail(ErrorCode::InvalidInput, "--scene: pipeline '" + file + "' has no scene pass to draw it");
-    }
-    for (const auto& [name, value] : m_options.params) {
-        auto checked = checkedParam(*pipeline, name, value);
-        if (!checked) return std::unexpected(checked.error());
-        pipeline->findParam(name)->value = *checked;
-    }
-    // The new scene is what the build prepares against; if the build fails, the executor goes
-    // back to the scene its previous (still running) build uses.
-    const passes::GpuScene* previousScene = m_runtime.executor().scene();
-    auto previousHook = m_frameHook;
-    m_frameHook = {};
-    if (scene) {
-        passes::GpuScene* raw = scene.get();
-        const uint32_t w = m_options.compile.outputWidth, h = m_options.compile.outputHeight;
-        m_frameHook = [raw, w, h](uint32_t slot) { raw->updateFrame(slot, w, h); };
-    }
-    if (scene || previousScene)
-        m_runtime.executor().setScene(scene.get(), m_frameHook, scene ? passes::shadowViewCapacity(scene->scene()) : 0);
-    {
-        gpu::Executor& executor = m_runtime.executor();
-        executor.setOnceCache(m_options.onceCache,
-                              [&executor](uint32_t slot) { return executor.scene() ? executor.scene()->contentHash(slot) : 0; });
-    }
-    if (!m_options.view.empty()) {
-        GraphDesc probe = graphWithParams(*pipeline);
-        if (auto r = addDebugView(probe, *pipeline, m_options.view, scene ? &scene->scene() : nullptr); !r) return r;
-    }
+// `--capture` names (and the library's keep, serve's image requests) checked against a pipeline:
+// a resource of its graph, or "gbuffer.<channel>" / "<layout>.<channel>", decoded per materialId.
+static Result<std::vector<Session::ChannelCapture>> channelCapturesOf(const PipelineDesc& pipeline, const std::vector<std::string>& captures) {
+    using ChannelCapture = Session::ChannelCapture;
+    const PipelineDesc* p = &pipeline;
     std::vector<ChannelCapture> channels;
-    for (const auto& c : m_options.captures) {
-        if (pipeline->graph.findResource(c)) continue;
+    for (const auto& c : captures) {
+        if (p->graph.findResource(c)) continue;
         // "gbuffer.smoothness" or "disney.smoothness": a channel of a layout.
         const size_t dot = c.find('.');
         bool found = false;
@@ -620,7 +596,7 @@ Result<void> Session::load(const std::string& file) {
                         if (ch.name == name) return true;
                 return false;
             };
-            for (const auto& l : pipeline->layouts) {
+            for (const auto& l : p->layouts) {
                 if (prefix != "gbuffer" && prefix != l.name) continue;
                 if (has(l, channel) && !found) {
                     channels.push_back({c, l, channel, {}});
@@ -628,8 +604,8 @@ Result<void> Session::load(const std::string& file) {
                 }
             }
             // Per materialId: the material's own layout, and its channel for a standard name.
-            for (const MaterialDesc& m : pipeline->materials) {
-                const LayoutDesc& l = *std::find_if(pipeline->layouts.begin(), pipeline->layouts.end(), [&](auto& x) { return x.name == m.layout; });
+            for (const MaterialDesc& m : p->materials) {
+                const LayoutDesc& l = *std::find_if(p->layouts.begin(), p->layouts.end(), [&](auto& x) { return x.name == m.layout; });
                 if (prefix != "gbuffer" && prefix != l.name) continue;
                 const auto mapped = m.channels.find(channel);
                 const std::string name = prefix == "gbuffer" && mapped != m.channels.end() ? mapped->second : channel;
@@ -654,15 +630,85 @@ Result<void> Session::load(const std::string& file) {
             }
             if (found && !channels.back().byId.empty()) {
                 // The layout that tells the id: the first material's (every one keeps materialId alike).
-                const MaterialDesc& first = pipeline->materials.front();
-                channels.back().layout = *std::find_if(pipeline->layouts.begin(), pipeline->layouts.end(), [&](auto& x) { return x.name == first.layout; });
+                const MaterialDesc& first = p->materials.front();
+                channels.back().layout = *std::find_if(p->layouts.begin(), p->layouts.end(), [&](auto& x) { return x.name == first.layout; });
             }
         }
         if (!found)
-            return fail(ErrorCode::NotFound, "--capture: the pipeline has no resource named '" + c +
+            return fail(ErrorCode::NotFound, "capture '" + c + "': the pipeline has no resource named '" + c +
                                                  "' (nor a G-buffer channel: use gbuffer.<channel>)");
     }
-    m_channels = channels;
+    return channels;
+}
+
+Result<void> Session::load(const std::string& file) {
+    auto t0 = Clock::now();
+    // Everything the new pipeline needs is read and checked first; the runtime the running plan
+    // uses (its scene, its layout headers, its captures) is touched only after that, by a
+    // rollback that puts each back unless the new plan is built.
+    auto host = std::make_unique<LuaHost>(luaHostOptions(m_runtime));
+    auto pipeline = host->load(file);
+    if (!pipeline) return std::unexpected(pipeline.error());
+    auto headers = writeLayoutHeaders(*pipeline);
+    if (!headers) return std::unexpected(headers.error());
+    std::unique_ptr<passes::GpuScene> scene;
+    double sceneMs = 0;
+    if (hasScenePass(*pipeline)) {
+        auto s0 = Clock::now();
+        auto loaded = loadScene(*pipeline);
+        if (!loaded) return std::unexpected(loaded.error());
+        scene = std::move(*loaded);
+        sceneMs = std::chrono::duration<double, std::milli>(Clock::now() - s0).count();
+    } else if (!m_options.scene.empty()) {
+        return fail(ErrorCode::InvalidInput, "--scene: pipeline '" + file + "' has no scene pass to draw it");
+    }
+    for (const auto& [name, value] : m_options.params) {
+        auto checked = checkedParam(*pipeline, name, value);
+        if (!checked) return std::unexpected(checked.error());
+        pipeline->findParam(name)->value = *checked;
+    }
+    if (!m_options.view.empty()) {
+        GraphDesc probe = graphWithParams(*pipeline);
+        if (auto r = addDebugView(probe, *pipeline, m_options.view, scene ? &scene->scene() : nullptr); !r) return r;
+    }
+    auto channels = channelCapturesOf(*pipeline, m_options.captures);
+    if (!channels) return std::unexpected(channels.error());
+
+    // From here the runtime is pointed at the new pipeline; until commit, leaving this function
+    // points it back at the previous one, which keeps rendering.
+    struct Rollback {
+        Session& s;
+        std::string headers = s.m_runtime.shaders().options().generatedDir;
+        const passes::GpuScene* scene = s.m_runtime.executor().scene();
+        std::function<void(uint32_t)> hook = s.m_frameHook;
+        std::vector<ChannelCapture> channels = s.m_channels;
+        bool sceneChanged = false, committed = false;
+        ~Rollback() {
+            if (committed) return;
+            useLayoutHeaders(s.m_runtime, headers);
+            s.m_frameHook = hook;
+            s.m_channels = channels;
+            if (sceneChanged) s.m_runtime.executor().setScene(scene, hook, scene ? passes::shadowViewCapacity(scene->scene()) : 0);
+        }
+    } rollback{*this};
+    useLayoutHeaders(m_runtime, *headers);
+    m_channels = std::move(*channels);
+    // The new scene is what the build prepares against.
+    m_frameHook = {};
+    if (scene) {
+        passes::GpuScene* raw = scene.get();
+        const uint32_t w = m_options.compile.outputWidth, h = m_options.compile.outputHeight;
+        m_frameHook = [raw, w, h](uint32_t slot) { raw->updateFrame(slot, w, h); };
+    }
+    if (scene || rollback.scene) {
+        m_runtime.executor().setScene(scene.get(), m_frameHook, scene ? passes::shadowViewCapacity(scene->scene()) : 0);
+        rollback.sceneChanged = true;
+    }
+    {
+        gpu::Executor& executor = m_runtime.executor();
+        executor.setOnceCache(m_options.onceCache,
+                              [&executor](uint32_t slot) { return executor.scene() ? executor.scene()->contentHash(slot) : 0; });
+    }
     // The first frame's rg.frame runs now, on the new pipeline and scene, and the plan is built
     // with what it changes (frame() then takes that frame as done): passes it switches off (no
     // decals, no blended draws, no sun) are never prepared, and the transient heaps are placed
@@ -671,28 +717,26 @@ Result<void> Session::load(const std::string& file) {
     // Overrides of parameters and passes the new script no longer has are dropped (kept as they
     // are if the load fails).
     FrameChanges overrides = m_overrides;
-    std::erase_if(overrides.params, [&](const auto& o) { return !pipeline->findParam(o.first); });
+    for (auto it = overrides.params.begin(); it != overrides.params.end();) {
+        auto checked = pipeline->findParam(it->first) ? checkedParam(*pipeline, it->first, it->second) : Result<Value>(Value());
+        if (checked && pipeline->findParam(it->first)) {
+            (it++)->second = *checked;
+            continue;
+        }
+        if (!checked) note("dropped the override of '" + it->first + "': " + checked.error().message);
+        it = overrides.params.erase(it);
+    }
     std::erase_if(overrides.enabled, [&](const auto& o) { return !pipeline->graph.findPass(o.first); });
     auto tc = Clock::now();
     std::map<std::string, uint32_t> classes = scene ? drawsPerClass(*scene, *pipeline) : std::map<std::string, uint32_t>{};
     auto first = frameChanges(*host, frameContext(scene ? scene.get() : nullptr, classes), *pipeline, overrides);
-    // A failure from here on gives the executor back the scene its previous build uses.
-    auto restorePrevious = [&] {
-        m_frameHook = previousHook;
-        if (scene || previousScene) m_runtime.executor().setScene(previousScene, previousHook, previousScene ? passes::shadowViewCapacity(previousScene->scene()) : 0);
-    };
-    if (!first) {
-        restorePrevious();
-        return std::unexpected(first.error());
-    }
+    if (!first) return std::unexpected(first.error());
     const double firstCallbackMs = msSince(tc);
     applyFrameChanges(*pipeline, *first);
     const std::string firstChanges = describeStructural(*first);
     // The executor keeps its previous build when this one fails.
-    if (auto r = m_runtime.executor().build(buildableGraph(*pipeline), m_options.compile); !r) {
-        restorePrevious();
-        return r;
-    }
+    if (auto r = m_runtime.executor().build(buildableGraph(*pipeline, /*keepMissingShaders=*/false), m_options.compile); !r) return r;
+    rollback.committed = true;
     // The previous scene may still be in use by frames in flight: retire it through the
     // deletion queue.
     if (m_scene) {
@@ -722,6 +766,7 @@ Result<void> Session::load(const std::string& file) {
     m_pipeline = std::move(*pipeline);
     m_overrides = std::move(overrides);
     m_rebuilds = 0;
+    ++m_loads;
     m_framePrepared = m_frame;
     m_callbackMs = firstCallbackMs;
     m_loadMs = msSince(t0);
@@ -784,40 +829,12 @@ Result<void> Session::frame(VkCommandBuffer hostCmd) {
             if (const PassDesc* p = m_pipeline.graph.findPass(pass); p && p->enabled != on) changes->enabled[pass] = on;
     } else {
         changes = frameChanges(*m_host, frameContext(m_scene.get(), m_classes), m_pipeline, m_overrides);
-        if (!changes) return std::unexpected(changes.error());
         m_callbackMs = msSince(t0);
     }
 
-    if (!changes->empty()) {
-        PipelineDesc next = m_pipeline;
-        applyFrameChanges(next, *changes);
-        GraphDesc graph = buildableGraph(next);
-        // A parameter some pass compiles in (switches) rebuilds that pass, as a shader swap does.
-        std::vector<std::string> switched;
-        for (const auto& [name, value] : changes->params)
-            if (isSwitch(m_pipeline, name)) {
-                const ParamDesc* before = m_pipeline.findParam(name);
-                if (!before || !(before->value == value)) switched.push_back(name);
-            }
-        if (changes->structural() || !switched.empty()) {
-            auto tb = Clock::now();
-            if (auto r = m_runtime.executor().build(graph, m_options.compile); !r) return r;
-            const double buildMs = msSince(tb);
-            ++m_rebuilds;
-            std::string what = describeStructural(*changes);
-            for (const auto& name : switched) {
-                const Value& v = next.findParam(name)->value;
-                what += (what.empty() ? "" : ", ") + ("switch " + name + " = " + (v.isString() ? v.asString() : v.isBool() ? (v.asBool() ? "true" : "false") : std::to_string(v.asNumber())));
-            }
-            char ms[32];
-            std::snprintf(ms, sizeof ms, "%.2f ms", buildMs);
-            note("frame " + std::to_string(m_frame) + ": " + what + "; recompiled in " + ms + ": " +
-                 m_runtime.executor().lastBuildReport().summary());
-        } else {
-            m_runtime.executor().updateUniforms(graph);
-        }
-        m_pipeline = std::move(next);
-    }
+    // A callback that fails, or a change that cannot be built, is refused whole: the plan as it
+    // was renders this frame, and the caller hears why.
+    Result<void> applied = !changes ? Result<void>(std::unexpected(changes.error())) : changes->empty() ? Result<void>{} : apply(*changes);
     // The area-light model of the light loop (scripts/lighting.lua's area_lights): a field of the
     // scene's Lights block, so switching it rebuilds nothing.
     if (m_scene) {
@@ -826,23 +843,87 @@ Result<void> Session::frame(VkCommandBuffer hostCmd) {
     }
     if (auto r = m_runtime.executor().frame(hostCmd); !r) return r;
     ++m_frame;
+    return applied;
+}
+
+Result<void> Session::apply(const FrameChanges& changes) {
+    PipelineDesc next = m_pipeline;
+    applyFrameChanges(next, changes);
+    GraphDesc graph = buildableGraph(next, /*keepMissingShaders=*/true);
+    // A parameter some pass compiles in (switches) rebuilds that pass, as a shader swap does.
+    std::vector<std::string> switched;
+    for (const auto& [name, value] : changes.params)
+        if (isSwitch(m_pipeline, name)) {
+            const ParamDesc* before = m_pipeline.findParam(name);
+            if (!before || !(before->value == value)) switched.push_back(name);
+        }
+    if (changes.structural() || !switched.empty()) {
+        auto tb = Clock::now();
+        // The executor keeps its previous build when this one fails, and m_pipeline stays.
+        if (auto r = m_runtime.executor().build(graph, m_options.compile); !r) return r;
+        const double buildMs = msSince(tb);
+        ++m_rebuilds;
+        std::string what = describeStructural(changes);
+        for (const auto& name : switched) {
+            const Value& v = next.findParam(name)->value;
+            what += (what.empty() ? "" : ", ") + ("switch " + name + " = " + (v.isString() ? v.asString() : v.isBool() ? (v.asBool() ? "true" : "false") : std::to_string(v.asNumber())));
+        }
+        char ms[32];
+        std::snprintf(ms, sizeof ms, "%.2f ms", buildMs);
+        note("frame " + std::to_string(m_frame) + ": " + what + "; recompiled in " + ms + ": " +
+             m_runtime.executor().lastBuildReport().summary());
+    } else {
+        m_runtime.executor().updateUniforms(graph);
+    }
+    m_pipeline = std::move(next);
     return {};
 }
 
 Result<void> Session::setOverride(const std::string& param, const Value& value) {
+    if (!m_host) return fail(ErrorCode::InvalidInput, "no pipeline loaded");
     auto checked = checkedParam(m_pipeline, param, value);
     if (!checked) return std::unexpected(checked.error());
+    // Applied now, through the path rg.frame's changes take: a switch whose value cannot be built
+    // is refused with the build's reason, and nothing changes.
+    FrameChanges change;
+    change.params[param] = *checked;
+    if (auto r = apply(change); !r)
+        return fail(r.error().code, "params." + param + ": this value cannot be built, nothing changed: " + r.error().message);
     m_overrides.params[param] = *checked;
     return {};
 }
 
 Result<void> Session::setPassOverride(const std::string& pass, bool enabled) {
-    if (!m_pipeline.graph.findPass(pass)) {
+    if (!m_host) return fail(ErrorCode::InvalidInput, "no pipeline loaded");
+    const PassDesc* desc = m_pipeline.graph.findPass(pass);
+    if (!desc) {
         std::vector<std::string> names;
         for (const auto& d : m_pipeline.graph.passes) names.push_back(d.name);
         return fail(ErrorCode::NotFound, "passes." + pass + ": the pipeline has no pass '" + pass + "'" + suggestion(pass, names));
     }
+    // Applied now: a switch that leaves the graph unbuildable (a kept pass reads what only this
+    // one writes) is refused with the compiler's reason, and nothing changes.
+    if (desc->enabled != enabled) {
+        FrameChanges change;
+        change.enabled[pass] = enabled;
+        if (auto r = apply(change); !r)
+            return fail(ErrorCode::InvalidInput, "passes." + pass + ": cannot be switched " + (enabled ? "on" : "off") +
+                                                     ", nothing changed: " + r.error().message);
+    }
     m_overrides.enabled[pass] = enabled;
+    return {};
+}
+
+void Session::carryOverrides(const FrameChanges& overrides) { m_overrides = overrides; }
+
+Result<void> Session::addCapture(const std::string& name) {
+    if (std::find(m_options.captures.begin(), m_options.captures.end(), name) != m_options.captures.end()) return {};
+    m_options.captures.push_back(name);
+    if (!m_host) return {};
+    if (auto r = load(m_pipeline.file); !r) {
+        m_options.captures.pop_back();  // the load left everything as it was; so does this
+        return r;
+    }
     return {};
 }
 

@@ -58,23 +58,29 @@ public:
     // One frame: rg.frame's changes, then recorded and submitted — or, with `hostCmd`, recorded
     // into the host's command buffer for the host to submit (Executor::frame).
     Result<void> frame(VkCommandBuffer hostCmd = VK_NULL_HANDLE);
-    // Parameter values and pass switches that hold over the script's rg.frame from the next frame
-    // on (applied after it each frame, as SessionOptions::frameHook's are): `rgraph serve`'s
-    // controls. Checked: an unknown parameter or pass, a wrong type or a value out of range is an
-    // error and nothing changes.
+    // Parameter values and pass switches that hold over the script's rg.frame (applied after it
+    // each frame, as SessionOptions::frameHook's are): `rgraph serve`'s controls, the library's
+    // setParameter/setPassEnabled. Applied at once, through the same path as rg.frame's changes:
+    // an unknown parameter or pass, a wrong type, a value out of range, or a change the graph
+    // cannot be built with (a pass a kept pass needs switched off, a switch whose shader does not
+    // compile) is an error, and nothing changes — the running plan keeps rendering.
     Result<void> setOverride(const std::string& param, const Value& value);
     Result<void> setPassOverride(const std::string& pass, bool enabled);
     const FrameChanges& overrides() const { return m_overrides; }
-    // Exports one more resource for readback (or decodes one more G-buffer channel) from the
-    // next load on.
-    void addCapture(const std::string& name) {
-        if (std::find(m_options.captures.begin(), m_options.captures.end(), name) == m_options.captures.end()) m_options.captures.push_back(name);
-    }
+    // Overrides carried over from another session (the library's reload for a new scene or size),
+    // before load(): the load applies those its pipeline still has and accepts, and notes each
+    // one it drops.
+    void carryOverrides(const FrameChanges& overrides);
+    // Exports one more resource for readback (or decodes one more G-buffer channel): reloads the
+    // pipeline with it when one is loaded. A name the pipeline has neither as a resource nor as a
+    // channel is an error, and nothing changes.
+    Result<void> addCapture(const std::string& name);
     const std::vector<std::string>& captures() const { return m_options.captures; }
 
     const PipelineDesc& pipeline() const { return m_pipeline; }
     uint64_t framesRendered() const { return m_frame; }
     uint32_t rebuilds() const { return m_rebuilds; }  // structural rebuilds since the last load
+    uint64_t loads() const { return m_loads; }        // successful loads so far
     double lastFrameCallbackMs() const { return m_callbackMs; }
     double lastLoadMs() const { return m_loadMs; }
     const std::vector<std::string>& log() const { return m_log; }
@@ -104,12 +110,18 @@ public:
     bool loaded() const { return m_host != nullptr; }
 
 private:
-    GraphDesc buildableGraph(const PipelineDesc& p) const;
+    // The graph the executor builds: parameters in, shader paths resolved (with
+    // keepMissingShaders, a pass whose shader file went missing keeps the path it was built
+    // from), captures exported.
+    GraphDesc buildableGraph(const PipelineDesc& p, bool keepMissingShaders);
     // The frame context of frame m_frame for `scene` and its draws per stencil class (ctx in rg.frame), and what the script's
     // rg.frame, the frame hook and the overrides change for it in `pipeline`.
     FrameContext frameContext(const passes::GpuScene* scene, const std::map<std::string, uint32_t>& classes) const;
     Result<FrameChanges> frameChanges(LuaHost& host, const FrameContext& ctx, const PipelineDesc& pipeline, const FrameChanges& overrides);
     Result<std::unique_ptr<passes::GpuScene>> loadScene(PipelineDesc& pipeline);
+    // `changes` on top of the running pipeline: updated uniforms, or a rebuild of the passes they
+    // touch. A build that fails leaves the pipeline and the executor's plan as they were.
+    Result<void> apply(const FrameChanges& changes);
     void note(const std::string& line);
 
     Runtime& m_runtime;
@@ -126,11 +138,15 @@ private:
     // The frame whose rg.frame the last load already ran (its changes are in m_pipeline).
     std::optional<uint64_t> m_framePrepared;
     uint32_t m_rebuilds = 0;
+    uint64_t m_loads = 0;
     double m_callbackMs = 0.0;
     double m_loadMs = 0.0;
     std::vector<std::string> m_log;
     std::vector<ChannelCapture> m_channels;
     FrameChanges m_overrides;
+    // Each pass's shader as last resolved to a file ("origin\npass\nname" -> path): what a pass
+    // keeps while the file is missing (buildableGraph).
+    std::map<std::string, std::string> m_shaderPaths;
 };
 
 // Writes gbuffer_<layout>.glsl (pack/unpack, generated) for every layout of the pipeline into

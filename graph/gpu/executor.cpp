@@ -18,6 +18,7 @@
 #include "core/hash.h"
 #include "core/names.h"
 #include "gpu/compile_scope.h"
+#include "shader/shader_compiler.h"
 
 namespace rg::gpu {
 
@@ -56,6 +57,10 @@ struct Executor::Built {
     ResourceTable table;
     std::vector<std::shared_ptr<PassInstance>> instances;  // by plan pass index
     std::vector<std::string> sourceStamps;  // by plan pass index: its files' times and sizes when prepared
+    // What its passes were prepared against: a build against another scene or other generated
+    // headers prepares every pass again.
+    const passes::GpuScene* scene = nullptr;
+    std::string generatedDir;
 };
 
 namespace {
@@ -79,16 +84,23 @@ Value withoutUniforms(const Value& params) {
 }
 
 // Modification times and sizes of a pass's shader files: a pass whose sources changed on disk
-// is prepared again even when its declaration did not change (hot reload).
-std::string sourceStamp(const PassInstance& instance) {
+// is prepared again even when its declaration did not change (hot reload). A file that is not
+// there (deleted, or mid-save) gives no stamp: there is nothing to prepare the pass from again,
+// and the pass as it was keeps running.
+std::optional<std::string> sourceStamp(const PassInstance& instance) {
     std::string stamp;
     for (const auto& f : instance.files()) {
         std::error_code ec;
         auto t = std::filesystem::last_write_time(f, ec);
+        if (ec) return std::nullopt;
         auto size = std::filesystem::file_size(f, ec);
         stamp += f + "@" + std::to_string(t.time_since_epoch().count()) + ":" + std::to_string(size) + ";";
     }
     return stamp;
+}
+bool sourcesChanged(const PassInstance& instance, const std::string& before) {
+    auto now = sourceStamp(instance);
+    return now && *now != before;
 }
 
 bool sameAccesses(const std::vector<Access>& a, const std::vector<Access>& b) {
@@ -203,12 +215,18 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
     auto t1 = Clock::now();
     BuildReport report;
     // A new scene (setScene) re-prepares every pass — passes hold the scene's buffers and
-    // pipelines built for its materials — but memory and resources do not depend on the scene,
-    // so their contents (persistent history) carry over.
+    // pipelines built for its materials — as do new layout headers (their shaders include them);
+    // memory and resources do not depend on either, so their contents (persistent history)
+    // carry over. The scene and the headers the running build has (a load that failed and gave
+    // them back) re-prepare nothing.
     const Built* old = m_built.get();
-    const Built* oldPasses = m_forceRebuild ? nullptr : old;
+    const std::string& generatedDir = m_shaders.options().generatedDir;
+    const bool samePassInputs = old && old->scene == m_scene && old->generatedDir == generatedDir;
+    const Built* oldPasses = m_forceRebuild || !samePassInputs ? nullptr : old;
     auto built = std::make_unique<Built>();
     built->plan = std::move(*plan);
+    built->scene = m_scene;
+    built->generatedDir = generatedDir;
     built->graph = std::move(graph);
     const Plan* planPtr = &built->plan;
     std::vector<bool> heapReused(planPtr->heaps.size(), false);
@@ -287,7 +305,7 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
                 const auto& instance = old->instances[static_cast<size_t>(o)];
                 if (od.kind == desc.kind && sameAccesses(od.accesses, desc.accesses) && resourcesKept &&
                     withoutUniforms(od.params) == withoutUniforms(desc.params) &&
-                    sourceStamp(*instance) == old->sourceStamps[static_cast<size_t>(o)]) {
+                    !sourcesChanged(*instance, old->sourceStamps[static_cast<size_t>(o)])) {
                     built->instances[p] = instance;
                     built->sourceStamps[p] = old->sourceStamps[static_cast<size_t>(o)];
                     continue;
@@ -355,7 +373,7 @@ Result<void> Executor::prepareInParallel(Built& built, const Plan& plan, const s
             errors[k] = prepared.error();
             return;
         }
-        built.sourceStamps[p] = sourceStamp(*instance);
+        built.sourceStamps[p] = sourceStamp(*instance).value_or(std::string());
         built.instances[p] = std::move(instance);
     };
     unsigned threads = std::max(1u, std::thread::hardware_concurrency());
@@ -420,7 +438,6 @@ void Executor::setScene(const passes::GpuScene* scene, std::function<void(uint32
     m_scene = scene;
     m_sceneShadowViews = shadowViews;
     m_perFrame = std::move(perFrame);
-    m_forceRebuild = true;
 }
 
 void Executor::setFloors(bool on) {

@@ -68,7 +68,7 @@ public:
     void updateUniforms(const GraphDesc& graph);
 
     // The scene passes draw and bind (camera, lights, materials); the next build prepares every
-    // pass anew. `perFrame` runs before each frame is recorded, with its frame-in-flight slot.
+    // pass anew unless it is the scene the running build was prepared against. `perFrame` runs before each frame is recorded, with its frame-in-flight slot.
     // shadowViews: the most shadow views a frame of the scene can have (passes::shadowViewCapacity),
     // the layers a `scene_layers = "shadow_views"` resource gets.
     void setScene(const passes::GpuScene* scene, std::function<void(uint32_t slot)> perFrame, uint32_t shadowViews = 0);

@@ -14,13 +14,13 @@
 // light — the box's top at 45°: 0.42 m against the geometry's 0.256 m; the nearest gives 0.22 m.)
 #ifndef RG_SHADOWS_GLSL
 #define RG_SHADOWS_GLSL
+#extension GL_EXT_control_flow_attributes : require
 
 #ifndef RG_SHADOW_BINDING
 #define RG_SHADOW_BINDING 10  // sun_shadow at 10, sun_cascades at 11
 #endif
 #define RG_MAX_CASCADES 4
-// The PCF kernel's taps, written into the cascades (bias.w) by sun_cascades.comp: rgSunShadow's
-// loop bound is read from memory so that the compiler keeps it a loop (see there).
+// The PCF kernel's taps (also in the cascades' bias.w, which sun_cascades.comp writes).
 #define RG_SUN_PCF_TAPS 16
 
 // std430; shaders/shadows/sun_cascades.comp writes it.
@@ -161,17 +161,20 @@ float rgSunShadowIn(sampler2D map, int ci, vec3 P, vec3 N) {
     float penumbra = clamp((receiver - blockerDepth) * range * tanSigma / texel, 1.0, 64.0);
     // No blocker: lit, without the kernel. An `if` would not spare the kernel on a CPU rasteriser
     // (lavapipe runs both sides of a branch for its block of pixels), but it leaves a loop as
-    // soon as no pixel of the block is still in it — so the kernel is a loop whose bound the
-    // compiler cannot unroll (the tap count, read from the cascades), left at its first tap where
-    // no pixel of the block found a blocker: most of a sunlit frame (lighting_standard −4.5 to −9 ms
-    // at 1280×720, the same image). The taps walk the spiral of rgShadowTap by turning one step of
-    // the golden angle each (its sine and cosine once, not per tap).
+    // soon as no pixel of the block is still in it — so the kernel is a loop the compiler must not
+    // unroll ([[dont_unroll]]), left at its first tap where no pixel of the block found a blocker:
+    // most of a sunlit frame (lighting_standard −4.5 to −9 ms at 1280×720, the same image). Its
+    // bound is the constant, not the count in the cascades: with the bound read from memory,
+    // lavapipe (Mesa 22.3) kept ~0.5 MiB per mask pass and frame that it never freed (a served
+    // pipeline's memory grew by ~1.3 MiB a frame), the same image and time otherwise. The taps walk
+    // the spiral of rgShadowTap by turning one step of the golden angle each (its sine and cosine
+    // once, not per tap).
     const float golden = 2.39996323;
     const mat2 turn = mat2(cos(golden), sin(golden), -sin(golden), cos(golden));
-    int taps = max(int(rgCascades.c.bias.w), 1);
+    const int taps = RG_SUN_PCF_TAPS;
     vec2 direction = vec2(1.0, 0.0);
     float lit = 0.0;
-    for (int k = 0; k < taps; ++k, direction = turn * direction) {
+    [[dont_unroll]] for (int k = 0; k < taps; ++k, direction = turn * direction) {
         if (blockers == 0.0) { lit = float(taps); break; }
         vec2 o = sqrt((float(k) + 0.5) / float(taps)) * direction * penumbra / size;
         float d = textureLod(map, uv + o, 0.0).r;

@@ -1,9 +1,12 @@
 #!/usr/bin/env python3
 """`rgraph serve` driven as a tool and as a person would: its JSON API (toggle a pass, set a
 parameter, fetch intermediates, bad requests refused with 400 and nothing changed, a broken script
-reported with file:line while the last good plan keeps rendering, then fixed), the page in headless
-Chromium (a pass switched off through its checkbox changes the graph and the image), and a clean
-exit on SIGTERM. Every request goes to 127.0.0.1 on the port the server printed; loops are bounded.
+reported with file:line while the last good plan keeps rendering, then fixed), what a hostile or
+careless client sends (a resource that does not exist, a switch that would break the graph, a body
+too large, a number out of range, a wrong method), the token, Host, Origin and Content-Type checks,
+the page in headless Chromium opened with its token (a pass switched off through its checkbox
+changes the graph and the image), and an exit within two seconds on SIGTERM. Every request goes to
+127.0.0.1 on the port the server printed; loops are bounded. (tools/soak.py is the load test.)
 
 usage: serve_test.py RGRAPH SOURCE_ROOT TMP_DIR
 """
@@ -17,6 +20,7 @@ import sys
 import tempfile
 import time
 import urllib.error
+import urllib.parse
 import urllib.request
 
 rgraph, root, tmp_root = sys.argv[1], sys.argv[2], sys.argv[3]
@@ -28,9 +32,18 @@ def check(name, ok, detail=""):
     print(("ok   " if ok else "FAIL ") + name + ("" if ok else ": " + str(detail)), flush=True)
 
 
-def request(url, body=None):
+token = None
+
+
+def request(url, body=None, headers=None, method=None, auth=True):
     data = None if body is None else (body if isinstance(body, bytes) else json.dumps(body).encode())
-    req = urllib.request.Request(url, data=data, method="POST" if data is not None else "GET")
+    h = {}
+    if auth and token:
+        h["Authorization"] = "Bearer " + token
+    if data is not None:
+        h["Content-Type"] = "application/json"
+    h.update(headers or {})
+    req = urllib.request.Request(url, data=data, headers=h, method=method or ("POST" if data is not None else "GET"))
     try:
         with urllib.request.urlopen(req, timeout=60) as r:
             return r.status, r.headers.get("Content-Type", ""), r.read()
@@ -66,9 +79,10 @@ while time.time() < deadline and base is None:
     line = server.stdout.readline()
     if not line:
         break
-    if line.startswith("rgraph serve: http://"):
-        base = line.split()[2].rstrip("/")
-check("serve prints its address", base is not None and base.startswith("http://127.0.0.1:"), base)
+    m = re.match(r"rgraph serve: (http://127\.0\.0\.1:\d+)/\?token=([0-9a-f]{32,})$", line.strip())
+    if m:
+        base, token = m.group(1), m.group(2)
+check("serve prints its address with a token", base is not None and token is not None, base)
 if base is None:
     server.kill()
     sys.exit(1)
@@ -128,6 +142,76 @@ for resource, fmt, magic in [("hdr", "png", b"\x89PNG"), ("GB1", "png", b"\x89PN
 for query, expect in [("resource=nothing", "no texture"), ("resource=hdr&ev=x", "ev"), ("resource=hdr&format=jpg", "format")]:
     code, _, body = request(base + "/api/image?" + query)
     check("400 for image " + query, code == 400 and expect in json.loads(body).get("error", ""), (code, body))
+
+# A resource the pipeline does not have: 400, and the server goes on rendering (it used to crash
+# on the next frame: the failed reload left the executor on a scene it had freed).
+for name in ["nosuch.thing", "../../etc/passwd"]:
+    frames = state(base)["frame"]
+    code, _, body = request(base + "/api/image?resource=" + urllib.parse.quote(name))
+    reply = json.loads(body).get("error", "")
+    check("400 for image " + name, code == 400 and name in reply and "--capture" not in reply, (code, body[:200]))
+    s = wait_for(base, lambda s: s["frame"] > frames + 3, 60)
+    check("renders on after the image of " + name, server.poll() is None and s["frame"] > frames + 3, (server.poll(), s.get("frame")))
+code, _, body = request(base + "/api/image?resource=GB1&format=png")
+check("the next image is served", code == 200 and body[:4] == b"\x89PNG", (code, body[:80]))
+
+# A switch that would leave a kept pass without its input: 400 with the compiler's reason, and
+# nothing changes (the plan keeps rendering, a parameter set next is applied).
+code, _, body = request(base + "/api/pass", {"name": "tonemap", "enabled": False})
+check("400 for a switch that breaks the graph", code == 400 and "fxaa_edges" in json.loads(body).get("error", ""), (code, body[:300]))
+s = state(base)
+check("the refused switch changed nothing", any(p["name"] == "tonemap" and p["enabled"] and p["kept"] for p in s["passes"]) and not s.get("error"),
+      ([p for p in s["passes"] if p["name"] == "tonemap"], s.get("error")))
+code, _, body = request(base + "/api/param", {"name": "ec", "value": 0.5})
+s = wait_for(base, lambda s: any(p["name"] == "ec" and p["value"] == 0.5 for p in s["params"]), 30)
+check("a parameter set after it applies", code == 200 and any(p["name"] == "ec" and p["value"] == 0.5 for p in s["params"]), (code, body))
+
+# One switch rebuilds one pass: the state says what the last build did.
+request(base + "/api/pass", {"name": "sky", "enabled": False})
+request(base + "/api/pass", {"name": "sky", "enabled": True})
+s = wait_for(base, lambda s: s["buildSummary"].startswith("rebuilt 1 pass(es) (sky)"), 30)
+check("the build summary is the switch's own", s["buildSummary"].startswith("rebuilt 1 pass(es) (sky), reused"), s["buildSummary"][:120])
+
+# Limits and methods.
+code, _, body = request(base + "/api/param", b"{" + b"x" * (2 << 20) + b"}")
+check("413 for a body over 1 MiB, not echoed", code == 413 and len(body) < 1000, (code, len(body)))
+code, _, body = request(base + "/api/param", b'{"name": "ec", "value": 1e400}')
+check("a number out of range is named so", code == 400 and "out of range" in json.loads(body).get("error", ""), (code, body))
+code, _, body = request(base + "/api/param", method="DELETE")
+check("405 with Allow for a wrong method", code == 405, (code, body))
+try:
+    urllib.request.urlopen(urllib.request.Request(base + "/api/state", method="POST", data=b"{}",
+                                                  headers={"Authorization": "Bearer " + token, "Content-Type": "application/json"}), timeout=30)
+    allow = None
+except urllib.error.HTTPError as e:
+    allow = (e.code, e.headers.get("Allow"))
+check("405 names the allowed method", allow == (405, "GET"), allow)
+
+# Security: a token on every call, the Host header this server's, no cross-site POSTs.
+code, _, _ = request(base + "/api/state", auth=False)
+check("401 without the token", code == 401, code)
+code, _, _ = request(base + "/api/state?token=" + "0" * len(token), auth=False)
+check("401 with a wrong token", code == 401, code)
+code, _, _ = request(base + "/api/state?token=" + token, auth=False)
+check("the token as a query parameter", code == 200, code)
+code, _, _ = request(base + "/", auth=False)
+check("the page itself needs the token", code == 401, code)
+req = urllib.request.Request(base + "/?token=" + token)
+with urllib.request.urlopen(req, timeout=30) as r:
+    cookie = r.headers.get("Set-Cookie", "")
+check("the page sets an HttpOnly, SameSite cookie", cookie.startswith("rgraph_token=" + token) and "HttpOnly" in cookie and "SameSite=Strict" in cookie, cookie)
+code, _, _ = request(base + "/api/state", auth=False, headers={"Cookie": "rgraph_token=" + token})
+check("the cookie is accepted", code == 200, code)
+code, _, body = request(base + "/api/state", headers={"Host": "evil.example"})
+check("403 for a foreign Host (DNS rebinding)", code == 403 and b"evil.example" in body, (code, body))
+code, _, body = request(base + "/api/pass", {"name": "sky", "enabled": False}, headers={"Origin": "http://evil.example"})
+check("403 for a cross-site Origin", code == 403, (code, body))
+code, _, body = request(base + "/api/pass", b'{"name": "sky", "enabled": false}', headers={"Content-Type": "text/plain"})
+check("415 for a POST that is not application/json (a form's)", code == 415, (code, body))
+s = state(base)
+check("none of them switched the pass", any(p["name"] == "sky" and p["enabled"] for p in s["passes"]))
+refused = subprocess.run([rgraph, "serve", "--pipeline", pipeline, "--host", "0.0.0.0", "--port", "0"], capture_output=True, text=True, timeout=120)
+check("a non-loopback address without --token is refused", refused.returncode == 2 and "--token" in refused.stderr, (refused.returncode, refused.stderr))
 
 # A broken script: reported with file:line, the last good plan keeps rendering; then fixed.
 frames = state(base)["frame"]
@@ -201,7 +285,7 @@ else:
         return False
 
     try:
-        target = cdp("Target.createTarget", {"url": base + "/"})["result"]["targetId"]
+        target = cdp("Target.createTarget", {"url": base + "/?token=" + token})["result"]["targetId"]
         session = cdp("Target.attachToTarget", {"targetId": target, "flatten": True})["result"]["sessionId"]
         cdp("Runtime.enable", {}, session)
         check("the page shows the passes", until(session, "!!document.querySelector('input[data-pass=\"sky\"]')"))
@@ -219,6 +303,7 @@ else:
     browser.kill()
     browser.wait(timeout=30)
 
+t_term = time.time()
 server.send_signal(signal.SIGTERM)
 try:
     code = server.wait(timeout=60)
@@ -226,7 +311,7 @@ except subprocess.TimeoutExpired:
     server.kill()
     code = None
 log.close()
-check("SIGTERM stops it cleanly (exit 0)", code == 0, code)
+check("SIGTERM stops it cleanly (exit 0) within 2 s", code == 0 and time.time() - t_term < 2.0, (code, time.time() - t_term))
 with open(log_path) as f:
     text = f.read()
 check("no validation message", "validation" not in text, [l for l in text.splitlines() if "validation" in l][:3])

@@ -37,7 +37,7 @@ check "bad device" 2 grep "--device 7: only" -- "$rgraph" render --device 7 --si
 check "missing pipeline" 2 grep "cannot open pipeline script 'nope.lua'" -- "$rgraph" render --pipeline nope.lua
 check "bad script" 2 grep "unknown_field.lua:3: passes.tonemap.shadr: unknown field (did you mean 'shader'?)" -- \
     "$rgraph" render --pipeline tests/lua/scripts/unknown_field.lua
-check "unknown capture" 2 grep "--capture: the pipeline has no resource named 'GB7'" -- "$rgraph" render --capture GB7 --size 8x8
+check "unknown capture" 2 grep "capture 'GB7': the pipeline has no resource named 'GB7'" -- "$rgraph" render --capture GB7 --size 8x8
 check "unknown scene file type" 2 grep "expected a .lua scene script, a .gltf or a .glb file" -- "$rgraph" render --scene README.md --size 8x8
 check "missing scene" 2 grep "nope.gltf" -- "$rgraph" render --scene nope.gltf --size 8x8
 check "render" 0 grep "wrote $tmp/r.exr and $tmp/r.png (64x32" -- \

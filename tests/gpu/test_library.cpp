@@ -245,6 +245,48 @@ TEST(Library, ErrorsAreExceptionsWithFileAndLine) {
     }
 }
 
+// A change that cannot be served — a resource the pipeline does not have kept for reading, a
+// switch that leaves a kept pass without its input, a size out of range — throws and changes
+// nothing: its frames are those of a renderer that never saw the failures, and it takes the next
+// valid change.
+TEST(Library, AFailedChangeLeavesTheRendererAsItWas) {
+    auto reference = rgraph::Renderer::create(options());
+    reference->setSize(64, 36);
+    reference->loadPipeline(kRoot + "/scripts/pipelines/deferred.lua");
+    reference->render(4);
+    const rgraph::Image expected = reference->readDisplay();
+    reference.reset();
+    auto r = rgraph::Renderer::create(options());
+    r->setSize(64, 36);
+    r->loadPipeline(kRoot + "/scripts/pipelines/deferred.lua");
+    r->render(2);
+    try {
+        r->keep("nosuch.thing");
+        FAIL() << "an unknown resource was kept";
+    } catch (const rgraph::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("'nosuch.thing'"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(r->keep("../../etc/passwd"), rgraph::Error);
+    try {
+        r->setPassEnabled("tonemap", false);
+        FAIL() << "tonemap switched off although fxaa_edges reads what only it writes";
+    } catch (const rgraph::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("fxaa_edges"), std::string::npos) << e.what();
+    }
+    EXPECT_THROW(r->setSize(0, 36), rgraph::Error);
+    r->render(2);  // the scene the renderer had (the failed keep's reload gave it back), unchanged
+    const rgraph::Image after = r->readDisplay();
+    ASSERT_EQ(expected.pixels.size(), after.pixels.size());
+    EXPECT_EQ(expected.pixels, after.pixels);
+    // The next valid change is taken: a kept resource reads back, a switch applies.
+    r->keep("GB1");
+    r->render(1);
+    EXPECT_EQ(r->readResource("GB1").width, 64u);
+    r->setPassEnabled("sky", false);
+    r->render(1);
+    EXPECT_NE(r->readDisplay().pixels, after.pixels);
+}
+
 // The host's own images through the graph, in the host's command buffer: the host clears image A,
 // rgraph copies it into its imported texture `src`, a copy pass writes `output`, rgraph copies
 // that into the host's image B; the host submits, reads B back and finds A's colour.
