@@ -1,5 +1,7 @@
 #include "gpu_scene.h"
 
+#include <atomic>
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -222,7 +224,9 @@ Result<gpu::Image> uploadLightmap(Context& ctx, const Lightmap* lm, ContentHash&
 GpuScene::~GpuScene() = default;
 
 Result<std::unique_ptr<GpuScene>> GpuScene::create(Context& ctx, Scene scene, const GpuSceneOptions& options) {
+    static std::atomic<uint64_t> ids{0};
     std::unique_ptr<GpuScene> s(new GpuScene());
+    s->m_id = ++ids;
     s->m_ctx = &ctx;
     s->m_scene = std::move(scene);
     if (s->m_scene.cameras.empty()) return fail(ErrorCode::InvalidInput, "the scene has no camera");

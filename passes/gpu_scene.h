@@ -138,6 +138,9 @@ class GpuScene {
 public:
     static Result<std::unique_ptr<GpuScene>> create(gpu::Context& ctx, Scene scene, const GpuSceneOptions& options = {});
     ~GpuScene();
+    // A number no other scene of the process has had: what the executor tells scenes apart by
+    // (an address can be a freed scene's).
+    uint64_t id() const { return m_id; }
 
     const Scene& scene() const { return m_scene; }
     const std::vector<DrawItem>& draws() const { return m_draws; }
@@ -226,6 +229,7 @@ public:
     uint32_t iesProfileCount() const { return m_iesProfileCount; }
 
 private:
+    uint64_t m_id = 0;
     GpuScene() = default;
     Result<void> uploadGeometry(gpu::Context& ctx);
     Result<void> uploadImages(gpu::Context& ctx);

@@ -2,7 +2,7 @@
 """`rgraph serve` under load and faults: a bounded soak on 127.0.0.1.
 
     tools/soak.py [--rgraph build/rgraph] [--clients 16] [--seconds 60] [--size 160x90]
-                  [--warmup 15] [--seed 1] [--max-rss-growth 0.10] [--max-shutdown 2.0]
+                  [--warmup 20] [--seed 1] [--max-rss-growth 0.10] [--max-shutdown 2.0]
 
 Serves the default pipeline plus a pass of its own (`soak_tint`, whose shader lives beside the
 script) from a temporary folder, then for --seconds runs --clients clients against it, each a
@@ -12,7 +12,8 @@ that are not JSON, a 2 MiB body, wrong methods, no token, a foreign Host or Orig
 switch would break the graph). One writer sets parameters and switches a pass, and remembers
 what the server acknowledged last. Meanwhile the faults: the script broken and restored, the
 pass's shader deleted and restored, a pipeline file saved with the same bytes, the process
-stopped and continued. Then SIGTERM while the clients still send.
+stopped and continued — once during the warm-up (so that the steady state holds what a reload
+needs), then again, checked. Then SIGTERM while the clients still send.
 
 Prints requests per second, latency percentiles per endpoint, status counts, the server's RSS
 (at start, after the warm-up, at the end, the largest) and the shutdown time, then a line of
@@ -107,7 +108,7 @@ def main():
     ap.add_argument("--clients", type=int, default=16)
     ap.add_argument("--seconds", type=float, default=60)
     ap.add_argument("--size", default="160x90")
-    ap.add_argument("--warmup", type=float, default=15)
+    ap.add_argument("--warmup", type=float, default=20, help="seconds at least; the faults run once in it")
     ap.add_argument("--seed", type=int, default=1)
     ap.add_argument("--max-rss-growth", type=float, default=0.10)
     ap.add_argument("--max-shutdown", type=float, default=2.0)
@@ -154,8 +155,8 @@ def main():
         time.sleep(0.2)
     check("serves frames", s.get("frame", 0) >= 2, s.get("error"))
 
-    # Memory: sampled every 0.25 s.
-    rss = {"start": rss_mib(proc.pid), "warm": None, "max_after_warm": 0.0, "samples": []}
+    # Memory: sampled every 0.25 s; "after the warm-up" and "end" are medians over 2 s.
+    rss = {"start": rss_mib(proc.pid), "warm": None, "end": None, "max_after_warm": 0.0, "samples": []}
     t_start = time.time()
     stop_sampling = threading.Event()
 
@@ -163,12 +164,15 @@ def main():
         while not stop_sampling.is_set():
             v = rss_mib(proc.pid)
             if v is not None:
-                rss["samples"].append((time.time() - t_start, v))
-                if time.time() - t_start >= args.warmup:
-                    if rss["warm"] is None:
-                        rss["warm"] = v
+                rss["samples"].append((time.time(), v))
+                if rss["warm"] is not None:
                     rss["max_after_warm"] = max(rss["max_after_warm"], v)
             time.sleep(0.25)
+
+    def rss_now():
+        time.sleep(2.0)
+        recent = [v for t, v in rss["samples"] if t >= time.time() - 2.0]
+        return percentile(recent, 0.5) if recent else rss_mib(proc.pid)
 
     # The warm-up's own work: every image once (each export a reload) and a reload of the script
     # with other bytes, so that what is measured after it is the steady state.
@@ -275,49 +279,57 @@ def main():
             st = server.state()
         return st
 
-    # The faults, spread over the run after the warm-up.
-    fault_start = t_start + min(args.warmup, args.seconds * 0.3)
-    time.sleep(max(0.0, fault_start - time.time()))
-    reloads_before = log_text().count("rgraph serve: reloaded")
-    # A save with the same bytes: no reload.
-    os.utime(pipeline)
-    time.sleep(2.0)
-    check("a save with the same bytes reloads nothing", log_text().count("rgraph serve: reloaded") == reloads_before,
-          log_text().count("rgraph serve: reloaded") - reloads_before)
-    # A broken script: reported with file:line, frames go on; then restored.
-    with open(pipeline, "a") as f:
-        f.write('rg.pass "broken" {\n')
-    st = wait_state(lambda st: st.get("error") and "pipeline.lua:" in st["error"], 30)
-    frame = st.get("frame", 0)
-    check("a broken script is reported with file:line", bool(st.get("error") and "pipeline.lua:" in st["error"]), st.get("error"))
-    st = wait_state(lambda st: st.get("frame", 0) > frame + 3, 30)
-    check("frames go on while the script is broken", st.get("frame", 0) > frame + 3, (frame, st.get("frame")))
-    with open(pipeline, "w") as f:
-        f.write(PIPELINE)
-    st = wait_state(lambda st: not st.get("error"), 60)
-    check("the restored script clears the error", not st.get("error"), st.get("error"))
-    # The pass's shader deleted: reported, frames go on, the error stays put; then restored.
-    os.remove(shader)
-    st = wait_state(lambda st: st.get("error") and "soak_tint" in st["error"], 30)
-    check("a deleted shader is reported", bool(st.get("error") and "soak_tint" in st["error"]), st.get("error"))
-    frame, flicker = st.get("frame", 0), 0
-    for _ in range(15):
-        time.sleep(0.2)
-        st = server.state()
-        flicker += not st.get("error")
-    check("frames go on while the shader is missing", st.get("frame", 0) > frame + 3, (frame, st.get("frame")))
-    check("the error holds while the shader is missing", flicker == 0, "%d of 15 states without it" % flicker)
-    with open(shader, "w") as f:
-        f.write(SHADER)
-    st = wait_state(lambda st: not st.get("error"), 60)
-    check("the restored shader clears the error", not st.get("error"), st.get("error"))
-    # Stopped and continued: requests wait, nothing is lost.
-    proc.send_signal(signal.SIGSTOP)
-    time.sleep(1.5)
-    proc.send_signal(signal.SIGCONT)
+    def faults(checked):
+        """The script saved with the same bytes, broken and restored; the pass's shader deleted
+        and restored; the process stopped and continued. `checked`: each step's outcome is a check."""
+        expect = check if checked else (lambda name, ok, detail="": None)
+        reloads_before = log_text().count("rgraph serve: reloaded")
+        # A save with the same bytes: no reload.
+        os.utime(pipeline)
+        time.sleep(2.0)
+        expect("a save with the same bytes reloads nothing", log_text().count("rgraph serve: reloaded") == reloads_before,
+               log_text().count("rgraph serve: reloaded") - reloads_before)
+        # A broken script: reported with file:line, frames go on; then restored.
+        with open(pipeline, "a") as f:
+            f.write('rg.pass "broken" {\n')
+        st = wait_state(lambda st: st.get("error") and "pipeline.lua:" in st["error"], 30)
+        frame = st.get("frame", 0)
+        expect("a broken script is reported with file:line", bool(st.get("error") and "pipeline.lua:" in st["error"]), st.get("error"))
+        st = wait_state(lambda st: st.get("frame", 0) > frame + 3, 30)
+        expect("frames go on while the script is broken", st.get("frame", 0) > frame + 3, (frame, st.get("frame")))
+        with open(pipeline, "w") as f:
+            f.write(PIPELINE)
+        st = wait_state(lambda st: not st.get("error"), 60)
+        expect("the restored script clears the error", not st.get("error"), st.get("error"))
+        # The pass's shader deleted: reported, frames go on, the error stays put; then restored.
+        os.remove(shader)
+        st = wait_state(lambda st: st.get("error") and "soak_tint" in st["error"], 30)
+        expect("a deleted shader is reported", bool(st.get("error") and "soak_tint" in st["error"]), st.get("error"))
+        frame, flicker = st.get("frame", 0), 0
+        for _ in range(15):
+            time.sleep(0.2)
+            st = server.state()
+            flicker += not st.get("error")
+        expect("frames go on while the shader is missing", st.get("frame", 0) > frame + 3, (frame, st.get("frame")))
+        expect("the error holds while the shader is missing", flicker == 0, "%d of 15 states without it" % flicker)
+        with open(shader, "w") as f:
+            f.write(SHADER)
+        st = wait_state(lambda st: not st.get("error"), 60)
+        expect("the restored shader clears the error", not st.get("error"), st.get("error"))
+        # Stopped and continued: requests wait, nothing is lost.
+        proc.send_signal(signal.SIGSTOP)
+        time.sleep(1.5)
+        proc.send_signal(signal.SIGCONT)
 
-    time.sleep(max(0.0, t_start + args.seconds - time.time()))
-    rss["end"] = rss_mib(proc.pid)
+    # The warm-up: the faults once, unchecked, so that the steady state holds what a reload needs;
+    # then the faults again, checked, and the load to the end.
+    faults(checked=False)
+    time.sleep(max(0.0, t_start + args.warmup - time.time()))
+    rss["warm"] = rss_now()
+    warm_seconds = time.time() - t_start
+    faults(checked=True)
+    time.sleep(max(0.0, t_start + args.seconds - 2.0 - time.time()))
+    rss["end"] = rss_now()
 
     # The final state against the last acknowledged values (no lost or half-applied update).
     with lock:
@@ -371,8 +383,8 @@ def main():
     # largest sample is printed, the end is what stays).
     warm = rss["warm"] or rss["start"] or 0.0
     growth = ((rss.get("end") or 0.0) - warm) / warm if warm else float("nan")
-    print("  RSS MiB: start %.0f, after warm-up (%.0f s) %.0f, end %.0f (growth %+.1f %%), max after warm-up %.0f" %
-          (rss["start"] or 0, args.warmup, warm, rss.get("end") or 0, 100 * growth, rss["max_after_warm"]))
+    print("  RSS MiB: start %.0f, after the warm-up (%.0f s) %.0f, end %.0f (growth %+.1f %%), max after the warm-up %.0f" %
+          (rss["start"] or 0, warm_seconds, warm, rss.get("end") or 0, 100 * growth, rss["max_after_warm"]))
     print("  shutdown: %.2f s after SIGTERM, exit %s" % (shutdown, code))
     for what, detail in problems[:20]:
         print("  problem: %s: %s" % (what, detail))

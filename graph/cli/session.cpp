@@ -67,7 +67,7 @@ Session::~Session() {
     // (Also when another session's scene has replaced ours: frames recorded before that drew ours.)
     if (m_scene) {
         if (auto r = m_runtime.executor().finish(); !r) std::fprintf(stderr, "rgraph: %s\n", r.error().describe().c_str());
-        if (m_runtime.executor().scene() == m_scene.get()) m_runtime.executor().setScene(nullptr, {});
+        if (m_runtime.executor().scene() == m_scene.get()) m_runtime.executor().setScene(nullptr, 0, {});
     }
 }
 
@@ -688,7 +688,8 @@ Result<void> Session::load(const std::string& file) {
             useLayoutHeaders(s.m_runtime, headers);
             s.m_frameHook = hook;
             s.m_channels = channels;
-            if (sceneChanged) s.m_runtime.executor().setScene(scene, hook, scene ? passes::shadowViewCapacity(scene->scene()) : 0);
+            if (sceneChanged)
+                s.m_runtime.executor().setScene(scene, scene ? scene->id() : 0, hook, scene ? passes::shadowViewCapacity(scene->scene()) : 0);
         }
     } rollback{*this};
     useLayoutHeaders(m_runtime, *headers);
@@ -701,7 +702,7 @@ Result<void> Session::load(const std::string& file) {
         m_frameHook = [raw, w, h](uint32_t slot) { raw->updateFrame(slot, w, h); };
     }
     if (scene || rollback.scene) {
-        m_runtime.executor().setScene(scene.get(), m_frameHook, scene ? passes::shadowViewCapacity(scene->scene()) : 0);
+        m_runtime.executor().setScene(scene.get(), scene ? scene->id() : 0, m_frameHook, scene ? passes::shadowViewCapacity(scene->scene()) : 0);
         rollback.sceneChanged = true;
     }
     {

@@ -59,7 +59,7 @@ struct Executor::Built {
     std::vector<std::string> sourceStamps;  // by plan pass index: its files' times and sizes when prepared
     // What its passes were prepared against: a build against another scene or other generated
     // headers prepares every pass again.
-    const passes::GpuScene* scene = nullptr;
+    uint64_t sceneId = 0;
     std::string generatedDir;
 };
 
@@ -221,11 +221,11 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
     // them back) re-prepare nothing.
     const Built* old = m_built.get();
     const std::string& generatedDir = m_shaders.options().generatedDir;
-    const bool samePassInputs = old && old->scene == m_scene && old->generatedDir == generatedDir;
+    const bool samePassInputs = old && old->sceneId == m_sceneId && old->generatedDir == generatedDir;
     const Built* oldPasses = m_forceRebuild || !samePassInputs ? nullptr : old;
     auto built = std::make_unique<Built>();
     built->plan = std::move(*plan);
-    built->scene = m_scene;
+    built->sceneId = m_sceneId;
     built->generatedDir = generatedDir;
     built->graph = std::move(graph);
     const Plan* planPtr = &built->plan;
@@ -434,8 +434,9 @@ Result<void> Executor::clearPersistent(size_t index) {
     });
 }
 
-void Executor::setScene(const passes::GpuScene* scene, std::function<void(uint32_t)> perFrame, uint32_t shadowViews) {
+void Executor::setScene(const passes::GpuScene* scene, uint64_t sceneId, std::function<void(uint32_t)> perFrame, uint32_t shadowViews) {
     m_scene = scene;
+    m_sceneId = scene ? sceneId : 0;
     m_sceneShadowViews = shadowViews;
     m_perFrame = std::move(perFrame);
 }

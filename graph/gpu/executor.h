@@ -71,7 +71,8 @@ public:
     // pass anew unless it is the scene the running build was prepared against. `perFrame` runs before each frame is recorded, with its frame-in-flight slot.
     // shadowViews: the most shadow views a frame of the scene can have (passes::shadowViewCapacity),
     // the layers a `scene_layers = "shadow_views"` resource gets.
-    void setScene(const passes::GpuScene* scene, std::function<void(uint32_t slot)> perFrame, uint32_t shadowViews = 0);
+    // sceneId: the scene's GpuScene::id() (0 without one), unique in the process.
+    void setScene(const passes::GpuScene* scene, uint64_t sceneId, std::function<void(uint32_t slot)> perFrame, uint32_t shadowViews = 0);
     // Floor mode for the builds that follow (PassSetup::floor): every pass is prepared again.
     void setFloors(bool on);
     // The next build prepares every pass again (their shaders' inputs changed place).
@@ -165,6 +166,7 @@ private:
     uint64_t m_frameIndex = 0;
     uint64_t m_persistentEpoch = 0;  // FrameInfo::persistentEpoch
     const passes::GpuScene* m_scene = nullptr;
+    uint64_t m_sceneId = 0;
     uint32_t m_sceneShadowViews = 0;
     std::function<void(uint32_t)> m_perFrame;
     bool m_forceRebuild = false;

@@ -493,6 +493,7 @@ RgLightSample rgEvaluateLightOf(RgLight light, uint i, uint types, vec3 P, vec3 
     float visibility = rgShadow(i, sunVisibility) * rgLocalShadow(i, P, N);
     s.diffuseIlluminance *= visibility;
     s.specularIlluminance *= visibility;
+    s.specularLtc *= visibility;  // the LTC lobe of an area light (seed 002 §4.10.4: every specular term is shadowed)
 #endif
     return s;
 }

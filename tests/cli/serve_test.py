@@ -291,6 +291,17 @@ else:
         check("the page shows the passes", until(session, "!!document.querySelector('input[data-pass=\"sky\"]')"))
         check("the page shows the graph", until(session, "[...document.querySelectorAll('#graph td')].some(td => td.textContent === 'sky')"))
         check("the page shows an image", until(session, "document.getElementById('view').naturalWidth === 160"))
+        # The graph drawn: the lifetime grid (a row per memory place, W/R marks, culled columns
+        # grey) and the pass DAG (an arrow from gbuffer to the lighting it feeds).
+        check("the lifetime grid marks gbuffer writing GB1",
+              until(session, "!!document.querySelector('#lifetimes g[data-resource=\"GB1\"] rect.use.w[data-pass=\"gbuffer\"]')"))
+        check("the lifetime grid marks the lighting reading GB1",
+              until(session, "!!document.querySelector('#lifetimes g[data-resource=\"GB1\"] rect.use.r[data-pass=\"lighting_standard\"]')"))
+        check("the lifetime grid greys the culled passes", until(session, "document.querySelectorAll('#lifetimes rect.culled').length > 0"))
+        check("the pass DAG has gbuffer -> lighting_standard",
+              until(session, "!!document.querySelector('#dag path[data-from=\"gbuffer\"][data-to=\"lighting_standard\"]')"))
+        evaluate(session, "document.querySelector('#lifetimes g[data-resource=\"GB1\"]').dispatchEvent(new MouseEvent('click')); true")
+        check("clicking a resource shows it", until(session, "document.getElementById('resource').value === 'GB1' && document.getElementById('view').src.includes('resource=GB1')"))
         before = evaluate(session, "document.getElementById('view').src")
         evaluate(session, "document.querySelector('input[data-pass=\"sky\"]').click(); true")
         check("a pass switched off on the page", until(session, "document.querySelector('tr[data-pass=\"sky\"]').className === 'off'"))
