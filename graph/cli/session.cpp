@@ -836,6 +836,12 @@ Result<void> Session::frame(VkCommandBuffer hostCmd) {
     // A callback that fails, or a change that cannot be built, is refused whole: the plan as it
     // was renders this frame, and the caller hears why.
     Result<void> applied = !changes ? Result<void>(std::unexpected(changes.error())) : changes->empty() ? Result<void>{} : apply(*changes);
+    if (!applied && changes) {
+        Error e = applied.error();
+        e.message = "frame " + std::to_string(m_frame) + ": rg.frame's changes (" + describeStructural(*changes) +
+                    ") cannot be built; the plan stays as it was: " + e.message;
+        applied = std::unexpected(e);
+    }
     // The area-light model of the light loop (scripts/lighting.lua's area_lights): a field of the
     // scene's Lights block, so switching it rebuilds nothing.
     if (m_scene) {

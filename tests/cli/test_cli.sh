@@ -38,6 +38,21 @@ check "missing pipeline" 2 grep "cannot open pipeline script 'nope.lua'" -- "$rg
 check "bad script" 2 grep "unknown_field.lua:3: passes.tonemap.shadr: unknown field (did you mean 'shader'?)" -- \
     "$rgraph" render --pipeline tests/lua/scripts/unknown_field.lua
 check "unknown capture" 2 grep "capture 'GB7': the pipeline has no resource named 'GB7'" -- "$rgraph" render --capture GB7 --size 8x8
+# A frame whose rg.frame switches off what a kept pass needs: refused whole (the frame renders the
+# plan as it was), and render stops with exit 2 naming the frame, the switch and the reader.
+cat > "$tmp/switch_off.lua" <<'EOF'
+require "pipelines.deferred"
+local rg = require "rg"
+local loopFrame = rg.frame
+function rg.frame(ctx)
+  if loopFrame then loopFrame(ctx) end
+  if ctx.frame >= 1 then ctx.pass("tonemap").enabled = false end
+end
+EOF
+check "rg.frame switching off a needed pass" 2 grep "frame 1: rg.frame's changes (disabled 'tonemap') cannot be built; the plan stays as it was: " -- \
+    "$rgraph" render --pipeline "$tmp/switch_off.lua" --size 16x16 --frames 3 --out "$tmp/s.exr" --png "$tmp/s.png"
+check "... with the compiler's reason" 2 grep "pass 'fxaa_edges' reads 'display_ldr', but its only writer 'tonemap' is disabled" -- \
+    "$rgraph" render --pipeline "$tmp/switch_off.lua" --size 16x16 --frames 3 --out "$tmp/s.exr" --png "$tmp/s.png"
 check "unknown scene file type" 2 grep "expected a .lua scene script, a .gltf or a .glb file" -- "$rgraph" render --scene README.md --size 8x8
 check "missing scene" 2 grep "nope.gltf" -- "$rgraph" render --scene nope.gltf --size 8x8
 check "render" 0 grep "wrote $tmp/r.exr and $tmp/r.png (64x32" -- \
