@@ -1,17 +1,18 @@
 -- A game team's foliage material, declared in Lua and GLSL only (seed 000 §3.2.2, lst:3): the
 -- geometry-heavy G-buffer pass fills only GB0 and GB1; a fix-up pass fills GB2 and GB3 for its
--- pixels afterwards (global smoothness-free parameters: no metal, one reflectance, AO 1, and the
--- indirect light of a uniform sky into GB3's radiosity), so foliage shares the standard lighting
--- pass. Its stencil class is a variant of the standard class (variant_of: the same low bits, a
+-- pixels afterwards (global parameters: no metal, one reflectance, AO 1, and, as lst:3, the
+-- distant diffuse probe's irradiance at the normal into GB3's radiosity, flagged in GB2's reserved
+-- channel so that the lighting does not add the probe's diffuse a second time), so foliage shares
+-- the standard lighting pass. Its stencil class is a variant of the standard class (variant_of: the same low bits, a
 -- value of its own in the high bits): the standard lighting, testing the low bits, lights it; the
 -- fix-up, testing all eight, finds it. After the fix-up its pixels decode as the standard
 -- material's, so it shares materialId 0 (and with it how decals and debug views treat them).
 local rg = require "rg"
 require "disney"
+require "ibl"  -- env_sh, the distant probe's SH the fix-up reads
 
 rg.stencil "foliage" { variant_of = "lit_standard", doc = "needs the G-buffer fix-up, then standard lighting" }
 rg.param "foliage_reflectance" { type = "number", default = 0.35, min = 0, max = 1, doc = "fix-up: reflectance of all foliage" }
-rg.param "foliage_ambient" { type = "number", default = 5000, min = 0, max = 1e6, doc = "fix-up: sky illuminance for foliage radiosity, lux" }
 
 rg.material "foliage" {
     id = 0, layout = "disney", stencil = "foliage", surface = "materials/foliage.glsl",
@@ -20,7 +21,7 @@ rg.material "foliage" {
 
 rg.pass "foliage_fixup" {
     kind = "fullscreen", shader = "materials/foliage_fixup.frag",
-    reads = { "GB0", "GB1", { "depth", as = "depth" } },
+    reads = { "GB0", "GB1", { "depth", as = "depth" }, { "env_sh", as = "uniform" } },
     writes = { { "GB2", load = true }, { "GB3", load = true } },
     stencil = { class = "foliage" }, insert = { after = "gbuffer" },
 }

@@ -11,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <map>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "cli/runtime.h"
@@ -29,11 +30,17 @@ constexpr uint32_t W = 256, H = 128;
 
 class SceneRender : public GpuFixture {
 protected:
-    std::unique_ptr<Session> render(const std::string& pipeline, std::vector<std::string> captures, const std::string& view = "") {
+    std::unique_ptr<Session> render(const std::string& pipeline, std::vector<std::string> captures, const std::string& view = "",
+                                    const std::string& scene = "materials.lua", const std::map<std::string, std::string>& args = {}) {
         SessionOptions o;
         o.compile.outputWidth = W;
         o.compile.outputHeight = H;
-        o.scene = kRoot + "/tests/gpu/scenes/materials.lua";
+        o.scene = kRoot + "/tests/gpu/scenes/" + scene;
+        o.sceneArgs = args;
+        if (scene != "materials.lua") {  // the probe alone: a fixed exposure, no screen-space occlusion
+            o.params["exposure_mode"] = Value("manual");
+            o.params["ao_radius"] = Value(0.05);
+        }
         o.captures = std::move(captures);
         o.view = view;
         auto s = std::make_unique<Session>(*s_runtime, o);
@@ -66,6 +73,21 @@ protected:
             texels.push_back(texelFromFloats(t.format, &img->pixels[(size_t(px.y) * W + px.x) * img->channels], img->channels));
         }
         return unpackTexel(info, texels);
+    }
+    // Irradiance (lux) at normal n from the environment's SH (env_sh, captured or persistent), as
+    // lib/environment.glsl's rgShIrradiance evaluates it.
+    static glm::vec3 shIrradiance(glm::vec3 n) {
+        auto bytes = s_runtime->executor().readbackBuffer("env_sh");
+        EXPECT_TRUE(bytes.has_value());
+        if (!bytes || bytes->size() < 9 * 16) return glm::vec3(0.0f);
+        glm::vec4 sh[9];
+        std::memcpy(sh, bytes->data(), sizeof sh);
+        const float y[9] = {0.282095f, 0.488603f * n.y, 0.488603f * n.z, 0.488603f * n.x, 1.092548f * n.x * n.y, 1.092548f * n.y * n.z,
+                            0.315392f * (3.0f * n.z * n.z - 1.0f), 1.092548f * n.x * n.z, 0.546274f * (n.x * n.x - n.y * n.y)};
+        const float pi = 3.14159265f, a[9] = {pi, 2 * pi / 3, 2 * pi / 3, 2 * pi / 3, pi / 4, pi / 4, pi / 4, pi / 4, pi / 4};
+        glm::vec3 e(0.0f);
+        for (int i = 0; i < 9; ++i) e += a[i] * y[i] * glm::vec3(sh[i]);
+        return glm::max(e, glm::vec3(0.0f));
     }
     // The same exposure for every render compared: manual, from the camera's default settings.
     static void setManualExposure(Session& s) {
@@ -117,7 +139,7 @@ TEST_F(SceneRender, FoliageIsFixedUpAfterFillingOnlyTwoTargets) {
         EXPECT_EQ(ch("emissive").v[1], 0.0f);
     }
     {
-        auto s = render("scripts/pipelines/deferred.lua", {"GB0", "GB1", "GB2", "GB3"});
+        auto s = render("scripts/pipelines/deferred.lua", {"GB0", "GB1", "GB2", "GB3", "env_sh"});
         LayoutInfo info;
         auto g = gbufferAt(*s, pixelOf(*s, kBush), info);
         auto ch = [&](const char* n) { return g[static_cast<size_t>(info.find(n))]; };
@@ -125,9 +147,41 @@ TEST_F(SceneRender, FoliageIsFixedUpAfterFillingOnlyTwoTargets) {
         EXPECT_NEAR(ch("reflectance").v[0], 0.35f, 0.5f / 255 + 1e-5f);  // foliage_reflectance
         EXPECT_EQ(ch("metalMask").v[0], 0.0f);
         EXPECT_NEAR(ch("ao").v[0], 1.0f, 1e-6f);
-        // Radiosity of a 5000 lux sky on the leaf colour as GB1 stores it: E·ρ/π (half precision).
-        const float radiosity = ch("baseColor").v[1] * 5000.0f / 3.14159265f;
-        EXPECT_NEAR(ch("emissive").v[1], radiosity, radiosity * 2e-3f);
+        EXPECT_EQ(ch("reserved").v[0], 1.0f);  // GB3 holds radiosity
+        // lst:3: the distant probe's irradiance at the normal on the leaf colour as GB1 stores it,
+        // E(n)·ρ/π (half precision), E from the environment's SH as the shaders evaluate it.
+        const glm::vec3 n(ch("normal").v[0], ch("normal").v[1], ch("normal").v[2]);
+        const float radiosity = ch("baseColor").v[1] * shIrradiance(n).y / 3.14159265f;
+        EXPECT_GT(radiosity, 0.0f);
+        EXPECT_NEAR(ch("emissive").v[1], radiosity, radiosity * 3e-3f);
+    }
+}
+
+// Seed 000 lst:3 and 002 §4.10.3: foliage's indirect diffuse is the fix-up's radiosity alone (the
+// probe at the normal), not that plus the lighting's probe diffuse. Under the sky alone the
+// foliage box's face is what a box of no diffuse colour with its specular shows, plus E(n)·ρ/π.
+TEST_F(SceneRender, FoliageTakesTheProbesDiffuseOnce) {
+    auto leaf = render("scripts/pipelines/deferred.lua", {"GB0", "GB1", "GB2", "GB3"}, "", "foliage_ibl.lua");
+    const glm::ivec2 px(W / 2, H / 2);
+    LayoutInfo info;
+    auto g = gbufferAt(*leaf, px, info);
+    auto ch = [&](const char* n) { return g[static_cast<size_t>(info.find(n))]; };
+    const glm::vec3 n(ch("normal").v[0], ch("normal").v[1], ch("normal").v[2]);
+    ASSERT_GT(n.z, 0.99f);
+    const glm::vec3 rho(ch("baseColor").v[0], ch("baseColor").v[1], ch("baseColor").v[2]);
+    const glm::vec3 E = shIrradiance(n);
+    auto foliage = readAbsoluteHdr(s_runtime->executor(), leaf->pipeline());
+    ASSERT_TRUE(foliage.has_value());
+    leaf.reset();
+    auto black = render("scripts/pipelines/deferred.lua", {}, "", "foliage_ibl.lua", {{"model", "black"}});
+    auto specular = readAbsoluteHdr(s_runtime->executor(), black->pipeline());
+    ASSERT_TRUE(specular.has_value());
+    for (int c = 0; c < 3; ++c) {
+        const float got = foliage->image.at(px.x, px.y, static_cast<uint32_t>(c));
+        const float expected = specular->image.at(px.x, px.y, static_cast<uint32_t>(c)) + rho[c] * E[c] / 3.14159265f;
+        std::printf("channel %d: foliage %.2f nits, specular alone %.2f + E·ρ/π %.2f = %.2f\n", c, got,
+                    specular->image.at(px.x, px.y, static_cast<uint32_t>(c)), rho[c] * E[c] / 3.14159265f, expected);
+        EXPECT_NEAR(got / expected, 1.0f, 0.02f) << "channel " << c;
     }
 }
 
