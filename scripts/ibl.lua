@@ -7,8 +7,10 @@
 -- changes — `cadence = "once"` — never per frame, into persistent resources:
 --   env_cube       the environment (graph/scene/environment.h: an HDR file, a colour or the
 --                  Preetham sky of the scene's sun) resampled into a cube, then its mip chain;
+--   env_hot        the environment's hot texels (a sun) listed, and the cube without them (env_smooth,
+--                  then its mip chain);
 --   env_prefilter  the specular pre-filtered cube, one mip per roughness (mip = sqrt(α_lin) · (mips − 1)),
---                  GGX importance sampling with filtered samples;
+--                  GGX importance sampling of env_smooth with filtered samples, plus the hot texels exactly;
 --   env_irradiance the diffuse probe as 9 spherical-harmonic coefficients;
 --   dfg_table      the 128×128 DFG table: the split-sum's two specular terms and the Disney diffuse.
 -- `ibl.lit` makes a lighting pass read them (lib/ibl.glsl with RG_IBL: the distant probe's diffuse
@@ -25,6 +27,10 @@ rg.resource "env_source" { format = "rgba16f", size = { ibl.source_size, ibl.sou
     doc = "the environment as a cube with its mip chain (nits)" }
 rg.resource "env_specular" { format = "rgba16f", size = { ibl.specular_size, ibl.specular_size }, cube = true, mips = 8, persistent = true,
     doc = "the specular pre-filtered probe: mip m for linear roughness (m / 7)²" }
+rg.resource "env_smooth" { format = "rgba16f", size = { ibl.source_size, ibl.source_size }, cube = true, mips = "full", persistent = true,
+    doc = "env_source without its hot texels (env_hot), with its mip chain: what the pre-filter samples" }
+rg.buffer "env_hot" { size = 16 + 4096 * 32, persistent = true,
+    doc = "the environment's hot texels (a sun): count, then direction and solid angle, radiance per texel" }
 rg.buffer "env_sh" { size = 9 * 16, persistent = true, doc = "the environment's radiance as order-2 spherical harmonics (9 RGB)" }
 rg.resource "dfg" { format = "rgba16f", size = { 128, 128 }, persistent = true,
     doc = "pre-integrated DFG: x, y the split-sum specular terms, z the Disney diffuse, over (N·V, linear roughness)" }
@@ -34,15 +40,23 @@ rg.pass "env_cube" {
 }
 rg.pass "env_mips" {  -- the cube's mip chain from mip 0 (a compute pass: lavapipe's blits recompile every run)
     kind = "compute", shader = "post/downsample.comp", writes = { { "env_source", as = "storage_rw" } }, bind = { target = "env_source" },
-    defines = { RG_LAYERED = true }, per_mip = true, cadence = "once",
-}
-rg.pass "env_prefilter" {
-    kind = "compute", shader = "ibl/env_prefilter.comp", reads = { "env_source" },
-    writes = { { "env_specular", as = "storage" } }, per_mip = true, cadence = "once",
+    defines = { RG_LAYERED = true, RG_CUBE = true }, per_mip = true, cadence = "once",
 }
 rg.pass "env_irradiance" {
     kind = "compute", shader = "ibl/env_sh.comp", reads = { "env_source" },
     writes = { { "env_sh", as = "storage" } }, groups = { 1, 1, 1 }, cadence = "once",
+}
+rg.pass "env_hot" {  -- the hot texels out of the cube the pre-filter samples, listed for it to add exactly
+    kind = "compute", shader = "ibl/env_hot.comp", reads = { "env_source", { "env_sh", as = "uniform" } },
+    writes = { { "env_smooth", as = "storage" }, { "env_hot", as = "storage" } }, groups = { 1, 1, 1 }, cadence = "once",
+}
+rg.pass "env_smooth_mips" {
+    kind = "compute", shader = "post/downsample.comp", writes = { { "env_smooth", as = "storage_rw" } }, bind = { target = "env_smooth" },
+    defines = { RG_LAYERED = true, RG_CUBE = true }, per_mip = true, cadence = "once",
+}
+rg.pass "env_prefilter" {
+    kind = "compute", shader = "ibl/env_prefilter.comp", reads = { "env_source", "env_smooth", "env_hot" },
+    writes = { { "env_specular", as = "storage" } }, per_mip = true, cadence = "once",
 }
 rg.pass "dfg_table" {
     kind = "compute", shader = "ibl/dfg.comp", writes = { { "dfg", as = "storage" } }, cadence = "once",

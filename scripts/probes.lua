@@ -39,7 +39,7 @@ rg.pass "probe_capture" {
 }
 rg.pass "probe_mips" {  -- the captures' mip chains (post/downsample.comp, as env_mips)
     kind = "compute", shader = "post/downsample.comp", writes = { { "probe_radiance", as = "storage_rw" } }, bind = { target = "probe_radiance" },
-    defines = { RG_LAYERED = true }, per_mip = true, cadence = "once",
+    defines = { RG_LAYERED = true, RG_CUBE = true }, per_mip = true, cadence = "once",
 }
 rg.pass "probe_prefilter" {
     kind = "compute", shader = "ibl/env_prefilter.comp", defines = { RG_PROBE_ARRAY = true }, cadence = "once",

@@ -1019,14 +1019,18 @@ Result<const PhysicalResource*> Executor::exportedResource(const std::string& na
     return phys;
 }
 
-Result<rg::Image> Executor::readback(const std::string& name) {
+Result<rg::Image> Executor::readback(const std::string& name, uint32_t layer, uint32_t mip) {
     auto found = exportedResource(name);
     if (!found) return std::unexpected(found.error());
     const PhysicalResource* phys = *found;
     if (!phys->image) return fail(ErrorCode::InvalidInput, "resource '" + name + "' is a buffer: use readbackBuffer");
     const PlanResource& r = *phys->plan;
+    if (layer >= std::max(r.layers, 1u) || mip >= std::max(r.mips, 1u))
+        return fail(ErrorCode::InvalidInput, "resource '" + name + "': no layer " + std::to_string(layer) + " / mip " + std::to_string(mip) +
+                                                 " (it has " + std::to_string(r.layers) + " and " + std::to_string(r.mips) + ")");
+    const uint32_t width = std::max(r.width >> mip, 1u), height = std::max(r.height >> mip, 1u);
     const uint32_t texelBytes = copyTexelBytes(r.format);
-    const size_t texels = size_t(r.width) * r.height;
+    const size_t texels = size_t(width) * height;
     auto host = Buffer::create(m_ctx, name + ".readback", texels * texelBytes,
                                VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     if (!host) return std::unexpected(host.error());
@@ -1040,8 +1044,8 @@ Result<rg::Image> Executor::readback(const std::string& name) {
                      VK_ACCESS_2_TRANSFER_READ_BIT, toVkLayout(last),
                      VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL);
         VkBufferImageCopy region{};
-        region.imageSubresource = {copyAspect, 0, 0, 1};
-        region.imageExtent = {r.width, r.height, 1};
+        region.imageSubresource = {copyAspect, mip, layer, 1};
+        region.imageExtent = {width, height, 1};
         vkCmdCopyImageToBuffer(cmd, image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, host->buffer(), 1, &region);
         imageBarrier(cmd, image, aspect, VK_PIPELINE_STAGE_2_COPY_BIT, 0,
                      VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
@@ -1049,8 +1053,8 @@ Result<rg::Image> Executor::readback(const std::string& name) {
     });
     if (!sub) return std::unexpected(sub.error());
     rg::Image out;
-    out.width = r.width;
-    out.height = r.height;
+    out.width = width;
+    out.height = height;
     out.channels = isDepthStencil(r.format) ? 1 : formatInfo(r.format).components;
     out.pixels.resize(texels * out.channels);
     decodeTexels(r.format, host->mapped(), texels, out.pixels.data());

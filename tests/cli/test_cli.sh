@@ -60,9 +60,9 @@ check "render" 0 grep "wrote $tmp/r.exr and $tmp/r.png (64x32" -- \
 check "render wrote files" 0 -- test -s "$tmp/r.exr" -a -s "$tmp/r.png"
 # The once-per-build passes' outputs: saved by the first render, restored by the second (the same
 # image), recorded again with --no-cache.
-check "render saves once-per-build outputs" 0 grep "8 recorded, saved to $tmp/cache_once/once/" -- \
+check "render saves once-per-build outputs" 0 grep "10 recorded, saved to $tmp/cache_once/once/" -- \
     env RG_CACHE_DIR="$tmp/cache_once" "$rgraph" render --size 64x32 --out "$tmp/o1.exr" --verbose
-check "render restores them" 0 grep "8 restored from $tmp/cache_once/once/" -- \
+check "render restores them" 0 grep "10 restored from $tmp/cache_once/once/" -- \
     env RG_CACHE_DIR="$tmp/cache_once" RG_VALIDATION=1 "$rgraph" render --size 64x32 --out "$tmp/o2.exr" --verbose
 check "restored render is the same image" 0 grep "max relative error  0 " -- "$rgraph" compare "$tmp/o2.exr" "$tmp/o1.exr"
 check "render --no-cache records them" 0 -- bash -c "! env RG_CACHE_DIR='$tmp/cache_once' '$rgraph' render --size 64x32 --out '$tmp/o3.exr' --verbose --no-cache 2>&1 | grep -q once-per-build"
@@ -98,7 +98,7 @@ check "unlit glb without environment" 0 grep "wrote $tmp/n.exr" -- \
     "$rgraph" render --scene "$tmp/unlit.glb" --environment none --size 48x32 --out "$tmp/n.exr" --png "$tmp/n.png"
 # The box's pixels: lit under the default sky, black with none (relative error of the unlit image against the lit one: 100 %).
 check "sky lights the glb" 0 grep "mean relative error 1" -- "$rgraph" compare "$tmp/n.exr" "$tmp/u.exr"
-check "graph json parses" 0 -- bash -c "'$rgraph' graph --format json --size 64x64 | python3 -c 'import json,sys; p=json.load(sys.stdin); n=[x[\"name\"] for x in p[\"passes\"]]; assert n[:5]==[\"env_cube\",\"env_mips\",\"env_prefilter\",\"env_irradiance\",\"dfg_table\"] and n[5:8]==[\"probe_capture\",\"probe_mips\",\"probe_prefilter\"] and n[8:14]==[\"sun_cascades\",\"sun_cull\",\"shadow_clear0\",\"shadow_clear1\",\"shadow_clear2\",\"shadow_local\"] and n[14:34]==[\"gbuffer\",\"light_culling_coarse\",\"ao_depth\",\"sun_visibility_clear\",\"sun_classify\",\"sun_visibility_half_clear\",\"sun_classify_half\",\"shadow_sun0\",\"sun_mask0\",\"sun_mask_half0\",\"shadow_sun1\",\"sun_mask1\",\"sun_mask_half1\",\"shadow_sun2\",\"sun_mask2\",\"sun_mask_half2\",\"foliage_fixup\",\"gtao\",\"ao_blur\",\"light_culling\"] and n[37:47]==[\"decals\",\"hiz\",\"ssr_mask\",\"ssr\",\"reflection_compose\",\"lighting_standard\",\"lighting_clearcoat\",\"lighting_two_colour\",\"sky\",\"forward\"] and n[-3:]==[\"tonemap\",\"fxaa_edges\",\"fxaa\"], n'"
+check "graph json parses" 0 -- bash -c "'$rgraph' graph --format json --size 64x64 | python3 -c 'import json,sys; p=json.load(sys.stdin); n=[x[\"name\"] for x in p[\"passes\"]]; assert n[:7]==[\"env_cube\",\"env_mips\",\"env_irradiance\",\"env_hot\",\"env_smooth_mips\",\"env_prefilter\",\"dfg_table\"] and n[7:10]==[\"probe_capture\",\"probe_mips\",\"probe_prefilter\"] and n[10:16]==[\"sun_cascades\",\"sun_cull\",\"shadow_clear0\",\"shadow_clear1\",\"shadow_clear2\",\"shadow_local\"] and n[16:36]==[\"gbuffer\",\"light_culling_coarse\",\"ao_depth\",\"sun_visibility_clear\",\"sun_classify\",\"sun_visibility_half_clear\",\"sun_classify_half\",\"shadow_sun0\",\"sun_mask0\",\"sun_mask_half0\",\"shadow_sun1\",\"sun_mask1\",\"sun_mask_half1\",\"shadow_sun2\",\"sun_mask2\",\"sun_mask_half2\",\"foliage_fixup\",\"gtao\",\"ao_blur\",\"light_culling\"] and n[39:49]==[\"decals\",\"hiz\",\"ssr_mask\",\"ssr\",\"reflection_compose\",\"lighting_standard\",\"lighting_clearcoat\",\"lighting_two_colour\",\"sky\",\"forward\"] and n[-3:]==[\"tonemap\",\"fxaa_edges\",\"fxaa\"], n'"
 check "graph materials" 0 grep "  free: 3 (1 of 4)" -- "$rgraph" graph --format materials
 check "graph materials: foliage is a variant" 0 grep "0x11 mask 0xFF  foliage          variant of lit_standard" -- "$rgraph" graph --format materials
 check "graph materials of a built-in graph" 2 grep "built-in graphs declare no materials" -- "$rgraph" graph --pipeline builtin:triangle --format materials
@@ -163,7 +163,7 @@ check "reference vs real time" 0 grep "mean relative error" -- \
 check "luminance beyond half floats" 0 grep "mean relative error 0" -- \
     bash -c "'$rgraph' render --scene tests/gpu/scenes/reference_sun.lua --size 48x32 --out '$tmp/sun.exr' --png '$tmp/sun.png' >/dev/null && '$rgraph' compare '$tmp/sun.exr' '$tmp/sun.exr'"
 check "bench" 0 grep "frame total" -- "$rgraph" bench --size 64x64 --frames 3 --json "$tmp/bench.json"
-check "bench json" 0 -- python3 -c "import json; b=json.load(open('$tmp/bench.json')); assert len(b['passes'])==49 and b['scene']['draws']>0 and b['frames']==3"
+check "bench json" 0 -- python3 -c "import json; b=json.load(open('$tmp/bench.json')); assert len(b['passes'])==51 and b['scene']['draws']>0 and b['frames']==3"
 # Transient aliasing on the default frame at its default size: the sun's cascade maps take turns in
 # one range (scripts/shadows.lua), and the heaps are placed for the passes the first frame runs.
 check "aliasing saves 40 %" 0 -- bash -c "'$rgraph' bench --size 1280x720 --frames 1 --json '$tmp/memory.json' >/dev/null && python3 -c \"import json; b=json.load(open('$tmp/memory.json')); s=1-b['transientBytesAliased']/b['transientBytesUnaliased']; assert s>=0.40, s\""

@@ -288,8 +288,8 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // foliage fix-up, then the AO itself on the fixed-up normals: scripts/ao.lua), the Hi-Z
     // pyramid, SSR's mask and SSR (scripts/ssr.lua), the composition of SSR and the probes
     // (scripts/reflections.lua), the lighting, the sky and forward.
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 50),
-              (std::vector<std::string>{"env_cube", "env_mips", "env_prefilter", "env_irradiance", "dfg_table", "probe_capture",
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 52),
+              (std::vector<std::string>{"env_cube", "env_mips", "env_irradiance", "env_hot", "env_smooth_mips", "env_prefilter", "dfg_table", "probe_capture",
                                         "probe_mips", "probe_prefilter", "sun_cascades", "sun_cull",
                                         "shadow_clear0", "shadow_clear1", "shadow_clear2", "shadow_local", "gbuffer", "light_culling_coarse", "ao_depth",
                                         "sun_visibility_clear", "sun_classify", "sun_visibility_half_clear", "sun_classify_half",
