@@ -363,6 +363,8 @@ int serve(Runtime& runtime, Session& session, const ServeOptions& options) {
                 if (auto r = session.addCapture(name); !r) return jsonResponse(400, {{"error", "resource: " + r.error().message}});
                 if (auto r = session.frame(); !r) return jsonResponse(500, {{"error", r.error().describe()}});
             }
+            // The export reloaded the pipeline: `desc` pointed into the one before.
+            desc = session.pipeline().graph.findResource(name);
             Result<Image> img = fail(ErrorCode::NotFound, "resource: no such channel capture " + quoted(name));
             Format fmt = desc ? desc->texture.format : Format::RGBA32F;
             if (channel) {
