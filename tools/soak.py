@@ -336,7 +336,9 @@ def main():
         writer_thread = threads[0]
     end_clients.set()  # the writer stops first, so that its last answer is the last change
     writer_thread.join(timeout=60)
-    st = wait_state(lambda st: True, 1)
+    # The state is gathered after each frame: two more frames, and it shows every change made.
+    frame = server.state().get("frame", 0)
+    st = wait_state(lambda st: st.get("frame", 0) >= frame + 2, 60)
     with lock:
         ec, sky = acknowledged["ec"], acknowledged["sky"]
     params = {p["name"]: p["value"] for p in st.get("params", [])}

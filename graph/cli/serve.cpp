@@ -224,8 +224,15 @@ int serve(Runtime& runtime, Session& session, const ServeOptions& options) {
             if (stopping) return jsonResponse(503, {{"error", "shutting down"}});
             jobs.push_back(job);
         }
-        if (answer.wait_for(std::chrono::seconds(30)) != std::future_status::ready)
-            return jsonResponse(503, {{"error", "the renderer did not answer in 30 s"}});
+        if (answer.wait_for(std::chrono::seconds(30)) != std::future_status::ready) {
+            // Not started in 30 s: taken out of the queue, so that a request answered 503 never
+            // takes effect later. One the render thread has started is waited for.
+            std::lock_guard lock(mutex);
+            if (auto it = std::find(jobs.begin(), jobs.end(), job); it != jobs.end()) {
+                jobs.erase(it);
+                return jsonResponse(503, {{"error", "the renderer did not answer in 30 s; nothing changed"}});
+            }
+        }
         return answer.get();
     };
     auto reply = [](httplib::Response& res, httplib::Response r) {
@@ -257,7 +264,12 @@ int serve(Runtime& runtime, Session& session, const ServeOptions& options) {
             if (host == name + p) return true;
         return false;
     };
+    std::atomic<int64_t> lastRequest{0};  // steady-clock ms of the latest request's arrival
+    auto nowMs = [] {
+        return std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
+    };
     server.set_pre_routing_handler([&](const httplib::Request& req, httplib::Response& res) {
+        lastRequest = nowMs();
         auto refuse = [&](int status, const std::string& message) {
             res.status = status;
             res.set_content(json{{"error", message}}.dump(), "application/json");
@@ -455,14 +467,18 @@ int serve(Runtime& runtime, Session& session, const ServeOptions& options) {
         }
         std::this_thread::sleep_for(std::chrono::milliseconds(options.frameIntervalMs));
     }
-    // Shutdown: no job is taken from now on; those waiting are answered, then the server closes
-    // (idle keep-alive connections within a second).
+    // Shutdown: no job is taken from now on; those waiting are answered 503, and so is every
+    // request that still arrives while the server keeps listening — until none has for 150 ms, at
+    // most a second — so that connections already accepted are answered, not closed unread.
+    // Then the server closes (idle keep-alive connections within a second).
     {
         std::lock_guard lock(mutex);
         stopping = true;
         for (auto& job : jobs) job->answer.set_value(jsonResponse(503, {{"error", "shutting down"}}));
         jobs.clear();
     }
+    for (const int64_t start = nowMs(); nowMs() - start < 1000 && nowMs() - lastRequest < 150;)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
     server.stop();
     http.join();
     if (auto f = runtime.executor().finish(); !f) std::fprintf(stderr, "rgraph: serve: the last frame: %s\n", f.error().describe().c_str());
