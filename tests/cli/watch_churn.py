@@ -67,7 +67,9 @@ def write(text):
 
 def verdicts():
     with open(log_path) as f:
-        lines = f.read().splitlines()
+        text = f.read()
+    # Only whole lines: a line the watcher is writing may be read in part.
+    lines = text[:text.rfind("\n") + 1].splitlines()
     return [l for l in lines if l.startswith("rgraph watch: ") and ("reloaded" in l or "failed" in l)], lines
 
 
