@@ -10,6 +10,7 @@ rg.frame) must be reported naming the script while the last good plan stays in p
 valid edit renders again. At the end the watcher exits by itself (--max-reloads N) with status 0
 and its image is there. Prints the counts; exits 1 on the first wrong verdict.
 """
+import atexit
 import os
 import random
 import subprocess
@@ -77,6 +78,9 @@ write(valid())
 log = open(log_path, "w")
 watcher = subprocess.Popen([rgraph, "watch", "--pipeline", script, "--size", "8x8", "--interval", "5", "--max-reloads", str(count),
                             "--out", os.path.join(tmp, "w.exr")], stdout=log, stderr=subprocess.STDOUT, cwd=root)
+# A failed check exits at once: the watcher must not outlive the test (it would go on writing the
+# log the next run reads).
+atexit.register(lambda: watcher.poll() is None and watcher.kill())
 deadline = time.time() + 60
 while "watching" not in open(log_path).read():
     if time.time() > deadline or watcher.poll() is not None:
