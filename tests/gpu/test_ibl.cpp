@@ -269,7 +269,7 @@ TEST_F(Ibl, PrefilteredProbeMatchesTheExactPrefilter) {
         o.compile.outputHeight = 32;
         o.scene = kRoot + "/tests/gpu/scenes/furnace_grid.lua";
         o.environment = file;
-        o.captures = {"env_source", "env_specular"};
+        o.captures = {"env_source", "env_specular", "env_sh"};
         Session s(rt(), o);
         auto loaded = s.load(kRoot + "/scripts/pipelines/deferred.lua");
         ASSERT_TRUE(loaded.has_value()) << loaded.error().describe();
@@ -282,6 +282,49 @@ TEST_F(Ibl, PrefilteredProbeMatchesTheExactPrefilter) {
             source.push_back(std::move(*img));
         }
         const CubeTexels texels = cubeTexels(source);
+        {
+            // Seed 002 §4.9.2's diffuse term: the order-2 SH irradiance (env_sh, as
+            // lib/environment.glsl's rgShIrradiance evaluates it) against the exact irradiance
+            // Σ L (n·l) Ω over the same cube, in the same 96 directions. Within 10 % where the
+            // exact irradiance is at least a quarter of its largest (measured: 0.6 %, 7.5 %, 8.0 %);
+            // printed where it is less (facing away from a sun, where order 2's cut-off shows:
+            // qwantani worst 165 %, mean 59 %; chinese_garden 107 %, 34 %).
+            auto bytes = rt().executor().readbackBuffer("env_sh");
+            ASSERT_TRUE(bytes.has_value() && bytes->size() >= 9 * 16);
+            glm::vec4 sh[9];
+            std::memcpy(sh, bytes->data(), sizeof sh);
+            std::vector<std::pair<double, double>> pairs;  // exact, SH
+            for (uint32_t f = 0; f < 6; ++f)
+                for (uint32_t k = 0; k < 16; ++k) {
+                    const glm::dvec3 n = cubeDirection(f, (k % 4 + 0.5) / 4, (k / 4 + 0.5) / 4);
+                    double exact = 0.0;
+                    for (size_t i = 0; i < texels.direction.size(); ++i)
+                        exact += texels.radiance[i].y * std::max(0.0, glm::dot(n, texels.direction[i])) * texels.solidAngle[i];
+                    const double y[9] = {0.282095, 0.488603 * n.y, 0.488603 * n.z, 0.488603 * n.x, 1.092548 * n.x * n.y, 1.092548 * n.y * n.z,
+                                         0.315392 * (3 * n.z * n.z - 1), 1.092548 * n.x * n.z, 0.546274 * (n.x * n.x - n.y * n.y)};
+                    const double pi = 3.14159265358979, a[9] = {pi, 2 * pi / 3, 2 * pi / 3, 2 * pi / 3, pi / 4, pi / 4, pi / 4, pi / 4, pi / 4};
+                    double e = 0.0;
+                    for (int i = 0; i < 9; ++i) e += a[i] * y[i] * sh[i].y;
+                    pairs.emplace_back(exact, std::max(e, 0.0));
+                }
+            double peak = 0.0;
+            for (const auto& [exact, e] : pairs) peak = std::max(peak, exact);
+            double worstLit = 0.0, worstDim = 0.0, meanDim = 0.0;
+            int dim = 0;
+            for (const auto& [exact, e] : pairs) {
+                const double rel = std::abs(e / exact - 1.0);
+                if (exact >= 0.25 * peak) worstLit = std::max(worstLit, rel);
+                else {
+                    worstDim = std::max(worstDim, rel);
+                    meanDim += rel;
+                    ++dim;
+                }
+            }
+            std::printf("%s: SH irradiance against the exact: lit directions (>= 1/4 of the peak %.0f lux) worst %.1f %%; "
+                        "the %d others worst %.1f %%, mean %.1f %%\n",
+                        name.c_str(), peak, 100 * worstLit, dim, 100 * worstDim, dim ? 100 * meanDim / dim : 0.0);
+            EXPECT_LE(worstLit, 0.10) << name;
+        }
         const uint32_t mips = 8;
         std::printf("%s: pre-filtered probe against the exact pre-filter (relative error, green)\n", name.c_str());
         for (uint32_t m = 1; m < mips; ++m) {
