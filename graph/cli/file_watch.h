@@ -21,7 +21,6 @@ public:
     // Remembers the files of `files` not seen before, as they are now, and leaves the others
     // (and what changed in them) for the next changed().
     void add(const std::vector<std::string>& files);
-    size_t size() const { return m_seen.size(); }
 
 private:
     struct Seen {

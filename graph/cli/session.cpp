@@ -581,10 +581,9 @@ std::string describeStructural(const FrameChanges& changes) {
 // a resource of its graph, or "gbuffer.<channel>" / "<layout>.<channel>", decoded per materialId.
 static Result<std::vector<Session::ChannelCapture>> channelCapturesOf(const PipelineDesc& pipeline, const std::vector<std::string>& captures) {
     using ChannelCapture = Session::ChannelCapture;
-    const PipelineDesc* p = &pipeline;
     std::vector<ChannelCapture> channels;
     for (const auto& c : captures) {
-        if (p->graph.findResource(c)) continue;
+        if (pipeline.graph.findResource(c)) continue;
         // "gbuffer.smoothness" or "disney.smoothness": a channel of a layout.
         const size_t dot = c.find('.');
         bool found = false;
@@ -596,7 +595,7 @@ static Result<std::vector<Session::ChannelCapture>> channelCapturesOf(const Pipe
                         if (ch.name == name) return true;
                 return false;
             };
-            for (const auto& l : p->layouts) {
+            for (const auto& l : pipeline.layouts) {
                 if (prefix != "gbuffer" && prefix != l.name) continue;
                 if (has(l, channel) && !found) {
                     channels.push_back({c, l, channel, {}});
@@ -604,8 +603,8 @@ static Result<std::vector<Session::ChannelCapture>> channelCapturesOf(const Pipe
                 }
             }
             // Per materialId: the material's own layout, and its channel for a standard name.
-            for (const MaterialDesc& m : p->materials) {
-                const LayoutDesc& l = *std::find_if(p->layouts.begin(), p->layouts.end(), [&](auto& x) { return x.name == m.layout; });
+            for (const MaterialDesc& m : pipeline.materials) {
+                const LayoutDesc& l = *std::find_if(pipeline.layouts.begin(), pipeline.layouts.end(), [&](auto& x) { return x.name == m.layout; });
                 if (prefix != "gbuffer" && prefix != l.name) continue;
                 const auto mapped = m.channels.find(channel);
                 const std::string name = prefix == "gbuffer" && mapped != m.channels.end() ? mapped->second : channel;
@@ -630,8 +629,8 @@ static Result<std::vector<Session::ChannelCapture>> channelCapturesOf(const Pipe
             }
             if (found && !channels.back().byId.empty()) {
                 // The layout that tells the id: the first material's (every one keeps materialId alike).
-                const MaterialDesc& first = p->materials.front();
-                channels.back().layout = *std::find_if(p->layouts.begin(), p->layouts.end(), [&](auto& x) { return x.name == first.layout; });
+                const MaterialDesc& first = pipeline.materials.front();
+                channels.back().layout = *std::find_if(pipeline.layouts.begin(), pipeline.layouts.end(), [&](auto& x) { return x.name == first.layout; });
             }
         }
         if (!found)
@@ -719,13 +718,14 @@ Result<void> Session::load(const std::string& file) {
     // are if the load fails).
     FrameChanges overrides = m_overrides;
     for (auto it = overrides.params.begin(); it != overrides.params.end();) {
-        auto checked = pipeline->findParam(it->first) ? checkedParam(*pipeline, it->first, it->second) : Result<Value>(Value());
-        if (checked && pipeline->findParam(it->first)) {
+        if (!pipeline->findParam(it->first)) {
+            it = overrides.params.erase(it);
+        } else if (auto checked = checkedParam(*pipeline, it->first, it->second); checked) {
             (it++)->second = *checked;
-            continue;
+        } else {
+            note("dropped the override of '" + it->first + "': " + checked.error().message);
+            it = overrides.params.erase(it);
         }
-        if (!checked) note("dropped the override of '" + it->first + "': " + checked.error().message);
-        it = overrides.params.erase(it);
     }
     std::erase_if(overrides.enabled, [&](const auto& o) { return !pipeline->graph.findPass(o.first); });
     auto tc = Clock::now();
@@ -822,16 +822,20 @@ Result<void> Session::frame(VkCommandBuffer hostCmd) {
     auto t0 = Clock::now();
     Result<FrameChanges> changes = FrameChanges{};
     if (m_framePrepared == m_frame) {
-        // The load ran this frame's rg.frame already and built its plan with what it changed:
-        // only overrides set since (setOverride, setPassOverride) remain to apply.
+        // The load ran this frame's rg.frame already and built its plan with what it changed;
+        // overrides set since were applied when they were set (setOverride, setPassOverride).
         m_framePrepared.reset();
-        changes->params = m_overrides.params;
-        for (const auto& [pass, on] : m_overrides.enabled)
-            if (const PassDesc* p = m_pipeline.graph.findPass(pass); p && p->enabled != on) changes->enabled[pass] = on;
     } else {
         changes = frameChanges(*m_host, frameContext(m_scene.get(), m_classes), m_pipeline, m_overrides);
         m_callbackMs = msSince(t0);
     }
+    // A parameter restated at the value it has (rg.frame and the overrides restate theirs every
+    // frame) changes nothing: no pipeline copied and no graph resolved for it.
+    if (changes)
+        std::erase_if(changes->params, [&](const auto& e) {
+            const ParamDesc* d = m_pipeline.findParam(e.first);
+            return d && d->value == e.second;
+        });
 
     // A callback that fails, or a change that cannot be built, is refused whole: the plan as it
     // was renders this frame, and the caller hears why.

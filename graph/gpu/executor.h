@@ -75,8 +75,6 @@ public:
     void setScene(const passes::GpuScene* scene, uint64_t sceneId, std::function<void(uint32_t slot)> perFrame, uint32_t shadowViews = 0);
     // Floor mode for the builds that follow (PassSetup::floor): every pass is prepared again.
     void setFloors(bool on);
-    // The next build prepares every pass again (their shaders' inputs changed place).
-    void forceRebuild() { m_forceRebuild = true; }
     const passes::GpuScene* scene() const { return m_scene; }
 
     // Contents for an imported texture (uploaded now, then kept in ShaderReadOnly layout).
