@@ -10,6 +10,7 @@ find_package(GTest REQUIRED)
 find_package(nlohmann_json REQUIRED CONFIG)
 pkg_check_modules(LUA REQUIRED IMPORTED_TARGET lua5.4)
 pkg_check_modules(HTTPLIB REQUIRED IMPORTED_TARGET cpp-httplib)  # rgraph serve
+pkg_check_modules(XXHASH REQUIRED IMPORTED_TARGET libxxhash)  # graph/core/hash.h
 pkg_check_modules(SPIRV_CROSS REQUIRED IMPORTED_TARGET spirv-cross-c-shared)
 
 if(NOT EXISTS /usr/include/tiny_gltf.h)

@@ -3,6 +3,9 @@
 // shaders/lib/material.glsl), and per frame slot the camera uniforms and the light list
 // (shaders/lib/scene.glsl's Lights block: the lights converted once here — cd, lux or cd/m², see
 // convertLights — followed by their baked IES profiles).
+// Defined in gpu_scene.cpp (creation, the frame, bindings), gpu_scene_geometry.cpp,
+// gpu_scene_materials.cpp (images, materials), gpu_scene_lights.cpp (convertLights, shadow views)
+// and gpu_scene_probes.cpp (decals, probes, the environment's distribution).
 #pragma once
 
 #include <array>
@@ -197,6 +200,10 @@ public:
     // LightsWindow, ShadowViews — frame slot `slot`'s — Decals, Probes, SceneDraws, SceneBvh, SceneEnvironmentCdf), VK_NULL_HANDLE for
     // another name or a buffer that could not be made.
     VkBuffer bindingBuffer(std::string_view name, uint32_t slot) const;
+    // The same, or why there is none: the failure of the Vulkan call behind a buffer built on
+    // first use (SceneBvh, SceneEnvironmentCdf; the error names the call and its VkResult), or
+    // NotFound for a name that is not a scene binding.
+    Result<VkBuffer> makeBindingBuffer(std::string_view name, uint32_t slot) const;
     // How much of it the binding sees: kLightsWindowBytes for LightsWindow (the Lights buffer's
     // head, as a uniform block), the whole buffer otherwise.
     static VkDeviceSize bindingRange(std::string_view name) { return name == "LightsWindow" ? kLightsWindowBytes : VK_WHOLE_SIZE; }
@@ -256,6 +263,8 @@ private:
     std::vector<gpu::Buffer> m_cameraBuffers, m_lightBuffers, m_shadowViewBuffers;
     std::vector<std::vector<size_t>> m_shadowViewDraws;      // per view of this frame
     mutable gpu::Buffer m_bvh;  // bvhBuffer(), once built
+    Result<VkBuffer> makeBvhBuffer() const;             // bvhBuffer(), or why it failed
+    Result<VkBuffer> makeEnvironmentCdfBuffer() const;  // environmentCdfBuffer(), or why it failed
     ContentHash m_staticHash;   // what was uploaded at creation (contentHash)
     gpu::Buffer m_drawBuffer;
     std::vector<char> m_drawInView;        // per draw: its box meets the camera's frustum (updateFrame)

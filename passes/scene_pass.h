@@ -1,4 +1,4 @@
-// The `scene` pass kind (scene_pass.cpp).
+// The `scene` pass kind (scene_pass.cpp; its instance: scene_pass_detail.h).
 #pragma once
 
 #include "gpu/pass_kind.h"

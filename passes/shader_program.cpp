@@ -361,8 +361,11 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
             if (!setup.scene)
                 return fail(ErrorCode::InvalidInput, passPrefix(desc) + "shader binding '" + b.name +
                                                          "' is the scene's, but no scene is loaded (give --scene)");
-            if (b.type != DescriptorType::CombinedImageSampler && setup.scene->bindingBuffer(b.name, 0) == VK_NULL_HANDLE)
-                return fail(ErrorCode::Device, passPrefix(desc) + "could not make the scene's '" + b.name + "' buffer: out of memory");
+            if (b.type != DescriptorType::CombinedImageSampler) {
+                if (auto buffer = setup.scene->makeBindingBuffer(b.name, 0); !buffer)
+                    return fail(ErrorCode::Device, passPrefix(desc) + "could not make the scene's '" + b.name +
+                                                       "' buffer: " + buffer.error().message);
+            }
             // A pass that traces the scene's triangles every frame (the reference mode) starts its
             // rays on the G-buffer's surfaces: those must be the traced ones, the full meshes.
             if (b.name == "SceneBvh" && desc.params["cadence"].asString() != "once") setup.scene->drawFullMeshes();

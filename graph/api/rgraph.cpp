@@ -12,8 +12,8 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
-#include "cli/runtime.h"
-#include "cli/session.h"
+#include "runtime/runtime.h"
+#include "runtime/session.h"
 #include "image/image.h"
 #include "scene/scene.h"
 
@@ -303,14 +303,7 @@ Image Renderer::readDisplay() const { return toImage(check(m->runtime->executor(
 Image Renderer::readHdr() const {
     const rg::PipelineDesc& p = m->loaded().pipeline();
     if (p.hdr.empty()) throw Error("readHdr: the pipeline names no HDR output (rg.output { hdr = ..., exposure = ... })");
-    rg::Image hdr = check(m->runtime->executor().readback(p.hdr));
-    auto state = check(m->runtime->executor().readbackBuffer(p.exposure));
-    float s[4] = {};
-    std::memcpy(s, state.data(), std::min<size_t>(sizeof s, state.size()));
-    const float preExposure = s[2] > 0 ? s[2] : 1.0f;  // lib/exposure.glsl: ev100, exposure, pre-exposure
-    for (size_t i = 0; i < hdr.pixels.size(); ++i)
-        if (i % hdr.channels < 3) hdr.pixels[i] /= preExposure;
-    return toImage(hdr);
+    return toImage(check(rg::readAbsoluteHdr(m->runtime->executor(), p)).image);
 }
 
 void Renderer::record(VkCommandBuffer commandBuffer) {

@@ -125,11 +125,18 @@ glm::vec3 lightmapSpecular(const Lightmap& lightmap, size_t texel, glm::vec3 N, 
 Result<void> writeLightmapExr(const std::string& path, const Lightmap& lightmap);
 Result<Lightmap> readLightmapExr(const std::string& path);
 
+// The baker as a value (rg_baker's bakeLightmap): the renderer's library takes baked lightmaps from
+// the cache and bakes only when its host links the baker and hands it over.
+using BakeFunction = Result<Lightmap> (*)(const Scene&, const LightmapAtlas&, const LightmapSettings&, const BakeOptions&,
+                                          BakeStats*);
+
 // What a renderer calls for a scene with scene.lightmap: packs the atlas into the nodes, then reads
-// <cacheDir>/<lightmapKey>.exr, or bakes it (progress and ETA on stderr unless quiet) and writes it
-// there; the result goes to scene.bakedLightmap. `rebake`: bake even when the cache has it.
+// <cacheDir>/<lightmapKey>.exr, or bakes it with `bake` (progress and ETA on stderr unless quiet)
+// and writes it there; the result goes to scene.bakedLightmap. `rebake`: bake even when the cache
+// has it. Without `bake`, a lightmap missing from the cache is an error that says how to bake it.
 struct PrepareOptions {
     std::string cacheDir;
+    BakeFunction bake = nullptr;
     bool quiet = false;
     bool rebake = false;
     BakeStats* stats = nullptr;       // filled when it baked

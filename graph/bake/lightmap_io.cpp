@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "bake/lightmap.h"
+#include "core/hash.h"
 #include "scene/scene_detail.h"
 #include "image/image.h"
 #include "lighting/sg.h"
@@ -17,24 +18,10 @@ namespace {
 // Bumped whenever the baker's output for the same input changes.
 constexpr uint32_t kBakerVersion = 2;
 
-// FNV-1a, 64 bits.
-struct Hasher {
-    uint64_t h = 1469598103934665603ull;
-    void bytes(const void* p, size_t n) {
-        const auto* b = static_cast<const uint8_t*>(p);
-        for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
-    }
-    template <class T> void pod(const T& v) { bytes(&v, sizeof v); }
-    void str(const std::string& s) {
-        pod(s.size());
-        bytes(s.data(), s.size());
-    }
-};
-
 }  // namespace
 
 std::string lightmapKey(const Scene& scene, const LightmapSettings& s) {
-    Hasher h;
+    ContentHash h;
     h.pod(kBakerVersion);
     h.pod(s.density), h.pod(s.lobes), h.pod(s.samples), h.pod(s.bounces), h.pod(s.maxSize);
     for (const Node& n : scene.nodes) {
@@ -68,9 +55,7 @@ std::string lightmapKey(const Scene& scene, const LightmapSettings& s) {
         if (!e.file.empty())
             if (auto bytes = scene_detail::readFile(e.file)) h.bytes(bytes->data(), bytes->size());
     }
-    char buf[17];
-    std::snprintf(buf, sizeof buf, "%016llx", static_cast<unsigned long long>(h.h));
-    return buf;
+    return h.hex();
 }
 
 glm::vec3 lightmapIrradiance(const Lightmap& lm, uint32_t x, uint32_t y, glm::vec3 n) {
@@ -193,6 +178,9 @@ Result<void> prepareLightmap(Scene& scene, const PrepareOptions& options) {
         }
     }
     if (options.fromCache) *options.fromCache = false;
+    if (!options.bake)
+        return fail(ErrorCode::NotFound, "not baked for this scene (no " + key + ".exr in the lightmap cache): bake it with "
+                                         "`rgraph bake SCENE`, or render with a host that links the baker");
     BakeOptions bo;
     const bool tty = isatty(fileno(stderr));
     if (!options.quiet) {
@@ -206,7 +194,7 @@ Result<void> prepareLightmap(Scene& scene, const PrepareOptions& options) {
         };
     }
     BakeStats stats;
-    auto baked = bakeLightmap(scene, *atlas, settings, bo, &stats);
+    auto baked = options.bake(scene, *atlas, settings, bo, &stats);
     if (!options.quiet && tty) std::fprintf(stderr, "\n");
     if (!baked) return std::unexpected(baked.error());
     baked->key = key;

@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "golden/metrics.h"
-#include "session.h"
+#include "runtime/session.h"
 
 namespace fs = std::filesystem;
 
@@ -23,6 +23,7 @@ struct Frame {
 Result<Frame> renderCase(Runtime& rt, const AccuracyOptions& o, const AccuracyCase& c, const std::string& model, bool reference,
                          uint32_t seed) {
     SessionOptions so;
+    so.bakeLightmap = bake::bakeLightmap;
     so.compile.outputWidth = o.width;
     so.compile.outputHeight = o.height;
     so.scene = projectRoot() + "/scripts/scenes/accuracy.lua";

@@ -12,7 +12,7 @@
 
 #include "core/result.h"
 #include "image/image.h"
-#include "runtime.h"
+#include "runtime/runtime.h"
 
 namespace rg {
 

@@ -6,7 +6,7 @@
 
 #include <string>
 
-#include "session.h"
+#include "runtime/session.h"
 
 namespace rg {
 

@@ -1,5 +1,6 @@
-// compile(): GraphDesc -> Plan as named steps, each a function in compiler.cpp:
-//   validate -> cull -> schedule -> lifetimes -> alias -> barriers.
+// compile(): GraphDesc -> Plan as named steps, each a function (compiler.cpp runs them in order):
+//   validate (compiler_validate.cpp) -> cull -> schedule (compiler_cull.cpp) -> lifetimes -> alias
+//   (compiler_lifetimes.cpp) -> barriers (compiler_barriers.cpp).
 // No Vulkan: memory requirements come from a callback (the GPU layer asks the device;
 // tests use estimateMemoryRequirements).
 #pragma once

@@ -1,48 +1,52 @@
 #pragma once
-// ContentHash: a 64-bit key for disk caches of derived data (the once-per-build outputs of
-// Executor::setOnceCache): FNV-1a's xor-multiply over 8-byte words (the tail byte by byte), each
-// step followed by a xor-shift so that a word's high bits reach the low ones, and splitmix64's
-// finaliser on the result. Every step is a bijection of the state, so inputs differing in one
-// word always give different states. Word-wise it runs ~8× faster than byte-wise FNV-1a (a scene's vertices and textures are
-// megabytes). Every variable-length field is length-prefixed, so fields cannot run into each other.
+// ContentHash: the one 64-bit content hash of rgraph's caches — SPIR-V modules, the once-per-build
+// outputs (Executor::setOnceCache), baked lightmaps, generated layout headers, GPU scenes, watched
+// files. XXH3 (Debian's libxxhash) in streaming mode: ~20 GB/s, so hashing a scene's megabytes of
+// vertices and textures costs little. Every variable-length field is length-prefixed, so fields
+// cannot run into each other; numbers go in as their bytes (little-endian on every target here).
 #include <cstdint>
-#include <cstring>
+#include <cstdio>
+#include <string>
 #include <string_view>
+#include <type_traits>
+
+#include <xxhash.h>
 
 namespace rg {
 
 class ContentHash {
 public:
-    void bytes(const void* data, size_t n) {
-        const auto* p = static_cast<const unsigned char*>(data);
-        u64(n);
-        for (; n >= 8; n -= 8, p += 8) {
-            uint64_t w;
-            std::memcpy(&w, p, 8);
-            mix(w);
-        }
-        for (; n; --n, ++p) mix(*p);
+    ContentHash() : m_state(XXH3_createState()) { XXH3_64bits_reset(m_state); }
+    ~ContentHash() { XXH3_freeState(m_state); }
+    ContentHash(const ContentHash& o) : m_state(XXH3_createState()) { XXH3_copyState(m_state, o.m_state); }
+    ContentHash& operator=(const ContentHash& o) {
+        if (this != &o) XXH3_copyState(m_state, o.m_state);
+        return *this;
     }
-    void u64(uint64_t v) { mix(v); }
-    void f32(float v) {
-        uint32_t bits;
-        std::memcpy(&bits, &v, 4);
-        mix(bits);
+
+    void bytes(const void* data, size_t n) {
+        u64(n);
+        XXH3_64bits_update(m_state, data, n);
+    }
+    void u64(uint64_t v) { XXH3_64bits_update(m_state, &v, sizeof v); }
+    void f32(float v) { XXH3_64bits_update(m_state, &v, sizeof v); }
+    // A fixed-size value of plain data, as its bytes (no padding in the types it is used with).
+    template <class T>
+    void pod(const T& v) {
+        static_assert(std::is_trivially_copyable_v<T>);
+        XXH3_64bits_update(m_state, &v, sizeof v);
     }
     void str(std::string_view s) { bytes(s.data(), s.size()); }
-    uint64_t value() const {
-        uint64_t z = m_h + 0x9e3779b97f4a7c15ull;
-        z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
-        z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
-        return z ^ (z >> 31);
+    uint64_t value() const { return XXH3_64bits_digest(m_state); }
+    // The value as 16 hex digits: a cache file's or folder's name.
+    std::string hex() const {
+        char s[17];
+        std::snprintf(s, sizeof s, "%016llx", static_cast<unsigned long long>(value()));
+        return s;
     }
 
 private:
-    void mix(uint64_t w) {
-        m_h = (m_h ^ w) * 1099511628211ull;
-        m_h ^= m_h >> 32;
-    }
-    uint64_t m_h = 14695981039346656037ull;
+    XXH3_state_t* m_state;
 };
 
 }  // namespace rg

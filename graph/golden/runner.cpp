@@ -13,8 +13,8 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli/runtime.h"
-#include "cli/session.h"
+#include "runtime/runtime.h"
+#include "runtime/session.h"
 #include "golden/golden_test.h"
 #include "golden/storage.h"
 #include "lua/declarations.h"
@@ -115,22 +115,9 @@ bool samePixels(const Image& a, const Image& b) {
 
 // ---- rendering a test ----
 //
-// Tests render through rg::Session (graph/cli), so they see what `rgraph render` sees: scenes,
+// Tests render through rg::Session (graph/runtime), so they see what `rgraph render` sees: scenes,
 // cameras, reloads. Session takes the test's parameter values and frame callback through
-// SessionOptions::params and SessionOptions::frameHook; a Session without those hooks gets the
-// fallback driver below (the same steps with the public pieces Session is made of), which cannot
-// draw scenes. The concepts pick whichever this build has.
-
-template <class O>
-concept SessionHasHooks = requires(O o) {
-    o.params = std::map<std::string, Value>{};
-    o.frameHook = [](const FrameContext&, const PipelineDesc&) -> Result<FrameChanges> { return FrameChanges{}; };
-};
-template <class O>
-concept SessionHasScene = requires(O o) {
-    o.scene = std::string();
-    o.camera = std::string();
-};
+// SessionOptions::params and SessionOptions::frameHook.
 
 constexpr const char* kBufferFormat = "buffer:float32";
 
@@ -168,9 +155,6 @@ struct Prepared {
 
 std::expected<Prepared, TestError> prepare(Runtime& rt, const GoldenTest& test) {
     const std::string& where = test.file;
-    if (!test.scene.empty() && !SessionHasScene<SessionOptions>)
-        return testError(Error(ErrorCode::Unsupported, where + ": scene: scenes are not supported yet (this build's Session "
-                                                                "draws no scene)"));
     Prepared p;
     p.pipelineFile = fromRoot(test.pipeline);
     std::error_code ec;
@@ -261,110 +245,36 @@ std::expected<std::map<std::string, Capture>, TestError> readCaptures(gpu::Execu
 
 // Renders through a Session of its own runtime (a fresh device per test: no scene, persistent
 // contents or memory carry over from one test to the next).
-template <class Options>
 std::expected<Rendered, TestError> renderWithSession(const Prepared& p, const GoldenTest& test, GoldenScript& script,
                                                      const RunnerOptions& options, std::FILE* out) {
-    if constexpr (SessionHasHooks<Options>) {
-        RuntimeOptions ro;
-        ro.device = options.device;
-        auto rt = Runtime::create(ro);
-        if (!rt) return testError(rt.error());
-        Options so;
-        so.compile.outputWidth = test.width;
-        so.compile.outputHeight = test.height;
-        so.captures = p.captures;
-        so.params = p.params;
-        if (test.hasFrameCallback)
-            so.frameHook = [&script](const FrameContext& ctx, const PipelineDesc& current) { return script.frame(ctx, current); };
-        if constexpr (SessionHasScene<Options>) {
-            so.scene = test.scene.empty() ? std::string() : fromRoot(test.scene);
-            so.camera = test.camera;
-        }
-        Session session(**rt, so);
-        if (auto r = session.load(p.pipelineFile); !r) return testError(r.error());
-        for (uint32_t f = 0; f < test.frames; ++f)
-            if (auto r = session.frame(); !r) return testError(r.error());
-        auto captures = readCaptures((*rt)->executor(), p.captures, test.file);
-        if (!captures) return std::unexpected(captures.error());
-        Rendered result;
-        result.captures = std::move(*captures);
-        for (const auto& line : session.log())
-            if (line.rfind("frame ", 0) == 0) {
-                result.log.push_back(line);
-                if (options.verbose) std::fprintf(out, "        %s\n", line.c_str());
-            }
-        result.validationMessages = (*rt)->gpu().validationMessageCount();
-        return result;
-    } else {
-        return testError(Error(ErrorCode::Unsupported, "this build's Session has no params/frameHook"));
-    }
-}
-
-// The fallback driver: Session's steps (graph/cli/session.cpp) with the test's parameters and
-// frame callback, on a fresh executor. No scenes.
-GraphDesc buildableGraph(const PipelineDesc& p, const std::vector<std::string>& captures) {
-    GraphDesc g = graphWithParams(p);
-    for (auto& r : g.resources)
-        if (std::find(captures.begin(), captures.end(), r.name) != captures.end()) r.exported = true;
-    resolveShaderPaths(g, p.file, projectRoot());
-    return g;
-}
-
-std::string changesText(const FrameChanges& c) {
-    std::string s;
-    for (const auto& [pass, on] : c.enabled) s += (s.empty() ? "" : ", ") + std::string(on ? "enabled '" : "disabled '") + pass + "'";
-    for (const auto& [pass, shader] : c.shaders) s += (s.empty() ? "" : ", ") + ("'" + pass + "' uses " + shader);
-    return s;
-}
-
-std::expected<Rendered, TestError> renderWithoutSession(Runtime& rt, const Prepared& p, const GoldenTest& test, GoldenScript& script,
-                                                        const RunnerOptions& options, std::FILE* out) {
-    LuaHost host(luaHostOptions(rt));
-    auto loaded = host.load(p.pipelineFile);
-    if (!loaded) return testError(loaded.error());
-    PipelineDesc pipeline = std::move(*loaded);
-    if (std::any_of(pipeline.graph.passes.begin(), pipeline.graph.passes.end(), [](const PassDesc& d) { return d.kind == "scene"; }))
-        return testError(Error(ErrorCode::Unsupported, test.file + ": pipeline: '" + test.pipeline + "' draws a scene, which "
-                                                                   "needs Session's params/frameHook (graph/cli) in this build"));
-    for (const auto& [name, value] : p.params) pipeline.findParam(name)->value = value;
-    auto headers = writeLayoutHeaders(pipeline);
-    if (!headers) return testError(headers.error());
-    useLayoutHeaders(rt, *headers);
-
-    const uint32_t validationBefore = rt.gpu().validationMessageCount();
-    Rendered result;
-    gpu::Executor executor(rt.gpu(), rt.shaders(), rt.kinds());
-    CompileOptions compile;
-    compile.outputWidth = test.width;
-    compile.outputHeight = test.height;
-    if (auto r = executor.build(buildableGraph(pipeline, p.captures), compile); !r) return testError(r.error());
-    for (uint32_t f = 0; f < test.frames; ++f) {
-        const FrameContext ctx{f, static_cast<double>(f) * kFrameTime, std::nullopt, test.width, test.height};
-        // The pipeline's own rg.frame first, then the test's frame(ctx), which sees its changes.
-        auto own = host.frame(ctx, pipeline);
-        if (!own) return testError(own.error());
-        PipelineDesc next = pipeline;
-        applyFrameChanges(next, *own);
-        auto mine = script.frame(ctx, next);
-        if (!mine) return testError(mine.error());
-        applyFrameChanges(next, *mine);
-        if (own->structural() || mine->structural()) {
-            if (auto r = executor.build(buildableGraph(next, p.captures), compile); !r) return testError(r.error());
-            std::string what = changesText(*own);
-            const std::string more = changesText(*mine);
-            what += (what.empty() || more.empty() ? "" : ", ") + more;
-            result.log.push_back("frame " + std::to_string(f) + ": " + what + "; rebuilt: " + executor.lastBuildReport().summary());
-            if (options.verbose) std::fprintf(out, "        %s\n", result.log.back().c_str());
-        } else if (!own->params.empty() || !mine->params.empty()) {
-            executor.updateUniforms(buildableGraph(next, p.captures));
-        }
-        pipeline = std::move(next);
-        if (auto r = executor.frame(); !r) return testError(r.error());
-    }
-    auto captures = readCaptures(executor, p.captures, test.file);
+    RuntimeOptions ro;
+    ro.device = options.device;
+    auto rt = Runtime::create(ro);
+    if (!rt) return testError(rt.error());
+    SessionOptions so;
+    so.compile.outputWidth = test.width;
+    so.compile.outputHeight = test.height;
+    so.captures = p.captures;
+    so.params = p.params;
+    if (test.hasFrameCallback)
+        so.frameHook = [&script](const FrameContext& ctx, const PipelineDesc& current) { return script.frame(ctx, current); };
+    so.scene = test.scene.empty() ? std::string() : fromRoot(test.scene);
+    so.camera = test.camera;
+    so.bakeLightmap = bake::bakeLightmap;
+    Session session(**rt, so);
+    if (auto r = session.load(p.pipelineFile); !r) return testError(r.error());
+    for (uint32_t f = 0; f < test.frames; ++f)
+        if (auto r = session.frame(); !r) return testError(r.error());
+    auto captures = readCaptures((*rt)->executor(), p.captures, test.file);
     if (!captures) return std::unexpected(captures.error());
+    Rendered result;
     result.captures = std::move(*captures);
-    result.validationMessages = rt.gpu().validationMessageCount() - validationBefore;
+    for (const auto& line : session.log())
+        if (line.rfind("frame ", 0) == 0) {
+            result.log.push_back(line);
+            if (options.verbose) std::fprintf(out, "        %s\n", line.c_str());
+        }
+    result.validationMessages = (*rt)->gpu().validationMessageCount();
     return result;
 }
 
@@ -372,9 +282,7 @@ std::expected<Rendered, TestError> render(Runtime& rt, GoldenScript& script, con
     const GoldenTest& test = script.test();
     auto prepared = prepare(rt, test);
     if (!prepared) return std::unexpected(prepared.error());
-    std::expected<Rendered, TestError> r = SessionHasHooks<SessionOptions>
-                                               ? renderWithSession<SessionOptions>(*prepared, test, script, options, out)
-                                               : renderWithoutSession(rt, *prepared, test, script, options, out);
+    std::expected<Rendered, TestError> r = renderWithSession(*prepared, test, script, options, out);
     if (r) {
         std::vector<std::string> log;
         for (const auto& line : prepared->profileLog) log.push_back("profile: " + line);
@@ -714,10 +622,9 @@ Result<RunReport> runGoldenTests(const RunnerOptions& optionsIn, std::FILE* out)
     report.update = options.update;
     report.environment = environmentOf(**rt);
     report.profile = profileLine(report.environment);
-    std::fprintf(out, "rgraph test: %zu golden test%s from %s on %s (%s; %s)%s\n", files->size(), files->size() == 1 ? "" : "s",
+    std::fprintf(out, "rgraph test: %zu golden test%s from %s on %s (%s; %s)\n", files->size(), files->size() == 1 ? "" : "s",
                  relativeToRoot(options.testDir).c_str(), report.environment.device.c_str(), report.environment.driver.c_str(),
-                 report.profile.c_str(),
-                 SessionHasHooks<SessionOptions> ? "" : "\nrgraph test: fallback driver (SessionOptions has no params/frameHook): no scenes");
+                 report.profile.c_str());
     std::fflush(out);
     for (const auto& file : *files) {
         report.tests.push_back(runOne(**rt, file, options, report.environment, out));

@@ -2,7 +2,7 @@
 // (the macros change inline member initialisers, so they have to be the same everywhere).
 // - No stb_image inside tinygltf: images are kept encoded by our own callback and decoded in
 //   image_codec.cpp, and exportGlb stores PNG bytes in a buffer view itself.
-// - No external image files: gltf_load.cpp opens them, so a missing image is an error that
+// - No external image files: the loader opens them (gltf_load_materials.cpp), so a missing image is an error that
 //   names the file instead of a warning.
 #pragma once
 

@@ -1,4 +1,5 @@
 #include "shader/shader_compiler.h"
+#include "core/hash.h"
 
 #include <glslang/Public/ResourceLimits.h>
 #include <glslang/Public/ShaderLang.h>
@@ -44,27 +45,7 @@ std::string passPrefix(const std::string& passName) {
     return passName.empty() ? std::string() : "pass '" + passName + "': ";
 }
 
-// FNV-1a, 64 bit. Every variable-length field is length-prefixed so that fields cannot run into
-// each other ("ab" + "c" != "a" + "bc").
-class Hasher {
-public:
-    void bytes(const void* data, size_t n) {
-        const auto* p = static_cast<const unsigned char*>(data);
-        for (size_t i = 0; i < n; ++i) {
-            m_h ^= p[i];
-            m_h *= 1099511628211ull;
-        }
-    }
-    void u64(uint64_t v) { bytes(&v, sizeof v); }
-    void str(std::string_view s) {
-        u64(s.size());
-        bytes(s.data(), s.size());
-    }
-    uint64_t value() const { return m_h; }
-
-private:
-    uint64_t m_h = 14695981039346656037ull;
-};
+using Hasher = ContentHash;
 
 std::string hex(uint64_t v) {
     char buf[17];

@@ -21,6 +21,9 @@
 
 #include <vulkan/vulkan.h>
 
+// librgraph is built with hidden visibility: what this header declares is its whole interface.
+#pragma GCC visibility push(default)
+
 namespace rgraph {
 
 // Every failure: a script error (file:line: field: what was expected), a device error, bad input.
@@ -195,3 +198,5 @@ private:
 };
 
 }  // namespace rgraph
+
+#pragma GCC visibility pop

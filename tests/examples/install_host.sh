@@ -14,6 +14,16 @@ for f in bin/rgraph include/rgraph/rgraph.h lib/cmake/rgraph/rgraphConfig.cmake 
     [ -e "$tmp/prefix/$f" ] || { echo "install_host: $f was not installed"; exit 1; }
 done
 ls "$tmp/prefix"/lib*/librgraph.so* > /dev/null || ls "$tmp/prefix"/lib/*/librgraph.so* > /dev/null
+# The library exports its public interface only (namespace rgraph; hidden visibility and a version
+# script keep the internal rg:: modules local) and links neither Embree nor the golden runner.
+lib=$(ls "$tmp/prefix"/lib*/librgraph.so.* "$tmp/prefix"/lib/*/librgraph.so.* 2>/dev/null | head -n 1)
+internal=$(nm -DC --defined-only "$lib" | grep -c ' rg::' || true)
+public=$(nm -DC --defined-only "$lib" | grep -c ' rgraph::' || true)
+[ "$internal" -eq 0 ] || { echo "install_host: librgraph exports $internal internal rg:: symbols"; nm -DC --defined-only "$lib" | grep ' rg::' | head -5; exit 1; }
+[ "$public" -gt 0 ] || { echo "install_host: librgraph exports no rgraph:: symbol"; exit 1; }
+if readelf -d "$lib" | grep -qi 'embree'; then echo "install_host: librgraph links Embree"; exit 1; fi
+if nm -C --defined-only "$lib" 2>/dev/null | grep -q 'rg::golden::'; then echo "install_host: librgraph carries the golden runner"; exit 1; fi
+echo "install_host: librgraph exports $public rgraph:: symbols and no internal ones"
 generator=""
 command -v ninja > /dev/null && generator="-G Ninja"
 # shellcheck disable=SC2086

@@ -1,7 +1,7 @@
 // Fuzz target: a Lua pipeline script through the whole front end without a GPU, as `rgraph graph`
 // runs it: the sandboxed Lua host (instruction and memory limits), the declarations into a
 // PipelineDesc, the material system's generated GLSL, and the graph compiler.
-#include "cli/session.h"
+#include "runtime/session.h"
 #include "core/compiler.h"
 #include "fuzz_common.h"
 #include "lua/lua_host.h"

@@ -12,8 +12,8 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "cli/runtime.h"
-#include "cli/session.h"
+#include "runtime/runtime.h"
+#include "runtime/session.h"
 #include "image/image.h"
 
 namespace rg {

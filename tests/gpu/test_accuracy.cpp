@@ -13,7 +13,7 @@
 #include <map>
 
 #include "cli/accuracy.h"
-#include "cli/session.h"
+#include "runtime/session.h"
 
 using namespace rg;
 

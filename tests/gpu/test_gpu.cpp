@@ -11,7 +11,7 @@
 #include <iterator>
 #include <vector>
 
-#include "cli/runtime.h"
+#include "runtime/runtime.h"
 #include "image/image.h"
 
 namespace fs = std::filesystem;

@@ -14,8 +14,8 @@
 
 #include <glm/glm.hpp>
 
-#include "cli/runtime.h"
-#include "cli/session.h"
+#include "runtime/runtime.h"
+#include "runtime/session.h"
 #include "image/image.h"
 #include "lighting/brdf.h"
 

@@ -21,7 +21,7 @@
 #include <numbers>
 #include <sstream>
 
-#include "cli/runtime.h"
+#include "runtime/runtime.h"
 #include "image/image.h"
 #include "layout/layout.h"
 

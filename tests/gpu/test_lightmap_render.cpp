@@ -10,8 +10,8 @@
 #include <cstdio>
 
 #include "../unit/gi_reference.h"
-#include "cli/runtime.h"
-#include "cli/session.h"
+#include "runtime/runtime.h"
+#include "runtime/session.h"
 #include "image/image.h"
 #include "scene/scene.h"
 
@@ -30,6 +30,7 @@ protected:
         o.compile.outputWidth = N;
         o.compile.outputHeight = N;
         o.params["exposure_mode"] = Value("manual");
+        o.bakeLightmap = bake::bakeLightmap;
         return o;
     }
 };

@@ -13,8 +13,8 @@
 #include <map>
 #include <unistd.h>
 
-#include "cli/runtime.h"
-#include "cli/session.h"
+#include "runtime/runtime.h"
+#include "runtime/session.h"
 #include "image/image.h"
 #include "layout/layout.h"
 #include "lua/lua_host.h"

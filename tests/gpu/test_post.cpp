@@ -9,8 +9,8 @@
 #include <cmath>
 #include <cstring>
 
-#include "cli/runtime.h"
-#include "cli/session.h"
+#include "runtime/runtime.h"
+#include "runtime/session.h"
 #include "core/photometry.h"
 #include "image/image.h"
 

@@ -17,8 +17,8 @@
 #include <fstream>
 #include <map>
 
-#include "cli/runtime.h"
-#include "cli/session.h"
+#include "runtime/runtime.h"
+#include "runtime/session.h"
 #include "image/image.h"
 
 using namespace rg;

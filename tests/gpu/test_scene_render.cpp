@@ -14,8 +14,8 @@
 #include <map>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "cli/runtime.h"
-#include "cli/session.h"
+#include "runtime/runtime.h"
+#include "runtime/session.h"
 #include "image/image.h"
 #include "layout/layout.h"
 #include "passes/gpu_scene.h"

@@ -12,8 +12,8 @@
 #include <functional>
 #include <map>
 
-#include "cli/runtime.h"
-#include "cli/session.h"
+#include "runtime/runtime.h"
+#include "runtime/session.h"
 #include "image/image.h"
 #include "passes/gpu_scene.h"
 #include "scene/scene.h"

@@ -385,6 +385,16 @@ TEST(LightmapCache, ABrokenCacheFileIsBakedAgainNotTrusted) {
     rg::bake::PrepareOptions o;
     o.cacheDir = dir;
     o.quiet = true;
+    {
+        // Without the baker (the library's renderer), a lightmap missing from the cache is an
+        // error that says how to bake it.
+        rg::Scene unbaked = loadScene("cornell.lua", {{"samples", "4"}, {"density", "4"}});
+        auto missing = rg::bake::prepareLightmap(unbaked, o);
+        ASSERT_FALSE(missing);
+        EXPECT_NE(missing.error().message.find("rgraph bake"), std::string::npos) << missing.error().message;
+        EXPECT_FALSE(unbaked.bakedLightmap);
+    }
+    o.bake = rg::bake::bakeLightmap;
     bool fromCache = true;
     std::string path;
     o.fromCache = &fromCache;

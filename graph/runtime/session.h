@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "bake/lightmap.h"
 #include "lua/lua_host.h"
 #include "passes/gpu_scene.h"
 #include "runtime.h"
@@ -41,6 +42,9 @@ struct SessionOptions {
     // The folder whose once/ holds the outputs of passes with cadence = "once", restored from there
     // and saved there (gpu::Executor::setOnceCache); "" (the default: tests, bench) records them.
     std::string onceCache;
+    // Bakes a scene.lightmap missing from the lightmap cache (rg_baker's bake::bakeLightmap, which
+    // the command line and the golden runner link); null: such a scene is an error naming the command.
+    bake::BakeFunction bakeLightmap = nullptr;
     // Parameter values set when a script loads (after the scene's camera settings), checked like
     // ctx.params: the golden tests' `params` and determinism profile.
     std::map<std::string, Value> params;
@@ -113,7 +117,7 @@ private:
     // The graph the executor builds: parameters in, shader paths resolved (with
     // keepMissingShaders, a pass whose shader file went missing keeps the path it was built
     // from), captures exported.
-    GraphDesc buildableGraph(const PipelineDesc& p, bool keepMissingShaders);
+    Result<GraphDesc> buildableGraph(const PipelineDesc& p, bool keepMissingShaders);
     // The frame context of frame m_frame for `scene` and its draws per stencil class (ctx in rg.frame), and what the script's
     // rg.frame, the frame hook and the overrides change for it in `pipeline`.
     FrameContext frameContext(const passes::GpuScene* scene, const std::map<std::string, uint32_t>& classes) const;

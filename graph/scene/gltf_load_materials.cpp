@@ -1,0 +1,229 @@
+// glTF materials -> Scene materials: samplers, images (decoded once per image and encoding),
+// textures with KHR_texture_transform, the metallic-roughness factors and rgraph's extras.
+#include <cmath>
+
+#include "gltf_load_detail.h"
+#include "scene_detail.h"
+#include "tinygltf.h"
+
+namespace rg {
+
+using namespace scene_detail;
+
+namespace gltf_load {
+
+void Loader::convertSamplers() {
+    for (const auto& s : model.samplers) {
+        SamplerDesc d;
+        auto wrap = [](int w) {
+            return w == TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE     ? Wrap::ClampToEdge
+                   : w == TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT ? Wrap::MirroredRepeat
+                                                                : Wrap::Repeat;
+        };
+        d.wrapS = wrap(s.wrapS);
+        d.wrapT = wrap(s.wrapT);
+        d.magFilter = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ? Filter::Nearest : Filter::Linear;
+        switch (s.minFilter) {
+        case TINYGLTF_TEXTURE_FILTER_NEAREST:
+        case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST:
+            d.minFilter = Filter::Nearest;
+            d.mipmapMode = MipmapMode::Nearest;
+            break;
+        case TINYGLTF_TEXTURE_FILTER_LINEAR:
+        case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST:
+            d.minFilter = Filter::Linear;
+            d.mipmapMode = MipmapMode::Nearest;
+            break;
+        case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR:
+            d.minFilter = Filter::Nearest;
+            d.mipmapMode = MipmapMode::Linear;
+            break;
+        default:  // LINEAR_MIPMAP_LINEAR or undefined
+            d.minFilter = Filter::Linear;
+            d.mipmapMode = MipmapMode::Linear;
+            break;
+        }
+        samplers.push_back(static_cast<int32_t>(scene.samplers.size()));
+        scene.samplers.push_back(d);
+    }
+}
+
+Result<int32_t> Loader::image(const std::string& where, int index, bool srgb) {
+    if (auto it = images.find({index, srgb}); it != images.end()) return it->second;
+    const auto& img = model.images[size_t(index)];
+    const std::string label = named("image", size_t(index), !img.uri.empty() && !isDataUri(img.uri) ? img.uri : img.name);
+    SceneImage out;
+    out.name = !img.name.empty() ? img.name : !img.uri.empty() && !isDataUri(img.uri) ? img.uri : "image " + std::to_string(index);
+    out.srgb = srgb;
+    if (options.loadImages) {
+        if (auto e = imageState.errors.find(index); e != imageState.errors.end())
+            return error(ErrorCode::InvalidInput, label + ": " + e->second);
+        std::vector<unsigned char> bytes = img.image;
+        if (bytes.empty() && !img.uri.empty() && !isDataUri(img.uri)) {
+            auto inside = resolveInside(img.uri, label);
+            if (!inside) return std::unexpected(inside.error());
+            const std::string file = *inside;
+            auto r = readFile(file);
+            if (!r) return error(ErrorCode::InvalidInput, label + ": " + r.error().message);
+            bytes = std::move(*r);
+            addFile(file);
+        }
+        if (bytes.empty()) return error(ErrorCode::InvalidInput, label + ": no image data");
+        auto decoded = decodeImage(bytes.data(), bytes.size());
+        if (!decoded) return error(ErrorCode::InvalidInput, label + ": " + decoded.error().message);
+        out.pixels = std::move(*decoded);
+        if (options.generateMips) generateMips(out);
+    }
+    (void)where;
+    const auto slot = static_cast<int32_t>(scene.images.size());
+    scene.images.push_back(std::move(out));
+    images[{index, srgb}] = slot;
+    return slot;
+}
+
+glm::mat3 Loader::uvTransform(glm::vec2 offset, float rotation, glm::vec2 scale) {
+    // KHR_texture_transform: T * R * S, rows of R = (cos, sin), (-sin, cos).
+    const float c = std::cos(rotation), s = std::sin(rotation);
+    const glm::mat3 t(glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(offset, 1));
+    const glm::mat3 r(glm::vec3(c, -s, 0), glm::vec3(s, c, 0), glm::vec3(0, 0, 1));
+    const glm::mat3 sc(glm::vec3(scale.x, 0, 0), glm::vec3(0, scale.y, 0), glm::vec3(0, 0, 1));
+    return t * r * sc;
+}
+
+Result<TextureRef> Loader::texture(const std::string& where, int index, int texCoord, const tinygltf::ExtensionMap& ext, bool srgb) {
+    TextureRef ref;
+    if (index < 0) return ref;
+    if (size_t(index) >= model.textures.size())
+        return error(ErrorCode::InvalidInput, where + ": texture " + std::to_string(index) + " does not exist (" +
+                                                  std::to_string(model.textures.size()) + " textures)");
+    const auto& tex = model.textures[size_t(index)];
+    if (tex.source < 0) {
+        warn(where + ": texture " + std::to_string(index) + " has no PNG/JPEG source; ignored");
+        return ref;
+    }
+    if (size_t(tex.source) >= model.images.size())
+        return error(ErrorCode::InvalidInput, where + ": texture " + std::to_string(index) + " names image " +
+                                                  std::to_string(tex.source) + ", which does not exist");
+    if (tex.sampler >= 0 && size_t(tex.sampler) >= samplers.size())
+        return error(ErrorCode::InvalidInput, where + ": texture " + std::to_string(index) + " names sampler " +
+                                                  std::to_string(tex.sampler) + ", which does not exist");
+    auto img = image(where, tex.source, srgb);
+    if (!img) return std::unexpected(img.error());
+    ref.image = *img;
+    ref.sampler = tex.sampler >= 0 ? samplers[size_t(tex.sampler)] : -1;
+    int coord = texCoord;
+    if (auto it = ext.find("KHR_texture_transform"); it != ext.end() && it->second.IsObject()) {
+        const auto& t = it->second;
+        glm::vec2 offset(0.0f), scale(1.0f);
+        if (t.Has("offset") && t.Get("offset").IsArray() && t.Get("offset").ArrayLen() == 2)
+            offset = glm::vec2(float(number(t.Get("offset").Get(0), 0)), float(number(t.Get("offset").Get(1), 0)));
+        if (t.Has("scale") && t.Get("scale").IsArray() && t.Get("scale").ArrayLen() == 2)
+            scale = glm::vec2(float(number(t.Get("scale").Get(0), 1)), float(number(t.Get("scale").Get(1), 1)));
+        const float rotation = float(number(t.Get("rotation"), 0.0));
+        ref.transform = uvTransform(offset, rotation, scale);
+        if (t.Has("texCoord")) coord = indexOf(t.Get("texCoord"));
+    }
+    if (coord < 0 || coord > 1) {
+        warn(where + ": texCoord " + std::to_string(coord) + " is not supported (TEXCOORD_0 and _1 only); using TEXCOORD_0");
+        coord = 0;
+    }
+    ref.texCoord = static_cast<uint32_t>(coord);
+    return ref;
+}
+
+// A tinygltf JSON value -> Value (for material params written by exportGlb).
+Value Loader::toValue(const tinygltf::Value& v) {
+    if (v.IsBool()) return Value(v.Get<bool>());
+    if (v.IsNumber()) return Value(v.GetNumberAsDouble());
+    if (v.IsString()) return Value(v.Get<std::string>());
+    if (v.IsArray()) {
+        Value::List l;
+        for (size_t i = 0; i < v.ArrayLen(); ++i) l.push_back(toValue(v.Get(int(i))));
+        return Value(l);
+    }
+    if (v.IsObject()) {
+        Value::Table t;
+        for (const auto& k : v.Keys()) t[k] = toValue(v.Get(k));
+        return Value(t);
+    }
+    return Value();
+}
+
+Result<void> Loader::materials() {
+    for (size_t i = 0; i < model.materials.size(); ++i) {
+        const auto& src = model.materials[i];
+        const std::string where = named("material", i, src.name);
+        Material m;
+        m.name = src.name.empty() ? "material " + std::to_string(i) : src.name;
+        const auto& pbr = src.pbrMetallicRoughness;
+        if (pbr.baseColorFactor.size() != 4)
+            return error(ErrorCode::InvalidInput, where + ": baseColorFactor has " + std::to_string(pbr.baseColorFactor.size()) +
+                                                      " values, expected 4");
+        glm::vec4 base;
+        for (int k = 0; k < 4; ++k) {
+            auto r = ranged(where + ": baseColorFactor[" + std::to_string(k) + "]", pbr.baseColorFactor[size_t(k)], 0, 1);
+            if (!r) return std::unexpected(r.error());
+            base[k] = *r;
+        }
+        m.baseColor = glm::vec3(base);
+        m.opacity = base.a;
+        float roughness = 1.0f, strength = 1.0f;
+        RG_TRY(m.metalMask, ranged(where + ": metallicFactor", pbr.metallicFactor, 0, 1));
+        RG_TRY(roughness, ranged(where + ": roughnessFactor", pbr.roughnessFactor, 0, 1));
+        m.smoothness = 1.0f - roughness;  // glTF roughness is perceptual (DESIGN.md §5)
+        m.reflectance = 0.5f;             // f0 = 4 %; KHR_materials_specular / _ior are ignored
+        if (auto it = src.extensions.find("KHR_materials_emissive_strength"); it != src.extensions.end())
+            RG_TRY(strength, ranged(where + ": emissiveStrength", number(it->second.Get("emissiveStrength"), 1.0), 0, HUGE_VAL));
+        glm::vec3 emissive;
+        RG_TRY(emissive, ranged3(where + ": emissiveFactor", src.emissiveFactor, glm::vec3(0.0f), 0, 1));
+        // Read as nits (see Material::emissive).
+        m.emissive = emissive * strength;
+        auto tex = [&](const char* what, int index, int texCoord, const tinygltf::ExtensionMap& ext, bool srgb,
+                       TextureRef& out) -> Result<void> {
+            auto r = texture(where + " " + what, index, texCoord, ext, srgb);
+            if (!r) return std::unexpected(r.error());
+            out = *r;
+            return {};
+        };
+        if (auto r = tex("baseColorTexture", pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                         pbr.baseColorTexture.extensions, true, m.baseColorTex); !r)
+            return r;
+        if (auto r = tex("metallicRoughnessTexture", pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
+                         pbr.metallicRoughnessTexture.extensions, false, m.metallicRoughnessTex); !r)
+            return r;
+        if (auto r = tex("normalTexture", src.normalTexture.index, src.normalTexture.texCoord, src.normalTexture.extensions, false,
+                         m.normalTex); !r)
+            return r;
+        if (auto r = tex("occlusionTexture", src.occlusionTexture.index, src.occlusionTexture.texCoord,
+                         src.occlusionTexture.extensions, false, m.occlusionTex); !r)
+            return r;
+        if (auto r = tex("emissiveTexture", src.emissiveTexture.index, src.emissiveTexture.texCoord, src.emissiveTexture.extensions,
+                         true, m.emissiveTex); !r)
+            return r;
+        RG_TRY(m.normalScale, ranged(where + ": normalTexture.scale", src.normalTexture.scale, -1e6, 1e6));
+        RG_TRY(m.occlusionStrength, ranged(where + ": occlusionTexture.strength", src.occlusionTexture.strength, 0, 1));
+        if (src.alphaMode == "OPAQUE" || src.alphaMode.empty()) m.alphaMode = AlphaMode::Opaque;
+        else if (src.alphaMode == "MASK") m.alphaMode = AlphaMode::Mask;
+        else if (src.alphaMode == "BLEND") m.alphaMode = AlphaMode::Blend;
+        else
+            return error(ErrorCode::InvalidInput, where + ": alphaMode '" + src.alphaMode + "', expected OPAQUE, MASK or BLEND");
+        RG_TRY(m.alphaCutoff, ranged(where + ": alphaCutoff", src.alphaCutoff, 0, HUGE_VAL));
+        m.doubleSided = src.doubleSided;
+        // What glTF cannot say, as exportGlb wrote it.
+        if (src.extras.IsObject() && src.extras.Has("rgraph") && src.extras.Get("rgraph").IsObject()) {
+            const auto& x = src.extras.Get("rgraph");
+            if (x.Get("model").IsString()) m.model = x.Get("model").Get<std::string>();
+            m.reflectance = float(number(x.Get("reflectance"), m.reflectance));
+            m.ao = float(number(x.Get("ao"), m.ao));
+            m.diffuseColor = vec3Of(x.Get("diffuse_color"), m.diffuseColor);
+            m.f0 = vec3Of(x.Get("f0"), m.f0);
+            if (x.Has("params")) m.extra = toValue(x.Get("params"));
+        }
+        scene.materials.push_back(std::move(m));
+    }
+    return {};
+}
+
+}  // namespace gltf_load
+
+}  // namespace rg

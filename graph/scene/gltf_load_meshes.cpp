@@ -1,0 +1,158 @@
+// glTF meshes -> Scene meshes: each primitive's attributes and indices read through the checked
+// accessors, strips and fans made lists, missing normals and tangents generated.
+#include <cmath>
+
+#include "gltf_load_detail.h"
+#include "scene_detail.h"
+#include "tinygltf.h"
+
+namespace rg {
+
+using namespace scene_detail;
+
+namespace gltf_load {
+
+namespace {
+
+const char* modeName(int mode) {
+    switch (mode) {
+    case TINYGLTF_MODE_POINTS: return "POINTS";
+    case TINYGLTF_MODE_LINE: return "LINES";
+    case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
+    case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
+    case TINYGLTF_MODE_TRIANGLES: return "TRIANGLES";
+    case TINYGLTF_MODE_TRIANGLE_STRIP: return "TRIANGLE_STRIP";
+    case TINYGLTF_MODE_TRIANGLE_FAN: return "TRIANGLE_FAN";
+    default: return nullptr;
+    }
+}
+
+}  // namespace
+
+Result<uint32_t> Loader::materialIndex(const std::string& where, int m) {
+    if (m < 0) {
+        if (defaultMaterial < 0) {
+            // glTF 3.9: without a material, the defaults of every property (white, fully
+            // metallic, fully rough).
+            Material d;
+            d.name = "default";
+            d.baseColor = glm::vec3(1.0f);
+            d.metalMask = 1.0f;
+            d.smoothness = 0.0f;
+            defaultMaterial = static_cast<int32_t>(scene.materials.size());
+            scene.materials.push_back(d);
+        }
+        return static_cast<uint32_t>(defaultMaterial);
+    }
+    if (size_t(m) >= model.materials.size())
+        return error(ErrorCode::InvalidInput, where + ": material " + std::to_string(m) + " does not exist (" +
+                                                  std::to_string(model.materials.size()) + " materials)");
+    return static_cast<uint32_t>(m);
+}
+
+Result<Primitive> Loader::primitive(size_t meshIndex, size_t primIndex) {
+    const auto& mesh = model.meshes[meshIndex];
+    const auto& prim = mesh.primitives[primIndex];
+    const std::string where = named("mesh", meshIndex, mesh.name) + " primitive " + std::to_string(primIndex);
+    const char* mode = modeName(prim.mode);
+    if (!mode) return error(ErrorCode::InvalidInput, where + ": mode " + std::to_string(prim.mode) + " is not a glTF primitive mode");
+    if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP && prim.mode != TINYGLTF_MODE_TRIANGLE_FAN)
+        return error(ErrorCode::Unsupported, where + ": mode " + mode + " is not supported (only triangles)");
+    auto attr = [&](const char* name) {
+        auto it = prim.attributes.find(name);
+        return it == prim.attributes.end() ? -1 : it->second;
+    };
+    if (attr("POSITION") < 0) return error(ErrorCode::InvalidInput, where + ": no POSITION attribute");
+    auto pos = readFloats(where, "POSITION", attr("POSITION"), TINYGLTF_TYPE_VEC3);
+    if (!pos) return std::unexpected(pos.error());
+    const size_t n = pos->size() / 3;
+    Primitive p;
+    p.vertices.resize(n);
+    for (size_t i = 0; i < n; ++i) p.vertices[i].position = glm::vec3((*pos)[3 * i], (*pos)[3 * i + 1], (*pos)[3 * i + 2]);
+
+    // Other attributes must have as many elements as POSITION.
+    auto optional = [&](const char* semantic, int type) -> Result<std::vector<float>> {
+        if (attr(semantic) < 0) return std::vector<float>{};
+        auto v = readFloats(where, semantic, attr(semantic), type);
+        if (!v) return v;
+        const size_t comps = size_t(tinygltf::GetNumComponentsInType(static_cast<uint32_t>(type)));
+        if (v->size() / comps != n)
+            return error(ErrorCode::InvalidInput, where + ": " + semantic + ": accessor " + std::to_string(attr(semantic)) + " has " +
+                                                      std::to_string(v->size() / comps) + " elements, POSITION has " + std::to_string(n));
+        return v;
+    };
+    auto normals = optional("NORMAL", TINYGLTF_TYPE_VEC3);
+    if (!normals) return std::unexpected(normals.error());
+    auto tangents = optional("TANGENT", TINYGLTF_TYPE_VEC4);
+    if (!tangents) return std::unexpected(tangents.error());
+    auto uv0 = optional("TEXCOORD_0", TINYGLTF_TYPE_VEC2);
+    if (!uv0) return std::unexpected(uv0.error());
+    auto uv1 = optional("TEXCOORD_1", TINYGLTF_TYPE_VEC2);
+    if (!uv1) return std::unexpected(uv1.error());
+    for (size_t i = 0; i < n; ++i) {
+        Vertex& v = p.vertices[i];
+        if (!normals->empty()) v.normal = glm::vec3((*normals)[3 * i], (*normals)[3 * i + 1], (*normals)[3 * i + 2]);
+        if (!tangents->empty())
+            v.tangent = glm::vec4((*tangents)[4 * i], (*tangents)[4 * i + 1], (*tangents)[4 * i + 2], (*tangents)[4 * i + 3] < 0 ? -1.0f : 1.0f);
+        if (!uv0->empty()) v.uv0 = glm::vec2((*uv0)[2 * i], (*uv0)[2 * i + 1]);
+        if (!uv1->empty()) v.uv1 = glm::vec2((*uv1)[2 * i], (*uv1)[2 * i + 1]);
+    }
+    // TEXCOORD_1 is the lightmap parameterisation game teams author (charts in [0, 1]²).
+    p.lightmapUv = !uv1->empty();
+
+    std::vector<uint32_t> idx;
+    if (prim.indices >= 0) {
+        auto r = readIndices(where, prim.indices, n);
+        if (!r) return std::unexpected(r.error());
+        idx = std::move(*r);
+    } else {
+        idx.resize(n);
+        for (size_t i = 0; i < n; ++i) idx[i] = static_cast<uint32_t>(i);
+    }
+    // Strips and fans become lists; a strip's odd triangles swap two corners to stay CCW.
+    if (prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
+        for (size_t i = 0; i + 2 < idx.size(); ++i)
+            if (i % 2 == 0) p.indices.insert(p.indices.end(), {idx[i], idx[i + 1], idx[i + 2]});
+            else p.indices.insert(p.indices.end(), {idx[i + 1], idx[i], idx[i + 2]});
+    } else if (prim.mode == TINYGLTF_MODE_TRIANGLE_FAN) {
+        for (size_t i = 1; i + 1 < idx.size(); ++i) p.indices.insert(p.indices.end(), {idx[0], idx[i], idx[i + 1]});
+    } else {
+        if (idx.size() % 3 != 0) warn(where + ": " + std::to_string(idx.size()) + " indices is not a whole number of triangles; the last " +
+                                      std::to_string(idx.size() % 3) + " are ignored");
+        idx.resize(idx.size() - idx.size() % 3);
+        p.indices = std::move(idx);
+    }
+
+    auto m = materialIndex(where, prim.material);
+    if (!m) return std::unexpected(m.error());
+    p.material = *m;
+    // glTF 3.7.2.1: without normals, flat normals, and tangents are then ignored.
+    if (normals->empty()) generateFlatNormals(p);
+    else
+        for (auto& v : p.vertices) {
+            // Renormalise only what is not unit already, so written normals load back bit-exact.
+            const float len = glm::length(v.normal);
+            if (!(len > 0.0f)) v.normal = glm::vec3(0, 0, 1);
+            else if (std::fabs(len - 1.0f) > 1e-6f) v.normal /= len;
+        }
+    if (normals->empty() || tangents->empty()) generateTangents(p);
+    return p;
+}
+
+Result<void> Loader::meshes() {
+    for (size_t m = 0; m < model.meshes.size(); ++m) {
+        Mesh mesh;
+        mesh.name = model.meshes[m].name.empty() ? "mesh " + std::to_string(m) : model.meshes[m].name;
+        for (size_t p = 0; p < model.meshes[m].primitives.size(); ++p) {
+            auto prim = primitive(m, p);
+            if (!prim) return std::unexpected(prim.error());
+            mesh.primitives.push_back(std::move(*prim));
+        }
+        scene.meshes.push_back(std::move(mesh));
+    }
+    return {};
+}
+
+}  // namespace gltf_load
+
+}  // namespace rg

@@ -1,0 +1,241 @@
+// The scene's lights as the shaders take them (convertLights: units, cones, IES profiles) and
+// the local lights' shadow views each frame (ShadowViews).
+#include "gpu_scene.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "core/light_units.h"
+#include "gpu_scene_detail.h"
+#include "lighting/area_lights.h"
+#include "lighting/punctual.h"
+
+namespace rg::passes {
+
+using namespace rg::gpu;
+using namespace rg::passes::detail;
+
+namespace {
+
+std::string lightLabel(const Light& l) { return "light '" + l.name + "' (" + lightTypeName(l.type) + ")"; }
+
+// A unit vector perpendicular to `n`: `hint` made perpendicular, or any when they are parallel.
+glm::vec3 perpendicularTo(glm::vec3 n, glm::vec3 hint) {
+    glm::vec3 p = hint - glm::dot(hint, n) * n;
+    if (glm::length(p) < 1e-4f) p = glm::cross(n, std::abs(n.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0));
+    return glm::normalize(p);
+}
+
+bool sphereMeetsFrustum(const std::array<glm::vec4, 6>& planes, glm::vec3 centre, float radius) {
+    for (const auto& q : planes)
+        if (glm::dot(glm::vec3(q), centre) + q.w < -radius) return false;
+    return true;
+}
+
+}  // namespace
+
+Result<GpuLightTable> convertLights(const std::vector<Light>& lights, IesMode iesMode) {
+    GpuLightTable table;
+    if (lights.size() > kMaxLights)
+        return fail(ErrorCode::InvalidInput, "the scene has " + std::to_string(lights.size()) + " lights; the GPU light list holds at most " +
+                                                 std::to_string(kMaxLights));
+    for (const Light& l : lights) {
+        const std::string label = lightLabel(l);
+        const bool punctual = l.type == LightType::Point || l.type == LightType::Spot;
+        const bool sun = l.type == LightType::Directional;
+        // seed 000 tbl:8: the units each type takes (as the scene loaders check; a Scene built
+        // in C++ may not have been).
+        const std::vector<std::string> units = punctual ? std::vector<std::string>{"lm", "cd"}
+                                               : sun    ? std::vector<std::string>{"lux"}
+                                                        : std::vector<std::string>{"lm", "nits", "ev100"};
+        if (std::find(units.begin(), units.end(), l.unit) == units.end()) {
+            std::string list;
+            for (const auto& u : units) list += (list.empty() ? "'" : ", '") + u + "'";
+            return fail(ErrorCode::InvalidInput, label + ": unit '" + l.unit + "' is not one of " + list + " (seed 000 tbl:8)");
+        }
+        if (!std::isfinite(l.intensity) || (l.unit != "ev100" && l.intensity < 0.0f))
+            return fail(ErrorCode::InvalidInput, label + ": intensity must be a finite number, not negative (" + l.unit + ")");
+        if (!l.ies.empty() && !punctual)
+            return fail(ErrorCode::InvalidInput, label + ": an IES profile applies to point and spot lights only");
+        const glm::vec3 direction = glm::length(l.direction) > 0.0f ? glm::normalize(l.direction) : glm::vec3(0, -1, 0);
+
+        glm::vec3 color = l.color;
+        if (l.temperatureK > 0) {
+            if (!lights::colorTemperatureInRange(l.temperatureK, l.daylight))
+                return fail(ErrorCode::InvalidInput, label + ": temperature " + std::to_string(l.temperatureK) + " K is outside the " +
+                                                         (l.daylight ? "daylight locus's 4000-25000 K" : "black body's 1667-25000 K") +
+                                                         " that colour temperature converts");
+            auto rgb = lights::colorTemperatureToRgb(l.temperatureK, l.daylight);
+            color *= glm::vec3(static_cast<float>(rgb[0]), static_cast<float>(rgb[1]), static_cast<float>(rgb[2]));
+        }
+        GpuLight g{};
+        const float invSqrRange = l.range > 0 ? 1.0f / (l.range * l.range) : 0.0f;
+        g.positionType = glm::vec4(l.position, 0.0f);
+        g.directionRange = glm::vec4(direction, invSqrRange);
+        g.intensity.a = -1.0f;
+        GpuLightType type = GpuLightType::Point;
+        double value = l.intensity;  // cd, lux or cd/m² once converted
+        switch (l.type) {
+        case LightType::Point:
+        case LightType::Spot: {
+            type = l.type == LightType::Point ? GpuLightType::Point : GpuLightType::Spot;
+            // tbl:9; spots by eq:17 (Φ / π), or eq:16's exact cone when the light asks for it.
+            if (l.unit == "lm")
+                value = l.type == LightType::Point ? lights::pointIntensityFromLumens(l.intensity)
+                                                   : lights::spotIntensityFromLumens(l.intensity, l.outerAngle, l.exactCone);
+            // lst:4: the cone as a scale and offset of cos θ; a point light has none (0, 1).
+            lighting::AngleScaleOffset cone;
+            if (l.type == LightType::Spot) cone = lighting::spotAngleScaleOffset(l.innerAngle, l.outerAngle);
+            g.params = glm::vec4(cone.scale, cone.offset, 0.0f, 0.0f);
+            if (!l.ies.empty()) {
+                auto it = std::find(table.profilePaths.begin(), table.profilePaths.end(), l.ies);
+                if (it == table.profilePaths.end()) {
+                    if (table.profiles.size() >= kMaxIesProfiles)
+                        return fail(ErrorCode::InvalidInput, label + ": the scene uses more than " + std::to_string(kMaxIesProfiles) +
+                                                                 " different IES profiles");
+                    auto profile = loadIes(l.ies);
+                    if (!profile) return fail(profile.error().code, label + ": " + profile.error().message, profile.error().reasons);
+                    if (profile->maxCandela <= 0.0f)
+                        return fail(ErrorCode::InvalidInput, label + ": the IES profile '" + l.ies + "' sends no light (its largest candela value is 0)");
+                    table.profiles.push_back(bakeIes(*profile, kIesWidth, kIesHeight));
+                    table.profilePaths.push_back(l.ies);
+                    it = table.profilePaths.end() - 1;
+                }
+                const auto index = static_cast<size_t>(it - table.profilePaths.begin());
+                g.intensity.a = static_cast<float>(index);
+                // eq:27: I is either the profile's maximum candela or the user's intensity (mask).
+                if (!l.iesMode.empty() && l.iesMode != "mask" && l.iesMode != "intensity")
+                    return fail(ErrorCode::InvalidInput, label + ": ies_mode '" + l.iesMode + "' is not 'mask' or 'intensity'");
+                const bool profileIntensity = l.iesMode.empty() ? iesMode == IesMode::Intensity : l.iesMode == "intensity";
+                if (profileIntensity) value = table.profiles[index].maxCandela;
+                // lst:5's light space: z the nadir (the light's direction), x horizontal 0°.
+                g.axis = glm::vec4(perpendicularTo(direction, l.up), 0.0f);
+            }
+            break;
+        }
+        case LightType::Directional: {
+            type = GpuLightType::Sun;  // lux; lst:6 takes the disk's sin and cos
+            g.params = glm::vec4(0.0f, 0.0f, std::sin(l.sunAngularRadius), std::cos(l.sunAngularRadius));
+            break;
+        }
+        case LightType::Sphere:
+        case LightType::Disk:
+        case LightType::Rect:
+        case LightType::Tube: {
+            lighting::AreaLightShape shape;
+            if (l.type == LightType::Rect) {
+                if (!(l.width > 0.0f && l.height > 0.0f))
+                    return fail(ErrorCode::InvalidInput, label + ": width and height must be positive metres, got " +
+                                                             std::to_string(l.width) + " x " + std::to_string(l.height));
+                if (glm::length(glm::cross(l.up, direction)) < 1e-6f)
+                    return fail(ErrorCode::InvalidInput, label + ": up is parallel to the direction (or zero); the rect needs a height axis");
+                shape = {lighting::AreaShape::Rectangle, 0.0, 0.0, l.width, l.height};
+                type = GpuLightType::Rect;
+                g.params = glm::vec4(0.0f, 0.0f, 0.0f, l.width);
+                g.axis = glm::vec4(perpendicularTo(direction, l.up), l.height);
+            } else {
+                if (!(l.radius > 0.0f)) return fail(ErrorCode::InvalidInput, label + ": radius must be positive metres, got " + std::to_string(l.radius));
+                if (l.type == LightType::Tube && !(l.length > 0.0f))
+                    return fail(ErrorCode::InvalidInput, label + ": length must be positive metres, got " + std::to_string(l.length));
+                shape.shape = l.type == LightType::Sphere ? lighting::AreaShape::Sphere
+                              : l.type == LightType::Disk ? lighting::AreaShape::Disk
+                                                          : lighting::AreaShape::Tube;
+                shape.radius = l.radius;
+                shape.length = l.length;
+                type = l.type == LightType::Sphere ? GpuLightType::Sphere : l.type == LightType::Disk ? GpuLightType::Disk : GpuLightType::Tube;
+                // A disk's cone (lst:9): the spot's scale and offset, and in axis.w how far behind
+                // the disk its virtual apex lies (r / tan θ_outer); without one, scale 0, offset 1.
+                lighting::AngleScaleOffset cone;
+                if (l.type == LightType::Disk && l.cone) {
+                    cone = lighting::spotAngleScaleOffset(l.innerAngle, l.outerAngle);
+                    g.axis = glm::vec4(0.0f, 0.0f, 0.0f, l.radius / std::tan(std::clamp(l.outerAngle, 1e-3f, 1.5707f)));
+                }
+                g.params = glm::vec4(cone.scale, cone.offset, l.radius, l.type == LightType::Tube ? l.length : 0.0f);
+            }
+            const lighting::AreaUnit unit = l.unit == "lm"     ? lighting::AreaUnit::Lumens
+                                            : l.unit == "nits" ? lighting::AreaUnit::Nits
+                                                               : lighting::AreaUnit::Ev100;
+            value = lighting::areaLightLuminance(shape, l.intensity, unit);  // tbl:12, eq:12: cd/m²
+            break;
+        }
+        }
+        g.positionType.w = static_cast<float>(type);
+        const glm::vec3 rgb = color * static_cast<float>(value);
+        g.intensity = glm::vec4(rgb, g.intensity.a);
+        if (!std::isfinite(rgb.r) || !std::isfinite(rgb.g) || !std::isfinite(rgb.b))
+            return fail(ErrorCode::InvalidInput, label + ": intensity " + std::to_string(l.intensity) + " " + l.unit + " is not a finite value on the GPU");
+        table.lights.push_back(g);
+    }
+    return table;
+}
+
+uint32_t shadowViewsNeeded(const Light& l) {
+    if (!l.castShadows || l.type == LightType::Directional) return 0;
+    return l.type == LightType::Spot && l.outerAngle <= glm::radians(60.0f) ? 1 : 6;
+}
+
+uint32_t shadowViewCapacity(const Scene& scene) {
+    uint32_t views = 0;
+    for (size_t i = 0; i < scene.lights.size() && i < kMaxLights; ++i) {
+        const uint32_t count = shadowViewsNeeded(scene.lights[i]);
+        if (views + count <= kMaxShadowViews) views += count;
+    }
+    return views;
+}
+
+std::pair<uint32_t, uint32_t> GpuScene::shadowViewsOf(size_t light) const {
+    if (light >= m_lightViews.size() || m_lightViews[light].y == 0) return {0, 0};
+    return {static_cast<uint32_t>(m_lightViews[light].x), static_cast<uint32_t>(m_lightViews[light].y)};
+}
+
+void GpuScene::updateShadowViews(uint32_t slot, const glm::mat4& cameraViewProj) {
+    m_shadowViewDraws.clear();
+    m_lightViews.assign(kMaxLights, glm::ivec4(-1, 0, 0, 0));
+    std::vector<GpuShadowView> views;
+    const auto camera = frustumPlanes(cameraViewProj);
+    // A light without a range reaches as far as the scene goes.
+    const float sceneSize = glm::length(m_scene.boundsMax - m_scene.boundsMin);
+    const float nearPlane = 0.05f;
+    for (size_t i = 0; i < m_scene.lights.size() && i < kMaxLights; ++i) {
+        const Light& l = m_scene.lights[i];
+        const uint32_t count = shadowViewsNeeded(l);
+        if (count == 0) continue;
+        const float far = l.range > 0.0f ? l.range : std::max(sceneSize, 1.0f) * 2.0f;
+        if (!sphereMeetsFrustum(camera, l.position, far)) continue;  // its light does not reach the view
+        const bool single = count == 1;
+        if (views.size() + count > kMaxShadowViews) continue;
+        // A cube's faces see a little past 90° so that filter taps near a face's edge stay on
+        // its map (16 texels of a 1024 map); a spot's view covers its outer cone.
+        const float tanHalf = single ? std::tan(std::min(l.outerAngle + glm::radians(2.0f), glm::radians(75.0f))) : 1.0f / (1.0f - 32.0f / 1024.0f);
+        const glm::mat4 proj = glm::perspectiveRH_ZO(2.0f * std::atan(tanHalf), 1.0f, nearPlane, far);
+        static const glm::vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
+        static const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+        m_lightViews[i] = glm::ivec4(static_cast<int>(views.size()), static_cast<int>(count), 0, 0);
+        const float radius = std::max({l.radius, 0.5f * std::max(l.width, l.height), 0.5f * l.length});
+        for (uint32_t f = 0; f < count; ++f) {
+            const glm::vec3 axis = single ? l.direction : axes[f];
+            const glm::vec3 up = single ? (std::abs(axis.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0)) : ups[f];
+            GpuShadowView v;
+            v.viewProj = proj * glm::lookAt(l.position, l.position + axis, up);
+            v.position = glm::vec4(l.position, nearPlane);
+            v.params = glm::vec4(far, tanHalf, radius, static_cast<float>(i));
+            views.push_back(v);
+            // The casters this view sees.
+            const auto planes = frustumPlanes(v.viewProj);
+            std::vector<size_t> draws;
+            for (size_t d = 0; d < m_draws.size(); ++d)
+                if (m_draws[d].castsShadows && boxMeetsFrustum(planes, m_draws[d].boundsMin, m_draws[d].boundsMax))
+                    draws.push_back(d);
+            m_shadowViewDraws.push_back(std::move(draws));
+        }
+    }
+    auto* p = static_cast<uint8_t*>(m_shadowViewBuffers[slot].mapped());
+    const glm::uvec4 header(static_cast<uint32_t>(views.size()), 0, 0, 0);
+    std::memcpy(p, &header, sizeof header);
+    if (!views.empty()) std::memcpy(p + 16, views.data(), views.size() * sizeof(GpuShadowView));
+    std::memcpy(p + 16 + size_t(kMaxShadowViews) * sizeof(GpuShadowView), m_lightViews.data(), m_lightViews.size() * sizeof(glm::ivec4));
+}
+
+}  // namespace rg::passes
