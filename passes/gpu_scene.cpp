@@ -35,12 +35,18 @@ struct CameraUniforms {
 
 GpuScene::~GpuScene() = default;
 
+std::optional<uint32_t> GpuScene::layerExtent(const std::string& name) const {
+    if (name == kShadowViewsExtent) return m_shadowViewCapacity;
+    return std::nullopt;
+}
+
 Result<std::unique_ptr<GpuScene>> GpuScene::create(Context& ctx, Scene scene, const GpuSceneOptions& options) {
     static std::atomic<uint64_t> ids{0};
     std::unique_ptr<GpuScene> s(new GpuScene());
     s->m_id = ++ids;
     s->m_ctx = &ctx;
     s->m_scene = std::move(scene);
+    s->m_shadowViewCapacity = shadowViewCapacity(s->m_scene);
     if (s->m_scene.cameras.empty()) return fail(ErrorCode::InvalidInput, "the scene has no camera");
     if (s->m_scene.materials.empty()) s->m_scene.materials.push_back(Material{});
     const char* lodEnv = std::getenv("RG_LOD");

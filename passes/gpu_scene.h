@@ -19,12 +19,25 @@
 
 #include "core/hash.h"
 #include "gpu/context.h"
+#include "gpu/pass_kind.h"
 #include "gpu/resources.h"
 #include "lighting/ies.h"
+#include "lighting/light_table.h"
 #include "scene/environment.h"
 #include "scene/scene.h"
 
 namespace rg::passes {
+
+// The light table (graph/lighting/light_table.h) by the names this room uses.
+using lighting::convertLights;
+using lighting::GpuLight;
+using lighting::GpuLightTable;
+using lighting::GpuLightType;
+using lighting::IesMode;
+using lighting::kIesHeight;
+using lighting::kIesWidth;
+using lighting::kMaxIesProfiles;
+using lighting::kMaxLights;
 
 // One level of detail of a draw: its index range and how far its surface lies from the full one
 // (world metres).
@@ -53,7 +66,7 @@ struct DrawItem {
 
 // The shadow views of the scene's local lights (lib/shadows.glsl's ShadowViews block): how many
 // views a frame can have, and one view as the GPU reads it.
-inline constexpr uint32_t kMaxShadowViews = 48;
+inline constexpr uint32_t kMaxShadowViews = RG_MAX_SHADOW_VIEWS;  // shaders/lib/limits.h
 struct GpuShadowView {
     glm::mat4 viewProj;   // world → the view's clip space (perspective, depth 0..1)
     glm::vec4 position;   // xyz: the light's position; w: the near plane (m)
@@ -67,42 +80,12 @@ uint32_t shadowViewsNeeded(const Light& light);
 // resource is given (Executor::build).
 uint32_t shadowViewCapacity(const Scene& scene);
 
-// Binding slots of the scene's camera and lights in set 0 (shaders/lib/scene.glsl).
-inline constexpr uint32_t kCameraBinding = 15;
-inline constexpr uint32_t kLightsBinding = 14;
-// The Lights block's fixed light array (scene.glsl's RG_MAX_LIGHTS, the same number).
-inline constexpr uint32_t kMaxLights = 1024;
-// IES profiles are baked at this size (bakeIes' θ × cos φ texels, seed 000 lst:5), each 256 KiB
-// in every frame slot's light buffer; a scene may use this many different profile files.
-inline constexpr uint32_t kIesWidth = 256, kIesHeight = 256;
-inline constexpr uint32_t kMaxIesProfiles = 16;
-
-// One light as scene.glsl's RgLight (std430: five vec4; see there for every field).
-struct GpuLight {
-    glm::vec4 positionType{0.0f};
-    glm::vec4 directionRange{0.0f};
-    glm::vec4 intensity{0.0f};  // rgb: colour × cd / lux / cd/m²; a: IES profile, -1 for none
-    glm::vec4 params{0.0f};
-    glm::vec4 axis{0.0f};
-};
-static_assert(sizeof(GpuLight) == 80, "GpuLight must match RgLight's std430 layout");
 // The lights the `LightsWindow` uniform block holds (lib/lighting.glsl RG_LIGHTS_WINDOW): the head
 // of each Lights buffer again, its 16-byte header and 204 lights — within the 16 KiB
 // maxUniformBufferRange every Vulkan device has.
 inline constexpr uint32_t kLightsWindow = 204;
 inline constexpr VkDeviceSize kLightsWindowBytes = 16 + VkDeviceSize(kLightsWindow) * sizeof(GpuLight);
 static_assert(kLightsWindowBytes <= 16384, "the lights' uniform window must fit the smallest maxUniformBufferRange");
-
-// scene.glsl's RG_LIGHT_* codes (GpuLight::positionType.w).
-enum class GpuLightType : uint8_t { Point = 0, Spot = 1, Sun = 2, Sphere = 3, Disk = 4, Rect = 5, Tube = 6 };
-
-// How an IES profile sets a point or spot light's intensity (seed 000 §4.5, eq:27, lst:5): the
-// scene's default, for lights whose Light::iesMode is empty.
-enum class IesMode {
-    Mask,       // the declared intensity (lm → cd as without a profile, or cd) × I / I_max: the
-                // profile only shapes the light (the default; lst:5's "mask")
-    Intensity,  // the profile's own candela: I_max × I / I_max; the declared intensity is ignored
-};
 
 struct GpuSceneOptions {
     IesMode iesMode = IesMode::Mask;
@@ -111,39 +94,18 @@ struct GpuSceneOptions {
     bool levelsOfDetail = true;
 };
 
-// The scene's lights as the shaders take them, converted once (what GpuScene uploads).
-struct GpuLightTable {
-    std::vector<GpuLight> lights;        // in the scene's order
-    std::vector<IesTexture> profiles;    // one per distinct IES file, kIesWidth × kIesHeight
-    std::vector<std::string> profilePaths;
-};
-
-// Converts lights to GpuLights (graph/lighting and graph/core/light_units do the arithmetic):
-// - point, spot: cd; lm → cd by tbl:9 — Φ / 4π, and for spots Frostbite's eq:17, Φ / π (the cone
-//   does not change the brightness), or eq:16's exact cone with Light::exactCone. The cone's angle
-//   scale and offset of lst:4. With an IES profile (Light::ies: loaded with loadIes, baked with
-//   bakeIes), Light::iesMode or else the scene's IesMode; its light space has +z along Light::direction (the profile's nadir)
-//   and +x along Light::up made perpendicular to it (horizontal angle 0°) — when they are
-//   parallel, as for a light pointing straight down with the default up, +x is direction ×
-//   (1, 0, 0): +z for a light pointing down.
-// - sun: lux perpendicular to its rays; sin and cos of its angular radius (lst:6).
-// - sphere, disk, rect, tube: luminance in cd/m² from lm (tbl:12), nits or EV100 (eq:12) by
-//   lighting::areaLightLuminance. A rect's up is made perpendicular to its direction. A disk with
-//   a cone (Light::cone, lst:9) gets the spot's angle scale and offset in params.xy and the
-//   distance from its centre back to the cone's apex in axis.w; range windows every local light by
-//   the distance to its centre (lst:4).
-// Colour temperature multiplies the colour (tbl:4). Errors name the light: a unit its type cannot
-// have, a size that is not positive, an IES file that does not load, more than kMaxLights lights
-// or kMaxIesProfiles profiles.
-Result<GpuLightTable> convertLights(const std::vector<Light>& lights, IesMode iesMode = IesMode::Mask);
-
-class GpuScene {
+// The scene on the GPU, as the executor and the pass kinds see it (gpu::SceneBinding): its one
+// named extent is "shadow_views" (shadowViewCapacity).
+class GpuScene final : public gpu::SceneBinding {
 public:
     static Result<std::unique_ptr<GpuScene>> create(gpu::Context& ctx, Scene scene, const GpuSceneOptions& options = {});
-    ~GpuScene();
+    ~GpuScene() override;
     // A number no other scene of the process has had: what the executor tells scenes apart by
     // (an address can be a freed scene's).
-    uint64_t id() const { return m_id; }
+    uint64_t id() const override { return m_id; }
+    std::optional<uint32_t> layerExtent(const std::string& name) const override;
+    std::vector<std::string> extentNames() const override { return {kShadowViewsExtent}; }
+    static constexpr const char* kShadowViewsExtent = "shadow_views";
 
     const Scene& scene() const { return m_scene; }
     const std::vector<DrawItem>& draws() const { return m_draws; }
@@ -173,7 +135,7 @@ public:
     // images and samplers, materials, the environment and lightmap (hashed as uploaded), and the
     // slot's camera, lights, shadow views, decals and probes — what the disk cache of
     // once-per-build outputs (Executor::setOnceCache) keys a scene by.
-    uint64_t contentHash(uint32_t slot) const;
+    uint64_t contentHash(uint32_t slot) const override;
     VkBuffer cameraBuffer(uint32_t slot) const { return m_cameraBuffers[slot].buffer(); }
     VkBuffer lightBuffer(uint32_t slot) const { return m_lightBuffers[slot].buffer(); }
     // Which area-light model the light loop evaluates (lib/scene.glsl's Lights.count.y): 0 Frostbite's
@@ -237,6 +199,7 @@ public:
 
 private:
     uint64_t m_id = 0;
+    uint32_t m_shadowViewCapacity = 0;  // layerExtent("shadow_views")
     GpuScene() = default;
     Result<void> uploadGeometry(gpu::Context& ctx);
     Result<void> uploadImages(gpu::Context& ctx);
@@ -284,5 +247,10 @@ private:
     size_t m_camera = 0;
     std::optional<glm::mat4> m_previousViewProj;  // the last frame's camera (Camera.previousViewProj)
 };
+
+// The scene a pass of this room draws: the executor's scene binding, which is a GpuScene.
+inline const GpuScene* sceneOf(const gpu::SceneBinding* scene) { return static_cast<const GpuScene*>(scene); }
+inline const GpuScene* sceneOf(const gpu::PassSetup& setup) { return sceneOf(setup.scene); }
+inline const GpuScene* sceneOf(const gpu::RecordContext& ctx) { return sceneOf(ctx.scene); }
 
 }  // namespace rg::passes

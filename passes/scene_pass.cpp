@@ -71,9 +71,9 @@ Result<void> ScenePass::prepare(PassSetup& setup) {
         // One shader per material that has blended draws (and per set of textures); the draws
         // are sorted back to front across them when recorded.
         for (const MaterialInfo& info : materialsOf(desc)) {
-            auto variants = drawsByTextures(*setup.scene, [&](const Material& m) { return m.model == info.name && m.alphaMode == AlphaMode::Blend; });
+            auto variants = drawsByTextures(*sceneOf(setup), [&](const Material& m) { return m.model == info.name && m.alphaMode == AlphaMode::Blend; });
             if (variants.empty()) continue;
-            const Material& example = setup.scene->scene().materials[setup.scene->draws()[variants.begin()->second.front()].material];
+            const Material& example = sceneOf(setup)->scene().materials[sceneOf(setup)->draws()[variants.begin()->second.front()].material];
             const std::string who = "scene material '" + example.name + "' is blended, so the forward pass shades it with material '" + info.name +
                                     "' (" + info.origin + "), ";
             if (!info.fixup.empty())
@@ -94,7 +94,7 @@ Result<void> ScenePass::prepare(PassSetup& setup) {
                 return fail(ErrorCode::InvalidInput, passPrefix(desc) + "material '" + info.name + "' writes layout '" + info.layout +
                                                          "' target '" + t + "', which the pass does not write");
         // The scene's draws of this material, one shader variant per set of textures.
-        auto variants = drawsByTextures(*setup.scene, [&](const Material& m) { return m.model == info.name && m.alphaMode != AlphaMode::Blend; });
+        auto variants = drawsByTextures(*sceneOf(setup), [&](const Material& m) { return m.model == info.name && m.alphaMode != AlphaMode::Blend; });
         if (variants.empty()) variants[kTextureBits | kAlphaMaskVariant];  // no draws: still compiled, so a broken material fails at load
         for (auto& [mask, draws] : variants)
             if (auto r = addGroup(setup, info, fragmentSource(info, attachments), "material_" + info.name + ".frag", mask, std::move(draws), attachments); !r)
@@ -140,13 +140,13 @@ void ScenePass::record(RecordContext& rc) {
     // from the eye to their boxes, so the depth test rejects hidden fragments before they are
     // shaded. Blended draws: back to front across every group (by the distance of their
     // origin to the camera), switching shaders as needed.
-    const glm::vec3 eye = rc.scene->camera().position;
+    const glm::vec3 eye = sceneOf(rc)->camera().position;
     std::vector<std::pair<size_t, size_t>> order;
-    std::vector<float> distance(rc.scene->draws().size(), 0.0f);
+    std::vector<float> distance(sceneOf(rc)->draws().size(), 0.0f);
     for (size_t gi = 0; gi < m_groups.size(); ++gi)
         for (size_t i : m_groups[gi].draws) {
-            if (!rc.scene->drawInView(i)) continue;
-            const DrawItem& item = rc.scene->draws()[i];
+            if (!sceneOf(rc)->drawInView(i)) continue;
+            const DrawItem& item = sceneOf(rc)->draws()[i];
             distance[i] = m_forward ? glm::distance(glm::vec3(item.world[3]), eye)
                                     : glm::distance(glm::clamp(eye, item.boundsMin, item.boundsMax), eye);
             order.emplace_back(gi, i);
@@ -164,9 +164,9 @@ void ScenePass::record(RecordContext& rc) {
             vkCmdSetStencilReference(rc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, g.info.stencilValue);  // unused when forward
             bound = gi;
         }
-        const DrawItem& item = rc.scene->draws()[i];
-        const Material& m = rc.scene->scene().materials[item.material];
-        VkDescriptorSet set = rc.scene->materialSet(item.material);
+        const DrawItem& item = sceneOf(rc)->draws()[i];
+        const Material& m = sceneOf(rc)->scene().materials[item.material];
+        VkDescriptorSet set = sceneOf(rc)->materialSet(item.material);
         vkCmdBindDescriptorSets(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.program->layout(), 1, 1, &set, 0, nullptr);
         vkCmdSetCullMode(rc.cmd, m.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT);
         // scene.vert's Draw: world, the normal matrix's three columns, the lightmap rect.
@@ -175,7 +175,7 @@ void ScenePass::record(RecordContext& rc) {
         vkCmdPushConstants(rc.cmd, g.program->layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                            sizeof push, push);
         // The level of detail for the camera (GpuScene::viewLod: at most a pixel of error).
-        const DrawLod& lod = rc.scene->viewLod(i);
+        const DrawLod& lod = sceneOf(rc)->viewLod(i);
         vkCmdDrawIndexed(rc.cmd, lod.indexCount, 1, lod.firstIndex, item.vertexOffset, 0);
     }
     vkCmdEndRendering(rc.cmd);
@@ -195,9 +195,9 @@ void ScenePass::bindViewAndGeometry(RecordContext& rc) const {
     vkCmdSetViewport(rc.cmd, 0, 1, &vp);
     vkCmdSetScissor(rc.cmd, 0, 1, &sc);
     VkDeviceSize offset = 0;
-    VkBuffer vb = rc.scene->vertexBuffer();
+    VkBuffer vb = sceneOf(rc)->vertexBuffer();
     vkCmdBindVertexBuffers(rc.cmd, 0, 1, &vb, &offset);
-    vkCmdBindIndexBuffer(rc.cmd, rc.scene->indexBuffer(), 0, VK_INDEX_TYPE_UINT32);
+    vkCmdBindIndexBuffer(rc.cmd, sceneOf(rc)->indexBuffer(), 0, VK_INDEX_TYPE_UINT32);
 }
 
 // Begins rendering into one layer: `color` (if any) and `depth` cleared (colour to 0, depth to
@@ -244,7 +244,7 @@ Result<void> ScenePass::addGroup(PassSetup& setup, const MaterialInfo& info, con
     frag.defines.emplace_back("RG_TEXTURES", std::to_string(textures & kTextureBits));
     frag.defines.emplace_back("RG_ALPHA_MASK", (textures & kAlphaMaskVariant) ? "1" : "0");
     g.program = std::make_unique<ShaderProgram>();
-    if (auto r = g.program->build(setup, {vert, frag}, {{1u, setup.scene->materialSetLayout()}}); !r) return r;
+    if (auto r = g.program->build(setup, {vert, frag}, {{1u, sceneOf(setup)->materialSetLayout()}}); !r) return r;
     if (auto r = createPipeline(setup, g, attachments); !r) return r;
     g.draws = std::move(draws);
     m_groups.push_back(std::move(g));

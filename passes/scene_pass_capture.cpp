@@ -65,7 +65,7 @@ Result<void> ScenePass::prepareCapture(PassSetup& setup, const std::vector<std::
         return std::any_of(materials.begin(), materials.end(), [&](auto& i) { return i.name == m.model; });
     };
     for (const MaterialInfo& info : materials) {
-        auto variants = drawsByTextures(*setup.scene, [&](const Material& m) { return m.alphaMode != AlphaMode::Blend && m.model == info.name; });
+        auto variants = drawsByTextures(*sceneOf(setup), [&](const Material& m) { return m.alphaMode != AlphaMode::Blend && m.model == info.name; });
         for (auto& [mask, draws] : variants) {
             ShaderRequest frag;
             frag.source = captureSource(info);
@@ -74,7 +74,7 @@ Result<void> ScenePass::prepareCapture(PassSetup& setup, const std::vector<std::
             if (auto r = addGroup(setup, info, vertex, std::move(frag), mask, std::move(draws), attachments); !r) return r;
         }
     }
-    auto variants = drawsByTextures(*setup.scene, [&](const Material& m) { return m.alphaMode != AlphaMode::Blend && !own(m); });
+    auto variants = drawsByTextures(*sceneOf(setup), [&](const Material& m) { return m.alphaMode != AlphaMode::Blend && !own(m); });
     if (variants.empty() && m_groups.empty()) variants[31u];
     for (auto& [mask, draws] : variants) {
         MaterialInfo info;
@@ -89,11 +89,11 @@ Result<void> ScenePass::prepareCapture(PassSetup& setup, const std::vector<std::
 void ScenePass::recordCapture(RecordContext& rc) {
     const PhysicalResource* c = rc.resources.find(m_colors.front().resource);
     const PhysicalResource* d = rc.resources.find(m_depth->resource);
-    const uint32_t layers = std::min<uint32_t>(m_layers, 6u * static_cast<uint32_t>(rc.scene->probeOrder().size()));
-    const auto& probes = rc.scene->scene().probes;
-    const auto& order = rc.scene->probeOrder();
+    const uint32_t layers = std::min<uint32_t>(m_layers, 6u * static_cast<uint32_t>(sceneOf(rc)->probeOrder().size()));
+    const auto& probes = sceneOf(rc)->scene().probes;
+    const auto& order = sceneOf(rc)->probeOrder();
     std::vector<std::pair<size_t, size_t>> drawOrder;  // (group, draw)
-    std::vector<float> distance(rc.scene->draws().size(), 0.0f);
+    std::vector<float> distance(sceneOf(rc)->draws().size(), 0.0f);
     for (uint32_t layer = 0; layer < layers; ++layer) {
         // Cleared to (0, 0, 0, 0): where nothing is drawn, the distant probe shows.
         beginLayer(rc, c->image->layerView(layer), d->image->layerView(layer), VK_ATTACHMENT_STORE_OP_DONT_CARE);
@@ -105,7 +105,7 @@ void ScenePass::recordCapture(RecordContext& rc) {
         drawOrder.clear();
         for (size_t gi = 0; gi < m_groups.size(); ++gi)
             for (size_t i : m_groups[gi].draws) {
-                const DrawItem& item = rc.scene->draws()[i];
+                const DrawItem& item = sceneOf(rc)->draws()[i];
                 if (!boxInCubeFace(item.boundsMin, item.boundsMax, eye, layer % 6)) continue;  // beside this face
                 distance[i] = glm::distance(glm::clamp(eye, item.boundsMin, item.boundsMax), eye);
                 drawOrder.emplace_back(gi, i);
@@ -121,8 +121,8 @@ void ScenePass::recordCapture(RecordContext& rc) {
                 vkCmdSetCullMode(rc.cmd, VK_CULL_MODE_NONE);  // the faces' projections do not keep one winding
                 bound = gi;
             }
-            const DrawItem& item = rc.scene->draws()[i];
-            VkDescriptorSet set = rc.scene->materialSet(item.material);
+            const DrawItem& item = sceneOf(rc)->draws()[i];
+            VkDescriptorSet set = sceneOf(rc)->materialSet(item.material);
             vkCmdBindDescriptorSets(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.program->layout(), 1, 1, &set, 0, nullptr);
             struct { glm::mat4 world; glm::vec4 layer; } push{item.world, glm::vec4(static_cast<float>(layer))};
             vkCmdPushConstants(rc.cmd, g.program->layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,

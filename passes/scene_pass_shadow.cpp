@@ -116,8 +116,8 @@ Result<void> ScenePass::prepareShadow(PassSetup& setup) {
     auto pipeline = createGraphicsPipeline(setup.gpu, d);
     if (!pipeline) return std::unexpected(pipeline.error());
     g.pipeline = std::move(*pipeline);
-    for (size_t d = 0; d < setup.scene->draws().size(); ++d)
-        if (setup.scene->draws()[d].castsShadows) g.draws.push_back(d);
+    for (size_t d = 0; d < sceneOf(setup)->draws().size(); ++d)
+        if (sceneOf(setup)->draws()[d].castsShadows) g.draws.push_back(d);
     m_groups.push_back(std::move(g));
     return {};
 }
@@ -128,7 +128,7 @@ void ScenePass::recordShadow(RecordContext& rc) {
     // views = "lights": the scene's shadow views this frame (GpuScene::updateFrame), each with
     // the casters its frustum meets; layers past them are neither cleared nor drawn (no
     // light reads them).
-    const uint32_t layers = m_lightViews ? std::min(m_layers, rc.scene->shadowViewCount()) : m_layers;
+    const uint32_t layers = m_lightViews ? std::min(m_layers, sceneOf(rc)->shadowViewCount()) : m_layers;
     const PhysicalResource* indirect = m_indirect.empty() ? nullptr : rc.resources.find(m_indirect);
     const VkDeviceSize slots = indirect ? indirect->plan->bufferSize / kIndirectCommandBytes / std::max(m_viewCount, 1u) : 0;
     for (uint32_t layer = 0; layer < layers; ++layer) {
@@ -136,9 +136,9 @@ void ScenePass::recordShadow(RecordContext& rc) {
         beginLayer(rc, VK_NULL_HANDLE, d->image->layerView(layer), VK_ATTACHMENT_STORE_OP_STORE);
         vkCmdBindPipeline(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.pipeline.get());
         g.program->bind(rc, VK_PIPELINE_BIND_POINT_GRAPHICS);
-        for (size_t i : m_lightViews ? rc.scene->shadowViewDraws(layer) : g.draws) {
-            const DrawItem& item = rc.scene->draws()[i];
-            vkCmdSetCullMode(rc.cmd, rc.scene->scene().materials[item.material].doubleSided ? VkCullModeFlags(VK_CULL_MODE_NONE) : m_shadowCull);
+        for (size_t i : m_lightViews ? sceneOf(rc)->shadowViewDraws(layer) : g.draws) {
+            const DrawItem& item = sceneOf(rc)->draws()[i];
+            vkCmdSetCullMode(rc.cmd, sceneOf(rc)->scene().materials[item.material].doubleSided ? VkCullModeFlags(VK_CULL_MODE_NONE) : m_shadowCull);
             struct { glm::mat4 world; glm::vec4 layer; } push{item.world, glm::vec4(static_cast<float>(view))};
             vkCmdPushConstants(rc.cmd, g.program->layout(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof push, &push);
             if (indirect && i < slots) {
@@ -147,7 +147,7 @@ void ScenePass::recordShadow(RecordContext& rc) {
             } else {
                 // The camera's level of detail: a caster finer than its receiver (the G-buffer's
                 // surface) would stand in front of it by up to the coarser one's error.
-                const DrawLod& lod = rc.scene->viewLod(i);
+                const DrawLod& lod = sceneOf(rc)->viewLod(i);
                 vkCmdDrawIndexed(rc.cmd, lod.indexCount, 1, lod.firstIndex, item.vertexOffset, 0);
             }
         }

@@ -140,8 +140,8 @@ Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> s
         // ~12.6 ms of lighting_standard at 1280×720 on lavapipe).
         std::string globalIndices, globalTypes;
         uint32_t globalCount = 0, tileTypes = 0;
-        const auto& lights = setup.scene->scene().lights;
-        const float diagonal = glm::length(setup.scene->scene().boundsMax - setup.scene->scene().boundsMin);
+        const auto& lights = sceneOf(setup)->scene().lights;
+        const float diagonal = glm::length(sceneOf(setup)->scene().boundsMax - sceneOf(setup)->scene().boundsMin);
         const bool unrollAll = lights.size() <= kMaxUnrolledGlobalLights &&
                                std::all_of(lights.begin(), lights.end(), [&](const Light& l) {
                                    return l.type == LightType::Directional || !(l.range > 0.0f) || l.range >= 0.25f * diagonal;
@@ -170,16 +170,16 @@ Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> s
         defines.emplace_back("RG_SCENE_IES", ies ? "1" : "0");
         // RG_SCENE_PROBES: how many local light probes the scene has (lib/ibl.glsl's composition
         // loops that many times at most: none compiles no loop at all).
-        defines.emplace_back("RG_SCENE_PROBES", std::to_string(std::min(setup.scene->scene().probes.size(), kMaxProbes)));
+        defines.emplace_back("RG_SCENE_PROBES", std::to_string(std::min(sceneOf(setup)->scene().probes.size(), kMaxProbes)));
         // RG_SCENE_PROBE_SHAPES: which shapes its probes have (1 sphere, 2 box, 3 both): a scene of
         // one shape compiles only that shape's influence and parallax (lib/probes.glsl).
         int probeShapes = 0;
-        for (const Probe& probe : setup.scene->scene().probes) probeShapes |= probe.box ? 2 : 1;
+        for (const Probe& probe : sceneOf(setup)->scene().probes) probeShapes |= probe.box ? 2 : 1;
         if (probeShapes) defines.emplace_back("RG_SCENE_PROBE_SHAPES", std::to_string(probeShapes));
         if (shadowed) defines.emplace_back("RG_SCENE_SHADOWED_LIGHTS", std::to_string(shadowed));
         // RG_SCENE_LIGHTMAP: the scene has a baked SG lightmap (lib/lightmap.glsl): the G-buffer
         // pass adds its radiosity, the distant probe's diffuse light is left out (the lightmap holds it).
-        if (const Lightmap* lm = setup.scene->scene().bakedLightmap.get()) {
+        if (const Lightmap* lm = sceneOf(setup)->scene().bakedLightmap.get()) {
             auto number = [](double v) {
                 char buf[32];
                 std::snprintf(buf, sizeof buf, "%.9g", v);
@@ -362,13 +362,13 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
                 return fail(ErrorCode::InvalidInput, passPrefix(desc) + "shader binding '" + b.name +
                                                          "' is the scene's, but no scene is loaded (give --scene)");
             if (b.type != DescriptorType::CombinedImageSampler) {
-                if (auto buffer = setup.scene->makeBindingBuffer(b.name, 0); !buffer)
+                if (auto buffer = sceneOf(setup)->makeBindingBuffer(b.name, 0); !buffer)
                     return fail(ErrorCode::Device, passPrefix(desc) + "could not make the scene's '" + b.name +
                                                        "' buffer: " + buffer.error().message);
             }
             // A pass that traces the scene's triangles every frame (the reference mode) starts its
             // rays on the G-buffer's surfaces: those must be the traced ones, the full meshes.
-            if (b.name == "SceneBvh" && desc.params["cadence"].asString() != "once") setup.scene->drawFullMeshes();
+            if (b.name == "SceneBvh" && desc.params["cadence"].asString() != "once") sceneOf(setup)->drawFullMeshes();
             sceneBindings.push_back(&b);
             continue;
         }
@@ -465,9 +465,9 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
         for (const ReflectedBinding* b : sceneBindings) {
             if (b->type == DescriptorType::CombinedImageSampler) {  // SceneEnvironment, SceneLightmap
                 if (b->name == "SceneLightmap")
-                    images.push_back({m_linear.get(), setup.scene->lightmapView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+                    images.push_back({m_linear.get(), sceneOf(setup)->lightmapView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
                 else
-                    images.push_back({setup.scene->environmentSampler(), setup.scene->environmentView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+                    images.push_back({sceneOf(setup)->environmentSampler(), sceneOf(setup)->environmentView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
                 VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
                 w.dstSet = m_sets[s][b->set];
                 w.dstBinding = b->binding;
@@ -477,7 +477,7 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
                 writes.push_back(w);
                 continue;
             }
-            buffers.push_back({setup.scene->bindingBuffer(b->name, s / m_variants), 0, GpuScene::bindingRange(b->name)});
+            buffers.push_back({sceneOf(setup)->bindingBuffer(b->name, s / m_variants), 0, GpuScene::bindingRange(b->name)});
             VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
             w.dstSet = m_sets[s][b->set];
             w.dstBinding = b->binding;

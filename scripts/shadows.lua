@@ -20,7 +20,7 @@
 -- when the scene has no sun or `sun_shadows` is off.
 --
 -- Local lights declared with `shadow = true` in the scene get shadow views each frame their range
--- reaches the view (passes/gpu_scene.cpp: one perspective view for a spot of outer angle ≤ 60°, a
+-- reaches the view (passes/gpu_scene_lights.cpp: one perspective view for a spot of outer angle ≤ 60°, a
 -- cube of six otherwise, each with the casters its frustum meets); `shadow_local` (the `scene`
 -- kind, shadow = true, views = "lights") draws them into the layers of `local_shadow`, and the
 -- light loop of a `shadows.lit` pass filters them as it does the sun's, with the penumbra of the

@@ -118,7 +118,7 @@ rg::Scene toScene(const Scene& in) {
     for (size_t i = 0; i < in.lights.size(); ++i) {
         const Light& l = in.lights[i];
         // Units, sizes and intensities are checked where every scene's lights become the GPU's
-        // (passes/gpu_scene.cpp convertLights, seed 000 tbl:8).
+        // (graph/lighting/light_table.cpp convertLights, seed 000 tbl:8).
         rg::Light r;
         r.name = "light" + std::to_string(i);
         r.type = kTypes[static_cast<int>(l.type)];

@@ -25,13 +25,13 @@
 #include "bake/lightmap.h"
 #include "lighting/punctual.h"
 #include "lighting/sg.h"
-#include "passes/gpu_scene.h"
+#include "lighting/light_table.h"
 #include "scene/environment.h"
 
 namespace rg::bake {
 
-using passes::GpuLight;
-using passes::GpuLightType;
+using lighting::GpuLight;
+using lighting::GpuLightType;
 
 namespace {
 
@@ -412,7 +412,7 @@ Result<Lightmap> bakeLightmap(const Scene& scene, const LightmapAtlas& atlas, co
     for (const Light& l : scene.lights)
         if (l.baked && !l.ies.empty())
             return fail(ErrorCode::InvalidInput, "light '" + l.name + "': a light with an IES profile cannot be baked (the baker does not shape light by profiles); leave it dynamic");
-    auto table = passes::convertLights(scene.lights);
+    auto table = lighting::convertLights(scene.lights);
     if (!table) return std::unexpected(table.error());
     std::vector<GpuLight> allLights = table->lights, bakedLights;
     for (size_t i = 0; i < scene.lights.size(); ++i)

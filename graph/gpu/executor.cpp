@@ -124,14 +124,23 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
         if (auto r = createSlots(); !r) return r;
     GraphDesc graph = graphIn;
     if (auto r = resolveKinds(graph); !r) return r;
-    // Resources the scene sizes: a shadow-view array gets the layers the scene's shadowed local
-    // lights can use (at most those declared); a scene without any gets one 1×1 layer, not the
-    // declared capacity (24 MiB at 1024² × 6 in d32f).
+    // Resources the scene sizes (scene_layers = NAME): the layers the scene's extent NAME says,
+    // at most those declared — e.g. a shadow-view array gets the views its shadowed local lights
+    // can use; an extent of 0 gets one 1×1 layer, not the declared capacity (24 MiB at 1024² × 6
+    // in d32f).
     if (m_scene)
         for (ResourceDesc& r : graph.resources) {
-            if (r.kind != ResourceKind::Texture || r.texture.sceneLayers != "shadow_views") continue;
-            r.texture.layers = std::clamp(m_sceneShadowViews, 1u, r.texture.layers);
-            if (m_sceneShadowViews == 0) {
+            if (r.kind != ResourceKind::Texture || r.texture.sceneLayers.empty()) continue;
+            const std::optional<uint32_t> extent = m_scene->layerExtent(r.texture.sceneLayers);
+            if (!extent) {
+                std::string names;
+                for (const auto& n : m_scene->extentNames()) names += (names.empty() ? "'" : ", '") + n + "'";
+                return fail(ErrorCode::InvalidInput, (r.origin.empty() ? "" : r.origin + ": ") + "resource '" + r.name +
+                                                         "': scene_layers = '" + r.texture.sceneLayers +
+                                                         "': the scene has no such extent (it has " + names + ")");
+            }
+            r.texture.layers = std::clamp(*extent, 1u, r.texture.layers);
+            if (*extent == 0) {
                 r.texture.sizeMode = SizeMode::Absolute;
                 r.texture.width = r.texture.height = 1;
                 r.texture.mips = 1;
@@ -377,10 +386,9 @@ Result<void> Executor::clearPersistent(size_t index) {
     });
 }
 
-void Executor::setScene(const passes::GpuScene* scene, uint64_t sceneId, std::function<void(uint32_t)> perFrame, uint32_t shadowViews) {
+void Executor::setScene(const SceneBinding* scene, std::function<void(uint32_t)> perFrame) {
     m_scene = scene;
-    m_sceneId = scene ? sceneId : 0;
-    m_sceneShadowViews = shadowViews;
+    m_sceneId = scene ? scene->id() : 0;
     m_perFrame = std::move(perFrame);
 }
 

@@ -68,14 +68,13 @@ public:
     void updateUniforms(const GraphDesc& graph);
 
     // The scene passes draw and bind (camera, lights, materials); the next build prepares every
-    // pass anew unless it is the scene the running build was prepared against. `perFrame` runs before each frame is recorded, with its frame-in-flight slot.
-    // shadowViews: the most shadow views a frame of the scene can have (passes::shadowViewCapacity),
-    // the layers a `scene_layers = "shadow_views"` resource gets.
-    // sceneId: the scene's GpuScene::id() (0 without one), unique in the process.
-    void setScene(const passes::GpuScene* scene, uint64_t sceneId, std::function<void(uint32_t slot)> perFrame, uint32_t shadowViews = 0);
+    // pass anew unless it is the scene (SceneBinding::id) the running build was prepared against.
+    // A texture with `scene_layers = NAME` gets the layers the scene's extent NAME says.
+    // `perFrame` runs before each frame is recorded, with its frame-in-flight slot.
+    void setScene(const SceneBinding* scene, std::function<void(uint32_t slot)> perFrame);
     // Floor mode for the builds that follow (PassSetup::floor): every pass is prepared again.
     void setFloors(bool on);
-    const passes::GpuScene* scene() const { return m_scene; }
+    const SceneBinding* scene() const { return m_scene; }
 
     // Contents for an imported texture (uploaded now, then kept in ShaderReadOnly layout).
     Result<void> setImport(const std::string& name, const rg::Image& data);
@@ -103,11 +102,11 @@ public:
     // they had recorded — else they record and their outputs are written there once the frame is
     // done. KEY hashes what those outputs are a function of: the device and driver, the passes
     // (kind, parameters, accesses, shader sources with their includes), the resources'
-    // descriptions, imported contents and `sceneKey(slot)` (passes::GpuScene::contentHash), so a
+    // descriptions, imported contents and the scene's SceneBinding::contentHash(slot), so a
     // change to any of them makes a new entry. A once pass that reads anything else (an output of
     // a per-frame pass, a host image) is never cached, nor is what reads its outputs. The newest
     // kOnceCacheEntries entries are kept.
-    void setOnceCache(std::string dir, std::function<uint64_t(uint32_t slot)> sceneKey);
+    void setOnceCache(std::string dir);
     struct OnceCacheStats {
         uint32_t restoredPasses = 0, savedPasses = 0;  // in the last frame that had any due
         double restoreMs = 0.0, saveMs = 0.0;
@@ -163,9 +162,8 @@ private:
     Result<void> recordHostCopies(VkCommandBuffer cmd, bool imports);
     uint64_t m_frameIndex = 0;
     uint64_t m_persistentEpoch = 0;  // FrameInfo::persistentEpoch
-    const passes::GpuScene* m_scene = nullptr;
+    const SceneBinding* m_scene = nullptr;
     uint64_t m_sceneId = 0;
-    uint32_t m_sceneShadowViews = 0;
     std::function<void(uint32_t)> m_perFrame;
     bool m_forceRebuild = false;
     bool m_floors = false;
@@ -175,7 +173,6 @@ private:
     std::vector<PassTiming> m_lastTimings;
     double m_lastRecordMs = 0.0;
     std::string m_onceDir;
-    std::function<uint64_t(uint32_t)> m_onceSceneKey;
     std::optional<OnceSet> m_onceToSave;  // recorded this frame: written after it
     OnceCacheStats m_onceStats;
 };

@@ -17,10 +17,7 @@
 
 namespace rg::gpu {
 
-void Executor::setOnceCache(std::string dir, std::function<uint64_t(uint32_t)> sceneKey) {
-    m_onceDir = std::move(dir);
-    m_onceSceneKey = std::move(sceneKey);
-}
+void Executor::setOnceCache(std::string dir) { m_onceDir = std::move(dir); }
 
 namespace {
 
@@ -163,7 +160,7 @@ Executor::OnceSet Executor::cacheableOncePasses(uint32_t slot) const {
             set.bytes += cachedBytes(r);
         }
     }
-    h.u64(m_scene && m_onceSceneKey ? m_onceSceneKey(slot) : 0);
+    h.u64(m_scene ? m_scene->contentHash(slot) : 0);
     set.key = h.value();
     return set;
 }

@@ -16,12 +16,10 @@
 #include "core/plan.h"
 #include "image/image.h"
 #include "resources.h"
+#include "scene_binding.h"
 
 namespace rg {
 class ShaderCompiler;
-}
-namespace rg::passes {
-class GpuScene;  // passes/gpu_scene.h: the scene on the GPU, when a scene is loaded
 }
 
 namespace rg::gpu {
@@ -53,7 +51,7 @@ struct PassSetup {
     const PlanPass& pass;
     const PassDesc& desc;
     const ResourceTable& resources;
-    const passes::GpuScene* scene = nullptr;
+    const SceneBinding* scene = nullptr;  // the loaded scene, if any
     // Floor mode (rgraph bench --floors): every shader program replaces its fragment shader by one
     // that writes zeros to the same outputs, and its compute shader by an empty one of the same
     // work-group size — the pass's cost with the same targets, geometry and dispatches.
@@ -78,7 +76,7 @@ struct RecordContext {
     const ResourceTable& resources;
     const Plan& plan;
     FrameInfo frame;
-    const passes::GpuScene* scene = nullptr;
+    const SceneBinding* scene = nullptr;  // the loaded scene, if any
 };
 
 class PassInstance {

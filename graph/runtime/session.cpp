@@ -71,7 +71,7 @@ Session::~Session() {
     // (Also when another session's scene has replaced ours: frames recorded before that drew ours.)
     if (m_scene) {
         if (auto r = m_runtime.executor().finish(); !r) std::fprintf(stderr, "rgraph: %s\n", r.error().describe().c_str());
-        if (m_runtime.executor().scene() == m_scene.get()) m_runtime.executor().setScene(nullptr, 0, {});
+        if (m_runtime.executor().scene() == m_scene.get()) m_runtime.executor().setScene(nullptr, {});
     }
 }
 
@@ -91,7 +91,7 @@ Result<GraphDesc> Session::buildableGraph(const PipelineDesc& p, bool keepMissin
     // (~10 ms of a 1280×720 G-buffer on lavapipe).
     // The same when the pipeline's lightmap_specular parameter is off: then the passes that read it
     // lose its define (RG_LIGHTMAP_SPECULAR) too and reflect the distant probe.
-    const passes::GpuScene* gpuScene = m_runtime.executor().scene();
+    const passes::GpuScene* gpuScene = passes::sceneOf(m_runtime.executor().scene());
     const ParamDesc* specular = p.findParam("lightmap_specular");
     const bool specularOff = specular && specular->value.isBool() && !specular->value.asBool();
     if (!gpuScene || !gpuScene->hasLightmap() || specularOff) {
@@ -108,7 +108,7 @@ Result<GraphDesc> Session::buildableGraph(const PipelineDesc& p, bool keepMissin
         }
     }
     if (!m_options.view.empty()) {  // checked in load()
-        const passes::GpuScene* scene = m_runtime.executor().scene();
+        const passes::GpuScene* scene = passes::sceneOf(m_runtime.executor().scene());
         if (auto r = addDebugView(g, p, m_options.view, scene ? &scene->scene() : nullptr); !r) return std::unexpected(r.error());
     }
     for (auto& r : g.resources) {
@@ -241,7 +241,7 @@ Result<void> Session::load(const std::string& file) {
     struct Rollback {
         Session& s;
         std::string headers = s.m_runtime.shaders().options().generatedDir;
-        const passes::GpuScene* scene = s.m_runtime.executor().scene();
+        const gpu::SceneBinding* scene = s.m_runtime.executor().scene();
         std::function<void(uint32_t)> hook = s.m_frameHook;
         std::vector<ChannelCapture> channels = s.m_channels;
         bool sceneChanged = false, committed = false;
@@ -251,7 +251,7 @@ Result<void> Session::load(const std::string& file) {
             s.m_frameHook = hook;
             s.m_channels = channels;
             if (sceneChanged)
-                s.m_runtime.executor().setScene(scene, scene ? scene->id() : 0, hook, scene ? passes::shadowViewCapacity(scene->scene()) : 0);
+                s.m_runtime.executor().setScene(scene, hook);
         }
     } rollback{*this};
     useLayoutHeaders(m_runtime, *headers);
@@ -264,14 +264,10 @@ Result<void> Session::load(const std::string& file) {
         m_frameHook = [raw, w, h](uint32_t slot) { raw->updateFrame(slot, w, h); };
     }
     if (scene || rollback.scene) {
-        m_runtime.executor().setScene(scene.get(), scene ? scene->id() : 0, m_frameHook, scene ? passes::shadowViewCapacity(scene->scene()) : 0);
+        m_runtime.executor().setScene(scene.get(), m_frameHook);
         rollback.sceneChanged = true;
     }
-    {
-        gpu::Executor& executor = m_runtime.executor();
-        executor.setOnceCache(m_options.onceCache,
-                              [&executor](uint32_t slot) { return executor.scene() ? executor.scene()->contentHash(slot) : 0; });
-    }
+    m_runtime.executor().setOnceCache(m_options.onceCache);
     // The first frame's rg.frame runs now, on the new pipeline and scene, and the plan is built
     // with what it changes (frame() then takes that frame as done): passes it switches off (no
     // decals, no blended draws, no sun) are never prepared, and the transient heaps are placed

@@ -1,4 +1,4 @@
-// Ray casts against the scene's opaque triangles (passes/gpu_scene.cpp bvhBuffer, built by
+// Ray casts against the scene's opaque triangles (passes/gpu_scene_geometry.cpp bvhBuffer, built by
 // graph/scene/bvh.cpp): the reference mode's shadow rays. Bound as the scene's `SceneBvh`.
 // Layout: header (nodes, triangles, depth), then per node two vec4s — (min.xyz, a), (max.xyz,
 // count), a and count as uint bits: count > 0 a leaf of `count` triangles from triangle a, else

@@ -17,7 +17,7 @@
 // integrated lobes. (An LTC fitted to the Disney diffuse lobe was measured worse than the form
 // factor × Disney at the light's mean direction: 1.2–1.5 % against 0.2–0.6 % facing.)
 // The CPU twins are graph/lighting's area_lights.h, punctual.h and ies.h; tests/gpu/test_lights.cpp
-// compares the two. Intensities arrive converted (passes/gpu_scene.cpp): cd, lux or cd/m².
+// compares the two. Intensities arrive converted (graph/lighting/light_table.cpp): cd, lux or cd/m².
 #ifndef RG_LIGHTING_GLSL
 #define RG_LIGHTING_GLSL
 

@@ -33,12 +33,12 @@ struct RgCascades {
     vec4 bias;        // x: receiver depth bias (m), y: normal offset (texels), z: softness (× the physical penumbra), w: PCF taps (RG_SUN_PCF_TAPS)
 };
 
-// ---- The local lights' shadow views (passes/gpu_scene.cpp updateShadowViews) -------------------
+// ---- The local lights' shadow views (passes/gpu_scene_lights.cpp updateShadowViews) -------------------
 // Each local light with `shadow = true` whose range reaches the view gets one perspective view (a
 // spot of outer angle ≤ 60°) or six (a cube: +x, −x, +y, −y, +z, −z, each a little wider than
 // 90° so filter taps near a face's edge stay on it), drawn into the layers of `local_shadow` by
-// the scene pass with views = "lights".
-#define RG_MAX_SHADOW_VIEWS 48
+// the scene pass with views = "lights". RG_MAX_SHADOW_VIEWS: lib/limits.h.
+#include "lib/limits.h"
 struct RgShadowView {
     mat4 viewProj;  // world → the view's clip space (perspective, depth 0..1)
     vec4 position;  // xyz: the light's position; w: the near plane (m)

@@ -12,13 +12,13 @@ ALLOWED = {
     "core": set(),
     "image": {"core"},
     "shader": {"core"},
-    "lighting": {"core"},
+    "lighting": {"core", "scene"},
     "layout": {"core", "shader"},
     "lua": {"core", "layout"},
-    "scene": {"core", "image", "lua"},
+    "scene": {"core", "image", "lua"},  # never lighting: the light table reads the scene
     "gpu": {"core", "image", "shader"},
     "passes": {"core", "image", "shader", "lighting", "layout", "scene", "gpu"},
-    "bake": {"core", "image", "lighting", "scene", "passes"},
+    "bake": {"core", "image", "lighting", "scene"},
     "runtime": {"core", "image", "shader", "lighting", "layout", "lua", "scene", "gpu", "passes", "bake"},
     "golden": {"core", "image", "lua", "runtime", "bake"},
     "api": {"core", "image", "scene", "runtime", "rgraph"},
@@ -30,6 +30,9 @@ NARROW = {
     ("runtime", "bake"): {"bake/lightmap.h"},
     ("golden", "bake"): {"bake/lightmap.h"},
 }
+# A room below `passes` does not name its namespace either (a forward declaration is an arrow too).
+BELOW_PASSES = {"core", "image", "shader", "lighting", "layout", "lua", "scene", "gpu"}
+NAMES_PASSES = re.compile(r"\bpasses::|namespace\s+rg::passes\b|namespace\s+passes\b")
 MAX_LINES = 800
 INCLUDE = re.compile(r'^\s*#\s*include\s+"([^"]+)"')
 
@@ -73,6 +76,9 @@ def main():
                     breaks.append(f"{rel}: room '{room}' is not on the map (tests/house/check_layers.py, graph/README.md)")
                     continue
                 for i, line in enumerate(lines, 1):
+                    code = line.split("//")[0]
+                    if room in BELOW_PASSES and NAMES_PASSES.search(code):
+                        breaks.append(f"{rel}:{i}: names rg::passes: '{room}' is below 'passes' and may not know it")
                     m = INCLUDE.match(line)
                     if not m or "/" not in m.group(1):
                         continue  # a file of the same room
