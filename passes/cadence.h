@@ -23,17 +23,21 @@ class Cadence {
 public:
     Result<void> parse(const PassSetup& setup) {
         const PassDesc& desc = setup.desc;
-        const std::string c = desc.params["cadence"].isString() ? desc.params["cadence"].asString() : "frame";
+        const std::string c =
+            desc.params["cadence"].isString() ? desc.params["cadence"].asString() : "frame";
         if (c != "frame" && c != "once")
-            return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.cadence: unknown '" + c + "', expected one of: 'frame', 'once'");
+            return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.cadence: unknown '" +
+                                                     c + "', expected one of: 'frame', 'once'");
         m_once = c == "once";
         m_recorded = false;
         // What a pass writes once must still be there in the frames it skips.
         if (m_once)
             for (const Access& a : desc.accesses)
                 if (usageWrites(a.usage) && !setup.resources.find(a.resource)->plan->persistent)
-                    return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.cadence: 'once' writes only persistent resources; '" +
-                                                             a.resource + "' is not (declare it with persistent = true)");
+                    return fail(ErrorCode::InvalidInput,
+                                passPrefix(desc) +
+                                    "params.cadence: 'once' writes only persistent resources; '" +
+                                    a.resource + "' is not (declare it with persistent = true)");
         return {};
     }
     // True when the pass records this frame (and remembers that it did).

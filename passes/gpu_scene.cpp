@@ -40,7 +40,8 @@ std::optional<uint32_t> GpuScene::layerExtent(const std::string& name) const {
     return std::nullopt;
 }
 
-Result<std::unique_ptr<GpuScene>> GpuScene::create(Context& ctx, Scene scene, const GpuSceneOptions& options) {
+Result<std::unique_ptr<GpuScene>> GpuScene::create(Context& ctx, Scene scene,
+                                                   const GpuSceneOptions& options) {
     static std::atomic<uint64_t> ids{0};
     std::unique_ptr<GpuScene> s(new GpuScene());
     s->m_id = ++ids;
@@ -67,7 +68,9 @@ Result<void> GpuScene::createFrameData(Context& ctx, const GpuSceneOptions& opti
     // loop must not add it again.
     if (m_scene.bakedLightmap)
         for (size_t i = 0; i < m_scene.lights.size(); ++i)
-            if (m_scene.lights[i].baked) table->lights[i].intensity = glm::vec4(0.0f, 0.0f, 0.0f, table->lights[i].intensity.a);
+            if (m_scene.lights[i].baked)
+                table->lights[i].intensity =
+                    glm::vec4(0.0f, 0.0f, 0.0f, table->lights[i].intensity.a);
     m_lightCount = static_cast<uint32_t>(table->lights.size());
     m_iesProfileCount = static_cast<uint32_t>(table->profiles.size());
     // scene.glsl's Lights block: a uvec4 header, RG_MAX_LIGHTS lights, the LTC table (two vec4 per
@@ -78,30 +81,38 @@ Result<void> GpuScene::createFrameData(Context& ctx, const GpuSceneOptions& opti
     const size_t texelCount = size_t(kIesWidth) * kIesHeight;
     const size_t bytes = lightBytes + (m_iesProfileCount * texelCount + 1) * sizeof(float);
     for (uint32_t s = 0; s < ctx.framesInFlight(); ++s) {
-        auto cam = Buffer::create(ctx, "scene.camera", sizeof(CameraUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+        auto cam = Buffer::create(ctx, "scene.camera", sizeof(CameraUniforms),
+                                  VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
         if (!cam) return std::unexpected(cam.error());
         m_cameraBuffers.push_back(std::move(*cam));
-        auto views = Buffer::create(ctx, "scene.shadow_views", kShadowViewBytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+        auto views = Buffer::create(ctx, "scene.shadow_views", kShadowViewBytes,
+                                    VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
         if (!views) return std::unexpected(views.error());
         std::memset(views->mapped(), 0, kShadowViewBytes);
         m_shadowViewBuffers.push_back(std::move(*views));
-        auto lights = Buffer::create(ctx, "scene.lights", bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+        auto lights = Buffer::create(
+            ctx, "scene.lights", bytes,
+            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
         if (!lights) return std::unexpected(lights.error());
         auto* p = static_cast<uint8_t*>(lights->mapped());
         std::memset(p, 0, bytes);
         const uint32_t header[4] = {m_lightCount, m_areaLightModel, kIesWidth, kIesHeight};
         std::memcpy(p, header, sizeof header);
-        if (m_lightCount) std::memcpy(p + 16, table->lights.data(), table->lights.size() * sizeof(GpuLight));
+        if (m_lightCount)
+            std::memcpy(p + 16, table->lights.data(), table->lights.size() * sizeof(GpuLight));
         float* ltcOut = reinterpret_cast<float*>(p + ltcOffset);
         for (const ltc::Entry& e : ltc::table()) {
-            const float entry[8] = {e.inverse[0], e.inverse[1], e.inverse[2], e.inverse[3], e.magnitude, e.fresnel, 0.0f, 0.0f};
+            const float entry[8] = {e.inverse[0], e.inverse[1], e.inverse[2], e.inverse[3],
+                                    e.magnitude,  e.fresnel,    0.0f,         0.0f};
             std::memcpy(ltcOut, entry, sizeof entry);
             ltcOut += 8;
         }
         for (size_t i = 0; i < table->profiles.size(); ++i) {
             const IesTexture& t = table->profiles[i];
-            RG_CHECK(t.texels.size() == texelCount) << "IES profile baked at " << t.width << " x " << t.height;
-            std::memcpy(p + lightBytes + i * texelCount * sizeof(float), t.texels.data(), texelCount * sizeof(float));
+            RG_CHECK(t.texels.size() == texelCount)
+                << "IES profile baked at " << t.width << " x " << t.height;
+            std::memcpy(p + lightBytes + i * texelCount * sizeof(float), t.texels.data(),
+                        texelCount * sizeof(float));
         }
         m_lightBuffers.push_back(std::move(*lights));
     }
@@ -116,13 +127,15 @@ Result<void> GpuScene::selectCamera(const std::string& name) {
         }
     std::string names;
     for (const auto& c : m_scene.cameras) names += (names.empty() ? "'" : ", '") + c.name + "'";
-    return fail(ErrorCode::NotFound, "the scene has no camera '" + name + "' (cameras: " + names + ")");
+    return fail(ErrorCode::NotFound,
+                "the scene has no camera '" + name + "' (cameras: " + names + ")");
 }
 
 void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
     const Camera& c = camera();
     const float aspect = static_cast<float>(width) / static_cast<float>(std::max(1u, height));
-    const float fovy = c.focalLength > 0 ? 2.0f * std::atan(c.sensorHeight / (2.0f * c.focalLength)) : c.verticalFov;
+    const float fovy = c.focalLength > 0 ? 2.0f * std::atan(c.sensorHeight / (2.0f * c.focalLength))
+                                         : c.verticalFov;
     CameraUniforms u{};
     u.view = glm::lookAt(c.position, c.target, c.up);
     if (c.orthographic) {
@@ -135,8 +148,8 @@ void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
     u.viewProj = u.proj * u.view;
     u.invViewProj = glm::inverse(u.viewProj);
     u.position = glm::vec4(c.position, 1.0f);
-    u.viewport = glm::vec4(static_cast<float>(width), static_cast<float>(height), 1.0f / static_cast<float>(width),
-                           1.0f / static_cast<float>(height));
+    u.viewport = glm::vec4(static_cast<float>(width), static_cast<float>(height),
+                           1.0f / static_cast<float>(width), 1.0f / static_cast<float>(height));
     u.sceneMin = glm::vec4(m_scene.boundsMin, 1.0f);
     u.sceneMax = glm::vec4(m_scene.boundsMax, 1.0f);
     u.previousViewProj = m_previousViewProj.value_or(u.viewProj);
@@ -144,7 +157,8 @@ void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
     std::memcpy(m_cameraBuffers[slot].mapped(), &u, sizeof u);
     const auto planes = frustumPlanes(u.viewProj);
     m_drawInView.resize(m_draws.size());
-    for (size_t d = 0; d < m_draws.size(); ++d) m_drawInView[d] = boxMeetsFrustum(planes, m_draws[d].boundsMin, m_draws[d].boundsMax);
+    for (size_t d = 0; d < m_draws.size(); ++d)
+        m_drawInView[d] = boxMeetsFrustum(planes, m_draws[d].boundsMin, m_draws[d].boundsMax);
     // Levels of detail: a world length L at view depth z spans L · |proj[1][1]| · height / (2z)
     // pixels (orthographic: without the z); each draw takes the coarsest level whose error spans at
     // most a pixel at the nearest depth of its box (the full one where the box reaches the
@@ -157,7 +171,8 @@ void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
         if (item.lodCount < 2) continue;
         float nearest = std::numeric_limits<float>::max();
         for (int k = 0; k < 8; ++k) {
-            const glm::vec3 corner((k & 1) ? item.boundsMax.x : item.boundsMin.x, (k & 2) ? item.boundsMax.y : item.boundsMin.y,
+            const glm::vec3 corner((k & 1) ? item.boundsMax.x : item.boundsMin.x,
+                                   (k & 2) ? item.boundsMax.y : item.boundsMin.y,
                                    (k & 4) ? item.boundsMax.z : item.boundsMin.z);
             nearest = std::min(nearest, glm::dot(corner - c.position, forward));
         }
@@ -169,13 +184,15 @@ void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
         m_drawLod[d] = level;
     }
     updateShadowViews(slot, u.viewProj);
-    std::memcpy(static_cast<uint8_t*>(m_lightBuffers[slot].mapped()) + 4, &m_areaLightModel, sizeof m_areaLightModel);
+    std::memcpy(static_cast<uint8_t*>(m_lightBuffers[slot].mapped()) + 4, &m_areaLightModel,
+                sizeof m_areaLightModel);
 }
 
 uint64_t GpuScene::contentHash(uint32_t slot) const {
     ContentHash h;
     h.u64(m_staticHash.value());
-    for (const Buffer* b : {&m_cameraBuffers[slot], &m_lightBuffers[slot], &m_shadowViewBuffers[slot], &m_decals, &m_probes})
+    for (const Buffer* b : {&m_cameraBuffers[slot], &m_lightBuffers[slot],
+                            &m_shadowViewBuffers[slot], &m_decals, &m_probes})
         h.bytes(b->mapped(), b->size());
     return h.value();
 }
@@ -196,10 +213,11 @@ Result<VkBuffer> GpuScene::makeBindingBuffer(std::string_view name, uint32_t slo
     if (name == "SceneBvh") return makeBvhBuffer();
     if (name == "SceneEnvironmentCdf") return makeEnvironmentCdfBuffer();
     if (VkBuffer buffer = bindingBuffer(name, slot); buffer != VK_NULL_HANDLE) return buffer;
-    return fail(ErrorCode::NotFound, "the scene has no buffer binding '" + std::string(name) +
-                                         "', expected one of: 'Camera', 'Lights', 'LightsWindow', "
-                                         "'ShadowViews', 'Decals', 'Probes', 'SceneDraws', 'SceneBvh', "
-                                         "'SceneEnvironmentCdf'");
+    return fail(ErrorCode::NotFound,
+                "the scene has no buffer binding '" + std::string(name) +
+                    "', expected one of: 'Camera', 'Lights', 'LightsWindow', "
+                    "'ShadowViews', 'Decals', 'Probes', 'SceneDraws', 'SceneBvh', "
+                    "'SceneEnvironmentCdf'");
 }
 
 }  // namespace rg::passes

@@ -55,7 +55,7 @@ struct DrawItem {
     glm::mat4 world{1.0f};
     glm::mat4 normalMatrix{1.0f};
     glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};  // world-space box around its vertices
-    glm::vec4 lightmapRect{0.0f};  // its node's Node::lightmapRect
+    glm::vec4 lightmapRect{0.0f};                // its node's Node::lightmapRect
     // Levels of detail, finest first: lods[0] is the full range (error 0), then the primitive's
     // coarser index lists (Primitive::lods) with their error scaled by the node's largest axis.
     std::array<DrawLod, kMaxDrawLods> lods{};
@@ -68,9 +68,10 @@ struct DrawItem {
 // views a frame can have, and one view as the GPU reads it.
 inline constexpr uint32_t kMaxShadowViews = RG_MAX_SHADOW_VIEWS;  // shaders/lib/limits.h
 struct GpuShadowView {
-    glm::mat4 viewProj;   // world → the view's clip space (perspective, depth 0..1)
-    glm::vec4 position;   // xyz: the light's position; w: the near plane (m)
-    glm::vec4 params;     // x: the far plane (m); y: tan of half the field of view; z: the light's radius (m); w: light index
+    glm::mat4 viewProj;  // world → the view's clip space (perspective, depth 0..1)
+    glm::vec4 position;  // xyz: the light's position; w: the near plane (m)
+    glm::vec4
+        params;  // x: the far plane (m); y: tan of half the field of view; z: the light's radius (m); w: light index
 };
 // The views a local light with castShadows gets when its range reaches the view: one for a spot of
 // outer angle ≤ 60°, six (a cube) otherwise; 0 for a light without shadows or the sun.
@@ -84,8 +85,10 @@ uint32_t shadowViewCapacity(const Scene& scene);
 // of each Lights buffer again, its 16-byte header and 204 lights — within the 16 KiB
 // maxUniformBufferRange every Vulkan device has.
 inline constexpr uint32_t kLightsWindow = 204;
-inline constexpr VkDeviceSize kLightsWindowBytes = 16 + VkDeviceSize(kLightsWindow) * sizeof(GpuLight);
-static_assert(kLightsWindowBytes <= 16384, "the lights' uniform window must fit the smallest maxUniformBufferRange");
+inline constexpr VkDeviceSize kLightsWindowBytes =
+    16 + VkDeviceSize(kLightsWindow) * sizeof(GpuLight);
+static_assert(kLightsWindowBytes <= 16384,
+              "the lights' uniform window must fit the smallest maxUniformBufferRange");
 
 struct GpuSceneOptions {
     IesMode iesMode = IesMode::Mask;
@@ -98,7 +101,8 @@ struct GpuSceneOptions {
 // named extent is "shadow_views" (shadowViewCapacity).
 class GpuScene final : public gpu::SceneBinding {
 public:
-    static Result<std::unique_ptr<GpuScene>> create(gpu::Context& ctx, Scene scene, const GpuSceneOptions& options = {});
+    static Result<std::unique_ptr<GpuScene>> create(gpu::Context& ctx, Scene scene,
+                                                    const GpuSceneOptions& options = {});
     ~GpuScene() override;
     // A number no other scene of the process has had: what the executor tells scenes apart by
     // (an address can be a freed scene's).
@@ -168,7 +172,9 @@ public:
     Result<VkBuffer> makeBindingBuffer(std::string_view name, uint32_t slot) const;
     // How much of it the binding sees: kLightsWindowBytes for LightsWindow (the Lights buffer's
     // head, as a uniform block), the whole buffer otherwise.
-    static VkDeviceSize bindingRange(std::string_view name) { return name == "LightsWindow" ? kLightsWindowBytes : VK_WHOLE_SIZE; }
+    static VkDeviceSize bindingRange(std::string_view name) {
+        return name == "LightsWindow" ? kLightsWindowBytes : VK_WHOLE_SIZE;
+    }
     // The first of light `light`'s shadow views this frame and how many (0: none).
     std::pair<uint32_t, uint32_t> shadowViewsOf(size_t light) const;
     // The decals (shaders/lib/scene.glsl's Decals block): a count, then one RgDecal each.
@@ -213,7 +219,8 @@ private:
     std::vector<gpu::Image> m_images;
     gpu::Image m_white, m_flatNormal;  // defaults for missing textures
     gpu::Image m_environment;
-    EnvironmentCdf m_environmentCdf;           // of the uploaded image (a 1x1 black one without an environment)
+    EnvironmentCdf
+        m_environmentCdf;  // of the uploaded image (a 1x1 black one without an environment)
     mutable gpu::Buffer m_environmentCdfBuffer;  // environmentCdfBuffer(), once built
     gpu::OwnedSampler m_environmentSampler;
     gpu::Image m_lightmap;
@@ -224,17 +231,18 @@ private:
     std::vector<gpu::Buffer> m_materialBuffers;
     std::vector<VkDescriptorSet> m_materialSets;
     std::vector<gpu::Buffer> m_cameraBuffers, m_lightBuffers, m_shadowViewBuffers;
-    std::vector<std::vector<size_t>> m_shadowViewDraws;      // per view of this frame
-    mutable gpu::Buffer m_bvh;  // bvhBuffer(), once built
-    Result<VkBuffer> makeBvhBuffer() const;             // bvhBuffer(), or why it failed
-    Result<VkBuffer> makeEnvironmentCdfBuffer() const;  // environmentCdfBuffer(), or why it failed
-    ContentHash m_staticHash;   // what was uploaded at creation (contentHash)
+    std::vector<std::vector<size_t>> m_shadowViewDraws;  // per view of this frame
+    mutable gpu::Buffer m_bvh;                           // bvhBuffer(), once built
+    Result<VkBuffer> makeBvhBuffer() const;              // bvhBuffer(), or why it failed
+    Result<VkBuffer> makeEnvironmentCdfBuffer() const;   // environmentCdfBuffer(), or why it failed
+    ContentHash m_staticHash;  // what was uploaded at creation (contentHash)
     gpu::Buffer m_drawBuffer;
-    std::vector<char> m_drawInView;        // per draw: its box meets the camera's frustum (updateFrame)
-    std::vector<uint8_t> m_drawLod;        // per draw: the level of detail viewLod gives (updateFrame)
-    bool m_levelsOfDetail = true;          // GpuSceneOptions::levelsOfDetail
-    mutable bool m_fullMeshes = false;     // drawFullMeshes()
-    std::vector<glm::ivec4> m_lightViews;  // per light (kMaxLights): first view (−1: none), count — as uploaded
+    std::vector<char> m_drawInView;  // per draw: its box meets the camera's frustum (updateFrame)
+    std::vector<uint8_t> m_drawLod;  // per draw: the level of detail viewLod gives (updateFrame)
+    bool m_levelsOfDetail = true;    // GpuSceneOptions::levelsOfDetail
+    mutable bool m_fullMeshes = false;  // drawFullMeshes()
+    std::vector<glm::ivec4>
+        m_lightViews;  // per light (kMaxLights): first view (−1: none), count — as uploaded
     void updateShadowViews(uint32_t slot, const glm::mat4& cameraViewProj);
     gpu::Buffer m_decals;
     Result<void> createDecals(gpu::Context& ctx);
@@ -245,11 +253,14 @@ private:
     uint32_t m_iesProfileCount = 0;
     uint32_t m_areaLightModel = 0;
     size_t m_camera = 0;
-    std::optional<glm::mat4> m_previousViewProj;  // the last frame's camera (Camera.previousViewProj)
+    std::optional<glm::mat4>
+        m_previousViewProj;  // the last frame's camera (Camera.previousViewProj)
 };
 
 // The scene a pass of this room draws: the executor's scene binding, which is a GpuScene.
-inline const GpuScene* sceneOf(const gpu::SceneBinding* scene) { return static_cast<const GpuScene*>(scene); }
+inline const GpuScene* sceneOf(const gpu::SceneBinding* scene) {
+    return static_cast<const GpuScene*>(scene);
+}
 inline const GpuScene* sceneOf(const gpu::PassSetup& setup) { return sceneOf(setup.scene); }
 inline const GpuScene* sceneOf(const gpu::RecordContext& ctx) { return sceneOf(ctx.scene); }
 

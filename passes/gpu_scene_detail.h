@@ -25,13 +25,15 @@ inline std::array<glm::vec4, 6> frustumPlanes(const glm::mat4& m) {
 // plane's normal is behind it); conservative near the frustum's edges.
 inline bool boxMeetsFrustum(const std::array<glm::vec4, 6>& planes, glm::vec3 lo, glm::vec3 hi) {
     for (const auto& q : planes) {
-        const glm::vec3 corner(q.x >= 0 ? hi.x : lo.x, q.y >= 0 ? hi.y : lo.y, q.z >= 0 ? hi.z : lo.z);
+        const glm::vec3 corner(q.x >= 0 ? hi.x : lo.x, q.y >= 0 ? hi.y : lo.y,
+                               q.z >= 0 ? hi.z : lo.z);
         if (glm::dot(glm::vec3(q), corner) + q.w < 0.0f) return false;
     }
     return true;
 }
 
 // The size of the ShadowViews block: a uvec4 header, the views, then an ivec4 per light.
-inline constexpr size_t kShadowViewBytes = 16 + size_t(kMaxShadowViews) * sizeof(GpuShadowView) + size_t(kMaxLights) * 16;
+inline constexpr size_t kShadowViewBytes =
+    16 + size_t(kMaxShadowViews) * sizeof(GpuShadowView) + size_t(kMaxLights) * 16;
 
 }  // namespace rg::passes::detail

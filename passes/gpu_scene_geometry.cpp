@@ -18,7 +18,8 @@ using namespace rg::gpu;
 namespace {
 
 // The world-space box around vertices under `world`.
-std::pair<glm::vec3, glm::vec3> worldBox(const std::vector<Vertex>& vertices, const glm::mat4& world) {
+std::pair<glm::vec3, glm::vec3> worldBox(const std::vector<Vertex>& vertices,
+                                         const glm::mat4& world) {
     if (vertices.empty()) return {glm::vec3(world[3]), glm::vec3(world[3])};
     glm::vec3 lo(INFINITY), hi(-INFINITY);
     for (const Vertex& v : vertices) {
@@ -38,19 +39,25 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
         uint32_t firstIndex, indexCount;
         int32_t vertexOffset;
         uint32_t material;
-        std::vector<DrawLod> lods;  // the coarser index lists after the full one, errors in the primitive's space
+        std::vector<DrawLod>
+            lods;  // the coarser index lists after the full one, errors in the primitive's space
     };
     std::vector<std::vector<Range>> meshRanges;
     for (const Mesh& mesh : m_scene.meshes) {
         std::vector<Range> ranges;
         for (const Primitive& p : mesh.primitives) {
-            ranges.push_back({static_cast<uint32_t>(indices.size()), static_cast<uint32_t>(p.indices.size()),
-                              static_cast<int32_t>(vertices.size()), std::min<uint32_t>(p.material, static_cast<uint32_t>(m_scene.materials.size() - 1)),
+            ranges.push_back({static_cast<uint32_t>(indices.size()),
+                              static_cast<uint32_t>(p.indices.size()),
+                              static_cast<int32_t>(vertices.size()),
+                              std::min<uint32_t>(
+                                  p.material, static_cast<uint32_t>(m_scene.materials.size() - 1)),
                               {}});
             vertices.insert(vertices.end(), p.vertices.begin(), p.vertices.end());
             indices.insert(indices.end(), p.indices.begin(), p.indices.end());
             for (size_t l = 0; l < p.lods.size() && l + 1 < kMaxDrawLods; ++l) {
-                ranges.back().lods.push_back({static_cast<uint32_t>(indices.size()), static_cast<uint32_t>(p.lods[l].indices.size()), p.lods[l].error});
+                ranges.back().lods.push_back({static_cast<uint32_t>(indices.size()),
+                                              static_cast<uint32_t>(p.lods[l].indices.size()),
+                                              p.lods[l].error});
                 indices.insert(indices.end(), p.lods[l].indices.begin(), p.lods[l].indices.end());
             }
         }
@@ -62,16 +69,23 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
         const auto& ranges = meshRanges[static_cast<size_t>(node.mesh)];
         for (size_t k = 0; k < ranges.size(); ++k)
             if (ranges[k].indexCount) {
-                const auto [lo, hi] = worldBox(m_scene.meshes[static_cast<size_t>(node.mesh)].primitives[k].vertices, node.world);
-                DrawItem& item = m_draws.emplace_back(DrawItem{ranges[k].firstIndex, ranges[k].indexCount, ranges[k].vertexOffset,
-                                                               ranges[k].material, node.world, normal, lo, hi, node.lightmapRect});
+                const auto [lo, hi] =
+                    worldBox(m_scene.meshes[static_cast<size_t>(node.mesh)].primitives[k].vertices,
+                             node.world);
+                DrawItem& item = m_draws.emplace_back(
+                    DrawItem{ranges[k].firstIndex, ranges[k].indexCount, ranges[k].vertexOffset,
+                             ranges[k].material, node.world, normal, lo, hi, node.lightmapRect});
                 item.lods[0] = {item.firstIndex, item.indexCount, 0.0f};
-                item.castsShadows = node.castShadows && m_scene.materials[item.material].alphaMode != AlphaMode::Blend;
+                item.castsShadows = node.castShadows &&
+                                    m_scene.materials[item.material].alphaMode != AlphaMode::Blend;
                 // An error in the primitive's space, in the world: times the node's largest axis scale.
-                const float scale = std::max({glm::length(glm::vec3(node.world[0])), glm::length(glm::vec3(node.world[1])),
+                const float scale = std::max({glm::length(glm::vec3(node.world[0])),
+                                              glm::length(glm::vec3(node.world[1])),
                                               glm::length(glm::vec3(node.world[2]))});
                 if (m_levelsOfDetail)
-                    for (const DrawLod& lod : ranges[k].lods) item.lods[item.lodCount++] = {lod.firstIndex, lod.indexCount, lod.error * scale};
+                    for (const DrawLod& lod : ranges[k].lods)
+                        item.lods[item.lodCount++] = {lod.firstIndex, lod.indexCount,
+                                                      lod.error * scale};
             }
     }
     // SceneDraws: a uvec4 header (draw count), then per draw (boxMin, firstIndex), (boxMax,
@@ -79,22 +93,27 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
     // first indices, index counts and errors (lib/scene.glsl RgDraw) — 96 bytes.
     {
         constexpr size_t kWords = 6;
-        std::vector<glm::vec4> words(1 + kWords * std::max<size_t>(m_draws.size(), 1), glm::vec4(0.0f));
-        words[0] = glm::vec4(std::bit_cast<float>(static_cast<uint32_t>(m_draws.size())), 0.0f, 0.0f, 0.0f);
+        std::vector<glm::vec4> words(1 + kWords * std::max<size_t>(m_draws.size(), 1),
+                                     glm::vec4(0.0f));
+        words[0] = glm::vec4(std::bit_cast<float>(static_cast<uint32_t>(m_draws.size())), 0.0f,
+                             0.0f, 0.0f);
         for (size_t d = 0; d < m_draws.size(); ++d) {
             const DrawItem& item = m_draws[d];
             glm::vec4* w = &words[1 + kWords * d];
             w[0] = glm::vec4(item.boundsMin, std::bit_cast<float>(item.firstIndex));
             w[1] = glm::vec4(item.boundsMax, std::bit_cast<float>(item.indexCount));
-            w[2] = glm::vec4(std::bit_cast<float>(item.vertexOffset), std::bit_cast<float>(item.material),
-                             std::bit_cast<float>(item.castsShadows ? 1u : 0u), std::bit_cast<float>(item.lodCount));
+            w[2] = glm::vec4(std::bit_cast<float>(item.vertexOffset),
+                             std::bit_cast<float>(item.material),
+                             std::bit_cast<float>(item.castsShadows ? 1u : 0u),
+                             std::bit_cast<float>(item.lodCount));
             for (uint32_t l = 0; l < kMaxDrawLods; ++l) {
                 w[3][static_cast<int>(l)] = std::bit_cast<float>(item.lods[l].firstIndex);
                 w[4][static_cast<int>(l)] = std::bit_cast<float>(item.lods[l].indexCount);
                 w[5][static_cast<int>(l)] = item.lods[l].error;
             }
         }
-        auto buf = Buffer::create(ctx, "scene.draws", words.size() * sizeof(glm::vec4), VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+        auto buf = Buffer::create(ctx, "scene.draws", words.size() * sizeof(glm::vec4),
+                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
         if (!buf) return std::unexpected(buf.error());
         std::memcpy(buf->mapped(), words.data(), words.size() * sizeof(glm::vec4));
         m_staticHash.bytes(words.data(), words.size() * sizeof(glm::vec4));
@@ -105,24 +124,33 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
         vertices.resize(1);
         indices.resize(3, 0);
     }
-    auto upload = [&](Buffer& target, const void* data, size_t bytes, VkBufferUsageFlags usage, const char* name) -> Result<void> {
-        auto staging = Buffer::create(ctx, std::string(name) + ".staging", bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    auto upload = [&](Buffer& target, const void* data, size_t bytes, VkBufferUsageFlags usage,
+                      const char* name) -> Result<void> {
+        auto staging = Buffer::create(ctx, std::string(name) + ".staging", bytes,
+                                      VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
         if (!staging) return std::unexpected(staging.error());
         std::memcpy(staging->mapped(), data, bytes);
-        auto buf = Buffer::create(ctx, name, bytes, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
+        auto buf =
+            Buffer::create(ctx, name, bytes, usage | VK_BUFFER_USAGE_TRANSFER_DST_BIT, false);
         if (!buf) return std::unexpected(buf.error());
         target = std::move(*buf);
         VkBuffer src = staging->buffer(), dst = target.buffer();
         return ctx.submitNow([&](VkCommandBuffer cmd) {
             VkBufferCopy region{0, 0, bytes};
             vkCmdCopyBuffer(cmd, src, dst, 1, &region);
-            memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT, VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_2_INDEX_READ_BIT);
+            memoryBarrier(cmd, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_VERTEX_INPUT_BIT,
+                          VK_ACCESS_2_VERTEX_ATTRIBUTE_READ_BIT | VK_ACCESS_2_INDEX_READ_BIT);
         });
     };
     m_staticHash.bytes(vertices.data(), vertices.size() * sizeof(Vertex));
     m_staticHash.bytes(indices.data(), indices.size() * sizeof(uint32_t));
-    if (auto r = upload(m_vertices, vertices.data(), vertices.size() * sizeof(Vertex), VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "scene.vertices"); !r) return r;
-    return upload(m_indices, indices.data(), indices.size() * sizeof(uint32_t), VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "scene.indices");
+    if (auto r = upload(m_vertices, vertices.data(), vertices.size() * sizeof(Vertex),
+                        VK_BUFFER_USAGE_VERTEX_BUFFER_BIT, "scene.vertices");
+        !r)
+        return r;
+    return upload(m_indices, indices.data(), indices.size() * sizeof(uint32_t),
+                  VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "scene.indices");
 }
 
 VkBuffer GpuScene::bvhBuffer() const {
@@ -137,12 +165,16 @@ Result<VkBuffer> GpuScene::makeBvhBuffer() const {
     for (const Node& node : m_scene.nodes) {
         if (node.mesh < 0 || static_cast<size_t>(node.mesh) >= m_scene.meshes.size()) continue;
         for (const Primitive& p : m_scene.meshes[static_cast<size_t>(node.mesh)].primitives) {
-            const uint32_t material = std::min<uint32_t>(p.material, static_cast<uint32_t>(m_scene.materials.size() - 1));
+            const uint32_t material =
+                std::min<uint32_t>(p.material, static_cast<uint32_t>(m_scene.materials.size() - 1));
             if (m_scene.materials[material].alphaMode == AlphaMode::Blend) continue;
             for (size_t i = 0; i + 2 < p.indices.size(); i += 3)
                 for (int k = 0; k < 3; ++k) {
                     const uint32_t v = p.indices[i + k];
-                    corners.push_back(v < p.vertices.size() ? glm::vec3(node.world * glm::vec4(p.vertices[v].position, 1.0f)) : glm::vec3(0.0f));
+                    corners.push_back(
+                        v < p.vertices.size()
+                            ? glm::vec3(node.world * glm::vec4(p.vertices[v].position, 1.0f))
+                            : glm::vec3(0.0f));
                 }
         }
     }
@@ -154,7 +186,8 @@ Result<VkBuffer> GpuScene::makeBvhBuffer() const {
     auto* p = static_cast<uint8_t*>(buf->mapped());
     std::memset(p, 0, bytes);
     std::memcpy(p, &header, sizeof header);
-    if (!bvh.data.empty()) std::memcpy(p + sizeof header, bvh.data.data(), bvh.data.size() * sizeof(glm::vec4));
+    if (!bvh.data.empty())
+        std::memcpy(p + sizeof header, bvh.data.data(), bvh.data.size() * sizeof(glm::vec4));
     m_bvh = std::move(*buf);
     return m_bvh.buffer();
 }

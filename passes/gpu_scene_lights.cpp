@@ -27,7 +27,6 @@ bool sphereMeetsFrustum(const std::array<glm::vec4, 6>& planes, glm::vec3 centre
 
 }  // namespace
 
-
 uint32_t shadowViewsNeeded(const Light& l) {
     if (!l.castShadows || l.type == LightType::Directional) return 0;
     return l.type == LightType::Spot && l.outerAngle <= glm::radians(60.0f) ? 1 : 6;
@@ -44,7 +43,8 @@ uint32_t shadowViewCapacity(const Scene& scene) {
 
 std::pair<uint32_t, uint32_t> GpuScene::shadowViewsOf(size_t light) const {
     if (light >= m_lightViews.size() || m_lightViews[light].y == 0) return {0, 0};
-    return {static_cast<uint32_t>(m_lightViews[light].x), static_cast<uint32_t>(m_lightViews[light].y)};
+    return {static_cast<uint32_t>(m_lightViews[light].x),
+            static_cast<uint32_t>(m_lightViews[light].y)};
 }
 
 void GpuScene::updateShadowViews(uint32_t slot, const glm::mat4& cameraViewProj) {
@@ -60,20 +60,29 @@ void GpuScene::updateShadowViews(uint32_t slot, const glm::mat4& cameraViewProj)
         const uint32_t count = shadowViewsNeeded(l);
         if (count == 0) continue;
         const float far = l.range > 0.0f ? l.range : std::max(sceneSize, 1.0f) * 2.0f;
-        if (!sphereMeetsFrustum(camera, l.position, far)) continue;  // its light does not reach the view
+        if (!sphereMeetsFrustum(camera, l.position, far))
+            continue;  // its light does not reach the view
         const bool single = count == 1;
         if (views.size() + count > kMaxShadowViews) continue;
         // A cube's faces see a little past 90° so that filter taps near a face's edge stay on
         // its map (16 texels of a 1024 map); a spot's view covers its outer cone.
-        const float tanHalf = single ? std::tan(std::min(l.outerAngle + glm::radians(2.0f), glm::radians(75.0f))) : 1.0f / (1.0f - 32.0f / 1024.0f);
-        const glm::mat4 proj = glm::perspectiveRH_ZO(2.0f * std::atan(tanHalf), 1.0f, nearPlane, far);
-        static const glm::vec3 axes[6] = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-        static const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
+        const float tanHalf =
+            single ? std::tan(std::min(l.outerAngle + glm::radians(2.0f), glm::radians(75.0f)))
+                   : 1.0f / (1.0f - 32.0f / 1024.0f);
+        const glm::mat4 proj =
+            glm::perspectiveRH_ZO(2.0f * std::atan(tanHalf), 1.0f, nearPlane, far);
+        static const glm::vec3 axes[6] = {{1, 0, 0},  {-1, 0, 0}, {0, 1, 0},
+                                          {0, -1, 0}, {0, 0, 1},  {0, 0, -1}};
+        static const glm::vec3 ups[6] = {{0, -1, 0}, {0, -1, 0}, {0, 0, 1},
+                                         {0, 0, -1}, {0, -1, 0}, {0, -1, 0}};
         m_lightViews[i] = glm::ivec4(static_cast<int>(views.size()), static_cast<int>(count), 0, 0);
-        const float radius = std::max({l.radius, 0.5f * std::max(l.width, l.height), 0.5f * l.length});
+        const float radius =
+            std::max({l.radius, 0.5f * std::max(l.width, l.height), 0.5f * l.length});
         for (uint32_t f = 0; f < count; ++f) {
             const glm::vec3 axis = single ? l.direction : axes[f];
-            const glm::vec3 up = single ? (std::abs(axis.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0)) : ups[f];
+            const glm::vec3 up =
+                single ? (std::abs(axis.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0))
+                       : ups[f];
             GpuShadowView v;
             v.viewProj = proj * glm::lookAt(l.position, l.position + axis, up);
             v.position = glm::vec4(l.position, nearPlane);
@@ -83,7 +92,8 @@ void GpuScene::updateShadowViews(uint32_t slot, const glm::mat4& cameraViewProj)
             const auto planes = frustumPlanes(v.viewProj);
             std::vector<size_t> draws;
             for (size_t d = 0; d < m_draws.size(); ++d)
-                if (m_draws[d].castsShadows && boxMeetsFrustum(planes, m_draws[d].boundsMin, m_draws[d].boundsMax))
+                if (m_draws[d].castsShadows &&
+                    boxMeetsFrustum(planes, m_draws[d].boundsMin, m_draws[d].boundsMax))
                     draws.push_back(d);
             m_shadowViewDraws.push_back(std::move(draws));
         }
@@ -92,7 +102,8 @@ void GpuScene::updateShadowViews(uint32_t slot, const glm::mat4& cameraViewProj)
     const glm::uvec4 header(static_cast<uint32_t>(views.size()), 0, 0, 0);
     std::memcpy(p, &header, sizeof header);
     if (!views.empty()) std::memcpy(p + 16, views.data(), views.size() * sizeof(GpuShadowView));
-    std::memcpy(p + 16 + size_t(kMaxShadowViews) * sizeof(GpuShadowView), m_lightViews.data(), m_lightViews.size() * sizeof(glm::ivec4));
+    std::memcpy(p + 16 + size_t(kMaxShadowViews) * sizeof(GpuShadowView), m_lightViews.data(),
+                m_lightViews.size() * sizeof(glm::ivec4));
 }
 
 }  // namespace rg::passes

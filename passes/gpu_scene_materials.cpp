@@ -30,9 +30,12 @@ static_assert(sizeof(MaterialUniforms) == 320);
 VkFilter toVk(Filter f) { return f == Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR; }
 VkSamplerAddressMode toVk(Wrap w) {
     switch (w) {
-    case Wrap::ClampToEdge: return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    case Wrap::MirroredRepeat: return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
-    default: return VK_SAMPLER_ADDRESS_MODE_REPEAT;
+        case Wrap::ClampToEdge:
+            return VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+        case Wrap::MirroredRepeat:
+            return VK_SAMPLER_ADDRESS_MODE_MIRRORED_REPEAT;
+        default:
+            return VK_SAMPLER_ADDRESS_MODE_REPEAT;
     }
 }
 
@@ -40,7 +43,8 @@ Result<OwnedSampler> makeSampler(VkDevice dev, const SamplerDesc& d) {
     VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     si.magFilter = toVk(d.magFilter);
     si.minFilter = toVk(d.minFilter);
-    si.mipmapMode = d.mipmapMode == MipmapMode::Nearest ? VK_SAMPLER_MIPMAP_MODE_NEAREST : VK_SAMPLER_MIPMAP_MODE_LINEAR;
+    si.mipmapMode = d.mipmapMode == MipmapMode::Nearest ? VK_SAMPLER_MIPMAP_MODE_NEAREST
+                                                        : VK_SAMPLER_MIPMAP_MODE_LINEAR;
     si.addressModeU = toVk(d.wrapS);
     si.addressModeV = toVk(d.wrapT);
     si.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
@@ -52,20 +56,24 @@ Result<OwnedSampler> makeSampler(VkDevice dev, const SamplerDesc& d) {
 
 // Copies staged texels into `image` (all of it in TRANSFER_DST, from UNDEFINED) and leaves it
 // ready for sampling.
-Result<void> copyToImage(Context& ctx, VkImage image, const Buffer& staging, const std::vector<VkBufferImageCopy>& regions) {
+Result<void> copyToImage(Context& ctx, VkImage image, const Buffer& staging,
+                         const std::vector<VkBufferImageCopy>& regions) {
     return ctx.submitNow([&](VkCommandBuffer cmd) {
-        imageBarrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_NONE, 0, VK_PIPELINE_STAGE_2_COPY_BIT,
-                     VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        imageBarrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_NONE, 0,
+                     VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                     VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
         vkCmdCopyBufferToImage(cmd, staging.buffer(), image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                                static_cast<uint32_t>(regions.size()), regions.data());
-        imageBarrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COPY_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                     VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_SHADER_SAMPLED_READ_BIT,
-                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        imageBarrier(cmd, image, VK_IMAGE_ASPECT_COLOR_BIT, VK_PIPELINE_STAGE_2_COPY_BIT,
+                     VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                     VK_ACCESS_2_SHADER_SAMPLED_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     });
 }
 
 // Uploads RGBA8 levels (values already in the image's encoding) and leaves the image ready for sampling.
-Result<gpu::Image> uploadRgba8(Context& ctx, const std::string& name, bool srgb, const std::vector<const rg::Image*>& levels) {
+Result<gpu::Image> uploadRgba8(Context& ctx, const std::string& name, bool srgb,
+                               const std::vector<const rg::Image*>& levels) {
     ImageDesc d;
     d.name = name;
     d.format = srgb ? Format::RGBA8Srgb : Format::RGBA8Unorm;
@@ -77,7 +85,8 @@ Result<gpu::Image> uploadRgba8(Context& ctx, const std::string& name, bool srgb,
     if (!img) return std::unexpected(img.error());
     size_t bytes = 0;
     for (const auto* l : levels) bytes += size_t(l->width) * l->height * 4;
-    auto staging = Buffer::create(ctx, name + ".staging", bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    auto staging =
+        Buffer::create(ctx, name + ".staging", bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
     if (!staging) return std::unexpected(staging.error());
     auto* dst = static_cast<uint8_t*>(staging->mapped());
     std::vector<VkBufferImageCopy> regions;
@@ -87,7 +96,8 @@ Result<gpu::Image> uploadRgba8(Context& ctx, const std::string& name, bool srgb,
         for (size_t i = 0; i < size_t(l.width) * l.height; ++i)
             for (uint32_t c = 0; c < 4; ++c) {
                 float v = c < l.channels ? l.pixels[i * l.channels + c] : 1.0f;
-                dst[offset + i * 4 + c] = static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+                dst[offset + i * 4 + c] =
+                    static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
             }
         VkBufferImageCopy r{};
         r.bufferOffset = offset;
@@ -96,7 +106,8 @@ Result<gpu::Image> uploadRgba8(Context& ctx, const std::string& name, bool srgb,
         regions.push_back(r);
         offset += size_t(l.width) * l.height * 4;
     }
-    if (auto sub = copyToImage(ctx, img->image(), *staging, regions); !sub) return std::unexpected(sub.error());
+    if (auto sub = copyToImage(ctx, img->image(), *staging, regions); !sub)
+        return std::unexpected(sub.error());
     return img;
 }
 
@@ -113,14 +124,16 @@ uint16_t exactHalfBits(float f) {
     const auto sign = static_cast<uint16_t>((x >> 16) & 0x8000u);
     if ((x & 0x7fffffffu) == 0) return sign;
     const auto exponent = static_cast<int>((x >> 23) & 0xffu) - 127 + 15;
-    RG_CHECK(exponent > 0 && exponent < 31 && (x & 0x1fffu) == 0) << f << " is not exact in half precision";
+    RG_CHECK(exponent > 0 && exponent < 31 && (x & 0x1fffu) == 0)
+        << f << " is not exact in half precision";
     return static_cast<uint16_t>(sign | (exponent << 10) | ((x >> 13) & 0x3ffu));
 }
 
 // A 1x1 RGBA16F texture: values 8 bits cannot hold exactly. The default normal map is one —
 // (0.5, 0.5, 1) in RGBA8 reads back as 128/255 and tilts every unmapped normal by 0.3°.
 Result<gpu::Image> solidHalfTexture(Context& ctx, const std::string& name, glm::vec4 value) {
-    const uint16_t texel[4] = {exactHalfBits(value.x), exactHalfBits(value.y), exactHalfBits(value.z), exactHalfBits(value.w)};
+    const uint16_t texel[4] = {exactHalfBits(value.x), exactHalfBits(value.y),
+                               exactHalfBits(value.z), exactHalfBits(value.w)};
     ImageDesc d;
     d.name = name;
     d.format = Format::RGBA16F;
@@ -128,13 +141,15 @@ Result<gpu::Image> solidHalfTexture(Context& ctx, const std::string& name, glm::
     d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     auto img = gpu::Image::create(ctx, d);
     if (!img) return std::unexpected(img.error());
-    auto staging = Buffer::create(ctx, name + ".staging", sizeof texel, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    auto staging = Buffer::create(ctx, name + ".staging", sizeof texel,
+                                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
     if (!staging) return std::unexpected(staging.error());
     std::memcpy(staging->mapped(), texel, sizeof texel);
     VkBufferImageCopy r{};
     r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     r.imageExtent = {1, 1, 1};
-    if (auto sub = copyToImage(ctx, img->image(), *staging, {r}); !sub) return std::unexpected(sub.error());
+    if (auto sub = copyToImage(ctx, img->image(), *staging, {r}); !sub)
+        return std::unexpected(sub.error());
     return img;
 }
 
@@ -149,15 +164,19 @@ Result<gpu::Image> uploadRgba32f(Context& ctx, const std::string& name, const rg
     auto img = gpu::Image::create(ctx, d);
     if (!img) return std::unexpected(img.error());
     const size_t texels = size_t(src.width) * src.height;
-    auto staging = Buffer::create(ctx, name + ".staging", texels * 16, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    auto staging =
+        Buffer::create(ctx, name + ".staging", texels * 16, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
     if (!staging) return std::unexpected(staging.error());
     auto* dst = static_cast<float*>(staging->mapped());
     for (size_t i = 0; i < texels; ++i)
-        for (uint32_t c = 0; c < 4; ++c) dst[i * 4 + c] = c < src.channels ? src.pixels[i * src.channels + c] : (c == 3 ? 1.0f : 0.0f);
+        for (uint32_t c = 0; c < 4; ++c)
+            dst[i * 4 + c] =
+                c < src.channels ? src.pixels[i * src.channels + c] : (c == 3 ? 1.0f : 0.0f);
     VkBufferImageCopy r{};
     r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     r.imageExtent = {src.width, src.height, 1};
-    if (auto sub = copyToImage(ctx, img->image(), *staging, {r}); !sub) return std::unexpected(sub.error());
+    if (auto sub = copyToImage(ctx, img->image(), *staging, {r}); !sub)
+        return std::unexpected(sub.error());
     return img;
 }
 
@@ -177,21 +196,25 @@ Result<gpu::Image> uploadLightmap(Context& ctx, const Lightmap* lm, ContentHash&
     auto img = gpu::Image::create(ctx, d);
     if (!img) return std::unexpected(img.error());
     const size_t texels = size_t(d.width) * d.height;
-    auto staging = Buffer::create(ctx, "scene.lightmap.staging", texels * d.layers * 8, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+    auto staging = Buffer::create(ctx, "scene.lightmap.staging", texels * d.layers * 8,
+                                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
     if (!staging) return std::unexpected(staging.error());
     auto* dst = static_cast<uint16_t*>(staging->mapped());
     std::vector<float> flat;  // I_k((0, 0, 1)) of the unit lobes
     if (lm)
-        for (const glm::vec3& axis : lm->axes) flat.push_back(lighting::irradiance({axis, lm->sharpness, glm::vec3(1.0f)}, glm::vec3(0, 0, 1)).x);
+        for (const glm::vec3& axis : lm->axes)
+            flat.push_back(
+                lighting::irradiance({axis, lm->sharpness, glm::vec3(1.0f)}, glm::vec3(0, 0, 1)).x);
     for (uint32_t layer = 0; layer < d.layers; ++layer)
         for (size_t i = 0; i < texels; ++i) {
             glm::vec3 a(0.0f);
-            if (lm && layer < lm->lobes.size() && i < lm->lobes[layer].size()) a = lm->lobes[layer][i];
+            if (lm && layer < lm->lobes.size() && i < lm->lobes[layer].size())
+                a = lm->lobes[layer][i];
             else if (lm && layer == lm->lobes.size())
                 for (size_t k = 0; k < lm->lobes.size(); ++k) a += flat[k] * lm->lobes[k][i];
             for (int c = 0; c < 4; ++c)
-                dst[(size_t(layer) * texels + i) * 4 + size_t(c)] =
-                    glm::packHalf1x16(c < 3 ? std::clamp(std::isfinite(a[c]) ? a[c] : 0.0f, 0.0f, 65504.0f) : 1.0f);
+                dst[(size_t(layer) * texels + i) * 4 + size_t(c)] = glm::packHalf1x16(
+                    c < 3 ? std::clamp(std::isfinite(a[c]) ? a[c] : 0.0f, 0.0f, 65504.0f) : 1.0f);
         }
     hash.u64(d.width);
     hash.u64(d.height);
@@ -199,7 +222,8 @@ Result<gpu::Image> uploadLightmap(Context& ctx, const Lightmap* lm, ContentHash&
     VkBufferImageCopy r{};
     r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, d.layers};
     r.imageExtent = {d.width, d.height, 1};
-    if (auto sub = copyToImage(ctx, img->image(), *staging, {r}); !sub) return std::unexpected(sub.error());
+    if (auto sub = copyToImage(ctx, img->image(), *staging, {r}); !sub)
+        return std::unexpected(sub.error());
     return img;
 }
 
@@ -232,7 +256,9 @@ Result<void> GpuScene::uploadImages(Context& ctx) {
     if (!flat) return std::unexpected(flat.error());
     m_flatNormal = std::move(*flat);
     for (const SamplerDesc& d : m_scene.samplers) {
-        for (auto v : {uint64_t(d.magFilter), uint64_t(d.minFilter), uint64_t(d.mipmapMode), uint64_t(d.wrapS), uint64_t(d.wrapT)}) m_staticHash.u64(v);
+        for (auto v : {uint64_t(d.magFilter), uint64_t(d.minFilter), uint64_t(d.mipmapMode),
+                       uint64_t(d.wrapS), uint64_t(d.wrapT)})
+            m_staticHash.u64(v);
         auto s = makeSampler(ctx.device(), d);
         if (!s) return std::unexpected(s.error());
         m_samplers.push_back(std::move(*s));
@@ -243,7 +269,8 @@ Result<void> GpuScene::uploadImages(Context& ctx) {
     // The environment (graph/scene/environment.h): equirectangular nits, black without one. Its
     // sampler wraps around the vertical seam and clamps at the poles.
     rg::Image black(1, 1, 4);
-    auto env = m_scene.environment ? environmentImage(m_scene) : Result<rg::Image>(std::move(black));
+    auto env =
+        m_scene.environment ? environmentImage(m_scene) : Result<rg::Image>(std::move(black));
     if (!env) return std::unexpected(env.error());
     m_staticHash.u64(env->width);
     m_staticHash.u64(env->height);
@@ -267,9 +294,11 @@ Result<void> GpuScene::uploadImages(Context& ctx) {
 Result<void> GpuScene::createMaterials(Context& ctx) {
     VkDevice dev = ctx.device();
     std::vector<VkDescriptorSetLayoutBinding> bindings;
-    bindings.push_back({0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+    bindings.push_back({0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
+                        VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
     for (uint32_t b = 1; b <= 5; ++b)
-        bindings.push_back({b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1, VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+        bindings.push_back({b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
+                            VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
     VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     li.bindingCount = static_cast<uint32_t>(bindings.size());
     li.pBindings = bindings.data();
@@ -301,13 +330,16 @@ Result<void> GpuScene::createMaterials(Context& ctx) {
         u.baseColorOpacity = glm::vec4(m.baseColor, m.opacity);
         u.emissive = glm::vec4(m.emissive, 0.0f);
         u.factors = glm::vec4(m.smoothness, m.metalMask, m.reflectance, m.ao);
-        u.factors2 = glm::vec4(m.normalScale, m.occlusionStrength, m.alphaCutoff, static_cast<float>(m.alphaMode));
+        u.factors2 = glm::vec4(m.normalScale, m.occlusionStrength, m.alphaCutoff,
+                               static_cast<float>(m.alphaMode));
         u.diffuseColor = glm::vec4(m.diffuseColor, m.model == "two_colour" ? 1.0f : 0.0f);
         u.f0 = glm::vec4(m.f0, 0.0f);
-        const TextureRef* refs[5] = {&m.baseColorTex, &m.metallicRoughnessTex, &m.normalTex, &m.occlusionTex, &m.emissiveTex};
+        const TextureRef* refs[5] = {&m.baseColorTex, &m.metallicRoughnessTex, &m.normalTex,
+                                     &m.occlusionTex, &m.emissiveTex};
         for (int t = 0; t < 5; ++t) {
             const glm::mat3& x = refs[t]->transform;  // column-major: x[col][row]
-            u.uvTransform[2 * t] = glm::vec4(x[0][0], x[1][0], x[2][0], static_cast<float>(refs[t]->texCoord));
+            u.uvTransform[2 * t] =
+                glm::vec4(x[0][0], x[1][0], x[2][0], static_cast<float>(refs[t]->texCoord));
             u.uvTransform[2 * t + 1] = glm::vec4(x[0][1], x[1][1], x[2][1], 0.0f);
         }
         // Game-team parameters: the material's extra numbers, in key order.
@@ -322,7 +354,8 @@ Result<void> GpuScene::createMaterials(Context& ctx) {
             m_staticHash.u64(static_cast<uint64_t>(static_cast<int64_t>(ref->image)));
             m_staticHash.u64(static_cast<uint64_t>(static_cast<int64_t>(ref->sampler)));
         }
-        auto buf = Buffer::create(ctx, "material." + m.name, sizeof u, VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+        auto buf = Buffer::create(ctx, "material." + m.name, sizeof u,
+                                  VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
         if (!buf) return std::unexpected(buf.error());
         std::memcpy(buf->mapped(), &u, sizeof u);
         m_materialBuffers.push_back(std::move(*buf));
@@ -339,10 +372,12 @@ Result<void> GpuScene::createMaterials(Context& ctx) {
         for (int t = 0; t < 5; ++t) {
             const TextureRef& ref = *refs[t];
             const bool has = ref.image >= 0 && static_cast<size_t>(ref.image) < m_images.size();
-            VkImageView view = has ? m_images[static_cast<size_t>(ref.image)].view() : (t == 2 ? m_flatNormal.view() : m_white.view());
-            VkSampler sampler = ref.sampler >= 0 && static_cast<size_t>(ref.sampler) < m_samplers.size()
-                                    ? m_samplers[static_cast<size_t>(ref.sampler)].get()
-                                    : m_defaultSampler.get();
+            VkImageView view = has ? m_images[static_cast<size_t>(ref.image)].view()
+                                   : (t == 2 ? m_flatNormal.view() : m_white.view());
+            VkSampler sampler =
+                ref.sampler >= 0 && static_cast<size_t>(ref.sampler) < m_samplers.size()
+                    ? m_samplers[static_cast<size_t>(ref.sampler)].get()
+                    : m_defaultSampler.get();
             ii[t] = {sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
             writes[t + 1] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
             writes[t + 1].dstSet = m_materialSets[i];

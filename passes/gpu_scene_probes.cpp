@@ -16,7 +16,7 @@ struct GpuDecal {
     glm::vec4 baseColorOpacity;  // rgb, opacity
     glm::vec4 params;            // smoothness, metalMask, reflectance, 0
     glm::vec4 flags;             // has base colour, smoothness, metal mask, reflectance (0/1)
-    glm::vec4 axis;              // xyz: the box's +Y axis in world space (normal target); w: blend normal
+    glm::vec4 axis;  // xyz: the box's +Y axis in world space (normal target); w: blend normal
 };
 
 Result<void> GpuScene::createDecals(Context& ctx) {
@@ -30,7 +30,8 @@ Result<void> GpuScene::createDecals(Context& ctx) {
         g.axis = glm::vec4(glm::normalize(glm::vec3(d.world[1])), d.normal ? 1.0f : 0.0f);
         decals.push_back(g);
     }
-    auto buf = Buffer::create(ctx, "scene.decals", 16 + std::max<size_t>(1, decals.size()) * sizeof(GpuDecal),
+    auto buf = Buffer::create(ctx, "scene.decals",
+                              16 + std::max<size_t>(1, decals.size()) * sizeof(GpuDecal),
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
     if (!buf) return std::unexpected(buf.error());
     m_decals = std::move(*buf);
@@ -61,7 +62,8 @@ Result<void> GpuScene::createProbes(Context& ctx) {
     m_probeOrder.resize(probes.size());
     for (size_t i = 0; i < probes.size(); ++i) m_probeOrder[i] = i;
     std::stable_sort(m_probeOrder.begin(), m_probeOrder.end(), [&](size_t a, size_t b) {
-        if (probes[a].priority != probes[b].priority) return probes[a].priority > probes[b].priority;
+        if (probes[a].priority != probes[b].priority)
+            return probes[a].priority > probes[b].priority;
         return volume(probes[a]) < volume(probes[b]);
     });
     std::vector<GpuProbe> out;
@@ -74,7 +76,8 @@ Result<void> GpuScene::createProbes(Context& ctx) {
         g.influence = glm::vec4(p.influenceHalfExtents(), 0.0f);
         out.push_back(g);
     }
-    auto buf = Buffer::create(ctx, "scene.probes", 16 + kMaxProbes * sizeof(GpuProbe), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+    auto buf = Buffer::create(ctx, "scene.probes", 16 + kMaxProbes * sizeof(GpuProbe),
+                              VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
     if (!buf) return std::unexpected(buf.error());
     m_probes = std::move(*buf);
     auto* bytes = static_cast<uint8_t*>(m_probes.mapped());
@@ -94,11 +97,13 @@ Result<VkBuffer> GpuScene::makeEnvironmentCdfBuffer() const {
     if (m_environmentCdfBuffer.buffer() != VK_NULL_HANDLE) return m_environmentCdfBuffer.buffer();
     const glm::uvec4 header(m_environmentCdf.width, m_environmentCdf.height, 0u, 0u);
     const size_t bytes = sizeof header + m_environmentCdf.data.size() * sizeof(float);
-    auto buf = Buffer::create(*m_ctx, "scene.environment_cdf", bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    auto buf = Buffer::create(*m_ctx, "scene.environment_cdf", bytes,
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
     if (!buf) return std::unexpected(buf.error());
     auto* p = static_cast<uint8_t*>(buf->mapped());
     std::memcpy(p, &header, sizeof header);
-    std::memcpy(p + sizeof header, m_environmentCdf.data.data(), m_environmentCdf.data.size() * sizeof(float));
+    std::memcpy(p + sizeof header, m_environmentCdf.data.data(),
+                m_environmentCdf.data.size() * sizeof(float));
     m_environmentCdfBuffer = std::move(*buf);
     return m_environmentCdfBuffer.buffer();
 }

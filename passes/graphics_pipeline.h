@@ -21,7 +21,8 @@ struct GraphicsPipelineDesc {
     const VkPipelineVertexInputStateCreateInfo* vertexInput = nullptr;  // none: no vertex buffers
     VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
     VkFrontFace frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
-    VkPipelineDepthStencilStateCreateInfo depthStencil{VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
+    VkPipelineDepthStencilStateCreateInfo depthStencil{
+        VK_STRUCTURE_TYPE_PIPELINE_DEPTH_STENCIL_STATE_CREATE_INFO};
     std::vector<VkDynamicState> dynamicStates;  // besides viewport and scissor
     // Depth bias in the rasteriser (shadow maps): constant (in units of the depth format's
     // resolution) and slope-scaled; off when both are 0.
@@ -31,8 +32,10 @@ struct GraphicsPipelineDesc {
 // The blend of a colour attachment: `alpha` src·α + dst·(1 − α), `additive` src + dst, none
 // (write as is); `alphaKeepsDestination` leaves the target's alpha as it was (blending over an
 // image whose alpha means something else).
-VkPipelineColorBlendAttachmentState blendState(const std::string& mode, bool alphaKeepsDestination = false);
+VkPipelineColorBlendAttachmentState blendState(const std::string& mode,
+                                               bool alphaKeepsDestination = false);
 
-Result<gpu::OwnedPipeline> createGraphicsPipeline(gpu::Context& ctx, const GraphicsPipelineDesc& desc);  // through ctx's pipeline cache
+Result<gpu::OwnedPipeline> createGraphicsPipeline(
+    gpu::Context& ctx, const GraphicsPipelineDesc& desc);  // through ctx's pipeline cache
 
 }  // namespace rg::passes

@@ -33,7 +33,8 @@ std::vector<MaterialInfo> detail::materialsOf(const PassDesc& desc) {
         i.shading = m["shading"].asString();
         i.fixup = m["fixup"].asString();
         i.origin = m["origin"].asString();
-        for (const auto& [standard, channel] : m["channels"].asTable()) i.channels[standard] = channel.asString();
+        for (const auto& [standard, channel] : m["channels"].asTable())
+            i.channels[standard] = channel.asString();
         out.push_back(i);
     }
     return out;
@@ -42,23 +43,38 @@ std::vector<MaterialInfo> detail::materialsOf(const PassDesc& desc) {
 Result<void> ScenePass::prepare(PassSetup& setup) {
     const PassDesc& desc = setup.desc;
     if (!setup.scene)
-        return fail(ErrorCode::InvalidInput, passPrefix(desc) + "a 'scene' pass needs a scene (give --scene FILE)");
+        return fail(ErrorCode::InvalidInput,
+                    passPrefix(desc) + "a 'scene' pass needs a scene (give --scene FILE)");
     m_forward = desc.params["forward"].asBool();
     m_shadow = desc.params["shadow"].asBool();
     m_capture = desc.params["capture"].asBool();
-    if (m_shadow && m_capture) return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.capture: a pass is a shadow pass or a probe capture, not both");
-    if (m_forward && m_capture) return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.capture: a pass is a forward pass or a probe capture, not both");
+    if (m_shadow && m_capture)
+        return fail(ErrorCode::InvalidInput,
+                    passPrefix(desc) +
+                        "params.capture: a pass is a shadow pass or a probe capture, not both");
+    if (m_forward && m_capture)
+        return fail(ErrorCode::InvalidInput,
+                    passPrefix(desc) +
+                        "params.capture: a pass is a forward pass or a probe capture, not both");
     if (auto r = m_cadence.parse(setup); !r) return r;
     if (m_shadow) return prepareShadow(setup);
     for (const Access& a : desc.accesses) {
         if (a.usage == Usage::ColorAttachment) m_colors.push_back(a);
-        if (a.usage == Usage::DepthStencilAttachment || (m_forward && a.usage == Usage::DepthStencilRead)) m_depth = a;
+        if (a.usage == Usage::DepthStencilAttachment ||
+            (m_forward && a.usage == Usage::DepthStencilRead))
+            m_depth = a;
     }
     if (!m_depth)
-        return fail(ErrorCode::InvalidInput, passPrefix(desc) + (m_forward ? "a forward 'scene' pass reads the depth buffer ({ \"depth\", as = \"depth\" })"
-                                                                            : "a 'scene' pass writes a depth buffer (a d32f or d32f_s8 resource)"));
+        return fail(
+            ErrorCode::InvalidInput,
+            passPrefix(desc) +
+                (m_forward ? "a forward 'scene' pass reads the depth buffer ({ \"depth\", as = "
+                             "\"depth\" })"
+                           : "a 'scene' pass writes a depth buffer (a d32f or d32f_s8 resource)"));
     if (m_forward && m_colors.size() != 1)
-        return fail(ErrorCode::InvalidInput, passPrefix(desc) + "a forward 'scene' pass writes one colour target (the HDR, loaded)");
+        return fail(
+            ErrorCode::InvalidInput,
+            passPrefix(desc) + "a forward 'scene' pass writes one colour target (the HDR, loaded)");
     std::vector<std::string> attachments;
     for (const Access& a : m_colors) attachments.push_back(a.resource);
     const PhysicalResource* depth = setup.resources.find(m_depth->resource);
@@ -71,19 +87,37 @@ Result<void> ScenePass::prepare(PassSetup& setup) {
         // One shader per material that has blended draws (and per set of textures); the draws
         // are sorted back to front across them when recorded.
         for (const MaterialInfo& info : materialsOf(desc)) {
-            auto variants = drawsByTextures(*sceneOf(setup), [&](const Material& m) { return m.model == info.name && m.alphaMode == AlphaMode::Blend; });
+            auto variants = drawsByTextures(*sceneOf(setup), [&](const Material& m) {
+                return m.model == info.name && m.alphaMode == AlphaMode::Blend;
+            });
             if (variants.empty()) continue;
-            const Material& example = sceneOf(setup)->scene().materials[sceneOf(setup)->draws()[variants.begin()->second.front()].material];
-            const std::string who = "scene material '" + example.name + "' is blended, so the forward pass shades it with material '" + info.name +
-                                    "' (" + info.origin + "), ";
+            const Material& example =
+                sceneOf(setup)
+                    ->scene()
+                    .materials[sceneOf(setup)->draws()[variants.begin()->second.front()].material];
+            const std::string who = "scene material '" + example.name +
+                                    "' is blended, so the forward pass shades it with material '" +
+                                    info.name + "' (" + info.origin + "), ";
             if (!info.fixup.empty())
-                return fail(ErrorCode::InvalidInput, passPrefix(desc) + who + "which fills only part of its layout (the rest comes from the fix-up pass '" +
-                                                         info.fixup + "'): a blended surface has no G-buffer to fix up; make it opaque or use another material");
+                return fail(ErrorCode::InvalidInput,
+                            passPrefix(desc) + who +
+                                "which fills only part of its layout (the rest comes from the "
+                                "fix-up pass '" +
+                                info.fixup +
+                                "'): a blended surface has no G-buffer to fix up; make it opaque "
+                                "or use another material");
             if (info.shading.empty())
-                return fail(ErrorCode::InvalidInput, passPrefix(desc) + who + "which has no lighting path with a shading function: give it a path declared with rg.path { shading = \"file.glsl\" } "
-                                                         "with vec3 rgShade(GBuffer_" + info.layout + " g, vec3 position, vec3 V, ivec2 pixel)");
+                return fail(ErrorCode::InvalidInput,
+                            passPrefix(desc) + who +
+                                "which has no lighting path with a shading function: give it a "
+                                "path declared with rg.path { shading = \"file.glsl\" } "
+                                "with vec3 rgShade(GBuffer_" +
+                                info.layout + " g, vec3 position, vec3 V, ivec2 pixel)");
             for (auto& [mask, draws] : variants)
-                if (auto r = addGroup(setup, info, forwardSource(info), "forward_" + info.name + ".frag", mask, std::move(draws), attachments); !r)
+                if (auto r =
+                        addGroup(setup, info, forwardSource(info), "forward_" + info.name + ".frag",
+                                 mask, std::move(draws), attachments);
+                    !r)
                     return r;
         }
         return {};
@@ -91,13 +125,23 @@ Result<void> ScenePass::prepare(PassSetup& setup) {
     for (const MaterialInfo& info : materialsOf(desc)) {
         for (const auto& t : info.targets)
             if (std::find(attachments.begin(), attachments.end(), t) == attachments.end())
-                return fail(ErrorCode::InvalidInput, passPrefix(desc) + "material '" + info.name + "' writes layout '" + info.layout +
-                                                         "' target '" + t + "', which the pass does not write");
+                return fail(ErrorCode::InvalidInput, passPrefix(desc) + "material '" + info.name +
+                                                         "' writes layout '" + info.layout +
+                                                         "' target '" + t +
+                                                         "', which the pass does not write");
         // The scene's draws of this material, one shader variant per set of textures.
-        auto variants = drawsByTextures(*sceneOf(setup), [&](const Material& m) { return m.model == info.name && m.alphaMode != AlphaMode::Blend; });
-        if (variants.empty()) variants[kTextureBits | kAlphaMaskVariant];  // no draws: still compiled, so a broken material fails at load
+        auto variants = drawsByTextures(*sceneOf(setup), [&](const Material& m) {
+            return m.model == info.name && m.alphaMode != AlphaMode::Blend;
+        });
+        if (variants.empty())
+            variants
+                [kTextureBits |
+                 kAlphaMaskVariant];  // no draws: still compiled, so a broken material fails at load
         for (auto& [mask, draws] : variants)
-            if (auto r = addGroup(setup, info, fragmentSource(info, attachments), "material_" + info.name + ".frag", mask, std::move(draws), attachments); !r)
+            if (auto r = addGroup(setup, info, fragmentSource(info, attachments),
+                                  "material_" + info.name + ".frag", mask, std::move(draws),
+                                  attachments);
+                !r)
                 return r;
     }
     return {};
@@ -121,8 +165,10 @@ void ScenePass::record(RecordContext& rc) {
     const PhysicalResource* d = rc.resources.find(m_depth->resource);
     VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     depth.imageView = d->image->attachmentView();
-    depth.imageLayout = m_forward ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-    depth.loadOp = m_forward || m_depth->load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.imageLayout = m_forward ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL
+                                  : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+    depth.loadOp =
+        m_forward || m_depth->load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
     depth.storeOp = m_forward ? VK_ATTACHMENT_STORE_OP_NONE : VK_ATTACHMENT_STORE_OP_STORE;
     depth.clearValue.depthStencil = {1.0f, 0};
     VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
@@ -147,8 +193,9 @@ void ScenePass::record(RecordContext& rc) {
         for (size_t i : m_groups[gi].draws) {
             if (!sceneOf(rc)->drawInView(i)) continue;
             const DrawItem& item = sceneOf(rc)->draws()[i];
-            distance[i] = m_forward ? glm::distance(glm::vec3(item.world[3]), eye)
-                                    : glm::distance(glm::clamp(eye, item.boundsMin, item.boundsMax), eye);
+            distance[i] = m_forward
+                              ? glm::distance(glm::vec3(item.world[3]), eye)
+                              : glm::distance(glm::clamp(eye, item.boundsMin, item.boundsMax), eye);
             order.emplace_back(gi, i);
         }
     std::stable_sort(order.begin(), order.end(), [&](const auto& a, const auto& b) {
@@ -161,18 +208,22 @@ void ScenePass::record(RecordContext& rc) {
         if (gi != bound) {
             vkCmdBindPipeline(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.pipeline.get());
             g.program->bind(rc, VK_PIPELINE_BIND_POINT_GRAPHICS);
-            vkCmdSetStencilReference(rc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, g.info.stencilValue);  // unused when forward
+            vkCmdSetStencilReference(rc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK,
+                                     g.info.stencilValue);  // unused when forward
             bound = gi;
         }
         const DrawItem& item = sceneOf(rc)->draws()[i];
         const Material& m = sceneOf(rc)->scene().materials[item.material];
         VkDescriptorSet set = sceneOf(rc)->materialSet(item.material);
-        vkCmdBindDescriptorSets(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.program->layout(), 1, 1, &set, 0, nullptr);
+        vkCmdBindDescriptorSets(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.program->layout(), 1, 1,
+                                &set, 0, nullptr);
         vkCmdSetCullMode(rc.cmd, m.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT);
         // scene.vert's Draw: world, the normal matrix's three columns, the lightmap rect.
-        glm::vec4 push[8] = {item.world[0], item.world[1], item.world[2], item.world[3], item.normalMatrix[0], item.normalMatrix[1],
+        glm::vec4 push[8] = {item.world[0],        item.world[1],        item.world[2],
+                             item.world[3],        item.normalMatrix[0], item.normalMatrix[1],
                              item.normalMatrix[2], item.lightmapRect};
-        vkCmdPushConstants(rc.cmd, g.program->layout(), VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+        vkCmdPushConstants(rc.cmd, g.program->layout(),
+                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                            sizeof push, push);
         // The level of detail for the camera (GpuScene::viewLod: at most a pixel of error).
         const DrawLod& lod = sceneOf(rc)->viewLod(i);
@@ -202,7 +253,8 @@ void ScenePass::bindViewAndGeometry(RecordContext& rc) const {
 
 // Begins rendering into one layer: `color` (if any) and `depth` cleared (colour to 0, depth to
 // 1), the depth stored with `depthStore`; then the viewport and the scene's geometry.
-void ScenePass::beginLayer(RecordContext& rc, VkImageView color, VkImageView depth, VkAttachmentStoreOp depthStore) const {
+void ScenePass::beginLayer(RecordContext& rc, VkImageView color, VkImageView depth,
+                           VkAttachmentStoreOp depthStore) const {
     VkRenderingAttachmentInfo c{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
     c.imageView = color;
     c.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
@@ -226,17 +278,22 @@ void ScenePass::beginLayer(RecordContext& rc, VkImageView color, VkImageView dep
 }
 
 // One pipeline: the scene vertex shader and `fragment` with RG_TEXTURES = `textures`.
-Result<void> ScenePass::addGroup(PassSetup& setup, const MaterialInfo& info, std::string fragment, const std::string& name, uint32_t textures,
-                                 std::vector<size_t> draws, const std::vector<std::string>& attachments) {
+Result<void> ScenePass::addGroup(PassSetup& setup, const MaterialInfo& info, std::string fragment,
+                                 const std::string& name, uint32_t textures,
+                                 std::vector<size_t> draws,
+                                 const std::vector<std::string>& attachments) {
     ShaderRequest frag;
     frag.source = std::move(fragment);
     frag.virtualName = name;
     frag.stage = ShaderStage::Fragment;
-    return addGroup(setup, info, "passes/scene.vert", std::move(frag), textures, std::move(draws), attachments);
+    return addGroup(setup, info, "passes/scene.vert", std::move(frag), textures, std::move(draws),
+                    attachments);
 }
 
-Result<void> ScenePass::addGroup(PassSetup& setup, const MaterialInfo& info, const std::string& vertex, ShaderRequest frag, uint32_t textures,
-                                 std::vector<size_t> draws, const std::vector<std::string>& attachments) {
+Result<void> ScenePass::addGroup(PassSetup& setup, const MaterialInfo& info,
+                                 const std::string& vertex, ShaderRequest frag, uint32_t textures,
+                                 std::vector<size_t> draws,
+                                 const std::vector<std::string>& attachments) {
     Group g;
     g.info = info;
     ShaderRequest vert;
@@ -244,7 +301,9 @@ Result<void> ScenePass::addGroup(PassSetup& setup, const MaterialInfo& info, con
     frag.defines.emplace_back("RG_TEXTURES", std::to_string(textures & kTextureBits));
     frag.defines.emplace_back("RG_ALPHA_MASK", (textures & kAlphaMaskVariant) ? "1" : "0");
     g.program = std::make_unique<ShaderProgram>();
-    if (auto r = g.program->build(setup, {vert, frag}, {{1u, sceneOf(setup)->materialSetLayout()}}); !r) return r;
+    if (auto r = g.program->build(setup, {vert, frag}, {{1u, sceneOf(setup)->materialSetLayout()}});
+        !r)
+        return r;
     if (auto r = createPipeline(setup, g, attachments); !r) return r;
     g.draws = std::move(draws);
     m_groups.push_back(std::move(g));
@@ -253,28 +312,43 @@ Result<void> ScenePass::addGroup(PassSetup& setup, const MaterialInfo& info, con
 
 // The scene's vertex layout (graph/scene's Vertex).
 const VkPipelineVertexInputStateCreateInfo& ScenePass::vertexInput() {
-    static const VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
+    static const VkVertexInputBindingDescription binding{0, sizeof(Vertex),
+                                                         VK_VERTEX_INPUT_RATE_VERTEX};
     static const VkVertexInputAttributeDescription attrs[] = {
         {0, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, position))},
         {1, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, normal))},
         {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, tangent))},
         {3, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, uv0))},
         {4, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, uv1))}};
-    static const VkPipelineVertexInputStateCreateInfo vi{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO, nullptr, 0, 1, &binding, 5, attrs};
+    static const VkPipelineVertexInputStateCreateInfo vi{
+        VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
+        nullptr,
+        0,
+        1,
+        &binding,
+        5,
+        attrs};
     return vi;
 }
 
-Result<void> ScenePass::createPipeline(PassSetup& setup, Group& g, const std::vector<std::string>& attachments) {
+Result<void> ScenePass::createPipeline(PassSetup& setup, Group& g,
+                                       const std::vector<std::string>& attachments) {
     GraphicsPipelineDesc d;
     d.program = g.program.get();
     for (const auto& name : attachments) {
         d.colorFormats.push_back(toVkFormat(setup.resources.find(name)->plan->format));
         // Forward: over the lit HDR, src·α + dst·(1 − α), the HDR's alpha kept.
-        VkPipelineColorBlendAttachmentState b = blendState(m_forward ? "alpha" : "", /*alphaKeepsDestination=*/true);
-        const bool ofLayout = std::find(g.info.targets.begin(), g.info.targets.end(), name) != g.info.targets.end();
-        const bool filled = g.info.fills.empty() || std::find(g.info.fills.begin(), g.info.fills.end(), name) != g.info.fills.end();
+        VkPipelineColorBlendAttachmentState b =
+            blendState(m_forward ? "alpha" : "", /*alphaKeepsDestination=*/true);
+        const bool ofLayout =
+            std::find(g.info.targets.begin(), g.info.targets.end(), name) != g.info.targets.end();
+        const bool filled =
+            g.info.fills.empty() ||
+            std::find(g.info.fills.begin(), g.info.fills.end(), name) != g.info.fills.end();
         // A material writes only the targets of its layout it fills (the fix-up pass does the rest).
-        b.colorWriteMask = m_forward || m_capture || (ofLayout && filled) || name == kLightmapSpecularTarget ? 0xfu : 0u;
+        b.colorWriteMask =
+            m_forward || m_capture || (ofLayout && filled) || name == kLightmapSpecularTarget ? 0xfu
+                                                                                              : 0u;
         d.blends.push_back(b);
     }
     d.depthFormat = toVkFormat(m_depthFormat);
@@ -307,24 +381,54 @@ Result<void> ScenePass::createPipeline(PassSetup& setup, Group& g, const std::ve
 
 PassKindInfo scenePassKind() {
     return PassKindInfo{
-        {"scene", PassType::Raster,
-         "draws the scene's primitives with each selected material's generated G-buffer shader; writes stencil classes",
-         {{"materials", "string|list", "pipeline materials to draw (default: every material that is not forward-only)"},
-          {"forward", "boolean", "draw the blended (alpha = 'blend') materials, lit directly, over the colour target it loads"},
+        {"scene",
+         PassType::Raster,
+         "draws the scene's primitives with each selected material's generated G-buffer shader; "
+         "writes stencil classes",
+         {{"materials", "string|list",
+           "pipeline materials to draw (default: every material that is not forward-only)"},
+          {"forward", "boolean",
+           "draw the blended (alpha = 'blend') materials, lit directly, over the colour target it "
+           "loads"},
           {"paths", "string|list", "draw the materials of these lighting paths"},
-          {"defines", "table", "preprocessor defines for its shaders (the forward pass: RG_IBL with scripts/ibl.lua's ibl.lit)"},
-          {"shadow", "boolean", "depth only, into each layer of the depth target it writes, from the views its vertex shader computes (scripts/shadows.lua)"},
-          {"capture", "boolean", "the scene's local light probes: every draw that is not blended into six layers per probe of the cube texture it writes (with a depth target of as many layers), diffuse only (scripts/probes.lua)"},
-          {"cadence", "string", "'frame' (default) or 'once': record only after each build (a probe capture)"},
+          {"defines", "table",
+           "preprocessor defines for its shaders (the forward pass: RG_IBL with scripts/ibl.lua's "
+           "ibl.lit)"},
+          {"shadow", "boolean",
+           "depth only, into each layer of the depth target it writes, from the views its vertex "
+           "shader computes (scripts/shadows.lua)"},
+          {"capture", "boolean",
+           "the scene's local light probes: every draw that is not blended into six layers per "
+           "probe of the cube texture it writes (with a depth target of as many layers), diffuse "
+           "only (scripts/probes.lua)"},
+          {"cadence", "string",
+           "'frame' (default) or 'once': record only after each build (a probe capture)"},
           {"fragment", "string", "capture: the fragment shader (default probes/capture.frag)"},
-          {"shader", "string", "shadow: the vertex shader (default shadows/shadow.vert: the matrix of the layer its push constant names, from `sun_cascades`); capture: default probes/capture.vert"},
+          {"shader", "string",
+           "shadow: the vertex shader (default shadows/shadow.vert: the matrix of the layer its "
+           "push constant names, from `sun_cascades`); capture: default probes/capture.vert"},
           {"depth_bias", "list", "shadow: { constant, slope } rasteriser depth bias"},
-          {"cull", "string", "shadow: 'none' (default), 'clockwise' or 'counter_clockwise': single-sided materials' faces of that winding in the map are not drawn (the faces turned away from the light, for a closed mesh never the nearest)"},
-          {"indirect", "string", "shadow: a buffer the pass reads as { NAME, as = 'indirect' } holding a VkDrawIndexedIndirectCommand per layer and scene draw (layer-major, the buffer's commands / layers slots each, written by a culling pass such as shadows/cascade_cull.comp): each draw is issued through it, so culled draws cost nothing; draws beyond the slots are drawn directly"},
-          {"view", "list", "shadow: { first, count }: the target's layer l is view first + l of count (its matrix, its indirect slots), default { 0, the target's layers }: one cascade a pass, into a map of its own"},
-          {"views", "string", "shadow: 'shader' (default: the layer's matrix is the vertex shader's business) or 'lights' (the scene's local-light shadow views this frame, one per layer, each drawing only the casters its frustum meets; shader default shadows/local_shadow.vert)"},
+          {"cull", "string",
+           "shadow: 'none' (default), 'clockwise' or 'counter_clockwise': single-sided materials' "
+           "faces of that winding in the map are not drawn (the faces turned away from the light, "
+           "for a closed mesh never the nearest)"},
+          {"indirect", "string",
+           "shadow: a buffer the pass reads as { NAME, as = 'indirect' } holding a "
+           "VkDrawIndexedIndirectCommand per layer and scene draw (layer-major, the buffer's "
+           "commands / layers slots each, written by a culling pass such as "
+           "shadows/cascade_cull.comp): each draw is issued through it, so culled draws cost "
+           "nothing; draws beyond the slots are drawn directly"},
+          {"view", "list",
+           "shadow: { first, count }: the target's layer l is view first + l of count (its matrix, "
+           "its indirect slots), default { 0, the target's layers }: one cascade a pass, into a "
+           "map of its own"},
+          {"views", "string",
+           "shadow: 'shader' (default: the layer's matrix is the vertex shader's business) or "
+           "'lights' (the scene's local-light shadow views this frame, one per layer, each drawing "
+           "only the casters its frustum meets; shader default shadows/local_shadow.vert)"},
           {"rg_materials", "list", "(filled in by rgraph) the resolved materials"}},
-         Usage::Sampled, Usage::ColorAttachment},
+         Usage::Sampled,
+         Usage::ColorAttachment},
         [] { return std::make_unique<ScenePass>(); }};
 }
 

@@ -25,7 +25,8 @@ std::vector<MaterialInfo> materialsOf(const PassDesc& desc);
 // 3× the G-buffer's cost in the default scene).
 inline constexpr uint32_t kTextureBits = 31u, kAlphaMaskVariant = 32u;
 inline uint32_t variantKey(const Material& m) {
-    const TextureRef* refs[] = {&m.baseColorTex, &m.metallicRoughnessTex, &m.normalTex, &m.occlusionTex, &m.emissiveTex};
+    const TextureRef* refs[] = {&m.baseColorTex, &m.metallicRoughnessTex, &m.normalTex,
+                                &m.occlusionTex, &m.emissiveTex};
     uint32_t key = 0;
     for (uint32_t t = 0; t < 5; ++t)
         if (refs[t]->valid()) key |= 1u << t;
@@ -46,7 +47,8 @@ std::vector<size_t> drawsWhere(const GpuScene& scene, Wanted wanted) {
 template <typename Wanted>
 std::map<uint32_t, std::vector<size_t>> drawsByTextures(const GpuScene& scene, Wanted wanted) {
     std::map<uint32_t, std::vector<size_t>> out;
-    for (size_t d : drawsWhere(scene, wanted)) out[variantKey(scene.scene().materials[scene.draws()[d].material])].push_back(d);
+    for (size_t d : drawsWhere(scene, wanted))
+        out[variantKey(scene.scene().materials[scene.draws()[d].material])].push_back(d);
     return out;
 }
 
@@ -58,11 +60,14 @@ public:
 
 private:
     void bindViewAndGeometry(RecordContext& rc) const;
-    void beginLayer(RecordContext& rc, VkImageView color, VkImageView depth, VkAttachmentStoreOp depthStore) const;
-    Result<void> addGroup(PassSetup& setup, const MaterialInfo& info, std::string fragment, const std::string& name, uint32_t textures,
-                          std::vector<size_t> draws, const std::vector<std::string>& attachments);
-    Result<void> addGroup(PassSetup& setup, const MaterialInfo& info, const std::string& vertex, ShaderRequest frag, uint32_t textures,
-                          std::vector<size_t> draws, const std::vector<std::string>& attachments);
+    void beginLayer(RecordContext& rc, VkImageView color, VkImageView depth,
+                    VkAttachmentStoreOp depthStore) const;
+    Result<void> addGroup(PassSetup& setup, const MaterialInfo& info, std::string fragment,
+                          const std::string& name, uint32_t textures, std::vector<size_t> draws,
+                          const std::vector<std::string>& attachments);
+    Result<void> addGroup(PassSetup& setup, const MaterialInfo& info, const std::string& vertex,
+                          ShaderRequest frag, uint32_t textures, std::vector<size_t> draws,
+                          const std::vector<std::string>& attachments);
 
     struct Group {
         MaterialInfo info;
@@ -79,7 +84,8 @@ private:
     void recordShadow(RecordContext& rc);
 
     static const VkPipelineVertexInputStateCreateInfo& vertexInput();
-    Result<void> createPipeline(PassSetup& setup, Group& g, const std::vector<std::string>& attachments);
+    Result<void> createPipeline(PassSetup& setup, Group& g,
+                                const std::vector<std::string>& attachments);
 
     std::vector<Access> m_colors;
     std::optional<Access> m_depth;
@@ -92,11 +98,13 @@ private:
 public:
     bool dueOnce(uint64_t epoch) const override { return m_cadence.dueOnce(epoch); }
     void restoredOnce(uint64_t epoch) override { m_cadence.restored(epoch); }
+
 private:
     Cadence m_cadence;
     bool m_lightViews = false;  // shadow: the scene's local-light views rather than the shader's
-    VkCullModeFlags m_shadowCull = VK_CULL_MODE_NONE;  // shadow: params.cull for single-sided materials
-    std::string m_indirect;     // shadow: the buffer of indirect commands per layer and draw
+    VkCullModeFlags m_shadowCull =
+        VK_CULL_MODE_NONE;   // shadow: params.cull for single-sided materials
+    std::string m_indirect;  // shadow: the buffer of indirect commands per layer and draw
     static constexpr VkDeviceSize kIndirectCommandBytes = sizeof(VkDrawIndexedIndirectCommand);
     uint32_t m_layers = 1;
     uint32_t m_firstView = 0;  // shadow: params.view, the view of the target's layer 0

@@ -15,15 +15,15 @@ struct MaterialInfo {
     std::string name;
     uint32_t id = 0;
     std::string layout;
-    std::vector<std::string> targets;   // the layout's targets, in order
-    std::vector<bool> targetInteger;    // integer-format targets take uvec4
-    std::vector<std::string> fills;     // empty: all
+    std::vector<std::string> targets;  // the layout's targets, in order
+    std::vector<bool> targetInteger;   // integer-format targets take uvec4
+    std::vector<std::string> fills;    // empty: all
     std::string surface;
     uint32_t stencilValue = 0, stencilMask = 0;
-    std::vector<std::string> custom;    // game-team parameter names, in material.custom order
-    std::string shading;                // its lighting path's shading function (forward), or ""
-    std::string fixup;                  // the fix-up pass that completes its layout, or ""
-    std::string origin;                 // where the material was declared
+    std::vector<std::string> custom;  // game-team parameter names, in material.custom order
+    std::string shading;              // its lighting path's shading function (forward), or ""
+    std::string fixup;                // the fix-up pass that completes its layout, or ""
+    std::string origin;               // where the material was declared
     std::map<std::string, std::string> channels;  // standard parameter -> its layout's channel
 };
 

@@ -34,10 +34,15 @@ Result<void> ScenePass::prepareShadow(PassSetup& setup) {
     const PassDesc& desc = setup.desc;
     for (const Access& a : desc.accesses) {
         if (a.usage == Usage::ColorAttachment)
-            return fail(ErrorCode::InvalidInput, passPrefix(desc) + "a shadow 'scene' pass writes depth only; '" + a.resource + "' is a colour target");
+            return fail(ErrorCode::InvalidInput, passPrefix(desc) +
+                                                     "a shadow 'scene' pass writes depth only; '" +
+                                                     a.resource + "' is a colour target");
         if (a.usage == Usage::DepthStencilAttachment) m_depth = a;
     }
-    if (!m_depth) return fail(ErrorCode::InvalidInput, passPrefix(desc) + "a shadow 'scene' pass writes a depth texture (d32f, one layer per view)");
+    if (!m_depth)
+        return fail(ErrorCode::InvalidInput,
+                    passPrefix(desc) +
+                        "a shadow 'scene' pass writes a depth texture (d32f, one layer per view)");
     const PhysicalResource* depth = setup.resources.find(m_depth->resource);
     m_width = depth->plan->width;
     m_height = depth->plan->height;
@@ -45,10 +50,13 @@ Result<void> ScenePass::prepareShadow(PassSetup& setup) {
     m_layers = depth->plan->layers;
     const Value& bias = desc.params["depth_bias"];
     if (!bias.isNil() && !(bias.isList() && bias.asList().size() == 2))
-        return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.depth_bias: expected { constant, slope }");
-    const std::string views = desc.params["views"].isString() ? desc.params["views"].asString() : "shader";
+        return fail(ErrorCode::InvalidInput,
+                    passPrefix(desc) + "params.depth_bias: expected { constant, slope }");
+    const std::string views =
+        desc.params["views"].isString() ? desc.params["views"].asString() : "shader";
     if (views != "shader" && views != "lights")
-        return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.views: unknown '" + views + "', expected one of: 'shader', 'lights'");
+        return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.views: unknown '" + views +
+                                                 "', expected one of: 'shader', 'lights'");
     m_lightViews = views == "lights";
     // view = { first, count }: layer l of the target is view first + l of count (the matrix the
     // push constant names, the indirect buffer's slots): one cascade per pass, each into a map
@@ -56,35 +64,55 @@ Result<void> ScenePass::prepareShadow(PassSetup& setup) {
     m_firstView = 0;
     m_viewCount = m_layers;
     if (const Value& view = desc.params["view"]; !view.isNil()) {
-        if (!view.isList() || view.asList().size() != 2 || !view.asList()[0].isNumber() || !view.asList()[1].isNumber())
-            return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.view: expected { first, count }");
+        if (!view.isList() || view.asList().size() != 2 || !view.asList()[0].isNumber() ||
+            !view.asList()[1].isNumber())
+            return fail(ErrorCode::InvalidInput,
+                        passPrefix(desc) + "params.view: expected { first, count }");
         const double first = view.asList()[0].asNumber(0), count = view.asList()[1].asNumber(0);
-        if (first < 0 || count < 1 || first != std::floor(first) || count != std::floor(count) || first + m_layers > count)
-            return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.view: { " + numberText(first) + ", " + numberText(count) +
-                                                     " } does not hold the target's " + std::to_string(m_layers) + " layer(s) from view 'first' on");
-        if (m_lightViews) return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.view: views = 'lights' places its own views; give one or the other");
+        if (first < 0 || count < 1 || first != std::floor(first) || count != std::floor(count) ||
+            first + m_layers > count)
+            return fail(ErrorCode::InvalidInput,
+                        passPrefix(desc) + "params.view: { " + numberText(first) + ", " +
+                            numberText(count) + " } does not hold the target's " +
+                            std::to_string(m_layers) + " layer(s) from view 'first' on");
+        if (m_lightViews)
+            return fail(
+                ErrorCode::InvalidInput,
+                passPrefix(desc) +
+                    "params.view: views = 'lights' places its own views; give one or the other");
         m_firstView = static_cast<uint32_t>(first);
         m_viewCount = static_cast<uint32_t>(count);
     }
     // cull: which winding, as the views' matrices land faces in the map, single-sided
     // materials' faces are not drawn with (double-sided ones always draw both).
-    const std::string cull = desc.params["cull"].isString() ? desc.params["cull"].asString() : "none";
+    const std::string cull =
+        desc.params["cull"].isString() ? desc.params["cull"].asString() : "none";
     if (cull != "none" && cull != "clockwise" && cull != "counter_clockwise")
-        return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.cull: unknown '" + cull +
-                                                 "', expected one of: 'none', 'clockwise', 'counter_clockwise'");
+        return fail(ErrorCode::InvalidInput,
+                    passPrefix(desc) + "params.cull: unknown '" + cull +
+                        "', expected one of: 'none', 'clockwise', 'counter_clockwise'");
     // With the front face counter-clockwise: FRONT culls counter-clockwise faces, BACK clockwise ones.
-    m_shadowCull = cull == "none" ? VK_CULL_MODE_NONE : cull == "counter_clockwise" ? VK_CULL_MODE_FRONT_BIT : VK_CULL_MODE_BACK_BIT;
+    m_shadowCull = cull == "none"                ? VK_CULL_MODE_NONE
+                   : cull == "counter_clockwise" ? VK_CULL_MODE_FRONT_BIT
+                                                 : VK_CULL_MODE_BACK_BIT;
     // indirect = "buffer": a culling pass wrote one indirect command per layer and draw
     // (shaders/shadows/cascade_cull.comp); draws past the buffer's slots are drawn directly.
     if (desc.params["indirect"].isString()) {
         m_indirect = desc.params["indirect"].asString();
-        const bool read = std::any_of(desc.accesses.begin(), desc.accesses.end(),
-                                      [&](const Access& a) { return a.resource == m_indirect && a.usage == Usage::IndirectRead; });
+        const bool read =
+            std::any_of(desc.accesses.begin(), desc.accesses.end(), [&](const Access& a) {
+                return a.resource == m_indirect && a.usage == Usage::IndirectRead;
+            });
         if (!read)
-            return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.indirect: '" + m_indirect +
-                                                     "' must be among the pass's reads as an indirect buffer ({ \"" + m_indirect + "\", as = \"indirect\" })");
+            return fail(ErrorCode::InvalidInput,
+                        passPrefix(desc) + "params.indirect: '" + m_indirect +
+                            "' must be among the pass's reads as an indirect buffer ({ \"" +
+                            m_indirect + "\", as = \"indirect\" })");
         if (m_lightViews)
-            return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.indirect: views = 'lights' culls on the CPU; give one or the other");
+            return fail(
+                ErrorCode::InvalidInput,
+                passPrefix(desc) +
+                    "params.indirect: views = 'lights' culls on the CPU; give one or the other");
     }
     Group g;
     g.info.name = "shadow";
@@ -98,9 +126,18 @@ Result<void> ScenePass::prepareShadow(PassSetup& setup) {
     d.program = g.program.get();
     d.depthFormat = toVkFormat(m_depthFormat);
     // Positions only (the shader reads nothing else), from the same interleaved vertices.
-    static const VkVertexInputBindingDescription binding{0, sizeof(Vertex), VK_VERTEX_INPUT_RATE_VERTEX};
-    static const VkVertexInputAttributeDescription position{0, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, position))};
-    static const VkPipelineVertexInputStateCreateInfo positions{VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO, nullptr, 0, 1, &binding, 1, &position};
+    static const VkVertexInputBindingDescription binding{0, sizeof(Vertex),
+                                                         VK_VERTEX_INPUT_RATE_VERTEX};
+    static const VkVertexInputAttributeDescription position{
+        0, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, position))};
+    static const VkPipelineVertexInputStateCreateInfo positions{
+        VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
+        nullptr,
+        0,
+        1,
+        &binding,
+        1,
+        &position};
     d.vertexInput = &positions;
     // params.cull, set per draw (double-sided materials draw both sides).
     d.cullMode = VK_CULL_MODE_NONE;
@@ -128,9 +165,12 @@ void ScenePass::recordShadow(RecordContext& rc) {
     // views = "lights": the scene's shadow views this frame (GpuScene::updateFrame), each with
     // the casters its frustum meets; layers past them are neither cleared nor drawn (no
     // light reads them).
-    const uint32_t layers = m_lightViews ? std::min(m_layers, sceneOf(rc)->shadowViewCount()) : m_layers;
+    const uint32_t layers =
+        m_lightViews ? std::min(m_layers, sceneOf(rc)->shadowViewCount()) : m_layers;
     const PhysicalResource* indirect = m_indirect.empty() ? nullptr : rc.resources.find(m_indirect);
-    const VkDeviceSize slots = indirect ? indirect->plan->bufferSize / kIndirectCommandBytes / std::max(m_viewCount, 1u) : 0;
+    const VkDeviceSize slots =
+        indirect ? indirect->plan->bufferSize / kIndirectCommandBytes / std::max(m_viewCount, 1u)
+                 : 0;
     for (uint32_t layer = 0; layer < layers; ++layer) {
         const uint32_t view = m_firstView + layer;
         beginLayer(rc, VK_NULL_HANDLE, d->image->layerView(layer), VK_ATTACHMENT_STORE_OP_STORE);
@@ -138,11 +178,18 @@ void ScenePass::recordShadow(RecordContext& rc) {
         g.program->bind(rc, VK_PIPELINE_BIND_POINT_GRAPHICS);
         for (size_t i : m_lightViews ? sceneOf(rc)->shadowViewDraws(layer) : g.draws) {
             const DrawItem& item = sceneOf(rc)->draws()[i];
-            vkCmdSetCullMode(rc.cmd, sceneOf(rc)->scene().materials[item.material].doubleSided ? VkCullModeFlags(VK_CULL_MODE_NONE) : m_shadowCull);
-            struct { glm::mat4 world; glm::vec4 layer; } push{item.world, glm::vec4(static_cast<float>(view))};
-            vkCmdPushConstants(rc.cmd, g.program->layout(), VK_SHADER_STAGE_VERTEX_BIT, 0, sizeof push, &push);
+            vkCmdSetCullMode(rc.cmd, sceneOf(rc)->scene().materials[item.material].doubleSided
+                                         ? VkCullModeFlags(VK_CULL_MODE_NONE)
+                                         : m_shadowCull);
+            struct {
+                glm::mat4 world;
+                glm::vec4 layer;
+            } push{item.world, glm::vec4(static_cast<float>(view))};
+            vkCmdPushConstants(rc.cmd, g.program->layout(), VK_SHADER_STAGE_VERTEX_BIT, 0,
+                               sizeof push, &push);
             if (indirect && i < slots) {
-                vkCmdDrawIndexedIndirect(rc.cmd, indirect->buffer->buffer(), (view * slots + i) * kIndirectCommandBytes, 1,
+                vkCmdDrawIndexedIndirect(rc.cmd, indirect->buffer->buffer(),
+                                         (view * slots + i) * kIndirectCommandBytes, 1,
                                          kIndirectCommandBytes);
             } else {
                 // The camera's level of detail: a caster finer than its receiver (the G-buffer's

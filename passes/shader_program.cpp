@@ -33,12 +33,18 @@ constexpr uint32_t kMaxUnrolledGlobalLights = 4;
 
 VkDescriptorType toVkDescriptor(DescriptorType t) {
     switch (t) {
-    case DescriptorType::CombinedImageSampler: return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
-    case DescriptorType::SampledImage: return VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
-    case DescriptorType::Sampler: return VK_DESCRIPTOR_TYPE_SAMPLER;
-    case DescriptorType::StorageImage: return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
-    case DescriptorType::UniformBuffer: return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-    case DescriptorType::StorageBuffer: return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        case DescriptorType::CombinedImageSampler:
+            return VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+        case DescriptorType::SampledImage:
+            return VK_DESCRIPTOR_TYPE_SAMPLED_IMAGE;
+        case DescriptorType::Sampler:
+            return VK_DESCRIPTOR_TYPE_SAMPLER;
+        case DescriptorType::StorageImage:
+            return VK_DESCRIPTOR_TYPE_STORAGE_IMAGE;
+        case DescriptorType::UniformBuffer:
+            return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+        case DescriptorType::StorageBuffer:
+            return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
     }
     return VK_DESCRIPTOR_TYPE_MAX_ENUM;
 }
@@ -47,13 +53,19 @@ VkDescriptorType toVkDescriptor(DescriptorType t) {
 // and type: bound whatever the pass declares.
 bool isSceneBinding(const ReflectedBinding& b) {
     static const std::pair<const char*, DescriptorType> kScene[] = {
-        {"Camera", DescriptorType::UniformBuffer},       {"Lights", DescriptorType::StorageBuffer},
+        {"Camera", DescriptorType::UniformBuffer},
+        {"Lights", DescriptorType::StorageBuffer},
         {"LightsWindow", DescriptorType::UniformBuffer},
-        {"Decals", DescriptorType::StorageBuffer},       {"ShadowViews", DescriptorType::StorageBuffer},
-        {"SceneDraws", DescriptorType::StorageBuffer},   {"SceneBvh", DescriptorType::StorageBuffer},
-        {"Probes", DescriptorType::UniformBuffer},       {"SceneEnvironmentCdf", DescriptorType::StorageBuffer},
-        {"SceneEnvironment", DescriptorType::CombinedImageSampler}, {"SceneLightmap", DescriptorType::CombinedImageSampler}};
-    return std::any_of(std::begin(kScene), std::end(kScene), [&](const auto& e) { return b.name == e.first && b.type == e.second; });
+        {"Decals", DescriptorType::StorageBuffer},
+        {"ShadowViews", DescriptorType::StorageBuffer},
+        {"SceneDraws", DescriptorType::StorageBuffer},
+        {"SceneBvh", DescriptorType::StorageBuffer},
+        {"Probes", DescriptorType::UniformBuffer},
+        {"SceneEnvironmentCdf", DescriptorType::StorageBuffer},
+        {"SceneEnvironment", DescriptorType::CombinedImageSampler},
+        {"SceneLightmap", DescriptorType::CombinedImageSampler}};
+    return std::any_of(std::begin(kScene), std::end(kScene),
+                       [&](const auto& e) { return b.name == e.first && b.type == e.second; });
 }
 
 bool isParamsBlock(const ReflectedBinding& b) {
@@ -63,13 +75,17 @@ bool isParamsBlock(const ReflectedBinding& b) {
 // Which usages may stand behind a descriptor type.
 bool usageFits(DescriptorType t, Usage u) {
     switch (t) {
-    case DescriptorType::CombinedImageSampler:
-    case DescriptorType::SampledImage: return u == Usage::Sampled;
-    case DescriptorType::StorageImage:
-    case DescriptorType::StorageBuffer:
-        return u == Usage::StorageRead || u == Usage::StorageWrite || u == Usage::StorageReadWrite;
-    case DescriptorType::UniformBuffer: return u == Usage::UniformRead;
-    case DescriptorType::Sampler: return false;
+        case DescriptorType::CombinedImageSampler:
+        case DescriptorType::SampledImage:
+            return u == Usage::Sampled;
+        case DescriptorType::StorageImage:
+        case DescriptorType::StorageBuffer:
+            return u == Usage::StorageRead || u == Usage::StorageWrite ||
+                   u == Usage::StorageReadWrite;
+        case DescriptorType::UniformBuffer:
+            return u == Usage::UniformRead;
+        case DescriptorType::Sampler:
+            return false;
     }
     return false;
 }
@@ -82,8 +98,8 @@ std::string glslName(std::string s) {
 Result<OwnedSampler> makeSampler(VkDevice dev, VkFilter filter) {
     VkSamplerCreateInfo si{VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO};
     si.magFilter = si.minFilter = filter;
-    si.mipmapMode = filter == VK_FILTER_LINEAR ? VK_SAMPLER_MIPMAP_MODE_LINEAR
-                                               : VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    si.mipmapMode =
+        filter == VK_FILTER_LINEAR ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
     si.addressModeU = si.addressModeV = si.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
     si.maxLod = VK_LOD_CLAMP_NONE;
     VkSampler s = VK_NULL_HANDLE;
@@ -94,7 +110,8 @@ Result<OwnedSampler> makeSampler(VkDevice dev, VkFilter filter) {
 }  // namespace
 
 Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> stages,
-                                  std::map<uint32_t, VkDescriptorSetLayout> externalSets, uint32_t mipVariants) {
+                                  std::map<uint32_t, VkDescriptorSetLayout> externalSets,
+                                  uint32_t mipVariants) {
     m_external = std::move(externalSets);
     m_variants = std::max(1u, mipVariants);
     const PassDesc& desc = setup.desc;
@@ -102,17 +119,19 @@ Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> s
     std::vector<std::pair<std::string, std::string>> defines;
     for (const auto& [name, v] : desc.params["defines"].asTable()) {
         std::string value;
-        if (v.isBool()) value = v.asBool() ? "1" : "0";
+        if (v.isBool())
+            value = v.asBool() ? "1" : "0";
         else if (v.isNumber()) {
             double d = v.asNumber();
             value = d == static_cast<double>(static_cast<long long>(d))
                         ? std::to_string(static_cast<long long>(d))
                         : std::to_string(d);
-        } else if (v.isString()) value = v.asString();
+        } else if (v.isString())
+            value = v.asString();
         else
-            return fail(ErrorCode::InvalidInput, passPrefix(desc) + "params.defines." + name +
-                                                     ": expected a number, boolean or string, got " +
-                                                     v.typeName());
+            return fail(ErrorCode::InvalidInput,
+                        passPrefix(desc) + "params.defines." + name +
+                            ": expected a number, boolean or string, got " + v.typeName());
         defines.emplace_back(name, value);
     }
     // The light types of the scene (lib/scene.glsl RG_SCENE_LIGHT_TYPES): the light loop keeps
@@ -141,17 +160,21 @@ Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> s
         std::string globalIndices, globalTypes;
         uint32_t globalCount = 0, tileTypes = 0;
         const auto& lights = sceneOf(setup)->scene().lights;
-        const float diagonal = glm::length(sceneOf(setup)->scene().boundsMax - sceneOf(setup)->scene().boundsMin);
+        const float diagonal =
+            glm::length(sceneOf(setup)->scene().boundsMax - sceneOf(setup)->scene().boundsMin);
         const bool unrollAll = lights.size() <= kMaxUnrolledGlobalLights &&
                                std::all_of(lights.begin(), lights.end(), [&](const Light& l) {
-                                   return l.type == LightType::Directional || !(l.range > 0.0f) || l.range >= 0.25f * diagonal;
+                                   return l.type == LightType::Directional || !(l.range > 0.0f) ||
+                                          l.range >= 0.25f * diagonal;
                                });
         for (size_t i = 0; i < lights.size(); ++i) {
             const Light& l = lights[i];
             const uint32_t type = static_cast<uint32_t>(l.type);
             types |= 1u << type;
             ies = ies || !l.ies.empty();
-            if (l.castShadows) shadowed = std::max(shadowed, l.type == LightType::Point || l.type == LightType::Spot ? 1 : 2);
+            if (l.castShadows)
+                shadowed = std::max(
+                    shadowed, l.type == LightType::Point || l.type == LightType::Spot ? 1 : 2);
             if (unrollAll || l.type == LightType::Directional || !(l.range > 0.0f)) {
                 globalIndices += (globalCount ? "," : "") + std::to_string(i) + "u";
                 globalTypes += (globalCount ? "," : "") + std::to_string(type) + "u";
@@ -170,7 +193,9 @@ Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> s
         defines.emplace_back("RG_SCENE_IES", ies ? "1" : "0");
         // RG_SCENE_PROBES: how many local light probes the scene has (lib/ibl.glsl's composition
         // loops that many times at most: none compiles no loop at all).
-        defines.emplace_back("RG_SCENE_PROBES", std::to_string(std::min(sceneOf(setup)->scene().probes.size(), kMaxProbes)));
+        defines.emplace_back(
+            "RG_SCENE_PROBES",
+            std::to_string(std::min(sceneOf(setup)->scene().probes.size(), kMaxProbes)));
         // RG_SCENE_PROBE_SHAPES: which shapes its probes have (1 sphere, 2 box, 3 both): a scene of
         // one shape compiles only that shape's influence and parallax (lib/probes.glsl).
         int probeShapes = 0;
@@ -189,7 +214,8 @@ Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> s
             defines.emplace_back("RG_LIGHTMAP_LOBES", std::to_string(lm->axes.size()));
             defines.emplace_back("RG_LIGHTMAP_SHARPNESS", number(lm->sharpness));
             std::string unit = "float[](";
-            for (size_t k = 0; k < lm->unit.size(); ++k) unit += (k ? ", " : "") + number(lm->unit[k]);
+            for (size_t k = 0; k < lm->unit.size(); ++k)
+                unit += (k ? ", " : "") + number(lm->unit[k]);
             defines.emplace_back("RG_LIGHTMAP_UNIT", unit + ")");
         }
     }
@@ -204,23 +230,28 @@ Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> s
             return std::unexpected(e);
         }
         // Floor mode (PassSetup::floor): the same outputs or work-group size, no work.
-        if (setup.floor && (mod->reflection.stageMask & (stageBit(ShaderStage::Fragment) | stageBit(ShaderStage::Compute)))) {
+        if (setup.floor && (mod->reflection.stageMask &
+                            (stageBit(ShaderStage::Fragment) | stageBit(ShaderStage::Compute)))) {
             const ShaderReflection& r = mod->reflection;
             ShaderRequest floor;
             floor.passName = desc.name;
             std::ostringstream src;
             src << "#version 460\n// rgraph bench --floors: '" << desc.name << "' doing nothing\n";
             if (r.stageMask & stageBit(ShaderStage::Compute)) {
-                src << "layout(local_size_x = " << r.localSize[0] << ", local_size_y = " << r.localSize[1] << ", local_size_z = "
-                    << r.localSize[2] << ") in;\nvoid main() {}\n";
+                src << "layout(local_size_x = " << r.localSize[0]
+                    << ", local_size_y = " << r.localSize[1]
+                    << ", local_size_z = " << r.localSize[2] << ") in;\nvoid main() {}\n";
                 floor.virtualName = "floor.comp";
                 floor.stage = ShaderStage::Compute;
             } else {
                 std::ostringstream body;
                 for (uint32_t loc : r.colorOutputs) {
-                    const bool integer = std::find(r.integerOutputs.begin(), r.integerOutputs.end(), loc) != r.integerOutputs.end();
-                    src << "layout(location = " << loc << ") out " << (integer ? "uvec4" : "vec4") << " o" << loc << ";\n";
-                    body << "    o" << loc << " = " << (integer ? "uvec4(0u)" : "vec4(0.0)") << ";\n";
+                    const bool integer = std::find(r.integerOutputs.begin(), r.integerOutputs.end(),
+                                                   loc) != r.integerOutputs.end();
+                    src << "layout(location = " << loc << ") out " << (integer ? "uvec4" : "vec4")
+                        << " o" << loc << ";\n";
+                    body << "    o" << loc << " = " << (integer ? "uvec4(0u)" : "vec4(0.0)")
+                         << ";\n";
                 }
                 src << "void main() {\n" << body.str() << "}\n";
                 floor.virtualName = "floor.frag";
@@ -232,7 +263,8 @@ Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> s
         }
         for (const auto& f : mod->files)
             if (std::find(m_files.begin(), m_files.end(), f) == m_files.end()) m_files.push_back(f);
-        if (m_modules.empty()) m_reflection = mod->reflection;
+        if (m_modules.empty())
+            m_reflection = mod->reflection;
         else {
             auto merged = mergeReflections(m_reflection, mod->reflection, desc.name);
             if (!merged) return std::unexpected(merged.error());
@@ -309,7 +341,8 @@ Result<void> ShaderProgram::createLayouts(PassSetup& setup) {
 Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
     const PassDesc& desc = setup.desc;
     VkDevice dev = setup.gpu.device();
-    const uint32_t slots = setup.gpu.framesInFlight() * m_variants;  // descriptor sets per set index
+    const uint32_t slots =
+        setup.gpu.framesInFlight() * m_variants;  // descriptor sets per set index
     if (m_setLayouts.empty()) return {};
 
     auto lin = makeSampler(dev, VK_FILTER_LINEAR);
@@ -321,7 +354,8 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
 
     std::map<VkDescriptorType, uint32_t> counts;
     for (const auto& b : m_reflection.bindings)
-        if (!m_external.count(b.set)) counts[toVkDescriptor(b.type)] += std::max(1u, b.count) * slots;
+        if (!m_external.count(b.set))
+            counts[toVkDescriptor(b.type)] += std::max(1u, b.count) * slots;
     if (counts.empty()) counts[VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER] = 1;  // a pool needs one size
     std::vector<VkDescriptorPoolSize> sizes;
     for (auto [t, n] : counts) sizes.push_back({t, n});
@@ -337,8 +371,9 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
         if (isParamsBlock(b)) m_params = &b;
     if (m_params) {
         for (uint32_t s = 0; s < setup.gpu.framesInFlight(); ++s) {
-            auto buf = Buffer::create(setup.gpu, desc.name + ".Params", std::max(16u, m_params->blockSize),
-                                      VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+            auto buf =
+                Buffer::create(setup.gpu, desc.name + ".Params", std::max(16u, m_params->blockSize),
+                               VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
             if (!buf) return std::unexpected(buf.error());
             m_paramBuffers.push_back(std::move(*buf));
         }
@@ -349,7 +384,8 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
         const ReflectedBinding* binding;
         const PhysicalResource* resource;
         Usage usage;
-        bool previousMip = false;  // `<image>_previous`: the mip before the one a per-mip variant writes
+        bool previousMip =
+            false;  // `<image>_previous`: the mip before the one a per-mip variant writes
     };
     std::vector<Bound> bound;
     const Value& bindMap = desc.params["bind"];
@@ -359,23 +395,27 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
         // The scene's camera, lights and the rest, bound whatever the pass declares.
         if (isSceneBinding(b)) {
             if (!setup.scene)
-                return fail(ErrorCode::InvalidInput, passPrefix(desc) + "shader binding '" + b.name +
-                                                         "' is the scene's, but no scene is loaded (give --scene)");
+                return fail(ErrorCode::InvalidInput,
+                            passPrefix(desc) + "shader binding '" + b.name +
+                                "' is the scene's, but no scene is loaded (give --scene)");
             if (b.type != DescriptorType::CombinedImageSampler) {
                 if (auto buffer = sceneOf(setup)->makeBindingBuffer(b.name, 0); !buffer)
-                    return fail(ErrorCode::Device, passPrefix(desc) + "could not make the scene's '" + b.name +
+                    return fail(ErrorCode::Device, passPrefix(desc) +
+                                                       "could not make the scene's '" + b.name +
                                                        "' buffer: " + buffer.error().message);
             }
             // A pass that traces the scene's triangles every frame (the reference mode) starts its
             // rays on the G-buffer's surfaces: those must be the traced ones, the full meshes.
-            if (b.name == "SceneBvh" && desc.params["cadence"].asString() != "once") sceneOf(setup)->drawFullMeshes();
+            if (b.name == "SceneBvh" && desc.params["cadence"].asString() != "once")
+                sceneOf(setup)->drawFullMeshes();
             sceneBindings.push_back(&b);
             continue;
         }
         // A sampler named `<image>_previous` for an image the pass writes as storage: in
         // per-mip variant m, mip m − 1 of it (a mip chain built from itself, e.g. a depth pyramid).
         // `bind` may name the image for `<name>` (e.g. bind = { target = "env_source" }).
-        if (b.type == DescriptorType::CombinedImageSampler && b.name.size() > 9 && b.name.ends_with("_previous")) {
+        if (b.type == DescriptorType::CombinedImageSampler && b.name.size() > 9 &&
+            b.name.ends_with("_previous")) {
             const std::string base = b.name.substr(0, b.name.size() - 9);
             const std::string named = bindMap[base].isString() ? bindMap[base].asString() : "";
             const Access* chain = nullptr;
@@ -396,7 +436,8 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
             }
         }
         std::string where = "shader binding '" + b.name + "' (set " + std::to_string(b.set) +
-                            ", binding " + std::to_string(b.binding) + ", " + toString(b.type) + ")";
+                            ", binding " + std::to_string(b.binding) + ", " + toString(b.type) +
+                            ")";
         if (!access)
             return fail(ErrorCode::InvalidInput,
                         passPrefix(desc) + where + " matches no resource the pass reads or writes" +
@@ -404,15 +445,18 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
                                                 b.name + " = \"resource\" }"
                                           : " (params.bind names '" + want + "')"));
         if (!usageFits(b.type, access->usage))
-            return fail(ErrorCode::InvalidInput, passPrefix(desc) + where + " is bound to '" +
-                                                     access->resource + "', which the pass declares as " +
-                                                     usageName(access->usage));
+            return fail(ErrorCode::InvalidInput,
+                        passPrefix(desc) + where + " is bound to '" + access->resource +
+                            "', which the pass declares as " + usageName(access->usage));
         const PhysicalResource* phys = setup.resources.find(access->resource);
-        RG_CHECK(phys) << "resource '" << access->resource << "' of a kept pass has no physical resource";
-        bool wantImage = b.type != DescriptorType::UniformBuffer && b.type != DescriptorType::StorageBuffer;
+        RG_CHECK(phys) << "resource '" << access->resource
+                       << "' of a kept pass has no physical resource";
+        bool wantImage =
+            b.type != DescriptorType::UniformBuffer && b.type != DescriptorType::StorageBuffer;
         if (wantImage != (phys->image != nullptr))
-            return fail(ErrorCode::InvalidInput, passPrefix(desc) + where + " is bound to '" + access->resource +
-                                                     "', which is a " + (phys->image ? "texture" : "buffer"));
+            return fail(ErrorCode::InvalidInput, passPrefix(desc) + where + " is bound to '" +
+                                                     access->resource + "', which is a " +
+                                                     (phys->image ? "texture" : "buffer"));
         bound.push_back({&b, phys, access->usage});
     }
 
@@ -444,14 +488,19 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
                 const gpu::Image& img = *bd.resource->image;
                 const FormatInfo& fi = formatInfo(img.desc().format);
                 bool storage = bd.binding->type == DescriptorType::StorageImage;
-                bool nearest = fi.integer || fi.depth || desc.params["filter"].asString() == "nearest";
+                bool nearest =
+                    fi.integer || fi.depth || desc.params["filter"].asString() == "nearest";
                 // A depth buffer the pass also attaches read-only is sampled in that layout.
-                const bool depthAttached = std::any_of(desc.accesses.begin(), desc.accesses.end(), [&](const Access& a) {
-                    return a.usage == Usage::DepthStencilRead && setup.resources.find(a.resource) == bd.resource;
-                });
+                const bool depthAttached =
+                    std::any_of(desc.accesses.begin(), desc.accesses.end(), [&](const Access& a) {
+                        return a.usage == Usage::DepthStencilRead &&
+                               setup.resources.find(a.resource) == bd.resource;
+                    });
                 const uint32_t mip = std::min(s % m_variants, img.desc().mips - 1);
                 images.push_back({nearest ? m_nearest.get() : m_linear.get(),
-                                  bd.previousMip ? img.mipView(mip > 0 ? mip - 1 : 0) : storage ? img.mipView(mip) : img.view(),
+                                  bd.previousMip ? img.mipView(mip > 0 ? mip - 1 : 0)
+                                  : storage      ? img.mipView(mip)
+                                                 : img.view(),
                                   storage || bd.previousMip ? VK_IMAGE_LAYOUT_GENERAL
                                   : depthAttached ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL
                                                   : VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
@@ -463,11 +512,15 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
             writes.push_back(w);
         }
         for (const ReflectedBinding* b : sceneBindings) {
-            if (b->type == DescriptorType::CombinedImageSampler) {  // SceneEnvironment, SceneLightmap
+            if (b->type ==
+                DescriptorType::CombinedImageSampler) {  // SceneEnvironment, SceneLightmap
                 if (b->name == "SceneLightmap")
-                    images.push_back({m_linear.get(), sceneOf(setup)->lightmapView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+                    images.push_back({m_linear.get(), sceneOf(setup)->lightmapView(),
+                                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
                 else
-                    images.push_back({sceneOf(setup)->environmentSampler(), sceneOf(setup)->environmentView(), VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
+                    images.push_back({sceneOf(setup)->environmentSampler(),
+                                      sceneOf(setup)->environmentView(),
+                                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL});
                 VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
                 w.dstSet = m_sets[s][b->set];
                 w.dstBinding = b->binding;
@@ -477,7 +530,8 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
                 writes.push_back(w);
                 continue;
             }
-            buffers.push_back({sceneOf(setup)->bindingBuffer(b->name, s / m_variants), 0, GpuScene::bindingRange(b->name)});
+            buffers.push_back({sceneOf(setup)->bindingBuffer(b->name, s / m_variants), 0,
+                               GpuScene::bindingRange(b->name)});
             VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
             w.dstSet = m_sets[s][b->set];
             w.dstBinding = b->binding;
@@ -496,7 +550,8 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
             w.pBufferInfo = &buffers.back();
             writes.push_back(w);
         }
-        vkUpdateDescriptorSets(dev, static_cast<uint32_t>(writes.size()), writes.data(), 0, nullptr);
+        vkUpdateDescriptorSets(dev, static_cast<uint32_t>(writes.size()), writes.data(), 0,
+                               nullptr);
     }
     return {};
 }
@@ -506,12 +561,15 @@ namespace {
 // Writes a number or a list of numbers as floats into [offset, offset+size).
 void putFloats(std::vector<uint8_t>& bytes, uint32_t offset, uint32_t size, const Value& v) {
     std::vector<float> f;
-    if (v.isNumber()) f.push_back(static_cast<float>(v.asNumber()));
-    else if (v.isBool()) f.push_back(v.asBool() ? 1.0f : 0.0f);
+    if (v.isNumber())
+        f.push_back(static_cast<float>(v.asNumber()));
+    else if (v.isBool())
+        f.push_back(v.asBool() ? 1.0f : 0.0f);
     else
         for (const auto& e : v.asList()) f.push_back(static_cast<float>(e.asNumber()));
     size_t n = std::min<size_t>(f.size(), size / sizeof(float));
-    if (n > 0 && offset + n * sizeof(float) <= bytes.size()) std::memcpy(bytes.data() + offset, f.data(), n * sizeof(float));
+    if (n > 0 && offset + n * sizeof(float) <= bytes.size())
+        std::memcpy(bytes.data() + offset, f.data(), n * sizeof(float));
 }
 
 }  // namespace
@@ -529,7 +587,8 @@ void ShaderProgram::bind(RecordContext& rc, VkPipelineBindPoint point, uint32_t 
     if (!m_sets.empty())
         for (size_t set = 0; set < m_sets[index].size(); ++set)
             if (m_sets[index][set] != VK_NULL_HANDLE)
-                vkCmdBindDescriptorSets(rc.cmd, point, m_layout.get(), static_cast<uint32_t>(set), 1, &m_sets[index][set], 0, nullptr);
+                vkCmdBindDescriptorSets(rc.cmd, point, m_layout.get(), static_cast<uint32_t>(set),
+                                        1, &m_sets[index][set], 0, nullptr);
     if (m_reflection.pushConstantSize) {
         std::vector<uint8_t> bytes(m_reflection.pushConstantSize, 0);
         const Value& constants = rc.desc.params["constants"];
@@ -538,13 +597,19 @@ void ShaderProgram::bind(RecordContext& rc, VkPipelineBindPoint point, uint32_t 
                 putFloats(bytes, m.offset, m.size,
                           Value(Value::List{Value(static_cast<double>(rc.plan.outputWidth)),
                                             Value(static_cast<double>(rc.plan.outputHeight))}));
-            else if (m.name == "rg_time") putFloats(bytes, m.offset, m.size, Value(rc.frame.timeSeconds));
-            else if (m.name == "rg_frame") putFloats(bytes, m.offset, m.size, Value(static_cast<double>(rc.frame.index)));
-            else if (m.name == "rg_mip") putFloats(bytes, m.offset, m.size, Value(static_cast<double>(mipVariant)));
-            else if (m.name == "rg_mipCount") putFloats(bytes, m.offset, m.size, Value(static_cast<double>(m_variants)));
-            else putFloats(bytes, m.offset, m.size, constants[m.name]);
+            else if (m.name == "rg_time")
+                putFloats(bytes, m.offset, m.size, Value(rc.frame.timeSeconds));
+            else if (m.name == "rg_frame")
+                putFloats(bytes, m.offset, m.size, Value(static_cast<double>(rc.frame.index)));
+            else if (m.name == "rg_mip")
+                putFloats(bytes, m.offset, m.size, Value(static_cast<double>(mipVariant)));
+            else if (m.name == "rg_mipCount")
+                putFloats(bytes, m.offset, m.size, Value(static_cast<double>(m_variants)));
+            else
+                putFloats(bytes, m.offset, m.size, constants[m.name]);
         }
-        vkCmdPushConstants(rc.cmd, m_layout.get(), m_pushStages, 0, static_cast<uint32_t>(bytes.size()), bytes.data());
+        vkCmdPushConstants(rc.cmd, m_layout.get(), m_pushStages, 0,
+                           static_cast<uint32_t>(bytes.size()), bytes.data());
     }
 }
 

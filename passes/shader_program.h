@@ -26,7 +26,8 @@ public:
     // `stages`: requests whose passName/defines are filled in from the pass here.
     // `externalSets`: set index -> layout someone else binds (scene draws bind materials in set 1).
     Result<void> build(gpu::PassSetup& setup, std::vector<ShaderRequest> stages,
-                       std::map<uint32_t, VkDescriptorSetLayout> externalSets = {}, uint32_t mipVariants = 1);
+                       std::map<uint32_t, VkDescriptorSetLayout> externalSets = {},
+                       uint32_t mipVariants = 1);
 
     VkPipelineLayout layout() const { return m_layout.get(); }
     const std::vector<VkPipelineShaderStageCreateInfo>& stageInfos() const { return m_stageInfos; }
@@ -51,7 +52,7 @@ private:
     uint32_t m_ownedSets = 0;  // sets [0, m_ownedSets) bound by bind(), external ones skipped
     gpu::OwnedPipelineLayout m_layout;
     gpu::OwnedDescriptorPool m_pool;
-    uint32_t m_variants = 1;                            // per-mip descriptor variants
+    uint32_t m_variants = 1;                           // per-mip descriptor variants
     std::vector<std::vector<VkDescriptorSet>> m_sets;  // [frame slot × m_variants + variant][set]
     gpu::OwnedSampler m_linear, m_nearest;
     const ReflectedBinding* m_params = nullptr;  // the `Params` uniform block, if any

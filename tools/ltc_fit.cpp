@@ -24,8 +24,10 @@ int main(int argc, char** argv) {
     int samples = 32;
     std::string out = std::string(RG_SOURCE_ROOT) + "/graph/lighting/ltc_ggx.inc";
     for (int i = 1; i < argc; ++i) {
-        if (!std::strcmp(argv[i], "--samples") && i + 1 < argc) samples = std::max(4, std::atoi(argv[++i]));
-        else if (!std::strcmp(argv[i], "--out") && i + 1 < argc) out = argv[++i];
+        if (!std::strcmp(argv[i], "--samples") && i + 1 < argc)
+            samples = std::max(4, std::atoi(argv[++i]));
+        else if (!std::strcmp(argv[i], "--out") && i + 1 < argc)
+            out = argv[++i];
         else {
             std::fprintf(stderr, "usage: rgraph-ltc-fit [--samples N] [--out FILE]\n");
             return 2;
@@ -49,10 +51,12 @@ int main(int argc, char** argv) {
                 const float NdotV = std::max(1.0f - y * y, 1e-3f);
                 Cell& c = cells[size_t(row) * n + size_t(col)];
                 c.fit = ltc::fitCell(linearRoughness, NdotV, row ? &p : nullptr, &p, samples);
-                c.distance = ltc::fitDistance(linearRoughness, NdotV, ltc::inverseMatrix(c.fit.entry.inverse));
+                c.distance = ltc::fitDistance(linearRoughness, NdotV,
+                                              ltc::inverseMatrix(c.fit.entry.inverse));
             }
             std::lock_guard lock(print);
-            const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+            const double s =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
             std::fprintf(stderr, "rgraph-ltc-fit: roughness column %d/%d (%.0f s)\n", ++done, n, s);
         }
     };
@@ -66,21 +70,30 @@ int main(int argc, char** argv) {
         std::fprintf(stderr, "rgraph-ltc-fit: cannot write %s\n", out.c_str());
         return 1;
     }
-    std::fprintf(f, "// Fitted by tools/ltc_fit.cpp (build/tools/rgraph-ltc-fit --samples %d): do not edit. graph/lighting/ltc.h\n"
-                    "// says what each entry holds: {a, b, c, d, magnitude, fresnel}, row-major over\n"
-                    "// (sqrt(1 - NdotV), linearRoughness), %d x %d.\n", samples, n, n);
+    std::fprintf(f,
+                 "// Fitted by tools/ltc_fit.cpp (build/tools/rgraph-ltc-fit --samples %d): do not "
+                 "edit. graph/lighting/ltc.h\n"
+                 "// says what each entry holds: {a, b, c, d, magnitude, fresnel}, row-major over\n"
+                 "// (sqrt(1 - NdotV), linearRoughness), %d x %d.\n",
+                 samples, n, n);
     for (const Cell& c : cells) {
         const ltc::Entry& e = c.fit.entry;
-        std::fprintf(f, "{%.9g, %.9g, %.9g, %.9g, %.9g, %.9g},\n", e.inverse[0], e.inverse[1], e.inverse[2], e.inverse[3], e.magnitude, e.fresnel);
+        std::fprintf(f, "{%.9g, %.9g, %.9g, %.9g, %.9g, %.9g},\n", e.inverse[0], e.inverse[1],
+                     e.inverse[2], e.inverse[3], e.magnitude, e.fresnel);
     }
     std::fclose(f);
     double mean = 0, worst = 0;
-    for (const Cell& c : cells) mean += c.distance / double(cells.size()), worst = std::max(worst, c.distance);
-    std::fprintf(stderr, "rgraph-ltc-fit: wrote %s\nL1 distance of the fit to the lobe (0 exact, 2 disjoint): mean %.4f, worst %.4f;\n"
-                         "rows: linearRoughness, columns: NdotV from 1 to grazing\n", out.c_str(), mean, worst);
+    for (const Cell& c : cells)
+        mean += c.distance / double(cells.size()), worst = std::max(worst, c.distance);
+    std::fprintf(stderr,
+                 "rgraph-ltc-fit: wrote %s\nL1 distance of the fit to the lobe (0 exact, 2 "
+                 "disjoint): mean %.4f, worst %.4f;\n"
+                 "rows: linearRoughness, columns: NdotV from 1 to grazing\n",
+                 out.c_str(), mean, worst);
     for (int col = 0; col < n; col += 9) {
         std::fprintf(stderr, "  %.2f:", float(col) / float(n - 1));
-        for (int row = 0; row < n; row += 9) std::fprintf(stderr, " %.3f", cells[size_t(row) * n + size_t(col)].distance);
+        for (int row = 0; row < n; row += 9)
+            std::fprintf(stderr, " %.3f", cells[size_t(row) * n + size_t(col)].distance);
         std::fprintf(stderr, "\n");
     }
     return 0;

@@ -11,7 +11,8 @@
 namespace {
 
 void vk(VkResult r, const char* what) {
-    if (r != VK_SUCCESS) throw rgraph::Error(std::string(what) + " failed: VkResult " + std::to_string(r));
+    if (r != VK_SUCCESS)
+        throw rgraph::Error(std::string(what) + " failed: VkResult " + std::to_string(r));
 }
 
 // The host's own device: Vulkan 1.3 with what rgraph::HostDevice lists.
@@ -40,7 +41,9 @@ struct Device {
         std::vector<VkQueueFamilyProperties> families(nf);
         vkGetPhysicalDeviceQueueFamilyProperties(physical, &nf, families.data());
         for (family = 0; family < nf; ++family)
-            if ((families[family].queueFlags & VK_QUEUE_GRAPHICS_BIT) && (families[family].queueFlags & VK_QUEUE_COMPUTE_BIT)) break;
+            if ((families[family].queueFlags & VK_QUEUE_GRAPHICS_BIT) &&
+                (families[family].queueFlags & VK_QUEUE_COMPUTE_BIT))
+                break;
         float priority = 1.0f;
         VkDeviceQueueCreateInfo qi{VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO};
         qi.queueFamilyIndex = family;
@@ -113,7 +116,8 @@ int main(int argc, char** argv) {
     const std::string out = argc > 1 ? argv[1] : ".";
     try {
         Device host;
-        auto renderer = rgraph::Renderer::create(rgraph::HostDevice{host.instance, host.physical, host.device, host.family, host.queue});
+        auto renderer = rgraph::Renderer::create(
+            rgraph::HostDevice{host.instance, host.physical, host.device, host.family, host.queue});
         renderer->setSize(640, 360);
         renderer->setScene(makeScene());
         renderer->loadPipeline(rgraph::Renderer::dataDir() + "/scripts/pipelines/deferred.lua");
@@ -128,8 +132,10 @@ int main(int argc, char** argv) {
         rgraph::writeExr(out + "/host_frame1.exr", renderer->readHdr());
         double total = 0;
         for (const auto& t : renderer->timings()) total += t.gpuMs;
-        std::printf("rgraph_host: wrote %s/host_frame0.png, host_frame1.png and host_frame1.exr (%zu passes, %.1f ms)\n", out.c_str(),
-                    renderer->timings().size(), total);
+        std::printf(
+            "rgraph_host: wrote %s/host_frame0.png, host_frame1.png and host_frame1.exr (%zu "
+            "passes, %.1f ms)\n",
+            out.c_str(), renderer->timings().size(), total);
         return 0;
     } catch (const rgraph::Error& e) {
         std::fprintf(stderr, "rgraph_host: %s\n", e.what());

@@ -34,8 +34,10 @@ T check(rg::Result<T> r) {
 Image toImage(const rg::Image& i) { return {i.width, i.height, i.channels, i.pixels}; }
 rg::Image fromImage(const Image& i) {
     rg::Image out(i.width, i.height, i.channels);
-    if (i.pixels.size() != out.pixels.size()) throw Error("image: " + std::to_string(i.pixels.size()) + " floats for " + std::to_string(i.width) + "x" +
-                                                          std::to_string(i.height) + "x" + std::to_string(i.channels));
+    if (i.pixels.size() != out.pixels.size())
+        throw Error("image: " + std::to_string(i.pixels.size()) + " floats for " +
+                    std::to_string(i.width) + "x" + std::to_string(i.height) + "x" +
+                    std::to_string(i.channels));
     out.pixels = i.pixels;
     return out;
 }
@@ -61,7 +63,8 @@ rg::Scene toScene(const Scene& in) {
     rg::Scene s;
     std::map<std::string, uint32_t> materials;
     for (const Material& m : in.materials) {
-        if (materials.count(m.name)) throw Error("scene.materials: two materials named '" + m.name + "'");
+        if (materials.count(m.name))
+            throw Error("scene.materials: two materials named '" + m.name + "'");
         rg::Material r;
         r.name = m.name;
         r.model = m.model;
@@ -83,18 +86,26 @@ rg::Scene toScene(const Scene& in) {
     for (const Mesh& m : in.meshes) {
         const std::string where = "scene mesh '" + m.name + "'";
         const size_t n = m.positions.size() / 3;
-        if (m.positions.size() % 3 || m.normals.size() != m.positions.size() || (!m.uvs.empty() && m.uvs.size() != 2 * n))
-            throw Error(where + ": positions and normals need 3 floats per vertex (and uvs 2), the same number of vertices");
-        if (m.indices.empty() || m.indices.size() % 3) throw Error(where + ": indices must be whole triangles");
+        if (m.positions.size() % 3 || m.normals.size() != m.positions.size() ||
+            (!m.uvs.empty() && m.uvs.size() != 2 * n))
+            throw Error(where +
+                        ": positions and normals need 3 floats per vertex (and uvs 2), the same "
+                        "number of vertices");
+        if (m.indices.empty() || m.indices.size() % 3)
+            throw Error(where + ": indices must be whole triangles");
         for (uint32_t i : m.indices)
-            if (i >= n) throw Error(where + ": index " + std::to_string(i) + " beyond its " + std::to_string(n) + " vertices");
+            if (i >= n)
+                throw Error(where + ": index " + std::to_string(i) + " beyond its " +
+                            std::to_string(n) + " vertices");
         auto mat = materials.find(m.material);
         if (mat == materials.end()) throw Error(where + ": unknown material '" + m.material + "'");
         for (const MeshLod& lod : m.lods) {
             if (lod.indices.empty() || lod.indices.size() % 3 || !(lod.error >= 0.0f))
                 throw Error(where + ": a level of detail needs whole triangles and an error >= 0");
             for (uint32_t i : lod.indices)
-                if (i >= n) throw Error(where + ": level-of-detail index " + std::to_string(i) + " beyond its " + std::to_string(n) + " vertices");
+                if (i >= n)
+                    throw Error(where + ": level-of-detail index " + std::to_string(i) +
+                                " beyond its " + std::to_string(n) + " vertices");
         }
         rg::Primitive p;
         p.material = mat->second;
@@ -110,11 +121,14 @@ rg::Scene toScene(const Scene& in) {
         rg::Mesh mesh;
         mesh.name = m.name;
         mesh.primitives.push_back(std::move(p));
-        s.nodes.push_back({m.name, glm::make_mat4(m.transform), static_cast<int32_t>(s.meshes.size())});
+        s.nodes.push_back(
+            {m.name, glm::make_mat4(m.transform), static_cast<int32_t>(s.meshes.size())});
         s.meshes.push_back(std::move(mesh));
     }
-    static const rg::LightType kTypes[] = {rg::LightType::Point, rg::LightType::Spot, rg::LightType::Directional, rg::LightType::Sphere,
-                                           rg::LightType::Disk,  rg::LightType::Rect, rg::LightType::Tube};
+    static const rg::LightType kTypes[] = {rg::LightType::Point,       rg::LightType::Spot,
+                                           rg::LightType::Directional, rg::LightType::Sphere,
+                                           rg::LightType::Disk,        rg::LightType::Rect,
+                                           rg::LightType::Tube};
     for (size_t i = 0; i < in.lights.size(); ++i) {
         const Light& l = in.lights[i];
         // Units, sizes and intensities are checked where every scene's lights become the GPU's
@@ -146,7 +160,8 @@ rg::Scene toScene(const Scene& in) {
     c.shutter = in.camera.shutter;
     c.iso = in.camera.iso;
     s.cameras.push_back(c);
-    if (in.environment == "sky") s.environment = rg::Environment{};
+    if (in.environment == "sky")
+        s.environment = rg::Environment{};
     else if (in.environment != "none" && !in.environment.empty()) {
         rg::Environment e;
         e.kind = "hdr";
@@ -159,11 +174,19 @@ rg::Scene toScene(const Scene& in) {
 
 }  // namespace
 
-Mesh makeSphere(float radius, uint32_t segments) { return fromPrimitive("sphere", rg::makeSphere(radius, segments, 0)); }
-Mesh makePlane(float width, float depth) { return fromPrimitive("plane", rg::makePlane(width, depth, 0)); }
-Mesh makeBox(float width, float height, float depth) { return fromPrimitive("box", rg::makeBox({width, height, depth}, 0)); }
+Mesh makeSphere(float radius, uint32_t segments) {
+    return fromPrimitive("sphere", rg::makeSphere(radius, segments, 0));
+}
+Mesh makePlane(float width, float depth) {
+    return fromPrimitive("plane", rg::makePlane(width, depth, 0));
+}
+Mesh makeBox(float width, float height, float depth) {
+    return fromPrimitive("box", rg::makeBox({width, height, depth}, 0));
+}
 
-void writePng(const std::string& path, const Image& display) { check(rg::writePng(path, fromImage(display))); }
+void writePng(const std::string& path, const Image& display) {
+    check(rg::writePng(path, fromImage(display)));
+}
 void writeExr(const std::string& path, const Image& image) {
     static const char* names[] = {"R", "G", "B", "A"};
     std::vector<std::string> channels(names, names + std::min<uint32_t>(image.channels, 4));
@@ -214,7 +237,9 @@ std::unique_ptr<rg::Runtime> makeRuntime(const Options& options, const HostDevic
     rg::RuntimeOptions ro;
     if (options.device >= 0) ro.device = static_cast<uint32_t>(options.device);
     ro.validation = options.validation;
-    if (host) ro.external = rg::gpu::ExternalDevice{host->instance, host->physicalDevice, host->device, host->queueFamily, host->queue};
+    if (host)
+        ro.external = rg::gpu::ExternalDevice{host->instance, host->physicalDevice, host->device,
+                                              host->queueFamily, host->queue};
     return check(rg::Runtime::create(ro));
 }
 }  // namespace
@@ -252,7 +277,8 @@ void Renderer::loadPipelineSource(const std::string& name, const std::string& lu
     std::error_code ec;
     fs::create_directories(dir, ec);
     std::string safe;
-    for (char c : name) safe += std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' ? c : '_';
+    for (char c : name)
+        safe += std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' ? c : '_';
     const fs::path file = dir / (safe.empty() ? "pipeline.lua" : safe + ".lua");
     std::ofstream(file) << lua;
     loadPipeline(file.string());
@@ -275,7 +301,8 @@ void Renderer::setScene(const Scene& scene) {
 
 void Renderer::setSize(uint32_t width, uint32_t height) {
     if (width == 0 || height == 0 || width > 16384 || height > 16384)
-        throw Error("setSize: each side must be in 1..16384, got " + std::to_string(width) + "x" + std::to_string(height));
+        throw Error("setSize: each side must be in 1..16384, got " + std::to_string(width) + "x" +
+                    std::to_string(height));
     m->reloadWith([&](rg::SessionOptions& o) {
         o.compile.outputWidth = width;
         o.compile.outputHeight = height;
@@ -284,7 +311,8 @@ void Renderer::setSize(uint32_t width, uint32_t height) {
 
 void Renderer::setParameter(const std::string& name, const Value& value) {
     m->loaded();
-    check(m->session->setOverride(name, std::visit([](const auto& x) { return rg::Value(x); }, value)));
+    check(m->session->setOverride(name,
+                                  std::visit([](const auto& x) { return rg::Value(x); }, value)));
 }
 
 void Renderer::setPassEnabled(const std::string& pass, bool enabled) {
@@ -298,11 +326,15 @@ void Renderer::render(uint32_t frames) {
     check(m->runtime->executor().finish());
 }
 
-Image Renderer::readDisplay() const { return toImage(check(m->runtime->executor().readback(m->loaded().pipeline().output))); }
+Image Renderer::readDisplay() const {
+    return toImage(check(m->runtime->executor().readback(m->loaded().pipeline().output)));
+}
 
 Image Renderer::readHdr() const {
     const rg::PipelineDesc& p = m->loaded().pipeline();
-    if (p.hdr.empty()) throw Error("readHdr: the pipeline names no HDR output (rg.output { hdr = ..., exposure = ... })");
+    if (p.hdr.empty())
+        throw Error(
+            "readHdr: the pipeline names no HDR output (rg.output { hdr = ..., exposure = ... })");
     return toImage(check(rg::readAbsoluteHdr(m->runtime->executor(), p)).image);
 }
 
@@ -313,15 +345,19 @@ void Renderer::record(VkCommandBuffer commandBuffer) {
 }
 
 void Renderer::importImage(const std::string& resource, const HostImage& image) {
-    m->runtime->executor().setHostImport(resource, {image.image, image.width, image.height, image.layout});
+    m->runtime->executor().setHostImport(resource,
+                                         {image.image, image.width, image.height, image.layout});
 }
 
 void Renderer::exportImage(const std::string& resource, const HostImage& image) {
-    m->runtime->executor().setHostExport(resource, {image.image, image.width, image.height, image.layout});
+    m->runtime->executor().setHostExport(resource,
+                                         {image.image, image.width, image.height, image.layout});
 }
 
 void Renderer::keep(const std::string& resource) {
-    if (std::find(m->options.captures.begin(), m->options.captures.end(), resource) != m->options.captures.end()) return;
+    if (std::find(m->options.captures.begin(), m->options.captures.end(), resource) !=
+        m->options.captures.end())
+        return;
     m->reloadWith([&](rg::SessionOptions& o) { o.captures.push_back(resource); });
 }
 

@@ -14,7 +14,9 @@ double worldArea(const Scene& scene, const Node& node) {
     for (const auto& p : scene.meshes[size_t(node.mesh)].primitives)
         for (size_t t = 0; t + 2 < p.indices.size(); t += 3) {
             glm::vec3 c[3];
-            for (int k = 0; k < 3; ++k) c[k] = glm::vec3(node.world * glm::vec4(p.vertices.at(p.indices[t + size_t(k)]).position, 1.0f));
+            for (int k = 0; k < 3; ++k)
+                c[k] = glm::vec3(node.world *
+                                 glm::vec4(p.vertices.at(p.indices[t + size_t(k)]).position, 1.0f));
             area += 0.5 * double(glm::length(glm::cross(c[1] - c[0], c[2] - c[0])));
         }
     return area;
@@ -31,9 +33,11 @@ Result<LightmapAtlas> packLightmap(const Scene& scene, const LightmapSettings& s
         const Mesh& mesh = scene.meshes[size_t(n.mesh)];
         for (const auto& p : mesh.primitives)
             if (!p.lightmapUv)
-                return fail(ErrorCode::InvalidInput, "lightmap '" + settings.name + "': node '" + n.name + "' (mesh '" + mesh.name +
-                                                         "') has no lightmap uvs: give its glTF primitives a TEXCOORD_1 set of "
-                                                         "non-overlapping charts in [0, 1] (the scene's own shapes have them)");
+                return fail(
+                    ErrorCode::InvalidInput,
+                    "lightmap '" + settings.name + "': node '" + n.name + "' (mesh '" + mesh.name +
+                        "') has no lightmap uvs: give its glTF primitives a TEXCOORD_1 set of "
+                        "non-overlapping charts in [0, 1] (the scene's own shapes have them)");
         nodes.push_back(i);
         areas.push_back(worldArea(scene, n));
     }
@@ -48,14 +52,17 @@ Result<LightmapAtlas> packLightmap(const Scene& scene, const LightmapSettings& s
         double total = 0.0;
         for (size_t k = 0; k < nodes.size(); ++k) {
             const double s = std::ceil(std::sqrt(areas[k]) * double(density));
-            side[k] = static_cast<uint32_t>(std::clamp(s, double(kMinBoxLightmapTexels), double(maxSize - 2)));
+            side[k] = static_cast<uint32_t>(
+                std::clamp(s, double(kMinBoxLightmapTexels), double(maxSize - 2)));
             total += double(side[k] + 2) * double(side[k] + 2);
         }
         // Tallest first, left to right along shelves of the atlas's width.
         std::vector<size_t> order(nodes.size());
         std::iota(order.begin(), order.end(), size_t(0));
-        std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return side[a] > side[b]; });
-        uint32_t width = std::max<uint32_t>(side[order[0]] + 2, static_cast<uint32_t>(std::ceil(std::sqrt(total * 1.15))));
+        std::stable_sort(order.begin(), order.end(),
+                         [&](size_t a, size_t b) { return side[a] > side[b]; });
+        uint32_t width = std::max<uint32_t>(
+            side[order[0]] + 2, static_cast<uint32_t>(std::ceil(std::sqrt(total * 1.15))));
         width = (width + 3u) & ~3u;
         if (width > maxSize) continue;
         uint32_t x = 0, y = 0, shelf = 0;
@@ -75,17 +82,20 @@ Result<LightmapAtlas> packLightmap(const Scene& scene, const LightmapSettings& s
         for (size_t k = 0; k < nodes.size(); ++k) {
             const glm::uvec2 inner = at[k] + 1u;
             atlas.texelRects[nodes[k]] = glm::uvec4(inner, side[k], 0u);
-            atlas.rects[nodes[k]] = glm::vec4(float(side[k]) / float(width), float(side[k]) / float(height), float(inner.x) / float(width),
-                                              float(inner.y) / float(height));
+            atlas.rects[nodes[k]] =
+                glm::vec4(float(side[k]) / float(width), float(side[k]) / float(height),
+                          float(inner.x) / float(width), float(inner.y) / float(height));
         }
         return atlas;
     }
-    return fail(ErrorCode::InvalidInput, "lightmap '" + settings.name + "': the scene's " + std::to_string(nodes.size()) +
-                                             " objects do not fit a " + std::to_string(maxSize) + "² atlas; raise max_size");
+    return fail(ErrorCode::InvalidInput,
+                "lightmap '" + settings.name + "': the scene's " + std::to_string(nodes.size()) +
+                    " objects do not fit a " + std::to_string(maxSize) + "² atlas; raise max_size");
 }
 
 void applyAtlas(Scene& scene, const LightmapAtlas& atlas) {
-    for (size_t i = 0; i < scene.nodes.size() && i < atlas.rects.size(); ++i) scene.nodes[i].lightmapRect = atlas.rects[i];
+    for (size_t i = 0; i < scene.nodes.size() && i < atlas.rects.size(); ++i)
+        scene.nodes[i].lightmapRect = atlas.rects[i];
 }
 
 }  // namespace rg::bake

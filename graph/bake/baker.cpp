@@ -40,11 +40,14 @@ constexpr float kPi = 3.14159265358979f;
 // A small, fast generator (PCG32), seeded per texel so a bake does not depend on the threads.
 struct Rng {
     uint64_t state;
-    explicit Rng(uint64_t seed) : state(seed * 6364136223846793005ull + 1442695040888963407ull) { next(); }
+    explicit Rng(uint64_t seed) : state(seed * 6364136223846793005ull + 1442695040888963407ull) {
+        next();
+    }
     uint32_t next() {
         const uint64_t old = state;
         state = old * 6364136223846793005ull + 1442695040888963407ull;
-        const uint32_t x = static_cast<uint32_t>(((old >> 18u) ^ old) >> 27u), r = static_cast<uint32_t>(old >> 59u);
+        const uint32_t x = static_cast<uint32_t>(((old >> 18u) ^ old) >> 27u),
+                       r = static_cast<uint32_t>(old >> 59u);
         return (x >> r) | (x << ((32u - r) & 31u));
     }
     float uniform() { return float(next() >> 8) * (1.0f / 16777216.0f); }
@@ -61,7 +64,8 @@ Frame tangentFrame(glm::vec3 n, glm::vec4 tangent) {
     n = glm::normalize(n);
     glm::vec3 t = glm::vec3(tangent) - n * glm::dot(n, glm::vec3(tangent));
     const float tl = glm::dot(t, t);
-    const glm::vec3 anyT = glm::normalize(std::abs(n.x) < 0.9f ? glm::cross(n, glm::vec3(1, 0, 0)) : glm::cross(n, glm::vec3(0, 1, 0)));
+    const glm::vec3 anyT = glm::normalize(std::abs(n.x) < 0.9f ? glm::cross(n, glm::vec3(1, 0, 0))
+                                                               : glm::cross(n, glm::vec3(0, 1, 0)));
     t = tl > 1e-12f ? t / std::sqrt(tl) : anyT;
     return {t, glm::cross(n, t) * (tangent.w < 0.0f ? -1.0f : 1.0f), n};
 }
@@ -88,15 +92,18 @@ Surface surfaceAt(const Part& part, uint32_t triangle, float u, float v) {
     const Vertex& c = p.vertices[p.indices[3 * triangle + 2]];
     const float w = 1.0f - u - v;
     Surface s;
-    s.position = glm::vec3(part.world * glm::vec4(a.position * w + b.position * u + c.position * v, 1.0f));
-    const glm::vec3 pa = glm::vec3(part.world * glm::vec4(a.position, 1.0f)), pb = glm::vec3(part.world * glm::vec4(b.position, 1.0f)),
+    s.position =
+        glm::vec3(part.world * glm::vec4(a.position * w + b.position * u + c.position * v, 1.0f));
+    const glm::vec3 pa = glm::vec3(part.world * glm::vec4(a.position, 1.0f)),
+                    pb = glm::vec3(part.world * glm::vec4(b.position, 1.0f)),
                     pc = glm::vec3(part.world * glm::vec4(c.position, 1.0f));
     glm::vec3 ng = glm::cross(pb - pa, pc - pa);
     ng = glm::length(ng) > 0.0f ? glm::normalize(ng) : glm::vec3(0, 1, 0);
     s.geometricNormal = ng;
     const glm::vec3 n = part.normalMatrix * (a.normal * w + b.normal * u + c.normal * v);
     const glm::vec4 t = a.tangent * w + b.tangent * u + c.tangent * v;
-    s.frame = tangentFrame(glm::length(n) > 0.0f ? n : ng, glm::vec4(glm::mat3(part.world) * glm::vec3(t), a.tangent.w));
+    s.frame = tangentFrame(glm::length(n) > 0.0f ? n : ng,
+                           glm::vec4(glm::mat3(part.world) * glm::vec3(t), a.tangent.w));
     s.uv0 = a.uv0 * w + b.uv0 * u + c.uv0 * v;
     return s;
 }
@@ -137,7 +144,10 @@ public:
 
     Result<void> build() {
         m_device = rtcNewDevice(nullptr);
-        if (!m_device) return fail(ErrorCode::Unsupported, "Embree: cannot create a device (" + std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
+        if (!m_device)
+            return fail(ErrorCode::Unsupported,
+                        "Embree: cannot create a device (" +
+                            std::to_string(int(rtcGetDeviceError(nullptr))) + ")");
         m_rtcScene = rtcNewScene(m_device);
         for (size_t ni = 0; ni < m_scene.nodes.size(); ++ni) {
             const Node& node = m_scene.nodes[ni];
@@ -155,14 +165,18 @@ public:
                 part.material = &m_scene.materials[p.material];
                 RTCGeometry g = rtcNewGeometry(m_device, RTC_GEOMETRY_TYPE_TRIANGLE);
                 auto* v = static_cast<float*>(
-                    rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), p.vertices.size()));
+                    rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
+                                            3 * sizeof(float), p.vertices.size()));
                 for (size_t i = 0; i < p.vertices.size(); ++i) {
-                    const glm::vec3 w = glm::vec3(node.world * glm::vec4(p.vertices[i].position, 1.0f));
+                    const glm::vec3 w =
+                        glm::vec3(node.world * glm::vec4(p.vertices[i].position, 1.0f));
                     v[3 * i] = w.x, v[3 * i + 1] = w.y, v[3 * i + 2] = w.z;
                 }
                 const size_t tris = p.indices.size() / 3;
-                auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), tris));
-                for (size_t i = 0; i < tris * 3; ++i) idx[i] = std::min<uint32_t>(p.indices[i], uint32_t(p.vertices.size() - 1));
+                auto* idx = static_cast<uint32_t*>(rtcSetNewGeometryBuffer(
+                    g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(uint32_t), tris));
+                for (size_t i = 0; i < tris * 3; ++i)
+                    idx[i] = std::min<uint32_t>(p.indices[i], uint32_t(p.vertices.size() - 1));
                 rtcCommitGeometry(g);
                 const uint32_t id = rtcAttachGeometry(m_rtcScene, g);
                 rtcReleaseGeometry(g);
@@ -171,10 +185,13 @@ public:
             }
         }
         rtcCommitScene(m_rtcScene);
-        if (rtcGetDeviceError(m_device) != RTC_ERROR_NONE) return fail(ErrorCode::InvalidInput, "Embree: building the scene's BVH failed");
+        if (rtcGetDeviceError(m_device) != RTC_ERROR_NONE)
+            return fail(ErrorCode::InvalidInput, "Embree: building the scene's BVH failed");
         RTCBounds b;
         rtcGetSceneBounds(m_rtcScene, &b);
-        m_epsilon = 1e-4f * std::max(1.0f, glm::length(glm::vec3(b.upper_x - b.lower_x, b.upper_y - b.lower_y, b.upper_z - b.lower_z)));
+        m_epsilon = 1e-4f * std::max(1.0f, glm::length(glm::vec3(b.upper_x - b.lower_x,
+                                                                 b.upper_y - b.lower_y,
+                                                                 b.upper_z - b.lower_z)));
         return {};
     }
 
@@ -202,7 +219,8 @@ public:
         Hit h;
         if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
         h.hit = true;
-        h.geom = rh.hit.geomID, h.prim = rh.hit.primID, h.u = rh.hit.u, h.v = rh.hit.v, h.t = rh.ray.tfar;
+        h.geom = rh.hit.geomID, h.prim = rh.hit.primID, h.u = rh.hit.u, h.v = rh.hit.v,
+        h.t = rh.ray.tfar;
         h.ng = glm::vec3(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z);
         return h;
     }
@@ -231,8 +249,8 @@ private:
 // A direction towards a light and the illuminance it brings a surface facing it (lux, RGB):
 // one sample (area lights: one point on the light).
 struct LightSample {
-    glm::vec3 direction{0.0f};  // unit, from the surface towards the light
-    float distance = 0.0f;      // to the sampled point (INFINITY: the sun)
+    glm::vec3 direction{0.0f};    // unit, from the surface towards the light
+    float distance = 0.0f;        // to the sampled point (INFINITY: the sun)
     glm::vec3 illuminance{0.0f};  // perpendicular to `direction`, before the surface's cosine
 };
 
@@ -253,7 +271,8 @@ LightSample sampleLight(const GpuLight& g, glm::vec3 p, Rng& rng) {
         if (!(s.distance > 0.0f)) return s;
         s.direction = v / s.distance;
         // lst:4: the windowed inverse square and the cone.
-        const float att = lighting::getDistanceAtt(v, invSqrRange) * lighting::getAngleAtt(-s.direction, dir, g.params.x, g.params.y);
+        const float att = lighting::getDistanceAtt(v, invSqrRange) *
+                          lighting::getAngleAtt(-s.direction, dir, g.params.x, g.params.y);
         s.illuminance = colour * att;  // cd × 1/d² = lux
         return s;
     }
@@ -263,7 +282,8 @@ LightSample sampleLight(const GpuLight& g, glm::vec3 p, Rng& rng) {
     float area = 0.0f;
     const float u1 = rng.uniform(), u2 = rng.uniform();
     auto onSphere = [](float a, float b) {
-        const float z = 1.0f - 2.0f * a, r = std::sqrt(std::max(0.0f, 1.0f - z * z)), phi = 2.0f * kPi * b;
+        const float z = 1.0f - 2.0f * a, r = std::sqrt(std::max(0.0f, 1.0f - z * z)),
+                    phi = 2.0f * kPi * b;
         return glm::vec3(r * std::cos(phi), r * std::sin(phi), z);
     };
     const float radius = g.params.z;
@@ -272,7 +292,9 @@ LightSample sampleLight(const GpuLight& g, glm::vec3 p, Rng& rng) {
         q = pos + radius * nq;
         area = 4.0f * kPi * radius * radius;
     } else if (type == GpuLightType::Disk || type == GpuLightType::Rect) {
-        const Frame f = tangentFrame(dir, glm::vec4(type == GpuLightType::Rect ? glm::vec3(g.axis) : glm::vec3(1, 0, 0), 1.0f));  // disks: any frame
+        const Frame f = tangentFrame(
+            dir, glm::vec4(type == GpuLightType::Rect ? glm::vec3(g.axis) : glm::vec3(1, 0, 0),
+                           1.0f));  // disks: any frame
         if (type == GpuLightType::Disk) {
             const float r = radius * std::sqrt(u1), phi = 2.0f * kPi * u2;
             q = pos + f.t * (r * std::cos(phi)) + f.b * (r * std::sin(phi));
@@ -283,7 +305,7 @@ LightSample sampleLight(const GpuLight& g, glm::vec3 p, Rng& rng) {
             area = width * height;
         }
         nq = dir;  // one-sided: it emits along its direction
-    } else {  // tube: a capsule along `dir`, its cylinder and its two half-sphere caps by area
+    } else {       // tube: a capsule along `dir`, its cylinder and its two half-sphere caps by area
         const float length = g.params.w;
         const float side = 2.0f * kPi * radius * length, caps = 4.0f * kPi * radius * radius;
         area = side + caps;
@@ -295,7 +317,8 @@ LightSample sampleLight(const GpuLight& g, glm::vec3 p, Rng& rng) {
             q = pos + dir * ((u1 - 0.5f) * length) + radius * nq;
         } else {
             nq = onSphere(u1, u2);
-            q = pos + dir * (glm::dot(nq, dir) >= 0.0f ? 0.5f * length : -0.5f * length) + radius * nq;
+            q = pos + dir * (glm::dot(nq, dir) >= 0.0f ? 0.5f * length : -0.5f * length) +
+                radius * nq;
         }
     }
     const glm::vec3 v = q - p;
@@ -308,11 +331,14 @@ LightSample sampleLight(const GpuLight& g, glm::vec3 p, Rng& rng) {
     if (cosLight <= 0.0f) return s;
     // lst:4's window by the distance to the light's centre, as the real-time loop does.
     const glm::vec3 toCentre = pos - p;
-    float window = invSqrRange > 0.0f ? lighting::smoothDistanceAtt(glm::dot(toCentre, toCentre), invSqrRange) : 1.0f;
+    float window = invSqrRange > 0.0f
+                       ? lighting::smoothDistanceAtt(glm::dot(toCentre, toCentre), invSqrRange)
+                       : 1.0f;
     if (type == GpuLightType::Disk) {  // its cone (lst:9), as lighting.glsl's rgDiskCone
         const glm::vec3 apex = pos - dir * g.axis.w, toApex = apex - p;
         const float len = glm::length(toApex);
-        window *= lighting::getAngleAtt(len > 0.0f ? -toApex / len : dir, dir, g.params.x, g.params.y);
+        window *=
+            lighting::getAngleAtt(len > 0.0f ? -toApex / len : dir, dir, g.params.x, g.params.y);
     }
     s.illuminance = colour * (cosLight * area / d2 * window);
     return s;
@@ -340,7 +366,10 @@ glm::vec3 directLight(const Context& c, glm::vec3 p, glm::vec3 n, Rng& rng, uint
         const float cosine = glm::dot(n, s.direction);
         if (cosine <= 0.0f || s.illuminance == glm::vec3(0.0f)) continue;
         const float eps = c.tracer.epsilon();
-        if (c.tracer.occluded(p + n * eps, s.direction, std::isinf(s.distance) ? INFINITY : s.distance * (1.0f - 1e-4f) - eps, rays)) continue;
+        if (c.tracer.occluded(p + n * eps, s.direction,
+                              std::isinf(s.distance) ? INFINITY : s.distance * (1.0f - 1e-4f) - eps,
+                              rays))
+            continue;
         e += s.illuminance * cosine;
     }
     return e;
@@ -348,9 +377,11 @@ glm::vec3 directLight(const Context& c, glm::vec3 p, glm::vec3 n, Rng& rng, uint
 
 // The radiance arriving at o along d: the environment, or the surface hit, lit directly and by
 // `depth` more bounces.
-glm::vec3 radiance(const Context& c, glm::vec3 o, glm::vec3 d, int depth, Rng& rng, uint64_t& rays) {
+glm::vec3 radiance(const Context& c, glm::vec3 o, glm::vec3 d, int depth, Rng& rng,
+                   uint64_t& rays) {
     const Tracer::Hit h = c.tracer.intersect(o, d, rays);
-    if (!h.hit) return c.environment.width ? sampleEquirect(c.environment, equirectUv(d)) : glm::vec3(0.0f);
+    if (!h.hit)
+        return c.environment.width ? sampleEquirect(c.environment, equirectUv(d)) : glm::vec3(0.0f);
     const Part& part = c.tracer.parts()[h.geom];
     const Surface s = surfaceAt(part, h.prim, h.u, h.v);
     glm::vec3 ng = s.geometricNormal;
@@ -405,13 +436,18 @@ struct TexelOwner {
 
 }  // namespace
 
-Result<Lightmap> bakeLightmap(const Scene& scene, const LightmapAtlas& atlas, const LightmapSettings& settings, const BakeOptions& options,
+Result<Lightmap> bakeLightmap(const Scene& scene, const LightmapAtlas& atlas,
+                              const LightmapSettings& settings, const BakeOptions& options,
                               BakeStats* stats) {
     const auto start = std::chrono::steady_clock::now();
-    if (atlas.rects.size() != scene.nodes.size()) return fail(ErrorCode::InvalidInput, "lightmap: the atlas was packed for another scene");
+    if (atlas.rects.size() != scene.nodes.size())
+        return fail(ErrorCode::InvalidInput, "lightmap: the atlas was packed for another scene");
     for (const Light& l : scene.lights)
         if (l.baked && !l.ies.empty())
-            return fail(ErrorCode::InvalidInput, "light '" + l.name + "': a light with an IES profile cannot be baked (the baker does not shape light by profiles); leave it dynamic");
+            return fail(ErrorCode::InvalidInput,
+                        "light '" + l.name +
+                            "': a light with an IES profile cannot be baked (the baker does not "
+                            "shape light by profiles); leave it dynamic");
     auto table = lighting::convertLights(scene.lights);
     if (!table) return std::unexpected(table.error());
     std::vector<GpuLight> allLights = table->lights, bakedLights;
@@ -449,13 +485,19 @@ Result<Lightmap> bakeLightmap(const Scene& scene, const LightmapAtlas& atlas, co
         for (uint32_t t = 0; t < p.indices.size() / 3; ++t) {
             glm::vec2 c[3];
             for (int k = 0; k < 3; ++k) {
-                const glm::vec2 uv = p.vertices[std::min<size_t>(p.indices[3 * t + uint32_t(k)], p.vertices.size() - 1)].uv1;
-                c[k] = (uv * glm::vec2(rect) + glm::vec2(rect.z, rect.w)) * glm::vec2(lm.width, lm.height);
+                const glm::vec2 uv = p.vertices[std::min<size_t>(p.indices[3 * t + uint32_t(k)],
+                                                                 p.vertices.size() - 1)]
+                                         .uv1;
+                c[k] = (uv * glm::vec2(rect) + glm::vec2(rect.z, rect.w)) *
+                       glm::vec2(lm.width, lm.height);
             }
-            const glm::vec2 lo = glm::min(c[0], glm::min(c[1], c[2])) - 1.0f, hi = glm::max(c[0], glm::max(c[1], c[2])) + 1.0f;
+            const glm::vec2 lo = glm::min(c[0], glm::min(c[1], c[2])) - 1.0f,
+                            hi = glm::max(c[0], glm::max(c[1], c[2])) + 1.0f;
             // Stay inside the node's square and its border.
-            const int x0 = std::max(int(std::floor(lo.x)), int(tr.x) - 1), x1 = std::min(int(std::ceil(hi.x)), int(tr.x + tr.z));
-            const int y0 = std::max(int(std::floor(lo.y)), int(tr.y) - 1), y1 = std::min(int(std::ceil(hi.y)), int(tr.y + tr.z));
+            const int x0 = std::max(int(std::floor(lo.x)), int(tr.x) - 1),
+                      x1 = std::min(int(std::ceil(hi.x)), int(tr.x + tr.z));
+            const int y0 = std::max(int(std::floor(lo.y)), int(tr.y) - 1),
+                      y1 = std::min(int(std::ceil(hi.y)), int(tr.y + tr.z));
             for (int y = y0; y <= y1; ++y)
                 for (int x = x0; x <= x1; ++x) {
                     if (x < 0 || y < 0 || x >= int(lm.width) || y >= int(lm.height)) continue;
@@ -496,8 +538,10 @@ Result<Lightmap> bakeLightmap(const Scene& scene, const LightmapAtlas& atlas, co
                 const glm::vec4 rect = atlas.rects[part.node];
                 glm::vec2 c[3];
                 for (int k = 0; k < 3; ++k)
-                    c[k] = (p.vertices[p.indices[3 * o.triangle + uint32_t(k)]].uv1 * glm::vec2(rect) + glm::vec2(rect.z, rect.w)) *
-                           glm::vec2(lm.width, lm.height);
+                    c[k] =
+                        (p.vertices[p.indices[3 * o.triangle + uint32_t(k)]].uv1 * glm::vec2(rect) +
+                         glm::vec2(rect.z, rect.w)) *
+                        glm::vec2(lm.width, lm.height);
                 Rng rng(uint64_t(options.seed) * 0x9E3779B97F4A7C15ull + texel);
                 std::fill(proj.begin(), proj.end(), glm::dvec3(0.0));
                 std::fill(irr.begin(), irr.end(), glm::dvec3(0.0));
@@ -514,27 +558,43 @@ Result<Lightmap> bakeLightmap(const Scene& scene, const LightmapAtlas& atlas, co
                     const int si = s % (strata * strata);
                     const float u1 = (float(si % strata) + rng.uniform()) / float(strata);
                     const float u2 = (float(si / strata) + rng.uniform()) / float(strata);
-                    const float z = u1, r = std::sqrt(std::max(0.0f, 1.0f - z * z)), phi = 2.0f * kPi * u2;
+                    const float z = u1, r = std::sqrt(std::max(0.0f, 1.0f - z * z)),
+                                phi = 2.0f * kPi * u2;
                     const glm::vec3 local(r * std::cos(phi), r * std::sin(phi), z);
                     const glm::vec3 dir = f.toWorld(local);
                     glm::vec3 L(0.0f);
-                    if (glm::dot(dir, ng) > 0.0f) L = radiance(ctx, origin, dir, ctx.bounces, rng, rays);
+                    if (glm::dot(dir, ng) > 0.0f)
+                        L = radiance(ctx, origin, dir, ctx.bounces, rng, rays);
                     const double weight = 2.0 * double(kPi);
                     for (size_t k = 0; k < lm.axes.size(); ++k)
-                        proj[k] += glm::dvec3(L) * (weight * std::exp(double(lm.sharpness) * (double(glm::dot(lm.axes[k], local)) - 1.0)));
+                        proj[k] += glm::dvec3(L) *
+                                   (weight * std::exp(double(lm.sharpness) *
+                                                      (double(glm::dot(lm.axes[k], local)) - 1.0)));
                     for (size_t j = 0; j < fit.normals.size(); ++j)
-                        irr[j] += glm::dvec3(L) * (weight * double(std::max(0.0f, glm::dot(fit.normals[j], local))));
+                        irr[j] +=
+                            glm::dvec3(L) *
+                            (weight * double(std::max(0.0f, glm::dot(fit.normals[j], local))));
                     // Baked lights: their direct light at the texel as deltas of illuminance.
                     for (const GpuLight& g : bakedLights) {
                         const LightSample ls = sampleLight(g, origin, rng);
-                        const glm::vec3 d(glm::dot(ls.direction, f.t), glm::dot(ls.direction, f.b), glm::dot(ls.direction, f.n));
-                        if (d.z <= 0.0f || glm::dot(ls.direction, ng) <= 0.0f || ls.illuminance == glm::vec3(0.0f)) continue;
-                        if (tracer.occluded(origin, ls.direction, std::isinf(ls.distance) ? INFINITY : ls.distance * (1.0f - 1e-4f) - tracer.epsilon(), rays))
+                        const glm::vec3 d(glm::dot(ls.direction, f.t), glm::dot(ls.direction, f.b),
+                                          glm::dot(ls.direction, f.n));
+                        if (d.z <= 0.0f || glm::dot(ls.direction, ng) <= 0.0f ||
+                            ls.illuminance == glm::vec3(0.0f))
+                            continue;
+                        if (tracer.occluded(origin, ls.direction,
+                                            std::isinf(ls.distance)
+                                                ? INFINITY
+                                                : ls.distance * (1.0f - 1e-4f) - tracer.epsilon(),
+                                            rays))
                             continue;
                         for (size_t k = 0; k < lm.axes.size(); ++k)
-                            proj[k] += glm::dvec3(ls.illuminance) * std::exp(double(lm.sharpness) * (double(glm::dot(lm.axes[k], d)) - 1.0));
+                            proj[k] += glm::dvec3(ls.illuminance) *
+                                       std::exp(double(lm.sharpness) *
+                                                (double(glm::dot(lm.axes[k], d)) - 1.0));
                         for (size_t j = 0; j < fit.normals.size(); ++j)
-                            irr[j] += glm::dvec3(ls.illuminance) * double(std::max(0.0f, glm::dot(fit.normals[j], d)));
+                            irr[j] += glm::dvec3(ls.illuminance) *
+                                      double(std::max(0.0f, glm::dot(fit.normals[j], d)));
                     }
                 }
                 for (auto& v : proj) v /= double(samples);
@@ -547,15 +607,18 @@ Result<Lightmap> bakeLightmap(const Scene& scene, const LightmapAtlas& atlas, co
         }
         totalRays.fetch_add(rays);
     };
-    const unsigned threads = options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
+    const unsigned threads =
+        options.threads ? options.threads : std::max(1u, std::thread::hardware_concurrency());
     std::vector<std::thread> pool;
     for (unsigned t = 0; t < threads; ++t) pool.emplace_back(worker);
     if (options.progress) {
         while (done.load() < work.size()) {
             std::this_thread::sleep_for(std::chrono::milliseconds(500));
             const double fraction = double(done.load()) / double(work.size());
-            const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-            options.progress(fraction, fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0);
+            const double elapsed =
+                std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+            options.progress(fraction,
+                             fraction > 0.0 ? elapsed * (1.0 - fraction) / fraction : 0.0);
         }
     }
     for (auto& t : pool) t.join();
@@ -576,7 +639,8 @@ Result<Lightmap> bakeLightmap(const Scene& scene, const LightmapAtlas& atlas, co
                 for (int dy = -1; dy <= 1; ++dy)
                     for (int dx = -1; dx <= 1; ++dx) {
                         const int nx = int(x) + dx, ny = int(y) + dy;
-                        if (nx < 0 || ny < 0 || nx >= int(lm.width) || ny >= int(lm.height)) continue;
+                        if (nx < 0 || ny < 0 || nx >= int(lm.width) || ny >= int(lm.height))
+                            continue;
                         const size_t j = size_t(ny) * lm.width + size_t(nx);
                         if (!filled[j]) continue;
                         ++count;
@@ -589,7 +653,8 @@ Result<Lightmap> bakeLightmap(const Scene& scene, const LightmapAtlas& atlas, co
         filled.swap(next);
     }
     if (stats) {
-        stats->seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+        stats->seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         stats->rays = totalRays.load();
         stats->texels = static_cast<uint32_t>(work.size());
     }

@@ -39,9 +39,9 @@ namespace rg::bake {
 // until it does (LightmapAtlas::density says what was used).
 struct LightmapAtlas {
     uint32_t width = 0, height = 0;
-    float density = 0.0f;                 // texels per metre actually used
-    std::vector<glm::vec4> rects;         // per Scene::nodes entry: Node::lightmapRect (zero: none)
-    std::vector<glm::uvec4> texelRects;   // per node: x, y, side (texels, without the border), 0
+    float density = 0.0f;                // texels per metre actually used
+    std::vector<glm::vec4> rects;        // per Scene::nodes entry: Node::lightmapRect (zero: none)
+    std::vector<glm::uvec4> texelRects;  // per node: x, y, side (texels, without the border), 0
 };
 
 // Errors name the node and its mesh when a mesh has no lightmap uvs (glTF: no TEXCOORD_1).
@@ -73,14 +73,15 @@ float lightmapSharpness(int lobes);
 struct LightmapFit {
     std::vector<glm::vec3> axes;
     float sharpness = 0.0f;
-    std::vector<glm::vec3> normals;   // n_j; n_0 = (0, 0, 1)
-    std::vector<double> weights;      // w_j
-    std::vector<double> irradiance;   // [j * N + k]: I_k(n_j)
+    std::vector<glm::vec3> normals;  // n_j; n_0 = (0, 0, 1)
+    std::vector<double> weights;     // w_j
+    std::vector<double> irradiance;  // [j * N + k]: I_k(n_j)
     double radianceWeight = 0.0;
-    std::vector<double> gram;         // N × N: radianceWeight ∫ G_i G_j + Σ_j I_i(n_j) I_k(n_j)
-    std::vector<float> unit;          // the amplitudes of a uniform radiance of 1 over the hemisphere
+    std::vector<double> gram;  // N × N: radianceWeight ∫ G_i G_j + Σ_j I_i(n_j) I_k(n_j)
+    std::vector<float> unit;   // the amplitudes of a uniform radiance of 1 over the hemisphere
     // The amplitudes from a texel's projections (N, RGB) and irradiances (J, RGB).
-    std::vector<glm::vec3> solve(const std::vector<glm::dvec3>& projections, const std::vector<glm::dvec3>& irradiances) const;
+    std::vector<glm::vec3> solve(const std::vector<glm::dvec3>& projections,
+                                 const std::vector<glm::dvec3>& irradiances) const;
 };
 LightmapFit lightmapFit(int lobes, float sharpness);
 
@@ -90,12 +91,12 @@ glm::vec3 lightmapIrradiance(const Lightmap& lightmap, uint32_t x, uint32_t y, g
 
 struct BakeStats {
     double seconds = 0.0;
-    uint64_t rays = 0;      // Embree ray casts: intersections and shadow rays
-    uint32_t texels = 0;    // covered texels baked
+    uint64_t rays = 0;    // Embree ray casts: intersections and shadow rays
+    uint32_t texels = 0;  // covered texels baked
 };
 
 struct BakeOptions {
-    unsigned threads = 0;   // 0: every core
+    unsigned threads = 0;  // 0: every core
     uint32_t seed = 1;
     // Called from the baking threads' coordinator about twice a second: the fraction done and the
     // estimated seconds left.
@@ -105,8 +106,9 @@ struct BakeOptions {
 // Bakes the scene's lightmap (scene.lightmap's settings, the atlas from packLightmap). Errors name
 // what cannot be baked (an IES light marked baked, a light the GPU tables refuse). Lightmap::key is
 // left empty (prepareLightmap sets the key it looked the cache up with).
-Result<Lightmap> bakeLightmap(const Scene& scene, const LightmapAtlas& atlas, const LightmapSettings& settings,
-                              const BakeOptions& options = {}, BakeStats* stats = nullptr);
+Result<Lightmap> bakeLightmap(const Scene& scene, const LightmapAtlas& atlas,
+                              const LightmapSettings& settings, const BakeOptions& options = {},
+                              BakeStats* stats = nullptr);
 
 // The content hash a lightmap is cached under: the nodes' geometry and transforms, the materials'
 // diffuse albedo and emission (texture contents included), the lights, the environment (its file's
@@ -116,7 +118,8 @@ std::string lightmapKey(const Scene& scene, const LightmapSettings& settings);
 // The lightmap's pre-filtered specular radiance at texel i for shaded normal N and view V (tangent
 // space, unit) and linear roughness: lib/lightmap.glsl's rgLightmapSpecular on the CPU (the GGX NDF
 // as 3 SGs, warped to the reflection, over the radiance lobes, normalised by a uniform hemisphere).
-glm::vec3 lightmapSpecular(const Lightmap& lightmap, size_t texel, glm::vec3 N, glm::vec3 V, float linearRoughness);
+glm::vec3 lightmapSpecular(const Lightmap& lightmap, size_t texel, glm::vec3 N, glm::vec3 V,
+                           float linearRoughness);
 
 // One EXR per scene: a layer per lobe, "sg0.R", "sg0.G", "sg0.B", ... "sg8.B" (32-bit float), and
 // "coverage.Y"; the header says the basis: rgraph.lightmap.lobes, .sharpness, .axes ("x y z" per
@@ -127,8 +130,8 @@ Result<Lightmap> readLightmapExr(const std::string& path);
 
 // The baker as a value (rg_baker's bakeLightmap): the renderer's library takes baked lightmaps from
 // the cache and bakes only when its host links the baker and hands it over.
-using BakeFunction = Result<Lightmap> (*)(const Scene&, const LightmapAtlas&, const LightmapSettings&, const BakeOptions&,
-                                          BakeStats*);
+using BakeFunction = Result<Lightmap> (*)(const Scene&, const LightmapAtlas&,
+                                          const LightmapSettings&, const BakeOptions&, BakeStats*);
 
 // What a renderer calls for a scene with scene.lightmap: packs the atlas into the nodes, then reads
 // <cacheDir>/<lightmapKey>.exr, or bakes it with `bake` (progress and ETA on stderr unless quiet)
@@ -139,9 +142,9 @@ struct PrepareOptions {
     BakeFunction bake = nullptr;
     bool quiet = false;
     bool rebake = false;
-    BakeStats* stats = nullptr;       // filled when it baked
-    bool* fromCache = nullptr;        // set to whether it came from the cache
-    std::string* path = nullptr;      // the cache file
+    BakeStats* stats = nullptr;   // filled when it baked
+    bool* fromCache = nullptr;    // set to whether it came from the cache
+    std::string* path = nullptr;  // the cache file
 };
 Result<void> prepareLightmap(Scene& scene, const PrepareOptions& options);
 

@@ -35,19 +35,24 @@ std::string lightmapKey(const Scene& scene, const LightmapSettings& s) {
     }
     for (const Material& m : scene.materials) {
         h.str(m.model);
-        h.pod(m.baseColor), h.pod(m.metalMask), h.pod(m.emissive), h.pod(m.diffuseColor), h.pod(m.doubleSided);
+        h.pod(m.baseColor), h.pod(m.metalMask), h.pod(m.emissive), h.pod(m.diffuseColor),
+            h.pod(m.doubleSided);
         for (const TextureRef* t : {&m.baseColorTex, &m.emissiveTex, &m.metallicRoughnessTex}) {
             h.pod(t->texCoord), h.pod(t->transform);
             if (t->image >= 0 && size_t(t->image) < scene.images.size()) {
                 const auto& px = scene.images[size_t(t->image)].pixels;
-                h.pod(px.width), h.pod(px.height), h.bytes(px.pixels.data(), px.pixels.size() * sizeof(float));
+                h.pod(px.width), h.pod(px.height),
+                    h.bytes(px.pixels.data(), px.pixels.size() * sizeof(float));
             }
         }
     }
     for (const Light& l : scene.lights) {
-        h.pod(l.type), h.pod(l.position), h.pod(l.direction), h.pod(l.up), h.pod(l.color), h.pod(l.temperatureK), h.pod(l.intensity);
-        h.str(l.unit), h.pod(l.radius), h.pod(l.width), h.pod(l.height), h.pod(l.length), h.pod(l.innerAngle), h.pod(l.outerAngle);
-        h.pod(l.range), h.pod(l.exactCone), h.pod(l.sunAngularRadius), h.pod(l.baked), h.str(l.ies), h.pod(l.cone), h.pod(l.daylight);
+        h.pod(l.type), h.pod(l.position), h.pod(l.direction), h.pod(l.up), h.pod(l.color),
+            h.pod(l.temperatureK), h.pod(l.intensity);
+        h.str(l.unit), h.pod(l.radius), h.pod(l.width), h.pod(l.height), h.pod(l.length),
+            h.pod(l.innerAngle), h.pod(l.outerAngle);
+        h.pod(l.range), h.pod(l.exactCone), h.pod(l.sunAngularRadius), h.pod(l.baked), h.str(l.ies),
+            h.pod(l.cone), h.pod(l.daylight);
     }
     if (scene.environment) {
         const Environment& e = *scene.environment;
@@ -61,11 +66,13 @@ std::string lightmapKey(const Scene& scene, const LightmapSettings& s) {
 glm::vec3 lightmapIrradiance(const Lightmap& lm, uint32_t x, uint32_t y, glm::vec3 n) {
     glm::vec3 e(0.0f);
     const size_t i = size_t(y) * lm.width + x;
-    for (size_t k = 0; k < lm.axes.size(); ++k) e += lighting::irradiance({lm.axes[k], lm.sharpness, lm.lobes[k][i]}, n);
+    for (size_t k = 0; k < lm.axes.size(); ++k)
+        e += lighting::irradiance({lm.axes[k], lm.sharpness, lm.lobes[k][i]}, n);
     return e;
 }
 
-glm::vec3 lightmapSpecular(const Lightmap& lm, size_t texel, glm::vec3 N, glm::vec3 V, float linearRoughness) {
+glm::vec3 lightmapSpecular(const Lightmap& lm, size_t texel, glm::vec3 N, glm::vec3 V,
+                           float linearRoughness) {
     // The GGX shape 1 / (1 + t)², t = tan²θ_h / α², as Σ c_i e^{−b_i t} (lib/lightmap.glsl).
     constexpr float kB[3] = {0.191f, 0.909f, 2.776f}, kC[3] = {0.0612f, 0.4119f, 0.5163f};
     const float alpha = std::max(linearRoughness * linearRoughness, 0.02f);
@@ -76,7 +83,9 @@ glm::vec3 lightmapSpecular(const Lightmap& lm, size_t texel, glm::vec3 N, glm::v
     for (size_t k = 0; k < lm.axes.size(); ++k) {
         float w = 0.0f;
         for (int i = 0; i < 3; ++i)
-            w += kC[i] * lighting::innerProduct({lm.axes[k], lm.sharpness, glm::vec3(1.0f)}, {R, kB[i] * warp, glm::vec3(1.0f)}).x;
+            w += kC[i] * lighting::innerProduct({lm.axes[k], lm.sharpness, glm::vec3(1.0f)},
+                                                {R, kB[i] * warp, glm::vec3(1.0f)})
+                             .x;
         ld += lm.lobes[k][texel] * w;
         one += (k < lm.unit.size() ? lm.unit[k] : 0.0f) * w;
     }
@@ -92,12 +101,14 @@ Result<void> writeLightmapExr(const std::string& path, const Lightmap& lm) {
         layers.push_back(std::move(layer));
     }
     ImageLayer coverage{"coverage", {"Y"}, Image(lm.width, lm.height, 1)};
-    for (size_t i = 0; i < lm.coverage.size(); ++i) coverage.image.pixels[i] = lm.coverage[i] ? 1.0f : 0.0f;
+    for (size_t i = 0; i < lm.coverage.size(); ++i)
+        coverage.image.pixels[i] = lm.coverage[i] ? 1.0f : 0.0f;
     layers.push_back(std::move(coverage));
     ExrWriteOptions o;
     o.pixelType = ExrPixelType::Float;
     std::ostringstream axes;
-    for (size_t k = 0; k < lm.axes.size(); ++k) axes << (k ? "; " : "") << lm.axes[k].x << ' ' << lm.axes[k].y << ' ' << lm.axes[k].z;
+    for (size_t k = 0; k < lm.axes.size(); ++k)
+        axes << (k ? "; " : "") << lm.axes[k].x << ' ' << lm.axes[k].y << ' ' << lm.axes[k].z;
     o.metadata["rgraph.lightmap.axes"] = axes.str();
     o.metadata["rgraph.lightmap.key"] = lm.key;
     o.metadata["rgraph.lightmap.space"] = "tangent";
@@ -113,23 +124,32 @@ Result<void> writeLightmapExr(const std::string& path, const Lightmap& lm) {
 Result<Lightmap> readLightmapExr(const std::string& path) {
     auto file = readExr(path);
     if (!file) return std::unexpected(file.error());
-    auto bad = [&](const std::string& why) { return fail(ErrorCode::InvalidInput, path + ": not an rgraph lightmap: " + why); };
+    auto bad = [&](const std::string& why) {
+        return fail(ErrorCode::InvalidInput, path + ": not an rgraph lightmap: " + why);
+    };
     Lightmap lm;
     auto lobes = file->ints.find("rgraph.lightmap.lobes");
     auto sharp = file->floats.find("rgraph.lightmap.sharpness");
     auto axesAttr = file->metadata.find("rgraph.lightmap.axes");
-    if (lobes == file->ints.end() || sharp == file->floats.end() || axesAttr == file->metadata.end())
+    if (lobes == file->ints.end() || sharp == file->floats.end() ||
+        axesAttr == file->metadata.end())
         return bad("its header lacks rgraph.lightmap.lobes, .sharpness or .axes");
-    if (lobes->second < 1 || lobes->second > 64) return bad("rgraph.lightmap.lobes is " + std::to_string(lobes->second));
+    if (lobes->second < 1 || lobes->second > 64)
+        return bad("rgraph.lightmap.lobes is " + std::to_string(lobes->second));
     lm.sharpness = static_cast<float>(sharp->second);
-    if (auto d = file->floats.find("rgraph.lightmap.density"); d != file->floats.end()) lm.density = static_cast<float>(d->second);
-    if (auto k = file->metadata.find("rgraph.lightmap.key"); k != file->metadata.end()) lm.key = k->second;
+    if (auto d = file->floats.find("rgraph.lightmap.density"); d != file->floats.end())
+        lm.density = static_cast<float>(d->second);
+    if (auto k = file->metadata.find("rgraph.lightmap.key"); k != file->metadata.end())
+        lm.key = k->second;
     std::istringstream axes(axesAttr->second);
     for (int k = 0; k < lobes->second; ++k) {
         glm::vec3 a;
         char sep = ';';
-        if (k > 0 && !(axes >> sep)) return bad("rgraph.lightmap.axes has fewer than " + std::to_string(lobes->second) + " axes");
-        if (sep != ';' || !(axes >> a.x >> a.y >> a.z)) return bad("rgraph.lightmap.axes is not 'x y z; x y z; ...'");
+        if (k > 0 && !(axes >> sep))
+            return bad("rgraph.lightmap.axes has fewer than " + std::to_string(lobes->second) +
+                       " axes");
+        if (sep != ';' || !(axes >> a.x >> a.y >> a.z))
+            return bad("rgraph.lightmap.axes is not 'x y z; x y z; ...'");
         lm.axes.push_back(a);
     }
     if (auto u = file->metadata.find("rgraph.lightmap.unit"); u != file->metadata.end()) {
@@ -137,7 +157,8 @@ Result<Lightmap> readLightmapExr(const std::string& path) {
         float v = 0.0f;
         while (in >> v) lm.unit.push_back(v);
     }
-    if (lm.unit.size() != lm.axes.size()) return bad("rgraph.lightmap.unit does not hold one amplitude per lobe");
+    if (lm.unit.size() != lm.axes.size())
+        return bad("rgraph.lightmap.unit does not hold one amplitude per lobe");
     auto layer = [&](const std::string& name) -> const ImageLayer* {
         for (const auto& l : file->layers)
             if (l.name == name) return &l;
@@ -149,12 +170,14 @@ Result<Lightmap> readLightmapExr(const std::string& path) {
         if (k == 0) lm.width = l->image.width, lm.height = l->image.height;
         std::vector<glm::vec3> v(size_t(lm.width) * lm.height);
         for (size_t i = 0; i < v.size(); ++i)
-            for (uint32_t c = 0; c < 3; ++c) v[i][int(c)] = l->image.pixels[i * l->image.channels + c];
+            for (uint32_t c = 0; c < 3; ++c)
+                v[i][int(c)] = l->image.pixels[i * l->image.channels + c];
         lm.lobes.push_back(std::move(v));
     }
     lm.coverage.assign(size_t(lm.width) * lm.height, 1);
     if (const ImageLayer* c = layer("coverage"))
-        for (size_t i = 0; i < lm.coverage.size() && i < c->image.pixels.size(); ++i) lm.coverage[i] = c->image.pixels[i] > 0.5f;
+        for (size_t i = 0; i < lm.coverage.size() && i < c->image.pixels.size(); ++i)
+            lm.coverage[i] = c->image.pixels[i] > 0.5f;
     return lm;
 }
 
@@ -170,8 +193,8 @@ Result<void> prepareLightmap(Scene& scene, const PrepareOptions& options) {
     std::error_code ec;
     if (!options.rebake && std::filesystem::is_regular_file(path, ec)) {
         auto cached = readLightmapExr(path);
-        if (cached && cached->key == key && cached->width == atlas->width && cached->height == atlas->height &&
-            int(cached->axes.size()) == settings.lobes) {
+        if (cached && cached->key == key && cached->width == atlas->width &&
+            cached->height == atlas->height && int(cached->axes.size()) == settings.lobes) {
             if (options.fromCache) *options.fromCache = true;
             scene.bakedLightmap = std::make_shared<const Lightmap>(std::move(*cached));
             return {};
@@ -179,18 +202,26 @@ Result<void> prepareLightmap(Scene& scene, const PrepareOptions& options) {
     }
     if (options.fromCache) *options.fromCache = false;
     if (!options.bake)
-        return fail(ErrorCode::NotFound, "not baked for this scene (no " + key + ".exr in the lightmap cache): bake it with "
-                                         "`rgraph bake SCENE`, or render with a host that links the baker");
+        return fail(ErrorCode::NotFound,
+                    "not baked for this scene (no " + key +
+                        ".exr in the lightmap cache): bake it with "
+                        "`rgraph bake SCENE`, or render with a host that links the baker");
     BakeOptions bo;
     const bool tty = isatty(fileno(stderr));
     if (!options.quiet) {
-        std::fprintf(stderr, "rgraph: baking lightmap '%s': %ux%u texels, %d lobes, %d paths per texel, %d bounces\n", settings.name.c_str(),
-                     atlas->width, atlas->height, settings.lobes, settings.samples, settings.bounces);
+        std::fprintf(stderr,
+                     "rgraph: baking lightmap '%s': %ux%u texels, %d lobes, %d paths per texel, %d "
+                     "bounces\n",
+                     settings.name.c_str(), atlas->width, atlas->height, settings.lobes,
+                     settings.samples, settings.bounces);
         bo.progress = [tty, last = -1](double fraction, double left) mutable {
             const int percent = static_cast<int>(fraction * 100.0);
             if (!tty && percent / 10 == last / 10) return;
             last = percent;
-            std::fprintf(stderr, tty ? "\rrgraph: baking %3d %%, %.0f s left   " : "rgraph: baking %3d %%, %.0f s left\n", percent, left);
+            std::fprintf(stderr,
+                         tty ? "\rrgraph: baking %3d %%, %.0f s left   "
+                             : "rgraph: baking %3d %%, %.0f s left\n",
+                         percent, left);
         };
     }
     BakeStats stats;
@@ -200,7 +231,8 @@ Result<void> prepareLightmap(Scene& scene, const PrepareOptions& options) {
     baked->key = key;
     if (options.stats) *options.stats = stats;
     if (!options.quiet && !options.stats)  // a caller that takes the figures prints them
-        std::fprintf(stderr, "rgraph: baked %u texels in %.1f s (%.2f M rays/s)\n", stats.texels, stats.seconds,
+        std::fprintf(stderr, "rgraph: baked %u texels in %.1f s (%.2f M rays/s)\n", stats.texels,
+                     stats.seconds,
                      stats.seconds > 0 ? double(stats.rays) / stats.seconds * 1e-6 : 0.0);
     std::filesystem::create_directories(options.cacheDir, ec);
     if (auto r = writeLightmapExr(path, *baked); !r) return std::unexpected(r.error());
@@ -224,13 +256,17 @@ LightmapFit lightmapFit(int lobes, float sharpness) {
     f.weights[0] = double(J - 1);
     f.irradiance.resize(J * N);
     for (size_t j = 0; j < J; ++j)
-        for (size_t k = 0; k < N; ++k) f.irradiance[j * N + k] = lighting::irradiance({f.axes[k], sharpness, glm::vec3(1.0f)}, f.normals[j]).x;
+        for (size_t k = 0; k < N; ++k)
+            f.irradiance[j * N + k] =
+                lighting::irradiance({f.axes[k], sharpness, glm::vec3(1.0f)}, f.normals[j]).x;
     const std::vector<double> radiance = lighting::basisGram(f.axes, sharpness, true);
     f.gram.assign(N * N, 0.0);
     double traceIrr = 0.0, traceRad = 0.0;
     for (size_t i = 0; i < N; ++i) {
         for (size_t k = 0; k < N; ++k)
-            for (size_t j = 0; j < J; ++j) f.gram[i * N + k] += f.weights[j] * f.irradiance[j * N + i] * f.irradiance[j * N + k];
+            for (size_t j = 0; j < J; ++j)
+                f.gram[i * N + k] +=
+                    f.weights[j] * f.irradiance[j * N + i] * f.irradiance[j * N + k];
         traceIrr += f.gram[i * N + i], traceRad += radiance[i * N + i];
     }
     // The radiance term at a tenth of the irradiance term's weight: enough to keep the lobes a
@@ -244,23 +280,30 @@ LightmapFit lightmapFit(int lobes, float sharpness) {
     const double dw = 4.0 * 3.14159265358979323846 / double(dirs.size());
     for (const auto& d : dirs) {
         if (d.z <= 0.0f) continue;
-        for (size_t k = 0; k < N; ++k) proj[k] += glm::dvec3(dw * std::exp(double(sharpness) * (double(glm::dot(f.axes[k], d)) - 1.0)));
-        for (size_t j = 0; j < J; ++j) irr[j] += glm::dvec3(dw * double(std::max(0.0f, glm::dot(f.normals[j], d))));
+        for (size_t k = 0; k < N; ++k)
+            proj[k] += glm::dvec3(
+                dw * std::exp(double(sharpness) * (double(glm::dot(f.axes[k], d)) - 1.0)));
+        for (size_t j = 0; j < J; ++j)
+            irr[j] += glm::dvec3(dw * double(std::max(0.0f, glm::dot(f.normals[j], d))));
     }
     for (const glm::vec3& a : f.solve(proj, irr)) f.unit.push_back(a.x);
     return f;
 }
 
-std::vector<glm::vec3> LightmapFit::solve(const std::vector<glm::dvec3>& projections, const std::vector<glm::dvec3>& irradiances) const {
+std::vector<glm::vec3> LightmapFit::solve(const std::vector<glm::dvec3>& projections,
+                                          const std::vector<glm::dvec3>& irradiances) const {
     const size_t N = axes.size(), J = normals.size();
     std::vector<glm::dvec3> atb(N, glm::dvec3(0.0));
     for (size_t k = 0; k < N; ++k) {
         atb[k] = radianceWeight * projections[k];
-        for (size_t j = 0; j < J; ++j) atb[k] += weights[j] * irradiance[j * N + k] * irradiances[j];
+        for (size_t j = 0; j < J; ++j)
+            atb[k] += weights[j] * irradiance[j * N + k] * irradiances[j];
     }
     return lighting::fitNonNegative(gram, atb);
 }
 
-float lightmapSharpness(int lobes) { return lighting::basisSharpness(lightmapAxes(lobes)) * kLightmapSharpnessScale; }
+float lightmapSharpness(int lobes) {
+    return lighting::basisSharpness(lightmapAxes(lobes)) * kLightmapSharpnessScale;
+}
 
 }  // namespace rg::bake

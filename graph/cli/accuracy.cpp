@@ -16,12 +16,12 @@ namespace rg {
 namespace {
 
 struct Frame {
-    Image hdr;   // cd/m²
+    Image hdr;  // cd/m²
     Image depth;
 };
 
-Result<Frame> renderCase(Runtime& rt, const AccuracyOptions& o, const AccuracyCase& c, const std::string& model, bool reference,
-                         uint32_t seed) {
+Result<Frame> renderCase(Runtime& rt, const AccuracyOptions& o, const AccuracyCase& c,
+                         const std::string& model, bool reference, uint32_t seed) {
     SessionOptions so;
     so.bakeLightmap = bake::bakeLightmap;
     so.compile.outputWidth = o.width;
@@ -33,10 +33,12 @@ Result<Frame> renderCase(Runtime& rt, const AccuracyOptions& o, const AccuracyCa
     if (reference) {
         so.params["reference_seed"] = Value(static_cast<double>(seed));
         so.params["reference_samples"] = Value(static_cast<double>(o.samples));
-    }
-    else so.params["area_lights"] = Value(model);
+    } else
+        so.params["area_lights"] = Value(model);
     Session s(rt, so);
-    if (auto r = s.load(projectRoot() + (reference ? "/scripts/pipelines/reference.lua" : "/scripts/pipelines/deferred.lua")); !r)
+    if (auto r = s.load(projectRoot() + (reference ? "/scripts/pipelines/reference.lua"
+                                                   : "/scripts/pipelines/deferred.lua"));
+        !r)
         return std::unexpected(r.error());
     const uint32_t frames = reference ? o.frames : 1;
     for (uint32_t f = 0; f < frames; ++f)
@@ -69,11 +71,13 @@ Result<std::vector<AccuracyCase>> runAccuracy(Runtime& rt, const AccuracyOptions
                 if (!b) return std::unexpected(b.error());
                 const size_t n = size_t(o.width) * o.height;
                 Image reference = a->hdr;
-                for (size_t i = 0; i < reference.pixels.size(); ++i) reference.pixels[i] = 0.5f * (a->hdr.pixels[i] + b->hdr.pixels[i]);
+                for (size_t i = 0; i < reference.pixels.size(); ++i)
+                    reference.pixels[i] = 0.5f * (a->hdr.pixels[i] + b->hdr.pixels[i]);
                 double peak = 0.0;
                 for (size_t i = 0; i < n; ++i)
                     if (a->depth.pixels[i] < 1.0f)
-                        for (int ch = 0; ch < 3; ++ch) peak = std::max(peak, double(reference.pixels[i * 4 + size_t(ch)]));
+                        for (int ch = 0; ch < 3; ++ch)
+                            peak = std::max(peak, double(reference.pixels[i * 4 + size_t(ch)]));
                 for (const auto& model : o.models) {
                     AccuracyCase c = scene;
                     c.model = model;
@@ -96,7 +100,8 @@ Result<std::vector<AccuracyCase>> runAccuracy(Runtime& rt, const AccuracyOptions
                             errors.push_back(e);
                             pixelError += e, ++lit;
                             rtSum += rtv, refSum += ref;
-                            noise += std::abs(double(a->hdr.pixels[k]) - double(b->hdr.pixels[k])) / (2.0 * ref);
+                            noise += std::abs(double(a->hdr.pixels[k]) - double(b->hdr.pixels[k])) /
+                                     (2.0 * ref);
                         }
                         if (lit) c.error.pixels[i] = static_cast<float>(pixelError / lit);
                     }
@@ -107,7 +112,8 @@ Result<std::vector<AccuracyCase>> runAccuracy(Runtime& rt, const AccuracyOptions
                         c.meanError = sum / double(errors.size());
                         c.referenceNoise = noise / double(errors.size());
                         std::sort(errors.begin(), errors.end());
-                        c.p95Error = errors[std::min(errors.size() - 1, size_t(0.95 * double(errors.size())))];
+                        c.p95Error = errors[std::min(errors.size() - 1,
+                                                     size_t(0.95 * double(errors.size())))];
                         c.energyError = refSum > 0.0 ? rtSum / refSum - 1.0 : 0.0;
                     }
                     cases.push_back(std::move(c));
@@ -119,10 +125,12 @@ Result<std::vector<AccuracyCase>> runAccuracy(Runtime& rt, const AccuracyOptions
 std::string accuracyTable(const std::vector<AccuracyCase>& cases) {
     std::string out;
     char line[256];
-    std::snprintf(line, sizeof line, "%-36s %10s %10s %10s %12s\n", "case", "mean", "p95", "energy", "ref. noise");
+    std::snprintf(line, sizeof line, "%-36s %10s %10s %10s %12s\n", "case", "mean", "p95", "energy",
+                  "ref. noise");
     out += line;
     for (const auto& c : cases) {
-        std::snprintf(line, sizeof line, "%-36s %9.2f%% %9.2f%% %+9.2f%% %11.2f%%\n", c.name().c_str(), c.meanError * 100.0, c.p95Error * 100.0,
+        std::snprintf(line, sizeof line, "%-36s %9.2f%% %9.2f%% %+9.2f%% %11.2f%%\n",
+                      c.name().c_str(), c.meanError * 100.0, c.p95Error * 100.0,
                       c.energyError * 100.0, c.referenceNoise * 100.0);
         out += line;
     }
@@ -136,19 +144,26 @@ Result<void> writeAccuracyReport(const std::vector<AccuracyCase>& cases, const s
     std::ofstream html(dir + "/index.html");
     if (!html) return fail(ErrorCode::Io, "cannot write '" + dir + "/index.html'");
     html << "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>rgraph accuracy</title>\n"
-         << "<style>body{font-family:sans-serif;background:#111;color:#ddd}table{border-collapse:collapse}"
-         << "td,th{padding:4px 10px;border-bottom:1px solid #333;text-align:right}td:first-child{text-align:left}"
+         << "<style>body{font-family:sans-serif;background:#111;color:#ddd}table{border-collapse:"
+            "collapse}"
+         << "td,th{padding:4px 10px;border-bottom:1px solid "
+            "#333;text-align:right}td:first-child{text-align:left}"
          << "img{image-rendering:pixelated;width:240px}</style></head><body>\n"
          << "<h1>Area lights: real-time against the reference mode</h1>\n"
-         << "<p>Relative error over the pixels the reference lights above 1 % of its peak; heat map 0 (black) to 20 % (yellow) and beyond.</p>\n"
-         << "<table><tr><th>case</th><th>mean</th><th>p95</th><th>energy</th><th>reference noise</th><th>heat map</th></tr>\n";
+         << "<p>Relative error over the pixels the reference lights above 1 % of its peak; heat "
+            "map 0 (black) to 20 % (yellow) and beyond.</p>\n"
+         << "<table><tr><th>case</th><th>mean</th><th>p95</th><th>energy</th><th>reference "
+            "noise</th><th>heat map</th></tr>\n";
     for (const auto& c : cases) {
         std::string file = c.light + "_" + c.placement + "_" + c.material + "_" + c.model + ".png";
         Image map = golden::heatMap(c.error, 0.2f);
         if (auto r = writePng(dir + "/" + file, map); !r) return r;
         char row[512];
-        std::snprintf(row, sizeof row, "<tr><td>%s</td><td>%.2f %%</td><td>%.2f %%</td><td>%+.2f %%</td><td>%.2f %%</td><td><img src=\"%s\"></td></tr>\n",
-                      c.name().c_str(), c.meanError * 100.0, c.p95Error * 100.0, c.energyError * 100.0, c.referenceNoise * 100.0, file.c_str());
+        std::snprintf(row, sizeof row,
+                      "<tr><td>%s</td><td>%.2f %%</td><td>%.2f %%</td><td>%+.2f %%</td><td>%.2f "
+                      "%%</td><td><img src=\"%s\"></td></tr>\n",
+                      c.name().c_str(), c.meanError * 100.0, c.p95Error * 100.0,
+                      c.energyError * 100.0, c.referenceNoise * 100.0, file.c_str());
         html << row;
     }
     html << "</table></body></html>\n";

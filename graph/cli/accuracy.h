@@ -18,8 +18,9 @@ namespace rg {
 
 struct AccuracyOptions {
     uint32_t width = 160, height = 120;
-    uint32_t frames = 64;              // reference frames per half
-    uint32_t samples = 4;              // samples per pixel per reference frame (reference.lua's reference_samples)
+    uint32_t frames = 64;  // reference frames per half
+    uint32_t samples =
+        4;  // samples per pixel per reference frame (reference.lua's reference_samples)
     std::vector<std::string> lights = {"sphere", "disk", "rect", "tube"};
     std::vector<std::string> placements = {"facing", "grazing", "horizon"};
     std::vector<std::string> materials = {"rough", "glossy", "metal"};
@@ -30,14 +31,16 @@ struct AccuracyOptions {
 
 struct AccuracyCase {
     std::string light, placement, material, model;
-    double meanError = 0.0;    // mean |rt − ref| / ref over the lit pixels (RGB)
-    double p95Error = 0.0;     // its 95th percentile
-    double energyError = 0.0;  // Σ rt / Σ ref − 1
+    double meanError = 0.0;       // mean |rt − ref| / ref over the lit pixels (RGB)
+    double p95Error = 0.0;        // its 95th percentile
+    double energyError = 0.0;     // Σ rt / Σ ref − 1
     double referenceNoise = 0.0;  // the reference's own: mean |a − b| / (a + b) of its two halves
     size_t pixels = 0;
-    Image realtime, reference;    // luminance, cd/m² (RGBA)
-    Image error;                  // per pixel relative error (1 channel; 0 where unlit)
-    std::string name() const { return light + " " + placement + " " + material + (model.empty() ? "" : " " + model); }
+    Image realtime, reference;  // luminance, cd/m² (RGBA)
+    Image error;                // per pixel relative error (1 channel; 0 where unlit)
+    std::string name() const {
+        return light + " " + placement + " " + material + (model.empty() ? "" : " " + model);
+    }
 };
 
 Result<std::vector<AccuracyCase>> runAccuracy(Runtime& runtime, const AccuracyOptions& options);

@@ -17,10 +17,12 @@ namespace rg::cli {
 
 int exitCodeOf(const Error& e) {
     switch (e.code) {
-    case ErrorCode::InvalidInput:
-    case ErrorCode::NotFound:
-    case ErrorCode::Unsupported: return kUsage;
-    default: return kFailed;
+        case ErrorCode::InvalidInput:
+        case ErrorCode::NotFound:
+        case ErrorCode::Unsupported:
+            return kUsage;
+        default:
+            return kFailed;
     }
 }
 
@@ -35,7 +37,8 @@ int usageError(const std::string& msg, const char* command) {
 }
 
 Args Args::parse(int argc, char** argv, int first, const std::vector<std::string>& known) {
-    static const std::vector<std::string> flags = {"verbose", "floors", "rebake", "no-cache"};  // options without a value
+    static const std::vector<std::string> flags = {"verbose", "floors", "rebake",
+                                                   "no-cache"};  // options without a value
     Args a;
     for (int i = first; i < argc; ++i) {
         std::string arg = argv[i];
@@ -74,8 +77,9 @@ Args Args::parse(int argc, char** argv, int first, const std::vector<std::string
     return a;
 }
 
-std::optional<int> parseCommand(int argc, char** argv, const char* command, const std::vector<std::string>& options,
-                                const char* help, Args& args) {
+std::optional<int> parseCommand(int argc, char** argv, const char* command,
+                                const std::vector<std::string>& options, const char* help,
+                                Args& args) {
     args = Args::parse(argc, argv, 2, options);
     if (args.help) {
         std::fputs(help, stdout);
@@ -88,8 +92,8 @@ std::optional<int> parseCommand(int argc, char** argv, const char* command, cons
 bool parseSize(const std::string& s, uint32_t& w, uint32_t& h) {
     unsigned a = 0, b = 0;
     char x = 0;
-    if (std::sscanf(s.c_str(), "%u%c%u", &a, &x, &b) != 3 || (x != 'x' && x != 'X') || a == 0 || b == 0 ||
-        a > 16384 || b > 16384)
+    if (std::sscanf(s.c_str(), "%u%c%u", &a, &x, &b) != 3 || (x != 'x' && x != 'X') || a == 0 ||
+        b == 0 || a > 16384 || b > 16384)
         return false;
     w = a;
     h = b;

@@ -48,8 +48,9 @@ struct Args {
 
 // A command's options from argv[2...] into `args`: with --help it prints `help` and returns kOk;
 // an unknown option or a missing value returns the usage error; otherwise nothing (go on).
-std::optional<int> parseCommand(int argc, char** argv, const char* command, const std::vector<std::string>& options,
-                                const char* help, Args& args);
+std::optional<int> parseCommand(int argc, char** argv, const char* command,
+                                const std::vector<std::string>& options, const char* help,
+                                Args& args);
 
 bool parseSize(const std::string& s, uint32_t& w, uint32_t& h);
 bool parseCount(const std::string& s, uint32_t& n, bool allowZero = false);
@@ -82,10 +83,11 @@ std::vector<std::string> rgbaNames(uint32_t n);
 std::string number(double v);
 // Writes the EXR (linear: layer `hdr` in cd/m² when the pipeline has a physical camera, plus one
 // layer per capture) and the PNG (the display image). Returns the display image.
-Result<Image> writeOutputs(RenderSetup& setup, const std::string& exrPath, const std::string& pngPath,
-                           const std::vector<std::string>& captures);
+Result<Image> writeOutputs(RenderSetup& setup, const std::string& exrPath,
+                           const std::string& pngPath, const std::vector<std::string>& captures);
 // The EXR and PNG paths a command writes (--out, --png).
-Result<std::pair<std::string, std::string>> outputPaths(const Args& args, const std::string& defaultExr);
+Result<std::pair<std::string, std::string>> outputPaths(const Args& args,
+                                                        const std::string& defaultExr);
 
 int cmdDevices(int argc, char** argv);
 int cmdGraph(int argc, char** argv);

@@ -31,17 +31,27 @@ Stat stats(std::vector<double> v) {
 }
 
 const char* const kHelp =
-    "usage: rgraph bench [--pipeline FILE.lua|builtin:NAME] [--scene FILE] [--scene-arg NAME=VALUE]... [--set NAME=VALUE]...\n"
-    "                    [--environment FILE|sky|none] [--size WxH] [--frames N] [--json FILE] [--floors] [--device N]\n\n"
-    "--environment FILE|sky|none: replaces the scene's environment (the distant light probe and the sky):\n"
-    "an equirectangular .hdr/.exr in nits, the Preetham sky of the scene's sun, or none. A glTF scene\n"
+    "usage: rgraph bench [--pipeline FILE.lua|builtin:NAME] [--scene FILE] [--scene-arg "
+    "NAME=VALUE]... [--set NAME=VALUE]...\n"
+    "                    [--environment FILE|sky|none] [--size WxH] [--frames N] [--json FILE] "
+    "[--floors] [--device N]\n\n"
+    "--environment FILE|sky|none: replaces the scene's environment (the distant light probe and "
+    "the sky):\n"
+    "an equirectangular .hdr/.exr in nits, the Preetham sky of the scene's sun, or none. A glTF "
+    "scene\n"
     "with no light and no environment gets the sky, as glTF viewers light published models.\n"
-    "--scene-arg NAME=VALUE (repeatable): sets scene.args.NAME for a Lua scene (a number when it reads as one).\n"
-    "--set NAME=VALUE (repeatable): sets the pipeline parameter NAME (rg.param) before the first frame.\n"
-    "Renders N frames (default 20) at WxH (default 1280x720), one frame at a time, and prints per pass\n"
-    "the median/min/max GPU time (timestamp queries), the CPU recording time, the frame total, the\n"
-    "graph compile time and the transient memory with and without aliasing. --json writes the same.\n"
-    "--floors: then renders the same frames again with every fragment shader replaced by one that writes\n"
+    "--scene-arg NAME=VALUE (repeatable): sets scene.args.NAME for a Lua scene (a number when it "
+    "reads as one).\n"
+    "--set NAME=VALUE (repeatable): sets the pipeline parameter NAME (rg.param) before the first "
+    "frame.\n"
+    "Renders N frames (default 20) at WxH (default 1280x720), one frame at a time, and prints per "
+    "pass\n"
+    "the median/min/max GPU time (timestamp queries), the CPU recording time, the frame total, "
+    "the\n"
+    "graph compile time and the transient memory with and without aliasing. --json writes the "
+    "same.\n"
+    "--floors: then renders the same frames again with every fragment shader replaced by one that "
+    "writes\n"
     "zeros to the same targets and every compute shader by an empty one (same targets, geometry,\n"
     "state and dispatches), and prints each pass's floor beside its time: what its shaders cost.\n";
 
@@ -49,7 +59,11 @@ const char* const kHelp =
 
 int cmdBench(int argc, char** argv) {
     Args args;
-    if (auto done = parseCommand(argc, argv, "bench", {"pipeline", "scene", "scene-arg", "set", "camera", "environment", "size", "frames", "json", "device", "floors"}, kHelp, args)) return *done;
+    if (auto done = parseCommand(argc, argv, "bench",
+                                 {"pipeline", "scene", "scene-arg", "set", "camera", "environment",
+                                  "size", "frames", "json", "device", "floors"},
+                                 kHelp, args))
+        return *done;
     auto setup = setupRun(args, "bench", 20, {});
     if (!setup) return report(setup.error());
     Runtime& rt = *setup->runtime;
@@ -60,7 +74,8 @@ int cmdBench(int argc, char** argv) {
     // One warm-up frame: the first draw of each pipeline JIT-compiles on lavapipe, and passes of
     // cadence "once" (environment filtering, lookup tables) run only there; its times are the
     // "first" column.
-    auto measure = [&](std::map<std::string, std::vector<double>>& passes, std::vector<double>& frameTotals, bool main) -> Result<void> {
+    auto measure = [&](std::map<std::string, std::vector<double>>& passes,
+                       std::vector<double>& frameTotals, bool main) -> Result<void> {
         if (auto r = ex.frame(); !r) return r;
         if (auto r = ex.finish(); !r) return r;
         if (main)
@@ -86,7 +101,10 @@ int cmdBench(int argc, char** argv) {
     const double loadMs = setup->session ? setup->session->lastLoadMs() : 0.0;
     const double sceneLoadMs = setup->session ? setup->session->lastSceneLoadMs() : 0.0;
     if (floors) {
-        if (!setup->session) return report(Error(ErrorCode::Unsupported, "bench --floors: built-in graphs have no floors; give a Lua pipeline"));
+        if (!setup->session)
+            return report(
+                Error(ErrorCode::Unsupported,
+                      "bench --floors: built-in graphs have no floors; give a Lua pipeline"));
         ex.setFloors(true);
         if (auto r = setup->session->load(setup->pipeline); !r) return report(r.error());
         if (auto r = measure(floorPass, floorTotals, false); !r) return report(r.error());
@@ -96,8 +114,12 @@ int cmdBench(int argc, char** argv) {
     uint32_t w = plan.outputWidth, h = plan.outputHeight;
     std::printf("rgraph bench: %s, %ux%u, %u frames, %s\n", setup->pipeline.c_str(), w, h,
                 setup->frames, rt.gpu().deviceInfo().name.c_str());
-    if (floors) std::printf("%-24s %10s %10s %10s %10s %10s\n", "pass (GPU ms)", "median", "min", "max", "first", "floor");
-    else std::printf("%-24s %10s %10s %10s %10s\n", "pass (GPU ms)", "median", "min", "max", "first");
+    if (floors)
+        std::printf("%-24s %10s %10s %10s %10s %10s\n", "pass (GPU ms)", "median", "min", "max",
+                    "first", "floor");
+    else
+        std::printf("%-24s %10s %10s %10s %10s\n", "pass (GPU ms)", "median", "min", "max",
+                    "first");
     nlohmann::json j;
     j["pipeline"] = setup->pipeline;
     j["size"] = {w, h};
@@ -105,20 +127,23 @@ int cmdBench(int argc, char** argv) {
     j["device"] = rt.gpu().deviceInfo().name;
     for (const auto& p : plan.passes) {
         Stat s = stats(perPass[p.name]);
-        nlohmann::json pj = {{"name", p.name}, {"kind", p.kind}, {"medianMs", s.median}, {"minMs", s.min}, {"maxMs", s.max},
-                             {"firstMs", firstFrame[p.name]}};
+        nlohmann::json pj = {{"name", p.name}, {"kind", p.kind}, {"medianMs", s.median},
+                             {"minMs", s.min}, {"maxMs", s.max}, {"firstMs", firstFrame[p.name]}};
         if (floors) {
             const Stat fl = stats(floorPass[p.name]);
-            std::printf("%-24s %10.3f %10.3f %10.3f %10.3f %10.3f\n", p.name.c_str(), s.median, s.min, s.max, firstFrame[p.name], fl.median);
+            std::printf("%-24s %10.3f %10.3f %10.3f %10.3f %10.3f\n", p.name.c_str(), s.median,
+                        s.min, s.max, firstFrame[p.name], fl.median);
             pj["floorMs"] = fl.median;
         } else
-            std::printf("%-24s %10.3f %10.3f %10.3f %10.3f\n", p.name.c_str(), s.median, s.min, s.max, firstFrame[p.name]);
+            std::printf("%-24s %10.3f %10.3f %10.3f %10.3f\n", p.name.c_str(), s.median, s.min,
+                        s.max, firstFrame[p.name]);
         j["passes"].push_back(pj);
     }
     Stat t = stats(totals), rec = stats(records);
     if (floors) {
         const Stat ft = stats(floorTotals);
-        std::printf("%-24s %10.3f %10.3f %10.3f %10s %10.3f\n", "frame total", t.median, t.min, t.max, "", ft.median);
+        std::printf("%-24s %10.3f %10.3f %10.3f %10s %10.3f\n", "frame total", t.median, t.min,
+                    t.max, "", ft.median);
         j["floorTotalMs"] = ft.median;
     } else
         std::printf("%-24s %10.3f %10.3f %10.3f\n", "frame total", t.median, t.min, t.max);
@@ -126,21 +151,28 @@ int cmdBench(int argc, char** argv) {
     if (setup->session) {
         Stat cb = stats(callbacks);
         std::printf("%-24s %10.3f %10.3f %10.3f\n", "rg.frame (Lua)", cb.median, cb.min, cb.max);
-        std::printf("pipeline load %.1f ms (script, shaders, graph compile, resources, pipelines)\n", loadMs);
+        std::printf(
+            "pipeline load %.1f ms (script, shaders, graph compile, resources, pipelines)\n",
+            loadMs);
         if (const passes::GpuScene* scene = setup->session->gpuScene()) {
             uint64_t triangles = 0;
             for (const auto& d : scene->draws()) triangles += d.indexCount / 3;
-            std::printf("scene: %zu draws, %llu triangles, %zu materials, %u lights; loaded in %.1f ms (read, build, upload)\n",
-                        scene->draws().size(), static_cast<unsigned long long>(triangles), scene->scene().materials.size(),
-                        scene->lightCount(), sceneLoadMs);
-            j["scene"] = {{"draws", scene->draws().size()}, {"triangles", triangles}, {"lights", scene->lightCount()},
+            std::printf(
+                "scene: %zu draws, %llu triangles, %zu materials, %u lights; loaded in %.1f ms "
+                "(read, build, upload)\n",
+                scene->draws().size(), static_cast<unsigned long long>(triangles),
+                scene->scene().materials.size(), scene->lightCount(), sceneLoadMs);
+            j["scene"] = {{"draws", scene->draws().size()},
+                          {"triangles", triangles},
+                          {"lights", scene->lightCount()},
                           {"loadMs", sceneLoadMs}};
         }
         j["luaFrameMs"] = {{"median", cb.median}, {"min", cb.min}, {"max", cb.max}};
         j["loadMs"] = loadMs;
     }
     const auto& bs = mainBuild;
-    std::printf("graph compile %.3f ms, resources %.3f ms, pass setup %.3f ms\n", bs.compileMs, bs.resourcesMs, bs.prepareMs);
+    std::printf("graph compile %.3f ms, resources %.3f ms, pass setup %.3f ms\n", bs.compileMs,
+                bs.resourcesMs, bs.prepareMs);
     std::printf("transient memory: %.2f MiB aliased, %.2f MiB without aliasing\n",
                 static_cast<double>(plan.transientBytesAliased) / (1 << 20),
                 static_cast<double>(plan.transientBytesUnaliased) / (1 << 20));

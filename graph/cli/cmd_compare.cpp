@@ -19,9 +19,12 @@ namespace {
 
 const char* const kHelp =
     "usage: rgraph compare A.exr B.exr [--layer NAME] [--heatmap FILE.png] [--tolerance T]\n\n"
-    "Compares layer NAME (default 'hdr', else the first layer) of A against B (the reference): mean and\n"
-    "max relative error |a - b| / max(|b|, 1e-3), RMSE and PSNR (peak: B's maximum), over RGB. --heatmap\n"
-    "writes the per-pixel relative error as a colour map (black 0, white >= the max). With --tolerance,\n"
+    "Compares layer NAME (default 'hdr', else the first layer) of A against B (the reference): "
+    "mean and\n"
+    "max relative error |a - b| / max(|b|, 1e-3), RMSE and PSNR (peak: B's maximum), over RGB. "
+    "--heatmap\n"
+    "writes the per-pixel relative error as a colour map (black 0, white >= the max). With "
+    "--tolerance,\n"
     "exits 1 when the mean relative error exceeds it.\n";
 
 }  // namespace
@@ -29,9 +32,12 @@ const char* const kHelp =
 int cmdCompare(int argc, char** argv) {
     using namespace rg::golden;
     Args args;
-    if (auto done = parseCommand(argc, argv, "compare", {"layer", "heatmap", "tolerance"}, kHelp, args)) return *done;
+    if (auto done =
+            parseCommand(argc, argv, "compare", {"layer", "heatmap", "tolerance"}, kHelp, args))
+        return *done;
     const auto files = args.all("");
-    if (files.size() != 2) return usageError("give two EXR files: the image and the reference", "compare");
+    if (files.size() != 2)
+        return usageError("give two EXR files: the image and the reference", "compare");
     auto a = readExr(files[0]);
     if (!a) return report(a.error());
     auto b = readExr(files[1]);
@@ -61,11 +67,14 @@ int cmdCompare(int argc, char** argv) {
         if (!r) return report(r.error());
         results[metricName(m)] = *r;
     }
-    std::printf("rgraph compare: %s vs %s (%ux%u)\n", files[0].c_str(), files[1].c_str(), ib->width, ib->height);
-    std::printf("  mean relative error %s\n  max relative error  %s (%s)\n  RMSE                %s\n  PSNR                %s dB\n",
-                formatNumber(results["rel_mean"].value).c_str(), formatNumber(results["rel_max"].value).c_str(),
-                results["rel_max"].detail.c_str(), formatNumber(results["rmse"].value).c_str(),
-                formatNumber(results["psnr"].value).c_str());
+    std::printf("rgraph compare: %s vs %s (%ux%u)\n", files[0].c_str(), files[1].c_str(), ib->width,
+                ib->height);
+    std::printf(
+        "  mean relative error %s\n  max relative error  %s (%s)\n  RMSE                %s\n  PSNR "
+        "               %s dB\n",
+        formatNumber(results["rel_mean"].value).c_str(),
+        formatNumber(results["rel_max"].value).c_str(), results["rel_max"].detail.c_str(),
+        formatNumber(results["rmse"].value).c_str(), formatNumber(results["psnr"].value).c_str());
     if (args.has("heatmap")) {
         const MetricResult& rel = results["rel_max"];
         Image map = heatMap(rel.error, static_cast<float>(std::max(rel.value, 1e-6)));
@@ -75,7 +84,8 @@ int cmdCompare(int argc, char** argv) {
     if (args.has("tolerance")) {
         const double t = std::strtod(args.get("tolerance").c_str(), nullptr);
         if (results["rel_mean"].value > t) {
-            std::printf("rgraph compare: mean relative error above the tolerance %s\n", formatNumber(t).c_str());
+            std::printf("rgraph compare: mean relative error above the tolerance %s\n",
+                        formatNumber(t).c_str());
             return kFailed;
         }
     }

@@ -30,18 +30,26 @@ int cmdDevices(int argc, char** argv) {
     if (!devices) return report(devices.error());
     int chosen = -1, bestRank = 99;
     auto rank = [](const std::string& t) {
-        return t == "discrete" ? 0 : t == "integrated" ? 1 : t == "virtual" ? 2 : t == "cpu" ? 3 : 4;
+        return t == "discrete"     ? 0
+               : t == "integrated" ? 1
+               : t == "virtual"    ? 2
+               : t == "cpu"        ? 3
+                                   : 4;
     };
     for (const auto& d : *devices)
-        if (d.usable && rank(d.type) < bestRank) bestRank = rank(d.type), chosen = static_cast<int>(d.index);
+        if (d.usable && rank(d.type) < bestRank)
+            bestRank = rank(d.type), chosen = static_cast<int>(d.index);
     for (const auto& d : *devices) {
-        std::printf("%c %u  %-40s %-10s Vulkan %u.%u.%u  %s%s%s\n", static_cast<int>(d.index) == chosen ? '*' : ' ',
-                    d.index, d.name.c_str(), d.type.c_str(), VK_API_VERSION_MAJOR(d.apiVersion),
-                    VK_API_VERSION_MINOR(d.apiVersion), VK_API_VERSION_PATCH(d.apiVersion), d.driver.c_str(),
+        std::printf("%c %u  %-40s %-10s Vulkan %u.%u.%u  %s%s%s\n",
+                    static_cast<int>(d.index) == chosen ? '*' : ' ', d.index, d.name.c_str(),
+                    d.type.c_str(), VK_API_VERSION_MAJOR(d.apiVersion),
+                    VK_API_VERSION_MINOR(d.apiVersion), VK_API_VERSION_PATCH(d.apiVersion),
+                    d.driver.c_str(),
                     d.usable ? "" : "  (unusable: ", d.usable ? "" : (d.whyNot + ")").c_str());
     }
     if (devices->empty()) {
-        std::fprintf(stderr, "rgraph: no Vulkan devices (install mesa-vulkan-drivers for lavapipe)\n");
+        std::fprintf(stderr,
+                     "rgraph: no Vulkan devices (install mesa-vulkan-drivers for lavapipe)\n");
         return kFailed;
     }
     return kOk;

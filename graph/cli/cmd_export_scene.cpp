@@ -28,19 +28,22 @@ const char* const kHelp =
 
 int cmdExportScene(int argc, char** argv) {
     Args args;
-    if (auto done = parseCommand(argc, argv, "export-scene", {"scene", "out"}, kHelp, args)) return *done;
+    if (auto done = parseCommand(argc, argv, "export-scene", {"scene", "out"}, kHelp, args))
+        return *done;
     std::vector<std::string> positional = args.all("");
     std::string scene = args.get("scene", positional.size() > 0 ? positional[0] : "");
     std::string out = args.get("out", positional.size() > 1 ? positional[1] : "");
-    if (scene.empty() || out.empty()) return usageError("give --scene SCENE and --out FILE.glb", "export-scene");
+    if (scene.empty() || out.empty())
+        return usageError("give --scene SCENE and --out FILE.glb", "export-scene");
     const std::string ext = fs::path(scene).extension().string();
     auto loaded = ext == ".lua" ? loadSceneScript(scene) : loadGltf(scene);
     if (!loaded) return report(loaded.error());
     std::vector<std::string> warnings;
     if (auto r = exportGlb(*loaded, out, &warnings); !r) return report(r.error());
     for (const auto& w : warnings) std::fprintf(stderr, "rgraph: warning: %s\n", w.c_str());
-    std::printf("rgraph: wrote %s (%zu meshes, %zu materials, %zu lights, %zu cameras)\n", out.c_str(), loaded->meshes.size(),
-                loaded->materials.size(), loaded->lights.size(), loaded->cameras.size());
+    std::printf("rgraph: wrote %s (%zu meshes, %zu materials, %zu lights, %zu cameras)\n",
+                out.c_str(), loaded->meshes.size(), loaded->materials.size(), loaded->lights.size(),
+                loaded->cameras.size());
     return kOk;
 }
 

@@ -19,7 +19,8 @@ namespace rg::cli {
 namespace {
 
 const char* const kHelp =
-    "usage: rgraph graph [--pipeline FILE.lua|builtin:NAME] [--format dot|json|materials] [--size WxH] [--capture RESOURCE]...\n\n"
+    "usage: rgraph graph [--pipeline FILE.lua|builtin:NAME] [--format dot|json|materials] [--size "
+    "WxH] [--capture RESOURCE]...\n\n"
     "Compiles the pipeline (no GPU needed; memory sizes are estimated) and prints the plan:\n"
     "passes in order, culled passes and why, resources with lifetimes and memory offsets,\n"
     "barriers. Default format: dot. '--format materials' prints the material system instead:\n"
@@ -30,13 +31,16 @@ const char* const kHelp =
 
 int cmdGraph(int argc, char** argv) {
     Args args;
-    if (auto done = parseCommand(argc, argv, "graph", {"pipeline", "format", "size", "capture"}, kHelp, args)) return *done;
+    if (auto done = parseCommand(argc, argv, "graph", {"pipeline", "format", "size", "capture"},
+                                 kHelp, args))
+        return *done;
     std::string format = args.get("format", "dot");
     if (format != "dot" && format != "json" && format != "materials")
         return usageError("--format must be 'dot', 'json' or 'materials'", "graph");
     if (format == "materials") {
         const std::string pipeline = pipelineArg(args);
-        if (isBuiltin(pipeline)) return usageError("--format materials: built-in graphs declare no materials", "graph");
+        if (isBuiltin(pipeline))
+            return usageError("--format materials: built-in graphs declare no materials", "graph");
         LuaHost host(luaHostOptionsWithoutDevice());
         auto p = host.load(pipeline);
         if (!p) return report(p.error());
@@ -45,12 +49,17 @@ int cmdGraph(int argc, char** argv) {
     }
     CompileOptions opts;
     if (args.has("size") && !parseSize(args.get("size"), opts.outputWidth, opts.outputHeight))
-        return usageError("--size must be WIDTHxHEIGHT with each side in 1..16384, e.g. 1280x720; got '" + args.get("size") + "'", "graph");
+        return usageError(
+            "--size must be WIDTHxHEIGHT with each side in 1..16384, e.g. 1280x720; got '" +
+                args.get("size") + "'",
+            "graph");
     auto graph = loadGraph(args);
     if (!graph) return report(graph.error());
     for (const auto& c : args.all("capture")) {
-        auto it = std::find_if(graph->resources.begin(), graph->resources.end(), [&](auto& r) { return r.name == c; });
-        if (it == graph->resources.end()) return report(Error(ErrorCode::NotFound, "--capture: no resource named '" + c + "'"));
+        auto it = std::find_if(graph->resources.begin(), graph->resources.end(),
+                               [&](auto& r) { return r.name == c; });
+        if (it == graph->resources.end())
+            return report(Error(ErrorCode::NotFound, "--capture: no resource named '" + c + "'"));
         it->exported = true;
     }
     auto plan = compile(*graph, opts);

@@ -19,41 +19,67 @@ namespace rg::cli {
 namespace {
 
 const char* const kHelp =
-    "usage: rgraph render [--pipeline FILE.lua|builtin:NAME] [--scene FILE] [--camera NAME] [--size WxH] [--frames N]\n"
-    "                     [--out FILE.exr] [--png FILE.png] [--capture RESOURCE|gbuffer.CHANNEL]... [--view VIEW]\n"
-    "                     [--scene-arg NAME=VALUE]... [--set NAME=VALUE]... [--environment FILE|sky|none] [--device N] [--verbose]\n"
+    "usage: rgraph render [--pipeline FILE.lua|builtin:NAME] [--scene FILE] [--camera NAME] "
+    "[--size WxH] [--frames N]\n"
+    "                     [--out FILE.exr] [--png FILE.png] [--capture "
+    "RESOURCE|gbuffer.CHANNEL]... [--view VIEW]\n"
+    "                     [--scene-arg NAME=VALUE]... [--set NAME=VALUE]... [--environment "
+    "FILE|sky|none] [--device N] [--verbose]\n"
     "                     [--no-cache]\n\n"
-    "--scene: a Lua scene (scripts/scenes/*.lua), .gltf or .glb (default scripts/scenes/default.lua).\n"
-    "--environment FILE|sky|none: replaces the scene's environment (the distant light probe and the sky):\n"
-    "an equirectangular .hdr/.exr in nits, the Preetham sky of the scene's sun, or none. A glTF scene\n"
+    "--scene: a Lua scene (scripts/scenes/*.lua), .gltf or .glb (default "
+    "scripts/scenes/default.lua).\n"
+    "--environment FILE|sky|none: replaces the scene's environment (the distant light probe and "
+    "the sky):\n"
+    "an equirectangular .hdr/.exr in nits, the Preetham sky of the scene's sun, or none. A glTF "
+    "scene\n"
     "with no light and no environment gets the sky, as glTF viewers light published models.\n"
-    "--scene-arg NAME=VALUE (repeatable): sets scene.args.NAME for a Lua scene (a number when it reads as one).\n"
-    "--set NAME=VALUE (repeatable): sets the pipeline parameter NAME (rg.param) before the first frame.\n"
+    "--scene-arg NAME=VALUE (repeatable): sets scene.args.NAME for a Lua scene (a number when it "
+    "reads as one).\n"
+    "--set NAME=VALUE (repeatable): sets the pipeline parameter NAME (rg.param) before the first "
+    "frame.\n"
     "--view: write a debug view instead of the image: normals, basecolor, smoothness, metalmask,\n"
-    "materialid, reflectance, ao, emissive, stencil, lights, ssao (screen-space AO), ssr, ssr_confidence,\nreflection (SSR and the probes composed), probes (which local light probe reflects each pixel), cascades (the sun's shadow cascades), shadow (its map) or shadow:LIGHT (a local light's maps),\n"
+    "materialid, reflectance, ao, emissive, stencil, lights, ssao (screen-space AO), ssr, "
+    "ssr_confidence,\nreflection (SSR and the probes composed), probes (which local light probe "
+    "reflects each pixel), cascades (the sun's shadow cascades), shadow (its map) or shadow:LIGHT "
+    "(a local light's maps),\n"
     "lightmap (the baked lightmap's irradiance at each pixel's normal) or sgN (its lobe N).\n"
-    "--capture gbuffer.CHANNEL: a G-buffer channel, decoded, as an EXR layer (e.g. gbuffer.normal).\n"
+    "--capture gbuffer.CHANNEL: a G-buffer channel, decoded, as an EXR layer (e.g. "
+    "gbuffer.normal).\n"
     "Renders N frames (default 1) at WxH (default 1280x720) through the pipeline (default\n"
-    "scripts/pipelines/deferred.lua), calling its rg.frame(ctx) before each frame. Writes FILE.png (default\n"
-    "FILE.exr's path with .png, else out/render.png), the display image, and FILE.exr (default out/render.exr; other\n"
+    "scripts/pipelines/deferred.lua), calling its rg.frame(ctx) before each frame. Writes FILE.png "
+    "(default\n"
+    "FILE.exr's path with .png, else out/render.png), the display image, and FILE.exr (default "
+    "out/render.exr; other\n"
     "extensions are refused), linear: layer 'hdr' holds\n"
-    "absolute luminance in cd/m2 (pre-exposure divided out) when the pipeline has a camera (rg.output\n"
-    "{ display, hdr, exposure }), else the output itself. Each --capture adds that resource as a layer of\n"
+    "absolute luminance in cd/m2 (pre-exposure divided out) when the pipeline has a camera "
+    "(rg.output\n"
+    "{ display, hdr, exposure }), else the output itself. Each --capture adds that resource as a "
+    "layer of\n"
     "its name. Both files record the camera settings and exposure in their metadata.\n"
-    "The passes that run once per build (cadence = \"once\": environment filtering, probe capture, lookup\n"
-    "tables) restore their outputs from the cache folder (RG_CACHE_DIR)/once when the same passes, shaders,\n"
-    "scene and device made them before, and save them there otherwise; --no-cache always records them.\n";
+    "The passes that run once per build (cadence = \"once\": environment filtering, probe capture, "
+    "lookup\n"
+    "tables) restore their outputs from the cache folder (RG_CACHE_DIR)/once when the same passes, "
+    "shaders,\n"
+    "scene and device made them before, and save them there otherwise; --no-cache always records "
+    "them.\n";
 
 }  // namespace
 
 int cmdRender(int argc, char** argv) {
     Args args;
-    if (auto done = parseCommand(argc, argv, "render", {"pipeline", "scene", "scene-arg", "set", "camera", "environment", "size", "frames", "out", "png", "capture", "view", "device", "verbose", "no-cache"}, kHelp, args)) return *done;
+    if (auto done = parseCommand(
+            argc, argv, "render",
+            {"pipeline", "scene", "scene-arg", "set", "camera", "environment", "size", "frames",
+             "out", "png", "capture", "view", "device", "verbose", "no-cache"},
+            kHelp, args))
+        return *done;
     const auto captures = args.all("capture");
     auto paths = outputPaths(args, "out/render.exr");
     if (!paths) return report(paths.error());
     using Clock = std::chrono::steady_clock;
-    const auto ms = [](Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double, std::milli>(b - a).count(); };
+    const auto ms = [](Clock::time_point a, Clock::time_point b) {
+        return std::chrono::duration<double, std::milli>(b - a).count();
+    };
     const auto t0 = Clock::now();
     auto setup = setupRun(args, "render", 1, captures, args.has("verbose"));
     if (!setup) return report(setup.error());
@@ -64,28 +90,39 @@ int cmdRender(int argc, char** argv) {
     const uint32_t step = std::max(1u, setup->frames / 10);
     for (uint32_t f = 0; f < setup->frames; ++f) {
         if (auto r = setup->frame(); !r) return report(r.error());
-        if (setup->frames > 1 && !args.has("verbose") && (tty || (f + 1) % step == 0 || f + 1 == setup->frames))
-            std::fprintf(stderr, tty ? "\rrgraph: frame %u/%u" : "rgraph: frame %u/%u\n", f + 1, setup->frames);
+        if (setup->frames > 1 && !args.has("verbose") &&
+            (tty || (f + 1) % step == 0 || f + 1 == setup->frames))
+            std::fprintf(stderr, tty ? "\rrgraph: frame %u/%u" : "rgraph: frame %u/%u\n", f + 1,
+                         setup->frames);
     }
     if (setup->frames > 1 && !args.has("verbose") && tty) std::fprintf(stderr, "\n");
     const auto [exrPath, pngPath] = *paths;
-    if (auto r = rt.gpu().waitIdle(); !r) return report(r.error());  // the frames' work, for the timings
+    if (auto r = rt.gpu().waitIdle(); !r)
+        return report(r.error());  // the frames' work, for the timings
     const auto t2 = Clock::now();
     auto written = writeOutputs(*setup, exrPath, pngPath, captures);
     if (!written) return report(written.error());
     const Image* out = &*written;
-    if (const auto& once = rt.executor().onceCacheStats(); args.has("verbose") && (once.restoredPasses || once.savedPasses))
-        std::fprintf(stderr, once.restoredPasses ? "rgraph: once-per-build passes: %u restored from %s (%.0f ms)\n"
-                                                 : "rgraph: once-per-build passes: %u recorded, saved to %s (%.0f ms)\n",
-                     once.restoredPasses ? once.restoredPasses : once.savedPasses, once.file.c_str(),
-                     once.restoredPasses ? once.restoreMs : once.saveMs);
+    if (const auto& once = rt.executor().onceCacheStats();
+        args.has("verbose") && (once.restoredPasses || once.savedPasses))
+        std::fprintf(stderr,
+                     once.restoredPasses
+                         ? "rgraph: once-per-build passes: %u restored from %s (%.0f ms)\n"
+                         : "rgraph: once-per-build passes: %u recorded, saved to %s (%.0f ms)\n",
+                     once.restoredPasses ? once.restoredPasses : once.savedPasses,
+                     once.file.c_str(), once.restoredPasses ? once.restoreMs : once.saveMs);
     if (args.has("verbose"))
-        std::fprintf(stderr, "rgraph: timings: device %.0f ms, pipeline and scene load %.0f ms, %u frame%s %.0f ms, writing %.0f ms\n",
-                     setup->deviceMs, ms(t0, t1) - setup->deviceMs, setup->frames, setup->frames == 1 ? "" : "s", ms(t1, t2), ms(t2, Clock::now()));
-    std::printf("rgraph: wrote %s and %s (%ux%u, %u frame%s, %s)\n", exrPath.c_str(), pngPath.c_str(), out->width,
-                out->height, setup->frames, setup->frames == 1 ? "" : "s", rt.gpu().deviceInfo().name.c_str());
+        std::fprintf(stderr,
+                     "rgraph: timings: device %.0f ms, pipeline and scene load %.0f ms, %u frame%s "
+                     "%.0f ms, writing %.0f ms\n",
+                     setup->deviceMs, ms(t0, t1) - setup->deviceMs, setup->frames,
+                     setup->frames == 1 ? "" : "s", ms(t1, t2), ms(t2, Clock::now()));
+    std::printf("rgraph: wrote %s and %s (%ux%u, %u frame%s, %s)\n", exrPath.c_str(),
+                pngPath.c_str(), out->width, out->height, setup->frames,
+                setup->frames == 1 ? "" : "s", rt.gpu().deviceInfo().name.c_str());
     if (rt.gpu().validationMessageCount() > 0) {
-        std::fprintf(stderr, "rgraph: %u validation message(s)\n", rt.gpu().validationMessageCount());
+        std::fprintf(stderr, "rgraph: %u validation message(s)\n",
+                     rt.gpu().validationMessageCount());
         return kFailed;
     }
     return kOk;

@@ -21,23 +21,35 @@ namespace rg::cli {
 namespace {
 
 const char* const kHelp =
-    "usage: rgraph watch [--pipeline FILE.lua] [--scene FILE] [--size WxH] [--out FILE.exr] [--png FILE.png]\n"
-    "                    [--scene-arg NAME=VALUE]... [--set NAME=VALUE]... [--environment FILE|sky|none] [--interval MS] [--max-reloads N]\n\n"
-    "--environment FILE|sky|none: replaces the scene's environment (the distant light probe and the sky):\n"
-    "an equirectangular .hdr/.exr in nits, the Preetham sky of the scene's sun, or none. A glTF scene\n"
+    "usage: rgraph watch [--pipeline FILE.lua] [--scene FILE] [--size WxH] [--out FILE.exr] [--png "
+    "FILE.png]\n"
+    "                    [--scene-arg NAME=VALUE]... [--set NAME=VALUE]... [--environment "
+    "FILE|sky|none] [--interval MS] [--max-reloads N]\n\n"
+    "--environment FILE|sky|none: replaces the scene's environment (the distant light probe and "
+    "the sky):\n"
+    "an equirectangular .hdr/.exr in nits, the Preetham sky of the scene's sun, or none. A glTF "
+    "scene\n"
     "with no light and no environment gets the sky, as glTF viewers light published models.\n"
     "Renders once, then re-renders whenever a script or shader the pipeline uses changes (polled\n"
-    "every MS milliseconds, default 250). A script that fails to load or compile is reported and the\n"
+    "every MS milliseconds, default 250). A script that fails to load or compile is reported and "
+    "the\n"
     "previous pipeline keeps running. Stops after N reloads when --max-reloads is given.\n";
 
 }  // namespace
 
 int cmdWatch(int argc, char** argv) {
     Args args;
-    if (auto done = parseCommand(argc, argv, "watch", {"pipeline", "scene", "scene-arg", "set", "camera", "environment", "size", "out", "png", "device", "interval", "max-reloads", "no-cache"}, kHelp, args)) return *done;
+    if (auto done =
+            parseCommand(argc, argv, "watch",
+                         {"pipeline", "scene", "scene-arg", "set", "camera", "environment", "size",
+                          "out", "png", "device", "interval", "max-reloads", "no-cache"},
+                         kHelp, args))
+        return *done;
     uint32_t interval = 250, maxReloads = 0;
-    if (args.has("interval") && !parseCount(args.get("interval"), interval)) return usageError("--interval must be milliseconds", "watch");
-    if (args.has("max-reloads") && !parseCount(args.get("max-reloads"), maxReloads)) return usageError("--max-reloads must be a count", "watch");
+    if (args.has("interval") && !parseCount(args.get("interval"), interval))
+        return usageError("--interval must be milliseconds", "watch");
+    if (args.has("max-reloads") && !parseCount(args.get("max-reloads"), maxReloads))
+        return usageError("--max-reloads must be a count", "watch");
     if (isBuiltin(pipelineArg(args))) return usageError("watch needs a pipeline script", "watch");
     auto paths = outputPaths(args, "out/watch.exr");
     if (!paths) return report(paths.error());
@@ -52,7 +64,8 @@ int cmdWatch(int argc, char** argv) {
         return {};
     };
     if (auto r = renderOnce(); !r) return report(r.error());
-    std::printf("rgraph watch: rendered %s; watching %zu files\n", pngPath.c_str(), session.files().size());
+    std::printf("rgraph watch: rendered %s; watching %zu files\n", pngPath.c_str(),
+                session.files().size());
     std::fflush(stdout);
     FileWatch watched;
     watched.changed(session.files());
@@ -61,7 +74,8 @@ int cmdWatch(int argc, char** argv) {
         if (!watched.changed(session.files())) continue;
         ++reloads;
         if (auto r = session.load(setup->pipeline); !r) {
-            std::printf("rgraph watch: reload failed, the previous pipeline keeps running:\n%s\n", r.error().describe().c_str());
+            std::printf("rgraph watch: reload failed, the previous pipeline keeps running:\n%s\n",
+                        r.error().describe().c_str());
             std::fflush(stdout);
             continue;
         }

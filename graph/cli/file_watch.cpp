@@ -35,7 +35,8 @@ bool FileWatch::changed(const std::vector<std::string>& files) {
         if (now.contains(f)) continue;
         auto it = m_seen.find(f);
         const Seen s = look(f, it == m_seen.end() ? nullptr : &it->second);
-        if (it != m_seen.end() && (s.exists != it->second.exists || s.hash != it->second.hash)) any = true;
+        if (it != m_seen.end() && (s.exists != it->second.exists || s.hash != it->second.hash))
+            any = true;
         now.emplace(f, s);
     }
     m_seen = std::move(now);

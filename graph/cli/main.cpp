@@ -27,7 +27,8 @@ const char* kMainHelp =
     "  export-scene  write a Lua scene as binary glTF (.glb)\n"
     "  bake      bake a scene's SG lightmap (scene.lightmap) with Embree: progress, time, rays/s\n"
     "  accuracy  area lights, real-time against the reference mode: error table and heat-map page\n"
-    "  test      run the golden-image tests (tests/golden/*.lua): --update, --report DIR, --junit FILE\n"
+    "  test      run the golden-image tests (tests/golden/*.lua): --update, --report DIR, --junit "
+    "FILE\n"
     "  compare   error between two EXR renders: relative error, RMSE, PSNR, heat map\n"
     "\n"
     "'rgraph COMMAND --help' describes each command. Exit codes: 0 success, 1 failed check or\n"
@@ -38,7 +39,8 @@ const char* kMainHelp =
 }  // namespace
 
 int main(int argc, char** argv) {
-    if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") || !std::strcmp(argv[1], "help")) {
+    if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") ||
+        !std::strcmp(argv[1], "help")) {
         std::printf("%s", kMainHelp);
         return argc < 2 ? kUsage : kOk;
     }

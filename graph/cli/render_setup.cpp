@@ -25,33 +25,45 @@ Result<RenderSetup> setupRun(const Args& args, const char* command, uint32_t def
     s.pipeline = pipelineArg(args);
     CompileOptions opts;
     if (args.has("size") && !parseSize(args.get("size"), opts.outputWidth, opts.outputHeight))
-        return fail(ErrorCode::InvalidInput, std::string(command) + ": --size must be WIDTHxHEIGHT with each side in 1..16384, e.g. 1280x720; got '" +
-                                                 args.get("size") + "'");
+        return fail(
+            ErrorCode::InvalidInput,
+            std::string(command) +
+                ": --size must be WIDTHxHEIGHT with each side in 1..16384, e.g. 1280x720; got '" +
+                args.get("size") + "'");
     if (args.has("frames") && !parseCount(args.get("frames"), s.frames))
-        return fail(ErrorCode::InvalidInput, std::string(command) + ": --frames must be a positive whole number");
+        return fail(ErrorCode::InvalidInput,
+                    std::string(command) + ": --frames must be a positive whole number");
     RuntimeOptions ro;
     if (args.has("device")) {
         const std::string v = args.get("device");
         if (v.empty() || v.size() > 3 || v.find_first_not_of("0123456789") != std::string::npos)
-            return fail(ErrorCode::InvalidInput, std::string(command) + ": --device must be a device index (see 'rgraph devices')");
+            return fail(
+                ErrorCode::InvalidInput,
+                std::string(command) + ": --device must be a device index (see 'rgraph devices')");
         ro.device = static_cast<uint32_t>(std::stoul(v));
     }
     if (args.has("scene") && isBuiltin(s.pipeline))
-        return fail(ErrorCode::InvalidInput, std::string(command) + ": --scene: built-in graphs draw no scene");
+        return fail(ErrorCode::InvalidInput,
+                    std::string(command) + ": --scene: built-in graphs draw no scene");
     const auto started = std::chrono::steady_clock::now();
     auto rt = Runtime::create(ro);
     if (!rt) return std::unexpected(rt.error());
     s.runtime = std::move(*rt);
-    s.deviceMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started).count();
+    s.deviceMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - started)
+            .count();
     if (isBuiltin(s.pipeline)) {
         auto graph = builtinGraph(s.pipeline.substr(8));
         if (!graph) return std::unexpected(graph.error());
         for (const auto& c : captures) {
-            auto it = std::find_if(graph->resources.begin(), graph->resources.end(), [&](auto& r) { return r.name == c; });
-            if (it == graph->resources.end()) return fail(ErrorCode::NotFound, "--capture: no resource named '" + c + "'");
+            auto it = std::find_if(graph->resources.begin(), graph->resources.end(),
+                                   [&](auto& r) { return r.name == c; });
+            if (it == graph->resources.end())
+                return fail(ErrorCode::NotFound, "--capture: no resource named '" + c + "'");
             it->exported = true;
         }
-        if (auto r = s.runtime->executor().build(*graph, opts); !r) return std::unexpected(r.error());
+        if (auto r = s.runtime->executor().build(*graph, opts); !r)
+            return std::unexpected(r.error());
         return s;
     }
     SessionOptions so;
@@ -66,10 +78,12 @@ Result<RenderSetup> setupRun(const Args& args, const char* command, uint32_t def
     // The once-per-build outputs' disk cache: not for bench, whose first-frame column times those passes.
     if (std::string(command) != "bench" && !args.has("no-cache")) so.onceCache = cacheDir();
     // NAME=VALUE pairs: --scene-arg for the scene script's `scene.args`, --set for pipeline parameters.
-    auto pair = [&](const std::string& option, const std::string& text) -> Result<std::pair<std::string, std::string>> {
+    auto pair = [&](const std::string& option,
+                    const std::string& text) -> Result<std::pair<std::string, std::string>> {
         const auto eq = text.find('=');
         if (eq == std::string::npos || eq == 0)
-            return fail(ErrorCode::InvalidInput, std::string(command) + ": --" + option + " takes NAME=VALUE, got '" + text + "'");
+            return fail(ErrorCode::InvalidInput, std::string(command) + ": --" + option +
+                                                     " takes NAME=VALUE, got '" + text + "'");
         return std::pair{text.substr(0, eq), text.substr(eq + 1)};
     };
     for (const auto& a : args.all("scene-arg")) {
@@ -82,9 +96,12 @@ Result<RenderSetup> setupRun(const Args& args, const char* command, uint32_t def
         if (!p) return std::unexpected(p.error());
         char* end = nullptr;
         const double number = std::strtod(p->second.c_str(), &end);
-        if (!p->second.empty() && end && *end == '\0' && std::isfinite(number)) so.params[p->first] = Value(number);
-        else if (p->second == "true" || p->second == "false") so.params[p->first] = Value(p->second == "true");
-        else so.params[p->first] = Value(p->second);
+        if (!p->second.empty() && end && *end == '\0' && std::isfinite(number))
+            so.params[p->first] = Value(number);
+        else if (p->second == "true" || p->second == "false")
+            so.params[p->first] = Value(p->second == "true");
+        else
+            so.params[p->first] = Value(p->second);
     }
     s.session = std::make_unique<Session>(*s.runtime, so);
     if (auto r = s.session->load(s.pipeline); !r) return std::unexpected(r.error());
@@ -103,7 +120,9 @@ std::string logicalName(const std::string& path) {
     return abs.filename().string();
 }
 
-std::string exrMetaDevice(Runtime& rt) { return rt.gpu().deviceInfo().name + " (" + rt.gpu().deviceInfo().driver + ")"; }
+std::string exrMetaDevice(Runtime& rt) {
+    return rt.gpu().deviceInfo().name + " (" + rt.gpu().deviceInfo().driver + ")";
+}
 
 std::vector<std::string> rgbaNames(uint32_t n) {
     static const char* rgba[] = {"R", "G", "B", "A"};
@@ -120,10 +139,11 @@ std::string number(double v) {
 
 // Writes the EXR (linear: layer `hdr` in cd/m² when the pipeline has a physical camera, plus one
 // layer per capture) and the PNG (the display image). Returns the display image.
-Result<Image> writeOutputs(RenderSetup& setup, const std::string& exrPath, const std::string& pngPath,
-                           const std::vector<std::string>& captures) {
+Result<Image> writeOutputs(RenderSetup& setup, const std::string& exrPath,
+                           const std::string& pngPath, const std::vector<std::string>& captures) {
     gpu::Executor& ex = setup.runtime->executor();
-    const std::string displayName = setup.session ? setup.session->displayResource() : setup.output();
+    const std::string displayName =
+        setup.session ? setup.session->displayResource() : setup.output();
     const bool view = setup.session && displayName != setup.output();
     auto display = ex.readback(displayName);
     if (!display) return std::unexpected(display.error());
@@ -145,16 +165,20 @@ Result<Image> writeOutputs(RenderSetup& setup, const std::string& exrPath, const
         eo.floats["rgraph.ev100"] = hdr->ev100;
         eo.floats["rgraph.exposure"] = hdr->exposure;
         eo.floats["rgraph.preExposure"] = hdr->preExposure;
-        for (const char* p : {"exposure_mode", "aperture", "shutter", "iso", "ec", "tonemap", "bloom_ec"})
+        for (const char* p :
+             {"exposure_mode", "aperture", "shutter", "iso", "ec", "tonemap", "bloom_ec"})
             if (const ParamDesc* d = pipeline->findParam(p)) {
                 const std::string key = std::string("rgraph.camera.") + p;
-                if (d->value.isString()) eo.metadata[key] = d->value.asString();
-                else eo.floats[key] = static_cast<float>(d->value.asNumber());
+                if (d->value.isString())
+                    eo.metadata[key] = d->value.asString();
+                else
+                    eo.floats[key] = static_cast<float>(d->value.asNumber());
             }
     } else {
         layers.push_back({"hdr", rgbaNames(display->channels), *display});
         // A pipeline without a camera: its output is shown clamped, sRGB-encoded.
-        for (size_t i = 0; i < png.pixels.size(); ++i) png.pixels[i] = srgbEncode(std::clamp(png.pixels[i], 0.0f, 1.0f));
+        for (size_t i = 0; i < png.pixels.size(); ++i)
+            png.pixels[i] = srgbEncode(std::clamp(png.pixels[i], 0.0f, 1.0f));
     }
     // G-buffer channels, decoded on the CPU with the layout's own unpack code.
     std::vector<std::string> channelNames;
@@ -178,7 +202,8 @@ Result<Image> writeOutputs(RenderSetup& setup, const std::string& exrPath, const
     }
     for (const auto& p : {exrPath, pngPath}) {
         std::error_code ec;
-        if (auto parent = fs::path(p).parent_path(); !parent.empty()) fs::create_directories(parent, ec);
+        if (auto parent = fs::path(p).parent_path(); !parent.empty())
+            fs::create_directories(parent, ec);
     }
     // Half floats end at 65504: absolute luminance beyond it (the sun, its mirror reflections)
     // would be written as inf, so such a file is written in 32-bit floats.
@@ -187,7 +212,8 @@ Result<Image> writeOutputs(RenderSetup& setup, const std::string& exrPath, const
             if (std::isfinite(v) && std::abs(v) > 65504.0f) eo.pixelType = ExrPixelType::Float;
     Image rgb(png.width, png.height, std::min(3u, png.channels));
     for (size_t i = 0; i < size_t(png.width) * png.height; ++i)
-        for (uint32_t c = 0; c < rgb.channels; ++c) rgb.pixels[i * rgb.channels + c] = png.pixels[i * png.channels + c];
+        for (uint32_t c = 0; c < rgb.channels; ++c)
+            rgb.pixels[i * rgb.channels + c] = png.pixels[i * png.channels + c];
     std::map<std::string, std::string> text;
     for (const auto& [k, v] : eo.metadata) text[k] = v;
     // The two files at once: the PNG's compression on a thread of its own beside the EXR's.
@@ -202,16 +228,22 @@ Result<Image> writeOutputs(RenderSetup& setup, const std::string& exrPath, const
 // The EXR and PNG paths a command writes: --out FILE.exr (default `defaultExr`), and --png
 // FILE.png or, without it, the EXR's path with .png — so an explicit --out never writes into the
 // default folder. Other extensions are refused rather than written under a wrong name.
-Result<std::pair<std::string, std::string>> outputPaths(const Args& args, const std::string& defaultExr) {
+Result<std::pair<std::string, std::string>> outputPaths(const Args& args,
+                                                        const std::string& defaultExr) {
     auto endsWith = [](std::string path, const std::string& ext) {
-        std::transform(path.begin(), path.end(), path.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-        return path.size() > ext.size() && path.compare(path.size() - ext.size(), ext.size(), ext) == 0;
+        std::transform(path.begin(), path.end(), path.begin(),
+                       [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+        return path.size() > ext.size() &&
+               path.compare(path.size() - ext.size(), ext.size(), ext) == 0;
     };
     const std::string exr = args.get("out", defaultExr);
     if (!endsWith(exr, ".exr"))
-        return fail(ErrorCode::InvalidInput, "--out: '" + exr + "' is not an .exr path (rgraph writes OpenEXR there; the PNG goes beside it, or to --png)");
+        return fail(ErrorCode::InvalidInput, "--out: '" + exr +
+                                                 "' is not an .exr path (rgraph writes OpenEXR "
+                                                 "there; the PNG goes beside it, or to --png)");
     std::string png = args.has("png") ? args.get("png") : exr.substr(0, exr.size() - 4) + ".png";
-    if (!endsWith(png, ".png")) return fail(ErrorCode::InvalidInput, "--png: '" + png + "' is not a .png path");
+    if (!endsWith(png, ".png"))
+        return fail(ErrorCode::InvalidInput, "--png: '" + png + "' is not a .png path");
     return std::pair{exr, png};
 }
 

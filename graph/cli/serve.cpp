@@ -50,16 +50,19 @@ Result<Value> jsonValue(const json& j) {
     if (j.is_array()) {
         Value::List list;
         for (const auto& e : j) {
-            if (!e.is_number()) return fail(ErrorCode::InvalidInput, "value: a list holds numbers only");
+            if (!e.is_number())
+                return fail(ErrorCode::InvalidInput, "value: a list holds numbers only");
             list.push_back(Value(e.get<double>()));
         }
         return Value(list);
     }
-    return fail(ErrorCode::InvalidInput, "value: expected a number, a boolean, a string or a list of numbers");
+    return fail(ErrorCode::InvalidInput,
+                "value: expected a number, a boolean, a string or a list of numbers");
 }
 
 // What the page shows of the running pipeline, gathered on the render thread after each frame.
-json stateJson(Runtime& runtime, const Session& session, uint64_t frames, const std::string& error, double frameMs) {
+json stateJson(Runtime& runtime, const Session& session, uint64_t frames, const std::string& error,
+               double frameMs) {
     const gpu::Executor& ex = runtime.executor();
     const PipelineDesc& p = session.pipeline();
     json state;
@@ -78,15 +81,23 @@ json stateJson(Runtime& runtime, const Session& session, uint64_t frames, const 
     }
     json passes = json::array();
     for (const PassDesc& d : p.graph.passes) {
-        const bool kept = std::any_of(ex.plan().passes.begin(), ex.plan().passes.end(), [&](const PlanPass& q) { return q.name == d.name; });
-        passes.push_back({{"name", d.name}, {"kind", d.kind}, {"enabled", d.enabled}, {"kept", kept},
+        const bool kept = std::any_of(ex.plan().passes.begin(), ex.plan().passes.end(),
+                                      [&](const PlanPass& q) { return q.name == d.name; });
+        passes.push_back({{"name", d.name},
+                          {"kind", d.kind},
+                          {"enabled", d.enabled},
+                          {"kept", kept},
                           {"gpuMs", gpu.count(d.name) ? json(gpu[d.name]) : json(nullptr)},
-                          {"cpuMs", cpu.count(d.name) ? json(cpu[d.name]) : json(nullptr)}, {"origin", d.origin}});
+                          {"cpuMs", cpu.count(d.name) ? json(cpu[d.name]) : json(nullptr)},
+                          {"origin", d.origin}});
     }
     state["passes"] = passes;
     json params = json::array();
     for (const ParamDesc& d : p.params) {
-        json j{{"name", d.name}, {"type", paramTypeName(d.type)}, {"value", valueJson(d.value)}, {"doc", d.doc}};
+        json j{{"name", d.name},
+               {"type", paramTypeName(d.type)},
+               {"value", valueJson(d.value)},
+               {"doc", d.doc}};
         if (d.min > -1e299) j["min"] = d.min;
         if (d.max < 1e299) j["max"] = d.max;
         if (!d.choices.empty()) j["choices"] = d.choices;
@@ -109,7 +120,8 @@ json stateJson(Runtime& runtime, const Session& session, uint64_t frames, const 
 // 2^ev and sRGB-encoded, 8-bit unorm shown as stored; NaN as magenta.
 Image displayImage(const Image& in, Format format, float ev, bool decoded) {
     const FormatInfo& f = formatInfo(format);
-    const bool linear = decoded || f.floating || f.depth || f.srgb;  // sRGB textures read back linear
+    const bool linear =
+        decoded || f.floating || f.depth || f.srgb;  // sRGB textures read back linear
     const float scale = std::exp2(ev);
     Image out(in.width, in.height, 3);
     for (size_t i = 0; i < size_t(in.width) * in.height; ++i)
@@ -117,7 +129,8 @@ Image displayImage(const Image& in, Format format, float ev, bool decoded) {
             float v = in.pixels[i * in.channels + std::min(c, in.channels - 1)];
             if (in.channels == 2 && c == 2) v = 0.0f;
             if (std::isnan(v)) v = c == 1 ? 0.0f : 1.0f;
-            out.pixels[i * 3 + c] = linear ? srgbEncode(std::clamp(v * scale, 0.0f, 1.0f)) : std::clamp(v, 0.0f, 1.0f);
+            out.pixels[i * 3 + c] =
+                linear ? srgbEncode(std::clamp(v * scale, 0.0f, 1.0f)) : std::clamp(v, 0.0f, 1.0f);
         }
     return out;
 }
@@ -133,7 +146,8 @@ Result<json> parseBody(const std::string& body) {
     try {
         return json::parse(body);
     } catch (const json::out_of_range& e) {
-        return fail(ErrorCode::InvalidInput, "value: a number out of range (beyond ±1.8e308): " + std::string(e.what()));
+        return fail(ErrorCode::InvalidInput,
+                    "value: a number out of range (beyond ±1.8e308): " + std::string(e.what()));
     } catch (const json::exception&) {
         return fail(ErrorCode::InvalidInput, "the body is not JSON (expected a JSON object)");
     }
@@ -181,12 +195,15 @@ static std::string randomToken() {
 }
 
 static bool isLoopback(const std::string& host) {
-    return host == "127.0.0.1" || host == "localhost" || host == "::1" || host.rfind("127.", 0) == 0;
+    return host == "127.0.0.1" || host == "localhost" || host == "::1" ||
+           host.rfind("127.", 0) == 0;
 }
 
 int serve(Runtime& runtime, Session& session, const ServeOptions& options) {
     if (!options.tokenGiven && !isLoopback(options.host)) {
-        std::fprintf(stderr, "rgraph: serve: --host %s is not a loopback address: give --token TOKEN, which every client then needs\n",
+        std::fprintf(stderr,
+                     "rgraph: serve: --host %s is not a loopback address: give --token TOKEN, "
+                     "which every client then needs\n",
                      options.host.c_str());
         return 2;
     }
@@ -230,7 +247,8 @@ int serve(Runtime& runtime, Session& session, const ServeOptions& options) {
             std::lock_guard lock(mutex);
             if (auto it = std::find(jobs.begin(), jobs.end(), job); it != jobs.end()) {
                 jobs.erase(it);
-                return jsonResponse(503, {{"error", "the renderer did not answer in 30 s; nothing changed"}});
+                return jsonResponse(
+                    503, {{"error", "the renderer did not answer in 30 s; nothing changed"}});
             }
         }
         return answer.get();
@@ -255,18 +273,22 @@ int serve(Runtime& runtime, Session& session, const ServeOptions& options) {
     // - a POST must say `Content-Type: application/json`, and come from this server's own
     //   page when a browser sends it (an Origin header, if any, must be this server's).
     const std::map<std::string, std::string> routes = {
-        {"/", "GET"}, {"/api/state", "GET"}, {"/api/graph", "GET"}, {"/api/image", "GET"}, {"/api/param", "POST"}, {"/api/pass", "POST"}};
+        {"/", "GET"},          {"/api/state", "GET"},  {"/api/graph", "GET"},
+        {"/api/image", "GET"}, {"/api/param", "POST"}, {"/api/pass", "POST"}};
     int port = -1;
     auto ownHost = [&](const std::string& host) {
         if (options.host == "0.0.0.0" || options.host == "::") return true;
         const std::string p = ":" + std::to_string(port);
-        for (const std::string& name : {options.host, std::string("127.0.0.1"), std::string("localhost"), std::string("[::1]")})
+        for (const std::string& name : {options.host, std::string("127.0.0.1"),
+                                        std::string("localhost"), std::string("[::1]")})
             if (host == name + p) return true;
         return false;
     };
     std::atomic<int64_t> lastRequest{0};  // steady-clock ms of the latest request's arrival
     auto nowMs = [] {
-        return std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::steady_clock::now().time_since_epoch()).count();
+        return std::chrono::duration_cast<std::chrono::milliseconds>(
+                   std::chrono::steady_clock::now().time_since_epoch())
+            .count();
     };
     server.set_pre_routing_handler([&](const httplib::Request& req, httplib::Response& res) {
         lastRequest = nowMs();
@@ -276,43 +298,53 @@ int serve(Runtime& runtime, Session& session, const ServeOptions& options) {
             return httplib::Server::HandlerResponse::Handled;
         };
         const std::string host = req.get_header_value("Host");
-        if (!ownHost(host)) return refuse(403, "Host " + quoted(host) + " is not this server's address");
+        if (!ownHost(host))
+            return refuse(403, "Host " + quoted(host) + " is not this server's address");
         const std::string bearer = req.get_header_value("Authorization");
-        const bool authorised = sameToken(req.get_param_value("token"), token) ||
-                                (bearer.rfind("Bearer ", 0) == 0 && sameToken(bearer.substr(7), token)) ||
-                                sameToken(cookie(req.get_header_value("Cookie"), "rgraph_token"), token);
+        const bool authorised =
+            sameToken(req.get_param_value("token"), token) ||
+            (bearer.rfind("Bearer ", 0) == 0 && sameToken(bearer.substr(7), token)) ||
+            sameToken(cookie(req.get_header_value("Cookie"), "rgraph_token"), token);
         if (!authorised)
-            return refuse(401, "a token is needed: open the address rgraph serve printed (…/?token=TOKEN), or send Authorization: Bearer TOKEN");
+            return refuse(401,
+                          "a token is needed: open the address rgraph serve printed "
+                          "(…/?token=TOKEN), or send Authorization: Bearer TOKEN");
         auto route = routes.find(req.path);
         if (route == routes.end()) return refuse(404, "no such endpoint " + quoted(req.path));
         if (req.method != route->second && !(req.method == "HEAD" && route->second == "GET")) {
             res.set_header("Allow", route->second);
-            return refuse(405, req.method + " is not allowed on " + req.path + " (allowed: " + route->second + ")");
+            return refuse(405, req.method + " is not allowed on " + req.path +
+                                   " (allowed: " + route->second + ")");
         }
         if (req.method == "POST") {
             if (req.get_header_value("Content-Type").rfind("application/json", 0) != 0)
                 return refuse(415, "a POST's body must be sent as Content-Type: application/json");
             const std::string origin = req.get_header_value("Origin");
             if (!origin.empty() && (origin.rfind("http://", 0) != 0 || !ownHost(origin.substr(7))))
-                return refuse(403, "Origin " + quoted(origin) + " is not this server: requests from other pages are refused");
+                return refuse(403,
+                              "Origin " + quoted(origin) +
+                                  " is not this server: requests from other pages are refused");
         }
         // The page's later requests carry the token as a cookie only this server sees.
         if (req.path == "/" && req.has_param("token"))
-            res.set_header("Set-Cookie", "rgraph_token=" + token + "; Path=/; HttpOnly; SameSite=Strict");
+            res.set_header("Set-Cookie",
+                           "rgraph_token=" + token + "; Path=/; HttpOnly; SameSite=Strict");
         return httplib::Server::HandlerResponse::Unhandled;
     });
 
-    server.Get("/", [](const httplib::Request&, httplib::Response& res) { res.set_content(kServePage, "text/html; charset=utf-8"); });
+    server.Get("/", [](const httplib::Request&, httplib::Response& res) {
+        res.set_content(kServePage, "text/html; charset=utf-8");
+    });
     server.Get("/api/state", [&](const httplib::Request&, httplib::Response& res) {
         std::lock_guard lock(mutex);
         res.set_content(state.dump(), "application/json");
     });
     server.Get("/api/graph", [&](const httplib::Request&, httplib::Response& res) {
         reply(res, run([&] {
-            httplib::Response r;
-            r.set_content(runtime.executor().plan().toJson(), "application/json");
-            return r;
-        }));
+                  httplib::Response r;
+                  r.set_content(runtime.executor().plan().toJson(), "application/json");
+                  return r;
+              }));
     });
     // {"name": "ec", "value": 1.5} / {"name": "fxaa", "enabled": false}: checked and applied on the
     // render thread through the path rg.frame's changes take; one the graph cannot be built with
@@ -320,102 +352,135 @@ int serve(Runtime& runtime, Session& session, const ServeOptions& options) {
     server.Post("/api/param", [&](const httplib::Request& req, httplib::Response& res) {
         auto body = parseBody(req.body);
         if (!body) return reply(res, jsonResponse(400, {{"error", body.error().message}}));
-        if (!body->is_object() || !body->contains("name") || !(*body)["name"].is_string() || !body->contains("value"))
-            return reply(res, jsonResponse(400, {{"error", "expected {\"name\": PARAM, \"value\": VALUE}"}}));
+        if (!body->is_object() || !body->contains("name") || !(*body)["name"].is_string() ||
+            !body->contains("value"))
+            return reply(
+                res,
+                jsonResponse(400, {{"error", "expected {\"name\": PARAM, \"value\": VALUE}"}}));
         const std::string name = (*body)["name"].get<std::string>();
-        if (name.size() > 256) return reply(res, jsonResponse(400, {{"error", "name: longer than 256 characters"}}));
+        if (name.size() > 256)
+            return reply(res, jsonResponse(400, {{"error", "name: longer than 256 characters"}}));
         auto value = jsonValue((*body)["value"]);
         if (!value) return reply(res, jsonResponse(400, {{"error", value.error().message}}));
         reply(res, run([&, name, v = *value] {
-            auto r = session.setOverride(name, v);
-            return r ? jsonResponse(200, {{"ok", true}}) : jsonResponse(400, {{"error", r.error().message}});
-        }));
+                  auto r = session.setOverride(name, v);
+                  return r ? jsonResponse(200, {{"ok", true}})
+                           : jsonResponse(400, {{"error", r.error().message}});
+              }));
     });
     server.Post("/api/pass", [&](const httplib::Request& req, httplib::Response& res) {
         auto body = parseBody(req.body);
         if (!body) return reply(res, jsonResponse(400, {{"error", body.error().message}}));
-        if (!body->is_object() || !body->contains("name") || !(*body)["name"].is_string() || !body->contains("enabled") ||
-            !(*body)["enabled"].is_boolean())
-            return reply(res, jsonResponse(400, {{"error", "expected {\"name\": PASS, \"enabled\": true|false}"}}));
+        if (!body->is_object() || !body->contains("name") || !(*body)["name"].is_string() ||
+            !body->contains("enabled") || !(*body)["enabled"].is_boolean())
+            return reply(
+                res, jsonResponse(
+                         400, {{"error", "expected {\"name\": PASS, \"enabled\": true|false}"}}));
         const std::string name = (*body)["name"].get<std::string>();
-        if (name.size() > 256) return reply(res, jsonResponse(400, {{"error", "name: longer than 256 characters"}}));
+        if (name.size() > 256)
+            return reply(res, jsonResponse(400, {{"error", "name: longer than 256 characters"}}));
         reply(res, run([&, name, on = (*body)["enabled"].get<bool>()] {
-            auto r = session.setPassOverride(name, on);
-            return r ? jsonResponse(200, {{"ok", true}}) : jsonResponse(400, {{"error", r.error().message}});
-        }));
+                  auto r = session.setPassOverride(name, on);
+                  return r ? jsonResponse(200, {{"ok", true}})
+                           : jsonResponse(400, {{"error", r.error().message}});
+              }));
     });
     // ?resource=NAME (a texture, or LAYOUT.CHANNEL / gbuffer.CHANNEL) &ev=STOPS &format=png|exr.
     // A texture the plan keeps transient is exported first (a reload of the same script, which
     // leaves everything as it was when the name is not the pipeline's).
     server.Get("/api/image", [&](const httplib::Request& req, httplib::Response& res) {
-        const std::string name = req.get_param_value("resource"), format = req.has_param("format") ? req.get_param_value("format") : "png";
+        const std::string name = req.get_param_value("resource"),
+                          format = req.has_param("format") ? req.get_param_value("format") : "png";
         char* end = nullptr;
         const std::string evText = req.has_param("ev") ? req.get_param_value("ev") : "0";
         const float ev = std::strtof(evText.c_str(), &end);
-        if (name.empty()) return reply(res, jsonResponse(400, {{"error", "resource: give ?resource=NAME"}}));
-        if (name.size() > 256) return reply(res, jsonResponse(400, {{"error", "resource: longer than 256 characters"}}));
+        if (name.empty())
+            return reply(res, jsonResponse(400, {{"error", "resource: give ?resource=NAME"}}));
+        if (name.size() > 256)
+            return reply(res,
+                         jsonResponse(400, {{"error", "resource: longer than 256 characters"}}));
         if (end == evText.c_str() || *end || !std::isfinite(ev) || std::fabs(ev) > 64)
-            return reply(res, jsonResponse(400, {{"error", "ev: expected a number of stops in -64..64"}}));
-        if (format != "png" && format != "exr") return reply(res, jsonResponse(400, {{"error", "format: expected 'png' or 'exr'"}}));
-        reply(res, run([&, name, format, ev]() -> httplib::Response {
-            const bool channel = name.find('.') != std::string::npos && !session.pipeline().graph.findResource(name);
-            const ResourceDesc* desc = session.pipeline().graph.findResource(name);
-            if (!channel && !desc) return jsonResponse(400, {{"error", "resource: the pipeline has no texture " + quoted(name)}});
-            if (desc && desc->kind != ResourceKind::Texture) return jsonResponse(400, {{"error", "resource: " + quoted(name) + " is a buffer"}});
-            auto captured = [&] {
-                const auto& c = session.captures();
-                return std::find(c.begin(), c.end(), name) != c.end();
-            };
-            auto exported = [&] {
-                for (const PlanResource& pr : runtime.executor().plan().resources)
-                    if (pr.name == name) return pr.exported || pr.imported || pr.persistent;
-                return false;
-            };
-            if (channel ? !captured() : !exported()) {
-                if (auto r = session.addCapture(name); !r) return jsonResponse(400, {{"error", "resource: " + r.error().message}});
-                if (auto r = session.frame(); !r) return jsonResponse(500, {{"error", r.error().describe()}});
-            }
-            // The export reloaded the pipeline: `desc` pointed into the one before.
-            desc = session.pipeline().graph.findResource(name);
-            Result<Image> img = fail(ErrorCode::NotFound, "resource: no such channel capture " + quoted(name));
-            Format fmt = desc ? desc->texture.format : Format::RGBA32F;
-            if (channel) {
-                for (const auto& c : session.channelCaptures())
-                    if (c.name == name) img = session.channelImage(c);
-            } else {
-                img = runtime.executor().readback(name);
-                for (const PlanResource& pr : runtime.executor().plan().resources)
-                    if (pr.name == name) fmt = pr.format;
-            }
-            if (!img) return jsonResponse(400, {{"error", img.error().describe()}});
-            const fs::path tmp = fs::temp_directory_path() / ("rgraph_serve_" + std::to_string(::getpid()) + "." + format);
-            static const char* rgba[] = {"R", "G", "B", "A"};
-            const std::vector<std::string> names(rgba, rgba + std::min<uint32_t>(img->channels, 4));
-            Result<void> written = format == "png" ? writePng(tmp.string(), displayImage(*img, fmt, ev, channel))
-                                                   : writeExr(tmp.string(), {{"", names, *img}});
-            if (!written) return jsonResponse(500, {{"error", written.error().describe()}});
-            httplib::Response r;
-            r.set_content(readFile(tmp.string()), format == "png" ? "image/png" : "image/x-exr");
-            std::error_code ec;
-            fs::remove(tmp, ec);
-            return r;
-        }));
+            return reply(
+                res, jsonResponse(400, {{"error", "ev: expected a number of stops in -64..64"}}));
+        if (format != "png" && format != "exr")
+            return reply(res, jsonResponse(400, {{"error", "format: expected 'png' or 'exr'"}}));
+        reply(
+            res, run([&, name, format, ev]() -> httplib::Response {
+                const bool channel = name.find('.') != std::string::npos &&
+                                     !session.pipeline().graph.findResource(name);
+                const ResourceDesc* desc = session.pipeline().graph.findResource(name);
+                if (!channel && !desc)
+                    return jsonResponse(
+                        400, {{"error", "resource: the pipeline has no texture " + quoted(name)}});
+                if (desc && desc->kind != ResourceKind::Texture)
+                    return jsonResponse(400,
+                                        {{"error", "resource: " + quoted(name) + " is a buffer"}});
+                auto captured = [&] {
+                    const auto& c = session.captures();
+                    return std::find(c.begin(), c.end(), name) != c.end();
+                };
+                auto exported = [&] {
+                    for (const PlanResource& pr : runtime.executor().plan().resources)
+                        if (pr.name == name) return pr.exported || pr.imported || pr.persistent;
+                    return false;
+                };
+                if (channel ? !captured() : !exported()) {
+                    if (auto r = session.addCapture(name); !r)
+                        return jsonResponse(400, {{"error", "resource: " + r.error().message}});
+                    if (auto r = session.frame(); !r)
+                        return jsonResponse(500, {{"error", r.error().describe()}});
+                }
+                // The export reloaded the pipeline: `desc` pointed into the one before.
+                desc = session.pipeline().graph.findResource(name);
+                Result<Image> img =
+                    fail(ErrorCode::NotFound, "resource: no such channel capture " + quoted(name));
+                Format fmt = desc ? desc->texture.format : Format::RGBA32F;
+                if (channel) {
+                    for (const auto& c : session.channelCaptures())
+                        if (c.name == name) img = session.channelImage(c);
+                } else {
+                    img = runtime.executor().readback(name);
+                    for (const PlanResource& pr : runtime.executor().plan().resources)
+                        if (pr.name == name) fmt = pr.format;
+                }
+                if (!img) return jsonResponse(400, {{"error", img.error().describe()}});
+                const fs::path tmp = fs::temp_directory_path() /
+                                     ("rgraph_serve_" + std::to_string(::getpid()) + "." + format);
+                static const char* rgba[] = {"R", "G", "B", "A"};
+                const std::vector<std::string> names(rgba,
+                                                     rgba + std::min<uint32_t>(img->channels, 4));
+                Result<void> written =
+                    format == "png" ? writePng(tmp.string(), displayImage(*img, fmt, ev, channel))
+                                    : writeExr(tmp.string(), {{"", names, *img}});
+                if (!written) return jsonResponse(500, {{"error", written.error().describe()}});
+                httplib::Response r;
+                r.set_content(readFile(tmp.string()),
+                              format == "png" ? "image/png" : "image/x-exr");
+                std::error_code ec;
+                fs::remove(tmp, ec);
+                return r;
+            }));
     });
 
-    port = options.port == 0 ? server.bind_to_any_port(options.host) : (server.bind_to_port(options.host, options.port) ? options.port : -1);
+    port = options.port == 0
+               ? server.bind_to_any_port(options.host)
+               : (server.bind_to_port(options.host, options.port) ? options.port : -1);
     if (port < 0) {
-        std::fprintf(stderr, "rgraph: serve: cannot listen on %s:%d (in use?)\n", options.host.c_str(), options.port);
+        std::fprintf(stderr, "rgraph: serve: cannot listen on %s:%d (in use?)\n",
+                     options.host.c_str(), options.port);
         return 1;
     }
     g_stop = false;
     std::signal(SIGINT, onSignal);
     std::signal(SIGTERM, onSignal);
     std::thread http([&] { server.listen_after_bind(); });
-    std::printf("rgraph serve: http://%s:%d/?token=%s\n", options.host.c_str(), port, token.c_str());
+    std::printf("rgraph serve: http://%s:%d/?token=%s\n", options.host.c_str(), port,
+                token.c_str());
     std::fflush(stdout);
 
     // The render loop: frames, jobs from the handlers, file changes as `watch` picks them up.
-    if (auto r = session.frame(); !r) lastError = r.error().describe();  // the files a first frame brings in
+    if (auto r = session.frame(); !r)
+        lastError = r.error().describe();  // the files a first frame brings in
     FileWatch watched;
     watched.changed(session.files());
     auto lastPoll = std::chrono::steady_clock::now();
@@ -431,12 +496,15 @@ int serve(Runtime& runtime, Session& session, const ServeOptions& options) {
         // A job may have reloaded (an image export): its new files are watched from now on, as
         // they are; a script saved while it ran was watched before and is seen as changed.
         if (!due.empty()) watched.add(session.files());
-        if (std::chrono::steady_clock::now() - lastPoll > std::chrono::milliseconds(options.pollMs)) {
+        if (std::chrono::steady_clock::now() - lastPoll >
+            std::chrono::milliseconds(options.pollMs)) {
             lastPoll = std::chrono::steady_clock::now();
             if (watched.changed(session.files())) {
                 if (auto r = session.load(options.pipeline); !r) {
                     lastError = r.error().describe();  // the previous plan keeps rendering
-                    std::printf("rgraph serve: reload failed, the previous pipeline keeps running:\n%s\n", lastError.c_str());
+                    std::printf(
+                        "rgraph serve: reload failed, the previous pipeline keeps running:\n%s\n",
+                        lastError.c_str());
                 } else {
                     lastError.clear();
                     std::printf("rgraph serve: reloaded %s\n", options.pipeline.c_str());
@@ -456,12 +524,17 @@ int serve(Runtime& runtime, Session& session, const ServeOptions& options) {
         if (trimIn && --trimIn == 0) malloc_trim(0);
         const auto t0 = std::chrono::steady_clock::now();
         std::string frameError;
-        if (auto r = session.frame(); !r) frameError = r.error().describe();
-        else if (auto f = runtime.executor().finish(); !f) frameError = f.error().describe();
+        if (auto r = session.frame(); !r)
+            frameError = r.error().describe();
+        else if (auto f = runtime.executor().finish(); !f)
+            frameError = f.error().describe();
         ++frames;
-        const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+        const double ms =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0)
+                .count();
         {
-            json s = stateJson(runtime, session, frames, frameError.empty() ? lastError : frameError, ms);
+            json s = stateJson(runtime, session, frames,
+                               frameError.empty() ? lastError : frameError, ms);
             std::lock_guard lock(mutex);
             state = std::move(s);
         }
@@ -474,15 +547,18 @@ int serve(Runtime& runtime, Session& session, const ServeOptions& options) {
     {
         std::lock_guard lock(mutex);
         stopping = true;
-        for (auto& job : jobs) job->answer.set_value(jsonResponse(503, {{"error", "shutting down"}}));
+        for (auto& job : jobs)
+            job->answer.set_value(jsonResponse(503, {{"error", "shutting down"}}));
         jobs.clear();
     }
     for (const int64_t start = nowMs(); nowMs() - start < 1000 && nowMs() - lastRequest < 150;)
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
     server.stop();
     http.join();
-    if (auto f = runtime.executor().finish(); !f) std::fprintf(stderr, "rgraph: serve: the last frame: %s\n", f.error().describe().c_str());
-    std::printf("rgraph serve: stopped after %llu frames\n", static_cast<unsigned long long>(frames));
+    if (auto f = runtime.executor().finish(); !f)
+        std::fprintf(stderr, "rgraph: serve: the last frame: %s\n", f.error().describe().c_str());
+    std::printf("rgraph serve: stopped after %llu frames\n",
+                static_cast<unsigned long long>(frames));
     return 0;
 }
 

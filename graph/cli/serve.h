@@ -11,7 +11,8 @@
 namespace rg {
 
 struct ServeOptions {
-    std::string host = "127.0.0.1";  // loopback unless asked otherwise (then only with a token given)
+    std::string host =
+        "127.0.0.1";  // loopback unless asked otherwise (then only with a token given)
     // Every request needs this token (README: rgraph serve); without tokenGiven a random one is
     // made per run and printed in the address.
     std::string token;

@@ -23,7 +23,8 @@ template <class Fn>
 auto timed(Plan& plan, const char* step, Fn&& fn) {
     const auto start = std::chrono::steady_clock::now();
     auto finish = [&] {
-        const std::chrono::duration<double, std::milli> ms = std::chrono::steady_clock::now() - start;
+        const std::chrono::duration<double, std::milli> ms =
+            std::chrono::steady_clock::now() - start;
         plan.timings.push_back({step, ms.count()});
     };
     if constexpr (std::is_void_v<decltype(fn())>) {
@@ -48,9 +49,11 @@ MemoryRequirements estimateMemoryRequirements(const PlanResource& r) {
     uint64_t texels = 0;
     const uint32_t mips = std::max(r.mips, 1u);
     for (uint32_t level = 0; level < mips; ++level)
-        texels += static_cast<uint64_t>(std::max(r.width >> level, 1u)) * std::max(r.height >> level, 1u);
+        texels +=
+            static_cast<uint64_t>(std::max(r.width >> level, 1u)) * std::max(r.height >> level, 1u);
     m.alignment = kTextureAlignment;
-    m.size = alignUp(texels * formatInfo(r.format).bytesPerTexel * std::max(r.layers, 1u), kTextureAlignment);
+    m.size = alignUp(texels * formatInfo(r.format).bytesPerTexel * std::max(r.layers, 1u),
+                     kTextureAlignment);
     return m;
 }
 

@@ -17,7 +17,7 @@ using MemoryRequirementsFn = std::function<MemoryRequirements(const PlanResource
 struct CompileOptions {
     uint32_t outputWidth = 1280;
     uint32_t outputHeight = 720;
-    bool alias = true;                      // share memory between non-overlapping transients
+    bool alias = true;                        // share memory between non-overlapping transients
     MemoryRequirementsFn memoryRequirements;  // default: estimateMemoryRequirements
     // The plan this one replaces (a reconfiguration: passes toggled, a parameter that changes the
     // graph): a transient of the same name, size and memory class keeps its heap offset when no

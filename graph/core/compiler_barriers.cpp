@@ -8,19 +8,28 @@ namespace rg::compiler_steps {
 
 // Layout a texture usage needs in a pass of this type (buffers: Undefined).
 Layout usageLayout(Usage u, PassType type) {
-    if (type == PassType::Transfer) return usageWrites(u) ? Layout::TransferDst : Layout::TransferSrc;
+    if (type == PassType::Transfer)
+        return usageWrites(u) ? Layout::TransferDst : Layout::TransferSrc;
     switch (u) {
-    case Usage::Sampled: return Layout::ShaderReadOnly;
-    case Usage::UniformRead:
-    case Usage::IndirectRead: return Layout::Undefined;
-    case Usage::StorageRead:
-    case Usage::StorageWrite:
-    case Usage::StorageReadWrite: return Layout::General;
-    case Usage::ColorAttachment: return Layout::ColorAttachment;
-    case Usage::DepthStencilAttachment: return Layout::DepthStencilAttachment;
-    case Usage::DepthStencilRead: return Layout::DepthStencilReadOnly;
-    case Usage::CopySrc: return Layout::TransferSrc;
-    case Usage::CopyDst: return Layout::TransferDst;
+        case Usage::Sampled:
+            return Layout::ShaderReadOnly;
+        case Usage::UniformRead:
+        case Usage::IndirectRead:
+            return Layout::Undefined;
+        case Usage::StorageRead:
+        case Usage::StorageWrite:
+        case Usage::StorageReadWrite:
+            return Layout::General;
+        case Usage::ColorAttachment:
+            return Layout::ColorAttachment;
+        case Usage::DepthStencilAttachment:
+            return Layout::DepthStencilAttachment;
+        case Usage::DepthStencilRead:
+            return Layout::DepthStencilReadOnly;
+        case Usage::CopySrc:
+            return Layout::TransferSrc;
+        case Usage::CopyDst:
+            return Layout::TransferDst;
     }
     return Layout::Undefined;
 }
@@ -33,8 +42,9 @@ constexpr uint32_t kWriteAccessBits = access::ShaderStorageWrite | access::Color
 
 // Stages, access bits and layout an access needs, from its usage and the pass type.
 void describeAccess(PlanAccess& a, PassType type, ResourceKind kind) {
-    const uint32_t shaderStages =
-        type == PassType::Compute ? stage::ComputeShader : stage::VertexShader | stage::FragmentShader;
+    const uint32_t shaderStages = type == PassType::Compute
+                                      ? stage::ComputeShader
+                                      : stage::VertexShader | stage::FragmentShader;
     const bool texture = kind == ResourceKind::Texture;
     a.layout = texture ? usageLayout(a.usage, type) : Layout::Undefined;
     if (type == PassType::Transfer || a.usage == Usage::CopySrc || a.usage == Usage::CopyDst) {
@@ -45,44 +55,45 @@ void describeAccess(PlanAccess& a, PassType type, ResourceKind kind) {
         return;
     }
     switch (a.usage) {
-    case Usage::Sampled:
-        a.stages = shaderStages;
-        a.access = access::ShaderSampledRead;
-        break;
-    case Usage::UniformRead:
-        a.stages = shaderStages;
-        a.access = access::UniformRead;
-        break;
-    case Usage::StorageRead:
-        a.stages = shaderStages;
-        a.access = access::ShaderStorageRead;
-        break;
-    case Usage::StorageWrite:
-        a.stages = shaderStages;
-        a.access = access::ShaderStorageWrite;
-        break;
-    case Usage::StorageReadWrite:
-        a.stages = shaderStages;
-        a.access = access::ShaderStorageRead | access::ShaderStorageWrite;
-        break;
-    case Usage::ColorAttachment:
-        a.stages = stage::ColorAttachmentOutput;
-        a.access = access::ColorAttachmentWrite | (a.load ? access::ColorAttachmentRead : 0u);
-        break;
-    case Usage::DepthStencilAttachment:
-        a.stages = stage::EarlyFragmentTests | stage::LateFragmentTests;
-        a.access = access::DepthStencilWrite | (a.load ? access::DepthStencilRead : 0u);
-        break;
-    case Usage::DepthStencilRead:
-        a.stages = stage::EarlyFragmentTests | stage::LateFragmentTests;
-        a.access = access::DepthStencilRead;
-        break;
-    case Usage::IndirectRead:
-        a.stages = stage::DrawIndirect;
-        a.access = access::IndirectCommandRead;
-        break;
-    case Usage::CopySrc:
-    case Usage::CopyDst: break;  // handled above
+        case Usage::Sampled:
+            a.stages = shaderStages;
+            a.access = access::ShaderSampledRead;
+            break;
+        case Usage::UniformRead:
+            a.stages = shaderStages;
+            a.access = access::UniformRead;
+            break;
+        case Usage::StorageRead:
+            a.stages = shaderStages;
+            a.access = access::ShaderStorageRead;
+            break;
+        case Usage::StorageWrite:
+            a.stages = shaderStages;
+            a.access = access::ShaderStorageWrite;
+            break;
+        case Usage::StorageReadWrite:
+            a.stages = shaderStages;
+            a.access = access::ShaderStorageRead | access::ShaderStorageWrite;
+            break;
+        case Usage::ColorAttachment:
+            a.stages = stage::ColorAttachmentOutput;
+            a.access = access::ColorAttachmentWrite | (a.load ? access::ColorAttachmentRead : 0u);
+            break;
+        case Usage::DepthStencilAttachment:
+            a.stages = stage::EarlyFragmentTests | stage::LateFragmentTests;
+            a.access = access::DepthStencilWrite | (a.load ? access::DepthStencilRead : 0u);
+            break;
+        case Usage::DepthStencilRead:
+            a.stages = stage::EarlyFragmentTests | stage::LateFragmentTests;
+            a.access = access::DepthStencilRead;
+            break;
+        case Usage::IndirectRead:
+            a.stages = stage::DrawIndirect;
+            a.access = access::IndirectCommandRead;
+            break;
+        case Usage::CopySrc:
+        case Usage::CopyDst:
+            break;  // handled above
     }
 }
 
@@ -93,7 +104,8 @@ struct SyncState {
     uint32_t writeAccess = access::None;
     uint32_t readStages = stage::None;  // reads since the last write
     uint32_t readAccess = access::None;
-    uint32_t visibleStages = stage::None;  // made visible to these by a barrier since the last write
+    uint32_t visibleStages =
+        stage::None;  // made visible to these by a barrier since the last write
     uint32_t visibleAccess = access::None;
 };
 
@@ -106,7 +118,8 @@ void planBarriers(Compiler& c) {
     for (size_t ri = 0; ri < resources.size(); ++ri) {
         if (!resources[ri].imported && !resources[ri].persistent) continue;
         // Whatever happened before the frame: assume any write, textures left ready for sampling.
-        state[ri].layout = resources[ri].kind == ResourceKind::Texture ? Layout::ShaderReadOnly : Layout::Undefined;
+        state[ri].layout = resources[ri].kind == ResourceKind::Texture ? Layout::ShaderReadOnly
+                                                                       : Layout::Undefined;
         state[ri].writeStages = stage::AllCommands;
         state[ri].writeAccess = access::MemoryWrite;
     }
@@ -120,15 +133,19 @@ void planBarriers(Compiler& c) {
     for (uint32_t pi = 0; pi < c.plan.passes.size(); ++pi) {
         PlanPass& pass = c.plan.passes[pi];
         std::vector<Needed> needed;
-        for (PlanAccess& a : pass.accesses) describeAccess(a, pass.type, resources[a.resource].kind);
+        for (PlanAccess& a : pass.accesses)
+            describeAccess(a, pass.type, resources[a.resource].kind);
         // A depth buffer both sampled and attached read-only is in DepthStencilReadOnly for both.
         for (PlanAccess& a : pass.accesses)
             if (a.usage == Usage::Sampled)
                 for (const PlanAccess& b : pass.accesses)
-                    if (b.resource == a.resource && b.usage == Usage::DepthStencilRead) a.layout = Layout::DepthStencilReadOnly;
+                    if (b.resource == a.resource && b.usage == Usage::DepthStencilRead)
+                        a.layout = Layout::DepthStencilReadOnly;
         for (PlanAccess& a : pass.accesses) {
-            auto it = std::find_if(needed.begin(), needed.end(), [&](const Needed& n) { return n.resource == a.resource; });
-            if (it == needed.end()) it = needed.insert(needed.end(), Needed{a.resource, 0, 0, a.layout});
+            auto it = std::find_if(needed.begin(), needed.end(),
+                                   [&](const Needed& n) { return n.resource == a.resource; });
+            if (it == needed.end())
+                it = needed.insert(needed.end(), Needed{a.resource, 0, 0, a.layout});
             it->stages |= a.stages;
             it->access |= a.access;
             it->reads = it->reads || usageReads(a.usage, a.load);
@@ -142,7 +159,8 @@ void planBarriers(Compiler& c) {
             Barrier b;
             b.resource = n.resource;
             bool emit = false;
-            if (r.transient && r.firstPass == static_cast<int32_t>(pi) && !c.aliasPreds[n.resource].empty()) {
+            if (r.transient && r.firstPass == static_cast<int32_t>(pi) &&
+                !c.aliasPreds[n.resource].empty()) {
                 // The memory held another resource: wait for all its users before reusing it.
                 emit = true;
                 b.aliasedFrom = c.aliasFrom[n.resource];

@@ -33,8 +33,9 @@ void cull(Compiler& c) {
         if (!passes[pi].enabled) continue;
         bool root = passes[pi].sideEffect;
         for (const MergedAccess& m : c.merged[pi])
-            root = root || (m.writes && (resources[m.resource].exported || resources[m.resource].imported ||
-                                         resources[m.resource].persistent));
+            root = root ||
+                   (m.writes && (resources[m.resource].exported || resources[m.resource].imported ||
+                                 resources[m.resource].persistent));
         if (root) {
             c.kept[pi] = true;
             work.push_back(pi);

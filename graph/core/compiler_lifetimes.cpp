@@ -10,7 +10,8 @@ namespace {
 
 uint64_t resolvedBufferSize(const BufferDesc& b, const CompileOptions& o) {
     if (b.tileSize == 0) return b.size;
-    const uint64_t tx = (o.outputWidth + b.tileSize - 1) / b.tileSize, ty = (o.outputHeight + b.tileSize - 1) / b.tileSize;
+    const uint64_t tx = (o.outputWidth + b.tileSize - 1) / b.tileSize,
+                   ty = (o.outputHeight + b.tileSize - 1) / b.tileSize;
     return b.size + tx * ty * b.tileBytes;
 }
 
@@ -92,7 +93,8 @@ void alias(Compiler& c) {
         for (PlanResource& r : resources)
             if (const int32_t o = previous->findResource(r.name); o >= 0) {
                 const PlanResource& was = previous->resources[static_cast<size_t>(o)];
-                if (was.kind == r.kind && was.format == r.format && was.transient == r.transient) r.usageMask |= was.usageMask;
+                if (was.kind == r.kind && was.format == r.format && was.transient == r.transient)
+                    r.usageMask |= was.usageMask;
             }
     for (PlanResource& r : resources)
         if (!r.imported) r.memory = query ? query(r) : estimateMemoryRequirements(r);
@@ -104,7 +106,8 @@ void alias(Compiler& c) {
         const bool buffers = r.kind == ResourceKind::Buffer;
         size_t h = 0;
         while (h < c.plan.heaps.size() &&
-               (c.plan.heaps[h].memoryTypeBits != r.memory.memoryTypeBits || c.plan.heaps[h].buffers != buffers))
+               (c.plan.heaps[h].memoryTypeBits != r.memory.memoryTypeBits ||
+                c.plan.heaps[h].buffers != buffers))
             ++h;
         if (h == c.plan.heaps.size()) {
             c.plan.heaps.push_back({r.memory.memoryTypeBits, buffers, 0});
@@ -121,7 +124,8 @@ void alias(Compiler& c) {
         // The previous plan's heap of this memory class (options.previous).
         const Plan* previous = c.options.previous;
         const TransientHeap* previousHeap = nullptr;
-        if (previous && h < previous->heaps.size() && previous->heaps[h].memoryTypeBits == c.plan.heaps[h].memoryTypeBits &&
+        if (previous && h < previous->heaps.size() &&
+            previous->heaps[h].memoryTypeBits == c.plan.heaps[h].memoryTypeBits &&
             previous->heaps[h].buffers == c.plan.heaps[h].buffers)
             previousHeap = &previous->heaps[h];
         if (c.options.alias) {
@@ -136,13 +140,17 @@ void alias(Compiler& c) {
                 for (uint32_t ri : list) {
                     PlanResource& r = resources[ri];
                     const int32_t o = previous->findResource(r.name);
-                    const PlanResource* was = o >= 0 ? &previous->resources[static_cast<size_t>(o)] : nullptr;
-                    bool kept = was && was->transient && was->heap == static_cast<int32_t>(h) && was->memory.size == r.memory.size &&
-                                was->memory.alignment == r.memory.alignment && was->offset + r.memory.size <= previousHeap->size;
+                    const PlanResource* was =
+                        o >= 0 ? &previous->resources[static_cast<size_t>(o)] : nullptr;
+                    bool kept = was && was->transient && was->heap == static_cast<int32_t>(h) &&
+                                was->memory.size == r.memory.size &&
+                                was->memory.alignment == r.memory.alignment &&
+                                was->offset + r.memory.size <= previousHeap->size;
                     if (kept) {
                         r.offset = was->offset;
                         kept = std::none_of(placed.begin(), placed.end(), [&](uint32_t q) {
-                            return lifetimesIntersect(r, resources[q]) && rangesOverlap(r, resources[q]);
+                            return lifetimesIntersect(r, resources[q]) &&
+                                   rangesOverlap(r, resources[q]);
                         });
                     }
                     if (!kept) {
@@ -150,7 +158,8 @@ void alias(Compiler& c) {
                         continue;
                     }
                     placed.push_back(ri);
-                    heapSize = std::max(heapSize, r.offset + alignUp(r.memory.size, r.memory.alignment));
+                    heapSize =
+                        std::max(heapSize, r.offset + alignUp(r.memory.size, r.memory.alignment));
                 }
                 toPlace = std::move(rest);
             }
@@ -161,8 +170,8 @@ void alias(Compiler& c) {
                 for (uint32_t q : placed) {
                     if (!lifetimesIntersect(r, resources[q])) continue;
                     live.push_back(q);
-                    candidates.push_back(
-                        alignUp(resources[q].offset + resources[q].memory.size, r.memory.alignment));
+                    candidates.push_back(alignUp(resources[q].offset + resources[q].memory.size,
+                                                 r.memory.alignment));
                 }
                 std::sort(candidates.begin(), candidates.end());
                 for (uint64_t offset : candidates) {
@@ -172,7 +181,8 @@ void alias(Compiler& c) {
                         break;
                 }
                 placed.push_back(ri);
-                heapSize = std::max(heapSize, r.offset + alignUp(r.memory.size, r.memory.alignment));
+                heapSize =
+                    std::max(heapSize, r.offset + alignUp(r.memory.size, r.memory.alignment));
             }
             // A heap the new placement fits in is kept whole (its memory and what lies in it).
             if (previousHeap && heapSize <= previousHeap->size) heapSize = previousHeap->size;
@@ -203,7 +213,8 @@ void alias(Compiler& c) {
             c.aliasPreds[ri].push_back(q);
             const int32_t best = c.aliasFrom[ri];
             if (best < 0 || o.lastPass > resources[static_cast<size_t>(best)].lastPass ||
-                (o.lastPass == resources[static_cast<size_t>(best)].lastPass && q < static_cast<uint32_t>(best)))
+                (o.lastPass == resources[static_cast<size_t>(best)].lastPass &&
+                 q < static_cast<uint32_t>(best)))
                 c.aliasFrom[ri] = static_cast<int32_t>(q);
         }
     }

@@ -70,12 +70,13 @@ struct Compiler {
     std::vector<std::vector<uint32_t>> accessResource;  // [pass][access] -> resource desc index
     std::vector<std::vector<MergedAccess>> merged;      // [pass] in first-access order
     std::vector<std::vector<uint32_t>> successors;      // every ordering edge u -> v (u runs first)
-    std::vector<std::vector<uint32_t>> needs;           // v -> u where v needs u's work (RAW, WAW, after)
+    std::vector<std::vector<uint32_t>> needs;  // v -> u where v needs u's work (RAW, WAW, after)
     std::vector<bool> kept;
-    std::vector<uint32_t> order;                   // scheduled pass desc indices
-    std::vector<int32_t> planResource;             // resource desc index -> Plan::resources index
-    std::vector<std::vector<uint32_t>> aliasPreds;  // plan resource -> earlier occupants of its memory
-    std::vector<int32_t> aliasFrom;                // plan resource -> most recent earlier occupant
+    std::vector<uint32_t> order;        // scheduled pass desc indices
+    std::vector<int32_t> planResource;  // resource desc index -> Plan::resources index
+    std::vector<std::vector<uint32_t>>
+        aliasPreds;                  // plan resource -> earlier occupants of its memory
+    std::vector<int32_t> aliasFrom;  // plan resource -> most recent earlier occupant
 
     Compiler(const GraphDesc& g, const CompileOptions& o) : graph(g), options(o) {}
 

@@ -11,10 +11,13 @@ namespace rg::compiler_steps {
 
 namespace {
 
-std::string extentText(Extent e) { return std::to_string(e.width) + "x" + std::to_string(e.height); }
+std::string extentText(Extent e) {
+    return std::to_string(e.width) + "x" + std::to_string(e.height);
+}
 
 bool isAttachment(Usage u) {
-    return u == Usage::ColorAttachment || u == Usage::DepthStencilAttachment || u == Usage::DepthStencilRead;
+    return u == Usage::ColorAttachment || u == Usage::DepthStencilAttachment ||
+           u == Usage::DepthStencilRead;
 }
 
 bool isStorage(Usage u) {
@@ -43,12 +46,14 @@ Status validateResources(Compiler& c) {
         const std::string at = "resources[" + std::to_string(i) + "]";
         if (r.name.empty()) return invalid(withOrigin(r.origin, at + " has no name"));
         if (auto [it, fresh] = c.resourceIndex.emplace(r.name, static_cast<uint32_t>(i)); !fresh)
-            return invalid(withOrigin(r.origin, "resource '" + r.name + "' is declared twice (resources[" +
-                                                    std::to_string(it->second) + "] and " + at + ")"));
+            return invalid(
+                withOrigin(r.origin, "resource '" + r.name + "' is declared twice (resources[" +
+                                         std::to_string(it->second) + "] and " + at + ")"));
         const std::string what = "resource '" + r.name + "': ";
         if (r.kind == ResourceKind::Buffer) {
             if (r.buffer.size == 0)
-                return invalid(withOrigin(r.origin, what + "buffer size is 0 bytes; it must be at least 1"));
+                return invalid(
+                    withOrigin(r.origin, what + "buffer size is 0 bytes; it must be at least 1"));
             continue;
         }
         const TextureDesc& t = r.texture;
@@ -57,29 +62,35 @@ Status validateResources(Compiler& c) {
                                                     formatNameList() + ")"));
         if (t.sizeMode == SizeMode::Absolute) {
             if (t.width == 0 || t.height == 0)
-                return invalid(withOrigin(r.origin, what + "absolute size " + std::to_string(t.width) + "x" +
+                return invalid(withOrigin(r.origin, what + "absolute size " +
+                                                        std::to_string(t.width) + "x" +
                                                         std::to_string(t.height) +
                                                         "; width and height must be at least 1"));
         } else if (!(t.scaleX > 0.0f) || !(t.scaleY > 0.0f) || !std::isfinite(t.scaleX) ||
                    !std::isfinite(t.scaleY)) {
-            return invalid(withOrigin(r.origin, what + "output-relative scale " + std::to_string(t.scaleX) +
-                                                    " x " + std::to_string(t.scaleY) + " must be positive"));
+            return invalid(
+                withOrigin(r.origin, what + "output-relative scale " + std::to_string(t.scaleX) +
+                                         " x " + std::to_string(t.scaleY) + " must be positive"));
         }
         const Extent e = resolveExtent(t, c.options);
         if (e.width > kMaxDimension || e.height > kMaxDimension)
             return invalid(withOrigin(r.origin, what + "size " + extentText(e) + " exceeds " +
                                                     std::to_string(kMaxDimension) + " texels"));
-        if (t.layers == 0) return invalid(withOrigin(r.origin, what + "layers is 0; it must be at least 1"));
+        if (t.layers == 0)
+            return invalid(withOrigin(r.origin, what + "layers is 0; it must be at least 1"));
         if (t.cube) {
             if (e.width != e.height)
-                return invalid(withOrigin(r.origin, what + "a cube texture must be square, got " + extentText(e)));
+                return invalid(withOrigin(
+                    r.origin, what + "a cube texture must be square, got " + extentText(e)));
             if (t.layers != 1 && t.layers % 6 != 0)
-                return invalid(withOrigin(r.origin, what + "a cube texture has 6 layers per cube, got " +
-                                                        std::to_string(t.layers)));
+                return invalid(
+                    withOrigin(r.origin, what + "a cube texture has 6 layers per cube, got " +
+                                             std::to_string(t.layers)));
         }
         if (t.mips > fullMipChain(e))
-            return invalid(withOrigin(r.origin, what + std::to_string(t.mips) + " mips requested, but a " +
-                                                    extentText(e) + " texture has at most " +
+            return invalid(withOrigin(r.origin, what + std::to_string(t.mips) +
+                                                    " mips requested, but a " + extentText(e) +
+                                                    " texture has at most " +
                                                     std::to_string(fullMipChain(e))));
     }
     return {};
@@ -92,17 +103,23 @@ std::string usageConflict(const PassDesc& pass, const Access& a, const ResourceD
         return use + " needs a raster pass, but '" + pass.name + "' is a compute pass";
     if (r.kind == ResourceKind::Buffer) {
         if (a.usage == Usage::IndirectRead && pass.type != PassType::Raster)
-            return use + " needs a raster pass (indirect draws), but '" + pass.name + "' is a " + passTypeName(pass.type) + " pass";
+            return use + " needs a raster pass (indirect draws), but '" + pass.name + "' is a " +
+                   passTypeName(pass.type) + " pass";
         if (a.usage == Usage::UniformRead || isStorage(a.usage) || a.usage == Usage::CopySrc ||
             a.usage == Usage::CopyDst || a.usage == Usage::IndirectRead)
             return {};
         return "'" + r.name + "' is a buffer, which cannot be used as " + use +
-               " (expected UniformRead, StorageRead, StorageWrite, StorageReadWrite, IndirectRead, CopySrc or CopyDst)";
+               " (expected UniformRead, StorageRead, StorageWrite, StorageReadWrite, IndirectRead, "
+               "CopySrc or CopyDst)";
     }
     if (a.usage == Usage::IndirectRead)
-        return "'" + r.name + "' is a texture, which cannot be used as IndirectRead (indirect commands live in buffers)";
+        return "'" + r.name +
+               "' is a texture, which cannot be used as IndirectRead (indirect commands live in "
+               "buffers)";
     if (a.usage == Usage::UniformRead)
-        return "'" + r.name + "' is a texture, which cannot be used as UniformRead (uniform reads are for buffers)";
+        return "'" + r.name +
+               "' is a texture, which cannot be used as UniformRead (uniform reads are for "
+               "buffers)";
     const FormatInfo& f = formatInfo(r.texture.format);
     const std::string fmt = "'" + std::string(f.name) + "'";
     if (isDepthStencil(r.texture.format)) {
@@ -117,7 +134,8 @@ std::string usageConflict(const PassDesc& pass, const Access& a, const ResourceD
                " (needs a depth format: d16, d32f, d24_s8 or d32f_s8)";
     if (f.srgb && isStorage(a.usage))
         return "'" + r.name + "' has sRGB format " + fmt + ", which cannot be used as " + use +
-               " (sRGB formats cannot be storage images; use a UNORM format and encode in the shader)";
+               " (sRGB formats cannot be storage images; use a UNORM format and encode in the "
+               "shader)";
     if (f.integer && a.usage == Usage::ColorAttachment && truthy(pass.params["blend"]))
         return "'" + r.name + "' has integer format " + fmt +
                ", which cannot be a blended ColorAttachment (params.blend is set)";
@@ -136,7 +154,8 @@ Status validatePasses(Compiler& c) {
         if (p.name.empty()) return invalid(withOrigin(p.origin, at + " has no name"));
         if (auto [it, fresh] = c.passIndex.emplace(p.name, static_cast<uint32_t>(i)); !fresh)
             return invalid(withOrigin(p.origin, "pass '" + p.name + "' is declared twice (passes[" +
-                                                    std::to_string(it->second) + "] and " + at + ")"));
+                                                    std::to_string(it->second) + "] and " + at +
+                                                    ")"));
     }
 
     for (uint32_t pi = 0; pi < passes.size(); ++pi) {
@@ -145,15 +164,19 @@ Status validatePasses(Compiler& c) {
         for (uint32_t ai = 0; ai < p.accesses.size(); ++ai) {
             const Access& a = p.accesses[ai];
             // Built only on the error path: validation runs on every recompile.
-            auto where = [&] { return "pass '" + p.name + "' field '" + c.fieldOf(pi, ai) + "': "; };
+            auto where = [&] {
+                return "pass '" + p.name + "' field '" + c.fieldOf(pi, ai) + "': ";
+            };
             const auto found = c.resourceIndex.find(a.resource);
-            const ResourceDesc* r = found == c.resourceIndex.end() ? nullptr : &resources[found->second];
+            const ResourceDesc* r =
+                found == c.resourceIndex.end() ? nullptr : &resources[found->second];
             if (!r)
-                return invalid(c.passError(pi, where() + "unknown resource '" + a.resource + "'" +
-                                                   suggestionAmong(a.resource, resources,
-                                                              [](const ResourceDesc& d) -> const std::string& {
-                                                                  return d.name;
-                                                              })));
+                return invalid(c.passError(
+                    pi, where() + "unknown resource '" + a.resource + "'" +
+                            suggestionAmong(a.resource, resources,
+                                            [](const ResourceDesc& d) -> const std::string& {
+                                                return d.name;
+                                            })));
             const auto ri = static_cast<uint32_t>(r - resources.data());
             if (std::string why = usageConflict(p, a, *r); !why.empty())
                 return invalid(c.passError(pi, where() + why));
@@ -164,11 +187,13 @@ Status validatePasses(Compiler& c) {
                 const std::string other =
                     std::string(usageName(b.usage)) + " (field '" + c.fieldOf(pi, bi) + "')";
                 if (usageWrites(a.usage) && b.usage == a.usage)
-                    return invalid(c.passError(pi, where() + "'" + r->name + "' is already written as " + other +
+                    return invalid(c.passError(pi, where() + "'" + r->name +
+                                                       "' is already written as " + other +
                                                        " in this pass"));
                 if (usageWrites(a.usage) || usageWrites(b.usage))
-                    return invalid(c.passError(pi, where() + "'" + r->name + "' is used as " + usageName(a.usage) +
-                                                       " and also as " + other + " in the same pass (feedback loop)"));
+                    return invalid(c.passError(
+                        pi, where() + "'" + r->name + "' is used as " + usageName(a.usage) +
+                                " and also as " + other + " in the same pass (feedback loop)"));
                 // Sampling a depth buffer that is also the read-only depth/stencil attachment is
                 // fine: both read, in DepthStencilReadOnly (deferred lighting tests stencil and
                 // reads depth for positions).
@@ -177,14 +202,16 @@ Status validatePasses(Compiler& c) {
                     (a.usage == Usage::DepthStencilRead && b.usage == Usage::Sampled);
                 if (r->kind == ResourceKind::Texture && !depthReadAndSample &&
                     usageLayout(a.usage, p.type) != usageLayout(b.usage, p.type))
-                    return invalid(c.passError(pi, where() + "'" + r->name + "' is used as " + usageName(a.usage) +
-                                                       " and also as " + other +
-                                                       " in the same pass, which need different layouts"));
+                    return invalid(
+                        c.passError(pi, where() + "'" + r->name + "' is used as " +
+                                            usageName(a.usage) + " and also as " + other +
+                                            " in the same pass, which need different layouts"));
             }
             resolved.push_back(ri);
             auto m = std::find_if(c.merged[pi].begin(), c.merged[pi].end(),
                                   [&](const MergedAccess& x) { return x.resource == ri; });
-            if (m == c.merged[pi].end()) m = c.merged[pi].insert(c.merged[pi].end(), MergedAccess{ri});
+            if (m == c.merged[pi].end())
+                m = c.merged[pi].insert(c.merged[pi].end(), MergedAccess{ri});
             m->reads = m->reads || usageReads(a.usage, a.load);
             m->writes = m->writes || usageWrites(a.usage);
         }
@@ -197,9 +224,11 @@ Status validatePasses(Compiler& c) {
                 if (u != Usage::DepthStencilAttachment && u != Usage::DepthStencilRead) continue;
                 if (depthAt >= 0 && resolved[static_cast<uint32_t>(depthAt)] != resolved[ai])
                     return invalid(c.passError(
-                        pi, "pass '" + p.name + "' field '" + c.fieldOf(pi, ai) + "': '" + p.accesses[ai].resource +
-                                "' would be a second depth/stencil attachment (the pass already has '" +
-                                p.accesses[static_cast<uint32_t>(depthAt)].resource + "')"));
+                        pi,
+                        "pass '" + p.name + "' field '" + c.fieldOf(pi, ai) + "': '" +
+                            p.accesses[ai].resource +
+                            "' would be a second depth/stencil attachment (the pass already has '" +
+                            p.accesses[static_cast<uint32_t>(depthAt)].resource + "')"));
                 if (depthAt < 0) depthAt = static_cast<int32_t>(ai);
             }
             int32_t first = -1;
@@ -214,19 +243,21 @@ Status validatePasses(Compiler& c) {
                 const Extent ea = resolveExtent(ra.texture, c.options);
                 const Extent eb = resolveExtent(rb.texture, c.options);
                 if (ea.width != eb.width || ea.height != eb.height)
-                    return invalid(c.passError(pi, "pass '" + p.name + "': attachments differ in size: '" +
-                                                       ra.name + "' is " + extentText(ea) + " but '" + rb.name +
-                                                       "' is " + extentText(eb)));
+                    return invalid(
+                        c.passError(pi, "pass '" + p.name + "': attachments differ in size: '" +
+                                            ra.name + "' is " + extentText(ea) + " but '" +
+                                            rb.name + "' is " + extentText(eb)));
             }
         }
 
         for (size_t k = 0; k < p.after.size(); ++k) {
             if (c.passIndex.contains(p.after[k])) continue;
             return invalid(c.passError(
-                pi, "pass '" + p.name + "' field 'after[" + std::to_string(k) + "]': unknown pass '" + p.after[k] +
-                        "'" + suggestionAmong(p.after[k], passes, [](const PassDesc& d) -> const std::string& {
-                            return d.name;
-                        })));
+                pi, "pass '" + p.name + "' field 'after[" + std::to_string(k) +
+                        "]': unknown pass '" + p.after[k] + "'" +
+                        suggestionAmong(
+                            p.after[k], passes,
+                            [](const PassDesc& d) -> const std::string& { return d.name; })));
         }
     }
     return {};
@@ -242,7 +273,6 @@ Status validateVersions(Compiler& c) {
     std::vector<int32_t> lastWriter(resources.size(), -1);
     std::vector<int32_t> disabledWriter(resources.size(), -1);
     std::vector<std::vector<uint32_t>> readers(resources.size());
-
 
     for (uint32_t pi = 0; pi < passCount; ++pi) {
         const PassDesc& p = passes[pi];
@@ -262,15 +292,18 @@ Status validateVersions(Compiler& c) {
                 c.addEdge(static_cast<uint32_t>(lastWriter[m.resource]), pi, /* need= */ true);
             } else if (!r.imported && !r.persistent) {
                 if (disabledWriter[m.resource] >= 0)
-                    return invalid(c.passError(pi, "pass '" + p.name + "' reads '" + r.name + "', but its only writer '" +
-                                                       passes[static_cast<size_t>(disabledWriter[m.resource])].name +
-                                                       "' is disabled"));
-                std::string text = "pass '" + p.name + "' reads '" + r.name + "' before any pass writes it";
+                    return invalid(c.passError(
+                        pi, "pass '" + p.name + "' reads '" + r.name + "', but its only writer '" +
+                                passes[static_cast<size_t>(disabledWriter[m.resource])].name +
+                                "' is disabled"));
+                std::string text =
+                    "pass '" + p.name + "' reads '" + r.name + "' before any pass writes it";
                 for (uint32_t later = pi + 1; later < passCount; ++later) {
                     if (!passes[later].enabled) continue;
                     const auto& lm = c.merged[later];
-                    if (std::any_of(lm.begin(), lm.end(),
-                                    [&](const MergedAccess& x) { return x.resource == m.resource && x.writes; })) {
+                    if (std::any_of(lm.begin(), lm.end(), [&](const MergedAccess& x) {
+                            return x.resource == m.resource && x.writes;
+                        })) {
                         text += " (first written by '" + passes[later].name + "', declared later)";
                         break;
                     }
@@ -284,11 +317,13 @@ Status validateVersions(Compiler& c) {
             const ResourceDesc& r = resources[m.resource];
             if (const int32_t w = lastWriter[m.resource]; w >= 0) {
                 const std::string& writer = passes[static_cast<size_t>(w)].name;
-                const bool ordered = std::find(p.after.begin(), p.after.end(), writer) != p.after.end();
+                const bool ordered =
+                    std::find(p.after.begin(), p.after.end(), writer) != p.after.end();
                 if (!m.reads && !r.imported && !r.persistent && !ordered)
-                    return invalid(c.passError(pi, "passes '" + writer + "' and '" + p.name + "' both write '" +
-                                                       r.name + "' with no order between them: make '" + p.name +
-                                                       "' load it or list '" + writer + "' in its after"));
+                    return invalid(c.passError(
+                        pi, "passes '" + writer + "' and '" + p.name + "' both write '" + r.name +
+                                "' with no order between them: make '" + p.name +
+                                "' load it or list '" + writer + "' in its after"));
                 c.addEdge(static_cast<uint32_t>(w), pi, /* need= */ true);
             }
             for (uint32_t q : readers[m.resource])
@@ -339,7 +374,8 @@ Status validateCycles(Compiler& c) {
                 path.push_back(v);
             } else if (mark[v] == Mark::Grey) {
                 std::vector<uint32_t> cycle(std::find(path.begin(), path.end(), v), path.end());
-                std::rotate(cycle.begin(), std::min_element(cycle.begin(), cycle.end()), cycle.end());
+                std::rotate(cycle.begin(), std::min_element(cycle.begin(), cycle.end()),
+                            cycle.end());
                 std::string text = "cycle between passes: ";
                 for (uint32_t p : cycle) text += "'" + c.graph.passes[p].name + "' -> ";
                 text += "'" + c.graph.passes[cycle.front()].name + "'";

@@ -41,8 +41,8 @@ struct FormatInfo {
     bool depth;
     bool stencil;
     bool srgb;
-    bool integer;            // unsigned integer channels (no filtering, no blending)
-    bool floating;           // float channels (half or single)
+    bool integer;   // unsigned integer channels (no filtering, no blending)
+    bool floating;  // float channels (half or single)
 };
 
 const FormatInfo& formatInfo(Format f);

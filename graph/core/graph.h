@@ -29,7 +29,7 @@ struct TextureDesc {
     SizeMode sizeMode = SizeMode::OutputRelative;
     float scaleX = 1.0f;  // OutputRelative: fraction of the output size
     float scaleY = 1.0f;
-    uint32_t width = 0;   // Absolute: texels
+    uint32_t width = 0;  // Absolute: texels
     uint32_t height = 0;
     uint32_t layers = 1;  // array layers (6 for a cube)
     uint32_t mips = 1;    // 0 = full chain
@@ -59,22 +59,22 @@ struct ResourceDesc {
     // import it may be read before it is written in a frame (that reads the previous frame's
     // contents, zero at first); never aliased; it starts and ends every frame ready for sampling.
     bool persistent = false;
-    std::string origin;     // where it was declared ("deferred.lua:12"), for error messages
+    std::string origin;  // where it was declared ("deferred.lua:12"), for error messages
 };
 
 // How a pass touches a resource. Reads and writes are derived from the usage and `load`.
 enum class Usage : uint8_t {
-    Sampled,           // read: texture sampled in a shader
-    UniformRead,       // read: uniform buffer
-    StorageRead,       // read: storage image / buffer
-    StorageWrite,      // write: storage image / buffer (full overwrite)
-    StorageReadWrite,  // read + write: storage image / buffer
-    ColorAttachment,   // write (+ read when load = true: load op LOAD or blending)
+    Sampled,                 // read: texture sampled in a shader
+    UniformRead,             // read: uniform buffer
+    StorageRead,             // read: storage image / buffer
+    StorageWrite,            // write: storage image / buffer (full overwrite)
+    StorageReadWrite,        // read + write: storage image / buffer
+    ColorAttachment,         // write (+ read when load = true: load op LOAD or blending)
     DepthStencilAttachment,  // write (+ read when load = true: test against existing values)
-    DepthStencilRead,  // read: read-only depth/stencil attachment (depth or stencil test)
-    CopySrc,           // read: transfer source
-    CopyDst,           // write (+ read when load = true: a partial write such as mip generation)
-    IndirectRead,      // read: a buffer of indirect draw or dispatch commands
+    DepthStencilRead,        // read: read-only depth/stencil attachment (depth or stencil test)
+    CopySrc,                 // read: transfer source
+    CopyDst,       // write (+ read when load = true: a partial write such as mip generation)
+    IndirectRead,  // read: a buffer of indirect draw or dispatch commands
 };
 
 const char* usageName(Usage u);
@@ -88,8 +88,9 @@ const char* passTypeName(PassType t);
 struct Access {
     std::string resource;  // resource name
     Usage usage = Usage::Sampled;
-    bool load = false;     // attachments and copy destinations: keep previous contents (load op LOAD / blend)
-    std::string field;     // field path in the script ("passes.lighting.reads[3]"), for errors
+    bool load =
+        false;  // attachments and copy destinations: keep previous contents (load op LOAD / blend)
+    std::string field;  // field path in the script ("passes.lighting.reads[3]"), for errors
 };
 
 struct PassDesc {

@@ -18,7 +18,9 @@ class ContentHash {
 public:
     ContentHash() : m_state(XXH3_createState()) { XXH3_64bits_reset(m_state); }
     ~ContentHash() { XXH3_freeState(m_state); }
-    ContentHash(const ContentHash& o) : m_state(XXH3_createState()) { XXH3_copyState(m_state, o.m_state); }
+    ContentHash(const ContentHash& o) : m_state(XXH3_createState()) {
+        XXH3_copyState(m_state, o.m_state);
+    }
     ContentHash& operator=(const ContentHash& o) {
         if (this != &o) XXH3_copyState(m_state, o.m_state);
         return *this;

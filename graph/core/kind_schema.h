@@ -22,7 +22,7 @@ struct PassKindSchema {
     PassType type = PassType::Raster;
     std::string summary;
     std::vector<ParamSpec> params;
-    Usage defaultRead = Usage::Sampled;   // usage of a plain name in `reads`
+    Usage defaultRead = Usage::Sampled;           // usage of a plain name in `reads`
     Usage defaultWrite = Usage::ColorAttachment;  // usage of a plain name in `writes`
     bool writesLoad = false;  // a plain name in `writes` keeps what is there (e.g. mips)
 };

@@ -8,7 +8,7 @@ namespace rg::lights {
 double pointIntensityFromLumens(double lumens) { return lumens / (4.0 * kPi); }
 
 double spotIntensityFromLumens(double lumens, double outerAngle, bool exactCone) {
-    if (!exactCone) return lumens / kPi;  // eq:17
+    if (!exactCone) return lumens / kPi;                         // eq:17
     return lumens / (2.0 * kPi * (1.0 - std::cos(outerAngle)));  // eq:16
 }
 
@@ -19,25 +19,33 @@ double illuminance(double candela, double distance, double cosine) {
 }
 
 std::array<double, 2> colorTemperatureXy(double kelvin, bool daylight) {
-    const double t = std::clamp(kelvin, daylight ? kMinDaylightTemperature : kMinColorTemperature, kMaxColorTemperature);
+    const double t = std::clamp(kelvin, daylight ? kMinDaylightTemperature : kMinColorTemperature,
+                                kMaxColorTemperature);
     if (daylight) {
         // CIE 15:2004 eq. 3.3, 3.4: x_D by the CCT, y_D on the daylight locus.
-        const double x = t <= 7000.0 ? -4.6070e9 / (t * t * t) + 2.9678e6 / (t * t) + 0.09911e3 / t + 0.244063
-                                     : -2.0064e9 / (t * t * t) + 1.9018e6 / (t * t) + 0.24748e3 / t + 0.237040;
+        const double x =
+            t <= 7000.0 ? -4.6070e9 / (t * t * t) + 2.9678e6 / (t * t) + 0.09911e3 / t + 0.244063
+                        : -2.0064e9 / (t * t * t) + 1.9018e6 / (t * t) + 0.24748e3 / t + 0.237040;
         return {x, -3.000 * x * x + 2.870 * x - 0.275};
     }
     // CIE 1931 chromaticity of the Planckian locus (the cubic-spline fit of Kang et al. 2002, 1667–25000 K).
-    const double x = t <= 4000.0 ? -0.2661239e9 / (t * t * t) - 0.2343589e6 / (t * t) + 0.8776956e3 / t + 0.179910
-                                 : -3.0258469e9 / (t * t * t) + 2.1070379e6 / (t * t) + 0.2226347e3 / t + 0.240390;
+    const double x =
+        t <= 4000.0
+            ? -0.2661239e9 / (t * t * t) - 0.2343589e6 / (t * t) + 0.8776956e3 / t + 0.179910
+            : -3.0258469e9 / (t * t * t) + 2.1070379e6 / (t * t) + 0.2226347e3 / t + 0.240390;
     double y;
-    if (t <= 2222.0) y = -1.1063814 * x * x * x - 1.34811020 * x * x + 2.18555832 * x - 0.20219683;
-    else if (t <= 4000.0) y = -0.9549476 * x * x * x - 1.37418593 * x * x + 2.09137015 * x - 0.16748867;
-    else y = 3.0817580 * x * x * x - 5.87338670 * x * x + 3.75112997 * x - 0.37001483;
+    if (t <= 2222.0)
+        y = -1.1063814 * x * x * x - 1.34811020 * x * x + 2.18555832 * x - 0.20219683;
+    else if (t <= 4000.0)
+        y = -0.9549476 * x * x * x - 1.37418593 * x * x + 2.09137015 * x - 0.16748867;
+    else
+        y = 3.0817580 * x * x * x - 5.87338670 * x * x + 3.75112997 * x - 0.37001483;
     return {x, y};
 }
 
 bool colorTemperatureInRange(double kelvin, bool daylight) {
-    return kelvin >= (daylight ? kMinDaylightTemperature : kMinColorTemperature) && kelvin <= kMaxColorTemperature;
+    return kelvin >= (daylight ? kMinDaylightTemperature : kMinColorTemperature) &&
+           kelvin <= kMaxColorTemperature;
 }
 
 std::array<double, 3> colorTemperatureToRgb(double kelvin, bool daylight) {

@@ -19,7 +19,8 @@ size_t editDistance(const std::string& a, const std::string& b) {
     return prev[b.size()];
 }
 
-std::string closestName(const std::string& name, const std::vector<std::string>& candidates, size_t below) {
+std::string closestName(const std::string& name, const std::vector<std::string>& candidates,
+                        size_t below) {
     std::string best;
     for (const auto& c : candidates) {
         if (c.empty()) continue;

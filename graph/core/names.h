@@ -13,7 +13,8 @@ size_t editDistance(const std::string& a, const std::string& b);
 
 // The candidate closest to `name` at an edit distance below `below`, the earliest on ties; "" when
 // none. Empty candidates are skipped.
-std::string closestName(const std::string& name, const std::vector<std::string>& candidates, size_t below);
+std::string closestName(const std::string& name, const std::vector<std::string>& candidates,
+                        size_t below);
 // The same with the messages' usual limit: within 2 edits, or 1 for names of up to 3 characters.
 std::string closestName(const std::string& name, const std::vector<std::string>& candidates);
 

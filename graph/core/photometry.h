@@ -13,7 +13,8 @@ inline constexpr double kLensAttenuation = 0.65;
 inline constexpr double kSaturationConstant = 78.0;
 
 // EV100 = log2(N² / t · 100 / S) − EC (seed 002 §5.1.1; EC is exposure compensation in stops).
-double ev100FromCamera(double aperture, double shutterSeconds, double iso, double compensation = 0.0);
+double ev100FromCamera(double aperture, double shutterSeconds, double iso,
+                       double compensation = 0.0);
 // EV100 metering an average luminance: log2(L_avg · 100 / K) (seed 000 eq:11 with S = 100).
 double ev100FromLuminance(double averageLuminance);
 // Luminance an EV100 stands for: 2^EV · K / 100 = 2^(EV − 3) (seed 000 eq:12, tbl:7).

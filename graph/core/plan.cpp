@@ -100,7 +100,8 @@ std::string resourceLabel(const PlanResource& r) {
     } else {
         label += std::string(formatName(r.format)) + " " + std::to_string(r.width) + "x" +
                  std::to_string(r.height);
-        if (r.layers != 1) label += " x" + std::to_string(r.layers) + (r.cube ? " (cube)" : " layers");
+        if (r.layers != 1)
+            label += " x" + std::to_string(r.layers) + (r.cube ? " (cube)" : " layers");
         if (r.mips != 1) label += " " + std::to_string(r.mips) + " mips";
     }
     label += "\\npasses " + std::to_string(r.firstPass) + ".." + std::to_string(r.lastPass);
@@ -118,14 +119,22 @@ std::string resourceLabel(const PlanResource& r) {
 
 const char* layoutName(Layout l) {
     switch (l) {
-    case Layout::Undefined: return "Undefined";
-    case Layout::General: return "General";
-    case Layout::ColorAttachment: return "ColorAttachment";
-    case Layout::DepthStencilAttachment: return "DepthStencilAttachment";
-    case Layout::DepthStencilReadOnly: return "DepthStencilReadOnly";
-    case Layout::ShaderReadOnly: return "ShaderReadOnly";
-    case Layout::TransferSrc: return "TransferSrc";
-    case Layout::TransferDst: return "TransferDst";
+        case Layout::Undefined:
+            return "Undefined";
+        case Layout::General:
+            return "General";
+        case Layout::ColorAttachment:
+            return "ColorAttachment";
+        case Layout::DepthStencilAttachment:
+            return "DepthStencilAttachment";
+        case Layout::DepthStencilReadOnly:
+            return "DepthStencilReadOnly";
+        case Layout::ShaderReadOnly:
+            return "ShaderReadOnly";
+        case Layout::TransferSrc:
+            return "TransferSrc";
+        case Layout::TransferDst:
+            return "TransferDst";
     }
     return "?";
 }
@@ -146,22 +155,24 @@ int32_t Plan::findPass(const std::string& name) const {
 }
 
 std::string Plan::toDot() const {
-    std::string out = "digraph rgraph {\n  rankdir=LR;\n  node [fontname=\"Helvetica\", fontsize=10];\n";
+    std::string out =
+        "digraph rgraph {\n  rankdir=LR;\n  node [fontname=\"Helvetica\", fontsize=10];\n";
     out += "  label=\"output " + std::to_string(outputWidth) + "x" + std::to_string(outputHeight) +
            ", transient memory " + bytesText(transientBytesAliased) + " aliased / " +
            bytesText(transientBytesUnaliased) + " unaliased\";\n";
 
     for (size_t i = 0; i < passes.size(); ++i) {
         const PlanPass& p = passes[i];
-        out += "  \"p_" + dotEscape(p.name) + "\" [shape=box, style=filled, fillcolor=\"#dde8ff\", label=\"#" +
-               std::to_string(i) + " " + dotEscape(p.name) + "\\n" + dotEscape(p.kind) + " (" +
-               passTypeName(p.type) + ")\"];\n";
+        out += "  \"p_" + dotEscape(p.name) +
+               "\" [shape=box, style=filled, fillcolor=\"#dde8ff\", label=\"#" + std::to_string(i) +
+               " " + dotEscape(p.name) + "\\n" + dotEscape(p.kind) + " (" + passTypeName(p.type) +
+               ")\"];\n";
     }
     // Culled passes keep no accesses in the plan, so they stand alone with the reason.
     for (const CulledPass& c : culled)
         out += "  \"p_" + dotEscape(c.name) +
-               "\" [shape=box, style=dashed, color=grey, fontcolor=grey, label=\"" + dotEscape(c.name) +
-               "\\nculled: " + dotEscape(c.reason) + "\"];\n";
+               "\" [shape=box, style=dashed, color=grey, fontcolor=grey, label=\"" +
+               dotEscape(c.name) + "\\nculled: " + dotEscape(c.reason) + "\"];\n";
     // Invisible chain so Graphviz lays the passes out in execution order.
     for (size_t i = 1; i < passes.size(); ++i)
         out += "  \"p_" + dotEscape(passes[i - 1].name) + "\" -> \"p_" + dotEscape(passes[i].name) +
@@ -169,8 +180,8 @@ std::string Plan::toDot() const {
 
     for (const PlanResource& r : resources) {
         const char* fill = r.imported ? "#ffe0b0" : r.exported ? "#d0f0c0" : "#f4f4f4";
-        out += "  \"r_" + dotEscape(r.name) + "\" [shape=ellipse, style=filled, fillcolor=\"" + fill +
-               "\", label=\"" + resourceLabel(r) + "\"];\n";
+        out += "  \"r_" + dotEscape(r.name) + "\" [shape=ellipse, style=filled, fillcolor=\"" +
+               fill + "\", label=\"" + resourceLabel(r) + "\"];\n";
     }
 
     for (const PlanPass& p : passes) {
@@ -180,11 +191,11 @@ std::string Plan::toDot() const {
             const bool reads = usageReads(a.usage, a.load);
             const bool writes = usageWrites(a.usage);
             if (reads)
-                out += "  " + res + " -> " + pass + " [color=\"#2060c0\", label=\"" + usageName(a.usage) +
-                       "\", fontsize=8];\n";
+                out += "  " + res + " -> " + pass + " [color=\"#2060c0\", label=\"" +
+                       usageName(a.usage) + "\", fontsize=8];\n";
             if (writes)
-                out += "  " + pass + " -> " + res + " [color=\"#c03020\", label=\"" + usageName(a.usage) +
-                       "\", fontsize=8];\n";
+                out += "  " + pass + " -> " + res + " [color=\"#c03020\", label=\"" +
+                       usageName(a.usage) + "\", fontsize=8];\n";
         }
     }
     out += "}\n";
@@ -240,34 +251,36 @@ std::string Plan::toJson() const {
     json jres = json::array();
     for (const PlanResource& r : resources) {
         const bool buffer = r.kind == ResourceKind::Buffer;
-        jres.push_back({{"name", r.name},
-                        {"kind", buffer ? "buffer" : "texture"},
-                        {"format", buffer ? json(nullptr) : json(std::string(formatName(r.format)))},
-                        {"width", r.width},
-                        {"height", r.height},
-                        {"layers", r.layers},
-                        {"mips", r.mips},
-                        {"cube", r.cube},
-                        {"bufferSize", r.bufferSize},
-                        {"transient", r.transient},
-                        {"imported", r.imported},
-                        {"exported", r.exported},
-                        {"firstPass", r.firstPass},
-                        {"lastPass", r.lastPass},
-                        {"size", r.memory.size},
-                        {"alignment", r.memory.alignment},
-                        {"memoryTypeBits", r.memory.memoryTypeBits},
-                        {"heap", r.heap},
-                        {"offset", r.offset},
-                        {"finalLayout", layoutName(r.finalLayout)},
-                        {"finalStages", stageMaskName(r.finalStages)},
-                        {"finalAccess", accessMaskName(r.finalAccess)}});
+        jres.push_back(
+            {{"name", r.name},
+             {"kind", buffer ? "buffer" : "texture"},
+             {"format", buffer ? json(nullptr) : json(std::string(formatName(r.format)))},
+             {"width", r.width},
+             {"height", r.height},
+             {"layers", r.layers},
+             {"mips", r.mips},
+             {"cube", r.cube},
+             {"bufferSize", r.bufferSize},
+             {"transient", r.transient},
+             {"imported", r.imported},
+             {"exported", r.exported},
+             {"firstPass", r.firstPass},
+             {"lastPass", r.lastPass},
+             {"size", r.memory.size},
+             {"alignment", r.memory.alignment},
+             {"memoryTypeBits", r.memory.memoryTypeBits},
+             {"heap", r.heap},
+             {"offset", r.offset},
+             {"finalLayout", layoutName(r.finalLayout)},
+             {"finalStages", stageMaskName(r.finalStages)},
+             {"finalAccess", accessMaskName(r.finalAccess)}});
     }
     j["resources"] = std::move(jres);
 
     json jheaps = json::array();
     for (const TransientHeap& h : heaps)
-        jheaps.push_back({{"memoryTypeBits", h.memoryTypeBits}, {"buffers", h.buffers}, {"size", h.size}});
+        jheaps.push_back(
+            {{"memoryTypeBits", h.memoryTypeBits}, {"buffers", h.buffers}, {"size", h.size}});
     j["heaps"] = std::move(jheaps);
     j["transientBytesAliased"] = transientBytesAliased;
     j["transientBytesUnaliased"] = transientBytesUnaliased;

@@ -58,8 +58,8 @@ enum class Layout : uint8_t {
     TransferDst,
 };
 const char* layoutName(Layout l);
-std::string stageMaskName(uint32_t mask);    // "FragmentShader|ComputeShader"
-std::string accessMaskName(uint32_t mask);   // "ShaderSampledRead|..."
+std::string stageMaskName(uint32_t mask);   // "FragmentShader|ComputeShader"
+std::string accessMaskName(uint32_t mask);  // "ShaderSampledRead|..."
 
 // Memory requirement of one resource as the device reports it.
 struct MemoryRequirements {
@@ -76,7 +76,8 @@ struct Barrier {
     uint32_t dstAccess = access::None;
     Layout oldLayout = Layout::Undefined;  // textures only
     Layout newLayout = Layout::Undefined;
-    int32_t aliasedFrom = -1;  // first use of memory last used by this resource (its contents are discarded)
+    int32_t aliasedFrom =
+        -1;  // first use of memory last used by this resource (its contents are discarded)
 };
 
 // One access of a scheduled pass, resolved to the resource index and the state it needs.
@@ -100,7 +101,8 @@ struct PlanPass {
 
 struct CulledPass {
     std::string name;
-    std::string reason;  // e.g. "disabled", "writes only 'ssao', which no kept pass reads and is not exported"
+    std::string
+        reason;  // e.g. "disabled", "writes only 'ssao', which no kept pass reads and is not exported"
 };
 
 struct PlanResource {
@@ -112,16 +114,17 @@ struct PlanResource {
     bool cube = false;
     bool array = false;  // sampled as an array even with one layer (a scene_layers texture)
     uint64_t bufferSize = 0;
-    uint32_t usageMask = 0;    // bit (1 << Usage) for every usage in kept passes (image/buffer creation flags)
-    bool transient = true;     // false for imported and exported resources
+    uint32_t usageMask =
+        0;  // bit (1 << Usage) for every usage in kept passes (image/buffer creation flags)
+    bool transient = true;  // false for imported and exported resources
     bool imported = false;
     bool exported = false;
     bool persistent = false;
-    int32_t firstPass = -1;    // index into Plan::passes of the first and last use
+    int32_t firstPass = -1;  // index into Plan::passes of the first and last use
     int32_t lastPass = -1;
     MemoryRequirements memory;
-    int32_t heap = -1;         // transient heap index; -1 = own allocation (imported / exported)
-    uint64_t offset = 0;       // byte offset in its heap
+    int32_t heap = -1;    // transient heap index; -1 = own allocation (imported / exported)
+    uint64_t offset = 0;  // byte offset in its heap
     // State after the last pass (the executor starts readback / presentation from here).
     Layout finalLayout = Layout::Undefined;
     uint32_t finalStages = stage::None;
@@ -142,9 +145,10 @@ struct StepTiming {
 
 struct Plan {
     uint32_t outputWidth = 0, outputHeight = 0;
-    std::vector<PlanPass> passes;        // in execution order
-    std::vector<CulledPass> culled;      // in declaration order
-    std::vector<PlanResource> resources; // only resources used by kept passes, in declaration order
+    std::vector<PlanPass> passes;    // in execution order
+    std::vector<CulledPass> culled;  // in declaration order
+    std::vector<PlanResource>
+        resources;  // only resources used by kept passes, in declaration order
     std::vector<TransientHeap> heaps;
     // Recorded after the last pass: imported and persistent textures go back to ShaderReadOnly,
     // the state every frame assumes they start in.

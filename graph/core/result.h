@@ -11,12 +11,12 @@
 namespace rg {
 
 enum class ErrorCode {
-    InvalidInput,   // a user file or declaration is wrong (exit code 2)
-    NotFound,       // a named file / resource / pass does not exist (exit code 2)
-    Unsupported,    // valid input we refuse by name (exit code 2)
-    Device,         // Vulkan or driver failure (exit code 1)
-    CheckFailed,    // a comparison or test did not pass (exit code 1)
-    Io,             // the OS refused a read or write (exit code 1)
+    InvalidInput,  // a user file or declaration is wrong (exit code 2)
+    NotFound,      // a named file / resource / pass does not exist (exit code 2)
+    Unsupported,   // valid input we refuse by name (exit code 2)
+    Device,        // Vulkan or driver failure (exit code 1)
+    CheckFailed,   // a comparison or test did not pass (exit code 1)
+    Io,            // the OS refused a read or write (exit code 1)
 };
 
 struct Error {

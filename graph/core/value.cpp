@@ -26,12 +26,18 @@ const Value& Value::operator[](const std::string& key) const {
 
 std::string Value::typeName() const {
     switch (m_v.index()) {
-    case 0: return "nil";
-    case 1: return "boolean";
-    case 2: return "number";
-    case 3: return "string";
-    case 4: return "list";
-    default: return "table";
+        case 0:
+            return "nil";
+        case 1:
+            return "boolean";
+        case 2:
+            return "number";
+        case 3:
+            return "string";
+        case 4:
+            return "list";
+        default:
+            return "table";
     }
 }
 

@@ -16,24 +16,29 @@ const char* kHelp =
     "usage: rgraph test [PATTERN] [--update] [--report DIR] [--junit FILE]\n"
     "                   [--dir DIR] [--images DIR] [--out DIR] [--device N] [--verbose]\n"
     "\n"
-    "Runs the golden-image tests: each tests/golden/NAME.lua renders a pipeline at a small size for\n"
+    "Runs the golden-image tests: each tests/golden/NAME.lua renders a pipeline at a small size "
+    "for\n"
     "some frames, captures resources (the output and any intermediate) and compares each with its\n"
     "golden image in tests/golden/images/NAME/ by the metric and tolerance the test states.\n"
     "PATTERN is a test name or a glob ('deferred_*'); default: every test.\n"
     "\n"
-    "  --update        bless: write the goldens that are missing or no longer pass (HDR as half EXR,\n"
+    "  --update        bless: write the goldens that are missing or no longer pass (HDR as half "
+    "EXR,\n"
     "                  display images as PNG), keep those that still pass, and print what changed\n"
-    "  --report DIR    write DIR/index.html: every test, its metrics, expected | actual | swipe | diff,\n"
+    "  --report DIR    write DIR/index.html: every test, its metrics, expected | actual | swipe | "
+    "diff,\n"
     "                  an exposure slider for HDR images (one static page, works offline)\n"
     "  --junit FILE    write JUnit XML\n"
     "  --dir DIR       where the test scripts are (default tests/golden)\n"
     "  --images DIR    where the goldens are (default tests/golden/images)\n"
-    "  --out DIR       where a failure writes actual, expected and diff images (default out/golden)\n"
+    "  --out DIR       where a failure writes actual, expected and diff images (default "
+    "out/golden)\n"
     "  --device N      the Vulkan device (see 'rgraph devices')\n"
     "  --verbose       print every rebuild a frame callback causes\n"
     "\n"
     "Determinism profile (recorded in each golden.json): LP_NUM_THREADS=2 unless set, frame time\n"
-    "1/60 s, parameters named dither/dithering/jitter/taa_jitter off. A failing test names the first\n"
+    "1/60 s, parameters named dither/dithering/jitter/taa_jitter off. A failing test names the "
+    "first\n"
     "captured resource, in pipeline order, whose comparison fails.\n"
     "Exit codes: 0 all passed, 1 a test failed, 2 bad usage or a bad test script.\n";
 
@@ -66,18 +71,24 @@ int goldenCommand(int argc, char** argv) {
             if (auto eq = name.find('='); eq != std::string::npos) {
                 value = name.substr(eq + 1);
                 name = name.substr(0, eq);
-            } else if (name == "report" || name == "junit" || name == "dir" || name == "images" || name == "out" ||
-                       name == "device") {
+            } else if (name == "report" || name == "junit" || name == "dir" || name == "images" ||
+                       name == "out" || name == "device") {
                 if (i + 1 >= argc) return usage("option --" + name + " needs a value");
                 value = argv[++i];
             }
-            if (name == "report") o.reportDir = value;
-            else if (name == "junit") o.junitFile = value;
-            else if (name == "dir") o.testDir = value;
-            else if (name == "images") o.imageDir = value;
-            else if (name == "out") o.outDir = value;
+            if (name == "report")
+                o.reportDir = value;
+            else if (name == "junit")
+                o.junitFile = value;
+            else if (name == "dir")
+                o.testDir = value;
+            else if (name == "images")
+                o.imageDir = value;
+            else if (name == "out")
+                o.outDir = value;
             else if (name == "device") {
-                if (value.empty() || value.size() > 3 || value.find_first_not_of("0123456789") != std::string::npos)
+                if (value.empty() || value.size() > 3 ||
+                    value.find_first_not_of("0123456789") != std::string::npos)
                     return usage("--device must be a device index (see 'rgraph devices')");
                 o.device = static_cast<uint32_t>(std::stoul(value));
             } else
@@ -85,7 +96,8 @@ int goldenCommand(int argc, char** argv) {
             if (value.empty()) return usage("option --" + name + " needs a value");
             continue;
         }
-        if (havePattern) return usage("one PATTERN at most, got '" + o.pattern + "' and '" + arg + "'");
+        if (havePattern)
+            return usage("one PATTERN at most, got '" + o.pattern + "' and '" + arg + "'");
         o.pattern = arg;
         havePattern = true;
     }
@@ -93,7 +105,10 @@ int goldenCommand(int argc, char** argv) {
     if (!report) {
         std::fprintf(stderr, "rgraph test: error: %s\n", report.error().describe().c_str());
         const ErrorCode c = report.error().code;
-        return c == ErrorCode::InvalidInput || c == ErrorCode::NotFound || c == ErrorCode::Unsupported ? kUsage : kFailed;
+        return c == ErrorCode::InvalidInput || c == ErrorCode::NotFound ||
+                       c == ErrorCode::Unsupported
+                   ? kUsage
+                   : kFailed;
     }
     bool badInput = false, failed = false;
     for (const auto& t : report->tests) {

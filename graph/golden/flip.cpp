@@ -42,7 +42,8 @@ Plane filterRows(const Plane& in, const std::vector<double>& k) {
         for (int x = 0; x < w; ++x) {
             double s = 0.0;
             for (int i = -r; i <= r; ++i)
-                s += k[static_cast<size_t>(i + r)] * in.at(static_cast<uint32_t>(std::clamp(x + i, 0, w - 1)), y);
+                s += k[static_cast<size_t>(i + r)] *
+                     in.at(static_cast<uint32_t>(std::clamp(x + i, 0, w - 1)), y);
             out.at(static_cast<uint32_t>(x), y) = s;
         }
     return out;
@@ -56,7 +57,8 @@ Plane filterCols(const Plane& in, const std::vector<double>& k) {
         for (uint32_t x = 0; x < in.w; ++x) {
             double s = 0.0;
             for (int i = -r; i <= r; ++i)
-                s += k[static_cast<size_t>(i + r)] * in.at(x, static_cast<uint32_t>(std::clamp(y + i, 0, h - 1)));
+                s += k[static_cast<size_t>(i + r)] *
+                     in.at(x, static_cast<uint32_t>(std::clamp(y + i, 0, h - 1)));
             out.at(x, static_cast<uint32_t>(y)) = s;
         }
     return out;
@@ -71,7 +73,8 @@ constexpr double kRgbToXyz[3][3] = {
 constexpr Vec3 kWhite = {0.950428545, 1.0, 1.088900371};  // D65 XYZ of linear RGB (1, 1, 1)
 
 Vec3 mul(const double m[3][3], const Vec3& v) {
-    return {m[0][0] * v[0] + m[0][1] * v[1] + m[0][2] * v[2], m[1][0] * v[0] + m[1][1] * v[1] + m[1][2] * v[2],
+    return {m[0][0] * v[0] + m[0][1] * v[1] + m[0][2] * v[2],
+            m[1][0] * v[0] + m[1][1] * v[1] + m[1][2] * v[2],
             m[2][0] * v[0] + m[2][1] * v[1] + m[2][2] * v[2]};
 }
 
@@ -104,7 +107,8 @@ Vec3 rgbToYcxcz(const Vec3& rgb) {
 
 Vec3 ycxczToRgb(const Vec3& c) {
     const double y = (c[0] + 16.0) / 116.0;
-    const Vec3 xyz = {(y + c[1] / 500.0) * kWhite[0], y * kWhite[1], (y - c[2] / 200.0) * kWhite[2]};
+    const Vec3 xyz = {(y + c[1] / 500.0) * kWhite[0], y * kWhite[1],
+                      (y - c[2] / 200.0) * kWhite[2]};
     return mul(matrices().xyzToRgb, xyz);
 }
 
@@ -112,14 +116,17 @@ Vec3 ycxczToRgb(const Vec3& c) {
 Vec3 rgbToHuntLab(const Vec3& rgb) {
     const Vec3 xyz = mul(kRgbToXyz, rgb);
     constexpr double d = 6.0 / 29.0;
-    auto f = [&](double t) { return t > d * d * d ? std::cbrt(t) : t / (3.0 * d * d) + 4.0 / 29.0; };
+    auto f = [&](double t) {
+        return t > d * d * d ? std::cbrt(t) : t / (3.0 * d * d) + 4.0 / 29.0;
+    };
     const double fx = f(xyz[0] / kWhite[0]), fy = f(xyz[1] / kWhite[1]), fz = f(xyz[2] / kWhite[2]);
     const double L = 116.0 * fy - 16.0;
     return {L, 0.01 * L * 500.0 * (fx - fy), 0.01 * L * 200.0 * (fy - fz)};
 }
 
 double hyab(const Vec3& a, const Vec3& b) {
-    return std::fabs(a[0] - b[0]) + std::sqrt((a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
+    return std::fabs(a[0] - b[0]) +
+           std::sqrt((a[1] - b[1]) * (a[1] - b[1]) + (a[2] - b[2]) * (a[2] - b[2]));
 }
 
 // Contrast sensitivity of one opponent channel as a sum of two Gaussians in visual degrees
@@ -127,7 +134,8 @@ double hyab(const Vec3& a, const Vec3& b) {
 struct Csf {
     double a1, b1, a2, b2;
 };
-constexpr Csf kCsfA = {1.0, 0.0047, 0.0, 1e-5}, kCsfRg = {1.0, 0.0053, 0.0, 1e-5}, kCsfBy = {34.1, 0.04, 13.5, 0.025};
+constexpr Csf kCsfA = {1.0, 0.0047, 0.0, 1e-5}, kCsfRg = {1.0, 0.0053, 0.0, 1e-5},
+              kCsfBy = {34.1, 0.04, 13.5, 0.025};
 
 Plane csfFilter(const Plane& in, const Csf& c, double ppd) {
     // The radius covers 3 standard deviations of the widest Gaussian of all three channels.
@@ -191,8 +199,10 @@ FeatureKernels featureKernels(double ppd) {
 
 // Per-pixel magnitude of the edge and point responses of a luminance plane.
 std::pair<Plane, Plane> features(const Plane& y, const FeatureKernels& k) {
-    Plane edgeX = filterCols(filterRows(y, k.edge), k.blur), edgeY = filterRows(filterCols(y, k.edge), k.blur);
-    Plane pointX = filterCols(filterRows(y, k.point), k.blur), pointY = filterRows(filterCols(y, k.point), k.blur);
+    Plane edgeX = filterCols(filterRows(y, k.edge), k.blur),
+          edgeY = filterRows(filterCols(y, k.edge), k.blur);
+    Plane pointX = filterCols(filterRows(y, k.point), k.blur),
+          pointY = filterRows(filterCols(y, k.point), k.blur);
     for (size_t i = 0; i < edgeX.v.size(); ++i) {
         edgeX.v[i] = std::hypot(edgeX.v[i], edgeY.v[i]);
         pointX.v[i] = std::hypot(pointX.v[i], pointY.v[i]);
@@ -201,8 +211,8 @@ std::pair<Plane, Plane> features(const Plane& y, const FeatureKernels& k) {
 }
 
 struct Prepared {
-    Plane c[3];    // YCxCz
-    Plane lum;     // relative luminance Y / Yn, what the feature detectors see
+    Plane c[3];  // YCxCz
+    Plane lum;   // relative luminance Y / Yn, what the feature detectors see
     Prepared(uint32_t w, uint32_t h) : c{Plane(w, h), Plane(w, h), Plane(w, h)}, lum(w, h) {}
 };
 
@@ -225,20 +235,25 @@ Prepared prepare(const Image& img, DisplayEncoding display) {
 
 }  // namespace
 
-Result<Image> flipErrorMap(const Image& reference, const Image& test, DisplayEncoding display, double ppd) {
-    if (reference.width != test.width || reference.height != test.height || reference.channels != test.channels)
+Result<Image> flipErrorMap(const Image& reference, const Image& test, DisplayEncoding display,
+                           double ppd) {
+    if (reference.width != test.width || reference.height != test.height ||
+        reference.channels != test.channels)
         return fail(ErrorCode::InvalidInput, "flip: the images differ in shape");
     if (reference.channels != 1 && reference.channels != 3)
-        return fail(ErrorCode::InvalidInput, "flip: compares 1 (grey) or 3 (colour) channels, got " +
-                                                 std::to_string(reference.channels));
+        return fail(ErrorCode::InvalidInput,
+                    "flip: compares 1 (grey) or 3 (colour) channels, got " +
+                        std::to_string(reference.channels));
     if (!(ppd > 0.0) || ppd > 1000.0)
-        return fail(ErrorCode::InvalidInput, "flip: pixels per degree must be in (0, 1000], got " + formatNumber(ppd));
+        return fail(ErrorCode::InvalidInput,
+                    "flip: pixels per degree must be in (0, 1000], got " + formatNumber(ppd));
     const uint32_t w = reference.width, h = reference.height;
     Prepared ref = prepare(reference, display), tst = prepare(test, display);
 
     // Colour pipeline.
     const Csf* csf[3] = {&kCsfA, &kCsfRg, &kCsfBy};
-    Plane fr[3] = {Plane(w, h), Plane(w, h), Plane(w, h)}, ft[3] = {Plane(w, h), Plane(w, h), Plane(w, h)};
+    Plane fr[3] = {Plane(w, h), Plane(w, h), Plane(w, h)},
+          ft[3] = {Plane(w, h), Plane(w, h), Plane(w, h)};
     for (int k = 0; k < 3; ++k) {
         fr[k] = csfFilter(ref.c[k], *csf[k], ppd);
         ft[k] = csfFilter(tst.c[k], *csf[k], ppd);
@@ -259,10 +274,13 @@ Result<Image> flipErrorMap(const Image& reference, const Image& test, DisplayEnc
     Image out(w, h, 1);
     for (size_t i = 0; i < size_t(w) * h; ++i) {
         const double de = std::pow(hyab(labAt(fr, i), labAt(ft, i)), qc);
-        const double colour = de < pc * cmax ? pt / (pc * cmax) * de : pt + (de - pc * cmax) / (cmax - pc * cmax) * (1.0 - pt);
-        const double feat = std::pow(std::max(std::fabs(edgeR.v[i] - edgeT.v[i]), std::fabs(pointR.v[i] - pointT.v[i])) /
-                                         std::sqrt(2.0),
-                                     qf);
+        const double colour = de < pc * cmax
+                                  ? pt / (pc * cmax) * de
+                                  : pt + (de - pc * cmax) / (cmax - pc * cmax) * (1.0 - pt);
+        const double feat = std::pow(
+            std::max(std::fabs(edgeR.v[i] - edgeT.v[i]), std::fabs(pointR.v[i] - pointT.v[i])) /
+                std::sqrt(2.0),
+            qf);
         out.pixels[i] = static_cast<float>(std::pow(colour, 1.0 - feat));
     }
     return out;

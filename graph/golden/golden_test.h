@@ -48,16 +48,16 @@ struct CaptureSpec {
 };
 
 struct GoldenTest {
-    std::string name;       // the script's file name without .lua
-    std::string file;       // the script as given
+    std::string name;  // the script's file name without .lua
+    std::string file;  // the script as given
     std::string doc;
-    std::string pipeline;   // as written in the script
+    std::string pipeline;  // as written in the script
     std::string scene, camera;
     uint32_t width = 0, height = 0;
     uint32_t frames = 1;
     std::map<std::string, Value> params;
     bool hasFrameCallback = false;
-    std::string golden;     // whose golden images: this test's name unless `golden` is set
+    std::string golden;  // whose golden images: this test's name unless `golden` is set
     std::vector<CaptureSpec> captures;  // by resource name
 };
 
@@ -65,11 +65,13 @@ struct GoldenTest {
 // ("tests/golden/x.lua"), followed by the field path: "tests/golden/x.lua: captures.output.metric:
 // unknown metric 'psnrr' (did you mean 'psnr'?); expected one of: 'max_abs', ...". A `frame` field
 // is given as hasFrame (functions are not Values).
-Result<GoldenTest> parseGoldenTest(const Value& table, bool hasFrame, const std::string& name, const std::string& where);
+Result<GoldenTest> parseGoldenTest(const Value& table, bool hasFrame, const std::string& name,
+                                   const std::string& where);
 
 // The golden test scripts (*.lua) directly in `dir` whose name matches `pattern`, sorted.
 // Errors: the folder does not exist (NotFound).
-Result<std::vector<std::string>> findGoldenTests(const std::string& dir, const std::string& pattern);
+Result<std::vector<std::string>> findGoldenTests(const std::string& dir,
+                                                 const std::string& pattern);
 
 // True when `name` matches `pattern`: an fnmatch glob ("deferred_*"); without wildcards, the
 // name itself. An empty pattern matches every name.
@@ -89,9 +91,11 @@ public:
     // Runs the script in a sandbox (base, string, table, math, utf8; no io, os, load, require)
     // and validates what it returned. `chunkName` is how errors name the file (the path
     // relative to the project root when it is inside it).
-    static Result<std::unique_ptr<GoldenScript>> load(const std::string& file, const std::string& chunkName,
+    static Result<std::unique_ptr<GoldenScript>> load(const std::string& file,
+                                                      const std::string& chunkName,
                                                       const Limits& limits);
-    static Result<std::unique_ptr<GoldenScript>> load(const std::string& file, const std::string& chunkName) {
+    static Result<std::unique_ptr<GoldenScript>> load(const std::string& file,
+                                                      const std::string& chunkName) {
         return load(file, chunkName, Limits{});
     }
     ~GoldenScript();

@@ -32,13 +32,23 @@
 
 namespace rg::golden {
 
-enum class Metric : uint8_t { MaxAbs, Rmse, Psnr, OverThreshold, RelMean, RelMax, Angular, Exact, Flip };
+enum class Metric : uint8_t {
+    MaxAbs,
+    Rmse,
+    Psnr,
+    OverThreshold,
+    RelMean,
+    RelMax,
+    Angular,
+    Exact,
+    Flip
+};
 
 struct MetricInfo {
     Metric metric;
-    const char* name;         // as golden test scripts write it
-    bool higherIsBetter;      // only psnr
-    const char* meaning;      // one line: what the value and the tolerance mean
+    const char* name;     // as golden test scripts write it
+    bool higherIsBetter;  // only psnr
+    const char* meaning;  // one line: what the value and the tolerance mean
 };
 const std::vector<MetricInfo>& metricInfos();
 const char* metricName(Metric m);
@@ -57,7 +67,8 @@ enum class NormalEncoding : uint8_t {
 enum class DisplayEncoding : uint8_t { Linear, Srgb };
 
 // FLIP's default observer: a 0.7 m wide 4K monitor seen from 0.7 m, 67 pixels per degree.
-inline constexpr double kFlipDefaultPixelsPerDegree = 0.7 * 3840.0 / 0.7 * 3.14159265358979323846 / 180.0;
+inline constexpr double kFlipDefaultPixelsPerDegree =
+    0.7 * 3840.0 / 0.7 * 3.14159265358979323846 / 180.0;
 
 // One comparison a golden test states for a capture: the metric, its tolerance and the
 // metric's own settings (each used only by the metrics named beside it).
@@ -68,8 +79,8 @@ struct Comparison {
     double threshold = 0.0;          // over_threshold: per-pixel max |a - e| that counts as "over"
     double epsilon = 1e-3;           // rel_mean, rel_max: floor of |e| in the denominator
     double peak = 1.0;               // psnr: the peak signal value
-    NormalEncoding normals = NormalEncoding::Signed;    // angular
-    DisplayEncoding display = DisplayEncoding::Linear;  // flip
+    NormalEncoding normals = NormalEncoding::Signed;       // angular
+    DisplayEncoding display = DisplayEncoding::Linear;     // flip
     double pixelsPerDegree = kFlipDefaultPixelsPerDegree;  // flip
 
     // "max_abs <= 0.002", "psnr >= 40 dB", "over_threshold(0.01) <= 0.001"
@@ -83,7 +94,7 @@ struct MetricResult {
     bool passed = false;
     std::string detail;  // where it is worst and secondary numbers, e.g. "worst pixel (3, 7): 0.25"
     int32_t worstX = -1, worstY = -1;  // the pixel with the largest error; -1 when all are equal
-    Image error;         // per-pixel error, 1 channel, same size as the images
+    Image error;                       // per-pixel error, 1 channel, same size as the images
     float heatScale = 1.0f;  // the error shown at the top of the heat map (flip, exact: 1)
 
     // "max_abs 0.25 > 0.002" / "psnr inf >= 40 dB"

@@ -20,7 +20,8 @@ namespace {
 // Writes `text` to a temp file beside `path` and renames it, so a failed write leaves what was there.
 Result<void> writeTextFile(const std::string& path, const std::string& text) {
     std::error_code ec;
-    if (auto parent = fs::path(path).parent_path(); !parent.empty()) fs::create_directories(parent, ec);
+    if (auto parent = fs::path(path).parent_path(); !parent.empty())
+        fs::create_directories(parent, ec);
     const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
     {
         std::ofstream out(tmp, std::ios::binary);
@@ -45,15 +46,27 @@ std::string xmlEscape(const std::string& s) {
     std::string out;
     for (char c : s) {
         switch (c) {
-        case '&': out += "&amp;"; break;
-        case '<': out += "&lt;"; break;
-        case '>': out += "&gt;"; break;
-        case '"': out += "&quot;"; break;
-        case '\'': out += "&apos;"; break;
-        default:
-            // XML 1.0 has no place for other control characters.
-            if (static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\t' && c != '\r') out += '?';
-            else out += c;
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            case '\'':
+                out += "&apos;";
+                break;
+            default:
+                // XML 1.0 has no place for other control characters.
+                if (static_cast<unsigned char>(c) < 0x20 && c != '\n' && c != '\t' && c != '\r')
+                    out += '?';
+                else
+                    out += c;
         }
     }
     return out;
@@ -72,7 +85,9 @@ std::string halfRgb(const Image& img) {
     for (uint32_t y = 0; y < img.height; ++y)
         for (uint32_t x = 0; x < img.width; ++x)
             for (uint32_t k = 0; k < 3; ++k) {
-                float v = img.channels == 1 ? img.at(x, y, 0) : k < img.channels ? img.at(x, y, k) : 0.0f;
+                float v = img.channels == 1  ? img.at(x, y, 0)
+                          : k < img.channels ? img.at(x, y, k)
+                                             : 0.0f;
                 const uint16_t h = floatToHalfBits(v);
                 bytes.push_back(static_cast<uint8_t>(h & 0xffu));
                 bytes.push_back(static_cast<uint8_t>(h >> 8));
@@ -83,7 +98,8 @@ std::string halfRgb(const Image& img) {
 std::string rgb8(const Image& img) {
     std::vector<uint8_t> bytes;
     bytes.reserve(size_t(img.width) * img.height * 3);
-    for (float v : img.pixels) bytes.push_back(static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)));
+    for (float v : img.pixels)
+        bytes.push_back(static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f)));
     return base64Encode(bytes.data(), bytes.size());
 }
 
@@ -228,8 +244,9 @@ struct Html {
     // Embeds an image, returns its element id.
     std::string embed(const Image& img, bool heat) {
         const std::string id = "img" + std::to_string(next++);
-        data << "<script type=\"application/octet-stream\" id=\"" << id << "\" data-w=\"" << img.width << "\" data-h=\""
-             << img.height << "\" data-kind=\"" << (heat ? "u8" : "f16") << "\">" << (heat ? rgb8(img) : halfRgb(img))
+        data << "<script type=\"application/octet-stream\" id=\"" << id << "\" data-w=\""
+             << img.width << "\" data-h=\"" << img.height << "\" data-kind=\""
+             << (heat ? "u8" : "f16") << "\">" << (heat ? rgb8(img) : halfRgb(img))
              << "</script>\n";
         return id;
     }
@@ -250,27 +267,35 @@ void writeCapture(Html& html, const TestOutcome& t, const CaptureOutcome& c) {
     auto& b = html.body;
     const bool first = c.resource == t.firstDivergent;
     b << "<div class=\"capture\" data-capture=\"" << htmlEscape(c.resource) << "\" data-mode=\""
-      << (c.display ? "display" : "linear") << "\" data-exposure=\"" << formatNumber(initialExposure(c)) << "\">\n";
-    b << "<h3>" << htmlEscape(c.resource) << " <small>" << htmlEscape(c.format) << " &middot; golden "
-      << storageName(c.storage);
+      << (c.display ? "display" : "linear") << "\" data-exposure=\""
+      << formatNumber(initialExposure(c)) << "\">\n";
+    b << "<h3>" << htmlEscape(c.resource) << " <small>" << htmlEscape(c.format)
+      << " &middot; golden " << storageName(c.storage);
     if (!c.writerPass.empty()) b << " &middot; written by " << htmlEscape(c.writerPass);
-    b << "</small>" << (first ? " <span class=\"bad\">&larr; first divergent resource in pipeline order</span>" : "")
+    b << "</small>"
+      << (first ? " <span class=\"bad\">&larr; first divergent resource in pipeline order</span>"
+                : "")
       << "</h3>\n";
     if (!c.note.empty()) b << "<p class=\"meta\">" << htmlEscape(c.note) << "</p>\n";
-    b << "<table class=\"metrics\"><tr><th>metric</th><th>value</th><th>tolerance</th><th>result</th><th>detail</th></tr>\n";
+    b << "<table "
+         "class=\"metrics\"><tr><th>metric</th><th>value</th><th>tolerance</th><th>result</"
+         "th><th>detail</th></tr>\n";
     for (const auto& cmp : c.comparisons) {
         const bool higher = cmp.spec.metric == Metric::Psnr;
         b << "<tr><td>" << metricName(cmp.spec.metric);
-        if (cmp.spec.metric == Metric::OverThreshold) b << "(" << formatNumber(cmp.spec.threshold) << ")";
+        if (cmp.spec.metric == Metric::OverThreshold)
+            b << "(" << formatNumber(cmp.spec.threshold) << ")";
         b << "</td>";
         if (!cmp.error.empty()) {
-            b << "<td>&ndash;</td><td>" << (higher ? "&ge; " : "&le; ") << formatNumber(cmp.spec.tolerance)
-              << "</td><td class=\"bad\">error</td><td>" << htmlEscape(cmp.error) << "</td></tr>\n";
+            b << "<td>&ndash;</td><td>" << (higher ? "&ge; " : "&le; ")
+              << formatNumber(cmp.spec.tolerance) << "</td><td class=\"bad\">error</td><td>"
+              << htmlEscape(cmp.error) << "</td></tr>\n";
             continue;
         }
         b << "<td>" << formatNumber(cmp.result.value) << "</td><td>" << (higher ? "&ge; " : "&le; ")
-          << formatNumber(cmp.spec.tolerance) << "</td><td class=\"" << (cmp.result.passed ? "ok\">pass" : "bad\">FAIL")
-          << "</td><td>" << htmlEscape(cmp.result.detail) << "</td></tr>\n";
+          << formatNumber(cmp.spec.tolerance) << "</td><td class=\""
+          << (cmp.result.passed ? "ok\">pass" : "bad\">FAIL") << "</td><td>"
+          << htmlEscape(cmp.result.detail) << "</td></tr>\n";
     }
     b << "</table>\n";
 
@@ -282,32 +307,41 @@ void writeCapture(Html& html, const TestOutcome& t, const CaptureOutcome& c) {
     std::string expectedId;
     if (haveExpected) {
         expectedId = html.embed(c.expected, false);
-        b << "<figure><figcaption>expected (golden)</figcaption><canvas class=\"expected\" data-img=\"" << expectedId
-          << "\" data-scale=\"" << scale << "\"></canvas></figure>\n";
+        b << "<figure><figcaption>expected (golden)</figcaption><canvas class=\"expected\" "
+             "data-img=\""
+          << expectedId << "\" data-scale=\"" << scale << "\"></canvas></figure>\n";
     }
-    b << "<figure><figcaption>actual</figcaption><canvas class=\"actual\" data-img=\"" << actualId << "\" data-scale=\""
-      << scale << "\"></canvas></figure>\n";
+    b << "<figure><figcaption>actual</figcaption><canvas class=\"actual\" data-img=\"" << actualId
+      << "\" data-scale=\"" << scale << "\"></canvas></figure>\n";
     if (haveExpected) {
-        b << "<figure><figcaption>swipe: expected | actual</figcaption><div class=\"swipebox\" style=\"width:"
+        b << "<figure><figcaption>swipe: expected | actual</figcaption><div class=\"swipebox\" "
+             "style=\"width:"
           << c.actual.width * scale << "px;height:" << c.actual.height * scale << "px\">"
-          << "<canvas class=\"under\" data-img=\"" << expectedId << "\" data-scale=\"" << scale << "\"></canvas>"
-          << "<canvas class=\"over\" data-img=\"" << actualId << "\" data-scale=\"" << scale << "\"></canvas>"
+          << "<canvas class=\"under\" data-img=\"" << expectedId << "\" data-scale=\"" << scale
+          << "\"></canvas>"
+          << "<canvas class=\"over\" data-img=\"" << actualId << "\" data-scale=\"" << scale
+          << "\"></canvas>"
           << "<div class=\"divider\"></div></div>"
-          << "<input type=\"range\" class=\"swipe\" min=\"0\" max=\"1000\" value=\"500\" style=\"width:"
-          << c.actual.width * scale << "px\" aria-label=\"swipe between expected and actual\"></figure>\n";
+          << "<input type=\"range\" class=\"swipe\" min=\"0\" max=\"1000\" value=\"500\" "
+             "style=\"width:"
+          << c.actual.width * scale
+          << "px\" aria-label=\"swipe between expected and actual\"></figure>\n";
         for (const auto& cmp : c.comparisons) {
             if (!cmp.error.empty() || cmp.result.error.width == 0) continue;
-            const std::string heatId = html.embed(heatMap(cmp.result.error, cmp.result.heatScale), true);
-            b << "<figure><figcaption>diff: " << metricName(cmp.spec.metric) << " (black 0 &hellip; yellow "
-              << formatNumber(cmp.result.heatScale) << ")</figcaption><canvas class=\"diff\" data-raw=\"1\" data-img=\""
-              << heatId << "\" data-scale=\"" << scale << "\"></canvas></figure>\n";
+            const std::string heatId =
+                html.embed(heatMap(cmp.result.error, cmp.result.heatScale), true);
+            b << "<figure><figcaption>diff: " << metricName(cmp.spec.metric)
+              << " (black 0 &hellip; yellow " << formatNumber(cmp.result.heatScale)
+              << ")</figcaption><canvas class=\"diff\" data-raw=\"1\" data-img=\"" << heatId
+              << "\" data-scale=\"" << scale << "\"></canvas></figure>\n";
         }
     } else {
         b << "<p class=\"bad\">no golden image to compare with</p>\n";
     }
     b << "</div>\n";
     if (!c.display)
-        b << "<div class=\"controls\"><label>exposure <input type=\"range\" class=\"exposure\" min=\"-10\" max=\"10\" "
+        b << "<div class=\"controls\"><label>exposure <input type=\"range\" class=\"exposure\" "
+             "min=\"-10\" max=\"10\" "
              "step=\"0.1\" value=\"0\"> <output class=\"ev\">+0.0 EV</output></label></div>\n";
     b << "</div>\n";
 }
@@ -316,9 +350,12 @@ void writeCapture(Html& html, const TestOutcome& t, const CaptureOutcome& c) {
 
 const char* storageName(Storage s) {
     switch (s) {
-    case Storage::Png: return "png";
-    case Storage::ExrHalf: return "exr-half";
-    case Storage::ExrFloat: return "exr-float";
+        case Storage::Png:
+            return "png";
+        case Storage::ExrHalf:
+            return "exr-half";
+        case Storage::ExrFloat:
+            return "exr-float";
     }
     return "?";
 }
@@ -327,23 +364,29 @@ const char* storageExtension(Storage s) { return s == Storage::Png ? ".png" : ".
 
 const char* testStatusName(TestStatus s) {
     switch (s) {
-    case TestStatus::Passed: return "PASS";
-    case TestStatus::Failed: return "FAIL";
-    case TestStatus::Error: return "ERROR";
+        case TestStatus::Passed:
+            return "PASS";
+        case TestStatus::Failed:
+            return "FAIL";
+        case TestStatus::Error:
+            return "ERROR";
     }
     return "?";
 }
 
 size_t RunReport::count(TestStatus s) const {
-    return static_cast<size_t>(std::count_if(tests.begin(), tests.end(), [&](const TestOutcome& t) { return t.status == s; }));
+    return static_cast<size_t>(std::count_if(tests.begin(), tests.end(),
+                                             [&](const TestOutcome& t) { return t.status == s; }));
 }
 
 std::string base64Encode(const uint8_t* data, size_t size) {
-    static const char* kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    static const char* kAlphabet =
+        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     std::string out;
     out.reserve((size + 2) / 3 * 4);
     for (size_t i = 0; i < size; i += 3) {
-        const uint32_t n = (uint32_t(data[i]) << 16) | (i + 1 < size ? uint32_t(data[i + 1]) << 8 : 0u) |
+        const uint32_t n = (uint32_t(data[i]) << 16) |
+                           (i + 1 < size ? uint32_t(data[i + 1]) << 8 : 0u) |
                            (i + 2 < size ? uint32_t(data[i + 2]) : 0u);
         out += kAlphabet[(n >> 18) & 63];
         out += kAlphabet[(n >> 12) & 63];
@@ -357,12 +400,23 @@ std::string htmlEscape(const std::string& s) {
     std::string out;
     for (char c : s) {
         switch (c) {
-        case '&': out += "&amp;"; break;
-        case '<': out += "&lt;"; break;
-        case '>': out += "&gt;"; break;
-        case '"': out += "&quot;"; break;
-        case '\'': out += "&#39;"; break;
-        default: out += c;
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '"':
+                out += "&quot;";
+                break;
+            case '\'':
+                out += "&#39;";
+                break;
+            default:
+                out += c;
         }
     }
     return out;
@@ -375,44 +429,57 @@ Result<void> writeHtmlReport(const std::string& dir, const RunReport& run) {
                  errors = run.count(TestStatus::Error);
     b << "<header><h1>rgraph golden tests: " << passed << " passed, " << failed << " failed";
     if (errors) b << ", " << errors << " errors";
-    b << "</h1>\n<p class=\"meta\">" << run.tests.size() << " tests in " << seconds(run.seconds) << " s &middot; "
-      << htmlEscape(run.environment.device) << " &middot; " << htmlEscape(run.environment.driver) << " &middot; CPU "
-      << htmlEscape(run.environment.cpu) << " (" << htmlEscape(run.environment.cpuFeatures) << ")<br>"
+    b << "</h1>\n<p class=\"meta\">" << run.tests.size() << " tests in " << seconds(run.seconds)
+      << " s &middot; " << htmlEscape(run.environment.device) << " &middot; "
+      << htmlEscape(run.environment.driver) << " &middot; CPU " << htmlEscape(run.environment.cpu)
+      << " (" << htmlEscape(run.environment.cpuFeatures) << ")<br>"
       << "determinism profile: " << htmlEscape(run.profile) << "</p></header>\n";
-    b << "<table class=\"summary\"><tr><th>result</th><th>test</th><th>pipeline</th><th>captures</th><th>time</th><th>what failed</th></tr>\n";
+    b << "<table "
+         "class=\"summary\"><tr><th>result</th><th>test</th><th>pipeline</th><th>captures</"
+         "th><th>time</th><th>what failed</th></tr>\n";
     for (const auto& t : run.tests) {
         const char* s = testStatusName(t.status);
-        b << "<tr class=\"" << s << "\" data-test=\"" << htmlEscape(t.name) << "\"><td><span class=\"badge " << s << "\">" << s
-          << "</span></td><td><a href=\"#test-" << htmlEscape(t.name) << "\">" << htmlEscape(t.name) << "</a></td><td>"
+        b << "<tr class=\"" << s << "\" data-test=\"" << htmlEscape(t.name)
+          << "\"><td><span class=\"badge " << s << "\">" << s << "</span></td><td><a href=\"#test-"
+          << htmlEscape(t.name) << "\">" << htmlEscape(t.name) << "</a></td><td>"
           << htmlEscape(t.pipeline) << "</td><td>";
         for (size_t i = 0; i < t.captures.size(); ++i) {
             const auto& c = t.captures[i];
-            b << (i ? ", " : "") << "<span class=\"" << (c.passed ? "ok" : "bad") << "\">" << htmlEscape(c.resource);
+            b << (i ? ", " : "") << "<span class=\"" << (c.passed ? "ok" : "bad") << "\">"
+              << htmlEscape(c.resource);
             for (const auto& cmp : c.comparisons)
-                if (cmp.error.empty()) b << " " << metricName(cmp.spec.metric) << " " << formatNumber(cmp.result.value);
+                if (cmp.error.empty())
+                    b << " " << metricName(cmp.spec.metric) << " "
+                      << formatNumber(cmp.result.value);
             b << "</span>";
         }
-        b << "</td><td>" << seconds(t.seconds) << " s</td><td>" << htmlEscape(t.message) << "</td></tr>\n";
+        b << "</td><td>" << seconds(t.seconds) << " s</td><td>" << htmlEscape(t.message)
+          << "</td></tr>\n";
     }
     b << "</table>\n";
 
     for (const auto& t : run.tests) {
         const char* s = testStatusName(t.status);
-        b << "<section class=\"test " << s << "\" id=\"test-" << htmlEscape(t.name) << "\" data-test=\"" << htmlEscape(t.name)
-          << "\">\n<h2><span class=\"badge " << s << "\">" << s << "</span> " << htmlEscape(t.name) << "</h2>\n";
-        b << "<p class=\"meta\">" << htmlEscape(t.file) << " &middot; pipeline " << htmlEscape(t.pipeline) << " &middot; "
-          << t.width << "&times;" << t.height << " &middot; " << t.frames << " frame" << (t.frames == 1 ? "" : "s")
-          << " &middot; " << seconds(t.seconds) << " s";
+        b << "<section class=\"test " << s << "\" id=\"test-" << htmlEscape(t.name)
+          << "\" data-test=\"" << htmlEscape(t.name) << "\">\n<h2><span class=\"badge " << s
+          << "\">" << s << "</span> " << htmlEscape(t.name) << "</h2>\n";
+        b << "<p class=\"meta\">" << htmlEscape(t.file) << " &middot; pipeline "
+          << htmlEscape(t.pipeline) << " &middot; " << t.width << "&times;" << t.height
+          << " &middot; " << t.frames << " frame" << (t.frames == 1 ? "" : "s") << " &middot; "
+          << seconds(t.seconds) << " s";
         if (t.golden != t.name) b << " &middot; goldens of '" << htmlEscape(t.golden) << "'";
         b << "</p>\n";
         if (!t.doc.empty()) b << "<p>" << htmlEscape(t.doc) << "</p>\n";
         if (!t.message.empty()) b << "<p class=\"message\">" << htmlEscape(t.message) << "</p>\n";
-        for (const auto& line : t.changes) b << "<p class=\"meta\">" << htmlEscape(line) << "</p>\n";
+        for (const auto& line : t.changes)
+            b << "<p class=\"meta\">" << htmlEscape(line) << "</p>\n";
         for (const auto& c : t.captures) writeCapture(html, t, c);
         b << "</section>\n";
     }
 
-    std::string page = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>rgraph golden tests</title>\n<style>";
+    std::string page =
+        "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<title>rgraph golden "
+        "tests</title>\n<style>";
     page += kStyle;
     page += "</style></head>\n<body>\n";
     page += b.str();
@@ -427,19 +494,24 @@ Result<void> writeJunit(const std::string& file, const RunReport& run) {
     const size_t failures = run.count(TestStatus::Failed), errors = run.count(TestStatus::Error);
     std::ostringstream x;
     x << "<?xml version=\"1.0\" encoding=\"UTF-8\"?>\n";
-    x << "<testsuites name=\"rgraph golden\" tests=\"" << run.tests.size() << "\" failures=\"" << failures << "\" errors=\""
-      << errors << "\" time=\"" << seconds(run.seconds) << "\">\n";
-    x << "  <testsuite name=\"golden\" tests=\"" << run.tests.size() << "\" failures=\"" << failures << "\" errors=\"" << errors
-      << "\" skipped=\"0\" time=\"" << seconds(run.seconds) << "\">\n";
+    x << "<testsuites name=\"rgraph golden\" tests=\"" << run.tests.size() << "\" failures=\""
+      << failures << "\" errors=\"" << errors << "\" time=\"" << seconds(run.seconds) << "\">\n";
+    x << "  <testsuite name=\"golden\" tests=\"" << run.tests.size() << "\" failures=\"" << failures
+      << "\" errors=\"" << errors << "\" skipped=\"0\" time=\"" << seconds(run.seconds) << "\">\n";
     for (const auto& t : run.tests) {
-        x << "    <testcase classname=\"golden\" name=\"" << xmlEscape(t.name) << "\" file=\"" << xmlEscape(t.file)
-          << "\" time=\"" << seconds(t.seconds) << "\">\n";
+        x << "    <testcase classname=\"golden\" name=\"" << xmlEscape(t.name) << "\" file=\""
+          << xmlEscape(t.file) << "\" time=\"" << seconds(t.seconds) << "\">\n";
         std::string details;
         for (const auto& c : t.captures)
             for (const auto& cmp : c.comparisons)
-                details += c.resource + ": " + (cmp.error.empty() ? cmp.result.verdict() + (cmp.result.passed ? "" : " FAIL") : cmp.error) + "\n";
+                details +=
+                    c.resource + ": " +
+                    (cmp.error.empty() ? cmp.result.verdict() + (cmp.result.passed ? "" : " FAIL")
+                                       : cmp.error) +
+                    "\n";
         if (t.status == TestStatus::Failed)
-            x << "      <failure message=\"" << xmlEscape(t.message) << "\">" << xmlEscape(details) << "</failure>\n";
+            x << "      <failure message=\"" << xmlEscape(t.message) << "\">" << xmlEscape(details)
+              << "</failure>\n";
         else if (t.status == TestStatus::Error)
             x << "      <error message=\"" << xmlEscape(t.message) << "\"></error>\n";
         if (!details.empty()) x << "      <system-out>" << xmlEscape(details) << "</system-out>\n";

@@ -18,7 +18,7 @@ enum class Storage : uint8_t {
     ExrHalf,   // half-float formats (r16f, rg16f, rgba16f, r11g11b10f): compressed half EXR
     ExrFloat,  // everything else (32-bit floats, integers, rgb10a2, depth): compressed float EXR
 };
-const char* storageName(Storage s);   // "png", "exr-half", "exr-float"
+const char* storageName(Storage s);       // "png", "exr-half", "exr-float"
 const char* storageExtension(Storage s);  // ".png", ".exr"
 
 struct ComparisonOutcome {
@@ -31,15 +31,17 @@ struct ComparisonOutcome {
 
 struct CaptureOutcome {
     std::string resource;
-    std::string format;       // "rgba16f"
+    std::string format;  // "rgba16f"
     Storage storage = Storage::ExrHalf;
-    bool display = false;     // values are display-encoded (shown as they are, no exposure)
-    std::string writerPass;   // the passes that write it in the plan, in execution order ("a, then b"; "" when none)
-    int32_t order = -1;       // the first of them's index in the plan: pipeline order (where a difference can start)
-    Image actual;             // quantised to the golden's storage
-    Image expected;           // empty (0 x 0) when there is no golden image
-    std::string expectedFile; // the golden image's path
-    std::string note;         // e.g. "no golden image", "updated: max_abs 0.25 > 0.002"
+    bool display = false;  // values are display-encoded (shown as they are, no exposure)
+    std::string
+        writerPass;  // the passes that write it in the plan, in execution order ("a, then b"; "" when none)
+    int32_t order =
+        -1;  // the first of them's index in the plan: pipeline order (where a difference can start)
+    Image actual;              // quantised to the golden's storage
+    Image expected;            // empty (0 x 0) when there is no golden image
+    std::string expectedFile;  // the golden image's path
+    std::string note;          // e.g. "no golden image", "updated: max_abs 0.25 > 0.002"
     std::vector<ComparisonOutcome> comparisons;
     std::vector<std::string> files;  // artefacts written for a failure
     bool passed = false;
@@ -54,14 +56,14 @@ const char* testStatusName(TestStatus s);  // "PASS", "FAIL", "ERROR"
 
 struct TestOutcome {
     std::string name;
-    std::string file;      // the script, relative to the project root where possible
+    std::string file;  // the script, relative to the project root where possible
     std::string doc;
     std::string pipeline;
-    std::string golden;    // whose golden images it compared with
+    std::string golden;  // whose golden images it compared with
     uint32_t width = 0, height = 0, frames = 0;
     TestStatus status = TestStatus::Error;
-    std::string message;         // the error, or what failed, in one line
-    bool badInput = false;       // Error caused by input (script, pipeline, parameters): exit code 2
+    std::string message;    // the error, or what failed, in one line
+    bool badInput = false;  // Error caused by input (script, pipeline, parameters): exit code 2
     std::string firstDivergent;  // the first capture in pipeline order that failed ("" if none)
     std::vector<CaptureOutcome> captures;  // in pipeline order
     std::vector<std::string> changes;      // --update: what it wrote or removed
@@ -71,13 +73,14 @@ struct TestOutcome {
 
 // Where the run happened: what the goldens record beside themselves.
 struct RunEnvironment {
-    std::string device;       // "llvmpipe (LLVM 15.0.6, 256 bits)"
-    std::string driver;       // "llvmpipe Mesa 22.3.6 (LLVM 15.0.6)"
-    std::string mesa;         // "22.3.6" ("" when the driver is not Mesa)
-    std::string cpu;          // model name from /proc/cpuinfo
-    std::string cpuFeatures;  // the SIMD features that change lavapipe's code: "sse4_1 avx avx2 fma f16c"
-    std::string lpNumThreads; // LP_NUM_THREADS as the run used it
-    std::string vectorWidth;  // LP_NATIVE_VECTOR_WIDTH when set
+    std::string device;  // "llvmpipe (LLVM 15.0.6, 256 bits)"
+    std::string driver;  // "llvmpipe Mesa 22.3.6 (LLVM 15.0.6)"
+    std::string mesa;    // "22.3.6" ("" when the driver is not Mesa)
+    std::string cpu;     // model name from /proc/cpuinfo
+    std::string
+        cpuFeatures;  // the SIMD features that change lavapipe's code: "sse4_1 avx avx2 fma f16c"
+    std::string lpNumThreads;  // LP_NUM_THREADS as the run used it
+    std::string vectorWidth;   // LP_NATIVE_VECTOR_WIDTH when set
 };
 
 struct RunReport {

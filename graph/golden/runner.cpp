@@ -26,12 +26,16 @@ namespace rg::golden {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double secondsSince(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+double secondsSince(Clock::time_point t) {
+    return std::chrono::duration<double>(Clock::now() - t).count();
+}
 
 constexpr double kFrameTime = 1.0 / 60.0;  // the profile's fixed frame time
-constexpr const char* kThreads = "2";      // the profile's LP_NUM_THREADS unless the environment sets one
+constexpr const char* kThreads =
+    "2";  // the profile's LP_NUM_THREADS unless the environment sets one
 const std::vector<std::string> kProfileOff = {"dither", "dithering", "jitter", "taa_jitter"};
-const char* kFrameTimeParam = "frame_time";  // a pipeline's own fixed frame time is pinned to kFrameTime
+const char* kFrameTimeParam =
+    "frame_time";  // a pipeline's own fixed frame time is pinned to kFrameTime
 
 // ---- where files are ----
 
@@ -79,7 +83,8 @@ RunEnvironment environmentOf(Runtime& rt) {
     // and whether FMA contracts, which is where 1-LSB differences between hosts come from.
     const std::string flags = " " + readCpuInfo("flags") + " ";
     for (const char* f : {"sse4_1", "sse4_2", "avx", "avx2", "fma", "f16c", "avx512f"})
-        if (flags.find(" " + std::string(f) + " ") != std::string::npos) e.cpuFeatures += (e.cpuFeatures.empty() ? "" : " ") + std::string(f);
+        if (flags.find(" " + std::string(f) + " ") != std::string::npos)
+            e.cpuFeatures += (e.cpuFeatures.empty() ? "" : " ") + std::string(f);
     if (const char* t = std::getenv("LP_NUM_THREADS")) e.lpNumThreads = t;
     if (const char* w = std::getenv("LP_NATIVE_VECTOR_WIDTH")) e.vectorWidth = w;
     return e;
@@ -109,7 +114,8 @@ nlohmann::ordered_json environmentJson(const RunEnvironment& e) {
 bool samePixels(const Image& a, const Image& b) {
     if (a.width != b.width || a.height != b.height || a.channels != b.channels) return false;
     for (size_t i = 0; i < a.pixels.size(); ++i)
-        if (!(a.pixels[i] == b.pixels[i] || (std::isnan(a.pixels[i]) && std::isnan(b.pixels[i])))) return false;
+        if (!(a.pixels[i] == b.pixels[i] || (std::isnan(a.pixels[i]) && std::isnan(b.pixels[i]))))
+            return false;
     return true;
 }
 
@@ -140,7 +146,8 @@ struct TestError {
 };
 
 std::unexpected<TestError> testError(const Error& e) {
-    const bool input = e.code == ErrorCode::InvalidInput || e.code == ErrorCode::NotFound || e.code == ErrorCode::Unsupported;
+    const bool input = e.code == ErrorCode::InvalidInput || e.code == ErrorCode::NotFound ||
+                       e.code == ErrorCode::Unsupported;
     return std::unexpected(TestError{e, input});
 }
 
@@ -159,7 +166,8 @@ std::expected<Prepared, TestError> prepare(Runtime& rt, const GoldenTest& test) 
     p.pipelineFile = fromRoot(test.pipeline);
     std::error_code ec;
     if (!fs::is_regular_file(p.pipelineFile, ec))
-        return testError(Error(ErrorCode::NotFound, where + ": pipeline: no pipeline script '" + test.pipeline + "'"));
+        return testError(Error(ErrorCode::NotFound,
+                               where + ": pipeline: no pipeline script '" + test.pipeline + "'"));
     LuaHost host(luaHostOptions(rt));
     auto pipeline = host.load(p.pipelineFile);
     if (!pipeline) return testError(pipeline.error());
@@ -170,26 +178,39 @@ std::expected<Prepared, TestError> prepare(Runtime& rt, const GoldenTest& test) 
             std::vector<std::string> names;
             for (const auto& q : pipeline->params) names.push_back(q.name);
             const std::string best = closestName(name, names);
-            return testError(Error(ErrorCode::InvalidInput, where + ": params." + name + ": the pipeline has no parameter '" +
-                                                                name + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)")));
+            return testError(Error(ErrorCode::InvalidInput,
+                                   where + ": params." + name +
+                                       ": the pipeline has no parameter '" + name + "'" +
+                                       (best.empty() ? "" : " (did you mean '" + best + "'?)")));
         }
         auto checked = checkParamValue(*d, value);
-        if (!checked) return testError(Error(ErrorCode::InvalidInput, where + ": params." + name + ": " + checked.error().message));
+        if (!checked)
+            return testError(Error(ErrorCode::InvalidInput,
+                                   where + ": params." + name + ": " + checked.error().message));
         p.params[name] = *checked;
     }
     for (const auto& d : pipeline->params) {
         if (test.params.count(d.name)) continue;
-        if (d.name == kFrameTimeParam && d.type == ParamType::Number && checkParamValue(d, Value(kFrameTime))) {
+        if (d.name == kFrameTimeParam && d.type == ParamType::Number &&
+            checkParamValue(d, Value(kFrameTime))) {
             p.params[d.name] = Value(kFrameTime);
             p.profileLog.push_back("frame_time = 1/60 s");
             continue;
         }
-        if (std::find(kProfileOff.begin(), kProfileOff.end(), d.name) == kProfileOff.end()) continue;
-        Value off = d.type == ParamType::Boolean ? Value(false) : d.type == ParamType::Choice ? Value("off") : Value(0.0);
-        if (d.type == ParamType::Choice && std::find(d.choices.begin(), d.choices.end(), "off") == d.choices.end()) off = Value("none");
+        if (std::find(kProfileOff.begin(), kProfileOff.end(), d.name) == kProfileOff.end())
+            continue;
+        Value off = d.type == ParamType::Boolean  ? Value(false)
+                    : d.type == ParamType::Choice ? Value("off")
+                                                  : Value(0.0);
+        if (d.type == ParamType::Choice &&
+            std::find(d.choices.begin(), d.choices.end(), "off") == d.choices.end())
+            off = Value("none");
         if (checkParamValue(d, off)) {
             p.params[d.name] = off;
-            p.profileLog.push_back(d.name + " = " + (off.isBool() ? "false" : off.isString() ? off.asString() : "0"));
+            p.profileLog.push_back(d.name + " = " +
+                                   (off.isBool()     ? "false"
+                                    : off.isString() ? off.asString()
+                                                     : "0"));
         }
     }
 
@@ -198,8 +219,10 @@ std::expected<Prepared, TestError> prepare(Runtime& rt, const GoldenTest& test) 
             std::vector<std::string> names;
             for (const auto& res : pipeline->graph.resources) names.push_back(res.name);
             const std::string best = closestName(c.resource, names);
-            return testError(Error(ErrorCode::NotFound, where + ": captures." + c.resource + ": the pipeline has no resource named '" +
-                                                            c.resource + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)")));
+            return testError(Error(ErrorCode::NotFound,
+                                   where + ": captures." + c.resource +
+                                       ": the pipeline has no resource named '" + c.resource + "'" +
+                                       (best.empty() ? "" : " (did you mean '" + best + "'?)")));
         }
         p.captures.push_back(c.resource);
     }
@@ -207,8 +230,8 @@ std::expected<Prepared, TestError> prepare(Runtime& rt, const GoldenTest& test) 
 }
 
 // Reads the captures back after the last frame, with the pass that last writes each.
-std::expected<std::map<std::string, Capture>, TestError> readCaptures(gpu::Executor& executor, const std::vector<std::string>& names,
-                                                                       const std::string& where) {
+std::expected<std::map<std::string, Capture>, TestError> readCaptures(
+    gpu::Executor& executor, const std::vector<std::string>& names, const std::string& where) {
     std::map<std::string, Capture> out;
     if (auto r = executor.finish(); !r) return testError(r.error());
     const Plan& plan = executor.plan();
@@ -218,22 +241,28 @@ std::expected<std::map<std::string, Capture>, TestError> readCaptures(gpu::Execu
         if (ri >= 0 && plan.resources[static_cast<size_t>(ri)].kind == ResourceKind::Buffer) {
             // A buffer is captured as an array of 32-bit floats: one row, one channel.
             auto bytes = executor.readbackBuffer(name);
-            if (!bytes) return testError(Error(bytes.error().code, where + ": captures." + name + ": " + bytes.error().message));
+            if (!bytes)
+                return testError(Error(bytes.error().code, where + ": captures." + name + ": " +
+                                                               bytes.error().message));
             c.image = Image(static_cast<uint32_t>(bytes->size() / 4), 1, 1);
             std::memcpy(c.image.pixels.data(), bytes->data(), c.image.pixels.size() * 4);
             c.format = kBufferFormat;
         } else {
             auto img = executor.readback(name);
-            if (!img) return testError(Error(img.error().code, where + ": captures." + name + ": " + img.error().message));
+            if (!img)
+                return testError(Error(img.error().code,
+                                       where + ": captures." + name + ": " + img.error().message));
             c.image = std::move(*img);
-            if (ri >= 0) c.format = std::string(formatName(plan.resources[static_cast<size_t>(ri)].format));
+            if (ri >= 0)
+                c.format = std::string(formatName(plan.resources[static_cast<size_t>(ri)].format));
         }
         // Every pass that writes it, in execution order: a difference in the captured (final)
         // contents can start at the first of them, so that one orders the captures.
         for (size_t i = 0; i < plan.passes.size(); ++i) {
-            const bool writes = std::any_of(plan.passes[i].accesses.begin(), plan.passes[i].accesses.end(), [&](const auto& a) {
-                return static_cast<int32_t>(a.resource) == ri && usageWrites(a.usage);
-            });
+            const bool writes = std::any_of(
+                plan.passes[i].accesses.begin(), plan.passes[i].accesses.end(), [&](const auto& a) {
+                    return static_cast<int32_t>(a.resource) == ri && usageWrites(a.usage);
+                });
             if (!writes) continue;
             if (c.order < 0) c.order = static_cast<int32_t>(i);
             c.writer += (c.writer.empty() ? "'" : ", then '") + plan.passes[i].name + "'";
@@ -245,7 +274,8 @@ std::expected<std::map<std::string, Capture>, TestError> readCaptures(gpu::Execu
 
 // Renders through a Session of its own runtime (a fresh device per test: no scene, persistent
 // contents or memory carry over from one test to the next).
-std::expected<Rendered, TestError> renderWithSession(const Prepared& p, const GoldenTest& test, GoldenScript& script,
+std::expected<Rendered, TestError> renderWithSession(const Prepared& p, const GoldenTest& test,
+                                                     GoldenScript& script,
                                                      const RunnerOptions& options, std::FILE* out) {
     RuntimeOptions ro;
     ro.device = options.device;
@@ -257,7 +287,9 @@ std::expected<Rendered, TestError> renderWithSession(const Prepared& p, const Go
     so.captures = p.captures;
     so.params = p.params;
     if (test.hasFrameCallback)
-        so.frameHook = [&script](const FrameContext& ctx, const PipelineDesc& current) { return script.frame(ctx, current); };
+        so.frameHook = [&script](const FrameContext& ctx, const PipelineDesc& current) {
+            return script.frame(ctx, current);
+        };
     so.scene = test.scene.empty() ? std::string() : fromRoot(test.scene);
     so.camera = test.camera;
     so.bakeLightmap = bake::bakeLightmap;
@@ -278,7 +310,8 @@ std::expected<Rendered, TestError> renderWithSession(const Prepared& p, const Go
     return result;
 }
 
-std::expected<Rendered, TestError> render(Runtime& rt, GoldenScript& script, const RunnerOptions& options, std::FILE* out) {
+std::expected<Rendered, TestError> render(Runtime& rt, GoldenScript& script,
+                                          const RunnerOptions& options, std::FILE* out) {
     const GoldenTest& test = script.test();
     auto prepared = prepare(rt, test);
     if (!prepared) return std::unexpected(prepared.error());
@@ -300,8 +333,10 @@ void compareCapture(CaptureOutcome& co, const CaptureSpec& spec) {
         ComparisonOutcome o;
         o.spec = cmp;
         auto r = compare(co.actual, co.expected, cmp);
-        if (r) o.result = std::move(*r);
-        else o.error = r.error().message;
+        if (r)
+            o.result = std::move(*r);
+        else
+            o.error = r.error().message;
         co.passed = co.passed && o.passed();
         co.comparisons.push_back(std::move(o));
     }
@@ -309,13 +344,15 @@ void compareCapture(CaptureOutcome& co, const CaptureSpec& spec) {
 
 std::string verdicts(const CaptureOutcome& co) {
     std::string s;
-    for (const auto& c : co.comparisons) s += (s.empty() ? "" : ", ") + (c.error.empty() ? c.result.verdict() : c.error);
+    for (const auto& c : co.comparisons)
+        s += (s.empty() ? "" : ", ") + (c.error.empty() ? c.result.verdict() : c.error);
     return s;
 }
 
 std::string sizeText(uint32_t w, uint32_t h) { return std::to_string(w) + "x" + std::to_string(h); }
 
-nlohmann::ordered_json sidecarWithoutEnvironment(const GoldenTest& t, const std::vector<CaptureOutcome>& caps,
+nlohmann::ordered_json sidecarWithoutEnvironment(const GoldenTest& t,
+                                                 const std::vector<CaptureOutcome>& caps,
                                                  const std::vector<std::string>& profileApplied) {
     nlohmann::ordered_json j;
     j["test"] = t.name;
@@ -326,8 +363,10 @@ nlohmann::ordered_json sidecarWithoutEnvironment(const GoldenTest& t, const std:
     j["frames"] = t.frames;
     nlohmann::ordered_json params = nlohmann::ordered_json::object();
     for (const auto& [k, v] : t.params)
-        params[k] = v.isNumber() ? nlohmann::ordered_json(v.asNumber()) : v.isBool() ? nlohmann::ordered_json(v.asBool())
-                                 : v.isString() ? nlohmann::ordered_json(v.asString()) : nlohmann::ordered_json(v.typeName());
+        params[k] = v.isNumber()   ? nlohmann::ordered_json(v.asNumber())
+                    : v.isBool()   ? nlohmann::ordered_json(v.asBool())
+                    : v.isString() ? nlohmann::ordered_json(v.asString())
+                                   : nlohmann::ordered_json(v.typeName());
     j["params"] = params;
     nlohmann::ordered_json captures = nlohmann::ordered_json::object();
     for (const auto& c : caps) {
@@ -351,8 +390,9 @@ nlohmann::ordered_json sidecarWithoutEnvironment(const GoldenTest& t, const std:
 }
 
 // Blesses the test's goldens; returns what changed, one line each.
-Result<std::vector<std::string>> bless(const GoldenTest& t, std::vector<CaptureOutcome>& caps, const std::string& dir,
-                                       const RunEnvironment& env, const std::vector<std::string>& profileApplied) {
+Result<std::vector<std::string>> bless(const GoldenTest& t, std::vector<CaptureOutcome>& caps,
+                                       const std::string& dir, const RunEnvironment& env,
+                                       const std::vector<std::string>& profileApplied) {
     std::vector<std::string> changes;
     bool wrote = false;
     std::set<std::string> keep = {"golden.json"};
@@ -360,24 +400,36 @@ Result<std::vector<std::string>> bless(const GoldenTest& t, std::vector<CaptureO
         const std::string file = c.resource + storageExtension(c.storage);
         keep.insert(file);
         const bool missing = c.expected.width == 0;
-        const bool shapeChanged = !missing && (c.expected.width != c.actual.width || c.expected.height != c.actual.height ||
+        const bool shapeChanged = !missing && (c.expected.width != c.actual.width ||
+                                               c.expected.height != c.actual.height ||
                                                c.expected.channels != c.actual.channels);
         if (!missing && !shapeChanged && c.passed) {
-            changes.push_back(samePixels(c.actual, c.expected) ? c.resource + ": unchanged"
-                                                                : c.resource + ": kept, within tolerance (" + verdicts(c) + ")");
+            changes.push_back(samePixels(c.actual, c.expected)
+                                  ? c.resource + ": unchanged"
+                                  : c.resource + ": kept, within tolerance (" + verdicts(c) + ")");
             continue;
         }
-        std::map<std::string, std::string> meta = {{"rgraph.test", t.name}, {"rgraph.resource", c.resource},
-                                                   {"rgraph.format", c.format}, {"rgraph.device", env.device},
+        std::map<std::string, std::string> meta = {{"rgraph.test", t.name},
+                                                   {"rgraph.resource", c.resource},
+                                                   {"rgraph.format", c.format},
+                                                   {"rgraph.device", env.device},
                                                    {"rgraph.driver", env.driver}};
-        if (auto r = writeStored(c.expectedFile, c.actual, c.storage, isSrgbFormat(c.format), meta); !r) return std::unexpected(r.error());
+        if (auto r = writeStored(c.expectedFile, c.actual, c.storage, isSrgbFormat(c.format), meta);
+            !r)
+            return std::unexpected(r.error());
         wrote = true;
-        if (missing) changes.push_back(c.resource + ": new golden " + relativeToRoot(c.expectedFile) + " (" + c.format + ", " +
-                                       std::to_string(c.actual.width) + "x" + std::to_string(c.actual.height) + ")");
+        if (missing)
+            changes.push_back(c.resource + ": new golden " + relativeToRoot(c.expectedFile) + " (" +
+                              c.format + ", " + std::to_string(c.actual.width) + "x" +
+                              std::to_string(c.actual.height) + ")");
         else if (shapeChanged)
-            changes.push_back(c.resource + ": updated " + relativeToRoot(c.expectedFile) + " (was " + std::to_string(c.expected.width) +
-                              "x" + std::to_string(c.expected.height) + "x" + std::to_string(c.expected.channels) + ")");
-        else changes.push_back(c.resource + ": updated " + relativeToRoot(c.expectedFile) + " (was: " + verdicts(c) + ")");
+            changes.push_back(c.resource + ": updated " + relativeToRoot(c.expectedFile) +
+                              " (was " + std::to_string(c.expected.width) + "x" +
+                              std::to_string(c.expected.height) + "x" +
+                              std::to_string(c.expected.channels) + ")");
+        else
+            changes.push_back(c.resource + ": updated " + relativeToRoot(c.expectedFile) +
+                              " (was: " + verdicts(c) + ")");
         c.expected = c.actual;
         c.note = changes.back();
         // The report shows the state after blessing.
@@ -394,7 +446,8 @@ Result<std::vector<std::string>> bless(const GoldenTest& t, std::vector<CaptureO
             const std::string ext = entry.path().extension().string();
             if ((ext == ".exr" || ext == ".png") && !keep.count(name)) {
                 fs::remove(entry.path(), ec);
-                changes.push_back("removed " + relativeToRoot(entry.path().string()) + " (no capture names it)");
+                changes.push_back("removed " + relativeToRoot(entry.path().string()) +
+                                  " (no capture names it)");
                 wrote = true;
             }
         }
@@ -421,7 +474,8 @@ Result<std::vector<std::string>> bless(const GoldenTest& t, std::vector<CaptureO
         std::ofstream(tmp) << text;
         fs::rename(tmp, sidecar, ec);
         if (ec) return fail(ErrorCode::Io, "cannot write '" + sidecar + "': " + ec.message());
-        if (!wrote) changes.push_back("golden.json: updated (the test's captures or comparisons changed)");
+        if (!wrote)
+            changes.push_back("golden.json: updated (the test's captures or comparisons changed)");
     }
     return changes;
 }
@@ -431,14 +485,22 @@ void writeArtefacts(CaptureOutcome& c, const std::string& dir) {
     const std::string base = (fs::path(dir) / c.resource).string();
     const std::string ext = storageExtension(c.storage);
     auto note = [&](const std::string& path, Result<void> r) {
-        if (r) c.files.push_back(path);
-        else c.note += (c.note.empty() ? "" : "; ") + r.error().message;
+        if (r)
+            c.files.push_back(path);
+        else
+            c.note += (c.note.empty() ? "" : "; ") + r.error().message;
     };
-    note(base + ".actual" + ext, writeStored(base + ".actual" + ext, c.actual, c.storage, isSrgbFormat(c.format), {}));
-    if (c.storage != Storage::Png) note(base + ".actual.png", writePng(base + ".actual.png", previewImage(c.actual, c.display)));
+    note(base + ".actual" + ext,
+         writeStored(base + ".actual" + ext, c.actual, c.storage, isSrgbFormat(c.format), {}));
+    if (c.storage != Storage::Png)
+        note(base + ".actual.png",
+             writePng(base + ".actual.png", previewImage(c.actual, c.display)));
     if (c.expected.width > 0) {
-        note(base + ".expected" + ext, writeStored(base + ".expected" + ext, c.expected, c.storage, isSrgbFormat(c.format), {}));
-        if (c.storage != Storage::Png) note(base + ".expected.png", writePng(base + ".expected.png", previewImage(c.expected, c.display)));
+        note(base + ".expected" + ext, writeStored(base + ".expected" + ext, c.expected, c.storage,
+                                                   isSrgbFormat(c.format), {}));
+        if (c.storage != Storage::Png)
+            note(base + ".expected.png",
+                 writePng(base + ".expected.png", previewImage(c.expected, c.display)));
     }
     for (auto& cmp : c.comparisons) {
         if (!cmp.error.empty() || cmp.result.error.width == 0) continue;
@@ -449,8 +511,8 @@ void writeArtefacts(CaptureOutcome& c, const std::string& dir) {
     }
 }
 
-TestOutcome runOne(Runtime& rt, const std::string& file, const RunnerOptions& options, const RunEnvironment& env,
-                   std::FILE* out) {
+TestOutcome runOne(Runtime& rt, const std::string& file, const RunnerOptions& options,
+                   const RunEnvironment& env, std::FILE* out) {
     const auto t0 = Clock::now();
     TestOutcome t;
     t.file = relativeToRoot(file);
@@ -493,27 +555,34 @@ TestOutcome runOne(Runtime& rt, const std::string& file, const RunnerOptions& op
         co.writerPass = cap.writer;
         co.order = cap.order;
         co.actual = quantizeForStorage(cap.image, co.storage, isSrgbFormat(cap.format));
-        co.expectedFile = (fs::path(goldenDir) / (spec.resource + storageExtension(co.storage))).string();
+        co.expectedFile =
+            (fs::path(goldenDir) / (spec.resource + storageExtension(co.storage))).string();
         std::error_code ec;
         if (fs::exists(co.expectedFile, ec)) {
             auto expected = readStored(co.expectedFile, co.storage, isSrgbFormat(cap.format));
-            if (expected) co.expected = std::move(*expected);
-            else co.note = "cannot read the golden: " + expected.error().message;
+            if (expected)
+                co.expected = std::move(*expected);
+            else
+                co.note = "cannot read the golden: " + expected.error().message;
         } else {
-            co.note = "no golden image " + relativeToRoot(co.expectedFile) + ": bless it with 'rgraph test " + test.name + " --update'";
+            co.note = "no golden image " + relativeToRoot(co.expectedFile) +
+                      ": bless it with 'rgraph test " + test.name + " --update'";
         }
-        if (co.expected.width > 0) compareCapture(co, spec);
+        if (co.expected.width > 0)
+            compareCapture(co, spec);
         else {
             co.passed = false;
-            for (const auto& cmp : spec.comparisons) co.comparisons.push_back(ComparisonOutcome{cmp, {}, "no golden image", ""});
+            for (const auto& cmp : spec.comparisons)
+                co.comparisons.push_back(ComparisonOutcome{cmp, {}, "no golden image", ""});
         }
         t.captures.push_back(std::move(co));
     }
     // Pipeline order: by the first pass that writes each capture, then by name — so a change in
     // the G-buffer pass names a G-buffer target first, not a later pass that also writes it.
-    std::stable_sort(t.captures.begin(), t.captures.end(), [](const CaptureOutcome& a, const CaptureOutcome& b) {
-        return a.order != b.order ? a.order < b.order : a.resource < b.resource;
-    });
+    std::stable_sort(t.captures.begin(), t.captures.end(),
+                     [](const CaptureOutcome& a, const CaptureOutcome& b) {
+                         return a.order != b.order ? a.order < b.order : a.resource < b.resource;
+                     });
 
     if (options.update && test.golden == test.name) {
         std::vector<std::string> applied;
@@ -550,15 +619,18 @@ TestOutcome runOne(Runtime& rt, const std::string& file, const RunnerOptions& op
         auto j = nlohmann::ordered_json::parse(text, nullptr, false);
         if (!j.is_discarded() && j.contains("made_with")) {
             const auto& m = j["made_with"];
-            const std::string dev = m.value("device", ""), drv = m.value("driver", ""), feat = m.value("cpu_features", "");
+            const std::string dev = m.value("device", ""), drv = m.value("driver", ""),
+                              feat = m.value("cpu_features", "");
             if (dev != env.device || drv != env.driver || feat != env.cpuFeatures)
-                t.message += "\n(the goldens were made with " + dev + ", " + drv + ", CPU features '" + feat + "'; this run: " +
-                             env.device + ", " + env.driver + ", '" + env.cpuFeatures + "')";
+                t.message += "\n(the goldens were made with " + dev + ", " + drv +
+                             ", CPU features '" + feat + "'; this run: " + env.device + ", " +
+                             env.driver + ", '" + env.cpuFeatures + "')";
         }
     }
     if (const uint32_t n = validationMessages; n > 0) {
         t.status = TestStatus::Failed;
-        t.message = std::to_string(n) + " Vulkan validation message(s), printed above" + (t.message.empty() ? "" : "; " + t.message);
+        t.message = std::to_string(n) + " Vulkan validation message(s), printed above" +
+                    (t.message.empty() ? "" : "; " + t.message);
     }
     t.seconds = secondsSince(t0);
     return t;
@@ -574,7 +646,9 @@ void print(std::FILE* out, const TestOutcome& t) {
             if (c.expected.width == 0) break;
             const std::string v = cmp.error.empty() ? cmp.result.verdict() : cmp.error;
             std::fprintf(out, "        %-16s %-44s %s\n", c.resource.c_str(), v.c_str(),
-                         cmp.passed() ? "ok" : (c.resource == t.firstDivergent ? "FAIL  <- first divergent" : "FAIL"));
+                         cmp.passed() ? "ok"
+                                      : (c.resource == t.firstDivergent ? "FAIL  <- first divergent"
+                                                                        : "FAIL"));
             if (!cmp.passed() && cmp.error.empty() && !cmp.result.detail.empty())
                 std::fprintf(out, "        %-16s   %s\n", "", cmp.result.detail.c_str());
         }
@@ -587,7 +661,8 @@ void print(std::FILE* out, const TestOutcome& t) {
     for (const auto& line : t.changes) std::fprintf(out, "        update: %s\n", line.c_str());
     if (t.status != TestStatus::Passed && !t.message.empty()) {
         std::string m = t.message;
-        for (size_t at = 0; (at = m.find('\n', at)) != std::string::npos; at += 9) m.replace(at, 1, "\n        ");
+        for (size_t at = 0; (at = m.find('\n', at)) != std::string::npos; at += 9)
+            m.replace(at, 1, "\n        ");
         std::fprintf(out, "        %s\n", m.c_str());
     }
     std::fflush(out);
@@ -606,8 +681,10 @@ Result<RunReport> runGoldenTests(const RunnerOptions& optionsIn, std::FILE* out)
         std::string names;
         for (const auto& f : all ? *all : std::vector<std::string>{})
             names += (names.empty() ? "" : ", ") + fs::path(f).stem().string();
-        return fail(ErrorCode::NotFound, "no golden test matches '" + options.pattern + "' in " + relativeToRoot(options.testDir) +
-                                             (names.empty() ? " (it has none)" : " (tests: " + names + ")"));
+        return fail(ErrorCode::NotFound,
+                    "no golden test matches '" + options.pattern + "' in " +
+                        relativeToRoot(options.testDir) +
+                        (names.empty() ? " (it has none)" : " (tests: " + names + ")"));
     }
 
     // The determinism profile's thread count, before the Vulkan driver reads it.
@@ -622,8 +699,9 @@ Result<RunReport> runGoldenTests(const RunnerOptions& optionsIn, std::FILE* out)
     report.update = options.update;
     report.environment = environmentOf(**rt);
     report.profile = profileLine(report.environment);
-    std::fprintf(out, "rgraph test: %zu golden test%s from %s on %s (%s; %s)\n", files->size(), files->size() == 1 ? "" : "s",
-                 relativeToRoot(options.testDir).c_str(), report.environment.device.c_str(), report.environment.driver.c_str(),
+    std::fprintf(out, "rgraph test: %zu golden test%s from %s on %s (%s; %s)\n", files->size(),
+                 files->size() == 1 ? "" : "s", relativeToRoot(options.testDir).c_str(),
+                 report.environment.device.c_str(), report.environment.driver.c_str(),
                  report.profile.c_str());
     std::fflush(out);
     for (const auto& file : *files) {
@@ -631,11 +709,14 @@ Result<RunReport> runGoldenTests(const RunnerOptions& optionsIn, std::FILE* out)
         print(out, report.tests.back());
     }
     report.seconds = secondsSince(t0);
-    std::fprintf(out, "rgraph test: %zu passed, %zu failed, %zu errors (%.2f s)\n", report.count(TestStatus::Passed),
-                 report.count(TestStatus::Failed), report.count(TestStatus::Error), report.seconds);
+    std::fprintf(out, "rgraph test: %zu passed, %zu failed, %zu errors (%.2f s)\n",
+                 report.count(TestStatus::Passed), report.count(TestStatus::Failed),
+                 report.count(TestStatus::Error), report.seconds);
     if (!options.reportDir.empty()) {
-        if (auto r = writeHtmlReport(options.reportDir, report); !r) return std::unexpected(r.error());
-        std::fprintf(out, "rgraph test: report %s\n", (fs::path(options.reportDir) / "index.html").string().c_str());
+        if (auto r = writeHtmlReport(options.reportDir, report); !r)
+            return std::unexpected(r.error());
+        std::fprintf(out, "rgraph test: report %s\n",
+                     (fs::path(options.reportDir) / "index.html").string().c_str());
     }
     if (!options.junitFile.empty()) {
         if (auto r = writeJunit(options.junitFile, report); !r) return std::unexpected(r.error());

@@ -38,14 +38,14 @@
 namespace rg::golden {
 
 struct RunnerOptions {
-    std::string pattern;    // a test name or a glob ("deferred_*"); empty = every test
-    std::string testDir;    // default <project>/tests/golden
-    std::string imageDir;   // default <project>/tests/golden/images
+    std::string pattern;                // a test name or a glob ("deferred_*"); empty = every test
+    std::string testDir;                // default <project>/tests/golden
+    std::string imageDir;               // default <project>/tests/golden/images
     std::string outDir = "out/golden";  // failure artefacts
-    std::string reportDir;  // write DIR/index.html when set
-    std::string junitFile;  // write JUnit XML when set
+    std::string reportDir;              // write DIR/index.html when set
+    std::string junitFile;              // write JUnit XML when set
     bool update = false;
-    bool verbose = false;   // print each rebuild of the session
+    bool verbose = false;  // print each rebuild of the session
     std::optional<uint32_t> device;
 };
 

@@ -27,7 +27,6 @@ namespace {
 
 constexpr int kMaxDepth = 32;
 
-
 // Glue errors are thrown as lua::ScriptError and raised by lua::guarded (lua/lua_sandbox.h).
 using lua::guarded;
 using lua::ScriptError;
@@ -41,67 +40,81 @@ std::string located(const std::string& where, const std::string& path) {
 
 // The Lua value at idx as a Value: tables with keys 1..n become lists, tables with string keys
 // become tables; functions are refused (only the top-level `frame` may be one).
-Result<Value> toValue(lua_State* L, int idx, const std::string& path, const std::string& where, int depth) {
+Result<Value> toValue(lua_State* L, int idx, const std::string& path, const std::string& where,
+                      int depth) {
     idx = lua_absindex(L, idx);
     switch (lua_type(L, idx)) {
-    case LUA_TNIL: return Value();
-    case LUA_TBOOLEAN: return Value(lua_toboolean(L, idx) != 0);
-    case LUA_TNUMBER: return Value(static_cast<double>(lua_tonumber(L, idx)));
-    case LUA_TSTRING: {
-        size_t n = 0;
-        const char* s = lua_tolstring(L, idx, &n);
-        return Value(std::string(s, n));
-    }
-    case LUA_TTABLE: {
-        if (depth > kMaxDepth) return fail(ErrorCode::InvalidInput, located(where, path) + "tables nested too deeply");
-        Value::Table table;
-        std::map<lua_Integer, Value> items;
-        lua_pushnil(L);
-        while (lua_next(L, idx) != 0) {
-            // Never lua_tostring a key: it would change the key under lua_next.
-            std::string key;
-            if (lua_type(L, -2) == LUA_TSTRING) {
-                key = lua_tostring(L, -2);
-                auto v = toValue(L, -1, path.empty() ? key : path + "." + key, where, depth + 1);
-                if (!v) {
+        case LUA_TNIL:
+            return Value();
+        case LUA_TBOOLEAN:
+            return Value(lua_toboolean(L, idx) != 0);
+        case LUA_TNUMBER:
+            return Value(static_cast<double>(lua_tonumber(L, idx)));
+        case LUA_TSTRING: {
+            size_t n = 0;
+            const char* s = lua_tolstring(L, idx, &n);
+            return Value(std::string(s, n));
+        }
+        case LUA_TTABLE: {
+            if (depth > kMaxDepth)
+                return fail(ErrorCode::InvalidInput,
+                            located(where, path) + "tables nested too deeply");
+            Value::Table table;
+            std::map<lua_Integer, Value> items;
+            lua_pushnil(L);
+            while (lua_next(L, idx) != 0) {
+                // Never lua_tostring a key: it would change the key under lua_next.
+                std::string key;
+                if (lua_type(L, -2) == LUA_TSTRING) {
+                    key = lua_tostring(L, -2);
+                    auto v =
+                        toValue(L, -1, path.empty() ? key : path + "." + key, where, depth + 1);
+                    if (!v) {
+                        lua_pop(L, 2);
+                        return v;
+                    }
+                    table[key] = std::move(*v);
+                } else if (lua_isinteger(L, -2)) {
+                    const lua_Integer k = lua_tointeger(L, -2);
+                    auto v = toValue(L, -1, path + "[" + std::to_string(k) + "]", where, depth + 1);
+                    if (!v) {
+                        lua_pop(L, 2);
+                        return v;
+                    }
+                    items[k] = std::move(*v);
+                } else {
+                    const std::string kt = typeName(L, -2);
                     lua_pop(L, 2);
-                    return v;
+                    return fail(ErrorCode::InvalidInput,
+                                located(where, path) + "a " + kt +
+                                    " key; tables take names or list positions");
                 }
-                table[key] = std::move(*v);
-            } else if (lua_isinteger(L, -2)) {
-                const lua_Integer k = lua_tointeger(L, -2);
-                auto v = toValue(L, -1, path + "[" + std::to_string(k) + "]", where, depth + 1);
-                if (!v) {
-                    lua_pop(L, 2);
-                    return v;
-                }
-                items[k] = std::move(*v);
-            } else {
-                const std::string kt = typeName(L, -2);
-                lua_pop(L, 2);
-                return fail(ErrorCode::InvalidInput, located(where, path) + "a " + kt + " key; tables take names or list positions");
+                lua_pop(L, 1);
             }
-            lua_pop(L, 1);
+            if (!items.empty() && !table.empty())
+                return fail(ErrorCode::InvalidInput,
+                            located(where, path) + "mixes list entries and named fields");
+            if (items.empty()) return Value(std::move(table));
+            Value::List list;
+            lua_Integer expect = 1;
+            for (auto& [k, v] : items) {
+                if (k != expect)
+                    return fail(ErrorCode::InvalidInput, located(where, path) +
+                                                             "a list with a hole at [" +
+                                                             std::to_string(expect) + "]");
+                list.push_back(std::move(v));
+                ++expect;
+            }
+            return Value(std::move(list));
         }
-        if (!items.empty() && !table.empty())
-            return fail(ErrorCode::InvalidInput, located(where, path) + "mixes list entries and named fields");
-        if (items.empty()) return Value(std::move(table));
-        Value::List list;
-        lua_Integer expect = 1;
-        for (auto& [k, v] : items) {
-            if (k != expect)
-                return fail(ErrorCode::InvalidInput, located(where, path) + "a list with a hole at [" + std::to_string(expect) + "]");
-            list.push_back(std::move(v));
-            ++expect;
-        }
-        return Value(std::move(list));
-    }
-    default:
-        return fail(ErrorCode::InvalidInput, located(where, path) + "a " + typeName(L, idx) + " is not allowed here" +
-                                                 (lua_type(L, idx) == LUA_TFUNCTION ? " (only the top-level 'frame' is a function)" : ""));
+        default:
+            return fail(ErrorCode::InvalidInput,
+                        located(where, path) + "a " + typeName(L, idx) + " is not allowed here" +
+                            (lua_type(L, idx) == LUA_TFUNCTION
+                                 ? " (only the top-level 'frame' is a function)"
+                                 : ""));
     }
 }
-
 
 // The frame callback's ctx is the rg.frame one (lua::callFrame).
 
@@ -115,11 +128,13 @@ int forbidden(lua_State* L) {
 GoldenScript::GoldenScript() : m(std::make_unique<Impl>()) {}
 GoldenScript::~GoldenScript() = default;
 
-Result<std::unique_ptr<GoldenScript>> GoldenScript::load(const std::string& file, const std::string& chunkName,
+Result<std::unique_ptr<GoldenScript>> GoldenScript::load(const std::string& file,
+                                                         const std::string& chunkName,
                                                          const Limits& limits) {
     std::ifstream in(file, std::ios::binary);
     if (!in) return fail(ErrorCode::NotFound, "cannot open golden test script '" + file + "'");
-    const std::string source((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const std::string source((std::istreambuf_iterator<char>(in)),
+                             std::istreambuf_iterator<char>());
 
     std::unique_ptr<GoldenScript> script(new GoldenScript());
     Impl& impl = *script->m;
@@ -155,7 +170,8 @@ Result<std::unique_ptr<GoldenScript>> GoldenScript::load(const std::string& file
         } else if (!lua_isnil(L, -1)) {
             const std::string t = typeName(L, -1);
             lua_pop(L, 2);
-            return fail(ErrorCode::InvalidInput, chunkName + ": frame: expected a function(ctx), got " + t);
+            return fail(ErrorCode::InvalidInput,
+                        chunkName + ": frame: expected a function(ctx), got " + t);
         } else {
             lua_pop(L, 1);
         }
@@ -165,8 +181,10 @@ Result<std::unique_ptr<GoldenScript>> GoldenScript::load(const std::string& file
     if (!value) return std::unexpected(value.error());
 
     std::string name = file;
-    if (auto slash = name.find_last_of('/'); slash != std::string::npos) name = name.substr(slash + 1);
-    if (name.size() > 4 && name.compare(name.size() - 4, 4, ".lua") == 0) name.resize(name.size() - 4);
+    if (auto slash = name.find_last_of('/'); slash != std::string::npos)
+        name = name.substr(slash + 1);
+    if (name.size() > 4 && name.compare(name.size() - 4, 4, ".lua") == 0)
+        name.resize(name.size() - 4);
     auto test = parseGoldenTest(*value, hasFrame, name, chunkName);
     if (!test) return std::unexpected(test.error());
     script->m_test = std::move(*test);

@@ -25,22 +25,32 @@ bool envFlag(const char* name) {
 
 const char* deviceTypeName(VkPhysicalDeviceType t) {
     switch (t) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return "discrete";
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return "integrated";
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return "virtual";
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return "cpu";
-    default: return "other";
+        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+            return "discrete";
+        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+            return "integrated";
+        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+            return "virtual";
+        case VK_PHYSICAL_DEVICE_TYPE_CPU:
+            return "cpu";
+        default:
+            return "other";
     }
 }
 
 // Lower is better: discrete GPU, integrated, virtual, CPU.
 int typeRank(VkPhysicalDeviceType t) {
     switch (t) {
-    case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU: return 0;
-    case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU: return 1;
-    case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU: return 2;
-    case VK_PHYSICAL_DEVICE_TYPE_CPU: return 3;
-    default: return 4;
+        case VK_PHYSICAL_DEVICE_TYPE_DISCRETE_GPU:
+            return 0;
+        case VK_PHYSICAL_DEVICE_TYPE_INTEGRATED_GPU:
+            return 1;
+        case VK_PHYSICAL_DEVICE_TYPE_VIRTUAL_GPU:
+            return 2;
+        case VK_PHYSICAL_DEVICE_TYPE_CPU:
+            return 3;
+        default:
+            return 4;
     }
 }
 
@@ -49,8 +59,9 @@ bool hasLayer(const char* name) {
     vkEnumerateInstanceLayerProperties(&n, nullptr);
     std::vector<VkLayerProperties> layers(n);
     vkEnumerateInstanceLayerProperties(&n, layers.data());
-    return std::any_of(layers.begin(), layers.end(),
-                       [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
+    return std::any_of(layers.begin(), layers.end(), [&](const VkLayerProperties& l) {
+        return std::strcmp(l.layerName, name) == 0;
+    });
 }
 
 bool hasInstanceExtension(const char* name) {
@@ -103,18 +114,23 @@ DeviceInfo describe(VkPhysicalDevice pd, uint32_t index) {
     VkPhysicalDeviceFeatures2 f{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
     f.pNext = &f13;
     vkGetPhysicalDeviceFeatures2(pd, &f);
-    if (!f13.dynamicRendering) d.whyNot = "no dynamicRendering";
-    else if (!f13.synchronization2) d.whyNot = "no synchronization2";
-    else if (!f13.maintenance4) d.whyNot = "no maintenance4";
-    else if (!f.features.imageCubeArray) d.whyNot = "no imageCubeArray (the local light probes' cube arrays)";
+    if (!f13.dynamicRendering)
+        d.whyNot = "no dynamicRendering";
+    else if (!f13.synchronization2)
+        d.whyNot = "no synchronization2";
+    else if (!f13.maintenance4)
+        d.whyNot = "no maintenance4";
+    else if (!f.features.imageCubeArray)
+        d.whyNot = "no imageCubeArray (the local light probes' cube arrays)";
     uint32_t n = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, nullptr);
     std::vector<VkQueueFamilyProperties> families(n);
     vkGetPhysicalDeviceQueueFamilyProperties(pd, &n, families.data());
-    bool queue = std::any_of(families.begin(), families.end(), [](const VkQueueFamilyProperties& q) {
-        return (q.queueFlags & VK_QUEUE_GRAPHICS_BIT) && (q.queueFlags & VK_QUEUE_COMPUTE_BIT) &&
-               q.timestampValidBits > 0;
-    });
+    bool queue =
+        std::any_of(families.begin(), families.end(), [](const VkQueueFamilyProperties& q) {
+            return (q.queueFlags & VK_QUEUE_GRAPHICS_BIT) &&
+                   (q.queueFlags & VK_QUEUE_COMPUTE_BIT) && q.timestampValidBits > 0;
+        });
     if (d.whyNot.empty() && !queue) d.whyNot = "no graphics+compute queue with timestamps";
     d.usable = d.whyNot.empty();
     return d;
@@ -138,7 +154,8 @@ Result<std::vector<DeviceInfo>> Context::listDevices() {
 // The host's device (ContextOptions::external): checked as far as Vulkan lets us, then adopted.
 Result<void> Context::adopt(const ExternalDevice& e) {
     if (!e.instance || !e.physicalDevice || !e.device || !e.queue)
-        return fail(ErrorCode::InvalidInput, "host device: instance, physical device, device and queue must all be given");
+        return fail(ErrorCode::InvalidInput,
+                    "host device: instance, physical device, device and queue must all be given");
     m_ownsDevice = false;
     m_instance = e.instance;
     m_physical = e.physicalDevice;
@@ -146,19 +163,26 @@ Result<void> Context::adopt(const ExternalDevice& e) {
     m_queue = e.queue;
     m_queueFamily = e.queueFamily;
     m_info = describe(e.physicalDevice, 0);
-    if (!m_info.usable) return fail(ErrorCode::Device, "host device '" + m_info.name + "' cannot be used: " + m_info.whyNot);
+    if (!m_info.usable)
+        return fail(ErrorCode::Device,
+                    "host device '" + m_info.name + "' cannot be used: " + m_info.whyNot);
     uint32_t nf = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(m_physical, &nf, nullptr);
     std::vector<VkQueueFamilyProperties> families(nf);
     vkGetPhysicalDeviceQueueFamilyProperties(m_physical, &nf, families.data());
     if (e.queueFamily >= nf || !(families[e.queueFamily].queueFlags & VK_QUEUE_GRAPHICS_BIT) ||
-        !(families[e.queueFamily].queueFlags & VK_QUEUE_COMPUTE_BIT) || !families[e.queueFamily].timestampValidBits)
-        return fail(ErrorCode::InvalidInput, "host device: queue family " + std::to_string(e.queueFamily) +
+        !(families[e.queueFamily].queueFlags & VK_QUEUE_COMPUTE_BIT) ||
+        !families[e.queueFamily].timestampValidBits)
+        return fail(ErrorCode::InvalidInput, "host device: queue family " +
+                                                 std::to_string(e.queueFamily) +
                                                  " must support graphics, compute and timestamps");
     // Debug labels and names when the host's instance has the extension (null otherwise).
-    m_beginLabel = reinterpret_cast<PFN_vkCmdBeginDebugUtilsLabelEXT>(vkGetInstanceProcAddr(m_instance, "vkCmdBeginDebugUtilsLabelEXT"));
-    m_endLabel = reinterpret_cast<PFN_vkCmdEndDebugUtilsLabelEXT>(vkGetInstanceProcAddr(m_instance, "vkCmdEndDebugUtilsLabelEXT"));
-    m_setName = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(vkGetInstanceProcAddr(m_instance, "vkSetDebugUtilsObjectNameEXT"));
+    m_beginLabel = reinterpret_cast<PFN_vkCmdBeginDebugUtilsLabelEXT>(
+        vkGetInstanceProcAddr(m_instance, "vkCmdBeginDebugUtilsLabelEXT"));
+    m_endLabel = reinterpret_cast<PFN_vkCmdEndDebugUtilsLabelEXT>(
+        vkGetInstanceProcAddr(m_instance, "vkCmdEndDebugUtilsLabelEXT"));
+    m_setName = reinterpret_cast<PFN_vkSetDebugUtilsObjectNameEXT>(
+        vkGetInstanceProcAddr(m_instance, "vkSetDebugUtilsObjectNameEXT"));
     m_debugUtils = m_beginLabel && m_endLabel && m_setName;
     return {};
 }
@@ -219,13 +243,13 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     if (options.deviceIndex) {
         uint32_t want = *options.deviceIndex;
         if (want >= n)
-            return fail(ErrorCode::InvalidInput, "--device " + std::to_string(want) +
-                                                     ": only " + std::to_string(n) +
+            return fail(ErrorCode::InvalidInput, "--device " + std::to_string(want) + ": only " +
+                                                     std::to_string(n) +
                                                      " Vulkan device(s) (see 'rgraph devices')");
         if (!infos[want].usable)
             return fail(ErrorCode::Device, "--device " + std::to_string(want) + " (" +
-                                               infos[want].name + ") cannot be used: " +
-                                               infos[want].whyNot);
+                                               infos[want].name +
+                                               ") cannot be used: " + infos[want].whyNot);
         chosen = static_cast<int>(want);
     } else {
         int bestRank = 99;
@@ -288,7 +312,8 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     features.features.samplerAnisotropy = supported.features.samplerAnisotropy;
     features.features.fragmentStoresAndAtomics = supported.features.fragmentStoresAndAtomics;
     features.features.independentBlend = supported.features.independentBlend;
-    features.features.imageCubeArray = VK_TRUE;  // cube textures of several cubes (light probes); required by describe()
+    features.features.imageCubeArray =
+        VK_TRUE;  // cube textures of several cubes (light probes); required by describe()
 
     VkDeviceCreateInfo info{VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO};
     info.pNext = &features;
@@ -320,10 +345,13 @@ Result<void> Context::createDeviceObjects(const ContextOptions& options) {
         std::ifstream in(options.pipelineCachePath, std::ios::binary);
         initial.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
         VkPipelineCacheHeaderVersionOne header{};
-        const bool fits = initial.size() >= sizeof header && (std::memcpy(&header, initial.data(), sizeof header), true) &&
-                          header.headerVersion == VK_PIPELINE_CACHE_HEADER_VERSION_ONE && header.vendorID == m_properties.vendorID &&
-                          header.deviceID == m_properties.deviceID &&
-                          std::memcmp(header.pipelineCacheUUID, m_properties.pipelineCacheUUID, VK_UUID_SIZE) == 0;
+        const bool fits =
+            initial.size() >= sizeof header &&
+            (std::memcpy(&header, initial.data(), sizeof header), true) &&
+            header.headerVersion == VK_PIPELINE_CACHE_HEADER_VERSION_ONE &&
+            header.vendorID == m_properties.vendorID && header.deviceID == m_properties.deviceID &&
+            std::memcmp(header.pipelineCacheUUID, m_properties.pipelineCacheUUID, VK_UUID_SIZE) ==
+                0;
         if (!fits) initial.clear();
     }
     VkPipelineCacheCreateInfo cacheInfo{VK_STRUCTURE_TYPE_PIPELINE_CACHE_CREATE_INFO};
@@ -347,7 +375,8 @@ Result<void> Context::savePipelineCache() const {
     }
     if (std::rename(tmp.c_str(), m_pipelineCachePath.c_str()) != 0) {
         std::remove(tmp.c_str());
-        return fail(ErrorCode::Io, "cannot replace the pipeline cache '" + m_pipelineCachePath + "'");
+        return fail(ErrorCode::Io,
+                    "cannot replace the pipeline cache '" + m_pipelineCachePath + "'");
     }
     return {};
 }
@@ -357,7 +386,8 @@ Context::~Context() {
         vkDeviceWaitIdle(m_device);
         for (uint32_t s = 0; s < m_deletions.size(); ++s) collectGarbage(s);
         if (m_pipelineCache) {
-            (void)savePipelineCache();  // best effort: a cache that cannot be written is only slower next time
+            (void)
+                savePipelineCache();  // best effort: a cache that cannot be written is only slower next time
             vkDestroyPipelineCache(m_device, m_pipelineCache, nullptr);
         }
         m_oneShotPool.reset();

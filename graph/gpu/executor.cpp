@@ -40,9 +40,9 @@ bool sameHeap(const TransientHeap& a, const TransientHeap& b) {
 // Same physical shape: a resource built for `a` serves `b`.
 bool sameShape(const PlanResource& a, const PlanResource& b) {
     return a.kind == b.kind && a.format == b.format && a.width == b.width && a.height == b.height &&
-           a.layers == b.layers && a.mips == b.mips && a.cube == b.cube && a.array == b.array && a.bufferSize == b.bufferSize &&
-           a.usageMask == b.usageMask && a.transient == b.transient && a.imported == b.imported &&
-           a.persistent == b.persistent;
+           a.layers == b.layers && a.mips == b.mips && a.cube == b.cube && a.array == b.array &&
+           a.bufferSize == b.bufferSize && a.usageMask == b.usageMask &&
+           a.transient == b.transient && a.imported == b.imported && a.persistent == b.persistent;
 }
 
 Value withoutUniforms(const Value& params) {
@@ -62,7 +62,8 @@ std::optional<std::string> sourceStamp(const PassInstance& instance) {
         auto t = std::filesystem::last_write_time(f, ec);
         if (ec) return std::nullopt;
         auto size = std::filesystem::file_size(f, ec);
-        stamp += f + "@" + std::to_string(t.time_since_epoch().count()) + ":" + std::to_string(size) + ";";
+        stamp += f + "@" + std::to_string(t.time_since_epoch().count()) + ":" +
+                 std::to_string(size) + ";";
     }
     return stamp;
 }
@@ -74,7 +75,8 @@ bool sourcesChanged(const PassInstance& instance, const std::string& before) {
 bool sameAccesses(const std::vector<Access>& a, const std::vector<Access>& b) {
     if (a.size() != b.size()) return false;
     for (size_t i = 0; i < a.size(); ++i)
-        if (a[i].resource != b[i].resource || a[i].usage != b[i].usage || a[i].load != b[i].load) return false;
+        if (a[i].resource != b[i].resource || a[i].usage != b[i].usage || a[i].load != b[i].load)
+            return false;
     return true;
 }
 
@@ -87,8 +89,9 @@ std::string BuildReport::summary() const {
         for (size_t i = 0; i < passesPrepared.size(); ++i) s += (i ? ", " : "") + passesPrepared[i];
         s += ")";
     }
-    s += ", reused " + std::to_string(passesReused.size()) + "; resources: " + std::to_string(resourcesCreated) +
-         " created, " + std::to_string(resourcesReused) + " reused";
+    s += ", reused " + std::to_string(passesReused.size()) +
+         "; resources: " + std::to_string(resourcesCreated) + " created, " +
+         std::to_string(resourcesReused) + " reused";
     return s;
 }
 
@@ -134,10 +137,12 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
             const std::optional<uint32_t> extent = m_scene->layerExtent(r.texture.sceneLayers);
             if (!extent) {
                 std::string names;
-                for (const auto& n : m_scene->extentNames()) names += (names.empty() ? "'" : ", '") + n + "'";
-                return fail(ErrorCode::InvalidInput, (r.origin.empty() ? "" : r.origin + ": ") + "resource '" + r.name +
-                                                         "': scene_layers = '" + r.texture.sceneLayers +
-                                                         "': the scene has no such extent (it has " + names + ")");
+                for (const auto& n : m_scene->extentNames())
+                    names += (names.empty() ? "'" : ", '") + n + "'";
+                return fail(ErrorCode::InvalidInput,
+                            (r.origin.empty() ? "" : r.origin + ": ") + "resource '" + r.name +
+                                "': scene_layers = '" + r.texture.sceneLayers +
+                                "': the scene has no such extent (it has " + names + ")");
             }
             r.texture.layers = std::clamp(*extent, 1u, r.texture.layers);
             if (*extent == 0) {
@@ -152,8 +157,10 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
     Context& ctx = m_ctx;
     options.memoryRequirements = [&ctx](const PlanResource& r) {
         VkMemoryRequirements req;
-        if (r.kind == ResourceKind::Texture) req = Image::requirements(ctx, imageDescOf(r));
-        else req = Buffer::requirements(ctx, r.bufferSize, bufferUsageOf(r.usageMask));
+        if (r.kind == ResourceKind::Texture)
+            req = Image::requirements(ctx, imageDescOf(r));
+        else
+            req = Buffer::requirements(ctx, r.bufferSize, bufferUsageOf(r.usageMask));
         return MemoryRequirements{req.size, req.alignment, req.memoryTypeBits};
     };
     // A rebuild keeps the previous build's memory placement where it can (a toggled pass moves
@@ -173,7 +180,8 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
     // them back) re-prepare nothing.
     const Built* old = m_built.get();
     const std::string& generatedDir = m_shaders.options().generatedDir;
-    const bool samePassInputs = old && old->sceneId == m_sceneId && old->generatedDir == generatedDir;
+    const bool samePassInputs =
+        old && old->sceneId == m_sceneId && old->generatedDir == generatedDir;
     const Built* oldPasses = m_forceRebuild || !samePassInputs ? nullptr : old;
     auto built = std::make_unique<Built>();
     built->plan = std::move(*plan);
@@ -190,7 +198,8 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
             continue;
         }
         uint32_t type = 0;
-        auto mem = m_ctx.allocator().allocateHeap(std::max<uint64_t>(heap.size, 1), heap.memoryTypeBits, type);
+        auto mem = m_ctx.allocator().allocateHeap(std::max<uint64_t>(heap.size, 1),
+                                                  heap.memoryTypeBits, type);
         if (!mem) return std::unexpected(mem.error());
         built->heaps.push_back(std::make_shared<OwnedMemory>(std::move(*mem)));
     }
@@ -218,14 +227,17 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
         ++report.resourcesCreated;
         if (r.kind == ResourceKind::Texture) {
             ImageDesc d = imageDescOf(r);
-            auto img = r.heap >= 0 ? Image::createPlaced(m_ctx, d, built->heaps[static_cast<size_t>(r.heap)]->get(), r.offset)
+            auto img = r.heap >= 0 ? Image::createPlaced(
+                                         m_ctx, d, built->heaps[static_cast<size_t>(r.heap)]->get(),
+                                         r.offset)
                                    : Image::create(m_ctx, d);
             if (!img) return std::unexpected(img.error());
             built->images[i] = std::make_shared<Image>(std::move(*img));
         } else {
             VkBufferUsageFlags usage = bufferUsageOf(r.usageMask);
-            auto buf = r.heap >= 0 ? Buffer::createPlaced(m_ctx, r.name, r.bufferSize, usage,
-                                                          built->heaps[static_cast<size_t>(r.heap)]->get(), r.offset)
+            auto buf = r.heap >= 0 ? Buffer::createPlaced(
+                                         m_ctx, r.name, r.bufferSize, usage,
+                                         built->heaps[static_cast<size_t>(r.heap)]->get(), r.offset)
                                    : Buffer::create(m_ctx, r.name, r.bufferSize, usage, false);
             if (!buf) return std::unexpected(buf.error());
             built->buffers[i] = std::make_shared<Buffer>(std::move(*buf));
@@ -233,7 +245,8 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
     }
     for (size_t i = 0; i < planPtr->resources.size(); ++i)
         built->table.set(planPtr->resources[i].name,
-                         PhysicalResource{&planPtr->resources[i], built->images[i].get(), built->buffers[i].get()});
+                         PhysicalResource{&planPtr->resources[i], built->images[i].get(),
+                                          built->buffers[i].get()});
     m_buildStats.resourcesMs = msSince(t1);
 
     // Pass instances: an unchanged pass over unchanged resources keeps its pipeline and
@@ -252,11 +265,12 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
             if (o >= 0) {
                 const PlanPass& op = old->plan.passes[static_cast<size_t>(o)];
                 const PassDesc& od = old->graph.passes[op.desc];
-                bool resourcesKept = std::all_of(pass.accesses.begin(), pass.accesses.end(),
-                                                 [&](const PlanAccess& a) { return resourceReused[a.resource]; });
+                bool resourcesKept =
+                    std::all_of(pass.accesses.begin(), pass.accesses.end(),
+                                [&](const PlanAccess& a) { return resourceReused[a.resource]; });
                 const auto& instance = old->instances[static_cast<size_t>(o)];
-                if (od.kind == desc.kind && sameAccesses(od.accesses, desc.accesses) && resourcesKept &&
-                    withoutUniforms(od.params) == withoutUniforms(desc.params) &&
+                if (od.kind == desc.kind && sameAccesses(od.accesses, desc.accesses) &&
+                    resourcesKept && withoutUniforms(od.params) == withoutUniforms(desc.params) &&
                     !sourcesChanged(*instance, old->sourceStamps[static_cast<size_t>(o)])) {
                     built->instances[p] = instance;
                     built->sourceStamps[p] = old->sourceStamps[static_cast<size_t>(o)];
@@ -267,17 +281,22 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
         toPrepare.push_back(p);
         prepared[p] = 1;
     }
-    if (auto r = prepareInParallel(*built, *planPtr, toPrepare); !r) return std::unexpected(r.error());
+    if (auto r = prepareInParallel(*built, *planPtr, toPrepare); !r)
+        return std::unexpected(r.error());
     for (size_t p = 0; p < passCount; ++p)
-        (prepared[p] ? report.passesPrepared : report.passesReused).push_back(planPtr->passes[p].name);
+        (prepared[p] ? report.passesPrepared : report.passesReused)
+            .push_back(planPtr->passes[p].name);
     m_buildStats.prepareMs = msSince(t2);
 
     // Upload imported contents into resources that are new.
     for (size_t i = 0; i < planPtr->resources.size(); ++i) {
         const PlanResource& r = planPtr->resources[i];
-        if (!r.imported || resourceReused[i] || m_hostImports.count(r.name)) continue;  // the host's image comes in each frame
+        if (!r.imported || resourceReused[i] || m_hostImports.count(r.name))
+            continue;  // the host's image comes in each frame
         if (!m_importData.count(r.name))
-            return fail(ErrorCode::InvalidInput, "imported resource '" + r.name + "' has no contents (nothing was uploaded for it)");
+            return fail(
+                ErrorCode::InvalidInput,
+                "imported resource '" + r.name + "' has no contents (nothing was uploaded for it)");
     }
 
     // Swap in; the old build may still be used by frames in flight.
@@ -305,7 +324,8 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
 // compiles overlap — on lavapipe most of the set-up time (2 threads: the default pipeline's
 // ~500 ms → ~300 ms). RG_PREPARE_THREADS=N sets the thread count (1: serial). The first failing
 // pass in plan order gives the error, whichever thread met it first.
-Result<void> Executor::prepareInParallel(Built& built, const Plan& plan, const std::vector<size_t>& passes) {
+Result<void> Executor::prepareInParallel(Built& built, const Plan& plan,
+                                         const std::vector<size_t>& passes) {
     std::vector<std::optional<Error>> errors(passes.size());
     auto prepareOne = [&](size_t k) {
         const size_t p = passes[k];
@@ -319,7 +339,8 @@ Result<void> Executor::prepareInParallel(Built& built, const Plan& plan, const s
         try {
             prepared = instance->prepare(setup);
         } catch (const std::exception& e) {
-            prepared = fail(ErrorCode::Device, "pass '" + pass.name + "': set-up failed: " + e.what());
+            prepared =
+                fail(ErrorCode::Device, "pass '" + pass.name + "': set-up failed: " + e.what());
         }
         if (!prepared) {
             errors[k] = prepared.error();
@@ -329,7 +350,8 @@ Result<void> Executor::prepareInParallel(Built& built, const Plan& plan, const s
         built.instances[p] = std::move(instance);
     };
     unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-    if (const char* env = std::getenv("RG_PREPARE_THREADS"); env && std::atoi(env) > 0) threads = static_cast<unsigned>(std::atoi(env));
+    if (const char* env = std::getenv("RG_PREPARE_THREADS"); env && std::atoi(env) > 0)
+        threads = static_cast<unsigned>(std::atoi(env));
     threads = static_cast<unsigned>(std::min<size_t>({threads, 8, passes.size()}));
     if (threads <= 1) {
         for (size_t k = 0; k < passes.size() && !(k > 0 && errors[k - 1]); ++k) prepareOne(k);
@@ -366,23 +388,30 @@ Result<void> Executor::clearPersistent(size_t index) {
     return m_ctx.submitNow([&](VkCommandBuffer cmd) {
         if (buffer) {
             vkCmdFillBuffer(cmd, buffer->buffer(), 0, VK_WHOLE_SIZE, 0);
-            memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
+            memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                          VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                          VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
             return;
         }
         VkImageAspectFlags aspect = aspectOf(r.format);
-        imageBarrier(cmd, image->image(), aspect, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
-                     VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
-        VkImageSubresourceRange range{aspect, 0, VK_REMAINING_MIP_LEVELS, 0, VK_REMAINING_ARRAY_LAYERS};
+        imageBarrier(cmd, image->image(), aspect, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, 0,
+                     VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                     VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL);
+        VkImageSubresourceRange range{aspect, 0, VK_REMAINING_MIP_LEVELS, 0,
+                                      VK_REMAINING_ARRAY_LAYERS};
         if (isDepthStencil(r.format)) {
             VkClearDepthStencilValue zero{0.0f, 0};
-            vkCmdClearDepthStencilImage(cmd, image->image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
+            vkCmdClearDepthStencilImage(cmd, image->image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                                        &zero, 1, &range);
         } else {
             VkClearColorValue zero{};
-            vkCmdClearColorImage(cmd, image->image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
+            vkCmdClearColorImage(cmd, image->image(), VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero,
+                                 1, &range);
         }
-        imageBarrier(cmd, image->image(), aspect, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
-                     VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
-                     VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+        imageBarrier(cmd, image->image(), aspect, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                     VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                     VK_ACCESS_2_MEMORY_READ_BIT, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
     });
 }
 

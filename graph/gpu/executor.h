@@ -24,9 +24,9 @@ struct PassTiming {
 };
 
 struct BuildStats {
-    double compileMs = 0.0;   // graph compile()
-    double resourcesMs = 0.0; // physical resources
-    double prepareMs = 0.0;   // pass instances (shaders, pipelines)
+    double compileMs = 0.0;    // graph compile()
+    double resourcesMs = 0.0;  // physical resources
+    double prepareMs = 0.0;    // pass instances (shaders, pipelines)
 };
 
 // What an incremental build reused and what it made anew.
@@ -140,7 +140,8 @@ private:
     Result<void> collect(FrameSlot& slot);
     void recordBarriers(VkCommandBuffer cmd, const std::vector<Barrier>& barriers);
     Result<void> clearPersistent(size_t index);
-    Result<void> prepareInParallel(Built& built, const Plan& plan, const std::vector<size_t>& passes);
+    Result<void> prepareInParallel(Built& built, const Plan& plan,
+                                   const std::vector<size_t>& passes);
     Result<const PhysicalResource*> exportedResource(const std::string& name);
     struct OnceSet {
         std::vector<size_t> passes, resources;  // plan indices

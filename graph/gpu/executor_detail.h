@@ -25,7 +25,8 @@ struct Executor::Built {
     std::vector<std::shared_ptr<Buffer>> buffers;  // by plan resource index
     ResourceTable table;
     std::vector<std::shared_ptr<PassInstance>> instances;  // by plan pass index
-    std::vector<std::string> sourceStamps;  // by plan pass index: its files' times and sizes when prepared
+    std::vector<std::string>
+        sourceStamps;  // by plan pass index: its files' times and sizes when prepared
     // What its passes were prepared against: a build against another scene or other generated
     // headers prepares every pass again.
     uint64_t sceneId = 0;

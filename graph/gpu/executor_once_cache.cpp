@@ -58,7 +58,8 @@ uint64_t cachedBytes(const PlanResource& r) {
     if (r.kind == ResourceKind::Buffer) return r.bufferSize;
     uint64_t bytes = 0;
     for (uint32_t m = 0; m < r.mips; ++m)
-        bytes += uint64_t(std::max(1u, r.width >> m)) * std::max(1u, r.height >> m) * r.layers * copyTexelBytes(r.format);
+        bytes += uint64_t(std::max(1u, r.width >> m)) * std::max(1u, r.height >> m) * r.layers *
+                 copyTexelBytes(r.format);
     return bytes;
 }
 
@@ -67,10 +68,12 @@ std::vector<VkBufferImageCopy> cachedRegions(const PlanResource& r, VkDeviceSize
     for (uint32_t m = 0; m < r.mips; ++m) {
         VkBufferImageCopy c{};
         c.bufferOffset = offset;
-        c.imageSubresource = {aspectOf(r.format) & ~VkImageAspectFlags(VK_IMAGE_ASPECT_STENCIL_BIT), m, 0, r.layers};
+        c.imageSubresource = {aspectOf(r.format) & ~VkImageAspectFlags(VK_IMAGE_ASPECT_STENCIL_BIT),
+                              m, 0, r.layers};
         c.imageExtent = {std::max(1u, r.width >> m), std::max(1u, r.height >> m), 1};
         regions.push_back(c);
-        offset += VkDeviceSize(c.imageExtent.width) * c.imageExtent.height * r.layers * copyTexelBytes(r.format);
+        offset += VkDeviceSize(c.imageExtent.width) * c.imageExtent.height * r.layers *
+                  copyTexelBytes(r.format);
     }
     return regions;
 }
@@ -89,7 +92,8 @@ Executor::OnceSet Executor::cacheableOncePasses(uint32_t slot) const {
     const size_t n = plan.passes.size();
     std::vector<char> in(n, 0);
     for (size_t p = 0; p < n; ++p) in[p] = m_built->instances[p]->dueOnce(m_persistentEpoch);
-    if (std::find(in.begin(), in.end(), 1) == in.end()) return set;  // every frame but the first after a build
+    if (std::find(in.begin(), in.end(), 1) == in.end())
+        return set;  // every frame but the first after a build
     std::vector<std::vector<size_t>> writers(plan.resources.size());
     for (size_t p = 0; p < n; ++p)
         for (const PlanAccess& a : plan.passes[p].accesses)
@@ -100,7 +104,8 @@ Executor::OnceSet Executor::cacheableOncePasses(uint32_t slot) const {
             if (!in[p]) continue;
             for (const PlanAccess& a : plan.passes[p].accesses) {
                 const PlanResource& r = plan.resources[a.resource];
-                bool ok = (r.persistent || r.imported) && !m_hostImports.count(r.name) && !formatInfo(r.format).stencil;
+                bool ok = (r.persistent || r.imported) && !m_hostImports.count(r.name) &&
+                          !formatInfo(r.format).stencil;
                 for (size_t w : writers[a.resource]) ok = ok && in[w];
                 if (!ok) {
                     in[p] = 0;
@@ -124,7 +129,8 @@ Executor::OnceSet Executor::cacheableOncePasses(uint32_t slot) const {
     h.str("rgraph once-per-build outputs, format 1");
     std::error_code ec;  // this build of the code: a pass kind's C++ may change what it writes
     h.u64(std::filesystem::file_size("/proc/self/exe", ec));
-    h.u64(static_cast<uint64_t>(std::filesystem::last_write_time("/proc/self/exe", ec).time_since_epoch().count()));
+    h.u64(static_cast<uint64_t>(
+        std::filesystem::last_write_time("/proc/self/exe", ec).time_since_epoch().count()));
     const VkPhysicalDeviceProperties& props = m_ctx.properties();
     h.u64((uint64_t(props.vendorID) << 32) | props.deviceID);
     h.u64(props.driverVersion);
@@ -146,8 +152,10 @@ Executor::OnceSet Executor::cacheableOncePasses(uint32_t slot) const {
         if (!touched[i]) continue;
         const PlanResource& r = plan.resources[i];
         h.str(r.name);
-        for (uint64_t v : {uint64_t(r.kind), uint64_t(r.format), uint64_t(r.width), uint64_t(r.height), uint64_t(r.layers),
-                           uint64_t(r.mips), uint64_t(r.cube), uint64_t(r.array), r.bufferSize, uint64_t(r.persistent)})
+        for (uint64_t v :
+             {uint64_t(r.kind), uint64_t(r.format), uint64_t(r.width), uint64_t(r.height),
+              uint64_t(r.layers), uint64_t(r.mips), uint64_t(r.cube), uint64_t(r.array),
+              r.bufferSize, uint64_t(r.persistent)})
             h.u64(v);
         if (auto d = m_importData.find(r.name); r.imported && d != m_importData.end()) {
             h.u64(d->second.width);
@@ -178,12 +186,16 @@ std::string onceCachePath(const std::string& dir, uint64_t key) {
 // Records the copies between the set's resources and `staging` (their bytes back to back, as
 // cachedBytes and cachedRegions lay them out), in either direction; the images go from and back to
 // ShaderReadOnly, where every frame leaves a persistent texture.
-void Executor::recordOnceCopies(VkCommandBuffer cmd, const OnceSet& set, VkBuffer staging, bool restore) {
+void Executor::recordOnceCopies(VkCommandBuffer cmd, const OnceSet& set, VkBuffer staging,
+                                bool restore) {
     const Plan& plan = m_built->plan;
-    const VkImageLayout transfer = restore ? VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-    const VkAccessFlags2 transferAccess = restore ? VK_ACCESS_2_TRANSFER_WRITE_BIT : VK_ACCESS_2_TRANSFER_READ_BIT;
+    const VkImageLayout transfer =
+        restore ? VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+    const VkAccessFlags2 transferAccess =
+        restore ? VK_ACCESS_2_TRANSFER_WRITE_BIT : VK_ACCESS_2_TRANSFER_READ_BIT;
     if (!restore)
-        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_READ_BIT);
     VkDeviceSize offset = 0;
     for (size_t i : set.resources) {
         const PlanResource& r = plan.resources[i];
@@ -194,21 +206,31 @@ void Executor::recordOnceCopies(VkCommandBuffer cmd, const OnceSet& set, VkBuffe
         } else {
             VkImage image = m_built->images[i]->image();
             const VkImageAspectFlags aspect = aspectOf(r.format);
-            imageBarrier(cmd, image, aspect, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
-                         VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, transferAccess, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, transfer);
+            imageBarrier(cmd, image, aspect, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                         VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT,
+                         VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, transferAccess,
+                         VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, transfer);
             const auto regions = cachedRegions(r, offset);
-            if (restore) vkCmdCopyBufferToImage(cmd, staging, image, transfer, static_cast<uint32_t>(regions.size()), regions.data());
-            else vkCmdCopyImageToBuffer(cmd, image, transfer, staging, static_cast<uint32_t>(regions.size()), regions.data());
-            imageBarrier(cmd, image, aspect, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, restore ? VK_ACCESS_2_TRANSFER_WRITE_BIT : VK_ACCESS_2_NONE,
-                         VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT, transfer, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
+            if (restore)
+                vkCmdCopyBufferToImage(cmd, staging, image, transfer,
+                                       static_cast<uint32_t>(regions.size()), regions.data());
+            else
+                vkCmdCopyImageToBuffer(cmd, image, transfer, staging,
+                                       static_cast<uint32_t>(regions.size()), regions.data());
+            imageBarrier(cmd, image, aspect, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT,
+                         restore ? VK_ACCESS_2_TRANSFER_WRITE_BIT : VK_ACCESS_2_NONE,
+                         VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT,
+                         transfer, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL);
         }
         offset += cachedBytes(r);
     }
     if (restore)
-        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
                       VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
     else
-        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_TRANSFER_BIT, VK_ACCESS_2_TRANSFER_WRITE_BIT,
+                      VK_PIPELINE_STAGE_2_HOST_BIT, VK_ACCESS_2_HOST_READ_BIT);
 }
 
 // Restores the due once passes' outputs when the cache has them (they then skip), else marks them
@@ -231,9 +253,11 @@ Result<void> Executor::onceCacheBeforeFrame(uint32_t slot) {
         in.read(magic, 8);
         in.read(reinterpret_cast<char*>(&key), 8);
         in.read(reinterpret_cast<char*>(&count), 8);
-        hit = in && std::equal(magic, magic + 8, kOnceMagic) && key == set.key && count == set.resources.size();
+        hit = in && std::equal(magic, magic + 8, kOnceMagic) && key == set.key &&
+              count == set.resources.size();
         if (hit) {
-            auto buf = Buffer::create(m_ctx, "once_cache.upload", std::max<uint64_t>(set.bytes, 4), VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
+            auto buf = Buffer::create(m_ctx, "once_cache.upload", std::max<uint64_t>(set.bytes, 4),
+                                      VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
             if (!buf) return std::unexpected(buf.error());
             staging = std::move(*buf);
             auto* dst = static_cast<char*>(staging->mapped());
@@ -254,7 +278,9 @@ Result<void> Executor::onceCacheBeforeFrame(uint32_t slot) {
         m_onceToSave = std::move(set);
         return {};
     }
-    auto uploaded = m_ctx.submitNow([&](VkCommandBuffer cmd) { recordOnceCopies(cmd, set, staging->buffer(), /*restore=*/true); });
+    auto uploaded = m_ctx.submitNow([&](VkCommandBuffer cmd) {
+        recordOnceCopies(cmd, set, staging->buffer(), /*restore=*/true);
+    });
     if (!uploaded) return uploaded;
     for (size_t p : set.passes) m_built->instances[p]->restoredOnce(m_persistentEpoch);
     std::error_code ec;  // the entry's time orders the cache's eviction: this one is in use
@@ -274,9 +300,12 @@ Result<void> Executor::onceCacheAfterFrame(VkFence fence) {
     RG_VK_TRY(vkWaitForFences(m_ctx.device(), 1, &fence, VK_TRUE, UINT64_MAX));
     const auto t0 = Clock::now();
     const Plan& plan = m_built->plan;
-    auto staging = Buffer::create(m_ctx, "once_cache.readback", std::max<uint64_t>(set.bytes, 4), VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
+    auto staging = Buffer::create(m_ctx, "once_cache.readback", std::max<uint64_t>(set.bytes, 4),
+                                  VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     if (!staging) return std::unexpected(staging.error());
-    auto copied = m_ctx.submitNow([&](VkCommandBuffer cmd) { recordOnceCopies(cmd, set, staging->buffer(), /*restore=*/false); });
+    auto copied = m_ctx.submitNow([&](VkCommandBuffer cmd) {
+        recordOnceCopies(cmd, set, staging->buffer(), /*restore=*/false);
+    });
     if (!copied) return copied;
     const std::filesystem::path path = onceCachePath(m_onceDir, set.key);
     std::error_code ec;
@@ -296,7 +325,9 @@ Result<void> Executor::onceCacheAfterFrame(VkFence fence) {
             src += bytes;
         }
         if (!out) {
-            std::fprintf(stderr, "rgraph: warning: could not write the once-per-build cache entry %s\n", temp.c_str());
+            std::fprintf(stderr,
+                         "rgraph: warning: could not write the once-per-build cache entry %s\n",
+                         temp.c_str());
             std::filesystem::remove(temp, ec);
             return {};
         }
@@ -309,8 +340,10 @@ Result<void> Executor::onceCacheAfterFrame(VkFence fence) {
     std::vector<std::pair<std::filesystem::file_time_type, std::filesystem::path>> entries;
     for (const auto& e : std::filesystem::directory_iterator(path.parent_path(), ec))
         if (e.path().extension() == ".bin") entries.emplace_back(e.last_write_time(ec), e.path());
-    std::sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
-    for (size_t k = kOnceCacheEntries; k < entries.size(); ++k) std::filesystem::remove(entries[k].second, ec);
+    std::sort(entries.begin(), entries.end(),
+              [](const auto& a, const auto& b) { return a.first > b.first; });
+    for (size_t k = kOnceCacheEntries; k < entries.size(); ++k)
+        std::filesystem::remove(entries[k].second, ec);
     m_onceStats.savedPasses = static_cast<uint32_t>(set.passes.size());
     m_onceStats.saveMs = msSince(t0);
     return {};

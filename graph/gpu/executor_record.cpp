@@ -85,8 +85,10 @@ Result<void> Executor::collect(FrameSlot& slot) {
                                     sizeof(uint64_t), VK_QUERY_RESULT_64_BIT));
     m_lastTimings.clear();
     for (size_t i = 0; i < slot.passNames.size(); ++i) {
-        double ns = static_cast<double>(stamps[2 * i + 1] - stamps[2 * i]) * m_ctx.timestampPeriodNs();
-        m_lastTimings.push_back({slot.passNames[i], ns * 1e-6, i < slot.passCpuMs.size() ? slot.passCpuMs[i] : 0.0});
+        double ns =
+            static_cast<double>(stamps[2 * i + 1] - stamps[2 * i]) * m_ctx.timestampPeriodNs();
+        m_lastTimings.push_back(
+            {slot.passNames[i], ns * 1e-6, i < slot.passCpuMs.size() ? slot.passCpuMs[i] : 0.0});
     }
     return {};
 }
@@ -128,22 +130,28 @@ Result<void> Executor::frame(VkCommandBuffer hostCmd) {
 
     // Frames in flight share the plan's resources: the previous frame must be done with
     // them before this one starts overwriting (its first barriers come from UNDEFINED).
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, VK_ACCESS_2_MEMORY_WRITE_BIT,
+                  VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT,
+                  VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
     if (auto r = recordHostCopies(cmd, /*imports=*/true); !r) return r;
 
-    FrameInfo info{m_frameIndex, static_cast<double>(m_frameIndex) / 60.0, slotIndex, m_persistentEpoch};
+    FrameInfo info{m_frameIndex, static_cast<double>(m_frameIndex) / 60.0, slotIndex,
+                   m_persistentEpoch};
     for (size_t i = 0; i < m_built->plan.passes.size(); ++i) {
         const PlanPass& pass = m_built->plan.passes[i];
         m_ctx.beginLabel(cmd, pass.name);
         recordBarriers(cmd, pass.barriers);
         if (queries)
-            vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.queries.get(), static_cast<uint32_t>(2 * i));
-        RecordContext rc{m_ctx, cmd, pass, m_built->graph.passes[pass.desc], m_built->table, m_built->plan, info, m_scene};
+            vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.queries.get(),
+                                 static_cast<uint32_t>(2 * i));
+        RecordContext rc{m_ctx,          cmd,           pass, m_built->graph.passes[pass.desc],
+                         m_built->table, m_built->plan, info, m_scene};
         const auto recordStart = Clock::now();
         m_built->instances[i]->record(rc);
         slot.passCpuMs.push_back(msSince(recordStart));
         if (queries)
-            vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.queries.get(), static_cast<uint32_t>(2 * i + 1));
+            vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.queries.get(),
+                                 static_cast<uint32_t>(2 * i + 1));
         m_ctx.endLabel(cmd);
         slot.passNames.push_back(pass.name);
     }

@@ -48,7 +48,8 @@ bool MemoryBlock::tryAllocate(uint64_t size, uint64_t alignment, uint64_t& offse
         if (start + size < r.offset + r.size)
             pieces.push_back({start + size, r.offset + r.size - (start + size)});
         m_free.erase(m_free.begin() + static_cast<std::ptrdiff_t>(i));
-        m_free.insert(m_free.begin() + static_cast<std::ptrdiff_t>(i), pieces.begin(), pieces.end());
+        m_free.insert(m_free.begin() + static_cast<std::ptrdiff_t>(i), pieces.begin(),
+                      pieces.end());
         offset = start;
         m_used += size;
         return true;
@@ -87,9 +88,9 @@ Result<uint32_t> Allocator::findMemoryType(uint32_t typeBits, VkMemoryPropertyFl
         if (best < 0) best = static_cast<int>(i);
     }
     if (best < 0)
-        return fail(ErrorCode::Device, "no Vulkan memory type with the required properties (flags " +
-                                           std::to_string(required) + ", type bits " +
-                                           std::to_string(typeBits) + ")");
+        return fail(ErrorCode::Device,
+                    "no Vulkan memory type with the required properties (flags " +
+                        std::to_string(required) + ", type bits " + std::to_string(typeBits) + ")");
     return static_cast<uint32_t>(best);
 }
 

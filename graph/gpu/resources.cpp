@@ -11,39 +11,67 @@ namespace rg::gpu {
 
 VkFormat toVkFormat(Format f) {
     switch (f) {
-    case Format::R8Unorm: return VK_FORMAT_R8_UNORM;
-    case Format::RG8Unorm: return VK_FORMAT_R8G8_UNORM;
-    case Format::RGBA8Unorm: return VK_FORMAT_R8G8B8A8_UNORM;
-    case Format::RGBA8Srgb: return VK_FORMAT_R8G8B8A8_SRGB;
-    case Format::RGB10A2Unorm: return VK_FORMAT_A2B10G10R10_UNORM_PACK32;
-    case Format::R11G11B10F: return VK_FORMAT_B10G11R11_UFLOAT_PACK32;
-    case Format::R16F: return VK_FORMAT_R16_SFLOAT;
-    case Format::RG16F: return VK_FORMAT_R16G16_SFLOAT;
-    case Format::RGBA16F: return VK_FORMAT_R16G16B16A16_SFLOAT;
-    case Format::R32F: return VK_FORMAT_R32_SFLOAT;
-    case Format::RG32F: return VK_FORMAT_R32G32_SFLOAT;
-    case Format::RGBA32F: return VK_FORMAT_R32G32B32A32_SFLOAT;
-    case Format::R8Uint: return VK_FORMAT_R8_UINT;
-    case Format::R32Uint: return VK_FORMAT_R32_UINT;
-    case Format::RGBA32Uint: return VK_FORMAT_R32G32B32A32_UINT;
-    case Format::D16: return VK_FORMAT_D16_UNORM;
-    case Format::D32F: return VK_FORMAT_D32_SFLOAT;
-    case Format::D24S8: return VK_FORMAT_D24_UNORM_S8_UINT;
-    case Format::D32FS8: return VK_FORMAT_D32_SFLOAT_S8_UINT;
-    default: return VK_FORMAT_UNDEFINED;
+        case Format::R8Unorm:
+            return VK_FORMAT_R8_UNORM;
+        case Format::RG8Unorm:
+            return VK_FORMAT_R8G8_UNORM;
+        case Format::RGBA8Unorm:
+            return VK_FORMAT_R8G8B8A8_UNORM;
+        case Format::RGBA8Srgb:
+            return VK_FORMAT_R8G8B8A8_SRGB;
+        case Format::RGB10A2Unorm:
+            return VK_FORMAT_A2B10G10R10_UNORM_PACK32;
+        case Format::R11G11B10F:
+            return VK_FORMAT_B10G11R11_UFLOAT_PACK32;
+        case Format::R16F:
+            return VK_FORMAT_R16_SFLOAT;
+        case Format::RG16F:
+            return VK_FORMAT_R16G16_SFLOAT;
+        case Format::RGBA16F:
+            return VK_FORMAT_R16G16B16A16_SFLOAT;
+        case Format::R32F:
+            return VK_FORMAT_R32_SFLOAT;
+        case Format::RG32F:
+            return VK_FORMAT_R32G32_SFLOAT;
+        case Format::RGBA32F:
+            return VK_FORMAT_R32G32B32A32_SFLOAT;
+        case Format::R8Uint:
+            return VK_FORMAT_R8_UINT;
+        case Format::R32Uint:
+            return VK_FORMAT_R32_UINT;
+        case Format::RGBA32Uint:
+            return VK_FORMAT_R32G32B32A32_UINT;
+        case Format::D16:
+            return VK_FORMAT_D16_UNORM;
+        case Format::D32F:
+            return VK_FORMAT_D32_SFLOAT;
+        case Format::D24S8:
+            return VK_FORMAT_D24_UNORM_S8_UINT;
+        case Format::D32FS8:
+            return VK_FORMAT_D32_SFLOAT_S8_UINT;
+        default:
+            return VK_FORMAT_UNDEFINED;
     }
 }
 
 VkImageLayout toVkLayout(Layout l) {
     switch (l) {
-    case Layout::Undefined: return VK_IMAGE_LAYOUT_UNDEFINED;
-    case Layout::General: return VK_IMAGE_LAYOUT_GENERAL;
-    case Layout::ColorAttachment: return VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    case Layout::DepthStencilAttachment: return VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-    case Layout::DepthStencilReadOnly: return VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
-    case Layout::ShaderReadOnly: return VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
-    case Layout::TransferSrc: return VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
-    case Layout::TransferDst: return VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
+        case Layout::Undefined:
+            return VK_IMAGE_LAYOUT_UNDEFINED;
+        case Layout::General:
+            return VK_IMAGE_LAYOUT_GENERAL;
+        case Layout::ColorAttachment:
+            return VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+        case Layout::DepthStencilAttachment:
+            return VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+        case Layout::DepthStencilReadOnly:
+            return VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+        case Layout::ShaderReadOnly:
+            return VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL;
+        case Layout::TransferSrc:
+            return VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL;
+        case Layout::TransferDst:
+            return VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL;
     }
     return VK_IMAGE_LAYOUT_UNDEFINED;
 }
@@ -162,18 +190,20 @@ VkMemoryRequirements Image::requirements(Context& ctx, const ImageDesc& desc) {
     q.pCreateInfo = &info;
     VkMemoryRequirements2 out{VK_STRUCTURE_TYPE_MEMORY_REQUIREMENTS_2};
     vkGetDeviceImageMemoryRequirements(ctx.device(), &q, &out);
-    out.memoryRequirements.alignment = std::max(out.memoryRequirements.alignment, kMinImageAlignment);
+    out.memoryRequirements.alignment =
+        std::max(out.memoryRequirements.alignment, kMinImageAlignment);
     return out.memoryRequirements;
 }
 
 Result<void> Image::createViews(Context& ctx) {
     VkDevice dev = ctx.device();
     VkResult r = VK_SUCCESS;
-    VkImageViewType all = m_desc.cube ? (m_desc.layers > 6 ? VK_IMAGE_VIEW_TYPE_CUBE_ARRAY : VK_IMAGE_VIEW_TYPE_CUBE)
-                          : m_desc.layers > 1 || m_desc.array ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
-                                              : VK_IMAGE_VIEW_TYPE_2D;
-    m_view = OwnedImageView(dev, makeView(dev, m_image.get(), m_desc, all, 0, m_desc.mips,
-                                          m_desc.layers, r));
+    VkImageViewType all =
+        m_desc.cube ? (m_desc.layers > 6 ? VK_IMAGE_VIEW_TYPE_CUBE_ARRAY : VK_IMAGE_VIEW_TYPE_CUBE)
+        : m_desc.layers > 1 || m_desc.array ? VK_IMAGE_VIEW_TYPE_2D_ARRAY
+                                            : VK_IMAGE_VIEW_TYPE_2D;
+    m_view = OwnedImageView(
+        dev, makeView(dev, m_image.get(), m_desc, all, 0, m_desc.mips, m_desc.layers, r));
     RG_VK_TRY(r);
     // Attachment view keeps both aspects of a depth/stencil format.
     {
@@ -193,8 +223,10 @@ Result<void> Image::createViews(Context& ctx) {
         }
     }
     for (uint32_t m = 0; m < m_desc.mips; ++m) {
-        VkImageViewType t = m_desc.layers > 1 || m_desc.array ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
-        m_mipViews.emplace_back(dev, makeView(dev, m_image.get(), m_desc, t, m, 1, m_desc.layers, r));
+        VkImageViewType t =
+            m_desc.layers > 1 || m_desc.array ? VK_IMAGE_VIEW_TYPE_2D_ARRAY : VK_IMAGE_VIEW_TYPE_2D;
+        m_mipViews.emplace_back(dev,
+                                makeView(dev, m_image.get(), m_desc, t, m, 1, m_desc.layers, r));
         RG_VK_TRY(r);
     }
     ctx.setName(VK_OBJECT_TYPE_IMAGE, reinterpret_cast<uint64_t>(m_image.get()), m_desc.name);
@@ -206,7 +238,8 @@ Result<Image> Image::create(Context& ctx, const ImageDesc& desc) {
     img.m_desc = desc;
     VkImageCreateInfo info = imageInfo(desc);
     if (info.format == VK_FORMAT_UNDEFINED)
-        return fail(ErrorCode::Unsupported, "image '" + desc.name + "': format has no Vulkan format");
+        return fail(ErrorCode::Unsupported,
+                    "image '" + desc.name + "': format has no Vulkan format");
     VkImage image = VK_NULL_HANDLE;
     RG_VK_TRY(vkCreateImage(ctx.device(), &info, nullptr, &image));
     img.m_image = OwnedImage(ctx.device(), image);
@@ -259,7 +292,8 @@ Result<Buffer> Buffer::create(Context& ctx, const std::string& name, uint64_t si
     VkMemoryRequirements req;
     vkGetBufferMemoryRequirements(ctx.device(), buf, &req);
     VkMemoryPropertyFlags required =
-        hostVisible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT : 0;
+        hostVisible ? VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT
+                    : 0;
     VkMemoryPropertyFlags preferred =
         hostVisible ? VK_MEMORY_PROPERTY_HOST_CACHED_BIT : VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT;
     auto mem = ctx.allocator().allocate(req, required, preferred);
@@ -271,7 +305,8 @@ Result<Buffer> Buffer::create(Context& ctx, const std::string& name, uint64_t si
 }
 
 Result<Buffer> Buffer::createPlaced(Context& ctx, const std::string& name, uint64_t size,
-                                    VkBufferUsageFlags usage, VkDeviceMemory heap, uint64_t offset) {
+                                    VkBufferUsageFlags usage, VkDeviceMemory heap,
+                                    uint64_t offset) {
     Buffer b;
     b.m_size = size;
     VkBufferCreateInfo info{VK_STRUCTURE_TYPE_BUFFER_CREATE_INFO};
@@ -325,12 +360,14 @@ namespace {
 // widened); subnormals are mant · 2⁻²⁴, exact in a float. std::ldexp per value made a 1280×720
 // RGBA16F readback ~45 ms of `rgraph render`'s writing; this is a few.
 float halfToFloat(uint16_t h) {
-    const uint32_t sign = static_cast<uint32_t>(h & 0x8000u) << 16, exp = (h >> 10) & 0x1fu, mant = h & 0x3ffu;
+    const uint32_t sign = static_cast<uint32_t>(h & 0x8000u) << 16, exp = (h >> 10) & 0x1fu,
+                   mant = h & 0x3ffu;
     if (exp == 0) {
         const float v = static_cast<float>(mant) * 5.9604644775390625e-8f;  // 2⁻²⁴
         return sign ? -v : v;
     }
-    const uint32_t bits = sign | (exp == 31 ? 0x7f800000u | (mant ? 0x400000u : 0u) : (exp + 112u) << 23 | mant << 13);
+    const uint32_t bits = sign | (exp == 31 ? 0x7f800000u | (mant ? 0x400000u : 0u)
+                                            : (exp + 112u) << 23 | mant << 13);
     return std::bit_cast<float>(bits);
 }
 
@@ -351,9 +388,11 @@ float srgbToLinear(float c) {
 
 uint32_t copyTexelBytes(Format f) {
     switch (f) {
-    case Format::D24S8:
-    case Format::D32FS8: return 4;  // depth aspect alone
-    default: return formatInfo(f).bytesPerTexel;
+        case Format::D24S8:
+        case Format::D32FS8:
+            return 4;  // depth aspect alone
+        default:
+            return formatInfo(f).bytesPerTexel;
     }
 }
 
@@ -362,70 +401,77 @@ void decodeTexels(Format format, const void* src, size_t count, float* dst) {
     const uint32_t n = formatInfo(format).components;
     for (size_t i = 0; i < count; ++i) {
         switch (format) {
-        case Format::R8Unorm:
-        case Format::RG8Unorm:
-        case Format::RGBA8Unorm:
-            for (uint32_t c = 0; c < n; ++c) dst[i * n + c] = b[i * n + c] / 255.0f;
-            break;
-        case Format::RGBA8Srgb:
-            for (uint32_t c = 0; c < 4; ++c) {
-                float v = b[i * 4 + c] / 255.0f;
-                dst[i * 4 + c] = c < 3 ? srgbToLinear(v) : v;
-            }
-            break;
-        case Format::RGB10A2Unorm: {
-            uint32_t v;
-            std::memcpy(&v, b + i * 4, 4);
-            dst[i * 4 + 0] = static_cast<float>(v & 1023u) / 1023.0f;
-            dst[i * 4 + 1] = static_cast<float>((v >> 10) & 1023u) / 1023.0f;
-            dst[i * 4 + 2] = static_cast<float>((v >> 20) & 1023u) / 1023.0f;
-            dst[i * 4 + 3] = static_cast<float>(v >> 30) / 3.0f;
-            break;
-        }
-        case Format::R11G11B10F: {
-            uint32_t v;
-            std::memcpy(&v, b + i * 4, 4);
-            dst[i * 3 + 0] = smallFloat(v & 0x7ffu, 6);
-            dst[i * 3 + 1] = smallFloat((v >> 11) & 0x7ffu, 6);
-            dst[i * 3 + 2] = smallFloat(v >> 22, 5);
-            break;
-        }
-        case Format::R16F:
-        case Format::RG16F:
-        case Format::RGBA16F:
-            for (uint32_t c = 0; c < n; ++c) {
-                uint16_t h;
-                std::memcpy(&h, b + (i * n + c) * 2, 2);
-                dst[i * n + c] = halfToFloat(h);
-            }
-            break;
-        case Format::R32F:
-        case Format::RG32F:
-        case Format::RGBA32F:
-        case Format::D32F: std::memcpy(dst + i * n, b + i * n * 4, n * 4); break;
-        case Format::R8Uint: dst[i] = b[i]; break;
-        case Format::R32Uint:
-        case Format::RGBA32Uint:
-            for (uint32_t c = 0; c < n; ++c) {
+            case Format::R8Unorm:
+            case Format::RG8Unorm:
+            case Format::RGBA8Unorm:
+                for (uint32_t c = 0; c < n; ++c) dst[i * n + c] = b[i * n + c] / 255.0f;
+                break;
+            case Format::RGBA8Srgb:
+                for (uint32_t c = 0; c < 4; ++c) {
+                    float v = b[i * 4 + c] / 255.0f;
+                    dst[i * 4 + c] = c < 3 ? srgbToLinear(v) : v;
+                }
+                break;
+            case Format::RGB10A2Unorm: {
                 uint32_t v;
-                std::memcpy(&v, b + (i * n + c) * 4, 4);
-                dst[i * n + c] = static_cast<float>(v);
+                std::memcpy(&v, b + i * 4, 4);
+                dst[i * 4 + 0] = static_cast<float>(v & 1023u) / 1023.0f;
+                dst[i * 4 + 1] = static_cast<float>((v >> 10) & 1023u) / 1023.0f;
+                dst[i * 4 + 2] = static_cast<float>((v >> 20) & 1023u) / 1023.0f;
+                dst[i * 4 + 3] = static_cast<float>(v >> 30) / 3.0f;
+                break;
             }
-            break;
-        case Format::D16: {
-            uint16_t v;
-            std::memcpy(&v, b + i * 2, 2);
-            dst[i] = static_cast<float>(v) / 65535.0f;
-            break;
-        }
-        case Format::D24S8: {
-            uint32_t v;
-            std::memcpy(&v, b + i * 4, 4);
-            dst[i] = static_cast<float>(v & 0xffffffu) / 16777215.0f;
-            break;
-        }
-        case Format::D32FS8: std::memcpy(dst + i, b + i * 4, 4); break;
-        default: RG_CHECK(false) << "decodeTexels: unhandled format " << formatName(format);
+            case Format::R11G11B10F: {
+                uint32_t v;
+                std::memcpy(&v, b + i * 4, 4);
+                dst[i * 3 + 0] = smallFloat(v & 0x7ffu, 6);
+                dst[i * 3 + 1] = smallFloat((v >> 11) & 0x7ffu, 6);
+                dst[i * 3 + 2] = smallFloat(v >> 22, 5);
+                break;
+            }
+            case Format::R16F:
+            case Format::RG16F:
+            case Format::RGBA16F:
+                for (uint32_t c = 0; c < n; ++c) {
+                    uint16_t h;
+                    std::memcpy(&h, b + (i * n + c) * 2, 2);
+                    dst[i * n + c] = halfToFloat(h);
+                }
+                break;
+            case Format::R32F:
+            case Format::RG32F:
+            case Format::RGBA32F:
+            case Format::D32F:
+                std::memcpy(dst + i * n, b + i * n * 4, n * 4);
+                break;
+            case Format::R8Uint:
+                dst[i] = b[i];
+                break;
+            case Format::R32Uint:
+            case Format::RGBA32Uint:
+                for (uint32_t c = 0; c < n; ++c) {
+                    uint32_t v;
+                    std::memcpy(&v, b + (i * n + c) * 4, 4);
+                    dst[i * n + c] = static_cast<float>(v);
+                }
+                break;
+            case Format::D16: {
+                uint16_t v;
+                std::memcpy(&v, b + i * 2, 2);
+                dst[i] = static_cast<float>(v) / 65535.0f;
+                break;
+            }
+            case Format::D24S8: {
+                uint32_t v;
+                std::memcpy(&v, b + i * 4, 4);
+                dst[i] = static_cast<float>(v & 0xffffffu) / 16777215.0f;
+                break;
+            }
+            case Format::D32FS8:
+                std::memcpy(dst + i, b + i * 4, 4);
+                break;
+            default:
+                RG_CHECK(false) << "decodeTexels: unhandled format " << formatName(format);
         }
     }
 }
@@ -442,7 +488,8 @@ uint16_t floatToHalf(float f) {
     uint32_t sign = (x >> 16) & 0x8000u;
     int32_t exp = static_cast<int32_t>((x >> 23) & 0xffu) - 127 + 15;
     uint32_t mant = x & 0x7fffffu;
-    if (((x >> 23) & 0xffu) == 0xffu) return static_cast<uint16_t>(sign | 0x7c00u | (mant ? 0x200u : 0u));
+    if (((x >> 23) & 0xffu) == 0xffu)
+        return static_cast<uint16_t>(sign | 0x7c00u | (mant ? 0x200u : 0u));
     if (exp >= 31) return static_cast<uint16_t>(sign | 0x7c00u);
     if (exp <= 0) {
         if (exp < -10) return static_cast<uint16_t>(sign);
@@ -475,33 +522,37 @@ bool encodeTexels(Format format, const float* src, size_t count, void* dst) {
     const uint32_t n = formatInfo(format).components;
     const size_t total = count * n;
     switch (format) {
-    case Format::R8Unorm:
-    case Format::RG8Unorm:
-    case Format::RGBA8Unorm:
-        for (size_t i = 0; i < total; ++i) b[i] = unorm8(src[i]);
-        return true;
-    case Format::RGBA8Srgb:
-        for (size_t i = 0; i < total; ++i) b[i] = unorm8(i % 4 == 3 ? src[i] : linearToSrgb(src[i]));
-        return true;
-    case Format::R16F:
-    case Format::RG16F:
-    case Format::RGBA16F:
-        for (size_t i = 0; i < total; ++i) {
-            uint16_t h = floatToHalf(src[i]);
-            std::memcpy(b + i * 2, &h, 2);
-        }
-        return true;
-    case Format::R32F:
-    case Format::RG32F:
-    case Format::RGBA32F: std::memcpy(b, src, total * 4); return true;
-    case Format::R32Uint:
-    case Format::RGBA32Uint:
-        for (size_t i = 0; i < total; ++i) {
-            auto v = static_cast<uint32_t>(src[i] < 0 ? 0 : src[i]);
-            std::memcpy(b + i * 4, &v, 4);
-        }
-        return true;
-    default: return false;
+        case Format::R8Unorm:
+        case Format::RG8Unorm:
+        case Format::RGBA8Unorm:
+            for (size_t i = 0; i < total; ++i) b[i] = unorm8(src[i]);
+            return true;
+        case Format::RGBA8Srgb:
+            for (size_t i = 0; i < total; ++i)
+                b[i] = unorm8(i % 4 == 3 ? src[i] : linearToSrgb(src[i]));
+            return true;
+        case Format::R16F:
+        case Format::RG16F:
+        case Format::RGBA16F:
+            for (size_t i = 0; i < total; ++i) {
+                uint16_t h = floatToHalf(src[i]);
+                std::memcpy(b + i * 2, &h, 2);
+            }
+            return true;
+        case Format::R32F:
+        case Format::RG32F:
+        case Format::RGBA32F:
+            std::memcpy(b, src, total * 4);
+            return true;
+        case Format::R32Uint:
+        case Format::RGBA32Uint:
+            for (size_t i = 0; i < total; ++i) {
+                auto v = static_cast<uint32_t>(src[i] < 0 ? 0 : src[i]);
+                std::memcpy(b + i * 4, &v, 4);
+            }
+            return true;
+        default:
+            return false;
     }
 }
 

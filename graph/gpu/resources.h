@@ -33,9 +33,9 @@ struct ImageDesc {
 class Image {
 public:
     Image() = default;
-    static Result<Image> create(Context& ctx, const ImageDesc& desc);                      // own memory
+    static Result<Image> create(Context& ctx, const ImageDesc& desc);  // own memory
     static Result<Image> createPlaced(Context& ctx, const ImageDesc& desc, VkDeviceMemory heap,
-                                      uint64_t offset);                                   // aliased
+                                      uint64_t offset);  // aliased
     static VkMemoryRequirements requirements(Context& ctx, const ImageDesc& desc);
 
     VkImage image() const { return m_image.get(); }
@@ -43,7 +43,9 @@ public:
     VkImageView mipView(uint32_t mip) const { return m_mipViews[mip].get(); }
     VkImageView attachmentView() const { return m_attachmentView.get(); }  // mip 0, layer 0 (2D)
     // Mip 0, layer `layer` (2D): one layer of a layered target as an attachment.
-    VkImageView layerView(uint32_t layer) const { return layer == 0 ? m_attachmentView.get() : m_layerViews[layer - 1].get(); }
+    VkImageView layerView(uint32_t layer) const {
+        return layer == 0 ? m_attachmentView.get() : m_layerViews[layer - 1].get();
+    }
     const ImageDesc& desc() const { return m_desc; }
     explicit operator bool() const { return static_cast<bool>(m_image); }
 
@@ -65,7 +67,8 @@ public:
     static Result<Buffer> create(Context& ctx, const std::string& name, uint64_t size,
                                  VkBufferUsageFlags usage, bool hostVisible);
     static Result<Buffer> createPlaced(Context& ctx, const std::string& name, uint64_t size,
-                                       VkBufferUsageFlags usage, VkDeviceMemory heap, uint64_t offset);
+                                       VkBufferUsageFlags usage, VkDeviceMemory heap,
+                                       uint64_t offset);
     static VkMemoryRequirements requirements(Context& ctx, uint64_t size, VkBufferUsageFlags usage);
 
     VkBuffer buffer() const { return m_buffer.get(); }

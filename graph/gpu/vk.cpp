@@ -5,7 +5,8 @@ namespace rg::gpu {
 const char* vkResultName(VkResult r) {
     switch (r) {
 #define RG_CASE(x) \
-    case x: return #x;
+    case x:        \
+        return #x;
         RG_CASE(VK_SUCCESS)
         RG_CASE(VK_NOT_READY)
         RG_CASE(VK_TIMEOUT)
@@ -30,7 +31,8 @@ const char* vkResultName(VkResult r) {
         RG_CASE(VK_ERROR_FRAGMENTATION)
         RG_CASE(VK_PIPELINE_COMPILE_REQUIRED)
 #undef RG_CASE
-    default: return "VK_RESULT_UNKNOWN";
+        default:
+            return "VK_RESULT_UNKNOWN";
     }
 }
 

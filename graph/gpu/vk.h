@@ -17,27 +17,26 @@ const char* vkResultName(VkResult r);
 inline Error vkError(const char* call, VkResult r, const char* file, int line) {
     std::string f = file;
     if (auto slash = f.find_last_of('/'); slash != std::string::npos) f = f.substr(slash + 1);
-    return Error(ErrorCode::Device,
-                 std::string(call) + " failed with " + vkResultName(r) + " at " + f + ":" +
-                     std::to_string(line));
+    return Error(ErrorCode::Device, std::string(call) + " failed with " + vkResultName(r) + " at " +
+                                        f + ":" + std::to_string(line));
 }
 
 }  // namespace rg::gpu
 
 // Inside a function returning Result<T>: return the failure of a Vulkan call as an Error.
-#define RG_VK_TRY(call)                                                              \
-    do {                                                                             \
-        VkResult rg_vk_result_ = (call);                                             \
-        if (rg_vk_result_ != VK_SUCCESS)                                             \
+#define RG_VK_TRY(call)                                                                           \
+    do {                                                                                          \
+        VkResult rg_vk_result_ = (call);                                                          \
+        if (rg_vk_result_ != VK_SUCCESS)                                                          \
             return std::unexpected(::rg::gpu::vkError(#call, rg_vk_result_, __FILE__, __LINE__)); \
     } while (0)
 
 // For calls that cannot fail on valid usage in a void context (a bug if they do).
-#define RG_VK_CHECK(call)                                                          \
-    do {                                                                           \
-        VkResult rg_vk_result_ = (call);                                           \
-        RG_CHECK(rg_vk_result_ == VK_SUCCESS)                                      \
-            << #call << " returned " << ::rg::gpu::vkResultName(rg_vk_result_);    \
+#define RG_VK_CHECK(call)                                                       \
+    do {                                                                        \
+        VkResult rg_vk_result_ = (call);                                        \
+        RG_CHECK(rg_vk_result_ == VK_SUCCESS)                                   \
+            << #call << " returned " << ::rg::gpu::vkResultName(rg_vk_result_); \
     } while (0)
 
 namespace rg::gpu {

@@ -107,10 +107,21 @@ std::string fullChannelName(const std::string& layer, const std::string& channel
 // Attribute names a single-part scanline file owns (OpenEXR spec, "Header Attributes"); a string
 // attribute with one of these names would clash with, or be misread as, the real one.
 bool isReservedAttribute(const std::string& key) {
-    static const std::set<std::string> reserved = {
-        "channels",     "compression", "dataWindow", "displayWindow", "lineOrder",
-        "pixelAspectRatio", "screenWindowCenter", "screenWindowWidth", "tiles", "type",
-        "name",         "version",     "chunkCount", "view",          "multiView"};
+    static const std::set<std::string> reserved = {"channels",
+                                                   "compression",
+                                                   "dataWindow",
+                                                   "displayWindow",
+                                                   "lineOrder",
+                                                   "pixelAspectRatio",
+                                                   "screenWindowCenter",
+                                                   "screenWindowWidth",
+                                                   "tiles",
+                                                   "type",
+                                                   "name",
+                                                   "version",
+                                                   "chunkCount",
+                                                   "view",
+                                                   "multiView"};
     return reserved.contains(key);
 }
 
@@ -124,10 +135,10 @@ Result<void> validateLayers(const std::string& path, const std::vector<ImageLaye
         const Image& img = layer.image;
         const std::string label = layerLabel(layer.name);
         if (img.width == 0 || img.height == 0 || img.channels == 0)
-            return fail(ErrorCode::InvalidInput,
-                        file + ": " + label + " is empty (" + std::to_string(img.width) + "x" +
-                            std::to_string(img.height) + ", " + std::to_string(img.channels) +
-                            " channels)");
+            return fail(ErrorCode::InvalidInput, file + ": " + label + " is empty (" +
+                                                     std::to_string(img.width) + "x" +
+                                                     std::to_string(img.height) + ", " +
+                                                     std::to_string(img.channels) + " channels)");
         if (img.width > uint32_t(INT_MAX) || img.height > uint32_t(INT_MAX))
             return fail(ErrorCode::Unsupported, file + ": " + label + " is too large for OpenEXR");
         if (img.pixels.size() != size_t(img.width) * img.height * img.channels)
@@ -138,15 +149,15 @@ Result<void> validateLayers(const std::string& path, const std::vector<ImageLaye
         if (img.width != first.width || img.height != first.height)
             return fail(ErrorCode::InvalidInput,
                         file + ": " + label + " is " + std::to_string(img.width) + "x" +
-                            std::to_string(img.height) + " but " +
-                            layerLabel(layers.front().name) + " is " +
-                            std::to_string(first.width) + "x" + std::to_string(first.height) +
+                            std::to_string(img.height) + " but " + layerLabel(layers.front().name) +
+                            " is " + std::to_string(first.width) + "x" +
+                            std::to_string(first.height) +
                             "; all layers of an EXR file must have the same size");
         if (layer.channelNames.size() != img.channels)
-            return fail(ErrorCode::InvalidInput,
-                        file + ": " + label + " names " +
-                            std::to_string(layer.channelNames.size()) + " channels but its image has " +
-                            std::to_string(img.channels));
+            return fail(ErrorCode::InvalidInput, file + ": " + label + " names " +
+                                                     std::to_string(layer.channelNames.size()) +
+                                                     " channels but its image has " +
+                                                     std::to_string(img.channels));
         if (!layer.name.empty() && (layer.name.front() == '.' || layer.name.back() == '.'))
             return fail(ErrorCode::InvalidInput,
                         file + ": " + label + ": a layer name cannot start or end with '.'");
@@ -168,7 +179,9 @@ Result<void> validateLayers(const std::string& path, const std::vector<ImageLaye
         if (isReservedAttribute(key))
             return fail(ErrorCode::InvalidInput,
                         file + ": metadata key '" + key + "' is a standard OpenEXR attribute");
-        if (!keys.insert(key).second) return fail(ErrorCode::InvalidInput, file + ": metadata key '" + key + "' is given twice");
+        if (!keys.insert(key).second)
+            return fail(ErrorCode::InvalidInput,
+                        file + ": metadata key '" + key + "' is given twice");
         return {};
     };
     for (const auto& [key, value] : opts.metadata)
@@ -228,10 +241,12 @@ constexpr int64_t kMaxExrSamplesPerByte = 65536;
 // predefined types), or -1.
 int32_t exrFixedAttributeSize(const std::string& type) {
     static const std::map<std::string, int32_t> sizes = {
-        {"box2i", 16},  {"box2f", 16},   {"v2i", 8},         {"v2f", 8},         {"v2d", 16},      {"v3i", 12},
-        {"v3f", 12},    {"v3d", 24},     {"m33f", 36},       {"m33d", 72},       {"m44f", 64},     {"m44d", 128},
-        {"int", 4},     {"float", 4},    {"double", 8},      {"rational", 8},    {"timecode", 8},  {"keycode", 28},
-        {"compression", 1}, {"lineOrder", 1}, {"envmap", 1}, {"deepImageState", 1}, {"tiledesc", 9}, {"chromaticities", 32}};
+        {"box2i", 16},   {"box2f", 16},         {"v2i", 8},         {"v2f", 8},
+        {"v2d", 16},     {"v3i", 12},           {"v3f", 12},        {"v3d", 24},
+        {"m33f", 36},    {"m33d", 72},          {"m44f", 64},       {"m44d", 128},
+        {"int", 4},      {"float", 4},          {"double", 8},      {"rational", 8},
+        {"timecode", 8}, {"keycode", 28},       {"compression", 1}, {"lineOrder", 1},
+        {"envmap", 1},   {"deepImageState", 1}, {"tiledesc", 9},    {"chromaticities", 32}};
     auto it = sizes.find(type);
     return it == sizes.end() ? -1 : it->second;
 }
@@ -245,8 +260,10 @@ Result<void> checkExrHeaderSizes(const std::string& file, const std::vector<char
     if (data.size() < 8 || data[4] != 2) return {};
     std::string nameError;
     const auto readName = [&](std::string& out) -> bool {
-        const size_t end = std::find(data.begin() + static_cast<std::ptrdiff_t>(std::min(pos, data.size())), data.end(), '\0') -
-                           data.begin();
+        const size_t end =
+            std::find(data.begin() + static_cast<std::ptrdiff_t>(std::min(pos, data.size())),
+                      data.end(), '\0') -
+            data.begin();
         if (end - std::min(pos, end) > 255) {
             nameError = "an attribute name is more than 255 characters long";
             return false;
@@ -259,37 +276,45 @@ Result<void> checkExrHeaderSizes(const std::string& file, const std::vector<char
         pos = end + 1;
         return true;
     };
-    const bool multipart = data.size() >= 8 && (static_cast<unsigned char>(data[5]) & 0x10) != 0;  // version bit 12
+    const bool multipart =
+        data.size() >= 8 && (static_cast<unsigned char>(data[5]) & 0x10) != 0;  // version bit 12
     // Each part's data window times its channels, against what a file of this size can hold:
     // OpenEXR sizes its decompression buffers from them when it opens the file.
     int64_t width = 0, height = 0, channels = 0;
     const auto checkSamples = [&]() -> Result<void> {
-        const int64_t plausible = std::min(kMaxExrSamples, int64_t(data.size()) * kMaxExrSamplesPerByte);
-        if (width > 0 && height > 0 && channels > 0 && (width > plausible || height > plausible || width * height > plausible / channels))
-            return fail(ErrorCode::InvalidInput, file + ": the header claims " + std::to_string(width) + "x" + std::to_string(height) +
-                                                     "x" + std::to_string(channels) + " samples, more than a " +
-                                                     std::to_string(data.size()) + "-byte file can hold or rgraph reads (truncated or corrupt?)");
+        const int64_t plausible =
+            std::min(kMaxExrSamples, int64_t(data.size()) * kMaxExrSamplesPerByte);
+        if (width > 0 && height > 0 && channels > 0 &&
+            (width > plausible || height > plausible || width * height > plausible / channels))
+            return fail(ErrorCode::InvalidInput,
+                        file + ": the header claims " + std::to_string(width) + "x" +
+                            std::to_string(height) + "x" + std::to_string(channels) +
+                            " samples, more than a " + std::to_string(data.size()) +
+                            "-byte file can hold or rgraph reads (truncated or corrupt?)");
         width = height = channels = 0;
         return {};
     };
     for (;;) {
         std::string name, type;
         if (!readName(name)) return bad(nameError);
-        if (name.empty()) return {};  // the end of the list of headers (or an empty one: OpenEXR says what is wrong)
+        if (name.empty())
+            return {};  // the end of the list of headers (or an empty one: OpenEXR says what is wrong)
         for (;;) {
             if (!readName(type)) return bad(nameError + " (the type of attribute '" + name + "')");
-            if (pos + 4 > data.size()) return bad("truncated file: attribute '" + name + "' has no size");
+            if (pos + 4 > data.size())
+                return bad("truncated file: attribute '" + name + "' has no size");
             int32_t size = 0;
             std::memcpy(&size, data.data() + pos, 4);
             pos += 4;
             if (size < 0 || static_cast<uint64_t>(size) > data.size() - pos)
-                return bad((size < 0 ? "" : "truncated file: ") + std::string("attribute '") + name + "' claims " + std::to_string(size) +
-                           " bytes, " + std::to_string(data.size() - pos) + " are left in the file");
+                return bad((size < 0 ? "" : "truncated file: ") + std::string("attribute '") +
+                           name + "' claims " + std::to_string(size) + " bytes, " +
+                           std::to_string(data.size() - pos) + " are left in the file");
             // OpenEXR reads a fixed-size type's value whatever size the file states, so a wrong
             // size would put this walk out of step with it: refuse one.
             if (const int32_t fixed = exrFixedAttributeSize(type); fixed >= 0 && size != fixed)
-                return bad("attribute '" + name + "' of type " + type + " is " + std::to_string(fixed) + " bytes, the file says " +
-                           std::to_string(size));
+                return bad("attribute '" + name + "' of type " + type + " is " +
+                           std::to_string(fixed) + " bytes, the file says " + std::to_string(size));
             // A channel list is read entry by entry up to an empty name, whatever its size says:
             // the entries (name, then 16 bytes) must end exactly at its end. A string vector is
             // read as lengths and strings: they must tile it.
@@ -300,8 +325,10 @@ Result<void> checkExrHeaderSizes(const std::string& file, const std::vector<char
                 int64_t entries = 0;
                 while (p < end && !closed) {
                     if (type == "chlist") {
-                        const size_t nul = std::find(data.begin() + static_cast<std::ptrdiff_t>(p), data.begin() + static_cast<std::ptrdiff_t>(end), '\0') -
-                                           data.begin();
+                        const size_t nul =
+                            std::find(data.begin() + static_cast<std::ptrdiff_t>(p),
+                                      data.begin() + static_cast<std::ptrdiff_t>(end), '\0') -
+                            data.begin();
                         if (nul >= end) break;
                         closed = nul == p;
                         entries += closed ? 0 : 1;
@@ -315,7 +342,8 @@ Result<void> checkExrHeaderSizes(const std::string& file, const std::vector<char
                     }
                 }
                 if (p != end || (type == "chlist" && !closed))
-                    return bad("attribute '" + name + "' (" + type + ") does not fill its " + std::to_string(size) + " bytes exactly");
+                    return bad("attribute '" + name + "' (" + type + ") does not fill its " +
+                               std::to_string(size) + " bytes exactly");
                 if (type == "chlist" && name == "channels") channels = entries;
             }
             if (type == "box2i" && name == "dataWindow") {
@@ -327,12 +355,15 @@ Result<void> checkExrHeaderSizes(const std::string& file, const std::vector<char
             // A preview image allocates its own width x height, which must be what follows.
             if (type == "preview") {
                 uint32_t w = 0, h = 0;
-                if (size < 8) return bad("attribute '" + name + "' (preview) is shorter than its size fields");
+                if (size < 8)
+                    return bad("attribute '" + name +
+                               "' (preview) is shorter than its size fields");
                 std::memcpy(&w, data.data() + pos, 4);
                 std::memcpy(&h, data.data() + pos + 4, 4);
                 if (uint64_t(w) * h * 4 + 8 != uint64_t(size))
-                    return bad("attribute '" + name + "' (preview) claims " + std::to_string(w) + "x" + std::to_string(h) + " pixels in " +
-                               std::to_string(size) + " bytes");
+                    return bad("attribute '" + name + "' (preview) claims " + std::to_string(w) +
+                               "x" + std::to_string(h) + " pixels in " + std::to_string(size) +
+                               " bytes");
             }
             pos += static_cast<size_t>(size);
             if (!readName(name)) return bad(nameError);
@@ -356,7 +387,9 @@ Result<void> writeExr(const std::string& path, const std::vector<ImageLayer>& la
     // OpenEXR compresses a file's line blocks on its own thread pool, which is empty unless asked
     // for: one thread a core (the default frame's EXR: ~120 -> ~80 ms on two cores).
     static std::once_flag threads;
-    std::call_once(threads, [] { Imf::setGlobalThreadCount(int(std::max(1u, std::thread::hardware_concurrency()))); });
+    std::call_once(threads, [] {
+        Imf::setGlobalThreadCount(int(std::max(1u, std::thread::hardware_concurrency())));
+    });
 
     auto writer = image_detail::AtomicFileWriter::open(path);
     if (!writer) return std::unexpected(writer.error());
@@ -366,13 +399,12 @@ Result<void> writeExr(const std::string& path, const std::vector<ImageLayer>& la
     try {
         Imf::Header header(width, height);
         header.compression() = opts.compress ? Imf::ZIP_COMPRESSION : Imf::NO_COMPRESSION;
-        header.zipCompressionLevel() = 1;  // zlib's fastest: lossless all the same, and several times quicker than its default
+        header.zipCompressionLevel() =
+            1;  // zlib's fastest: lossless all the same, and several times quicker than its default
         for (const auto& [key, value] : opts.metadata)
             header.insert(key, Imf::StringAttribute(value));
-        for (const auto& [key, value] : opts.floats)
-            header.insert(key, Imf::FloatAttribute(value));
-        for (const auto& [key, value] : opts.ints)
-            header.insert(key, Imf::IntAttribute(value));
+        for (const auto& [key, value] : opts.floats) header.insert(key, Imf::FloatAttribute(value));
+        for (const auto& [key, value] : opts.ints) header.insert(key, Imf::IntAttribute(value));
 
         Imf::FrameBuffer frameBuffer;
         for (const ImageLayer& layer : layers) {
@@ -389,9 +421,8 @@ Result<void> writeExr(const std::string& path, const std::vector<ImageLayer>& la
                 const std::string name = fullChannelName(layer.name, layer.channelNames[c]);
                 header.channels().insert(name, Imf::Channel(type));
                 const char* channelBase = static_cast<const char*>(base) + c * sampleSize;
-                frameBuffer.insert(name, Imf::Slice::Make(type, channelBase,
-                                                          header.dataWindow(), xStride,
-                                                          xStride * img.width));
+                frameBuffer.insert(name, Imf::Slice::Make(type, channelBase, header.dataWindow(),
+                                                          xStride, xStride * img.width));
             }
         }
         {
@@ -419,7 +450,8 @@ Result<ExrFile> readExr(const std::string& path) {
     if (data->size() < 4 || !Imf::isImfMagic(data->data()))
         return fail(ErrorCode::InvalidInput, file + ": not an OpenEXR file");
 
-    if (auto sizes = checkExrHeaderSizes(file, *data); !sizes) return std::unexpected(sizes.error());
+    if (auto sizes = checkExrHeaderSizes(file, *data); !sizes)
+        return std::unexpected(sizes.error());
     try {
         MemoryIStream stream(path, *data);
         Imf::InputFile input(stream);
@@ -455,13 +487,15 @@ Result<ExrFile> readExr(const std::string& path) {
         int64_t channelCount = 0;
         for (const auto& [name, channels] : layerChannels) channelCount += int64_t(channels.size());
         if (width > INT32_MAX || height > INT32_MAX || width * height > maxSamples / channelCount)
-            return fail(ErrorCode::Unsupported,
-                        file + ": " + std::to_string(width) + "x" + std::to_string(height) + "x" +
-                            std::to_string(channelCount) + " samples is too large to read (at most 2^28)");
+            return fail(ErrorCode::Unsupported, file + ": " + std::to_string(width) + "x" +
+                                                    std::to_string(height) + "x" +
+                                                    std::to_string(channelCount) +
+                                                    " samples is too large to read (at most 2^28)");
         if (width * height > plausibleSamples / channelCount)
             return fail(ErrorCode::InvalidInput,
-                        file + ": the header claims " + std::to_string(width) + "x" + std::to_string(height) + "x" +
-                            std::to_string(channelCount) + " samples, more than a " + std::to_string(data->size()) +
+                        file + ": the header claims " + std::to_string(width) + "x" +
+                            std::to_string(height) + "x" + std::to_string(channelCount) +
+                            " samples, more than a " + std::to_string(data->size()) +
                             "-byte file can hold (truncated or corrupt?)");
 
         ExrFile result;

@@ -33,7 +33,8 @@ Result<std::vector<char>> readWholeFile(const std::string& path) {
     const bool readFailed = std::ferror(f) != 0;
     const int err = errno;
     std::fclose(f);
-    if (readFailed) return fail(ErrorCode::Io, "cannot read " + quoted(path) + ": " + errnoText(err));
+    if (readFailed)
+        return fail(ErrorCode::Io, "cannot read " + quoted(path) + ": " + errnoText(err));
     data.resize(used);
     data.shrink_to_fit();
     return data;
@@ -42,8 +43,8 @@ Result<std::vector<char>> readWholeFile(const std::string& path) {
 Result<AtomicFileWriter> AtomicFileWriter::open(const std::string& path) {
     // pid + counter: two writers of the same path (threads or processes) never share a temp file.
     static std::atomic<unsigned> counter{0};
-    std::string tempPath = path + ".tmp-" + std::to_string(::getpid()) + "-" +
-                           std::to_string(counter.fetch_add(1));
+    std::string tempPath =
+        path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter.fetch_add(1));
     std::FILE* f = std::fopen(tempPath.c_str(), "wb");
     if (!f) {
         const int err = errno;

@@ -82,8 +82,8 @@ Result<void> checkPixelStream(const std::string& file, const std::vector<char>& 
         const int length = int((hi << 8) | byteAt(pos + 3));
         pos += 4;
         if (length != width)
-            return corrupt(row, "length " + std::to_string(length) + ", expected " +
-                                    std::to_string(width));
+            return corrupt(
+                row, "length " + std::to_string(length) + ", expected " + std::to_string(width));
         for (int component = 0; component < 4; ++component) {
             int x = 0;
             while (x < width) {
@@ -121,16 +121,17 @@ Result<Image> readHdr(const std::string& path) {
     if (!stbi_info_from_memory(bytes, size, &width, &height, &fileChannels) || width <= 0 ||
         height <= 0)
         return fail(ErrorCode::InvalidInput,
-                    file + ": invalid Radiance HDR file: bad header (expected "
-                           "FORMAT=32-bit_rle_rgbe and a '-Y <height> +X <width>' line)");
+                    file +
+                        ": invalid Radiance HDR file: bad header (expected "
+                        "FORMAT=32-bit_rle_rgbe and a '-Y <height> +X <width>' line)");
     // Radiance run-length encoding packs at most 127 values of one component into 2 bytes, i.e.
     // under 16 pixels per byte; a header claiming far more than that is garbage, and refusing it
     // avoids allocating for a lie.
     if (int64_t(width) * height > 32 * int64_t(size))
-        return fail(ErrorCode::InvalidInput,
-                    file + ": header claims " + std::to_string(width) + "x" +
-                        std::to_string(height) + " pixels, more than a " + std::to_string(size) +
-                        "-byte file can hold");
+        return fail(ErrorCode::InvalidInput, file + ": header claims " + std::to_string(width) +
+                                                 "x" + std::to_string(height) +
+                                                 " pixels, more than a " + std::to_string(size) +
+                                                 "-byte file can hold");
     if (auto ok = checkPixelStream(file, *data, width, height); !ok)
         return std::unexpected(ok.error());
 

@@ -58,8 +58,8 @@ struct ExrWriteOptions {
     ExrPixelType pixelType = ExrPixelType::Half;  // Half: values beyond ±65504 become ±inf
     bool compress = true;                         // lossless ZIP when true, else uncompressed
     std::map<std::string, std::string> metadata;  // written as string attributes of the header
-    std::map<std::string, float> floats;           // written as float attributes
-    std::map<std::string, int> ints;               // written as int attributes
+    std::map<std::string, float> floats;          // written as float attributes
+    std::map<std::string, int> ints;              // written as int attributes
 };
 
 // Writes a single-part scanline EXR. All layers must have the same size (at least 1x1), channel

@@ -110,7 +110,8 @@ bool runPngWrite(PngContext& ctx) {
     png_set_write_fn(ctx.png, &ctx, writeToFile, flushFile);
     png_set_IHDR(ctx.png, ctx.info, ctx.width, ctx.height, 8, ctx.colorType, PNG_INTERLACE_NONE,
                  PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
-    if (!ctx.texts.empty()) png_set_text(ctx.png, ctx.info, ctx.texts.data(), int(ctx.texts.size()));
+    if (!ctx.texts.empty())
+        png_set_text(ctx.png, ctx.info, ctx.texts.data(), int(ctx.texts.size()));
     // zlib's fastest level with the Sub filter alone: the default frame at 1280x720 writes in
     // ~55 ms rather than ~260 with libpng's defaults (level 6, every filter tried per row), a file
     // ~18 % larger; the pixels are the same (PNG is lossless).
@@ -216,8 +217,7 @@ Result<Image> readPng(const std::string& path, std::map<std::string, std::string
     auto data = image_detail::readWholeFile(path);
     if (!data) return std::unexpected(data.error());
     const std::string file = quoted(path);
-    if (data->size() < 8 ||
-        png_sig_cmp(reinterpret_cast<png_const_bytep>(data->data()), 0, 8) != 0)
+    if (data->size() < 8 || png_sig_cmp(reinterpret_cast<png_const_bytep>(data->data()), 0, 8) != 0)
         return fail(ErrorCode::InvalidInput, file + ": not a PNG file");
 
     PngContext ctx;
@@ -247,9 +247,9 @@ Result<Image> readPng(const std::string& path, std::map<std::string, std::string
                         std::to_string(data->size()) + "-byte file can hold");
     if ((ctx.bitDepth != 8 && ctx.bitDepth != 16) || ctx.channels < 1 || ctx.channels > 4 ||
         ctx.rowBytes != size_t(ctx.width) * size_t(ctx.channels) * size_t(ctx.bitDepth / 8))
-        return fail(ErrorCode::Unsupported,
-                    file + ": unsupported PNG layout (bit depth " + std::to_string(ctx.fileBitDepth) +
-                        ", color type " + std::to_string(ctx.fileColorType) + ")");
+        return fail(ErrorCode::Unsupported, file + ": unsupported PNG layout (bit depth " +
+                                                std::to_string(ctx.fileBitDepth) + ", color type " +
+                                                std::to_string(ctx.fileColorType) + ")");
 
     std::vector<png_byte> bytes(size_t(ctx.height) * ctx.rowBytes);
     ctx.rows.resize(ctx.height);

@@ -56,22 +56,22 @@ std::optional<Encoding> parseEncoding(std::string_view name);
 std::string encodingNameList();  // "'unorm', 'snorm', ..." for error messages
 
 struct ChannelDesc {
-    std::string name;       // a GLSL identifier: the member of GBuffer_<layout>
+    std::string name;  // a GLSL identifier: the member of GBuffer_<layout>
     Encoding encoding = Encoding::Unorm;
-    uint32_t bits = 0;      // total over its components
-    std::string origin;     // "file:line" of the declaration, or ""
+    uint32_t bits = 0;        // total over its components
+    std::string origin;       // "file:line" of the declaration, or ""
     uint32_t components = 0;  // 0 = the encoding's default: oct 2, srgb 3, others 1
 };
 
 struct TargetDesc {
-    std::string name;       // e.g. "GB0"; the resource name in the graph
+    std::string name;  // e.g. "GB0"; the resource name in the graph
     Format format = Format::Undefined;
     std::vector<ChannelDesc> channels;
     std::string origin;
 };
 
 struct LayoutDesc {
-    std::string name;       // a GLSL identifier: GBuffer_<name>, packGBuffer_<name>, ...
+    std::string name;  // a GLSL identifier: GBuffer_<name>, packGBuffer_<name>, ...
     std::vector<TargetDesc> targets;
     std::string origin;
 };
@@ -96,8 +96,8 @@ struct ChannelPlacement {
 // The texel components of a colour format as the pack code sees them.
 struct TexelComponents {
     enum class Kind : uint8_t { Unorm, Srgb, Uint, Float };
-    Kind kind = Kind::Unorm;    // Srgb: R, G, B are sRGB-encoded by the hardware, A is unorm
-    uint32_t count = 0;         // texel components (1..4)
+    Kind kind = Kind::Unorm;         // Srgb: R, G, B are sRGB-encoded by the hardware, A is unorm
+    uint32_t count = 0;              // texel components (1..4)
     std::array<uint32_t, 4> bits{};  // width of each
     uint32_t totalBits() const { return bits[0] + bits[1] + bits[2] + bits[3]; }
 };

@@ -19,7 +19,8 @@ double saturate(double x) { return std::clamp(x, 0.0, 1.0); }
 }  // namespace
 
 double lambertianLuminance(double lumens, double emittingArea) {
-    RG_CHECK(emittingArea > 0.0) << "a Lambertian emitter needs a positive area, got " << emittingArea;
+    RG_CHECK(emittingArea > 0.0) << "a Lambertian emitter needs a positive area, got "
+                                 << emittingArea;
     return lumens / (emittingArea * kPi);  // seed 000 eq:33
 }
 
@@ -36,35 +37,43 @@ double diskLuminanceFromLumens(double lumens, double radius) {
 }
 
 double tubeLuminanceFromLumens(double lumens, double radius, double length) {
-    RG_CHECK(radius > 0.0 && length >= 0.0) << "tube light needs radius > 0 and length >= 0, got " << radius
-                                            << ", " << length;
+    RG_CHECK(radius > 0.0 && length >= 0.0)
+        << "tube light needs radius > 0 and length >= 0, got " << radius << ", " << length;
     return lumens / ((2.0 * kPi * radius * length + 4.0 * kPi * radius * radius) * kPi);
 }
 
 double rectangleLuminanceFromLumens(double lumens, double width, double height) {
-    RG_CHECK(width > 0.0 && height > 0.0) << "rectangle light needs a positive size, got " << width << " x "
-                                          << height;
+    RG_CHECK(width > 0.0 && height > 0.0)
+        << "rectangle light needs a positive size, got " << width << " x " << height;
     return lumens / (kPi * width * height);
 }
 
 double areaLightLuminance(const AreaLightShape& shape, double value, AreaUnit unit) {
     switch (unit) {
-        case AreaUnit::Nits: return value;
-        case AreaUnit::Ev100: return lights::luminanceFromEv100(value);  // eq:12
-        case AreaUnit::Lumens: break;
+        case AreaUnit::Nits:
+            return value;
+        case AreaUnit::Ev100:
+            return lights::luminanceFromEv100(value);  // eq:12
+        case AreaUnit::Lumens:
+            break;
     }
     switch (shape.shape) {
-        case AreaShape::Sphere: return sphereLuminanceFromLumens(value, shape.radius);
-        case AreaShape::Disk: return diskLuminanceFromLumens(value, shape.radius);
-        case AreaShape::Tube: return tubeLuminanceFromLumens(value, shape.radius, shape.length);
-        case AreaShape::Rectangle: return rectangleLuminanceFromLumens(value, shape.width, shape.height);
+        case AreaShape::Sphere:
+            return sphereLuminanceFromLumens(value, shape.radius);
+        case AreaShape::Disk:
+            return diskLuminanceFromLumens(value, shape.radius);
+        case AreaShape::Tube:
+            return tubeLuminanceFromLumens(value, shape.radius, shape.length);
+        case AreaShape::Rectangle:
+            return rectangleLuminanceFromLumens(value, shape.width, shape.height);
     }
     RG_CHECK(false) << "unknown area light shape " << static_cast<int>(shape.shape);
     return 0.0;
 }
 
 double emissiveLuminance(double value, AreaUnit unit) {
-    RG_CHECK(unit != AreaUnit::Lumens) << "emissive surfaces take nits or EV100 (tbl:8), not lumens";
+    RG_CHECK(unit != AreaUnit::Lumens)
+        << "emissive surfaces take nits or EV100 (tbl:8), not lumens";
     return unit == AreaUnit::Ev100 ? lights::luminanceFromEv100(value) : value;  // eq:12
 }
 
@@ -86,8 +95,9 @@ double sphereIlluminanceTilted(double radius, double distance, double cosBeta) {
     const double sinBeta = std::sin(beta);
     const double y = -x * (c / sinBeta);  // −x cot β; |y| ≤ 1 in this branch (sin β > 0 here)
     const double sqrtY = std::sqrt(std::max(0.0, 1.0 - y * y));
-    const double formFactor = (1.0 / (kPi * h * h)) * (c * std::acos(std::clamp(y, -1.0, 1.0)) - x * sinBeta * sqrtY) +
-                              (1.0 / kPi) * std::atan(sinBeta * sqrtY / x);
+    const double formFactor =
+        (1.0 / (kPi * h * h)) * (c * std::acos(std::clamp(y, -1.0, 1.0)) - x * sinBeta * sqrtY) +
+        (1.0 / kPi) * std::atan(sinBeta * sqrtY / x);
     return kPi * formFactor;
 }
 
@@ -103,8 +113,9 @@ double illuminanceSphereOrDisk(double cosTheta, double sinSigmaSqr) {
         const double x = std::sqrt(1.0 / sinSigmaSqr - 1.0);  // d / r for the disk
         const double y = -x * (cosTheta / sinTheta);
         const double sinThetaSqrtY = sinTheta * std::sqrt(std::max(0.0, 1.0 - y * y));
-        illuminance = (cosTheta * std::acos(std::clamp(y, -1.0, 1.0)) - x * sinThetaSqrtY) * sinSigmaSqr +
-                      std::atan(sinThetaSqrtY / x);
+        illuminance =
+            (cosTheta * std::acos(std::clamp(y, -1.0, 1.0)) - x * sinThetaSqrtY) * sinSigmaSqr +
+            std::atan(sinThetaSqrtY / x);
     }
     return std::max(illuminance, 0.0);
 }
@@ -137,8 +148,9 @@ double diskIlluminanceHorizon(double radius, double distance, double cosTheta, d
         const double cotTheta = c / std::sin(theta);
         const double X = std::sqrt(std::max(0.0, 1.0 - H2 * cotTheta * cotTheta));
         const double sinTheta = std::sin(theta);
-        illuminance = -H * X * sinTheta / (kPi * (1.0 + H2)) + (1.0 / kPi) * std::atan(X * sinTheta / H) +
-                      c * (kPi - std::acos(std::clamp(H * cotTheta, -1.0, 1.0))) / (kPi * (1.0 + H2));
+        illuminance =
+            -H * X * sinTheta / (kPi * (1.0 + H2)) + (1.0 / kPi) * std::atan(X * sinTheta / H) +
+            c * (kPi - std::acos(std::clamp(H * cotTheta, -1.0, 1.0))) / (kPi * (1.0 + H2));
     }
     // The listing's closing multiplication: π for the form factor, the disk's orientation as a cosine.
     return std::max(illuminance, 0.0) * kPi * saturate(cosLight);
@@ -147,12 +159,13 @@ double diskIlluminanceHorizon(double radius, double distance, double cosTheta, d
 double diskIlluminance(double radius, double sqrDist, double cosTheta, double cosLight) {
     // seed 000 lst:10, disk evaluation.
     const double sqrLightRadius = radius * radius;
-    const double sinSigmaSqr = sqrLightRadius / (sqrLightRadius + std::max(sqrLightRadius, sqrDist));
+    const double sinSigmaSqr =
+        sqrLightRadius / (sqrLightRadius + std::max(sqrLightRadius, sqrDist));
     return illuminanceSphereOrDisk(cosTheta, sinSigmaSqr) * saturate(cosLight);
 }
 
-glm::dvec3 diskVirtualPosition(const glm::dvec3& lightPos, const glm::dvec3& spotDirection, double discRadius,
-                               double halfOuterAngle) {
+glm::dvec3 diskVirtualPosition(const glm::dvec3& lightPos, const glm::dvec3& spotDirection,
+                               double discRadius, double halfOuterAngle) {
     // seed 000 lst:9: the apex of the cone of half-angle θ_outer through the disk's rim.
     return lightPos - spotDirection * (discRadius / std::tan(halfOuterAngle));
 }
@@ -161,7 +174,8 @@ double sunIlluminance(double illuminancePerpendicular, double NdotD) {
     return illuminancePerpendicular * saturate(NdotD);  // seed 000 eq:28, lst:6
 }
 
-glm::dvec3 sunSpecularDirection(const glm::dvec3& sunDirection, const glm::dvec3& R, double angularRadius) {
+glm::dvec3 sunSpecularDirection(const glm::dvec3& sunDirection, const glm::dvec3& R,
+                                double angularRadius) {
     // seed 000 lst:6: the disk of radius sin σ at distance cos σ along D; the closest point to R (a
     // good approximation because the sun is small).
     const double r = std::sin(angularRadius);
@@ -202,20 +216,24 @@ double rectangleSolidAngle(const glm::dvec3& worldPos, const glm::dvec3& p0, con
 namespace {
 
 // seed 002 §4.7.2.5: Ω · mean of saturate(n·l) over the corners and the centre (structured sampling).
-double structuredQuadIlluminance(const glm::dvec3& worldPos, const glm::dvec3& worldNormal, const glm::dvec3& center,
-                                 const glm::dvec3& p0, const glm::dvec3& p1, const glm::dvec3& p2,
-                                 const glm::dvec3& p3) {
+double structuredQuadIlluminance(const glm::dvec3& worldPos, const glm::dvec3& worldNormal,
+                                 const glm::dvec3& center, const glm::dvec3& p0,
+                                 const glm::dvec3& p1, const glm::dvec3& p2, const glm::dvec3& p3) {
     const double solidAngle = rectangleSolidAngle(worldPos, p0, p1, p2, p3);
-    const auto cosine = [&](const glm::dvec3& p) { return saturate(glm::dot(glm::normalize(p - worldPos), worldNormal)); };
+    const auto cosine = [&](const glm::dvec3& p) {
+        return saturate(glm::dot(glm::normalize(p - worldPos), worldNormal));
+    };
     return solidAngle * 0.2 * (cosine(p0) + cosine(p1) + cosine(p2) + cosine(p3) + cosine(center));
 }
 
 }  // namespace
 
-double rectangleIlluminance(const glm::dvec3& worldPos, const glm::dvec3& worldNormal, const glm::dvec3& lightPos,
-                            const glm::dvec3& lightLeft, const glm::dvec3& lightUp,
-                            const glm::dvec3& lightPlaneNormal, double width, double height) {
-    if (glm::dot(worldPos - lightPos, lightPlaneNormal) <= 0.0) return 0.0;  // behind a one-sided emitter
+double rectangleIlluminance(const glm::dvec3& worldPos, const glm::dvec3& worldNormal,
+                            const glm::dvec3& lightPos, const glm::dvec3& lightLeft,
+                            const glm::dvec3& lightUp, const glm::dvec3& lightPlaneNormal,
+                            double width, double height) {
+    if (glm::dot(worldPos - lightPos, lightPlaneNormal) <= 0.0)
+        return 0.0;  // behind a one-sided emitter
     const double halfWidth = width * 0.5, halfHeight = height * 0.5;
     const glm::dvec3 p0 = lightPos + lightLeft * -halfWidth + lightUp * halfHeight;
     const glm::dvec3 p1 = lightPos + lightLeft * -halfWidth + lightUp * -halfHeight;
@@ -224,8 +242,8 @@ double rectangleIlluminance(const glm::dvec3& worldPos, const glm::dvec3& worldN
     return structuredQuadIlluminance(worldPos, worldNormal, lightPos, p0, p1, p2, p3);
 }
 
-double tubeIlluminance(const glm::dvec3& worldPos, const glm::dvec3& worldNormal, const glm::dvec3& p0,
-                       const glm::dvec3& p1, double radius) {
+double tubeIlluminance(const glm::dvec3& worldPos, const glm::dvec3& worldNormal,
+                       const glm::dvec3& p0, const glm::dvec3& p1, double radius) {
     // seed 002 §4.7.2.6: the capsule split into a cylinder (a rectangle facing the point) and two
     // half-spheres (one sphere at the segment's closest point).
     const glm::dvec3 ab = p1 - p0;
@@ -235,7 +253,8 @@ double tubeIlluminance(const glm::dvec3& worldPos, const glm::dvec3& worldNormal
     const glm::dvec3 closestOnLine = p0 + t * ab;
     const glm::dvec3 closestOnSegment = p0 + std::clamp(t, 0.0, 1.0) * ab;
     // Inside the capsule: nothing (it emits outwards), as lighting.glsl and the reference mode.
-    if (glm::dot(closestOnSegment - worldPos, closestOnSegment - worldPos) < radius * radius) return 0.0;
+    if (glm::dot(closestOnSegment - worldPos, closestOnSegment - worldPos) < radius * radius)
+        return 0.0;
     const glm::dvec3 lightPos = 0.5 * (p0 + p1);
     const double lightWidth = std::sqrt(lengthSq);
     const glm::dvec3 left = ab / lightWidth;
@@ -250,7 +269,8 @@ double tubeIlluminance(const glm::dvec3& worldPos, const glm::dvec3& worldNormal
     const glm::dvec3 sphereUnormL = closestOnSegment - worldPos;
     const double sqrSphereDistance = glm::dot(sphereUnormL, sphereUnormL);
     const glm::dvec3 sphereL = sphereUnormL / std::sqrt(sqrSphereDistance);
-    illuminance += kPi * saturate(glm::dot(sphereL, worldNormal)) * (radius * radius / sqrSphereDistance);
+    illuminance +=
+        kPi * saturate(glm::dot(sphereL, worldNormal)) * (radius * radius / sqrSphereDistance);
     return illuminance;
 }
 

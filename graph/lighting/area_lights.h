@@ -96,8 +96,8 @@ double diskIlluminance(double radius, double sqrDist, double cosTheta, double co
 // the cone of half-angle halfOuterAngle through the disk's rim: lightPos − spotDirection · r / tan
 // (the seed writes "+ lightForward ·", its lightForward pointing back at the light, as in lst:4).
 // spotDirection is the unit direction the light shines in.
-glm::dvec3 diskVirtualPosition(const glm::dvec3& lightPos, const glm::dvec3& spotDirection, double discRadius,
-                               double halfOuterAngle);
+glm::dvec3 diskVirtualPosition(const glm::dvec3& lightPos, const glm::dvec3& spotDirection,
+                               double discRadius, double halfOuterAngle);
 
 // ---- The sun (lst:6, eq:28) ---------------------------------------------------------------------
 
@@ -108,7 +108,8 @@ double sunIlluminance(double illuminancePerpendicular, double NdotD);
 // lst:6: the specular direction — the point of the sun's disk (angular radius, radians) closest to
 // the reflection vector R: R itself when it hits the disk, else the nearest point on its rim. D is
 // the unit direction towards the sun, R unit length.
-glm::dvec3 sunSpecularDirection(const glm::dvec3& sunDirection, const glm::dvec3& R, double angularRadius);
+glm::dvec3 sunSpecularDirection(const glm::dvec3& sunDirection, const glm::dvec3& R,
+                                double angularRadius);
 
 // The sun as a disk of angular radius σ: its solid angle 2π (1 − cos σ) (sr) and the luminance
 // (cd/m²) that gives E⊥ on a facing surface, L = E⊥ / (π sin²σ) (lst:10, first branch).
@@ -129,15 +130,16 @@ double rectangleSolidAngle(const glm::dvec3& worldPos, const glm::dvec3& p0, con
 // the mean of saturate(n·l) over the 4 corners and the centre; 0 behind the light's plane.
 // lightLeft and lightUp are the unit axes of the rectangle (width along lightLeft), lightPlaneNormal
 // the direction it emits into.
-double rectangleIlluminance(const glm::dvec3& worldPos, const glm::dvec3& worldNormal, const glm::dvec3& lightPos,
-                            const glm::dvec3& lightLeft, const glm::dvec3& lightUp,
-                            const glm::dvec3& lightPlaneNormal, double width, double height);
+double rectangleIlluminance(const glm::dvec3& worldPos, const glm::dvec3& worldNormal,
+                            const glm::dvec3& lightPos, const glm::dvec3& lightLeft,
+                            const glm::dvec3& lightUp, const glm::dvec3& lightPlaneNormal,
+                            double width, double height);
 
 // Tube light (seed 002 §4.7.2.6), a capsule from p0 to p1 of the given radius: the cylinder as a
 // rectangle facing the point (length × 2r, structured sampling as above) plus the two half-spheres as
 // one sphere at the closest point of the segment (lst:7's formula without horizon).
-double tubeIlluminance(const glm::dvec3& worldPos, const glm::dvec3& worldNormal, const glm::dvec3& p0,
-                       const glm::dvec3& p1, double radius);
+double tubeIlluminance(const glm::dvec3& worldPos, const glm::dvec3& worldNormal,
+                       const glm::dvec3& p0, const glm::dvec3& p1, double radius);
 
 // Seed 002 §4.7.5: the specular dominant direction for area lights, normalize(lerp(N, R, 1 − roughness)).
 glm::dvec3 getSpecularDominantDirArea(const glm::dvec3& N, const glm::dvec3& R, double roughness);

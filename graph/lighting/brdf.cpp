@@ -31,7 +31,9 @@ glm::vec3 F_Schlick(glm::vec3 f0, float f90, float u) {
     return f0 + (glm::vec3(f90) - f0) * std::pow(std::max(1.0f - u, 0.0f), 5.0f);
 }
 
-float F_Schlick(float f0, float f90, float u) { return f0 + (f90 - f0) * std::pow(std::max(1.0f - u, 0.0f), 5.0f); }
+float F_Schlick(float f0, float f90, float u) {
+    return f0 + (f90 - f0) * std::pow(std::max(1.0f - u, 0.0f), 5.0f);
+}
 
 float Fr_DisneyDiffuse(float NdotV, float NdotL, float LdotH, float linearRoughness) {
     // seed 000 lst:1: the bias keeps Disney's retro-reflection, the factor removes its energy gain.
@@ -61,13 +63,16 @@ float D_GGX(float NdotH, float alpha) {
 
 float rgDielectricF0(float reflectance) { return 0.16f * reflectance * reflectance; }  // §3.2.1
 
-float standardAlpha(float linearRoughness) { return std::max(linearRoughness * linearRoughness, 1e-3f); }
+float standardAlpha(float linearRoughness) {
+    return std::max(linearRoughness * linearRoughness, 1e-3f);
+}
 
 float standardF90(glm::vec3 f0) { return saturate(50.0f * glm::dot(f0, glm::vec3(0.33f))); }
 
-glm::vec3 rgStandardBrdf(glm::vec3 N, glm::vec3 V, glm::vec3 L, glm::vec3 diffuseColor, glm::vec3 f0,
-                         float linearRoughness) {
-    const float NdotV = std::abs(glm::dot(N, V)) + 1e-5f;  // lst:2: avoids artefacts at grazing view angles
+glm::vec3 rgStandardBrdf(glm::vec3 N, glm::vec3 V, glm::vec3 L, glm::vec3 diffuseColor,
+                         glm::vec3 f0, float linearRoughness) {
+    const float NdotV =
+        std::abs(glm::dot(N, V)) + 1e-5f;  // lst:2: avoids artefacts at grazing view angles
     const glm::vec3 H = glm::normalize(V + L);
     const float LdotH = saturate(glm::dot(L, H));
     const float NdotH = saturate(glm::dot(N, H));
@@ -97,7 +102,8 @@ glm::dvec3 VisibleNormals::halfVector(double u1, double u2) const {
     double p2 = r * std::sin(phi);
     const double s = 0.5 * (1.0 + vh.z);
     p2 = (1.0 - s) * std::sqrt(std::max(0.0, 1.0 - p1 * p1)) + s * p2;
-    const glm::dvec3 nh = p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
+    const glm::dvec3 nh =
+        p1 * t1 + p2 * t2 + std::sqrt(std::max(0.0, 1.0 - p1 * p1 - p2 * p2)) * vh;
     return glm::normalize(glm::dvec3(a * nh.x, a * nh.y, std::max(0.0, nh.z)));
 }
 
@@ -125,7 +131,8 @@ double specularAlbedo(float NdotV, float linearRoughness, float f0, float f90, i
             if (l.z <= 0.0) continue;
             const float F = F_Schlick(f0, f90, static_cast<float>(VdotH));
             const float Vis = V_SmithGGXCorrelated(static_cast<float>(l.z), NdotV, alpha);
-            const double g2 = 4.0 * static_cast<double>(Vis) * l.z * nv;  // Vis = G₂ / (4 NdotL NdotV)
+            const double g2 =
+                4.0 * static_cast<double>(Vis) * l.z * nv;  // Vis = G₂ / (4 NdotL NdotV)
             sum += static_cast<double>(F) * g2 / vn.g1;
         }
     return sum / (static_cast<double>(samples) * samples);
@@ -143,19 +150,22 @@ double diffuseAlbedo(float NdotV, float linearRoughness, int samples) {
             const glm::dvec3 l{sinL * std::cos(phi), sinL * std::sin(phi), cosL};
             const double LdotH = glm::dot(l, glm::normalize(l + v));
             // (Fd/π)·⟨n·l⟩ / (⟨n·l⟩/π) = Fd.
-            sum += Fr_DisneyDiffuse(NdotV, static_cast<float>(cosL), static_cast<float>(LdotH), linearRoughness);
+            sum += Fr_DisneyDiffuse(NdotV, static_cast<float>(cosL), static_cast<float>(LdotH),
+                                    linearRoughness);
         }
     }
     return sum / (static_cast<double>(samples) * samples);
 }
 
-double standardAlbedo(float NdotV, float linearRoughness, float diffuseColor, float f0, int samples) {
+double standardAlbedo(float NdotV, float linearRoughness, float diffuseColor, float f0,
+                      int samples) {
     const float f90 = standardF90(glm::vec3(f0));
     return diffuseColor * diffuseAlbedo(NdotV, linearRoughness, samples) +
            specularAlbedo(NdotV, linearRoughness, f0, f90, samples);
 }
 
-double integrateHemisphere(const std::function<double(const glm::dvec3& l)>& f, int cosThetaCells, int phiCells) {
+double integrateHemisphere(const std::function<double(const glm::dvec3& l)>& f, int cosThetaCells,
+                           int phiCells) {
     RG_CHECK(cosThetaCells > 0 && phiCells > 0) << "integrateHemisphere needs a non-empty grid";
     // Equal-area cells: dω = d(cos θ) dφ, each cell 2π / (n·m) sr.
     const double cellSolidAngle = 2.0 * kPiD / (static_cast<double>(cosThetaCells) * phiCells);

@@ -44,8 +44,8 @@ float standardF90(glm::vec3 f0);
 // The standard material's BRDF times NdotL for one light direction, diffuse + specular: the factor
 // that multiplies the light's illuminance (lux, perpendicular to the light) to give luminance.
 // Mirrors rgStandardBrdf of brdf.glsl line for line (NdotV = |n·v| + 1e-5, lst:2).
-glm::vec3 rgStandardBrdf(glm::vec3 N, glm::vec3 V, glm::vec3 L, glm::vec3 diffuseColor, glm::vec3 f0,
-                         float linearRoughness);
+glm::vec3 rgStandardBrdf(glm::vec3 N, glm::vec3 V, glm::vec3 L, glm::vec3 diffuseColor,
+                         glm::vec3 f0, float linearRoughness);
 
 // ---- Numerical integration (tests, tools, documentation; not for per-pixel use) ----------------
 
@@ -77,11 +77,13 @@ double diffuseAlbedo(float NdotV, float linearRoughness, int samples = 128);
 
 // Directional albedo of the standard BRDF for a grey material — what rgStandardBrdf integrates to:
 // diffuseColor · diffuseAlbedo + specularAlbedo with f90 = standardF90(f0) (eq:6, Figure 9 (c)).
-double standardAlbedo(float NdotV, float linearRoughness, float diffuseColor, float f0, int samples = 128);
+double standardAlbedo(float NdotV, float linearRoughness, float diffuseColor, float f0,
+                      int samples = 128);
 
 // ∫ f(l) dω over the upper hemisphere (z > 0, the normal is +z) by the midpoint rule on an
 // equal-area grid of cosThetaCells × phiCells cells (cos θ and φ uniform). Brute force, no
 // importance: good for smooth integrands, and as an independent check of the estimators above.
-double integrateHemisphere(const std::function<double(const glm::dvec3& l)>& f, int cosThetaCells, int phiCells);
+double integrateHemisphere(const std::function<double(const glm::dvec3& l)>& f, int cosThetaCells,
+                           int phiCells);
 
 }  // namespace rg::brdf

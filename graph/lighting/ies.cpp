@@ -25,7 +25,9 @@ constexpr int kMaxAngles = 100000;
 constexpr std::uintmax_t kMaxFileBytes = 64u << 20;
 
 std::string_view trim(std::string_view s) {
-    const auto blank = [](char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v'; };
+    const auto blank = [](char c) {
+        return c == ' ' || c == '\t' || c == '\r' || c == '\n' || c == '\f' || c == '\v';
+    };
     while (!s.empty() && blank(s.front())) s.remove_prefix(1);
     while (!s.empty() && blank(s.back())) s.remove_suffix(1);
     return s;
@@ -34,13 +36,17 @@ std::string_view trim(std::string_view s) {
 bool startsWithNoCase(std::string_view s, std::string_view prefix) {
     if (s.size() < prefix.size()) return false;
     for (size_t i = 0; i < prefix.size(); ++i) {
-        const auto up = [](char c) { return c >= 'a' && c <= 'z' ? static_cast<char>(c - 'a' + 'A') : c; };
+        const auto up = [](char c) {
+            return c >= 'a' && c <= 'z' ? static_cast<char>(c - 'a' + 'A') : c;
+        };
         if (up(s[i]) != up(prefix[i])) return false;
     }
     return true;
 }
 
-bool equalsNoCase(std::string_view a, std::string_view b) { return a.size() == b.size() && startsWithNoCase(a, b); }
+bool equalsNoCase(std::string_view a, std::string_view b) {
+    return a.size() == b.size() && startsWithNoCase(a, b);
+}
 
 // Lines with their 1-based numbers; "\r\n", "\r" and "\n" all end a line.
 std::vector<std::string_view> splitLines(std::string_view text) {
@@ -72,8 +78,10 @@ struct Token {
 bool parseNumber(std::string_view s, double& out) {
     if (!s.empty() && s.front() == '+') s.remove_prefix(1);
     if (s.empty()) return false;
-    const auto [end, ec] = std::from_chars(s.data(), s.data() + s.size(), out, std::chars_format::general);
-    return ec == std::errc() && end == s.data() + s.size() && std::abs(out) <= std::numeric_limits<float>::max();
+    const auto [end, ec] =
+        std::from_chars(s.data(), s.data() + s.size(), out, std::chars_format::general);
+    return ec == std::errc() && end == s.data() + s.size() &&
+           std::abs(out) <= std::numeric_limits<float>::max();
 }
 
 bool looksNumeric(std::string_view line) {
@@ -106,7 +114,8 @@ std::string numberText(double v) {
 
 class Parser {
 public:
-    Parser(std::string_view text, const std::string& fileName) : m_fileName(fileName), m_lines(splitLines(text)) {
+    Parser(std::string_view text, const std::string& fileName)
+        : m_fileName(fileName), m_lines(splitLines(text)) {
         // A UTF-8 byte order mark is not part of the first line.
         if (!m_lines.empty() && m_lines[0].starts_with("\xEF\xBB\xBF")) m_lines[0].remove_prefix(3);
     }
@@ -114,7 +123,8 @@ public:
     Result<IesProfile> parse();
 
 private:
-    std::unexpected<Error> failAt(int line, std::string message, ErrorCode code = ErrorCode::InvalidInput) const {
+    std::unexpected<Error> failAt(int line, std::string message,
+                                  ErrorCode code = ErrorCode::InvalidInput) const {
         return fail(code, "'" + m_fileName + "':" + std::to_string(line) + ": " + message);
     }
     int lastLine() const { return std::max(1, static_cast<int>(m_lines.size())); }
@@ -130,13 +140,16 @@ public:
     Result<void> tiltData(IesProfile& profile);
     void tokenizeAll() { tokenize(0); }
     bool atEndOfData() const { return atEnd(); }
-    std::unexpected<Error> failAtNext(std::string message) const { return failAt(nextLine(), std::move(message)); }
+    std::unexpected<Error> failAtNext(std::string message) const {
+        return failAt(nextLine(), std::move(message));
+    }
 
 private:
     void tokenize(size_t firstLine);
     Result<double> number(std::string_view role);
     Result<int> integer(std::string_view role);
-    Result<std::vector<float>> angles(int count, std::string_view plural, std::string_view singular);
+    Result<std::vector<float>> angles(int count, std::string_view plural,
+                                      std::string_view singular);
     Result<void> wrongCount(int nV, int nH);
 
     const std::string& m_fileName;
@@ -167,7 +180,8 @@ Result<int> Parser::header(IesProfile& profile) {
     } else if (startsWithNoCase(formatLine, "IESNA") || startsWithNoCase(formatLine, "IES:")) {
         return failAt(1,
                       "unknown IES format '" + shorten(formatLine) +
-                          "', expected one of: 'IES:LM-63-2019', 'IESNA:LM-63-2002', 'IESNA:LM-63-1995', 'IESNA91', or no "
+                          "', expected one of: 'IES:LM-63-2019', 'IESNA:LM-63-2002', "
+                          "'IESNA:LM-63-1995', 'IESNA91', or no "
                           "format line (LM-63-1986)",
                       ErrorCode::Unsupported);
     } else {
@@ -180,31 +194,38 @@ Result<int> Parser::header(IesProfile& profile) {
         if (startsWithNoCase(line, "TILT")) {
             const std::string_view rest = trim(line.substr(4));
             if (rest.starts_with('=')) {
-                if (auto t = tilt(trim(rest.substr(1)), lineNumber, profile); !t) return std::unexpected(t.error());
+                if (auto t = tilt(trim(rest.substr(1)), lineNumber, profile); !t)
+                    return std::unexpected(t.error());
                 return static_cast<int>(i);
             }
         }
         if (line.empty()) continue;
         if (looksNumeric(line))
-            return failAt(lineNumber, "missing TILT line: expected 'TILT=NONE' before the photometric data, found '" +
-                                          shorten(line) + "'");
+            return failAt(
+                lineNumber,
+                "missing TILT line: expected 'TILT=NONE' before the photometric data, found '" +
+                    shorten(line) + "'");
         if (profile.format != IesFormat::Lm63_1986 && line.front() == '[') {
             const size_t close = line.find(']');
             if (close == std::string_view::npos)
-                return failAt(lineNumber, "expected a keyword line '[KEYWORD] text', found '" + shorten(line) + "'");
+                return failAt(lineNumber, "expected a keyword line '[KEYWORD] text', found '" +
+                                              shorten(line) + "'");
             const std::string name(trim(line.substr(1, close - 1)));
             const std::string value(trim(line.substr(close + 1)));
             if (name == "MORE" && !profile.keywords.empty()) {
-                profile.keywords.back().value += "\n" + value;  // [MORE] continues the previous keyword
+                profile.keywords.back().value +=
+                    "\n" + value;  // [MORE] continues the previous keyword
             } else {
                 profile.keywords.push_back({name, value});
             }
             continue;
         }
-        profile.keywords.push_back({"", std::string(line)});  // a free-text label (LM-63-1986 style)
+        profile.keywords.push_back(
+            {"", std::string(line)});  // a free-text label (LM-63-1986 style)
     }
     return failAt(lastLine(),
-                  "missing TILT line: expected 'TILT=NONE' before the photometric data, found the end of the file");
+                  "missing TILT line: expected 'TILT=NONE' before the photometric data, found the "
+                  "end of the file");
 }
 
 Result<void> Parser::tilt(std::string_view value, int lineNumber, IesProfile& profile) {
@@ -213,7 +234,9 @@ Result<void> Parser::tilt(std::string_view value, int lineNumber, IesProfile& pr
         profile.tilt = "INCLUDE";
         return {};
     }
-    if (value.empty()) return failAt(lineNumber, "expected 'TILT=NONE', 'TILT=INCLUDE' or 'TILT=<file>', found 'TILT='");
+    if (value.empty())
+        return failAt(lineNumber,
+                      "expected 'TILT=NONE', 'TILT=INCLUDE' or 'TILT=<file>', found 'TILT='");
     profile.tilt = std::string(value);  // a tilt file: loadIes reads it
     return {};
 }
@@ -225,25 +248,30 @@ Result<void> Parser::tiltData(IesProfile& profile) {
     auto geometry = integer("the lamp-to-luminaire geometry (value 1 of the tilt data)");
     if (!geometry) return std::unexpected(geometry.error());
     if (*geometry < 1 || *geometry > 3)
-        return failAt(geometryLine, "expected a lamp-to-luminaire geometry of 1, 2 or 3, found " + std::to_string(*geometry));
+        return failAt(geometryLine, "expected a lamp-to-luminaire geometry of 1, 2 or 3, found " +
+                                        std::to_string(*geometry));
     profile.tiltGeometry = *geometry;
     const int countLine = nextLine();
     auto n = integer("the number of tilt angles (value 2 of the tilt data)");
     if (!n) return std::unexpected(n.error());
     if (*n < 1 || *n > kMaxAngles)
-        return failAt(countLine, "expected 1.." + std::to_string(kMaxAngles) + " tilt angles, found " + std::to_string(*n));
+        return failAt(countLine, "expected 1.." + std::to_string(kMaxAngles) +
+                                     " tilt angles, found " + std::to_string(*n));
     auto tiltAngles = angles(*n, "tilt angles", "tilt angle");
     if (!tiltAngles) return std::unexpected(tiltAngles.error());
     if (tiltAngles->front() < 0.0f || tiltAngles->back() > 180.0f)
-        return failAt(countLine, "expected tilt angles within 0..180 degrees, found " + numberText(tiltAngles->front()) + ".." +
+        return failAt(countLine, "expected tilt angles within 0..180 degrees, found " +
+                                     numberText(tiltAngles->front()) + ".." +
                                      numberText(tiltAngles->back()));
     profile.tiltAngles = std::move(*tiltAngles);
     profile.tiltFactors.clear();
     for (int k = 0; k < *n; ++k) {
         const int line = nextLine();
-        auto f = number("tilt multiplying factor " + std::to_string(k + 1) + " of " + std::to_string(*n));
+        auto f = number("tilt multiplying factor " + std::to_string(k + 1) + " of " +
+                        std::to_string(*n));
         if (!f) return std::unexpected(f.error());
-        if (!(*f >= 0.0) || !std::isfinite(*f)) return failAt(line, "expected a tilt multiplying factor >= 0, found " + numberText(*f));
+        if (!(*f >= 0.0) || !std::isfinite(*f))
+            return failAt(line, "expected a tilt multiplying factor >= 0, found " + numberText(*f));
         profile.tiltFactors.push_back(static_cast<float>(*f));
     }
     return {};
@@ -258,7 +286,9 @@ void Parser::tokenize(size_t firstLine) {
             while (i < line.size() && (isSeparator(line[i]) || line[i] == '\r')) ++i;
             size_t j = i;
             while (j < line.size() && !isSeparator(line[j]) && line[j] != '\r') ++j;
-            if (j > i) m_tokens.push_back({line.substr(i, j - i), static_cast<int>(l) + 1, m_tokens.size() == before, false});
+            if (j > i)
+                m_tokens.push_back({line.substr(i, j - i), static_cast<int>(l) + 1,
+                                    m_tokens.size() == before, false});
             i = j;
         }
         if (m_tokens.size() > before) m_tokens.back().lastOnLine = true;
@@ -266,11 +296,14 @@ void Parser::tokenize(size_t firstLine) {
 }
 
 Result<double> Parser::number(std::string_view role) {
-    if (atEnd()) return failAt(lastLine(), "truncated file: expected " + std::string(role) + ", found the end of the file");
+    if (atEnd())
+        return failAt(lastLine(), "truncated file: expected " + std::string(role) +
+                                      ", found the end of the file");
     const Token& t = m_tokens[m_next];
     double v = 0.0;
     if (!parseNumber(t.text, v))
-        return failAt(t.line, "expected a number for " + std::string(role) + ", found '" + shorten(t.text) + "'");
+        return failAt(t.line, "expected a number for " + std::string(role) + ", found '" +
+                                  shorten(t.text) + "'");
     ++m_next;
     return v;
 }
@@ -281,7 +314,8 @@ Result<int> Parser::integer(std::string_view role) {
     auto v = number(role);
     if (!v) return std::unexpected(v.error());
     if (*v != std::floor(*v) || std::abs(*v) > 1e9)
-        return failAt(line, "expected an integer for " + std::string(role) + ", found '" + shorten(text) + "'");
+        return failAt(line, "expected an integer for " + std::string(role) + ", found '" +
+                                shorten(text) + "'");
     return static_cast<int>(*v);
 }
 
@@ -293,36 +327,41 @@ Result<void> Parser::wrongCount(int nV, int nH) {
     const int64_t rest = static_cast<int64_t>(remaining());
     const auto endsLine = [&](int64_t n) {
         const int64_t i = static_cast<int64_t>(m_next) + n - 1;
-        return i >= 0 && i < static_cast<int64_t>(m_tokens.size()) && m_tokens[static_cast<size_t>(i)].lastOnLine;
+        return i >= 0 && i < static_cast<int64_t>(m_tokens.size()) &&
+               m_tokens[static_cast<size_t>(i)].lastOnLine;
     };
     if (rest > nH && (rest - nH) % (1 + nH) == 0) {
         const int64_t found = (rest - nH) / (1 + nH);
         if (found != nV && endsLine(found))
-            return failAt(nextLine(), "expected " + std::to_string(nV) + " vertical angles, found " + std::to_string(found));
+            return failAt(nextLine(), "expected " + std::to_string(nV) +
+                                          " vertical angles, found " + std::to_string(found));
     }
     if (rest > nV && (rest - nV) % (1 + nV) == 0) {
         const int64_t found = (rest - nV) / (1 + nV);
         if (found != nH && endsLine(nV) && endsLine(nV + found))
             return failAt(m_tokens[m_next + static_cast<size_t>(nV)].line,
-                          "expected " + std::to_string(nH) + " horizontal angles, found " + std::to_string(found));
+                          "expected " + std::to_string(nH) + " horizontal angles, found " +
+                              std::to_string(found));
     }
     return {};
 }
 
-Result<std::vector<float>> Parser::angles(int count, std::string_view plural, std::string_view singular) {
+Result<std::vector<float>> Parser::angles(int count, std::string_view plural,
+                                          std::string_view singular) {
     const int startLine = nextLine();
     const bool countsMismatch = static_cast<int64_t>(m_tokens.size()) != m_needed;
     const auto countError = [&](int64_t found) {
-        return failAt(startLine, "expected " + std::to_string(count) + " " + std::string(plural) + ", found " +
-                                     std::to_string(found));
+        return failAt(startLine, "expected " + std::to_string(count) + " " + std::string(plural) +
+                                     ", found " + std::to_string(found));
     };
     std::vector<float> out;
     for (int k = 0; k < count; ++k) {
         if (atEnd())
-            return failAt(lastLine(), "truncated file: expected " + std::to_string(count) + " " + std::string(plural) +
-                                          ", found " + std::to_string(k));
+            return failAt(lastLine(), "truncated file: expected " + std::to_string(count) + " " +
+                                          std::string(plural) + ", found " + std::to_string(k));
         const Token& t = m_tokens[m_next];
-        auto v = number(std::string(singular) + " " + std::to_string(k + 1) + " of " + std::to_string(count));
+        auto v = number(std::string(singular) + " " + std::to_string(k + 1) + " of " +
+                        std::to_string(count));
         if (!v) return std::unexpected(v.error());
         // Compared as stored (float), so no two table angles can coincide.
         const float angle = static_cast<float>(*v);
@@ -330,15 +369,18 @@ Result<std::vector<float>> Parser::angles(int count, std::string_view plural, st
             // A value that starts a new line and breaks the order is where the next block begins when
             // the values do not add up to what the header announced: the count is wrong.
             if (t.firstOnLine && countsMismatch) return countError(k);
-            return failAt(t.line, "expected " + std::string(plural) + " in increasing order, found " +
-                                      std::string(t.text) + " after " + numberText(out.back()));
+            return failAt(t.line, "expected " + std::string(plural) +
+                                      " in increasing order, found " + std::string(t.text) +
+                                      " after " + numberText(out.back()));
         }
         out.push_back(angle);
     }
     // The block ends in the middle of a line while the totals do not match: the line holds more.
     if (count > 0 && countsMismatch && !m_tokens[m_next - 1].lastOnLine) {
         int64_t extra = 0;
-        for (size_t i = m_next; i < m_tokens.size() && m_tokens[i].line == m_tokens[m_next - 1].line; ++i) ++extra;
+        for (size_t i = m_next;
+             i < m_tokens.size() && m_tokens[i].line == m_tokens[m_next - 1].line; ++i)
+            ++extra;
         return countError(count + extra);
     }
     return out;
@@ -362,51 +404,60 @@ Result<IesProfile> Parser::parse() {
     const int lampsLine = nextLine();
     auto lamps = integer("the number of lamps (value 1 of 10 after TILT)");
     if (!lamps) return std::unexpected(lamps.error());
-    if (*lamps < 1) return failAt(lampsLine, "expected a positive number of lamps, found " + std::to_string(*lamps));
+    if (*lamps < 1)
+        return failAt(lampsLine,
+                      "expected a positive number of lamps, found " + std::to_string(*lamps));
     profile.numberOfLamps = *lamps;
 
     const int lumensLine = nextLine();
     auto lumens = number("the lumens per lamp (value 2 of 10 after TILT)");
     if (!lumens) return std::unexpected(lumens.error());
     if (*lumens < 0.0 && *lumens != -1.0)
-        return failAt(lumensLine, "expected the lumens per lamp (or -1 for absolute photometry), found " +
-                                      numberText(*lumens));
+        return failAt(lumensLine,
+                      "expected the lumens per lamp (or -1 for absolute photometry), found " +
+                          numberText(*lumens));
     profile.lumens = static_cast<float>(*lumens);
 
     const int multiplierLine = nextLine();
     auto multiplier = number("the candela multiplier (value 3 of 10 after TILT)");
     if (!multiplier) return std::unexpected(multiplier.error());
     if (*multiplier <= 0.0)
-        return failAt(multiplierLine, "expected a positive candela multiplier, found " + numberText(*multiplier));
+        return failAt(multiplierLine,
+                      "expected a positive candela multiplier, found " + numberText(*multiplier));
     profile.multiplier = static_cast<float>(*multiplier);
 
     const auto count = [&](std::string_view what, std::string_view role) -> Result<int> {
         const int line = nextLine();
         auto n = integer(role);
         if (!n) return std::unexpected(n.error());
-        if (*n < 1) return failAt(line, "expected a positive number of " + std::string(what) + ", found " + std::to_string(*n));
-        if (*n > kMaxAngles)
-            return failAt(line, "expected at most " + std::to_string(kMaxAngles) + " " + std::string(what) + ", found " +
+        if (*n < 1)
+            return failAt(line, "expected a positive number of " + std::string(what) + ", found " +
                                     std::to_string(*n));
+        if (*n > kMaxAngles)
+            return failAt(line, "expected at most " + std::to_string(kMaxAngles) + " " +
+                                    std::string(what) + ", found " + std::to_string(*n));
         return *n;
     };
     auto nV = count("vertical angles", "the number of vertical angles (value 4 of 10 after TILT)");
     if (!nV) return std::unexpected(nV.error());
-    auto nH = count("horizontal angles", "the number of horizontal angles (value 5 of 10 after TILT)");
+    auto nH =
+        count("horizontal angles", "the number of horizontal angles (value 5 of 10 after TILT)");
     if (!nH) return std::unexpected(nH.error());
 
     const int typeLine = nextLine();
     auto type = integer("the photometric type (value 6 of 10 after TILT)");
     if (!type) return std::unexpected(type.error());
     if (*type != 1 && *type != 2 && *type != 3)
-        return failAt(typeLine, "expected photometric type 1 (C), 2 (B) or 3 (A), found " + std::to_string(*type));
+        return failAt(typeLine, "expected photometric type 1 (C), 2 (B) or 3 (A), found " +
+                                    std::to_string(*type));
     profile.photometricType = *type;
 
     const int unitsLine = nextLine();
     auto units = integer("the units type (value 7 of 10 after TILT)");
     if (!units) return std::unexpected(units.error());
     if (*units != 1 && *units != 2)
-        return failAt(unitsLine, "expected units type 1 (feet) or 2 (meters), found " + std::to_string(*units));
+        return failAt(unitsLine, "expected units type 1 (feet) or 2 (meters), found " +
+                                     std::to_string(*units));
     profile.unitsType = *units;
 
     float* const geometry[] = {&profile.width, &profile.length, &profile.height};
@@ -422,12 +473,14 @@ Result<IesProfile> Parser::parse() {
     // Line 2 after TILT: ballast factor, ballast-lamp photometric factor ("future use"; LM-63-2019:
     // the file generation type), input watts.
     const bool lm2019 = profile.format == IesFormat::Lm63_2019;
-    float* const electrical[] = {&profile.ballastFactor, lm2019 ? &profile.fileGenerationType : &profile.ballastLampFactor,
+    float* const electrical[] = {&profile.ballastFactor,
+                                 lm2019 ? &profile.fileGenerationType : &profile.ballastLampFactor,
                                  &profile.inputWatts};
-    const char* const electricalRoles[] = {"the ballast factor (value 1 of 3 on the second line after TILT)",
-                                           lm2019 ? "the file generation type (value 2 of 3 on the second line after TILT)"
-                                                  : "the ballast-lamp photometric factor (value 2 of 3 on the second line after TILT)",
-                                           "the input watts (value 3 of 3 on the second line after TILT)"};
+    const char* const electricalRoles[] = {
+        "the ballast factor (value 1 of 3 on the second line after TILT)",
+        lm2019 ? "the file generation type (value 2 of 3 on the second line after TILT)"
+               : "the ballast-lamp photometric factor (value 2 of 3 on the second line after TILT)",
+        "the input watts (value 3 of 3 on the second line after TILT)"};
     for (int i = 0; i < 3; ++i) {
         auto v = number(electricalRoles[i]);
         if (!v) return std::unexpected(v.error());
@@ -442,10 +495,13 @@ Result<IesProfile> Parser::parse() {
     // axis, starting at −90, or at 0 for a distribution the same on both sides (mirrored).
     const bool typeC = profile.photometricType == 1;
     const char* const typeName = profile.photometricType == 2 ? "type B" : "type A";
-    const auto checkAB = [&](const std::vector<float>& a, int line, const char* which, bool& mirrored) -> Result<void> {
+    const auto checkAB = [&](const std::vector<float>& a, int line, const char* which,
+                             bool& mirrored) -> Result<void> {
         if ((a.front() != -90.0f && a.front() != 0.0f) || a.back() > 90.0f)
-            return failAt(line, "expected " + std::string(which) + " angles from -90 or 0 to at most 90 degrees (" + typeName +
-                                    "), found " + numberText(a.front()) + ".." + numberText(a.back()));
+            return failAt(line, "expected " + std::string(which) +
+                                    " angles from -90 or 0 to at most 90 degrees (" + typeName +
+                                    "), found " + numberText(a.front()) + ".." +
+                                    numberText(a.back()));
         mirrored = a.front() == 0.0f;
         return {};
     };
@@ -455,10 +511,12 @@ Result<IesProfile> Parser::parse() {
     auto vertical = angles(*nV, "vertical angles", "vertical angle");
     if (!vertical) return std::unexpected(vertical.error());
     if (!typeC) {
-        if (auto r = checkAB(*vertical, verticalLine, "vertical", profile.mirrorVertical); !r) return std::unexpected(r.error());
+        if (auto r = checkAB(*vertical, verticalLine, "vertical", profile.mirrorVertical); !r)
+            return std::unexpected(r.error());
     } else if (vertical->front() < 0.0f || vertical->back() > 180.0f) {
-        return failAt(verticalLine, "expected vertical angles within 0..180 degrees (type C), found " +
-                                        numberText(vertical->front()) + ".." + numberText(vertical->back()));
+        return failAt(verticalLine,
+                      "expected vertical angles within 0..180 degrees (type C), found " +
+                          numberText(vertical->front()) + ".." + numberText(vertical->back()));
     }
     profile.verticalAngles = std::move(*vertical);
 
@@ -468,7 +526,9 @@ Result<IesProfile> Parser::parse() {
     if (!horizontal) return std::unexpected(horizontal.error());
     const float hFirst = horizontal->front(), hLast = horizontal->back();
     if (!typeC) {
-        if (auto r = checkAB(*horizontal, horizontalLine, "horizontal", profile.mirrorHorizontal); !r) return std::unexpected(r.error());
+        if (auto r = checkAB(*horizontal, horizontalLine, "horizontal", profile.mirrorHorizontal);
+            !r)
+            return std::unexpected(r.error());
         profile.symmetry = IesSymmetry::None;
     } else if (horizontal->size() == 1) {
         profile.symmetry = IesSymmetry::Rotational;
@@ -482,7 +542,8 @@ Result<IesProfile> Parser::parse() {
         profile.symmetry = IesSymmetry::None;
     } else {
         return failAt(horizontalLine,
-                      "expected horizontal angles 0 (rotationally symmetric), 0..90, 0..180, 0..360 or 90..270 degrees "
+                      "expected horizontal angles 0 (rotationally symmetric), 0..90, 0..180, "
+                      "0..360 or 90..270 degrees "
                       "(type C), found " +
                           numberText(hFirst) + ".." + numberText(hLast));
     }
@@ -490,34 +551,43 @@ Result<IesProfile> Parser::parse() {
 
     // Candela values: one set of vertical values per horizontal angle.
     const int candelaLine = nextLine();
-    const std::string cellsText = std::to_string(cells) + " candela values (" + std::to_string(*nH) +
-                                  " horizontal x " + std::to_string(*nV) + " vertical angles)";
-    profile.candela.reserve(static_cast<size_t>(std::min<int64_t>(cells, static_cast<int64_t>(remaining()))));
+    const std::string cellsText = std::to_string(cells) + " candela values (" +
+                                  std::to_string(*nH) + " horizontal x " + std::to_string(*nV) +
+                                  " vertical angles)";
+    profile.candela.reserve(
+        static_cast<size_t>(std::min<int64_t>(cells, static_cast<int64_t>(remaining()))));
     for (int h = 0; h < *nH; ++h) {
         for (int v = 0; v < *nV; ++v) {
             const int64_t k = static_cast<int64_t>(h) * *nV + v;
             if (atEnd())
-                return failAt(lastLine(), "truncated file: expected " + cellsText + ", found " + std::to_string(k));
+                return failAt(lastLine(), "truncated file: expected " + cellsText + ", found " +
+                                              std::to_string(k));
             const Token& t = m_tokens[m_next++];
             const auto where = [&] {
-                return "horizontal angle " + numberText(profile.horizontalAngles[static_cast<size_t>(h)]) +
-                       ", vertical angle " + numberText(profile.verticalAngles[static_cast<size_t>(v)]);
+                return "horizontal angle " +
+                       numberText(profile.horizontalAngles[static_cast<size_t>(h)]) +
+                       ", vertical angle " +
+                       numberText(profile.verticalAngles[static_cast<size_t>(v)]);
             };
             double c = 0.0;
             if (!parseNumber(t.text, c))
-                return failAt(t.line, "expected a number for candela value " + std::to_string(k + 1) + " of " +
-                                          std::to_string(cells) + " (" + where() + "), found '" + shorten(t.text) + "'");
+                return failAt(t.line, "expected a number for candela value " +
+                                          std::to_string(k + 1) + " of " + std::to_string(cells) +
+                                          " (" + where() + "), found '" + shorten(t.text) + "'");
             if (c < 0.0)
-                return failAt(t.line, "expected a non-negative candela value at " + where() + ", found " + std::string(t.text));
+                return failAt(t.line, "expected a non-negative candela value at " + where() +
+                                          ", found " + std::string(t.text));
             const double cd = c * *multiplier;
             if (cd > std::numeric_limits<float>::max())
-                return failAt(t.line, "expected a candela value that times the multiplier fits a float at " + where() +
-                                          ", found " + std::string(t.text));
+                return failAt(
+                    t.line, "expected a candela value that times the multiplier fits a float at " +
+                                where() + ", found " + std::string(t.text));
             profile.candela.push_back(static_cast<float>(cd));
         }
     }
     if (!atEnd())
-        return failAt(candelaLine, "expected " + cellsText + ", found " + std::to_string(cells + static_cast<int64_t>(remaining())));
+        return failAt(candelaLine, "expected " + cellsText + ", found " +
+                                       std::to_string(cells + static_cast<int64_t>(remaining())));
 
     profile.maxCandela = *std::max_element(profile.candela.begin(), profile.candela.end());
     return profile;
@@ -528,17 +598,20 @@ double foldHorizontal(const IesProfile& p, double h) {
     h = std::fmod(h, 360.0);
     if (h < 0.0) h += 360.0;
     switch (p.symmetry) {
-        case IesSymmetry::Rotational: return p.horizontalAngles.front();
+        case IesSymmetry::Rotational:
+            return p.horizontalAngles.front();
         case IesSymmetry::Quadrant:
             if (h > 180.0) h = 360.0 - h;
             if (h > 90.0) h = 180.0 - h;
             return h;
-        case IesSymmetry::Bilateral: return h > 180.0 ? 360.0 - h : h;
+        case IesSymmetry::Bilateral:
+            return h > 180.0 ? 360.0 - h : h;
         case IesSymmetry::Bilateral90:
-            if (h < 90.0) return 180.0 - h;   // mirror about the 90°–270° plane
+            if (h < 90.0) return 180.0 - h;  // mirror about the 90°–270° plane
             if (h > 270.0) return 540.0 - h;
             return h;
-        case IesSymmetry::None: return h;
+        case IesSymmetry::None:
+            return h;
     }
     return h;
 }
@@ -550,7 +623,8 @@ void bracket(const std::vector<float>& angles, double x, size_t& i, double& w) {
         w = 0.0;
         return;
     }
-    const auto it = std::upper_bound(angles.begin(), angles.end(), x, [](double a, float b) { return a < b; });
+    const auto it =
+        std::upper_bound(angles.begin(), angles.end(), x, [](double a, float b) { return a < b; });
     const size_t upper = static_cast<size_t>(std::distance(angles.begin(), it));
     i = std::min(upper == 0 ? 0 : upper - 1, angles.size() - 2);
     const double a0 = angles[i], a1 = angles[i + 1];
@@ -561,22 +635,32 @@ void bracket(const std::vector<float>& angles, double x, size_t& i, double& w) {
 
 std::string_view toString(IesFormat format) {
     switch (format) {
-        case IesFormat::Lm63_1986: return "LM-63-1986";
-        case IesFormat::Lm63_1991: return "LM-63-1991";
-        case IesFormat::Lm63_1995: return "LM-63-1995";
-        case IesFormat::Lm63_2002: return "LM-63-2002";
-        case IesFormat::Lm63_2019: return "LM-63-2019";
+        case IesFormat::Lm63_1986:
+            return "LM-63-1986";
+        case IesFormat::Lm63_1991:
+            return "LM-63-1991";
+        case IesFormat::Lm63_1995:
+            return "LM-63-1995";
+        case IesFormat::Lm63_2002:
+            return "LM-63-2002";
+        case IesFormat::Lm63_2019:
+            return "LM-63-2019";
     }
     return "?";
 }
 
 std::string_view toString(IesSymmetry symmetry) {
     switch (symmetry) {
-        case IesSymmetry::Rotational: return "rotational";
-        case IesSymmetry::Quadrant: return "quadrant";
-        case IesSymmetry::Bilateral: return "bilateral";
-        case IesSymmetry::Bilateral90: return "bilateral-90";
-        case IesSymmetry::None: return "none";
+        case IesSymmetry::Rotational:
+            return "rotational";
+        case IesSymmetry::Quadrant:
+            return "quadrant";
+        case IesSymmetry::Bilateral:
+            return "bilateral";
+        case IesSymmetry::Bilateral90:
+            return "bilateral-90";
+        case IesSymmetry::None:
+            return "none";
     }
     return "?";
 }
@@ -589,19 +673,24 @@ Result<void> parseIesTilt(std::string_view text, const std::string& fileName, Ie
     Parser p(text, fileName);
     p.tokenizeAll();
     if (auto t = p.tiltData(profile); !t) return t;
-    if (!p.atEndOfData()) return p.failAtNext("expected the end of the tilt data, found more values");
+    if (!p.atEndOfData())
+        return p.failAtNext("expected the end of the tilt data, found more values");
     return {};
 }
 
 Result<IesProfile> loadIes(const std::filesystem::path& path) {
     const std::string name = path.string();
     std::error_code ec;
-    if (!std::filesystem::exists(path, ec)) return fail(ErrorCode::NotFound, "'" + name + "': no such IES file");
+    if (!std::filesystem::exists(path, ec))
+        return fail(ErrorCode::NotFound, "'" + name + "': no such IES file");
     const auto size = std::filesystem::file_size(path, ec);
-    if (ec) return fail(ErrorCode::Io, "'" + name + "': cannot read the IES file (" + ec.message() + ")");
+    if (ec)
+        return fail(ErrorCode::Io,
+                    "'" + name + "': cannot read the IES file (" + ec.message() + ")");
     if (size > kMaxFileBytes)
-        return fail(ErrorCode::InvalidInput, "'" + name + "': expected an IES file of at most 64 MiB, found " +
-                                                 std::to_string(size) + " bytes");
+        return fail(ErrorCode::InvalidInput,
+                    "'" + name + "': expected an IES file of at most 64 MiB, found " +
+                        std::to_string(size) + " bytes");
     std::ifstream in(path, std::ios::binary);
     if (!in) return fail(ErrorCode::Io, "'" + name + "': cannot open the IES file");
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -612,12 +701,15 @@ Result<IesProfile> loadIes(const std::filesystem::path& path) {
     const std::filesystem::path tiltPath = path.parent_path() / profile->tilt;
     const std::string tiltName = tiltPath.string();
     if (!std::filesystem::is_regular_file(tiltPath, ec))
-        return fail(ErrorCode::NotFound, "'" + name + "': TILT=" + profile->tilt + ": no such tilt file '" + tiltName + "'");
+        return fail(ErrorCode::NotFound, "'" + name + "': TILT=" + profile->tilt +
+                                             ": no such tilt file '" + tiltName + "'");
     if (std::filesystem::file_size(tiltPath, ec) > kMaxFileBytes)
-        return fail(ErrorCode::InvalidInput, "'" + tiltName + "': expected a tilt file of at most 64 MiB");
+        return fail(ErrorCode::InvalidInput,
+                    "'" + tiltName + "': expected a tilt file of at most 64 MiB");
     std::ifstream tin(tiltPath, std::ios::binary);
     std::string tiltText((std::istreambuf_iterator<char>(tin)), std::istreambuf_iterator<char>());
-    if (!tin && !tin.eof()) return fail(ErrorCode::Io, "'" + tiltName + "': cannot read the tilt file");
+    if (!tin && !tin.eof())
+        return fail(ErrorCode::Io, "'" + tiltName + "': cannot read the tilt file");
     if (auto t = parseIesTilt(tiltText, tiltName, *profile); !t) return std::unexpected(t.error());
     return profile;
 }
@@ -630,13 +722,16 @@ double evaluateAimedTable(const IesProfile& p, double h, double v) {
     const size_t nV = p.verticalAngles.size(), nH = p.horizontalAngles.size();
     if (p.mirrorHorizontal) h = std::abs(h);
     if (p.mirrorVertical) v = std::abs(v);
-    if (h < p.horizontalAngles.front() - kAngleEpsilon || h > p.horizontalAngles.back() + kAngleEpsilon ||
+    if (h < p.horizontalAngles.front() - kAngleEpsilon ||
+        h > p.horizontalAngles.back() + kAngleEpsilon ||
         v < p.verticalAngles.front() - kAngleEpsilon || v > p.verticalAngles.back() + kAngleEpsilon)
         return 0.0;
     size_t iv, ih;
     double wv, wh;
-    bracket(p.verticalAngles, std::clamp<double>(v, p.verticalAngles.front(), p.verticalAngles.back()), iv, wv);
-    bracket(p.horizontalAngles, std::clamp<double>(h, p.horizontalAngles.front(), p.horizontalAngles.back()), ih, wh);
+    bracket(p.verticalAngles,
+            std::clamp<double>(v, p.verticalAngles.front(), p.verticalAngles.back()), iv, wv);
+    bracket(p.horizontalAngles,
+            std::clamp<double>(h, p.horizontalAngles.front(), p.horizontalAngles.back()), ih, wh);
     const size_t iv1 = std::min(iv + 1, nV - 1), ih1 = std::min(ih + 1, nH - 1);
     const auto at = [&](size_t i, size_t j) { return static_cast<double>(p.candela[i * nV + j]); };
     const double c0 = (1.0 - wv) * at(ih, iv) + wv * at(ih, iv1);
@@ -649,8 +744,10 @@ double evaluateAimedTable(const IesProfile& p, double h, double v) {
 glm::dvec2 aimedAngles(int photometricType, glm::dvec3 d) {
     constexpr double toDegrees = 180.0 / kPi;
     d = glm::normalize(d);
-    if (photometricType == 2)  // type B: the polar axis is x; V turns the plane about it, H leaves the plane towards x
-        return {std::asin(std::clamp(d.x, -1.0, 1.0)) * toDegrees, std::atan2(d.y, d.z) * toDegrees};
+    if (photometricType ==
+        2)  // type B: the polar axis is x; V turns the plane about it, H leaves the plane towards x
+        return {std::asin(std::clamp(d.x, -1.0, 1.0)) * toDegrees,
+                std::atan2(d.y, d.z) * toDegrees};
     // type A: the polar axis is y; H turns the plane about it, V leaves the plane towards y
     return {std::atan2(d.x, d.z) * toDegrees, std::asin(std::clamp(d.y, -1.0, 1.0)) * toDegrees};
 }
@@ -662,15 +759,19 @@ double evaluateDegrees(const IesProfile& p, double horizontalDegrees, double ver
         // The light-space direction of these type C angles, then the table's own angles.
         constexpr double toRadians = kPi / 180.0;
         const double h = horizontalDegrees * toRadians, v = verticalDegrees * toRadians;
-        const glm::dvec2 aimed = aimedAngles(p.photometricType, {std::sin(v) * std::cos(h), std::sin(v) * std::sin(h), std::cos(v)});
+        const glm::dvec2 aimed = aimedAngles(
+            p.photometricType, {std::sin(v) * std::cos(h), std::sin(v) * std::sin(h), std::cos(v)});
         return evaluateAimedTable(p, aimed.x, aimed.y);
     }
     // Outside the measured vertical range the luminaire sends nothing (e.g. above a downlight).
-    if (verticalDegrees < p.verticalAngles.front() - kAngleEpsilon || verticalDegrees > p.verticalAngles.back() + kAngleEpsilon)
+    if (verticalDegrees < p.verticalAngles.front() - kAngleEpsilon ||
+        verticalDegrees > p.verticalAngles.back() + kAngleEpsilon)
         return 0.0;
     size_t iv;
     double wv;
-    bracket(p.verticalAngles, std::clamp<double>(verticalDegrees, p.verticalAngles.front(), p.verticalAngles.back()), iv, wv);
+    bracket(p.verticalAngles,
+            std::clamp<double>(verticalDegrees, p.verticalAngles.front(), p.verticalAngles.back()),
+            iv, wv);
     const size_t iv1 = std::min(iv + 1, nV - 1);
 
     size_t ih0 = 0, ih1 = 0;
@@ -684,11 +785,14 @@ double evaluateDegrees(const IesProfile& p, double horizontalDegrees, double ver
             ih1 = 0;
             wh = last < 360.0 ? (h - last) / (360.0 - last) : 0.0;
         } else {
-            bracket(p.horizontalAngles, std::clamp<double>(h, p.horizontalAngles.front(), last), ih0, wh);
+            bracket(p.horizontalAngles, std::clamp<double>(h, p.horizontalAngles.front(), last),
+                    ih0, wh);
             ih1 = ih0 + 1;
         }
     }
-    const auto at = [&](size_t ih, size_t v) { return static_cast<double>(p.candela[ih * nV + v]); };
+    const auto at = [&](size_t ih, size_t v) {
+        return static_cast<double>(p.candela[ih * nV + v]);
+    };
     // (1 − w)·a + w·b returns a and b exactly at w = 0 and w = 1, i.e. at the table's angles.
     const double c0 = (1.0 - wv) * at(ih0, iv) + wv * at(ih0, iv1);
     const double c1 = (1.0 - wv) * at(ih1, iv) + wv * at(ih1, iv1);
@@ -703,28 +807,42 @@ float evaluate(const IesProfile& profile, float theta, float phi) {
 IesProfile expandSymmetry(const IesProfile& p) {
     IesProfile out = p;
     if (p.photometricType != 1) return out;  // types A and B mirror in evaluation
-    if (p.symmetry == IesSymmetry::None && !p.horizontalAngles.empty() && p.horizontalAngles.back() == 360.0f) return out;
+    if (p.symmetry == IesSymmetry::None && !p.horizontalAngles.empty() &&
+        p.horizontalAngles.back() == 360.0f)
+        return out;
     // Every image of a table angle under the symmetry, plus both ends of the circle.
     std::vector<double> hs = {0.0, 360.0};
     for (const float a : p.horizontalAngles) {
         const double x = a;
         switch (p.symmetry) {
-            case IesSymmetry::Rotational: break;
-            case IesSymmetry::Quadrant: hs.insert(hs.end(), {x, 180.0 - x, 180.0 + x, 360.0 - x}); break;
-            case IesSymmetry::Bilateral: hs.insert(hs.end(), {x, 360.0 - x}); break;
-            case IesSymmetry::Bilateral90: hs.insert(hs.end(), {x, x <= 180.0 ? 180.0 - x : 540.0 - x}); break;  // 180° − x mod 360°
-            case IesSymmetry::None: hs.push_back(x); break;
+            case IesSymmetry::Rotational:
+                break;
+            case IesSymmetry::Quadrant:
+                hs.insert(hs.end(), {x, 180.0 - x, 180.0 + x, 360.0 - x});
+                break;
+            case IesSymmetry::Bilateral:
+                hs.insert(hs.end(), {x, 360.0 - x});
+                break;
+            case IesSymmetry::Bilateral90:
+                hs.insert(hs.end(), {x, x <= 180.0 ? 180.0 - x : 540.0 - x});
+                break;  // 180° − x mod 360°
+            case IesSymmetry::None:
+                hs.push_back(x);
+                break;
         }
     }
     std::erase_if(hs, [](double x) { return x < 0.0 || x > 360.0; });
     std::sort(hs.begin(), hs.end());
-    hs.erase(std::unique(hs.begin(), hs.end(), [](double a, double b) { return std::abs(a - b) < kAngleEpsilon; }), hs.end());
+    hs.erase(std::unique(hs.begin(), hs.end(),
+                         [](double a, double b) { return std::abs(a - b) < kAngleEpsilon; }),
+             hs.end());
 
     out.horizontalAngles.assign(hs.begin(), hs.end());
     out.candela.clear();
     out.candela.reserve(hs.size() * p.verticalAngles.size());
     for (const double h : hs)
-        for (const float v : p.verticalAngles) out.candela.push_back(static_cast<float>(evaluateDegrees(p, h, v)));
+        for (const float v : p.verticalAngles)
+            out.candela.push_back(static_cast<float>(evaluateDegrees(p, h, v)));
     out.symmetry = IesSymmetry::None;
     return out;
 }
@@ -737,14 +855,16 @@ double integrateLumens(const IesProfile& profile, int steps) {
     for (int i = 0; i < steps; ++i) {
         const double v = (i + 0.5) * dv;
         double ring = 0.0;
-        for (int j = 0; j < steps; ++j) ring += evaluateDegrees(profile, (j + 0.5) * dh * 180.0 / kPi, v * 180.0 / kPi);
+        for (int j = 0; j < steps; ++j)
+            ring += evaluateDegrees(profile, (j + 0.5) * dh * 180.0 / kPi, v * 180.0 / kPi);
         sum += ring * std::sin(v);
     }
     return sum * dv * dh;
 }
 
 IesTexture bakeIes(const IesProfile& profile, uint32_t width, uint32_t height) {
-    RG_CHECK(width > 0 && height > 0) << "an IES texture needs a positive size, got " << width << " x " << height;
+    RG_CHECK(width > 0 && height > 0)
+        << "an IES texture needs a positive size, got " << width << " x " << height;
     IesTexture tex;
     tex.width = width;
     tex.height = height;
@@ -757,8 +877,8 @@ IesTexture bakeIes(const IesProfile& profile, uint32_t width, uint32_t height) {
         const double vertical = std::acos(cosPhi) * 180.0 / kPi;
         for (uint32_t i = 0; i < width; ++i) {
             const double horizontal = 360.0 * (i + 0.5) / width;  // lst:5: u = θ / 2π
-            tex.texels[static_cast<size_t>(j) * width + i] =
-                static_cast<float>(std::min(1.0, evaluateDegrees(profile, horizontal, vertical) * scale));
+            tex.texels[static_cast<size_t>(j) * width + i] = static_cast<float>(
+                std::min(1.0, evaluateDegrees(profile, horizontal, vertical) * scale));
         }
     }
     return tex;
@@ -779,17 +899,23 @@ float sampleIesTexture(const IesTexture& t, glm::vec2 uv) {
     const double fx0 = std::floor(x), fy0 = std::floor(y);
     const double wx = x - fx0, wy = y - fy0;
     const auto W = static_cast<int64_t>(t.width), Hh = static_cast<int64_t>(t.height);
-    const auto wrap = [&](int64_t i) { return ((i % W) + W) % W; };               // repeat
-    const auto clampRow = [&](int64_t j) { return std::clamp<int64_t>(j, 0, Hh - 1); };  // clamp to edge
+    const auto wrap = [&](int64_t i) { return ((i % W) + W) % W; };  // repeat
+    const auto clampRow = [&](int64_t j) {
+        return std::clamp<int64_t>(j, 0, Hh - 1);
+    };  // clamp to edge
     const int64_t i0 = wrap(static_cast<int64_t>(fx0)), i1 = wrap(static_cast<int64_t>(fx0) + 1);
-    const int64_t j0 = clampRow(static_cast<int64_t>(fy0)), j1 = clampRow(static_cast<int64_t>(fy0) + 1);
-    const auto at = [&](int64_t i, int64_t j) { return static_cast<double>(t.texels[static_cast<size_t>(j * W + i)]); };
+    const int64_t j0 = clampRow(static_cast<int64_t>(fy0)),
+                  j1 = clampRow(static_cast<int64_t>(fy0) + 1);
+    const auto at = [&](int64_t i, int64_t j) {
+        return static_cast<double>(t.texels[static_cast<size_t>(j * W + i)]);
+    };
     const double top = (1.0 - wx) * at(i0, j0) + wx * at(i1, j0);
     const double bottom = (1.0 - wx) * at(i0, j1) + wx * at(i1, j1);
     return static_cast<float>((1.0 - wy) * top + wy * bottom);
 }
 
-float getIESProfileAttenuation(glm::vec3 L, const glm::mat3& worldToLight, const IesTexture& texture) {
+float getIESProfileAttenuation(glm::vec3 L, const glm::mat3& worldToLight,
+                               const IesTexture& texture) {
     // seed 000 lst:5: the sample direction goes from the light to the point, in light space.
     const glm::vec3 iesSampleDirection = worldToLight * -L;
     return sampleIesTexture(texture, iesTexCoord(iesSampleDirection));

@@ -46,11 +46,11 @@ std::string_view toString(IesFormat format);
 
 // How the horizontal angles cover the full circle (type C, LM-63-2002 §3.20).
 enum class IesSymmetry {
-    Rotational,  // a single horizontal angle (0°): the same in every direction around the axis
-    Quadrant,    // 0°..90°: symmetric in each quadrant
-    Bilateral,   // 0°..180°: symmetric about the 0°–180° plane
-    Bilateral90, // 90°..270°: symmetric about the 90°–270° plane
-    None,        // 0°..360° (or 0°..last > 180°, the gap to 360° interpolated to 0°)
+    Rotational,   // a single horizontal angle (0°): the same in every direction around the axis
+    Quadrant,     // 0°..90°: symmetric in each quadrant
+    Bilateral,    // 0°..180°: symmetric about the 0°–180° plane
+    Bilateral90,  // 90°..270°: symmetric about the 90°–270° plane
+    None,         // 0°..360° (or 0°..last > 180°, the gap to 360° interpolated to 0°)
 };
 std::string_view toString(IesSymmetry symmetry);
 
@@ -72,7 +72,8 @@ struct IesProfile {
     float width = 0.0f, length = 0.0f, height = 0.0f;  // luminous opening, in unitsType
     float ballastFactor = 1.0f;
     float ballastLampFactor = 1.0f;  // "future use" since LM-63-1995; kept as read
-    float fileGenerationType = 0.0f; // LM-63-2019's value in that place (e.g. 1.00001), kept as read
+    float fileGenerationType =
+        0.0f;  // LM-63-2019's value in that place (e.g. 1.00001), kept as read
     float inputWatts = 0.0f;
 
     std::vector<float> verticalAngles;    // degrees, increasing, within 0..180
@@ -80,7 +81,7 @@ struct IesProfile {
     // Luminous intensity in cd: the file's values times the multiplier. [h][v], i.e.
     // candela[h * verticalAngles.size() + v]. Ballast factors are not applied.
     std::vector<float> candela;
-    float maxCandela = 0.0f;  // cd, the largest entry of `candela`
+    float maxCandela = 0.0f;                         // cd, the largest entry of `candela`
     IesSymmetry symmetry = IesSymmetry::Rotational;  // type C; types A and B: None
     // Types A and B: the table starts at 0° and is mirrored onto the negative side.
     bool mirrorHorizontal = false, mirrorVertical = false;
@@ -134,8 +135,8 @@ double integrateLumens(const IesProfile& profile, int steps = 720);
 // in [0, 1]; the largest is 1 where the profile's peak falls on a texel centre and slightly less
 // otherwise (the texture is point-sampled, never renormalised, so texel × maxCandela stays in cd).
 struct IesTexture {
-    uint32_t width = 0;   // θ samples (horizontal angle, u)
-    uint32_t height = 0;  // cos φ samples (vertical angle, v)
+    uint32_t width = 0;         // θ samples (horizontal angle, u)
+    uint32_t height = 0;        // cos φ samples (vertical angle, v)
     std::vector<float> texels;  // row-major: texels[j * width + i], R32_SFLOAT
     float maxCandela = 0.0f;    // cd; texel × maxCandela is the intensity
 };
@@ -148,6 +149,7 @@ glm::vec2 iesTexCoord(glm::vec3 lightSpaceDirection);
 float sampleIesTexture(const IesTexture& texture, glm::vec2 uv);
 // lst:5: the normalised profile towards the shaded point; L is the unit vector from the point to
 // the light, worldToLight rotates world directions into light space.
-float getIESProfileAttenuation(glm::vec3 L, const glm::mat3& worldToLight, const IesTexture& texture);
+float getIESProfileAttenuation(glm::vec3 L, const glm::mat3& worldToLight,
+                               const IesTexture& texture);
 
 }  // namespace rg

@@ -34,7 +34,15 @@ struct GpuLight {
 static_assert(sizeof(GpuLight) == 80, "GpuLight must match RgLight's std430 layout");
 
 // scene.glsl's RG_LIGHT_* codes (GpuLight::positionType.w).
-enum class GpuLightType : uint8_t { Point = 0, Spot = 1, Sun = 2, Sphere = 3, Disk = 4, Rect = 5, Tube = 6 };
+enum class GpuLightType : uint8_t {
+    Point = 0,
+    Spot = 1,
+    Sun = 2,
+    Sphere = 3,
+    Disk = 4,
+    Rect = 5,
+    Tube = 6
+};
 
 // How an IES profile sets a point or spot light's intensity (seed 000 §4.5, eq:27, lst:5): the
 // scene's default, for lights whose Light::iesMode is empty.
@@ -46,8 +54,8 @@ enum class IesMode {
 
 // The scene's lights as the shaders take them, converted once (what GpuScene uploads).
 struct GpuLightTable {
-    std::vector<GpuLight> lights;        // in the scene's order
-    std::vector<IesTexture> profiles;    // one per distinct IES file, kIesWidth × kIesHeight
+    std::vector<GpuLight> lights;      // in the scene's order
+    std::vector<IesTexture> profiles;  // one per distinct IES file, kIesWidth × kIesHeight
     std::vector<std::string> profilePaths;
 };
 
@@ -68,6 +76,7 @@ struct GpuLightTable {
 // Colour temperature multiplies the colour (tbl:4). Errors name the light: a unit its type cannot
 // have, a size that is not positive, an IES file that does not load, more than kMaxLights lights
 // or kMaxIesProfiles profiles.
-Result<GpuLightTable> convertLights(const std::vector<Light>& lights, IesMode iesMode = IesMode::Mask);
+Result<GpuLightTable> convertLights(const std::vector<Light>& lights,
+                                    IesMode iesMode = IesMode::Mask);
 
 }  // namespace rg::lighting

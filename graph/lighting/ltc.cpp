@@ -25,7 +25,7 @@ constexpr double kFitted[kSize * kSize][6] = {
 };
 
 const std::array<Entry, size_t(kSize) * kSize>& fittedTable() {
-    static const std::array<Entry, size_t(kSize) * kSize> t = [] {
+    static const std::array<Entry, size_t(kSize)* kSize> t = [] {
         std::array<Entry, size_t(kSize) * kSize> out{};
         for (size_t i = 0; i < out.size(); ++i) {
             const double* f = kFitted[i];
@@ -38,24 +38,29 @@ const std::array<Entry, size_t(kSize) * kSize>& fittedTable() {
 }
 
 // The view of a cell: in the plane xz, θv from the normal z.
-glm::dvec3 viewVector(double NdotV) { return {std::sqrt(std::max(0.0, 1.0 - NdotV * NdotV)), 0.0, NdotV}; }
+glm::dvec3 viewVector(double NdotV) {
+    return {std::sqrt(std::max(0.0, 1.0 - NdotV * NdotV)), 0.0, NdotV};
+}
 
 // The GGX lobe of brdf.glsl times ⟨n·l⟩ for one cell, D/π · Vis · ⟨n·l⟩ (F = 1), sampled by
 // its visible normals.
 // The standard GGX lobe with F = 1 times ⟨n·l⟩ (lst:2): D / π · Vis · ⟨n·l⟩.
 double lobeValue(float NdotH, double NdotL, float NdotV, float alpha) {
-    return double(brdf::D_GGX(NdotH, alpha)) / kPiD * double(brdf::V_SmithGGXCorrelated(float(NdotL), NdotV, alpha)) * NdotL;
+    return double(brdf::D_GGX(NdotH, alpha)) / kPiD *
+           double(brdf::V_SmithGGXCorrelated(float(NdotL), NdotV, alpha)) * NdotL;
 }
 
 struct LobeModel {
     float alpha;
     glm::dvec3 v;
     brdf::VisibleNormals vn;
-    LobeModel(float linearRoughness, double NdotV) : alpha(brdf::standardAlpha(linearRoughness)), v(viewVector(NdotV)), vn(v, alpha) {}
+    LobeModel(float linearRoughness, double NdotV)
+        : alpha(brdf::standardAlpha(linearRoughness)), v(viewVector(NdotV)), vn(v, alpha) {}
     double value(const glm::dvec3& l) const {
         if (l.z <= 0.0) return 0.0;
         const glm::dvec3 h = glm::normalize(v + l);
-        return lobeValue(static_cast<float>(std::max(h.z, 0.0)), l.z, static_cast<float>(v.z), alpha);
+        return lobeValue(static_cast<float>(std::max(h.z, 0.0)), l.z, static_cast<float>(v.z),
+                         alpha);
     }
     glm::dvec3 sample(double u1, double u2) const {  // the light reflected about a visible normal
         const glm::dvec3 h = vn.halfVector(u1, u2);
@@ -74,10 +79,10 @@ glm::dmat3 matrixFromParameters(const glm::dvec3& direction, const glm::dvec3& p
     return glm::dmat3(X, Y, Z) * s;
 }
 
-
 // Nelder–Mead in 4 dimensions.
 template <class F>
-glm::dvec4 nelderMead(F&& f, glm::dvec4 start, const glm::dvec4& step, int maxEvaluations, double tolerance, int& evaluations) {
+glm::dvec4 nelderMead(F&& f, glm::dvec4 start, const glm::dvec4& step, int maxEvaluations,
+                      double tolerance, int& evaluations) {
     constexpr size_t kN = 4;
     std::array<glm::dvec4, kN + 1> x;
     x.fill(start);
@@ -99,12 +104,15 @@ glm::dvec4 nelderMead(F&& f, glm::dvec4 start, const glm::dvec4& step, int maxEv
             const glm::dvec4 expanded = centroid + 2.0 * (centroid - x[worst]);
             const double fe = f(expanded);
             ++evaluations;
-            if (fe < fr) x[worst] = expanded, fx[worst] = fe;
-            else x[worst] = reflected, fx[worst] = fr;
+            if (fe < fr)
+                x[worst] = expanded, fx[worst] = fe;
+            else
+                x[worst] = reflected, fx[worst] = fr;
         } else if (fr < fx[second]) {
             x[worst] = reflected, fx[worst] = fr;
         } else {
-            const glm::dvec4 contracted = fr < fx[worst] ? centroid + 0.5 * (reflected - centroid) : centroid + 0.5 * (x[worst] - centroid);
+            const glm::dvec4 contracted = fr < fx[worst] ? centroid + 0.5 * (reflected - centroid)
+                                                         : centroid + 0.5 * (x[worst] - centroid);
             const double fc = f(contracted);
             ++evaluations;
             if (fc < std::min(fr, fx[worst])) {
@@ -139,11 +147,14 @@ Entry lookup(float linearRoughness, float NdotV) {
     auto at = [](int x, int y) { return fittedTable()[size_t(y * kSize + x)]; };
     auto mix = [](const Entry& p, const Entry& q, float w) {
         Entry e;
-        for (size_t i = 0; i < 4; ++i) e.inverse[i] = p.inverse[i] + (q.inverse[i] - p.inverse[i]) * w;
-        e.magnitude = p.magnitude + (q.magnitude - p.magnitude) * w, e.fresnel = p.fresnel + (q.fresnel - p.fresnel) * w;
+        for (size_t i = 0; i < 4; ++i)
+            e.inverse[i] = p.inverse[i] + (q.inverse[i] - p.inverse[i]) * w;
+        e.magnitude = p.magnitude + (q.magnitude - p.magnitude) * w,
+        e.fresnel = p.fresnel + (q.fresnel - p.fresnel) * w;
         return e;
     };
-    return mix(mix(at(x0, y0), at(x0 + 1, y0), wx), mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), wx), wy);
+    return mix(mix(at(x0, y0), at(x0 + 1, y0), wx), mix(at(x0, y0 + 1), at(x0 + 1, y0 + 1), wx),
+               wy);
 }
 
 glm::mat3 inverseMatrix(const std::array<float, 4>& e) {
@@ -200,7 +211,8 @@ double difference(const LobeModel& lobe, const glm::dmat3& inverse, double magni
             const double u1 = (i + 0.5) / samples, u2 = (j + 0.5) / samples;
             // One sample of the LTC (a cosine-distributed direction through M), one of the lobe.
             const double r = std::sqrt(u1), phi = 2.0 * kPiD * u2;
-            const glm::dvec3 lo(r * std::cos(phi), r * std::sin(phi), std::sqrt(std::max(0.0, 1.0 - u1)));
+            const glm::dvec3 lo(r * std::cos(phi), r * std::sin(phi),
+                                std::sqrt(std::max(0.0, 1.0 - u1)));
             error += term(glm::normalize(M * lo));
             error += term(lobe.sample(u1, u2));
         }
@@ -211,10 +223,12 @@ double difference(const LobeModel& lobe, const glm::dmat3& inverse, double magni
 
 double fitDistance(float linearRoughness, float NdotV, const glm::mat3& inverse, int samples) {
     const LobeModel lobe(linearRoughness, NdotV);
-    return difference(lobe, glm::dmat3(inverse), lobeMoments(linearRoughness, NdotV).magnitude, samples);
+    return difference(lobe, glm::dmat3(inverse), lobeMoments(linearRoughness, NdotV).magnitude,
+                      samples);
 }
 
-Fit fitCell(float linearRoughness, float NdotV, const glm::dvec4* start, glm::dvec4* parameters, int samples) {
+Fit fitCell(float linearRoughness, float NdotV, const glm::dvec4* start, glm::dvec4* parameters,
+            int samples) {
     const LobeModel lobe(linearRoughness, NdotV);
     const Moments m = lobeMoments(linearRoughness, NdotV);
     const double alpha = brdf::standardAlpha(linearRoughness);
@@ -222,7 +236,8 @@ Fit fitCell(float linearRoughness, float NdotV, const glm::dvec4* start, glm::dv
     const double base = std::atan2(m.direction.x, m.direction.z);
     auto matrix = [&](const glm::dvec4& p) {
         const double angle = base + p.w;
-        return matrixFromParameters(glm::dvec3(std::sin(angle), 0.0, std::cos(angle)), glm::dvec3(p));
+        return matrixFromParameters(glm::dvec3(std::sin(angle), 0.0, std::cos(angle)),
+                                    glm::dvec3(p));
     };
     // The L1 distance: it weighs the lobe's tails, where a light beside the highlight falls, more
     // than Heitz et al.'s cubed one, which favours the peak.
@@ -231,13 +246,15 @@ Fit fitCell(float linearRoughness, float NdotV, const glm::dvec4* start, glm::dv
         return difference(lobe, glm::inverse(matrix(p)), m.magnitude, samples);
     };
     Fit fit;
-    const glm::dvec4 step(0.05 * std::max(1e-3, first.x), 0.05 * std::max(1e-3, first.y), 0.05 * std::max(1e-3, std::abs(first.z)) + 1e-3, 0.02);
+    const glm::dvec4 step(0.05 * std::max(1e-3, first.x), 0.05 * std::max(1e-3, first.y),
+                          0.05 * std::max(1e-3, std::abs(first.z)) + 1e-3, 0.02);
     const glm::dvec4 p = nelderMead(objective, first, step, 1000, 1e-6, fit.evaluations);
     if (parameters) *parameters = p;
     fit.error = objective(p);
     const glm::dmat3 inverse = glm::inverse(matrix(p));
     const double k = 1.0 / inverse[1][1];
-    fit.entry.inverse = {float(inverse[0][0] * k), float(inverse[2][0] * k), float(inverse[0][2] * k), float(inverse[2][2] * k)};
+    fit.entry.inverse = {float(inverse[0][0] * k), float(inverse[2][0] * k),
+                         float(inverse[0][2] * k), float(inverse[2][2] * k)};
     fit.entry.magnitude = float(m.magnitude);
     fit.entry.fresnel = float(m.fresnel);
     return fit;
@@ -261,7 +278,8 @@ glm::vec3 edgeVector(const glm::vec3& v1, const glm::vec3& v2) {
 namespace {
 
 // Sutherland–Hodgman against the plane z = 0; what it keeps, taken through `m`.
-std::vector<glm::vec3> keepAbove(std::span<const glm::vec3> vertices, const glm::mat3& m = glm::mat3(1.0f)) {
+std::vector<glm::vec3> keepAbove(std::span<const glm::vec3> vertices,
+                                 const glm::mat3& m = glm::mat3(1.0f)) {
     std::vector<glm::vec3> kept;
     const size_t n = vertices.size();
     for (size_t i = 0; i < n; ++i) {
@@ -278,7 +296,8 @@ float polygonIntegral(std::span<const glm::vec3> vertices, glm::vec3* direction)
     const std::vector<glm::vec3> clipped = keepAbove(vertices);
     glm::vec3 sum(0.0f);
     for (size_t i = 0; i < clipped.size(); ++i)
-        sum += edgeVector(glm::normalize(clipped[i]), glm::normalize(clipped[(i + 1) % clipped.size()]));
+        sum += edgeVector(glm::normalize(clipped[i]),
+                          glm::normalize(clipped[(i + 1) % clipped.size()]));
     if (direction) *direction = sum.z < 0.0f ? -sum : sum;
     return std::abs(sum.z) / (2.0f * float(kPiD));
 }
@@ -286,11 +305,13 @@ float polygonIntegral(std::span<const glm::vec3> vertices, glm::vec3* direction)
 float ellipseIntegral(glm::vec3 centre, glm::vec3 axis1, glm::vec3 axis2, glm::vec3* direction) {
     // The ellipse's principal axes: the eigenvectors u of the Gram matrix of (axis1, axis2) give
     // them as [axis1 axis2] · u, of lengths √eigenvalue.
-    const float d11 = glm::dot(axis1, axis1), d22 = glm::dot(axis2, axis2), d12 = glm::dot(axis1, axis2);
+    const float d11 = glm::dot(axis1, axis1), d22 = glm::dot(axis2, axis2),
+                d12 = glm::dot(axis1, axis2);
     glm::vec3 t1 = axis1, t2 = axis2;
     float e1 = d11, e2 = d22;
     if (std::abs(d12) > 1e-4f * std::sqrt(d11 * d22)) {
-        const float mean = 0.5f * (d11 + d22), spread = std::sqrt(0.25f * (d11 - d22) * (d11 - d22) + d12 * d12);
+        const float mean = 0.5f * (d11 + d22),
+                    spread = std::sqrt(0.25f * (d11 - d22) * (d11 - d22) + d12 * d12);
         e1 = mean + spread, e2 = std::max(mean - spread, 0.0f);
         t1 = d11 > d22 ? axis1 * d12 + axis2 * (e1 - d11) : axis1 * (e1 - d22) + axis2 * d12;
         t2 = glm::cross(glm::cross(axis1, axis2), t1);
@@ -315,10 +336,13 @@ float ellipseIntegral(glm::vec3 centre, glm::vec3 axis1, glm::vec3 axis2, glm::v
     const float k3 = a1s * a2s, k2 = (1.0f + x0 * x0) * a2s + (1.0f + y0 * y0) * a1s - a1s * a2s;
     const float k1 = 1.0f + x0 * x0 + y0 * y0 - a1s - a2s;
     float lo = -1.0f, hi = -1.0f / (1.0f + x0 * x0 + y0 * y0), lambda = hi;
-    for (int i = 0; i < 12; ++i) {  // Newton, kept inside the bracket (bisection where it leaves it)
+    for (int i = 0; i < 12;
+         ++i) {  // Newton, kept inside the bracket (bisection where it leaves it)
         const float g = ((k3 * lambda - k2) * lambda + k1) * lambda + 1.0f;
-        if (g > 0.0f) hi = lambda;
-        else lo = lambda;
+        if (g > 0.0f)
+            hi = lambda;
+        else
+            lo = lambda;
         const float dg = (3.0f * k3 * lambda - 2.0f * k2) * lambda + k1;
         float next = dg != 0.0f ? lambda - g / dg : 0.5f * (lo + hi);
         if (!(next > lo && next < hi)) next = 0.5f * (lo + hi);
@@ -326,14 +350,19 @@ float ellipseIntegral(glm::vec3 centre, glm::vec3 axis1, glm::vec3 axis2, glm::v
     }
     // λ1 λ2 = −pq/λ3 and λ1 + λ2 = tr Q − λ3, with tr Q / (pq) = k2 and 1/(pq) = k3:
     const float productTan = -lambda * lambda * lambda * k3;  // L1² L2² = λ3² / (λ1 λ2)
-    const float sumTan = lambda * lambda * (k2 - lambda * k3);  // L1² + L2² = −λ3 (λ1 + λ2) / (λ1 λ2)
+    const float sumTan =
+        lambda * lambda * (k2 - lambda * k3);  // L1² + L2² = −λ3 (λ1 + λ2) / (λ1 λ2)
     const float formFactor = std::sqrt(std::max(productTan, 0.0f) / (1.0f + sumTan + productTan));
-    const glm::vec3 axis = glm::normalize(t1 * (x0 / (1.0f - lambda * a1s)) + t2 * (y0 / (1.0f - lambda * a2s)) + t3);
+    const glm::vec3 axis =
+        glm::normalize(t1 * (x0 / (1.0f - lambda * a1s)) + t2 * (y0 / (1.0f - lambda * a2s)) + t3);
     if (direction) *direction = axis;
-    return float(lighting::illuminanceSphereOrDisk(std::clamp(double(axis.z), -0.9999, 0.9999), std::min(double(formFactor), 0.9999)) / kPiD);
+    return float(lighting::illuminanceSphereOrDisk(std::clamp(double(axis.z), -0.9999, 0.9999),
+                                                   std::min(double(formFactor), 0.9999)) /
+                 kPiD);
 }
 
-float horizonPolygonIntegral(std::span<const glm::vec3> local, const glm::mat3& tableInverse, glm::vec3* direction) {
+float horizonPolygonIntegral(std::span<const glm::vec3> local, const glm::mat3& tableInverse,
+                             glm::vec3* direction) {
     const std::vector<glm::vec3> above = keepAbove(local, tableInverse);
     if (above.empty()) {
         if (direction) *direction = glm::vec3(0.0f);
@@ -342,7 +371,8 @@ float horizonPolygonIntegral(std::span<const glm::vec3> local, const glm::mat3& 
     return polygonIntegral(above, direction);
 }
 
-float lobeRatio(const glm::mat3& inverse, glm::vec3 N, glm::vec3 V, float alpha, float magnitude, glm::vec3 mean) {
+float lobeRatio(const glm::mat3& inverse, glm::vec3 N, glm::vec3 V, float alpha, float magnitude,
+                glm::vec3 mean) {
     const float det = std::abs(glm::determinant(inverse));
     if (magnitude <= 0.0f || det <= 0.0f || glm::dot(mean, mean) <= 0.0f) return 1.0f;
     const glm::vec3 L = glm::normalize(glm::inverse(inverse) * mean);
@@ -363,11 +393,13 @@ float lobeRatio(const glm::mat3& inverse, glm::vec3 N, glm::vec3 V, float alpha,
     return 1.0f + (lobe / (magnitude * D) - 1.0f) * fade;
 }
 
-float sphereRatio(const glm::mat3& inverse, glm::vec3 N, glm::vec3 V, float alpha, float magnitude, glm::vec3 L, float sinSigmaSqr) {
+float sphereRatio(const glm::mat3& inverse, glm::vec3 N, glm::vec3 V, float alpha, float magnitude,
+                  glm::vec3 L, float sinSigmaSqr) {
     const float det = std::abs(glm::determinant(inverse));
     if (magnitude <= 0.0f || det <= 0.0f) return 1.0f;
     const float oneMinusCos = 1.0f - std::sqrt(1.0f - sinSigmaSqr);
-    const glm::vec3 t1 = glm::normalize(glm::cross(L, std::abs(L.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0)));
+    const glm::vec3 t1 = glm::normalize(
+        glm::cross(L, std::abs(L.y) < 0.99f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0)));
     const glm::vec3 t2 = glm::cross(L, t1);
     const float NdotV = std::abs(glm::dot(N, V)) + 1e-5f;
     double lobe = 0.0, fitted = 0.0;

@@ -63,7 +63,8 @@ struct Fit {
 // [0, 0, 1]], Z the lobe's average direction turned by δ (radians, in the plane of n and v),
 // starting from `start` (the previous cell's parameters; null: the isotropic α, α, 0, 0).
 // `parameters` receives the fitted ones.
-Fit fitCell(float linearRoughness, float NdotV, const glm::dvec4* start, glm::dvec4* parameters, int samples = 32);
+Fit fitCell(float linearRoughness, float NdotV, const glm::dvec4* start, glm::dvec4* parameters,
+            int samples = 32);
 
 // How far the LTC with inverse matrix `inverse` is from the lobe it stands for: ∫ |D − f/magnitude| dω,
 // 0 for a perfect fit, 2 for disjoint ones (tests; rgraph-ltc-fit's report).
@@ -86,25 +87,29 @@ float polygonIntegral(std::span<const glm::vec3> vertices, glm::vec3* direction 
 // an elliptic cone, its form factor in closed form, and the horizon by the sphere of the same
 // form factor around the cone's axis (seed 000 lst:10's exact sphere formula). `direction`
 // receives the cone's axis (unit).
-float ellipseIntegral(glm::vec3 centre, glm::vec3 axis1, glm::vec3 axis2, glm::vec3* direction = nullptr);
+float ellipseIntegral(glm::vec3 centre, glm::vec3 axis1, glm::vec3 axis2,
+                      glm::vec3* direction = nullptr);
 
 // ∫ of the GGX lobe's D over the polygon `local` (in the shaded point's frame (T1, T2, N)): the
 // polygon clipped to the shading horizon first, then through the table's M⁻¹ (`tableInverse`) and
 // polygonIntegral. The fitted D leaks below the shading horizon, where the lobe is 0; a light
 // crossing the surface's plane would get that leak as light (lib/ltc.glsl's rgLtcQuadHorizon).
-float horizonPolygonIntegral(std::span<const glm::vec3> local, const glm::mat3& tableInverse, glm::vec3* direction = nullptr);
+float horizonPolygonIntegral(std::span<const glm::vec3> local, const glm::mat3& tableInverse,
+                             glm::vec3* direction = nullptr);
 
 // The factor on a closed-form integral that corrects the fitted cosine's shape to GGX's (lib/ltc.glsl's
 // rgLtcRatio, after Heitz et al.'s 2018 ratio estimator): f(ω)⟨n·l⟩ / (magnitude · D(ω)) at the
 // closed form's mean direction `mean` (cosine's space), faded to 1 as ⟨n·l⟩ or the elevation in the cosine's space there falls below 0.25. `inverse`: world → cosine's space (the
 // table's M⁻¹ after the frame's rotation); N, V world; f the standard lobe with F = 1.
-float lobeRatio(const glm::mat3& inverse, glm::vec3 N, glm::vec3 V, float alpha, float magnitude, glm::vec3 mean);
+float lobeRatio(const glm::mat3& inverse, glm::vec3 N, glm::vec3 V, float alpha, float magnitude,
+                glm::vec3 mean);
 
 // The same correction for a sphere light, the cap of half-angle σ (sin²σ = `sinSigmaSqr`) around
 // the unit direction L (lib/ltc.glsl's rgLtcSphereRatio): the lobe's integral over the cap over
 // magnitude × D's, both by one quadrature of kSphereRatioTaps directions of equal solid angle on a
 // golden-angle spiral; D counted above the shading horizon only. 1 where D is 0 at every tap.
 inline constexpr int kSphereRatioTaps = 32;
-float sphereRatio(const glm::mat3& inverse, glm::vec3 N, glm::vec3 V, float alpha, float magnitude, glm::vec3 L, float sinSigmaSqr);
+float sphereRatio(const glm::mat3& inverse, glm::vec3 N, glm::vec3 V, float alpha, float magnitude,
+                  glm::vec3 L, float sinSigmaSqr);
 
 }  // namespace rg::ltc

@@ -22,10 +22,12 @@ float getDistanceAtt(glm::vec3 unnormalizedLightVector, float invSqrAttRadius) {
     // seed 000 lst:4 with eq:14's 1 cm minimum distance.
     const float sqrDist = glm::dot(unnormalizedLightVector, unnormalizedLightVector);
     const float attenuation = 1.0f / std::max(sqrDist, kPunctualMinDistance * kPunctualMinDistance);
-    return invSqrAttRadius > 0.0f ? attenuation * smoothDistanceAtt(sqrDist, invSqrAttRadius) : attenuation;
+    return invSqrAttRadius > 0.0f ? attenuation * smoothDistanceAtt(sqrDist, invSqrAttRadius)
+                                  : attenuation;
 }
 
-float getAngleAtt(glm::vec3 normalizedLightVector, glm::vec3 lightDir, float lightAngleScale, float lightAngleOffset) {
+float getAngleAtt(glm::vec3 normalizedLightVector, glm::vec3 lightDir, float lightAngleScale,
+                  float lightAngleOffset) {
     // seed 000 lst:4: a linear ramp in cos θ between the outer and inner cone, squared to smooth it.
     const float cd = glm::dot(lightDir, normalizedLightVector);
     const float attenuation = saturate(cd * lightAngleScale + lightAngleOffset);

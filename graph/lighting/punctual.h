@@ -26,7 +26,8 @@ float getDistanceAtt(glm::vec3 unnormalizedLightVector, float invSqrAttRadius);
 // lst:4 — smooth cone attenuation: saturate(cd · scale + offset)², cd the cosine between lightDir
 // and normalizedLightVector. lighting.glsl passes −L (light → surface) and the spot's direction; the
 // seed passes L and a "lightForward" that points back at the light — the same cosine.
-float getAngleAtt(glm::vec3 normalizedLightVector, glm::vec3 lightDir, float lightAngleScale, float lightAngleOffset);
+float getAngleAtt(glm::vec3 normalizedLightVector, glm::vec3 lightDir, float lightAngleScale,
+                  float lightAngleOffset);
 
 // lst:4's CPU part: scale = 1 / max(0.001, cos inner − cos outer), offset = −cos outer · scale.
 // innerAngle and outerAngle are half-angles of the cone (from its axis), radians.

@@ -17,7 +17,8 @@ glm::vec3 evaluate(const SphericalGaussian& g, const glm::vec3& x) {
 
 glm::vec3 integral(const SphericalGaussian& g) {
     // −expm1(−2λ) = 1 − e^{−2λ}, exact for small λ too.
-    return g.amplitude * (2.0f * kPi / g.sharpness * static_cast<float>(-std::expm1(-2.0 * g.sharpness)));
+    return g.amplitude *
+           (2.0f * kPi / g.sharpness * static_cast<float>(-std::expm1(-2.0 * g.sharpness)));
 }
 
 SphericalGaussian product(const SphericalGaussian& a, const SphericalGaussian& b) {
@@ -37,9 +38,13 @@ glm::vec3 innerProduct(const SphericalGaussian& a, const SphericalGaussian& b) {
     return integral(p);
 }
 
-SphericalGaussian cosineLobe(const glm::vec3& n) { return SphericalGaussian{glm::normalize(n), 2.133f, glm::vec3(1.17f)}; }
+SphericalGaussian cosineLobe(const glm::vec3& n) {
+    return SphericalGaussian{glm::normalize(n), 2.133f, glm::vec3(1.17f)};
+}
 
-glm::vec3 irradiance(const SphericalGaussian& radiance, const glm::vec3& n) { return innerProduct(radiance, cosineLobe(n)); }
+glm::vec3 irradiance(const SphericalGaussian& radiance, const glm::vec3& n) {
+    return innerProduct(radiance, cosineLobe(n));
+}
 
 std::vector<glm::vec3> goldenSpiralAxes(int n, bool hemisphere) {
     std::vector<glm::vec3> out;
@@ -72,15 +77,18 @@ namespace {
 
 // Least squares on the passive set P only: minimise |A_P z - b| by the normal equations
 // (A_Pᵀ A_P) z = A_Pᵀ b, Cholesky-factored (the basis has at most a few dozen lobes).
-std::vector<double> solvePassive(const std::vector<double>& ata, const std::vector<double>& atb, const std::vector<int>& passive, size_t n) {
+std::vector<double> solvePassive(const std::vector<double>& ata, const std::vector<double>& atb,
+                                 const std::vector<int>& passive, size_t n) {
     const size_t m = passive.size();
     std::vector<double> l(m * m, 0.0), z(n, 0.0), y(m, 0.0);
     for (size_t i = 0; i < m; ++i)
         for (size_t j = 0; j <= i; ++j) {
             double sum = ata[size_t(passive[i]) * n + size_t(passive[j])];
             for (size_t k = 0; k < j; ++k) sum -= l[i * m + k] * l[j * m + k];
-            if (i == j) l[i * m + i] = std::sqrt(std::max(sum, 1e-300));
-            else l[i * m + j] = sum / l[j * m + j];
+            if (i == j)
+                l[i * m + i] = std::sqrt(std::max(sum, 1e-300));
+            else
+                l[i * m + j] = sum / l[j * m + j];
         }
     for (size_t i = 0; i < m; ++i) {
         double sum = atb[size_t(passive[i])];
@@ -125,7 +133,8 @@ std::vector<double> nnls(const std::vector<double>& ata, const std::vector<doubl
             // Step towards z until a coefficient reaches 0; it leaves the passive set.
             double alpha = 1.0;
             for (int j : passive)
-                if (z[size_t(j)] <= 0.0) alpha = std::min(alpha, x[size_t(j)] / (x[size_t(j)] - z[size_t(j)]));
+                if (z[size_t(j)] <= 0.0)
+                    alpha = std::min(alpha, x[size_t(j)] / (x[size_t(j)] - z[size_t(j)]));
             for (size_t j = 0; j < n; ++j) {
                 x[j] += alpha * (z[j] - x[j]);
                 if (inP[j] && x[j] <= 1e-12) {
@@ -140,7 +149,8 @@ std::vector<double> nnls(const std::vector<double>& ata, const std::vector<doubl
 
 }  // namespace
 
-std::vector<glm::vec3> fitNonNegative(const std::vector<double>& gram, const std::vector<glm::dvec3>& projections) {
+std::vector<glm::vec3> fitNonNegative(const std::vector<double>& gram,
+                                      const std::vector<glm::dvec3>& projections) {
     const size_t n = projections.size();
     std::vector<glm::vec3> out(n, glm::vec3(0.0f));
     std::vector<double> atb(n);
@@ -152,14 +162,16 @@ std::vector<glm::vec3> fitNonNegative(const std::vector<double>& gram, const std
     return out;
 }
 
-std::vector<glm::vec3> fitNonNegative(const std::vector<glm::vec3>& axes, float sharpness, const std::vector<glm::vec3>& directions,
+std::vector<glm::vec3> fitNonNegative(const std::vector<glm::vec3>& axes, float sharpness,
+                                      const std::vector<glm::vec3>& directions,
                                       const std::vector<glm::vec3>& radiance) {
     const size_t n = axes.size();
     std::vector<double> ata(n * n, 0.0);
     std::vector<glm::dvec3> atb(n, glm::dvec3(0.0));
     std::vector<double> row(n);
     for (size_t s = 0; s < directions.size(); ++s) {
-        for (size_t k = 0; k < n; ++k) row[k] = std::exp(double(sharpness) * (double(glm::dot(axes[k], directions[s])) - 1.0));
+        for (size_t k = 0; k < n; ++k)
+            row[k] = std::exp(double(sharpness) * (double(glm::dot(axes[k], directions[s])) - 1.0));
         for (size_t i = 0; i < n; ++i) {
             for (size_t j = 0; j < n; ++j) ata[i * n + j] += row[i] * row[j];
             atb[i] += row[i] * glm::dvec3(radiance[s]);
@@ -168,7 +180,8 @@ std::vector<glm::vec3> fitNonNegative(const std::vector<glm::vec3>& axes, float 
     return fitNonNegative(ata, atb);
 }
 
-std::vector<double> basisGram(const std::vector<glm::vec3>& axes, float sharpness, bool hemisphere) {
+std::vector<double> basisGram(const std::vector<glm::vec3>& axes, float sharpness,
+                              bool hemisphere) {
     // Quadrature over 2^16 golden-spiral directions (each 4π / count of solid angle); the
     // hemisphere keeps those with z > 0. Lobes this wide vary slowly at that spacing (< 1e-4).
     const size_t n = axes.size();
@@ -177,16 +190,19 @@ std::vector<double> basisGram(const std::vector<glm::vec3>& axes, float sharpnes
     std::vector<double> gram(n * n, 0.0), row(n);
     for (const auto& d : dirs) {
         if (hemisphere && d.z <= 0.0f) continue;
-        for (size_t k = 0; k < n; ++k) row[k] = std::exp(double(sharpness) * (double(glm::dot(axes[k], d)) - 1.0));
+        for (size_t k = 0; k < n; ++k)
+            row[k] = std::exp(double(sharpness) * (double(glm::dot(axes[k], d)) - 1.0));
         for (size_t i = 0; i < n; ++i)
             for (size_t j = 0; j < n; ++j) gram[i * n + j] += w * row[i] * row[j];
     }
     return gram;
 }
 
-glm::vec3 evaluateBasis(const std::vector<glm::vec3>& axes, float sharpness, const std::vector<glm::vec3>& amplitudes, const glm::vec3& x) {
+glm::vec3 evaluateBasis(const std::vector<glm::vec3>& axes, float sharpness,
+                        const std::vector<glm::vec3>& amplitudes, const glm::vec3& x) {
     glm::vec3 sum(0.0f);
-    for (size_t k = 0; k < axes.size(); ++k) sum += amplitudes[k] * std::exp(sharpness * (glm::dot(axes[k], x) - 1.0f));
+    for (size_t k = 0; k < axes.size(); ++k)
+        sum += amplitudes[k] * std::exp(sharpness * (glm::dot(axes[k], x) - 1.0f));
     return sum;
 }
 

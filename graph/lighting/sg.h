@@ -47,17 +47,20 @@ float basisSharpness(const std::vector<glm::vec3>& axes);
 // solved per colour channel by Lawson and Hanson's active-set NNLS (Solving Least Squares
 // Problems, 1974, ch. 23) on the samples' design matrix. `directions` should cover the sphere
 // (or the hemisphere) evenly: each sample weighs the same.
-std::vector<glm::vec3> fitNonNegative(const std::vector<glm::vec3>& axes, float sharpness, const std::vector<glm::vec3>& directions,
+std::vector<glm::vec3> fitNonNegative(const std::vector<glm::vec3>& axes, float sharpness,
+                                      const std::vector<glm::vec3>& directions,
                                       const std::vector<glm::vec3>& radiance);
 // The same fit from its normal equations: `gram` the n × n matrix ∫ G_i G_j dω (row-major, e.g.
 // basisGram) and `projections` the inner products ∫ G_k L dω of the radiance with each unit lobe
 // (RGB) — what a baker estimates by Monte Carlo, delta lights included exactly (a delta of
 // irradiance E from direction d projects to E · G_k(d)). The L2 projection under amplitudes ≥ 0.
-std::vector<glm::vec3> fitNonNegative(const std::vector<double>& gram, const std::vector<glm::dvec3>& projections);
+std::vector<glm::vec3> fitNonNegative(const std::vector<double>& gram,
+                                      const std::vector<glm::dvec3>& projections);
 // ∫ G_i G_j dω of unit lobes over the sphere, or over the upper hemisphere (z > 0), by quadrature.
 std::vector<double> basisGram(const std::vector<glm::vec3>& axes, float sharpness, bool hemisphere);
 // Σ_k amplitude_k e^{λ (axis_k · x − 1)}: the fitted radiance in direction x.
-glm::vec3 evaluateBasis(const std::vector<glm::vec3>& axes, float sharpness, const std::vector<glm::vec3>& amplitudes, const glm::vec3& x);
+glm::vec3 evaluateBasis(const std::vector<glm::vec3>& axes, float sharpness,
+                        const std::vector<glm::vec3>& amplitudes, const glm::vec3& x);
 // n directions spread evenly over the sphere (the golden spiral with n points): sample sets.
 inline std::vector<glm::vec3> sphereSamples(int n) { return goldenSpiralAxes(n); }
 

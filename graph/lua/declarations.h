@@ -14,9 +14,26 @@ namespace rg {
 
 enum class DeclKind : uint8_t {
     // Pipelines (rg.*)
-    Texture, Buffer, Pass, Param, Layout, Stencil, Path, Material,
+    Texture,
+    Buffer,
+    Pass,
+    Param,
+    Layout,
+    Stencil,
+    Path,
+    Material,
     // Scenes (scene.*): graph/scene builds a Scene from these
-    SceneMaterial, Sphere, Plane, Box, Gltf, Light, Camera, Environment, Decal, Probe, Lightmap,
+    SceneMaterial,
+    Sphere,
+    Plane,
+    Box,
+    Gltf,
+    Light,
+    Camera,
+    Environment,
+    Decal,
+    Probe,
+    Lightmap,
     Count
 };
 const char* declKindName(DeclKind k);  // "resource", "buffer", "pass", ..., "scene.sphere", ...
@@ -25,7 +42,8 @@ bool isSceneKind(DeclKind k);
 // `path` made absolute when a file of that name sits next to the script of `origin`
 // ("file:line", a declaration's origin, its file relative to `root` — the chunk names of the Lua
 // host — or to the working folder); unchanged otherwise (absolute, or to be searched for).
-std::string nextToDeclaration(const std::string& origin, const std::string& path, const std::string& root = "");
+std::string nextToDeclaration(const std::string& origin, const std::string& path,
+                              const std::string& root = "");
 
 struct Declaration {
     DeclKind kind = DeclKind::Pass;
@@ -50,12 +68,14 @@ struct Where {
 };
 
 // Refuses a field of `body` not in `allowed` (with the closest allowed name) and positional values.
-Result<void> checkFields(const Where& w, const Value& body, const std::vector<std::string>& allowed);
+Result<void> checkFields(const Where& w, const Value& body,
+                         const std::vector<std::string>& allowed);
 
 struct BuildOptions {
     std::vector<PassKindSchema> kinds;
     uint32_t stencilBits = 4;  // low stencil bits the framework allocates classes from
-    std::string projectRoot;   // what origins' file names are relative to (LuaHostOptions::projectRoot)
+    std::string
+        projectRoot;  // what origins' file names are relative to (LuaHostOptions::projectRoot)
 };
 
 // Validates every declaration and assembles the pipeline: names resolved (module-local first),
@@ -70,6 +90,5 @@ struct OutputNames {
 
 Result<PipelineDesc> buildPipeline(const std::vector<Declaration>& decls, const OutputNames& output,
                                    const BuildOptions& options);
-
 
 }  // namespace rg

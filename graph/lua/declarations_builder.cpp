@@ -8,12 +8,14 @@
 namespace rg::declarations {
 
 // A resource name as a declaration in `module` means it: module-local first, then global.
-Result<std::string> Builder::resolveResource(const Where& w, const std::string& module, const std::string& name) {
+Result<std::string> Builder::resolveResource(const Where& w, const std::string& module,
+                                             const std::string& name) {
     if (!module.empty() && resources.count(module + "." + name)) return module + "." + name;
     if (resources.count(name)) return name;
     return w.error("unknown resource '" + name + "'" + suggestion(name, resourceNames));
 }
-Result<std::string> Builder::resolvePass(const Where& w, const std::string& module, const std::string& name) {
+Result<std::string> Builder::resolvePass(const Where& w, const std::string& module,
+                                         const std::string& name) {
     if (!module.empty() && passes.count(module + "." + name)) return module + "." + name;
     if (passes.count(name)) return name;
     return w.error("unknown pass '" + name + "'" + suggestion(name, passNames));
@@ -24,15 +26,19 @@ Result<void> Builder::collectNames() {
     for (const auto& d : decls) {
         Where w = where(d);
         if (isSceneKind(d.kind))
-            return w.error(std::string(declKindName(d.kind)) + " belongs in a scene script (--scene), not in a pipeline");
-        if (!d.body.isTable() && !(d.body.isList() && (d.kind == DeclKind::Layout || d.body.asList().empty())))
-            return w.error("expected a table after " + std::string(declKindName(d.kind)) + " \"" + d.name + "\", got " + typeOf(d.body));
+            return w.error(std::string(declKindName(d.kind)) +
+                           " belongs in a scene script (--scene), not in a pipeline");
+        if (!d.body.isTable() &&
+            !(d.body.isList() && (d.kind == DeclKind::Layout || d.body.asList().empty())))
+            return w.error("expected a table after " + std::string(declKindName(d.kind)) + " \"" +
+                           d.name + "\", got " + typeOf(d.body));
         // Textures and buffers share one namespace.
-        size_t slot = d.kind == DeclKind::Buffer ? static_cast<size_t>(DeclKind::Texture) : static_cast<size_t>(d.kind);
+        size_t slot = d.kind == DeclKind::Buffer ? static_cast<size_t>(DeclKind::Texture)
+                                                 : static_cast<size_t>(d.kind);
         auto [it, fresh] = seen[slot].emplace(fullName(d), &d);
         if (!fresh)
-            return w.error(std::string(declKindName(d.kind)) + " '" + fullName(d) + "' is declared twice (first at " +
-                           it->second->origin + ")");
+            return w.error(std::string(declKindName(d.kind)) + " '" + fullName(d) +
+                           "' is declared twice (first at " + it->second->origin + ")");
         if (d.kind == DeclKind::Texture || d.kind == DeclKind::Buffer) {
             resources[fullName(d)] = &d;
             resourceNames.push_back(fullName(d));
@@ -50,11 +56,20 @@ Result<PipelineDesc> Builder::build(const OutputNames& names) {
     for (const auto& d : decls) {
         Result<void> r;
         switch (d.kind) {
-        case DeclKind::Texture: r = texture(d); break;
-        case DeclKind::Buffer: r = buffer(d); break;
-        case DeclKind::Param: r = param(d); break;
-        case DeclKind::Layout: r = layout(d); break;
-        default: break;
+            case DeclKind::Texture:
+                r = texture(d);
+                break;
+            case DeclKind::Buffer:
+                r = buffer(d);
+                break;
+            case DeclKind::Param:
+                r = param(d);
+                break;
+            case DeclKind::Layout:
+                r = layout(d);
+                break;
+            default:
+                break;
         }
         if (!r) return std::unexpected(r.error());
     }
@@ -75,30 +90,44 @@ Result<PipelineDesc> Builder::build(const OutputNames& names) {
     if (auto r = checkSwitches(); !r) return std::unexpected(r.error());
 
     out.output = output.empty() ? "output" : output;
-    auto it = std::find_if(out.graph.resources.begin(), out.graph.resources.end(), [&](auto& r) { return r.name == out.output; });
+    auto it = std::find_if(out.graph.resources.begin(), out.graph.resources.end(),
+                           [&](auto& r) { return r.name == out.output; });
     const std::string where = names.origin.empty() ? "rg.output" : names.origin + ": rg.output";
     if (it == out.graph.resources.end())
-        return fail(ErrorCode::InvalidInput, output.empty() ? "the pipeline declares no output: call rg.output \"resource\" (or name a resource 'output')"
-                                                            : where + ": unknown resource '" + output + "'" + suggestion(output, resourceNames));
-    if (it->kind != ResourceKind::Texture) return fail(ErrorCode::InvalidInput, where + ": '" + out.output + "' is a buffer, not a texture");
+        return fail(ErrorCode::InvalidInput,
+                    output.empty() ? "the pipeline declares no output: call rg.output \"resource\" "
+                                     "(or name a resource 'output')"
+                                   : where + ": unknown resource '" + output + "'" +
+                                         suggestion(output, resourceNames));
+    if (it->kind != ResourceKind::Texture)
+        return fail(ErrorCode::InvalidInput,
+                    where + ": '" + out.output + "' is a buffer, not a texture");
     it->exported = true;
     if (!names.hdr.empty()) {
-        auto h = std::find_if(out.graph.resources.begin(), out.graph.resources.end(), [&](auto& r) { return r.name == names.hdr; });
+        auto h = std::find_if(out.graph.resources.begin(), out.graph.resources.end(),
+                              [&](auto& r) { return r.name == names.hdr; });
         if (h == out.graph.resources.end() || h->kind != ResourceKind::Texture)
-            return fail(ErrorCode::InvalidInput, where + ".hdr: unknown texture '" + names.hdr + "'" + suggestion(names.hdr, resourceNames));
+            return fail(ErrorCode::InvalidInput, where + ".hdr: unknown texture '" + names.hdr +
+                                                     "'" + suggestion(names.hdr, resourceNames));
         h->exported = true;
         out.hdr = names.hdr;
         if (names.exposure.empty())
-            return fail(ErrorCode::InvalidInput, where + ".exposure: an hdr output needs the exposure state buffer that says its pre-exposure");
+            return fail(ErrorCode::InvalidInput, where +
+                                                     ".exposure: an hdr output needs the exposure "
+                                                     "state buffer that says its pre-exposure");
     }
     if (!names.exposure.empty()) {
-        auto e = std::find_if(out.graph.resources.begin(), out.graph.resources.end(), [&](auto& r) { return r.name == names.exposure; });
+        auto e = std::find_if(out.graph.resources.begin(), out.graph.resources.end(),
+                              [&](auto& r) { return r.name == names.exposure; });
         if (e == out.graph.resources.end() || e->kind != ResourceKind::Buffer || !e->persistent)
-            return fail(ErrorCode::InvalidInput, where + ".exposure: '" + names.exposure + "' must be a persistent buffer (post.exposure_state())");
+            return fail(ErrorCode::InvalidInput,
+                        where + ".exposure: '" + names.exposure +
+                            "' must be a persistent buffer (post.exposure_state())");
         out.exposure = names.exposure;
     }
     for (const auto& d : decls)
-        if (!d.module.empty() && std::find(out.modules.begin(), out.modules.end(), d.module) == out.modules.end())
+        if (!d.module.empty() &&
+            std::find(out.modules.begin(), out.modules.end(), d.module) == out.modules.end())
             out.modules.push_back(d.module);
     return std::move(out);
 }

@@ -27,18 +27,28 @@ struct Builder {
     std::map<std::string, const Declaration*> passes;
     std::vector<std::string> resourceNames, passNames;
 
-    static std::string fullName(const Declaration& d) { return d.module.empty() ? d.name : d.module + "." + d.name; }
+    static std::string fullName(const Declaration& d) {
+        return d.module.empty() ? d.name : d.module + "." + d.name;
+    }
     static std::string section(DeclKind k) {
         switch (k) {
-        case DeclKind::Texture:
-        case DeclKind::Buffer: return "resources";
-        case DeclKind::Pass: return "passes";
-        case DeclKind::Param: return "params";
-        case DeclKind::Layout: return "layouts";
-        case DeclKind::Stencil: return "stencil";
-        case DeclKind::Path: return "paths";
-        case DeclKind::Material: return "materials";
-        default: return "scene";
+            case DeclKind::Texture:
+            case DeclKind::Buffer:
+                return "resources";
+            case DeclKind::Pass:
+                return "passes";
+            case DeclKind::Param:
+                return "params";
+            case DeclKind::Layout:
+                return "layouts";
+            case DeclKind::Stencil:
+                return "stencil";
+            case DeclKind::Path:
+                return "paths";
+            case DeclKind::Material:
+                return "materials";
+            default:
+                return "scene";
         }
     }
     static Where where(const Declaration& d) { return {d, section(d.kind) + "." + fullName(d)}; }

@@ -25,7 +25,9 @@ Result<void> Builder::stencils() {
             if (pass == 0) {
                 if (auto r = checkFields(w, d.body, {"value", "variant_of", "doc"}); !r) return r;
                 if (d.body.has("variant_of") && d.body.has("value"))
-                    return w.at("value").error("a variant takes its base's value in the low bits and is allocated the high bits; give no value");
+                    return w.at("value").error(
+                        "a variant takes its base's value in the low bits and is allocated the "
+                        "high bits; give no value");
                 if (d.body.has("doc"))
                     if (auto r = expectType(w.at("doc"), d.body["doc"], "string"); !r) return r;
             }
@@ -34,21 +36,28 @@ Result<void> Builder::stencils() {
             if (pass != (variant ? 2 : explicitValue ? 0 : 1)) continue;
             StencilClassDesc c{fullName(d), 0, capacity, "", d.body["doc"].asString(), d.origin};
             if (variant) {
-                if (auto r = expectType(w.at("variant_of"), d.body["variant_of"], "string"); !r) return r;
+                if (auto r = expectType(w.at("variant_of"), d.body["variant_of"], "string"); !r)
+                    return r;
                 const std::string baseName = d.body["variant_of"].asString();
-                auto base = std::find_if(out.stencilClasses.begin(), out.stencilClasses.end(), [&](auto& s) { return s.name == baseName; });
+                auto base = std::find_if(out.stencilClasses.begin(), out.stencilClasses.end(),
+                                         [&](auto& s) { return s.name == baseName; });
                 if (base == out.stencilClasses.end()) {
                     std::vector<std::string> names;
                     for (const auto& s : out.stencilClasses) names.push_back(s.name);
-                    return w.at("variant_of").error("unknown stencil class '" + baseName + "'" + suggestion(baseName, names) +
-                                                    (names.empty() ? "" : "; expected one of: " + joinQuoted(names)));
+                    return w.at("variant_of")
+                        .error("unknown stencil class '" + baseName + "'" +
+                               suggestion(baseName, names) +
+                               (names.empty() ? "" : "; expected one of: " + joinQuoted(names)));
                 }
                 if (!base->base.empty())
-                    return w.at("variant_of").error("'" + baseName + "' is itself a variant of '" + base->base + "'; name a class of its own");
+                    return w.at("variant_of")
+                        .error("'" + baseName + "' is itself a variant of '" + base->base +
+                               "'; name a class of its own");
                 uint32_t k = 1;
                 while (k <= variants && taken.count(base->value | (k << bits))) ++k;
                 if (k > variants)
-                    return w.error("no variant of '" + baseName + "' left: the high " + std::to_string(8 - bits) + " stencil bits hold " +
+                    return w.error("no variant of '" + baseName + "' left: the high " +
+                                   std::to_string(8 - bits) + " stencil bits hold " +
                                    std::to_string(variants) + " variants per class");
                 c.value = base->value | (k << bits);
                 c.mask = 0xFFu;
@@ -56,19 +65,25 @@ Result<void> Builder::stencils() {
             } else if (explicitValue) {
                 const Value& v = d.body["value"];
                 if (!isInteger(v) || v.asNumber() < 1 || v.asNumber() > capacity)
-                    return w.at("value").error("expected a whole number in 1.." + std::to_string(capacity) + " (" + std::to_string(bits) +
-                                               " stencil bits for classes; a class lit as another is a variant: variant_of = \"class\")");
+                    return w.at("value").error("expected a whole number in 1.." +
+                                               std::to_string(capacity) + " (" +
+                                               std::to_string(bits) +
+                                               " stencil bits for classes; a class lit as another "
+                                               "is a variant: variant_of = \"class\")");
                 c.value = static_cast<uint32_t>(v.asNumber());
                 if (taken.count(c.value))
-                    return w.at("value").error(std::to_string(c.value) + " is already the value of stencil class '" +
-                                               fullName(*taken[c.value]) + "' (" + taken[c.value]->origin + ")");
+                    return w.at("value").error(
+                        std::to_string(c.value) + " is already the value of stencil class '" +
+                        fullName(*taken[c.value]) + "' (" + taken[c.value]->origin + ")");
             } else {
-                for (c.value = 1; c.value <= capacity && taken.count(c.value); ++c.value) {}
+                for (c.value = 1; c.value <= capacity && taken.count(c.value); ++c.value) {
+                }
                 if (c.value > capacity) {
                     std::vector<std::string> names;
                     for (auto& [_, td] : taken) names.push_back(fullName(*td));
-                    return w.error("no stencil value left: " + std::to_string(bits) + " stencil bits hold " +
-                                   std::to_string(capacity) + " classes, all taken by " + joinQuoted(names));
+                    return w.error("no stencil value left: " + std::to_string(bits) +
+                                   " stencil bits hold " + std::to_string(capacity) +
+                                   " classes, all taken by " + joinQuoted(names));
                 }
             }
             taken[c.value] = &d;
@@ -85,7 +100,8 @@ Result<void> Builder::stencils() {
 }
 
 bool Builder::hasStencil(const std::string& n) const {
-    return std::any_of(out.stencilClasses.begin(), out.stencilClasses.end(), [&](auto& s) { return s.name == n; });
+    return std::any_of(out.stencilClasses.begin(), out.stencilClasses.end(),
+                       [&](auto& s) { return s.name == n; });
 }
 std::vector<std::string> Builder::stencilNames() const {
     std::vector<std::string> v;
@@ -99,14 +115,16 @@ Result<void> Builder::path(const Declaration& d) {
     auto stencil = requireString(w, d.body, "stencil");
     if (!stencil) return std::unexpected(stencil.error());
     if (!hasStencil(*stencil))
-        return w.at("stencil").error("unknown stencil class '" + *stencil + "'" + suggestion(*stencil, stencilNames()));
+        return w.at("stencil").error("unknown stencil class '" + *stencil + "'" +
+                                     suggestion(*stencil, stencilNames()));
     std::string shading;
     if (d.body.has("shading")) {
         if (auto r = expectType(w.at("shading"), d.body["shading"], "string"); !r) return r;
         // Next to the declaring script (a game team's folder), else the shader include folders.
         shading = nextToDeclaration(d.origin, d.body["shading"].asString(), options.projectRoot);
     }
-    out.lightingPaths.push_back({fullName(d), *stencil, shading, d.body["doc"].asString(), d.origin});
+    out.lightingPaths.push_back(
+        {fullName(d), *stencil, shading, d.body["doc"].asString(), d.origin});
     return {};
 }
 

@@ -13,7 +13,8 @@ namespace rg::declarations {
 // standard parameter (kStandardChannels) where the name differs; the rest by their own name.
 // `decals = { "normal", ... }` (or false): the standard parameters decals blend; by default
 // the seed's common set that the layout holds (000 §3.3: Normal, BaseColor, Smoothness).
-Result<void> Builder::standardChannels(const Where& w, const Value& b, const LayoutDesc& layout, MaterialDesc& m) {
+Result<void> Builder::standardChannels(const Where& w, const Value& b, const LayoutDesc& layout,
+                                       MaterialDesc& m) {
     auto channel = [&](const std::string& name) -> const ChannelDesc* {
         for (const auto& t : layout.targets)
             for (const auto& c : t.channels)
@@ -22,9 +23,12 @@ Result<void> Builder::standardChannels(const Where& w, const Value& b, const Lay
     };
     // What each standard parameter needs of its channel: components, and a float encoding.
     auto fits = [&](const std::string& standard, const ChannelDesc& c) {
-        const bool vec3 = standard == "normal" || standard == "baseColor" || standard == "f0" || standard == "emissive";
+        const bool vec3 = standard == "normal" || standard == "baseColor" || standard == "f0" ||
+                          standard == "emissive";
         if (c.encoding == Encoding::Uint) return false;
-        if (standard == "normal") return c.encoding == Encoding::Oct || (c.encoding == Encoding::Snorm && valueComponents(c) == 3);
+        if (standard == "normal")
+            return c.encoding == Encoding::Oct ||
+                   (c.encoding == Encoding::Snorm && valueComponents(c) == 3);
         return valueComponents(c) == (vec3 ? 3u : 1u);
     };
     std::vector<std::string> standard(std::begin(kStandardChannels), std::end(kStandardChannels));
@@ -33,8 +37,10 @@ Result<void> Builder::standardChannels(const Where& w, const Value& b, const Lay
         for (const auto& [key, value] : b["channels"].asTable()) {
             const Where cw = w.at("channels").at(key);
             if (std::find(standard.begin(), standard.end(), key) == standard.end())
-                return cw.error("not a standard parameter" + suggestion(key, standard) + "; expected one of: " + joinQuoted(standard));
-            if (!value.isString()) return cw.error("expected the name of a channel of layout '" + layout.name + "'");
+                return cw.error("not a standard parameter" + suggestion(key, standard) +
+                                "; expected one of: " + joinQuoted(standard));
+            if (!value.isString())
+                return cw.error("expected the name of a channel of layout '" + layout.name + "'");
             m.channels[key] = value.asString();
         }
     }
@@ -47,14 +53,20 @@ Result<void> Builder::standardChannels(const Where& w, const Value& b, const Lay
                 std::vector<std::string> names;
                 for (const auto& t : layout.targets)
                     for (const auto& ch : t.channels) names.push_back(ch.name);
-                return w.at("channels").at(s).error("layout '" + layout.name + "' has no channel '" + name + "'" + suggestion(name, names));
+                return w.at("channels")
+                    .at(s)
+                    .error("layout '" + layout.name + "' has no channel '" + name + "'" +
+                           suggestion(name, names));
             }
             continue;
         }
         if (!fits(s, *c)) {
             if (declared)
-                return w.at("channels").at(s).error("channel '" + name + "' (" + std::string(encodingName(c->encoding)) + ", " +
-                                                    std::to_string(valueComponents(*c)) + " components) cannot hold " + s);
+                return w.at("channels")
+                    .at(s)
+                    .error("channel '" + name + "' (" + std::string(encodingName(c->encoding)) +
+                           ", " + std::to_string(valueComponents(*c)) +
+                           " components) cannot hold " + s);
             continue;  // a channel of the same name but another meaning: not the standard one
         }
         m.channels[s] = name;
@@ -72,10 +84,12 @@ Result<void> Builder::standardChannels(const Where& w, const Value& b, const Lay
     for (size_t i = 0; i < list->size(); ++i) {
         const std::string& s = (*list)[i];
         if (std::find(allowed.begin(), allowed.end(), s) == allowed.end())
-            return w.at("decals").index(i).error("decals blend " + joinQuoted(allowed) + suggestion(s, allowed) + "; not '" + s + "'");
+            return w.at("decals").index(i).error("decals blend " + joinQuoted(allowed) +
+                                                 suggestion(s, allowed) + "; not '" + s + "'");
         if (!m.channels.count(s))
-            return w.at("decals").index(i).error("layout '" + layout.name + "' has no channel for " + s +
-                                                 " (name it in channels = { " + s + " = \"...\" }), so decals cannot blend it");
+            return w.at("decals").index(i).error(
+                "layout '" + layout.name + "' has no channel for " + s +
+                " (name it in channels = { " + s + " = \"...\" }), so decals cannot blend it");
         m.decals.push_back(s);
     }
     return {};
@@ -84,32 +98,42 @@ Result<void> Builder::standardChannels(const Where& w, const Value& b, const Lay
 Result<void> Builder::material(const Declaration& d, std::map<uint32_t, const Declaration*>& ids) {
     Where w = where(d);
     const Value& b = d.body;
-    if (auto r = checkFields(w, b, {"id", "layout", "surface", "path", "stencil", "fills", "fixup", "params", "channels", "decals", "doc"}); !r)
+    if (auto r = checkFields(w, b,
+                             {"id", "layout", "surface", "path", "stencil", "fills", "fixup",
+                              "params", "channels", "decals", "doc"});
+        !r)
         return r;
     MaterialDesc m;
     m.name = fullName(d);
     m.origin = d.origin;
     if (!b.has("id")) return w.at("id").error("missing (expected the materialId, a whole number)");
-    if (!isInteger(b["id"]) || b["id"].asNumber() < 0) return w.at("id").error("expected a whole number >= 0");
+    if (!isInteger(b["id"]) || b["id"].asNumber() < 0)
+        return w.at("id").error("expected a whole number >= 0");
     m.id = static_cast<uint32_t>(b["id"].asNumber());
     auto layoutName = requireString(w, b, "layout");
     if (!layoutName) return std::unexpected(layoutName.error());
-    auto lit = std::find_if(out.layouts.begin(), out.layouts.end(),
-                            [&](auto& l) { return !d.module.empty() && l.name == d.module + "_" + *layoutName; });
+    auto lit = std::find_if(out.layouts.begin(), out.layouts.end(), [&](auto& l) {
+        return !d.module.empty() && l.name == d.module + "_" + *layoutName;
+    });
     if (lit == out.layouts.end())
-        lit = std::find_if(out.layouts.begin(), out.layouts.end(), [&](auto& l) { return l.name == *layoutName; });
+        lit = std::find_if(out.layouts.begin(), out.layouts.end(),
+                           [&](auto& l) { return l.name == *layoutName; });
     if (lit == out.layouts.end()) {
         std::vector<std::string> names;
         for (auto& l : out.layouts) names.push_back(l.name);
-        return w.at("layout").error("unknown layout '" + *layoutName + "'" + suggestion(*layoutName, names));
+        return w.at("layout").error("unknown layout '" + *layoutName + "'" +
+                                    suggestion(*layoutName, names));
     }
     m.layout = lit->name;
     // The id must fit the layout's materialId field.
     for (const auto& t : lit->targets)
         for (const auto& c : t.channels)
-            if (c.name == "materialId" && c.encoding == Encoding::Uint && c.bits < 32 && m.id >= (1u << c.bits))
-                return w.at("id").error(std::to_string(m.id) + " does not fit layout '" + m.layout + "': its materialId has " +
-                                        std::to_string(c.bits) + " bits (ids 0.." + std::to_string((1u << c.bits) - 1) + ")");
+            if (c.name == "materialId" && c.encoding == Encoding::Uint && c.bits < 32 &&
+                m.id >= (1u << c.bits))
+                return w.at("id").error(std::to_string(m.id) + " does not fit layout '" + m.layout +
+                                        "': its materialId has " + std::to_string(c.bits) +
+                                        " bits (ids 0.." + std::to_string((1u << c.bits) - 1) +
+                                        ")");
     for (const char* field : {"surface", "path", "stencil", "fixup"})
         if (b.has(field))
             if (auto r = expectType(w.at(field), b[field], "string"); !r) return r;
@@ -119,18 +143,21 @@ Result<void> Builder::material(const Declaration& d, std::map<uint32_t, const De
     if (!m.surface.empty()) m.surface = nextToDeclaration(d.origin, m.surface, options.projectRoot);
     m.path = b["path"].asString();
     if (!m.path.empty()) {
-        auto pit = std::find_if(out.lightingPaths.begin(), out.lightingPaths.end(), [&](auto& p) { return p.name == m.path; });
+        auto pit = std::find_if(out.lightingPaths.begin(), out.lightingPaths.end(),
+                                [&](auto& p) { return p.name == m.path; });
         if (pit == out.lightingPaths.end()) {
             std::vector<std::string> names;
             for (auto& p : out.lightingPaths) names.push_back(p.name);
-            return w.at("path").error("unknown lighting path '" + m.path + "'" + suggestion(m.path, names));
+            return w.at("path").error("unknown lighting path '" + m.path + "'" +
+                                      suggestion(m.path, names));
         }
         m.stencil = pit->stencil;
     }
     if (b.has("stencil")) {
         m.stencil = b["stencil"].asString();
         if (!hasStencil(m.stencil))
-            return w.at("stencil").error("unknown stencil class '" + m.stencil + "'" + suggestion(m.stencil, stencilNames()));
+            return w.at("stencil").error("unknown stencil class '" + m.stencil + "'" +
+                                         suggestion(m.stencil, stencilNames()));
     }
     auto fills = stringList(w.at("fills"), b["fills"]);
     if (!fills) return std::unexpected(fills.error());
@@ -138,7 +165,8 @@ Result<void> Builder::material(const Declaration& d, std::map<uint32_t, const De
         std::vector<std::string> targets;
         for (auto& t : lit->targets) targets.push_back(t.name);
         if (std::find(targets.begin(), targets.end(), (*fills)[i]) == targets.end())
-            return w.at("fills").index(i).error("layout '" + m.layout + "' has no target '" + (*fills)[i] + "'" +
+            return w.at("fills").index(i).error("layout '" + m.layout + "' has no target '" +
+                                                (*fills)[i] + "'" +
                                                 suggestion((*fills)[i], targets));
     }
     m.fills = *fills;
@@ -149,27 +177,38 @@ Result<void> Builder::material(const Declaration& d, std::map<uint32_t, const De
         m.fixup = *p;
     }
     if (!m.fills.empty() && m.fills.size() < lit->targets.size() && m.fixup.empty())
-        return w.at("fixup").error("material fills only part of layout '" + m.layout + "': name the fix-up pass that fills the rest");
+        return w.at("fixup").error("material fills only part of layout '" + m.layout +
+                                   "': name the fix-up pass that fills the rest");
     if (auto r = standardChannels(w, b, *lit, m); !r) return r;
     // A lighting path's pass and shading function decode one layout.
     if (!m.path.empty())
         for (const MaterialDesc& other : out.materials)
             if (other.path == m.path && other.layout != m.layout)
-                return w.at("path").error("lighting path '" + m.path + "' lights layout '" + other.layout + "' (material '" + other.name + "', " +
-                                          other.origin + "); this material's layout is '" + m.layout +
-                                          "': a path's lighting pass and shading function decode one layout, so declare a path of its own");
+                return w.at("path").error("lighting path '" + m.path + "' lights layout '" +
+                                          other.layout + "' (material '" + other.name + "', " +
+                                          other.origin + "); this material's layout is '" +
+                                          m.layout +
+                                          "': a path's lighting pass and shading function decode "
+                                          "one layout, so declare a path of its own");
     // A materialId names how its pixels decode (decals, debug views): materials may share
     // one when they decode alike, as foliage shares the standard material's after its fix-up.
     if (ids.count(m.id)) {
-        const MaterialDesc& first = *std::find_if(out.materials.begin(), out.materials.end(), [&](auto& x) { return x.id == m.id; });
-        const std::string shared = std::to_string(m.id) + " is the id of material '" + first.name + "' (" + first.origin + ")";
+        const MaterialDesc& first = *std::find_if(out.materials.begin(), out.materials.end(),
+                                                  [&](auto& x) { return x.id == m.id; });
+        const std::string shared = std::to_string(m.id) + " is the id of material '" + first.name +
+                                   "' (" + first.origin + ")";
         if (first.layout != m.layout)
-            return w.at("id").error(shared + " of layout '" + first.layout + "': materials share an id only when their pixels decode alike (the same layout); choose a free id");
+            return w.at("id").error(shared + " of layout '" + first.layout +
+                                    "': materials share an id only when their pixels decode alike "
+                                    "(the same layout); choose a free id");
         if (!b.has("channels") && !b.has("decals")) {
             m.channels = first.channels;
             m.decals = first.decals;
         } else if (first.channels != m.channels || first.decals != m.decals)
-            return w.at(b.has("decals") ? "decals" : "channels").error(shared + " with other channels or decals: materials sharing an id decode alike; match them or choose a free id");
+            return w.at(b.has("decals") ? "decals" : "channels")
+                .error(shared +
+                       " with other channels or decals: materials sharing an id decode alike; "
+                       "match them or choose a free id");
     }
     ids.emplace(m.id, &d);
     if (b.has("params"))
@@ -180,21 +219,47 @@ Result<void> Builder::material(const Declaration& d, std::map<uint32_t, const De
     // sampled surface or a name of the generated code would rewrite that code.
     {
         static const std::vector<std::string> reserved = {
-            "position", "normal", "baseColor", "opacity", "smoothness", "metalMask", "reflectance", "ao", "emissive",
-            "diffuseColor", "f0", "twoColour",  // RgSurface (shaders/lib/material.glsl)
-            "material", "s", "g", "main", "worldPosition", "worldNormal", "worldTangent", "uv0", "uv1"};  // the generated code
+            "position",
+            "normal",
+            "baseColor",
+            "opacity",
+            "smoothness",
+            "metalMask",
+            "reflectance",
+            "ao",
+            "emissive",
+            "diffuseColor",
+            "f0",
+            "twoColour",  // RgSurface (shaders/lib/material.glsl)
+            "material",
+            "s",
+            "g",
+            "main",
+            "worldPosition",
+            "worldNormal",
+            "worldTangent",
+            "uv0",
+            "uv1"};  // the generated code
         for (const auto& [name, value] : m.params.asTable()) {
             const Where pw = w.at("params").at(name);
-            if (!isGlslIdentifier(name)) return pw.error("a material parameter's name must be a GLSL identifier (letters, digits, _)");
+            if (!isGlslIdentifier(name))
+                return pw.error(
+                    "a material parameter's name must be a GLSL identifier (letters, digits, _)");
             if (name.rfind("rg", 0) == 0 || name.rfind("RG_", 0) == 0 || name.rfind("gl_", 0) == 0)
-                return pw.error("names starting with 'rg', 'RG_' or 'gl_' are rgraph's and GLSL's; choose another");
+                return pw.error(
+                    "names starting with 'rg', 'RG_' or 'gl_' are rgraph's and GLSL's; choose "
+                    "another");
             for (const auto& t : lit->targets)
                 for (const auto& c : t.channels)
                     if (c.name == name)
-                        return pw.error("clashes with channel '" + name + "' of layout '" + m.layout + "' (target " + t.name +
-                                        "): the generated shader defines each parameter as a name; choose another");
+                        return pw.error("clashes with channel '" + name + "' of layout '" +
+                                        m.layout + "' (target " + t.name +
+                                        "): the generated shader defines each parameter as a name; "
+                                        "choose another");
             if (std::find(reserved.begin(), reserved.end(), name) != reserved.end())
-                return pw.error("clashes with '" + name + "' of the generated G-buffer shader (the sampled surface's fields and its variables: " +
+                return pw.error("clashes with '" + name +
+                                "' of the generated G-buffer shader (the sampled surface's fields "
+                                "and its variables: " +
                                 joinQuoted(reserved) + "); choose another");
         }
     }
@@ -214,31 +279,43 @@ Result<void> Builder::checkMaterialIdPlacement() {
     };
     auto describe = [](const Place& p) {
         static const char* comps = "RGBA";
-        return "target " + p.target + "." + comps[p.component] + " bits " + std::to_string(p.bitOffset) + ".." +
-               std::to_string(p.bitOffset + p.bits - 1) + " (" + std::string(encodingName(p.encoding)) + ")";
+        return "target " + p.target + "." + comps[p.component] + " bits " +
+               std::to_string(p.bitOffset) + ".." + std::to_string(p.bitOffset + p.bits - 1) +
+               " (" + std::string(encodingName(p.encoding)) + ")";
     };
     std::optional<Place> first;
     const MaterialDesc* firstMaterial = nullptr;
     for (const MaterialDesc& m : out.materials) {
-        const LayoutDesc& l = *std::find_if(out.layouts.begin(), out.layouts.end(), [&](auto& x) { return x.name == m.layout; });
+        const LayoutDesc& l = *std::find_if(out.layouts.begin(), out.layouts.end(),
+                                            [&](auto& x) { return x.name == m.layout; });
         auto info = analyzeLayout(l);
         if (!info) return std::unexpected(info.error());
         const int c = info->find("materialId");
-        const Declaration& d = *std::find_if(decls.begin(), decls.end(), [&](auto& x) { return x.kind == DeclKind::Material && fullName(x) == m.name; });
+        const Declaration& d = *std::find_if(decls.begin(), decls.end(), [&](auto& x) {
+            return x.kind == DeclKind::Material && fullName(x) == m.name;
+        });
         if (c < 0)
-            return where(d).at("layout").error("layout '" + l.name + "' has no materialId channel: decals and debug views tell a pixel's layout by it (declare \"materialId:uint:2\" where the other layouts keep it)");
+            return where(d).at("layout").error(
+                "layout '" + l.name +
+                "' has no materialId channel: decals and debug views tell a pixel's layout by it "
+                "(declare \"materialId:uint:2\" where the other layouts keep it)");
         const ChannelPlacement& pl = info->channels[static_cast<size_t>(c)];
-        Place p{l.targets[pl.target].name, pl.component, pl.bitOffset, info->channelDesc(static_cast<size_t>(c)).bits,
+        Place p{l.targets[pl.target].name, pl.component, pl.bitOffset,
+                info->channelDesc(static_cast<size_t>(c)).bits,
                 info->channelDesc(static_cast<size_t>(c)).encoding};
         if (p.encoding != Encoding::Uint)
-            return where(d).at("layout").error("layout '" + l.name + "' keeps materialId as " + std::string(encodingName(p.encoding)) + "; it must be a uint field");
+            return where(d).at("layout").error("layout '" + l.name + "' keeps materialId as " +
+                                               std::string(encodingName(p.encoding)) +
+                                               "; it must be a uint field");
         if (!first) {
             first = p;
             firstMaterial = &m;
         } else if (!(p == *first))
-            return where(d).at("layout").error("layout '" + l.name + "' keeps materialId in " + describe(p) + ", but layout '" + firstMaterial->layout +
-                                               "' (material '" + firstMaterial->name + "', " + firstMaterial->origin + ") keeps it in " + describe(*first) +
-                                               ": every layout of a pipeline keeps materialId in the same place");
+            return where(d).at("layout").error(
+                "layout '" + l.name + "' keeps materialId in " + describe(p) + ", but layout '" +
+                firstMaterial->layout + "' (material '" + firstMaterial->name + "', " +
+                firstMaterial->origin + ") keeps it in " + describe(*first) +
+                ": every layout of a pipeline keeps materialId in the same place");
     }
     return {};
 }
@@ -253,7 +330,8 @@ Result<void> Builder::checkMaterialReferences() {
         if (stencil.has("class")) {
             const std::string cls = stencil["class"].asString();
             if (!hasStencil(cls))
-                return w.at("stencil").at("class").error("unknown stencil class '" + cls + "'" + suggestion(cls, stencilNames()));
+                return w.at("stencil").at("class").error("unknown stencil class '" + cls + "'" +
+                                                         suggestion(cls, stencilNames()));
         }
         if (p.kind != "scene") continue;
         std::vector<std::string> materialNames, pathNames;
@@ -262,19 +340,27 @@ Result<void> Builder::checkMaterialReferences() {
         auto selected = stringList(w.at("materials"), p.params["materials"]);
         if (!selected) return std::unexpected(selected.error());
         for (size_t i = 0; i < selected->size(); ++i)
-            if (std::find(materialNames.begin(), materialNames.end(), (*selected)[i]) == materialNames.end())
-                return w.at("materials").index(i).error("unknown material '" + (*selected)[i] + "'" + suggestion((*selected)[i], materialNames));
+            if (std::find(materialNames.begin(), materialNames.end(), (*selected)[i]) ==
+                materialNames.end())
+                return w.at("materials")
+                    .index(i)
+                    .error("unknown material '" + (*selected)[i] + "'" +
+                           suggestion((*selected)[i], materialNames));
         auto paths = stringList(w.at("paths"), p.params["paths"]);
         if (!paths) return std::unexpected(paths.error());
         for (size_t i = 0; i < paths->size(); ++i)
             if (std::find(pathNames.begin(), pathNames.end(), (*paths)[i]) == pathNames.end())
-                return w.at("paths").index(i).error("unknown lighting path '" + (*paths)[i] + "'" + suggestion((*paths)[i], pathNames));
+                return w.at("paths").index(i).error("unknown lighting path '" + (*paths)[i] + "'" +
+                                                    suggestion((*paths)[i], pathNames));
         for (const auto& m : out.materials) {
-            const bool chosen = (selected->empty() && paths->empty()) ||
-                                std::find(selected->begin(), selected->end(), m.name) != selected->end() ||
-                                std::find(paths->begin(), paths->end(), m.path) != paths->end();
+            const bool chosen =
+                (selected->empty() && paths->empty()) ||
+                std::find(selected->begin(), selected->end(), m.name) != selected->end() ||
+                std::find(paths->begin(), paths->end(), m.path) != paths->end();
             if (chosen && m.surface.empty())
-                return w.error("material '" + m.name + "' (" + m.origin + ") has no surface function (surface = \"file.glsl\"), so this scene pass cannot draw it");
+                return w.error("material '" + m.name + "' (" + m.origin +
+                               ") has no surface function (surface = \"file.glsl\"), so this scene "
+                               "pass cannot draw it");
         }
     }
     return {};

@@ -12,7 +12,8 @@ namespace rg::declarations {
 Result<void> Builder::param(const Declaration& d) {
     Where w = where(d);
     const Value& b = d.body;
-    if (auto r = checkFields(w, b, {"type", "default", "min", "max", "choices", "doc"}); !r) return r;
+    if (auto r = checkFields(w, b, {"type", "default", "min", "max", "choices", "doc"}); !r)
+        return r;
     ParamDesc p;
     p.name = fullName(d);
     p.origin = d.origin;
@@ -20,19 +21,24 @@ Result<void> Builder::param(const Declaration& d) {
     auto type = requireString(w, b, "type");
     if (!type) return std::unexpected(type.error());
     static const std::vector<std::pair<std::string, ParamType>> types = {
-        {"number", ParamType::Number}, {"integer", ParamType::Integer}, {"boolean", ParamType::Boolean},
-        {"vec3", ParamType::Vec3}, {"choice", ParamType::Choice}};
+        {"number", ParamType::Number},
+        {"integer", ParamType::Integer},
+        {"boolean", ParamType::Boolean},
+        {"vec3", ParamType::Vec3},
+        {"choice", ParamType::Choice}};
     auto it = std::find_if(types.begin(), types.end(), [&](auto& t) { return t.first == *type; });
     if (it == types.end()) {
         std::vector<std::string> names;
         for (auto& t : types) names.push_back(t.first);
-        return w.at("type").error("unknown type '" + *type + "'" + suggestion(*type, names) + "; expected one of: " + joinQuoted(names));
+        return w.at("type").error("unknown type '" + *type + "'" + suggestion(*type, names) +
+                                  "; expected one of: " + joinQuoted(names));
     }
     p.type = it->second;
     for (const char* bound : {"min", "max"}) {
         if (!b.has(bound)) continue;
         if (p.type != ParamType::Number && p.type != ParamType::Integer)
-            return w.at(bound).error(std::string("only number and integer parameters have a ") + bound);
+            return w.at(bound).error(std::string("only number and integer parameters have a ") +
+                                     bound);
         if (auto r = expectType(w.at(bound), b[bound], "number"); !r) return r;
     }
     p.min = b["min"].asNumber(p.min);
@@ -45,7 +51,8 @@ Result<void> Builder::param(const Declaration& d) {
     if (p.type == ParamType::Choice) {
         auto choices = stringList(w.at("choices"), b["choices"]);
         if (!choices) return std::unexpected(choices.error());
-        if (choices->empty()) return w.at("choices").error("missing (expected the list of allowed strings)");
+        if (choices->empty())
+            return w.at("choices").error("missing (expected the list of allowed strings)");
         p.choices = *choices;
     } else if (b.has("choices"))
         return w.at("choices").error("only choice parameters have choices");

@@ -15,21 +15,28 @@ const PassKindSchema* Builder::kindSchema(const std::string& name) const {
 }
 
 // One entry of reads/writes: "name" or { "name", as = "...", load = true }.
-Result<Access> Builder::access(const Where& w, const Declaration& d, const Value& e, bool write, const PassKindSchema& kind) {
+Result<Access> Builder::access(const Where& w, const Declaration& d, const Value& e, bool write,
+                               const PassKindSchema& kind) {
     std::string name, as;
     bool load = write && kind.writesLoad;
-    if (e.isString()) name = e.asString();
+    if (e.isString())
+        name = e.asString();
     else if (e.isTable()) {
         if (auto r = checkFields(w, e, {"#1", "as", "load"}); !r) return std::unexpected(r.error());
-        if (!e["#1"].isString()) return w.error("expected the resource name as the first entry, e.g. { \"depth\", as = \"depth\" }");
+        if (!e["#1"].isString())
+            return w.error(
+                "expected the resource name as the first entry, e.g. { \"depth\", as = \"depth\" "
+                "}");
         name = e["#1"].asString();
         if (e.has("as")) {
-            if (auto r = expectType(w.at("as"), e["as"], "string"); !r) return std::unexpected(r.error());
+            if (auto r = expectType(w.at("as"), e["as"], "string"); !r)
+                return std::unexpected(r.error());
             as = e["as"].asString();
         }
         if (e.has("load")) {
             if (!write) return w.at("load").error("only writes can load");
-            if (auto r = expectType(w.at("load"), e["load"], "boolean"); !r) return std::unexpected(r.error());
+            if (auto r = expectType(w.at("load"), e["load"], "boolean"); !r)
+                return std::unexpected(r.error());
             load = e["load"].asBool();
         }
     } else
@@ -45,23 +52,31 @@ Result<Access> Builder::access(const Where& w, const Declaration& d, const Value
     if (rd->kind == DeclKind::Texture && rd->body["format"].isString())
         if (auto f = parseFormat(rd->body["format"].asString())) depthFormat = isDepthStencil(*f);
     static const std::vector<std::pair<std::string, Usage>> readUsages = {
-        {"sampled", Usage::Sampled}, {"storage", Usage::StorageRead}, {"uniform", Usage::UniformRead},
-        {"depth", Usage::DepthStencilRead}, {"copy", Usage::CopySrc}, {"indirect", Usage::IndirectRead}};
+        {"sampled", Usage::Sampled},     {"storage", Usage::StorageRead},
+        {"uniform", Usage::UniformRead}, {"depth", Usage::DepthStencilRead},
+        {"copy", Usage::CopySrc},        {"indirect", Usage::IndirectRead}};
     static const std::vector<std::pair<std::string, Usage>> writeUsages = {
-        {"color", Usage::ColorAttachment}, {"depth", Usage::DepthStencilAttachment}, {"storage", Usage::StorageWrite},
-        {"storage_rw", Usage::StorageReadWrite}, {"copy", Usage::CopyDst}};
+        {"color", Usage::ColorAttachment},
+        {"depth", Usage::DepthStencilAttachment},
+        {"storage", Usage::StorageWrite},
+        {"storage_rw", Usage::StorageReadWrite},
+        {"copy", Usage::CopyDst}};
     const auto& table = write ? writeUsages : readUsages;
     if (as.empty()) {
         a.usage = write ? kind.defaultWrite : kind.defaultRead;
-        if (write && depthFormat && a.usage == Usage::ColorAttachment) a.usage = Usage::DepthStencilAttachment;
-        if (rd->kind == DeclKind::Buffer && (a.usage == Usage::Sampled)) a.usage = Usage::StorageRead;
-        if (rd->kind == DeclKind::Buffer && (a.usage == Usage::ColorAttachment)) a.usage = Usage::StorageWrite;
+        if (write && depthFormat && a.usage == Usage::ColorAttachment)
+            a.usage = Usage::DepthStencilAttachment;
+        if (rd->kind == DeclKind::Buffer && (a.usage == Usage::Sampled))
+            a.usage = Usage::StorageRead;
+        if (rd->kind == DeclKind::Buffer && (a.usage == Usage::ColorAttachment))
+            a.usage = Usage::StorageWrite;
     } else {
         auto it = std::find_if(table.begin(), table.end(), [&](auto& p) { return p.first == as; });
         if (it == table.end()) {
             std::vector<std::string> names;
             for (auto& p : table) names.push_back(p.first);
-            return w.at("as").error("unknown usage '" + as + "'" + suggestion(as, names) + "; expected one of: " + joinQuoted(names));
+            return w.at("as").error("unknown usage '" + as + "'" + suggestion(as, names) +
+                                    "; expected one of: " + joinQuoted(names));
         }
         a.usage = it->second;
     }
@@ -77,10 +92,12 @@ Result<void> Builder::pass(const Declaration& d) {
     if (!kind) {
         std::vector<std::string> names;
         for (const auto& k : options.kinds) names.push_back(k.name);
-        return w.at("kind").error("unknown pass kind '" + *kindName + "'" + suggestion(*kindName, names) +
+        return w.at("kind").error("unknown pass kind '" + *kindName + "'" +
+                                  suggestion(*kindName, names) +
                                   "; expected one of: " + joinQuoted(names));
     }
-    std::vector<std::string> allowed = {"kind", "reads", "writes", "after", "enabled", "side_effect", "doc", "insert"};
+    std::vector<std::string> allowed = {"kind",    "reads",       "writes", "after",
+                                        "enabled", "side_effect", "doc",    "insert"};
     for (const auto& p : kind->params) allowed.push_back(p.name);
     if (auto r = checkFields(w, b, allowed); !r) return r;
     PassDesc p;
@@ -110,7 +127,8 @@ Result<void> Builder::pass(const Declaration& d) {
     auto after = stringList(w.at("after"), b["after"]);
     if (!after) return std::unexpected(after.error());
     for (size_t i = 0; i < after->size(); ++i) {
-        auto name = resolvePass(b["after"].isList() ? w.at("after").index(i) : w.at("after"), d.module, (*after)[i]);
+        auto name = resolvePass(b["after"].isList() ? w.at("after").index(i) : w.at("after"),
+                                d.module, (*after)[i]);
         if (!name) return std::unexpected(name.error());
         p.after.push_back(*name);
     }
@@ -130,26 +148,35 @@ Result<void> Builder::insertModulePasses() {
     std::vector<std::pair<PassDesc, const Declaration*>> inserted;
     for (auto& p : out.graph.passes) {
         const Declaration* d = passes[p.name];
-        if (d->body.has("insert")) inserted.emplace_back(p, d);
-        else ordered.push_back(p);
+        if (d->body.has("insert"))
+            inserted.emplace_back(p, d);
+        else
+            ordered.push_back(p);
     }
     for (auto& [p, d] : inserted) {
         Where w = where(*d).at("insert");
         const Value& ins = d->body["insert"];
-        if (!ins.isTable()) return w.error("expected { after = \"pass\" } or { before = \"pass\" }");
+        if (!ins.isTable())
+            return w.error("expected { after = \"pass\" } or { before = \"pass\" }");
         if (auto r = checkFields(w, ins, {"after", "before"}); !r) return r;
-        if (ins.has("after") == ins.has("before")) return w.error("give exactly one of after / before");
+        if (ins.has("after") == ins.has("before"))
+            return w.error("give exactly one of after / before");
         const bool after = ins.has("after");
         const Value& anchorV = ins[after ? "after" : "before"];
-        if (!anchorV.isString()) return w.at(after ? "after" : "before").error("expected a pass name");
+        if (!anchorV.isString())
+            return w.at(after ? "after" : "before").error("expected a pass name");
         auto anchor = resolvePass(w.at(after ? "after" : "before"), d->module, anchorV.asString());
         if (!anchor) return std::unexpected(anchor.error());
-        auto it = std::find_if(ordered.begin(), ordered.end(), [&](auto& q) { return q.name == *anchor; });
-        if (it == ordered.end()) return w.error("pass '" + *anchor + "' is itself inserted later; insert after a pass of the pipeline");
+        auto it = std::find_if(ordered.begin(), ordered.end(),
+                               [&](auto& q) { return q.name == *anchor; });
+        if (it == ordered.end())
+            return w.error("pass '" + *anchor +
+                           "' is itself inserted later; insert after a pass of the pipeline");
         if (after) {
             ++it;
             // Skip passes inserted after the same anchor earlier.
-            while (it != ordered.end() && passes[it->name]->body["insert"]["after"].asString() == anchorV.asString() &&
+            while (it != ordered.end() &&
+                   passes[it->name]->body["insert"]["after"].asString() == anchorV.asString() &&
                    passes[it->name]->body.has("insert"))
                 ++it;
         }
@@ -173,14 +200,22 @@ Result<void> Builder::checkSwitches() {
             if (!d) {
                 std::vector<std::string> params;
                 for (const auto& q : out.params) params.push_back(q.name);
-                return sw.error("unknown parameter '" + param + "'" + suggestion(param, params) + " (declare it with rg.param)");
+                return sw.error("unknown parameter '" + param + "'" + suggestion(param, params) +
+                                " (declare it with rg.param)");
             }
             if (d->type == ParamType::Vec3)
-                return sw.error("parameter '" + param + "' is a vec3; a switch takes a number, an integer, a boolean or a choice");
+                return sw.error(
+                    "parameter '" + param +
+                    "' is a vec3; a switch takes a number, an integer, a boolean or a choice");
             const std::string name = define.isString() ? define.asString() : "";
-            if (!isGlslIdentifier(name)) return sw.error("expected the name of a define (a GLSL identifier), got " + (define.isString() ? "'" + name + "'" : std::string(define.typeName())));
-            if (std::find(defines.begin(), defines.end(), name) != defines.end()) return sw.error("define '" + name + "' is already another parameter's switch");
-            if (p.params["defines"].has(name)) return sw.error("define '" + name + "' is also in the pass's defines");
+            if (!isGlslIdentifier(name))
+                return sw.error(
+                    "expected the name of a define (a GLSL identifier), got " +
+                    (define.isString() ? "'" + name + "'" : std::string(define.typeName())));
+            if (std::find(defines.begin(), defines.end(), name) != defines.end())
+                return sw.error("define '" + name + "' is already another parameter's switch");
+            if (p.params["defines"].has(name))
+                return sw.error("define '" + name + "' is also in the pass's defines");
             defines.push_back(name);
         }
     }

@@ -9,7 +9,10 @@ namespace rg::declarations {
 Result<void> Builder::texture(const Declaration& d) {
     Where w = where(d);
     const Value& b = d.body;
-    if (auto r = checkFields(w, b, {"format", "size", "scale", "mips", "layers", "scene_layers", "cube", "export", "import", "persistent", "doc"}); !r)
+    if (auto r = checkFields(w, b,
+                             {"format", "size", "scale", "mips", "layers", "scene_layers", "cube",
+                              "export", "import", "persistent", "doc"});
+        !r)
         return r;
     ResourceDesc r;
     r.name = fullName(d);
@@ -17,17 +20,25 @@ Result<void> Builder::texture(const Declaration& d) {
     auto format = requireString(w, b, "format");
     if (!format) return std::unexpected(format.error());
     auto f = parseFormat(*format);
-    if (!f) return w.at("format").error("unknown format '" + *format + "'" + suggestion(*format, [] {
-                                            std::vector<std::string> n;
-                                            for (int i = 1; i < static_cast<int>(Format::Count); ++i) n.push_back(formatInfo(static_cast<Format>(i)).name);
-                                            return n;
-                                        }()) + "; expected one of: " + formatNameList());
+    if (!f)
+        return w.at("format").error(
+            "unknown format '" + *format + "'" +
+            suggestion(*format,
+                       [] {
+                           std::vector<std::string> n;
+                           for (int i = 1; i < static_cast<int>(Format::Count); ++i)
+                               n.push_back(formatInfo(static_cast<Format>(i)).name);
+                           return n;
+                       }()) +
+            "; expected one of: " + formatNameList());
     r.texture.format = *f;
-    if (b.has("size") && b.has("scale")) return w.error("give either size (texels) or scale (fraction of the output), not both");
+    if (b.has("size") && b.has("scale"))
+        return w.error("give either size (texels) or scale (fraction of the output), not both");
     if (b.has("size")) {
         const Value& s = b["size"];
-        if (!s.isList() || s.asList().size() != 2 || !isInteger(s.asList()[0]) || !isInteger(s.asList()[1]) ||
-            s.asList()[0].asNumber() < 1 || s.asList()[1].asNumber() < 1)
+        if (!s.isList() || s.asList().size() != 2 || !isInteger(s.asList()[0]) ||
+            !isInteger(s.asList()[1]) || s.asList()[0].asNumber() < 1 ||
+            s.asList()[1].asNumber() < 1)
             return w.at("size").error("expected {width, height} in texels (whole numbers >= 1)");
         r.texture.sizeMode = SizeMode::Absolute;
         r.texture.width = static_cast<uint32_t>(s.asList()[0].asNumber());
@@ -35,20 +46,27 @@ Result<void> Builder::texture(const Declaration& d) {
     }
     if (b.has("scale")) {
         const Value& s = b["scale"];
-        if (s.isNumber()) r.texture.scaleX = r.texture.scaleY = static_cast<float>(s.asNumber());
-        else if (s.isList() && s.asList().size() == 2 && s.asList()[0].isNumber() && s.asList()[1].isNumber()) {
+        if (s.isNumber())
+            r.texture.scaleX = r.texture.scaleY = static_cast<float>(s.asNumber());
+        else if (s.isList() && s.asList().size() == 2 && s.asList()[0].isNumber() &&
+                 s.asList()[1].isNumber()) {
             r.texture.scaleX = static_cast<float>(s.asList()[0].asNumber());
             r.texture.scaleY = static_cast<float>(s.asList()[1].asNumber());
         } else
-            return w.at("scale").error("expected a number or {x, y}: the fraction of the output size");
-        if (r.texture.scaleX <= 0 || r.texture.scaleY <= 0 || r.texture.scaleX > 16 || r.texture.scaleY > 16)
+            return w.at("scale").error(
+                "expected a number or {x, y}: the fraction of the output size");
+        if (r.texture.scaleX <= 0 || r.texture.scaleY <= 0 || r.texture.scaleX > 16 ||
+            r.texture.scaleY > 16)
             return w.at("scale").error("expected a value in (0, 16]");
     }
     if (b.has("mips")) {
         const Value& m = b["mips"];
-        if (m.isString() && m.asString() == "full") r.texture.mips = 0;
-        else if (isInteger(m) && m.asNumber() >= 1 && m.asNumber() <= 16) r.texture.mips = static_cast<uint32_t>(m.asNumber());
-        else return w.at("mips").error("expected a whole number in 1..16 or \"full\"");
+        if (m.isString() && m.asString() == "full")
+            r.texture.mips = 0;
+        else if (isInteger(m) && m.asNumber() >= 1 && m.asNumber() <= 16)
+            r.texture.mips = static_cast<uint32_t>(m.asNumber());
+        else
+            return w.at("mips").error("expected a whole number in 1..16 or \"full\"");
     }
     if (b.has("layers")) {
         if (!isInteger(b["layers"]) || b["layers"].asNumber() < 1 || b["layers"].asNumber() > 2048)
@@ -57,8 +75,13 @@ Result<void> Builder::texture(const Declaration& d) {
     }
     if (b.has("scene_layers")) {
         if (!b["scene_layers"].isString() || b["scene_layers"].asString() != "shadow_views")
-            return w.at("scene_layers").error("expected \"shadow_views\" (the layers the scene's shadowed local lights need, at most `layers`)");
-        if (b["cube"].asBool()) return w.at("scene_layers").error("a cube's layers are fixed; scene_layers is for arrays");
+            return w.at("scene_layers")
+                .error(
+                    "expected \"shadow_views\" (the layers the scene's shadowed local lights need, "
+                    "at most `layers`)");
+        if (b["cube"].asBool())
+            return w.at("scene_layers")
+                .error("a cube's layers are fixed; scene_layers is for arrays");
         r.texture.sceneLayers = b["scene_layers"].asString();
     }
     for (const char* flag : {"cube", "export", "import", "persistent"})
@@ -66,7 +89,8 @@ Result<void> Builder::texture(const Declaration& d) {
             if (auto e = expectType(w.at(flag), b[flag], "boolean"); !e) return e;
     r.texture.cube = b["cube"].asBool();
     r.persistent = b["persistent"].asBool();
-    if (r.texture.cube && !b.has("layers")) r.texture.layers = 6;  // one cube; `layers` = 6 × cubes for an array
+    if (r.texture.cube && !b.has("layers"))
+        r.texture.layers = 6;  // one cube; `layers` = 6 × cubes for an array
     r.exported = b["export"].asBool();
     r.imported = b["import"].asBool();
     out.graph.resources.push_back(r);
@@ -76,22 +100,29 @@ Result<void> Builder::texture(const Declaration& d) {
 Result<void> Builder::buffer(const Declaration& d) {
     Where w = where(d);
     const Value& b = d.body;
-    if (auto r = checkFields(w, b, {"size", "tile", "tile_bytes", "export", "import", "persistent", "doc"}); !r) return r;
+    if (auto r = checkFields(
+            w, b, {"size", "tile", "tile_bytes", "export", "import", "persistent", "doc"});
+        !r)
+        return r;
     ResourceDesc r;
     r.name = fullName(d);
     r.origin = d.origin;
     r.kind = ResourceKind::Buffer;
     if (!isInteger(b["size"]) || b["size"].asNumber() < 4)
-        return w.at("size").error(b.has("size") ? "expected a whole number of bytes >= 4" : "missing (expected the size in bytes)");
+        return w.at("size").error(b.has("size") ? "expected a whole number of bytes >= 4"
+                                                : "missing (expected the size in bytes)");
     r.buffer.size = static_cast<uint64_t>(b["size"].asNumber());
     // Screen-tiled: `tile_bytes` more for every tile x tile pixels of the output.
     if (b.has("tile") != b.has("tile_bytes"))
-        return w.at(b.has("tile") ? "tile_bytes" : "tile").error("missing (a tiled buffer gives both tile, in pixels, and tile_bytes)");
+        return w.at(b.has("tile") ? "tile_bytes" : "tile")
+            .error("missing (a tiled buffer gives both tile, in pixels, and tile_bytes)");
     if (b.has("tile")) {
         if (!isInteger(b["tile"]) || b["tile"].asNumber() < 1 || b["tile"].asNumber() > 256)
             return w.at("tile").error("expected a tile size in pixels, 1..256");
-        if (!isInteger(b["tile_bytes"]) || b["tile_bytes"].asNumber() < 4 || b["tile_bytes"].asNumber() > (1 << 20))
-            return w.at("tile_bytes").error("expected a whole number of bytes per tile, 4..1048576");
+        if (!isInteger(b["tile_bytes"]) || b["tile_bytes"].asNumber() < 4 ||
+            b["tile_bytes"].asNumber() > (1 << 20))
+            return w.at("tile_bytes")
+                .error("expected a whole number of bytes per tile, 4..1048576");
         r.buffer.tileSize = static_cast<uint32_t>(b["tile"].asNumber());
         r.buffer.tileBytes = static_cast<uint64_t>(b["tile_bytes"].asNumber());
     }

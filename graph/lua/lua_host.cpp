@@ -64,7 +64,8 @@ Result<void> loadFile(LuaHost::Impl& impl, const std::string& path) {
         return fail(ErrorCode::InvalidInput, msg);
     }
     std::string abs = fs::weakly_canonical(path).string();
-    if (std::find(impl.files.begin(), impl.files.end(), abs) == impl.files.end()) impl.files.push_back(abs);
+    if (std::find(impl.files.begin(), impl.files.end(), abs) == impl.files.end())
+        impl.files.push_back(abs);
     return {};
 }
 
@@ -73,14 +74,14 @@ std::string callerOrigin(lua_State* L) {
     lua_Debug ar;
     for (int level = 1; lua_getstack(L, level, &ar); ++level) {
         lua_getinfo(L, "Sl", &ar);
-        if (ar.currentline > 0) return std::string(ar.short_src) + ":" + std::to_string(ar.currentline);
+        if (ar.currentline > 0)
+            return std::string(ar.short_src) + ":" + std::to_string(ar.currentline);
     }
     return "?";
 }
 
 using lua::pushValue;
 using lua::toValue;
-
 
 // Errors inside C functions are thrown as lua::ScriptError and raised by lua::guarded after
 // every C++ object of the function is destroyed (lua_sandbox.h).
@@ -90,15 +91,17 @@ using lua::guarded;
 bool validName(const std::string& n, bool allowDots) {
     if (n.empty()) return false;
     for (char c : n)
-        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || (allowDots && c == '.'))) return false;
+        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' ||
+              (allowDots && c == '.')))
+            return false;
     return true;
 }
 
-void recordDeclaration(lua_State* L, DeclKind kind, const std::string& module, const std::string& name,
-                       const std::string& origin, int tableIndex) {
+void recordDeclaration(lua_State* L, DeclKind kind, const std::string& module,
+                       const std::string& name, const std::string& origin, int tableIndex) {
     if (!lua_istable(L, tableIndex))
-        raise(L, origin + ": " + declKindName(kind) + " \"" + name + "\": expected a table of fields, got " +
-                     luaL_typename(L, tableIndex));
+        raise(L, origin + ": " + declKindName(kind) + " \"" + name +
+                     "\": expected a table of fields, got " + luaL_typename(L, tableIndex));
     auto value = toValue(L, tableIndex, std::string(declKindName(kind)) + " '" + name + "'");
     if (!value) raise(L, origin + ": " + value.error().message);
     implOf(L).decls.push_back({kind, name, module, *value, origin});
@@ -106,8 +109,9 @@ void recordDeclaration(lua_State* L, DeclKind kind, const std::string& module, c
 
 // The second half of rg.pass "name" { ... } — upvalues: kind, module, name, origin.
 int declareBody(lua_State* L) {
-    recordDeclaration(L, static_cast<DeclKind>(lua_tointeger(L, lua_upvalueindex(1))), lua_tostring(L, lua_upvalueindex(2)),
-                      lua_tostring(L, lua_upvalueindex(3)), lua_tostring(L, lua_upvalueindex(4)), 1);
+    recordDeclaration(L, static_cast<DeclKind>(lua_tointeger(L, lua_upvalueindex(1))),
+                      lua_tostring(L, lua_upvalueindex(2)), lua_tostring(L, lua_upvalueindex(3)),
+                      lua_tostring(L, lua_upvalueindex(4)), 1);
     return 0;
 }
 
@@ -118,10 +122,12 @@ int declare(lua_State* L) {
     std::string module = lua_tostring(L, lua_upvalueindex(2));
     std::string origin = callerOrigin(L);
     if (lua_type(L, 1) != LUA_TSTRING)
-        raise(L, origin + ": rg." + declKindName(kind) + ": expected a name, e.g. rg." + declKindName(kind) + " \"name\" { ... }");
+        raise(L, origin + ": rg." + declKindName(kind) + ": expected a name, e.g. rg." +
+                     declKindName(kind) + " \"name\" { ... }");
     std::string name = lua_tostring(L, 1);
     if (!validName(name, false))
-        raise(L, origin + ": rg." + declKindName(kind) + ": '" + name + "' is not a valid name (letters, digits, '_' and '-')");
+        raise(L, origin + ": rg." + declKindName(kind) + ": '" + name +
+                     "' is not a valid name (letters, digits, '_' and '-')");
     if (lua_gettop(L) >= 2) {
         recordDeclaration(L, kind, module, name, origin, 2);
         return 0;
@@ -145,15 +151,19 @@ int setOutput(lua_State* L) {
         if (!v) raise(L, v.error().message);
         for (const auto& [key, value] : v->asTable()) {
             if (key != "display" && key != "hdr" && key != "exposure")
-                raise(L, names.origin + ": rg.output." + key + ": unknown field; expected one of: 'display', 'hdr', 'exposure'");
-            if (!value.isString()) raise(L, names.origin + ": rg.output." + key + ": expected a resource name");
+                raise(L, names.origin + ": rg.output." + key +
+                             ": unknown field; expected one of: 'display', 'hdr', 'exposure'");
+            if (!value.isString())
+                raise(L, names.origin + ": rg.output." + key + ": expected a resource name");
         }
         names.display = (*v)["display"].asString();
         names.hdr = (*v)["hdr"].asString();
         names.exposure = (*v)["exposure"].asString();
-        if (names.display.empty()) raise(L, names.origin + ": rg.output.display: missing (expected the display image)");
+        if (names.display.empty())
+            raise(L, names.origin + ": rg.output.display: missing (expected the display image)");
     } else {
-        raise(L, names.origin + ": rg.output: expected a resource name or { display = , hdr = , exposure = }");
+        raise(L, names.origin +
+                     ": rg.output: expected a resource name or { display = , hdr = , exposure = }");
     }
     implOf(L).output = names;
     return 0;
@@ -173,8 +183,9 @@ int declareModule(lua_State* L) {
 void pushDeclarers(lua_State* L, const std::string& module) {
     lua_newtable(L);
     const std::pair<const char*, DeclKind> fns[] = {
-        {"resource", DeclKind::Texture}, {"buffer", DeclKind::Buffer}, {"pass", DeclKind::Pass},
-        {"param", DeclKind::Param},      {"layout", DeclKind::Layout}, {"stencil", DeclKind::Stencil},
+        {"resource", DeclKind::Texture}, {"buffer", DeclKind::Buffer},
+        {"pass", DeclKind::Pass},        {"param", DeclKind::Param},
+        {"layout", DeclKind::Layout},    {"stencil", DeclKind::Stencil},
         {"path", DeclKind::Path},        {"material", DeclKind::Material}};
     for (const auto& [name, kind] : fns) {
         lua_pushinteger(L, static_cast<lua_Integer>(kind));
@@ -188,14 +199,19 @@ void pushDeclarers(lua_State* L, const std::string& module) {
 
 // require "name": the pipeline's folder, then the search dirs; "a.b" is a/b.lua.
 int requireModule(lua_State* L) {
-    if (lua_type(L, 1) != LUA_TSTRING) raise(L, std::string("require: expected a module name, got ") + luaL_typename(L, 1));
+    if (lua_type(L, 1) != LUA_TSTRING)
+        raise(L, std::string("require: expected a module name, got ") + luaL_typename(L, 1));
     std::string name = lua_tostring(L, 1);
     auto& impl = implOf(L);
     // Module names are dotted identifiers: no path tricks ("..", "/") to leave the search dirs.
-    bool valid = !name.empty() && name.front() != '.' && name.back() != '.' && name.find("..") == std::string::npos;
+    bool valid = !name.empty() && name.front() != '.' && name.back() != '.' &&
+                 name.find("..") == std::string::npos;
     for (char c : name)
-        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) valid = false;
-    if (!valid) raise(L, "require: '" + name + "' is not a module name (dotted names of letters, digits, '_' and '-')");
+        if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.'))
+            valid = false;
+    if (!valid)
+        raise(L, "require: '" + name +
+                     "' is not a module name (dotted names of letters, digits, '_' and '-')");
     lua_getfield(L, LUA_REGISTRYINDEX, kModulesKey);
     lua_getfield(L, -1, name.c_str());
     if (!lua_isnil(L, -1)) return 1;
@@ -223,7 +239,8 @@ int requireModule(lua_State* L) {
     if (!loaded) raise(L, loaded.error().message);
     lua_pushstring(L, name.c_str());
     if (lua_pcall(L, 1, 1, 0) != LUA_OK) {
-        std::string msg = lua_tostring(L, -1) ? lua_tostring(L, -1) : "error in module '" + name + "'";
+        std::string msg =
+            lua_tostring(L, -1) ? lua_tostring(L, -1) : "error in module '" + name + "'";
         lua_pop(L, 1);
         raise(L, msg);
     }
@@ -240,7 +257,8 @@ int requireModule(lua_State* L) {
 int sandboxIndex(lua_State* L) {
     std::string lib = lua_tostring(L, lua_upvalueindex(1));
     std::string key = lua_type(L, 2) == LUA_TSTRING ? lua_tostring(L, 2) : "?";
-    raise(L, lib + (lib.empty() ? "" : ".") + key + " is not available to rgraph scripts (sandbox)");
+    raise(L,
+          lib + (lib.empty() ? "" : ".") + key + " is not available to rgraph scripts (sandbox)");
 }
 
 void pushSandboxGuard(lua_State* L, const char* lib) {
@@ -250,10 +268,11 @@ void pushSandboxGuard(lua_State* L, const char* lib) {
     lua_setfield(L, -2, "__index");
 }
 
-
 }  // namespace
 
-LuaHost::LuaHost(LuaHostOptions options) : m(std::make_unique<Impl>()) { m->options = std::move(options); }
+LuaHost::LuaHost(LuaHostOptions options) : m(std::make_unique<Impl>()) {
+    m->options = std::move(options);
+}
 LuaHost::~LuaHost() = default;
 
 Result<PipelineDesc> LuaHost::load(const std::string& file) {
@@ -269,13 +288,15 @@ Result<PipelineDesc> LuaHost::load(const std::string& file) {
     return pipeline;
 }
 
-Result<std::vector<Declaration>> LuaHost::loadDeclarations(const std::string& file, std::vector<std::string>* files) {
+Result<std::vector<Declaration>> LuaHost::loadDeclarations(const std::string& file,
+                                                           std::vector<std::string>* files) {
     m->close();
     m->decls.clear();
     m->files.clear();
     m->output = {};
     std::error_code ec;
-    if (!fs::is_regular_file(file, ec)) return fail(ErrorCode::NotFound, "cannot open pipeline script '" + file + "'");
+    if (!fs::is_regular_file(file, ec))
+        return fail(ErrorCode::NotFound, "cannot open pipeline script '" + file + "'");
     m->pipelineDir = fs::absolute(file).parent_path().string();
 
     m->budget = lua::Budget{"script", m->options.memoryBytes, m->options.instructions};
@@ -287,7 +308,8 @@ Result<std::vector<Declaration>> LuaHost::loadDeclarations(const std::string& fi
 
     // os keeps clock/time/date; every other os.* explains the sandbox.
     lua_getglobal(L, "os");
-    for (const char* fn : {"execute", "exit", "getenv", "remove", "rename", "tmpname", "setlocale"}) {
+    for (const char* fn :
+         {"execute", "exit", "getenv", "remove", "rename", "tmpname", "setlocale"}) {
         lua_pushnil(L);
         lua_setfield(L, -2, fn);
     }
@@ -328,12 +350,17 @@ Result<std::vector<Declaration>> LuaHost::loadDeclarations(const std::string& fi
 
     // The scene table: what `require "scene"` returns (also the global `scene`).
     lua_newtable(L);
-    const std::pair<const char*, DeclKind> sceneFns[] = {
-        {"material", DeclKind::SceneMaterial}, {"sphere", DeclKind::Sphere}, {"plane", DeclKind::Plane},
-        {"box", DeclKind::Box},                {"gltf", DeclKind::Gltf},     {"light", DeclKind::Light},
-        {"camera", DeclKind::Camera},          {"environment", DeclKind::Environment},
-        {"decal", DeclKind::Decal},            {"probe", DeclKind::Probe},
-        {"lightmap", DeclKind::Lightmap}};
+    const std::pair<const char*, DeclKind> sceneFns[] = {{"material", DeclKind::SceneMaterial},
+                                                         {"sphere", DeclKind::Sphere},
+                                                         {"plane", DeclKind::Plane},
+                                                         {"box", DeclKind::Box},
+                                                         {"gltf", DeclKind::Gltf},
+                                                         {"light", DeclKind::Light},
+                                                         {"camera", DeclKind::Camera},
+                                                         {"environment", DeclKind::Environment},
+                                                         {"decal", DeclKind::Decal},
+                                                         {"probe", DeclKind::Probe},
+                                                         {"lightmap", DeclKind::Lightmap}};
     for (const auto& [name, kind] : sceneFns) {
         lua_pushinteger(L, static_cast<lua_Integer>(kind));
         lua_pushstring(L, "");
@@ -345,10 +372,12 @@ Result<std::vector<Declaration>> LuaHost::loadDeclarations(const std::string& fi
         char* end = nullptr;
         const double number = std::strtod(value.c_str(), &end);
         if (!value.empty() && end && *end == '\0' && std::isfinite(number)) {
-            if (number == std::floor(number) && std::abs(number) < 9e15) lua_pushinteger(L, static_cast<lua_Integer>(number));
-            else lua_pushnumber(L, number);
-        }
-        else lua_pushstring(L, value.c_str());
+            if (number == std::floor(number) && std::abs(number) < 9e15)
+                lua_pushinteger(L, static_cast<lua_Integer>(number));
+            else
+                lua_pushnumber(L, number);
+        } else
+            lua_pushstring(L, value.c_str());
         lua_setfield(L, -2, name.c_str());
     }
     lua_setfield(L, -2, "args");
@@ -382,7 +411,8 @@ Result<FrameChanges> LuaHost::frame(const FrameContext& ctx, const PipelineDesc&
     lua_getfield(L, -1, "frame");
     lua_remove(L, -2);
     auto r = lua::callFrame(L, ctx, current, changes);
-    if (!r) return std::unexpected(Error(ErrorCode::InvalidInput, "rg.frame: " + r.error().message));
+    if (!r)
+        return std::unexpected(Error(ErrorCode::InvalidInput, "rg.frame: " + r.error().message));
     return changes;
 }
 

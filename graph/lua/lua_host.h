@@ -22,10 +22,10 @@
 namespace rg {
 
 struct LuaHostOptions {
-    std::string projectRoot;                 // chunk names are relative to it
-    std::vector<std::string> searchDirs;     // for require, after the pipeline's own folder
-    std::vector<PassKindSchema> kinds;       // what `kind = ...` may name
-    uint64_t instructions = 100'000'000;     // per call into the script
+    std::string projectRoot;              // chunk names are relative to it
+    std::vector<std::string> searchDirs;  // for require, after the pipeline's own folder
+    std::vector<PassKindSchema> kinds;    // what `kind = ...` may name
+    uint64_t instructions = 100'000'000;  // per call into the script
     size_t memoryBytes = 256u << 20;
     // Scene scripts: `scene.args`, NAME = VALUE from the command line (--scene-arg); a value
     // that reads as a number is a number, else a string.
@@ -38,22 +38,23 @@ struct FrameContext {
     // What the scene holds (ctx.scene in Lua; absent when the pipeline draws no scene).
     struct SceneFacts {
         uint32_t draws = 0, lights = 0, decals = 0;
-        uint32_t suns = 0;  // directional lights (shadow cascades follow the first)
-        uint32_t probes = 0;  // local light probes
+        uint32_t suns = 0;     // directional lights (shadow cascades follow the first)
+        uint32_t probes = 0;   // local light probes
         uint32_t blended = 0;  // draws of blended materials (the forward pass's)
         // Draws per stencil class (ctx.scene.classes.NAME): a pass that works on one class's
         // pixels only has nothing to do without them (scripts/lighting.lua's lighting.per_class).
         std::map<std::string, uint32_t> classes;
     };
     std::optional<SceneFacts> scene;
-    uint32_t width = 0, height = 0;  // the output's size in pixels (ctx.width, ctx.height; 0: not known)
+    uint32_t width = 0,
+             height = 0;  // the output's size in pixels (ctx.width, ctx.height; 0: not known)
 };
 
 // What rg.frame(ctx) changed. Parameters are applied without recompiling; enabling,
 // disabling or swapping a shader is structural (the plan is recompiled incrementally).
 struct FrameChanges {
     std::map<std::string, Value> params;
-    std::map<std::string, bool> enabled;      // pass -> enabled
+    std::map<std::string, bool> enabled;         // pass -> enabled
     std::map<std::string, std::string> shaders;  // pass -> shader path
     bool structural() const { return !enabled.empty() || !shaders.empty(); }
     bool empty() const { return params.empty() && !structural(); }
@@ -71,7 +72,8 @@ public:
     // Runs the script in a fresh Lua state and returns what it declared, unvalidated (scene
     // scripts: graph/scene turns scene.* declarations into a Scene). `files` gets every script
     // it loaded.
-    Result<std::vector<Declaration>> loadDeclarations(const std::string& file, std::vector<std::string>* files = nullptr);
+    Result<std::vector<Declaration>> loadDeclarations(const std::string& file,
+                                                      std::vector<std::string>* files = nullptr);
     bool hasFrameCallback() const;
     // Calls rg.frame(ctx); `current` supplies parameter values and pass states to read.
     Result<FrameChanges> frame(const FrameContext& ctx, const PipelineDesc& current);
@@ -98,7 +100,8 @@ bool isSwitch(const PipelineDesc& pipeline, const std::string& param);
 
 // Makes absolute the passes' relative shader paths that name a file next to the pipeline script
 // (shaders/ and the project root are searched by the shader compiler anyway).
-void resolveShaderPaths(GraphDesc& graph, const std::string& pipelineFile, const std::string& projectRoot = "");
+void resolveShaderPaths(GraphDesc& graph, const std::string& pipelineFile,
+                        const std::string& projectRoot = "");
 
 // The pipeline materials a scene pass draws (params.materials / params.paths; default all that
 // have a surface), each as { name, id, layout, surface, targets, integer, fills, custom,

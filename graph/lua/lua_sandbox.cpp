@@ -38,12 +38,15 @@ void* allocate(void* ud, void* ptr, size_t osize, size_t nsize) {
 void countHook(lua_State* L, lua_Debug* ar) {
     Budget& budget = budgetOf(L);
     budget.instructions += kHookEvery;
-    if (lua_getinfo(L, "Sl", ar) && ar->currentline > 0) budget.lastWhere = std::string(ar->short_src) + ":" + std::to_string(ar->currentline);
+    if (lua_getinfo(L, "Sl", ar) && ar->currentline > 0)
+        budget.lastWhere = std::string(ar->short_src) + ":" + std::to_string(ar->currentline);
     if (budget.instructions > budget.instructionLimit) {
         // Level 0 inside a count hook is the Lua function that was running.
         luaL_where(L, 0);
-        lua_pushfstring(L, "%s stopped after %d million instructions: a runaway loop? (limit: %d million)", budget.who.c_str(),
-                        static_cast<int>(budget.instructions / 1000000), static_cast<int>(budget.instructionLimit / 1000000));
+        lua_pushfstring(
+            L, "%s stopped after %d million instructions: a runaway loop? (limit: %d million)",
+            budget.who.c_str(), static_cast<int>(budget.instructions / 1000000),
+            static_cast<int>(budget.instructionLimit / 1000000));
         lua_concat(L, 2);
         lua_error(L);
     }
@@ -60,7 +63,10 @@ int messageHandler(lua_State* L) {
             lua_pop(L, 1);
             if (level == 3) lua_pushliteral(L, "");
         }
-        lua_pushfstring(L, "the script raised an error with a %s value, not a message (error(\"...\") takes a string)", type);
+        lua_pushfstring(L,
+                        "the script raised an error with a %s value, not a message (error(\"...\") "
+                        "takes a string)",
+                        type);
         lua_concat(L, 2);
         msg = lua_tostring(L, -1);
     }
@@ -74,9 +80,10 @@ lua_State* newSandboxedState(Budget& budget, bool withOs) {
     lua_State* L = lua_newstate(allocate, &budget);
     if (!L) return nullptr;
     lua_sethook(L, countHook, LUA_MASKCOUNT, kHookEvery);
-    const std::pair<const char*, lua_CFunction> libs[] = {{LUA_GNAME, luaopen_base},       {LUA_TABLIBNAME, luaopen_table},
-                                                          {LUA_STRLIBNAME, luaopen_string}, {LUA_MATHLIBNAME, luaopen_math},
-                                                          {LUA_UTF8LIBNAME, luaopen_utf8},  {LUA_OSLIBNAME, luaopen_os}};
+    const std::pair<const char*, lua_CFunction> libs[] = {
+        {LUA_GNAME, luaopen_base},        {LUA_TABLIBNAME, luaopen_table},
+        {LUA_STRLIBNAME, luaopen_string}, {LUA_MATHLIBNAME, luaopen_math},
+        {LUA_UTF8LIBNAME, luaopen_utf8},  {LUA_OSLIBNAME, luaopen_os}};
     for (const auto& [name, open] : libs) {
         if (open == luaopen_os && !withOs) continue;
         luaL_requiref(L, name, open, 1);
@@ -104,8 +111,12 @@ Result<void> protectedCall(lua_State* L, int nargs, int nresults) {
     std::string msg = lua_tostring(L, -1) ? lua_tostring(L, -1) : "unknown Lua error";
     lua_pop(L, 1);
     if (status == LUA_ERRMEM || budget.memoryExceeded)
-        msg = (!budget.lastWhere.empty() ? budget.lastWhere + ": " : !budget.file.empty() ? budget.file + ": " : "") + budget.who + " stopped: it used more than " +
-              std::to_string(budget.memoryLimit >> 20) + " MiB of Lua memory" + (budget.lastWhere.empty() ? "" : " (last running here)");
+        msg = (!budget.lastWhere.empty() ? budget.lastWhere + ": "
+               : !budget.file.empty()    ? budget.file + ": "
+                                         : "") +
+              budget.who + " stopped: it used more than " +
+              std::to_string(budget.memoryLimit >> 20) + " MiB of Lua memory" +
+              (budget.lastWhere.empty() ? "" : " (last running here)");
     return fail(ErrorCode::InvalidInput, msg);
 }
 
@@ -125,51 +136,65 @@ std::string withPosition(lua_State* L, const std::string& message) {
 Result<Value> toValue(lua_State* L, int idx, const std::string& path, int depth) {
     idx = lua_absindex(L, idx);
     switch (lua_type(L, idx)) {
-    case LUA_TNIL: return Value();
-    case LUA_TBOOLEAN: return Value(static_cast<bool>(lua_toboolean(L, idx)));
-    case LUA_TNUMBER: return Value(static_cast<double>(lua_tonumber(L, idx)));
-    case LUA_TSTRING: return Value(std::string(lua_tostring(L, idx)));
-    case LUA_TTABLE: {
-        if (depth > 32) return fail(ErrorCode::InvalidInput, path + ": tables nested too deep (or a cycle)");
-        const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, idx));
-        Value::List list;
-        Value::Table table;
-        bool hasStrings = false;
-        lua_pushnil(L);
-        while (lua_next(L, idx)) {
-            std::string key;
-            if (lua_type(L, -2) == LUA_TSTRING) {
-                key = lua_tostring(L, -2);
-                hasStrings = true;
-            } else if (lua_isinteger(L, -2) && lua_tointeger(L, -2) >= 1 && lua_tointeger(L, -2) <= n) {
-                key = "#" + std::to_string(lua_tointeger(L, -2));
-            } else {
-                lua_pop(L, 2);
-                return fail(ErrorCode::InvalidInput, path + ": keys must be names or list positions");
+        case LUA_TNIL:
+            return Value();
+        case LUA_TBOOLEAN:
+            return Value(static_cast<bool>(lua_toboolean(L, idx)));
+        case LUA_TNUMBER:
+            return Value(static_cast<double>(lua_tonumber(L, idx)));
+        case LUA_TSTRING:
+            return Value(std::string(lua_tostring(L, idx)));
+        case LUA_TTABLE: {
+            if (depth > 32)
+                return fail(ErrorCode::InvalidInput,
+                            path + ": tables nested too deep (or a cycle)");
+            const lua_Integer n = static_cast<lua_Integer>(lua_rawlen(L, idx));
+            Value::List list;
+            Value::Table table;
+            bool hasStrings = false;
+            lua_pushnil(L);
+            while (lua_next(L, idx)) {
+                std::string key;
+                if (lua_type(L, -2) == LUA_TSTRING) {
+                    key = lua_tostring(L, -2);
+                    hasStrings = true;
+                } else if (lua_isinteger(L, -2) && lua_tointeger(L, -2) >= 1 &&
+                           lua_tointeger(L, -2) <= n) {
+                    key = "#" + std::to_string(lua_tointeger(L, -2));
+                } else {
+                    lua_pop(L, 2);
+                    return fail(ErrorCode::InvalidInput,
+                                path + ": keys must be names or list positions");
+                }
+                auto v =
+                    toValue(L, -1, path + (key[0] == '#' ? "[" + key.substr(1) + "]" : "." + key),
+                            depth + 1);
+                if (!v) {
+                    lua_pop(L, 2);
+                    return v;
+                }
+                table[key] = *v;
+                lua_pop(L, 1);
             }
-            auto v = toValue(L, -1, path + (key[0] == '#' ? "[" + key.substr(1) + "]" : "." + key), depth + 1);
-            if (!v) {
-                lua_pop(L, 2);
-                return v;
+            if (!hasStrings && n > 0) {
+                for (lua_Integer i = 1; i <= n; ++i) list.push_back(table["#" + std::to_string(i)]);
+                return Value(list);
             }
-            table[key] = *v;
-            lua_pop(L, 1);
+            return Value(table);
         }
-        if (!hasStrings && n > 0) {
-            for (lua_Integer i = 1; i <= n; ++i) list.push_back(table["#" + std::to_string(i)]);
-            return Value(list);
-        }
-        return Value(table);
-    }
-    default:
-        return fail(ErrorCode::InvalidInput, path + ": expected data, got a " + std::string(luaL_typename(L, idx)));
+        default:
+            return fail(ErrorCode::InvalidInput,
+                        path + ": expected data, got a " + std::string(luaL_typename(L, idx)));
     }
 }
 
 void pushValue(lua_State* L, const Value& v) {
-    if (v.isBool()) lua_pushboolean(L, v.asBool());
-    else if (v.isNumber()) lua_pushnumber(L, v.asNumber());
-    else if (v.isString()) lua_pushstring(L, v.asString().c_str());
+    if (v.isBool())
+        lua_pushboolean(L, v.asBool());
+    else if (v.isNumber())
+        lua_pushnumber(L, v.asNumber());
+    else if (v.isString())
+        lua_pushstring(L, v.asString().c_str());
     else if (v.isList()) {
         lua_createtable(L, static_cast<int>(v.asList().size()), 0);
         for (size_t i = 0; i < v.asList().size(); ++i) {
@@ -208,7 +233,8 @@ FrameBinding& bindingOf(lua_State* L) {
 
 // A string argument; luaL_check* would longjmp past live C++ objects, so glue checks by hand.
 std::string stringArg(lua_State* L, int idx, const char* what) {
-    if (lua_type(L, idx) != LUA_TSTRING) throw ScriptError{std::string(what) + ": expected a name, got " + luaL_typename(L, idx)};
+    if (lua_type(L, idx) != LUA_TSTRING)
+        throw ScriptError{std::string(what) + ": expected a name, got " + luaL_typename(L, idx)};
     return lua_tostring(L, idx);
 }
 
@@ -217,7 +243,8 @@ const ParamDesc& paramOf(const PipelineDesc& current, const std::string& name) {
     std::vector<std::string> names;
     for (const auto& q : current.params) names.push_back(q.name);
     const std::string best = closestName(name, names);
-    throw ScriptError{"ctx.params: unknown parameter '" + name + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)")};
+    throw ScriptError{"ctx.params: unknown parameter '" + name + "'" +
+                      (best.empty() ? "" : " (did you mean '" + best + "'?)")};
 }
 
 const PassDesc& passOf(const PipelineDesc& current, const std::string& name) {
@@ -226,7 +253,8 @@ const PassDesc& passOf(const PipelineDesc& current, const std::string& name) {
     std::vector<std::string> names;
     for (const auto& p : current.graph.passes) names.push_back(p.name);
     const std::string best = closestName(name, names);
-    throw ScriptError{"ctx.pass: unknown pass '" + name + "'" + (best.empty() ? "" : " (did you mean '" + best + "'?)")};
+    throw ScriptError{"ctx.pass: unknown pass '" + name + "'" +
+                      (best.empty() ? "" : " (did you mean '" + best + "'?)")};
 }
 
 int paramsIndex(lua_State* L) {
@@ -264,12 +292,14 @@ int passIndex(lua_State* L) {
         lua_pushboolean(L, it != b.changes->enabled.end() ? it->second : p.enabled);
     } else if (key == "shader") {
         auto it = b.changes->shaders.find(name);
-        const std::string s = it != b.changes->shaders.end() ? it->second : p.params["shader"].asString();
+        const std::string s =
+            it != b.changes->shaders.end() ? it->second : p.params["shader"].asString();
         lua_pushstring(L, s.c_str());
     } else if (key == "kind") {
         lua_pushstring(L, p.kind.c_str());
     } else {
-        throw ScriptError{"ctx.pass('" + name + "'): no field '" + key + "'; expected one of: 'name', 'kind', 'enabled', 'shader'"};
+        throw ScriptError{"ctx.pass('" + name + "'): no field '" + key +
+                          "'; expected one of: 'name', 'kind', 'enabled', 'shader'"};
     }
     return 1;
 }
@@ -281,19 +311,28 @@ int passNewIndex(lua_State* L) {
     const PassDesc& p = passOf(*b.current, name);
     if (key == "enabled") {
         if (!lua_isboolean(L, 3))
-            throw ScriptError{"ctx.pass('" + name + "').enabled: expected a boolean, got " + luaL_typename(L, 3)};
+            throw ScriptError{"ctx.pass('" + name + "').enabled: expected a boolean, got " +
+                              luaL_typename(L, 3)};
         const bool on = lua_toboolean(L, 3) != 0;
-        if (on == p.enabled) b.changes->enabled.erase(name);
-        else b.changes->enabled[name] = on;
+        if (on == p.enabled)
+            b.changes->enabled.erase(name);
+        else
+            b.changes->enabled[name] = on;
     } else if (key == "shader") {
-        if (!p.params.has("shader")) throw ScriptError{"ctx.pass('" + name + "').shader: a '" + p.kind + "' pass has no shader"};
+        if (!p.params.has("shader"))
+            throw ScriptError{"ctx.pass('" + name + "').shader: a '" + p.kind +
+                              "' pass has no shader"};
         if (lua_type(L, 3) != LUA_TSTRING)
-            throw ScriptError{"ctx.pass('" + name + "').shader: expected a path, got " + luaL_typename(L, 3)};
+            throw ScriptError{"ctx.pass('" + name + "').shader: expected a path, got " +
+                              luaL_typename(L, 3)};
         const std::string shader = lua_tostring(L, 3);
-        if (shader == p.params["shader"].asString()) b.changes->shaders.erase(name);
-        else b.changes->shaders[name] = shader;
+        if (shader == p.params["shader"].asString())
+            b.changes->shaders.erase(name);
+        else
+            b.changes->shaders[name] = shader;
     } else {
-        throw ScriptError{"ctx.pass('" + name + "'): cannot set '" + key + "'; settable: 'enabled', 'shader'"};
+        throw ScriptError{"ctx.pass('" + name + "'): cannot set '" + key +
+                          "'; settable: 'enabled', 'shader'"};
     }
     return 0;
 }
@@ -365,7 +404,8 @@ int frameTrampoline(lua_State* L) {
 
 }  // namespace
 
-Result<void> callFrame(lua_State* L, const FrameContext& ctx, const PipelineDesc& current, FrameChanges& changes) {
+Result<void> callFrame(lua_State* L, const FrameContext& ctx, const PipelineDesc& current,
+                       FrameChanges& changes) {
     FrameBinding binding{&current, &changes};
     lua_pushlightuserdata(L, &binding);
     lua_setfield(L, LUA_REGISTRYINDEX, kFrameKey);

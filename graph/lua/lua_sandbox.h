@@ -55,7 +55,8 @@ void pushValue(lua_State* L, const Value& v);
 // (when the pipeline draws one), params (reads and type-checked writes of `current`'s
 // parameters), pass(name) (enabled and shader, read and set) } — recording what the script
 // changes in `changes`. A ctx kept past the call refuses to be used.
-Result<void> callFrame(lua_State* L, const FrameContext& ctx, const PipelineDesc& current, FrameChanges& changes);
+Result<void> callFrame(lua_State* L, const FrameContext& ctx, const PipelineDesc& current,
+                       FrameChanges& changes);
 
 // What glue code throws for a script error; `guarded` prefixes the script position unless the
 // message already starts with one ("file.lua:12: ...").

@@ -14,11 +14,16 @@ namespace rg {
 
 const char* paramTypeName(ParamType t) {
     switch (t) {
-    case ParamType::Number: return "number";
-    case ParamType::Integer: return "integer";
-    case ParamType::Boolean: return "boolean";
-    case ParamType::Vec3: return "vec3";
-    case ParamType::Choice: return "choice";
+        case ParamType::Number:
+            return "number";
+        case ParamType::Integer:
+            return "integer";
+        case ParamType::Boolean:
+            return "boolean";
+        case ParamType::Vec3:
+            return "vec3";
+        case ParamType::Choice:
+            return "choice";
     }
     return "?";
 }
@@ -45,39 +50,45 @@ std::string num(double d) {
 
 Result<Value> checkParamValue(const ParamDesc& p, const Value& v) {
     auto bad = [&](const std::string& want) {
-        return fail(ErrorCode::InvalidInput, "parameter '" + p.name + "' expects " + want + ", got " +
-                                                 (v.isNil() ? "nil" : v.isNumber() ? num(v.asNumber())
-                                                                      : v.isString() ? "'" + v.asString() + "'"
-                                                                                     : v.typeName()));
+        return fail(ErrorCode::InvalidInput, "parameter '" + p.name + "' expects " + want +
+                                                 ", got " +
+                                                 (v.isNil()      ? "nil"
+                                                  : v.isNumber() ? num(v.asNumber())
+                                                  : v.isString() ? "'" + v.asString() + "'"
+                                                                 : v.typeName()));
     };
     auto range = [&]() {
-        return "a " + std::string(p.type == ParamType::Integer ? "whole number" : "number") + " in [" +
-               (p.min < -1e299 ? "-inf" : num(p.min)) + ", " + (p.max > 1e299 ? "inf" : num(p.max)) + "]";
+        return "a " + std::string(p.type == ParamType::Integer ? "whole number" : "number") +
+               " in [" + (p.min < -1e299 ? "-inf" : num(p.min)) + ", " +
+               (p.max > 1e299 ? "inf" : num(p.max)) + "]";
     };
     switch (p.type) {
-    case ParamType::Number:
-        if (!v.isNumber() || v.asNumber() < p.min || v.asNumber() > p.max || std::isnan(v.asNumber())) return bad(range());
-        return v;
-    case ParamType::Integer:
-        if (!v.isNumber() || std::floor(v.asNumber()) != v.asNumber() || v.asNumber() < p.min || v.asNumber() > p.max)
-            return bad(range());
-        return v;
-    case ParamType::Boolean:
-        if (!v.isBool()) return bad("a boolean");
-        return v;
-    case ParamType::Vec3:
-        if (!v.isList() || v.asList().size() != 3 || !v.asList()[0].isNumber() || !v.asList()[1].isNumber() ||
-            !v.asList()[2].isNumber())
-            return bad("{x, y, z}");
-        return v;
-    case ParamType::Choice:
-        for (const auto& c : p.choices)
-            if (v.isString() && v.asString() == c) return v;
-        {
-            std::string list;
-            for (const auto& c : p.choices) list += (list.empty() ? "'" : ", '") + c + "'";
-            return bad("one of " + list);
-        }
+        case ParamType::Number:
+            if (!v.isNumber() || v.asNumber() < p.min || v.asNumber() > p.max ||
+                std::isnan(v.asNumber()))
+                return bad(range());
+            return v;
+        case ParamType::Integer:
+            if (!v.isNumber() || std::floor(v.asNumber()) != v.asNumber() || v.asNumber() < p.min ||
+                v.asNumber() > p.max)
+                return bad(range());
+            return v;
+        case ParamType::Boolean:
+            if (!v.isBool()) return bad("a boolean");
+            return v;
+        case ParamType::Vec3:
+            if (!v.isList() || v.asList().size() != 3 || !v.asList()[0].isNumber() ||
+                !v.asList()[1].isNumber() || !v.asList()[2].isNumber())
+                return bad("{x, y, z}");
+            return v;
+        case ParamType::Choice:
+            for (const auto& c : p.choices)
+                if (v.isString() && v.asString() == c) return v;
+            {
+                std::string list;
+                for (const auto& c : p.choices) list += (list.empty() ? "'" : ", '") + c + "'";
+                return bad("one of " + list);
+            }
     }
     return v;
 }
@@ -86,8 +97,10 @@ void applyFrameChanges(PipelineDesc& pipeline, const FrameChanges& changes) {
     for (const auto& [name, value] : changes.params)
         if (ParamDesc* p = pipeline.findParam(name)) p->value = value;
     for (auto& pass : pipeline.graph.passes) {
-        if (auto it = changes.enabled.find(pass.name); it != changes.enabled.end()) pass.enabled = it->second;
-        if (auto it = changes.shaders.find(pass.name); it != changes.shaders.end()) pass.params.table()["shader"] = Value(it->second);
+        if (auto it = changes.enabled.find(pass.name); it != changes.enabled.end())
+            pass.enabled = it->second;
+        if (auto it = changes.shaders.find(pass.name); it != changes.shaders.end())
+            pass.params.table()["shader"] = Value(it->second);
     }
 }
 
@@ -122,9 +135,12 @@ GraphDesc graphWithParams(const PipelineDesc& pipeline) {
         // switches = { param = "DEFINE" }: the parameter's value compiled in (the pass is rebuilt
         // when it changes: Session::frame).
         if (pass.params["switches"].isTable()) {
-            Value::Table defines = pass.params["defines"].isTable() ? pass.params["defines"].asTable() : Value::Table{};
+            Value::Table defines = pass.params["defines"].isTable()
+                                       ? pass.params["defines"].asTable()
+                                       : Value::Table{};
             for (const auto& [param, define] : pass.params["switches"].asTable())
-                if (const ParamDesc* p = pipeline.findParam(param); p && define.isString()) defines[define.asString()] = paramAsNumber(*p);
+                if (const ParamDesc* p = pipeline.findParam(param); p && define.isString())
+                    defines[define.asString()] = paramAsNumber(*p);
             pass.params.table()["defines"] = Value(defines);
         }
     }
@@ -145,53 +161,71 @@ GraphDesc graphWithParams(const PipelineDesc& pipeline) {
             t.erase("class");
             pass.params.table()["stencil"] = Value(t);
         }
-        if (pass.kind == "scene") pass.params.table()["rg_materials"] = sceneMaterials(pipeline, pass.params);
+        if (pass.kind == "scene")
+            pass.params.table()["rg_materials"] = sceneMaterials(pipeline, pass.params);
     }
     return g;
 }
 
-void resolveShaderPaths(GraphDesc& graph, const std::string& pipelineFile, const std::string& projectRoot) {
+void resolveShaderPaths(GraphDesc& graph, const std::string& pipelineFile,
+                        const std::string& projectRoot) {
     const std::filesystem::path dir = std::filesystem::absolute(pipelineFile).parent_path();
     for (auto& pass : graph.passes) {
         const Value& s = pass.params["shader"];
-        if (!s.isString() || s.asString().empty() || std::filesystem::path(s.asString()).is_absolute()) continue;
+        if (!s.isString() || s.asString().empty() ||
+            std::filesystem::path(s.asString()).is_absolute())
+            continue;
         // Next to the script that declared the pass (a module of its own folder), then next to
         // the pipeline script; else the include folders.
         std::string resolved = nextToDeclaration(pass.origin, s.asString(), projectRoot);
         std::error_code ec;
-        if (resolved == s.asString() && std::filesystem::is_regular_file(dir / s.asString(), ec)) resolved = (dir / s.asString()).string();
+        if (resolved == s.asString() && std::filesystem::is_regular_file(dir / s.asString(), ec))
+            resolved = (dir / s.asString()).string();
         pass.params.table()["shader"] = Value(resolved);
     }
 }
 
-
 Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
     std::ostringstream o;
-    o << "// Generated by rgraph from the pipeline's materials (" << pipeline.file.substr(pipeline.file.find_last_of('/') + 1)
+    o << "// Generated by rgraph from the pipeline's materials ("
+      << pipeline.file.substr(pipeline.file.find_last_of('/') + 1)
       << "). Do not edit: declare materials in Lua.\n"
       << "#ifndef RG_GBUFFER_PIPELINE_GLSL\n#define RG_GBUFFER_PIPELINE_GLSL\n";
     // The standard parameters and their bits.
-    static const char* const kBits[] = {"NORMAL", "BASE_COLOR", "SMOOTHNESS", "METAL_MASK", "REFLECTANCE", "F0", "AO", "EMISSIVE"};
-    const std::vector<std::string> standard(std::begin(kStandardChannels), std::end(kStandardChannels));
-    auto bit = [&](const std::string& s) { return 1u << (std::find(standard.begin(), standard.end(), s) - standard.begin()); };
-    for (size_t i = 0; i < standard.size(); ++i) o << "#define RG_VIEW_" << kBits[i] << " " << (1u << i) << "u\n";
+    static const char* const kBits[] = {"NORMAL",      "BASE_COLOR", "SMOOTHNESS", "METAL_MASK",
+                                        "REFLECTANCE", "F0",         "AO",         "EMISSIVE"};
+    const std::vector<std::string> standard(std::begin(kStandardChannels),
+                                            std::end(kStandardChannels));
+    auto bit = [&](const std::string& s) {
+        return 1u << (std::find(standard.begin(), standard.end(), s) - standard.begin());
+    };
+    for (size_t i = 0; i < standard.size(); ++i)
+        o << "#define RG_VIEW_" << kBits[i] << " " << (1u << i) << "u\n";
     std::vector<const LayoutDesc*> layouts;
     std::map<std::string, const MaterialDesc*> defines;
     for (const MaterialDesc& m : pipeline.materials) {
-        auto l = std::find_if(pipeline.layouts.begin(), pipeline.layouts.end(), [&](auto& x) { return x.name == m.layout; });
-        if (l != pipeline.layouts.end() && std::find(layouts.begin(), layouts.end(), &*l) == layouts.end()) layouts.push_back(&*l);
+        auto l = std::find_if(pipeline.layouts.begin(), pipeline.layouts.end(),
+                              [&](auto& x) { return x.name == m.layout; });
+        if (l != pipeline.layouts.end() &&
+            std::find(layouts.begin(), layouts.end(), &*l) == layouts.end())
+            layouts.push_back(&*l);
         std::string id;
         for (char c : m.name) id += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
         if (defines.count(id))
-            return fail(ErrorCode::InvalidInput, m.origin + ": material '" + m.name + "' and material '" + defines[id]->name + "' (" + defines[id]->origin +
-                                                     ") both become RG_MATERIAL_ID_" + id + " in the generated GLSL; rename one");
+            return fail(ErrorCode::InvalidInput, m.origin + ": material '" + m.name +
+                                                     "' and material '" + defines[id]->name +
+                                                     "' (" + defines[id]->origin +
+                                                     ") both become RG_MATERIAL_ID_" + id +
+                                                     " in the generated GLSL; rename one");
         defines[id] = &m;
         o << "#define RG_MATERIAL_ID_" << id << " " << m.id << "u\n";
     }
     for (const LayoutDesc* l : layouts) o << "#include \"gbuffer_" << l->name << ".glsl\"\n";
-    o << "struct RgGBufferView {\n    uint materialId;\n    uint has;     // RG_VIEW_* of the parameters its layout holds\n"
+    o << "struct RgGBufferView {\n    uint materialId;\n    uint has;     // RG_VIEW_* of the "
+         "parameters its layout holds\n"
          "    uint decals;  // RG_VIEW_* of the parameters decals blend on it\n"
-         "    vec3 normal;\n    vec3 baseColor;\n    float smoothness;\n    float metalMask;\n    float reflectance;\n"
+         "    vec3 normal;\n    vec3 baseColor;\n    float smoothness;\n    float metalMask;\n    "
+         "float reflectance;\n"
          "    vec3 f0;\n    float ao;\n    vec3 emissive;\n};\n";
     // The targets: every material layout's, by name (so declaration order does not matter),
     // passed as four floats texels (t0..t3, vec4(0) beyond them) as the decal pass, the debug
@@ -201,38 +235,56 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
         for (const TargetDesc& t : l->targets) {
             auto [it, added] = byName.emplace(t.name, std::make_pair(t.format, l));
             if (!added && it->second.first != t.format)
-                return fail(ErrorCode::InvalidInput, (l->origin.empty() ? "" : l->origin + ": ") + "layout '" + l->name + "' makes target '" + t.name +
-                                                         "' " + std::string(formatName(t.format)) + ", layout '" + it->second.second->name + "' " +
-                                                         std::string(formatName(it->second.first)) + ": a target has one format in every layout");
+                return fail(ErrorCode::InvalidInput,
+                            (l->origin.empty() ? "" : l->origin + ": ") + "layout '" + l->name +
+                                "' makes target '" + t.name + "' " +
+                                std::string(formatName(t.format)) + ", layout '" +
+                                it->second.second->name + "' " +
+                                std::string(formatName(it->second.first)) +
+                                ": a target has one format in every layout");
             if (formatInfo(t.format).integer)
-                return fail(ErrorCode::InvalidInput, (l->origin.empty() ? "" : l->origin + ": ") + "layout '" + l->name + "' target '" + t.name +
-                                                         "' is an integer format: decals, debug views and the reference read a material's targets as float texels");
+                return fail(ErrorCode::InvalidInput,
+                            (l->origin.empty() ? "" : l->origin + ": ") + "layout '" + l->name +
+                                "' target '" + t.name +
+                                "' is an integer format: decals, debug views and the reference "
+                                "read a material's targets as float texels");
         }
     std::vector<std::string> targets;
     for (const auto& [name, _] : byName) targets.push_back(name);
     if (targets.size() > 4)
-        return fail(ErrorCode::InvalidInput, "the pipeline's material layouts use " + std::to_string(targets.size()) + " targets (" + joinQuoted(targets) +
-                                                 "): decals, debug views and the reference read at most four (GB0..GB3 in the default loop)");
+        return fail(ErrorCode::InvalidInput, "the pipeline's material layouts use " +
+                                                 std::to_string(targets.size()) + " targets (" +
+                                                 joinQuoted(targets) +
+                                                 "): decals, debug views and the reference read at "
+                                                 "most four (GB0..GB3 in the default loop)");
     const std::string params4 = "vec4 t0, vec4 t1, vec4 t2, vec4 t3";
     if (layouts.empty()) {
-        o << "RgGBufferView rgDecodeGBuffer(" << params4 << ") {\n    RgGBufferView v;\n    v.materialId = 0u; v.has = 0u; v.decals = 0u;\n"
-             "    v.normal = vec3(0.0, 0.0, 1.0); v.baseColor = vec3(0.0); v.smoothness = 0.0; v.metalMask = 0.0;\n"
-             "    v.reflectance = 0.0; v.f0 = vec3(0.0); v.ao = 1.0; v.emissive = vec3(0.0);\n    return v;\n}\n"
-             "void rgEncodeDecals(RgGBufferView v, " << params4 << ", out vec4 o0, out vec4 o1, out vec4 o2, out vec4 o3) {\n"
+        o << "RgGBufferView rgDecodeGBuffer(" << params4
+          << ") {\n    RgGBufferView v;\n    v.materialId = 0u; v.has = 0u; v.decals = 0u;\n"
+             "    v.normal = vec3(0.0, 0.0, 1.0); v.baseColor = vec3(0.0); v.smoothness = 0.0; "
+             "v.metalMask = 0.0;\n"
+             "    v.reflectance = 0.0; v.f0 = vec3(0.0); v.ao = 1.0; v.emissive = vec3(0.0);\n    "
+             "return v;\n}\n"
+             "void rgEncodeDecals(RgGBufferView v, "
+          << params4
+          << ", out vec4 o0, out vec4 o1, out vec4 o2, out vec4 o3) {\n"
              "    o0 = t0; o1 = t1; o2 = t2; o3 = t3;\n}\n#define RG_DECAL_TARGETS 0\n#endif\n";
         return o.str();
     }
     const LayoutDesc& first = *layouts.front();
     auto params = [&](const std::string& prefix, bool out) {
         std::string s;
-        for (size_t i = 0; i < 4; ++i) s += std::string(i ? ", " : "") + (out ? "out " : "") + "vec4 " + prefix + std::to_string(i);
+        for (size_t i = 0; i < 4; ++i)
+            s += std::string(i ? ", " : "") + (out ? "out " : "") + "vec4 " + prefix +
+                 std::to_string(i);
         return s;
     };
     // Arguments of one layout's unpack/pack, by target name.
     auto args = [&](const LayoutDesc& l, const std::string& prefix) {
         std::string s;
         for (size_t i = 0; i < l.targets.size(); ++i) {
-            const size_t k = static_cast<size_t>(std::find(targets.begin(), targets.end(), l.targets[i].name) - targets.begin());
+            const size_t k = static_cast<size_t>(
+                std::find(targets.begin(), targets.end(), l.targets[i].name) - targets.begin());
             s += ", " + prefix + std::to_string(k);
         }
         return s;
@@ -241,57 +293,74 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
     for (const MaterialDesc& m : pipeline.materials) byId.emplace(m.id, &m);
     o << "RgGBufferView rgDecodeGBuffer(" << params("t", false) << ") {\n"
       << "    RgGBufferView v;\n"
-      << "    v.materialId = unpackGBuffer_" << first.name << "(" << args(first, "t").substr(2) << ").materialId;\n"
+      << "    v.materialId = unpackGBuffer_" << first.name << "(" << args(first, "t").substr(2)
+      << ").materialId;\n"
       << "    v.has = 0u; v.decals = 0u;\n"
-      << "    v.normal = vec3(0.0, 0.0, 1.0); v.baseColor = vec3(0.0); v.smoothness = 0.0; v.metalMask = 0.0;\n"
+      << "    v.normal = vec3(0.0, 0.0, 1.0); v.baseColor = vec3(0.0); v.smoothness = 0.0; "
+         "v.metalMask = 0.0;\n"
       << "    v.reflectance = 0.0; v.f0 = vec3(0.0); v.ao = 1.0; v.emissive = vec3(0.0);\n";
     const char* sep = "    ";
     for (const auto& [id, m] : byId) {
         uint32_t has = 0, decals = 0;
         for (const auto& [s, _] : m->channels) has |= bit(s);
         for (const auto& s : m->decals) decals |= bit(s);
-        const LayoutDesc& l = **std::find_if(layouts.begin(), layouts.end(), [&](auto* x) { return x->name == m->layout; });
+        const LayoutDesc& l = **std::find_if(layouts.begin(), layouts.end(),
+                                             [&](auto* x) { return x->name == m->layout; });
         o << sep << "if (v.materialId == " << id << "u) {  // " << m->name << "\n"
-          << "        GBuffer_" << l.name << " g = unpackGBuffer_" << l.name << "(" << args(l, "t").substr(2) << ");\n"
+          << "        GBuffer_" << l.name << " g = unpackGBuffer_" << l.name << "("
+          << args(l, "t").substr(2) << ");\n"
           << "        v.has = " << has << "u; v.decals = " << decals << "u;\n";
-        for (const auto& [s, channel] : m->channels) o << "        v." << s << " = g." << channel << ";\n";
+        for (const auto& [s, channel] : m->channels)
+            o << "        v." << s << " = g." << channel << ";\n";
         o << "    }";
         sep = " else ";
     }
     o << "\n    return v;\n}\n";
-    o << "void rgEncodeDecals(RgGBufferView v, " << params("t", false) << ", " << params("o", true) << ") {\n";
+    o << "void rgEncodeDecals(RgGBufferView v, " << params("t", false) << ", " << params("o", true)
+      << ") {\n";
     for (size_t i = 0; i < 4; ++i) o << "    o" << i << " = t" << i << ";\n";
     sep = "    ";
     for (const auto& [id, m] : byId) {
         if (m->decals.empty()) continue;
-        const LayoutDesc& l = **std::find_if(layouts.begin(), layouts.end(), [&](auto* x) { return x->name == m->layout; });
+        const LayoutDesc& l = **std::find_if(layouts.begin(), layouts.end(),
+                                             [&](auto* x) { return x->name == m->layout; });
         o << sep << "if (v.materialId == " << id << "u) {  // " << m->name << "\n"
-          << "        GBuffer_" << l.name << " g = unpackGBuffer_" << l.name << "(" << args(l, "t").substr(2) << ");\n";
-        for (const auto& s : m->decals) o << "        g." << m->channels.at(s) << " = v." << s << ";\n";
+          << "        GBuffer_" << l.name << " g = unpackGBuffer_" << l.name << "("
+          << args(l, "t").substr(2) << ");\n";
+        for (const auto& s : m->decals)
+            o << "        g." << m->channels.at(s) << " = v." << s << ";\n";
         o << "        packGBuffer_" << l.name << "(g" << args(l, "o") << ");\n    }";
         sep = " else ";
     }
     o << "\n}\n";
     // Which of t0..t3 hold a channel decals blend (the decal pass writes the ones it binds).
     uint32_t decalTargets = 0;
-    const bool decalPass = std::any_of(pipeline.graph.passes.begin(), pipeline.graph.passes.end(), [](const PassDesc& p) {
-        return p.params["shader"].isString() && p.params["shader"].asString() == "passes/decals.frag";
-    });
+    const bool decalPass = std::any_of(
+        pipeline.graph.passes.begin(), pipeline.graph.passes.end(), [](const PassDesc& p) {
+            return p.params["shader"].isString() &&
+                   p.params["shader"].asString() == "passes/decals.frag";
+        });
     for (const MaterialDesc& m : pipeline.materials) {
-        const LayoutDesc& l = **std::find_if(layouts.begin(), layouts.end(), [&](auto* x) { return x->name == m.layout; });
+        const LayoutDesc& l = **std::find_if(layouts.begin(), layouts.end(),
+                                             [&](auto* x) { return x->name == m.layout; });
         for (const auto& d : m.decals)
             for (const TargetDesc& t : l.targets)
                 for (const ChannelDesc& c : t.channels)
                     if (c.name == m.channels.at(d)) {
-                        const size_t k = static_cast<size_t>(std::find(targets.begin(), targets.end(), t.name) - targets.begin());
+                        const size_t k = static_cast<size_t>(
+                            std::find(targets.begin(), targets.end(), t.name) - targets.begin());
                         // The decal pass writes the first three targets (passes/decals.frag): said
                         // at the load, whether or not the scene has decals for it to run.
                         if (k >= 3 && decalPass)
-                            return fail(ErrorCode::InvalidInput, m.origin + ": material '" + m.name + "': decals blend " + d + ", which layout '" +
-                                                                     l.name + "' keeps in '" + t.name + "' (channel '" + c.name +
-                                                                     "'), the pipeline's fourth target; the decal pass writes the first three (" +
-                                                                     targets[0] + ", " + targets[1] + ", " + targets[2] +
-                                                                     "): keep decal channels in those, or leave " + d + " out of the material's decals");
+                            return fail(ErrorCode::InvalidInput,
+                                        m.origin + ": material '" + m.name + "': decals blend " +
+                                            d + ", which layout '" + l.name + "' keeps in '" +
+                                            t.name + "' (channel '" + c.name +
+                                            "'), the pipeline's fourth target; the decal pass "
+                                            "writes the first three (" +
+                                            targets[0] + ", " + targets[1] + ", " + targets[2] +
+                                            "): keep decal channels in those, or leave " + d +
+                                            " out of the material's decals");
                         decalTargets |= 1u << k;
                     }
     }
@@ -313,7 +382,8 @@ std::string describeMaterialSystem(const PipelineDesc& p) {
         if (idBits) break;
     }
     const uint32_t ids = idBits ? (idBits >= 31 ? 0x7FFFFFFFu : 1u << idBits) : 0u;
-    o << "materialIds (" << idBits << " bits: " << ids << " ids; an id names how a pixel decodes, so materials of one layout and the same\n"
+    o << "materialIds (" << idBits << " bits: " << ids
+      << " ids; an id names how a pixel decodes, so materials of one layout and the same\n"
       << "decal parameters may share one):\n";
     std::map<uint32_t, std::vector<const MaterialDesc*>> byId;
     for (const MaterialDesc& m : p.materials) byId[m.id].push_back(&m);
@@ -321,8 +391,9 @@ std::string describeMaterialSystem(const PipelineDesc& p) {
         std::string names, decals;
         for (const MaterialDesc* m : ms) names += (names.empty() ? "" : ", ") + m->name;
         for (const std::string& d : ms.front()->decals) decals += (decals.empty() ? "" : " ") + d;
-        std::snprintf(line, sizeof line, "  %3u  layout %-12s decals %-48s materials %s\n", id, ms.front()->layout.c_str(),
-                      decals.empty() ? "(none)" : decals.c_str(), names.c_str());
+        std::snprintf(line, sizeof line, "  %3u  layout %-12s decals %-48s materials %s\n", id,
+                      ms.front()->layout.c_str(), decals.empty() ? "(none)" : decals.c_str(),
+                      names.c_str());
         o << line;
     }
     std::vector<uint32_t> free;
@@ -333,22 +404,26 @@ std::string describeMaterialSystem(const PipelineDesc& p) {
     for (size_t i = 0; i < free.size(); ++i) o << (i ? ", " : "") << free[i];
     if (ids > byId.size() + free.size()) o << ", ...";
     o << " (" << (ids - static_cast<uint32_t>(byId.size())) << " of " << ids << ")\n\n";
-    o << "stencil classes (8 bits: a class takes 1..15 in the low 4 bits and its pass tests them, so it lights\n"
+    o << "stencil classes (8 bits: a class takes 1..15 in the low 4 bits and its pass tests them, "
+         "so it lights\n"
       << "its variants too; a variant keeps its base's low bits and takes 1..15 in the high 4):\n";
     uint32_t classes = 0;
     for (const StencilClassDesc& c : p.stencilClasses) {
         std::string paths, materials;
         for (const LightingPathDesc& lp : p.lightingPaths)
-            if (lp.stencil == c.name || (!c.base.empty() && lp.stencil == c.base)) paths += (paths.empty() ? "" : ", ") + lp.name;
+            if (lp.stencil == c.name || (!c.base.empty() && lp.stencil == c.base))
+                paths += (paths.empty() ? "" : ", ") + lp.name;
         for (const MaterialDesc& m : p.materials)
             if (m.stencil == c.name) materials += (materials.empty() ? "" : ", ") + m.name;
-        std::snprintf(line, sizeof line, "  0x%02X mask 0x%02X  %-16s %-24s lit by %-12s materials %s\n", c.value, c.mask, c.name.c_str(),
-                      c.base.empty() ? "" : ("variant of " + c.base).c_str(), paths.empty() ? "-" : paths.c_str(),
-                      materials.empty() ? "-" : materials.c_str());
+        std::snprintf(
+            line, sizeof line, "  0x%02X mask 0x%02X  %-16s %-24s lit by %-12s materials %s\n",
+            c.value, c.mask, c.name.c_str(), c.base.empty() ? "" : ("variant of " + c.base).c_str(),
+            paths.empty() ? "-" : paths.c_str(), materials.empty() ? "-" : materials.c_str());
         o << line;
         if (c.base.empty()) ++classes;
     }
-    o << "  free: " << ((1u << kStencilPathBits) - 1 - classes) << " of " << ((1u << kStencilPathBits) - 1) << " classes, each with up to "
+    o << "  free: " << ((1u << kStencilPathBits) - 1 - classes) << " of "
+      << ((1u << kStencilPathBits) - 1) << " classes, each with up to "
       << ((1u << kStencilVariantBits) - 1) << " variants\n";
     return o.str();
 }
@@ -396,7 +471,8 @@ Value sceneMaterials(const PipelineDesc& pipeline, const Value& params) {
         for (const auto& c : pipeline.stencilClasses)
             if (c.name == m.stencil) {
                 t["stencil_value"] = Value(static_cast<double>(c.value));
-                t["stencil_mask"] = Value(255.0);  // the whole byte: a class's value replaces whatever was under it
+                t["stencil_mask"] =
+                    Value(255.0);  // the whole byte: a class's value replaces whatever was under it
             }
         out.push_back(Value(t));
     }

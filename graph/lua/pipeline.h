@@ -41,21 +41,24 @@ struct StencilClassDesc {
     std::string doc;
     std::string origin;
 };
-inline constexpr uint32_t kStencilPathBits = 4;   // low bits: up to 15 classes
+inline constexpr uint32_t kStencilPathBits = 4;     // low bits: up to 15 classes
 inline constexpr uint32_t kStencilVariantBits = 4;  // high bits: up to 15 variants per class
 
 struct LightingPathDesc {
     std::string name;
     std::string stencil;  // the stencil class its lighting pass runs on
-    std::string shading;  // GLSL file defining rgShade(GBuffer_<layout>, ...) (forward shading), or ""
+    std::string
+        shading;  // GLSL file defining rgShade(GBuffer_<layout>, ...) (forward shading), or ""
     std::string doc;
     std::string origin;
 };
 
 // The standard parameters decals blend and debug views show, by the name a layout's channel for
 // them has (MaterialDesc::channels maps them when a layout names them otherwise).
-inline const char* const kStandardChannels[] = {"normal", "baseColor", "smoothness", "metalMask", "reflectance", "f0", "ao", "emissive"};
-inline const char* const kDecalParameters[] = {"normal", "baseColor", "smoothness", "metalMask", "reflectance"};
+inline const char* const kStandardChannels[] = {
+    "normal", "baseColor", "smoothness", "metalMask", "reflectance", "f0", "ao", "emissive"};
+inline const char* const kDecalParameters[] = {"normal", "baseColor", "smoothness", "metalMask",
+                                               "reflectance"};
 
 struct MaterialDesc {
     std::string name;

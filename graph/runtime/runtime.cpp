@@ -27,7 +27,8 @@ std::string installedRoot() {
     const fs::path self = fs::canonical(fs::path(info.dli_fname), ec);
     if (ec) return {};
     // bin/, lib/ or lib/<multiarch>/ below the prefix.
-    for (fs::path dir = self.parent_path(); dir.has_parent_path() && dir != dir.parent_path(); dir = dir.parent_path()) {
+    for (fs::path dir = self.parent_path(); dir.has_parent_path() && dir != dir.parent_path();
+         dir = dir.parent_path()) {
         const fs::path share = dir.parent_path() / "share" / "rgraph";
         if (fs::is_directory(share / "scripts", ec)) return share.string();
         if (dir.filename() != "lib" && dir.parent_path().filename() != "lib") break;

@@ -28,7 +28,9 @@ using namespace detail;
 
 namespace {
 using Clock = std::chrono::steady_clock;
-double msSince(Clock::time_point t) { return std::chrono::duration<double, std::milli>(Clock::now() - t).count(); }
+double msSince(Clock::time_point t) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - t).count();
+}
 
 LuaHostOptions hostOptions(std::vector<PassKindSchema> kinds) {
     LuaHostOptions o;
@@ -56,7 +58,9 @@ Result<AbsoluteHdr> readAbsoluteHdr(gpu::Executor& executor, const PipelineDesc&
     return out;
 }
 
-LuaHostOptions luaHostOptions(const Runtime& runtime) { return hostOptions(runtime.kinds().schemas()); }
+LuaHostOptions luaHostOptions(const Runtime& runtime) {
+    return hostOptions(runtime.kinds().schemas());
+}
 
 LuaHostOptions luaHostOptionsWithoutDevice() {
     gpu::PassRegistry registry;
@@ -64,14 +68,17 @@ LuaHostOptions luaHostOptionsWithoutDevice() {
     return hostOptions(registry.schemas());
 }
 
-Session::Session(Runtime& runtime, SessionOptions options) : m_runtime(runtime), m_options(std::move(options)) {}
+Session::Session(Runtime& runtime, SessionOptions options)
+    : m_runtime(runtime), m_options(std::move(options)) {}
 Session::~Session() {
     // The executor must not keep drawing (or calling back into) a scene that goes away with us,
     // and the frames still in flight draw with its buffers: they finish first.
     // (Also when another session's scene has replaced ours: frames recorded before that drew ours.)
     if (m_scene) {
-        if (auto r = m_runtime.executor().finish(); !r) std::fprintf(stderr, "rgraph: %s\n", r.error().describe().c_str());
-        if (m_runtime.executor().scene() == m_scene.get()) m_runtime.executor().setScene(nullptr, {});
+        if (auto r = m_runtime.executor().finish(); !r)
+            std::fprintf(stderr, "rgraph: %s\n", r.error().describe().c_str());
+        if (m_runtime.executor().scene() == m_scene.get())
+            m_runtime.executor().setScene(nullptr, {});
     }
 }
 
@@ -79,7 +86,6 @@ void Session::note(const std::string& line) {
     m_log.push_back(line);
     if (m_options.verbose) std::fprintf(stderr, "rgraph: %s\n", line.c_str());
 }
-
 
 // The pipeline's graph with parameters as uniforms, captures exported, and shader paths that
 // exist next to the pipeline script made absolute (shaders/ and the root are searched anyway).
@@ -100,7 +106,8 @@ Result<GraphDesc> Session::buildableGraph(const PipelineDesc& p, bool keepMissin
         for (auto& pass : g.passes) {
             const size_t before = pass.accesses.size();
             std::erase_if(pass.accesses, [&](const Access& a) { return a.resource == target; });
-            if (pass.accesses.size() != before && pass.params.isTable() && pass.params["defines"].isTable()) {
+            if (pass.accesses.size() != before && pass.params.isTable() &&
+                pass.params["defines"].isTable()) {
                 Value::Table defines = pass.params["defines"].asTable();
                 defines.erase("RG_LIGHTMAP_SPECULAR");
                 pass.params.table()["defines"] = Value(defines);
@@ -109,7 +116,8 @@ Result<GraphDesc> Session::buildableGraph(const PipelineDesc& p, bool keepMissin
     }
     if (!m_options.view.empty()) {  // checked in load()
         const passes::GpuScene* scene = passes::sceneOf(m_runtime.executor().scene());
-        if (auto r = addDebugView(g, p, m_options.view, scene ? &scene->scene() : nullptr); !r) return std::unexpected(r.error());
+        if (auto r = addDebugView(g, p, m_options.view, scene ? &scene->scene() : nullptr); !r)
+            return std::unexpected(r.error());
     }
     for (auto& r : g.resources) {
         for (const auto& c : m_options.captures)
@@ -119,7 +127,9 @@ Result<GraphDesc> Session::buildableGraph(const PipelineDesc& p, bool keepMissin
                 if (r.name == t.name) r.exported = true;
     }
     std::vector<std::string> declared;  // each pass's shader as the script names it
-    for (const auto& pass : g.passes) declared.push_back(pass.params["shader"].isString() ? pass.params["shader"].asString() : "");
+    for (const auto& pass : g.passes)
+        declared.push_back(pass.params["shader"].isString() ? pass.params["shader"].asString()
+                                                            : "");
     resolveShaderPaths(g, p.file, projectRoot());
     // keepMissingShaders: a shader file that went away since a pass was built with it (deleted,
     // or mid-save) keeps the path it had, so that the executor keeps the pass as it runs and
@@ -130,7 +140,8 @@ Result<GraphDesc> Session::buildableGraph(const PipelineDesc& p, bool keepMissin
         if (declared[i].empty() || fs::path(declared[i]).is_absolute()) continue;
         const std::string key = pass.origin + "\n" + pass.name + "\n" + declared[i];
         const std::string now = pass.params["shader"].asString();
-        if (fs::path(now).is_absolute()) m_shaderPaths[key] = now;
+        if (fs::path(now).is_absolute())
+            m_shaderPaths[key] = now;
         else if (auto it = m_shaderPaths.find(key); keepMissingShaders && it != m_shaderPaths.end())
             pass.params.table()["shader"] = Value(it->second);
     }
@@ -143,10 +154,12 @@ Result<std::string> writeLayoutHeaders(const PipelineDesc& pipeline) {
     for (const auto& layout : pipeline.layouts) {
         auto info = analyzeLayout(layout);
         if (!info) return std::unexpected(info.error());
-        const std::string glsl = "// Generated by rgraph from layout '" + layout.name + "'. Do not edit: change the layout in Lua.\n" +
+        const std::string glsl = "// Generated by rgraph from layout '" + layout.name +
+                                 "'. Do not edit: change the layout in Lua.\n" +
                                  generateGlsl(*info);
         headers.emplace_back("gbuffer_" + layout.name + ".glsl", glsl);
-        for (const std::string* part : {&headers.back().first, &headers.back().second}) hash.str(*part);
+        for (const std::string* part : {&headers.back().first, &headers.back().second})
+            hash.str(*part);
     }
     // Every material's pixels decoded by materialId (decals, debug views, the reference).
     auto dispatch = generatePipelineGlsl(pipeline);
@@ -176,32 +189,34 @@ void useLayoutHeaders(Runtime& runtime, const std::string& dir) {
     runtime.shaders().setGeneratedDir(dir);
 }
 
-
-
 namespace {
 
 // The scene's draws per stencil class of the pipeline's materials (ctx.scene.classes): fixed
 // while the two stay loaded, so counted once per load.
-std::map<std::string, uint32_t> drawsPerClass(const passes::GpuScene& scene, const PipelineDesc& pipeline) {
+std::map<std::string, uint32_t> drawsPerClass(const passes::GpuScene& scene,
+                                              const PipelineDesc& pipeline) {
     std::map<std::string, std::string> classOf;  // material name -> its stencil class
     for (const auto& m : pipeline.materials)
         if (!m.stencil.empty()) classOf[m.name] = m.stencil;
     std::map<std::string, uint32_t> classes;
     for (const auto& d : scene.draws())
-        if (auto it = classOf.find(scene.scene().materials[d.material].model); it != classOf.end()) ++classes[it->second];
+        if (auto it = classOf.find(scene.scene().materials[d.material].model); it != classOf.end())
+            ++classes[it->second];
     return classes;
 }
 
 // What a frame's changes do to the graph, for the log: "disabled 'decals', 'sky' uses X.frag".
 std::string describeStructural(const FrameChanges& changes) {
     std::string what;
-    for (const auto& [pass, on] : changes.enabled) what += (what.empty() ? "" : ", ") + std::string(on ? "enabled '" : "disabled '") + pass + "'";
-    for (const auto& [pass, shader] : changes.shaders) what += (what.empty() ? "" : ", ") + ("'" + pass + "' uses " + shader);
+    for (const auto& [pass, on] : changes.enabled)
+        what +=
+            (what.empty() ? "" : ", ") + std::string(on ? "enabled '" : "disabled '") + pass + "'";
+    for (const auto& [pass, shader] : changes.shaders)
+        what += (what.empty() ? "" : ", ") + ("'" + pass + "' uses " + shader);
     return what;
 }
 
 }  // namespace
-
 
 Result<void> Session::load(const std::string& file) {
     auto t0 = Clock::now();
@@ -222,7 +237,8 @@ Result<void> Session::load(const std::string& file) {
         scene = std::move(*loaded);
         sceneMs = std::chrono::duration<double, std::milli>(Clock::now() - s0).count();
     } else if (!m_options.scene.empty()) {
-        return fail(ErrorCode::InvalidInput, "--scene: pipeline '" + file + "' has no scene pass to draw it");
+        return fail(ErrorCode::InvalidInput,
+                    "--scene: pipeline '" + file + "' has no scene pass to draw it");
     }
     for (const auto& [name, value] : m_options.params) {
         auto checked = checkedParam(*pipeline, name, value);
@@ -231,7 +247,10 @@ Result<void> Session::load(const std::string& file) {
     }
     if (!m_options.view.empty()) {
         GraphDesc probe = graphWithParams(*pipeline);
-        if (auto r = addDebugView(probe, *pipeline, m_options.view, scene ? &scene->scene() : nullptr); !r) return r;
+        if (auto r =
+                addDebugView(probe, *pipeline, m_options.view, scene ? &scene->scene() : nullptr);
+            !r)
+            return r;
     }
     auto channels = channelCapturesOf(*pipeline, m_options.captures);
     if (!channels) return std::unexpected(channels.error());
@@ -250,8 +269,7 @@ Result<void> Session::load(const std::string& file) {
             useLayoutHeaders(s.m_runtime, headers);
             s.m_frameHook = hook;
             s.m_channels = channels;
-            if (sceneChanged)
-                s.m_runtime.executor().setScene(scene, hook);
+            if (sceneChanged) s.m_runtime.executor().setScene(scene, hook);
         }
     } rollback{*this};
     useLayoutHeaders(m_runtime, *headers);
@@ -286,10 +304,13 @@ Result<void> Session::load(const std::string& file) {
             it = overrides.params.erase(it);
         }
     }
-    std::erase_if(overrides.enabled, [&](const auto& o) { return !pipeline->graph.findPass(o.first); });
+    std::erase_if(overrides.enabled,
+                  [&](const auto& o) { return !pipeline->graph.findPass(o.first); });
     auto tc = Clock::now();
-    std::map<std::string, uint32_t> classes = scene ? drawsPerClass(*scene, *pipeline) : std::map<std::string, uint32_t>{};
-    auto first = frameChanges(*host, frameContext(scene ? scene.get() : nullptr, classes), *pipeline, overrides);
+    std::map<std::string, uint32_t> classes =
+        scene ? drawsPerClass(*scene, *pipeline) : std::map<std::string, uint32_t>{};
+    auto first = frameChanges(*host, frameContext(scene ? scene.get() : nullptr, classes),
+                              *pipeline, overrides);
     if (!first) return std::unexpected(first.error());
     const double firstCallbackMs = msSince(tc);
     applyFrameChanges(*pipeline, *first);
@@ -310,7 +331,10 @@ Result<void> Session::load(const std::string& file) {
     if (scene) {
         for (const auto& [k, v] : m_options.sceneArgs) sceneKey += k + "=" + v + ";";
         sceneKey += "environment=" + m_options.environment + ";";
-        if (m_options.sceneData) sceneKey += "memory=" + std::to_string(reinterpret_cast<uintptr_t>(m_options.sceneData.get())) + ";";
+        if (m_options.sceneData)
+            sceneKey +=
+                "memory=" + std::to_string(reinterpret_cast<uintptr_t>(m_options.sceneData.get())) +
+                ";";
         for (const auto& f : scene->scene().files) {
             std::ifstream in(f, std::ios::binary);
             ContentHash h;
@@ -334,33 +358,44 @@ Result<void> Session::load(const std::string& file) {
     m_framePrepared = m_frame;
     m_callbackMs = firstCallbackMs;
     m_loadMs = msSince(t0);
-    note("loaded " + file + ": " + std::to_string(m_runtime.executor().plan().passes.size()) + " passes (" +
-         m_runtime.executor().lastBuildReport().summary() + ")" +
-         (firstChanges.empty() ? std::string() : "; frame " + std::to_string(m_frame) + "'s rg.frame: " + firstChanges));
+    note("loaded " + file + ": " + std::to_string(m_runtime.executor().plan().passes.size()) +
+         " passes (" + m_runtime.executor().lastBuildReport().summary() + ")" +
+         (firstChanges.empty()
+              ? std::string()
+              : "; frame " + std::to_string(m_frame) + "'s rg.frame: " + firstChanges));
     return {};
 }
 
-FrameContext Session::frameContext(const passes::GpuScene* scene, const std::map<std::string, uint32_t>& classes) const {
-    FrameContext ctx{m_frame, static_cast<double>(m_frame) / 60.0, std::nullopt, m_options.compile.outputWidth, m_options.compile.outputHeight};
+FrameContext Session::frameContext(const passes::GpuScene* scene,
+                                   const std::map<std::string, uint32_t>& classes) const {
+    FrameContext ctx{m_frame, static_cast<double>(m_frame) / 60.0, std::nullopt,
+                     m_options.compile.outputWidth, m_options.compile.outputHeight};
     if (scene)
         ctx.scene = FrameContext::SceneFacts{
-            static_cast<uint32_t>(scene->draws().size()), scene->lightCount(), static_cast<uint32_t>(scene->scene().decals.size()),
-            static_cast<uint32_t>(std::count_if(scene->scene().lights.begin(), scene->scene().lights.end(),
-                                                [](const Light& l) { return l.type == LightType::Directional; })),
+            static_cast<uint32_t>(scene->draws().size()),
+            scene->lightCount(),
+            static_cast<uint32_t>(scene->scene().decals.size()),
+            static_cast<uint32_t>(
+                std::count_if(scene->scene().lights.begin(), scene->scene().lights.end(),
+                              [](const Light& l) { return l.type == LightType::Directional; })),
             static_cast<uint32_t>(scene->scene().probes.size()),
-            static_cast<uint32_t>(std::count_if(scene->draws().begin(), scene->draws().end(), [&](const passes::DrawItem& d) {
-                return scene->scene().materials[d.material].alphaMode == AlphaMode::Blend;
-            }))};
+            static_cast<uint32_t>(std::count_if(
+                scene->draws().begin(), scene->draws().end(), [&](const passes::DrawItem& d) {
+                    return scene->scene().materials[d.material].alphaMode == AlphaMode::Blend;
+                }))};
     if (scene) ctx.scene->classes = classes;
     return ctx;
 }
 
-Result<FrameChanges> Session::frameChanges(LuaHost& host, const FrameContext& ctx, const PipelineDesc& pipeline, const FrameChanges& overrides) {
+Result<FrameChanges> Session::frameChanges(LuaHost& host, const FrameContext& ctx,
+                                           const PipelineDesc& pipeline,
+                                           const FrameChanges& overrides) {
     auto changes = host.frame(ctx, pipeline);
     if (changes && (m_options.frameHook || !overrides.empty())) {
         PipelineDesc seen = pipeline;
         applyFrameChanges(seen, *changes);
-        auto more = m_options.frameHook ? m_options.frameHook(ctx, seen) : Result<FrameChanges>(FrameChanges{});
+        auto more = m_options.frameHook ? m_options.frameHook(ctx, seen)
+                                        : Result<FrameChanges>(FrameChanges{});
         if (!more) return std::unexpected(more.error());
         for (const auto& [k, v] : overrides.params) more->params[k] = v;
         for (const auto& [k, v] : overrides.enabled) more->enabled[k] = v;
@@ -389,7 +424,8 @@ Result<void> Session::frame(VkCommandBuffer hostCmd) {
         // overrides set since were applied when they were set (setOverride, setPassOverride).
         m_framePrepared.reset();
     } else {
-        changes = frameChanges(*m_host, frameContext(m_scene.get(), m_classes), m_pipeline, m_overrides);
+        changes =
+            frameChanges(*m_host, frameContext(m_scene.get(), m_classes), m_pipeline, m_overrides);
         m_callbackMs = msSince(t0);
     }
     // A parameter restated at the value it has (rg.frame and the overrides restate theirs every
@@ -402,10 +438,13 @@ Result<void> Session::frame(VkCommandBuffer hostCmd) {
 
     // A callback that fails, or a change that cannot be built, is refused whole: the plan as it
     // was renders this frame, and the caller hears why.
-    Result<void> applied = !changes ? Result<void>(std::unexpected(changes.error())) : changes->empty() ? Result<void>{} : apply(*changes);
+    Result<void> applied = !changes           ? Result<void>(std::unexpected(changes.error()))
+                           : changes->empty() ? Result<void>{}
+                                              : apply(*changes);
     if (!applied && changes) {
         Error e = applied.error();
-        e.message = "frame " + std::to_string(m_frame) + ": rg.frame's changes (" + describeStructural(*changes) +
+        e.message = "frame " + std::to_string(m_frame) + ": rg.frame's changes (" +
+                    describeStructural(*changes) +
                     ") cannot be built; the plan stays as it was: " + e.message;
         applied = std::unexpected(e);
     }
@@ -413,7 +452,8 @@ Result<void> Session::frame(VkCommandBuffer hostCmd) {
     // scene's Lights block, so switching it rebuilds nothing.
     if (m_scene) {
         const ParamDesc* model = m_pipeline.findParam("area_lights");
-        m_scene->setAreaLightModel(model && model->value.isString() && model->value.asString() == "ltc" ? 1u : 0u);
+        m_scene->setAreaLightModel(
+            model && model->value.isString() && model->value.asString() == "ltc" ? 1u : 0u);
     }
     if (auto r = m_runtime.executor().frame(hostCmd); !r) return r;
     ++m_frame;
@@ -442,7 +482,10 @@ Result<void> Session::apply(const FrameChanges& changes) {
         std::string what = describeStructural(changes);
         for (const auto& name : switched) {
             const Value& v = next.findParam(name)->value;
-            what += (what.empty() ? "" : ", ") + ("switch " + name + " = " + (v.isString() ? v.asString() : v.isBool() ? (v.asBool() ? "true" : "false") : std::to_string(v.asNumber())));
+            what += (what.empty() ? "" : ", ") + ("switch " + name + " = " +
+                                                  (v.isString() ? v.asString()
+                                                   : v.isBool() ? (v.asBool() ? "true" : "false")
+                                                                : std::to_string(v.asNumber())));
         }
         char ms[32];
         std::snprintf(ms, sizeof ms, "%.2f ms", buildMs);
@@ -464,7 +507,9 @@ Result<void> Session::setOverride(const std::string& param, const Value& value) 
     FrameChanges change;
     change.params[param] = *checked;
     if (auto r = apply(change); !r)
-        return fail(r.error().code, "params." + param + ": this value cannot be built, nothing changed: " + r.error().message);
+        return fail(r.error().code,
+                    "params." + param +
+                        ": this value cannot be built, nothing changed: " + r.error().message);
     m_overrides.params[param] = *checked;
     return {};
 }
@@ -475,7 +520,8 @@ Result<void> Session::setPassOverride(const std::string& pass, bool enabled) {
     if (!desc) {
         std::vector<std::string> names;
         for (const auto& d : m_pipeline.graph.passes) names.push_back(d.name);
-        return fail(ErrorCode::NotFound, "passes." + pass + ": the pipeline has no pass '" + pass + "'" + suggestion(pass, names));
+        return fail(ErrorCode::NotFound, "passes." + pass + ": the pipeline has no pass '" + pass +
+                                             "'" + suggestion(pass, names));
     }
     // Applied now: a switch that leaves the graph unbuildable (a kept pass reads what only this
     // one writes) is refused with the compiler's reason, and nothing changes.
@@ -483,7 +529,8 @@ Result<void> Session::setPassOverride(const std::string& pass, bool enabled) {
         FrameChanges change;
         change.enabled[pass] = enabled;
         if (auto r = apply(change); !r)
-            return fail(ErrorCode::InvalidInput, "passes." + pass + ": cannot be switched " + (enabled ? "on" : "off") +
+            return fail(ErrorCode::InvalidInput, "passes." + pass + ": cannot be switched " +
+                                                     (enabled ? "on" : "off") +
                                                      ", nothing changed: " + r.error().message);
     }
     m_overrides.enabled[pass] = enabled;
@@ -493,7 +540,9 @@ Result<void> Session::setPassOverride(const std::string& pass, bool enabled) {
 void Session::carryOverrides(const FrameChanges& overrides) { m_overrides = overrides; }
 
 Result<void> Session::addCapture(const std::string& name) {
-    if (std::find(m_options.captures.begin(), m_options.captures.end(), name) != m_options.captures.end()) return {};
+    if (std::find(m_options.captures.begin(), m_options.captures.end(), name) !=
+        m_options.captures.end())
+        return {};
     m_options.captures.push_back(name);
     if (!m_host) return {};
     if (auto r = load(m_pipeline.file); !r) {

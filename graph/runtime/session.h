@@ -28,7 +28,7 @@ struct SessionOptions {
     std::string scene;
     // A scene made in memory (the library's Renderer::setScene): drawn instead of `scene`.
     std::shared_ptr<const Scene> sceneData;
-    std::string camera;  // a camera of the scene by name; "" = its first
+    std::string camera;                            // a camera of the scene by name; "" = its first
     std::map<std::string, std::string> sceneArgs;  // a Lua scene's `scene.args` (--scene-arg)
     // --environment: "" = the scene's own (a glTF scene with no light and no environment gets the
     // sky); "sky", "none", or an equirectangular .hdr/.exr file (graph/scene/environment.h).
@@ -38,7 +38,8 @@ struct SessionOptions {
     std::string view;
     std::vector<std::string> captures;  // resources to export for readback
     bool verbose = false;               // print what each rebuild reused
-    bool levelsOfDetail = true;         // the primitives' coarser levels where they stay within a pixel (GpuSceneOptions)
+    bool levelsOfDetail =
+        true;  // the primitives' coarser levels where they stay within a pixel (GpuSceneOptions)
     // The folder whose once/ holds the outputs of passes with cadence = "once", restored from there
     // and saved there (gpu::Executor::setOnceCache); "" (the default: tests, bench) records them.
     std::string onceCache;
@@ -108,7 +109,9 @@ public:
     // A channel capture read back and decoded, after a frame: see ChannelCapture.
     Result<Image> channelImage(const ChannelCapture& capture) const;
     // The image `render` shows: the view's when a view is set, else the pipeline's display.
-    std::string displayResource() const { return m_options.view.empty() ? m_pipeline.output : "debug_view"; }
+    std::string displayResource() const {
+        return m_options.view.empty() ? m_pipeline.output : "debug_view";
+    }
     // Scripts and shaders the running pipeline was built from (what `watch` polls).
     std::vector<std::string> files() const;
     bool loaded() const { return m_host != nullptr; }
@@ -120,8 +123,10 @@ private:
     Result<GraphDesc> buildableGraph(const PipelineDesc& p, bool keepMissingShaders);
     // The frame context of frame m_frame for `scene` and its draws per stencil class (ctx in rg.frame), and what the script's
     // rg.frame, the frame hook and the overrides change for it in `pipeline`.
-    FrameContext frameContext(const passes::GpuScene* scene, const std::map<std::string, uint32_t>& classes) const;
-    Result<FrameChanges> frameChanges(LuaHost& host, const FrameContext& ctx, const PipelineDesc& pipeline, const FrameChanges& overrides);
+    FrameContext frameContext(const passes::GpuScene* scene,
+                              const std::map<std::string, uint32_t>& classes) const;
+    Result<FrameChanges> frameChanges(LuaHost& host, const FrameContext& ctx,
+                                      const PipelineDesc& pipeline, const FrameChanges& overrides);
     Result<std::unique_ptr<passes::GpuScene>> loadScene(PipelineDesc& pipeline);
     // `changes` on top of the running pipeline: updated uniforms, or a rebuild of the passes they
     // touch. A build that fails leaves the pipeline and the executor's plan as they were.
@@ -132,7 +137,8 @@ private:
     SessionOptions m_options;
     std::unique_ptr<LuaHost> m_host;
     std::unique_ptr<passes::GpuScene> m_scene;
-    std::map<std::string, uint32_t> m_classes;  // m_scene's draws per stencil class of the pipeline's materials (ctx.scene.classes)
+    std::map<std::string, uint32_t>
+        m_classes;  // m_scene's draws per stencil class of the pipeline's materials (ctx.scene.classes)
     std::string m_sceneFile;
     double m_sceneLoadMs = 0;
     std::string m_sceneKey;  // the scene's files (contents) and arguments at the last load

@@ -40,7 +40,8 @@ Result<Image> Session::channelImage(const ChannelCapture& ch) const {
         if (!li) return std::unexpected(li.error());
         Decoder d{*li, {}, li->find(channel)};
         for (const auto& t : l.targets) {
-            auto it = std::find_if(ch.layout.targets.begin(), ch.layout.targets.end(), [&](auto& x) { return x.name == t.name; });
+            auto it = std::find_if(ch.layout.targets.begin(), ch.layout.targets.end(),
+                                   [&](auto& x) { return x.name == t.name; });
             if (it != ch.layout.targets.end()) {
                 d.targets.push_back(&targets[static_cast<size_t>(it - ch.layout.targets.begin())]);
                 continue;
@@ -63,16 +64,20 @@ Result<Image> Session::channelImage(const ChannelCapture& ch) const {
         byId.emplace(id, std::move(*d));
     }
     const int idIndex = main->info.find("materialId");
-    const ChannelDesc& desc = main->index >= 0 ? main->info.channelDesc(static_cast<size_t>(main->index))
-                                               : byId.begin()->second.info.channelDesc(static_cast<size_t>(byId.begin()->second.index));
+    const ChannelDesc& desc = main->index >= 0
+                                  ? main->info.channelDesc(static_cast<size_t>(main->index))
+                                  : byId.begin()->second.info.channelDesc(
+                                        static_cast<size_t>(byId.begin()->second.index));
     const bool integer = desc.encoding == Encoding::Uint;
     const uint32_t comps = valueComponents(desc);
     Image out(targets[0].width, targets[0].height, comps);
     auto decode = [&](const Decoder& d, uint32_t x, uint32_t y) {
         std::vector<TexelValue> texels(d.targets.size());
         for (size_t t = 0; t < d.targets.size(); ++t)
-            texels[t] = texelFromFloats(d.info.desc.targets[t].format, &d.targets[t]->pixels[(size_t(y) * out.width + x) * d.targets[t]->channels],
-                                        d.targets[t]->channels);
+            texels[t] = texelFromFloats(
+                d.info.desc.targets[t].format,
+                &d.targets[t]->pixels[(size_t(y) * out.width + x) * d.targets[t]->channels],
+                d.targets[t]->channels);
         return unpackTexel(d.info, texels);
     };
     const float nan = std::numeric_limits<float>::quiet_NaN();
@@ -84,19 +89,22 @@ Result<Image> Session::channelImage(const ChannelCapture& ch) const {
                 d = it == byId.end() ? nullptr : &it->second;
             }
             if (!d || d->index < 0) {
-                for (uint32_t c = 0; c < comps; ++c) out.at(x, y, c) = nan;  // its material has no such channel
+                for (uint32_t c = 0; c < comps; ++c)
+                    out.at(x, y, c) = nan;  // its material has no such channel
                 continue;
             }
             auto values = decode(*d, x, y);
             const ChannelValue& v = values[static_cast<size_t>(d->index)];
-            for (uint32_t c = 0; c < comps; ++c) out.at(x, y, c) = integer ? static_cast<float>(v.u[c]) : v.v[c];
+            for (uint32_t c = 0; c < comps; ++c)
+                out.at(x, y, c) = integer ? static_cast<float>(v.u[c]) : v.v[c];
         }
     return out;
 }
 
 // `--capture` names (and the library's keep, serve's image requests) checked against a pipeline:
 // a resource of its graph, or "gbuffer.<channel>" / "<layout>.<channel>", decoded per materialId.
-Result<std::vector<Session::ChannelCapture>> detail::channelCapturesOf(const PipelineDesc& pipeline, const std::vector<std::string>& captures) {
+Result<std::vector<Session::ChannelCapture>> detail::channelCapturesOf(
+    const PipelineDesc& pipeline, const std::vector<std::string>& captures) {
     using ChannelCapture = Session::ChannelCapture;
     std::vector<ChannelCapture> channels;
     for (const auto& c : captures) {
@@ -121,10 +129,13 @@ Result<std::vector<Session::ChannelCapture>> detail::channelCapturesOf(const Pip
             }
             // Per materialId: the material's own layout, and its channel for a standard name.
             for (const MaterialDesc& m : pipeline.materials) {
-                const LayoutDesc& l = *std::find_if(pipeline.layouts.begin(), pipeline.layouts.end(), [&](auto& x) { return x.name == m.layout; });
+                const LayoutDesc& l =
+                    *std::find_if(pipeline.layouts.begin(), pipeline.layouts.end(),
+                                  [&](auto& x) { return x.name == m.layout; });
                 if (prefix != "gbuffer" && prefix != l.name) continue;
                 const auto mapped = m.channels.find(channel);
-                const std::string name = prefix == "gbuffer" && mapped != m.channels.end() ? mapped->second : channel;
+                const std::string name =
+                    prefix == "gbuffer" && mapped != m.channels.end() ? mapped->second : channel;
                 if (!has(l, name)) continue;
                 if (!found) {
                     channels.push_back({c, l, name, {}});
@@ -136,23 +147,30 @@ Result<std::vector<Session::ChannelCapture>> detail::channelCapturesOf(const Pip
                     for (const auto& t : ld.targets)
                         for (const auto& cd : t.channels)
                             if (cd.name == ch) {
-                                return std::make_pair(valueComponents(cd), cd.encoding == Encoding::Uint);
+                                return std::make_pair(valueComponents(cd),
+                                                      cd.encoding == Encoding::Uint);
                             }
                     return std::make_pair(0u, false);
                 };
-                const auto& first = channels.back().byId.empty() ? std::make_pair(channels.back().layout, channels.back().channel)
-                                                                 : channels.back().byId.begin()->second;
-                if (shape(l, name) == shape(first.first, first.second)) channels.back().byId.emplace(m.id, std::make_pair(l, name));
+                const auto& first =
+                    channels.back().byId.empty()
+                        ? std::make_pair(channels.back().layout, channels.back().channel)
+                        : channels.back().byId.begin()->second;
+                if (shape(l, name) == shape(first.first, first.second))
+                    channels.back().byId.emplace(m.id, std::make_pair(l, name));
             }
             if (found && !channels.back().byId.empty()) {
                 // The layout that tells the id: the first material's (every one keeps materialId alike).
                 const MaterialDesc& first = pipeline.materials.front();
-                channels.back().layout = *std::find_if(pipeline.layouts.begin(), pipeline.layouts.end(), [&](auto& x) { return x.name == first.layout; });
+                channels.back().layout =
+                    *std::find_if(pipeline.layouts.begin(), pipeline.layouts.end(),
+                                  [&](auto& x) { return x.name == first.layout; });
             }
         }
         if (!found)
-            return fail(ErrorCode::NotFound, "capture '" + c + "': the pipeline has no resource named '" + c +
-                                                 "' (nor a G-buffer channel: use gbuffer.<channel>)");
+            return fail(ErrorCode::NotFound,
+                        "capture '" + c + "': the pipeline has no resource named '" + c +
+                            "' (nor a G-buffer channel: use gbuffer.<channel>)");
     }
     return channels;
 }

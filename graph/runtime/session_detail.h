@@ -11,16 +11,19 @@ namespace rg::detail {
 
 // Appends the debug view's passes (debug_views.cpp); an unknown view or one the pipeline cannot
 // show is an error naming the option.
-Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string& view, const Scene* scene);
+Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string& view,
+                          const Scene* scene);
 
 // A value for parameter `name` of `pipeline`, checked against its type and range: what --set,
 // the golden tests' params and `rgraph serve`'s controls all go through.
-Result<Value> checkedParam(const PipelineDesc& pipeline, const std::string& name, const Value& value);
+Result<Value> checkedParam(const PipelineDesc& pipeline, const std::string& name,
+                           const Value& value);
 
 bool hasScenePass(const PipelineDesc& p);
 
 // `--capture` names (and the library's keep, serve's image requests) checked against a pipeline:
 // a resource of its graph, or "gbuffer.<channel>" / "<layout>.<channel>", decoded per materialId.
-Result<std::vector<Session::ChannelCapture>> channelCapturesOf(const PipelineDesc& pipeline, const std::vector<std::string>& captures);
+Result<std::vector<Session::ChannelCapture>> channelCapturesOf(
+    const PipelineDesc& pipeline, const std::vector<std::string>& captures);
 
 }  // namespace rg::detail

@@ -29,22 +29,26 @@ namespace detail {
 
 // A value for parameter `name` of `pipeline`, checked against its type and range: what --set,
 // the golden tests' params and `rgraph serve`'s controls all go through.
-Result<Value> checkedParam(const PipelineDesc& pipeline, const std::string& name, const Value& value) {
+Result<Value> checkedParam(const PipelineDesc& pipeline, const std::string& name,
+                           const Value& value) {
     const ParamDesc* p = pipeline.findParam(name);
     if (!p) {
         std::vector<std::string> names;
         for (const auto& d : pipeline.params) names.push_back(d.name);
-        return fail(ErrorCode::NotFound, "params." + name + ": the pipeline has no parameter '" + name + "'" + suggestion(name, names));
+        return fail(ErrorCode::NotFound, "params." + name + ": the pipeline has no parameter '" +
+                                             name + "'" + suggestion(name, names));
     }
     auto checked = checkParamValue(*p, value);
-    if (!checked) return fail(ErrorCode::InvalidInput, "params." + name + ": " + checked.error().message);
+    if (!checked)
+        return fail(ErrorCode::InvalidInput, "params." + name + ": " + checked.error().message);
     return *checked;
 }
 
 std::string defaultScene() { return projectRoot() + "/scripts/scenes/default.lua"; }
 
 bool hasScenePass(const PipelineDesc& p) {
-    return std::any_of(p.graph.passes.begin(), p.graph.passes.end(), [](const PassDesc& d) { return d.kind == "scene"; });
+    return std::any_of(p.graph.passes.begin(), p.graph.passes.end(),
+                       [](const PassDesc& d) { return d.kind == "scene"; });
 }
 
 Result<Scene> readScene(const std::string& file, const std::map<std::string, std::string>& args) {
@@ -63,16 +67,19 @@ Result<Scene> readScene(const std::string& file, const std::map<std::string, std
             Camera c;
             c.name = "default";
             const glm::vec3 centre = 0.5f * (scene->boundsMin + scene->boundsMax);
-            const float radius = std::max(0.5f * glm::length(scene->boundsMax - scene->boundsMin), 0.01f);
+            const float radius =
+                std::max(0.5f * glm::length(scene->boundsMax - scene->boundsMin), 0.01f);
             c.target = centre;
-            c.position = centre + glm::normalize(glm::vec3(0.0f, 0.35f, 1.0f)) * radius / std::sin(c.verticalFov * 0.5f);
+            c.position = centre + glm::normalize(glm::vec3(0.0f, 0.35f, 1.0f)) * radius /
+                                      std::sin(c.verticalFov * 0.5f);
             c.nearPlane = radius * 0.01f;
             c.farPlane = radius * 100.0f;
             scene->cameras.push_back(c);
         }
         return scene;
     }
-    return fail(ErrorCode::InvalidInput, "--scene '" + file + "': expected a .lua scene script, a .gltf or a .glb file");
+    return fail(ErrorCode::InvalidInput,
+                "--scene '" + file + "': expected a .lua scene script, a .gltf or a .glb file");
 }
 
 }  // namespace detail
@@ -81,35 +88,48 @@ Result<Scene> readScene(const std::string& file, const std::map<std::string, std
 // takes the camera's exposure settings into the camera parameters.
 Result<std::unique_ptr<passes::GpuScene>> Session::loadScene(PipelineDesc& pipeline) {
     // A scene built in code (the library's setScene) or read from its file.
-    const std::string file = m_options.sceneData ? std::string("the host's scene") : m_options.scene.empty() ? defaultScene() : m_options.scene;
-    auto scene = m_options.sceneData ? Result<Scene>(*m_options.sceneData) : readScene(file, m_options.sceneArgs);
+    const std::string file = m_options.sceneData       ? std::string("the host's scene")
+                             : m_options.scene.empty() ? defaultScene()
+                                                       : m_options.scene;
+    auto scene = m_options.sceneData ? Result<Scene>(*m_options.sceneData)
+                                     : readScene(file, m_options.sceneArgs);
     if (!scene) return std::unexpected(scene.error());
-    const std::string ext = m_options.sceneData ? std::string() : fs::path(file).extension().string();
-    if (auto r = chooseEnvironment(*scene, m_options.environment, /*litByDefault=*/ext == ".gltf" || ext == ".glb"); !r)
+    const std::string ext =
+        m_options.sceneData ? std::string() : fs::path(file).extension().string();
+    if (auto r = chooseEnvironment(*scene, m_options.environment,
+                                   /*litByDefault=*/ext == ".gltf" || ext == ".glb");
+        !r)
         return std::unexpected(r.error());
     for (Material& m : scene->materials) {
-        auto pm = std::find_if(pipeline.materials.begin(), pipeline.materials.end(), [&](auto& x) { return x.name == m.model; });
+        auto pm = std::find_if(pipeline.materials.begin(), pipeline.materials.end(),
+                               [&](auto& x) { return x.name == m.model; });
         if (pm == pipeline.materials.end()) {
             std::string names;
-            for (const auto& x : pipeline.materials) names += (names.empty() ? "'" : ", '") + x.name + "'";
-            return fail(ErrorCode::InvalidInput, file + ": material '" + m.name + "' uses model '" + m.model +
-                                                     "', which the pipeline does not declare (materials: " + names + ")");
+            for (const auto& x : pipeline.materials)
+                names += (names.empty() ? "'" : ", '") + x.name + "'";
+            return fail(ErrorCode::InvalidInput,
+                        file + ": material '" + m.name + "' uses model '" + m.model +
+                            "', which the pipeline does not declare (materials: " + names + ")");
         }
         // Game-team parameters by name, in the order the shaders read them (the pipeline
         // material's), each checked: a key the model does not have, or a value of another type,
         // is an error naming where the scene declared it.
-        const std::string where = (m.origin.empty() ? file + ": material '" + m.name + "'" : m.origin) + ".params.";
+        const std::string where =
+            (m.origin.empty() ? file + ": material '" + m.name + "'" : m.origin) + ".params.";
         std::vector<std::string> known;
         for (const auto& [key, def] : pm->params.asTable()) known.push_back(key);
         for (const auto& [key, value] : m.extra.asTable()) {
             const Value& def = pm->params[key];
             if (def.isNil())
-                return fail(ErrorCode::InvalidInput, where + key + ": model '" + m.model + "' has no parameter '" + key + "'" +
-                                                         suggestion(key, known) +
-                                                         (known.empty() ? " (it takes none)" : "; its parameters: " + joinQuoted(known)));
+                return fail(ErrorCode::InvalidInput,
+                            where + key + ": model '" + m.model + "' has no parameter '" + key +
+                                "'" + suggestion(key, known) +
+                                (known.empty() ? " (it takes none)"
+                                               : "; its parameters: " + joinQuoted(known)));
             if (def.isNumber() && !value.isNumber())
-                return fail(ErrorCode::InvalidInput, where + key + ": expected a number (as model '" + m.model + "' declares it), got " +
-                                                         value.typeName());
+                return fail(ErrorCode::InvalidInput,
+                            where + key + ": expected a number (as model '" + m.model +
+                                "' declares it), got " + value.typeName());
         }
         Value::Table custom;
         for (const auto& [key, def] : pm->params.asTable())
@@ -121,7 +141,8 @@ Result<std::unique_ptr<passes::GpuScene>> Session::loadScene(PipelineDesc& pipel
     if (scene->lightmap) {
         const ParamDesc* use = pipeline.findParam("lightmap");
         Value on = use ? use->value : Value(true);
-        if (auto set = m_options.params.find("lightmap"); use && set != m_options.params.end()) {  // --set lightmap=...
+        if (auto set = m_options.params.find("lightmap");
+            use && set != m_options.params.end()) {  // --set lightmap=...
             auto checked = checkedParam(pipeline, "lightmap", set->second);
             if (!checked) return std::unexpected(checked.error());
             on = *checked;
@@ -131,7 +152,8 @@ Result<std::unique_ptr<passes::GpuScene>> Session::loadScene(PipelineDesc& pipel
             po.cacheDir = cacheDir() + "/lightmaps";
             po.bake = m_options.bakeLightmap;
             if (auto r = bake::prepareLightmap(*scene, po); !r)
-                return fail(r.error().code, scene->lightmap->origin + ": scene.lightmap." + scene->lightmap->name + ": " + r.error().message);
+                return fail(r.error().code, scene->lightmap->origin + ": scene.lightmap." +
+                                                scene->lightmap->name + ": " + r.error().message);
         }
     }
     passes::GpuSceneOptions sceneOptions;
@@ -139,7 +161,8 @@ Result<std::unique_ptr<passes::GpuScene>> Session::loadScene(PipelineDesc& pipel
     auto gpuScene = passes::GpuScene::create(m_runtime.gpu(), std::move(*scene), sceneOptions);
     if (!gpuScene) return std::unexpected(gpuScene.error());
     if (!m_options.camera.empty())
-        if (auto r = (*gpuScene)->selectCamera(m_options.camera); !r) return std::unexpected(r.error());
+        if (auto r = (*gpuScene)->selectCamera(m_options.camera); !r)
+            return std::unexpected(r.error());
     const Camera& cam = (*gpuScene)->camera();
     auto set = [&](const char* name, double v) {
         if (ParamDesc* p = pipeline.findParam(name))
@@ -149,7 +172,8 @@ Result<std::unique_ptr<passes::GpuScene>> Session::loadScene(PipelineDesc& pipel
     set("shutter", cam.shutter);
     set("iso", cam.iso);
     set("ec", cam.exposureCompensation);
-    set("initial_ev100", std::log2(cam.aperture * cam.aperture / cam.shutter * 100.0 / cam.iso) - cam.exposureCompensation);
+    set("initial_ev100", std::log2(cam.aperture * cam.aperture / cam.shutter * 100.0 / cam.iso) -
+                             cam.exposureCompensation);
     m_sceneFile = file;
     return std::move(*gpuScene);
 }

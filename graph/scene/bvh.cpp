@@ -15,7 +15,9 @@ struct Builder {
     std::vector<glm::vec4> nodes;
     uint32_t depth = 0;
 
-    glm::vec3 centroid(uint32_t t) const { return (corners[3 * t] + corners[3 * t + 1] + corners[3 * t + 2]) / 3.0f; }
+    glm::vec3 centroid(uint32_t t) const {
+        return (corners[3 * t] + corners[3 * t + 1] + corners[3 * t + 2]) / 3.0f;
+    }
 
     void build(uint32_t first, uint32_t count, uint32_t level) {
         depth = std::max(depth, level);
@@ -39,12 +41,16 @@ struct Builder {
             nodes[self + 1].w = std::bit_cast<float>(count);
             return;
         }
-        const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0 : extent.y >= extent.z ? 1 : 2;
+        const int axis = extent.x >= extent.y && extent.x >= extent.z ? 0
+                         : extent.y >= extent.z                       ? 1
+                                                                      : 2;
         const uint32_t half = count / 2;
-        std::nth_element(order.begin() + first, order.begin() + first + half, order.begin() + first + count,
-                         [&](uint32_t a, uint32_t b) { return centroid(a)[axis] < centroid(b)[axis]; });
+        std::nth_element(
+            order.begin() + first, order.begin() + first + half, order.begin() + first + count,
+            [&](uint32_t a, uint32_t b) { return centroid(a)[axis] < centroid(b)[axis]; });
         build(first, half, level + 1);
-        nodes[self].w = std::bit_cast<float>(static_cast<uint32_t>(nodes.size() / 2));  // the second child
+        nodes[self].w =
+            std::bit_cast<float>(static_cast<uint32_t>(nodes.size() / 2));  // the second child
         nodes[self + 1].w = std::bit_cast<float>(0u);
         build(first + half, count - half, level + 1);
     }
@@ -93,9 +99,11 @@ float traceBvh(const FlatBvh& bvh, glm::vec3 o, glm::vec3 d, float tMax) {
         const glm::vec4 a = bvh.data[2 * node], b = bvh.data[2 * node + 1];
         const glm::vec3 t0 = (glm::vec3(a) - o) * inv, t1 = (glm::vec3(b) - o) * inv;
         const glm::vec3 tn = glm::min(t0, t1), tf = glm::max(t0, t1);
-        const float enter = std::max({tn.x, tn.y, tn.z, 0.0f}), exit = std::min({tf.x, tf.y, tf.z, best});
+        const float enter = std::max({tn.x, tn.y, tn.z, 0.0f}),
+                    exit = std::min({tf.x, tf.y, tf.z, best});
         if (enter <= exit) {
-            const uint32_t count = std::bit_cast<uint32_t>(b.w), first = std::bit_cast<uint32_t>(a.w);
+            const uint32_t count = std::bit_cast<uint32_t>(b.w),
+                           first = std::bit_cast<uint32_t>(a.w);
             if (count == 0) {
                 stack.push_back(first);
                 node = node + 1;
@@ -103,7 +111,9 @@ float traceBvh(const FlatBvh& bvh, glm::vec3 o, glm::vec3 d, float tMax) {
             }
             for (uint32_t t = first; t < first + count; ++t) {
                 const size_t base = 2 * size_t(bvh.nodeCount) + 3 * size_t(t);
-                const float h = rayTriangle(o, d, glm::vec3(bvh.data[base]), glm::vec3(bvh.data[base + 1]), glm::vec3(bvh.data[base + 2]));
+                const float h =
+                    rayTriangle(o, d, glm::vec3(bvh.data[base]), glm::vec3(bvh.data[base + 1]),
+                                glm::vec3(bvh.data[base + 2]));
                 if (h > 0.0f && h < best) best = h;
             }
         }

@@ -16,7 +16,7 @@ namespace rg {
 struct FlatBvh {
     std::vector<glm::vec4> data;  // nodes, then triangles
     uint32_t nodeCount = 0, triangleCount = 0;
-    uint32_t depth = 0;           // the deepest leaf (a shader's traversal stack must hold it)
+    uint32_t depth = 0;  // the deepest leaf (a shader's traversal stack must hold it)
 };
 
 // `corners`: three per triangle.

@@ -37,9 +37,9 @@ inline constexpr float kClearSkySunLux = 120000.0f;
 
 struct SkyParams {
     glm::vec3 toSun{0.0f, 0.70710678f, 0.70710678f};  // unit, towards the sun
-    float turbidity = 2.5f;                            // Preetham's T, 2 (very clear) .. 10 (hazy)
-    float sunLux = kClearSkySunLux;                    // the scene's sun, lux perpendicular to its rays
-    float groundAlbedo = 0.2f;                         // the ground under the horizon (Lambertian)
+    float turbidity = 2.5f;                           // Preetham's T, 2 (very clear) .. 10 (hazy)
+    float sunLux = kClearSkySunLux;  // the scene's sun, lux perpendicular to its rays
+    float groundAlbedo = 0.2f;       // the ground under the horizon (Lambertian)
 };
 
 // Preetham, Shirley & Smits, "A Practical Analytic Model for Daylight" (1999): Perez's luminance
@@ -69,7 +69,9 @@ struct EnvironmentCdf {
     uint32_t width = 0, height = 0;
     std::vector<float> data;
     size_t conditional(uint32_t row) const { return height + 1 + size_t(row) * (width + 1); }
-    size_t cell(uint32_t column, uint32_t row) const { return height + 1 + size_t(height) * (width + 1) + size_t(row) * width + column; }
+    size_t cell(uint32_t column, uint32_t row) const {
+        return height + 1 + size_t(height) * (width + 1) + size_t(row) * width + column;
+    }
     // The solid-angle density of a direction in cell (column, row) at polar angle θ (sin θ given).
     float cellDensity(uint32_t column, uint32_t row, float sinTheta) const;
     // A direction from two uniform numbers in [0, 1), and its solid-angle density.

@@ -9,13 +9,20 @@ namespace rg {
 
 const char* lightTypeName(LightType t) {
     switch (t) {
-    case LightType::Point: return "point";
-    case LightType::Spot: return "spot";
-    case LightType::Directional: return "sun";
-    case LightType::Sphere: return "sphere";
-    case LightType::Disk: return "disk";
-    case LightType::Rect: return "rect";
-    case LightType::Tube: return "tube";
+        case LightType::Point:
+            return "point";
+        case LightType::Spot:
+            return "spot";
+        case LightType::Directional:
+            return "sun";
+        case LightType::Sphere:
+            return "sphere";
+        case LightType::Disk:
+            return "disk";
+        case LightType::Rect:
+            return "rect";
+        case LightType::Tube:
+            return "tube";
     }
     return "?";
 }
@@ -79,8 +86,9 @@ void generateFlatNormals(Primitive& p) {
     for (size_t t = 0; t + 2 < p.indices.size(); t += 3) {
         Vertex tri[3];
         for (int k = 0; k < 3; ++k) tri[k] = p.vertices.at(p.indices[t + size_t(k)]);
-        const glm::vec3 fn = safeNormalize(glm::cross(tri[1].position - tri[0].position, tri[2].position - tri[0].position),
-                                           glm::vec3(0, 0, 1));
+        const glm::vec3 fn = safeNormalize(
+            glm::cross(tri[1].position - tri[0].position, tri[2].position - tri[0].position),
+            glm::vec3(0, 0, 1));
         for (auto& v : tri) {
             v.normal = fn;
             out.push_back(v);
@@ -109,13 +117,15 @@ Primitive makeSphere(float radius, uint32_t segments, uint32_t material) {
             Vertex vert;
             // Going around with growing u turns clockwise seen from +Y (phi -> -phi), so that u
             // grows to the right for a viewer outside the sphere (image not mirrored).
-            const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta), -std::sin(theta) * std::sin(phi));
+            const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta),
+                              -std::sin(theta) * std::sin(phi));
             vert.normal = n;
             vert.position = n * radius;
             vert.uv0 = vert.uv1 = glm::vec2(u, v);
             // dP/du ~ (-sin phi, 0, -cos phi); the bitangent (-dP/dv) points towards +Y.
             const glm::vec3 t(-std::sin(phi), 0.0f, -std::cos(phi));
-            const glm::vec3 b(-std::cos(theta) * std::cos(phi), std::sin(theta), std::cos(theta) * std::sin(phi));
+            const glm::vec3 b(-std::cos(theta) * std::cos(phi), std::sin(theta),
+                              std::cos(theta) * std::sin(phi));
             const float w = glm::dot(glm::cross(n, t), b) < 0.0f ? -1.0f : 1.0f;
             vert.tangent = glm::vec4(t, w);
             p.vertices.push_back(vert);
@@ -131,7 +141,8 @@ Primitive makeSphere(float radius, uint32_t segments, uint32_t material) {
         const uint32_t ringsAt = rings / stride, segmentsAt = segments / stride;
         for (uint32_t r = 0; r < ringsAt; ++r)
             for (uint32_t s = 0; s < segmentsAt; ++s) {
-                const uint32_t a = r * stride * row + s * stride, b = a + stride, c = a + stride * row, d = c + stride;
+                const uint32_t a = r * stride * row + s * stride, b = a + stride,
+                               c = a + stride * row, d = c + stride;
                 // a-b on the upper ring, c-d below; u grows to the right seen from outside.
                 if (r != 0) out.insert(out.end(), {a, c, b});
                 if (r != ringsAt - 1) out.insert(out.end(), {b, c, d});
@@ -147,7 +158,9 @@ Primitive makeSphere(float radius, uint32_t segments, uint32_t material) {
     // segments (Δ = 15°) bounds what the distance cannot: the shading normal interpolated across a
     // triangle, which at 8 segments (45°) turned a mirror-like sphere's point-light highlight into
     // a broad grey one however small the sphere was on screen.
-    for (uint32_t stride = 2; stride <= 8 && segments % stride == 0 && rings % stride == 0 && segments / stride >= 24; stride *= 2) {
+    for (uint32_t stride = 2;
+         stride <= 8 && segments % stride == 0 && rings % stride == 0 && segments / stride >= 24;
+         stride *= 2) {
         const float delta = 2.0f * pi / float(segments / stride);
         p.lods.push_back({triangles(stride), radius * (1.0f - std::cos(delta / std::sqrt(2.0f)))});
     }
@@ -179,14 +192,16 @@ Primitive makeBox(glm::vec3 size, uint32_t material) {
     p.material = material;
     const glm::vec3 h = size * 0.5f;
     // Each face: its normal and the direction u grows in (seen from outside, v grows downwards).
-    const glm::vec3 faces[6][2] = {{{1, 0, 0}, {0, 0, -1}}, {{-1, 0, 0}, {0, 0, 1}}, {{0, 1, 0}, {1, 0, 0}},
-                                   {{0, -1, 0}, {1, 0, 0}}, {{0, 0, 1}, {1, 0, 0}},  {{0, 0, -1}, {-1, 0, 0}}};
+    const glm::vec3 faces[6][2] = {{{1, 0, 0}, {0, 0, -1}}, {{-1, 0, 0}, {0, 0, 1}},
+                                   {{0, 1, 0}, {1, 0, 0}},  {{0, -1, 0}, {1, 0, 0}},
+                                   {{0, 0, 1}, {1, 0, 0}},  {{0, 0, -1}, {-1, 0, 0}}};
     // Lightmap uvs: the six faces in a 3 × 2 grid of cells, each face inset by kBoxChartInset of its
     // cell so that neighbouring charts keep a gutter (packLightmap gives a box at least
     // kMinBoxLightmapTexels per side: ≥ 2 texels between faces).
     int face = 0;
     for (const auto& f : faces) {
-        const glm::vec2 cell(float(face % 3) / 3.0f, float(face / 3) / 2.0f), cellSize(1.0f / 3.0f, 0.5f);
+        const glm::vec2 cell(float(face % 3) / 3.0f, float(face / 3) / 2.0f),
+            cellSize(1.0f / 3.0f, 0.5f);
         ++face;
         const glm::vec3 n = f[0], right = f[1], up = glm::cross(n, right);
         const uint32_t base = static_cast<uint32_t>(p.vertices.size());

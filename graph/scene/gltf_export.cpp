@@ -45,7 +45,8 @@ tinygltf::Value jsonOf(const Value& v) {
 }
 
 tinygltf::Value jsonOf(glm::vec3 v) {
-    return tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(double(v.x)), tinygltf::Value(double(v.y)), tinygltf::Value(double(v.z))});
+    return tinygltf::Value(tinygltf::Value::Array{
+        tinygltf::Value(double(v.x)), tinygltf::Value(double(v.y)), tinygltf::Value(double(v.z))});
 }
 
 std::vector<double> matrixOf(const glm::mat4& m) {
@@ -59,7 +60,8 @@ std::vector<double> matrixOf(const glm::mat4& m) {
 glm::mat4 orientation(glm::vec3 position, glm::vec3 dir, glm::vec3 up) {
     const glm::vec3 z = -glm::normalize(dir);
     glm::vec3 x = glm::cross(up, z);
-    if (glm::length(x) < 1e-6f) x = glm::cross(std::fabs(z.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0), z);
+    if (glm::length(x) < 1e-6f)
+        x = glm::cross(std::fabs(z.y) < 0.9f ? glm::vec3(0, 1, 0) : glm::vec3(1, 0, 0), z);
     x = glm::normalize(x);
     const glm::vec3 y = glm::cross(z, x);
     glm::mat4 m(1.0f);
@@ -74,10 +76,11 @@ struct Writer {
     const Scene& scene;
     std::vector<std::string>* warnings;
     tinygltf::Model model;
-    std::vector<int> images;                // Scene image -> glTF image (-1: not written)
+    std::vector<int> images;                      // Scene image -> glTF image (-1: not written)
     std::map<std::pair<int, int>, int> textures;  // (glTF image, glTF sampler) -> glTF texture
     bool usesTransform = false, usesStrength = false;
-    std::filesystem::path outDir;  // the .glb's folder: files the scene names are written relative to it
+    std::filesystem::path
+        outDir;  // the .glb's folder: files the scene names are written relative to it
 
     // A file the scene names (an IES profile, an environment image) as the .glb will name it:
     // relative to the .glb's folder (the loader resolves it from there), so no machine path is kept.
@@ -111,7 +114,8 @@ struct Writer {
     template <int N>
     int addFloats(const std::vector<float>& data, int type, bool bounds) {
         tinygltf::Accessor a;
-        a.bufferView = addView(data.data(), data.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
+        a.bufferView =
+            addView(data.data(), data.size() * sizeof(float), TINYGLTF_TARGET_ARRAY_BUFFER);
         a.componentType = TINYGLTF_COMPONENT_TYPE_FLOAT;
         a.type = type;
         a.count = data.size() / N;
@@ -120,8 +124,10 @@ struct Writer {
             a.maxValues.assign(N, -1e300);
             for (size_t i = 0; i < a.count; ++i)
                 for (int c = 0; c < N; ++c) {
-                    a.minValues[size_t(c)] = std::min(a.minValues[size_t(c)], double(data[i * N + size_t(c)]));
-                    a.maxValues[size_t(c)] = std::max(a.maxValues[size_t(c)], double(data[i * N + size_t(c)]));
+                    a.minValues[size_t(c)] =
+                        std::min(a.minValues[size_t(c)], double(data[i * N + size_t(c)]));
+                    a.maxValues[size_t(c)] =
+                        std::max(a.maxValues[size_t(c)], double(data[i * N + size_t(c)]));
                 }
         }
         model.accessors.push_back(a);
@@ -131,10 +137,14 @@ struct Writer {
     void samplers() {
         for (const auto& s : scene.samplers) {
             tinygltf::Sampler g;
-            g.magFilter = s.magFilter == Filter::Nearest ? TINYGLTF_TEXTURE_FILTER_NEAREST : TINYGLTF_TEXTURE_FILTER_LINEAR;
-            const bool nearest = s.minFilter == Filter::Nearest, mipNearest = s.mipmapMode == MipmapMode::Nearest;
-            g.minFilter = nearest ? (mipNearest ? TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST : TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR)
-                                  : (mipNearest ? TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST : TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR);
+            g.magFilter = s.magFilter == Filter::Nearest ? TINYGLTF_TEXTURE_FILTER_NEAREST
+                                                         : TINYGLTF_TEXTURE_FILTER_LINEAR;
+            const bool nearest = s.minFilter == Filter::Nearest,
+                       mipNearest = s.mipmapMode == MipmapMode::Nearest;
+            g.minFilter = nearest ? (mipNearest ? TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST
+                                                : TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR)
+                                  : (mipNearest ? TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST
+                                                : TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR);
             auto wrap = [](Wrap w) {
                 return w == Wrap::ClampToEdge      ? TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE
                        : w == Wrap::MirroredRepeat ? TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT
@@ -150,12 +160,14 @@ struct Writer {
         for (size_t i = 0; i < scene.images.size(); ++i) {
             const SceneImage& img = scene.images[i];
             if (img.pixels.width == 0 || img.pixels.height == 0) {
-                warn("image '" + img.name + "' has no pixels (not loaded); textures using it are not exported");
+                warn("image '" + img.name +
+                     "' has no pixels (not loaded); textures using it are not exported");
                 images.push_back(-1);
                 continue;
             }
             auto png = encodePng(img.pixels);
-            if (!png) return fail(png.error().code, "image '" + img.name + "': " + png.error().message);
+            if (!png)
+                return fail(png.error().code, "image '" + img.name + "': " + png.error().message);
             tinygltf::Image g;
             g.name = img.name;
             g.mimeType = "image/png";
@@ -168,8 +180,10 @@ struct Writer {
 
     // -1 when the reference is empty or its image was not written.
     int textureOf(const TextureRef& ref) {
-        if (ref.image < 0 || size_t(ref.image) >= images.size() || images[size_t(ref.image)] < 0) return -1;
-        const int sampler = ref.sampler >= 0 && size_t(ref.sampler) < scene.samplers.size() ? ref.sampler : -1;
+        if (ref.image < 0 || size_t(ref.image) >= images.size() || images[size_t(ref.image)] < 0)
+            return -1;
+        const int sampler =
+            ref.sampler >= 0 && size_t(ref.sampler) < scene.samplers.size() ? ref.sampler : -1;
         auto key = std::make_pair(images[size_t(ref.image)], sampler);
         if (auto it = textures.find(key); it != textures.end()) return it->second;
         tinygltf::Texture t;
@@ -189,9 +203,12 @@ struct Writer {
         const float sx = glm::length(c0), sy = glm::length(c1);
         const float rotation = std::atan2(-c0.y, c0.x);
         tinygltf::Value::Object t;
-        t["offset"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(double(ref.transform[2].x)), tinygltf::Value(double(ref.transform[2].y))});
+        t["offset"] =
+            tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(double(ref.transform[2].x)),
+                                                   tinygltf::Value(double(ref.transform[2].y))});
         t["rotation"] = tinygltf::Value(double(rotation));
-        t["scale"] = tinygltf::Value(tinygltf::Value::Array{tinygltf::Value(double(sx)), tinygltf::Value(double(sy))});
+        t["scale"] = tinygltf::Value(
+            tinygltf::Value::Array{tinygltf::Value(double(sx)), tinygltf::Value(double(sy))});
         info.extensions["KHR_texture_transform"] = tinygltf::Value(std::move(t));
         usesTransform = true;
     }
@@ -208,19 +225,25 @@ struct Writer {
             const float peak = std::max({m.emissive.r, m.emissive.g, m.emissive.b});
             if (peak > 1.0f) {
                 g.emissiveFactor = {m.emissive.r / peak, m.emissive.g / peak, m.emissive.b / peak};
-                g.extensions["KHR_materials_emissive_strength"] =
-                    tinygltf::Value(tinygltf::Value::Object{{"emissiveStrength", tinygltf::Value(double(peak))}});
+                g.extensions["KHR_materials_emissive_strength"] = tinygltf::Value(
+                    tinygltf::Value::Object{{"emissiveStrength", tinygltf::Value(double(peak))}});
                 usesStrength = true;
             } else
                 g.emissiveFactor = {m.emissive.r, m.emissive.g, m.emissive.b};
-            if (int t = textureOf(m.baseColorTex); t >= 0) fillInfo(pbr.baseColorTexture, m.baseColorTex, t);
-            if (int t = textureOf(m.metallicRoughnessTex); t >= 0) fillInfo(pbr.metallicRoughnessTexture, m.metallicRoughnessTex, t);
+            if (int t = textureOf(m.baseColorTex); t >= 0)
+                fillInfo(pbr.baseColorTexture, m.baseColorTex, t);
+            if (int t = textureOf(m.metallicRoughnessTex); t >= 0)
+                fillInfo(pbr.metallicRoughnessTexture, m.metallicRoughnessTex, t);
             if (int t = textureOf(m.normalTex); t >= 0) fillInfo(g.normalTexture, m.normalTex, t);
-            if (int t = textureOf(m.occlusionTex); t >= 0) fillInfo(g.occlusionTexture, m.occlusionTex, t);
-            if (int t = textureOf(m.emissiveTex); t >= 0) fillInfo(g.emissiveTexture, m.emissiveTex, t);
+            if (int t = textureOf(m.occlusionTex); t >= 0)
+                fillInfo(g.occlusionTexture, m.occlusionTex, t);
+            if (int t = textureOf(m.emissiveTex); t >= 0)
+                fillInfo(g.emissiveTexture, m.emissiveTex, t);
             g.normalTexture.scale = m.normalScale;
             g.occlusionTexture.strength = m.occlusionStrength;
-            g.alphaMode = m.alphaMode == AlphaMode::Mask ? "MASK" : m.alphaMode == AlphaMode::Blend ? "BLEND" : "OPAQUE";
+            g.alphaMode = m.alphaMode == AlphaMode::Mask    ? "MASK"
+                          : m.alphaMode == AlphaMode::Blend ? "BLEND"
+                                                            : "OPAQUE";
             g.alphaCutoff = m.alphaCutoff;
             g.doubleSided = m.doubleSided;
             tinygltf::Value::Object x;
@@ -230,7 +253,8 @@ struct Writer {
             x["diffuse_color"] = jsonOf(m.diffuseColor);
             x["f0"] = jsonOf(m.f0);
             if (!m.extra.isNil()) x["params"] = jsonOf(m.extra);
-            g.extras = tinygltf::Value(tinygltf::Value::Object{{"rgraph", tinygltf::Value(std::move(x))}});
+            g.extras =
+                tinygltf::Value(tinygltf::Value::Object{{"rgraph", tinygltf::Value(std::move(x))}});
             model.materials.push_back(g);
         }
     }
@@ -257,9 +281,11 @@ struct Writer {
                 gp.attributes["NORMAL"] = addFloats<3>(nrm, TINYGLTF_TYPE_VEC3, false);
                 gp.attributes["TANGENT"] = addFloats<4>(tan, TINYGLTF_TYPE_VEC4, false);
                 gp.attributes["TEXCOORD_0"] = addFloats<2>(uv0, TINYGLTF_TYPE_VEC2, false);
-                if (hasUv1) gp.attributes["TEXCOORD_1"] = addFloats<2>(uv1, TINYGLTF_TYPE_VEC2, false);
+                if (hasUv1)
+                    gp.attributes["TEXCOORD_1"] = addFloats<2>(uv1, TINYGLTF_TYPE_VEC2, false);
                 tinygltf::Accessor ia;
-                ia.bufferView = addView(p.indices.data(), p.indices.size() * sizeof(uint32_t), TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+                ia.bufferView = addView(p.indices.data(), p.indices.size() * sizeof(uint32_t),
+                                        TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
                 ia.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
                 ia.type = TINYGLTF_TYPE_SCALAR;
                 ia.count = p.indices.size();
@@ -304,7 +330,8 @@ struct Writer {
             x["sensor_height"] = tinygltf::Value(double(c.sensorHeight));
             x["target"] = jsonOf(c.target);
             x["up"] = jsonOf(c.up);
-            g.extras = tinygltf::Value(tinygltf::Value::Object{{"rgraph", tinygltf::Value(std::move(x))}});
+            g.extras =
+                tinygltf::Value(tinygltf::Value::Object{{"rgraph", tinygltf::Value(std::move(x))}});
             model.cameras.push_back(g);
             tinygltf::Node node;
             node.name = c.name;
@@ -317,20 +344,27 @@ struct Writer {
             const bool punctual = l.type == LightType::Point || l.type == LightType::Spot;
             // Lumens become the candela rgraph renders them with (tbl:9: Φ/4π; spots eq:17: Φ/π),
             // so the exported file lights the same.
-            const bool maps = (punctual && (l.unit == "cd" || l.unit == "lm")) || (l.type == LightType::Directional && l.unit == "lux");
+            const bool maps = (punctual && (l.unit == "cd" || l.unit == "lm")) ||
+                              (l.type == LightType::Directional && l.unit == "lux");
             if (!maps) {
-                warn("light '" + l.name + "' (" + lightTypeName(l.type) + ", " + l.unit + ") is not exported: KHR_lights_punctual has " +
+                warn("light '" + l.name + "' (" + lightTypeName(l.type) + ", " + l.unit +
+                     ") is not exported: KHR_lights_punctual has " +
                      (punctual ? "point and spot lights in cd (or lm, converted) only"
-                               : l.type == LightType::Directional ? "directional lights in lux only" : "no area lights"));
+                      : l.type == LightType::Directional ? "directional lights in lux only"
+                                                         : "no area lights"));
                 continue;
             }
             tinygltf::Light g;
             g.name = l.name;
-            g.type = l.type == LightType::Point ? "point" : l.type == LightType::Spot ? "spot" : "directional";
+            g.type = l.type == LightType::Point  ? "point"
+                     : l.type == LightType::Spot ? "spot"
+                                                 : "directional";
             g.color = {l.color.r, l.color.g, l.color.b};
-            g.intensity = l.unit != "lm"                 ? l.intensity
-                          : l.type == LightType::Point ? lights::pointIntensityFromLumens(l.intensity)
-                                                       : lights::spotIntensityFromLumens(l.intensity, l.outerAngle, l.exactCone);
+            g.intensity =
+                l.unit != "lm" ? l.intensity
+                : l.type == LightType::Point
+                    ? lights::pointIntensityFromLumens(l.intensity)
+                    : lights::spotIntensityFromLumens(l.intensity, l.outerAngle, l.exactCone);
             g.range = l.range;
             g.spot.innerConeAngle = l.innerAngle;
             g.spot.outerConeAngle = l.outerAngle;
@@ -341,14 +375,17 @@ struct Writer {
             if (!l.iesMode.empty()) x["ies_mode"] = tinygltf::Value(l.iesMode);
             if (l.exactCone) x["exact_cone"] = tinygltf::Value(true);
             if (l.castShadows) x["shadow"] = tinygltf::Value(true);
-            if (l.type == LightType::Directional) x["angular_radius"] = tinygltf::Value(double(l.sunAngularRadius));
-            if (!x.empty()) g.extras = tinygltf::Value(tinygltf::Value::Object{{"rgraph", tinygltf::Value(std::move(x))}});
+            if (l.type == LightType::Directional)
+                x["angular_radius"] = tinygltf::Value(double(l.sunAngularRadius));
+            if (!x.empty())
+                g.extras = tinygltf::Value(
+                    tinygltf::Value::Object{{"rgraph", tinygltf::Value(std::move(x))}});
             model.lights.push_back(g);
             tinygltf::Node node;
             node.name = l.name;
             node.matrix = matrixOf(orientation(l.position, l.direction, glm::vec3(0, 1, 0)));
-            node.extensions["KHR_lights_punctual"] =
-                tinygltf::Value(tinygltf::Value::Object{{"light", tinygltf::Value(int(model.lights.size() - 1))}});
+            node.extensions["KHR_lights_punctual"] = tinygltf::Value(
+                tinygltf::Value::Object{{"light", tinygltf::Value(int(model.lights.size() - 1))}});
             model.nodes.push_back(node);
             root.nodes.push_back(int(model.nodes.size() - 1));
         }
@@ -364,7 +401,8 @@ struct Writer {
             x["rotation"] = tinygltf::Value(double(e.rotation));
             x["turbidity"] = tinygltf::Value(double(e.turbidity));
             root.extras = tinygltf::Value(tinygltf::Value::Object{
-                {"rgraph", tinygltf::Value(tinygltf::Value::Object{{"environment", tinygltf::Value(std::move(x))}})}});
+                {"rgraph", tinygltf::Value(tinygltf::Value::Object{
+                               {"environment", tinygltf::Value(std::move(x))}})}});
         }
     }
 
@@ -394,15 +432,18 @@ struct Writer {
 
 }  // namespace
 
-Result<void> exportGlb(const Scene& scene, const std::string& path, std::vector<std::string>* warnings) {
+Result<void> exportGlb(const Scene& scene, const std::string& path,
+                       std::vector<std::string>* warnings) {
     Writer w{scene, warnings, {}, {}, {}, false, false, {}};
     std::error_code dirError;
-    w.outDir = std::filesystem::absolute(std::filesystem::path(path).parent_path(), dirError).lexically_normal();
+    w.outDir = std::filesystem::absolute(std::filesystem::path(path).parent_path(), dirError)
+                   .lexically_normal();
     auto bytes = w.run();
     if (!bytes) return fail(bytes.error().code, quote(path) + ": " + bytes.error().message);
     // Write beside the target and rename: a failed write never leaves half a file at `path`.
     static std::atomic<unsigned> counter{0};
-    const std::string temp = path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+    const std::string temp =
+        path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
     std::FILE* f = std::fopen(temp.c_str(), "wb");
     if (!f) return fail(ErrorCode::Io, "cannot write " + quote(path) + ": " + errnoText(errno));
     const bool written = std::fwrite(bytes->data(), 1, bytes->size(), f) == bytes->size();
@@ -410,7 +451,8 @@ Result<void> exportGlb(const Scene& scene, const std::string& path, std::vector<
     const bool closed = std::fclose(f) == 0;
     if (!written || !closed) {
         std::remove(temp.c_str());
-        return fail(ErrorCode::Io, "cannot write " + quote(path) + ": " + errnoText(written ? errno : writeErr));
+        return fail(ErrorCode::Io,
+                    "cannot write " + quote(path) + ": " + errnoText(written ? errno : writeErr));
     }
     std::error_code ec;
     fs::rename(temp, path, ec);

@@ -26,13 +26,15 @@ namespace gltf_load {
 namespace {
 
 // Extensions whose meaning we implement (a file may require them).
-const std::set<std::string> kSupported = {"KHR_texture_transform", "KHR_materials_emissive_strength",
-                                          "KHR_lights_punctual", "KHR_mesh_quantization"};
+const std::set<std::string> kSupported = {"KHR_texture_transform",
+                                          "KHR_materials_emissive_strength", "KHR_lights_punctual",
+                                          "KHR_mesh_quantization"};
 
 std::string percentDecode(const std::string& uri) {
     std::string out;
     for (size_t i = 0; i < uri.size(); ++i) {
-        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+        if (uri[i] == '%' && i + 2 < uri.size() &&
+            std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
             std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
             out += static_cast<char>(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
             i += 2;
@@ -58,15 +60,18 @@ bool keepEncodedImage(tinygltf::Image* image, const int index, std::string*, std
         const auto& views = state->model->bufferViews;
         const auto& view = views[size_t(image->bufferView)];  // index checked by tinygltf
         if (view.buffer < 0 || size_t(view.buffer) >= state->model->buffers.size()) {
-            state->errors[index] = "buffer view " + std::to_string(image->bufferView) + " names buffer " +
-                                   std::to_string(view.buffer) + ", which does not exist";
+            state->errors[index] = "buffer view " + std::to_string(image->bufferView) +
+                                   " names buffer " + std::to_string(view.buffer) +
+                                   ", which does not exist";
             return true;
         }
         const size_t have = state->model->buffers[size_t(view.buffer)].data.size();
         if (view.byteOffset > have || view.byteLength > have - view.byteOffset) {
             state->errors[index] = "buffer view " + std::to_string(image->bufferView) + " (bytes " +
-                                   std::to_string(view.byteOffset) + ".." + std::to_string(view.byteOffset + view.byteLength) +
-                                   ") is outside buffer " + std::to_string(view.buffer) + " (" + std::to_string(have) + " bytes)";
+                                   std::to_string(view.byteOffset) + ".." +
+                                   std::to_string(view.byteOffset + view.byteLength) +
+                                   ") is outside buffer " + std::to_string(view.buffer) + " (" +
+                                   std::to_string(have) + " bytes)";
             return true;
         }
     }
@@ -96,14 +101,18 @@ void Loader::warn(const std::string& msg) const {
 std::string Loader::named(const std::string& what, size_t index, const std::string& name) {
     return what + " " + std::to_string(index) + (name.empty() ? "" : " '" + name + "'");
 }
-std::string Loader::resolve(const std::string& uri) const { return (dir / percentDecode(uri)).string(); }
+std::string Loader::resolve(const std::string& uri) const {
+    return (dir / percentDecode(uri)).string();
+}
 // A file rgraph's extras name (an IES profile, an environment image): relative to the glTF
 // file's folder, as export-scene writes them; an absolute path is refused (a model carries no
 // machine paths).
 Result<std::string> Loader::extrasFile(const std::string& name, const std::string& label) const {
     if (name.empty()) return name;
     if (fs::path(name).is_absolute())
-        return error(ErrorCode::InvalidInput, label + ": '" + name + "' is an absolute path; name the file relative to the glTF file");
+        return error(ErrorCode::InvalidInput,
+                     label + ": '" + name +
+                         "' is an absolute path; name the file relative to the glTF file");
     return (dir / fs::path(name)).lexically_normal().string();
 }
 // A file URI stays inside the glTF file's folder (a relative path that does not climb out of
@@ -113,15 +122,21 @@ Result<std::string> Loader::resolveInside(const std::string& uri, const std::str
     const std::string decoded = percentDecode(uri);
     const auto colon = decoded.find(':'), slash = decoded.find('/');
     if (colon != std::string::npos && (slash == std::string::npos || colon < slash))
-        return error(ErrorCode::InvalidInput, label + ": only relative file names and data: URIs are read, not '" + uri.substr(0, colon + 1) + "' URIs");
+        return error(ErrorCode::InvalidInput,
+                     label + ": only relative file names and data: URIs are read, not '" +
+                         uri.substr(0, colon + 1) + "' URIs");
     const fs::path relative = fs::path(decoded).lexically_normal();
     if (relative.is_absolute() || (!relative.empty() && *relative.begin() == ".."))
-        return error(ErrorCode::InvalidInput, label + ": the URI leaves the glTF file's folder; rgraph reads only files in or below it");
+        return error(
+            ErrorCode::InvalidInput,
+            label +
+                ": the URI leaves the glTF file's folder; rgraph reads only files in or below it");
     return (dir / relative).string();
 }
 void Loader::addFile(const std::string& p) {
     std::string a = absolutePath(p);
-    if (std::find(scene.files.begin(), scene.files.end(), a) == scene.files.end()) scene.files.push_back(a);
+    if (std::find(scene.files.begin(), scene.files.end(), a) == scene.files.end())
+        scene.files.push_back(a);
 }
 
 // ---- reading the file ------------------------------------------------------------------------
@@ -137,16 +152,23 @@ Result<Preflight> Loader::preflight(const std::vector<unsigned char>& bytes) {
             std::memcpy(&v, bytes.data() + at, 4);
             return v;
         };
-        if (bytes.size() < 20) return error(ErrorCode::InvalidInput, "truncated GLB: " + std::to_string(bytes.size()) + " bytes, no JSON chunk");
-        if (u32(4) != 2) return error(ErrorCode::Unsupported, "GLB version " + std::to_string(u32(4)) + " is not supported (only 2)");
+        if (bytes.size() < 20)
+            return error(ErrorCode::InvalidInput, "truncated GLB: " + std::to_string(bytes.size()) +
+                                                      " bytes, no JSON chunk");
+        if (u32(4) != 2)
+            return error(ErrorCode::Unsupported,
+                         "GLB version " + std::to_string(u32(4)) + " is not supported (only 2)");
         if (u32(8) > bytes.size())
-            return error(ErrorCode::InvalidInput, "truncated GLB: the header says " + std::to_string(u32(8)) + " bytes, the file has " +
-                                                      std::to_string(bytes.size()));
-        if (u32(16) != 0x4E4F534Au) return error(ErrorCode::InvalidInput, "the first GLB chunk is not JSON");
+            return error(ErrorCode::InvalidInput,
+                         "truncated GLB: the header says " + std::to_string(u32(8)) +
+                             " bytes, the file has " + std::to_string(bytes.size()));
+        if (u32(16) != 0x4E4F534Au)
+            return error(ErrorCode::InvalidInput, "the first GLB chunk is not JSON");
         jsonSize = u32(12);
         if (jsonSize > bytes.size() - 20)
-            return error(ErrorCode::InvalidInput, "truncated GLB: the JSON chunk has " + std::to_string(jsonSize) + " bytes, " +
-                                                      std::to_string(bytes.size() - 20) + " are left");
+            return error(ErrorCode::InvalidInput,
+                         "truncated GLB: the JSON chunk has " + std::to_string(jsonSize) +
+                             " bytes, " + std::to_string(bytes.size() - 20) + " are left");
         json = bytes.data() + 20;
     }
     try {
@@ -157,21 +179,29 @@ Result<Preflight> Loader::preflight(const std::vector<unsigned char>& bytes) {
         const std::string marker = "parse error at ";
         const size_t at = what.find(marker);
         return error(ErrorCode::InvalidInput,
-                     at == std::string::npos ? "invalid JSON: " + what : "invalid JSON at " + what.substr(at + marker.size()));
+                     at == std::string::npos
+                         ? "invalid JSON: " + what
+                         : "invalid JSON at " + what.substr(at + marker.size()));
     } catch (const nlohmann::json::exception& e) {
         // Not a syntax error but a value JSON cannot hold, e.g. out_of_range.406 "number
         // overflow parsing '1e400'" (found by tools/fuzz.sh gltf).
         std::string what = e.what();
         const size_t close = what.find("] ");
-        return error(ErrorCode::InvalidInput, "invalid JSON: " + (close == std::string::npos ? what : what.substr(close + 2)));
+        return error(
+            ErrorCode::InvalidInput,
+            "invalid JSON: " + (close == std::string::npos ? what : what.substr(close + 2)));
     }
-    if (!pf.json.is_object()) return error(ErrorCode::InvalidInput, "invalid glTF: the top level is not a JSON object");
+    if (!pf.json.is_object())
+        return error(ErrorCode::InvalidInput, "invalid glTF: the top level is not a JSON object");
     auto asset = pf.json.find("asset");
-    if (asset == pf.json.end() || !asset->is_object() || !asset->contains("version") || !(*asset)["version"].is_string())
-        return error(ErrorCode::InvalidInput, "invalid glTF: no asset.version (is this a glTF file?)");
+    if (asset == pf.json.end() || !asset->is_object() || !asset->contains("version") ||
+        !(*asset)["version"].is_string())
+        return error(ErrorCode::InvalidInput,
+                     "invalid glTF: no asset.version (is this a glTF file?)");
     const std::string version = (*asset)["version"].get<std::string>();
     if (version.rfind("2.", 0) != 0)
-        return error(ErrorCode::Unsupported, "glTF version " + version + " is not supported (only 2.x)");
+        return error(ErrorCode::Unsupported,
+                     "glTF version " + version + " is not supported (only 2.x)");
     return pf;
 }
 
@@ -179,13 +209,16 @@ Result<void> Loader::checkExtensions(const nlohmann::json& j) {
     std::vector<std::string> unsupported;
     if (auto it = j.find("extensionsRequired"); it != j.end() && it->is_array())
         for (const auto& e : *it)
-            if (e.is_string() && !kSupported.count(e.get<std::string>())) unsupported.push_back(e.get<std::string>());
+            if (e.is_string() && !kSupported.count(e.get<std::string>()))
+                unsupported.push_back(e.get<std::string>());
     if (!unsupported.empty()) {
         std::vector<std::string> reasons;
         if (unsupported.size() > 1)
             for (const auto& u : unsupported) reasons.push_back("required and not supported: " + u);
-        return fail(ErrorCode::Unsupported, quote(path) + " requires extension '" + unsupported[0] +
-                                                "', which rgraph does not support", reasons);
+        return fail(ErrorCode::Unsupported,
+                    quote(path) + " requires extension '" + unsupported[0] +
+                        "', which rgraph does not support",
+                    reasons);
     }
     if (auto it = j.find("extensionsUsed"); it != j.end() && it->is_array())
         for (const auto& e : *it)
@@ -201,23 +234,29 @@ Result<void> Loader::checkBuffers(const nlohmann::json& j) {
     for (size_t i = 0; i < it->size(); ++i) {
         const auto& b = (*it)[i];
         if (!b.is_object()) continue;
-        if (auto len = b.find("byteLength"); len != b.end() && !(len->is_number_unsigned() && len->get<uint64_t>() >= 1))
-            return error(ErrorCode::InvalidInput, "buffer " + std::to_string(i) + ": byteLength is " + len->dump() + ", expected a whole number >= 1");
+        if (auto len = b.find("byteLength");
+            len != b.end() && !(len->is_number_unsigned() && len->get<uint64_t>() >= 1))
+            return error(ErrorCode::InvalidInput, "buffer " + std::to_string(i) +
+                                                      ": byteLength is " + len->dump() +
+                                                      ", expected a whole number >= 1");
         auto uri = b.find("uri");
         if (uri == b.end() || !uri->is_string() || isDataUri(uri->get<std::string>())) continue;
-        const std::string label = "buffer " + std::to_string(i) + " '" + uri->get<std::string>() + "'";
+        const std::string label =
+            "buffer " + std::to_string(i) + " '" + uri->get<std::string>() + "'";
         auto inside = resolveInside(uri->get<std::string>(), label);
         if (!inside) return std::unexpected(inside.error());
         const std::string file = *inside;
         std::error_code ec;
         if (!fs::is_regular_file(file, ec)) {
             auto r = readFile(file);  // for the OS's reason
-            return error(ErrorCode::InvalidInput, label + ": " + (r ? "not a regular file" : r.error().message));
+            return error(ErrorCode::InvalidInput,
+                         label + ": " + (r ? "not a regular file" : r.error().message));
         }
         const uintmax_t size = fs::file_size(file, ec);
         auto len = b.find("byteLength");
         if (!ec && len != b.end() && len->is_number_unsigned() && len->get<uintmax_t>() > size)
-            return error(ErrorCode::InvalidInput, label + ": the file has " + std::to_string(size) + " bytes, byteLength says " +
+            return error(ErrorCode::InvalidInput, label + ": the file has " + std::to_string(size) +
+                                                      " bytes, byteLength says " +
                                                       std::to_string(len->get<uintmax_t>()));
         addFile(file);
     }
@@ -241,11 +280,14 @@ Result<void> Loader::parse() {
     const std::string base = fs::absolute(dir.empty() ? fs::path(".") : dir).string();
     bool ok = false;
     try {  // tinygltf throws on some inputs (e.g. vector::at on an empty GLB buffer)
-        ok = pf->binary ? gltf.LoadBinaryFromMemory(&model, &err, &warnings, bytes->data(), static_cast<unsigned int>(bytes->size()), base)
-                        : gltf.LoadASCIIFromString(&model, &err, &warnings, reinterpret_cast<const char*>(bytes->data()),
+        ok = pf->binary ? gltf.LoadBinaryFromMemory(&model, &err, &warnings, bytes->data(),
+                                                    static_cast<unsigned int>(bytes->size()), base)
+                        : gltf.LoadASCIIFromString(&model, &err, &warnings,
+                                                   reinterpret_cast<const char*>(bytes->data()),
                                                    static_cast<unsigned int>(bytes->size()), base);
     } catch (const std::exception& e) {
-        return error(ErrorCode::InvalidInput, std::string("invalid glTF: tinygltf failed (") + e.what() + ")");
+        return error(ErrorCode::InvalidInput,
+                     std::string("invalid glTF: tinygltf failed (") + e.what() + ")");
     }
     if (!ok) {
         std::string first = err.substr(0, err.find('\n'));
@@ -272,12 +314,17 @@ std::string Loader::fmt(double v) {
 // v within [lo, hi] (hi = inf: v >= lo), else an error naming `what`.
 Result<float> Loader::ranged(const std::string& what, double v, double lo, double hi) const {
     if (v >= lo && v <= hi && std::isfinite(v)) return static_cast<float>(v);
-    return error(ErrorCode::InvalidInput, what + " is " + fmt(v) + ", expected " +
-                                              (std::isinf(hi) ? "a number >= " + fmt(lo) : "a number in [" + fmt(lo) + ", " + fmt(hi) + "]"));
+    return error(ErrorCode::InvalidInput,
+                 what + " is " + fmt(v) + ", expected " +
+                     (std::isinf(hi) ? "a number >= " + fmt(lo)
+                                     : "a number in [" + fmt(lo) + ", " + fmt(hi) + "]"));
 }
-Result<glm::vec3> Loader::ranged3(const std::string& what, const std::vector<double>& v, glm::vec3 def, double lo, double hi) const {
+Result<glm::vec3> Loader::ranged3(const std::string& what, const std::vector<double>& v,
+                                  glm::vec3 def, double lo, double hi) const {
     if (v.empty()) return def;
-    if (v.size() != 3) return error(ErrorCode::InvalidInput, what + " has " + std::to_string(v.size()) + " values, expected 3");
+    if (v.size() != 3)
+        return error(ErrorCode::InvalidInput,
+                     what + " has " + std::to_string(v.size()) + " values, expected 3");
     glm::vec3 out;
     for (int i = 0; i < 3; ++i) {
         auto r = ranged(what + "[" + std::to_string(i) + "]", v[size_t(i)], lo, hi);
@@ -287,7 +334,9 @@ Result<glm::vec3> Loader::ranged3(const std::string& what, const std::vector<dou
     return out;
 }
 
-double Loader::number(const tinygltf::Value& v, double def) { return v.IsNumber() ? v.GetNumberAsDouble() : def; }
+double Loader::number(const tinygltf::Value& v, double def) {
+    return v.IsNumber() ? v.GetNumberAsDouble() : def;
+}
 // A JSON number used as an index: -1 unless it is a whole number an int can hold.
 int Loader::indexOf(const tinygltf::Value& v) {
     const double d = number(v, -1.0);
@@ -299,7 +348,8 @@ glm::vec3 Loader::vec3Of(const std::vector<double>& v, glm::vec3 def) {
 }
 glm::vec3 Loader::vec3Of(const tinygltf::Value& v, glm::vec3 def) {
     if (!v.IsArray() || v.ArrayLen() != 3) return def;
-    return glm::vec3(float(number(v.Get(0), def.x)), float(number(v.Get(1), def.y)), float(number(v.Get(2), def.z)));
+    return glm::vec3(float(number(v.Get(0), def.x)), float(number(v.Get(1), def.y)),
+                     float(number(v.Get(2), def.z)));
 }
 
 Result<Scene> Loader::run() {

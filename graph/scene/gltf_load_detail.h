@@ -38,7 +38,7 @@ struct Loader {
     ImageCallbackState imageState;
     Scene scene;
     std::map<std::pair<int, bool>, int32_t> images;  // (glTF image, srgb) -> Scene image
-    std::vector<int32_t> samplers;                    // glTF sampler -> Scene sampler
+    std::vector<int32_t> samplers;                   // glTF sampler -> Scene sampler
     int32_t defaultMaterial = -1;
 
     // ---- messages and file names (gltf_load.cpp) --------------------------------------------

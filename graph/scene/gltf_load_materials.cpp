@@ -22,26 +22,27 @@ void Loader::convertSamplers() {
         };
         d.wrapS = wrap(s.wrapS);
         d.wrapT = wrap(s.wrapT);
-        d.magFilter = s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ? Filter::Nearest : Filter::Linear;
+        d.magFilter =
+            s.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST ? Filter::Nearest : Filter::Linear;
         switch (s.minFilter) {
-        case TINYGLTF_TEXTURE_FILTER_NEAREST:
-        case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST:
-            d.minFilter = Filter::Nearest;
-            d.mipmapMode = MipmapMode::Nearest;
-            break;
-        case TINYGLTF_TEXTURE_FILTER_LINEAR:
-        case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST:
-            d.minFilter = Filter::Linear;
-            d.mipmapMode = MipmapMode::Nearest;
-            break;
-        case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR:
-            d.minFilter = Filter::Nearest;
-            d.mipmapMode = MipmapMode::Linear;
-            break;
-        default:  // LINEAR_MIPMAP_LINEAR or undefined
-            d.minFilter = Filter::Linear;
-            d.mipmapMode = MipmapMode::Linear;
-            break;
+            case TINYGLTF_TEXTURE_FILTER_NEAREST:
+            case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST:
+                d.minFilter = Filter::Nearest;
+                d.mipmapMode = MipmapMode::Nearest;
+                break;
+            case TINYGLTF_TEXTURE_FILTER_LINEAR:
+            case TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_NEAREST:
+                d.minFilter = Filter::Linear;
+                d.mipmapMode = MipmapMode::Nearest;
+                break;
+            case TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_LINEAR:
+                d.minFilter = Filter::Nearest;
+                d.mipmapMode = MipmapMode::Linear;
+                break;
+            default:  // LINEAR_MIPMAP_LINEAR or undefined
+                d.minFilter = Filter::Linear;
+                d.mipmapMode = MipmapMode::Linear;
+                break;
         }
         samplers.push_back(static_cast<int32_t>(scene.samplers.size()));
         scene.samplers.push_back(d);
@@ -51,9 +52,12 @@ void Loader::convertSamplers() {
 Result<int32_t> Loader::image(const std::string& where, int index, bool srgb) {
     if (auto it = images.find({index, srgb}); it != images.end()) return it->second;
     const auto& img = model.images[size_t(index)];
-    const std::string label = named("image", size_t(index), !img.uri.empty() && !isDataUri(img.uri) ? img.uri : img.name);
+    const std::string label =
+        named("image", size_t(index), !img.uri.empty() && !isDataUri(img.uri) ? img.uri : img.name);
     SceneImage out;
-    out.name = !img.name.empty() ? img.name : !img.uri.empty() && !isDataUri(img.uri) ? img.uri : "image " + std::to_string(index);
+    out.name = !img.name.empty()                         ? img.name
+               : !img.uri.empty() && !isDataUri(img.uri) ? img.uri
+                                                         : "image " + std::to_string(index);
     out.srgb = srgb;
     if (options.loadImages) {
         if (auto e = imageState.errors.find(index); e != imageState.errors.end())
@@ -90,23 +94,27 @@ glm::mat3 Loader::uvTransform(glm::vec2 offset, float rotation, glm::vec2 scale)
     return t * r * sc;
 }
 
-Result<TextureRef> Loader::texture(const std::string& where, int index, int texCoord, const tinygltf::ExtensionMap& ext, bool srgb) {
+Result<TextureRef> Loader::texture(const std::string& where, int index, int texCoord,
+                                   const tinygltf::ExtensionMap& ext, bool srgb) {
     TextureRef ref;
     if (index < 0) return ref;
     if (size_t(index) >= model.textures.size())
-        return error(ErrorCode::InvalidInput, where + ": texture " + std::to_string(index) + " does not exist (" +
-                                                  std::to_string(model.textures.size()) + " textures)");
+        return error(ErrorCode::InvalidInput,
+                     where + ": texture " + std::to_string(index) + " does not exist (" +
+                         std::to_string(model.textures.size()) + " textures)");
     const auto& tex = model.textures[size_t(index)];
     if (tex.source < 0) {
         warn(where + ": texture " + std::to_string(index) + " has no PNG/JPEG source; ignored");
         return ref;
     }
     if (size_t(tex.source) >= model.images.size())
-        return error(ErrorCode::InvalidInput, where + ": texture " + std::to_string(index) + " names image " +
-                                                  std::to_string(tex.source) + ", which does not exist");
+        return error(ErrorCode::InvalidInput, where + ": texture " + std::to_string(index) +
+                                                  " names image " + std::to_string(tex.source) +
+                                                  ", which does not exist");
     if (tex.sampler >= 0 && size_t(tex.sampler) >= samplers.size())
-        return error(ErrorCode::InvalidInput, where + ": texture " + std::to_string(index) + " names sampler " +
-                                                  std::to_string(tex.sampler) + ", which does not exist");
+        return error(ErrorCode::InvalidInput, where + ": texture " + std::to_string(index) +
+                                                  " names sampler " + std::to_string(tex.sampler) +
+                                                  ", which does not exist");
     auto img = image(where, tex.source, srgb);
     if (!img) return std::unexpected(img.error());
     ref.image = *img;
@@ -116,15 +124,18 @@ Result<TextureRef> Loader::texture(const std::string& where, int index, int texC
         const auto& t = it->second;
         glm::vec2 offset(0.0f), scale(1.0f);
         if (t.Has("offset") && t.Get("offset").IsArray() && t.Get("offset").ArrayLen() == 2)
-            offset = glm::vec2(float(number(t.Get("offset").Get(0), 0)), float(number(t.Get("offset").Get(1), 0)));
+            offset = glm::vec2(float(number(t.Get("offset").Get(0), 0)),
+                               float(number(t.Get("offset").Get(1), 0)));
         if (t.Has("scale") && t.Get("scale").IsArray() && t.Get("scale").ArrayLen() == 2)
-            scale = glm::vec2(float(number(t.Get("scale").Get(0), 1)), float(number(t.Get("scale").Get(1), 1)));
+            scale = glm::vec2(float(number(t.Get("scale").Get(0), 1)),
+                              float(number(t.Get("scale").Get(1), 1)));
         const float rotation = float(number(t.Get("rotation"), 0.0));
         ref.transform = uvTransform(offset, rotation, scale);
         if (t.Has("texCoord")) coord = indexOf(t.Get("texCoord"));
     }
     if (coord < 0 || coord > 1) {
-        warn(where + ": texCoord " + std::to_string(coord) + " is not supported (TEXCOORD_0 and _1 only); using TEXCOORD_0");
+        warn(where + ": texCoord " + std::to_string(coord) +
+             " is not supported (TEXCOORD_0 and _1 only); using TEXCOORD_0");
         coord = 0;
     }
     ref.texCoord = static_cast<uint32_t>(coord);
@@ -157,11 +168,13 @@ Result<void> Loader::materials() {
         m.name = src.name.empty() ? "material " + std::to_string(i) : src.name;
         const auto& pbr = src.pbrMetallicRoughness;
         if (pbr.baseColorFactor.size() != 4)
-            return error(ErrorCode::InvalidInput, where + ": baseColorFactor has " + std::to_string(pbr.baseColorFactor.size()) +
+            return error(ErrorCode::InvalidInput, where + ": baseColorFactor has " +
+                                                      std::to_string(pbr.baseColorFactor.size()) +
                                                       " values, expected 4");
         glm::vec4 base;
         for (int k = 0; k < 4; ++k) {
-            auto r = ranged(where + ": baseColorFactor[" + std::to_string(k) + "]", pbr.baseColorFactor[size_t(k)], 0, 1);
+            auto r = ranged(where + ": baseColorFactor[" + std::to_string(k) + "]",
+                            pbr.baseColorFactor[size_t(k)], 0, 1);
             if (!r) return std::unexpected(r.error());
             base[k] = *r;
         }
@@ -172,45 +185,63 @@ Result<void> Loader::materials() {
         RG_TRY(roughness, ranged(where + ": roughnessFactor", pbr.roughnessFactor, 0, 1));
         m.smoothness = 1.0f - roughness;  // glTF roughness is perceptual (DESIGN.md §5)
         m.reflectance = 0.5f;             // f0 = 4 %; KHR_materials_specular / _ior are ignored
-        if (auto it = src.extensions.find("KHR_materials_emissive_strength"); it != src.extensions.end())
-            RG_TRY(strength, ranged(where + ": emissiveStrength", number(it->second.Get("emissiveStrength"), 1.0), 0, HUGE_VAL));
+        if (auto it = src.extensions.find("KHR_materials_emissive_strength");
+            it != src.extensions.end())
+            RG_TRY(strength, ranged(where + ": emissiveStrength",
+                                    number(it->second.Get("emissiveStrength"), 1.0), 0, HUGE_VAL));
         glm::vec3 emissive;
-        RG_TRY(emissive, ranged3(where + ": emissiveFactor", src.emissiveFactor, glm::vec3(0.0f), 0, 1));
+        RG_TRY(emissive,
+               ranged3(where + ": emissiveFactor", src.emissiveFactor, glm::vec3(0.0f), 0, 1));
         // Read as nits (see Material::emissive).
         m.emissive = emissive * strength;
-        auto tex = [&](const char* what, int index, int texCoord, const tinygltf::ExtensionMap& ext, bool srgb,
-                       TextureRef& out) -> Result<void> {
+        auto tex = [&](const char* what, int index, int texCoord, const tinygltf::ExtensionMap& ext,
+                       bool srgb, TextureRef& out) -> Result<void> {
             auto r = texture(where + " " + what, index, texCoord, ext, srgb);
             if (!r) return std::unexpected(r.error());
             out = *r;
             return {};
         };
-        if (auto r = tex("baseColorTexture", pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
-                         pbr.baseColorTexture.extensions, true, m.baseColorTex); !r)
+        if (auto r =
+                tex("baseColorTexture", pbr.baseColorTexture.index, pbr.baseColorTexture.texCoord,
+                    pbr.baseColorTexture.extensions, true, m.baseColorTex);
+            !r)
             return r;
-        if (auto r = tex("metallicRoughnessTexture", pbr.metallicRoughnessTexture.index, pbr.metallicRoughnessTexture.texCoord,
-                         pbr.metallicRoughnessTexture.extensions, false, m.metallicRoughnessTex); !r)
+        if (auto r = tex("metallicRoughnessTexture", pbr.metallicRoughnessTexture.index,
+                         pbr.metallicRoughnessTexture.texCoord,
+                         pbr.metallicRoughnessTexture.extensions, false, m.metallicRoughnessTex);
+            !r)
             return r;
-        if (auto r = tex("normalTexture", src.normalTexture.index, src.normalTexture.texCoord, src.normalTexture.extensions, false,
-                         m.normalTex); !r)
+        if (auto r = tex("normalTexture", src.normalTexture.index, src.normalTexture.texCoord,
+                         src.normalTexture.extensions, false, m.normalTex);
+            !r)
             return r;
-        if (auto r = tex("occlusionTexture", src.occlusionTexture.index, src.occlusionTexture.texCoord,
-                         src.occlusionTexture.extensions, false, m.occlusionTex); !r)
+        if (auto r =
+                tex("occlusionTexture", src.occlusionTexture.index, src.occlusionTexture.texCoord,
+                    src.occlusionTexture.extensions, false, m.occlusionTex);
+            !r)
             return r;
-        if (auto r = tex("emissiveTexture", src.emissiveTexture.index, src.emissiveTexture.texCoord, src.emissiveTexture.extensions,
-                         true, m.emissiveTex); !r)
+        if (auto r = tex("emissiveTexture", src.emissiveTexture.index, src.emissiveTexture.texCoord,
+                         src.emissiveTexture.extensions, true, m.emissiveTex);
+            !r)
             return r;
-        RG_TRY(m.normalScale, ranged(where + ": normalTexture.scale", src.normalTexture.scale, -1e6, 1e6));
-        RG_TRY(m.occlusionStrength, ranged(where + ": occlusionTexture.strength", src.occlusionTexture.strength, 0, 1));
-        if (src.alphaMode == "OPAQUE" || src.alphaMode.empty()) m.alphaMode = AlphaMode::Opaque;
-        else if (src.alphaMode == "MASK") m.alphaMode = AlphaMode::Mask;
-        else if (src.alphaMode == "BLEND") m.alphaMode = AlphaMode::Blend;
+        RG_TRY(m.normalScale,
+               ranged(where + ": normalTexture.scale", src.normalTexture.scale, -1e6, 1e6));
+        RG_TRY(m.occlusionStrength,
+               ranged(where + ": occlusionTexture.strength", src.occlusionTexture.strength, 0, 1));
+        if (src.alphaMode == "OPAQUE" || src.alphaMode.empty())
+            m.alphaMode = AlphaMode::Opaque;
+        else if (src.alphaMode == "MASK")
+            m.alphaMode = AlphaMode::Mask;
+        else if (src.alphaMode == "BLEND")
+            m.alphaMode = AlphaMode::Blend;
         else
-            return error(ErrorCode::InvalidInput, where + ": alphaMode '" + src.alphaMode + "', expected OPAQUE, MASK or BLEND");
+            return error(ErrorCode::InvalidInput, where + ": alphaMode '" + src.alphaMode +
+                                                      "', expected OPAQUE, MASK or BLEND");
         RG_TRY(m.alphaCutoff, ranged(where + ": alphaCutoff", src.alphaCutoff, 0, HUGE_VAL));
         m.doubleSided = src.doubleSided;
         // What glTF cannot say, as exportGlb wrote it.
-        if (src.extras.IsObject() && src.extras.Has("rgraph") && src.extras.Get("rgraph").IsObject()) {
+        if (src.extras.IsObject() && src.extras.Has("rgraph") &&
+            src.extras.Get("rgraph").IsObject()) {
             const auto& x = src.extras.Get("rgraph");
             if (x.Get("model").IsString()) m.model = x.Get("model").Get<std::string>();
             m.reflectance = float(number(x.Get("reflectance"), m.reflectance));

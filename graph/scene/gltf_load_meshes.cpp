@@ -16,14 +16,22 @@ namespace {
 
 const char* modeName(int mode) {
     switch (mode) {
-    case TINYGLTF_MODE_POINTS: return "POINTS";
-    case TINYGLTF_MODE_LINE: return "LINES";
-    case TINYGLTF_MODE_LINE_LOOP: return "LINE_LOOP";
-    case TINYGLTF_MODE_LINE_STRIP: return "LINE_STRIP";
-    case TINYGLTF_MODE_TRIANGLES: return "TRIANGLES";
-    case TINYGLTF_MODE_TRIANGLE_STRIP: return "TRIANGLE_STRIP";
-    case TINYGLTF_MODE_TRIANGLE_FAN: return "TRIANGLE_FAN";
-    default: return nullptr;
+        case TINYGLTF_MODE_POINTS:
+            return "POINTS";
+        case TINYGLTF_MODE_LINE:
+            return "LINES";
+        case TINYGLTF_MODE_LINE_LOOP:
+            return "LINE_LOOP";
+        case TINYGLTF_MODE_LINE_STRIP:
+            return "LINE_STRIP";
+        case TINYGLTF_MODE_TRIANGLES:
+            return "TRIANGLES";
+        case TINYGLTF_MODE_TRIANGLE_STRIP:
+            return "TRIANGLE_STRIP";
+        case TINYGLTF_MODE_TRIANGLE_FAN:
+            return "TRIANGLE_FAN";
+        default:
+            return nullptr;
     }
 }
 
@@ -45,30 +53,38 @@ Result<uint32_t> Loader::materialIndex(const std::string& where, int m) {
         return static_cast<uint32_t>(defaultMaterial);
     }
     if (size_t(m) >= model.materials.size())
-        return error(ErrorCode::InvalidInput, where + ": material " + std::to_string(m) + " does not exist (" +
-                                                  std::to_string(model.materials.size()) + " materials)");
+        return error(ErrorCode::InvalidInput,
+                     where + ": material " + std::to_string(m) + " does not exist (" +
+                         std::to_string(model.materials.size()) + " materials)");
     return static_cast<uint32_t>(m);
 }
 
 Result<Primitive> Loader::primitive(size_t meshIndex, size_t primIndex) {
     const auto& mesh = model.meshes[meshIndex];
     const auto& prim = mesh.primitives[primIndex];
-    const std::string where = named("mesh", meshIndex, mesh.name) + " primitive " + std::to_string(primIndex);
+    const std::string where =
+        named("mesh", meshIndex, mesh.name) + " primitive " + std::to_string(primIndex);
     const char* mode = modeName(prim.mode);
-    if (!mode) return error(ErrorCode::InvalidInput, where + ": mode " + std::to_string(prim.mode) + " is not a glTF primitive mode");
-    if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP && prim.mode != TINYGLTF_MODE_TRIANGLE_FAN)
-        return error(ErrorCode::Unsupported, where + ": mode " + mode + " is not supported (only triangles)");
+    if (!mode)
+        return error(ErrorCode::InvalidInput, where + ": mode " + std::to_string(prim.mode) +
+                                                  " is not a glTF primitive mode");
+    if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+        prim.mode != TINYGLTF_MODE_TRIANGLE_FAN)
+        return error(ErrorCode::Unsupported,
+                     where + ": mode " + mode + " is not supported (only triangles)");
     auto attr = [&](const char* name) {
         auto it = prim.attributes.find(name);
         return it == prim.attributes.end() ? -1 : it->second;
     };
-    if (attr("POSITION") < 0) return error(ErrorCode::InvalidInput, where + ": no POSITION attribute");
+    if (attr("POSITION") < 0)
+        return error(ErrorCode::InvalidInput, where + ": no POSITION attribute");
     auto pos = readFloats(where, "POSITION", attr("POSITION"), TINYGLTF_TYPE_VEC3);
     if (!pos) return std::unexpected(pos.error());
     const size_t n = pos->size() / 3;
     Primitive p;
     p.vertices.resize(n);
-    for (size_t i = 0; i < n; ++i) p.vertices[i].position = glm::vec3((*pos)[3 * i], (*pos)[3 * i + 1], (*pos)[3 * i + 2]);
+    for (size_t i = 0; i < n; ++i)
+        p.vertices[i].position = glm::vec3((*pos)[3 * i], (*pos)[3 * i + 1], (*pos)[3 * i + 2]);
 
     // Other attributes must have as many elements as POSITION.
     auto optional = [&](const char* semantic, int type) -> Result<std::vector<float>> {
@@ -77,8 +93,10 @@ Result<Primitive> Loader::primitive(size_t meshIndex, size_t primIndex) {
         if (!v) return v;
         const size_t comps = size_t(tinygltf::GetNumComponentsInType(static_cast<uint32_t>(type)));
         if (v->size() / comps != n)
-            return error(ErrorCode::InvalidInput, where + ": " + semantic + ": accessor " + std::to_string(attr(semantic)) + " has " +
-                                                      std::to_string(v->size() / comps) + " elements, POSITION has " + std::to_string(n));
+            return error(ErrorCode::InvalidInput,
+                         where + ": " + semantic + ": accessor " + std::to_string(attr(semantic)) +
+                             " has " + std::to_string(v->size() / comps) +
+                             " elements, POSITION has " + std::to_string(n));
         return v;
     };
     auto normals = optional("NORMAL", TINYGLTF_TYPE_VEC3);
@@ -91,9 +109,12 @@ Result<Primitive> Loader::primitive(size_t meshIndex, size_t primIndex) {
     if (!uv1) return std::unexpected(uv1.error());
     for (size_t i = 0; i < n; ++i) {
         Vertex& v = p.vertices[i];
-        if (!normals->empty()) v.normal = glm::vec3((*normals)[3 * i], (*normals)[3 * i + 1], (*normals)[3 * i + 2]);
+        if (!normals->empty())
+            v.normal = glm::vec3((*normals)[3 * i], (*normals)[3 * i + 1], (*normals)[3 * i + 2]);
         if (!tangents->empty())
-            v.tangent = glm::vec4((*tangents)[4 * i], (*tangents)[4 * i + 1], (*tangents)[4 * i + 2], (*tangents)[4 * i + 3] < 0 ? -1.0f : 1.0f);
+            v.tangent =
+                glm::vec4((*tangents)[4 * i], (*tangents)[4 * i + 1], (*tangents)[4 * i + 2],
+                          (*tangents)[4 * i + 3] < 0 ? -1.0f : 1.0f);
         if (!uv0->empty()) v.uv0 = glm::vec2((*uv0)[2 * i], (*uv0)[2 * i + 1]);
         if (!uv1->empty()) v.uv1 = glm::vec2((*uv1)[2 * i], (*uv1)[2 * i + 1]);
     }
@@ -112,13 +133,18 @@ Result<Primitive> Loader::primitive(size_t meshIndex, size_t primIndex) {
     // Strips and fans become lists; a strip's odd triangles swap two corners to stay CCW.
     if (prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
         for (size_t i = 0; i + 2 < idx.size(); ++i)
-            if (i % 2 == 0) p.indices.insert(p.indices.end(), {idx[i], idx[i + 1], idx[i + 2]});
-            else p.indices.insert(p.indices.end(), {idx[i + 1], idx[i], idx[i + 2]});
+            if (i % 2 == 0)
+                p.indices.insert(p.indices.end(), {idx[i], idx[i + 1], idx[i + 2]});
+            else
+                p.indices.insert(p.indices.end(), {idx[i + 1], idx[i], idx[i + 2]});
     } else if (prim.mode == TINYGLTF_MODE_TRIANGLE_FAN) {
-        for (size_t i = 1; i + 1 < idx.size(); ++i) p.indices.insert(p.indices.end(), {idx[0], idx[i], idx[i + 1]});
+        for (size_t i = 1; i + 1 < idx.size(); ++i)
+            p.indices.insert(p.indices.end(), {idx[0], idx[i], idx[i + 1]});
     } else {
-        if (idx.size() % 3 != 0) warn(where + ": " + std::to_string(idx.size()) + " indices is not a whole number of triangles; the last " +
-                                      std::to_string(idx.size() % 3) + " are ignored");
+        if (idx.size() % 3 != 0)
+            warn(where + ": " + std::to_string(idx.size()) +
+                 " indices is not a whole number of triangles; the last " +
+                 std::to_string(idx.size() % 3) + " are ignored");
         idx.resize(idx.size() - idx.size() % 3);
         p.indices = std::move(idx);
     }
@@ -127,13 +153,16 @@ Result<Primitive> Loader::primitive(size_t meshIndex, size_t primIndex) {
     if (!m) return std::unexpected(m.error());
     p.material = *m;
     // glTF 3.7.2.1: without normals, flat normals, and tangents are then ignored.
-    if (normals->empty()) generateFlatNormals(p);
+    if (normals->empty())
+        generateFlatNormals(p);
     else
         for (auto& v : p.vertices) {
             // Renormalise only what is not unit already, so written normals load back bit-exact.
             const float len = glm::length(v.normal);
-            if (!(len > 0.0f)) v.normal = glm::vec3(0, 0, 1);
-            else if (std::fabs(len - 1.0f) > 1e-6f) v.normal /= len;
+            if (!(len > 0.0f))
+                v.normal = glm::vec3(0, 0, 1);
+            else if (std::fabs(len - 1.0f) > 1e-6f)
+                v.normal /= len;
         }
     if (normals->empty() || tangents->empty()) generateTangents(p);
     return p;
@@ -142,7 +171,8 @@ Result<Primitive> Loader::primitive(size_t meshIndex, size_t primIndex) {
 Result<void> Loader::meshes() {
     for (size_t m = 0; m < model.meshes.size(); ++m) {
         Mesh mesh;
-        mesh.name = model.meshes[m].name.empty() ? "mesh " + std::to_string(m) : model.meshes[m].name;
+        mesh.name =
+            model.meshes[m].name.empty() ? "mesh " + std::to_string(m) : model.meshes[m].name;
         for (size_t p = 0; p < model.meshes[m].primitives.size(); ++p) {
             auto prim = primitive(m, p);
             if (!prim) return std::unexpected(prim.error());

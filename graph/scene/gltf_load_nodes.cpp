@@ -27,11 +27,14 @@ Result<glm::mat4> Loader::localTransform(size_t index) {
     const std::string where = named("node", index, n.name);
     if (!n.matrix.empty()) {
         if (n.matrix.size() != 16)
-            return error(ErrorCode::InvalidInput, where + ": matrix has " + std::to_string(n.matrix.size()) + " values, expected 16");
+            return error(
+                ErrorCode::InvalidInput,
+                where + ": matrix has " + std::to_string(n.matrix.size()) + " values, expected 16");
         glm::mat4 m;
         for (int c = 0; c < 4; ++c)
             for (int r = 0; r < 4; ++r) {
-                auto v = ranged(where + ": matrix[" + std::to_string(c * 4 + r) + "]", n.matrix[size_t(c * 4 + r)], -1e30, 1e30);
+                auto v = ranged(where + ": matrix[" + std::to_string(c * 4 + r) + "]",
+                                n.matrix[size_t(c * 4 + r)], -1e30, 1e30);
                 if (!v) return std::unexpected(v.error());
                 m[c][r] = *v;  // column-major, as glm
             }
@@ -39,8 +42,9 @@ Result<glm::mat4> Loader::localTransform(size_t index) {
     }
     auto sized = [&](const std::vector<double>& v, size_t want, const char* what) -> Result<void> {
         if (!v.empty() && v.size() != want)
-            return error(ErrorCode::InvalidInput, where + ": " + what + " has " + std::to_string(v.size()) + " values, expected " +
-                                                      std::to_string(want));
+            return error(ErrorCode::InvalidInput, where + ": " + what + " has " +
+                                                      std::to_string(v.size()) +
+                                                      " values, expected " + std::to_string(want));
         return {};
     };
     if (auto r = sized(n.translation, 3, "translation"); !r) return std::unexpected(r.error());
@@ -52,8 +56,12 @@ Result<glm::mat4> Loader::localTransform(size_t index) {
     glm::quat q(1.0f, 0.0f, 0.0f, 0.0f);  // glm::quat(w, x, y, z); glTF stores x, y, z, w
     if (n.rotation.size() == 4) {
         glm::vec4 r;
-        for (int k = 0; k < 4; ++k) RG_TRY(r[k], ranged(where + ": rotation[" + std::to_string(k) + "]", n.rotation[size_t(k)], -1, 1));
-        if (glm::length(r) < 1e-6f) return error(ErrorCode::InvalidInput, where + ": rotation is not a unit quaternion (it is zero)");
+        for (int k = 0; k < 4; ++k)
+            RG_TRY(r[k], ranged(where + ": rotation[" + std::to_string(k) + "]",
+                                n.rotation[size_t(k)], -1, 1));
+        if (glm::length(r) < 1e-6f)
+            return error(ErrorCode::InvalidInput,
+                         where + ": rotation is not a unit quaternion (it is zero)");
         q = glm::normalize(glm::quat(r.w, r.x, r.y, r.z));
     }
     return glm::translate(glm::mat4(1.0f), t) * glm::mat4_cast(q) * glm::scale(glm::mat4(1.0f), s);
@@ -62,10 +70,13 @@ Result<glm::mat4> Loader::localTransform(size_t index) {
 Result<void> Loader::camera(size_t nodeIndex, const glm::mat4& world) {
     const auto& n = model.nodes[nodeIndex];
     if (size_t(n.camera) >= model.cameras.size())
-        return error(ErrorCode::InvalidInput, named("node", nodeIndex, n.name) + ": camera " + std::to_string(n.camera) + " does not exist");
+        return error(ErrorCode::InvalidInput, named("node", nodeIndex, n.name) + ": camera " +
+                                                  std::to_string(n.camera) + " does not exist");
     const auto& c = model.cameras[size_t(n.camera)];
     Camera cam;
-    cam.name = !c.name.empty() ? c.name : !n.name.empty() ? n.name : "camera " + std::to_string(n.camera);
+    cam.name = !c.name.empty()   ? c.name
+               : !n.name.empty() ? n.name
+                                 : "camera " + std::to_string(n.camera);
     const std::string where = named("camera", size_t(n.camera), c.name);
     if (c.type == "orthographic") {
         // glTF: xmag, ymag are half the view's width and height in metres; rgraph keeps the
@@ -76,15 +87,20 @@ Result<void> Loader::camera(size_t nodeIndex, const glm::mat4& world) {
         cam.orthoHeight = 2.0f * ymag;
         RG_TRY(cam.nearPlane, ranged(where + ": znear", c.orthographic.znear, 0, 1e30));
         cam.nearPlane = std::max(cam.nearPlane, 1e-4f);
-        RG_TRY(cam.farPlane, ranged(where + ": zfar", c.orthographic.zfar, c.orthographic.znear, 1e30));
-        if (cam.farPlane <= cam.nearPlane) return error(ErrorCode::InvalidInput, where + ": zfar must lie beyond znear");
+        RG_TRY(cam.farPlane,
+               ranged(where + ": zfar", c.orthographic.zfar, c.orthographic.znear, 1e30));
+        if (cam.farPlane <= cam.nearPlane)
+            return error(ErrorCode::InvalidInput, where + ": zfar must lie beyond znear");
     } else if (c.type == "perspective") {
         RG_TRY(cam.verticalFov, ranged(where + ": yfov", c.perspective.yfov, 1e-6, 3.14159));
         RG_TRY(cam.nearPlane, ranged(where + ": znear", c.perspective.znear, 1e-9, 1e30));
         // glTF: no zfar means an infinite projection; we keep the finite default.
-        if (c.perspective.zfar > 0) RG_TRY(cam.farPlane, ranged(where + ": zfar", c.perspective.zfar, c.perspective.znear, 1e30));
+        if (c.perspective.zfar > 0)
+            RG_TRY(cam.farPlane,
+                   ranged(where + ": zfar", c.perspective.zfar, c.perspective.znear, 1e30));
     } else {
-        return error(ErrorCode::InvalidInput, where + ": unknown camera type '" + c.type + "' (glTF has 'perspective' and 'orthographic')");
+        return error(ErrorCode::InvalidInput, where + ": unknown camera type '" + c.type +
+                                                  "' (glTF has 'perspective' and 'orthographic')");
     }
     cam.position = glm::vec3(world[3]);
     cam.target = cam.position + glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
@@ -108,29 +124,38 @@ Result<void> Loader::camera(size_t nodeIndex, const glm::mat4& world) {
 Result<void> Loader::light(size_t nodeIndex, const glm::mat4& world) {
     const auto& n = model.nodes[nodeIndex];
     auto ext = n.extensions.find("KHR_lights_punctual");
-    if (ext == n.extensions.end() || !ext->second.IsObject() || !ext->second.Has("light")) return {};
+    if (ext == n.extensions.end() || !ext->second.IsObject() || !ext->second.Has("light"))
+        return {};
     const int li = indexOf(ext->second.Get("light"));
     if (li < 0 || size_t(li) >= model.lights.size())
-        return error(ErrorCode::InvalidInput, named("node", nodeIndex, n.name) + ": KHR_lights_punctual light " +
-                                                  (li < 0 ? "index is not a whole number >= 0" : std::to_string(li) + " does not exist (" +
-                                                  std::to_string(model.lights.size()) + " lights)"));
+        return error(ErrorCode::InvalidInput,
+                     named("node", nodeIndex, n.name) + ": KHR_lights_punctual light " +
+                         (li < 0 ? "index is not a whole number >= 0"
+                                 : std::to_string(li) + " does not exist (" +
+                                       std::to_string(model.lights.size()) + " lights)"));
     const auto& l = model.lights[size_t(li)];
     Light out;
     out.name = !l.name.empty() ? l.name : !n.name.empty() ? n.name : "light " + std::to_string(li);
     // KHR_lights_punctual: point and spot in candela, directional in lux.
-    if (l.type == "point") out.type = LightType::Point, out.unit = "cd";
-    else if (l.type == "spot") out.type = LightType::Spot, out.unit = "cd";
-    else if (l.type == "directional") out.type = LightType::Directional, out.unit = "lux";
+    if (l.type == "point")
+        out.type = LightType::Point, out.unit = "cd";
+    else if (l.type == "spot")
+        out.type = LightType::Spot, out.unit = "cd";
+    else if (l.type == "directional")
+        out.type = LightType::Directional, out.unit = "lux";
     else
-        return error(ErrorCode::InvalidInput, named("light", size_t(li), l.name) + ": type '" + l.type +
+        return error(ErrorCode::InvalidInput, named("light", size_t(li), l.name) + ": type '" +
+                                                  l.type +
                                                   "', expected point, spot or directional");
     const std::string where = named("light", size_t(li), l.name);
     RG_TRY(out.color, ranged3(where + ": color", l.color, glm::vec3(1.0f), 0, 1));
     RG_TRY(out.intensity, ranged(where + ": intensity", l.intensity, 0, HUGE_VAL));
     RG_TRY(out.range, ranged(where + ": range", l.range, 0, HUGE_VAL));
     if (out.type == LightType::Spot) {
-        RG_TRY(out.outerAngle, ranged(where + ": spot.outerConeAngle", l.spot.outerConeAngle, 0, 1.5707964));
-        RG_TRY(out.innerAngle, ranged(where + ": spot.innerConeAngle", l.spot.innerConeAngle, 0, l.spot.outerConeAngle));
+        RG_TRY(out.outerAngle,
+               ranged(where + ": spot.outerConeAngle", l.spot.outerConeAngle, 0, 1.5707964));
+        RG_TRY(out.innerAngle, ranged(where + ": spot.innerConeAngle", l.spot.innerConeAngle, 0,
+                                      l.spot.outerConeAngle));
     }
     out.position = glm::vec3(world[3]);
     out.direction = glm::normalize(glm::vec3(world * glm::vec4(0, 0, -1, 0)));
@@ -145,14 +170,19 @@ Result<void> Loader::light(size_t nodeIndex, const glm::mat4& world) {
         if (x.Get("ies_mode").IsString()) {
             out.iesMode = x.Get("ies_mode").Get<std::string>();
             if (out.iesMode != "mask" && out.iesMode != "intensity")
-                return fail(ErrorCode::InvalidInput, where + ": extras.rgraph.ies_mode '" + out.iesMode + "' is not 'mask' or 'intensity'");
+                return fail(ErrorCode::InvalidInput, where + ": extras.rgraph.ies_mode '" +
+                                                         out.iesMode +
+                                                         "' is not 'mask' or 'intensity'");
         }
         if (x.Get("exact_cone").IsBool()) out.exactCone = x.Get("exact_cone").Get<bool>();
-        if (x.Get("shadow").IsBool()) out.castShadows = x.Get("shadow").Get<bool>() && out.type != LightType::Directional;
+        if (x.Get("shadow").IsBool())
+            out.castShadows = x.Get("shadow").Get<bool>() && out.type != LightType::Directional;
         out.sunAngularRadius = float(number(x.Get("angular_radius"), out.sunAngularRadius));
         // Written by exportGlb for a light declared in lumens (its cd is what rgraph renders).
-        if (x.Get("lumens").IsNumber() && (out.type == LightType::Point || out.type == LightType::Spot)) {
-            RG_TRY(out.intensity, ranged(where + ": extras.rgraph.lumens", number(x.Get("lumens"), 0.0), 0, HUGE_VAL));
+        if (x.Get("lumens").IsNumber() &&
+            (out.type == LightType::Point || out.type == LightType::Spot)) {
+            RG_TRY(out.intensity, ranged(where + ": extras.rgraph.lumens",
+                                         number(x.Get("lumens"), 0.0), 0, HUGE_VAL));
             out.unit = "lm";
         }
     }
@@ -163,13 +193,19 @@ Result<void> Loader::light(size_t nodeIndex, const glm::mat4& world) {
 // Each node once: glTF nodes have at most one parent, and a node reached twice (a shared
 // child, a cycle) would repeat or never end. Depth first with a stack of its own (not the
 // call stack: a hostile hierarchy thousands deep must not overflow it).
-Result<void> Loader::enter(size_t index, const glm::mat4& parent, std::vector<bool>& onPath, std::vector<bool>& seen, size_t depth, glm::mat4& world) {
-    if (onPath[index]) return error(ErrorCode::InvalidInput, named("node", index, model.nodes[index].name) + " is its own ancestor (the node hierarchy has a cycle)");
+Result<void> Loader::enter(size_t index, const glm::mat4& parent, std::vector<bool>& onPath,
+                           std::vector<bool>& seen, size_t depth, glm::mat4& world) {
+    if (onPath[index])
+        return error(ErrorCode::InvalidInput,
+                     named("node", index, model.nodes[index].name) +
+                         " is its own ancestor (the node hierarchy has a cycle)");
     if (seen[index])
-        return error(ErrorCode::InvalidInput, named("node", index, model.nodes[index].name) +
-                                                  " appears twice in the hierarchy (a glTF node has one parent)");
+        return error(ErrorCode::InvalidInput,
+                     named("node", index, model.nodes[index].name) +
+                         " appears twice in the hierarchy (a glTF node has one parent)");
     if (depth > kMaxDepth)
-        return error(ErrorCode::InvalidInput, "the node hierarchy is deeper than " + std::to_string(kMaxDepth) + " levels");
+        return error(ErrorCode::InvalidInput,
+                     "the node hierarchy is deeper than " + std::to_string(kMaxDepth) + " levels");
     onPath[index] = seen[index] = true;
     const auto& n = model.nodes[index];
     auto local = localTransform(index);
@@ -177,16 +213,24 @@ Result<void> Loader::enter(size_t index, const glm::mat4& parent, std::vector<bo
     world = parent * *local;
     if (n.mesh >= 0) {
         if (size_t(n.mesh) >= scene.meshes.size())
-            return error(ErrorCode::InvalidInput, named("node", index, n.name) + ": mesh " + std::to_string(n.mesh) + " does not exist (" +
-                                                      std::to_string(model.meshes.size()) + " meshes)");
-        scene.nodes.push_back({n.name.empty() ? scene.meshes[size_t(n.mesh)].name : n.name, world, n.mesh});
+            return error(ErrorCode::InvalidInput, named("node", index, n.name) + ": mesh " +
+                                                      std::to_string(n.mesh) + " does not exist (" +
+                                                      std::to_string(model.meshes.size()) +
+                                                      " meshes)");
+        scene.nodes.push_back(
+            {n.name.empty() ? scene.meshes[size_t(n.mesh)].name : n.name, world, n.mesh});
     }
     if (n.camera >= 0)
         if (auto r = camera(index, world); !r) return r;
     return light(index, world);
 }
-Result<void> Loader::visit(size_t root, const glm::mat4& parent, std::vector<bool>& onPath, std::vector<bool>& seen, size_t depth) {
-    struct Frame { size_t index; glm::mat4 world; size_t next; };
+Result<void> Loader::visit(size_t root, const glm::mat4& parent, std::vector<bool>& onPath,
+                           std::vector<bool>& seen, size_t depth) {
+    struct Frame {
+        size_t index;
+        glm::mat4 world;
+        size_t next;
+    };
     std::vector<Frame> stack;
     glm::mat4 world;
     if (auto r = enter(root, parent, onPath, seen, depth, world); !r) return r;
@@ -201,10 +245,13 @@ Result<void> Loader::visit(size_t root, const glm::mat4& parent, std::vector<boo
         }
         const int child = n.children[f.next++];
         if (child < 0 || size_t(child) >= model.nodes.size())
-            return error(ErrorCode::InvalidInput, named("node", f.index, n.name) + ": child " + std::to_string(child) + " does not exist (" +
-                                                      std::to_string(model.nodes.size()) + " nodes)");
+            return error(ErrorCode::InvalidInput,
+                         named("node", f.index, n.name) + ": child " + std::to_string(child) +
+                             " does not exist (" + std::to_string(model.nodes.size()) + " nodes)");
         const glm::mat4 parentWorld = f.world;
-        if (auto r = enter(size_t(child), parentWorld, onPath, seen, depth + stack.size(), world); !r) return r;
+        if (auto r = enter(size_t(child), parentWorld, onPath, seen, depth + stack.size(), world);
+            !r)
+            return r;
         stack.push_back({size_t(child), world, 0});
     }
     return {};
@@ -212,14 +259,19 @@ Result<void> Loader::visit(size_t root, const glm::mat4& parent, std::vector<boo
 
 // exportGlb keeps a scene's environment in the glTF scene's extras.
 Result<void> Loader::environment(const tinygltf::Value& extras) {
-    if (!extras.IsObject() || !extras.Get("rgraph").IsObject() || !extras.Get("rgraph").Get("environment").IsObject()) return {};
+    if (!extras.IsObject() || !extras.Get("rgraph").IsObject() ||
+        !extras.Get("rgraph").Get("environment").IsObject())
+        return {};
     const auto& x = extras.Get("rgraph").Get("environment");
     Environment e;
-    auto str = [&](const char* k, const std::string& def) { return x.Get(k).IsString() ? x.Get(k).Get<std::string>() : def; };
+    auto str = [&](const char* k, const std::string& def) {
+        return x.Get(k).IsString() ? x.Get(k).Get<std::string>() : def;
+    };
     e.name = str("name", e.name);
     e.kind = str("kind", e.kind);
     if (x.Get("file").IsString()) {
-        auto file = extrasFile(x.Get("file").Get<std::string>(), "scene extras.rgraph.environment.file");
+        auto file =
+            extrasFile(x.Get("file").Get<std::string>(), "scene extras.rgraph.environment.file");
         if (!file) return std::unexpected(file.error());
         e.file = *file;
     }
@@ -235,7 +287,9 @@ Result<void> Loader::environment(const tinygltf::Value& extras) {
 Result<void> Loader::nodes() {
     std::vector<int> roots;
     if (!model.scenes.empty()) {
-        const size_t s = model.defaultScene >= 0 && size_t(model.defaultScene) < model.scenes.size() ? size_t(model.defaultScene) : 0;
+        const size_t s = model.defaultScene >= 0 && size_t(model.defaultScene) < model.scenes.size()
+                             ? size_t(model.defaultScene)
+                             : 0;
         roots = model.scenes[s].nodes;
         if (auto r = environment(model.scenes[s].extras); !r) return r;
     } else {
@@ -249,8 +303,9 @@ Result<void> Loader::nodes() {
     std::vector<bool> onPath(model.nodes.size(), false), seen(model.nodes.size(), false);
     for (int r : roots) {
         if (r < 0 || size_t(r) >= model.nodes.size())
-            return error(ErrorCode::InvalidInput, "scene root node " + std::to_string(r) + " does not exist (" +
-                                                      std::to_string(model.nodes.size()) + " nodes)");
+            return error(ErrorCode::InvalidInput,
+                         "scene root node " + std::to_string(r) + " does not exist (" +
+                             std::to_string(model.nodes.size()) + " nodes)");
         if (auto v = visit(size_t(r), glm::mat4(1.0f), onPath, seen, 0); !v) return v;
     }
     return {};

@@ -42,10 +42,14 @@ Result<std::vector<unsigned char>> readFile(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     if (!in) {
         const int err = errno ? errno : ENOENT;
-        return fail(err == ENOENT ? ErrorCode::NotFound : ErrorCode::Io, "cannot open " + quote(path) + ": " + errnoText(err));
+        return fail(err == ENOENT ? ErrorCode::NotFound : ErrorCode::Io,
+                    "cannot open " + quote(path) + ": " + errnoText(err));
     }
-    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-    if (in.bad()) return fail(ErrorCode::Io, "cannot read " + quote(path) + ": " + errnoText(errno ? errno : EIO));
+    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
+                                     std::istreambuf_iterator<char>());
+    if (in.bad())
+        return fail(ErrorCode::Io,
+                    "cannot read " + quote(path) + ": " + errnoText(errno ? errno : EIO));
     return bytes;
 }
 
@@ -54,15 +58,20 @@ Result<Image> decodeImage(const unsigned char* data, size_t size) {
     const int len = static_cast<int>(size);
     int w = 0, h = 0, comp = 0;
     if (!stbi_info_from_memory(data, len, &w, &h, &comp))
-        return fail(ErrorCode::InvalidInput, std::string("not a PNG or JPEG image (") + stbi_failure_reason() + ")");
+        return fail(ErrorCode::InvalidInput,
+                    std::string("not a PNG or JPEG image (") + stbi_failure_reason() + ")");
     // Refuse decompression bombs before allocating: 16384 x 16384 is the largest 2D image a
     // Vulkan implementation must support.
     if (w > 16384 || h > 16384)
-        return fail(ErrorCode::Unsupported, "image is " + std::to_string(w) + "x" + std::to_string(h) + ", larger than 16384x16384");
+        return fail(ErrorCode::Unsupported, "image is " + std::to_string(w) + "x" +
+                                                std::to_string(h) + ", larger than 16384x16384");
     const bool sixteen = stbi_is_16_bit_from_memory(data, len) != 0;
-    void* pixels = sixteen ? static_cast<void*>(stbi_load_16_from_memory(data, len, &w, &h, &comp, 4))
-                           : static_cast<void*>(stbi_load_from_memory(data, len, &w, &h, &comp, 4));
-    if (!pixels) return fail(ErrorCode::InvalidInput, std::string("cannot decode (") + stbi_failure_reason() + ")");
+    void* pixels = sixteen
+                       ? static_cast<void*>(stbi_load_16_from_memory(data, len, &w, &h, &comp, 4))
+                       : static_cast<void*>(stbi_load_from_memory(data, len, &w, &h, &comp, 4));
+    if (!pixels)
+        return fail(ErrorCode::InvalidInput,
+                    std::string("cannot decode (") + stbi_failure_reason() + ")");
     Image img(static_cast<uint32_t>(w), static_cast<uint32_t>(h), 4);
     for (size_t i = 0; i < img.pixels.size(); ++i)
         img.pixels[i] = sixteen ? float(static_cast<const uint16_t*>(pixels)[i]) / 65535.0f
@@ -73,21 +82,25 @@ Result<Image> decodeImage(const unsigned char* data, size_t size) {
 
 Result<std::vector<unsigned char>> encodePng(const Image& image) {
     if (image.width == 0 || image.height == 0 || image.channels < 1 || image.channels > 4)
-        return fail(ErrorCode::InvalidInput, "cannot encode a " + std::to_string(image.width) + "x" +
-                                                 std::to_string(image.height) + "x" + std::to_string(image.channels) + " image as PNG");
+        return fail(ErrorCode::InvalidInput, "cannot encode a " + std::to_string(image.width) +
+                                                 "x" + std::to_string(image.height) + "x" +
+                                                 std::to_string(image.channels) + " image as PNG");
     std::vector<unsigned char> bytes(image.pixels.size());
     for (size_t i = 0; i < bytes.size(); ++i) {
         const float v = image.pixels[i];
-        bytes[i] = static_cast<unsigned char>(std::lround((v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f) * 255.0f));
+        bytes[i] = static_cast<unsigned char>(
+            std::lround((v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f) * 255.0f));
     }
     std::vector<unsigned char> out;
     auto sink = [](void* ctx, void* data, int size) {
         auto* o = static_cast<std::vector<unsigned char>*>(ctx);
-        o->insert(o->end(), static_cast<unsigned char*>(data), static_cast<unsigned char*>(data) + size);
+        o->insert(o->end(), static_cast<unsigned char*>(data),
+                  static_cast<unsigned char*>(data) + size);
     };
-    const int ok = stbi_write_png_to_func(sink, &out, static_cast<int>(image.width), static_cast<int>(image.height),
-                                          static_cast<int>(image.channels), bytes.data(),
-                                          static_cast<int>(image.width * image.channels));
+    const int ok =
+        stbi_write_png_to_func(sink, &out, static_cast<int>(image.width),
+                               static_cast<int>(image.height), static_cast<int>(image.channels),
+                               bytes.data(), static_cast<int>(image.width * image.channels));
     if (!ok) return fail(ErrorCode::Io, "PNG encoding failed");
     return out;
 }

@@ -29,7 +29,8 @@ std::vector<std::vector<Tap>> footprints(uint32_t src, uint32_t dst) {
 }
 
 Image downsample(const Image& src, bool srgb) {
-    const uint32_t w = std::max(1u, src.width / 2), h = std::max(1u, src.height / 2), c = src.channels;
+    const uint32_t w = std::max(1u, src.width / 2), h = std::max(1u, src.height / 2),
+                   c = src.channels;
     // Decode once: colour channels of sRGB images are averaged as linear light.
     std::vector<float> lin(src.pixels);
     if (srgb)
@@ -62,7 +63,8 @@ void generateMips(SceneImage& image) {
     const uint32_t largest = std::max(image.pixels.width, image.pixels.height);
     uint32_t levels = 1;
     while ((largest >> levels) > 0) ++levels;
-    for (uint32_t l = 1; l < levels; ++l) image.mips.push_back(downsample(image.level(l - 1), image.srgb));
+    for (uint32_t l = 1; l < levels; ++l)
+        image.mips.push_back(downsample(image.level(l - 1), image.srgb));
     image.mipLevels = levels;
 }
 

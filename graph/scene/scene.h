@@ -74,9 +74,9 @@ struct Mesh {
 // Textures and images
 
 struct TextureRef {
-    int32_t image = -1;    // index into Scene::images; -1: no texture
-    int32_t sampler = -1;  // index into Scene::samplers; -1: the default (linear, repeat)
-    uint32_t texCoord = 0; // 0: Vertex::uv0, 1: Vertex::uv1
+    int32_t image = -1;     // index into Scene::images; -1: no texture
+    int32_t sampler = -1;   // index into Scene::samplers; -1: the default (linear, repeat)
+    uint32_t texCoord = 0;  // 0: Vertex::uv0, 1: Vertex::uv1
     // KHR_texture_transform as a uv matrix: uv' = (transform * vec3(uv, 1)).xy, i.e.
     // translation(offset) * rotation(rotation) * scale(scale) with glTF's rotation sign.
     glm::mat3 transform{1.0f};
@@ -90,7 +90,7 @@ struct TextureRef {
 // always linear); base colour and emissive textures are sRGB (glTF), every other map is linear.
 struct SceneImage {
     std::string name;
-    rg::Image pixels;        // level 0
+    rg::Image pixels;  // level 0
     bool srgb = false;
     uint32_t mipLevels = 1;  // floor(log2(max(width, height))) + 1 once generateMips() ran
     // Levels 1 .. mipLevels-1 (level 0 is `pixels`), each max(1, floor(previous / 2)) wide and
@@ -135,7 +135,7 @@ struct Material {
     // texture) × KHR_materials_emissive_strength, read as nits. glTF leaves the emissive unit
     // undefined; treating it as nits is our choice and the lighting work may revisit it.
     glm::vec3 emissive{0.0f};
-    float opacity = 1.0f;       // base colour alpha (glTF baseColorFactor.a)
+    float opacity = 1.0f;  // base colour alpha (glTF baseColorFactor.a)
 
     // Two-colour base material (tbl:3), used when model == "two_colour".
     glm::vec3 diffuseColor{0.5f};
@@ -191,28 +191,28 @@ const char* lightTypeName(LightType t);  // "point", "spot", "sun", "sphere", "d
 struct Light {
     std::string name;
     LightType type = LightType::Point;
-    glm::vec3 position{0.0f};             // metres (unused by the sun)
+    glm::vec3 position{0.0f};  // metres (unused by the sun)
     // Unit vector the light points along (the way its light travels): a spot's axis, a disk's or
     // a rect's emitting side, the sun's rays (from the sun towards the scene), a tube's axis.
     glm::vec3 direction{0.0f, -1.0f, 0.0f};
-    glm::vec3 up{0.0f, 1.0f, 0.0f};       // rect lights: the direction of `height`
-    glm::vec3 color{1.0f};                // linear RGB, multiplies the intensity
-    float temperatureK = 0.0f;            // kelvin; 0 = use color (lights::colorTemperatureXy's ranges)
-    bool daylight = false;                // temperatureK on the CIE daylight locus, not the black body's
-    float intensity = 1.0f;               // in `unit`
-    std::string unit = "lm";              // "lm", "cd", "lux", "nits", "ev100" (as declared)
-    float radius = 0.0f;                  // sphere, disk, tube (metres)
-    float width = 0.0f, height = 0.0f;    // rect (metres)
-    float length = 0.0f;                  // tube (metres)
-    float innerAngle = 0.0f;              // spot half-angles (radians); a disk's cone when `cone`
+    glm::vec3 up{0.0f, 1.0f, 0.0f};  // rect lights: the direction of `height`
+    glm::vec3 color{1.0f};           // linear RGB, multiplies the intensity
+    float temperatureK = 0.0f;       // kelvin; 0 = use color (lights::colorTemperatureXy's ranges)
+    bool daylight = false;           // temperatureK on the CIE daylight locus, not the black body's
+    float intensity = 1.0f;          // in `unit`
+    std::string unit = "lm";         // "lm", "cd", "lux", "nits", "ev100" (as declared)
+    float radius = 0.0f;             // sphere, disk, tube (metres)
+    float width = 0.0f, height = 0.0f;  // rect (metres)
+    float length = 0.0f;                // tube (metres)
+    float innerAngle = 0.0f;            // spot half-angles (radians); a disk's cone when `cone`
     float outerAngle = 0.785398f;
     // A disk light with a cone (seed 000 lst:9, "the disk is like a spot"): its illuminance is
     // attenuated as a spot's by innerAngle/outerAngle, seen from the apex of the cone of half-angle
     // outerAngle through its rim (lighting::diskVirtualPosition). Not physical: the seed's way of
     // giving the disk a spot's smooth edge.
     bool cone = false;
-    float range = 0.0f;                   // metres; 0 = unlimited (windowed falloff otherwise)
-    std::string ies;                      // path of an IES (LM-63) profile, "" for none
+    float range = 0.0f;  // metres; 0 = unlimited (windowed falloff otherwise)
+    std::string ies;     // path of an IES (LM-63) profile, "" for none
     // How the profile sets the intensity (seed 000 §4.5, eq:27, lst:5): "mask" (the declared
     // intensity shaped by I / I_max), "intensity" (the profile's own candela), "" = the scene's
     // default (passes::GpuSceneOptions::iesMode, itself "mask").
@@ -220,7 +220,7 @@ struct Light {
     // A spot in lumens: false = Frostbite's default, eq:17 (I = Φ / π, the cone only masks),
     // true = eq:16's exact cone (I = Φ / 2π(1 − cos θ_outer)).
     bool exactCone = false;
-    float sunAngularRadius = 0.00465f;    // radians (the sun seen from the earth: 0.2664°)
+    float sunAngularRadius = 0.00465f;  // radians (the sun seen from the earth: 0.2664°)
     // A local light that casts shadows (a shadow map per frame while its range reaches the view:
     // scripts/shadows.lua's local maps). The sun's shadow is the pipeline's (`sun_shadows`).
     bool castShadows = false;
@@ -236,27 +236,27 @@ struct Camera {
     glm::vec3 position{0.0f, 0.0f, 5.0f};
     glm::vec3 target{0.0f};
     glm::vec3 up{0.0f, 1.0f, 0.0f};
-    float verticalFov = 0.785398f;   // radians
-    bool orthographic = false;       // a parallel projection of `orthoHeight` metres (glTF: 2 ymag)
+    float verticalFov = 0.785398f;  // radians
+    bool orthographic = false;      // a parallel projection of `orthoHeight` metres (glTF: 2 ymag)
     float orthoHeight = 2.0f;
-    float focalLength = 0.0f;        // metres; 0 = derived from verticalFov
-    float sensorHeight = 0.024f;     // metres (full frame)
+    float focalLength = 0.0f;                     // metres; 0 = derived from verticalFov
+    float sensorHeight = 0.024f;                  // metres (full frame)
     float nearPlane = 0.05f, farPlane = 1000.0f;  // metres
-    float aperture = 16.0f;          // f-number N
-    float shutter = 0.008f;          // seconds (1/125)
+    float aperture = 16.0f;                       // f-number N
+    float shutter = 0.008f;                       // seconds (1/125)
     float iso = 100.0f;
     float exposureCompensation = 0.0f;  // EV
 };
 
 struct Environment {
     std::string name;
-    std::string kind = "sky";        // "sky" (procedural), "hdr" (equirectangular file), "color"
-    std::string file;                // "hdr": the .hdr/.exr path (resolved, absolute)
-    glm::vec3 color{1.0f};           // "color": linear RGB
-    float intensity = 1.0f;          // multiplies the file / colour / sky, in `unit`
-    std::string unit = "nits";       // sky and image-based light: luminance (tbl:8)
-    float rotation = 0.0f;           // radians about +Y
-    float turbidity = 2.5f;          // "sky": Preetham's atmospheric turbidity (2 clear .. 10 hazy)
+    std::string kind = "sky";   // "sky" (procedural), "hdr" (equirectangular file), "color"
+    std::string file;           // "hdr": the .hdr/.exr path (resolved, absolute)
+    glm::vec3 color{1.0f};      // "color": linear RGB
+    float intensity = 1.0f;     // multiplies the file / colour / sky, in `unit`
+    std::string unit = "nits";  // sky and image-based light: luminance (tbl:8)
+    float rotation = 0.0f;      // radians about +Y
+    float turbidity = 2.5f;     // "sky": Preetham's atmospheric turbidity (2 clear .. 10 hazy)
 };
 
 // A deferred decal (seed 000 §3.3): a box that, where it encloses the G-buffer's surface, blends
@@ -268,7 +268,7 @@ struct Decal {
     glm::mat4 world{1.0f};  // unit box [-0.5, 0.5]^3 to world (position, rotation, size)
     float opacity = 1.0f;
     bool hasBaseColor = false, hasSmoothness = false, hasMetalMask = false, hasReflectance = false;
-    bool normal = false;    // blend the normal towards the box's +Y axis
+    bool normal = false;  // blend the normal towards the box's +Y axis
     glm::vec3 baseColor{1.0f};
     float smoothness = 0.5f, metalMask = 0.0f, reflectance = 0.5f;
 };
@@ -286,12 +286,12 @@ struct Probe {
     std::string origin;  // FILE:LINE of the declaration
     bool box = false;
     glm::vec3 position{0.0f};
-    float radius = 1.0f;           // sphere
-    glm::vec3 size{1.0f};          // box: full extent along its local axes (metres)
-    glm::mat3 rotation{1.0f};      // box: local axes in world space
-    float influenceRadius = 0.0f;  // sphere: 0 = the proxy's radius
-    glm::vec3 influenceSize{0.0f}; // box: 0 = the proxy's size
-    float fade = 0.25f;            // metres
+    float radius = 1.0f;            // sphere
+    glm::vec3 size{1.0f};           // box: full extent along its local axes (metres)
+    glm::mat3 rotation{1.0f};       // box: local axes in world space
+    float influenceRadius = 0.0f;   // sphere: 0 = the proxy's radius
+    glm::vec3 influenceSize{0.0f};  // box: 0 = the proxy's size
+    float fade = 0.25f;             // metres
     int priority = 0;
     // The influence volume's half extents (a sphere: its radius on every axis), the proxy's unless given.
     glm::vec3 influenceHalfExtents() const {
@@ -304,12 +304,12 @@ struct Probe {
 // declared by scene.lightmap. graph/bake bakes it (rgraph bake); the G-buffer pass reads it.
 struct LightmapSettings {
     std::string name;
-    std::string origin;        // FILE:LINE of the declaration
-    float density = 4.0f;      // lightmap texels per metre of surface
-    int lobes = 9;             // SG lobes per texel: 5, 6, 9 or 12 (seed 003 "Light Map Data")
-    int samples = 128;         // paths per texel
-    int bounces = 2;           // indirect bounces after the first hit (>= 2 gives two-bounce GI)
-    int maxSize = 2048;        // the atlas's largest side; a scene too large for it gets a lower density
+    std::string origin;    // FILE:LINE of the declaration
+    float density = 4.0f;  // lightmap texels per metre of surface
+    int lobes = 9;         // SG lobes per texel: 5, 6, 9 or 12 (seed 003 "Light Map Data")
+    int samples = 128;     // paths per texel
+    int bounces = 2;       // indirect bounces after the first hit (>= 2 gives two-bounce GI)
+    int maxSize = 2048;  // the atlas's largest side; a scene too large for it gets a lower density
 };
 
 // A baked SG lightmap (graph/bake): per texel, the radiance arriving over the upper hemisphere as
@@ -318,15 +318,15 @@ struct LightmapSettings {
 // Node::lightmapRect.
 struct Lightmap {
     uint32_t width = 0, height = 0;
-    std::vector<glm::vec3> axes;                 // μ_k, tangent space
-    float sharpness = 0.0f;                      // λ
-    std::vector<std::vector<glm::vec3>> lobes;   // [k][y * width + x]: A_k
+    std::vector<glm::vec3> axes;                // μ_k, tangent space
+    float sharpness = 0.0f;                     // λ
+    std::vector<std::vector<glm::vec3>> lobes;  // [k][y * width + x]: A_k
     // The amplitudes the fit gives a uniform 1-nit hemisphere: what the specular term divides by,
     // so that the lobes' ripple and the part of a wide lobe below the horizon cancel out.
     std::vector<float> unit;
-    std::vector<uint8_t> coverage;               // 1: a surface's texel (0: border or gutter, dilated)
-    float density = 0.0f;                        // texels per metre
-    std::string key;                             // the content hash it was baked for
+    std::vector<uint8_t> coverage;  // 1: a surface's texel (0: border or gutter, dilated)
+    float density = 0.0f;           // texels per metre
+    std::string key;                // the content hash it was baked for
 };
 
 struct Scene {
@@ -341,7 +341,8 @@ struct Scene {
     std::vector<Camera> cameras;
     std::optional<Environment> environment;
     std::optional<LightmapSettings> lightmap;
-    std::shared_ptr<const Lightmap> bakedLightmap;  // the lightmap the G-buffer pass reads (none: not used)
+    std::shared_ptr<const Lightmap>
+        bakedLightmap;               // the lightmap the G-buffer pass reads (none: not used)
     std::vector<std::string> files;  // every file read (absolute paths), for hot reload
     glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};  // world-space box around every node's mesh
 };
@@ -376,7 +377,8 @@ struct SceneScriptOptions {
     std::string projectRoot;  // "" = RG_ROOT when set, else the source tree this was built from
     bool loadImages = true;   // passed on to the glTF files the script names
     bool generateMips = true;
-    std::map<std::string, std::string> args;  // the script's `scene.args` (rgraph --scene-arg NAME=VALUE)
+    std::map<std::string, std::string>
+        args;  // the script's `scene.args` (rgraph --scene-arg NAME=VALUE)
 };
 
 // Runs a Lua scene script (scene.material/sphere/plane/box/gltf/light/camera/environment, see
@@ -412,8 +414,9 @@ void generateTangents(Primitive& primitive);
 void generateFlatNormals(Primitive& primitive);
 
 // Meshes the Lua scene makes (unit-free, in metres, centred on the origin, CCW outwards).
-Primitive makeSphere(float radius, uint32_t segments, uint32_t material);  // segments around, segments/2 rings
-Primitive makePlane(float width, float depth, uint32_t material);           // XZ plane, normal +Y
+Primitive makeSphere(float radius, uint32_t segments,
+                     uint32_t material);  // segments around, segments/2 rings
+Primitive makePlane(float width, float depth, uint32_t material);  // XZ plane, normal +Y
 Primitive makeBox(glm::vec3 size, uint32_t material);
 // Generated shapes carry lightmap uvs (Primitive::lightmapUv): a plane and a sphere their uv square,
 // a box its faces in a 3 × 2 grid, each inset by this fraction of its cell.

@@ -25,7 +25,9 @@ namespace scene_script {
 
 // ---- files and transforms ---------------------------------------------------------------------
 
-Where Builder::where(const Declaration& d) { return {d, std::string(declKindName(d.kind)) + "." + d.name}; }
+Where Builder::where(const Declaration& d) {
+    return {d, std::string(declKindName(d.kind)) + "." + d.name};
+}
 
 // Files named in a script are relative to the script's folder.
 std::string Builder::resolve(const std::string& file) const {
@@ -37,11 +39,14 @@ void Builder::addFile(const std::string& p) {
     std::error_code ec;
     std::string a = fs::weakly_canonical(fs::absolute(p), ec).string();
     if (ec) a = p;
-    if (std::find(scene.files.begin(), scene.files.end(), a) == scene.files.end()) scene.files.push_back(a);
+    if (std::find(scene.files.begin(), scene.files.end(), a) == scene.files.end())
+        scene.files.push_back(a);
 }
-Result<std::string> Builder::existingFile(const Where& w, const Value& body, const std::string& field) {
+Result<std::string> Builder::existingFile(const Where& w, const Value& body,
+                                          const std::string& field) {
     const Value& v = body[field];
-    if (!v.isString() || v.asString().empty()) return w.at(field).error("expected a file name, got " + describe(v));
+    if (!v.isString() || v.asString().empty())
+        return w.at(field).error("expected a file name, got " + describe(v));
     const std::string path = resolve(v.asString());
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) {
@@ -53,15 +58,18 @@ Result<std::string> Builder::existingFile(const Where& w, const Value& body, con
 }
 
 // A texture file of a material: decoded once per file and encoding, its index in scene.images.
-Result<int32_t> Builder::textureFile(const Where& w, const Value& b, const std::string& field, bool srgb) {
+Result<int32_t> Builder::textureFile(const Where& w, const Value& b, const std::string& field,
+                                     bool srgb) {
     std::string path;
     RG_TRY(path, existingFile(w, b, field));
     for (size_t i = 0; i < scene.images.size(); ++i)
-        if (scene.images[i].name == path && scene.images[i].srgb == srgb) return static_cast<int32_t>(i);
+        if (scene.images[i].name == path && scene.images[i].srgb == srgb)
+            return static_cast<int32_t>(i);
     auto bytes = readFile(path);
     if (!bytes) return w.at(field).error(bytes.error().message);
     auto image = decodeImage(bytes->data(), bytes->size());
-    if (!image) return w.at(field).error("cannot decode " + quote(path) + ": " + image.error().message);
+    if (!image)
+        return w.at(field).error("cannot decode " + quote(path) + ": " + image.error().message);
     SceneImage si;
     si.name = path;
     si.pixels = std::move(*image);
@@ -77,10 +85,13 @@ Result<glm::mat4> Builder::transform(const Where& w, const Value& b) {
     const Value& s = b["scale"];
     if (s.isNumber()) {
         if (!Range::positive().contains(s.asNumber()))
-            return w.at("scale").error("expected a number > 0 or {x, y, z} of numbers > 0, got " + describe(s));
+            return w.at("scale").error("expected a number > 0 or {x, y, z} of numbers > 0, got " +
+                                       describe(s));
         scale = glm::vec3(static_cast<float>(s.asNumber()));
     } else if (!s.isNil()) {
-        if (!s.isList()) return w.at("scale").error("expected a number > 0 or {x, y, z} of numbers > 0, got " + describe(s));
+        if (!s.isList())
+            return w.at("scale").error("expected a number > 0 or {x, y, z} of numbers > 0, got " +
+                                       describe(s));
         RG_TRY(scale, vec3(w, b, "scale", scale, "{x, y, z}", Range::positive()));
     }
     // Rotation in degrees about X, then Y, then Z (R = Rz * Ry * Rx).
@@ -97,21 +108,31 @@ Result<void> Builder::names(const std::vector<Declaration>& decls) {
     for (const auto& d : decls) {
         Where w = where(d);
         if (!isSceneKind(d.kind))
-            return fail(ErrorCode::InvalidInput, d.origin + ": rg." + declKindName(d.kind) + " \"" + d.name +
-                                                     "\" belongs in a pipeline script, not in a scene");
-        if (!d.body.isTable()) return w.error("expected a table of fields after " + std::string(declKindName(d.kind)) + " \"" + d.name + "\", got " + describe(d.body));
+            return fail(ErrorCode::InvalidInput,
+                        d.origin + ": rg." + declKindName(d.kind) + " \"" + d.name +
+                            "\" belongs in a pipeline script, not in a scene");
+        if (!d.body.isTable())
+            return w.error("expected a table of fields after " + std::string(declKindName(d.kind)) +
+                           " \"" + d.name + "\", got " + describe(d.body));
         // Objects (meshes) share one namespace: each becomes a node of that name.
-        DeclKind slot = d.kind == DeclKind::Plane || d.kind == DeclKind::Box || d.kind == DeclKind::Gltf ? DeclKind::Sphere : d.kind;
+        DeclKind slot =
+            d.kind == DeclKind::Plane || d.kind == DeclKind::Box || d.kind == DeclKind::Gltf
+                ? DeclKind::Sphere
+                : d.kind;
         auto [it, fresh] = seen[static_cast<size_t>(slot)].emplace(d.name, &d);
         if (!fresh)
-            return w.error(std::string(declKindName(it->second->kind)) + " '" + d.name + "' is already declared (at " + it->second->origin + ")");
+            return w.error(std::string(declKindName(it->second->kind)) + " '" + d.name +
+                           "' is already declared (at " + it->second->origin + ")");
         if (d.kind == DeclKind::Lightmap) {
-            if (firstLightmap) return w.error("a scene has one lightmap; '" + firstLightmap->name + "' is declared at " + firstLightmap->origin);
+            if (firstLightmap)
+                return w.error("a scene has one lightmap; '" + firstLightmap->name +
+                               "' is declared at " + firstLightmap->origin);
             firstLightmap = &d;
         }
         if (d.kind == DeclKind::Environment) {
             if (firstEnvironment)
-                return w.error("a scene has one environment; '" + firstEnvironment->name + "' is declared at " + firstEnvironment->origin);
+                return w.error("a scene has one environment; '" + firstEnvironment->name +
+                               "' is declared at " + firstEnvironment->origin);
             firstEnvironment = &d;
         }
     }
@@ -127,16 +148,31 @@ Result<Scene> Builder::build(const std::vector<Declaration>& decls) {
     for (const auto& d : decls) {
         Result<void> r;
         switch (d.kind) {
-        case DeclKind::Sphere:
-        case DeclKind::Plane:
-        case DeclKind::Box: r = object(d); break;
-        case DeclKind::Gltf: r = gltf(d); break;
-        case DeclKind::Light: r = light(d); break;
-        case DeclKind::Camera: r = camera(d); break;
-        case DeclKind::Decal: r = decal(d); break;
-        case DeclKind::Probe: r = probe(d); break;
-        case DeclKind::Lightmap: r = lightmap(d); break;
-        default: break;
+            case DeclKind::Sphere:
+            case DeclKind::Plane:
+            case DeclKind::Box:
+                r = object(d);
+                break;
+            case DeclKind::Gltf:
+                r = gltf(d);
+                break;
+            case DeclKind::Light:
+                r = light(d);
+                break;
+            case DeclKind::Camera:
+                r = camera(d);
+                break;
+            case DeclKind::Decal:
+                r = decal(d);
+                break;
+            case DeclKind::Probe:
+                r = probe(d);
+                break;
+            case DeclKind::Lightmap:
+                r = lightmap(d);
+                break;
+            default:
+                break;
         }
         if (!r) return std::unexpected(r.error());
     }
@@ -166,7 +202,8 @@ Result<Scene> loadSceneScript(const std::string& path, const SceneScriptOptions&
     std::error_code ec;
     if (!fs::is_regular_file(path, ec)) {
         auto r = readFile(path);
-        return fail(ErrorCode::NotFound, r ? "'" + path + "' is not a regular file" : "scene script: " + r.error().message);
+        return fail(ErrorCode::NotFound, r ? "'" + path + "' is not a regular file"
+                                           : "scene script: " + r.error().message);
     }
     const std::string root = options.projectRoot.empty() ? defaultRoot() : options.projectRoot;
     LuaHostOptions ho;

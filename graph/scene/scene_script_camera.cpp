@@ -17,8 +17,9 @@ namespace scene_script {
 Result<void> Builder::camera(const Declaration& d) {
     Where w = where(d);
     const Value& b = d.body;
-    if (auto r = checkFields(w, b, {"position", "target", "up", "fov", "focal_length", "sensor_height", "height", "aperture", "shutter",
-                                    "iso", "ec", "near", "far", "doc"});
+    if (auto r = checkFields(w, b,
+                             {"position", "target", "up", "fov", "focal_length", "sensor_height",
+                              "height", "aperture", "shutter", "iso", "ec", "near", "far", "doc"});
         !r)
         return r;
     Camera c;
@@ -27,11 +28,18 @@ Result<void> Builder::camera(const Declaration& d) {
     RG_TRY(c.position, vec3(w, b, "position", c.position));
     RG_TRY(c.target, vec3(w, b, "target", c.target));
     RG_TRY(c.up, vec3(w, b, "up", c.up));
-    if (glm::length(c.target - c.position) < 1e-6f) return w.at("target").error("equals position; the camera needs a direction to look in");
-    if (glm::length(glm::cross(c.up, c.target - c.position)) < 1e-6f * glm::length(c.target - c.position))
-        return w.at("up").error("is parallel to the view direction (or zero); e.g. up = {0, 0, -1} for a camera looking straight down");
-    if (b.has("fov") && b.has("focal_length")) return w.at("focal_length").error("give either fov or focal_length (with sensor_height), not both");
-    if (b.has("sensor_height") && !b.has("focal_length")) return w.at("sensor_height").error("applies with focal_length only");
+    if (glm::length(c.target - c.position) < 1e-6f)
+        return w.at("target").error("equals position; the camera needs a direction to look in");
+    if (glm::length(glm::cross(c.up, c.target - c.position)) <
+        1e-6f * glm::length(c.target - c.position))
+        return w.at("up").error(
+            "is parallel to the view direction (or zero); e.g. up = {0, 0, -1} for a camera "
+            "looking straight down");
+    if (b.has("fov") && b.has("focal_length"))
+        return w.at("focal_length")
+            .error("give either fov or focal_length (with sensor_height), not both");
+    if (b.has("sensor_height") && !b.has("focal_length"))
+        return w.at("sensor_height").error("applies with focal_length only");
     float fovDeg = 45.0f;
     RG_TRY(fovDeg, numberF(w, b, "fov", fovDeg, Range::open(0, 180)));
     c.verticalFov = fovDeg * kDegrees;
@@ -46,18 +54,21 @@ Result<void> Builder::camera(const Declaration& d) {
     // height = metres: an orthographic camera showing that much of the scene top to bottom.
     if (b.has("height")) {
         if (b.has("fov") || b.has("focal_length"))
-            return w.at("height").error("an orthographic camera (height) has no fov or focal_length");
+            return w.at("height").error(
+                "an orthographic camera (height) has no fov or focal_length");
         RG_TRY(c.orthoHeight, numberF(w, b, "height", c.orthoHeight, Range::positive()));
         c.orthographic = true;
     }
     RG_TRY(c.aperture, numberF(w, b, "aperture", c.aperture, Range::closed(0.5, 128)));
     RG_TRY(c.shutter, numberF(w, b, "shutter", c.shutter, Range::openLow(0, 60)));
     RG_TRY(c.iso, numberF(w, b, "iso", c.iso, Range::closed(1, 1000000)));
-    RG_TRY(c.exposureCompensation, numberF(w, b, "ec", c.exposureCompensation, Range::closed(-20, 20)));
+    RG_TRY(c.exposureCompensation,
+           numberF(w, b, "ec", c.exposureCompensation, Range::closed(-20, 20)));
     RG_TRY(c.nearPlane, numberF(w, b, "near", c.nearPlane, Range::positive()));
     RG_TRY(c.farPlane, numberF(w, b, "far", c.farPlane, Range::positive()));
     if (c.farPlane <= c.nearPlane)
-        return w.at("far").error("is " + formatNumber(c.farPlane) + ", not beyond near (" + formatNumber(c.nearPlane) + ")");
+        return w.at("far").error("is " + formatNumber(c.farPlane) + ", not beyond near (" +
+                                 formatNumber(c.nearPlane) + ")");
     scene.cameras.push_back(c);
     return {};
 }

@@ -45,7 +45,8 @@ struct Range {
         std::string n = integer ? "a whole number" : noun;
         const bool hasLo = lo != -HUGE_VAL, hasHi = hi != HUGE_VAL;
         if (hasLo && hasHi)
-            return n + " in " + (loOpen ? "(" : "[") + formatNumber(lo) + ", " + formatNumber(hi) + (hiOpen ? ")" : "]");
+            return n + " in " + (loOpen ? "(" : "[") + formatNumber(lo) + ", " + formatNumber(hi) +
+                   (hiOpen ? ")" : "]");
         if (hasLo) return n + (loOpen ? " > " : " >= ") + formatNumber(lo);
         if (hasHi) return n + (hiOpen ? " < " : " <= ") + formatNumber(hi);
         return n;
@@ -78,7 +79,8 @@ struct Builder {
     std::map<std::string, const Declaration*> seen[static_cast<size_t>(DeclKind::Count)];
     const Declaration* firstEnvironment = nullptr;
     const Declaration* firstLightmap = nullptr;
-    size_t generatedVertices = 0;  // budget for sphere/plane/box meshes (a script is a loop away from millions)
+    size_t generatedVertices =
+        0;  // budget for sphere/plane/box meshes (a script is a loop away from millions)
     static constexpr size_t kMaxGeneratedVertices = size_t(1) << 24;
 
     // ---- files and transforms (scene_script.cpp) ---------------------------------------------

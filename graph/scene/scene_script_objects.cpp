@@ -18,9 +18,28 @@ namespace scene_script {
 Result<void> Builder::material(const Declaration& d) {
     Where w = where(d);
     const Value& b = d.body;
-    if (auto r = checkFields(w, b, {"model", "base_color", "smoothness", "metal_mask", "reflectance", "ao", "emissive", "opacity",
-                                    "diffuse_color", "f0", "params", "double_sided", "alpha", "alpha_cutoff", "base_color_map",
-                                    "metallic_roughness_map", "normal_map", "normal_scale", "occlusion_map", "emissive_map", "doc"});
+    if (auto r = checkFields(w, b,
+                             {"model",
+                              "base_color",
+                              "smoothness",
+                              "metal_mask",
+                              "reflectance",
+                              "ao",
+                              "emissive",
+                              "opacity",
+                              "diffuse_color",
+                              "f0",
+                              "params",
+                              "double_sided",
+                              "alpha",
+                              "alpha_cutoff",
+                              "base_color_map",
+                              "metallic_roughness_map",
+                              "normal_map",
+                              "normal_scale",
+                              "occlusion_map",
+                              "emissive_map",
+                              "doc"});
         !r)
         return r;
     Material m;
@@ -29,10 +48,15 @@ Result<void> Builder::material(const Declaration& d) {
     const bool twoColour = m.model == "two_colour";
     if (twoColour) {
         for (const char* f : {"base_color", "metal_mask", "reflectance"})
-            if (b.has(f)) return w.at(f).error("not used by model 'two_colour', which takes diffuse_color and f0");
+            if (b.has(f))
+                return w.at(f).error(
+                    "not used by model 'two_colour', which takes diffuse_color and f0");
     } else {
         for (const char* f : {"diffuse_color", "f0"})
-            if (b.has(f)) return w.at(f).error("applies to model 'two_colour' only (this material's model is '" + m.model + "')");
+            if (b.has(f))
+                return w.at(f).error(
+                    "applies to model 'two_colour' only (this material's model is '" + m.model +
+                    "')");
     }
     RG_TRY(m.baseColor, colour(w, b, "base_color", m.baseColor));
     RG_TRY(m.smoothness, numberF(w, b, "smoothness", m.smoothness, Range::unit()));
@@ -43,25 +67,33 @@ Result<void> Builder::material(const Declaration& d) {
     RG_TRY(m.emissive, colour(w, b, "emissive", m.emissive, Range::nonNegative()));
     RG_TRY(m.diffuseColor, colour(w, b, "diffuse_color", m.diffuseColor));
     RG_TRY(m.f0, colour(w, b, "f0", m.f0));
-    if (b.has("params") && !b["params"].isTable() && !(b["params"].isList() && b["params"].asList().empty()))
-        return w.at("params").error("expected a table of named parameters, got " + describe(b["params"]));
+    if (b.has("params") && !b["params"].isTable() &&
+        !(b["params"].isList() && b["params"].asList().empty()))
+        return w.at("params").error("expected a table of named parameters, got " +
+                                    describe(b["params"]));
     m.extra = b["params"];
     m.origin = d.origin + ": " + w.path;
     RG_TRY(m.doubleSided, boolean(w, b, "double_sided", false));
     std::string alpha;
     RG_TRY(alpha, choice(w, b, "alpha", "opaque", {"opaque", "mask", "blend"}, "alpha mode"));
-    m.alphaMode = alpha == "mask" ? AlphaMode::Mask : alpha == "blend" ? AlphaMode::Blend : AlphaMode::Opaque;
-    if (b.has("alpha_cutoff") && m.alphaMode != AlphaMode::Mask) return w.at("alpha_cutoff").error("applies to alpha = \"mask\" only");
+    m.alphaMode = alpha == "mask"    ? AlphaMode::Mask
+                  : alpha == "blend" ? AlphaMode::Blend
+                                     : AlphaMode::Opaque;
+    if (b.has("alpha_cutoff") && m.alphaMode != AlphaMode::Mask)
+        return w.at("alpha_cutoff").error("applies to alpha = \"mask\" only");
     RG_TRY(m.alphaCutoff, numberF(w, b, "alpha_cutoff", m.alphaCutoff, Range::unit()));
     // Texture files (PNG or JPEG, relative to the script), as glTF's five maps: base colour and
     // emissive are sRGB, the others linear; each multiplies its factor.
     const std::pair<const char*, std::pair<TextureRef*, bool>> maps[] = {
-        {"base_color_map", {&m.baseColorTex, true}},          {"metallic_roughness_map", {&m.metallicRoughnessTex, false}},
-        {"normal_map", {&m.normalTex, false}},                {"occlusion_map", {&m.occlusionTex, false}},
+        {"base_color_map", {&m.baseColorTex, true}},
+        {"metallic_roughness_map", {&m.metallicRoughnessTex, false}},
+        {"normal_map", {&m.normalTex, false}},
+        {"occlusion_map", {&m.occlusionTex, false}},
         {"emissive_map", {&m.emissiveTex, true}}};
     for (const auto& [field, target] : maps)
         if (b.has(field)) RG_TRY(target.first->image, textureFile(w, b, field, target.second));
-    if (b.has("normal_scale") && !b.has("normal_map")) return w.at("normal_scale").error("applies with a normal_map only");
+    if (b.has("normal_scale") && !b.has("normal_map"))
+        return w.at("normal_scale").error("applies with a normal_map only");
     RG_TRY(m.normalScale, numberF(w, b, "normal_scale", m.normalScale, Range::closed(0, 10)));
     materials[d.name] = static_cast<uint32_t>(scene.materials.size());
     materialNames.push_back(d.name);
@@ -80,21 +112,27 @@ Result<uint32_t> Builder::materialRef(const Where& w, const Value& b) {
         scene.materials.push_back(m);
         return materials["default"];
     }
-    if (!v.isString()) return w.at("material").error("expected a material name, got " + describe(v));
+    if (!v.isString())
+        return w.at("material").error("expected a material name, got " + describe(v));
     auto it = materials.find(v.asString());
     if (it == materials.end())
-        return w.at("material").error("unknown material '" + v.asString() + "'" + suggestion(v.asString(), materialNames) +
-                                      (materialNames.empty() ? "; the scene declares no scene.material"
-                                                             : "; declared: " + joinQuoted(materialNames)));
+        return w.at("material")
+            .error("unknown material '" + v.asString() + "'" +
+                   suggestion(v.asString(), materialNames) +
+                   (materialNames.empty() ? "; the scene declares no scene.material"
+                                          : "; declared: " + joinQuoted(materialNames)));
     return it->second;
 }
 
 Result<void> Builder::object(const Declaration& d) {
     Where w = where(d);
     const Value& b = d.body;
-    std::vector<std::string> fields = {"position", "rotation", "scale", "material", "cast_shadows", "doc"};
-    if (d.kind == DeclKind::Sphere) fields.insert(fields.end(), {"radius", "segments"});
-    else fields.push_back("size");
+    std::vector<std::string> fields = {"position", "rotation",     "scale",
+                                       "material", "cast_shadows", "doc"};
+    if (d.kind == DeclKind::Sphere)
+        fields.insert(fields.end(), {"radius", "segments"});
+    else
+        fields.push_back("size");
     if (auto r = checkFields(w, b, fields); !r) return r;
     glm::mat4 world;
     RG_TRY(world, transform(w, b));
@@ -110,11 +148,14 @@ Result<void> Builder::object(const Declaration& d) {
         RG_TRY(segments, number(w, b, "segments", segments, seg));
         const auto s = static_cast<size_t>(segments);
         if (generatedVertices + (s + 1) * (std::max<size_t>(s / 2, 2) + 1) > kMaxGeneratedVertices)
-            return w.error("the scene's generated meshes would have more than " + std::to_string(kMaxGeneratedVertices) + " vertices");
+            return w.error("the scene's generated meshes would have more than " +
+                           std::to_string(kMaxGeneratedVertices) + " vertices");
         p = makeSphere(radius, static_cast<uint32_t>(segments), material);
     } else if (d.kind == DeclKind::Plane) {
         std::vector<float> size = {10.0f, 10.0f};
-        if (b.has("size")) RG_TRY(size, numbers(w.at("size"), b["size"], 2, "{width, depth} in metres", Range::positive()));
+        if (b.has("size"))
+            RG_TRY(size, numbers(w.at("size"), b["size"], 2, "{width, depth} in metres",
+                                 Range::positive()));
         p = makePlane(size[0], size[1], material);
     } else {
         glm::vec3 size(1.0f);
@@ -140,7 +181,8 @@ void Builder::merge(Scene&& sub, const glm::mat4& t, const std::string& prefix) 
     const auto smpOff = static_cast<int32_t>(scene.samplers.size());
     const auto meshOff = static_cast<int32_t>(scene.meshes.size());
     for (auto& m : sub.materials) {
-        for (TextureRef* tex : {&m.baseColorTex, &m.metallicRoughnessTex, &m.normalTex, &m.occlusionTex, &m.emissiveTex}) {
+        for (TextureRef* tex : {&m.baseColorTex, &m.metallicRoughnessTex, &m.normalTex,
+                                &m.occlusionTex, &m.emissiveTex}) {
             if (tex->image >= 0) tex->image += imgOff;
             if (tex->sampler >= 0) tex->sampler += smpOff;
         }
@@ -154,7 +196,8 @@ void Builder::merge(Scene&& sub, const glm::mat4& t, const std::string& prefix) 
         mesh.name = prefix + "/" + mesh.name;
         scene.meshes.push_back(std::move(mesh));
     }
-    for (auto& n : sub.nodes) scene.nodes.push_back({prefix + "/" + n.name, t * n.world, n.mesh + meshOff});
+    for (auto& n : sub.nodes)
+        scene.nodes.push_back({prefix + "/" + n.name, t * n.world, n.mesh + meshOff});
     const glm::mat3 linear(t);
     auto dir = [&](glm::vec3 v) {
         const glm::vec3 r = linear * v;
@@ -181,9 +224,15 @@ void Builder::merge(Scene&& sub, const glm::mat4& t, const std::string& prefix) 
 Result<void> Builder::gltf(const Declaration& d) {
     Where w = where(d);
     const Value& b = d.body;
-    if (auto r = checkFields(w, b, {"file", "position", "rotation", "scale", "cast_shadows", "doc"}); !r) return r;
-    if (!b.has("file")) return w.at("file").error("missing (expected a .gltf or .glb file, relative to the script)");
-    if (!b["file"].isString()) return w.at("file").error("expected a file name, got " + describe(b["file"]));
+    if (auto r =
+            checkFields(w, b, {"file", "position", "rotation", "scale", "cast_shadows", "doc"});
+        !r)
+        return r;
+    if (!b.has("file"))
+        return w.at("file").error(
+            "missing (expected a .gltf or .glb file, relative to the script)");
+    if (!b["file"].isString())
+        return w.at("file").error("expected a file name, got " + describe(b["file"]));
     glm::mat4 t;
     RG_TRY(t, transform(w, b));
     GltfOptions go;
@@ -192,7 +241,10 @@ Result<void> Builder::gltf(const Declaration& d) {
     bool castShadows = true;
     RG_TRY(castShadows, boolean(w, b, "cast_shadows", true));
     auto sub = loadGltf(resolve(b["file"].asString()), go);
-    if (!sub) return fail(sub.error().code, d.origin + ": " + w.at("file").path + ": " + sub.error().message, sub.error().reasons);
+    if (!sub)
+        return fail(sub.error().code,
+                    d.origin + ": " + w.at("file").path + ": " + sub.error().message,
+                    sub.error().reasons);
     const size_t firstNode = scene.nodes.size();
     merge(std::move(*sub), t, d.name);
     if (!castShadows)
@@ -203,8 +255,9 @@ Result<void> Builder::gltf(const Declaration& d) {
 Result<void> Builder::decal(const Declaration& d) {
     Where w = where(d);
     const Value& b = d.body;
-    if (auto r = checkFields(w, b, {"position", "rotation", "size", "opacity", "base_color", "smoothness", "metal_mask",
-                                    "reflectance", "normal", "doc"});
+    if (auto r = checkFields(w, b,
+                             {"position", "rotation", "size", "opacity", "base_color", "smoothness",
+                              "metal_mask", "reflectance", "normal", "doc"});
         !r)
         return r;
     Decal decal;

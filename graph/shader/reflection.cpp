@@ -21,48 +21,90 @@ using ContextPtr = std::unique_ptr<spvc_context_s, ContextDeleter>;
 // The GLSL layout qualifier of a storage image format; "" for Unknown.
 const char* imageFormatName(SpvImageFormat f) {
     switch (f) {
-        case SpvImageFormatRgba32f: return "rgba32f";
-        case SpvImageFormatRgba16f: return "rgba16f";
-        case SpvImageFormatR32f: return "r32f";
-        case SpvImageFormatRgba8: return "rgba8";
-        case SpvImageFormatRgba8Snorm: return "rgba8_snorm";
-        case SpvImageFormatRg32f: return "rg32f";
-        case SpvImageFormatRg16f: return "rg16f";
-        case SpvImageFormatR11fG11fB10f: return "r11f_g11f_b10f";
-        case SpvImageFormatR16f: return "r16f";
-        case SpvImageFormatRgba16: return "rgba16";
-        case SpvImageFormatRgb10A2: return "rgb10_a2";
-        case SpvImageFormatRg16: return "rg16";
-        case SpvImageFormatRg8: return "rg8";
-        case SpvImageFormatR16: return "r16";
-        case SpvImageFormatR8: return "r8";
-        case SpvImageFormatRgba16Snorm: return "rgba16_snorm";
-        case SpvImageFormatRg16Snorm: return "rg16_snorm";
-        case SpvImageFormatRg8Snorm: return "rg8_snorm";
-        case SpvImageFormatR16Snorm: return "r16_snorm";
-        case SpvImageFormatR8Snorm: return "r8_snorm";
-        case SpvImageFormatRgba32i: return "rgba32i";
-        case SpvImageFormatRgba16i: return "rgba16i";
-        case SpvImageFormatRgba8i: return "rgba8i";
-        case SpvImageFormatR32i: return "r32i";
-        case SpvImageFormatRg32i: return "rg32i";
-        case SpvImageFormatRg16i: return "rg16i";
-        case SpvImageFormatRg8i: return "rg8i";
-        case SpvImageFormatR16i: return "r16i";
-        case SpvImageFormatR8i: return "r8i";
-        case SpvImageFormatRgba32ui: return "rgba32ui";
-        case SpvImageFormatRgba16ui: return "rgba16ui";
-        case SpvImageFormatRgba8ui: return "rgba8ui";
-        case SpvImageFormatR32ui: return "r32ui";
-        case SpvImageFormatRgb10a2ui: return "rgb10_a2ui";
-        case SpvImageFormatRg32ui: return "rg32ui";
-        case SpvImageFormatRg16ui: return "rg16ui";
-        case SpvImageFormatRg8ui: return "rg8ui";
-        case SpvImageFormatR16ui: return "r16ui";
-        case SpvImageFormatR8ui: return "r8ui";
-        case SpvImageFormatR64ui: return "r64ui";
-        case SpvImageFormatR64i: return "r64i";
-        default: return "";
+        case SpvImageFormatRgba32f:
+            return "rgba32f";
+        case SpvImageFormatRgba16f:
+            return "rgba16f";
+        case SpvImageFormatR32f:
+            return "r32f";
+        case SpvImageFormatRgba8:
+            return "rgba8";
+        case SpvImageFormatRgba8Snorm:
+            return "rgba8_snorm";
+        case SpvImageFormatRg32f:
+            return "rg32f";
+        case SpvImageFormatRg16f:
+            return "rg16f";
+        case SpvImageFormatR11fG11fB10f:
+            return "r11f_g11f_b10f";
+        case SpvImageFormatR16f:
+            return "r16f";
+        case SpvImageFormatRgba16:
+            return "rgba16";
+        case SpvImageFormatRgb10A2:
+            return "rgb10_a2";
+        case SpvImageFormatRg16:
+            return "rg16";
+        case SpvImageFormatRg8:
+            return "rg8";
+        case SpvImageFormatR16:
+            return "r16";
+        case SpvImageFormatR8:
+            return "r8";
+        case SpvImageFormatRgba16Snorm:
+            return "rgba16_snorm";
+        case SpvImageFormatRg16Snorm:
+            return "rg16_snorm";
+        case SpvImageFormatRg8Snorm:
+            return "rg8_snorm";
+        case SpvImageFormatR16Snorm:
+            return "r16_snorm";
+        case SpvImageFormatR8Snorm:
+            return "r8_snorm";
+        case SpvImageFormatRgba32i:
+            return "rgba32i";
+        case SpvImageFormatRgba16i:
+            return "rgba16i";
+        case SpvImageFormatRgba8i:
+            return "rgba8i";
+        case SpvImageFormatR32i:
+            return "r32i";
+        case SpvImageFormatRg32i:
+            return "rg32i";
+        case SpvImageFormatRg16i:
+            return "rg16i";
+        case SpvImageFormatRg8i:
+            return "rg8i";
+        case SpvImageFormatR16i:
+            return "r16i";
+        case SpvImageFormatR8i:
+            return "r8i";
+        case SpvImageFormatRgba32ui:
+            return "rgba32ui";
+        case SpvImageFormatRgba16ui:
+            return "rgba16ui";
+        case SpvImageFormatRgba8ui:
+            return "rgba8ui";
+        case SpvImageFormatR32ui:
+            return "r32ui";
+        case SpvImageFormatRgb10a2ui:
+            return "rgb10_a2ui";
+        case SpvImageFormatRg32ui:
+            return "rg32ui";
+        case SpvImageFormatRg16ui:
+            return "rg16ui";
+        case SpvImageFormatRg8ui:
+            return "rg8ui";
+        case SpvImageFormatR16ui:
+            return "r16ui";
+        case SpvImageFormatR8ui:
+            return "r8ui";
+        case SpvImageFormatR64ui:
+            return "r64ui";
+        case SpvImageFormatR64i:
+            return "r64i";
+        default:
+            return "";
     }
 }
 
@@ -91,14 +133,19 @@ public:
         size_t entryCount = 0;
         if (spvc_compiler_get_entry_points(m_compiler, &entries, &entryCount) != SPVC_SUCCESS ||
             entryCount != 1)
-            return fail(ErrorCode::InvalidInput,
-                        "SPIR-V module has " + std::to_string(entryCount) +
-                            " entry points, expected exactly one");
+            return fail(ErrorCode::InvalidInput, "SPIR-V module has " + std::to_string(entryCount) +
+                                                     " entry points, expected exactly one");
         ShaderStage stage;
         switch (entries[0].execution_model) {
-            case SpvExecutionModelVertex: stage = ShaderStage::Vertex; break;
-            case SpvExecutionModelFragment: stage = ShaderStage::Fragment; break;
-            case SpvExecutionModelGLCompute: stage = ShaderStage::Compute; break;
+            case SpvExecutionModelVertex:
+                stage = ShaderStage::Vertex;
+                break;
+            case SpvExecutionModelFragment:
+                stage = ShaderStage::Fragment;
+                break;
+            case SpvExecutionModelGLCompute:
+                stage = ShaderStage::Compute;
+                break;
             default:
                 return fail(ErrorCode::Unsupported,
                             "SPIR-V entry point '" + std::string(entries[0].name) +
@@ -176,8 +223,9 @@ public:
         };
         if (e.type != b.type || e.count != b.count)
             return fail(ErrorCode::InvalidInput,
-                        where + describe(e) + " but " + describe(b) + ": one set/binding must "
-                        "have one descriptor type and array size in all stages of a pipeline");
+                        where + describe(e) + " but " + describe(b) +
+                            ": one set/binding must "
+                            "have one descriptor type and array size in all stages of a pipeline");
         if (!e.imageFormat.empty() && !b.imageFormat.empty() && e.imageFormat != b.imageFormat)
             return fail(ErrorCode::InvalidInput,
                         where + "'" + e.name + "' (" + e.imageFormat + ") in the " +
@@ -276,10 +324,10 @@ private:
                     const SpvDecoration* decos = nullptr;
                     size_t n = 0;
                     spvc_compiler_get_buffer_block_decorations(m_compiler, r.id, &decos, &n);
-                    b.nonWritable = std::find(decos, decos + n, SpvDecorationNonWritable) !=
-                                    decos + n;
-                    b.nonReadable = std::find(decos, decos + n, SpvDecorationNonReadable) !=
-                                    decos + n;
+                    b.nonWritable =
+                        std::find(decos, decos + n, SpvDecorationNonWritable) != decos + n;
+                    b.nonReadable =
+                        std::find(decos, decos + n, SpvDecorationNonReadable) != decos + n;
                 }
                 break;
             }
@@ -287,16 +335,17 @@ private:
             case DescriptorType::SampledImage:
             case DescriptorType::StorageImage:
                 if (spvc_type_get_image_dimension(base) == SpvDimBuffer)
-                    return fail(ErrorCode::Unsupported,
-                                "texel buffer '" + b.name +
-                                    "' is not supported (use a storage buffer)");
+                    return fail(
+                        ErrorCode::Unsupported,
+                        "texel buffer '" + b.name + "' is not supported (use a storage buffer)");
                 if (dt == DescriptorType::StorageImage) {
                     b.nonWritable = hasDecoration(r.id, SpvDecorationNonWritable);
                     b.nonReadable = hasDecoration(r.id, SpvDecorationNonReadable);
                     b.imageFormat = imageFormatName(spvc_type_get_image_storage_format(base));
                 }
                 break;
-            case DescriptorType::Sampler: break;
+            case DescriptorType::Sampler:
+                break;
         }
         return b;
     }
@@ -345,7 +394,8 @@ private:
             // An output array occupies consecutive locations.
             const uint32_t n = std::max(arraySize(list[i].type_id), 1u);
             for (uint32_t k = 0; k < n; ++k) m_out.colorOutputs.push_back(loc + k);
-            const spvc_basetype base = spvc_type_get_basetype(spvc_compiler_get_type_handle(m_compiler, list[i].base_type_id));
+            const spvc_basetype base = spvc_type_get_basetype(
+                spvc_compiler_get_type_handle(m_compiler, list[i].base_type_id));
             if (base == SPVC_BASETYPE_INT32 || base == SPVC_BASETYPE_UINT32)
                 for (uint32_t k = 0; k < n; ++k) m_out.integerOutputs.push_back(loc + k);
         }
@@ -364,9 +414,12 @@ private:
 
 const char* toString(ShaderStage s) {
     switch (s) {
-        case ShaderStage::Vertex: return "vertex";
-        case ShaderStage::Fragment: return "fragment";
-        case ShaderStage::Compute: return "compute";
+        case ShaderStage::Vertex:
+            return "vertex";
+        case ShaderStage::Fragment:
+            return "fragment";
+        case ShaderStage::Compute:
+            return "compute";
     }
     return "unknown";
 }
@@ -385,12 +438,18 @@ std::optional<ShaderStage> stageFromPath(std::string_view path) {
 
 const char* toString(DescriptorType t) {
     switch (t) {
-        case DescriptorType::CombinedImageSampler: return "combined_image_sampler";
-        case DescriptorType::SampledImage: return "sampled_image";
-        case DescriptorType::Sampler: return "sampler";
-        case DescriptorType::StorageImage: return "storage_image";
-        case DescriptorType::UniformBuffer: return "uniform_buffer";
-        case DescriptorType::StorageBuffer: return "storage_buffer";
+        case DescriptorType::CombinedImageSampler:
+            return "combined_image_sampler";
+        case DescriptorType::SampledImage:
+            return "sampled_image";
+        case DescriptorType::Sampler:
+            return "sampler";
+        case DescriptorType::StorageImage:
+            return "storage_image";
+        case DescriptorType::UniformBuffer:
+            return "uniform_buffer";
+        case DescriptorType::StorageBuffer:
+            return "storage_buffer";
     }
     return "unknown";
 }
@@ -411,9 +470,9 @@ Result<ShaderReflection> reflectSpirv(std::span<const uint32_t> spirv) {
     if (spirv.size() < 5 || spirv[0] != kSpirvMagic) {
         char magic[16] = "none";
         if (!spirv.empty()) std::snprintf(magic, sizeof magic, "0x%08x", spirv[0]);
-        return fail(ErrorCode::InvalidInput,
-                    "not a SPIR-V module (" + std::to_string(spirv.size()) + " words, magic " +
-                        magic + ", expected 0x07230203)");
+        return fail(ErrorCode::InvalidInput, "not a SPIR-V module (" +
+                                                 std::to_string(spirv.size()) + " words, magic " +
+                                                 magic + ", expected 0x07230203)");
     }
     spvc_context raw = nullptr;
     if (spvc_context_create(&raw) != SPVC_SUCCESS)
@@ -434,7 +493,8 @@ Result<ShaderReflection> reflectSpirv(std::span<const uint32_t> spirv) {
     // some as they were, so its targets' previous (cleared) contents still count.
     for (size_t i = 5; i < spirv.size();) {
         const uint32_t words = spirv[i] >> 16, op = spirv[i] & 0xffffu;
-        if (op == 252 || op == 4416 || op == 5380) out->discards = true;  // OpKill, OpTerminateInvocation, OpDemoteToHelperInvocation
+        if (op == 252 || op == 4416 || op == 5380)
+            out->discards = true;  // OpKill, OpTerminateInvocation, OpDemoteToHelperInvocation
         if (words == 0) break;
         i += words;
     }
@@ -468,7 +528,8 @@ Result<ShaderReflection> mergeReflections(const ShaderReflection& a, const Shade
                            out.colorOutputs.end());
     for (uint32_t loc : b.integerOutputs) out.integerOutputs.push_back(loc);
     std::sort(out.integerOutputs.begin(), out.integerOutputs.end());
-    out.integerOutputs.erase(std::unique(out.integerOutputs.begin(), out.integerOutputs.end()), out.integerOutputs.end());
+    out.integerOutputs.erase(std::unique(out.integerOutputs.begin(), out.integerOutputs.end()),
+                             out.integerOutputs.end());
     out.discards = a.discards || b.discards;
     return out;
 }

@@ -65,22 +65,23 @@ struct ReflectedBinding {
     // read-only by nature: nonWritable = true, nonReadable = false.
     bool nonWritable = false;
     bool nonReadable = false;
-    uint32_t blockSize = 0;             // UBO/SSBO declared size in bytes (unsized array as 0)
-    std::vector<BlockMember> members;   // UBO/SSBO top-level members, in declaration order
-    std::string imageFormat;            // storage image format qualifier ("rgba16f"), "" if none
+    uint32_t blockSize = 0;            // UBO/SSBO declared size in bytes (unsized array as 0)
+    std::vector<BlockMember> members;  // UBO/SSBO top-level members, in declaration order
+    std::string imageFormat;           // storage image format qualifier ("rgba16f"), "" if none
 
     bool operator==(const ReflectedBinding&) const = default;
 };
 
 struct ShaderReflection {
-    uint32_t stageMask = 0;                  // stages this reflection covers
-    std::vector<ReflectedBinding> bindings;  // sorted by (set, binding)
-    uint32_t pushConstantSize = 0;           // bytes; 0 when there is no push-constant block
-    std::vector<BlockMember> pushConstants;  // push-constant block members
+    uint32_t stageMask = 0;                      // stages this reflection covers
+    std::vector<ReflectedBinding> bindings;      // sorted by (set, binding)
+    uint32_t pushConstantSize = 0;               // bytes; 0 when there is no push-constant block
+    std::vector<BlockMember> pushConstants;      // push-constant block members
     std::array<uint32_t, 3> localSize{0, 0, 0};  // compute work-group size; 0s for other stages
-    std::vector<uint32_t> colorOutputs;      // fragment output locations, ascending
-    std::vector<uint32_t> integerOutputs;    // those of them with an integer type (uvec4, ivec4)
-    bool discards = false;                   // a stage can discard (OpKill, OpTerminateInvocation, OpDemoteToHelperInvocation)
+    std::vector<uint32_t> colorOutputs;          // fragment output locations, ascending
+    std::vector<uint32_t> integerOutputs;  // those of them with an integer type (uvec4, ivec4)
+    bool discards =
+        false;  // a stage can discard (OpKill, OpTerminateInvocation, OpDemoteToHelperInvocation)
 
     bool operator==(const ShaderReflection&) const = default;
 

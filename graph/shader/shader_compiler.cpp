@@ -71,8 +71,7 @@ bool isFile(const fs::path& p) {
 
 Result<std::string> readFile(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
-    if (!in)
-        return fail(ErrorCode::Io, "cannot read '" + path + "': " + std::strerror(errno));
+    if (!in) return fail(ErrorCode::Io, "cannot read '" + path + "': " + std::strerror(errno));
     std::ostringstream ss;
     ss << in.rdbuf();
     if (in.bad()) return fail(ErrorCode::Io, "cannot read '" + path + "'");
@@ -123,7 +122,7 @@ private:
 struct SourceSet {
     std::string rootName;  // absolute path of the source file, or the virtual name
     std::string rootText;
-    std::vector<std::string> files;                       // for hot reload, source first
+    std::vector<std::string> files;                      // for hot reload, source first
     std::unordered_map<std::string, std::string> texts;  // absolute path -> text (includes)
 };
 
@@ -280,8 +279,8 @@ std::vector<std::string> parseInfoLog(const std::string& log, const SourceSet& s
                 message.resize(tail);
         }
 
-        std::string formatted = file.empty() ? set.rootName + ": " + message
-                                             : file + ":" + lineNo + ": " + message;
+        std::string formatted =
+            file.empty() ? set.rootName + ": " + message : file + ":" + lineNo + ": " + message;
         if (std::find(out.begin(), out.end(), formatted) == out.end())
             out.push_back(std::move(formatted));
     }
@@ -301,9 +300,12 @@ bool isIdentifier(std::string_view s) {
 
 EShLanguage toGlslang(ShaderStage s) {
     switch (s) {
-        case ShaderStage::Vertex: return EShLangVertex;
-        case ShaderStage::Fragment: return EShLangFragment;
-        case ShaderStage::Compute: return EShLangCompute;
+        case ShaderStage::Vertex:
+            return EShLangVertex;
+        case ShaderStage::Fragment:
+            return EShLangFragment;
+        case ShaderStage::Compute:
+            return EShLangCompute;
     }
     return EShLangCompute;
 }
@@ -327,8 +329,8 @@ void storeCached(const std::string& dir, const std::string& path,
     static std::atomic<uint64_t> counter{0};
     std::error_code ec;
     fs::create_directories(dir, ec);
-    const std::string tmp = path + ".tmp." + std::to_string(::getpid()) + "." +
-                            std::to_string(counter.fetch_add(1));
+    const std::string tmp =
+        path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter.fetch_add(1));
     {
         std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
         if (!out) return;
@@ -349,18 +351,16 @@ void storeCached(const std::string& dir, const std::string& path,
 Result<void> validateSpirv(std::span<const uint32_t> spirv) {
     spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_3);
     std::vector<std::string> messages;
-    tools.SetMessageConsumer([&](spv_message_level_t, const char*, const spv_position_t& pos,
-                                 const char* message) {
-        messages.push_back("word " + std::to_string(pos.index) + ": " + message);
-    });
+    tools.SetMessageConsumer(
+        [&](spv_message_level_t, const char*, const spv_position_t& pos, const char* message) {
+            messages.push_back("word " + std::to_string(pos.index) + ": " + message);
+        });
     if (tools.Validate(spirv.data(), spirv.size())) return {};
     return fail(ErrorCode::InvalidInput, "SPIR-V does not validate for Vulkan 1.3",
                 std::move(messages));
 }
 
-ShaderCompiler::ShaderCompiler(Options options) : m_options(std::move(options)) {
-    initGlslang();
-}
+ShaderCompiler::ShaderCompiler(Options options) : m_options(std::move(options)) { initGlslang(); }
 
 Result<ShaderModule> ShaderCompiler::compile(const ShaderRequest& req) {
     const std::string prefix = passPrefix(req.passName);
@@ -451,9 +451,9 @@ Result<ShaderModule> ShaderCompiler::compile(const ShaderRequest& req) {
     }
 
     const std::string cachePath =
-        m_options.cacheDir.empty() ? std::string()
-                                   : (fs::path(m_options.cacheDir) / (hex(module.hash) + ".spv"))
-                                         .string();
+        m_options.cacheDir.empty()
+            ? std::string()
+            : (fs::path(m_options.cacheDir) / (hex(module.hash) + ".spv")).string();
     if (!cachePath.empty()) {
         if (auto words = loadCached(cachePath); !words.empty()) {
             // A damaged or foreign file fails here and is simply recompiled and overwritten.
@@ -474,9 +474,9 @@ Result<ShaderModule> ShaderCompiler::compile(const ShaderRequest& req) {
     ++m_stats.misses;
     const auto start = std::chrono::steady_clock::now();
     const auto elapsed = [&] {
-        m_stats.compileMs += std::chrono::duration<double, std::milli>(
-                                 std::chrono::steady_clock::now() - start)
-                                 .count();
+        m_stats.compileMs +=
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start)
+                .count();
     };
     const auto compileFailure = [&](const std::string& log) {
         std::vector<std::string> lines = parseInfoLog(log, set);
@@ -528,9 +528,9 @@ Result<ShaderModule> ShaderCompiler::compile(const ShaderRequest& req) {
     glslang::GlslangToSpv(*program.getIntermediate(lang), words, &logger, &spvOptions);
     elapsed();
     if (words.empty())
-        return fail(ErrorCode::InvalidInput,
-                    prefix + set.rootName + ": SPIR-V generation failed: " +
-                        logger.getAllMessages());
+        return fail(
+            ErrorCode::InvalidInput,
+            prefix + set.rootName + ": SPIR-V generation failed: " + logger.getAllMessages());
     module.spirv.assign(words.begin(), words.end());
 
     auto reflection = reflectSpirv(module.spirv);

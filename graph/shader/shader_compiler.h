@@ -44,8 +44,8 @@ struct ShaderModule {
     // included under an #if that is off is listed too): absolute paths, source first, for hot
     // reload. A request from memory lists only its includes.
     std::vector<std::string> files;
-    uint64_t hash = 0;        // cache key: sources, includes, defines, stage, entry, options
-    bool fromCache = false;   // true when no glslang run was needed (memory or disk cache)
+    uint64_t hash = 0;       // cache key: sources, includes, defines, stage, entry, options
+    bool fromCache = false;  // true when no glslang run was needed (memory or disk cache)
 };
 
 // Checks SPIR-V with the SPIRV-Tools validator for a Vulkan 1.3 environment; the error

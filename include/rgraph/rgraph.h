@@ -45,7 +45,7 @@ struct HostDevice {
 };
 
 struct Options {
-    int device = -1;          // the Vulkan device index when rgraph creates the device (-1: the best)
+    int device = -1;  // the Vulkan device index when rgraph creates the device (-1: the best)
     bool validation = false;  // the Khronos validation layer, when rgraph creates the instance
     std::string dataDir;      // scripts/, materials/, shaders/ ("" = the installed ones: dataDir())
     std::string cacheDir;     // SPIR-V, pipeline and generated-shader caches ("" = the default)
@@ -66,13 +66,14 @@ struct MeshLod {
 };
 struct Mesh {
     std::string name;
-    std::vector<float> positions;  // xyz per vertex
-    std::vector<float> normals;    // xyz per vertex (unit)
-    std::vector<float> uvs;        // uv per vertex, or empty
-    std::vector<uint32_t> indices; // triangles, counter-clockwise seen from outside
-    std::vector<MeshLod> lods;     // levels of detail, finest first (makeSphere fills them), or empty
-    std::string material;          // a Material's name
-    float transform[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};  // column-major, model to world
+    std::vector<float> positions;   // xyz per vertex
+    std::vector<float> normals;     // xyz per vertex (unit)
+    std::vector<float> uvs;         // uv per vertex, or empty
+    std::vector<uint32_t> indices;  // triangles, counter-clockwise seen from outside
+    std::vector<MeshLod> lods;  // levels of detail, finest first (makeSphere fills them), or empty
+    std::string material;       // a Material's name
+    float transform[16] = {1, 0, 0, 0, 0, 1, 0, 0,
+                           0, 0, 1, 0, 0, 0, 0, 1};  // column-major, model to world
 };
 // Meshes as rgraph's Lua scenes make them (centred on the origin): the same vertices, so a scene
 // built from them renders as the Lua scene does.
@@ -82,12 +83,12 @@ Mesh makeBox(float width, float height, float depth);
 
 struct Material {
     std::string name;
-    std::string model = "standard";  // a material the pipeline declares (rg.material)
+    std::string model = "standard";           // a material the pipeline declares (rg.material)
     float baseColor[3] = {0.5f, 0.5f, 0.5f};  // linear
     float smoothness = 0.5f, metalMask = 0.0f, reflectance = 0.5f, ao = 1.0f;
     float emissive[3] = {0, 0, 0};  // nits
     float opacity = 1.0f;
-    bool blended = false;  // drawn by the forward pass, with `opacity`
+    bool blended = false;                  // drawn by the forward pass, with `opacity`
     std::map<std::string, double> params;  // the model's own parameters, by name (checked)
 };
 
@@ -184,12 +185,12 @@ public:
     // a null handle stops it.
     void importImage(const std::string& resource, const HostImage& image);
     void exportImage(const std::string& resource, const HostImage& image);
-    Image readDisplay() const;                        // the display image (tone-mapped, sRGB-encoded)
-    Image readHdr() const;                            // the HDR image in absolute nits (cd/m²)
+    Image readDisplay() const;  // the display image (tone-mapped, sRGB-encoded)
+    Image readHdr() const;      // the HDR image in absolute nits (cd/m²)
     Image readResource(const std::string& name) const;  // a texture named by keep(), as stored
-    void keep(const std::string& resource);           // exported for readResource (from the next load)
-    std::vector<PassTiming> timings() const;          // per pass, the last frame
-    std::string planJson() const;                     // the compiled plan (as `rgraph graph --format json`)
+    void keep(const std::string& resource);   // exported for readResource (from the next load)
+    std::vector<PassTiming> timings() const;  // per pass, the last frame
+    std::string planJson() const;             // the compiled plan (as `rgraph graph --format json`)
 
 private:
     struct Impl;

@@ -36,6 +36,8 @@ inline std::string writeInput(const uint8_t* data, size_t size, const std::strin
     return path;
 }
 
-inline std::string_view asText(const uint8_t* data, size_t size) { return {reinterpret_cast<const char*>(data), size}; }
+inline std::string_view asText(const uint8_t* data, size_t size) {
+    return {reinterpret_cast<const char*>(data), size};
+}
 
 }  // namespace rg::fuzz

@@ -21,7 +21,8 @@ struct Bytes {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-    static const std::array<const char*, 8> names = {"normal", "baseColor", "smoothness", "materialId", "ao", "emissive", "x", "normal"};
+    static const std::array<const char*, 8> names = {
+        "normal", "baseColor", "smoothness", "materialId", "ao", "emissive", "x", "normal"};
     Bytes in{data, size};
     rg::LayoutDesc desc;
     desc.name = (in.next() & 1) ? "fuzz" : "disney";
@@ -29,7 +30,8 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     for (int t = 0; t < targets; ++t) {
         rg::TargetDesc target;
         target.name = "GB" + std::to_string(t);
-        target.format = static_cast<rg::Format>(in.next() % static_cast<uint8_t>(rg::Format::Count));
+        target.format =
+            static_cast<rg::Format>(in.next() % static_cast<uint8_t>(rg::Format::Count));
         const int channels = in.next() % 7;
         for (int c = 0; c < channels; ++c) {
             rg::ChannelDesc ch;

@@ -29,10 +29,12 @@ std::string findChromium() {
         size_t start = 0;
         while (start <= dirs.size()) {
             const size_t end = dirs.find(':', start);
-            const std::string dir = dirs.substr(start, end == std::string::npos ? std::string::npos : end - start);
+            const std::string dir =
+                dirs.substr(start, end == std::string::npos ? std::string::npos : end - start);
             const fs::path candidate = fs::path(dir.empty() ? "." : dir) / name;
             std::error_code ec;
-            if (fs::is_regular_file(candidate, ec) && access(candidate.c_str(), X_OK) == 0) return candidate.string();
+            if (fs::is_regular_file(candidate, ec) && access(candidate.c_str(), X_OK) == 0)
+                return candidate.string();
             if (end == std::string::npos) break;
             start = end + 1;
         }
@@ -83,28 +85,32 @@ std::string writeReport() {
 }
 
 // Screenshots `page?query` with a fresh profile; the flags keep Chromium off the network.
-std::optional<Image> screenshot(const std::string& chromium, const std::string& page, const std::string& query,
-                                const std::string& name) {
+std::optional<Image> screenshot(const std::string& chromium, const std::string& page,
+                                const std::string& query, const std::string& name) {
     const std::string shot = kTmp + "/" + name + ".png", profile = kTmp + "/profile-" + name;
     fs::remove_all(profile);
     fs::remove(shot);
-    const std::string cmd = "timeout 120 '" + chromium +
-                            "' --headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
-                            "--disable-background-networking --disable-component-update --disable-sync "
-                            "--hide-scrollbars --force-device-scale-factor=1 --window-size=1400,1000 "
-                            "--user-data-dir='" + profile + "' --screenshot='" + shot + "' 'file://" + page + "?" + query +
-                            "' >'" + kTmp + "/" + name + ".log' 2>&1";
+    const std::string cmd =
+        "timeout 120 '" + chromium +
+        "' --headless --no-sandbox --disable-gpu --disable-quic --no-first-run "
+        "--disable-background-networking --disable-component-update --disable-sync "
+        "--hide-scrollbars --force-device-scale-factor=1 --window-size=1400,1000 "
+        "--user-data-dir='" +
+        profile + "' --screenshot='" + shot + "' 'file://" + page + "?" + query + "' >'" + kTmp +
+        "/" + name + ".log' 2>&1";
     const int rc = std::system(cmd.c_str());
     EXPECT_EQ(rc, 0) << cmd;
     auto img = readPng(shot);
-    EXPECT_TRUE(img.has_value()) << (img ? "" : img.error().message) << " (see " << kTmp << "/" << name << ".log)";
+    EXPECT_TRUE(img.has_value()) << (img ? "" : img.error().message) << " (see " << kTmp << "/"
+                                 << name << ".log)";
     if (!img) return std::nullopt;
     return *img;
 }
 
 struct Split {
-    int left = -1, split = -1, right = -1;  // the swipe view's left edge, the split, its right edge (pixels)
-    int rows = 0;                           // rows that show it
+    int left = -1, split = -1,
+        right = -1;  // the swipe view's left edge, the split, its right edge (pixels)
+    int rows = 0;    // rows that show it
     double fraction() const { return double(split - left) / double(right - left); }
 };
 
@@ -127,8 +133,10 @@ Split findSplit(const Image& img, L isLeft, R isRight) {
                 while (g < std::min<uint32_t>(x + 4, img.width) && !isRight(img, g, y)) ++g;
                 uint32_t e = g, gap = 0;
                 for (uint32_t k = g; k < img.width; ++k) {
-                    if (isRight(img, k, y)) e = k + 1, gap = 0;
-                    else if (++gap > 2) break;
+                    if (isRight(img, k, y))
+                        e = k + 1, gap = 0;
+                    else if (++gap > 2)
+                        break;
                 }
                 if (g < img.width && isRight(img, g, y) && e - g >= 8) {
                     s.left = runStart;
@@ -143,31 +151,47 @@ Split findSplit(const Image& img, L isLeft, R isRight) {
     return s;
 }
 
-int byte(const Image& img, uint32_t x, uint32_t y, uint32_t c) { return static_cast<int>(std::lround(img.at(x, y, c) * 255.0f)); }
+int byte(const Image& img, uint32_t x, uint32_t y, uint32_t c) {
+    return static_cast<int>(std::lround(img.at(x, y, c) * 255.0f));
+}
 
 TEST(GoldenReport, SwipeAndExposureSlidersInChromium) {
     const std::string chromium = findChromium();
-    if (chromium.empty()) GTEST_SKIP() << "Chromium not found (install the Debian package 'chromium', or set RG_CHROMIUM)";
+    if (chromium.empty())
+        GTEST_SKIP()
+            << "Chromium not found (install the Debian package 'chromium', or set RG_CHROMIUM)";
     fs::create_directories(kTmp);
     const std::string page = writeReport();
 
-    auto red = [](const Image& i, uint32_t x, uint32_t y) { return byte(i, x, y, 0) > 240 && byte(i, x, y, 1) < 20 && byte(i, x, y, 2) < 20; };
-    auto blue = [](const Image& i, uint32_t x, uint32_t y) { return byte(i, x, y, 2) > 240 && byte(i, x, y, 0) < 20 && byte(i, x, y, 1) < 20; };
+    auto red = [](const Image& i, uint32_t x, uint32_t y) {
+        return byte(i, x, y, 0) > 240 && byte(i, x, y, 1) < 20 && byte(i, x, y, 2) < 20;
+    };
+    auto blue = [](const Image& i, uint32_t x, uint32_t y) {
+        return byte(i, x, y, 2) > 240 && byte(i, x, y, 0) < 20 && byte(i, x, y, 1) < 20;
+    };
     // 64 x 48 at 4x: the swipe view is 256 x 192 pixels.
     for (double t : {0.3, 0.7}) {
-        auto img = screenshot(chromium, page, "test=swipe&swipe=" + std::to_string(t), "swipe-" + std::to_string(int(t * 10)));
+        auto img = screenshot(chromium, page, "test=swipe&swipe=" + std::to_string(t),
+                              "swipe-" + std::to_string(int(t * 10)));
         ASSERT_TRUE(img.has_value());
         const Split s = findSplit(*img, red, blue);
         ASSERT_GT(s.rows, 150) << "no swipe view with red left and blue right at swipe=" << t;
         EXPECT_NEAR(s.right - s.left, 256, 2);
-        EXPECT_NEAR(s.fraction(), t, 0.01) << "split at " << s.split << " in [" << s.left << ", " << s.right << ")";
+        EXPECT_NEAR(s.fraction(), t, 0.01)
+            << "split at " << s.split << " in [" << s.left << ", " << s.right << ")";
     }
 
     // Exposure -2 EV: 1.0 shows as 0.25 linear, sRGB 137.
     auto dim = screenshot(chromium, page, "test=swipe&swipe=0.5&exposure=-2", "exposure");
     ASSERT_TRUE(dim.has_value());
-    auto dimRed = [](const Image& i, uint32_t x, uint32_t y) { return std::abs(byte(i, x, y, 0) - 137) <= 2 && byte(i, x, y, 1) < 10 && byte(i, x, y, 2) < 10; };
-    auto dimBlue = [](const Image& i, uint32_t x, uint32_t y) { return std::abs(byte(i, x, y, 2) - 137) <= 2 && byte(i, x, y, 0) < 10 && byte(i, x, y, 1) < 10; };
+    auto dimRed = [](const Image& i, uint32_t x, uint32_t y) {
+        return std::abs(byte(i, x, y, 0) - 137) <= 2 && byte(i, x, y, 1) < 10 &&
+               byte(i, x, y, 2) < 10;
+    };
+    auto dimBlue = [](const Image& i, uint32_t x, uint32_t y) {
+        return std::abs(byte(i, x, y, 2) - 137) <= 2 && byte(i, x, y, 0) < 10 &&
+               byte(i, x, y, 1) < 10;
+    };
     const Split s = findSplit(*dim, dimRed, dimBlue);
     ASSERT_GT(s.rows, 150) << "no swipe view at -2 EV (expected sRGB 137 red | blue)";
     EXPECT_NEAR(s.fraction(), 0.5, 0.01);

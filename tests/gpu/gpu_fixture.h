@@ -20,8 +20,10 @@ namespace rg {
 
 // A scene camera's view-projection at width x height, as passes/gpu_scene.cpp builds it (near
 // 0.05 m, far 1000 m, y down), and the pixel a world point lands on through it.
-inline glm::mat4 cameraViewProj(glm::vec3 eye, glm::vec3 target, float fovDegrees, uint32_t width, uint32_t height) {
-    glm::mat4 proj = glm::perspectiveRH_ZO(glm::radians(fovDegrees), float(width) / float(height), 0.05f, 1000.0f);
+inline glm::mat4 cameraViewProj(glm::vec3 eye, glm::vec3 target, float fovDegrees, uint32_t width,
+                                uint32_t height) {
+    glm::mat4 proj = glm::perspectiveRH_ZO(glm::radians(fovDegrees), float(width) / float(height),
+                                           0.05f, 1000.0f);
     proj[1][1] *= -1.0f;
     return proj * glm::lookAt(eye, target, glm::vec3(0, 1, 0));
 }
@@ -51,14 +53,17 @@ protected:
     void TearDown() override {
         ASSERT_NE(s_runtime, nullptr);
         EXPECT_EQ(s_runtime->gpu().validationMessageCount(), m_messagesBefore)
-            << (s_runtime->gpu().validationMessages().empty() ? "" : s_runtime->gpu().validationMessages().back());
+            << (s_runtime->gpu().validationMessages().empty()
+                    ? ""
+                    : s_runtime->gpu().validationMessages().back());
     }
     static Runtime& rt() { return *s_runtime; }
 
     // Options to render Lua scene `scene` (with its scene.args) at width x height with manual
     // exposure (the scene camera's settings, no adaptation), as most GPU tests do.
-    static SessionOptions sceneOptions(const std::string& scene, const std::map<std::string, std::string>& args, uint32_t width,
-                                       uint32_t height) {
+    static SessionOptions sceneOptions(const std::string& scene,
+                                       const std::map<std::string, std::string>& args,
+                                       uint32_t width, uint32_t height) {
         SessionOptions o;
         o.scene = scene;
         o.sceneArgs = args;
@@ -79,8 +84,9 @@ protected:
     // Loads `pipeline` with `options` (the resources to read are added to its captures), renders
     // `frames` frames and reads the textures and buffers back. Failures are test failures; what
     // could not be read is absent.
-    static Readback renderAndRead(SessionOptions options, const std::string& pipeline, uint32_t frames,
-                                  const std::vector<std::string>& textures, const std::vector<std::string>& buffers = {}) {
+    static Readback renderAndRead(SessionOptions options, const std::string& pipeline,
+                                  uint32_t frames, const std::vector<std::string>& textures,
+                                  const std::vector<std::string>& buffers = {}) {
         for (const auto& name : textures) options.captures.push_back(name);
         for (const auto& name : buffers) options.captures.push_back(name);
         Session s(*s_runtime, options);
@@ -103,7 +109,8 @@ protected:
             EXPECT_TRUE(bytes.has_value()) << name;
             if (bytes) out.buffers[name] = std::move(*bytes);
         }
-        if (auto state = s_runtime->executor().readbackBuffer("exposure"); state && state->size() >= 16)
+        if (auto state = s_runtime->executor().readbackBuffer("exposure");
+            state && state->size() >= 16)
             std::memcpy(&out.preExposure, state->data() + 8, sizeof(float));
         return out;
     }

@@ -48,7 +48,8 @@ inline std::string readFile(const std::string& path) {
 
 // The scene file with its scene.light line (one line) replaced and other replacements made,
 // written next to the other test outputs. Paths in the new line must be absolute.
-inline std::string withLight(const std::string& file, const std::string& light, const std::string& name,
+inline std::string withLight(const std::string& file, const std::string& light,
+                             const std::string& name,
                              const std::vector<std::pair<std::string, std::string>>& replace = {}) {
     std::string text = readFile(kScenes + file);
     const size_t at = text.find("\nscene.light");
@@ -73,7 +74,8 @@ struct View {
 };
 
 inline View viewOf(const Camera& c) {
-    const float fovy = c.focalLength > 0 ? 2.0f * std::atan(c.sensorHeight / (2.0f * c.focalLength)) : c.verticalFov;
+    const float fovy = c.focalLength > 0 ? 2.0f * std::atan(c.sensorHeight / (2.0f * c.focalLength))
+                                         : c.verticalFov;
     glm::mat4 proj = glm::perspectiveRH_ZO(fovy, float(W) / float(H), c.nearPlane, c.farPlane);
     proj[1][1] *= -1.0f;
     View v;
@@ -92,7 +94,8 @@ inline glm::ivec2 pixelOf(const View& v, glm::dvec3 p) {
 // Where the centre of pixel px meets the floor (y = 0): the position the lighting pass shades.
 inline glm::dvec3 floorAt(const View& v, glm::ivec2 px) {
     const glm::dvec2 ndc = (glm::dvec2(px) + 0.5) / glm::dvec2(W, H) * 2.0 - 1.0;
-    glm::dvec4 a = v.invViewProj * glm::dvec4(ndc, 0.0, 1.0), b = v.invViewProj * glm::dvec4(ndc, 1.0, 1.0);
+    glm::dvec4 a = v.invViewProj * glm::dvec4(ndc, 0.0, 1.0),
+               b = v.invViewProj * glm::dvec4(ndc, 1.0, 1.0);
     const glm::dvec3 p0 = glm::dvec3(a) / a.w, p1 = glm::dvec3(b) / b.w;
     const double t = p0.y / (p0.y - p1.y);
     return p0 + t * (p1 - p0);
@@ -111,8 +114,11 @@ inline double diffuseBrdf(glm::dvec3 N, glm::dvec3 V, glm::dvec3 L, float linear
     return brdf::Fr_DisneyDiffuse(NdotV, NdotL, LdotH, linearRoughness) / brdf::kPi;
 }
 // The specular BRDF with ⟨n·l⟩ (rgStandardBrdf with a black diffuse colour).
-inline double specularBrdf(glm::dvec3 N, glm::dvec3 V, glm::dvec3 L, float f0, float linearRoughness) {
-    return brdf::rgStandardBrdf(fv(N), fv(V), fv(L), glm::vec3(0.0f), glm::vec3(f0), linearRoughness).x;
+inline double specularBrdf(glm::dvec3 N, glm::dvec3 V, glm::dvec3 L, float f0,
+                           float linearRoughness) {
+    return brdf::rgStandardBrdf(fv(N), fv(V), fv(L), glm::vec3(0.0f), glm::vec3(f0),
+                                linearRoughness)
+        .x;
 }
 
 inline double areaLuminance(const Light& l) {
@@ -125,7 +131,9 @@ inline double areaLuminance(const Light& l) {
     shape.length = l.length;
     shape.width = l.width;
     shape.height = l.height;
-    const auto unit = l.unit == "lm" ? lighting::AreaUnit::Lumens : l.unit == "nits" ? lighting::AreaUnit::Nits : lighting::AreaUnit::Ev100;
+    const auto unit = l.unit == "lm"     ? lighting::AreaUnit::Lumens
+                      : l.unit == "nits" ? lighting::AreaUnit::Nits
+                                         : lighting::AreaUnit::Ev100;
     return lighting::areaLightLuminance(shape, l.intensity, unit);
 }
 
@@ -151,24 +159,31 @@ inline Expected areaIlluminance(const Light& l, glm::dvec3 P, glm::dvec3 N) {
     Expected e;
     e.Ld = L;
     switch (l.type) {
-    case LightType::Sphere: e.diffuseIlluminance = Lum * lighting::sphereIlluminance(l.radius, sqrDist, glm::dot(N, L)); break;
-    case LightType::Disk:
-        e.diffuseIlluminance = Lum * lighting::diskIlluminance(l.radius, sqrDist, glm::dot(N, L), glm::dot(dir, -L));
-        break;
-    case LightType::Rect: {
-        glm::dvec3 n, up, left;
-        rectAxes(l, n, up, left);
-        e.diffuseIlluminance = Lum * lighting::rectangleIlluminance(P, N, pos, left, up, n, l.width, l.height);
-        break;
-    }
-    case LightType::Tube: {
-        const glm::dvec3 p0 = pos - dir * (0.5 * l.length), p1 = pos + dir * (0.5 * l.length);
-        e.diffuseIlluminance = Lum * lighting::tubeIlluminance(P, N, p0, p1, l.radius);
-        const double t = std::clamp(glm::dot(P - p0, p1 - p0) / glm::dot(p1 - p0, p1 - p0), 0.0, 1.0);
-        e.Ld = glm::normalize(p0 + t * (p1 - p0) - P);
-        break;
-    }
-    default: ADD_FAILURE() << "not an area light";
+        case LightType::Sphere:
+            e.diffuseIlluminance =
+                Lum * lighting::sphereIlluminance(l.radius, sqrDist, glm::dot(N, L));
+            break;
+        case LightType::Disk:
+            e.diffuseIlluminance = Lum * lighting::diskIlluminance(
+                                             l.radius, sqrDist, glm::dot(N, L), glm::dot(dir, -L));
+            break;
+        case LightType::Rect: {
+            glm::dvec3 n, up, left;
+            rectAxes(l, n, up, left);
+            e.diffuseIlluminance =
+                Lum * lighting::rectangleIlluminance(P, N, pos, left, up, n, l.width, l.height);
+            break;
+        }
+        case LightType::Tube: {
+            const glm::dvec3 p0 = pos - dir * (0.5 * l.length), p1 = pos + dir * (0.5 * l.length);
+            e.diffuseIlluminance = Lum * lighting::tubeIlluminance(P, N, p0, p1, l.radius);
+            const double t =
+                std::clamp(glm::dot(P - p0, p1 - p0) / glm::dot(p1 - p0, p1 - p0), 0.0, 1.0);
+            e.Ld = glm::normalize(p0 + t * (p1 - p0) - P);
+            break;
+        }
+        default:
+            ADD_FAILURE() << "not an area light";
     }
     return e;
 }
@@ -185,10 +200,10 @@ struct Surface {
 };
 
 struct Frame {
-    Image hdr;        // absolute luminance (cd/m²): the HDR divided by its pre-exposure
+    Image hdr;  // absolute luminance (cd/m²): the HDR divided by its pre-exposure
     Scene scene;
     View view;
-    Surface floor;    // at the centre pixel
+    Surface floor;       // at the centre pixel
     bool finite = true;  // every HDR and display value
 };
 
@@ -243,11 +258,13 @@ protected:
             auto img = s_runtime->executor().readback(t.name);
             EXPECT_TRUE(img.has_value()) << t.name;
             if (!img) return out;
-            texels.push_back(texelFromFloats(t.format, &img->pixels[centre * img->channels], img->channels));
+            texels.push_back(
+                texelFromFloats(t.format, &img->pixels[centre * img->channels], img->channels));
         }
         const auto g = unpackTexel(*info, texels);
         auto ch = [&](const char* n) { return g[static_cast<size_t>(info->find(n))].v; };
-        out.floor.normal = glm::normalize(glm::dvec3(ch("normal")[0], ch("normal")[1], ch("normal")[2]));
+        out.floor.normal =
+            glm::normalize(glm::dvec3(ch("normal")[0], ch("normal")[1], ch("normal")[2]));
         out.floor.baseColor = ch("baseColor")[1];
         out.floor.linearRoughness = 1.0f - ch("smoothness")[0];
         out.floor.f0 = brdf::rgDielectricF0(ch("reflectance")[0]);
@@ -258,7 +275,8 @@ protected:
 
 public:
     static double luminanceAt(const Frame& f, glm::ivec2 px) {
-        return f.hdr.at(uint32_t(px.x), uint32_t(px.y), 1);  // the floors are white/grey: any channel
+        return f.hdr.at(uint32_t(px.x), uint32_t(px.y),
+                        1);  // the floors are white/grey: any channel
     }
     // Leaves the image to look at when a comparison fails.
     static void keep(const Frame& f, const std::string& name) {

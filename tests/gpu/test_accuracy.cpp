@@ -39,14 +39,19 @@ TEST_F(Accuracy, EveryCaseRunsAndStaysWithinTodaysErrors) {
     std::printf("%s", accuracyTable(*cases).c_str());
     // Measured mean error (%), rough / glossy / metal, worst placement, with room for the
     // reference's noise at this sample count (~0.5–2 %).
-    const std::map<std::string, std::array<double, 3>> frostbite = {
-        {"sphere", {5, 8, 50}}, {"disk", {12, 17, 50}}, {"rect", {13, 8, 60}}, {"tube", {8, 10, 65}}};
-    const std::map<std::string, std::array<double, 3>> ltc = {
-        {"sphere", {2.5, 2.5, 3.5}}, {"disk", {3, 3.5, 4.5}}, {"rect", {3, 4, 5}}, {"tube", {4, 4, 7}}};
+    const std::map<std::string, std::array<double, 3>> frostbite = {{"sphere", {5, 8, 50}},
+                                                                    {"disk", {12, 17, 50}},
+                                                                    {"rect", {13, 8, 60}},
+                                                                    {"tube", {8, 10, 65}}};
+    const std::map<std::string, std::array<double, 3>> ltc = {{"sphere", {2.5, 2.5, 3.5}},
+                                                              {"disk", {3, 3.5, 4.5}},
+                                                              {"rect", {3, 4, 5}},
+                                                              {"tube", {4, 4, 7}}};
     std::map<std::string, double> metalFrostbite;
     for (const auto& c : *cases) {
         SCOPED_TRACE(c.name());
-        EXPECT_GT(c.pixels, 100u);  // lit pixel-channels: a glossy metal's highlight is small (~150 at 64×48)
+        EXPECT_GT(c.pixels,
+                  100u);  // lit pixel-channels: a glossy metal's highlight is small (~150 at 64×48)
         EXPECT_TRUE(std::isfinite(c.meanError) && std::isfinite(c.energyError));
         EXPECT_LT(c.referenceNoise, 0.04);
         const int m = c.material == "rough" ? 0 : c.material == "glossy" ? 1 : 2;
@@ -104,7 +109,8 @@ class AreaLightModel : public GpuFixture {};
 TEST_F(AreaLightModel, SwitchesBetweenFramesWithoutARebuild) {
     auto meanHdr = [](const Image& im) {
         double sum = 0.0;
-        for (size_t i = 0; i < im.pixels.size(); i += 4) sum += im.pixels[i] + im.pixels[i + 1] + im.pixels[i + 2];
+        for (size_t i = 0; i < im.pixels.size(); i += 4)
+            sum += im.pixels[i] + im.pixels[i + 1] + im.pixels[i + 2];
         return sum / double(im.pixels.size() / 4);
     };
     for (const char* material : {"metal", "rough"}) {
@@ -121,7 +127,8 @@ TEST_F(AreaLightModel, SwitchesBetweenFramesWithoutARebuild) {
         ASSERT_TRUE(s.frame());
         auto ltc = readAbsoluteHdr(s_runtime->executor(), s.pipeline());
         ASSERT_TRUE(ltc);
-        const uint32_t rebuilds = s.rebuilds();  // the first frame's toggles (no decals, no sun, no probes)
+        const uint32_t rebuilds =
+            s.rebuilds();  // the first frame's toggles (no decals, no sun, no probes)
         ASSERT_TRUE(s.setOverride("area_lights", Value("frostbite")));
         ASSERT_TRUE(s.frame());
         auto frostbite = readAbsoluteHdr(s_runtime->executor(), s.pipeline());
@@ -132,8 +139,11 @@ TEST_F(AreaLightModel, SwitchesBetweenFramesWithoutARebuild) {
         if (std::string(material) == "metal") {
             double maxDiff = 0.0;
             for (size_t i = 0; i < ltc->image.pixels.size(); ++i)
-                maxDiff = std::max(maxDiff, double(std::abs(ltc->image.pixels[i] - frostbite->image.pixels[i])));
-            EXPECT_GT(maxDiff, 0.1 * a);  // the highlights differ (README: 3 % against 38 % from the reference)
+                maxDiff = std::max(
+                    maxDiff, double(std::abs(ltc->image.pixels[i] - frostbite->image.pixels[i])));
+            EXPECT_GT(
+                maxDiff,
+                0.1 * a);  // the highlights differ (README: 3 % against 38 % from the reference)
         } else {
             EXPECT_NEAR(a, b, 0.05 * b);
         }

@@ -20,11 +20,14 @@ const std::string kRoot = RG_SOURCE_ROOT;
 constexpr uint32_t N = 256;
 const float kHalf = 10.0f * std::tan(20.0f * 3.14159265f / 180.0f);  // ±3.64 m around (2.5, 2.5)
 
-uint32_t pixelOf(float world) { return static_cast<uint32_t>(((world - 2.5f) / kHalf * 0.5f + 0.5f) * N); }
+uint32_t pixelOf(float world) {
+    return static_cast<uint32_t>(((world - 2.5f) / kHalf * 0.5f + 0.5f) * N);
+}
 
 class Ao : public GpuFixture {
 protected:
-    static Image render(const std::map<std::string, std::string>& args, const std::string& camera = "top") {
+    static Image render(const std::map<std::string, std::string>& args,
+                        const std::string& camera = "top") {
         SessionOptions o;
         o.sceneArgs = args;
         o.camera = camera;

@@ -31,7 +31,8 @@ ResourceDesc texture(const std::string& name, Format f, bool exported = false) {
     return r;
 }
 
-PassDesc pass(const std::string& name, const std::string& kind, std::vector<Access> accesses, Value::Table params = {}) {
+PassDesc pass(const std::string& name, const std::string& kind, std::vector<Access> accesses,
+              Value::Table params = {}) {
     PassDesc p;
     p.name = name;
     p.kind = kind;
@@ -43,7 +44,8 @@ PassDesc pass(const std::string& name, const std::string& kind, std::vector<Acce
 // The CPU version of shaders/test/pattern.comp.
 std::array<float, 4> patternAt(uint32_t x, uint32_t y) {
     float checker = static_cast<float>(((x >> 3) + (y >> 3)) & 1u);
-    return {static_cast<float>(x & 63u) / 64.0f, static_cast<float>(y & 63u) / 64.0f, checker, 1.0f};
+    return {static_cast<float>(x & 63u) / 64.0f, static_cast<float>(y & 63u) / 64.0f, checker,
+            1.0f};
 }
 // The CPU version of shaders/test/transform.frag.
 std::array<float, 4> transform(std::array<float, 4> c, float scale) {
@@ -55,9 +57,12 @@ GraphDesc threePassGraph() {
     GraphDesc g;
     g.resources = {texture("pattern", Format::RGBA16F), texture("shaded", Format::RGBA16F)};
     g.passes = {
-        pass("generate", "compute", {{"pattern", Usage::StorageWrite}}, {{"shader", "test/pattern.comp"}}),
-        pass("transform", "fullscreen", {{"pattern", Usage::Sampled}, {"shaded", Usage::ColorAttachment}},
-             {{"shader", "test/transform.frag"}, {"uniforms", Value(Value::Table{{"scale", 0.5}})}}),
+        pass("generate", "compute", {{"pattern", Usage::StorageWrite}},
+             {{"shader", "test/pattern.comp"}}),
+        pass(
+            "transform", "fullscreen",
+            {{"pattern", Usage::Sampled}, {"shaded", Usage::ColorAttachment}},
+            {{"shader", "test/transform.frag"}, {"uniforms", Value(Value::Table{{"scale", 0.5}})}}),
         pass("fetch", "readback", {{"shaded", Usage::CopySrc}}),
     };
     g.passes.back().sideEffect = true;
@@ -83,8 +88,8 @@ TEST_F(GpuTest, ThreePassGraphIsExactPixelForPixel) {
             auto want = transform(patternAt(x, y), 0.5f);
             for (uint32_t c = 0; c < 4; ++c)
                 if (img->at(x, y, c) != want[c] && mismatches++ < 5)
-                    ADD_FAILURE() << "pixel (" << x << "," << y << ") channel " << c << ": " << img->at(x, y, c)
-                                  << " != " << want[c];
+                    ADD_FAILURE() << "pixel (" << x << "," << y << ") channel " << c << ": "
+                                  << img->at(x, y, c) << " != " << want[c];
         }
     EXPECT_EQ(mismatches, 0);
     ASSERT_EQ(ex.lastTimings().size(), 3u);
@@ -103,7 +108,8 @@ TEST_F(GpuTest, ParameterChangeNeedsNoRebuild) {
     ASSERT_TRUE(a.has_value());
     EXPECT_FLOAT_EQ(a->at(3, 5, 3), 0.5f);
     // Uniforms are written every frame from the pass's params.
-    const_cast<PassDesc&>(ex.graph().passes[1]).params.table()["uniforms"] = Value(Value::Table{{"scale", 2.0}});
+    const_cast<PassDesc&>(ex.graph().passes[1]).params.table()["uniforms"] =
+        Value(Value::Table{{"scale", 2.0}});
     ASSERT_TRUE(ex.frame().has_value());
     auto b = ex.passResult("fetch");
     ASSERT_TRUE(b.has_value());
@@ -114,7 +120,8 @@ TEST_F(GpuTest, ParameterChangeNeedsNoRebuild) {
 TEST_F(GpuTest, AliasedTransientsShareMemoryAndStayExact) {
     // a -> b -> c -> output: a and c have disjoint lifetimes and the same size, so they alias.
     GraphDesc g;
-    g.resources = {texture("a", Format::RGBA16F), texture("b", Format::RGBA16F), texture("c", Format::RGBA16F),
+    g.resources = {texture("a", Format::RGBA16F), texture("b", Format::RGBA16F),
+                   texture("c", Format::RGBA16F),
                    texture("output", Format::RGBA16F, /*exported=*/true)};
     auto step = [](const std::string& name, const std::string& from, const std::string& to) {
         return pass(name, "fullscreen", {{from, Usage::Sampled}, {to, Usage::ColorAttachment}},
@@ -123,7 +130,8 @@ TEST_F(GpuTest, AliasedTransientsShareMemoryAndStayExact) {
                      {"uniforms", Value(Value::Table{{"scale", 1.0}})}});
     };
     g.passes = {pass("generate", "compute", {{"a", Usage::StorageWrite}},
-                     {{"shader", "test/pattern.comp"}, {"bind", Value(Value::Table{{"pattern", Value("a")}})}}),
+                     {{"shader", "test/pattern.comp"},
+                      {"bind", Value(Value::Table{{"pattern", Value("a")}})}}),
                 step("t1", "a", "b"), step("t2", "b", "c"), step("t3", "c", "output")};
     auto& ex = rt().executor();
     CompileOptions o;
@@ -164,7 +172,8 @@ TEST_F(GpuTest, FramesInFlightAndReadbackOfTransientIsRefused) {
     EXPECT_FLOAT_EQ(out->at(9, 2, 0), transform(patternAt(9, 2), 1)[0]);
     auto bad = ex.readback("pattern");
     ASSERT_FALSE(bad.has_value());
-    EXPECT_EQ(bad.error().message, "resource 'pattern' is transient: capture (export) it to read it back");
+    EXPECT_EQ(bad.error().message,
+              "resource 'pattern' is transient: capture (export) it to read it back");
 }
 
 TEST_F(GpuTest, ExrOfARenderReadsBackEqual) {
@@ -199,10 +208,11 @@ TEST_F(GpuTest, ClearCopyAndMipsKinds) {
     dst.texture.mips = 0;  // full chain: 5 mips
     dst.exported = true;
     g.resources = {src, dst};
-    g.passes = {pass("clear", "clear", {{"src", Usage::CopyDst}},
-                     {{"value", Value(Value::List{Value(0.25), Value(0.5), Value(0.75), Value(1.0)})}}),
-                pass("copy", "copy", {{"src", Usage::CopySrc}, {"dst", Usage::CopyDst}}),
-                pass("mips", "mips", {{"dst", Usage::CopyDst, /*load=*/true}})};
+    g.passes = {
+        pass("clear", "clear", {{"src", Usage::CopyDst}},
+             {{"value", Value(Value::List{Value(0.25), Value(0.5), Value(0.75), Value(1.0)})}}),
+        pass("copy", "copy", {{"src", Usage::CopySrc}, {"dst", Usage::CopyDst}}),
+        pass("mips", "mips", {{"dst", Usage::CopyDst, /*load=*/true}})};
     auto& ex = rt().executor();
     auto built = ex.build(g, {});
     ASSERT_TRUE(built.has_value()) << built.error().describe();
@@ -227,10 +237,13 @@ TEST_F(GpuTest, FullscreenPassKeepsItsClearWhereItsShaderDiscards) {
         out.texture.width = 8;
         out.texture.height = 4;
         g.resources = {out};
-        g.passes = {pass("draw", "fullscreen", {{"out", Usage::ColorAttachment}},
-                         {{"shader", Value(shader)},
-                          {"clear", Value(Value::List{Value(0.25), Value(0.5), Value(0.75), Value(1.0)})},
-                          {"uniforms", Value(Value::Table{{"tint", Value(Value::List{Value(1.0), Value(0.0), Value(0.0), Value(1.0)})}})}})};
+        g.passes = {
+            pass("draw", "fullscreen", {{"out", Usage::ColorAttachment}},
+                 {{"shader", Value(shader)},
+                  {"clear", Value(Value::List{Value(0.25), Value(0.5), Value(0.75), Value(1.0)})},
+                  {"uniforms",
+                   Value(Value::Table{{"tint", Value(Value::List{Value(1.0), Value(0.0), Value(0.0),
+                                                                 Value(1.0)})}})}})};
         auto& ex = rt().executor();
         ASSERT_TRUE(ex.build(g, {}).has_value());
         for (int frame = 0; frame < 2; ++frame) {
@@ -271,7 +284,8 @@ TEST_F(GpuTest, DepthFormatsClearAndReadBack) {
 TEST_F(GpuTest, ShaderErrorNamesFileLineAndPass) {
     GraphDesc g;
     g.resources = {texture("out", Format::RGBA8Unorm, true)};
-    g.passes = {pass("broken", "fullscreen", {{"out", Usage::ColorAttachment}}, {{"shader", "tests/gpu/shaders/broken.frag"}})};
+    g.passes = {pass("broken", "fullscreen", {{"out", Usage::ColorAttachment}},
+                     {{"shader", "tests/gpu/shaders/broken.frag"}})};
     auto r = rt().executor().build(g, {});
     ASSERT_FALSE(r.has_value());
     EXPECT_NE(r.error().message.find("pass 'broken'"), std::string::npos) << r.error().message;
@@ -281,12 +295,15 @@ TEST_F(GpuTest, ShaderErrorNamesFileLineAndPass) {
 TEST_F(GpuTest, UnboundShaderResourceIsReported) {
     GraphDesc g;
     g.resources = {texture("out", Format::RGBA16F, true)};
-    g.passes = {pass("lonely", "fullscreen", {{"out", Usage::ColorAttachment}}, {{"shader", "test/transform.frag"}})};
+    g.passes = {pass("lonely", "fullscreen", {{"out", Usage::ColorAttachment}},
+                     {{"shader", "test/transform.frag"}})};
     auto r = rt().executor().build(g, {});
     ASSERT_FALSE(r.has_value());
     EXPECT_EQ(r.error().message,
-              "pass 'lonely': shader binding 'pattern' (set 0, binding 0, combined_image_sampler) matches no resource "
-              "the pass reads or writes; list it in reads/writes or map it with bind = { pattern = \"resource\" }");
+              "pass 'lonely': shader binding 'pattern' (set 0, binding 0, combined_image_sampler) "
+              "matches no resource "
+              "the pass reads or writes; list it in reads/writes or map it with bind = { pattern = "
+              "\"resource\" }");
 }
 
 TEST_F(GpuTest, UnknownPassKindSuggestsTheClosest) {
@@ -295,7 +312,8 @@ TEST_F(GpuTest, UnknownPassKindSuggestsTheClosest) {
     g.passes = {pass("p", "fulscreen", {{"out", Usage::ColorAttachment}})};
     auto r = rt().executor().build(g, {});
     ASSERT_FALSE(r.has_value());
-    EXPECT_EQ(r.error().message.substr(0, 63), "pass 'p': unknown kind 'fulscreen' (did you mean 'fullscreen'?)");
+    EXPECT_EQ(r.error().message.substr(0, 63),
+              "pass 'p': unknown kind 'fulscreen' (did you mean 'fullscreen'?)");
 }
 
 }  // namespace

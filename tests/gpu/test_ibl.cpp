@@ -28,7 +28,9 @@ const std::string kRoot = RG_SOURCE_ROOT;
 // Bilinear lookup of the 128×128 table at (N·V, linear roughness), as the shaders sample it
 // (clamped to the outer texel centres).
 glm::vec3 dfgAt(const Image& t, float NdotV, float roughness) {
-    auto coord = [](float v, uint32_t n) { return std::clamp(v * static_cast<float>(n) - 0.5f, 0.0f, static_cast<float>(n - 1)); };
+    auto coord = [](float v, uint32_t n) {
+        return std::clamp(v * static_cast<float>(n) - 0.5f, 0.0f, static_cast<float>(n - 1));
+    };
     const float x = coord(NdotV, t.width), y = coord(roughness, t.height);
     const uint32_t x0 = static_cast<uint32_t>(x), y0 = static_cast<uint32_t>(y);
     const uint32_t x1 = std::min(x0 + 1, t.width - 1), y1 = std::min(y0 + 1, t.height - 1);
@@ -50,7 +52,8 @@ protected:
         Image depth;
     };
     static Frame render(const std::string& scene, uint32_t w, uint32_t h, uint32_t frames = 2,
-                        const std::string& pipeline = "deferred.lua", const std::map<std::string, std::string>& args = {}) {
+                        const std::string& pipeline = "deferred.lua",
+                        const std::map<std::string, std::string>& args = {}) {
         SessionOptions o;
         o.sceneArgs = args;
         o.compile.outputWidth = w;
@@ -60,7 +63,8 @@ protected:
         // The probe alone: the reference integrates it unoccluded, so screen-space AO (the spheres
         // occlude their neighbours) is reduced to a 5 cm search.
         o.params["ao_radius"] = Value(0.05);
-        Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/" + pipeline, frames, {"hdr", "dfg", "depth"});
+        Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/" + pipeline, frames,
+                                   {"hdr", "dfg", "depth"});
         Frame out;
         if (r.images.size() != 3) return out;
         out.hdr = r["hdr"];
@@ -76,9 +80,12 @@ TEST_F(Ibl, DfgTableMatchesTheSeedValuesAndTheIntegrators) {
     ASSERT_EQ(f.dfg.width, 128u);
     ASSERT_EQ(f.dfg.height, 128u);
     // The issue's values (height-correlated Smith, α = roughness²), each within 0.01.
-    struct Row { float NdotV, roughness, x, y; };
-    for (const Row& r : {Row{1, 1, 0.307f, 0.000f}, Row{0.5f, 0.5f, 0.835f, 0.022f}, Row{1, 0.5f, 0.915f, 0.000f},
-                         Row{0.125f, 0.5f, 0.747f, 0.128f}, Row{0.5f, 1, 0.446f, 0.003f}}) {
+    struct Row {
+        float NdotV, roughness, x, y;
+    };
+    for (const Row& r :
+         {Row{1, 1, 0.307f, 0.000f}, Row{0.5f, 0.5f, 0.835f, 0.022f}, Row{1, 0.5f, 0.915f, 0.000f},
+          Row{0.125f, 0.5f, 0.747f, 0.128f}, Row{0.5f, 1, 0.446f, 0.003f}}) {
         const glm::vec3 v = dfgAt(f.dfg, r.NdotV, r.roughness);
         EXPECT_NEAR(v.x, r.x, 0.01) << "N·V " << r.NdotV << ", roughness " << r.roughness;
         EXPECT_NEAR(v.y, r.y, 0.01) << "N·V " << r.NdotV << ", roughness " << r.roughness;
@@ -89,7 +96,8 @@ TEST_F(Ibl, DfgTableMatchesTheSeedValuesAndTheIntegrators) {
     double worst = 0;
     for (uint32_t j = 15; j < 128; j += 16)
         for (uint32_t i = 3; i < 128; i += 16) {
-            const float NdotV = (static_cast<float>(i) + 0.5f) / 128.0f, r = (static_cast<float>(j) + 0.5f) / 128.0f;
+            const float NdotV = (static_cast<float>(i) + 0.5f) / 128.0f,
+                        r = (static_cast<float>(j) + 0.5f) / 128.0f;
             const double x = brdf::specularAlbedo(NdotV, r, 1.0f, 0.0f, 96);
             const double y = brdf::specularAlbedo(NdotV, r, 0.0f, 1.0f, 96);
             const double z = brdf::diffuseAlbedo(NdotV, r, 96);
@@ -98,7 +106,8 @@ TEST_F(Ibl, DfgTableMatchesTheSeedValuesAndTheIntegrators) {
             EXPECT_NEAR(f.dfg.at(i, j, 0), x, 0.01) << "texel " << i << ", " << j;
             EXPECT_NEAR(f.dfg.at(i, j, 1), y, 0.01) << "texel " << i << ", " << j;
             EXPECT_NEAR(f.dfg.at(i, j, 2), z, 0.01) << "texel " << i << ", " << j;
-            worst = std::max({worst, std::abs(f.dfg.at(i, j, 0) - x), std::abs(f.dfg.at(i, j, 1) - y), std::abs(f.dfg.at(i, j, 2) - z)});
+            worst = std::max({worst, std::abs(f.dfg.at(i, j, 0) - x),
+                              std::abs(f.dfg.at(i, j, 1) - y), std::abs(f.dfg.at(i, j, 2) - z)});
         }
     std::printf("DFG table vs integrators: worst |difference| %.5f over 64 texels\n", worst);
 }
@@ -117,19 +126,27 @@ TEST_F(Ibl, WhiteFurnaceGivesTheBrdfAlbedo) {
     // The sky: the environment itself, 1 nit.
     EXPECT_NEAR(f.hdr.at(2, 2, 1), 1.0f, 0.002f);
     // Sphere centres on screen: fov 8.5° at 40 m shows ±2.97 m vertically; x by the aspect ratio.
-    const float halfH = 40.0f * std::tan(8.5f * 3.14159265f / 360.0f), halfW = halfH * static_cast<float>(W) / static_cast<float>(H);
-    std::printf("white furnace, 1 nit: rendered / expected (expected = the BRDF's albedo at N·V = 1)\n");
+    const float halfH = 40.0f * std::tan(8.5f * 3.14159265f / 360.0f),
+                halfW = halfH * static_cast<float>(W) / static_cast<float>(H);
+    std::printf(
+        "white furnace, 1 nit: rendered / expected (expected = the BRDF's albedo at N·V = 1)\n");
     for (int metal = 0; metal <= 1; ++metal)
         for (int i = 0; i < 5; ++i) {
-            const float wx = static_cast<float>(i - 2), wy = static_cast<float>(metal == 0 ? -0.5 : 0.5);
-            const uint32_t px = static_cast<uint32_t>((wx / halfW * 0.5f + 0.5f) * static_cast<float>(W));
-            const uint32_t py = static_cast<uint32_t>((0.5f - wy / halfH * 0.5f) * static_cast<float>(H));
+            const float wx = static_cast<float>(i - 2),
+                        wy = static_cast<float>(metal == 0 ? -0.5 : 0.5);
+            const uint32_t px =
+                static_cast<uint32_t>((wx / halfW * 0.5f + 0.5f) * static_cast<float>(W));
+            const uint32_t py =
+                static_cast<uint32_t>((0.5f - wy / halfH * 0.5f) * static_cast<float>(H));
             const float r = static_cast<float>(i) / 4.0f;
-            const double x = brdf::specularAlbedo(1.0f, r, 1.0f, 0.0f), y = brdf::specularAlbedo(1.0f, r, 0.0f, 1.0f);
+            const double x = brdf::specularAlbedo(1.0f, r, 1.0f, 0.0f),
+                         y = brdf::specularAlbedo(1.0f, r, 0.0f, 1.0f);
             const double expected = metal ? x + y : brdf::diffuseAlbedo(1.0f, r) + 0.04 * x + y;
             const float got = f.hdr.at(px, py, 1);
-            std::printf("  %s roughness %.2f: %.4f / %.4f\n", metal ? "metal     " : "dielectric", r, got, expected);
-            EXPECT_NEAR(got / expected, 1.0, 0.02) << (metal ? "metal" : "dielectric") << " roughness " << r;
+            std::printf("  %s roughness %.2f: %.4f / %.4f\n", metal ? "metal     " : "dielectric",
+                        r, got, expected);
+            EXPECT_NEAR(got / expected, 1.0, 0.02)
+                << (metal ? "metal" : "dielectric") << " roughness " << r;
         }
 }
 
@@ -160,9 +177,12 @@ TEST_F(Ibl, SplitSumAgainstTheReferenceUnderTheSky) {
         }
     ASSERT_GT(n[0], 300);
     ASSERT_GT(n[1], 300);
-    const double dielectric = err[0] / n[0], metal = err[1] / n[1], all = (err[0] + err[1]) / (n[0] + n[1]);
-    std::printf("IBL vs reference under the sky: mean relative error dielectric %.2f %%, metal %.2f %%, all %.2f %%; energy %+.2f %%\n",
-                100 * dielectric, 100 * metal, 100 * all, 100 * (sumRt / sumRef - 1));
+    const double dielectric = err[0] / n[0], metal = err[1] / n[1],
+                 all = (err[0] + err[1]) / (n[0] + n[1]);
+    std::printf(
+        "IBL vs reference under the sky: mean relative error dielectric %.2f %%, metal %.2f %%, "
+        "all %.2f %%; energy %+.2f %%\n",
+        100 * dielectric, 100 * metal, 100 * all, 100 * (sumRt / sumRef - 1));
     EXPECT_LT(all, 0.05);
 }
 
@@ -175,12 +195,24 @@ glm::dvec3 cubeDirection(uint32_t face, double u, double v) {
     const double s = u * 2 - 1, t = v * 2 - 1;
     glm::dvec3 d;
     switch (face) {
-        case 0: d = {1, -t, -s}; break;
-        case 1: d = {-1, -t, s}; break;
-        case 2: d = {s, 1, t}; break;
-        case 3: d = {s, -1, -t}; break;
-        case 4: d = {s, -t, 1}; break;
-        default: d = {-s, -t, -1}; break;
+        case 0:
+            d = {1, -t, -s};
+            break;
+        case 1:
+            d = {-1, -t, s};
+            break;
+        case 2:
+            d = {s, 1, t};
+            break;
+        case 3:
+            d = {s, -1, -t};
+            break;
+        case 4:
+            d = {s, -t, 1};
+            break;
+        default:
+            d = {-s, -t, -1};
+            break;
     }
     return glm::normalize(d);
 }
@@ -198,10 +230,12 @@ CubeTexels cubeTexels(const std::vector<Image>& faces) {
     for (uint32_t f = 0; f < 6; ++f)
         for (uint32_t y = 0; y < n; ++y)
             for (uint32_t x = 0; x < n; ++x) {
-                const double h = 1.0 / n, a0 = 2.0 * x / n - 1, b0 = 2.0 * y / n - 1, a1 = a0 + 2 * h, b1 = b0 + 2 * h;
+                const double h = 1.0 / n, a0 = 2.0 * x / n - 1, b0 = 2.0 * y / n - 1,
+                             a1 = a0 + 2 * h, b1 = b0 + 2 * h;
                 c.solidAngle.push_back(area(a0, b0) - area(a0, b1) - area(a1, b0) + area(a1, b1));
                 c.direction.push_back(cubeDirection(f, (x + 0.5) / n, (y + 0.5) / n));
-                c.radiance.emplace_back(faces[f].at(x, y, 0), faces[f].at(x, y, 1), faces[f].at(x, y, 2));
+                c.radiance.emplace_back(faces[f].at(x, y, 0), faces[f].at(x, y, 1),
+                                        faces[f].at(x, y, 2));
             }
     return c;
 }
@@ -238,7 +272,8 @@ TEST_F(Ibl, PrefilteredProbeMatchesTheExactPrefilter) {
         // 4·10⁴ nits (rgba16f, the cube's format, holds up to 65504).
         const uint32_t w = 1024, h = 512;
         Image sky(w, h, 3);
-        const glm::dvec3 sun = glm::normalize(glm::dvec3(0.3, std::tan(40.0 * 3.14159265358979 / 180.0), -1.0));
+        const glm::dvec3 sun =
+            glm::normalize(glm::dvec3(0.3, std::tan(40.0 * 3.14159265358979 / 180.0), -1.0));
         const double cosRadius = std::cos(0.25 * 3.14159265358979 / 180.0);
         for (uint32_t y = 0; y < h; ++y)
             for (uint32_t x = 0; x < w; ++x) {
@@ -247,11 +282,15 @@ TEST_F(Ibl, PrefilteredProbeMatchesTheExactPrefilter) {
                 for (int sy = 0; sy < 4; ++sy)
                     for (int sx = 0; sx < 4; ++sx) {
                         const double u = (x + (sx + 0.5) / 4) / w, v = (y + (sy + 0.5) / 4) / h;
-                        const double phi = (u - 0.5) * 2 * 3.14159265358979, theta = v * 3.14159265358979;
-                        const glm::dvec3 d(std::sin(theta) * std::sin(phi), std::cos(theta), -std::sin(theta) * std::cos(phi));
+                        const double phi = (u - 0.5) * 2 * 3.14159265358979,
+                                     theta = v * 3.14159265358979;
+                        const glm::dvec3 d(std::sin(theta) * std::sin(phi), std::cos(theta),
+                                           -std::sin(theta) * std::cos(phi));
                         inside += glm::dot(d, sun) >= cosRadius;
                     }
-                for (uint32_t c = 0; c < 3; ++c) sky.pixels[(size_t(y) * w + x) * 3 + c] = 10.0f + 4e4f * static_cast<float>(inside) / 16.0f;
+                for (uint32_t c = 0; c < 3; ++c)
+                    sky.pixels[(size_t(y) * w + x) * 3 + c] =
+                        10.0f + 4e4f * static_cast<float>(inside) / 16.0f;
             }
         const std::string file = testing::TempDir() + "/prefilter_sun.exr";
         ASSERT_TRUE(writeExr(file, {{"", {"R", "G", "B"}, sky}}).has_value());
@@ -259,8 +298,10 @@ TEST_F(Ibl, PrefilteredProbeMatchesTheExactPrefilter) {
     }
     for (const char* hdri : {"qwantani_afternoon_puresky_1k.hdr", "chinese_garden_1k.hdr"}) {
         const std::string file = kRoot + "/../shared/assets/hdri/" + hdri;
-        if (std::filesystem::exists(file)) environments.emplace_back(hdri, file);
-        else std::printf("skipped %s: ../shared/assets/hdri is not here\n", hdri);
+        if (std::filesystem::exists(file))
+            environments.emplace_back(hdri, file);
+        else
+            std::printf("skipped %s: ../shared/assets/hdri is not here\n", hdri);
     }
     double worstOverall = 0.0;
     for (const auto& [name, file] : environments) {
@@ -299,10 +340,21 @@ TEST_F(Ibl, PrefilteredProbeMatchesTheExactPrefilter) {
                     const glm::dvec3 n = cubeDirection(f, (k % 4 + 0.5) / 4, (k / 4 + 0.5) / 4);
                     double exact = 0.0;
                     for (size_t i = 0; i < texels.direction.size(); ++i)
-                        exact += texels.radiance[i].y * std::max(0.0, glm::dot(n, texels.direction[i])) * texels.solidAngle[i];
-                    const double y[9] = {0.282095, 0.488603 * n.y, 0.488603 * n.z, 0.488603 * n.x, 1.092548 * n.x * n.y, 1.092548 * n.y * n.z,
-                                         0.315392 * (3 * n.z * n.z - 1), 1.092548 * n.x * n.z, 0.546274 * (n.x * n.x - n.y * n.y)};
-                    const double pi = 3.14159265358979, a[9] = {pi, 2 * pi / 3, 2 * pi / 3, 2 * pi / 3, pi / 4, pi / 4, pi / 4, pi / 4, pi / 4};
+                        exact += texels.radiance[i].y *
+                                 std::max(0.0, glm::dot(n, texels.direction[i])) *
+                                 texels.solidAngle[i];
+                    const double y[9] = {0.282095,
+                                         0.488603 * n.y,
+                                         0.488603 * n.z,
+                                         0.488603 * n.x,
+                                         1.092548 * n.x * n.y,
+                                         1.092548 * n.y * n.z,
+                                         0.315392 * (3 * n.z * n.z - 1),
+                                         1.092548 * n.x * n.z,
+                                         0.546274 * (n.x * n.x - n.y * n.y)};
+                    const double pi = 3.14159265358979,
+                                 a[9] = {pi,     2 * pi / 3, 2 * pi / 3, 2 * pi / 3, pi / 4,
+                                         pi / 4, pi / 4,     pi / 4,     pi / 4};
                     double e = 0.0;
                     for (int i = 0; i < 9; ++i) e += a[i] * y[i] * sh[i].y;
                     pairs.emplace_back(exact, std::max(e, 0.0));
@@ -313,22 +365,28 @@ TEST_F(Ibl, PrefilteredProbeMatchesTheExactPrefilter) {
             int dim = 0;
             for (const auto& [exact, e] : pairs) {
                 const double rel = std::abs(e / exact - 1.0);
-                if (exact >= 0.25 * peak) worstLit = std::max(worstLit, rel);
+                if (exact >= 0.25 * peak)
+                    worstLit = std::max(worstLit, rel);
                 else {
                     worstDim = std::max(worstDim, rel);
                     meanDim += rel;
                     ++dim;
                 }
             }
-            std::printf("%s: SH irradiance against the exact: lit directions (>= 1/4 of the peak %.0f lux) worst %.1f %%; "
-                        "the %d others worst %.1f %%, mean %.1f %%\n",
-                        name.c_str(), peak, 100 * worstLit, dim, 100 * worstDim, dim ? 100 * meanDim / dim : 0.0);
+            std::printf(
+                "%s: SH irradiance against the exact: lit directions (>= 1/4 of the peak %.0f lux) "
+                "worst %.1f %%; "
+                "the %d others worst %.1f %%, mean %.1f %%\n",
+                name.c_str(), peak, 100 * worstLit, dim, 100 * worstDim,
+                dim ? 100 * meanDim / dim : 0.0);
             EXPECT_LE(worstLit, 0.10) << name;
         }
         const uint32_t mips = 8;
-        std::printf("%s: pre-filtered probe against the exact pre-filter (relative error, green)\n", name.c_str());
+        std::printf("%s: pre-filtered probe against the exact pre-filter (relative error, green)\n",
+                    name.c_str());
         for (uint32_t m = 1; m < mips; ++m) {
-            const double linearRoughness = std::pow(double(m) / (mips - 1), 2.0), alpha = std::max(linearRoughness * linearRoughness, 1e-3);
+            const double linearRoughness = std::pow(double(m) / (mips - 1), 2.0),
+                         alpha = std::max(linearRoughness * linearRoughness, 1e-3);
             double worst = 0.0, mean = 0.0;
             int count = 0;
             for (uint32_t f = 0; f < 6; ++f) {
@@ -338,7 +396,8 @@ TEST_F(Ibl, PrefilteredProbeMatchesTheExactPrefilter) {
                 for (uint32_t y = step / 2; y < size; y += step)
                     for (uint32_t x = step / 2; x < size; x += step) {
                         const glm::dvec3 n = cubeDirection(f, (x + 0.5) / size, (y + 0.5) / size);
-                        const double exact = exactPrefilter(texels, n, alpha).y, got = img->at(x, y, 1);
+                        const double exact = exactPrefilter(texels, n, alpha).y,
+                                     got = img->at(x, y, 1);
                         const double e = std::abs(got / exact - 1.0);
                         worst = std::max(worst, e);
                         mean += e;
@@ -346,8 +405,10 @@ TEST_F(Ibl, PrefilteredProbeMatchesTheExactPrefilter) {
                     }
             }
             mean /= count;
-            std::printf("  mip %u (linear roughness %.3f): worst %5.1f %%, mean %5.1f %% over %d directions\n", m, linearRoughness, 100 * worst,
-                        100 * mean, count);
+            std::printf(
+                "  mip %u (linear roughness %.3f): worst %5.1f %%, mean %5.1f %% over %d "
+                "directions\n",
+                m, linearRoughness, 100 * worst, 100 * mean, count);
             // Where the lobe (half its weight within 2α of n) spans fewer than two source texels
             // (2 / 256 rad at a face's centre) — mips 1 and 2 — the definition is not resolved by
             // the cube: the reference takes texel centres as they are, the filter interpolates

@@ -48,17 +48,23 @@ uint32_t testBits(uint32_t x, uint32_t y, uint32_t channel, uint32_t k) {
     return testHash(testHash(x + 4096u * y) ^ ((channel * 4u + k) * 0x9e3779b9u));
 }
 float testSteps(uint32_t h, int lo, int hi) {
-    return static_cast<float>(static_cast<int>(h % static_cast<uint32_t>(hi - lo + 1)) + lo) * (1.0f / 8192.0f);
+    return static_cast<float>(static_cast<int>(h % static_cast<uint32_t>(hi - lo + 1)) + lo) *
+           (1.0f / 8192.0f);
 }
-float testUnorm(uint32_t x, uint32_t y, uint32_t ch, uint32_t k) { return testSteps(testBits(x, y, ch, k), -819, 9011); }
-float testSnorm(uint32_t x, uint32_t y, uint32_t ch, uint32_t k) { return testSteps(testBits(x, y, ch, k), -9011, 9011); }
+float testUnorm(uint32_t x, uint32_t y, uint32_t ch, uint32_t k) {
+    return testSteps(testBits(x, y, ch, k), -819, 9011);
+}
+float testSnorm(uint32_t x, uint32_t y, uint32_t ch, uint32_t k) {
+    return testSteps(testBits(x, y, ch, k), -9011, 9011);
+}
 uint32_t testUint(uint32_t x, uint32_t y, uint32_t ch, uint32_t k, uint32_t bits) {
     uint32_t h = testBits(x, y, ch, k);
     return bits >= 32 ? h : h % ((1u << bits) + 1u);
 }
 float testFloat(uint32_t x, uint32_t y, uint32_t ch, uint32_t k) {
     uint32_t h = testBits(x, y, ch, k);
-    return std::ldexp(static_cast<float>(static_cast<int>(h & 0xffffu) - 32768), static_cast<int>((h >> 16) % 15u) - 12);
+    return std::ldexp(static_cast<float>(static_cast<int>(h & 0xffffu) - 32768),
+                      static_cast<int>((h >> 16) % 15u) - 12);
 }
 
 // The value of every channel at pixel (x, y), as the test shaders compute it.
@@ -67,25 +73,27 @@ std::vector<ChannelValue> valuesAt(const LayoutInfo& info, uint32_t x, uint32_t 
     for (uint32_t i = 0; i < info.channels.size(); ++i) {
         const ChannelPlacement& p = info.channels[i];
         switch (info.channelDesc(i).encoding) {
-        case Encoding::Unorm:
-            for (uint32_t k = 0; k < p.components; ++k) v[i].v[k] = testUnorm(x, y, i, k);
-            break;
-        case Encoding::Srgb:
-            for (uint32_t k = 0; k < 3; ++k) v[i].v[k] = testUnorm(x, y, i, k);
-            break;
-        case Encoding::Snorm:
-            for (uint32_t k = 0; k < p.components; ++k) v[i].v[k] = testSnorm(x, y, i, k);
-            break;
-        case Encoding::Oct:
-            for (uint32_t k = 0; k < 3; ++k) v[i].v[k] = testSteps(testBits(x, y, i, k), -8192, 8192);
-            if (v[i].v[0] == 0 && v[i].v[1] == 0 && v[i].v[2] == 0) v[i].v[2] = 1.0f;
-            break;
-        case Encoding::Uint:
-            for (uint32_t k = 0; k < p.components; ++k) v[i].u[k] = testUint(x, y, i, k, p.bitsPerComponent);
-            break;
-        case Encoding::Float:
-            for (uint32_t k = 0; k < p.components; ++k) v[i].v[k] = testFloat(x, y, i, k);
-            break;
+            case Encoding::Unorm:
+                for (uint32_t k = 0; k < p.components; ++k) v[i].v[k] = testUnorm(x, y, i, k);
+                break;
+            case Encoding::Srgb:
+                for (uint32_t k = 0; k < 3; ++k) v[i].v[k] = testUnorm(x, y, i, k);
+                break;
+            case Encoding::Snorm:
+                for (uint32_t k = 0; k < p.components; ++k) v[i].v[k] = testSnorm(x, y, i, k);
+                break;
+            case Encoding::Oct:
+                for (uint32_t k = 0; k < 3; ++k)
+                    v[i].v[k] = testSteps(testBits(x, y, i, k), -8192, 8192);
+                if (v[i].v[0] == 0 && v[i].v[1] == 0 && v[i].v[2] == 0) v[i].v[2] = 1.0f;
+                break;
+            case Encoding::Uint:
+                for (uint32_t k = 0; k < p.components; ++k)
+                    v[i].u[k] = testUint(x, y, i, k, p.bitsPerComponent);
+                break;
+            case Encoding::Float:
+                for (uint32_t k = 0; k < p.components; ++k) v[i].v[k] = testFloat(x, y, i, k);
+                break;
         }
     }
     return v;
@@ -95,10 +103,13 @@ std::vector<ChannelValue> valuesAt(const LayoutInfo& info, uint32_t x, uint32_t 
 std::string packShaderFor(const LayoutInfo& info) {
     const LayoutDesc& d = info.desc;
     std::ostringstream s;
-    s << "#version 460\n#include \"gbuffer_" << d.name << ".glsl\"\n#include \"test/layout/hash.glsl\"\n";
+    s << "#version 460\n#include \"gbuffer_" << d.name
+      << ".glsl\"\n#include \"test/layout/hash.glsl\"\n";
     for (size_t t = 0; t < d.targets.size(); ++t)
         s << "layout(location = " << t << ") out "
-          << (texelComponents(d.targets[t].format)->kind == TexelComponents::Kind::Uint ? "uvec4" : "vec4") << " t" << t << ";\n";
+          << (texelComponents(d.targets[t].format)->kind == TexelComponents::Kind::Uint ? "uvec4"
+                                                                                        : "vec4")
+          << " t" << t << ";\n";
     s << "void main() {\n    uvec2 p = uvec2(gl_FragCoord.xy);\n    GBuffer_" << d.name << " g;\n";
     const char* sw = "xyzw";
     for (size_t i = 0; i < info.channels.size(); ++i) {
@@ -106,20 +117,31 @@ std::string packShaderFor(const LayoutInfo& info) {
         const ChannelDesc& c = info.channelDesc(i);
         const std::string ch = std::to_string(i) + "u";
         for (uint32_t k = 0; k < p.components; ++k) {
-            const std::string m = "g." + c.name + (p.components > 1 ? std::string(".") + sw[k] : "");
+            const std::string m =
+                "g." + c.name + (p.components > 1 ? std::string(".") + sw[k] : "");
             const std::string kk = std::to_string(k) + "u";
             switch (c.encoding) {
-            case Encoding::Unorm: s << "    " << m << " = rg_testUnorm(p, " << ch << ", " << kk << ");\n"; break;
-            case Encoding::Snorm: s << "    " << m << " = rg_testSnorm(p, " << ch << ", " << kk << ");\n"; break;
-            case Encoding::Uint:
-                s << "    " << m << " = rg_testUint(p, " << ch << ", " << kk << ", " << p.bitsPerComponent << "u);\n";
-                break;
-            case Encoding::Float: s << "    " << m << " = rg_testFloat(p, " << ch << ", " << kk << ");\n"; break;
-            default: break;
+                case Encoding::Unorm:
+                    s << "    " << m << " = rg_testUnorm(p, " << ch << ", " << kk << ");\n";
+                    break;
+                case Encoding::Snorm:
+                    s << "    " << m << " = rg_testSnorm(p, " << ch << ", " << kk << ");\n";
+                    break;
+                case Encoding::Uint:
+                    s << "    " << m << " = rg_testUint(p, " << ch << ", " << kk << ", "
+                      << p.bitsPerComponent << "u);\n";
+                    break;
+                case Encoding::Float:
+                    s << "    " << m << " = rg_testFloat(p, " << ch << ", " << kk << ");\n";
+                    break;
+                default:
+                    break;
             }
         }
-        if (c.encoding == Encoding::Oct) s << "    g." << c.name << " = rg_testDirection(p, " << ch << ");\n";
-        if (c.encoding == Encoding::Srgb) s << "    g." << c.name << " = rg_testColour(p, " << ch << ");\n";
+        if (c.encoding == Encoding::Oct)
+            s << "    g." << c.name << " = rg_testDirection(p, " << ch << ");\n";
+        if (c.encoding == Encoding::Srgb)
+            s << "    g." << c.name << " = rg_testColour(p, " << ch << ");\n";
     }
     s << "    packGBuffer_" << d.name << "(g";
     for (size_t t = 0; t < d.targets.size(); ++t) s << ", t" << t;
@@ -127,7 +149,9 @@ std::string packShaderFor(const LayoutInfo& info) {
     return s.str();
 }
 
-double srgbEncode(double c) { return c <= 0.0031308 ? c * 12.92 : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055; }
+double srgbEncode(double c) {
+    return c <= 0.0031308 ? c * 12.92 : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+}
 double octBound(uint32_t bits) {
     const double n = std::ldexp(1.0, static_cast<int>(bits)) - 1.0;
     return 2.0 * std::asin(std::min(1.0, 3.0 * std::numbers::sqrt2 / (2.0 * n)));
@@ -145,7 +169,8 @@ std::pair<float, float> floatRange(Format f, uint32_t component) {
 
 // Error of one unpacked channel against the packed value, as a fraction of its tolerance
 // (> 1 fails); uint: 0 or 2.
-double errorRatio(const LayoutInfo& info, size_t i, const ChannelValue& in, const ChannelValue& out) {
+double errorRatio(const LayoutInfo& info, size_t i, const ChannelValue& in,
+                  const ChannelValue& out) {
     const ChannelPlacement& p = info.channels[i];
     const ChannelDesc& c = info.channelDesc(i);
     const Format fmt = info.desc.targets[p.target].format;
@@ -153,50 +178,57 @@ double errorRatio(const LayoutInfo& info, size_t i, const ChannelValue& in, cons
     const double N = std::ldexp(1.0, static_cast<int>(B)) - 1.0, slack = 2e-6;
     double worst = 0;
     switch (c.encoding) {
-    case Encoding::Uint:
-        for (uint32_t k = 0; k < p.components; ++k)
-            if (out.u[k] != (B >= 32 ? in.u[k] : std::min(in.u[k], (1u << B) - 1u))) worst = 2;
-        break;
-    case Encoding::Unorm:
-        for (uint32_t k = 0; k < p.components; ++k)
-            worst = std::max(worst, std::fabs(out.v[k] - std::clamp(in.v[k], 0.0f, 1.0f)) / (0.5 / N + slack));
-        break;
-    case Encoding::Snorm: {
-        const double h = std::ldexp(1.0, static_cast<int>(B) - 1) - 1.0;
-        for (uint32_t k = 0; k < p.components; ++k)
-            worst = std::max(worst, std::fabs(out.v[k] - std::clamp(in.v[k], -1.0f, 1.0f)) / (0.5 / h + slack));
-        break;
-    }
-    case Encoding::Srgb: {
-        const bool hardware = fmt == Format::RGBA8Srgb;
-        const double tol = 0.5 / N + (hardware ? 1.0 / 255.0 : 0.0) + 1e-5;
-        for (uint32_t k = 0; k < 3; ++k)
-            worst = std::max(worst, std::fabs(srgbEncode(std::clamp(double(out.v[k]), 0.0, 1.0)) -
-                                              srgbEncode(std::clamp(double(in.v[k]), 0.0, 1.0))) / tol);
-        break;
-    }
-    case Encoding::Oct: {
-        const auto& a = in.v;
-        const auto& b = out.v;
-        double lb = std::sqrt(double(b[0]) * b[0] + double(b[1]) * b[1] + double(b[2]) * b[2]);
-        double cx = double(a[1]) * b[2] - double(a[2]) * b[1], cy = double(a[2]) * b[0] - double(a[0]) * b[2],
-               cz = double(a[0]) * b[1] - double(a[1]) * b[0];
-        double dot = double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2];
-        double angle = std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz), dot);
-        worst = std::max(angle / (octBound(B) + slack), std::fabs(lb - 1.0) / 1e-5);
-        break;
-    }
-    case Encoding::Float:
-        for (uint32_t k = 0; k < p.components; ++k) {
-            const uint32_t comp = p.slots[k].component;
-            const auto [lo, hi] = floatRange(fmt, comp);
-            const double want = std::clamp(in.v[k], lo, hi);
-            const int m = mantissaBits(fmt, comp);
-            const double ulp = m == 0 ? 0.0 : std::max(std::ldexp(std::fabs(want), -m), std::ldexp(1.0, -14 - m));
-            const double err = std::fabs(out.v[k] - want);
-            worst = std::max(worst, ulp == 0 ? (err == 0 ? 0.0 : 2.0) : err / ulp);
+        case Encoding::Uint:
+            for (uint32_t k = 0; k < p.components; ++k)
+                if (out.u[k] != (B >= 32 ? in.u[k] : std::min(in.u[k], (1u << B) - 1u))) worst = 2;
+            break;
+        case Encoding::Unorm:
+            for (uint32_t k = 0; k < p.components; ++k)
+                worst = std::max(worst, std::fabs(out.v[k] - std::clamp(in.v[k], 0.0f, 1.0f)) /
+                                            (0.5 / N + slack));
+            break;
+        case Encoding::Snorm: {
+            const double h = std::ldexp(1.0, static_cast<int>(B) - 1) - 1.0;
+            for (uint32_t k = 0; k < p.components; ++k)
+                worst = std::max(worst, std::fabs(out.v[k] - std::clamp(in.v[k], -1.0f, 1.0f)) /
+                                            (0.5 / h + slack));
+            break;
         }
-        break;
+        case Encoding::Srgb: {
+            const bool hardware = fmt == Format::RGBA8Srgb;
+            const double tol = 0.5 / N + (hardware ? 1.0 / 255.0 : 0.0) + 1e-5;
+            for (uint32_t k = 0; k < 3; ++k)
+                worst =
+                    std::max(worst, std::fabs(srgbEncode(std::clamp(double(out.v[k]), 0.0, 1.0)) -
+                                              srgbEncode(std::clamp(double(in.v[k]), 0.0, 1.0))) /
+                                        tol);
+            break;
+        }
+        case Encoding::Oct: {
+            const auto& a = in.v;
+            const auto& b = out.v;
+            double lb = std::sqrt(double(b[0]) * b[0] + double(b[1]) * b[1] + double(b[2]) * b[2]);
+            double cx = double(a[1]) * b[2] - double(a[2]) * b[1],
+                   cy = double(a[2]) * b[0] - double(a[0]) * b[2],
+                   cz = double(a[0]) * b[1] - double(a[1]) * b[0];
+            double dot = double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2];
+            double angle = std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz), dot);
+            worst = std::max(angle / (octBound(B) + slack), std::fabs(lb - 1.0) / 1e-5);
+            break;
+        }
+        case Encoding::Float:
+            for (uint32_t k = 0; k < p.components; ++k) {
+                const uint32_t comp = p.slots[k].component;
+                const auto [lo, hi] = floatRange(fmt, comp);
+                const double want = std::clamp(in.v[k], lo, hi);
+                const int m = mantissaBits(fmt, comp);
+                const double ulp =
+                    m == 0 ? 0.0
+                           : std::max(std::ldexp(std::fabs(want), -m), std::ldexp(1.0, -14 - m));
+                const double err = std::fabs(out.v[k] - want);
+                worst = std::max(worst, ulp == 0 ? (err == 0 ? 0.0 : 2.0) : err / ulp);
+            }
+            break;
     }
     return worst;
 }
@@ -208,7 +240,8 @@ struct GpuRun {
 
 // Writes the generated header and the pack shader into RG_TEST_TMP/layout/, renders one frame
 // of width x height with one fullscreen pass and reads every target back.
-GpuRun renderLayout(Runtime& rt, const LayoutInfo& info, const std::string& shaderText, uint32_t width, uint32_t height) {
+GpuRun renderLayout(Runtime& rt, const LayoutInfo& info, const std::string& shaderText,
+                    uint32_t width, uint32_t height) {
     GpuRun run;
     const fs::path dir = fs::path(RG_TEST_TMP) / "layout";
     fs::create_directories(dir);
@@ -220,7 +253,8 @@ GpuRun renderLayout(Runtime& rt, const LayoutInfo& info, const std::string& shad
     PassDesc pass;
     pass.name = "pack_" + info.desc.name;
     pass.kind = "fullscreen";
-    pass.params = Value(Value::Table{{"shader", Value((dir / ("pack_" + info.desc.name + ".frag")).string())}});
+    pass.params = Value(
+        Value::Table{{"shader", Value((dir / ("pack_" + info.desc.name + ".frag")).string())}});
     for (const TargetDesc& t : info.desc.targets) {
         ResourceDesc r;
         r.name = t.name;
@@ -260,9 +294,9 @@ struct Comparison {
     // (sRGB encode, float narrowing) may round the other way and must be within one quantum.
     int fixedComponents = 0, fixedEqual = 0;
     int convertedComponents = 0, convertedEqual = 0, convertedTowardZero = 0;
-    double worstConvertedDelta = 0;                      // in quanta (8-bit sRGB codes, float ulps)
-    std::map<std::string, int> differing;                // "target.R" -> texels differing from packTexel
-    std::vector<double> worstRatio;                      // per channel
+    double worstConvertedDelta = 0;        // in quanta (8-bit sRGB codes, float ulps)
+    std::map<std::string, int> differing;  // "target.R" -> texels differing from packTexel
+    std::vector<double> worstRatio;        // per channel
 };
 
 // Unpacks every read-back texel and compares with the CPU's values and the CPU's packing.
@@ -288,8 +322,9 @@ Comparison compare(const LayoutInfo& info, const GpuRun& run) {
                 c.worstRatio[i] = std::max(c.worstRatio[i], r);
                 if (r > 1.0) {
                     if (!bad && c.failures < 5)
-                        ADD_FAILURE() << "layout '" << info.desc.name << "' pixel (" << x << ", " << y << ") channel '"
-                                      << info.channelDesc(i).name << "': error " << r << " x its tolerance";
+                        ADD_FAILURE() << "layout '" << info.desc.name << "' pixel (" << x << ", "
+                                      << y << ") channel '" << info.channelDesc(i).name
+                                      << "': error " << r << " x its tolerance";
                     bad = true;
                 }
             }
@@ -301,10 +336,13 @@ Comparison compare(const LayoutInfo& info, const GpuRun& run) {
                 for (uint32_t k = 0; k < tc.count; ++k) {
                     const float gpuF = texels[t].f[k], cpuF = cpu[t].f[k];
                     bool equal = false;
-                    if (tc.kind == TexelComponents::Kind::Uint || tc.kind == TexelComponents::Kind::Unorm ||
+                    if (tc.kind == TexelComponents::Kind::Uint ||
+                        tc.kind == TexelComponents::Kind::Unorm ||
                         (tc.kind == TexelComponents::Kind::Srgb && k == 3)) {
                         ++c.fixedComponents;
-                        equal = tc.kind == TexelComponents::Kind::Uint ? texels[t].u[k] == cpu[t].u[k] : gpuF == cpuF;
+                        equal = tc.kind == TexelComponents::Kind::Uint
+                                    ? texels[t].u[k] == cpu[t].u[k]
+                                    : gpuF == cpuF;
                         c.fixedEqual += equal;
                     } else {
                         ++c.convertedComponents;
@@ -314,8 +352,12 @@ Comparison compare(const LayoutInfo& info, const GpuRun& run) {
                             delta = std::fabs(srgbEncode(gpuF) - srgbEncode(cpuF)) * 255.0;
                         } else {
                             const int m = mantissaBits(f, k);
-                            const double ulp = m ? std::max(std::ldexp(std::fabs(double(cpuF)), -m), std::ldexp(1.0, -14 - m)) : 0.0;
-                            delta = equal ? 0.0 : ulp > 0 ? std::fabs(double(gpuF) - cpuF) / ulp : 1e9;
+                            const double ulp = m ? std::max(std::ldexp(std::fabs(double(cpuF)), -m),
+                                                            std::ldexp(1.0, -14 - m))
+                                                 : 0.0;
+                            delta = equal     ? 0.0
+                                    : ulp > 0 ? std::fabs(double(gpuF) - cpuF) / ulp
+                                              : 1e9;
                         }
                         c.convertedEqual += equal;
                         c.convertedTowardZero += !equal && std::fabs(gpuF) < std::fabs(cpuF);
@@ -352,12 +394,15 @@ std::string readFile(const std::string& path) {
 }
 
 void report(const LayoutInfo& info, const Comparison& c) {
-    std::cout << "layout '" << info.desc.name << "': " << c.pixels << " pixels; equal to packTexel's: fixed-point "
-              << c.fixedEqual << " of " << c.fixedComponents << " texel components, hardware-converted (sRGB, float) "
-              << c.convertedEqual << " of " << c.convertedComponents << " (" << c.convertedTowardZero
-              << " of the others rounded toward zero), largest difference " << c.worstConvertedDelta << " quantum\n"
+    std::cout << "layout '" << info.desc.name << "': " << c.pixels
+              << " pixels; equal to packTexel's: fixed-point " << c.fixedEqual << " of "
+              << c.fixedComponents << " texel components, hardware-converted (sRGB, float) "
+              << c.convertedEqual << " of " << c.convertedComponents << " ("
+              << c.convertedTowardZero << " of the others rounded toward zero), largest difference "
+              << c.worstConvertedDelta << " quantum\n"
               << "  worst error / tolerance per channel:";
-    for (size_t i = 0; i < info.channels.size(); ++i) std::cout << " " << info.channelDesc(i).name << " " << c.worstRatio[i];
+    for (size_t i = 0; i < info.channels.size(); ++i)
+        std::cout << " " << info.channelDesc(i).name << " " << c.worstRatio[i];
     std::cout << "\n  texel components that differ from packTexel's:";
     for (const auto& [where, n] : c.differing) std::cout << " " << where << " " << n;
     std::cout << "\n";
@@ -377,7 +422,8 @@ ChannelDesc ch(const std::string& name, Encoding e, uint32_t bits, uint32_t comp
 TEST_F(LayoutGpuTest, DefaultLayoutPackedOnTheGpuUnpacksOnTheCpu) {
     auto info = analyzeLayout(defaultDisneyLayout());
     ASSERT_TRUE(info.has_value()) << info.error().message;
-    const std::string shader = readFile(std::string(RG_SOURCE_ROOT) + "/shaders/test/layout/pack_disney.frag");
+    const std::string shader =
+        readFile(std::string(RG_SOURCE_ROOT) + "/shaders/test/layout/pack_disney.frag");
     ASSERT_FALSE(shader.empty());
     GpuRun run = renderLayout(rt(), *info, shader, 128, 96);
     ASSERT_TRUE(run.error.empty()) << run.error;
@@ -399,15 +445,24 @@ TEST_F(LayoutGpuTest, EightTargetsOfEveryKindAgreeWithTheCpu) {
     LayoutDesc d;
     d.name = "mixed";
     d.targets = {
-        {"M0", Format::RGBA8Unorm, {ch("n8", Encoding::Oct, 16), ch("s8", Encoding::Snorm, 8), ch("flags", Encoding::Uint, 4),
-                                    ch("rough4", Encoding::Unorm, 4)}, ""},
-        {"M1", Format::RGB10A2Unorm, {ch("albedo", Encoding::Srgb, 30), ch("kind", Encoding::Uint, 2)}, ""},
+        {"M0",
+         Format::RGBA8Unorm,
+         {ch("n8", Encoding::Oct, 16), ch("s8", Encoding::Snorm, 8), ch("flags", Encoding::Uint, 4),
+          ch("rough4", Encoding::Unorm, 4)},
+         ""},
+        {"M1",
+         Format::RGB10A2Unorm,
+         {ch("albedo", Encoding::Srgb, 30), ch("kind", Encoding::Uint, 2)},
+         ""},
         {"M2", Format::R11G11B10F, {ch("light", Encoding::Float, 30, 3)}, ""},
         {"M3", Format::R8Uint, {ch("id3", Encoding::Uint, 3), ch("u5", Encoding::Unorm, 5)}, ""},
         {"M4", Format::RG16F, {ch("motion", Encoding::Float, 32, 2)}, ""},
         {"M5", Format::R32F, {ch("depthLinear", Encoding::Float, 32)}, ""},
         {"M6", Format::RG8Unorm, {ch("tangent", Encoding::Oct, 16)}, ""},
-        {"M7", Format::R8Unorm, {ch("sn4", Encoding::Snorm, 4), ch("pair", Encoding::Unorm, 4, 2)}, ""},
+        {"M7",
+         Format::R8Unorm,
+         {ch("sn4", Encoding::Snorm, 4), ch("pair", Encoding::Unorm, 4, 2)},
+         ""},
     };
     auto info = analyzeLayout(d);
     ASSERT_TRUE(info.has_value()) << info.error().message;

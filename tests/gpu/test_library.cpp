@@ -26,8 +26,10 @@ rgraph::Options options() {
 
 // Validation messages on the host's instance (a test fails on any).
 int g_validationMessages = 0;
-VKAPI_ATTR VkBool32 VKAPI_CALL onValidation(VkDebugUtilsMessageSeverityFlagBitsEXT, VkDebugUtilsMessageTypeFlagsEXT,
-                                            const VkDebugUtilsMessengerCallbackDataEXT* data, void*) {
+VKAPI_ATTR VkBool32 VKAPI_CALL onValidation(VkDebugUtilsMessageSeverityFlagBitsEXT,
+                                            VkDebugUtilsMessageTypeFlagsEXT,
+                                            const VkDebugUtilsMessengerCallbackDataEXT* data,
+                                            void*) {
     ++g_validationMessages;
     std::fprintf(stderr, "host validation: %s\n", data && data->pMessage ? data->pMessage : "");
     return VK_FALSE;
@@ -54,11 +56,15 @@ struct HostVulkan {
         ii.enabledExtensionCount = 1;
         ii.ppEnabledExtensionNames = &extension;
         if (vkCreateInstance(&ii, nullptr, &instance) != VK_SUCCESS) return;
-        VkDebugUtilsMessengerCreateInfoEXT mi{VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
-        mi.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
-        mi.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT | VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT;
+        VkDebugUtilsMessengerCreateInfoEXT mi{
+            VK_STRUCTURE_TYPE_DEBUG_UTILS_MESSENGER_CREATE_INFO_EXT};
+        mi.messageSeverity = VK_DEBUG_UTILS_MESSAGE_SEVERITY_WARNING_BIT_EXT |
+                             VK_DEBUG_UTILS_MESSAGE_SEVERITY_ERROR_BIT_EXT;
+        mi.messageType = VK_DEBUG_UTILS_MESSAGE_TYPE_VALIDATION_BIT_EXT |
+                         VK_DEBUG_UTILS_MESSAGE_TYPE_GENERAL_BIT_EXT;
         mi.pfnUserCallback = &onValidation;
-        auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
+        auto create = reinterpret_cast<PFN_vkCreateDebugUtilsMessengerEXT>(
+            vkGetInstanceProcAddr(instance, "vkCreateDebugUtilsMessengerEXT"));
         if (create) create(instance, &mi, nullptr, &messenger);
         uint32_t n = 1;
         vkEnumeratePhysicalDevices(instance, &n, &physical);
@@ -84,7 +90,10 @@ struct HostVulkan {
     }
     ~HostVulkan() {
         if (device) vkDestroyDevice(device, nullptr);
-        auto destroy = instance ? reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT")) : nullptr;
+        auto destroy = instance
+                           ? reinterpret_cast<PFN_vkDestroyDebugUtilsMessengerEXT>(
+                                 vkGetInstanceProcAddr(instance, "vkDestroyDebugUtilsMessengerEXT"))
+                           : nullptr;
         if (destroy && messenger) destroy(instance, messenger, nullptr);
         if (instance) vkDestroyInstance(instance, nullptr);
         EXPECT_EQ(g_validationMessages, 0) << "validation messages on the host's device";
@@ -129,7 +138,9 @@ scene.environment "sky" { kind = "sky" }
 TEST(Library, RendersOnTheHostsDeviceAndTheHostReadsTheImage) {
     HostVulkan host;
     ASSERT_TRUE(host.device) << "no Vulkan 1.3 device for the host";
-    auto r = rgraph::Renderer::create(rgraph::HostDevice{host.instance, host.physical, host.device, host.family, host.queue}, options());
+    auto r = rgraph::Renderer::create(
+        rgraph::HostDevice{host.instance, host.physical, host.device, host.family, host.queue},
+        options());
     r->setSize(160, 90);
     r->setScene(sceneInCode());
     r->loadPipeline(kRoot + "/scripts/pipelines/deferred.lua");
@@ -154,14 +165,17 @@ TEST(Library, RendersOnTheHostsDeviceAndTheHostReadsTheImage) {
 }
 
 TEST(Library, ASceneInCodeRendersAsTheSameSceneFromItsLuaFile) {
-    const fs::path dir = fs::temp_directory_path() / ("rgraph_library_" + std::to_string(::getpid()));
+    const fs::path dir =
+        fs::temp_directory_path() / ("rgraph_library_" + std::to_string(::getpid()));
     fs::create_directories(dir);
     std::ofstream(dir / "scene.lua") << kSceneLua;
     auto render = [&](bool inCode) {
         auto r = rgraph::Renderer::create(options());
         r->setSize(160, 90);
-        if (inCode) r->setScene(sceneInCode());
-        else r->loadScene((dir / "scene.lua").string());
+        if (inCode)
+            r->setScene(sceneInCode());
+        else
+            r->loadScene((dir / "scene.lua").string());
         r->loadPipeline(kRoot + "/scripts/pipelines/deferred.lua");
         r->setParameter("exposure_mode", std::string("manual"));
         r->render(1);
@@ -172,7 +186,8 @@ TEST(Library, ASceneInCodeRendersAsTheSameSceneFromItsLuaFile) {
     ASSERT_EQ(a.pixels.size(), b.pixels.size());
     double worst = 0, sum = 0;
     for (size_t i = 0; i < a.pixels.size(); ++i) {
-        const double d = std::fabs(a.pixels[i] - b.pixels[i]) / std::max(std::fabs(b.pixels[i]), 1e-3f);
+        const double d =
+            std::fabs(a.pixels[i] - b.pixels[i]) / std::max(std::fabs(b.pixels[i]), 1e-3f);
         worst = std::max(worst, d);
         sum += d;
     }
@@ -186,7 +201,8 @@ TEST(Library, TheNextRendererRestoresWhatOncePassesWrote) {
     // Options::onceCache (on by default): the first renderer saves what the once-per-build passes
     // wrote (environment filtering, the probe capture, the DFG table) in cacheDir/once, the next
     // one restores it and renders the same image as a renderer that records them.
-    const fs::path cache = fs::temp_directory_path() / ("rgraph_library_once_" + std::to_string(::getpid()));
+    const fs::path cache =
+        fs::temp_directory_path() / ("rgraph_library_once_" + std::to_string(::getpid()));
     fs::remove_all(cache);
     auto render = [&](bool onceCache) {
         rgraph::Options o = options();
@@ -202,7 +218,8 @@ TEST(Library, TheNextRendererRestoresWhatOncePassesWrote) {
     auto entries = [&] {
         size_t n = 0;
         std::error_code ec;
-        for (const auto& e : fs::directory_iterator(cache / "once", ec)) n += e.path().extension() == ".bin";
+        for (const auto& e : fs::directory_iterator(cache / "once", ec))
+            n += e.path().extension() == ".bin";
         return n;
     };
     const rgraph::Image recorded = render(false);
@@ -215,14 +232,16 @@ TEST(Library, TheNextRendererRestoresWhatOncePassesWrote) {
     ASSERT_EQ(recorded.pixels.size(), restored.pixels.size());
     ASSERT_EQ(recorded.pixels.size(), saved.pixels.size());
     size_t differ = 0;
-    for (size_t i = 0; i < recorded.pixels.size(); ++i) differ += recorded.pixels[i] != restored.pixels[i] || recorded.pixels[i] != saved.pixels[i];
+    for (size_t i = 0; i < recorded.pixels.size(); ++i)
+        differ += recorded.pixels[i] != restored.pixels[i] || recorded.pixels[i] != saved.pixels[i];
     EXPECT_EQ(differ, 0u);
 }
 
 TEST(Library, ErrorsAreExceptionsWithFileAndLine) {
     auto r = rgraph::Renderer::create(options());
     try {
-        r->loadPipelineSource("broken", "local rg = require \"rg\"\nrg.resource \"x\" { format = \"rgba9\" }\n");
+        r->loadPipelineSource(
+            "broken", "local rg = require \"rg\"\nrg.resource \"x\" { format = \"rgba9\" }\n");
         FAIL() << "a broken script loaded";
     } catch (const rgraph::Error& e) {
         EXPECT_NE(std::string(e.what()).find("broken.lua:2:"), std::string::npos) << e.what();
@@ -333,14 +352,20 @@ TEST(Library, HostImagesInAndOutThroughTheHostsCommandBuffer) {
     vkGetBufferMemoryRequirements(host.device, readback, &req);
     VkMemoryAllocateInfo ai{VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO};
     ai.allocationSize = req.size;
-    ai.memoryTypeIndex = memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    ai.memoryTypeIndex = memoryType(req.memoryTypeBits, VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT |
+                                                            VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
     VkDeviceMemory readbackMemory = VK_NULL_HANDLE;
     vkAllocateMemory(host.device, &ai, nullptr, &readbackMemory);
     vkBindBufferMemory(host.device, readback, readbackMemory, 0);
     {
-        auto r = rgraph::Renderer::create(rgraph::HostDevice{host.instance, host.physical, host.device, host.family, host.queue}, options());
+        auto r = rgraph::Renderer::create(
+            rgraph::HostDevice{host.instance, host.physical, host.device, host.family, host.queue},
+            options());
         r->setSize(w, h);
-        r->importImage("src", {a, w, h, VK_IMAGE_LAYOUT_GENERAL});  // before the load: the import is the texture's contents
+        r->importImage(
+            "src",
+            {a, w, h,
+             VK_IMAGE_LAYOUT_GENERAL});  // before the load: the import is the texture's contents
         r->exportImage("output", {b, w, h, VK_IMAGE_LAYOUT_GENERAL});
         r->loadPipelineSource("host_images", R"(local rg = require "rg"
 rg.resource "src" { format = "rgba8", import = true }
@@ -397,7 +422,7 @@ rg.output "output"
         void* data = nullptr;
         vkMapMemory(host.device, readbackMemory, 0, VK_WHOLE_SIZE, 0, &data);
         const uint8_t* px = static_cast<const uint8_t*>(data) + (h / 2 * w + w / 2) * 4;
-        EXPECT_EQ(px[0], 64);   // 0.25 · 255, rounded
+        EXPECT_EQ(px[0], 64);  // 0.25 · 255, rounded
         EXPECT_EQ(px[1], 128);
         EXPECT_EQ(px[2], 191);
         vkUnmapMemory(host.device, readbackMemory);

@@ -51,24 +51,30 @@ TEST_F(LightmapRender, CornellBoxMatchesAMonteCarloReferenceWithIndirectLight) {
     ASSERT_TRUE(scene);
     const test::BruteForceGi truth(*scene);
     const Camera& cam = scene->cameras.at(0);
-    const glm::vec3 fwd = glm::normalize(cam.target - cam.position), right = glm::normalize(glm::cross(fwd, cam.up)),
-                    up = glm::cross(right, fwd);
+    const glm::vec3 fwd = glm::normalize(cam.target - cam.position),
+                    right = glm::normalize(glm::cross(fwd, cam.up)), up = glm::cross(right, fwd);
     const float t = std::tan(cam.verticalFov * 0.5f);
     // Per pixel: the surface at the pixel's centre, its luminance Le + ρ/π E with E from 2 × 32
     // paths (two halves, to state the reference's own noise).
-    std::vector<glm::vec3> refA(size_t(N) * N, glm::vec3(-1.0f)), refB(refA.size(), glm::vec3(-1.0f));
+    std::vector<glm::vec3> refA(size_t(N) * N, glm::vec3(-1.0f)),
+        refB(refA.size(), glm::vec3(-1.0f));
     std::mt19937 rng(11);
     for (uint32_t y = 0; y < N; ++y)
         for (uint32_t x = 0; x < N; ++x) {
-            const float sx = ((float(x) + 0.5f) / float(N) * 2.0f - 1.0f) * t, sy = (1.0f - (float(y) + 0.5f) / float(N) * 2.0f) * t;
+            const float sx = ((float(x) + 0.5f) / float(N) * 2.0f - 1.0f) * t,
+                        sy = (1.0f - (float(y) + 0.5f) / float(N) * 2.0f) * t;
             const glm::vec3 d = glm::normalize(fwd + right * sx + up * sy);
             const auto [i, dist] = truth.hit(cam.position, d, 1e30f);
             if (i < 0) continue;
             const auto& tri = truth.tris[size_t(i)];
             if (glm::dot(tri.n, d) > 0.0f) continue;
             const glm::vec3 p = cam.position + d * dist + tri.n * 1e-4f;
-            refA[size_t(y) * N + x] = tri.emission + tri.albedo / float(test::kGiPi) * truth.irradiance(p, tri.n, 32, static_cast<uint32_t>(rng()));
-            refB[size_t(y) * N + x] = tri.emission + tri.albedo / float(test::kGiPi) * truth.irradiance(p, tri.n, 32, static_cast<uint32_t>(rng()));
+            refA[size_t(y) * N + x] =
+                tri.emission + tri.albedo / float(test::kGiPi) *
+                                   truth.irradiance(p, tri.n, 32, static_cast<uint32_t>(rng()));
+            refB[size_t(y) * N + x] =
+                tri.emission + tri.albedo / float(test::kGiPi) *
+                                   truth.irradiance(p, tri.n, 32, static_cast<uint32_t>(rng()));
         }
     // Compared over 8×8-pixel blocks (each 4096 reference paths), over blocks whose 64 pixels all
     // hit the room and are above 1 % of the peak: the lightmap's error, not the reference's noise.
@@ -93,15 +99,19 @@ TEST_F(LightmapRender, CornellBoxMatchesAMonteCarloReferenceWithIndirectLight) {
             if (!ok || ref / 64.0 < 0.01 * peak) continue;
             const double err = std::abs(render - ref) / ref;
             sumErr += err, worst = std::max(worst, err);
-            sumNoise += std::abs(a - b) / (a + b);  // the half-difference: one standard error of the mean, roughly
+            sumNoise += std::abs(a - b) /
+                        (a + b);  // the half-difference: one standard error of the mean, roughly
             energyRender += render, energyRef += ref;
             ++blocks;
         }
     ASSERT_GT(blocks, 100);
-    const double mean = sumErr / blocks, noise = sumNoise / blocks, energy = energyRender / energyRef - 1.0;
-    std::printf("Cornell box, lightmap render vs Monte Carlo reference (%d blocks of 8×8 px): mean error %.2f %%, worst block %.2f %%, "
-                "energy %+.2f %%; the reference's own noise %.2f %%\n",
-                blocks, mean * 100.0, worst * 100.0, energy * 100.0, noise * 100.0);
+    const double mean = sumErr / blocks, noise = sumNoise / blocks,
+                 energy = energyRender / energyRef - 1.0;
+    std::printf(
+        "Cornell box, lightmap render vs Monte Carlo reference (%d blocks of 8×8 px): mean error "
+        "%.2f %%, worst block %.2f %%, "
+        "energy %+.2f %%; the reference's own noise %.2f %%\n",
+        blocks, mean * 100.0, worst * 100.0, energy * 100.0, noise * 100.0);
     EXPECT_LT(mean, 0.08);
     EXPECT_LT(std::abs(energy), 0.05);
 }
@@ -111,7 +121,8 @@ TEST_F(LightmapRender, ViewsShowTheIrradianceAndEachLobe) {
         SessionOptions o = options();
         o.view = name;
         Session s(*s_runtime, o);
-        if (auto r = s.load(kRoot + "/scripts/pipelines/deferred.lua"); !r) return std::unexpected(r.error());
+        if (auto r = s.load(kRoot + "/scripts/pipelines/deferred.lua"); !r)
+            return std::unexpected(r.error());
         if (auto f = s.frame(); !f) return std::unexpected(f.error());
         return s_runtime->executor().readback("debug_view");
     };
@@ -120,9 +131,12 @@ TEST_F(LightmapRender, ViewsShowTheIrradianceAndEachLobe) {
     // Irradiance, not radiosity: on the red wall it is the light arriving (white-ish from the
     // panel, bounced green from across the room), not the wall's red.
     const uint32_t fx = 37, fy = 118, wx = 20, wy = 64;
-    auto at = [](const Image& v, uint32_t x, uint32_t y) { return glm::vec3(v.at(x, y, 0), v.at(x, y, 1), v.at(x, y, 2)); };
+    auto at = [](const Image& v, uint32_t x, uint32_t y) {
+        return glm::vec3(v.at(x, y, 0), v.at(x, y, 1), v.at(x, y, 2));
+    };
     const glm::vec3 floor = at(*irr, fx, fy), wall = at(*irr, wx, wy);
-    std::printf("lightmap view: floor %.2f %.2f %.2f, red wall %.2f %.2f %.2f\n", floor.r, floor.g, floor.b, wall.r, wall.g, wall.b);
+    std::printf("lightmap view: floor %.2f %.2f %.2f, red wall %.2f %.2f %.2f\n", floor.r, floor.g,
+                floor.b, wall.r, wall.g, wall.b);
     EXPECT_GT(floor.g, 0.2f);
     EXPECT_GT(wall.g, 0.2f);
     EXPECT_LT(wall.r / wall.g, 1.2f);
@@ -144,7 +158,8 @@ TEST_F(LightmapRender, SpecularIsThePrefilteredRadianceInAFurnace) {
         SessionOptions o = options();
         o.scene = kRoot + "/tests/gpu/scenes/lightmap_furnace.lua";
         o.sceneArgs = {{"smoothness", smoothness}};
-        Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 1, {"lightmap_specular", "hdr"});
+        Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 1,
+                                   {"lightmap_specular", "hdr"});
         ASSERT_EQ(r.images.count("lightmap_specular"), 1u);
         const Image& ld = r["lightmap_specular"];
         // Rows from the middle of the image (n·v ≈ 0.6) to its bottom (≈ 0.8).
@@ -155,7 +170,8 @@ TEST_F(LightmapRender, SpecularIsThePrefilteredRadianceInAFurnace) {
                 const double v = ld.at(x, y, 1);
                 sum += v, lo = std::min(lo, v), hi = std::max(hi, v), ++count;
             }
-        std::printf("furnace, smoothness %s: lightmap specular %.3f (%.3f .. %.3f) nits\n", smoothness, sum / count, lo, hi);
+        std::printf("furnace, smoothness %s: lightmap specular %.3f (%.3f .. %.3f) nits\n",
+                    smoothness, sum / count, lo, hi);
         EXPECT_NEAR(sum / count, 1.0, 0.06) << smoothness;
         EXPECT_GT(lo, 0.85) << smoothness;
         EXPECT_LT(hi, 1.1) << smoothness;
@@ -172,10 +188,15 @@ TEST_F(LightmapRender, ThePipelineSwitchTurnsItOff) {
     Readback on = renderAndRead(options(), kRoot + "/scripts/pipelines/deferred.lua", 1, {"hdr"});
     ASSERT_EQ(off.images.count("hdr"), 1u);
     ASSERT_EQ(on.images.count("hdr"), 1u);
-    auto nits = [](const Readback& r, uint32_t x, uint32_t y) { return r["hdr"].at(x, y, 1) / r.preExposure; };
-    const uint32_t fx = 37, fy = 118, cy = 4;  // the floor at (-0.5, 0, 0.5); the ceiling above the front
-    std::printf("with the lightmap: floor %.2f, ceiling %.2f nits; without: floor %.2f, ceiling %.3f nits\n", nits(on, fx, fy),
-                nits(on, fx, cy), nits(off, fx, fy), nits(off, fx, cy));
+    auto nits = [](const Readback& r, uint32_t x, uint32_t y) {
+        return r["hdr"].at(x, y, 1) / r.preExposure;
+    };
+    const uint32_t fx = 37, fy = 118,
+                   cy = 4;  // the floor at (-0.5, 0, 0.5); the ceiling above the front
+    std::printf(
+        "with the lightmap: floor %.2f, ceiling %.2f nits; without: floor %.2f, ceiling %.3f "
+        "nits\n",
+        nits(on, fx, fy), nits(on, fx, cy), nits(off, fx, fy), nits(off, fx, cy));
     EXPECT_GT(nits(on, fx, cy), 2.0f);
     EXPECT_LT(nits(off, fx, cy), 0.01f);
     EXPECT_GT(nits(off, fx, fy), 5.0f);

@@ -28,7 +28,8 @@ TEST_F(Lights, IesProfileShapesTheSpot) {
     const IesTexture tex = bakeIes(*profile, passes::kIesWidth, passes::kIesHeight);
     // The light space convertLights builds: z the spot's direction (straight down), x its up made
     // perpendicular — parallel here, so direction × (1, 0, 0) = +z.
-    const glm::vec3 z = glm::normalize(l.direction), x = glm::normalize(glm::cross(z, glm::vec3(1, 0, 0))), y = glm::cross(z, x);
+    const glm::vec3 z = glm::normalize(l.direction),
+                    x = glm::normalize(glm::cross(z, glm::vec3(1, 0, 0))), y = glm::cross(z, x);
     ASSERT_NEAR(glm::distance(x, glm::vec3(0, 0, 1)), 0.0f, 1e-6f);
     const glm::mat3 worldToLight = glm::transpose(glm::mat3(x, y, z));
     const double I = lights::spotIntensityFromLumens(1000.0, l.outerAngle);  // eq:17 (mask): Φ / π
@@ -39,7 +40,8 @@ TEST_F(Lights, IesProfileShapesTheSpot) {
         const glm::dvec3 toLight = pos - P;
         const glm::dvec3 L = glm::normalize(toLight);
         profileValue = getIESProfileAttenuation(fv(L), worldToLight, tex);
-        const double att = lighting::getDistanceAtt(fv(toLight), 0.0f) * lighting::getAngleAtt(fv(-L), z, cone.scale, cone.offset) * profileValue;
+        const double att = lighting::getDistanceAtt(fv(toLight), 0.0f) *
+                           lighting::getAngleAtt(fv(-L), z, cone.scale, cone.offset) * profileValue;
         const glm::dvec3 V = glm::normalize(f.view.eye - P);
         return diffuseBrdf(f.floor.normal, V, L, 1.0f) * I * att * glm::dot(f.floor.normal, L);
     };
@@ -51,15 +53,20 @@ TEST_F(Lights, IesProfileShapesTheSpot) {
         glm::dvec3 at;
         double profile = 0, lum = 0;
     };
-    std::vector<Probe> probes = {{"nadir", {0, 0, 0}}, {"30° to 0°", {0, 0, t30}}, {"30° to 180°", {0, 0, -t30}},
-                                 {"15° to 0°", {0, 0, t15}}, {"30° to 90°", glm::dvec3(y) * t30}};
+    std::vector<Probe> probes = {{"nadir", {0, 0, 0}},
+                                 {"30° to 0°", {0, 0, t30}},
+                                 {"30° to 180°", {0, 0, -t30}},
+                                 {"15° to 0°", {0, 0, t15}},
+                                 {"30° to 90°", glm::dvec3(y) * t30}};
     for (Probe& p : probes) {
         const glm::ivec2 px = pixelOf(f.view, p.at);
         const glm::dvec3 P = floorAt(f.view, px);
         const double want = expected(P, p.profile);
         p.lum = luminanceAt(f, px);
-        std::printf("ies    %-12s (%6.3f, %6.3f): profile %.4f, CPU %.4f cd/m², GPU %.4f cd/m² (%+.3f %%)\n", p.name, P.x, P.z,
-                    p.profile, want, p.lum, 100.0 * (p.lum - want) / want);
+        std::printf(
+            "ies    %-12s (%6.3f, %6.3f): profile %.4f, CPU %.4f cd/m², GPU %.4f cd/m² (%+.3f "
+            "%%)\n",
+            p.name, P.x, P.z, p.profile, want, p.lum, 100.0 * (p.lum - want) / want);
         EXPECT_NEAR(p.lum, want, 0.01 * want) << p.name;
     }
     // The pattern follows the profile: at the same 30° from the nadir, the forward throw (0°) is
@@ -67,7 +74,8 @@ TEST_F(Lights, IesProfileShapesTheSpot) {
     const double ratio = probes[1].lum / probes[2].lum;
     std::printf("ies    30° forward / back: GPU %.4f, table %.4f\n", ratio, 409.7 / 149.9);
     EXPECT_NEAR(ratio, probes[1].profile / probes[2].profile, 0.01 * ratio);
-    EXPECT_NEAR(ratio, 409.7 / 149.9, 0.03 * ratio);  // the 256 × 256 (θ, cos φ) texture vs the table
+    EXPECT_NEAR(ratio, 409.7 / 149.9,
+                0.03 * ratio);  // the 256 × 256 (θ, cos φ) texture vs the table
 }
 
 TEST_F(Lights, IesTypeBFloodlightThrowsTowardsPositiveH) {
@@ -80,35 +88,43 @@ TEST_F(Lights, IesTypeBFloodlightThrowsTowardsPositiveH) {
     std::filesystem::create_directories(dir);
     std::ofstream(dir + "/flood.ies") << "IESNA:LM-63-2002\n[TEST] type B\nTILT=NONE\n"
                                          "1 -1 1 5 5 2 2 0 0 0\n1 1 10\n"
-                                         "-90 -30 0 30 90\n"  // vertical angles
-                                         "-90 -30 0 30 90\n"  // horizontal angles
-                                         "0 0 0 0 0\n"        // H = −90
-                                         "0 250 250 250 0\n"  // H = −30
-                                         "0 500 500 500 0\n"  // H = 0
+                                         "-90 -30 0 30 90\n"     // vertical angles
+                                         "-90 -30 0 30 90\n"     // horizontal angles
+                                         "0 0 0 0 0\n"           // H = −90
+                                         "0 250 250 250 0\n"     // H = −30
+                                         "0 500 500 500 0\n"     // H = 0
                                          "0 1000 1000 1000 0\n"  // H = +30
-                                         "0 0 0 0 0\n";       // H = +90
+                                         "0 0 0 0 0\n";          // H = +90
     std::ofstream(dir + "/flood.lua")
         << "local scene = require 'scene'\n"
-           "scene.material 'white' { base_color = { 1, 1, 1 }, metal_mask = 0, smoothness = 0, reflectance = 0 }\n"
+           "scene.material 'white' { base_color = { 1, 1, 1 }, metal_mask = 0, smoothness = 0, "
+           "reflectance = 0 }\n"
            "scene.plane 'floor' { size = { 12, 12 }, material = 'white' }\n"
-           "scene.camera 'top' { position = { 0, 5, 0 }, target = { 0, 0, 0 }, up = { 0, 0, -1 }, fov = 60, near = 0.5, far = 100,"
+           "scene.camera 'top' { position = { 0, 5, 0 }, target = { 0, 0, 0 }, up = { 0, 0, -1 }, "
+           "fov = 60, near = 0.5, far = 100,"
            " aperture = 2.8, shutter = 1 / 60, iso = 100 }\n"
-           "scene.light 'flood' { type = 'spot', intensity = 1, unit = 'cd', position = { 0, 1.5, 0 }, direction = { 0, -1, 0 },"
+           "scene.light 'flood' { type = 'spot', intensity = 1, unit = 'cd', position = { 0, 1.5, "
+           "0 }, direction = { 0, -1, 0 },"
            " inner_angle = 80, outer_angle = 85, ies = 'flood.ies', ies_mode = 'intensity' }\n";
     Frame f = render(dir + "/flood.lua");
     ASSERT_TRUE(f.finite);
     const double t = 1.5 * std::tan(25.0 * kPi / 180.0);  // inside the table's ±30°
     auto at = [&](glm::dvec3 p) { return luminanceAt(f, pixelOf(f.view, p)); };
-    const double plusH = at({0, 0, t}), minusH = at({0, 0, -t}), plusV = at({t, 0, 0}), minusV = at({-t, 0, 0});
+    const double plusH = at({0, 0, t}), minusH = at({0, 0, -t}), plusV = at({t, 0, 0}),
+                 minusV = at({-t, 0, 0});
     // At 25° of H the table gives 500 + (25/30)·500 and 500 − (25/30)·250.
     const double want = (500.0 + 25.0 / 30.0 * 500.0) / (500.0 - 25.0 / 30.0 * 250.0);
-    std::printf("ies type B: +H %.4f, -H %.4f (ratio %.3f, table %.3f), +V %.4f, -V %.4f\n", plusH, minusH, plusH / minusH, want, plusV, minusV);
+    std::printf("ies type B: +H %.4f, -H %.4f (ratio %.3f, table %.3f), +V %.4f, -V %.4f\n", plusH,
+                minusH, plusH / minusH, want, plusV, minusV);
     EXPECT_NEAR(plusH / minusH, want, 0.03 * want);
     EXPECT_NEAR(plusV / minusV, 1.0, 0.03);
     // Beyond 30° the table falls to 0 at 90°: at 60° towards +H, (90 − 60) / 60 of 1000 cd.
-    const double far = at({0, 0, 1.5 * std::tan(60.0 * kPi / 180.0)}), near = at({0, 0, 1.5 * std::tan(30.0 * kPi / 180.0)});
+    const double far = at({0, 0, 1.5 * std::tan(60.0 * kPi / 180.0)}),
+                 near = at({0, 0, 1.5 * std::tan(30.0 * kPi / 180.0)});
     const double cos60 = 0.5, cos30 = std::sqrt(3.0) / 2.0;  // E ∝ I cos³θ / h² on the floor
-    EXPECT_NEAR(far / near, (0.5 * 1000.0 * cos60 * cos60 * cos60) / (1000.0 * cos30 * cos30 * cos30), 0.05 * far / near);
+    EXPECT_NEAR(far / near,
+                (0.5 * 1000.0 * cos60 * cos60 * cos60) / (1000.0 * cos30 * cos30 * cos30),
+                0.05 * far / near);
 }
 
 TEST_F(Lights, IesModeMaskOrIntensity) {
@@ -148,7 +164,8 @@ TEST_F(Lights, IesModeMaskOrIntensity) {
     l.ies = "/nonexistent/lamp.ies";
     auto missing = passes::convertLights({l});
     ASSERT_FALSE(missing.has_value());
-    EXPECT_EQ(missing.error().message, "light 'washer' (spot): '/nonexistent/lamp.ies': no such IES file");
+    EXPECT_EQ(missing.error().message,
+              "light 'washer' (spot): '/nonexistent/lamp.ies': no such IES file");
 }
 
 TEST_F(Lights, SpotLumensByEq17OrTheExactConeOfEq16) {
@@ -165,7 +182,8 @@ TEST_F(Lights, SpotLumensByEq17OrTheExactConeOfEq16) {
     auto r = passes::convertLights({l, exact});
     ASSERT_TRUE(r.has_value());
     EXPECT_NEAR(r->lights[0].intensity.r, 1000.0 / kPi, 1e-3);
-    EXPECT_NEAR(r->lights[1].intensity.r, 1000.0 / (2.0 * kPi * (1.0 - std::cos(kPi / 6))), 1e-2);  // 1187.9 cd
+    EXPECT_NEAR(r->lights[1].intensity.r, 1000.0 / (2.0 * kPi * (1.0 - std::cos(kPi / 6))),
+                1e-2);  // 1187.9 cd
     // The flux that leaves the exact cone is the declared one: ∫ I dω over the cone = Φ.
     EXPECT_NEAR(r->lights[1].intensity.r * 2.0 * kPi * (1.0 - std::cos(kPi / 6)), 1000.0, 0.1);
 }
@@ -178,16 +196,20 @@ TEST_F(Lights, ConversionRefusesWhatTheShadersCannotTake) {
     sphere.radius = 0.1f;
     auto r = passes::convertLights({sphere});
     ASSERT_FALSE(r.has_value());
-    EXPECT_EQ(r.error().message, "light 'ball' (sphere): unit 'cd' is not one of 'lm', 'nits', 'ev100' (seed 000 tbl:8)");
+    EXPECT_EQ(
+        r.error().message,
+        "light 'ball' (sphere): unit 'cd' is not one of 'lm', 'nits', 'ev100' (seed 000 tbl:8)");
     sphere.unit = "lm";
     sphere.radius = 0.0f;
     r = passes::convertLights({sphere});
     ASSERT_FALSE(r.has_value());
-    EXPECT_EQ(r.error().message, "light 'ball' (sphere): radius must be positive metres, got 0.000000");
+    EXPECT_EQ(r.error().message,
+              "light 'ball' (sphere): radius must be positive metres, got 0.000000");
     std::vector<Light> many(passes::kMaxLights + 1);
     r = passes::convertLights(many);
     ASSERT_FALSE(r.has_value());
-    EXPECT_EQ(r.error().message, "the scene has 1025 lights; the GPU light list holds at most 1024");
+    EXPECT_EQ(r.error().message,
+              "the scene has 1025 lights; the GPU light list holds at most 1024");
 }
 
 }  // namespace

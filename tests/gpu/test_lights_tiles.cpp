@@ -26,7 +26,8 @@ struct TiledFrame {
     Image hdr;
     std::vector<uint32_t> tiles;  // light_tiles, when tiled
 };
-TiledFrame renderManyLights(Runtime& rt, uint32_t lights, bool tiled, uint32_t w, uint32_t h, bool ranged = true) {
+TiledFrame renderManyLights(Runtime& rt, uint32_t lights, bool tiled, uint32_t w, uint32_t h,
+                            bool ranged = true) {
     std::string pipeline = kRoot + "/scripts/pipelines/deferred.lua";
     if (!tiled) {
         const std::string dir = std::string(RG_TEST_TMP) + "/untiled";
@@ -36,10 +37,13 @@ TiledFrame renderManyLights(Runtime& rt, uint32_t lights, bool tiled, uint32_t w
         std::ofstream(dir + "/lighting.lua")
             << "local lighting = {}\n"
                "function lighting.extend(pass, reads, define)\n"
-               "  pass.reads = pass.reads or {}\n  for _, r in ipairs(reads) do table.insert(pass.reads, r) end\n"
-               "  pass.defines = pass.defines or {}\n  pass.defines[define] = true\n  return pass\nend\n"
+               "  pass.reads = pass.reads or {}\n  for _, r in ipairs(reads) do "
+               "table.insert(pass.reads, r) end\n"
+               "  pass.defines = pass.defines or {}\n  pass.defines[define] = true\n  return "
+               "pass\nend\n"
                "function lighting.tiled(pass) return pass end\n"
-               "function lighting.per_class(pass, class) end\nfunction lighting.frame(ctx) end\nreturn lighting\n";
+               "function lighting.per_class(pass, class) end\nfunction lighting.frame(ctx) "
+               "end\nreturn lighting\n";
         pipeline = dir + "/deferred.lua";
     }
     SessionOptions o;
@@ -91,7 +95,8 @@ TEST_F(Lights, TileCullingChangesNoPixel) {
             differ += culled.hdr.pixels[i] != all.hdr.pixels[i];
             sum += all.hdr.pixels[i];
         }
-        std::printf("%u %s lights: %zu of %zu values differ\n", n, ranged ? "ranged" : "unranged", differ, all.hdr.pixels.size());
+        std::printf("%u %s lights: %zu of %zu values differ\n", n, ranged ? "ranged" : "unranged",
+                    differ, all.hdr.pixels.size());
         EXPECT_EQ(differ, 0u) << n << " lights";
         EXPECT_GT(sum, 0.0);
     }
@@ -137,7 +142,9 @@ TEST_F(Lights, TileListsFollowLightsPerPixelNotLightsInTheScene) {
         }
         ASSERT_GT(lit, 0u);
         means.push_back(total / lit);
-        std::printf("%4u lights: %u of %u tiles reached, mean %.1f lights per reached tile, most %u\n", n, lit, tx * ty, total / lit, most);
+        std::printf(
+            "%4u lights: %u of %u tiles reached, mean %.1f lights per reached tile, most %u\n", n,
+            lit, tx * ty, total / lit, most);
         EXPECT_LT(total / lit, 0.75 * n + 8.0);
     }
     // 64x the lights, under 2x the lights per tile (measured 2.8 -> 3.8 at 1280x720 with 4x4 tiles;

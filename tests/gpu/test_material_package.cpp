@@ -31,7 +31,8 @@ constexpr float kPi = 3.14159265358979f;
 // A fresh folder outside the repository, removed afterwards.
 struct TempFolder {
     fs::path dir;
-    explicit TempFolder(const std::string& name) : dir(fs::temp_directory_path() / ("rgraph_" + name + "_" + std::to_string(::getpid()))) {
+    explicit TempFolder(const std::string& name)
+        : dir(fs::temp_directory_path() / ("rgraph_" + name + "_" + std::to_string(::getpid()))) {
         fs::remove_all(dir);
         fs::create_directories(dir);
     }
@@ -57,30 +58,40 @@ scene.camera "main" { position = { 0, 4, 0.001 }, target = { 0, 0, 0 }, fov = 40
 
 class MaterialPackage : public GpuFixture {
 protected:
-    static glm::ivec2 px(glm::vec3 p) { return pixelOf(cameraViewProj(glm::vec3(0, 4, 0.001f), glm::vec3(0), 40.0f, W, H), W, H, p); }
+    static glm::ivec2 px(glm::vec3 p) {
+        return pixelOf(cameraViewProj(glm::vec3(0, 4, 0.001f), glm::vec3(0), 40.0f, W, H), W, H, p);
+    }
 };
 
 TEST_F(MaterialPackage, ToonRendersFromAFolderOutsideTheRepository) {
     TempFolder tmp("toon");
-    for (const auto& e : fs::directory_iterator(kRoot + "/materials/examples/toon")) fs::copy(e.path(), tmp.dir / e.path().filename());
+    for (const auto& e : fs::directory_iterator(kRoot + "/materials/examples/toon"))
+        fs::copy(e.path(), tmp.dir / e.path().filename());
     std::ofstream(tmp.dir / "test_scene.lua") << kToonScene;
     SessionOptions o = sceneOptions((tmp.dir / "test_scene.lua").string(), {}, W, H);
-    Readback r = renderAndRead(o, (tmp.dir / "pipeline.lua").string(), 1, {"hdr", "GB0", "GB1", "GB2", "GB3"});
+    Readback r = renderAndRead(o, (tmp.dir / "pipeline.lua").string(), 1,
+                               {"hdr", "GB0", "GB1", "GB2", "GB3"});
     ASSERT_EQ(r.images.size(), 5u);
-    auto nits = [&](glm::vec3 p, int c) { glm::ivec2 q = px(p); return r["hdr"].at(q.x, q.y, c) / r.preExposure; };
+    auto nits = [&](glm::vec3 p, int c) {
+        glm::ivec2 q = px(p);
+        return r["hdr"].at(q.x, q.y, c) / r.preExposure;
+    };
     // Two bands, N·L = 0.6: ceil(0.6 · 2) / 2 = 1, so the slab takes the whole E/π · tint (a
     // Lambert surface would give 0.6 of it: the toon path, not the standard one, lit it).
     const float toon = 0.5f / kPi * 10000.0f;  // 1591.5 nits
-    const glm::vec3 opaque(-0.7f, 0.01f, 0.45f), blended(0.7f, 0.01f, 0.3f), painted(-0.7f, 0.01f, -0.5f);
+    const glm::vec3 opaque(-0.7f, 0.01f, 0.45f), blended(0.7f, 0.01f, 0.3f),
+        painted(-0.7f, 0.01f, -0.5f);
     EXPECT_NEAR(nits(opaque, 1), toon, toon * 0.01f) << "deferred toon lighting";
-    EXPECT_NEAR(nits(blended, 1), toon, toon * 0.01f) << "forward toon shading (generated from the path's rgShade)";
+    EXPECT_NEAR(nits(blended, 1), toon, toon * 0.01f)
+        << "forward toon shading (generated from the path's rgShade)";
     // The decal painted the toon's tint (its channels = { baseColor = "tint" }) and nothing else:
     // bands, wrap and the spare channels are the toon's own and stay as they were; decoded with
     // the toon layout as the package declares it.
     LuaHost host(luaHostOptionsWithoutDevice());
     auto pipeline = host.load((tmp.dir / "pipeline.lua").string());
     ASSERT_TRUE(pipeline.has_value()) << pipeline.error().message;
-    auto layout = std::find_if(pipeline->layouts.begin(), pipeline->layouts.end(), [](auto& l) { return l.name == "toon"; });
+    auto layout = std::find_if(pipeline->layouts.begin(), pipeline->layouts.end(),
+                               [](auto& l) { return l.name == "toon"; });
     ASSERT_NE(layout, pipeline->layouts.end());
     LayoutInfo info = *analyzeLayout(*layout);
     auto gbuffer = [&](glm::vec3 p) {
@@ -88,7 +99,8 @@ TEST_F(MaterialPackage, ToonRendersFromAFolderOutsideTheRepository) {
         std::vector<TexelValue> texels;
         for (const auto& t : info.desc.targets) {
             const Image& img = r[t.name];
-            texels.push_back(texelFromFloats(t.format, &img.pixels[(size_t(q.y) * W + q.x) * img.channels], img.channels));
+            texels.push_back(texelFromFloats(
+                t.format, &img.pixels[(size_t(q.y) * W + q.x) * img.channels], img.channels));
         }
         auto values = unpackTexel(info, texels);
         return [values, &info](const char* n) { return values[static_cast<size_t>(info.find(n))]; };
@@ -98,11 +110,14 @@ TEST_F(MaterialPackage, ToonRendersFromAFolderOutsideTheRepository) {
     EXPECT_EQ(paint("materialId").u[0], 3u);
     const float q = 0.5f / 255 + 1e-4f;  // the sRGB 8-bit encoding's bound
     EXPECT_NEAR(srgbEncode(clean("tint").v[0]), srgbEncode(0.5f), q);
-    EXPECT_NEAR(srgbEncode(paint("tint").v[0]), srgbEncode(0.9f), q);  // opacity 1: the decal's colour
+    EXPECT_NEAR(srgbEncode(paint("tint").v[0]), srgbEncode(0.9f),
+                q);  // opacity 1: the decal's colour
     EXPECT_NEAR(srgbEncode(paint("tint").v[1]), srgbEncode(0.1f), q);
     for (const char* own : {"steps", "spare"}) EXPECT_EQ(paint(own).u[0], clean(own).u[0]) << own;
-    for (const char* own : {"wrap", "rim", "ao"}) EXPECT_EQ(paint(own).v[0], clean(own).v[0]) << own;
-    EXPECT_EQ(paint("reserved").v[0], clean("reserved").v[0]);  // where the disney layout's MetalMask would go
+    for (const char* own : {"wrap", "rim", "ao"})
+        EXPECT_EQ(paint(own).v[0], clean(own).v[0]) << own;
+    EXPECT_EQ(paint("reserved").v[0],
+              clean("reserved").v[0]);  // where the disney layout's MetalMask would go
     EXPECT_EQ(clean("steps").u[0], 2u);
     // Lit red by the same bands: E/π · 0.9 in red.
     EXPECT_NEAR(nits(painted, 0), 0.9f / kPi * 10000.0f, 0.9f / kPi * 10000.0f * 0.01f);
@@ -112,7 +127,8 @@ TEST_F(MaterialPackage, ToonRendersFromAFolderOutsideTheRepository) {
 // colour, and it has no smoothness (striped magenta, not a value).
 TEST_F(MaterialPackage, DebugViewsDecodeTheToonLayout) {
     TempFolder tmp("toon_views");
-    for (const auto& e : fs::directory_iterator(kRoot + "/materials/examples/toon")) fs::copy(e.path(), tmp.dir / e.path().filename());
+    for (const auto& e : fs::directory_iterator(kRoot + "/materials/examples/toon"))
+        fs::copy(e.path(), tmp.dir / e.path().filename());
     std::ofstream(tmp.dir / "test_scene.lua") << kToonScene;
     auto view = [&](const std::string& name) {
         SessionOptions o = sceneOptions((tmp.dir / "test_scene.lua").string(), {}, W, H);
@@ -135,7 +151,8 @@ TEST_F(MaterialPackage, DebugViewsDecodeTheToonLayout) {
     // Stripes: every pixel of the slab is magenta (1, 0, 1) or black.
     int magenta = 0;
     for (int dy = 0; dy < 8; ++dy) {
-        const float rch = smooth.at(q.x, q.y + dy, 0), g = smooth.at(q.x, q.y + dy, 1), b = smooth.at(q.x, q.y + dy, 2);
+        const float rch = smooth.at(q.x, q.y + dy, 0), g = smooth.at(q.x, q.y + dy, 1),
+                    b = smooth.at(q.x, q.y + dy, 2);
         EXPECT_EQ(g, 0.0f);
         EXPECT_EQ(rch, b);
         magenta += rch > 0.5f;
@@ -147,10 +164,13 @@ TEST_F(MaterialPackage, DebugViewsDecodeTheToonLayout) {
 // its base colour, its `steps` are its own, and a channel its layout lacks is NaN, not a value.
 TEST_F(MaterialPackage, ChannelCapturesDecodeEachPixelsLayout) {
     TempFolder tmp("toon_captures");
-    for (const auto& e : fs::directory_iterator(kRoot + "/materials/examples/toon")) fs::copy(e.path(), tmp.dir / e.path().filename());
-    std::ofstream(tmp.dir / "test_scene.lua") << std::string(kToonScene) +
-        "scene.material \"std\" { base_color = { 0.2, 0.4, 0.6 }, smoothness = 0.7 }\n"
-        "scene.box \"standard\" { size = { 0.4, 0.02, 0.4 }, position = { 0, 0, 0 }, material = \"std\" }\n";
+    for (const auto& e : fs::directory_iterator(kRoot + "/materials/examples/toon"))
+        fs::copy(e.path(), tmp.dir / e.path().filename());
+    std::ofstream(tmp.dir / "test_scene.lua")
+        << std::string(kToonScene) +
+               "scene.material \"std\" { base_color = { 0.2, 0.4, 0.6 }, smoothness = 0.7 }\n"
+               "scene.box \"standard\" { size = { 0.4, 0.02, 0.4 }, position = { 0, 0, 0 }, "
+               "material = \"std\" }\n";
     SessionOptions o = sceneOptions((tmp.dir / "test_scene.lua").string(), {}, W, H);
     o.captures = {"gbuffer.baseColor", "gbuffer.smoothness", "toon.steps"};
     Session s(*s_runtime, o);
@@ -163,12 +183,17 @@ TEST_F(MaterialPackage, ChannelCapturesDecodeEachPixelsLayout) {
         images[c.name] = std::move(*img);
     }
     ASSERT_EQ(images.size(), 3u);
-    const glm::ivec2 toon = px(glm::vec3(-0.7f, 0.01f, 0.45f)), standard = px(glm::vec3(0.0f, 0.01f, 0.0f));
+    const glm::ivec2 toon = px(glm::vec3(-0.7f, 0.01f, 0.45f)),
+                     standard = px(glm::vec3(0.0f, 0.01f, 0.0f));
     const float q = 0.5f / 255 + 1e-4f;
-    EXPECT_NEAR(srgbEncode(images["gbuffer.baseColor"].at(toon.x, toon.y, 0)), srgbEncode(0.5f), q);  // the tint
-    EXPECT_NEAR(srgbEncode(images["gbuffer.baseColor"].at(standard.x, standard.y, 2)), srgbEncode(0.6f), q);
-    EXPECT_TRUE(std::isnan(images["gbuffer.smoothness"].at(toon.x, toon.y, 0)));  // the toon has none
-    EXPECT_NEAR(images["gbuffer.smoothness"].at(standard.x, standard.y, 0), 0.7f, 0.5f / 1023 + 1e-5f);
+    EXPECT_NEAR(srgbEncode(images["gbuffer.baseColor"].at(toon.x, toon.y, 0)), srgbEncode(0.5f),
+                q);  // the tint
+    EXPECT_NEAR(srgbEncode(images["gbuffer.baseColor"].at(standard.x, standard.y, 2)),
+                srgbEncode(0.6f), q);
+    EXPECT_TRUE(
+        std::isnan(images["gbuffer.smoothness"].at(toon.x, toon.y, 0)));  // the toon has none
+    EXPECT_NEAR(images["gbuffer.smoothness"].at(standard.x, standard.y, 0), 0.7f,
+                0.5f / 1023 + 1e-5f);
     EXPECT_EQ(images["toon.steps"].at(toon.x, toon.y, 0), 2.0f);
     EXPECT_TRUE(std::isnan(images["toon.steps"].at(standard.x, standard.y, 0)));  // a disney pixel
 }
@@ -191,7 +216,8 @@ rg.material "painted" { id = 3, layout = "disney", path = "standard", surface = 
     return g;
 }
 )";
-    std::ofstream(tmp.dir / "pipeline.lua") << "require \"pipelines.deferred\"\nrequire \"painted\"\n";
+    std::ofstream(tmp.dir / "pipeline.lua")
+        << "require \"pipelines.deferred\"\nrequire \"painted\"\n";
     std::ofstream(tmp.dir / "scene.lua") << R"(local scene = require "scene"
 scene.material "mirror" { base_color = { 0.95, 0.95, 0.95 }, metal_mask = 1, smoothness = 1 }
 scene.plane "floor" { size = { 20, 20 }, material = "mirror" }
@@ -206,10 +232,13 @@ scene.probe "front" { shape = "box", position = { 0, 0.5, -1 }, size = { 4, 3, 6
     Readback r = renderAndRead(o, (tmp.dir / "pipeline.lua").string(), 1, {"hdr"});
     ASSERT_EQ(r.images.size(), 1u);
     const glm::mat4 viewProj = cameraViewProj(glm::vec3(0, 2, 6), glm::vec3(0), 40.0f, W, H);
-    const glm::ivec2 mirror = pixelOf(viewProj, W, H, glm::vec3(0.0f, -0.5f, -1.5f)), face = pixelOf(viewProj, W, H, glm::vec3(0.0f, 0.5f, -1.5f));
+    const glm::ivec2 mirror = pixelOf(viewProj, W, H, glm::vec3(0.0f, -0.5f, -1.5f)),
+                     face = pixelOf(viewProj, W, H, glm::vec3(0.0f, 0.5f, -1.5f));
     const Image& hdr = r["hdr"];
-    EXPECT_GT(hdr.at(face.x, face.y, 1), 10.0f * hdr.at(face.x, face.y, 0));      // the camera sees it green
-    EXPECT_GT(hdr.at(mirror.x, mirror.y, 1), 10.0f * hdr.at(mirror.x, mirror.y, 0));  // and so did the probe
+    EXPECT_GT(hdr.at(face.x, face.y, 1),
+              10.0f * hdr.at(face.x, face.y, 0));  // the camera sees it green
+    EXPECT_GT(hdr.at(mirror.x, mirror.y, 1),
+              10.0f * hdr.at(mirror.x, mirror.y, 0));  // and so did the probe
 }
 
 // A blended clear coat goes through the forward shader generated from its path's shading
@@ -219,12 +248,19 @@ scene.probe "front" { shape = "box", position = { 0, 0.5, -1 }, size = { 4, 3, 6
 TEST_F(MaterialPackage, BlendedClearCoatIsShadedByItsPath) {
     TempFolder tmp("coat");
     auto render = [&](double strength) {
-        std::ofstream(tmp.dir / "scene.lua") << "local scene = require \"scene\"\n"
-            "scene.material \"glaze\" { model = \"clear_coat\", base_color = { 0.5, 0.1, 0.1 }, alpha = \"blend\", opacity = 1,\n"
-            "    params = { coatStrength = " << strength << ", coatSmoothness = 0.9 } }\n"
-            "scene.box \"slab\" { size = { 1, 0.02, 1 }, position = { 0, 0, 0 }, material = \"glaze\" }\n"
-            "scene.light \"sun\" { type = \"sun\", intensity = 10000, unit = \"lux\", direction = { 0, -0.6, -0.8 } }\n"
-            "scene.camera \"main\" { position = { 0, 4, 0.001 }, target = { 0, 0, 0 }, fov = 40, aperture = 16, shutter = 1 / 125, iso = 100 }\n";
+        std::ofstream(tmp.dir / "scene.lua")
+            << "local scene = require \"scene\"\n"
+               "scene.material \"glaze\" { model = \"clear_coat\", base_color = { 0.5, 0.1, 0.1 }, "
+               "alpha = \"blend\", opacity = 1,\n"
+               "    params = { coatStrength = "
+            << strength
+            << ", coatSmoothness = 0.9 } }\n"
+               "scene.box \"slab\" { size = { 1, 0.02, 1 }, position = { 0, 0, 0 }, material = "
+               "\"glaze\" }\n"
+               "scene.light \"sun\" { type = \"sun\", intensity = 10000, unit = \"lux\", direction "
+               "= { 0, -0.6, -0.8 } }\n"
+               "scene.camera \"main\" { position = { 0, 4, 0.001 }, target = { 0, 0, 0 }, fov = "
+               "40, aperture = 16, shutter = 1 / 125, iso = 100 }\n";
         SessionOptions o = sceneOptions((tmp.dir / "scene.lua").string(), {}, W, H);
         Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 1, {"hdr"});
         if (r.images.empty()) return -1.0f;
@@ -257,7 +293,9 @@ for k = 1, 5 do
     }
 end
 )";
-    std::ofstream(tmp.dir / "flat_shading.glsl") << "vec3 rgShade(GBuffer_disney g, vec3 position, vec3 V, ivec2 pixel) { return vec3(100.0 * float(FLAT_K)); }\n";
+    std::ofstream(tmp.dir / "flat_shading.glsl")
+        << "vec3 rgShade(GBuffer_disney g, vec3 position, vec3 V, ivec2 pixel) { return vec3(100.0 "
+           "* float(FLAT_K)); }\n";
     std::ofstream(tmp.dir / "flat_lighting.frag") << R"(#version 460
 #include "lib/exposure.glsl"
 #include "gbuffer_disney.glsl"
@@ -287,13 +325,18 @@ scene.camera "main" { position = { 0, 4, 0.001 }, target = { 0, 0, 0 }, fov = 40
     ASSERT_TRUE(p.has_value()) << p.error().message;
     ASSERT_EQ(p->materials.size(), 9u);
     for (int k = 1; k <= 5; ++k) {
-        auto c = std::find_if(p->stencilClasses.begin(), p->stencilClasses.end(), [&](auto& x) { return x.name == "lit_flat" + std::to_string(k); });
+        auto c = std::find_if(p->stencilClasses.begin(), p->stencilClasses.end(),
+                              [&](auto& x) { return x.name == "lit_flat" + std::to_string(k); });
         ASSERT_NE(c, p->stencilClasses.end());
-        EXPECT_EQ(c->value, 3u + static_cast<uint32_t>(k));  // after lit_standard 1, lit_clearcoat 2, lit_two_colour 3
+        EXPECT_EQ(c->value,
+                  3u + static_cast<uint32_t>(
+                           k));  // after lit_standard 1, lit_clearcoat 2, lit_two_colour 3
         EXPECT_EQ(c->mask, 0x0Fu);
     }
     const std::string text = describeMaterialSystem(*p);
-    EXPECT_NE(text.find("materials clear_coat, flat1, flat2, flat3, flat4, flat5"), std::string::npos) << text;
+    EXPECT_NE(text.find("materials clear_coat, flat1, flat2, flat3, flat4, flat5"),
+              std::string::npos)
+        << text;
     EXPECT_NE(text.find("0x08 mask 0x0F  lit_flat5"), std::string::npos) << text;
     EXPECT_NE(text.find("free: 7 of 15 classes"), std::string::npos) << text;
     EXPECT_NE(text.find("free: 3 (1 of 4)"), std::string::npos) << text;
@@ -303,7 +346,8 @@ scene.camera "main" { position = { 0, 4, 0.001 }, target = { 0, 0, 0 }, fov = 40
     ASSERT_EQ(r.images.size(), 1u);
     for (int k = 1; k <= 5; ++k) {
         glm::ivec2 q = px(glm::vec3(float(k - 3) * 0.6f, 0.55f, 0.0f));
-        EXPECT_NEAR(r["hdr"].at(q.x, q.y, 1) / r.preExposure, 100.0f * float(k), 0.5f * float(k)) << "flat" << k;
+        EXPECT_NEAR(r["hdr"].at(q.x, q.y, 1) / r.preExposure, 100.0f * float(k), 0.5f * float(k))
+            << "flat" << k;
     }
 }
 

@@ -160,8 +160,9 @@ TEST_F(PostGpu, BloomConservesEnergy) {
         return sum / (double(img->width) * img->height);
     };
     const double input = mean("hdr");
-    std::printf("bloom energy: input %.5f, down1 %.5f, down3 %.5f, down5 %.5f, up1/5 %.5f\n", input, mean("bloom_down1"),
-                mean("bloom_down3"), mean("bloom_down5"), mean("bloom_up1") / 5.0);
+    std::printf("bloom energy: input %.5f, down1 %.5f, down3 %.5f, down5 %.5f, up1/5 %.5f\n", input,
+                mean("bloom_down1"), mean("bloom_down3"), mean("bloom_down5"),
+                mean("bloom_up1") / 5.0);
     // Every down level keeps the average, up to the clamp-to-edge border (which weighs border
     // texels more: it grows as levels get small); the up chain sums the 5 levels.
     EXPECT_NEAR(mean("bloom_down1"), input, input * 0.001);
@@ -187,7 +188,8 @@ TEST_F(PostGpu, FxaaSmoothsAnAliasedEdgeOnly) {
     for (uint32_t y = 0; y < 48; ++y)
         for (uint32_t x = 0; x < 64; ++x) {
             const float b = before->at(x, y, 0), a = after->at(x, y, 0);
-            const float edgeDistance = std::abs(static_cast<float>(x) + 0.5f - 0.7f * (static_cast<float>(y) + 0.5f) - 10.0f);
+            const float edgeDistance = std::abs(static_cast<float>(x) + 0.5f -
+                                                0.7f * (static_cast<float>(y) + 0.5f) - 10.0f);
             // Before FXAA every pixel is one of the two levels; after, edge pixels lie between.
             EXPECT_TRUE(b == dark || b == bright);
             if (a > dark + 0.02f && a < bright - 0.02f) ++blended;
@@ -224,7 +226,8 @@ TEST_F(PostGpu, SwitchingTheToneCurveRebuildsTheTonemapPassOnly) {
     ASSERT_TRUE(s.setOverride("tonemap", Value("linear")).has_value());
     ASSERT_TRUE(s.frame().has_value());
     EXPECT_EQ(s.rebuilds(), 1u);
-    EXPECT_EQ(s_runtime->executor().lastBuildReport().passesPrepared, (std::vector<std::string>{"tonemap"}));
+    EXPECT_EQ(s_runtime->executor().lastBuildReport().passesPrepared,
+              (std::vector<std::string>{"tonemap"}));
     EXPECT_EQ(s_runtime->executor().readback("display")->pixels, linear.pixels);
     EXPECT_NE(aces.pixels, linear.pixels);
     // The same value again is no change.
@@ -241,14 +244,16 @@ TEST_F(PostGpu, GlslSrgbMatchesItsDefinition) {
     out.exported = true;
     g.resources = {out};
     Value::List x;
-    std::vector<float> inputs = {0.0f, 0.001f, 0.0031308f, 0.0031309f, 0.04045f, 0.04046f, 0.1f, 0.5f, 0.9f, 1.0f};
+    std::vector<float> inputs = {0.0f,     0.001f, 0.0031308f, 0.0031309f, 0.04045f,
+                                 0.04046f, 0.1f,   0.5f,       0.9f,       1.0f};
     while (inputs.size() < 64) inputs.push_back(static_cast<float>(inputs.size()) / 64.0f);
     for (float v : inputs) x.push_back(Value(static_cast<double>(v)));
     PassDesc p;
     p.name = "srgb";
     p.kind = "compute";
     p.accesses = {{"srgb_out", Usage::StorageWrite}};
-    p.params = Value(Value::Table{{"shader", Value("test/srgb.comp")}, {"groups", Value(Value::List{1, 1, 1})},
+    p.params = Value(Value::Table{{"shader", Value("test/srgb.comp")},
+                                  {"groups", Value(Value::List{1, 1, 1})},
                                   {"uniforms", Value(Value::Table{{"x", Value(x)}})}});
     g.passes = {p};
     auto& ex = s_runtime->executor();

@@ -24,7 +24,9 @@ const std::string kScene = kRoot + "/tests/gpu/scenes/probes.lua";
 constexpr uint32_t W = 240, H = 160;
 
 // The pixel a world point lands on with the scene's "main" camera.
-glm::ivec2 pixelOf(glm::vec3 p) { return rg::pixelOf(cameraViewProj(glm::vec3(0, 2, 6), glm::vec3(0), 40.0f, W, H), W, H, p); }
+glm::ivec2 pixelOf(glm::vec3 p) {
+    return rg::pixelOf(cameraViewProj(glm::vec3(0, 2, 6), glm::vec3(0), 40.0f, W, H), W, H, p);
+}
 
 class Probes : public GpuFixture {
 protected:
@@ -33,7 +35,8 @@ protected:
     static Image lit(const std::string& probes, Image* ao = nullptr, Image* reflection = nullptr) {
         SessionOptions o = sceneOptions(kScene, {{"probes", probes}}, W, H);
         o.params["ssr_distance"] = Value(0.1);
-        Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 1, {"hdr", "ssao", "reflection"});
+        Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 1,
+                                   {"hdr", "ssao", "reflection"});
         if (r.images.size() != 3) return {};
         Image hdr = r["hdr"];
         for (float& v : hdr.pixels) v /= r.preExposure;
@@ -60,7 +63,8 @@ protected:
     // The view's colour at floor point (x, z).
     static glm::vec3 at(const Image& view, float x, float z) {
         const float half = 12.0f * std::tan(glm::radians(30.0f));
-        const uint32_t px = static_cast<uint32_t>((x / half * 0.5f + 0.5f) * N), py = static_cast<uint32_t>((z / half * 0.5f + 0.5f) * N);
+        const uint32_t px = static_cast<uint32_t>((x / half * 0.5f + 0.5f) * N),
+                       py = static_cast<uint32_t>((z / half * 0.5f + 0.5f) * N);
         return {view.at(px, py, 0), view.at(px, py, 1), view.at(px, py, 2)};
     }
 };
@@ -112,8 +116,11 @@ TEST_F(Probes, TheComposedReflectionTakesTheHigherPriorityProbe) {
     Image front = lit("front_first"), back = lit("back_first");
     ASSERT_EQ(front.width, W);
     ASSERT_EQ(back.width, W);
-    const float rf = front.at(m.x, m.y, 0), gf = front.at(m.x, m.y, 1), rb = back.at(m.x, m.y, 0), gb = back.at(m.x, m.y, 1);
-    std::printf("mirror image: front probe first %.0f %.0f (red, green), back probe first %.0f %.0f\n", rf, gf, rb, gb);
+    const float rf = front.at(m.x, m.y, 0), gf = front.at(m.x, m.y, 1), rb = back.at(m.x, m.y, 0),
+                gb = back.at(m.x, m.y, 1);
+    std::printf(
+        "mirror image: front probe first %.0f %.0f (red, green), back probe first %.0f %.0f\n", rf,
+        gf, rb, gb);
     EXPECT_GT(rf, 3.0f * gf);
     EXPECT_GT(gb, 3.0f * rb);
 }
@@ -132,21 +139,25 @@ TEST_F(Probes, TheCaptureReflectsWhatTheProbeSaw) {
     const glm::ivec2 m = pixelOf(glm::vec3(0.0f, -0.5f, -1.5f));
     const float r0 = none.at(m.x, m.y, 0), g0 = none.at(m.x, m.y, 1), b0 = none.at(m.x, m.y, 2);
     const float r1 = one.at(m.x, m.y, 0), g1 = one.at(m.x, m.y, 1), b1 = one.at(m.x, m.y, 2);
-    std::printf("mirror image of the box at (%d, %d): without a probe %.1f %.1f %.1f nits, with it %.1f %.1f %.1f\n", m.x, m.y, r0, g0, b0,
-                r1, g1, b1);
+    std::printf(
+        "mirror image of the box at (%d, %d): without a probe %.1f %.1f %.1f nits, with it %.1f "
+        "%.1f %.1f\n",
+        m.x, m.y, r0, g0, b0, r1, g1, b1);
     EXPECT_GT(b0, r0);          // the sky
     EXPECT_GT(r1, 10.0f * g1);  // the red box
     const glm::ivec2 b = pixelOf(glm::vec3(0.0f, 0.5f, -1.5f));
     ASSERT_EQ(ao.width, W);
     const float boxRed = one.at(b.x, b.y, 0), boxAo = ao.at(b.x, b.y, 0);
-    std::printf("the box's front face at (%d, %d): %.1f nits red, AO %.3f; mirrored / (direct / AO) %.3f\n", b.x, b.y, boxRed, boxAo,
-                r1 / (boxRed / boxAo));
-    EXPECT_NEAR(r1 / (boxRed / boxAo), 0.95f, 0.06f);  // measured 0.924: the floor's specular occlusion by the box
+    std::printf(
+        "the box's front face at (%d, %d): %.1f nits red, AO %.3f; mirrored / (direct / AO) %.3f\n",
+        b.x, b.y, boxRed, boxAo, r1 / (boxRed / boxAo));
+    EXPECT_NEAR(r1 / (boxRed / boxAo), 0.95f,
+                0.06f);  // measured 0.924: the floor's specular occlusion by the box
     // The composition pass (scripts/reflections.lua): there the probe covered the reflection
     // entirely (its alpha), without the probe nothing but the distant probe did.
     ASSERT_EQ(reflection.width, W);
-    std::printf("composition at the mirror image: covered %.3f with the probe, %.3f without\n", reflection.at(m.x, m.y, 3),
-                reflectionNone.at(m.x, m.y, 3));
+    std::printf("composition at the mirror image: covered %.3f with the probe, %.3f without\n",
+                reflection.at(m.x, m.y, 3), reflectionNone.at(m.x, m.y, 3));
     EXPECT_GT(reflection.at(m.x, m.y, 3), 0.95f);
     EXPECT_EQ(reflectionNone.at(m.x, m.y, 3), 0.0f);
     // Outside the probe's box (x > 2 m) nothing changes: the same arithmetic, bit for bit.
@@ -154,14 +165,17 @@ TEST_F(Probes, TheCaptureReflectsWhatTheProbeSaw) {
     for (uint32_t y = H / 2; y < H; ++y)
         for (uint32_t x = 0; x < W; ++x) {
             // The floor point under pixel (x, y): far enough right of the box proxy's x = 2 face.
-            const glm::vec4 ndc((static_cast<float>(x) + 0.5f) / W * 2.0f - 1.0f, (static_cast<float>(y) + 0.5f) / H * 2.0f - 1.0f, 0.5f, 1.0f);
-            glm::vec4 w = glm::inverse(cameraViewProj(glm::vec3(0, 2, 6), glm::vec3(0), 40.0f, W, H)) * ndc;
+            const glm::vec4 ndc((static_cast<float>(x) + 0.5f) / W * 2.0f - 1.0f,
+                                (static_cast<float>(y) + 0.5f) / H * 2.0f - 1.0f, 0.5f, 1.0f);
+            glm::vec4 w =
+                glm::inverse(cameraViewProj(glm::vec3(0, 2, 6), glm::vec3(0), 40.0f, W, H)) * ndc;
             const glm::vec3 dir = glm::normalize(glm::vec3(w) / w.w - glm::vec3(0, 2, 6));
             if (dir.y >= 0.0f) continue;
             const glm::vec3 floor = glm::vec3(0, 2, 6) + dir * (2.0f / -dir.y);
             if (floor.x < 2.3f) continue;
             ++outside;
-            for (int c = 0; c < 3; ++c) ASSERT_EQ(one.at(x, y, c), none.at(x, y, c)) << x << ", " << y;
+            for (int c = 0; c < 3; ++c)
+                ASSERT_EQ(one.at(x, y, c), none.at(x, y, c)) << x << ", " << y;
             ASSERT_EQ(reflection.at(x, y, 3), 0.0f) << x << ", " << y;  // the distant probe's alone
         }
     EXPECT_GT(outside, 500);

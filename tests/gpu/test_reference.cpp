@@ -47,11 +47,13 @@ protected:
         // The same meshes in both (the reference mode draws the full ones): the lights' terms are
         // compared, not the spheres' levels of detail.
         o.levelsOfDetail = false;
-        Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/" + pipeline, frames, {"hdr", "GB2", "depth"});
+        Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/" + pipeline, frames,
+                                   {"hdr", "GB2", "depth"});
         Render out;
         if (r.images.size() != 3) return out;
         out.hdr = r["hdr"];
-        for (float& v : out.hdr.pixels) v /= r.preExposure;  // the pre-exposure this frame was rendered with
+        for (float& v : out.hdr.pixels)
+            v /= r.preExposure;  // the pre-exposure this frame was rendered with
         out.gb2 = r["GB2"];
         out.depth = r["depth"];
         return out;
@@ -69,7 +71,8 @@ protected:
         double peak = 0;
         for (size_t i = 0; i < size_t(W) * H; ++i)
             if (ref.depth.pixels[i] < 1.0f)
-                for (int c = 0; c < 3; ++c) peak = std::max(peak, double(ref.hdr.pixels[i * 4 + c]));
+                for (int c = 0; c < 3; ++c)
+                    peak = std::max(peak, double(ref.hdr.pixels[i * 4 + c]));
         double floorSum = 0, surfaceSum = 0, rtSum = 0, refSum = 0;
         size_t floorN = 0, surfaceN = 0;
         for (size_t i = 0; i < size_t(W) * H; ++i) {
@@ -95,13 +98,15 @@ protected:
         return e;
     }
 
-    static Error measure(const char* scene, const std::map<std::string, std::string>& sceneArgs = {}) {
+    static Error measure(const char* scene,
+                         const std::map<std::string, std::string>& sceneArgs = {}) {
         Render rt = render("deferred.lua", scene, 1, sceneArgs);
         Render ref = render("reference.lua", scene, 64, sceneArgs);
         Error e = compare(rt, ref);
         std::string args;
         for (const auto& [k, v] : sceneArgs) args += " " + k + "=" + v;
-        std::printf("%-22s%s floor %.4f, surfaces %.4f, energy %+.4f\n", scene, args.c_str(), e.floorMean, e.surfaceMean, e.bias);
+        std::printf("%-22s%s floor %.4f, surfaces %.4f, energy %+.4f\n", scene, args.c_str(),
+                    e.floorMean, e.surfaceMean, e.bias);
         return e;
     }
 };
@@ -192,7 +197,8 @@ TEST_F(Reference, PointsInsideASphereOrTubeGetNothing) {
         ASSERT_FALSE(ref.hdr.pixels.empty());
         // The camera looks at the origin: the image's centre is the floor right under the light.
         const size_t i = (size_t(H / 2) * W + W / 2) * 4;
-        std::printf("%s: the floor inside the light: real-time %.4g, reference %.4g nits\n", light, rt.hdr.pixels[i + 1], ref.hdr.pixels[i + 1]);
+        std::printf("%s: the floor inside the light: real-time %.4g, reference %.4g nits\n", light,
+                    rt.hdr.pixels[i + 1], ref.hdr.pixels[i + 1]);
         EXPECT_EQ(rt.hdr.pixels[i + 1], 0.0f) << light;
         EXPECT_LT(ref.hdr.pixels[i + 1], 1e-3f) << light;
     }
@@ -203,12 +209,13 @@ TEST_F(Reference, AccumulationKeepsItsFramesUntilTheSceneChanges) {
     // keeps them; a scene whose file changed starts again (the old frames show another scene).
     const std::string scene = std::string(RG_TEST_TMP) + "/reference_reload.lua";
     auto writeScene = [&](const char* intensity) {
-        std::ofstream(scene) << "local scene = require 'scene'\n"
-                             << "scene.material 'm' { base_color = { 0.5, 0.5, 0.5 } }\n"
-                             << "scene.plane 'floor' { size = { 4, 4 }, material = 'm' }\n"
-                             << "scene.light 'key' { type = 'sphere', intensity = " << intensity
-                             << ", unit = 'lm', radius = 0.2, position = { 0, 1, 0 } }\n"
-                             << "scene.camera 'c' { position = { 0, 2, 2 }, target = { 0, 0, 0 } }\n";
+        std::ofstream(scene)
+            << "local scene = require 'scene'\n"
+            << "scene.material 'm' { base_color = { 0.5, 0.5, 0.5 } }\n"
+            << "scene.plane 'floor' { size = { 4, 4 }, material = 'm' }\n"
+            << "scene.light 'key' { type = 'sphere', intensity = " << intensity
+            << ", unit = 'lm', radius = 0.2, position = { 0, 1, 0 } }\n"
+            << "scene.camera 'c' { position = { 0, 2, 2 }, target = { 0, 0, 0 } }\n";
     };
     writeScene("1000");
     SessionOptions o;
@@ -249,19 +256,25 @@ TEST_F(Reference, EnvironmentLuminanceSamplingAgreesWithBrdfSamplingWithLessNois
     for (uint32_t y = 0; y < 128; ++y)
         for (uint32_t x = 0; x < 256; ++x)
             for (uint32_t c = 0; c < 4; ++c)
-                env.pixels[env.index(x, y, c)] = c == 3 ? 1.0f : (x >= 220 && x < 228 && y >= 42 && y < 47) ? 2e4f : 1.0f;
-    ASSERT_TRUE(writeExr(dir + "/patch.exr", {ImageLayer{"", {"R", "G", "B", "A"}, env}}).has_value());
-    std::ofstream(dir + "/scene.lua") << "local scene = require \"scene\"\n"
-                                         "scene.material \"rough\" { base_color = { 0.8, 0.8, 0.8 }, smoothness = 0.3 }\n"
-                                         "scene.sphere \"ball\" { radius = 1, material = \"rough\", segments = 64 }\n"
-                                         "scene.environment \"patch\" { kind = \"hdr\", file = \"patch.exr\" }\n"
-                                         "scene.camera \"c\" { position = { 0, 0, 4 }, target = { 0, 0, 0 }, fov = 35 }\n";
+                env.pixels[env.index(x, y, c)] = c == 3 ? 1.0f
+                                                 : (x >= 220 && x < 228 && y >= 42 && y < 47)
+                                                     ? 2e4f
+                                                     : 1.0f;
+    ASSERT_TRUE(
+        writeExr(dir + "/patch.exr", {ImageLayer{"", {"R", "G", "B", "A"}, env}}).has_value());
+    std::ofstream(dir + "/scene.lua")
+        << "local scene = require \"scene\"\n"
+           "scene.material \"rough\" { base_color = { 0.8, 0.8, 0.8 }, smoothness = 0.3 }\n"
+           "scene.sphere \"ball\" { radius = 1, material = \"rough\", segments = 64 }\n"
+           "scene.environment \"patch\" { kind = \"hdr\", file = \"patch.exr\" }\n"
+           "scene.camera \"c\" { position = { 0, 0, 4 }, target = { 0, 0, 0 }, fov = 35 }\n";
     constexpr uint32_t w = 96, h = 64;
     auto render = [&](const std::string& strategy, uint32_t frames, double seed) {
         SessionOptions o = sceneOptions(dir + "/scene.lua", {}, w, h);
         o.params["reference_strategy"] = Value(strategy);
         o.params["reference_seed"] = Value(seed);
-        Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/reference.lua", frames, {"hdr", "depth"});
+        Readback r =
+            renderAndRead(o, kRoot + "/scripts/pipelines/reference.lua", frames, {"hdr", "depth"});
         std::pair<Image, Image> out;
         if (r.images.size() != 2) return out;
         out.first = r["hdr"];
@@ -287,13 +300,18 @@ TEST_F(Reference, EnvironmentLuminanceSamplingAgreesWithBrdfSamplingWithLessNois
                 const double d = a.first.pixels[i * 4 + 1] - b.first.pixels[i * 4 + 1];
                 sum += d * d, ++n;
             }
-        return n ? std::sqrt(sum / double(n)) / std::max(0.5 * (sphereMean(a) + sphereMean(b)), 1e-6) : 0.0;
+        return n ? std::sqrt(sum / double(n)) /
+                       std::max(0.5 * (sphereMean(a) + sphereMean(b)), 1e-6)
+                 : 0.0;
     };
     const double noiseMis = noise("mis"), noiseLight = noise("light"), noiseBrdf = noise("brdf");
-    const double light = sphereMean(render("light", 32, 0)), mis = sphereMean(render("mis", 32, 0)), brdf = sphereMean(render("brdf", 256, 0));
-    std::printf("one frame's noise (RMS of two seeds' difference / mean): %.3f MIS, %.3f environment samples, %.3f BRDF samples; sphere mean "
-                "%.2f (environment, 32 frames), %.2f (MIS, 32), %.2f (BRDF, 256) nits\n",
-                noiseMis, noiseLight, noiseBrdf, light, mis, brdf);
+    const double light = sphereMean(render("light", 32, 0)), mis = sphereMean(render("mis", 32, 0)),
+                 brdf = sphereMean(render("brdf", 256, 0));
+    std::printf(
+        "one frame's noise (RMS of two seeds' difference / mean): %.3f MIS, %.3f environment "
+        "samples, %.3f BRDF samples; sphere mean "
+        "%.2f (environment, 32 frames), %.2f (MIS, 32), %.2f (BRDF, 256) nits\n",
+        noiseMis, noiseLight, noiseBrdf, light, mis, brdf);
     ASSERT_GT(brdf, 0.0);
     EXPECT_LT(noiseMis, 0.25 * noiseBrdf);
     EXPECT_NEAR(light / brdf, 1.0, 0.03);

@@ -30,14 +30,17 @@ constexpr uint32_t W = 256, H = 128;
 
 class SceneRender : public GpuFixture {
 protected:
-    std::unique_ptr<Session> render(const std::string& pipeline, std::vector<std::string> captures, const std::string& view = "",
-                                    const std::string& scene = "materials.lua", const std::map<std::string, std::string>& args = {}) {
+    std::unique_ptr<Session> render(const std::string& pipeline, std::vector<std::string> captures,
+                                    const std::string& view = "",
+                                    const std::string& scene = "materials.lua",
+                                    const std::map<std::string, std::string>& args = {}) {
         SessionOptions o;
         o.compile.outputWidth = W;
         o.compile.outputHeight = H;
         o.scene = kRoot + "/tests/gpu/scenes/" + scene;
         o.sceneArgs = args;
-        if (scene != "materials.lua") {  // the probe alone: a fixed exposure, no screen-space occlusion
+        if (scene !=
+            "materials.lua") {  // the probe alone: a fixed exposure, no screen-space occlusion
             o.params["exposure_mode"] = Value("manual");
             o.params["ao_radius"] = Value(0.05);
         }
@@ -55,7 +58,8 @@ protected:
     // The pixel a world point lands on with the scene's camera (as GpuScene::updateFrame sets it).
     static glm::ivec2 pixelOf(const Session& s, glm::vec3 p) {
         const Camera& c = s.scene()->cameras.front();
-        glm::mat4 proj = glm::perspectiveRH_ZO(c.verticalFov, float(W) / float(H), c.nearPlane, c.farPlane);
+        glm::mat4 proj =
+            glm::perspectiveRH_ZO(c.verticalFov, float(W) / float(H), c.nearPlane, c.farPlane);
         proj[1][1] *= -1.0f;
         glm::vec4 clip = proj * glm::lookAt(c.position, c.target, c.up) * glm::vec4(p, 1.0f);
         glm::vec2 ndc = glm::vec2(clip) / clip.w;
@@ -70,7 +74,8 @@ protected:
         for (const auto& t : info.desc.targets) {
             auto img = s_runtime->executor().readback(t.name);
             EXPECT_TRUE(img.has_value()) << t.name;
-            texels.push_back(texelFromFloats(t.format, &img->pixels[(size_t(px.y) * W + px.x) * img->channels], img->channels));
+            texels.push_back(texelFromFloats(
+                t.format, &img->pixels[(size_t(px.y) * W + px.x) * img->channels], img->channels));
         }
         return unpackTexel(info, texels);
     }
@@ -82,9 +87,17 @@ protected:
         if (!bytes || bytes->size() < 9 * 16) return glm::vec3(0.0f);
         glm::vec4 sh[9];
         std::memcpy(sh, bytes->data(), sizeof sh);
-        const float y[9] = {0.282095f, 0.488603f * n.y, 0.488603f * n.z, 0.488603f * n.x, 1.092548f * n.x * n.y, 1.092548f * n.y * n.z,
-                            0.315392f * (3.0f * n.z * n.z - 1.0f), 1.092548f * n.x * n.z, 0.546274f * (n.x * n.x - n.y * n.y)};
-        const float pi = 3.14159265f, a[9] = {pi, 2 * pi / 3, 2 * pi / 3, 2 * pi / 3, pi / 4, pi / 4, pi / 4, pi / 4, pi / 4};
+        const float y[9] = {0.282095f,
+                            0.488603f * n.y,
+                            0.488603f * n.z,
+                            0.488603f * n.x,
+                            1.092548f * n.x * n.y,
+                            1.092548f * n.y * n.z,
+                            0.315392f * (3.0f * n.z * n.z - 1.0f),
+                            1.092548f * n.x * n.z,
+                            0.546274f * (n.x * n.x - n.y * n.y)};
+        const float pi = 3.14159265f, a[9] = {pi,     2 * pi / 3, 2 * pi / 3, 2 * pi / 3, pi / 4,
+                                              pi / 4, pi / 4,     pi / 4,     pi / 4};
         glm::vec3 e(0.0f);
         for (int i = 0; i < 9; ++i) e += a[i] * y[i] * glm::vec3(sh[i]);
         return glm::max(e, glm::vec3(0.0f));
@@ -161,7 +174,8 @@ TEST_F(SceneRender, FoliageIsFixedUpAfterFillingOnlyTwoTargets) {
 // probe at the normal), not that plus the lighting's probe diffuse. Under the sky alone the
 // foliage box's face is what a box of no diffuse colour with its specular shows, plus E(n)·ρ/π.
 TEST_F(SceneRender, FoliageTakesTheProbesDiffuseOnce) {
-    auto leaf = render("scripts/pipelines/deferred.lua", {"GB0", "GB1", "GB2", "GB3"}, "", "foliage_ibl.lua");
+    auto leaf = render("scripts/pipelines/deferred.lua", {"GB0", "GB1", "GB2", "GB3"}, "",
+                       "foliage_ibl.lua");
     const glm::ivec2 px(W / 2, H / 2);
     LayoutInfo info;
     auto g = gbufferAt(*leaf, px, info);
@@ -173,14 +187,17 @@ TEST_F(SceneRender, FoliageTakesTheProbesDiffuseOnce) {
     auto foliage = readAbsoluteHdr(s_runtime->executor(), leaf->pipeline());
     ASSERT_TRUE(foliage.has_value());
     leaf.reset();
-    auto black = render("scripts/pipelines/deferred.lua", {}, "", "foliage_ibl.lua", {{"model", "black"}});
+    auto black =
+        render("scripts/pipelines/deferred.lua", {}, "", "foliage_ibl.lua", {{"model", "black"}});
     auto specular = readAbsoluteHdr(s_runtime->executor(), black->pipeline());
     ASSERT_TRUE(specular.has_value());
     for (int c = 0; c < 3; ++c) {
         const float got = foliage->image.at(px.x, px.y, static_cast<uint32_t>(c));
-        const float expected = specular->image.at(px.x, px.y, static_cast<uint32_t>(c)) + rho[c] * E[c] / 3.14159265f;
-        std::printf("channel %d: foliage %.2f nits, specular alone %.2f + E·ρ/π %.2f = %.2f\n", c, got,
-                    specular->image.at(px.x, px.y, static_cast<uint32_t>(c)), rho[c] * E[c] / 3.14159265f, expected);
+        const float expected =
+            specular->image.at(px.x, px.y, static_cast<uint32_t>(c)) + rho[c] * E[c] / 3.14159265f;
+        std::printf("channel %d: foliage %.2f nits, specular alone %.2f + E·ρ/π %.2f = %.2f\n", c,
+                    got, specular->image.at(px.x, px.y, static_cast<uint32_t>(c)),
+                    rho[c] * E[c] / 3.14159265f, expected);
         EXPECT_NEAR(got / expected, 1.0f, 0.02f) << "channel " << c;
     }
 }
@@ -191,7 +208,8 @@ TEST_F(SceneRender, StencilClassesRouteEveryMaterial) {
     ASSERT_TRUE(view.has_value());
     auto rgbAt = [&](glm::vec3 p) {
         glm::ivec2 px = pixelOf(*s, p);
-        return glm::vec3(view->at(uint32_t(px.x), uint32_t(px.y), 0), view->at(uint32_t(px.x), uint32_t(px.y), 1),
+        return glm::vec3(view->at(uint32_t(px.x), uint32_t(px.y), 0),
+                         view->at(uint32_t(px.x), uint32_t(px.y), 1),
                          view->at(uint32_t(px.x), uint32_t(px.y), 2));
     };
     // The view paints class i with palette entry i: lit_standard red, lit_clearcoat green, foliage
@@ -199,7 +217,8 @@ TEST_F(SceneRender, StencilClassesRouteEveryMaterial) {
     EXPECT_NEAR(glm::distance(rgbAt(kStandard), glm::vec3(0.9f, 0.2f, 0.2f)), 0.0f, 0.01f);
     EXPECT_NEAR(glm::distance(rgbAt(kCoated), glm::vec3(0.2f, 0.8f, 0.2f)), 0.0f, 0.01f);
     EXPECT_NEAR(glm::distance(rgbAt(kBush), glm::vec3(0.2f, 0.4f, 0.9f)), 0.0f, 0.01f);
-    EXPECT_NEAR(glm::distance(rgbAt({-2.3f, 0.5f, 0.2f}), glm::vec3(0.9f, 0.8f, 0.2f)), 0.0f, 0.01f);  // lit_two_colour
+    EXPECT_NEAR(glm::distance(rgbAt({-2.3f, 0.5f, 0.2f}), glm::vec3(0.9f, 0.8f, 0.2f)), 0.0f,
+                0.01f);  // lit_two_colour
     // The sky (nothing drawn) keeps stencil 0: black.
     EXPECT_EQ(view->at(W / 2, 2, 0), 0.0f);
 }
@@ -209,11 +228,14 @@ TEST_F(SceneRender, ClearCoatAddsItsSecondLobe) {
     // strength 0 (must light exactly like the standard) and of strength 1 (a second, sharp lobe).
     auto hdrOf = [&](const std::string& material) {
         const std::string file = std::string(RG_TEST_TMP) + "/coat_scene.lua";
-        std::ofstream(file) << "local scene = require 'scene'\n"
-                            << "scene.material 'm' { " << material << " }\n"
-                            << "scene.sphere 'ball' { radius = 0.5, position = { 0, 0, 0 }, material = 'm', segments = 64 }\n"
-                            << "scene.light 'lamp' { type = 'point', intensity = 2000, unit = 'lm', position = { 0.6, 0.6, 2.0 } }\n"
-                            << "scene.camera 'main' { position = { 0, 0, 2.5 }, target = { 0, 0, 0 }, fov = 30 }\n";
+        std::ofstream(file)
+            << "local scene = require 'scene'\n"
+            << "scene.material 'm' { " << material << " }\n"
+            << "scene.sphere 'ball' { radius = 0.5, position = { 0, 0, 0 }, material = 'm', "
+               "segments = 64 }\n"
+            << "scene.light 'lamp' { type = 'point', intensity = 2000, unit = 'lm', position = { "
+               "0.6, 0.6, 2.0 } }\n"
+            << "scene.camera 'main' { position = { 0, 0, 2.5 }, target = { 0, 0, 0 }, fov = 30 }\n";
         SessionOptions o;
         // 256 x 256 puts a pixel exactly where N·V = 1 (with lst:2's +1e-5, NdotV > 1: a NaN
         // once came from pow of a negative base there).
@@ -232,18 +254,23 @@ TEST_F(SceneRender, ClearCoatAddsItsSecondLobe) {
     };
     const std::string base = "base_color = { 0.8, 0.05, 0.05 }, smoothness = 0.5";
     Image standard = hdrOf(base);
-    Image noCoat = hdrOf("model = 'clear_coat', " + base + ", params = { coatStrength = 0, coatSmoothness = 0.8 }");
-    Image coat = hdrOf("model = 'clear_coat', " + base + ", params = { coatStrength = 1, coatSmoothness = 0.8 }");
+    Image noCoat = hdrOf("model = 'clear_coat', " + base +
+                         ", params = { coatStrength = 0, coatSmoothness = 0.8 }");
+    Image coat = hdrOf("model = 'clear_coat', " + base +
+                       ", params = { coatStrength = 1, coatSmoothness = 0.8 }");
     double maxDiff = 0, peakStandard = 0, peakCoat = 0;
     for (size_t i = 0; i < standard.pixels.size(); ++i) {
-        maxDiff = std::max(maxDiff, double(std::abs(standard.pixels[i] - noCoat.pixels[i])) / (1e-3 + std::abs(standard.pixels[i])));
+        maxDiff = std::max(maxDiff, double(std::abs(standard.pixels[i] - noCoat.pixels[i])) /
+                                        (1e-3 + std::abs(standard.pixels[i])));
         const double x = double((i / 4) % 256) - 128.0, y = double((i / 4) / 256) - 128.0;
-        if (i % 4 == 1 && x * x + y * y < 80.0 * 80.0) {  // green, on the ball: specular only (the ball is red)
+        if (i % 4 == 1 &&
+            x * x + y * y < 80.0 * 80.0) {  // green, on the ball: specular only (the ball is red)
             peakStandard = std::max(peakStandard, double(standard.pixels[i]));
             peakCoat = std::max(peakCoat, double(coat.pixels[i]));
         }
     }
-    EXPECT_LT(maxDiff, 2e-3);  // strength 0: the clear-coat path lights exactly like the standard one
+    EXPECT_LT(maxDiff,
+              2e-3);  // strength 0: the clear-coat path lights exactly like the standard one
     EXPECT_GT(peakCoat, 5.0 * peakStandard);  // the coat's smooth lobe
     for (const Image* img : {&standard, &noCoat, &coat})
         for (float v : img->pixels) ASSERT_TRUE(std::isfinite(v));
@@ -266,17 +293,20 @@ TEST_F(SceneRender, TogglingPassesPreparesNoOtherPass) {
     const std::vector<std::string> loaded = s_runtime->executor().lastBuildReport().passesPrepared;
     // The scene's materials are all standard: the clear-coat and two-colour lighting passes and the
     // foliage fix-up, which work on their stencil classes' pixels only, are off too.
-    for (const char* off : {"decals", "decals_copy0", "forward", "shadow_clear0", "lighting_clearcoat", "lighting_two_colour", "foliage_fixup"})
+    for (const char* off : {"decals", "decals_copy0", "forward", "shadow_clear0",
+                            "lighting_clearcoat", "lighting_two_colour", "foliage_fixup"})
         EXPECT_EQ(std::count(loaded.begin(), loaded.end(), off), 0) << off << " was prepared";
     EXPECT_EQ(std::count(loaded.begin(), loaded.end(), "gbuffer"), 1);
     ASSERT_TRUE(s.frame().has_value());
     EXPECT_EQ(s.rebuilds(), 0u);
     ASSERT_TRUE(s.setPassOverride("sky", false).has_value());
     ASSERT_TRUE(s.frame().has_value());
-    EXPECT_TRUE(s_runtime->executor().lastBuildReport().passesPrepared.empty()) << s_runtime->executor().lastBuildReport().summary();
+    EXPECT_TRUE(s_runtime->executor().lastBuildReport().passesPrepared.empty())
+        << s_runtime->executor().lastBuildReport().summary();
     ASSERT_TRUE(s.setPassOverride("sky", true).has_value());
     ASSERT_TRUE(s.frame().has_value());
-    EXPECT_EQ(s_runtime->executor().lastBuildReport().passesPrepared, (std::vector<std::string>{"sky"}));
+    EXPECT_EQ(s_runtime->executor().lastBuildReport().passesPrepared,
+              (std::vector<std::string>{"sky"}));
     EXPECT_EQ(s_runtime->executor().lastBuildReport().resourcesCreated, 0u);
 }
 
@@ -303,9 +333,9 @@ TEST_F(SceneRender, DecalsBlendTheCommonParametersOnly) {
     EXPECT_NEAR(f("metalMask").v[0], 0.8f, 1.0f / 255);  // base material: metal mask blends
     auto coat = gbufferAt(*s, pixelOf(*s, {0.3f, 0.5f, 0.4f}), info);
     auto c = [&](const char* n) { return coat[static_cast<size_t>(info.find(n))]; };
-    EXPECT_EQ(c("materialId").u[0], 1u);        // never blended
-    EXPECT_EQ(c("materialData").u[0], 31u);     // the coat's strength survives
-    EXPECT_EQ(c("metalMask").v[0], 0.0f);       // not on materialId 1
+    EXPECT_EQ(c("materialId").u[0], 1u);     // never blended
+    EXPECT_EQ(c("materialData").u[0], 31u);  // the coat's strength survives
+    EXPECT_EQ(c("metalMask").v[0], 0.0f);    // not on materialId 1
     EXPECT_NEAR(srgbEncode(c("baseColor").v[0]), srgbEncode(0.8f * 0.2f + 0.9f * 0.8f), 1.0f / 255);
 }
 
@@ -315,7 +345,8 @@ const glm::vec3 kOxide{-2.3f, 0.5f, 0.2f}, kOxideEdge{-2.3f, 0.95f, -0.1f};
 TEST_F(SceneRender, TwoColourMaterialFillsItsLayout) {
     auto s = render("scripts/pipelines/deferred.lua", {"GB0", "GB1", "GB2", "GB3"});
     const PipelineDesc& p = s->pipeline();
-    auto layout = std::find_if(p.layouts.begin(), p.layouts.end(), [](auto& l) { return l.name == "two_colour"; });
+    auto layout = std::find_if(p.layouts.begin(), p.layouts.end(),
+                               [](auto& l) { return l.name == "two_colour"; });
     ASSERT_NE(layout, p.layouts.end());
     auto info = analyzeLayout(*layout);
     ASSERT_TRUE(info.has_value());
@@ -325,7 +356,8 @@ TEST_F(SceneRender, TwoColourMaterialFillsItsLayout) {
         for (const auto& t : info->desc.targets) {
             auto img = s_runtime->executor().readback(t.name);
             EXPECT_TRUE(img.has_value()) << t.name;
-            texels.push_back(texelFromFloats(t.format, &img->pixels[(size_t(px.y) * W + px.x) * img->channels], img->channels));
+            texels.push_back(texelFromFloats(
+                t.format, &img->pixels[(size_t(px.y) * W + px.x) * img->channels], img->channels));
         }
         return unpackTexel(*info, texels);
     };
@@ -347,7 +379,8 @@ TEST_F(SceneRender, TwoColourMaterialFillsItsLayout) {
     auto d = at(kOxide);
     auto dc = [&](const char* n) { return d[static_cast<size_t>(info->find(n))]; };
     EXPECT_EQ(dc("materialId").u[0], 2u);
-    EXPECT_NEAR(srgbEncode(dc("diffuseColor").v[2]), srgbEncode(0.05f * 0.5f + 0.8f * 0.5f), 1.0f / 255);
+    EXPECT_NEAR(srgbEncode(dc("diffuseColor").v[2]), srgbEncode(0.05f * 0.5f + 0.8f * 0.5f),
+                1.0f / 255);
     EXPECT_NEAR(dc("smoothness").v[0], 0.5f * 0.5f + 0.9f * 0.5f, 1.0f / 1023);
     for (int c = 0; c < 3; ++c) EXPECT_EQ(dc("f0").v[c], ch("f0").v[c]) << "f0[" << c << "]";
     EXPECT_EQ(dc("ao").v[0], ch("ao").v[0]);
@@ -359,11 +392,14 @@ TEST_F(SceneRender, TwoColourLightsAsTheStandardMaterialItConvertsFrom) {
     // (sRGB 8-bit base colour vs linear 8-bit f0), and only the two-colour path lights it.
     auto hdrOf = [&](const std::string& material, bool twoColourPass = true) {
         const std::string file = std::string(RG_TEST_TMP) + "/two_colour_scene.lua";
-        std::ofstream(file) << "local scene = require 'scene'\n"
-                            << "scene.material 'm' { " << material << " }\n"
-                            << "scene.sphere 'ball' { radius = 0.5, position = { 0, 0, 0 }, material = 'm', segments = 64 }\n"
-                            << "scene.light 'lamp' { type = 'point', intensity = 2000, unit = 'lm', position = { 0.6, 0.6, 2.0 } }\n"
-                            << "scene.camera 'main' { position = { 0, 0, 2.5 }, target = { 0, 0, 0 }, fov = 30 }\n";
+        std::ofstream(file)
+            << "local scene = require 'scene'\n"
+            << "scene.material 'm' { " << material << " }\n"
+            << "scene.sphere 'ball' { radius = 0.5, position = { 0, 0, 0 }, material = 'm', "
+               "segments = 64 }\n"
+            << "scene.light 'lamp' { type = 'point', intensity = 2000, unit = 'lm', position = { "
+               "0.6, 0.6, 2.0 } }\n"
+            << "scene.camera 'main' { position = { 0, 0, 2.5 }, target = { 0, 0, 0 }, fov = 30 }\n";
         SessionOptions o;
         o.compile.outputWidth = 128;
         o.compile.outputHeight = 128;
@@ -390,7 +426,8 @@ TEST_F(SceneRender, TwoColourLightsAsTheStandardMaterialItConvertsFrom) {
         for (size_t i = 0; i < a.pixels.size(); ++i) {
             const double x = double((i / 4) % 128) - 64.0, y = double((i / 4) / 128) - 64.0;
             if (i % 4 == 3 || x * x + y * y > 40.0 * 40.0) continue;  // the ball's inside
-            const double e = std::abs(double(a.pixels[i]) - b.pixels[i]) / std::max(1e-3, std::abs(double(b.pixels[i])));
+            const double e = std::abs(double(a.pixels[i]) - b.pixels[i]) /
+                             std::max(1e-3, std::abs(double(b.pixels[i])));
             sum += e;
             worst = std::max(worst, e);
             ++n;
@@ -400,21 +437,28 @@ TEST_F(SceneRender, TwoColourLightsAsTheStandardMaterialItConvertsFrom) {
     double mean = 0, worst = 0;
     // A metal: all specular, f0 = the base colour.
     Image gold = hdrOf("base_color = { 1.0, 0.766, 0.336 }, metal_mask = 1, smoothness = 0.6");
-    Image goldTwo = hdrOf("model = 'two_colour', diffuse_color = { 0, 0, 0 }, f0 = { 1.0, 0.766, 0.336 }, smoothness = 0.6");
+    Image goldTwo = hdrOf(
+        "model = 'two_colour', diffuse_color = { 0, 0, 0 }, f0 = { 1.0, 0.766, 0.336 }, smoothness "
+        "= 0.6");
     compareBall(goldTwo, gold, mean, worst);
     std::printf("metal: mean %.4f %%, worst %.4f %%\n", 100 * mean, 100 * worst);
     EXPECT_LT(mean, 0.005);
     EXPECT_LT(worst, 0.02);
     // A dielectric: diffuse = the base colour, f0 = 0.16 · 0.5² = 0.04 (8-bit linear: 10/255).
     Image red = hdrOf("base_color = { 0.8, 0.05, 0.05 }, smoothness = 0.5");
-    Image redTwo = hdrOf("model = 'two_colour', diffuse_color = { 0.8, 0.05, 0.05 }, f0 = { 0.04, 0.04, 0.04 }, smoothness = 0.5");
+    Image redTwo = hdrOf(
+        "model = 'two_colour', diffuse_color = { 0.8, 0.05, 0.05 }, f0 = { 0.04, 0.04, 0.04 }, "
+        "smoothness = 0.5");
     compareBall(redTwo, red, mean, worst);
     std::printf("dielectric: mean %.4f %%, worst %.4f %%\n", 100 * mean, 100 * worst);
     EXPECT_LT(mean, 0.01);
     EXPECT_LT(worst, 0.04);
     // Stencil routing: without its lighting pass the two-colour ball is black (no other path
     // touches it); the standard ball is lit by the standard path alone, so it does not change.
-    Image unlit = hdrOf("model = 'two_colour', diffuse_color = { 0.8, 0.05, 0.05 }, f0 = { 0.04, 0.04, 0.04 }, smoothness = 0.5", false);
+    Image unlit = hdrOf(
+        "model = 'two_colour', diffuse_color = { 0.8, 0.05, 0.05 }, f0 = { 0.04, 0.04, 0.04 }, "
+        "smoothness = 0.5",
+        false);
     Image redNoTwoPass = hdrOf("base_color = { 0.8, 0.05, 0.05 }, smoothness = 0.5", false);
     double lit = 0;
     for (size_t i = 0; i < unlit.pixels.size(); i += 4) {
@@ -484,7 +528,8 @@ TEST_F(SceneRender, BlendedMaterialsGoForwardOverTheLitImage) {
     LayoutInfo info;
     auto g = gbufferAt(*tinted, px, info);
     EXPECT_EQ(g[static_cast<size_t>(info.find("materialId"))].u[0], 0u);  // the sphere behind
-    EXPECT_NE(seen->at(uint32_t(px.x), uint32_t(px.y), 2), hidden->at(uint32_t(px.x), uint32_t(px.y), 2));
+    EXPECT_NE(seen->at(uint32_t(px.x), uint32_t(px.y), 2),
+              hidden->at(uint32_t(px.x), uint32_t(px.y), 2));
     (void)clear;
 }
 
@@ -505,20 +550,27 @@ TEST_F(SceneRender, LevelsOfDetailFollowTheProjectedErrorAndKeepTheImage) {
         g.updateFrame(0, w, h);
         const Camera& c = sc.cameras.front();
         const glm::vec3 forward = glm::normalize(c.target - c.position);
-        const float pixelsPerMetre = 0.5f * float(h) / std::tan(0.5f * c.verticalFov);  // at a depth of 1 m
+        const float pixelsPerMetre =
+            0.5f * float(h) / std::tan(0.5f * c.verticalFov);  // at a depth of 1 m
         std::vector<uint32_t> out;
         for (size_t d = 0; d < g.draws().size(); ++d) {
             const passes::DrawItem& item = g.draws()[d];
             uint32_t level = 0;
-            while (level < item.lodCount && item.lods[level].firstIndex != g.viewLod(d).firstIndex) ++level;
+            while (level < item.lodCount && item.lods[level].firstIndex != g.viewLod(d).firstIndex)
+                ++level;
             EXPECT_LT(level, item.lodCount) << "draw " << d;
             float nearest = 1e30f;
             for (int k = 0; k < 8; ++k)
-                nearest = std::min(nearest, glm::dot(glm::vec3(k & 1 ? item.boundsMax.x : item.boundsMin.x, k & 2 ? item.boundsMax.y : item.boundsMin.y,
-                                                               k & 4 ? item.boundsMax.z : item.boundsMin.z) - c.position, forward));
+                nearest = std::min(nearest,
+                                   glm::dot(glm::vec3(k & 1 ? item.boundsMax.x : item.boundsMin.x,
+                                                      k & 2 ? item.boundsMax.y : item.boundsMin.y,
+                                                      k & 4 ? item.boundsMax.z : item.boundsMin.z) -
+                                                c.position,
+                                            forward));
             uint32_t expected = 0;
             for (uint32_t l = 1; l < item.lodCount; ++l)
-                if (nearest > c.nearPlane && item.lods[l].error * pixelsPerMetre / nearest <= 1.0f) expected = l;
+                if (nearest > c.nearPlane && item.lods[l].error * pixelsPerMetre / nearest <= 1.0f)
+                    expected = l;
             EXPECT_EQ(level, expected) << "draw " << d << " at " << w << "x" << h;
             if (item.lodCount > 1) out.push_back(level);
         }
@@ -528,10 +580,12 @@ TEST_F(SceneRender, LevelsOfDetailFollowTheProjectedErrorAndKeepTheImage) {
     ASSERT_EQ(hd.size(), 49u);  // the spheres
     EXPECT_EQ(std::count(hd.begin(), hd.end(), 1u), 49);
     Scene close = *scene;
-    close.cameras.front().position = glm::vec3(-3.3f, 0.45f, 4.8f);  // 1.5 m in front of the front row's first sphere
+    close.cameras.front().position =
+        glm::vec3(-3.3f, 0.45f, 4.8f);  // 1.5 m in front of the front row's first sphere
     close.cameras.front().target = glm::vec3(-3.3f, 0.45f, 3.3f);
     const auto near = levels(close, 1280, 720);
-    EXPECT_GE(std::count(near.begin(), near.end(), 0u), 1) << "the spheres near the camera keep their full mesh";
+    EXPECT_GE(std::count(near.begin(), near.end(), 0u), 1)
+        << "the spheres near the camera keep their full mesh";
 
     // The image with and without them (RG_LOD=0): silhouettes move by under a pixel and the
     // shading follows the coarser triangles' interpolated normals, which the mirror-like spheres'
@@ -555,8 +609,10 @@ TEST_F(SceneRender, LevelsOfDetailFollowTheProjectedErrorAndKeepTheImage) {
         sum += y;
     }
     const double share = double(off) / double(a.pixels.size() / a.channels);
-    std::printf("with levels of detail: mean |difference| %.3f %% of the mean, %.2f %% of pixels off by more than 5 %%\n",
-                100.0 * diff / sum, 100.0 * share);
+    std::printf(
+        "with levels of detail: mean |difference| %.3f %% of the mean, %.2f %% of pixels off by "
+        "more than 5 %%\n",
+        100.0 * diff / sum, 100.0 * share);
     EXPECT_LT(diff / sum, 0.02);
     EXPECT_LT(share, 0.04);
 }

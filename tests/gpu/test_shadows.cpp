@@ -23,8 +23,9 @@ using namespace rg;
 namespace {
 
 const std::string kRoot = RG_SOURCE_ROOT;
-constexpr uint32_t N = 320;                                      // square image
-const float kHalf = 12.0f * std::tan(15.0f * 3.14159265f / 180.0f);  // the ground the view spans: ±3.215 m
+constexpr uint32_t N = 320;  // square image
+const float kHalf =
+    12.0f * std::tan(15.0f * 3.14159265f / 180.0f);  // the ground the view spans: ±3.215 m
 
 struct Frame {
     Image hdr;
@@ -37,13 +38,15 @@ float worldZ(uint32_t py) { return ((static_cast<float>(py) + 0.5f) / N * 2.0f -
 
 class Shadows : public GpuFixture {
 protected:
-    static Frame render(const std::map<std::string, std::string>& args, uint32_t frames = 1, const std::string& camera = "top",
-                        bool sunShadows = true, const std::string& sunMask = "auto") {
+    static Frame render(const std::map<std::string, std::string>& args, uint32_t frames = 1,
+                        const std::string& camera = "top", bool sunShadows = true,
+                        const std::string& sunMask = "auto") {
         SessionOptions o = sceneOptions(kRoot + "/tests/gpu/scenes/shadow_box.lua", args, N, N);
         o.camera = camera;
         o.params["sun_shadows"] = Value(sunShadows);
         o.params["sun_mask"] = Value(sunMask);
-        Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", frames, {"hdr"}, {"sun_cascades"});
+        Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", frames, {"hdr"},
+                                   {"sun_cascades"});
         Frame out;
         if (r.images.empty() || r.buffers.empty()) return out;
         out.hdr = r["hdr"];
@@ -52,13 +55,17 @@ protected:
     }
 
     // Every ground pixel (outside the box's footprint, with a margin) of a region: lit or in shadow.
-    struct Count { int lit = 0, shadowed = 0, total = 0; };
-    static Count classify(const Image& hdr, float litLevel, const std::function<bool(float, float)>& inside) {
+    struct Count {
+        int lit = 0, shadowed = 0, total = 0;
+    };
+    static Count classify(const Image& hdr, float litLevel,
+                          const std::function<bool(float, float)>& inside) {
         Count c;
         for (uint32_t py = 0; py < N; ++py)
             for (uint32_t px = 0; px < N; ++px) {
                 const float x = worldX(px), z = worldZ(py);
-                if (std::abs(x) < 0.55f && std::abs(z) < 0.55f) continue;  // the box (its top and sides)
+                if (std::abs(x) < 0.55f && std::abs(z) < 0.55f)
+                    continue;  // the box (its top and sides)
                 if (!inside(x, z)) continue;
                 const float v = hdr.at(px, py, 1) / litLevel;
                 ++c.total;
@@ -74,12 +81,17 @@ TEST_F(Shadows, BoxShadowFallsWhereTheGeometryPutsIt) {
     // towards −x: ground in shadow for x ∈ [−1.5, −0.5], z ∈ [−0.5, 0.5]. z30: 30° up, travelling
     // towards +z: shadow for z ∈ [0.5, 0.5 + √3], x ∈ [−0.5, 0.5]. Margins of 8 cm around each edge
     // (four pixels; the sun's penumbra here is under 2 cm).
-    struct Case { const char* sun; std::function<bool(float, float)> shadow, lit; };
+    struct Case {
+        const char* sun;
+        std::function<bool(float, float)> shadow, lit;
+    };
     const float m = 0.08f, far = 0.5f + std::sqrt(3.0f);
     const Case cases[] = {
-        {"x45", [=](float x, float z) { return x > -1.5f + m && x < -0.5f - m && std::abs(z) < 0.5f - m; },
+        {"x45",
+         [=](float x, float z) { return x > -1.5f + m && x < -0.5f - m && std::abs(z) < 0.5f - m; },
          [=](float x, float z) { return x < -1.5f - m || x > 0.5f + m || std::abs(z) > 0.5f + m; }},
-        {"z30", [=](float x, float z) { return z > 0.5f + m && z < far - m && std::abs(x) < 0.5f - m; },
+        {"z30",
+         [=](float x, float z) { return z > 0.5f + m && z < far - m && std::abs(x) < 0.5f - m; },
          [=](float x, float z) { return z < -0.5f - m || z > far + m || std::abs(x) > 0.5f + m; }},
     };
     for (const Case& c : cases) {
@@ -87,8 +99,10 @@ TEST_F(Shadows, BoxShadowFallsWhereTheGeometryPutsIt) {
         ASSERT_EQ(f.hdr.width, N);
         const float litLevel = f.hdr.at(5, 5, 1);  // a corner of the open ground
         ASSERT_GT(litLevel, 0.0f);
-        const Count shadow = classify(f.hdr, litLevel, c.shadow), lit = classify(f.hdr, litLevel, c.lit);
-        std::printf("sun %s: shadow region %d/%d dark, open ground %d/%d lit\n", c.sun, shadow.shadowed, shadow.total, lit.lit, lit.total);
+        const Count shadow = classify(f.hdr, litLevel, c.shadow),
+                    lit = classify(f.hdr, litLevel, c.lit);
+        std::printf("sun %s: shadow region %d/%d dark, open ground %d/%d lit\n", c.sun,
+                    shadow.shadowed, shadow.total, lit.lit, lit.total);
         EXPECT_GT(shadow.total, 500);
         EXPECT_EQ(shadow.shadowed, shadow.total) << c.sun;
         EXPECT_EQ(lit.lit, lit.total) << c.sun;
@@ -99,17 +113,22 @@ TEST_F(Shadows, BoxShadowFallsWhereTheGeometryPutsIt) {
 // depth there changes no shadow (the box's falls as before), the box's leaves the ground lit.
 TEST_F(Shadows, AnObjectThatCastsNoShadowLeavesTheMapsOnly) {
     const float m = 0.08f;
-    auto shadowRegion = [=](float x, float z) { return x > -1.5f + m && x < -0.5f - m && std::abs(z) < 0.5f - m; };
+    auto shadowRegion = [=](float x, float z) {
+        return x > -1.5f + m && x < -0.5f - m && std::abs(z) < 0.5f - m;
+    };
     for (const char* cast : {"ground", "box"}) {
         Frame f = render({{"sun", "x45"}, {"cast", cast}});
         ASSERT_EQ(f.hdr.width, N);
         const float litLevel = f.hdr.at(5, 5, 1);
         ASSERT_GT(litLevel, 0.0f);
         const Count c = classify(f.hdr, litLevel, shadowRegion);
-        std::printf("%s casts no shadow: the box's shadow region %d dark, %d lit of %d\n", cast, c.shadowed, c.lit, c.total);
+        std::printf("%s casts no shadow: the box's shadow region %d dark, %d lit of %d\n", cast,
+                    c.shadowed, c.lit, c.total);
         EXPECT_GT(c.total, 500);
-        if (std::string(cast) == "ground") EXPECT_EQ(c.shadowed, c.total);
-        else EXPECT_EQ(c.lit, c.total);
+        if (std::string(cast) == "ground")
+            EXPECT_EQ(c.shadowed, c.total);
+        else
+            EXPECT_EQ(c.lit, c.total);
     }
 }
 
@@ -124,9 +143,14 @@ TEST_F(Shadows, AnOrthographicCameraSeesTheSameShadow) {
     const float litLevel = f.hdr.at(5, 5, 1);
     ASSERT_GT(litLevel, 0.0f);
     const float m = 0.08f;
-    const Count shadow = classify(f.hdr, litLevel, [=](float x, float z) { return x > -1.5f + m && x < -0.5f - m && std::abs(z) < 0.5f - m; });
-    const Count lit = classify(f.hdr, litLevel, [=](float x, float z) { return x < -1.5f - m || x > 0.5f + m || std::abs(z) > 0.5f + m; });
-    std::printf("orthographic: shadow region %d/%d dark, open ground %d/%d lit\n", shadow.shadowed, shadow.total, lit.lit, lit.total);
+    const Count shadow = classify(f.hdr, litLevel, [=](float x, float z) {
+        return x > -1.5f + m && x < -0.5f - m && std::abs(z) < 0.5f - m;
+    });
+    const Count lit = classify(f.hdr, litLevel, [=](float x, float z) {
+        return x < -1.5f - m || x > 0.5f + m || std::abs(z) > 0.5f + m;
+    });
+    std::printf("orthographic: shadow region %d/%d dark, open ground %d/%d lit\n", shadow.shadowed,
+                shadow.total, lit.lit, lit.total);
     EXPECT_GT(shadow.total, 500);
     EXPECT_EQ(shadow.shadowed, shadow.total);
     EXPECT_EQ(lit.lit, lit.total);
@@ -169,7 +193,8 @@ TEST_F(Shadows, NearCascadesAddNothingToAnOpenPlane) {
         ASSERT_EQ(lit.hdr.width, N);
         int off = 0;
         for (size_t i = 1; i < lit.hdr.pixels.size(); i += 4)
-            if (std::abs(lit.hdr.pixels[i] - ref.hdr.pixels[i]) > 0.01f * ref.hdr.pixels[i] + 1e-3f) ++off;
+            if (std::abs(lit.hdr.pixels[i] - ref.hdr.pixels[i]) > 0.01f * ref.hdr.pixels[i] + 1e-3f)
+                ++off;
         EXPECT_EQ(off, 0) << sun;
     }
 }
@@ -206,7 +231,8 @@ TEST_F(Shadows, ContactHasNoGapAndPenumbraGrowsWithTheSun) {
     const float wSharp = edgeWidth(sharp.hdr, litSharp), wSoft = edgeWidth(soft.hdr, litSoft);
     const float sigma = 20.0f * 0.2664f * 3.14159265f / 180.0f;
     const float predicted = 0.687f * 2.0f * std::tan(sigma) * std::sqrt(2.0f) / std::sqrt(0.5f);
-    std::printf("penumbra at the far edge: sun 0.27° %.3f m, sun 5.3° %.3f m (geometric %.3f m)\n", wSharp, wSoft, predicted);
+    std::printf("penumbra at the far edge: sun 0.27° %.3f m, sun 5.3° %.3f m (geometric %.3f m)\n",
+                wSharp, wSoft, predicted);
     EXPECT_LT(wSharp, 0.06f);
     EXPECT_GT(wSoft, 3.0f * wSharp);
     // Measured 0.322 m (+26 %): the ground here falls in the farthest cascade (1.7 cm texels), whose
@@ -230,8 +256,12 @@ TEST_F(Shadows, TheHalfResolutionMaskKeepsTheShadowsPlaceAndEdges) {
     ASSERT_GT(lit, 0.0f);
     EXPECT_EQ(half.hdr.at(5, 5, 1), lit);
     const float m = 0.08f;
-    const Count shadow = classify(half.hdr, lit, [=](float x, float z) { return x > -1.5f + m && x < -0.5f - m && std::abs(z) < 0.5f - m; });
-    const Count open = classify(half.hdr, lit, [=](float x, float z) { return x < -1.5f - m || x > 0.5f + m || std::abs(z) > 0.5f + m; });
+    const Count shadow = classify(half.hdr, lit, [=](float x, float z) {
+        return x > -1.5f + m && x < -0.5f - m && std::abs(z) < 0.5f - m;
+    });
+    const Count open = classify(half.hdr, lit, [=](float x, float z) {
+        return x < -1.5f - m || x > 0.5f + m || std::abs(z) > 0.5f + m;
+    });
     EXPECT_GT(shadow.total, 500);
     EXPECT_EQ(shadow.shadowed, shadow.total);
     EXPECT_EQ(open.lit, open.total);
@@ -242,13 +272,20 @@ TEST_F(Shadows, TheHalfResolutionMaskKeepsTheShadowsPlaceAndEdges) {
             const float d = std::abs(half.hdr.at(px, py, 1) - full.hdr.at(px, py, 1)) / lit;
             meanDiff += d;
             const bool off = d > 0.05f;
-            if (px % 2 == 0 && py % 2 == 0) { ++sampled; sampledOff += off; }
-            else { ++between; betweenOff += off; }
+            if (px % 2 == 0 && py % 2 == 0) {
+                ++sampled;
+                sampledOff += off;
+            } else {
+                ++between;
+                betweenOff += off;
+            }
             autoOff += automatic.hdr.at(px, py, 1) != full.hdr.at(px, py, 1);
         }
     meanDiff /= static_cast<double>(N) * N;
-    std::printf("half mask against full: mean |diff| %.4f of the lit level; over 5 %%: %d of %d sampled pixels, %d of %d between\n",
-                meanDiff, sampledOff, sampled, betweenOff, between);
+    std::printf(
+        "half mask against full: mean |diff| %.4f of the lit level; over 5 %%: %d of %d sampled "
+        "pixels, %d of %d between\n",
+        meanDiff, sampledOff, sampled, betweenOff, between);
     EXPECT_EQ(autoOff, 0) << "auto at 320 rows is the full-resolution mask";
     EXPECT_LE(sampledOff, sampled / 1000);  // ≤ 0.1 %
     EXPECT_LT(betweenOff, between / 100);   // < 1 %: the edges
@@ -292,16 +329,22 @@ TEST_F(Shadows, CascadesSkipTheCastersBesideThem) {
     // (−1, −1, 0). The nearest cascade covers the view 0–3 m from a camera 12 m up: the ground far
     // below along the light falls in it, the box (7 m across the light from that slice) does not;
     // the farthest cascade reaches the ground around the box and draws both. Draws: 0 the ground, 1 the box.
-    SessionOptions o = sceneOptions(kRoot + "/tests/gpu/scenes/shadow_box.lua", {{"sun", "x45"}}, N, N);
-    Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 1, {"hdr"}, {"sun_shadow_draws"});
+    SessionOptions o =
+        sceneOptions(kRoot + "/tests/gpu/scenes/shadow_box.lua", {{"sun", "x45"}}, N, N);
+    Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 1, {"hdr"},
+                               {"sun_shadow_draws"});
     ASSERT_EQ(r.buffers.count("sun_shadow_draws"), 1u);
     const auto& bytes = r.buffers["sun_shadow_draws"];
     std::vector<uint32_t> words(bytes.size() / 4);
     std::memcpy(words.data(), bytes.data(), words.size() * 4);
     const size_t slots = words.size() / 5 / 3;  // commands of 5 words, 3 cascades
     ASSERT_GE(slots, 2u);
-    auto instances = [&](size_t cascade, size_t draw) { return words[(cascade * slots + draw) * 5 + 1]; };
-    auto indexCount = [&](size_t cascade, size_t draw) { return words[(cascade * slots + draw) * 5]; };
+    auto instances = [&](size_t cascade, size_t draw) {
+        return words[(cascade * slots + draw) * 5 + 1];
+    };
+    auto indexCount = [&](size_t cascade, size_t draw) {
+        return words[(cascade * slots + draw) * 5];
+    };
     EXPECT_EQ(indexCount(0, 0), 6u);   // the plane: two triangles
     EXPECT_EQ(indexCount(2, 1), 36u);  // the box: twelve
     EXPECT_EQ(instances(0, 0), 1u);
@@ -318,7 +361,8 @@ namespace {
 // `grow` metres on every side (slab test).
 bool boxBetween(float x, float z, glm::vec3 L, float grow) {
     const glm::vec3 o(x, 0.0f, z), d = L - o;
-    const glm::vec3 lo(-0.5f - grow, -grow, -0.5f - grow), hi(0.5f + grow, 1.0f + grow, 0.5f + grow);
+    const glm::vec3 lo(-0.5f - grow, -grow, -0.5f - grow),
+        hi(0.5f + grow, 1.0f + grow, 0.5f + grow);
     float t0 = 0.0f, t1 = 1.0f;
     for (int a = 0; a < 3; ++a) {
         if (std::abs(d[a]) < 1e-9f) {
@@ -339,7 +383,8 @@ bool boxBetween(float x, float z, glm::vec3 L, float grow) {
 class LocalShadows : public GpuFixture {
 protected:
     static Image render(const std::map<std::string, std::string>& args) {
-        SessionOptions o = sceneOptions(kRoot + "/tests/gpu/scenes/local_shadow_box.lua", args, N, N);
+        SessionOptions o =
+            sceneOptions(kRoot + "/tests/gpu/scenes/local_shadow_box.lua", args, N, N);
         Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 1, {"hdr"});
         return r.images.empty() ? Image{} : r["hdr"];
     }
@@ -350,7 +395,8 @@ protected:
         for (uint32_t i = 0; i < N * N; ++i) peak = std::max(peak, without.pixels[4 * i + 1]);
         std::vector<float> r(N * N, -1.0f);
         for (uint32_t i = 0; i < N * N; ++i)
-            if (without.pixels[4 * i + 1] > 0.01f * peak) r[i] = with.pixels[4 * i + 1] / without.pixels[4 * i + 1];
+            if (without.pixels[4 * i + 1] > 0.01f * peak)
+                r[i] = with.pixels[4 * i + 1] / without.pixels[4 * i + 1];
         return r;
     }
 };
@@ -365,14 +411,16 @@ TEST_F(LocalShadows, TheSunsMaskBesideALampsMaps) {
     ASSERT_EQ(both.width, N);
     const glm::vec3 toSun = glm::normalize(glm::vec3(1.0f, 1.0f, 0.0f));
     float peak = 0.0f;
-    for (uint32_t i = 0; i < N * N; ++i) peak = std::max(peak, both.pixels[4 * i + 1] - lamp.pixels[4 * i + 1]);
+    for (uint32_t i = 0; i < N * N; ++i)
+        peak = std::max(peak, both.pixels[4 * i + 1] - lamp.pixels[4 * i + 1]);
     ASSERT_GT(peak, 0.0f);
     int shadowTotal = 0, shadowDark = 0, litTotal = 0, litLit = 0;
     for (uint32_t py = 0; py < N; ++py)
         for (uint32_t px = 0; px < N; ++px) {
             const float x = worldX(px), z = worldZ(py);
             if (std::abs(x) < 0.58f && std::abs(z) < 0.58f) continue;
-            const float added = both.pixels[4 * (py * N + px) + 1] - lamp.pixels[4 * (py * N + px) + 1];
+            const float added =
+                both.pixels[4 * (py * N + px) + 1] - lamp.pixels[4 * (py * N + px) + 1];
             const glm::vec3 sun = glm::vec3(x, 0.0f, z) + 50.0f * toSun;
             if (boxBetween(x, z, sun, -0.08f)) {
                 ++shadowTotal;
@@ -393,7 +441,8 @@ TEST_F(LocalShadows, ShadowFallsWhereTheGeometryPutsIt) {
     // footprint is left out.
     const glm::vec3 L(-1.5f, 2.5f, 0.0f);
     for (const char* light : {"point", "spot"}) {
-        const Image with = render({{"light", light}}), without = render({{"light", light}, {"box", "0"}});
+        const Image with = render({{"light", light}}),
+                    without = render({{"light", light}, {"box", "0"}});
         ASSERT_EQ(with.width, N);
         ASSERT_EQ(without.width, N);
         const auto r = ratios(with, without);
@@ -422,8 +471,9 @@ TEST_F(LocalShadows, ShadowFallsWhereTheGeometryPutsIt) {
         }
         EXPECT_GT(contact, 0) << light;
         EXPECT_EQ(contactDark, contact) << light << ": contact";
-        std::printf("%s light: shadow region %d/%d dark, open ground %d/%d lit, contact %d/%d dark\n", light, shadowDark, shadowTotal,
-                    litLit, litTotal, contactDark, contact);
+        std::printf(
+            "%s light: shadow region %d/%d dark, open ground %d/%d lit, contact %d/%d dark\n",
+            light, shadowDark, shadowTotal, litLit, litTotal, contactDark, contact);
         EXPECT_GT(shadowTotal, 1500) << light;
         EXPECT_EQ(shadowDark, shadowTotal) << light;
         EXPECT_GT(litTotal, 10000) << light;
@@ -446,7 +496,9 @@ TEST_F(LocalShadows, NoAcneUnderAGrazingLight) {
             worst = std::min(worst, v);
             if (v < 0.99f) ++acne;
         }
-        std::printf("%s light 0.4 m over an open plane: %d pixels lit, darkest %.4f of the unshadowed\n", light, lit, worst);
+        std::printf(
+            "%s light 0.4 m over an open plane: %d pixels lit, darkest %.4f of the unshadowed\n",
+            light, lit, worst);
         EXPECT_GT(lit, 10000) << light;
         EXPECT_EQ(acne, 0) << light;
     }
@@ -469,10 +521,13 @@ TEST_F(LocalShadows, PenumbraGrowsWithTheLightsRadius) {
         return x90 - x10;
     };
     const Image sharp = render({}), sharp0 = render({{"box", "0"}});
-    const Image soft = render({{"radius", "0.2"}}), soft0 = render({{"box", "0"}, {"radius", "0.2"}});
+    const Image soft = render({{"radius", "0.2"}}),
+                soft0 = render({{"box", "0"}, {"radius", "0.2"}});
     const float wSharp = edge(ratios(sharp, sharp0)), wSoft = edge(ratios(soft, soft0));
     const float predicted = 0.69f * 2.22f * 0.2f;
-    std::printf("penumbra at the far edge: point light %.3f m, sphere of 0.2 m %.3f m (geometric %.3f m)\n", wSharp, wSoft, predicted);
+    std::printf(
+        "penumbra at the far edge: point light %.3f m, sphere of 0.2 m %.3f m (geometric %.3f m)\n",
+        wSharp, wSoft, predicted);
     EXPECT_LT(wSharp, 0.06f);
     // Measured 0.301 m against 0.306 m.
     EXPECT_GT(wSoft, 0.8f * predicted);
@@ -503,7 +558,7 @@ TEST_F(LocalShadows, ViewsFollowTheLightsInViewAndDrawOnlyTheirCasters) {
     EXPECT_FALSE(sees(1, 1));  // −x: not the box
     EXPECT_FALSE(sees(2, 0));  // +y: nothing above
     EXPECT_FALSE(sees(2, 1));
-    EXPECT_TRUE(sees(3, 0));   // −y: the ground and the box
+    EXPECT_TRUE(sees(3, 0));  // −y: the ground and the box
     EXPECT_TRUE(sees(3, 1));
     // Far from the view (range 30 m, 100 m away behind the camera's frustum): no views.
     Scene away = *scene;
@@ -520,13 +575,16 @@ TEST_F(LocalShadows, PenumbraMatchesTheReferenceShadowRays) {
     // reference_shadows (shadow rays through the scene's triangles, the light sampled by solid
     // angle): the 10–90 % width of the shadow's far edge along z = 0, the box-over-no-box ratio
     // averaged over the 15 rows around z = 0 to quiet the reference's noise (64 frames × 4 samples).
-    auto render = [](const std::string& pipeline, const std::map<std::string, std::string>& args, uint32_t frames) {
-        SessionOptions o = sceneOptions(kRoot + "/tests/gpu/scenes/local_shadow_box.lua", args, N, N);
+    auto render = [](const std::string& pipeline, const std::map<std::string, std::string>& args,
+                     uint32_t frames) {
+        SessionOptions o =
+            sceneOptions(kRoot + "/tests/gpu/scenes/local_shadow_box.lua", args, N, N);
         if (pipeline == "reference") {
             o.params["reference_shadows"] = Value(true);
             o.params["reference_forward"] = Value(false);
         }
-        Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/" + pipeline + ".lua", frames, {"hdr"});
+        Readback r =
+            renderAndRead(o, kRoot + "/scripts/pipelines/" + pipeline + ".lua", frames, {"hdr"});
         return r.images.empty() ? Image{} : r["hdr"];
     };
     auto width = [](const Image& with, const Image& without) {
@@ -545,7 +603,8 @@ TEST_F(LocalShadows, PenumbraMatchesTheReferenceShadowRays) {
         }
         return x90 - x10;
     };
-    const std::map<std::string, std::string> box = {{"radius", "0.2"}}, none = {{"radius", "0.2"}, {"box", "0"}};
+    const std::map<std::string, std::string> box = {{"radius", "0.2"}},
+                                             none = {{"radius", "0.2"}, {"box", "0"}};
     const Image rt = render("deferred", box, 1), rt0 = render("deferred", none, 1);
     const Image ref = render("reference", box, 64), ref0 = render("reference", none, 64);
     ASSERT_EQ(ref.width, N);
@@ -553,7 +612,10 @@ TEST_F(LocalShadows, PenumbraMatchesTheReferenceShadowRays) {
     const float wRt = width(rt, rt0), wRef = width(ref, ref0);
     // The reference's umbra: the ground right behind the box, far from any edge, gets nothing.
     const float umbra = ref.at(N / 2 + static_cast<uint32_t>(0.9f / (2.0f * kHalf) * N), N / 2, 1);
-    std::printf("penumbra at the far edge, sphere light 0.2 m: real time %.3f m, reference %.3f m; reference umbra %.3g\n", wRt, wRef, umbra);
+    std::printf(
+        "penumbra at the far edge, sphere light 0.2 m: real time %.3f m, reference %.3f m; "
+        "reference umbra %.3g\n",
+        wRt, wRef, umbra);
     EXPECT_EQ(umbra, 0.0f);
     EXPECT_NEAR(wRt / wRef, 1.0f, 0.2f);
 }
@@ -580,9 +642,15 @@ TEST_F(LocalShadows, TheMapHasTheLayersTheScenesLightsNeed) {
     // 1×1 layer (24 MiB less transient memory); the spot's single layer is still sampled as an array
     // (the validation layer checks the view type the shader declares). The spot's shadow is drawn:
     // it darkens the ground beyond the box.
-    struct Case { const char* light; const char* shadow; uint32_t layers, size; };
-    for (const Case& c : {Case{"point", "1", 6, 1024}, Case{"spot", "1", 1, 1024}, Case{"point", "0", 1, 1}}) {
-        SessionOptions o = sceneOptions(kRoot + "/tests/gpu/scenes/local_shadow_box.lua", {{"light", c.light}, {"shadow", c.shadow}}, N, N);
+    struct Case {
+        const char* light;
+        const char* shadow;
+        uint32_t layers, size;
+    };
+    for (const Case& c :
+         {Case{"point", "1", 6, 1024}, Case{"spot", "1", 1, 1024}, Case{"point", "0", 1, 1}}) {
+        SessionOptions o = sceneOptions(kRoot + "/tests/gpu/scenes/local_shadow_box.lua",
+                                        {{"light", c.light}, {"shadow", c.shadow}}, N, N);
         Session s(*s_runtime, o);
         auto r = s.load(kRoot + "/scripts/pipelines/deferred.lua");
         ASSERT_TRUE(r.has_value()) << r.error().describe();
@@ -591,12 +659,14 @@ TEST_F(LocalShadows, TheMapHasTheLayersTheScenesLightsNeed) {
         const int32_t i = plan.findResource("local_shadow");
         ASSERT_GE(i, 0);
         const PlanResource& res = plan.resources[static_cast<size_t>(i)];
-        std::printf("%s light, shadow %s: local_shadow %ux%u, %u layer(s)\n", c.light, c.shadow, res.width, res.height, res.layers);
+        std::printf("%s light, shadow %s: local_shadow %ux%u, %u layer(s)\n", c.light, c.shadow,
+                    res.width, res.height, res.layers);
         EXPECT_EQ(res.layers, c.layers) << c.light;
         EXPECT_EQ(res.width, c.size) << c.light;
         EXPECT_TRUE(res.array);
     }
-    const Image with = render({{"light", "spot"}}), without = render({{"light", "spot"}, {"box", "0"}});
+    const Image with = render({{"light", "spot"}}),
+                without = render({{"light", "spot"}, {"box", "0"}});
     ASSERT_EQ(with.width, N);
     int dark = 0;
     for (float v : ratios(with, without)) dark += v >= 0.0f && v < 0.1f;
@@ -612,20 +682,24 @@ TEST_F(LocalShadows, AreaLightHighlightsAreShadowedUnderEveryModel) {
     for (const char* model : {"ltc", "frostbite"})
         for (const char* light : {"sphere", "disk", "rect", "tube"}) {
             auto centre = [&](bool box) {
-                SessionOptions o = sceneOptions(kRoot + "/tests/gpu/scenes/area_specular_shadow.lua",
-                                                {{"light", light}, {"box", box ? "1" : "0"}}, S, S);
+                SessionOptions o =
+                    sceneOptions(kRoot + "/tests/gpu/scenes/area_specular_shadow.lua",
+                                 {{"light", light}, {"box", box ? "1" : "0"}}, S, S);
                 o.environment = "none";  // the light alone
                 o.params["area_lights"] = Value(model);
-                Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 1, {"hdr"});
+                Readback r =
+                    renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 1, {"hdr"});
                 if (r.images.empty()) return -1.0f;
                 const Image& img = r["hdr"];
                 float sum = 0.0f;  // the 2x2 pixels around the centre, green
                 for (uint32_t y = S / 2 - 1; y <= S / 2; ++y)
-                    for (uint32_t x = S / 2 - 1; x <= S / 2; ++x) sum += img.pixels[4 * (y * S + x) + 1];
+                    for (uint32_t x = S / 2 - 1; x <= S / 2; ++x)
+                        sum += img.pixels[4 * (y * S + x) + 1];
                 return sum / 4.0f;
             };
             const float open = centre(false), blocked = centre(true);
-            std::printf("%s %s light: highlight %.4g open, %.4g behind the box (%.3f)\n", model, light, open, blocked, blocked / open);
+            std::printf("%s %s light: highlight %.4g open, %.4g behind the box (%.3f)\n", model,
+                        light, open, blocked, blocked / open);
             ASSERT_GT(open, 0.0f) << model << " " << light;
             EXPECT_LT(blocked, 0.05f * open) << model << " " << light;
         }

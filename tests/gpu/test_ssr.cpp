@@ -30,11 +30,15 @@ struct Frame {
 };
 
 // The pixel a world point lands on with the scene's "main" camera.
-glm::ivec2 pixelOf(glm::vec3 p) { return rg::pixelOf(cameraViewProj(glm::vec3(0, 2, 6), glm::vec3(0), 40.0f, W, H), W, H, p); }
+glm::ivec2 pixelOf(glm::vec3 p) {
+    return rg::pixelOf(cameraViewProj(glm::vec3(0, 2, 6), glm::vec3(0), 40.0f, W, H), W, H, p);
+}
 
 // The SSR at full-resolution pixel (x, y): `ssr` is traced at half resolution (scripts/ssr.lua),
 // one ray per 2×2 pixels.
-float ssrAt(const Image& ssr, int x, int y, int c) { return ssr.at(static_cast<uint32_t>(x / 2), static_cast<uint32_t>(y / 2), c); }
+float ssrAt(const Image& ssr, int x, int y, int c) {
+    return ssr.at(static_cast<uint32_t>(x / 2), static_cast<uint32_t>(y / 2), c);
+}
 
 class Ssr : public GpuFixture {
 protected:
@@ -61,9 +65,12 @@ TEST_F(Ssr, ReflectionLandsWhereTheMirrorPutsIt) {
     const glm::ivec2 m = pixelOf(glm::vec3(0.0f, -0.5f, -1.5f));
     const glm::ivec2 boxPx = pixelOf(glm::vec3(0.0f, 0.5f, -1.5f));
     ASSERT_GT(m.y, boxPx.y);  // the reflection is below the box on screen
-    const float a = ssrAt(box.ssr, m.x, m.y, 3), r = ssrAt(box.ssr, m.x, m.y, 0), g = ssrAt(box.ssr, m.x, m.y, 1);
-    std::printf("mirror image at pixel (%d, %d): confidence %.3f, colour %.3g %.3g; without the box: confidence %.3f\n", m.x, m.y, a, r, g,
-                ssrAt(none.ssr, m.x, m.y, 3));
+    const float a = ssrAt(box.ssr, m.x, m.y, 3), r = ssrAt(box.ssr, m.x, m.y, 0),
+                g = ssrAt(box.ssr, m.x, m.y, 1);
+    std::printf(
+        "mirror image at pixel (%d, %d): confidence %.3f, colour %.3g %.3g; without the box: "
+        "confidence %.3f\n",
+        m.x, m.y, a, r, g, ssrAt(none.ssr, m.x, m.y, 3));
     EXPECT_GT(a, 0.8f);
     EXPECT_GT(r, 5.0f * g);  // the red box
     // The reflected colour is the box as the previous frame lit it (the mirror's f0 ≈ 0.95), in
@@ -83,13 +90,18 @@ TEST_F(Ssr, ReflectionLandsWhereTheMirrorPutsIt) {
             bool missed = true;
             for (int dy = -1; dy <= 1; ++dy)
                 for (int dx = -1; dx <= 1; ++dx) {
-                    const int sx = std::clamp(static_cast<int>(x) + dx, 0, static_cast<int>(W) - 1), sy = std::clamp(static_cast<int>(y) + dy, 0, static_cast<int>(H) - 1);
-                    missed = missed && ssrAt(box.ssr, sx, sy, 3) == 0.0f && ssrAt(none.ssr, sx, sy, 3) == 0.0f;
+                    const int sx = std::clamp(static_cast<int>(x) + dx, 0, static_cast<int>(W) - 1),
+                              sy = std::clamp(static_cast<int>(y) + dy, 0, static_cast<int>(H) - 1);
+                    missed = missed && ssrAt(box.ssr, sx, sy, 3) == 0.0f &&
+                             ssrAt(none.ssr, sx, sy, 3) == 0.0f;
                 }
             if (!missed) continue;
-            if (std::abs(static_cast<int>(x) - m.x) < 40) continue;  // away from the box and its image
+            if (std::abs(static_cast<int>(x) - m.x) < 40)
+                continue;  // away from the box and its image
             ++checked;
-            EXPECT_NEAR(box.hdr.at(x, y, 1), none.hdr.at(x, y, 1), 0.01f * none.hdr.at(x, y, 1) + 1e-4f) << x << ", " << y;
+            EXPECT_NEAR(box.hdr.at(x, y, 1), none.hdr.at(x, y, 1),
+                        0.01f * none.hdr.at(x, y, 1) + 1e-4f)
+                << x << ", " << y;
         }
         if (checked > 200) break;
     }
@@ -105,9 +117,12 @@ TEST_F(Ssr, ClearCoatAndTwoColourPathsTakeTheReflection) {
         Frame with = render({{"floor", floor}}), without = render({{"floor", floor}}, 0.1);
         ASSERT_EQ(with.hdr.width, W) << floor;
         ASSERT_EQ(without.hdr.width, W) << floor;
-        const float r = with.hdr.at(m.x, m.y, 0), g = with.hdr.at(m.x, m.y, 1), b = with.hdr.at(m.x, m.y, 2);
+        const float r = with.hdr.at(m.x, m.y, 0), g = with.hdr.at(m.x, m.y, 1),
+                    b = with.hdr.at(m.x, m.y, 2);
         const float r0 = without.hdr.at(m.x, m.y, 0), b0 = without.hdr.at(m.x, m.y, 2);
-        std::printf("%s: the mirror image with SSR %.3g %.3g %.3g, without %.3g .. %.3g (pre-exposed)\n", floor, r, g, b, r0, b0);
+        std::printf(
+            "%s: the mirror image with SSR %.3g %.3g %.3g, without %.3g .. %.3g (pre-exposed)\n",
+            floor, r, g, b, r0, b0);
         EXPECT_GT(ssrAt(with.ssr, m.x, m.y, 3), 0.8f) << floor;
         EXPECT_GT(r, 5.0f * g) << floor;
         EXPECT_GT(b0, r0) << floor;

@@ -12,7 +12,9 @@ namespace rg::test {
 
 inline const std::string kScripts = "tests/lua/scripts/";
 
-inline std::string script(const std::string& name) { return std::string(RG_SOURCE_ROOT) + "/" + kScripts + name; }
+inline std::string script(const std::string& name) {
+    return std::string(RG_SOURCE_ROOT) + "/" + kScripts + name;
+}
 
 // The first line of an error (the rest is the traceback).
 inline std::string firstLine(const Error& e) { return e.message.substr(0, e.message.find('\n')); }

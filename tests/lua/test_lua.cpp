@@ -18,7 +18,8 @@ using namespace rg::test;
 
 namespace {
 
-Result<PipelineDesc> load(const std::string& name, LuaHostOptions o = luaHostOptionsWithoutDevice()) {
+Result<PipelineDesc> load(const std::string& name,
+                          LuaHostOptions o = luaHostOptionsWithoutDevice()) {
     LuaHost host(o);
     return host.load(script(name));
 }
@@ -37,29 +38,39 @@ TEST(LuaErrors, SyntaxError) {
 TEST(LuaErrors, RuntimeErrorHasTraceback) {
     auto p = load("runtime_error.lua");
     ASSERT_FALSE(p.has_value());
-    EXPECT_EQ(firstLine(p.error()), kScripts + "runtime_error.lua:3: attempt to index a nil value (local 'settings')");
+    EXPECT_EQ(firstLine(p.error()),
+              kScripts + "runtime_error.lua:3: attempt to index a nil value (local 'settings')");
     EXPECT_NE(p.error().message.find("stack traceback:"), std::string::npos);
 }
 
 TEST(LuaErrors, UnknownFieldSuggestsTheClosest) {
     EXPECT_EQ(loadError("unknown_field.lua"),
-              kScripts + "unknown_field.lua:3: passes.tonemap.shadr: unknown field (did you mean 'shader'?); expected one of: "
-                         "'kind', 'reads', 'writes', 'after', 'enabled', 'side_effect', 'doc', 'insert', 'shader', 'defines', "
-                         "'switches', 'bind', 'uniforms', 'constants', 'filter', 'clear', 'blend', 'stencil', 'depth'");
+              kScripts +
+                  "unknown_field.lua:3: passes.tonemap.shadr: unknown field (did you mean "
+                  "'shader'?); expected one of: "
+                  "'kind', 'reads', 'writes', 'after', 'enabled', 'side_effect', 'doc', 'insert', "
+                  "'shader', 'defines', "
+                  "'switches', 'bind', 'uniforms', 'constants', 'filter', 'clear', 'blend', "
+                  "'stencil', 'depth'");
 }
 
 // switches = { param = "DEFINE" } names a declared parameter and a define (a GLSL identifier).
 TEST(LuaErrors, SwitchesNameParametersAndDefines) {
     EXPECT_EQ(loadError("switch_unknown.lua"),
-              kScripts + "switch_unknown.lua:4: passes.tonemap.switches.curv: unknown parameter 'curv' (did you mean 'curve'?) "
-                         "(declare it with rg.param)");
+              kScripts +
+                  "switch_unknown.lua:4: passes.tonemap.switches.curv: unknown parameter 'curv' "
+                  "(did you mean 'curve'?) "
+                  "(declare it with rg.param)");
     EXPECT_EQ(loadError("switch_bad_define.lua"),
-              kScripts + "switch_bad_define.lua:4: passes.tonemap.switches.curve: expected the name of a define (a GLSL "
-                         "identifier), got '2CURVE'");
+              kScripts +
+                  "switch_bad_define.lua:4: passes.tonemap.switches.curve: expected the name of a "
+                  "define (a GLSL "
+                  "identifier), got '2CURVE'");
     auto p = load("switch_ok.lua");
     ASSERT_TRUE(p.has_value()) << p.error().message;
     GraphDesc g = graphWithParams(*p);
-    EXPECT_EQ(g.findPass("tonemap")->params["defines"]["RG_CURVE"], Value(1.0));  // "neutral": the index of the choice
+    EXPECT_EQ(g.findPass("tonemap")->params["defines"]["RG_CURVE"],
+              Value(1.0));  // "neutral": the index of the choice
     EXPECT_EQ(g.findPass("tonemap")->params["defines"]["RG_DITHER"], Value(0.0));
     EXPECT_EQ(g.findPass("tonemap")->params["defines"]["KEEP"], Value(true));
     EXPECT_TRUE(isSwitch(*p, "curve"));
@@ -67,23 +78,31 @@ TEST(LuaErrors, SwitchesNameParametersAndDefines) {
 }
 
 TEST(LuaErrors, WrongType) {
-    EXPECT_EQ(loadError("wrong_type.lua"), kScripts + "wrong_type.lua:2: resources.output.format: expected a string, got number");
+    EXPECT_EQ(
+        loadError("wrong_type.lua"),
+        kScripts + "wrong_type.lua:2: resources.output.format: expected a string, got number");
 }
 
 TEST(LuaErrors, SceneLayersNamesWhatTheSceneCanSize) {
     EXPECT_EQ(loadError("scene_layers_unknown.lua"),
-              kScripts + "scene_layers_unknown.lua:2: resources.maps.scene_layers: expected \"shadow_views\" (the layers the scene's "
-                         "shadowed local lights need, at most `layers`)");
+              kScripts +
+                  "scene_layers_unknown.lua:2: resources.maps.scene_layers: expected "
+                  "\"shadow_views\" (the layers the scene's "
+                  "shadowed local lights need, at most `layers`)");
 }
 
 TEST(LuaErrors, OutOfRangeValue) {
-    EXPECT_EQ(loadError("out_of_range.lua"), kScripts + "out_of_range.lua:2: params.exposure.default: parameter 'exposure' expects a "
-                                                        "number in [-6, 16], got 20");
+    EXPECT_EQ(loadError("out_of_range.lua"),
+              kScripts +
+                  "out_of_range.lua:2: params.exposure.default: parameter 'exposure' expects a "
+                  "number in [-6, 16], got 20");
 }
 
 TEST(LuaErrors, UnknownResource) {
     EXPECT_EQ(loadError("unknown_resource.lua"),
-              kScripts + "unknown_resource.lua:6: passes.lighting.reads[3]: unknown resource 'GB9' (did you mean 'GB0'?)");
+              kScripts +
+                  "unknown_resource.lua:6: passes.lighting.reads[3]: unknown resource 'GB9' (did "
+                  "you mean 'GB0'?)");
 }
 
 TEST(LuaPipeline, TiledBufferGrowsWithTheOutput) {
@@ -94,11 +113,14 @@ TEST(LuaPipeline, TiledBufferGrowsWithTheOutput) {
     o.outputHeight = 33;
     auto plan = compile(graphWithParams(*p), o);
     ASSERT_TRUE(plan.has_value()) << plan.error().message;
-    auto lists = std::find_if(plan->resources.begin(), plan->resources.end(), [](auto& r) { return r.name == "lists"; });
+    auto lists = std::find_if(plan->resources.begin(), plan->resources.end(),
+                              [](auto& r) { return r.name == "lists"; });
     ASSERT_NE(lists, plan->resources.end());
     EXPECT_EQ(lists->bufferSize, 16u + 13u * 5u * 64u);
     EXPECT_EQ(loadError("tiled_buffer_half.lua"),
-              kScripts + "tiled_buffer_half.lua:2: resources.lists.tile_bytes: missing (a tiled buffer gives both tile, in pixels, and tile_bytes)");
+              kScripts +
+                  "tiled_buffer_half.lua:2: resources.lists.tile_bytes: missing (a tiled buffer "
+                  "gives both tile, in pixels, and tile_bytes)");
 }
 
 TEST(LuaErrors, CycleIsReportedByTheCompiler) {
@@ -106,65 +128,89 @@ TEST(LuaErrors, CycleIsReportedByTheCompiler) {
     ASSERT_TRUE(p.has_value()) << p.error().message;
     auto plan = compile(graphWithParams(*p), {});
     ASSERT_FALSE(plan.has_value());
-    EXPECT_EQ(plan.error().message, kScripts + "cycle.lua:4: cycle between passes: 'first' -> 'second' -> 'first'");
+    EXPECT_EQ(plan.error().message,
+              kScripts + "cycle.lua:4: cycle between passes: 'first' -> 'second' -> 'first'");
 }
 
 TEST(LuaErrors, MaterialIdCollisionNamesBothDeclarations) {
     // Materials share an id only when their pixels decode alike: the same layout...
     EXPECT_EQ(loadError("id_collision.lua"),
-              kScripts + "id_collision.lua:5: materials.toon.id: 1 is the id of material 'clearcoat' (" + kScripts +
-                  "id_collision.lua:4) of layout 'disney': materials share an id only when their pixels decode alike (the same layout); choose a free id");
+              kScripts +
+                  "id_collision.lua:5: materials.toon.id: 1 is the id of material 'clearcoat' (" +
+                  kScripts +
+                  "id_collision.lua:4) of layout 'disney': materials share an id only when their "
+                  "pixels decode alike (the same layout); choose a free id");
     // ...and the same decal parameters.
-    EXPECT_EQ(loadError("id_decals_differ.lua"),
-              kScripts + "id_decals_differ.lua:4: materials.glossy.decals: 0 is the id of material 'standard' (materials/disney.lua:23) with other channels "
-                         "or decals: materials sharing an id decode alike; match them or choose a free id");
+    EXPECT_EQ(
+        loadError("id_decals_differ.lua"),
+        kScripts +
+            "id_decals_differ.lua:4: materials.glossy.decals: 0 is the id of material 'standard' "
+            "(materials/disney.lua:23) with other channels "
+            "or decals: materials sharing an id decode alike; match them or choose a free id");
 }
 
 TEST(LuaErrors, MaterialIdKeptInDifferentBitsIsRefused) {
     EXPECT_EQ(loadError("id_placement.lua"),
-              kScripts + "id_placement.lua:8: materials.wide.layout: layout 'wide' keeps materialId in target GB0.A bits 0..2 (uint), but layout "
-                         "'disney' (material 'standard', materials/disney.lua:23) keeps it in target GB0.A bits 0..1 (uint): every layout of a "
-                         "pipeline keeps materialId in the same place");
+              kScripts +
+                  "id_placement.lua:8: materials.wide.layout: layout 'wide' keeps materialId in "
+                  "target GB0.A bits 0..2 (uint), but layout "
+                  "'disney' (material 'standard', materials/disney.lua:23) keeps it in target "
+                  "GB0.A bits 0..1 (uint): every layout of a "
+                  "pipeline keeps materialId in the same place");
 }
 
 TEST(LuaErrors, PathDecodesOneLayout) {
     EXPECT_EQ(loadError("path_layout.lua"),
-              kScripts + "path_layout.lua:5: materials.toon.path: lighting path 'standard' lights layout 'disney' (material 'standard', "
-                         "materials/disney.lua:23); this material's layout is 'toon': a path's lighting pass and shading function decode one "
-                         "layout, so declare a path of its own");
+              kScripts +
+                  "path_layout.lua:5: materials.toon.path: lighting path 'standard' lights layout "
+                  "'disney' (material 'standard', "
+                  "materials/disney.lua:23); this material's layout is 'toon': a path's lighting "
+                  "pass and shading function decode one "
+                  "layout, so declare a path of its own");
 }
 
 TEST(LuaErrors, StencilVariantsKeepTheirBase) {
     // A variant's value does not depend on which values other classes took.
     EXPECT_EQ(loadError("stencil_variant_unknown.lua"),
-              kScripts + "stencil_variant_unknown.lua:3: stencil.wet.variant_of: unknown stencil class 'lit_standrd' (did you mean 'lit_standard'?); "
-                         "expected one of: 'lit_standard'");
+              kScripts +
+                  "stencil_variant_unknown.lua:3: stencil.wet.variant_of: unknown stencil class "
+                  "'lit_standrd' (did you mean 'lit_standard'?); "
+                  "expected one of: 'lit_standard'");
 }
 
 TEST(LuaErrors, MaterialParameterNamesCannotClashWithTheGeneratedShader) {
     // #14: a parameter becomes a #define in the generated G-buffer shader; a layout channel's name
     // broke it with an error inside the generated file. Now refused where it is declared.
-    EXPECT_EQ(loadError("param_clash.lua"),
-              kScripts + "param_clash.lua:4: materials.toon.params.smoothness: clashes with channel 'smoothness' of layout 'disney' "
-                         "(target GB0): the generated shader defines each parameter as a name; choose another");
-    EXPECT_NE(loadError("param_reserved.lua").find("param_reserved.lua:4: materials.toon.params.uv0: clashes with 'uv0' of the generated "
-                                                   "G-buffer shader"),
+    EXPECT_EQ(
+        loadError("param_clash.lua"),
+        kScripts +
+            "param_clash.lua:4: materials.toon.params.smoothness: clashes with channel "
+            "'smoothness' of layout 'disney' "
+            "(target GB0): the generated shader defines each parameter as a name; choose another");
+    EXPECT_NE(loadError("param_reserved.lua")
+                  .find("param_reserved.lua:4: materials.toon.params.uv0: clashes with 'uv0' of "
+                        "the generated "
+                        "G-buffer shader"),
               std::string::npos)
         << loadError("param_reserved.lua");
 }
 
 TEST(LuaErrors, StencilExhaustion) {
     EXPECT_EQ(loadError("stencil_exhaustion.lua"),
-              kScripts + "stencil_exhaustion.lua:4: stencil.class16: no stencil value left: 4 stencil bits hold 15 classes, all "
-                         "taken by 'class1', 'class2', 'class3', 'class4', 'class5', 'class6', 'class7', 'class8', 'class9', "
-                         "'class10', 'class11', 'class12', 'class13', 'class14', 'class15'");
+              kScripts +
+                  "stencil_exhaustion.lua:4: stencil.class16: no stencil value left: 4 stencil "
+                  "bits hold 15 classes, all "
+                  "taken by 'class1', 'class2', 'class3', 'class4', 'class5', 'class6', 'class7', "
+                  "'class8', 'class9', "
+                  "'class10', 'class11', 'class12', 'class13', 'class14', 'class15'");
 }
 
 TEST(LuaErrors, RunawayLoopIsStopped) {
     LuaHostOptions o = luaHostOptionsWithoutDevice();
     o.instructions = 5'000'000;
-    EXPECT_EQ(loadError("runaway.lua", o),
-              kScripts + "runaway.lua:3: script stopped after 5 million instructions: a runaway loop? (limit: 5 million)");
+    EXPECT_EQ(loadError("runaway.lua", o), kScripts +
+                                               "runaway.lua:3: script stopped after 5 million "
+                                               "instructions: a runaway loop? (limit: 5 million)");
 }
 
 TEST(LuaErrors, MemoryLimit) {
@@ -172,7 +218,9 @@ TEST(LuaErrors, MemoryLimit) {
     o.memoryBytes = 16u << 20;
     // Lua reports running out of memory without a position: the message names where the script
     // was last seen running (the count hook's sample).
-    EXPECT_EQ(loadError("memory_hog.lua", o), kScripts + "memory_hog.lua:2: script stopped: it used more than 16 MiB of Lua memory (last running here)");
+    EXPECT_EQ(loadError("memory_hog.lua", o), kScripts +
+                                                  "memory_hog.lua:2: script stopped: it used more "
+                                                  "than 16 MiB of Lua memory (last running here)");
 }
 
 TEST(LuaErrors, MemoryLimitInTheFrameCallback) {
@@ -189,34 +237,44 @@ TEST(LuaErrors, MemoryLimitInTheFrameCallback) {
         const std::string& m = r.error().message;
         EXPECT_EQ(m.rfind("rg.frame: ", 0), 0u) << m;
         EXPECT_NE(m.find("frame_memory_hog.lua"), std::string::npos) << m;
-        EXPECT_NE(m.find("script stopped: it used more than 16 MiB of Lua memory"), std::string::npos) << m;
+        EXPECT_NE(m.find("script stopped: it used more than 16 MiB of Lua memory"),
+                  std::string::npos)
+            << m;
     }
 }
 
 TEST(LuaErrors, ForbiddenOsExecute) {
-    EXPECT_EQ(loadError("forbidden.lua"), kScripts + "forbidden.lua:2: os.execute is not available to rgraph scripts (sandbox)");
+    EXPECT_EQ(
+        loadError("forbidden.lua"),
+        kScripts + "forbidden.lua:2: os.execute is not available to rgraph scripts (sandbox)");
     EXPECT_FALSE(fs::exists("/tmp/rgraph-sandbox-escape"));
 }
 
 TEST(LuaErrors, ForbiddenIo) {
-    EXPECT_EQ(loadError("forbidden_io.lua"), kScripts + "forbidden_io.lua:1: io.open is not available to rgraph scripts (sandbox)");
+    EXPECT_EQ(
+        loadError("forbidden_io.lua"),
+        kScripts + "forbidden_io.lua:1: io.open is not available to rgraph scripts (sandbox)");
 }
 
 TEST(LuaErrors, RequireCannotLeaveTheSearchFolders) {
     EXPECT_EQ(loadError("require_escape.lua"),
-              kScripts + "require_escape.lua:1: require: '..etc.passwd' is not a module name (dotted names of letters, digits, '_' "
-                         "and '-')");
+              kScripts +
+                  "require_escape.lua:1: require: '..etc.passwd' is not a module name (dotted "
+                  "names of letters, digits, '_' "
+                  "and '-')");
 }
 
 TEST(LuaErrors, MissingScript) {
     auto p = load("no_such_script.lua");
     ASSERT_FALSE(p.has_value());
-    EXPECT_EQ(p.error().message, "cannot open pipeline script '" + script("no_such_script.lua") + "'");
+    EXPECT_EQ(p.error().message,
+              "cannot open pipeline script '" + script("no_such_script.lua") + "'");
 }
 
 TEST(LuaErrors, HostSurvivesAndLoadsAgainAfterErrors) {
     LuaHost host(luaHostOptionsWithoutDevice());
-    for (const char* bad : {"syntax_error.lua", "runtime_error.lua", "forbidden.lua", "unknown_field.lua"})
+    for (const char* bad :
+         {"syntax_error.lua", "runtime_error.lua", "forbidden.lua", "unknown_field.lua"})
         EXPECT_FALSE(host.load(script(bad)).has_value());
     auto ok = host.load(script("params.lua"));
     ASSERT_TRUE(ok.has_value()) << ok.error().message;
@@ -252,15 +310,18 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     ASSERT_EQ(p->stencilClasses.size(), 4u);
     EXPECT_EQ(p->stencilClasses[0].value, 1u);  // lit_standard, allocated
     EXPECT_EQ(p->stencilClasses[1].value, 2u);  // lit_clearcoat, allocated
-    EXPECT_EQ(p->stencilClasses[2].value, 0x11u);  // foliage: a variant of lit_standard (high bits 1)
+    EXPECT_EQ(p->stencilClasses[2].value,
+              0x11u);  // foliage: a variant of lit_standard (high bits 1)
     EXPECT_EQ(p->stencilClasses[2].mask, 0xFFu);
     EXPECT_EQ(p->stencilClasses[2].base, "lit_standard");
-    EXPECT_EQ(p->stencilClasses[0].mask, 0x0Fu);   // a class's pass lights its variants too
-    EXPECT_EQ(p->stencilClasses[3].value, 3u);  // lit_two_colour, allocated
+    EXPECT_EQ(p->stencilClasses[0].mask, 0x0Fu);  // a class's pass lights its variants too
+    EXPECT_EQ(p->stencilClasses[3].value, 3u);    // lit_two_colour, allocated
     // Decals: the standard material takes all five parameters, the others the common three,
     // the two-colour material's base colour into its diffuse colour.
-    EXPECT_EQ(p->materials[0].decals, (std::vector<std::string>{"normal", "baseColor", "smoothness", "metalMask", "reflectance"}));
-    EXPECT_EQ(p->materials[1].decals, (std::vector<std::string>{"normal", "baseColor", "smoothness"}));
+    EXPECT_EQ(p->materials[0].decals, (std::vector<std::string>{"normal", "baseColor", "smoothness",
+                                                                "metalMask", "reflectance"}));
+    EXPECT_EQ(p->materials[1].decals,
+              (std::vector<std::string>{"normal", "baseColor", "smoothness"}));
     EXPECT_EQ(p->materials[2].decals, p->materials[0].decals);  // shares id 0: decodes alike
     EXPECT_EQ(p->materials[3].channels.at("baseColor"), "diffuseColor");
     EXPECT_EQ(p->materials[3].channels.at("f0"), "f0");
@@ -279,19 +340,64 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // pyramid, SSR's mask and SSR (scripts/ssr.lua), the composition of SSR and the probes
     // (scripts/reflections.lua), the lighting, the sky and forward.
     EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 52),
-              (std::vector<std::string>{"env_cube", "env_mips", "env_irradiance", "env_hot", "env_smooth_mips", "env_prefilter", "dfg_table", "probe_capture",
-                                        "probe_mips", "probe_prefilter", "sun_cascades", "sun_cull",
-                                        "shadow_clear0", "shadow_clear1", "shadow_clear2", "shadow_local", "gbuffer", "light_culling_coarse", "ao_depth",
-                                        "sun_visibility_clear", "sun_classify", "sun_visibility_half_clear", "sun_classify_half",
-                                        "shadow_sun0", "sun_mask0", "sun_mask_half0", "shadow_sun1", "sun_mask1", "sun_mask_half1",
-                                        "shadow_sun2", "sun_mask2", "sun_mask_half2",
-                                        "foliage_fixup", "gtao", "ao_blur", "ao_upsample", "light_culling", "decals_copy0", "decals_copy1", "decals_copy2",
-                                        "decals", "hiz", "ssr_mask", "ssr", "reflection_compose", "lighting_standard", "lighting_clearcoat", "lighting_two_colour",
-                                        "sky", "forward", "ssr_history_copy", "ssr_history_mips"}));
+              (std::vector<std::string>{"env_cube",
+                                        "env_mips",
+                                        "env_irradiance",
+                                        "env_hot",
+                                        "env_smooth_mips",
+                                        "env_prefilter",
+                                        "dfg_table",
+                                        "probe_capture",
+                                        "probe_mips",
+                                        "probe_prefilter",
+                                        "sun_cascades",
+                                        "sun_cull",
+                                        "shadow_clear0",
+                                        "shadow_clear1",
+                                        "shadow_clear2",
+                                        "shadow_local",
+                                        "gbuffer",
+                                        "light_culling_coarse",
+                                        "ao_depth",
+                                        "sun_visibility_clear",
+                                        "sun_classify",
+                                        "sun_visibility_half_clear",
+                                        "sun_classify_half",
+                                        "shadow_sun0",
+                                        "sun_mask0",
+                                        "sun_mask_half0",
+                                        "shadow_sun1",
+                                        "sun_mask1",
+                                        "sun_mask_half1",
+                                        "shadow_sun2",
+                                        "sun_mask2",
+                                        "sun_mask_half2",
+                                        "foliage_fixup",
+                                        "gtao",
+                                        "ao_blur",
+                                        "ao_upsample",
+                                        "light_culling",
+                                        "decals_copy0",
+                                        "decals_copy1",
+                                        "decals_copy2",
+                                        "decals",
+                                        "hiz",
+                                        "ssr_mask",
+                                        "ssr",
+                                        "reflection_compose",
+                                        "lighting_standard",
+                                        "lighting_clearcoat",
+                                        "lighting_two_colour",
+                                        "sky",
+                                        "forward",
+                                        "ssr_history_copy",
+                                        "ssr_history_mips"}));
     auto plan = compile(graphWithParams(*p), {});
     ASSERT_TRUE(plan.has_value()) << plan.error().message;
     // Every script it pulled in is known, for hot reload.
-    EXPECT_EQ(p->files.size(), 15u);  // deferred, post, lighting, render_loop, ibl, shadows, probes, ao, ssr, reflections, lightmap, disney, clearcoat, foliage, two_colour
+    EXPECT_EQ(
+        p->files.size(),
+        15u);  // deferred, post, lighting, render_loop, ibl, shadows, probes, ao, ssr, reflections, lightmap, disney, clearcoat, foliage, two_colour
 }
 
 TEST(LuaPipeline, ModulesAreNamespacedAndInsertedAfterTheirAnchor) {
@@ -299,7 +405,8 @@ TEST(LuaPipeline, ModulesAreNamespacedAndInsertedAfterTheirAnchor) {
     ASSERT_TRUE(p.has_value()) << p.error().message;
     std::vector<std::string> order;
     for (const auto& pass : p->graph.passes) order.push_back(pass.name);
-    EXPECT_EQ(order, (std::vector<std::string>{"generate", "transform", "team_tint.make_overlay", "team_tint.apply", "final"}));
+    EXPECT_EQ(order, (std::vector<std::string>{"generate", "transform", "team_tint.make_overlay",
+                                               "team_tint.apply", "final"}));
     EXPECT_NE(p->graph.findResource("team_tint.overlay"), nullptr);
     EXPECT_EQ(p->graph.findPass("team_tint.apply")->accesses[0].resource, "team_tint.overlay");
     EXPECT_EQ(p->modules, (std::vector<std::string>{"team_tint"}));
@@ -311,9 +418,12 @@ TEST(LuaPipeline, TwoWritersFromDifferentModulesAreAnError) {
     ASSERT_TRUE(p.has_value()) << p.error().message;
     auto plan = compile(graphWithParams(*p), {});
     ASSERT_FALSE(plan.has_value());
-    EXPECT_EQ(plan.error().message,
-              kScripts + "modules/team_clash.lua:4: passes 'transform' and 'team_clash.overwrite' both write 'output' with no order "
-                         "between them: make 'team_clash.overwrite' load it or list 'transform' in its after");
+    EXPECT_EQ(
+        plan.error().message,
+        kScripts +
+            "modules/team_clash.lua:4: passes 'transform' and 'team_clash.overwrite' both write "
+            "'output' with no order "
+            "between them: make 'team_clash.overwrite' load it or list 'transform' in its after");
 }
 
 }  // namespace

@@ -52,10 +52,12 @@ TEST_F(LuaGpu, DisableOnFrame2EnableOnFrame3) {
     }
     EXPECT_EQ(frames[0].pixels, frames[2].pixels);
     EXPECT_NE(frames[0].pixels, frames[1].pixels);
-    EXPECT_FLOAT_EQ(frames[0].at(5, 3, 0) - frames[1].at(5, 3, 0), 0.25f);  // the tint's contribution
+    EXPECT_FLOAT_EQ(frames[0].at(5, 3, 0) - frames[1].at(5, 3, 0),
+                    0.25f);  // the tint's contribution
     EXPECT_EQ(s.rebuilds(), 2u);
     // Re-enabling brings back the passes and resources it had: nothing new was compiled.
-    EXPECT_EQ(s_runtime->executor().lastBuildReport().passesPrepared, (std::vector<std::string>{"tint"}));
+    EXPECT_EQ(s_runtime->executor().lastBuildReport().passesPrepared,
+              (std::vector<std::string>{"tint"}));
 }
 
 TEST_F(LuaGpu, ShaderSwapRebuildsOnlyThatPass) {
@@ -67,10 +69,14 @@ TEST_F(LuaGpu, ShaderSwapRebuildsOnlyThatPass) {
     ASSERT_TRUE(s.frame().has_value());
     EXPECT_FLOAT_EQ(output(s).at(1, 1, 1), 0.75f);  // tint.frag: the constant tint
     EXPECT_EQ(s.rebuilds(), 1u);
-    EXPECT_EQ(s_runtime->executor().lastBuildReport().passesPrepared, (std::vector<std::string>{"transform"}));
-    EXPECT_EQ(s_runtime->executor().lastBuildReport().passesReused, (std::vector<std::string>{"generate"}));
+    EXPECT_EQ(s_runtime->executor().lastBuildReport().passesPrepared,
+              (std::vector<std::string>{"transform"}));
+    EXPECT_EQ(s_runtime->executor().lastBuildReport().passesReused,
+              (std::vector<std::string>{"generate"}));
     ASSERT_FALSE(s.log().empty());
-    EXPECT_NE(s.log().back().find("'transform' uses test/tint.frag; recompiled in"), std::string::npos) << s.log().back();
+    EXPECT_NE(s.log().back().find("'transform' uses test/tint.frag; recompiled in"),
+              std::string::npos)
+        << s.log().back();
 }
 
 TEST_F(LuaGpu, ShadersIncludeTheGeneratedPackCode) {
@@ -84,19 +90,22 @@ TEST_F(LuaGpu, ShadersIncludeTheGeneratedPackCode) {
     for (const auto& t : info->desc.targets) {
         auto img = s_runtime->executor().readback(t.name);
         ASSERT_TRUE(img.has_value()) << img.error().message;
-        texels.push_back(texelFromFloats(t.format, &img->pixels[(3 * img->width + 7) * img->channels], img->channels));
+        texels.push_back(texelFromFloats(
+            t.format, &img->pixels[(3 * img->width + 7) * img->channels], img->channels));
     }
     auto g = unpackTexel(*info, texels);
     auto channel = [&](const char* name) { return g[static_cast<size_t>(info->find(name))]; };
     EXPECT_EQ(channel("materialId").u[0], 2u);
     EXPECT_NEAR(channel("smoothness").v[0], 0.7f, 0.5f / 1023 + 1e-5f);
     EXPECT_NEAR(channel("metalMask").v[0], 1.0f, 1e-6f);
-    EXPECT_NEAR(channel("reflectance").v[0], 0.5f, 0.5f / 255 + 1e-5f);  // 127.5 rounds up: exactly half a step
+    EXPECT_NEAR(channel("reflectance").v[0], 0.5f,
+                0.5f / 255 + 1e-5f);  // 127.5 rounds up: exactly half a step
     EXPECT_NEAR(channel("ao").v[0], 0.9f, 0.5f / 255 + 1e-5f);
     EXPECT_NEAR(srgbEncode(channel("baseColor").v[0]), srgbEncode(0.8f), 1.0f / 255);
     const float len = std::sqrt(0.3f * 0.3f + 0.5f * 0.5f + 0.8f * 0.8f);
     const auto& n = channel("normal").v;
-    EXPECT_GT((n[0] * 0.3f - n[1] * 0.5f + n[2] * 0.8f) / len, std::cos(4.2e-3f));  // the 10+10-bit octahedral bound
+    EXPECT_GT((n[0] * 0.3f - n[1] * 0.5f + n[2] * 0.8f) / len,
+              std::cos(4.2e-3f));  // the 10+10-bit octahedral bound
 }
 
 TEST_F(LuaGpu, StencilAndDepthTestedFullscreenPasses) {
@@ -135,7 +144,9 @@ TEST_F(LuaGpu, SceneMaterialParametersAreCheckedByName) {
     const std::string file = std::string(RG_TEST_TMP) + "/params_scene.lua";
     auto sceneWith = [&](const std::string& params) {
         std::ofstream(file) << "local scene = require \"scene\"\n"
-                               "scene.material \"coated\" { model = \"clear_coat\", params = { " << params << " } }\n"
+                               "scene.material \"coated\" { model = \"clear_coat\", params = { "
+                            << params
+                            << " } }\n"
                                "scene.sphere \"s\" { radius = 0.5, material = \"coated\" }\n";
         SessionOptions o = small();
         o.scene = file;
@@ -144,13 +155,18 @@ TEST_F(LuaGpu, SceneMaterialParametersAreCheckedByName) {
         return r.has_value() ? std::string() : r.error().describe();
     };
     EXPECT_EQ(sceneWith("coatSmoothness = 0.5, coatStrength = 1"), "");
-    EXPECT_NE(sceneWith("coatSmoothnes = 0.5").find("params_scene.lua:2: scene.material.coated.params.coatSmoothnes: model 'clear_coat' has no "
-                                                    "parameter 'coatSmoothnes' (did you mean 'coatSmoothness'?); its parameters: "
-                                                    "'coatSmoothness', 'coatStrength'"),
-              std::string::npos)
+    EXPECT_NE(
+        sceneWith("coatSmoothnes = 0.5")
+            .find("params_scene.lua:2: scene.material.coated.params.coatSmoothnes: model "
+                  "'clear_coat' has no "
+                  "parameter 'coatSmoothnes' (did you mean 'coatSmoothness'?); its parameters: "
+                  "'coatSmoothness', 'coatStrength'"),
+        std::string::npos)
         << sceneWith("coatSmoothnes = 0.5");
-    EXPECT_NE(sceneWith("coatStrength = \"full\"").find("params_scene.lua:2: scene.material.coated.params.coatStrength: expected a number (as model "
-                                                         "'clear_coat' declares it), got string"),
+    EXPECT_NE(sceneWith("coatStrength = \"full\"")
+                  .find("params_scene.lua:2: scene.material.coated.params.coatStrength: expected a "
+                        "number (as model "
+                        "'clear_coat' declares it), got string"),
               std::string::npos)
         << sceneWith("coatStrength = \"full\"");
 }
@@ -160,23 +176,30 @@ TEST_F(LuaGpu, SurfaceFilesResolveNextToTheDeclaringScript) {
     // function sits next to the script that declares it, and renders from there.
     const fs::path dir = fs::path(RG_TEST_TMP) / "team_material";
     fs::create_directories(dir);
-    std::ofstream(dir / "red.glsl") << "GBuffer_disney rgSurface(RgSurface s) {\n"
-                                       "    GBuffer_disney g;\n    g.normal = s.normal;\n    g.smoothness = 0.5;\n"
-                                       "    g.materialId = RG_MATERIAL_ID;\n    g.baseColor = vec3(1.0, 0.0, 0.0);\n"
-                                       "    g.materialData = 0u;\n    g.normalExtra = 0u;\n    g.reserved = 0.0;\n"
-                                       "    g.metalMask = 0.0;\n    g.reflectance = 0.5;\n    g.ao = 1.0;\n    g.emissive = vec3(0.0);\n"
-                                       "    return g;\n}\n";
+    std::ofstream(dir / "red.glsl")
+        << "GBuffer_disney rgSurface(RgSurface s) {\n"
+           "    GBuffer_disney g;\n    g.normal = s.normal;\n    g.smoothness = 0.5;\n"
+           "    g.materialId = RG_MATERIAL_ID;\n    g.baseColor = vec3(1.0, 0.0, 0.0);\n"
+           "    g.materialData = 0u;\n    g.normalExtra = 0u;\n    g.reserved = 0.0;\n"
+           "    g.metalMask = 0.0;\n    g.reflectance = 0.5;\n    g.ao = 1.0;\n    g.emissive = "
+           "vec3(0.0);\n"
+           "    return g;\n}\n";
     std::ofstream(dir / "pipeline.lua") << "local rg = require \"rg\"\nrequire \"disney\"\n"
-                                          "rg.material \"red\" { id = 1, layout = \"disney\", path = \"standard\", surface = \"red.glsl\" }\n"
-                                          "rg.resource \"GB0\" { format = \"rgb10a2\" }\nrg.resource \"GB1\" { format = \"rgba8_srgb\" }\n"
-                                          "rg.resource \"GB2\" { format = \"rgba8\" }\nrg.resource \"GB3\" { format = \"rgba16f\" }\n"
-                                          "rg.resource \"depth\" { format = \"d32f_s8\" }\n"
-                                          "rg.pass \"gbuffer\" { kind = \"scene\", writes = { \"GB0\", \"GB1\", \"GB2\", \"GB3\", \"depth\" } }\n"
-                                          "rg.output \"GB1\"\n";
-    std::ofstream(dir / "scene.lua") << "local scene = require \"scene\"\n"
-                                       "scene.material \"m\" { model = \"red\" }\n"
-                                       "scene.plane \"p\" { size = { 10, 10 }, material = \"m\" }\n"
-                                       "scene.camera \"c\" { position = { 0, 3, 0.001 }, target = { 0, 0, 0 }, fov = 60 }\n";
+                                           "rg.material \"red\" { id = 1, layout = \"disney\", "
+                                           "path = \"standard\", surface = \"red.glsl\" }\n"
+                                           "rg.resource \"GB0\" { format = \"rgb10a2\" "
+                                           "}\nrg.resource \"GB1\" { format = \"rgba8_srgb\" }\n"
+                                           "rg.resource \"GB2\" { format = \"rgba8\" "
+                                           "}\nrg.resource \"GB3\" { format = \"rgba16f\" }\n"
+                                           "rg.resource \"depth\" { format = \"d32f_s8\" }\n"
+                                           "rg.pass \"gbuffer\" { kind = \"scene\", writes = { "
+                                           "\"GB0\", \"GB1\", \"GB2\", \"GB3\", \"depth\" } }\n"
+                                           "rg.output \"GB1\"\n";
+    std::ofstream(dir / "scene.lua")
+        << "local scene = require \"scene\"\n"
+           "scene.material \"m\" { model = \"red\" }\n"
+           "scene.plane \"p\" { size = { 10, 10 }, material = \"m\" }\n"
+           "scene.camera \"c\" { position = { 0, 3, 0.001 }, target = { 0, 0, 0 }, fov = 60 }\n";
     SessionOptions o = small();
     o.scene = (dir / "scene.lua").string();
     Session s(*s_runtime, o);
@@ -196,14 +219,19 @@ TEST_F(LuaGpu, LayoutsOfTheSameNameInTwoPipelinesDoNotCollide) {
     // named by its content, and a session switches the compiler to its own.
     const fs::path dir = fs::path(RG_TEST_TMP) / "layout_collision";
     fs::create_directories(dir);
-    auto pipeline = [&](const std::string& name, const std::string& channel) {
-        std::ofstream(dir / name) << "local rg = require \"rg\"\n"
-                                     "rg.layout \"shared\" { { \"T\", \"rgba8\", { \"" << channel << ":unorm:8\", \"rest:unorm:8\" } } }\n"
-                                     "rg.resource \"output\" { format = \"rgba32f\" }\n"
-                                     "rg.pass \"fill\" { kind = \"compute\", shader = \"test/pattern.comp\", writes = { \"output\" }, bind = { pattern = \"output\" } }\n"
-                                     "rg.output \"output\"\n";
-        return (dir / name).string();
-    };
+    auto pipeline =
+        [&](const std::string& name, const std::string& channel) {
+            std::ofstream(dir / name)
+                << "local rg = require \"rg\"\n"
+                   "rg.layout \"shared\" { { \"T\", \"rgba8\", { \""
+                << channel
+                << ":unorm:8\", \"rest:unorm:8\" } } }\n"
+                   "rg.resource \"output\" { format = \"rgba32f\" }\n"
+                   "rg.pass \"fill\" { kind = \"compute\", shader = \"test/pattern.comp\", writes "
+                   "= { \"output\" }, bind = { pattern = \"output\" } }\n"
+                   "rg.output \"output\"\n";
+            return (dir / name).string();
+        };
     LuaHost host(luaHostOptionsWithoutDevice());
     auto a = host.load(pipeline("a.lua", "alpha"));
     ASSERT_TRUE(a.has_value()) << a.error().message;
@@ -252,21 +280,28 @@ TEST_F(LuaGpu, CadenceOnceRecordsAfterEachBuildAndEachReset) {
     std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     text.replace(text.find("cadence = \"once\""), 16, "cadence = \"daily\"");
     std::ofstream(bad) << text;
-    auto loaded = s.load(bad);  // kept as the transaction's new plan, or refused when it is prepared
+    auto loaded =
+        s.load(bad);  // kept as the transaction's new plan, or refused when it is prepared
     Result<void> e = loaded ? s.frame() : Result<void>(std::unexpected(loaded.error()));
     ASSERT_FALSE(e.has_value());
-    EXPECT_NE(e.error().describe().find("pass 'accumulate': params.cadence: unknown 'daily', expected one of: 'frame', 'once'"), std::string::npos)
+    EXPECT_NE(
+        e.error().describe().find(
+            "pass 'accumulate': params.cadence: unknown 'daily', expected one of: 'frame', 'once'"),
+        std::string::npos)
         << e.error().describe();
     // A pass run once that writes a transient resource would leave garbage in the frames it skips.
     const std::string transient = std::string(RG_TEST_TMP) + "/once_transient.lua";
-    std::ofstream(transient) << "local rg = require \"rg\"\n"
-                                "rg.resource \"output\" { format = \"rgba32f\" }\n"
-                                "rg.pass \"fill\" { kind = \"compute\", shader = \"test/pattern.comp\", writes = { \"output\" }, bind = { pattern = \"output\" }, cadence = \"once\" }\n"
-                                "rg.output \"output\"\n";
+    std::ofstream(transient)
+        << "local rg = require \"rg\"\n"
+           "rg.resource \"output\" { format = \"rgba32f\" }\n"
+           "rg.pass \"fill\" { kind = \"compute\", shader = \"test/pattern.comp\", writes = { "
+           "\"output\" }, bind = { pattern = \"output\" }, cadence = \"once\" }\n"
+           "rg.output \"output\"\n";
     auto t = s.load(transient);
     Result<void> te = t ? s.frame() : Result<void>(std::unexpected(t.error()));
     ASSERT_FALSE(te.has_value());
-    EXPECT_NE(te.error().describe().find("params.cadence: 'once' writes only persistent resources; 'output' is not (declare it with persistent = true)"),
+    EXPECT_NE(te.error().describe().find("params.cadence: 'once' writes only persistent resources; "
+                                         "'output' is not (declare it with persistent = true)"),
               std::string::npos)
         << te.error().describe();
 }
@@ -280,14 +315,17 @@ TEST_F(LuaGpu, AShadowPassNamesABadCull) {
                            "require \"disney\"\n"
                            "rg.resource \"maps\" { format = \"d32f\", size = { 64, 64 } }\n"
                            "rg.resource \"out\" { format = \"rgba8\" }\n"
-                           "rg.pass \"casters\" { kind = \"scene\", shadow = true, writes = { \"maps\" }, cull = \"sideways\" }\n"
-                           "rg.pass \"show\" { kind = \"fullscreen\", shader = \"test/tint.frag\", reads = { \"maps\" }, writes = { \"out\" } }\n"
+                           "rg.pass \"casters\" { kind = \"scene\", shadow = true, writes = { "
+                           "\"maps\" }, cull = \"sideways\" }\n"
+                           "rg.pass \"show\" { kind = \"fullscreen\", shader = \"test/tint.frag\", "
+                           "reads = { \"maps\" }, writes = { \"out\" } }\n"
                            "rg.output \"out\"\n";
     Session s(*s_runtime, o);
     auto loaded = s.load(file);
     Result<void> e = loaded ? s.frame() : Result<void>(std::unexpected(loaded.error()));
     ASSERT_FALSE(e.has_value());
-    EXPECT_NE(e.error().describe().find("pass 'casters': params.cull: unknown 'sideways', expected one of: 'none', 'clockwise', 'counter_clockwise'"),
+    EXPECT_NE(e.error().describe().find("pass 'casters': params.cull: unknown 'sideways', expected "
+                                        "one of: 'none', 'clockwise', 'counter_clockwise'"),
               std::string::npos)
         << e.error().describe();
 }
@@ -330,9 +368,11 @@ std::string patternScript(const std::string& name, const std::string& frameBody)
     std::ofstream(file) << "local rg = require 'rg'\n"
                            "rg.param 'scale' { type = 'number', default = 1, min = 0, max = 16 }\n"
                            "rg.resource 'pattern' { format = 'rgba16f' }\n"
-                           "rg.pass 'generate' { kind = 'compute', shader = 'test/pattern.comp', writes = { 'pattern' } }\n"
+                           "rg.pass 'generate' { kind = 'compute', shader = 'test/pattern.comp', "
+                           "writes = { 'pattern' } }\n"
                            "rg.output 'pattern'\n"
-                           "function rg.frame(ctx)\n" + frameBody + "end\n";
+                           "function rg.frame(ctx)\n" +
+                               frameBody + "end\n";
     return file;
 }
 
@@ -343,16 +383,19 @@ TEST_F(LuaGpu, FrameCallbackErrorsAreReported) {
     auto r = s.load(script("bad_frame.lua"));
     ASSERT_FALSE(r.has_value());
     EXPECT_EQ(firstLine(r.error()),
-              "rg.frame: " + kScripts + "bad_frame.lua:9: ctx.params: unknown parameter 'scael' (did you mean 'scale'?)");
+              "rg.frame: " + kScripts +
+                  "bad_frame.lua:9: ctx.params: unknown parameter 'scael' (did you mean 'scale'?)");
     EXPECT_FALSE(s.loaded());
-    const std::string file = patternScript("bad_second_frame.lua", "    if ctx.frame == 1 then ctx.params.scael = 2 end\n");
+    const std::string file = patternScript("bad_second_frame.lua",
+                                           "    if ctx.frame == 1 then ctx.params.scael = 2 end\n");
     ASSERT_TRUE(s.load(file).has_value());
     ASSERT_TRUE(s.frame().has_value());
     auto second = s.frame();
     ASSERT_FALSE(second.has_value());
     const std::string message = firstLine(second.error());
     EXPECT_TRUE(message.starts_with("rg.frame: ") &&
-                message.ends_with("bad_second_frame.lua:7: ctx.params: unknown parameter 'scael' (did you mean 'scale'?)"))
+                message.ends_with("bad_second_frame.lua:7: ctx.params: unknown parameter 'scael' "
+                                  "(did you mean 'scale'?)"))
         << message;
 }
 
@@ -369,7 +412,8 @@ TEST_F(LuaGpu, OverridesSetAfterTheLoadHoldFromTheFirstFrame) {
     const std::string broken = std::string(RG_TEST_TMP) + "/override_broken.lua";
     std::ofstream(broken) << "local rg = require 'rg'\n"
                              "rg.resource 'pattern' { format = 'rgba16f' }\n"
-                             "rg.pass 'generate' { kind = 'compute', shader = 'test/pattern.comp', writes = { 'pattern' } }\n"
+                             "rg.pass 'generate' { kind = 'compute', shader = 'test/pattern.comp', "
+                             "writes = { 'pattern' } }\n"
                              "rg.output 'pattern'\n"
                              "function rg.frame(ctx) ctx.params.gain = 2 end\n";
     ASSERT_FALSE(s.load(broken).has_value());
@@ -383,7 +427,8 @@ TEST_F(LuaGpu, FrameCallbackRunsOncePerFrame) {
     const std::string file = patternScript("count_frames.lua",
                                            "    calls = (calls or 0) + 1\n"
                                            "    ctx.params.scale = calls\n"
-                                           "    assert(calls == ctx.frame + 1, 'called ' .. calls .. ' times by frame ' .. ctx.frame)\n");
+                                           "    assert(calls == ctx.frame + 1, 'called ' .. calls "
+                                           ".. ' times by frame ' .. ctx.frame)\n");
     Session s(*s_runtime, small());
     ASSERT_TRUE(s.load(file).has_value());
     for (int f = 0; f < 3; ++f) {
@@ -402,8 +447,10 @@ TEST_F(LuaGpu, ReloadIsTransactional) {
         "rg.param 'scale' { type = 'number', default = SCALE, min = 0, max = 16 }\n"
         "rg.resource 'pattern' { format = 'rgba16f' }\n"
         "rg.resource 'output' { format = 'rgba16f' }\n"
-        "rg.pass 'generate' { kind = 'compute', shader = 'test/pattern.comp', writes = { 'pattern' } }\n"
-        "rg.pass 'transform' { kind = 'fullscreen', shader = 'test/transform.frag', reads = { 'pattern' }, writes = { 'output' } }\n"
+        "rg.pass 'generate' { kind = 'compute', shader = 'test/pattern.comp', writes = { 'pattern' "
+        "} }\n"
+        "rg.pass 'transform' { kind = 'fullscreen', shader = 'test/transform.frag', reads = { "
+        "'pattern' }, writes = { 'output' } }\n"
         "rg.output 'output'\n";
     auto withScale = [&](const char* scale) {
         std::string t = valid;
@@ -419,15 +466,20 @@ TEST_F(LuaGpu, ReloadIsTransactional) {
     write(withScale("1") + "rg.pass 'oops' { kind = 'fullscreen', reads = { 'nothing' } }\n");
     auto broken = s.load(file);
     ASSERT_FALSE(broken.has_value());
-    EXPECT_NE(broken.error().message.find("reload.lua:8: passes.oops.reads[1]: unknown resource 'nothing'"), std::string::npos)
+    EXPECT_NE(broken.error().message.find(
+                  "reload.lua:8: passes.oops.reads[1]: unknown resource 'nothing'"),
+              std::string::npos)
         << broken.error().message;
     ASSERT_TRUE(s.frame().has_value());  // the previous pipeline keeps rendering
     EXPECT_EQ(output(s).pixels, first.pixels);
 
-    write(withScale("1") + "rg.pass 'bad_shader' { kind = 'fullscreen', shader = 'tests/gpu/shaders/broken.frag', writes = { 'output' }, after = { 'transform' } }\n");
+    write(withScale("1") +
+          "rg.pass 'bad_shader' { kind = 'fullscreen', shader = 'tests/gpu/shaders/broken.frag', "
+          "writes = { 'output' }, after = { 'transform' } }\n");
     auto badShader = s.load(file);
     ASSERT_FALSE(badShader.has_value());
-    EXPECT_NE(badShader.error().message.find("broken.frag:7:"), std::string::npos) << badShader.error().message;
+    EXPECT_NE(badShader.error().message.find("broken.frag:7:"), std::string::npos)
+        << badShader.error().message;
     ASSERT_TRUE(s.frame().has_value());
     EXPECT_EQ(output(s).pixels, first.pixels);
 
@@ -455,7 +507,8 @@ TEST_F(ScriptsReadme, EveryExampleLoadsCompilesAndRenders) {
     ASSERT_GE(examples.size(), 10u);
     fs::create_directories(RG_TEST_TMP);
     for (size_t i = 0; i < examples.size(); ++i) {
-        const std::string file = std::string(RG_TEST_TMP) + "/readme_example_" + std::to_string(i + 1) + ".lua";
+        const std::string file =
+            std::string(RG_TEST_TMP) + "/readme_example_" + std::to_string(i + 1) + ".lua";
         std::ofstream(file) << examples[i];
         SCOPED_TRACE("example " + std::to_string(i + 1) + ":\n" + examples[i]);
         Session s(*s_runtime, small());

@@ -35,12 +35,14 @@ void roundTrip(const LayoutDesc& layout, std::mt19937& rng) {
         for (size_t c = 0; c < in.size(); ++c) {
             const ChannelDesc& ch = info->channelDesc(c);
             for (int k = 0; k < 4; ++k) {
-                in[c].v[static_cast<size_t>(k)] = ch.encoding == Encoding::Snorm || ch.encoding == Encoding::Oct ? signedUnit(rng)
-                                                                                                                 : unit(rng);
+                in[c].v[static_cast<size_t>(k)] =
+                    ch.encoding == Encoding::Snorm || ch.encoding == Encoding::Oct ? signedUnit(rng)
+                                                                                   : unit(rng);
                 in[c].u[static_cast<size_t>(k)] = static_cast<uint32_t>(rng());
             }
             if (ch.encoding == Encoding::Oct) {
-                float len = std::sqrt(in[c].v[0] * in[c].v[0] + in[c].v[1] * in[c].v[1] + in[c].v[2] * in[c].v[2]);
+                float len = std::sqrt(in[c].v[0] * in[c].v[0] + in[c].v[1] * in[c].v[1] +
+                                      in[c].v[2] * in[c].v[2]);
                 if (len < 1e-3f) in[c].v = {0, 0, 1, 0};
             }
         }
@@ -53,16 +55,27 @@ void roundTrip(const LayoutDesc& layout, std::mt19937& rng) {
             SCOPED_TRACE(layout.name + "." + ch.name);
             for (uint32_t k = 0; k < pl.components; ++k) {
                 switch (ch.encoding) {
-                case Encoding::Uint: {
-                    uint32_t mask = pl.bitsPerComponent >= 32 ? ~0u : (1u << pl.bitsPerComponent) - 1u;
-                    EXPECT_EQ(out[c].u[k], std::min(in[c].u[k], mask));
-                    break;
-                }
-                case Encoding::Unorm: EXPECT_NEAR(out[c].v[k], in[c].v[k], 0.5 / n + 1e-6); break;
-                case Encoding::Snorm: EXPECT_NEAR(out[c].v[k], in[c].v[k], 1.0 / (n - 1.0) + 1e-6); break;
-                case Encoding::Srgb: EXPECT_NEAR(srgbEncode(out[c].v[k]), srgbEncode(in[c].v[k]), 0.5 / n + 1e-5); break;
-                case Encoding::Float: EXPECT_NEAR(out[c].v[k], in[c].v[k], std::abs(in[c].v[k]) * 1e-3 + 1e-6); break;
-                case Encoding::Oct: break;
+                    case Encoding::Uint: {
+                        uint32_t mask =
+                            pl.bitsPerComponent >= 32 ? ~0u : (1u << pl.bitsPerComponent) - 1u;
+                        EXPECT_EQ(out[c].u[k], std::min(in[c].u[k], mask));
+                        break;
+                    }
+                    case Encoding::Unorm:
+                        EXPECT_NEAR(out[c].v[k], in[c].v[k], 0.5 / n + 1e-6);
+                        break;
+                    case Encoding::Snorm:
+                        EXPECT_NEAR(out[c].v[k], in[c].v[k], 1.0 / (n - 1.0) + 1e-6);
+                        break;
+                    case Encoding::Srgb:
+                        EXPECT_NEAR(srgbEncode(out[c].v[k]), srgbEncode(in[c].v[k]),
+                                    0.5 / n + 1e-5);
+                        break;
+                    case Encoding::Float:
+                        EXPECT_NEAR(out[c].v[k], in[c].v[k], std::abs(in[c].v[k]) * 1e-3 + 1e-6);
+                        break;
+                    case Encoding::Oct:
+                        break;
                 }
             }
             if (ch.encoding == Encoding::Oct) {
@@ -84,7 +97,8 @@ TEST(LuaLayouts, EveryDeclaredLayoutRoundTrips) {
     fs::create_directories(RG_TEST_TMP);
     auto examples = readmeExamples();
     for (size_t i = 0; i < examples.size(); ++i) {
-        files.push_back(std::string(RG_TEST_TMP) + "/layout_example_" + std::to_string(i + 1) + ".lua");
+        files.push_back(std::string(RG_TEST_TMP) + "/layout_example_" + std::to_string(i + 1) +
+                        ".lua");
         std::ofstream(files.back()) << examples[i];
     }
     std::mt19937 rng(7);

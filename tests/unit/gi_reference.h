@@ -42,9 +42,12 @@ struct BruteForceGi {
                 const rg::Material& m = s.materials[p.material];
                 for (size_t t = 0; t + 2 < p.indices.size(); t += 3) {
                     Tri tri;
-                    tri.a = glm::vec3(node.world * glm::vec4(p.vertices[p.indices[t]].position, 1.0f));
-                    tri.b = glm::vec3(node.world * glm::vec4(p.vertices[p.indices[t + 1]].position, 1.0f));
-                    tri.c = glm::vec3(node.world * glm::vec4(p.vertices[p.indices[t + 2]].position, 1.0f));
+                    tri.a =
+                        glm::vec3(node.world * glm::vec4(p.vertices[p.indices[t]].position, 1.0f));
+                    tri.b = glm::vec3(node.world *
+                                      glm::vec4(p.vertices[p.indices[t + 1]].position, 1.0f));
+                    tri.c = glm::vec3(node.world *
+                                      glm::vec4(p.vertices[p.indices[t + 2]].position, 1.0f));
                     tri.n = glm::normalize(glm::cross(tri.b - tri.a, tri.c - tri.a));
                     tri.albedo = m.baseColor * (1.0f - m.metalMask);
                     tri.emission = m.emissive;
@@ -69,7 +72,8 @@ struct BruteForceGi {
     std::pair<int, float> hit(glm::vec3 o, glm::vec3 d, float tMax) const {
         int best = -1;
         for (size_t i = 0; i < tris.size(); ++i) {
-            const glm::vec3 e1 = tris[i].b - tris[i].a, e2 = tris[i].c - tris[i].a, pv = glm::cross(d, e2);
+            const glm::vec3 e1 = tris[i].b - tris[i].a, e2 = tris[i].c - tris[i].a,
+                            pv = glm::cross(d, e2);
             const float det = glm::dot(e1, pv);
             if (std::abs(det) < 1e-12f) continue;
             const float inv = 1.0f / det;
@@ -102,9 +106,12 @@ struct BruteForceGi {
     glm::vec3 cosineDir(glm::vec3 n, std::mt19937& rng) const {
         std::uniform_real_distribution<float> U(0.0f, 1.0f);
         const float r = std::sqrt(U(rng)), phi = float(2.0 * kGiPi) * U(rng);
-        const glm::vec3 t = glm::normalize(std::abs(n.x) < 0.9f ? glm::cross(n, glm::vec3(1, 0, 0)) : glm::cross(n, glm::vec3(0, 1, 0)));
+        const glm::vec3 t =
+            glm::normalize(std::abs(n.x) < 0.9f ? glm::cross(n, glm::vec3(1, 0, 0))
+                                                : glm::cross(n, glm::vec3(0, 1, 0)));
         const glm::vec3 b = glm::cross(n, t);
-        return t * (r * std::cos(phi)) + b * (r * std::sin(phi)) + n * std::sqrt(std::max(0.0f, 1.0f - r * r));
+        return t * (r * std::cos(phi)) + b * (r * std::sin(phi)) +
+               n * std::sqrt(std::max(0.0f, 1.0f - r * r));
     }
     // Radiance leaving the first surface along -d.
     glm::vec3 radiance(glm::vec3 o, glm::vec3 d, int depth, std::mt19937& rng) const {
@@ -122,10 +129,10 @@ struct BruteForceGi {
         std::mt19937 rng(seed);
         glm::dvec3 sum(0.0);
         for (int s = 0; s < paths; ++s)
-            sum += glm::dvec3(direct(p, n, rng) + float(kGiPi) * radiance(p, cosineDir(n, rng), bounces, rng));
+            sum += glm::dvec3(direct(p, n, rng) +
+                              float(kGiPi) * radiance(p, cosineDir(n, rng), bounces, rng));
         return glm::vec3(sum / double(paths));
     }
 };
-
 
 }  // namespace rg::test

@@ -26,7 +26,8 @@ inline double capIlluminanceReference(double cosTheta, double sinSigma, int n = 
     const double oneMinusCos = 2.0 * std::sin(sigma / 2) * std::sin(sigma / 2);
     double sum = 0.0;
     for (int i = 0; i < n; ++i) {
-        const double cosA = 1.0 - oneMinusCos * (i + 0.5) / n, sinA = std::sqrt(std::max(0.0, 1.0 - cosA * cosA));
+        const double cosA = 1.0 - oneMinusCos * (i + 0.5) / n,
+                     sinA = std::sqrt(std::max(0.0, 1.0 - cosA * cosA));
         for (int j = 0; j < n; ++j) {
             const double b = 2.0 * kPi * (j + 0.5) / n;
             const glm::dvec3 l = cosA * axis + sinA * (std::cos(b) * t1 + std::sin(b) * t2);

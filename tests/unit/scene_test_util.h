@@ -45,7 +45,8 @@ inline void writeBytes(const std::string& path, const std::vector<unsigned char>
 
 inline std::vector<unsigned char> readBytes(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
-    return std::vector<unsigned char>(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+    return std::vector<unsigned char>(std::istreambuf_iterator<char>(in),
+                                      std::istreambuf_iterator<char>());
 }
 
 inline constexpr int kFloat = 5126, kUByte = 5121, kUShort = 5123, kUInt = 5125;
@@ -63,8 +64,12 @@ struct GltfBuilder {
         j["bufferViews"].push_back({{"buffer", 0}, {"byteOffset", offset}, {"byteLength", size}});
         return int(j["bufferViews"].size() - 1);
     }
-    int accessor(int view, int componentType, size_t count, const std::string& type, bool normalized = false) {
-        json a = {{"bufferView", view}, {"componentType", componentType}, {"count", count}, {"type", type}};
+    int accessor(int view, int componentType, size_t count, const std::string& type,
+                 bool normalized = false) {
+        json a = {{"bufferView", view},
+                  {"componentType", componentType},
+                  {"count", count},
+                  {"type", type}};
         if (normalized) a["normalized"] = true;
         j["accessors"].push_back(a);
         return int(j["accessors"].size() - 1);
@@ -73,8 +78,12 @@ struct GltfBuilder {
         const size_t n = type == "VEC2" ? 2 : type == "VEC3" ? 3 : type == "VEC4" ? 4 : 1;
         return accessor(view(v.data(), v.size() * 4), kFloat, v.size() / n, type);
     }
-    int indices16(const std::vector<uint16_t>& v) { return accessor(view(v.data(), v.size() * 2), kUShort, v.size(), "SCALAR"); }
-    int indices8(const std::vector<uint8_t>& v) { return accessor(view(v.data(), v.size()), kUByte, v.size(), "SCALAR"); }
+    int indices16(const std::vector<uint16_t>& v) {
+        return accessor(view(v.data(), v.size() * 2), kUShort, v.size(), "SCALAR");
+    }
+    int indices8(const std::vector<uint8_t>& v) {
+        return accessor(view(v.data(), v.size()), kUByte, v.size(), "SCALAR");
+    }
 
     // A mesh with one primitive per entry of `prims` (attributes object + optional indices/material).
     int mesh(const std::string& name, const json& prims) {
@@ -90,7 +99,8 @@ struct GltfBuilder {
         j["scene"] = 0;
     }
 
-    std::string writeGltf(const std::string& dir, const std::string& name, const std::string& binName = "") {
+    std::string writeGltf(const std::string& dir, const std::string& name,
+                          const std::string& binName = "") {
         json doc = j;
         if (!bin.empty()) {
             const std::string b = binName.empty() ? name + ".bin" : binName;
@@ -151,10 +161,13 @@ inline void expectNear(glm::vec3 a, glm::vec3 b, float tol, const std::string& w
     EXPECT_NEAR(a.z, b.z, tol) << what;
 }
 
-inline std::string errorOf(const rg::Result<rg::Scene>& r) { return r ? std::string("(loaded)") : r.error().message; }
+inline std::string errorOf(const rg::Result<rg::Scene>& r) {
+    return r ? std::string("(loaded)") : r.error().message;
+}
 
 // A PNG with the given RGBA values (in [0, 1], stored as 8 bits).
-inline std::string writeTestPng(const std::string& path, uint32_t w, uint32_t h, const std::vector<float>& rgba) {
+inline std::string writeTestPng(const std::string& path, uint32_t w, uint32_t h,
+                                const std::vector<float>& rgba) {
     rg::Image img(w, h, 4);
     img.pixels = rgba;
     auto r = rg::writePng(path, img);
@@ -163,6 +176,8 @@ inline std::string writeTestPng(const std::string& path, uint32_t w, uint32_t h,
 }
 
 // A scene script of scripts/scenes.
-inline std::string scenePath(const std::string& name) { return std::string(RG_SOURCE_ROOT) + "/scripts/scenes/" + name; }
+inline std::string scenePath(const std::string& name) {
+    return std::string(RG_SOURCE_ROOT) + "/scripts/scenes/" + name;
+}
 
 }  // namespace rg::test

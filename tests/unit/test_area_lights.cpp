@@ -15,10 +15,8 @@
 #include "lighting/punctual.h"
 #include "lighting_test_util.h"
 
-
 using namespace rg;
 using namespace rg::test;
-
 
 namespace {
 
@@ -29,13 +27,15 @@ struct SurfaceSample {
     double area;
 };
 template <class Samples>
-double surfaceIlluminanceReference(const glm::dvec3& x, const glm::dvec3& normal, const Samples& forEachSample) {
+double surfaceIlluminanceReference(const glm::dvec3& x, const glm::dvec3& normal,
+                                   const Samples& forEachSample) {
     double sum = 0.0;
     forEachSample([&](const SurfaceSample& s) {
         const glm::dvec3 d = s.p - x;
         const double dist2 = glm::dot(d, d);
         const glm::dvec3 l = d / std::sqrt(dist2);
-        sum += std::max(glm::dot(normal, l), 0.0) * std::max(glm::dot(s.n, -l), 0.0) / dist2 * s.area;
+        sum +=
+            std::max(glm::dot(normal, l), 0.0) * std::max(glm::dot(s.n, -l), 0.0) / dist2 * s.area;
     });
     return sum;
 }
@@ -53,7 +53,8 @@ TEST(SphereLight, MatchesTheIntegralWithAndWithoutTheHorizon) {
         for (double cosTheta : {1.0, 0.8, 0.5, 0.2, 0.0, -0.2, -0.5, -0.9}) {
             const double reference = capIlluminanceReference(cosTheta, sinSigma, 600);
             const double scale = kPi * sinSigma * sinSigma;  // the facing illuminance
-            EXPECT_NEAR(lighting::illuminanceSphereOrDisk(cosTheta, sinSigma * sinSigma), reference, 1e-4 * scale)
+            EXPECT_NEAR(lighting::illuminanceSphereOrDisk(cosTheta, sinSigma * sinSigma), reference,
+                        1e-4 * scale)
                 << "lst:10, r/d " << rOverD << " cos " << cosTheta;
             EXPECT_NEAR(lighting::sphereIlluminanceTilted(r, d, cosTheta), reference, 1e-4 * scale)
                 << "lst:7 tilted, r/d " << rOverD << " cos " << cosTheta;
@@ -62,7 +63,8 @@ TEST(SphereLight, MatchesTheIntegralWithAndWithoutTheHorizon) {
             if (cosTheta > sinSigma) {
                 EXPECT_NEAR(noHorizon, reference, 1e-4 * scale);
             } else if (cosTheta < sinSigma * 0.99 && cosTheta > -sinSigma * 0.99) {
-                EXPECT_LT(noHorizon, reference - 1e-3 * scale) << "no horizon handling loses the wrapped light";
+                EXPECT_LT(noHorizon, reference - 1e-3 * scale)
+                    << "no horizon handling loses the wrapped light";
             }
         }
     }
@@ -73,8 +75,10 @@ TEST(SphereLight, Listing7AsPrintedHasATypoInItsLastTerm) {
     // the one that matches the integral (previous test). The printed one is visibly off.
     const double h = 1.0 / 0.7, cosBeta = 0.2, beta = std::acos(cosBeta);
     const double x = std::sqrt(h * h - 1), y = -x / std::tan(beta);
-    const double printed = kPi * ((1 / (kPi * h * h)) * (cosBeta * std::acos(y) - x * std::sin(beta) * std::sqrt(1 - y * y)) +
-                                  (1 / kPi) * std::atan(std::sin(beta) + std::sqrt(1 - y * y) / x));
+    const double printed =
+        kPi * ((1 / (kPi * h * h)) *
+                   (cosBeta * std::acos(y) - x * std::sin(beta) * std::sqrt(1 - y * y)) +
+               (1 / kPi) * std::atan(std::sin(beta) + std::sqrt(1 - y * y) / x));
     const double reference = capIlluminanceReference(cosBeta, 0.7, 600);
     EXPECT_NEAR(lighting::sphereIlluminanceTilted(0.7, 1.0, cosBeta), reference, 1e-4);
     EXPECT_GT(std::abs(printed - reference), 0.1 * reference);
@@ -137,10 +141,12 @@ TEST(DiskLight, HorizonFormulasAgreeWithEachOtherAndTheIntegral) {
             const double reference = capIlluminanceReference(cosTheta, std::sqrt(sinSigmaSqr), 600);
             const double scale = kPi * sinSigmaSqr;
             // A disk facing the point (cosLight = 1): lst:8 "almost exact" and lst:10 are exact.
-            EXPECT_NEAR(lighting::diskIlluminanceHorizon(r, d, cosTheta, 1.0), reference, 1e-4 * scale)
+            EXPECT_NEAR(lighting::diskIlluminanceHorizon(r, d, cosTheta, 1.0), reference,
+                        1e-4 * scale)
                 << "lst:8, r/d " << rOverD << " cos " << cosTheta;
             if (rOverD <= 1.0) {  // lst:10 keeps the point at least r away (below)
-                EXPECT_NEAR(lighting::diskIlluminance(r, d * d, cosTheta, 1.0), reference, 1e-4 * scale)
+                EXPECT_NEAR(lighting::diskIlluminance(r, d * d, cosTheta, 1.0), reference,
+                            1e-4 * scale)
                     << "lst:10, r/d " << rOverD << " cos " << cosTheta;
                 // The disk's own orientation scales both the same way.
                 EXPECT_NEAR(lighting::diskIlluminance(r, d * d, cosTheta, 0.5),
@@ -148,12 +154,14 @@ TEST(DiskLight, HorizonFormulasAgreeWithEachOtherAndTheIntegral) {
             }
         }
         // Without the horizon (lst:8, Coombe): eq:39's value while the disk is above the horizon.
-        EXPECT_NEAR(lighting::diskIlluminanceAboveHorizon(r, d * d, 1.0, 1.0), kPi * sinSigmaSqr, 1e-12);
+        EXPECT_NEAR(lighting::diskIlluminanceAboveHorizon(r, d * d, 1.0, 1.0), kPi * sinSigmaSqr,
+                    1e-12);
         EXPECT_EQ(lighting::diskIlluminanceAboveHorizon(r, d * d, -0.1, 1.0), 0.0);
     }
     // lst:10's disk never lets the point come closer than r: at d < r it lights like d = r.
     EXPECT_NEAR(lighting::diskIlluminance(1.0, 0.0, 1.0, 1.0), kPi * 0.5, 1e-12);
-    EXPECT_NEAR(lighting::diskIlluminance(3.0, 1.0, 0.4, 1.0), lighting::diskIlluminance(3.0, 9.0, 0.4, 1.0), 1e-12);
+    EXPECT_NEAR(lighting::diskIlluminance(3.0, 1.0, 0.4, 1.0),
+                lighting::diskIlluminance(3.0, 9.0, 0.4, 1.0), 1e-12);
 }
 
 TEST(DiskLight, Listing9VirtualPositionIsTheConeApex) {
@@ -175,7 +183,8 @@ TEST(Sun, Listing6DiskAndIlluminance) {
     EXPECT_DOUBLE_EQ(lighting::sunIlluminance(100000.0, 0.5), 50000.0);
     EXPECT_DOUBLE_EQ(lighting::sunIlluminance(100000.0, -0.2), 0.0);
     // A reflection vector inside the disk is kept.
-    const glm::dvec3 inside = glm::normalize(D + 0.5 * std::tan(sigma) * glm::normalize(glm::cross(D, glm::dvec3(0, 0, 1))));
+    const glm::dvec3 inside = glm::normalize(
+        D + 0.5 * std::tan(sigma) * glm::normalize(glm::cross(D, glm::dvec3(0, 0, 1))));
     EXPECT_EQ(lighting::sunSpecularDirection(D, inside, sigma), inside);
     // Outside: the closest point of the rim, in the plane of D and R.
     const glm::dvec3 R = glm::normalize(glm::dvec3(0.0, 0.0, 1.0));
@@ -188,7 +197,8 @@ TEST(Sun, Listing6DiskAndIlluminance) {
     const double L = lighting::sunLuminance(100000.0, sigma);
     EXPECT_NEAR(lighting::sunSolidAngle(sigma), 7.106e-5, 0.001e-5);
     EXPECT_NEAR(L, 1.41e9, 0.01e9);
-    EXPECT_NEAR(L * lighting::illuminanceSphereOrDisk(1.0, std::sin(sigma) * std::sin(sigma)), 100000.0, 1e-6);
+    EXPECT_NEAR(L * lighting::illuminanceSphereOrDisk(1.0, std::sin(sigma) * std::sin(sigma)),
+                100000.0, 1e-6);
 }
 
 // =============================================================================================
@@ -202,14 +212,18 @@ TEST(RectangleLight, SolidAngleAndStructuredSamplingAgainstTheIntegral) {
         const int n = 600;
         for (int i = 0; i < n; ++i)
             for (int j = 0; j < n; ++j)
-                emit(SurfaceSample{center + left * (w * ((i + 0.5) / n - 0.5)) + up * (h * ((j + 0.5) / n - 0.5)),
-                                             emitNormal, w * h / (static_cast<double>(n) * n)});
+                emit(SurfaceSample{
+                    center + left * (w * ((i + 0.5) / n - 0.5)) + up * (h * ((j + 0.5) / n - 0.5)),
+                    emitNormal, w * h / (static_cast<double>(n) * n)});
     };
     // Solid angle: on axis the quad formula equals the right pyramid's.
     const glm::dvec3 x(0, 0, 0);
-    const glm::dvec3 p0 = center - left * (w / 2) + up * (h / 2), p1 = center - left * (w / 2) - up * (h / 2),
-                     p2 = center + left * (w / 2) - up * (h / 2), p3 = center + left * (w / 2) + up * (h / 2);
-    EXPECT_NEAR(lighting::rectangleSolidAngle(x, p0, p1, p2, p3), lighting::rightPyramidSolidAngle(2.0, w / 2, h / 2), 1e-12);
+    const glm::dvec3 p0 = center - left * (w / 2) + up * (h / 2),
+                     p1 = center - left * (w / 2) - up * (h / 2),
+                     p2 = center + left * (w / 2) - up * (h / 2),
+                     p3 = center + left * (w / 2) + up * (h / 2);
+    EXPECT_NEAR(lighting::rectangleSolidAngle(x, p0, p1, p2, p3),
+                lighting::rightPyramidSolidAngle(2.0, w / 2, h / 2), 1e-12);
 
     // Measured: 2.8 % low with the normal facing the light and tilted by 27° or 73°; +22 % for a
     // normal tilted 86° whose horizon cuts through the light (the five samples see too much of it).
@@ -217,16 +231,23 @@ TEST(RectangleLight, SolidAngleAndStructuredSamplingAgainstTheIntegral) {
         glm::dvec3 n;
         double tolerance;
     };
-    for (const Case c : {Case{glm::dvec3(0, 0, 1), 0.03}, Case{glm::normalize(glm::dvec3(0.5, 0, 1)), 0.03},
-                         Case{glm::normalize(glm::dvec3(1, 0, 0.3)), 0.03}, Case{glm::normalize(glm::dvec3(1, 1, 0.1)), 0.25}}) {
+    for (const Case c :
+         {Case{glm::dvec3(0, 0, 1), 0.03}, Case{glm::normalize(glm::dvec3(0.5, 0, 1)), 0.03},
+          Case{glm::normalize(glm::dvec3(1, 0, 0.3)), 0.03},
+          Case{glm::normalize(glm::dvec3(1, 1, 0.1)), 0.25}}) {
         const double reference = surfaceIlluminanceReference(x, c.n, samples);
-        const double approx = lighting::rectangleIlluminance(x, c.n, center, left, up, emitNormal, w, h);
-        std::printf("rectangle light, n = (%.2f %.2f %.2f): integral %.5f, structured sampling %.5f (%+.1f %%)\n", c.n.x, c.n.y,
-                    c.n.z, reference, approx, 100.0 * (approx - reference) / reference);
+        const double approx =
+            lighting::rectangleIlluminance(x, c.n, center, left, up, emitNormal, w, h);
+        std::printf(
+            "rectangle light, n = (%.2f %.2f %.2f): integral %.5f, structured sampling %.5f (%+.1f "
+            "%%)\n",
+            c.n.x, c.n.y, c.n.z, reference, approx, 100.0 * (approx - reference) / reference);
         EXPECT_NEAR(approx, reference, c.tolerance * reference);
     }
     // Behind the emitting side: nothing.
-    EXPECT_EQ(lighting::rectangleIlluminance(glm::dvec3(0, 0, 3), glm::dvec3(0, 0, -1), center, left, up, emitNormal, w, h), 0.0);
+    EXPECT_EQ(lighting::rectangleIlluminance(glm::dvec3(0, 0, 3), glm::dvec3(0, 0, -1), center,
+                                             left, up, emitNormal, w, h),
+              0.0);
 }
 
 TEST(TubeLight, CapsuleApproximationAgainstTheIntegral) {
@@ -242,7 +263,8 @@ TEST(TubeLight, CapsuleApproximationAgainstTheIntegral) {
             for (int j = 0; j < n; ++j) {
                 const double psi = 2 * kPi * (j + 0.5) / n;
                 const glm::dvec3 nrm = std::cos(psi) * e1 + std::sin(psi) * e2;
-                emit(SurfaceSample{p0 + axis * t + radius * nrm, nrm, radius * (2 * kPi / n) * (length / n)});
+                emit(SurfaceSample{p0 + axis * t + radius * nrm, nrm,
+                                   radius * (2 * kPi / n) * (length / n)});
             }
         }
         for (int end = 0; end < 2; ++end) {  // half-spheres, equal-area cells
@@ -251,14 +273,17 @@ TEST(TubeLight, CapsuleApproximationAgainstTheIntegral) {
                 const double cz = (i + 0.5) / n, sz = std::sqrt(1 - cz * cz);
                 for (int j = 0; j < n; ++j) {
                     const double psi = 2 * kPi * (j + 0.5) / n;
-                    const glm::dvec3 nrm = cz * out + sz * (std::cos(psi) * e1 + std::sin(psi) * e2);
-                    emit(SurfaceSample{c + radius * nrm, nrm, radius * radius * 2 * kPi / (static_cast<double>(n) * n)});
+                    const glm::dvec3 nrm =
+                        cz * out + sz * (std::cos(psi) * e1 + std::sin(psi) * e2);
+                    emit(SurfaceSample{c + radius * nrm, nrm,
+                                       radius * radius * 2 * kPi / (static_cast<double>(n) * n)});
                 }
             }
         }
     };
     double worst = 0.0;
-    for (const glm::dvec3 x : {glm::dvec3(0, 0, 0), glm::dvec3(0.8, 0, 0.3), glm::dvec3(0.2, 0.4, 0.2)}) {
+    for (const glm::dvec3 x :
+         {glm::dvec3(0, 0, 0), glm::dvec3(0.8, 0, 0.3), glm::dvec3(0.2, 0.4, 0.2)}) {
         for (const glm::dvec3 n : {glm::dvec3(0, 0, 1), glm::normalize(glm::dvec3(0.4, 0.2, 1))}) {
             const double reference = surfaceIlluminanceReference(x, n, samples);
             const double approx = lighting::tubeIlluminance(x, n, p0, p1, radius);
@@ -270,7 +295,8 @@ TEST(TubeLight, CapsuleApproximationAgainstTheIntegral) {
     // Far away (seed 002 §4.7.3, the five times rule) the tube is a point of intensity L × its
     // projected area, 2rl + πr² seen from the side: the inverse square law.
     const double far = 20.0, L = lighting::tubeLuminanceFromLumens(1000.0, radius, length);
-    const double E = L * lighting::tubeIlluminance(glm::dvec3(0, far, 0), glm::dvec3(0, -1, 0), glm::dvec3(-0.5, 0, 0),
-                                                   glm::dvec3(0.5, 0, 0), radius);
+    const double E =
+        L * lighting::tubeIlluminance(glm::dvec3(0, far, 0), glm::dvec3(0, -1, 0),
+                                      glm::dvec3(-0.5, 0, 0), glm::dvec3(0.5, 0, 0), radius);
     EXPECT_NEAR(E, L * (2 * radius * length + kPi * radius * radius) / (far * far), 0.01 * E);
 }

@@ -16,7 +16,6 @@
 #include "lighting/punctual.h"
 #include "lighting_test_util.h"
 
-
 using namespace rg;
 using namespace rg::test;
 
@@ -35,7 +34,8 @@ TEST(Brdf, ComponentsFollowTheListings) {
     // unclamped (1 − 1.5)^5 would give 0.01 here).
     EXPECT_EQ(brdf::F_Schlick(0.04f, 1.0f, 1.5f), 0.04f);
     EXPECT_EQ(brdf::F_Schlick(glm::vec3(0.04f), 1.0f, 1.5f), glm::vec3(0.04f));
-    EXPECT_EQ(brdf::Fr_DisneyDiffuse(1.00001f, 1.0f, 1.0f, 0.5f), brdf::Fr_DisneyDiffuse(1.0f, 1.0f, 1.0f, 0.5f));
+    EXPECT_EQ(brdf::Fr_DisneyDiffuse(1.00001f, 1.0f, 1.0f, 0.5f),
+              brdf::Fr_DisneyDiffuse(1.0f, 1.0f, 1.0f, 0.5f));
     // lst:1 at linearRoughness 0 and normal incidence is Lambert (1, before the 1/π); at roughness 1
     // the renormalisation factor 1/1.51 applies, fd90 = 0.5 + 2 LdotH².
     EXPECT_FLOAT_EQ(brdf::Fr_DisneyDiffuse(1.0f, 1.0f, 1.0f, 0.0f), 1.0f);
@@ -50,9 +50,11 @@ TEST(Brdf, ComponentsFollowTheListings) {
     EXPECT_NEAR(brdf::standardF90(glm::vec3(0.01f)), 50.0f * 0.0099f, 1e-6);
 
     // rgStandardBrdf is the sum of the parts, times NdotL, as in brdf.glsl.
-    const glm::vec3 N(0, 0, 1), V = glm::normalize(glm::vec3(0.3f, 0.1f, 0.9f)), L = glm::normalize(glm::vec3(-0.5f, 0.2f, 0.7f));
+    const glm::vec3 N(0, 0, 1), V = glm::normalize(glm::vec3(0.3f, 0.1f, 0.9f)),
+                                L = glm::normalize(glm::vec3(-0.5f, 0.2f, 0.7f));
     const glm::vec3 H = glm::normalize(V + L);
-    const float NdotV = glm::dot(N, V) + 1e-5f, NdotL = glm::dot(N, L), LdotH = glm::dot(L, H), NdotH = glm::dot(N, H);
+    const float NdotV = glm::dot(N, V) + 1e-5f, NdotL = glm::dot(N, L), LdotH = glm::dot(L, H),
+                NdotH = glm::dot(N, H);
     const float lr = 0.6f, alpha = lr * lr;
     const glm::vec3 f0(0.04f, 0.5f, 0.9f), diffuse(0.8f, 0.5f, 0.1f);
     const glm::vec3 expected =
@@ -84,7 +86,10 @@ TEST(Brdf, GgxDistributionIsNormalised) {
     // The same with the generic hemisphere integrator where the lobe is wide enough for it.
     for (float alpha : {0.3f, 0.6f, 1.0f}) {
         const double integral = brdf::integrateHemisphere(
-            [&](const glm::dvec3& h) { return brdf::D_GGX(static_cast<float>(h.z), alpha) / kPi * h.z; }, 4000, 8);
+            [&](const glm::dvec3& h) {
+                return brdf::D_GGX(static_cast<float>(h.z), alpha) / kPi * h.z;
+            },
+            4000, 8);
         EXPECT_NEAR(integral, 1.0, 1e-3) << "alpha " << alpha;
     }
 }
@@ -95,13 +100,16 @@ TEST(Brdf, HeightCorrelatedSmithIsSymmetricAndAtLeastTheSeparableForm) {
     // G₁(l) G₁(v) = 1 / ((1 + Λl)(1 + Λv)) ≤ 1 / (1 + Λl + Λv): the height-correlated visibility is
     // never below the uncorrelated one (it removes the separable form's over-darkening; equal only
     // where a Λ is 0, i.e. at normal incidence).
-    const auto lambda = [](double c, double a) { return (-1.0 + std::sqrt(1.0 + a * a * (1.0 - c * c) / (c * c))) * 0.5; };
+    const auto lambda = [](double c, double a) {
+        return (-1.0 + std::sqrt(1.0 + a * a * (1.0 - c * c) / (c * c))) * 0.5;
+    };
     int strictlyAbove = 0, samples = 0;
     for (float alpha : {0.01f, 0.1f, 0.3f, 0.6f, 1.0f}) {
         for (float nl = 0.05f; nl <= 1.0f; nl += 0.05f) {
             for (float nv = 0.05f; nv <= 1.0f; nv += 0.05f) {
                 const float v = brdf::V_SmithGGXCorrelated(nl, nv, alpha);
-                EXPECT_EQ(v, brdf::V_SmithGGXCorrelated(nv, nl, alpha)) << nl << " " << nv << " " << alpha;
+                EXPECT_EQ(v, brdf::V_SmithGGXCorrelated(nv, nl, alpha))
+                    << nl << " " << nv << " " << alpha;
                 const double ll = lambda(nl, alpha), lv = lambda(nv, alpha);
                 const double original = 1.0 / (1.0 + lv + ll) / (4.0 * nl * nv);
                 EXPECT_NEAR(v, original, 2e-5 * original) << nl << " " << nv << " " << alpha;
@@ -123,13 +131,16 @@ TEST(Brdf, AlbedoEstimatorsAgreeWithBruteForce) {
     struct Case {
         float NdotV, lr, f0;
     };
-    for (const Case c : {Case{0.9f, 0.5f, 0.04f}, Case{0.5f, 0.8f, 0.04f}, Case{0.3f, 0.4f, 1.0f}, Case{0.7f, 1.0f, 0.5f}}) {
+    for (const Case c : {Case{0.9f, 0.5f, 0.04f}, Case{0.5f, 0.8f, 0.04f}, Case{0.3f, 0.4f, 1.0f},
+                         Case{0.7f, 1.0f, 0.5f}}) {
         const glm::vec3 V(std::sqrt(1.0f - c.NdotV * c.NdotV), 0.0f, c.NdotV);
         const float diffuse = c.f0 >= 1.0f ? 0.0f : 1.0f;
         const double brute = brdf::integrateHemisphere(
             [&](const glm::dvec3& l) {
-                return static_cast<double>(
-                    brdf::rgStandardBrdf(glm::vec3(0, 0, 1), V, glm::vec3(l), glm::vec3(diffuse), glm::vec3(c.f0), c.lr).x);
+                return static_cast<double>(brdf::rgStandardBrdf(glm::vec3(0, 0, 1), V, glm::vec3(l),
+                                                                glm::vec3(diffuse), glm::vec3(c.f0),
+                                                                c.lr)
+                                               .x);
             },
             1500, 1500);
         const double estimate = brdf::standardAlbedo(c.NdotV, c.lr, diffuse, c.f0);
@@ -176,9 +187,11 @@ TEST(Brdf, RenormalisedDisneyPlusSpecularStaysCloseToOne) {
             if (nv >= 0.5f) maxFromHalf = std::max(maxFromHalf, a);
         }
     }
-    std::printf("Figure 9 (c), f0 = 0.04, white diffuse: max %.4f (NdotV %.2f, linearRoughness %.2f), "
-                "min %.4f (NdotV %.2f, linearRoughness %.2f), max for NdotV >= 0.25: %.4f, for NdotV >= 0.5: %.4f\n",
-                maxAlbedo, maxAt[0], maxAt[1], minAlbedo, minAt[0], minAt[1], maxAboveGrazing, maxFromHalf);
+    std::printf(
+        "Figure 9 (c), f0 = 0.04, white diffuse: max %.4f (NdotV %.2f, linearRoughness %.2f), "
+        "min %.4f (NdotV %.2f, linearRoughness %.2f), max for NdotV >= 0.25: %.4f, for NdotV >= "
+        "0.5: %.4f\n",
+        maxAlbedo, maxAt[0], maxAt[1], minAlbedo, minAt[0], minAt[1], maxAboveGrazing, maxFromHalf);
     // Measured: max 1.098 at grazing view (NdotV 0.01) on the roughest surface, min 0.698 at normal
     // view on it. It exceeds 1 only at grazing views: at most 1.015 for NdotV ≥ 0.25 and 0.993 (the
     // smooth surface) for NdotV ≥ 0.5.
@@ -197,13 +210,15 @@ TEST(Brdf, RenormalisedDisneyPlusSpecularStaysCloseToOne) {
     double originalMax = 0.0;
     for (float nv : {0.01f, 0.1f, 0.5f, 1.0f}) {
         const glm::dvec3 v(std::sqrt(1.0 - nv * nv), 0.0, nv);
-        originalMax = std::max(originalMax, brdf::integrateHemisphere(
-                                                [&](const glm::dvec3& l) {
-                                                    const double LdotH = glm::dot(l, glm::normalize(l + v));
-                                                    return originalDisney(nv, static_cast<float>(l.z),
-                                                                          static_cast<float>(LdotH), 1.0f) / kPi * l.z;
-                                                },
-                                                400, 400));
+        originalMax =
+            std::max(originalMax, brdf::integrateHemisphere(
+                                      [&](const glm::dvec3& l) {
+                                          const double LdotH = glm::dot(l, glm::normalize(l + v));
+                                          return originalDisney(nv, static_cast<float>(l.z),
+                                                                static_cast<float>(LdotH), 1.0f) /
+                                                 kPi * l.z;
+                                      },
+                                      400, 400));
     }
     std::printf("original Disney diffuse, linearRoughness 1: max albedo %.4f\n", originalMax);
     EXPECT_GT(originalMax, 1.4);
@@ -215,7 +230,8 @@ TEST(Brdf, RenormalisedDisneyPlusSpecularStaysCloseToOne) {
         double m = 0.0;
         for (int i = 0; i <= 10; ++i)
             for (float nv : {0.01f, 0.1f, 0.3f, 0.6f, 1.0f})
-                m = std::max(m, brdf::standardAlbedo(nv, static_cast<float>(i) / 10.0f, 1.0f - metal, f0, 48));
+                m = std::max(m, brdf::standardAlbedo(nv, static_cast<float>(i) / 10.0f,
+                                                     1.0f - metal, f0, 48));
         std::printf("white furnace, f0 = %.2f (metal %.2f): max albedo %.4f\n", f0, metal, m);
         EXPECT_LE(m, maxAlbedo + 1e-3) << "f0 " << f0;
         if (f0 >= 1.0f) {
@@ -231,12 +247,15 @@ TEST(Brdf, PunctualHighlightsExceedTheLightsIlluminance) {
     const float lr = std::sqrt(0.1f);  // alpha = 0.1
     const float s60 = std::sqrt(3.0f) / 2.0f;
     const glm::vec3 N(0, 0, 1), V(s60, 0.0f, 0.5f), L(-s60, 0.0f, 0.5f);
-    const float luminance = brdf::rgStandardBrdf(N, V, L, glm::vec3(0.0f), glm::vec3(1.0f), lr).x * /* lux= */ 1.0f;
+    const float luminance =
+        brdf::rgStandardBrdf(N, V, L, glm::vec3(0.0f), glm::vec3(1.0f), lr).x * /* lux= */ 1.0f;
     EXPECT_GT(luminance, 10.0f);
     EXPECT_NEAR(luminance, 15.7f, 0.1f);
     // No energy is created: the same lobe integrates to at most 1 (SpecularLobeWhiteFurnace). The
     // resolution is that a punctual light's luminance is infinite — a sphere of fixed power has a
     // luminance growing as 1 / r² while the illuminance it delivers stays Φ / (4π d²) (eq:38).
     EXPECT_LE(brdf::specularAlbedo(V.z, lr, 1.0f, 1.0f), 1.0 + 1e-4);
-    EXPECT_NEAR(lighting::sphereLuminanceFromLumens(100, 0.001) / lighting::sphereLuminanceFromLumens(100, 0.01), 100.0, 1e-9);
+    EXPECT_NEAR(lighting::sphereLuminanceFromLumens(100, 0.001) /
+                    lighting::sphereLuminanceFromLumens(100, 0.01),
+                100.0, 1e-9);
 }

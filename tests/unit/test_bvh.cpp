@@ -32,7 +32,9 @@ TEST(Bvh, NearestHitEqualsBruteForce) {
     auto add = [&](const Primitive& p, glm::vec3 offset) {
         for (uint32_t i : p.indices) corners.push_back(p.vertices[i].position + offset);
     };
-    for (int i = 0; i < 5; ++i) add(makeSphere(0.4f, 24, 0), glm::vec3(static_cast<float>(i) - 2.0f, 0.4f, 0.3f * static_cast<float>(i)));
+    for (int i = 0; i < 5; ++i)
+        add(makeSphere(0.4f, 24, 0),
+            glm::vec3(static_cast<float>(i) - 2.0f, 0.4f, 0.3f * static_cast<float>(i)));
     add(makeBox(glm::vec3(1.0f), 0), glm::vec3(0.0f, 0.5f, -2.0f));
     const FlatBvh bvh = buildBvh(corners);
     ASSERT_EQ(bvh.triangleCount, corners.size() / 3);
@@ -40,7 +42,8 @@ TEST(Bvh, NearestHitEqualsBruteForce) {
     // Every triangle in exactly one leaf.
     std::vector<int> seen(bvh.triangleCount, 0);
     for (uint32_t n = 0; n < bvh.nodeCount; ++n) {
-        const uint32_t count = std::bit_cast<uint32_t>(bvh.data[2 * n + 1].w), first = std::bit_cast<uint32_t>(bvh.data[2 * n].w);
+        const uint32_t count = std::bit_cast<uint32_t>(bvh.data[2 * n + 1].w),
+                       first = std::bit_cast<uint32_t>(bvh.data[2 * n].w);
         for (uint32_t t = first; count > 0 && t < first + count; ++t) ++seen[t];
     }
     for (int s : seen) ASSERT_EQ(s, 1);
@@ -49,14 +52,17 @@ TEST(Bvh, NearestHitEqualsBruteForce) {
     int hits = 0;
     for (int k = 0; k < 4000; ++k) {
         const glm::vec3 o(3.0f * u(rng), 1.0f + u(rng), 3.0f * u(rng));
-        const glm::vec3 d = glm::normalize(glm::vec3(u(rng), u(rng), u(rng)) + glm::vec3(0.0f, -0.2f, 0.0f));
+        const glm::vec3 d =
+            glm::normalize(glm::vec3(u(rng), u(rng), u(rng)) + glm::vec3(0.0f, -0.2f, 0.0f));
         const float tMax = k % 2 ? 1e30f : 2.0f;
         const float a = traceBvh(bvh, o, d, tMax), b = bruteForce(corners, o, d, tMax);
         ASSERT_NEAR(a, b, 1e-4f * std::max(1.0f, b)) << k;
         if (b < tMax) ++hits;
     }
-    std::printf("%u triangles, %u nodes, depth %u; %d of 4000 rays hit\n", bvh.triangleCount, bvh.nodeCount, bvh.depth, hits);
-    EXPECT_GT(hits, 300);  // 444: a tenth of the rays meet something, enough to compare nearest hits
+    std::printf("%u triangles, %u nodes, depth %u; %d of 4000 rays hit\n", bvh.triangleCount,
+                bvh.nodeCount, bvh.depth, hits);
+    EXPECT_GT(hits,
+              300);  // 444: a tenth of the rays meet something, enough to compare nearest hits
 }
 
 TEST(Bvh, EmptySceneHasNoNodes) {

@@ -14,7 +14,8 @@ namespace {
 
 using namespace rg;
 
-ResourceDesc texture(const std::string& name, Format format = Format::RGBA8Unorm, float scale = 1.0f) {
+ResourceDesc texture(const std::string& name, Format format = Format::RGBA8Unorm,
+                     float scale = 1.0f) {
     ResourceDesc r;
     r.name = name;
     r.texture.format = format;
@@ -56,14 +57,20 @@ Access use(const std::string& resource, Usage usage, bool load = false) {
     return a;
 }
 Access sampled(const std::string& r) { return use(r, Usage::Sampled); }
-Access color(const std::string& r, bool load = false) { return use(r, Usage::ColorAttachment, load); }
-Access depth(const std::string& r, bool load = false) { return use(r, Usage::DepthStencilAttachment, load); }
+Access color(const std::string& r, bool load = false) {
+    return use(r, Usage::ColorAttachment, load);
+}
+Access depth(const std::string& r, bool load = false) {
+    return use(r, Usage::DepthStencilAttachment, load);
+}
 Access storageWrite(const std::string& r) { return use(r, Usage::StorageWrite); }
 
 PassDesc pass(const std::string& name, PassType type, std::initializer_list<Access> accesses) {
     PassDesc p;
     p.name = name;
-    p.kind = type == PassType::Compute ? "compute" : type == PassType::Transfer ? "copy" : "fullscreen";
+    p.kind = type == PassType::Compute    ? "compute"
+             : type == PassType::Transfer ? "copy"
+                                          : "fullscreen";
     p.type = type;
     p.accesses = accesses;
     return p;
@@ -108,10 +115,12 @@ std::string barrierSnapshot(const Plan& plan) {
     std::string s;
     for (const auto& p : plan.passes) {
         for (const auto& b : p.barriers) {
-            s += p.name + " " + plan.resources[b.resource].name + ": " + stageMaskName(b.srcStages) + "/" +
-                 accessMaskName(b.srcAccess) + " -> " + stageMaskName(b.dstStages) + "/" +
-                 accessMaskName(b.dstAccess) + " " + layoutName(b.oldLayout) + "->" + layoutName(b.newLayout);
-            if (b.aliasedFrom >= 0) s += " aliased from " + plan.resources[static_cast<size_t>(b.aliasedFrom)].name;
+            s += p.name + " " + plan.resources[b.resource].name + ": " +
+                 stageMaskName(b.srcStages) + "/" + accessMaskName(b.srcAccess) + " -> " +
+                 stageMaskName(b.dstStages) + "/" + accessMaskName(b.dstAccess) + " " +
+                 layoutName(b.oldLayout) + "->" + layoutName(b.newLayout);
+            if (b.aliasedFrom >= 0)
+                s += " aliased from " + plan.resources[static_cast<size_t>(b.aliasedFrom)].name;
             s += "\n";
         }
     }
@@ -129,7 +138,8 @@ TEST(CompilerCull, UnreadOutputIsCulledWithReason) {
     EXPECT_EQ(passOrder(p), std::vector<std::string>{"lighting"});
     ASSERT_EQ(p.culled.size(), 1u);
     EXPECT_EQ(p.culled[0].name, "ssao_pass");
-    EXPECT_EQ(p.culled[0].reason, "writes only 'ssao', which no kept pass reads and is not exported");
+    EXPECT_EQ(p.culled[0].reason,
+              "writes only 'ssao', which no kept pass reads and is not exported");
     // A culled pass's resources are not in the plan.
     EXPECT_EQ(p.findResource("ssao"), -1);
     EXPECT_EQ(p.findResource("hdr"), 0);
@@ -138,12 +148,15 @@ TEST(CompilerCull, UnreadOutputIsCulledWithReason) {
 TEST(CompilerCull, CullingIsTransitiveAndListsEveryWrite) {
     GraphDesc g;
     g.resources = {texture("a"), texture("b"), texture("c"), exported(texture("out"))};
-    g.passes = {raster("makeA", {color("a")}), raster("makeBC", {sampled("a"), color("b"), color("c")}),
+    g.passes = {raster("makeA", {color("a")}),
+                raster("makeBC", {sampled("a"), color("b"), color("c")}),
                 raster("final", {color("out")})};
     Plan p = compileOk(g);
     EXPECT_EQ(passOrder(p), std::vector<std::string>{"final"});
-    EXPECT_EQ(culledReason(p, "makeA"), "writes only 'a', which no kept pass reads and is not exported");
-    EXPECT_EQ(culledReason(p, "makeBC"), "writes only 'b' and 'c', which no kept pass reads and are not exported");
+    EXPECT_EQ(culledReason(p, "makeA"),
+              "writes only 'a', which no kept pass reads and is not exported");
+    EXPECT_EQ(culledReason(p, "makeBC"),
+              "writes only 'b' and 'c', which no kept pass reads and are not exported");
 }
 
 TEST(CompilerCull, SideEffectPassIsKeptAndKeepsItsInputs) {
@@ -167,7 +180,8 @@ TEST(CompilerCull, DisabledPassIsCulledAndReadingItsOnlyOutputIsAnError) {
     EXPECT_EQ(passOrder(p), std::vector<std::string>{"tonemap"});
 
     g.passes[1].accesses.insert(g.passes[1].accesses.begin(), sampled("bloom"));
-    EXPECT_EQ(compileError(g), "pass 'tonemap' reads 'bloom', but its only writer 'bloom' is disabled");
+    EXPECT_EQ(compileError(g),
+              "pass 'tonemap' reads 'bloom', but its only writer 'bloom' is disabled");
 }
 
 TEST(CompilerCull, WritingAnImportedResourceIsARoot) {
@@ -185,9 +199,10 @@ TEST(CompilerCull, WritingAnImportedResourceIsARoot) {
 
 TEST(CompilerSchedule, DeclarationOrderIsStable) {
     GraphDesc g;
-    g.resources = {exported(texture("a")), exported(texture("b")), exported(texture("c")), texture("t")};
-    g.passes = {raster("p0", {color("t")}), raster("p1", {color("a")}), raster("p2", {sampled("t"), color("b")}),
-                raster("p3", {color("c")})};
+    g.resources = {exported(texture("a")), exported(texture("b")), exported(texture("c")),
+                   texture("t")};
+    g.passes = {raster("p0", {color("t")}), raster("p1", {color("a")}),
+                raster("p2", {sampled("t"), color("b")}), raster("p3", {color("c")})};
     Plan p = compileOk(g);
     EXPECT_EQ(passOrder(p), (std::vector<std::string>{"p0", "p1", "p2", "p3"}));
     EXPECT_EQ(p.findPass("p2"), 2);
@@ -218,8 +233,8 @@ TEST(CompilerSchedule, AfterKeepsTheNamedPass) {
 TEST(CompilerErrors, Cycle) {
     GraphDesc g;
     g.resources = {exported(texture("w")), texture("r"), texture("s"), exported(texture("t"))};
-    g.passes = {raster("W", {color("w")}), raster("X", {color("r")}), raster("Y", {sampled("r"), color("s")}),
-                raster("Z", {sampled("s"), color("t")})};
+    g.passes = {raster("W", {color("w")}), raster("X", {color("r")}),
+                raster("Y", {sampled("r"), color("s")}), raster("Z", {sampled("s"), color("t")})};
     g.passes[1].after = {"Z"};
     EXPECT_EQ(compileError(g), "cycle between passes: 'X' -> 'Y' -> 'Z' -> 'X'");
 
@@ -235,7 +250,8 @@ TEST(CompilerErrors, ReadBeforeWrite) {
 
     g.passes.push_back(compute("ssao_pass", {storageWrite("ssao")}));
     EXPECT_EQ(compileError(g),
-              "pass 'blur' reads 'ssao' before any pass writes it (first written by 'ssao_pass', declared later)");
+              "pass 'blur' reads 'ssao' before any pass writes it (first written by 'ssao_pass', "
+              "declared later)");
 
     // Loading an attachment nobody wrote is a read too.
     GraphDesc l;
@@ -256,7 +272,8 @@ TEST(CompilerErrors, TwoUnorderedWriters) {
     g.resources = {exported(texture("hdr", Format::RGBA16F))};
     g.passes = {raster("clear", {color("hdr")}), raster("draw", {color("hdr")})};
     EXPECT_EQ(compileError(g),
-              "passes 'clear' and 'draw' both write 'hdr' with no order between them: make 'draw' load it or "
+              "passes 'clear' and 'draw' both write 'hdr' with no order between them: make 'draw' "
+              "load it or "
               "list 'clear' in its after");
 
     GraphDesc loaded = g;
@@ -280,7 +297,8 @@ TEST(CompilerErrors, UnknownResourceWithSuggestion) {
                 raster("lighting", {sampled("gbuffer0"), sampled("gbufer1"), color("hdr")})};
     g.passes[1].accesses[1].field = "passes.lighting.reads[1]";
     EXPECT_EQ(compileError(g),
-              "pass 'lighting' field 'passes.lighting.reads[1]': unknown resource 'gbufer1' (did you mean "
+              "pass 'lighting' field 'passes.lighting.reads[1]': unknown resource 'gbufer1' (did "
+              "you mean "
               "'gbuffer1'?)");
 
     g.passes[1].accesses[1].field.clear();
@@ -294,15 +312,18 @@ TEST(CompilerErrors, UnknownAfterPass) {
     g.passes = {raster("lighting", {color("hdr")})};
     g.passes[0].after = {"gbufer"};
     g.passes.insert(g.passes.begin(), raster("gbuffer", {}));
-    EXPECT_EQ(compileError(g), "pass 'lighting' field 'after[0]': unknown pass 'gbufer' (did you mean 'gbuffer'?)");
+    EXPECT_EQ(compileError(g),
+              "pass 'lighting' field 'after[0]': unknown pass 'gbufer' (did you mean 'gbuffer'?)");
 }
 
 TEST(CompilerErrors, Feedback) {
     GraphDesc g;
     g.resources = {exported(texture("hdr", Format::RGBA16F))};
-    g.passes = {raster("clear", {color("hdr")}), raster("bloom", {sampled("hdr"), color("hdr", true)})};
+    g.passes = {raster("clear", {color("hdr")}),
+                raster("bloom", {sampled("hdr"), color("hdr", true)})};
     EXPECT_EQ(compileError(g),
-              "pass 'bloom' field 'accesses[1]': 'hdr' is used as ColorAttachment and also as Sampled (field "
+              "pass 'bloom' field 'accesses[1]': 'hdr' is used as ColorAttachment and also as "
+              "Sampled (field "
               "'accesses[0]') in the same pass (feedback loop)");
 }
 
@@ -311,8 +332,10 @@ TEST(CompilerErrors, SrgbStorage) {
     g.resources = {exported(texture("ldr", Format::RGBA8Srgb))};
     g.passes = {compute("tonemap", {storageWrite("ldr")})};
     EXPECT_EQ(compileError(g),
-              "pass 'tonemap' field 'accesses[0]': 'ldr' has sRGB format 'rgba8_srgb', which cannot be used as "
-              "StorageWrite (sRGB formats cannot be storage images; use a UNORM format and encode in the shader)");
+              "pass 'tonemap' field 'accesses[0]': 'ldr' has sRGB format 'rgba8_srgb', which "
+              "cannot be used as "
+              "StorageWrite (sRGB formats cannot be storage images; use a UNORM format and encode "
+              "in the shader)");
 }
 
 TEST(CompilerErrors, DepthFormatAsColourAttachmentAndBack) {
@@ -321,15 +344,18 @@ TEST(CompilerErrors, DepthFormatAsColourAttachmentAndBack) {
     g.passes = {raster("prepass", {color("depth")})};
     g.passes[0].accesses[0].field = "passes.prepass.color[0]";
     EXPECT_EQ(compileError(g),
-              "pass 'prepass' field 'passes.prepass.color[0]': 'depth' has depth format 'd32f', which cannot be "
-              "used as ColorAttachment (expected DepthStencilAttachment, DepthStencilRead, Sampled, CopySrc or "
+              "pass 'prepass' field 'passes.prepass.color[0]': 'depth' has depth format 'd32f', "
+              "which cannot be "
+              "used as ColorAttachment (expected DepthStencilAttachment, DepthStencilRead, "
+              "Sampled, CopySrc or "
               "CopyDst)");
 
     GraphDesc c;
     c.resources = {exported(texture("hdr", Format::RGBA16F))};
     c.passes = {raster("prepass", {depth("hdr")})};
     EXPECT_EQ(compileError(c),
-              "pass 'prepass' field 'accesses[0]': 'hdr' has colour format 'rgba16f', which cannot be used as "
+              "pass 'prepass' field 'accesses[0]': 'hdr' has colour format 'rgba16f', which cannot "
+              "be used as "
               "DepthStencilAttachment (needs a depth format: d16, d32f, d24_s8 or d32f_s8)");
 }
 
@@ -338,28 +364,34 @@ TEST(CompilerErrors, KindAndBlendConflicts) {
     g.resources = {exported(buffer("lights", 4096))};
     g.passes = {raster("p", {sampled("lights")})};
     EXPECT_EQ(compileError(g),
-              "pass 'p' field 'accesses[0]': 'lights' is a buffer, which cannot be used as Sampled (expected "
-              "UniformRead, StorageRead, StorageWrite, StorageReadWrite, IndirectRead, CopySrc or CopyDst)");
+              "pass 'p' field 'accesses[0]': 'lights' is a buffer, which cannot be used as Sampled "
+              "(expected "
+              "UniformRead, StorageRead, StorageWrite, StorageReadWrite, IndirectRead, CopySrc or "
+              "CopyDst)");
     // Indirect commands: a buffer, read by a raster pass.
     GraphDesc ind;
     ind.resources = {buffer("commands", 4096), exported(texture("hdr"))};
     Access cmd{"commands", Usage::IndirectRead};
-    ind.passes = {compute("write", {storageWrite("commands")}), compute("draw", {cmd, storageWrite("hdr")})};
+    ind.passes = {compute("write", {storageWrite("commands")}),
+                  compute("draw", {cmd, storageWrite("hdr")})};
     EXPECT_EQ(compileError(ind),
-              "pass 'draw' field 'accesses[0]': IndirectRead needs a raster pass (indirect draws), but 'draw' is a compute pass");
+              "pass 'draw' field 'accesses[0]': IndirectRead needs a raster pass (indirect draws), "
+              "but 'draw' is a compute pass");
     GraphDesc tex;
     tex.resources = {texture("commands"), exported(texture("hdr"))};
     Access texCmd{"commands", Usage::IndirectRead};
     tex.passes = {raster("fill", {color("commands")}), raster("draw", {texCmd, color("hdr")})};
     EXPECT_EQ(compileError(tex),
-              "pass 'draw' field 'accesses[0]': 'commands' is a texture, which cannot be used as IndirectRead (indirect commands live in buffers)");
+              "pass 'draw' field 'accesses[0]': 'commands' is a texture, which cannot be used as "
+              "IndirectRead (indirect commands live in buffers)");
 
     GraphDesc t;
     t.resources = {imported(texture("lut"))};
     t.passes = {raster("p", {use("lut", Usage::UniformRead)})};
     t.passes[0].sideEffect = true;
     EXPECT_EQ(compileError(t),
-              "pass 'p' field 'accesses[0]': 'lut' is a texture, which cannot be used as UniformRead (uniform "
+              "pass 'p' field 'accesses[0]': 'lut' is a texture, which cannot be used as "
+              "UniformRead (uniform "
               "reads are for buffers)");
 
     GraphDesc b;
@@ -367,7 +399,8 @@ TEST(CompilerErrors, KindAndBlendConflicts) {
     b.passes = {raster("ids", {color("ids")})};
     b.passes[0].params = Value(Value::Table{{"blend", Value(true)}});
     EXPECT_EQ(compileError(b),
-              "pass 'ids' field 'accesses[0]': 'ids' has integer format 'r32ui', which cannot be a blended "
+              "pass 'ids' field 'accesses[0]': 'ids' has integer format 'r32ui', which cannot be a "
+              "blended "
               "ColorAttachment (params.blend is set)");
     b.passes[0].params = Value(Value::Table{{"blend", Value(false)}});
     compileOk(b);
@@ -376,21 +409,25 @@ TEST(CompilerErrors, KindAndBlendConflicts) {
     a.resources = {exported(texture("hdr"))};
     a.passes = {compute("p", {color("hdr")})};
     EXPECT_EQ(compileError(a),
-              "pass 'p' field 'accesses[0]': ColorAttachment needs a raster pass, but 'p' is a compute pass");
+              "pass 'p' field 'accesses[0]': ColorAttachment needs a raster pass, but 'p' is a "
+              "compute pass");
 }
 
 TEST(CompilerErrors, AttachmentSizeMismatch) {
     GraphDesc g;
-    g.resources = {exported(texture("hdr", Format::RGBA16F)), texture("half", Format::RGBA16F, 0.5f),
-                   texture("depth", Format::D32F)};
+    g.resources = {exported(texture("hdr", Format::RGBA16F)),
+                   texture("half", Format::RGBA16F, 0.5f), texture("depth", Format::D32F)};
     g.passes = {raster("forward", {color("hdr"), depth("depth"), color("half")})};
-    EXPECT_EQ(compileError(g), "pass 'forward': attachments differ in size: 'hdr' is 1280x720 but 'half' is 640x360");
+    EXPECT_EQ(
+        compileError(g),
+        "pass 'forward': attachments differ in size: 'hdr' is 1280x720 but 'half' is 640x360");
 }
 
 TEST(CompilerErrors, ZeroSizes) {
     GraphDesc g;
     g.resources = {absolute("lut", Format::RGBA16F, 0, 32)};
-    EXPECT_EQ(compileError(g), "resource 'lut': absolute size 0x32; width and height must be at least 1");
+    EXPECT_EQ(compileError(g),
+              "resource 'lut': absolute size 0x32; width and height must be at least 1");
 
     GraphDesc b;
     b.resources = {buffer("lights", 0)};
@@ -417,7 +454,8 @@ TEST(CompilerErrors, TooManyMips) {
     GraphDesc g;
     g.resources = {absolute("env", Format::RGBA16F, 256, 256)};
     g.resources[0].texture.mips = 10;
-    EXPECT_EQ(compileError(g), "resource 'env': 10 mips requested, but a 256x256 texture has at most 9");
+    EXPECT_EQ(compileError(g),
+              "resource 'env': 10 mips requested, but a 256x256 texture has at most 9");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -425,22 +463,21 @@ TEST(CompilerErrors, TooManyMips) {
 
 TEST(CompilerLifetimes, FirstLastSizesAndFlags) {
     GraphDesc g;
-    g.resources = {texture("gb", Format::RGBA8Unorm),
-                   texture("half", Format::RGBA16F, 0.5f),
-                   absolute("env", Format::RGBA16F, 256, 256),
-                   imported(buffer("lights", 4096)),
-                   exported(texture("hdr", Format::RGBA16F)),
-                   texture("unused")};
+    g.resources = {
+        texture("gb", Format::RGBA8Unorm),          texture("half", Format::RGBA16F, 0.5f),
+        absolute("env", Format::RGBA16F, 256, 256), imported(buffer("lights", 4096)),
+        exported(texture("hdr", Format::RGBA16F)),  texture("unused")};
     g.resources[2].texture.cube = true;
     g.resources[2].texture.mips = 0;
-    g.passes = {raster("gbuffer", {color("gb")}),                                        // 0
-                compute("envmap", {storageWrite("env")}),                                // 1
-                compute("downsample", {sampled("gb"), storageWrite("half")}),            // 2
-                raster("lighting", {sampled("half"), sampled("env"), use("lights", Usage::UniformRead),
-                                    color("hdr")}),                                      // 3
-                raster("extra", {color("gb", true)})};                                   // culled
+    g.passes = {raster("gbuffer", {color("gb")}),                              // 0
+                compute("envmap", {storageWrite("env")}),                      // 1
+                compute("downsample", {sampled("gb"), storageWrite("half")}),  // 2
+                raster("lighting", {sampled("half"), sampled("env"),
+                                    use("lights", Usage::UniformRead), color("hdr")}),  // 3
+                raster("extra", {color("gb", true)})};                                  // culled
     Plan p = compileOk(g);
-    EXPECT_EQ(passOrder(p), (std::vector<std::string>{"gbuffer", "envmap", "downsample", "lighting"}));
+    EXPECT_EQ(passOrder(p),
+              (std::vector<std::string>{"gbuffer", "envmap", "downsample", "lighting"}));
     ASSERT_EQ(p.resources.size(), 5u);  // "unused" is not in the plan
 
     const PlanResource& gb = p.resources[static_cast<size_t>(p.findResource("gb"))];
@@ -481,7 +518,8 @@ TEST(CompilerLifetimes, ExportedLivesToTheLastPassAndOutputScaleFloorsAtOne) {
     GraphDesc g;
     g.resources = {exported(texture("early")), exported(texture("tiny", Format::R8Unorm, 0.0001f)),
                    exported(texture("late"))};
-    g.passes = {raster("a", {color("early")}), compute("b", {storageWrite("tiny")}), raster("c", {color("late")})};
+    g.passes = {raster("a", {color("early")}), compute("b", {storageWrite("tiny")}),
+                raster("c", {color("late")})};
     Plan p = compileOk(g);
     EXPECT_EQ(p.resources[0].firstPass, 0);
     EXPECT_EQ(p.resources[0].lastPass, 2);
@@ -497,7 +535,8 @@ GraphDesc chainGraph() {
     GraphDesc g;
     g.resources = {texture("a"), texture("b"), texture("c"), exported(texture("out"))};
     g.passes = {raster("p0", {color("a")}), raster("p1", {sampled("a"), color("b")}),
-                raster("p2", {sampled("b"), color("c")}), raster("p3", {sampled("c"), color("out")})};
+                raster("p2", {sampled("b"), color("c")}),
+                raster("p3", {sampled("c"), color("out")})};
     return g;
 }
 
@@ -538,10 +577,10 @@ TEST(CompilerAlias, AReconfigurationKeepsThePreviousPlacementWhereItIsValid) {
     CompileOptions o;
     o.previous = &previous;
     Plan p = compileOk(chainGraph(), o);
-    EXPECT_EQ(p.resources[0].offset, 0u);         // a: kept
-    EXPECT_EQ(p.resources[2].offset, 2 * unit);   // c: kept
-    EXPECT_EQ(p.resources[1].offset, unit);       // b: moved beside a
-    EXPECT_EQ(p.heaps[0].size, 3 * unit);         // the heap it fits in is kept whole
+    EXPECT_EQ(p.resources[0].offset, 0u);        // a: kept
+    EXPECT_EQ(p.resources[2].offset, 2 * unit);  // c: kept
+    EXPECT_EQ(p.resources[1].offset, unit);      // b: moved beside a
+    EXPECT_EQ(p.heaps[0].size, 3 * unit);        // the heap it fits in is kept whole
     EXPECT_EQ(p.transientBytesAliased, 3 * unit);
     // b keeps the usage it had (a resource of fewer usages would be a new image).
     EXPECT_NE(p.resources[1].usageMask & (1u << static_cast<uint32_t>(Usage::StorageWrite)), 0u);
@@ -578,9 +617,10 @@ TEST(CompilerAlias, HeapsSplitByMemoryTypeAndKind) {
     GraphDesc g;
     g.resources = {texture("a"), texture("b", Format::RGBA16F), buffer("tiles", 100000),
                    exported(texture("out"))};
-    g.passes = {raster("p0", {color("a")}), compute("p1", {sampled("a"), storageWrite("b"),
-                                                           storageWrite("tiles")}),
-                compute("p2", {sampled("b"), use("tiles", Usage::StorageRead), storageWrite("out")})};
+    g.passes = {
+        raster("p0", {color("a")}),
+        compute("p1", {sampled("a"), storageWrite("b"), storageWrite("tiles")}),
+        compute("p2", {sampled("b"), use("tiles", Usage::StorageRead), storageWrite("out")})};
     CompileOptions o;
     o.memoryRequirements = [](const PlanResource& r) {
         MemoryRequirements m = estimateMemoryRequirements(r);
@@ -593,7 +633,8 @@ TEST(CompilerAlias, HeapsSplitByMemoryTypeAndKind) {
     EXPECT_FALSE(p.heaps[0].buffers);
     EXPECT_EQ(p.heaps[1].memoryTypeBits, 0x2u);
     EXPECT_TRUE(p.heaps[2].buffers);
-    EXPECT_EQ(p.resources[static_cast<size_t>(p.findResource("tiles"))].memory.size, 100096u);  // 256-aligned
+    EXPECT_EQ(p.resources[static_cast<size_t>(p.findResource("tiles"))].memory.size,
+              100096u);  // 256-aligned
     EXPECT_EQ(p.resources[static_cast<size_t>(p.findResource("out"))].heap, -1);
 }
 
@@ -609,31 +650,38 @@ TEST(CompilerBarriers, Snapshot) {
                    texture("post"),
                    imported(texture("backbuffer"))};
     g.passes = {raster("gbuffer", {color("gb"), depth("depth")}),
-                raster("lighting", {sampled("gb"), use("depth", Usage::DepthStencilRead), sampled("env"),
-                                    color("hdr")}),
+                raster("lighting", {sampled("gb"), use("depth", Usage::DepthStencilRead),
+                                    sampled("env"), color("hdr")}),
                 compute("post", {sampled("hdr"), storageWrite("post")}),
-                pass("present", PassType::Transfer, {use("post", Usage::CopySrc), use("backbuffer", Usage::CopyDst)})};
+                pass("present", PassType::Transfer,
+                     {use("post", Usage::CopySrc), use("backbuffer", Usage::CopyDst)})};
     Plan p = compileOk(g);
     EXPECT_EQ(passOrder(p), (std::vector<std::string>{"gbuffer", "lighting", "post", "present"}));
     // post reuses gb's memory (same size, gb dead after lighting); depth overlaps both in time.
     EXPECT_EQ(p.resources[4].offset, p.resources[0].offset);
-    EXPECT_EQ(barrierSnapshot(p),
-              "gbuffer gb: None/None -> ColorAttachmentOutput/ColorAttachmentWrite Undefined->ColorAttachment\n"
-              "gbuffer depth: None/None -> EarlyFragmentTests|LateFragmentTests/DepthStencilWrite "
-              "Undefined->DepthStencilAttachment\n"
-              "lighting gb: ColorAttachmentOutput/ColorAttachmentWrite -> VertexShader|FragmentShader/"
-              "ShaderSampledRead ColorAttachment->ShaderReadOnly\n"
-              "lighting depth: EarlyFragmentTests|LateFragmentTests/DepthStencilWrite -> "
-              "EarlyFragmentTests|LateFragmentTests/DepthStencilRead DepthStencilAttachment->DepthStencilReadOnly\n"
-              "lighting env: AllCommands/MemoryWrite -> VertexShader|FragmentShader/ShaderSampledRead "
-              "ShaderReadOnly->ShaderReadOnly\n"
-              "lighting hdr: None/None -> ColorAttachmentOutput/ColorAttachmentWrite Undefined->ColorAttachment\n"
-              "post hdr: ColorAttachmentOutput/ColorAttachmentWrite -> ComputeShader/ShaderSampledRead "
-              "ColorAttachment->ShaderReadOnly\n"
-              "post post: VertexShader|FragmentShader|ColorAttachmentOutput/ShaderSampledRead|ColorAttachmentWrite "
-              "-> ComputeShader/ShaderStorageWrite Undefined->General aliased from gb\n"
-              "present post: ComputeShader/ShaderStorageWrite -> Copy/TransferRead General->TransferSrc\n"
-              "present backbuffer: AllCommands/MemoryWrite -> Copy/TransferWrite ShaderReadOnly->TransferDst\n");
+    EXPECT_EQ(
+        barrierSnapshot(p),
+        "gbuffer gb: None/None -> ColorAttachmentOutput/ColorAttachmentWrite "
+        "Undefined->ColorAttachment\n"
+        "gbuffer depth: None/None -> EarlyFragmentTests|LateFragmentTests/DepthStencilWrite "
+        "Undefined->DepthStencilAttachment\n"
+        "lighting gb: ColorAttachmentOutput/ColorAttachmentWrite -> VertexShader|FragmentShader/"
+        "ShaderSampledRead ColorAttachment->ShaderReadOnly\n"
+        "lighting depth: EarlyFragmentTests|LateFragmentTests/DepthStencilWrite -> "
+        "EarlyFragmentTests|LateFragmentTests/DepthStencilRead "
+        "DepthStencilAttachment->DepthStencilReadOnly\n"
+        "lighting env: AllCommands/MemoryWrite -> VertexShader|FragmentShader/ShaderSampledRead "
+        "ShaderReadOnly->ShaderReadOnly\n"
+        "lighting hdr: None/None -> ColorAttachmentOutput/ColorAttachmentWrite "
+        "Undefined->ColorAttachment\n"
+        "post hdr: ColorAttachmentOutput/ColorAttachmentWrite -> ComputeShader/ShaderSampledRead "
+        "ColorAttachment->ShaderReadOnly\n"
+        "post post: "
+        "VertexShader|FragmentShader|ColorAttachmentOutput/ShaderSampledRead|ColorAttachmentWrite "
+        "-> ComputeShader/ShaderStorageWrite Undefined->General aliased from gb\n"
+        "present post: ComputeShader/ShaderStorageWrite -> Copy/TransferRead General->TransferSrc\n"
+        "present backbuffer: AllCommands/MemoryWrite -> Copy/TransferWrite "
+        "ShaderReadOnly->TransferDst\n");
 
     const PlanResource& hdr = p.resources[2];
     EXPECT_EQ(hdr.finalLayout, Layout::ShaderReadOnly);
@@ -654,10 +702,9 @@ TEST(CompilerBarriers, Snapshot) {
 
 TEST(CompilerBarriers, ReadAfterReadNeedsNoBarrierUnlessANewStageReads) {
     GraphDesc g;
-    g.resources = {texture("t"), exported(texture("o1")), exported(texture("o2")), exported(texture("o3")),
-                   exported(buffer("b", 256))};
-    g.passes = {raster("write", {color("t")}),
-                raster("read1", {sampled("t"), color("o1")}),
+    g.resources = {texture("t"), exported(texture("o1")), exported(texture("o2")),
+                   exported(texture("o3")), exported(buffer("b", 256))};
+    g.passes = {raster("write", {color("t")}), raster("read1", {sampled("t"), color("o1")}),
                 raster("read2", {sampled("t"), color("o2")}),
                 compute("read3", {sampled("t"), storageWrite("o3")})};
     Plan p = compileOk(g);
@@ -684,14 +731,18 @@ TEST(CompilerBarriers, BuffersHaveNoLayoutAndWarWaitsForReaders) {
                 compute("rebuild", {use("tiles", Usage::StorageReadWrite)}),
                 raster("use2", {use("tiles", Usage::UniformRead), color("o2")})};
     Plan p = compileOk(g);
-    EXPECT_EQ(barrierSnapshot(p),
-              "use tiles: ComputeShader/ShaderStorageWrite -> ComputeShader/ShaderStorageRead Undefined->Undefined\n"
-              "use o1: None/None -> ComputeShader/ShaderStorageWrite Undefined->General\n"
-              "rebuild tiles: ComputeShader/ShaderStorageWrite -> ComputeShader/ShaderStorageRead|ShaderStorageWrite "
-              "Undefined->Undefined\n"
-              "use2 tiles: ComputeShader/ShaderStorageWrite -> VertexShader|FragmentShader/UniformRead "
-              "Undefined->Undefined\n"
-              "use2 o2: None/None -> ColorAttachmentOutput/ColorAttachmentWrite Undefined->ColorAttachment\n");
+    EXPECT_EQ(
+        barrierSnapshot(p),
+        "use tiles: ComputeShader/ShaderStorageWrite -> ComputeShader/ShaderStorageRead "
+        "Undefined->Undefined\n"
+        "use o1: None/None -> ComputeShader/ShaderStorageWrite Undefined->General\n"
+        "rebuild tiles: ComputeShader/ShaderStorageWrite -> "
+        "ComputeShader/ShaderStorageRead|ShaderStorageWrite "
+        "Undefined->Undefined\n"
+        "use2 tiles: ComputeShader/ShaderStorageWrite -> VertexShader|FragmentShader/UniformRead "
+        "Undefined->Undefined\n"
+        "use2 o2: None/None -> ColorAttachmentOutput/ColorAttachmentWrite "
+        "Undefined->ColorAttachment\n");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -699,8 +750,10 @@ TEST(CompilerBarriers, BuffersHaveNoLayoutAndWarWaitsForReaders) {
 
 TEST(CompilerDump, DotShowsPassesResourcesAndCulledReasons) {
     GraphDesc g;
-    g.resources = {texture("ssao", Format::R8Unorm), texture("gb"), exported(texture("hdr", Format::RGBA16F))};
-    g.passes = {raster("gbuffer", {color("gb")}), compute("ssao", {sampled("gb"), storageWrite("ssao")}),
+    g.resources = {texture("ssao", Format::R8Unorm), texture("gb"),
+                   exported(texture("hdr", Format::RGBA16F))};
+    g.passes = {raster("gbuffer", {color("gb")}),
+                compute("ssao", {sampled("gb"), storageWrite("ssao")}),
                 raster("lighting", {sampled("gb"), color("hdr")})};
     Plan p = compileOk(g);
     const std::string dot = p.toDot();
@@ -708,11 +761,12 @@ TEST(CompilerDump, DotShowsPassesResourcesAndCulledReasons) {
     EXPECT_NE(dot.find("\"p_gbuffer\" [shape=box"), std::string::npos);
     EXPECT_NE(dot.find("\"p_lighting\" [shape=box"), std::string::npos);
     EXPECT_NE(dot.find("\"p_ssao\" [shape=box, style=dashed, color=grey"), std::string::npos);
-    EXPECT_NE(dot.find("culled: writes only 'ssao', which no kept pass reads and is not exported"), std::string::npos);
+    EXPECT_NE(dot.find("culled: writes only 'ssao', which no kept pass reads and is not exported"),
+              std::string::npos);
     EXPECT_NE(dot.find("\"r_hdr\" [shape=ellipse"), std::string::npos);
     EXPECT_NE(dot.find("rgba16f 1280x720"), std::string::npos);
     EXPECT_NE(dot.find("heap 0 @ 0"), std::string::npos);
-    EXPECT_NE(dot.find("\"r_gb\" -> \"p_lighting\""), std::string::npos);  // read edge
+    EXPECT_NE(dot.find("\"r_gb\" -> \"p_lighting\""), std::string::npos);   // read edge
     EXPECT_NE(dot.find("\"p_lighting\" -> \"r_hdr\""), std::string::npos);  // write edge
     EXPECT_LT(dot.find("\"p_gbuffer\" [shape"), dot.find("\"p_lighting\" [shape"));
     EXPECT_EQ(dot.back(), '\n');
@@ -744,7 +798,8 @@ TEST(CompilerDump, JsonHasTheDocumentedShape) {
     EXPECT_TRUE(j["passes"][0]["barriers"][0]["aliasedFrom"].is_null());
     ASSERT_EQ(j["culled"].size(), 1u);
     EXPECT_EQ(j["culled"][0]["name"], "ssao");
-    EXPECT_EQ(j["culled"][0]["reason"], "writes only 'ssao', which no kept pass reads and is not exported");
+    EXPECT_EQ(j["culled"][0]["reason"],
+              "writes only 'ssao', which no kept pass reads and is not exported");
     ASSERT_EQ(j["resources"].size(), 4u);
     EXPECT_EQ(j["resources"][3]["name"], "out");
     EXPECT_EQ(j["resources"][3]["exported"], true);
@@ -768,7 +823,8 @@ TEST(CompilerDump, JsonHasTheDocumentedShape) {
 TEST(CompilerDump, MaskNames) {
     EXPECT_EQ(stageMaskName(0), "None");
     EXPECT_EQ(stageMaskName(stage::VertexShader | stage::Copy), "VertexShader|Copy");
-    EXPECT_EQ(accessMaskName(access::TransferRead | access::MemoryWrite), "TransferRead|MemoryWrite");
+    EXPECT_EQ(accessMaskName(access::TransferRead | access::MemoryWrite),
+              "TransferRead|MemoryWrite");
     EXPECT_STREQ(layoutName(Layout::DepthStencilReadOnly), "DepthStencilReadOnly");
     EXPECT_STREQ(usageName(Usage::StorageReadWrite), "StorageReadWrite");
     EXPECT_TRUE(usageReads(Usage::ColorAttachment, true));

@@ -77,7 +77,8 @@ public:
                 std::vector<uint32_t> writable;
                 const bool reuse = chance(o.mistakes);
                 for (uint32_t r = 0; r < resourceCount; ++r) {
-                    if (std::find(touched.begin(), touched.end(), r) != touched.end() && !reuse) continue;
+                    if (std::find(touched.begin(), touched.end(), r) != touched.end() && !reuse)
+                        continue;
                     if (canWrite(g.resources[r], p.type, sizeClass, m_sizeClass[r], p.accesses, g))
                         writable.push_back(r);
                 }
@@ -87,10 +88,12 @@ public:
                 a.resource = g.resources[r].name;
                 a.usage = writeUsage(g.resources[r], p.type);
                 // Written earlier in this very pass is a deliberate feedback mistake: nothing to order.
-                const bool written = lastWriter[r] >= 0 && lastWriter[r] != static_cast<int32_t>(pi);
+                const bool written =
+                    lastWriter[r] >= 0 && lastWriter[r] != static_cast<int32_t>(pi);
                 if (written && !g.resources[r].imported && !chance(o.mistakes)) {
                     // Order behind the previous writer: read what is there, or say `after`.
-                    const bool canLoad = a.usage == Usage::ColorAttachment || a.usage == Usage::DepthStencilAttachment ||
+                    const bool canLoad = a.usage == Usage::ColorAttachment ||
+                                         a.usage == Usage::DepthStencilAttachment ||
                                          a.usage == Usage::StorageWrite;
                     if (canLoad && chance(0.5)) {
                         if (a.usage == Usage::StorageWrite)
@@ -116,17 +119,22 @@ public:
     }
 
 private:
-    uint32_t range(uint32_t lo, uint32_t hi) { return std::uniform_int_distribution<uint32_t>(lo, hi)(m_rng); }
+    uint32_t range(uint32_t lo, uint32_t hi) {
+        return std::uniform_int_distribution<uint32_t>(lo, hi)(m_rng);
+    }
     double unit() { return std::uniform_real_distribution<double>(0.0, 1.0)(m_rng); }
     bool chance(double p) { return unit() < p; }
-    uint32_t pick(const std::vector<uint32_t>& v) { return v[range(0, static_cast<uint32_t>(v.size()) - 1)]; }
+    uint32_t pick(const std::vector<uint32_t>& v) {
+        return v[range(0, static_cast<uint32_t>(v.size()) - 1)];
+    }
 
     ResourceDesc makeResource(uint32_t i) {
-        static constexpr Format kColour[] = {Format::R8Unorm,   Format::RGBA8Unorm, Format::RGBA8Srgb,
-                                             Format::RGB10A2Unorm, Format::R11G11B10F, Format::RGBA16F,
-                                             Format::R32F,      Format::RG16F,      Format::R32Uint,
-                                             Format::RGBA32F};
-        static constexpr Format kDepth[] = {Format::D32F, Format::D24S8, Format::D32FS8, Format::D16};
+        static constexpr Format kColour[] = {
+            Format::R8Unorm,    Format::RGBA8Unorm, Format::RGBA8Srgb, Format::RGB10A2Unorm,
+            Format::R11G11B10F, Format::RGBA16F,    Format::R32F,      Format::RG16F,
+            Format::R32Uint,    Format::RGBA32F};
+        static constexpr Format kDepth[] = {Format::D32F, Format::D24S8, Format::D32FS8,
+                                            Format::D16};
         ResourceDesc r;
         r.name = "r" + std::to_string(i);
         r.imported = chance(0.1);
@@ -140,17 +148,20 @@ private:
         r.texture.format = chance(0.15) ? kDepth[range(0, 3)] : kColour[range(0, 9)];
         const uint32_t sizeClass = range(0, 3);
         switch (sizeClass) {
-        case 0: break;  // output size
-        case 1: r.texture.scaleX = r.texture.scaleY = 0.5f; break;
-        case 2:
-            r.texture.sizeMode = SizeMode::Absolute;
-            r.texture.width = r.texture.height = 256;
-            break;
-        default:
-            r.texture.sizeMode = SizeMode::Absolute;
-            r.texture.width = 64;
-            r.texture.height = 32;
-            break;
+            case 0:
+                break;  // output size
+            case 1:
+                r.texture.scaleX = r.texture.scaleY = 0.5f;
+                break;
+            case 2:
+                r.texture.sizeMode = SizeMode::Absolute;
+                r.texture.width = r.texture.height = 256;
+                break;
+            default:
+                r.texture.sizeMode = SizeMode::Absolute;
+                r.texture.width = 64;
+                r.texture.height = 32;
+                break;
         }
         r.texture.mips = chance(0.2) ? 0u : chance(0.1) ? 3u : 1u;
         m_sizeClass.push_back(static_cast<int32_t>(sizeClass));
@@ -159,9 +170,12 @@ private:
 
     Usage readUsage(const ResourceDesc& r, PassType type) {
         if (type == PassType::Transfer) return Usage::CopySrc;
-        if (r.kind == ResourceKind::Buffer) return chance(0.5) ? Usage::UniformRead : Usage::StorageRead;
+        if (r.kind == ResourceKind::Buffer)
+            return chance(0.5) ? Usage::UniformRead : Usage::StorageRead;
         const FormatInfo& f = formatInfo(r.texture.format);
-        if (isDepthStencil(r.texture.format)) return type == PassType::Raster && chance(0.3) ? Usage::DepthStencilRead : Usage::Sampled;
+        if (isDepthStencil(r.texture.format))
+            return type == PassType::Raster && chance(0.3) ? Usage::DepthStencilRead
+                                                           : Usage::Sampled;
         if (!f.srgb && chance(0.3)) return Usage::StorageRead;
         return Usage::Sampled;
     }
@@ -172,13 +186,16 @@ private:
         const bool depth = r.kind == ResourceKind::Texture && isDepthStencil(r.texture.format);
         if (type == PassType::Compute)
             return r.kind == ResourceKind::Buffer || (!depth && !formatInfo(r.texture.format).srgb);
-        if (r.kind == ResourceKind::Buffer || sizeClass != static_cast<int32_t>(passSizeClass)) return false;
+        if (r.kind == ResourceKind::Buffer || sizeClass != static_cast<int32_t>(passSizeClass))
+            return false;
         // Raster: attachments of one size; one depth attachment; reads as DepthStencilRead share the size too.
         for (const Access& a : accesses) {
             const ResourceDesc* other = g.findResource(a.resource);
             if (a.usage == Usage::DepthStencilRead || a.usage == Usage::DepthStencilAttachment) {
                 if (depth) return false;
-                if (other && m_sizeClass[static_cast<size_t>(other - g.resources.data())] != sizeClass) return false;
+                if (other &&
+                    m_sizeClass[static_cast<size_t>(other - g.resources.data())] != sizeClass)
+                    return false;
             }
         }
         return true;
@@ -187,7 +204,8 @@ private:
     Usage writeUsage(const ResourceDesc& r, PassType type) {
         if (type == PassType::Transfer) return Usage::CopyDst;
         if (type == PassType::Compute) return Usage::StorageWrite;
-        return isDepthStencil(r.texture.format) ? Usage::DepthStencilAttachment : Usage::ColorAttachment;
+        return isDepthStencil(r.texture.format) ? Usage::DepthStencilAttachment
+                                                : Usage::ColorAttachment;
     }
 
     std::mt19937 m_rng;
@@ -251,9 +269,10 @@ void checkPlacement(const Plan& plan) {
         for (size_t j = i + 1; j < plan.resources.size(); ++j) {
             const PlanResource& b = plan.resources[j];
             if (!b.transient || b.heap != a.heap || !lifetimesIntersect(a, b)) continue;
-            EXPECT_FALSE(memoryOverlaps(a, b)) << a.name << " [" << a.firstPass << "," << a.lastPass << "] @"
-                                               << a.offset << " and " << b.name << " [" << b.firstPass << ","
-                                               << b.lastPass << "] @" << b.offset;
+            EXPECT_FALSE(memoryOverlaps(a, b))
+                << a.name << " [" << a.firstPass << "," << a.lastPass << "] @" << a.offset
+                << " and " << b.name << " [" << b.firstPass << "," << b.lastPass << "] @"
+                << b.offset;
         }
     }
     uint64_t heaps = 0;
@@ -269,7 +288,8 @@ void checkReads(const Plan& plan) {
         for (const PlanAccess& a : p.accesses)
             if (usageReads(a.usage, a.load)) {
                 EXPECT_TRUE(plan.resources[a.resource].imported || written[a.resource])
-                    << "pass '" << p.name << "' reads '" << plan.resources[a.resource].name << "' unwritten";
+                    << "pass '" << p.name << "' reads '" << plan.resources[a.resource].name
+                    << "' unwritten";
             }
         for (const PlanAccess& a : p.accesses)
             if (usageWrites(a.usage)) written[a.resource] = true;
@@ -287,7 +307,8 @@ void checkBarriers(const Plan& plan) {
     std::vector<Sim> sim(plan.resources.size());
     for (size_t r = 0; r < plan.resources.size(); ++r) {
         if (!plan.resources[r].imported) continue;
-        sim[r].layout = plan.resources[r].kind == ResourceKind::Texture ? Layout::ShaderReadOnly : Layout::Undefined;
+        sim[r].layout = plan.resources[r].kind == ResourceKind::Texture ? Layout::ShaderReadOnly
+                                                                        : Layout::Undefined;
         sim[r].lastWasWrite = true;
         sim[r].touched = true;
     }
@@ -302,12 +323,14 @@ void checkBarriers(const Plan& plan) {
             const PlanResource& r = plan.resources[a.resource];
             const bool texture = r.kind == ResourceKind::Texture;
             Sim& s = sim[a.resource];
-            const bool needed = (texture && a.layout != s.layout) || s.lastWasWrite || (writes && s.touched);
+            const bool needed =
+                (texture && a.layout != s.layout) || s.lastWasWrite || (writes && s.touched);
             const Barrier* found = nullptr;
             for (const Barrier& b : p.barriers)
                 if (b.resource == a.resource) found = &b;
             if (needed) {
-                EXPECT_TRUE(found) << "pass '" << p.name << "' has no barrier for '" << r.name << "'";
+                EXPECT_TRUE(found)
+                    << "pass '" << p.name << "' has no barrier for '" << r.name << "'";
             }
             if (found && texture) {
                 EXPECT_EQ(found->oldLayout, s.layout) << p.name << " " << r.name;
@@ -345,7 +368,8 @@ void checkBarriers(const Plan& plan) {
 // (d) the schedule respects every edge between kept passes; culled + kept = all; roots are kept.
 void checkSchedule(const GraphDesc& g, const Plan& plan) {
     std::vector<int32_t> position(g.passes.size(), -1);
-    for (size_t i = 0; i < plan.passes.size(); ++i) position[plan.passes[i].desc] = static_cast<int32_t>(i);
+    for (size_t i = 0; i < plan.passes.size(); ++i)
+        position[plan.passes[i].desc] = static_cast<int32_t>(i);
     for (auto [u, v] : dependencyEdges(g)) {
         if (position[u] < 0 || position[v] < 0) continue;
         EXPECT_LT(position[u], position[v]) << g.passes[u].name << " -> " << g.passes[v].name;
@@ -394,12 +418,14 @@ TEST(CompilerProperty, RandomGraphsKeepTheInvariants) {
         checkSchedule(g, *plan);
         if (::testing::Test::HasFailure()) break;  // one broken graph is enough to read
     }
-    std::printf("random graphs: %d compiled (%d scheduled out of declaration order), %d rejected as invalid\n",
-                compiled, reordered, rejected);
+    std::printf(
+        "random graphs: %d compiled (%d scheduled out of declaration order), %d rejected as "
+        "invalid\n",
+        compiled, reordered, rejected);
     // Most graphs must compile, or the properties above prove little.
     EXPECT_GT(compiled, 2000);
-    EXPECT_GT(rejected, 50);    // and the rejection paths are exercised too
-    EXPECT_GT(reordered, 30);   // and `after` really moves passes
+    EXPECT_GT(rejected, 50);   // and the rejection paths are exercised too
+    EXPECT_GT(reordered, 30);  // and `after` really moves passes
 }
 
 TEST(CompilerProperty, AliasOffNeverSharesMemory) {
@@ -424,7 +450,8 @@ TEST(CompilerProperty, AliasOffNeverSharesMemory) {
 
 TEST(CompilerProperty, Figures200Passes) {
     GraphGenerator gen(200u);
-    const GraphDesc g = gen.generate({.minPasses = 200, .maxPasses = 200, .mistakes = 0.0, .forwardAfter = 0.0});
+    const GraphDesc g =
+        gen.generate({.minPasses = 200, .maxPasses = 200, .mistakes = 0.0, .forwardAfter = 0.0});
     auto plan = compile(g, CompileOptions{});
     ASSERT_TRUE(plan) << plan.error().message;
     checkPlacement(*plan);
@@ -437,7 +464,8 @@ TEST(CompilerProperty, Figures200Passes) {
     for (int run = 0; run < 5; ++run) {
         const auto start = std::chrono::steady_clock::now();
         auto again = compile(g, CompileOptions{});
-        const std::chrono::duration<double, std::milli> ms = std::chrono::steady_clock::now() - start;
+        const std::chrono::duration<double, std::milli> ms =
+            std::chrono::steady_clock::now() - start;
         ASSERT_TRUE(again);
         if (ms.count() < best) {
             best = ms.count();
@@ -447,18 +475,21 @@ TEST(CompilerProperty, Figures200Passes) {
     size_t transients = 0, barriers = 0;
     for (const auto& r : plan->resources) transients += r.transient ? 1 : 0;
     for (const auto& p : plan->passes) barriers += p.barriers.size();
-    std::printf("200-pass graph: %zu resources declared, %zu kept passes, %zu culled, %zu transients in %zu heaps, "
-                "%zu barriers\n",
-                g.resources.size(), plan->passes.size(), plan->culled.size(), transients, plan->heaps.size(),
-                barriers);
-    std::printf("200-pass graph: compile %.3f ms (best of 5); transient memory aliased %.2f MiB vs unaliased "
-                "%.2f MiB (%.1f%%)\n",
-                best, static_cast<double>(plan->transientBytesAliased) / 1048576.0,
-                static_cast<double>(plan->transientBytesUnaliased) / 1048576.0,
-                plan->transientBytesUnaliased
-                    ? 100.0 * static_cast<double>(plan->transientBytesAliased) /
-                          static_cast<double>(plan->transientBytesUnaliased)
-                    : 100.0);
+    std::printf(
+        "200-pass graph: %zu resources declared, %zu kept passes, %zu culled, %zu transients in "
+        "%zu heaps, "
+        "%zu barriers\n",
+        g.resources.size(), plan->passes.size(), plan->culled.size(), transients,
+        plan->heaps.size(), barriers);
+    std::printf(
+        "200-pass graph: compile %.3f ms (best of 5); transient memory aliased %.2f MiB vs "
+        "unaliased "
+        "%.2f MiB (%.1f%%)\n",
+        best, static_cast<double>(plan->transientBytesAliased) / 1048576.0,
+        static_cast<double>(plan->transientBytesUnaliased) / 1048576.0,
+        plan->transientBytesUnaliased ? 100.0 * static_cast<double>(plan->transientBytesAliased) /
+                                            static_cast<double>(plan->transientBytesUnaliased)
+                                      : 100.0);
     for (const auto& t : bestSteps) std::printf("  %-9s %.3f ms\n", t.step.c_str(), t.ms);
     EXPECT_LE(plan->transientBytesAliased, plan->transientBytesUnaliased);
 }

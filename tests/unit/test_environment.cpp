@@ -24,7 +24,8 @@ double horizontalIlluminance(const Image& img, int channel) {
     for (uint32_t y = 0; y < img.height / 2; ++y)
         for (uint32_t x = 0; x < img.width; ++x) {
             const double theta = (y + 0.5) * kPi / double(img.height);
-            e += img.at(x, y, static_cast<uint32_t>(channel)) * std::cos(theta) * std::sin(theta) * (2.0 * kPi / double(img.width)) * (kPi / double(img.height));
+            e += img.at(x, y, static_cast<uint32_t>(channel)) * std::cos(theta) * std::sin(theta) *
+                 (2.0 * kPi / double(img.width)) * (kPi / double(img.height));
         }
     return e;
 }
@@ -53,13 +54,15 @@ TEST(Environment, ClearSkyMatchesTheSeedsDaylightMeasurements) {
     // perpendicular to its rays and the sky 19 600 lux on the ground; 14:30 (about 48°): 116 400
     // and 25 500. A clear sky (turbidity 2.5) of that sun must put the sky's horizontal illuminance
     // in the measured range (a factor of two around it: the table is one site on one day).
-    for (auto [elevation, sunLux, skyLux] : {std::tuple{53.0f, 123100.0f, 19600.0f}, std::tuple{48.0f, 116400.0f, 25500.0f}}) {
+    for (auto [elevation, sunLux, skyLux] :
+         {std::tuple{53.0f, 123100.0f, 19600.0f}, std::tuple{48.0f, 116400.0f, 25500.0f}}) {
         SkyParams p;
         p.toSun = dirFromElevation(elevation, 30.0f);
         p.sunLux = sunLux;
         const Image sky = skyImage(p, 256);
         const double e = horizontalIlluminance(sky, 1);  // green ≈ luminance for a near-white sky
-        std::printf("sun %.0f° up, %.0f lux: sky %.0f lux on the ground (tbl:11: %.0f)\n", elevation, sunLux, e, skyLux);
+        std::printf("sun %.0f° up, %.0f lux: sky %.0f lux on the ground (tbl:11: %.0f)\n",
+                    elevation, sunLux, e, skyLux);
         EXPECT_GT(e, skyLux / 2);
         EXPECT_LT(e, skyLux * 2);
     }
@@ -70,11 +73,12 @@ TEST(Environment, SkyIsBlueAtTheZenithBrightAroundTheSunAndLitGroundBelow) {
     p.toSun = dirFromElevation(40.0f, 0.0f);
     p.sunLux = 100000.0f;
     const glm::vec3 zenith = preethamSky({0, 1, 0}, p);
-    const glm::vec3 nearSun = preethamSky(glm::normalize(p.toSun + glm::vec3(0.05f, 0.0f, 0.0f)), p);
+    const glm::vec3 nearSun =
+        preethamSky(glm::normalize(p.toSun + glm::vec3(0.05f, 0.0f, 0.0f)), p);
     const glm::vec3 away = preethamSky(dirFromElevation(40.0f, 180.0f), p);
-    EXPECT_GT(zenith.b, zenith.r * 1.3f);        // a clear sky is blue overhead
-    EXPECT_GT(nearSun.g, 3.0f * away.g);         // circumsolar brightening
-    EXPECT_GT(zenith.g, 1000.0f);                // kcd/m² order of magnitude (Preetham's zenith luminance)
+    EXPECT_GT(zenith.b, zenith.r * 1.3f);  // a clear sky is blue overhead
+    EXPECT_GT(nearSun.g, 3.0f * away.g);   // circumsolar brightening
+    EXPECT_GT(zenith.g, 1000.0f);  // kcd/m² order of magnitude (Preetham's zenith luminance)
     EXPECT_LT(zenith.g, 20000.0f);
     // Half the sun: half the sky (the sky follows the scene's sun).
     SkyParams half = p;
@@ -84,7 +88,8 @@ TEST(Environment, SkyIsBlueAtTheZenithBrightAroundTheSunAndLitGroundBelow) {
     const Image img = skyImage(p, 128);
     const double skyE = horizontalIlluminance(img, 1);
     const double groundL = img.at(10, img.height - 1, 1);
-    EXPECT_NEAR(groundL, 0.2 * (100000.0 * std::sin(40.0 * kPi / 180.0) + skyE) / kPi, groundL * 1e-3);
+    EXPECT_NEAR(groundL, 0.2 * (100000.0 * std::sin(40.0 * kPi / 180.0) + skyE) / kPi,
+                groundL * 1e-3);
 }
 
 TEST(Environment, ColourAndFileEnvironmentsScaleAndTurn) {
@@ -116,16 +121,22 @@ TEST(Environment, ColourAndFileEnvironmentsScaleAndTurn) {
     auto f = environmentImage(scene);
     ASSERT_TRUE(f.has_value()) << f.error().message;
     ASSERT_EQ(f->width, 4u);
-    for (uint32_t x = 0; x < 4; ++x) EXPECT_NEAR(f->at(x, 0, 0), 2.0f * static_cast<float>((x + 3) % 4 + 1), 1e-4f) << x;
+    for (uint32_t x = 0; x < 4; ++x)
+        EXPECT_NEAR(f->at(x, 0, 0), 2.0f * static_cast<float>((x + 3) % 4 + 1), 1e-4f) << x;
 
     // A broken file names the environment and the file.
     const std::string broken = std::string(RG_TEST_TMP) + "/env_broken.hdr";
-    { std::FILE* out = std::fopen(broken.c_str(), "wb"); std::fputs("#?RADIANCE\nnot an image", out); std::fclose(out); }
+    {
+        std::FILE* out = std::fopen(broken.c_str(), "wb");
+        std::fputs("#?RADIANCE\nnot an image", out);
+        std::fclose(out);
+    }
     e.file = broken;
     scene.environment = e;
     auto b = environmentImage(scene);
     ASSERT_FALSE(b.has_value());
-    EXPECT_NE(b.error().message.find("environment 'grey': "), std::string::npos) << b.error().message;
+    EXPECT_NE(b.error().message.find("environment 'grey': "), std::string::npos)
+        << b.error().message;
     EXPECT_NE(b.error().message.find("env_broken.hdr"), std::string::npos) << b.error().message;
 }
 
@@ -153,13 +164,16 @@ TEST(Environment, TheEnvironmentOptionReplacesOrDefaultsIt) {
     EXPECT_EQ(missing.error().message, "--environment: cannot open 'nowhere/garden.hdr'");
     auto wrong = chooseEnvironment(lit, "garden.png", true);
     ASSERT_FALSE(wrong.has_value());
-    EXPECT_EQ(wrong.error().message, "--environment: expected an equirectangular .hdr or .exr file, 'sky' or 'none', got 'garden.png'");
+    EXPECT_EQ(wrong.error().message,
+              "--environment: expected an equirectangular .hdr or .exr file, 'sky' or 'none', got "
+              "'garden.png'");
 }
 
 TEST(Environment, SharedHdriLoadsAsAnEnvironment) {
     // The project's own tests need no downloaded image; this one only checks that a real
     // published HDRI loads, when the shared assets are there.
-    const std::string file = std::string(RG_SOURCE_ROOT) + "/../shared/assets/hdri/chinese_garden_1k.hdr";
+    const std::string file =
+        std::string(RG_SOURCE_ROOT) + "/../shared/assets/hdri/chinese_garden_1k.hdr";
     if (!fs::exists(file)) GTEST_SKIP() << "shared assets absent: " << file;
     Scene scene;
     ASSERT_TRUE(chooseEnvironment(scene, file, false).has_value());
@@ -177,14 +191,17 @@ TEST(Environment, ImportanceSamplingDistributionIsADensityThatFollowsTheLuminanc
     Image env(512, 256, 4);
     for (uint32_t y = 0; y < 256; ++y)
         for (uint32_t x = 0; x < 512; ++x)
-            for (uint32_t c = 0; c < 3; ++c) env.pixels[env.index(x, y, c)] = (x >= 300 && x < 308 && y >= 60 && y < 68) ? 1e5f : 1.0f;
+            for (uint32_t c = 0; c < 3; ++c)
+                env.pixels[env.index(x, y, c)] =
+                    (x >= 300 && x < 308 && y >= 60 && y < 68) ? 1e5f : 1.0f;
     const EnvironmentCdf cdf = environmentCdf(env);
     ASSERT_EQ(cdf.width, 256u);
     // The density integrates to 1 over the sphere (midpoint rule, 1024 x 512 directions).
     double integral = 0.0;
     for (uint32_t y = 0; y < 512; ++y)
         for (uint32_t x = 0; x < 1024; ++x) {
-            const glm::vec2 uv((static_cast<float>(x) + 0.5f) / 1024.0f, (static_cast<float>(y) + 0.5f) / 512.0f);
+            const glm::vec2 uv((static_cast<float>(x) + 0.5f) / 1024.0f,
+                               (static_cast<float>(y) + 0.5f) / 512.0f);
             const double dOmega = (2.0 * M_PI / 1024.0) * (M_PI / 512.0) * std::sin(uv.y * M_PI);
             integral += cdf.pdf(equirectDirection(uv)) * dOmega;
         }
@@ -197,7 +214,8 @@ TEST(Environment, ImportanceSamplingDistributionIsADensityThatFollowsTheLuminanc
     double exact = 0.0;
     for (uint32_t y = 0; y < 256; ++y)
         for (uint32_t x = 0; x < 512; ++x) {
-            const double dOmega = (2.0 * M_PI / 512.0) * (M_PI / 256.0) * std::sin((y + 0.5) / 256.0 * M_PI);
+            const double dOmega =
+                (2.0 * M_PI / 512.0) * (M_PI / 256.0) * std::sin((y + 0.5) / 256.0 * M_PI);
             exact += env.pixels[env.index(x, y, 0)] * dOmega;
         }
     double estimate = 0.0, inPatch = 0.0;
@@ -205,11 +223,15 @@ TEST(Environment, ImportanceSamplingDistributionIsADensityThatFollowsTheLuminanc
     for (int i = 0; i < n; ++i)
         for (int j = 0; j < n; ++j) {
             float pdf = 0.0f;
-            const glm::vec3 d = cdf.sample(glm::vec2((static_cast<float>(i) + 0.5f) / n, (static_cast<float>(j) + 0.5f) / n), pdf);
+            const glm::vec3 d = cdf.sample(
+                glm::vec2((static_cast<float>(i) + 0.5f) / n, (static_cast<float>(j) + 0.5f) / n),
+                pdf);
             ASSERT_GT(pdf, 0.0f);
-            EXPECT_NEAR(pdf, cdf.pdf(d), 1e-3f * pdf);  // away from cell edges, the density pdf() gives
+            EXPECT_NEAR(pdf, cdf.pdf(d),
+                        1e-3f * pdf);  // away from cell edges, the density pdf() gives
             const glm::vec2 uv = equirectUv(d);
-            const uint32_t x = std::min(511u, uint32_t(uv.x * 512.0f)), y = std::min(255u, uint32_t(uv.y * 256.0f));
+            const uint32_t x = std::min(511u, uint32_t(uv.x * 512.0f)),
+                           y = std::min(255u, uint32_t(uv.y * 256.0f));
             estimate += env.pixels[env.index(x, y, 0)] / pdf;
             if (env.pixels[env.index(x, y, 0)] > 1.0f) inPatch += 1.0;
         }
@@ -218,12 +240,16 @@ TEST(Environment, ImportanceSamplingDistributionIsADensityThatFollowsTheLuminanc
     // the patch's, not its dim neighbour's (reading it back from the direction could give the latter).
     {
         float pdf = 0.0f;
-        const float rowStart = cdf.data[30];  // the first row of the patch's cells (texel rows 60..67 / 2)
+        const float rowStart =
+            cdf.data[30];  // the first row of the patch's cells (texel rows 60..67 / 2)
         cdf.sample(glm::vec2(cdf.data[cdf.conditional(30) + 150], rowStart), pdf);
-        EXPECT_GT(pdf, 100.0f * cdf.pdf(glm::vec3(0.0f, 1.0f, 0.0f)));  // far above the dim sky's density
+        EXPECT_GT(
+            pdf, 100.0f * cdf.pdf(glm::vec3(0.0f, 1.0f, 0.0f)));  // far above the dim sky's density
     }
-    std::printf("sphere integral %.6g, estimate from %d samples %.6g (%.2f %%), %.0f of them in the patch\n", exact, n * n, estimate,
-                100.0 * (estimate / exact - 1.0), inPatch);
+    std::printf(
+        "sphere integral %.6g, estimate from %d samples %.6g (%.2f %%), %.0f of them in the "
+        "patch\n",
+        exact, n * n, estimate, 100.0 * (estimate / exact - 1.0), inPatch);
     EXPECT_NEAR(estimate / exact, 1.0, 0.01);
     EXPECT_NEAR(inPatch / (n * n), 16.0 / 36.0, 0.02);  // the patch holds 99.9 % of the light
 }

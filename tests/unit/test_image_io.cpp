@@ -78,7 +78,9 @@ const ImageLayer* findLayer(const rg::ExrFile& file, const std::string& name) {
 
 // Half has an 11-bit significand: relative error at most 2^-11 for normal values, and an
 // absolute error of at most 2^-25 in the subnormal range (below 2^-14).
-float halfTolerance(float v) { return std::max(std::abs(v) * std::ldexp(1.0f, -11), std::ldexp(1.0f, -25)); }
+float halfTolerance(float v) {
+    return std::max(std::abs(v) * std::ldexp(1.0f, -11), std::ldexp(1.0f, -25));
+}
 
 // ---------------------------------------------------------------------------------------------
 // EXR
@@ -132,8 +134,8 @@ TEST(ExrTest, HalfRoundTripWithinHalfPrecision) {
 
 TEST(ExrTest, HalfRepresentableValuesAreExact) {
     const std::string path = tmpPath("half_exact.exr");
-    const std::vector<float> values = {0.0f,    -0.0f,   1.0f,       0.5f,     -2.0f,
-                                       1.25f,   1024.0f, 65504.0f,   -65504.0f, 0.099975586f,
+    const std::vector<float> values = {0.0f,     -0.0f,    1.0f,           0.5f,      -2.0f,
+                                       1.25f,    1024.0f,  65504.0f,       -65504.0f, 0.099975586f,
                                        0x1p-14f, 0x1p-24f, 3.0f / 1024.0f, 7.5f};
     Image img(uint32_t(values.size()), 1, 1);
     img.pixels = values;
@@ -167,8 +169,8 @@ TEST(ExrTest, UncompressedFileIsLargerAndReadsBack) {
 TEST(ExrTest, MetadataRoundTrips) {
     const std::string path = tmpPath("meta.exr");
     rg::ExrWriteOptions opts;
-    opts.metadata = {{"rg.pass", "tonemap"}, {"rg.frame", "42"}, {"comments", "line1\nline2"},
-                     {"empty", ""}};
+    opts.metadata = {
+        {"rg.pass", "tonemap"}, {"rg.frame", "42"}, {"comments", "line1\nline2"}, {"empty", ""}};
     Image img(2, 2, 1);
     ASSERT_TRUE(rg::writeExr(path, {ImageLayer{"", {"Y"}, img}}, opts));
 
@@ -201,7 +203,8 @@ TEST(ExrTest, NumbersAreWrittenAsTypedAttributes) {
     opts.metadata["rgraph.frames"] = "3";
     auto twice = rg::writeExr(tmpPath("twice.exr"), {ImageLayer{"", {"Y"}, img}}, opts);
     ASSERT_FALSE(twice);
-    EXPECT_NE(twice.error().message.find("'rgraph.frames' is given twice"), std::string::npos) << twice.error().message;
+    EXPECT_NE(twice.error().message.find("'rgraph.frames' is given twice"), std::string::npos)
+        << twice.error().message;
 }
 
 TEST(ExrTest, ChannelOrderIsRgbaFirstThenAlphabetical) {
@@ -220,15 +223,16 @@ TEST(ExrTest, ChannelOrderIsRgbaFirstThenAlphabetical) {
 
 TEST(ExrTest, LayersOfDifferentSizesAreRefusedByName) {
     const std::string path = tmpPath("sizes.exr");
-    const std::vector<ImageLayer> layers = {ImageLayer{"hdr", {"R", "G", "B", "A"}, makeHdrImage(8, 4)},
-                                            ImageLayer{"gbuffer.normal", {"x", "y", "z"},
-                                                       makeNormalImage(4, 4)}};
+    const std::vector<ImageLayer> layers = {
+        ImageLayer{"hdr", {"R", "G", "B", "A"}, makeHdrImage(8, 4)},
+        ImageLayer{"gbuffer.normal", {"x", "y", "z"}, makeNormalImage(4, 4)}};
     auto r = rg::writeExr(path, layers, {});
     ASSERT_FALSE(r);
     EXPECT_EQ(r.error().code, ErrorCode::InvalidInput);
     EXPECT_EQ(r.error().message,
-              "'" + path + "': layer 'gbuffer.normal' is 4x4 but layer 'hdr' is 8x4; all layers "
-              "of an EXR file must have the same size");
+              "'" + path +
+                  "': layer 'gbuffer.normal' is 4x4 but layer 'hdr' is 8x4; all layers "
+                  "of an EXR file must have the same size");
     EXPECT_FALSE(std::filesystem::exists(path));
 }
 
@@ -239,7 +243,8 @@ TEST(ExrTest, BadWriteArgumentsAreRefused) {
     ASSERT_FALSE(r);
     EXPECT_EQ(r.error().message, "'" + path + "': layer 'a' names 2 channels but its image has 3");
 
-    r = rg::writeExr(path, {ImageLayer{"a", {"R", "G", "B"}, img}, ImageLayer{"a", {"R", "X", "Y"}, img}}, {});
+    r = rg::writeExr(
+        path, {ImageLayer{"a", {"R", "G", "B"}, img}, ImageLayer{"a", {"R", "X", "Y"}, img}}, {});
     ASSERT_FALSE(r);
     EXPECT_EQ(r.error().message, "'" + path + "': channel 'a.R' appears twice");
 
@@ -315,7 +320,9 @@ TEST(ExrTest, GarbageAfterMagic) {
     r = rg::readExr(path);
     ASSERT_FALSE(r);
     // rgraph walks the header before OpenEXR allocates what it claims (tools/fuzz.sh image).
-    EXPECT_EQ(r.error().message, "'" + path + "': invalid OpenEXR header: an attribute name is more than 255 characters long");
+    EXPECT_EQ(r.error().message,
+              "'" + path +
+                  "': invalid OpenEXR header: an attribute name is more than 255 characters long");
 
     // A wrong version field is reported as such.
     bytes[4] = 7;
@@ -343,8 +350,9 @@ TEST(ExrTest, TruncatedFile) {
     writeBytes(cut, std::vector<char>(bytes.begin(), bytes.begin() + 40));
     r = rg::readExr(cut);
     ASSERT_FALSE(r);
-    EXPECT_EQ(r.error().message,
-              "'" + cut + "': invalid OpenEXR header: truncated file: attribute 'channels' claims 188 bytes, 12 are left in the file");
+    EXPECT_EQ(r.error().message, "'" + cut +
+                                     "': invalid OpenEXR header: truncated file: attribute "
+                                     "'channels' claims 188 bytes, 12 are left in the file");
 }
 
 TEST(ExrTest, TruncatedFileAtManyLengths) {
@@ -378,8 +386,8 @@ TEST(PngTest, RoundTripEveryChannelCountWithText) {
     for (uint32_t c = 1; c <= 4; ++c) {
         const std::string path = tmpPath("rt" + std::to_string(c) + ".png");
         const Image img = makeDisplayImage(13, 7, c);
-        const std::map<std::string, std::string> text = {{"Software", "rgraph"},
-                                                         {"Description", "pass 'tonemap', frame 3"}};
+        const std::map<std::string, std::string> text = {
+            {"Software", "rgraph"}, {"Description", "pass 'tonemap', frame 3"}};
         auto w = rg::writePng(path, img, text);
         ASSERT_TRUE(w) << w.error().describe();
 
@@ -391,7 +399,8 @@ TEST(PngTest, RoundTripEveryChannelCountWithText) {
         ASSERT_EQ(read->channels, c);
         for (size_t i = 0; i < img.pixels.size(); ++i) {
             // Exactly the rounded value, hence within half a step (and so within 1/255).
-            EXPECT_EQ(read->pixels[i], std::round(img.pixels[i] * 255.0f) / 255.0f) << "sample " << i;
+            EXPECT_EQ(read->pixels[i], std::round(img.pixels[i] * 255.0f) / 255.0f)
+                << "sample " << i;
             EXPECT_LE(std::abs(read->pixels[i] - img.pixels[i]), 0.5f / 255.0f + 1e-6f);
         }
         EXPECT_EQ(readText, text);
@@ -401,8 +410,8 @@ TEST(PngTest, RoundTripEveryChannelCountWithText) {
 TEST(PngTest, ClampsAndRounds) {
     const std::string path = tmpPath("clamp.png");
     Image img(6, 1, 1);
-    img.pixels = {-1.0f, 2.0f, std::numeric_limits<float>::quiet_NaN(), 0.5f / 255.0f,
-                  0.49f / 255.0f, 1.0f};
+    img.pixels = {-1.0f,         2.0f,           std::numeric_limits<float>::quiet_NaN(),
+                  0.5f / 255.0f, 0.49f / 255.0f, 1.0f};
     ASSERT_TRUE(rg::writePng(path, img));
     auto read = rg::readPng(path);
     ASSERT_TRUE(read) << read.error().describe();
@@ -415,8 +424,9 @@ TEST(PngTest, BadTextKeyIsRefused) {
     auto r = rg::writePng(path, Image(1, 1, 3), {{" lead", "x"}});
     ASSERT_FALSE(r);
     EXPECT_EQ(r.error().message,
-              "'" + path + "': invalid PNG text key ' lead' (1-79 printable Latin-1 characters, "
-                           "no leading, trailing or double spaces)");
+              "'" + path +
+                  "': invalid PNG text key ' lead' (1-79 printable Latin-1 characters, "
+                  "no leading, trailing or double spaces)");
     EXPECT_FALSE(std::filesystem::exists(path));
 }
 
@@ -493,7 +503,8 @@ TEST(PngTest, TruncatedFile) {
     const std::string good = tmpPath("whole.png"), cut = tmpPath("cut.png");
     ASSERT_TRUE(rg::writePng(good, makeDisplayImage(40, 30, 4), {{"Title", "x"}}));
     const auto bytes = readBytes(good);
-    writeBytes(cut, std::vector<char>(bytes.begin(), bytes.begin() + std::ptrdiff_t(bytes.size() / 2)));
+    writeBytes(cut,
+               std::vector<char>(bytes.begin(), bytes.begin() + std::ptrdiff_t(bytes.size() / 2)));
     auto r = rg::readPng(cut);
     ASSERT_FALSE(r);
     EXPECT_EQ(r.error().code, ErrorCode::InvalidInput);
@@ -552,10 +563,10 @@ TEST(HdrTest, ReadsKnownRgbeValues) {
     ASSERT_EQ(img->height, 2u);
     ASSERT_EQ(img->channels, 3u);
     const std::vector<float> want = {
-        1.0f,     0.5f,          0.25f,          128.0f,     128.0f, 128.0f,
-        0.0f,     0.0f,          0.0f,           255 * 0x1p-16f, 0x1p-16f, 128 * 0x1p-16f,
-        200 / 64.0f, 100 / 64.0f, 50 / 64.0f,    0x1p21f,    0.0f,   0.0f,
-        1 / 256.0f, 2 / 256.0f,  3 / 256.0f,     0.5f,       0.5f,   0.5f,
+        1.0f,        0.5f,        0.25f,      128.0f,         128.0f,   128.0f,
+        0.0f,        0.0f,        0.0f,       255 * 0x1p-16f, 0x1p-16f, 128 * 0x1p-16f,
+        200 / 64.0f, 100 / 64.0f, 50 / 64.0f, 0x1p21f,        0.0f,     0.0f,
+        1 / 256.0f,  2 / 256.0f,  3 / 256.0f, 0.5f,           0.5f,     0.5f,
     };
     EXPECT_EQ(img->pixels, want);
     EXPECT_EQ(img->at(1, 1, 0), 0x1p21f);  // row 1 is the second row of the file
@@ -568,11 +579,11 @@ std::vector<uint8_t> makeRleScanlines() {
     std::vector<uint8_t> out;
     for (uint8_t row = 0; row < 2; ++row) {
         const std::vector<uint8_t> line = {
-            2, 2, 0, 8,
-            128 + 8, uint8_t(64 + row),                 // R: run of 8
-            8, 0, 1, 2, 3, 4, 5, 6, 7,                  // G: dump of 8
-            128 + 5, 128, 3, 10, 20, 30,                // B: run of 5, dump of 3
-            128 + 8, 137,                               // E: run of 8 -> scale 2^(137-136) = 2
+            2,       2,   0, 8,  128 + 8, uint8_t(64 + row),  // R: run of 8
+            8,       0,   1, 2,  3,       4,
+            5,       6,   7,                   // G: dump of 8
+            128 + 5, 128, 3, 10, 20,      30,  // B: run of 5, dump of 3
+            128 + 8, 137,                      // E: run of 8 -> scale 2^(137-136) = 2
         };
         out.insert(out.end(), line.begin(), line.end());
     }
@@ -709,10 +720,10 @@ TEST(SrgbTest, EndpointsAndBreakpoints) {
     // The segments meet: the standard's own step at the breakpoint is ~3e-8 encoded and ~2e-9
     // linear; a wrong constant (0.0031308 vs 0.04045, 12.92, 1.055, 0.055) would be far larger.
     const float encBp = 0.0031308f, decBp = 0.04045f;
-    EXPECT_NEAR(rg::srgbEncode(std::nextafter(encBp, 0.0f)), rg::srgbEncode(std::nextafter(encBp, 1.0f)),
-                1e-7f);
-    EXPECT_NEAR(rg::srgbDecode(std::nextafter(decBp, 0.0f)), rg::srgbDecode(std::nextafter(decBp, 1.0f)),
-                1e-8f);
+    EXPECT_NEAR(rg::srgbEncode(std::nextafter(encBp, 0.0f)),
+                rg::srgbEncode(std::nextafter(encBp, 1.0f)), 1e-7f);
+    EXPECT_NEAR(rg::srgbDecode(std::nextafter(decBp, 0.0f)),
+                rg::srgbDecode(std::nextafter(decBp, 1.0f)), 1e-8f);
     // Well-known values: mid grey 0.5 encoded is 0.2140 linear; 18% grey encodes to 0.4613.
     EXPECT_NEAR(rg::srgbDecode(0.5f), 0.214041f, 1e-6f);
     EXPECT_NEAR(rg::srgbEncode(0.18f), 0.461356f, 1e-6f);

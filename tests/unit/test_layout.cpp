@@ -43,17 +43,24 @@ double octBound(uint32_t bits) {
     return 2.0 * std::asin(std::min(1.0, 3.0 * std::numbers::sqrt2 / (2.0 * n)));
 }
 double unormBound(uint32_t bits) { return 0.5 / (std::ldexp(1.0, static_cast<int>(bits)) - 1.0); }
-double snormBound(uint32_t bits) { return 0.5 / (std::ldexp(1.0, static_cast<int>(bits) - 1) - 1.0); }
+double snormBound(uint32_t bits) {
+    return 0.5 / (std::ldexp(1.0, static_cast<int>(bits) - 1) - 1.0);
+}
 
-double srgbEncode(double c) { return c <= 0.0031308 ? c * 12.92 : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055; }
+double srgbEncode(double c) {
+    return c <= 0.0031308 ? c * 12.92 : 1.055 * std::pow(c, 1.0 / 2.4) - 0.055;
+}
 
 int mantissaBits(Format f, uint32_t component) {
     switch (f) {
-    case Format::R16F:
-    case Format::RG16F:
-    case Format::RGBA16F: return 10;
-    case Format::R11G11B10F: return component < 2 ? 6 : 5;
-    default: return 0;  // 32-bit float: exact
+        case Format::R16F:
+        case Format::RG16F:
+        case Format::RGBA16F:
+            return 10;
+        case Format::R11G11B10F:
+            return component < 2 ? 6 : 5;
+        default:
+            return 0;  // 32-bit float: exact
     }
 }
 std::pair<float, float> floatRange(Format f, uint32_t component) {
@@ -67,7 +74,8 @@ double angleBetween(const std::array<float, 4>& a, const std::array<float, 4>& b
     double lb = std::sqrt(double(b[0]) * b[0] + double(b[1]) * b[1] + double(b[2]) * b[2]);
     double d = (double(a[0]) * b[0] + double(a[1]) * b[1] + double(a[2]) * b[2]) / (la * lb);
     // atan2 form: accurate for small angles, where acos is not.
-    double cx = double(a[1]) * b[2] - double(a[2]) * b[1], cy = double(a[2]) * b[0] - double(a[0]) * b[2],
+    double cx = double(a[1]) * b[2] - double(a[2]) * b[1],
+           cy = double(a[2]) * b[0] - double(a[0]) * b[2],
            cz = double(a[0]) * b[1] - double(a[1]) * b[0];
     return std::atan2(std::sqrt(cx * cx + cy * cy + cz * cz) / (la * lb), d);
 }
@@ -79,8 +87,8 @@ struct Worst {
 
 // Checks one unpacked channel against the value that was packed; adds a failure naming the
 // channel when a bound is broken. Returns false on failure.
-bool checkChannel(const LayoutInfo& info, size_t i, const ChannelValue& in, const ChannelValue& out, Worst& worst,
-                  double floatUlps = 0.5) {
+bool checkChannel(const LayoutInfo& info, size_t i, const ChannelValue& in, const ChannelValue& out,
+                  Worst& worst, double floatUlps = 0.5) {
     const ChannelPlacement& p = info.channels[i];
     const ChannelDesc& c = info.channelDesc(i);
     const Format fmt = info.desc.targets[p.target].format;
@@ -89,62 +97,69 @@ bool checkChannel(const LayoutInfo& info, size_t i, const ChannelValue& in, cons
     // The error / bound ratios are recorded where the bound is well above float rounding.
     const bool record = B <= 16;
     auto failAt = [&](uint32_t k, double got, double want, double bound) {
-        ADD_FAILURE() << "layout '" << info.desc.name << "' channel '" << c.name << "' (" << encodingName(c.encoding) << " "
-                      << c.bits << " bits in " << formatName(fmt) << ") component " << k << ": got " << got << ", want "
-                      << want << " within " << bound;
+        ADD_FAILURE() << "layout '" << info.desc.name << "' channel '" << c.name << "' ("
+                      << encodingName(c.encoding) << " " << c.bits << " bits in " << formatName(fmt)
+                      << ") component " << k << ": got " << got << ", want " << want << " within "
+                      << bound;
         return false;
     };
     switch (c.encoding) {
-    case Encoding::Uint:
-        for (uint32_t k = 0; k < p.components; ++k) {
-            const uint32_t want = B >= 32 ? in.u[k] : std::min(in.u[k], (1u << B) - 1u);
-            if (out.u[k] != want) return failAt(k, out.u[k], want, 0);
+        case Encoding::Uint:
+            for (uint32_t k = 0; k < p.components; ++k) {
+                const uint32_t want = B >= 32 ? in.u[k] : std::min(in.u[k], (1u << B) - 1u);
+                if (out.u[k] != want) return failAt(k, out.u[k], want, 0);
+            }
+            return true;
+        case Encoding::Unorm:
+        case Encoding::Snorm:
+            for (uint32_t k = 0; k < p.components; ++k) {
+                const bool un = c.encoding == Encoding::Unorm;
+                const double want = std::clamp(double(in.v[k]), un ? 0.0 : -1.0, 1.0);
+                const double bound = un ? unormBound(B) : snormBound(B);
+                const double err = std::fabs(out.v[k] - want);
+                if (record)
+                    (un ? worst.unorm : worst.snorm) =
+                        std::max(un ? worst.unorm : worst.snorm, err / bound);
+                if (err > bound + eps) return failAt(k, out.v[k], want, bound);
+            }
+            return true;
+        case Encoding::Srgb: {
+            for (uint32_t k = 0; k < 3; ++k) {
+                const double want = std::clamp(double(in.v[k]), 0.0, 1.0);
+                const double bound = unormBound(B);
+                const double err = std::fabs(srgbEncode(std::clamp(double(out.v[k]), 0.0, 1.0)) -
+                                             srgbEncode(want));
+                if (record) worst.srgb = std::max(worst.srgb, err / bound);
+                if (err > bound + 1e-5)
+                    return failAt(k, srgbEncode(out.v[k]), srgbEncode(want), bound);
+                if (std::fabs(out.v[k] - want) > bound * kSrgbMaxSlope + 1e-5)
+                    return failAt(k, out.v[k], want, bound * kSrgbMaxSlope);
+            }
+            return true;
         }
-        return true;
-    case Encoding::Unorm:
-    case Encoding::Snorm:
-        for (uint32_t k = 0; k < p.components; ++k) {
-            const bool un = c.encoding == Encoding::Unorm;
-            const double want = std::clamp(double(in.v[k]), un ? 0.0 : -1.0, 1.0);
-            const double bound = un ? unormBound(B) : snormBound(B);
-            const double err = std::fabs(out.v[k] - want);
-            if (record) (un ? worst.unorm : worst.snorm) = std::max(un ? worst.unorm : worst.snorm, err / bound);
-            if (err > bound + eps) return failAt(k, out.v[k], want, bound);
+        case Encoding::Oct: {
+            const double a = angleBetween(in.v, out.v), bound = octBound(B);
+            if (record) worst.oct = std::max(worst.oct, a / bound);
+            const double len = std::sqrt(double(out.v[0]) * out.v[0] + double(out.v[1]) * out.v[1] +
+                                         double(out.v[2]) * out.v[2]);
+            if (std::fabs(len - 1.0) > 1e-5) return failAt(3, len, 1.0, 1e-5);
+            if (a > bound + 2e-6) return failAt(0, a, 0, bound);
+            return true;
         }
-        return true;
-    case Encoding::Srgb: {
-        for (uint32_t k = 0; k < 3; ++k) {
-            const double want = std::clamp(double(in.v[k]), 0.0, 1.0);
-            const double bound = unormBound(B);
-            const double err = std::fabs(srgbEncode(std::clamp(double(out.v[k]), 0.0, 1.0)) - srgbEncode(want));
-            if (record) worst.srgb = std::max(worst.srgb, err / bound);
-            if (err > bound + 1e-5) return failAt(k, srgbEncode(out.v[k]), srgbEncode(want), bound);
-            if (std::fabs(out.v[k] - want) > bound * kSrgbMaxSlope + 1e-5)
-                return failAt(k, out.v[k], want, bound * kSrgbMaxSlope);
-        }
-        return true;
-    }
-    case Encoding::Oct: {
-        const double a = angleBetween(in.v, out.v), bound = octBound(B);
-        if (record) worst.oct = std::max(worst.oct, a / bound);
-        const double len = std::sqrt(double(out.v[0]) * out.v[0] + double(out.v[1]) * out.v[1] + double(out.v[2]) * out.v[2]);
-        if (std::fabs(len - 1.0) > 1e-5) return failAt(3, len, 1.0, 1e-5);
-        if (a > bound + 2e-6) return failAt(0, a, 0, bound);
-        return true;
-    }
-    case Encoding::Float:
-        for (uint32_t k = 0; k < p.components; ++k) {
-            const uint32_t comp = p.slots[k].component;
-            const auto [lo, hi] = floatRange(fmt, comp);
-            const double want = std::clamp(in.v[k], lo, hi);
-            const int m = mantissaBits(fmt, comp);
-            const double bound =
-                m == 0 ? 0.0 : floatUlps * std::max(std::ldexp(std::fabs(want), -m), std::ldexp(1.0, -14 - m));
-            const double err = std::fabs(out.v[k] - want);
-            if (bound > 0) worst.floating = std::max(worst.floating, err / bound);
-            if (err > bound) return failAt(k, out.v[k], want, bound);
-        }
-        return true;
+        case Encoding::Float:
+            for (uint32_t k = 0; k < p.components; ++k) {
+                const uint32_t comp = p.slots[k].component;
+                const auto [lo, hi] = floatRange(fmt, comp);
+                const double want = std::clamp(in.v[k], lo, hi);
+                const int m = mantissaBits(fmt, comp);
+                const double bound = m == 0 ? 0.0
+                                            : floatUlps * std::max(std::ldexp(std::fabs(want), -m),
+                                                                   std::ldexp(1.0, -14 - m));
+                const double err = std::fabs(out.v[k] - want);
+                if (bound > 0) worst.floating = std::max(worst.floating, err / bound);
+                if (err > bound) return failAt(k, out.v[k], want, bound);
+            }
+            return true;
     }
     return false;
 }
@@ -161,25 +176,33 @@ std::vector<ChannelValue> randomValues(const LayoutInfo& info, std::mt19937& rng
         const uint32_t B = p.bitsPerComponent;
         for (uint32_t k = 0; k < 4; ++k) {
             switch (c.encoding) {
-            case Encoding::Unorm:
-            case Encoding::Srgb: v.v[k] = u01(rng) * 1.2f - 0.1f; break;
-            case Encoding::Snorm: v.v[k] = u01(rng) * 2.4f - 1.2f; break;
-            case Encoding::Oct: v.v[k] = gauss(rng) * (k == 0 ? 3.0f : 1.0f); break;  // any length
-            case Encoding::Uint: {
-                const uint32_t r = static_cast<uint32_t>(rng());
-                v.u[k] = (rng() % 4 == 0 || B >= 32) ? r : r & ((1u << B) - 1u);
-                break;
-            }
-            case Encoding::Float: {
-                const float mant = u01(rng) * 2.0f - 1.0f;
-                v.v[k] = rng() % 16 == 0 ? 0.0f : std::ldexp(mant, static_cast<int>(rng() % 40) - 20);
-                break;
-            }
+                case Encoding::Unorm:
+                case Encoding::Srgb:
+                    v.v[k] = u01(rng) * 1.2f - 0.1f;
+                    break;
+                case Encoding::Snorm:
+                    v.v[k] = u01(rng) * 2.4f - 1.2f;
+                    break;
+                case Encoding::Oct:
+                    v.v[k] = gauss(rng) * (k == 0 ? 3.0f : 1.0f);
+                    break;  // any length
+                case Encoding::Uint: {
+                    const uint32_t r = static_cast<uint32_t>(rng());
+                    v.u[k] = (rng() % 4 == 0 || B >= 32) ? r : r & ((1u << B) - 1u);
+                    break;
+                }
+                case Encoding::Float: {
+                    const float mant = u01(rng) * 2.0f - 1.0f;
+                    v.v[k] = rng() % 16 == 0 ? 0.0f
+                                             : std::ldexp(mant, static_cast<int>(rng() % 40) - 20);
+                    break;
+                }
             }
         }
         // Exact axes and the octahedron's fold lines, where encodings tend to break.
         if (c.encoding == Encoding::Oct && rng() % 8 == 0) {
-            const float axes[6][3] = {{1, 0, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}, {-1, 0, -1}, {0.5f, -0.5f, -0.0f}};
+            const float axes[6][3] = {{1, 0, 0},  {0, -1, 0},  {0, 0, 1},
+                                      {0, 0, -1}, {-1, 0, -1}, {0.5f, -0.5f, -0.0f}};
             const auto& a = axes[rng() % 6];
             v.v = {a[0], a[1], a[2], 0.0f};
         }
@@ -234,10 +257,12 @@ TEST(Layout, DefaultDisneyPlacements) {
         uint32_t target, component, bitOffset, components, bitsPerComponent;
     };
     const Want want[] = {
-        {"normal", 0, 0, 0, 2, 10},       {"smoothness", 0, 2, 0, 1, 10}, {"materialId", 0, 3, 0, 1, 2},
-        {"baseColor", 1, 0, 0, 3, 8},     {"materialData", 1, 3, 0, 1, 5}, {"normalExtra", 1, 3, 5, 1, 3},
-        {"reserved", 2, 0, 0, 1, 8},      {"metalMask", 2, 1, 0, 1, 8},   {"reflectance", 2, 2, 0, 1, 8},
-        {"ao", 2, 3, 0, 1, 8},            {"emissive", 3, 0, 0, 3, 16},
+        {"normal", 0, 0, 0, 2, 10},      {"smoothness", 0, 2, 0, 1, 10},
+        {"materialId", 0, 3, 0, 1, 2},   {"baseColor", 1, 0, 0, 3, 8},
+        {"materialData", 1, 3, 0, 1, 5}, {"normalExtra", 1, 3, 5, 1, 3},
+        {"reserved", 2, 0, 0, 1, 8},     {"metalMask", 2, 1, 0, 1, 8},
+        {"reflectance", 2, 2, 0, 1, 8},  {"ao", 2, 3, 0, 1, 8},
+        {"emissive", 3, 0, 0, 3, 16},
     };
     for (size_t i = 0; i < 11; ++i) {
         const ChannelPlacement& p = info.channels[i];
@@ -250,7 +275,8 @@ TEST(Layout, DefaultDisneyPlacements) {
         EXPECT_EQ(p.components, want[i].components);
         EXPECT_EQ(p.bitsPerComponent, want[i].bitsPerComponent);
         for (uint32_t k = 0; k < p.components; ++k)  // the default layout has no split fields
-            EXPECT_EQ(p.slots[k].component, want[i].component + (want[i].bitsPerComponent < 8 ? 0 : k));
+            EXPECT_EQ(p.slots[k].component,
+                      want[i].component + (want[i].bitsPerComponent < 8 ? 0 : k));
     }
     // normal is the only channel spanning two texel components: R and G of GB0.
     EXPECT_EQ(info.channels[0].slots[1].component, 1u);
@@ -261,16 +287,16 @@ TEST(Layout, PackedBitsOfTheDefaultLayout) {
     auto info = analyzeLayout(defaultDisneyLayout());
     ASSERT_TRUE(info.has_value());
     std::vector<ChannelValue> v(11);
-    v[0].v = {0, 0, 1, 0};          // normal +z -> octahedral (0, 0) -> unorm 0.5 -> 512 of 1023
-    v[1].v = {0.25f};               // smoothness -> round(255.75) = 256
-    v[2].u = {7};                   // materialId clamps to 3
-    v[3].v = {1.0f, 0.0f, 2.0f};    // baseColor, clamped to [0, 1]
-    v[4].u = {17};                  // materialData in A bits 0..4
-    v[5].u = {5};                   // normalExtra in A bits 5..7: 17 | 5 << 5 = 177
+    v[0].v = {0, 0, 1, 0};        // normal +z -> octahedral (0, 0) -> unorm 0.5 -> 512 of 1023
+    v[1].v = {0.25f};             // smoothness -> round(255.75) = 256
+    v[2].u = {7};                 // materialId clamps to 3
+    v[3].v = {1.0f, 0.0f, 2.0f};  // baseColor, clamped to [0, 1]
+    v[4].u = {17};                // materialData in A bits 0..4
+    v[5].u = {5};                 // normalExtra in A bits 5..7: 17 | 5 << 5 = 177
     v[6].v = {0.0f};
     v[7].v = {1.0f};
-    v[8].v = {0.5f};                // round(127.5 + 0.5) = 128
-    v[9].v = {-3.0f};               // ao clamps to 0
+    v[8].v = {0.5f};                       // round(127.5 + 0.5) = 128
+    v[9].v = {-3.0f};                      // ao clamps to 0
     v[10].v = {1.0f / 3.0f, 1e6f, -2.0f};  // emissive: half rounding, clamp to 65504
     auto t = packTexel(*info, v);
     ASSERT_EQ(t.size(), 4u);
@@ -300,9 +326,11 @@ TEST(Layout, PackedBitsOfTheDefaultLayout) {
 TEST(Layout, SnormZeroAndEndsAreExactAndIntegerTargetsKeep32Bits) {
     LayoutDesc d;
     d.name = "ints";
-    d.targets = {{"ids", Format::RGBA32Uint,
-                  {ch("id", Encoding::Uint, 32), ch("s", Encoding::Snorm, 16), ch("u", Encoding::Unorm, 16),
-                   ch("n", Encoding::Oct, 32), ch("rgb", Encoding::Srgb, 24, 3), ch("pad", Encoding::Uint, 8)},
+    d.targets = {{"ids",
+                  Format::RGBA32Uint,
+                  {ch("id", Encoding::Uint, 32), ch("s", Encoding::Snorm, 16),
+                   ch("u", Encoding::Unorm, 16), ch("n", Encoding::Oct, 32),
+                   ch("rgb", Encoding::Srgb, 24, 3), ch("pad", Encoding::Uint, 8)},
                   ""}};
     auto info = analyzeLayout(d);
     ASSERT_TRUE(info.has_value()) << info.error().message;
@@ -336,112 +364,165 @@ LayoutDesc disneyWith(auto&& edit) {
 
 std::vector<ErrorCase> errorCases() {
     const std::string colourFormats =
-        "'r8', 'rg8', 'rgba8', 'rgba8_srgb', 'rgb10a2', 'r11g11b10f', 'r16f', 'rg16f', 'rgba16f', 'r32f', 'rg32f', "
+        "'r8', 'rg8', 'rgba8', 'rgba8_srgb', 'rgb10a2', 'r11g11b10f', 'r16f', 'rg16f', 'rgba16f', "
+        "'r32f', 'rg32f', "
         "'rgba32f', 'r8ui', 'r32ui', 'rgba32ui'";
-    const std::string ident = "expected a GLSL identifier: a letter, then letters, digits and single '_' not at the end";
+    const std::string ident =
+        "expected a GLSL identifier: a letter, then letters, digits and single '_' not at the end";
     std::vector<ErrorCase> cases;
-    cases.push_back({"overflow", disneyWith([](LayoutDesc& d) { d.targets[0].channels[2].bits = 4; }),
+    cases.push_back({"overflow",
+                     disneyWith([](LayoutDesc& d) { d.targets[0].channels[2].bits = 4; }),
                      "layout 'disney' target 'GB0' (rgb10a2, 32 bits): channels need 34 bits"});
     cases.push_back({"overflow with the layout's origin", disneyWith([](LayoutDesc& d) {
                          d.origin = "scripts/deferred.lua:3";
                          d.targets[0].channels[2].bits = 4;
                      }),
-                     "scripts/deferred.lua:3: layout 'disney' target 'GB0' (rgb10a2, 32 bits): channels need 34 bits"});
+                     "scripts/deferred.lua:3: layout 'disney' target 'GB0' (rgb10a2, 32 bits): "
+                     "channels need 34 bits"});
     cases.push_back({"the channel's origin wins", disneyWith([](LayoutDesc& d) {
                          d.origin = "deferred.lua:3";
                          d.targets[1].origin = "deferred.lua:5";
                          d.targets[1].channels[1].origin = "deferred.lua:6";
                          d.targets[1].channels[1].name = "normal";
                      }),
-                     "deferred.lua:6: layout 'disney' target 'GB1' (rgba8_srgb) channel 'normal': duplicate channel name "
+                     "deferred.lua:6: layout 'disney' target 'GB1' (rgba8_srgb) channel 'normal': "
+                     "duplicate channel name "
                      "(already in target 'GB0')"});
     cases.push_back({"the target's origin over the layout's", disneyWith([](LayoutDesc& d) {
                          d.origin = "deferred.lua:3";
                          d.targets[3].origin = "deferred.lua:9";
                          d.targets[3].channels.push_back(ch("extra", Encoding::Float, 32, 2));
                      }),
-                     "deferred.lua:9: layout 'disney' target 'GB3' (rgba16f, 4 components): channels need 5 components"});
-    cases.push_back({"straddle", disneyWith([](LayoutDesc& d) {
-                         d.targets[2].channels = {ch("a", Encoding::Unorm, 6), ch("b", Encoding::Unorm, 6)};
-                     }),
-                     "layout 'disney' target 'GB2' (rgba8) channel 'b': component 0 needs bits 6..11 of R, which has 8 "
-                     "bits; a channel component must lie inside one texel component (declare a padding channel to skip bits)"});
-    cases.push_back({"straddle of a multi-component channel", disneyWith([](LayoutDesc& d) {
-                         d.targets[0].channels = {ch("a", Encoding::Uint, 3), ch("v", Encoding::Unorm, 8, 2)};
-                     }),
-                     "layout 'disney' target 'GB0' (rgb10a2) channel 'v': component 1 needs bits 7..10 of R, which has 10 "
-                     "bits; a channel component must lie inside one texel component (declare a padding channel to skip bits)"});
+                     "deferred.lua:9: layout 'disney' target 'GB3' (rgba16f, 4 components): "
+                     "channels need 5 components"});
+    cases.push_back(
+        {"straddle", disneyWith([](LayoutDesc& d) {
+             d.targets[2].channels = {ch("a", Encoding::Unorm, 6), ch("b", Encoding::Unorm, 6)};
+         }),
+         "layout 'disney' target 'GB2' (rgba8) channel 'b': component 0 needs bits 6..11 of R, "
+         "which has 8 "
+         "bits; a channel component must lie inside one texel component (declare a padding channel "
+         "to skip bits)"});
+    cases.push_back(
+        {"straddle of a multi-component channel", disneyWith([](LayoutDesc& d) {
+             d.targets[0].channels = {ch("a", Encoding::Uint, 3), ch("v", Encoding::Unorm, 8, 2)};
+         }),
+         "layout 'disney' target 'GB0' (rgb10a2) channel 'v': component 1 needs bits 7..10 of R, "
+         "which has 10 "
+         "bits; a channel component must lie inside one texel component (declare a padding channel "
+         "to skip bits)"});
     cases.push_back({"float channel in a unorm format", disneyWith([](LayoutDesc& d) {
                          d.targets[2].channels[0] = ch("x", Encoding::Float, 8);
                      }),
-                     "layout 'disney' target 'GB2' (rgba8) channel 'x': a float channel needs a float format; expected one "
+                     "layout 'disney' target 'GB2' (rgba8) channel 'x': a float channel needs a "
+                     "float format; expected one "
                      "of: 'r11g11b10f', 'r16f', 'rg16f', 'rgba16f', 'r32f', 'rg32f', 'rgba32f'"});
     cases.push_back({"unorm channel in a float format", disneyWith([](LayoutDesc& d) {
                          d.targets[3].channels.push_back(ch("x", Encoding::Unorm, 16));
                      }),
-                     "layout 'disney' target 'GB3' (rgba16f) channel 'x': rgba16f takes only float channels, got unorm"});
+                     "layout 'disney' target 'GB3' (rgba16f) channel 'x': rgba16f takes only float "
+                     "channels, got unorm"});
     cases.push_back({"unorm in R of an sRGB format", disneyWith([](LayoutDesc& d) {
                          d.targets[1].channels[0] = ch("x", Encoding::Unorm, 8);
                      }),
-                     "layout 'disney' target 'GB1' (rgba8_srgb) channel 'x': R, G and B of rgba8_srgb take only an srgb "
+                     "layout 'disney' target 'GB1' (rgba8_srgb) channel 'x': R, G and B of "
+                     "rgba8_srgb take only an srgb "
                      "channel (the hardware sRGB-encodes them), got unorm"});
-    cases.push_back({"srgb channel of 5-bit components in an sRGB format", disneyWith([](LayoutDesc& d) {
-                         d.targets[1].channels[0].bits = 15;
-                     }),
-                     "layout 'disney' target 'GB1' (rgba8_srgb) channel 'baseColor': an srgb channel in rgba8_srgb fills R, "
-                     "G and B with 8 bits each (the hardware encodes them), got 3 x 5 bits from bit 0 of R"});
-    cases.push_back({"depth format", disneyWith([](LayoutDesc& d) { d.targets[3].format = Format::D32F; }),
-                     "layout 'disney' target 'GB3' (d32f): depth/stencil formats cannot hold G-buffer channels; expected "
-                     "one of: " + colourFormats});
-    cases.push_back({"no format", disneyWith([](LayoutDesc& d) { d.targets[3].format = Format::Undefined; }),
+    cases.push_back(
+        {"srgb channel of 5-bit components in an sRGB format",
+         disneyWith([](LayoutDesc& d) { d.targets[1].channels[0].bits = 15; }),
+         "layout 'disney' target 'GB1' (rgba8_srgb) channel 'baseColor': an srgb channel in "
+         "rgba8_srgb fills R, "
+         "G and B with 8 bits each (the hardware encodes them), got 3 x 5 bits from bit 0 of R"});
+    cases.push_back({"depth format",
+                     disneyWith([](LayoutDesc& d) { d.targets[3].format = Format::D32F; }),
+                     "layout 'disney' target 'GB3' (d32f): depth/stencil formats cannot hold "
+                     "G-buffer channels; expected "
+                     "one of: " +
+                         colourFormats});
+    cases.push_back({"no format",
+                     disneyWith([](LayoutDesc& d) { d.targets[3].format = Format::Undefined; }),
                      "layout 'disney' target 'GB3': no format; expected one of: " + colourFormats});
-    cases.push_back({"duplicate channel", disneyWith([](LayoutDesc& d) { d.targets[2].channels[0].name = "ao"; }),
-                     "layout 'disney' target 'GB2' (rgba8) channel 'ao': duplicate channel name (already in target 'GB2')"});
-    cases.push_back({"duplicate target", disneyWith([](LayoutDesc& d) { d.targets[2].name = "GB0"; }),
+    cases.push_back({"duplicate channel",
+                     disneyWith([](LayoutDesc& d) { d.targets[2].channels[0].name = "ao"; }),
+                     "layout 'disney' target 'GB2' (rgba8) channel 'ao': duplicate channel name "
+                     "(already in target 'GB2')"});
+    cases.push_back({"duplicate target",
+                     disneyWith([](LayoutDesc& d) { d.targets[2].name = "GB0"; }),
                      "layout 'disney' target 'GB0': duplicate target name (also target 0)"});
-    cases.push_back({"bits not a multiple of the components", disneyWith([](LayoutDesc& d) { d.targets[0].channels[0].bits = 21; }),
-                     "layout 'disney' target 'GB0' (rgb10a2) channel 'normal': 21 bits do not split into 2 components; "
+    cases.push_back({"bits not a multiple of the components",
+                     disneyWith([](LayoutDesc& d) { d.targets[0].channels[0].bits = 21; }),
+                     "layout 'disney' target 'GB0' (rgb10a2) channel 'normal': 21 bits do not "
+                     "split into 2 components; "
                      "expected a multiple of 2"});
-    cases.push_back({"oct with 3 components", disneyWith([](LayoutDesc& d) { d.targets[0].channels[0].components = 3; }),
-                     "layout 'disney' target 'GB0' (rgb10a2) channel 'normal': oct takes 2 components, got 3"});
-    cases.push_back({"srgb with 4 components", disneyWith([](LayoutDesc& d) { d.targets[1].channels[0].components = 4; }),
-                     "layout 'disney' target 'GB1' (rgba8_srgb) channel 'baseColor': srgb takes 3 components, got 4"});
-    cases.push_back({"5 components", disneyWith([](LayoutDesc& d) { d.targets[2].channels[0] = ch("v", Encoding::Unorm, 5, 5); }),
-                     "layout 'disney' target 'GB2' (rgba8) channel 'v': 5 components; expected 1 to 4"});
+    cases.push_back(
+        {"oct with 3 components",
+         disneyWith([](LayoutDesc& d) { d.targets[0].channels[0].components = 3; }),
+         "layout 'disney' target 'GB0' (rgb10a2) channel 'normal': oct takes 2 components, got 3"});
+    cases.push_back({"srgb with 4 components",
+                     disneyWith([](LayoutDesc& d) { d.targets[1].channels[0].components = 4; }),
+                     "layout 'disney' target 'GB1' (rgba8_srgb) channel 'baseColor': srgb takes 3 "
+                     "components, got 4"});
+    cases.push_back(
+        {"5 components", disneyWith([](LayoutDesc& d) {
+             d.targets[2].channels[0] = ch("v", Encoding::Unorm, 5, 5);
+         }),
+         "layout 'disney' target 'GB2' (rgba8) channel 'v': 5 components; expected 1 to 4"});
     cases.push_back({"0 bits", disneyWith([](LayoutDesc& d) { d.targets[2].channels[0].bits = 0; }),
-                     "layout 'disney' target 'GB2' (rgba8) channel 'reserved': 0 bits; expected at least 1 bit"});
-    cases.push_back({"1-bit snorm", disneyWith([](LayoutDesc& d) { d.targets[2].channels[0] = ch("s", Encoding::Snorm, 1); }),
-                     "layout 'disney' target 'GB2' (rgba8) channel 's': snorm needs at least 2 bits per component, got 1"});
-    cases.push_back({"32-bit unorm", disneyWith([](LayoutDesc& d) {
-                         d.targets[3] = {"GB3", Format::R32Uint, {ch("depth", Encoding::Unorm, 32)}, ""};
+                     "layout 'disney' target 'GB2' (rgba8) channel 'reserved': 0 bits; expected at "
+                     "least 1 bit"});
+    cases.push_back({"1-bit snorm", disneyWith([](LayoutDesc& d) {
+                         d.targets[2].channels[0] = ch("s", Encoding::Snorm, 1);
                      }),
-                     "layout 'disney' target 'GB3' (r32ui) channel 'depth': unorm takes at most 24 bits per component, got 32"});
-    cases.push_back({"float wider than the component", disneyWith([](LayoutDesc& d) { d.targets[3].format = Format::R11G11B10F; }),
-                     "layout 'disney' target 'GB3' (r11g11b10f) channel 'emissive': 16 bits per component do not fit R "
+                     "layout 'disney' target 'GB2' (rgba8) channel 's': snorm needs at least 2 "
+                     "bits per component, got 1"});
+    cases.push_back(
+        {"32-bit unorm", disneyWith([](LayoutDesc& d) {
+             d.targets[3] = {"GB3", Format::R32Uint, {ch("depth", Encoding::Unorm, 32)}, ""};
+         }),
+         "layout 'disney' target 'GB3' (r32ui) channel 'depth': unorm takes at most 24 bits per "
+         "component, got 32"});
+    cases.push_back({"float wider than the component",
+                     disneyWith([](LayoutDesc& d) { d.targets[3].format = Format::R11G11B10F; }),
+                     "layout 'disney' target 'GB3' (r11g11b10f) channel 'emissive': 16 bits per "
+                     "component do not fit R "
                      "(11 bits); expected at most 11"});
     cases.push_back({"bad layout name", disneyWith([](LayoutDesc& d) { d.name = "my-layout"; }),
                      "layout 'my-layout': bad name; " + ident});
-    cases.push_back({"layout name ending in '_'", disneyWith([](LayoutDesc& d) { d.name = "disney_"; }),
+    cases.push_back({"layout name ending in '_'",
+                     disneyWith([](LayoutDesc& d) { d.name = "disney_"; }),
                      "layout 'disney_': bad name; " + ident});
-    cases.push_back({"dotted channel name", disneyWith([](LayoutDesc& d) { d.targets[1].channels[2].name = "normal.extra"; }),
-                     "layout 'disney' target 'GB1' (rgba8_srgb) channel 'normal.extra': bad name; " + ident});
-    cases.push_back({"double underscore", disneyWith([](LayoutDesc& d) { d.targets[2].channels[0].name = "my__ao"; }),
+    cases.push_back(
+        {"dotted channel name",
+         disneyWith([](LayoutDesc& d) { d.targets[1].channels[2].name = "normal.extra"; }),
+         "layout 'disney' target 'GB1' (rgba8_srgb) channel 'normal.extra': bad name; " + ident});
+    cases.push_back({"double underscore",
+                     disneyWith([](LayoutDesc& d) { d.targets[2].channels[0].name = "my__ao"; }),
                      "layout 'disney' target 'GB2' (rgba8) channel 'my__ao': bad name; " + ident});
-    cases.push_back({"keyword channel name", disneyWith([](LayoutDesc& d) { d.targets[2].channels[0].name = "sample"; }),
-                     "layout 'disney' target 'GB2' (rgba8) channel 'sample': 'sample' is a GLSL keyword; expected another name"});
-    cases.push_back({"gl_ channel name", disneyWith([](LayoutDesc& d) { d.targets[2].channels[0].name = "gl_Ao"; }),
-                     "layout 'disney' target 'GB2' (rgba8) channel 'gl_Ao': names starting with 'gl_' are reserved by GLSL"});
+    cases.push_back({"keyword channel name",
+                     disneyWith([](LayoutDesc& d) { d.targets[2].channels[0].name = "sample"; }),
+                     "layout 'disney' target 'GB2' (rgba8) channel 'sample': 'sample' is a GLSL "
+                     "keyword; expected another name"});
+    cases.push_back({"gl_ channel name",
+                     disneyWith([](LayoutDesc& d) { d.targets[2].channels[0].name = "gl_Ao"; }),
+                     "layout 'disney' target 'GB2' (rgba8) channel 'gl_Ao': names starting with "
+                     "'gl_' are reserved by GLSL"});
     cases.push_back({"no targets", disneyWith([](LayoutDesc& d) { d.targets.clear(); }),
                      "layout 'disney': no targets; expected 1 to 8"});
     cases.push_back({"9 targets", disneyWith([](LayoutDesc& d) {
                          d.targets.clear();
                          for (int i = 0; i < 9; ++i)
-                             d.targets.push_back({"T" + std::to_string(i), Format::R8Unorm, {ch("c" + std::to_string(i), Encoding::Unorm, 8)}, ""});
+                             d.targets.push_back({"T" + std::to_string(i),
+                                                  Format::R8Unorm,
+                                                  {ch("c" + std::to_string(i), Encoding::Unorm, 8)},
+                                                  ""});
                      }),
                      "layout 'disney': 9 targets; expected at most 8 (colour attachments)"});
-    cases.push_back({"target without channels", disneyWith([](LayoutDesc& d) { d.targets[2].channels.clear(); }),
+    cases.push_back({"target without channels",
+                     disneyWith([](LayoutDesc& d) { d.targets[2].channels.clear(); }),
                      "layout 'disney' target 'GB2' (rgba8): no channels; expected at least one"});
-    cases.push_back({"target without a name", disneyWith([](LayoutDesc& d) { d.targets[2].name.clear(); }),
+    cases.push_back({"target without a name",
+                     disneyWith([](LayoutDesc& d) { d.targets[2].name.clear(); }),
                      "layout 'disney': target 2 has no name"});
     return cases;
 }
@@ -451,7 +532,8 @@ TEST(Layout, ErrorsNameLayoutTargetChannelAndExpectation) {
         SCOPED_TRACE(c.what);
         EXPECT_EQ(errorOf(c.desc), c.message);
     }
-    auto depth = analyzeLayout(disneyWith([](LayoutDesc& d) { d.targets[3].format = Format::D32FS8; }));
+    auto depth =
+        analyzeLayout(disneyWith([](LayoutDesc& d) { d.targets[3].format = Format::D32FS8; }));
     ASSERT_FALSE(depth.has_value());
     EXPECT_EQ(depth.error().code, ErrorCode::Unsupported);
 }
@@ -468,9 +550,10 @@ TEST(Layout, DefaultLayoutRoundTripsWithinBounds) {
     EXPECT_GT(worst.unorm, 0.99);
     EXPECT_GT(worst.srgb, 0.9);
     EXPECT_GT(worst.floating, 0.9);
-    std::cout << "worst error / bound: oct " << worst.oct << ", unorm " << worst.unorm << ", srgb " << worst.srgb
-              << ", float16 " << worst.floating << " (oct bound for 10+10 bits: " << octBound(10) << " rad = "
-              << octBound(10) * 180.0 / std::numbers::pi << " deg)\n";
+    std::cout << "worst error / bound: oct " << worst.oct << ", unorm " << worst.unorm << ", srgb "
+              << worst.srgb << ", float16 " << worst.floating
+              << " (oct bound for 10+10 bits: " << octBound(10)
+              << " rad = " << octBound(10) * 180.0 / std::numbers::pi << " deg)\n";
 }
 
 TEST(Layout, EveryFixedPointCodeSurvivesUnpackThenPack) {
@@ -478,10 +561,12 @@ TEST(Layout, EveryFixedPointCodeSurvivesUnpackThenPack) {
     // (unorm and snorm 12 bits, uint, srgb with the exact transfer functions at 8 and 10 bits).
     LayoutDesc d;
     d.name = "codes";
-    d.targets = {{"a", Format::RGBA32Uint,
-                  {ch("u", Encoding::Unorm, 12), ch("s", Encoding::Snorm, 12), ch("pad", Encoding::Uint, 8),
-                   ch("c8", Encoding::Srgb, 24), ch("i", Encoding::Uint, 8), ch("c10", Encoding::Srgb, 30)},
-                  ""}};
+    d.targets = {
+        {"a",
+         Format::RGBA32Uint,
+         {ch("u", Encoding::Unorm, 12), ch("s", Encoding::Snorm, 12), ch("pad", Encoding::Uint, 8),
+          ch("c8", Encoding::Srgb, 24), ch("i", Encoding::Uint, 8), ch("c10", Encoding::Srgb, 30)},
+         ""}};
     auto info = analyzeLayout(d);
     ASSERT_TRUE(info.has_value()) << info.error().message;
     EXPECT_EQ(info->channels[5].slots[2].component, 2u);
@@ -491,7 +576,8 @@ TEST(Layout, EveryFixedPointCodeSurvivesUnpackThenPack) {
         TexelValue t;
         const uint32_t s = std::max(q, 1u);  // snorm code 0 is below -1 and reads back as code 1
         const uint32_t b = q & 255u, p = q & 1023u;
-        t.u = {q | (s << 12) | (b << 24), b | (b << 8) | (b << 16) | (b << 24), p | (p << 10) | (p << 20), 0};
+        t.u = {q | (s << 12) | (b << 24), b | (b << 8) | (b << 16) | (b << 24),
+               p | (p << 10) | (p << 20), 0};
         auto v = unpackTexel(*info, std::span<const TexelValue>(&t, 1));
         auto again = packTexel(*info, v);
         for (int c = 0; c < 4; ++c) mismatches += again[0].u[c] != t.u[c];
@@ -509,9 +595,11 @@ struct Generated {
 };
 
 Generated randomLayout(std::mt19937& rng, int index) {
-    const Format formats[] = {Format::R8Unorm,   Format::RG8Unorm, Format::RGBA8Unorm, Format::RGBA8Srgb, Format::RGB10A2Unorm,
-                              Format::R11G11B10F, Format::R16F,    Format::RG16F,      Format::RGBA16F,   Format::R32F,
-                              Format::RG32F,     Format::RGBA32F,  Format::R8Uint,     Format::R32Uint,   Format::RGBA32Uint};
+    const Format formats[] = {Format::R8Unorm,   Format::RG8Unorm,     Format::RGBA8Unorm,
+                              Format::RGBA8Srgb, Format::RGB10A2Unorm, Format::R11G11B10F,
+                              Format::R16F,      Format::RG16F,        Format::RGBA16F,
+                              Format::R32F,      Format::RG32F,        Format::RGBA32F,
+                              Format::R8Uint,    Format::R32Uint,      Format::RGBA32Uint};
     auto pick = [&](uint32_t n) { return static_cast<uint32_t>(rng() % n); };
     Generated g;
     g.desc.name = "random" + std::to_string(index);
@@ -560,10 +648,14 @@ Generated randomLayout(std::mt19937& rng, int index) {
                 std::vector<ChannelPlacement::Slot> slots;
                 bool placed = false;
                 for (int attempt = 0; attempt < 30 && !placed; ++attempt) {
-                    const Encoding encodings[] = {Encoding::Unorm, Encoding::Snorm, Encoding::Oct, Encoding::Uint, Encoding::Srgb};
+                    const Encoding encodings[] = {Encoding::Unorm, Encoding::Snorm, Encoding::Oct,
+                                                  Encoding::Uint, Encoding::Srgb};
                     // (A of an sRGB format is no place for a second, code-encoded srgb channel.)
-                    const Encoding e = encodings[pick(tc.kind == TexelComponents::Kind::Srgb ? 4 : 5)];
-                    const uint32_t n = e == Encoding::Oct ? 2 : e == Encoding::Srgb ? 3 : (pick(3) == 0 ? 1 + pick(4) : 1);
+                    const Encoding e =
+                        encodings[pick(tc.kind == TexelComponents::Kind::Srgb ? 4 : 5)];
+                    const uint32_t n = e == Encoding::Oct    ? 2
+                                       : e == Encoding::Srgb ? 3
+                                                             : (pick(3) == 0 ? 1 + pick(4) : 1);
                     const uint32_t room = tc.bits[comp] - off;
                     const uint32_t maxBits = e == Encoding::Uint ? 32 : 24;
                     const uint32_t minBits = e == Encoding::Snorm ? 2 : 1;
@@ -587,7 +679,8 @@ Generated randomLayout(std::mt19937& rng, int index) {
                         }
                     }
                     if (!ok) continue;
-                    c = ch(name(), e, bpc * n, (e != Encoding::Oct && e != Encoding::Srgb) && n > 1 ? n : 0);
+                    c = ch(name(), e, bpc * n,
+                           (e != Encoding::Oct && e != Encoding::Srgb) && n > 1 ? n : 0);
                     comp = cc;
                     off = oo;
                     placed = true;
@@ -636,8 +729,9 @@ TEST(Layout, RandomValidLayoutsPlaceAndRoundTrip) {
     EXPECT_EQ(layouts, 200);
     EXPECT_GT(fieldsSharingAComponent, 100);  // the generator does exercise bit fields
     std::cout << layouts << " layouts, " << channels << " channels, " << fieldsSharingAComponent
-              << " fields at a bit offset > 0; worst error / bound: oct " << worst.oct << ", unorm " << worst.unorm
-              << ", snorm " << worst.snorm << ", srgb " << worst.srgb << ", float " << worst.floating << "\n";
+              << " fields at a bit offset > 0; worst error / bound: oct " << worst.oct << ", unorm "
+              << worst.unorm << ", snorm " << worst.snorm << ", srgb " << worst.srgb << ", float "
+              << worst.floating << "\n";
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -647,11 +741,15 @@ std::string computeMain(const LayoutInfo& info) {
     // Reads one texel per target from storage buffers of raw words, unpacks, packs, writes back:
     // every generated function and every member is used.
     const auto& d = info.desc;
-    std::string s = "layout(local_size_x = 64) in;\nlayout(std430, set = 0, binding = 0) buffer Texels { uvec4 texels[]; };\n";
-    s += "void main() {\n    uint i = gl_GlobalInvocationID.x * " + std::to_string(d.targets.size()) + "u;\n";
+    std::string s =
+        "layout(local_size_x = 64) in;\nlayout(std430, set = 0, binding = 0) buffer Texels { uvec4 "
+        "texels[]; };\n";
+    s += "void main() {\n    uint i = gl_GlobalInvocationID.x * " +
+         std::to_string(d.targets.size()) + "u;\n";
     std::string args, outArgs;
     for (size_t t = 0; t < d.targets.size(); ++t) {
-        const bool integer = texelComponents(d.targets[t].format)->kind == TexelComponents::Kind::Uint;
+        const bool integer =
+            texelComponents(d.targets[t].format)->kind == TexelComponents::Kind::Uint;
         s += std::string("    ") + (integer ? "uvec4" : "vec4") + " t" + std::to_string(t) + " = " +
              (integer ? "" : "uintBitsToFloat") + "(texels[i + " + std::to_string(t) + "u]);\n";
         args += (t ? ", t" : "t") + std::to_string(t);
@@ -659,13 +757,17 @@ std::string computeMain(const LayoutInfo& info) {
     s += "    GBuffer_" + d.name + " g = unpackGBuffer_" + d.name + "(" + args + ");\n";
     s += "    packGBuffer_" + d.name + "(g, " + args + ");\n";
     for (size_t t = 0; t < d.targets.size(); ++t) {
-        const bool integer = texelComponents(d.targets[t].format)->kind == TexelComponents::Kind::Uint;
-        s += "    texels[i + " + std::to_string(t) + "u] = " + (integer ? "" : "floatBitsToUint") + "(t" + std::to_string(t) + ");\n";
+        const bool integer =
+            texelComponents(d.targets[t].format)->kind == TexelComponents::Kind::Uint;
+        s += "    texels[i + " + std::to_string(t) + "u] = " + (integer ? "" : "floatBitsToUint") +
+             "(t" + std::to_string(t) + ");\n";
     }
     return s + "}\n";
 }
 
-Result<ShaderModule> compileLayout(ShaderCompiler& compiler, const std::vector<const LayoutInfo*>& layouts, const std::string& main) {
+Result<ShaderModule> compileLayout(ShaderCompiler& compiler,
+                                   const std::vector<const LayoutInfo*>& layouts,
+                                   const std::string& main) {
     ShaderRequest req;
     req.source = "#version 460\n";
     for (const LayoutInfo* l : layouts) req.source += generateGlsl(*l);
@@ -681,17 +783,26 @@ TEST(LayoutGlsl, DefaultLayoutCodeHasTheContractedShape) {
     for (const char* piece : {
              "#ifndef RG_GBUFFER_disney_GLSL\n#define RG_GBUFFER_disney_GLSL\n",
              "struct GBuffer_disney {\n    vec3 normal;",
-             "    float smoothness;", "    uint materialId;", "    vec3 baseColor;", "    uint materialData;",
-             "    uint normalExtra;", "    vec3 emissive;",
-             "void packGBuffer_disney(GBuffer_disney g, out vec4 t0, out vec4 t1, out vec4 t2, out vec4 t3) {",
+             "    float smoothness;",
+             "    uint materialId;",
+             "    vec3 baseColor;",
+             "    uint materialData;",
+             "    uint normalExtra;",
+             "    vec3 emissive;",
+             "void packGBuffer_disney(GBuffer_disney g, out vec4 t0, out vec4 t1, out vec4 t2, out "
+             "vec4 t3) {",
              "GBuffer_disney unpackGBuffer_disney(vec4 t0, vec4 t1, vec4 t2, vec4 t3) {",
-             "// t1 = GB1 (rgba8_srgb): R[0..7]=baseColor.x G[0..7]=baseColor.y B[0..7]=baseColor.z A[0..4]=materialData "
+             "// t1 = GB1 (rgba8_srgb): R[0..7]=baseColor.x G[0..7]=baseColor.y "
+             "B[0..7]=baseColor.z A[0..4]=materialData "
              "A[5..7]=normalExtra",
              "uint w1_3 = min(g.materialData, 31u) | (min(g.normalExtra, 7u) << 5u);",
-             "t1 = vec4(clamp(g.baseColor.x, 0.0, 1.0), clamp(g.baseColor.y, 0.0, 1.0), clamp(g.baseColor.z, 0.0, 1.0), "
+             "t1 = vec4(clamp(g.baseColor.x, 0.0, 1.0), clamp(g.baseColor.y, 0.0, 1.0), "
+             "clamp(g.baseColor.z, 0.0, 1.0), "
              "float(w1_3) / 255.0);",
          })
-        EXPECT_NE(glsl.find(piece), std::string::npos) << "missing: " << piece << "\n--- generated:\n" << glsl;
+        EXPECT_NE(glsl.find(piece), std::string::npos)
+            << "missing: " << piece << "\n--- generated:\n"
+            << glsl;
 }
 
 TEST(LayoutGlsl, DefaultLayoutCompilesWithGlslang) {

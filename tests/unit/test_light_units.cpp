@@ -16,7 +16,6 @@
 #include "lighting/punctual.h"
 #include "lighting_test_util.h"
 
-
 using namespace rg;
 using namespace rg::test;
 
@@ -32,17 +31,19 @@ TEST(LightUnits, Table9PointSpotAndFrustumLumensToCandela) {
     // light_units takes the half-angle.
     for (double opening : {deg(10), deg(60), deg(90), deg(170)}) {
         const double printed = phi / (2 * kPi * (1 - std::cos(opening / 2)));
-        EXPECT_NEAR(lights::spotIntensityFromLumens(phi, opening / 2, /* exactCone= */ true), printed, printed * 1e-12);
+        EXPECT_NEAR(lights::spotIntensityFromLumens(phi, opening / 2, /* exactCone= */ true),
+                    printed, printed * 1e-12);
         EXPECT_NEAR(phi / lighting::coneSolidAngle(opening), printed, printed * 1e-12);
         EXPECT_NEAR(lights::spotIntensityFromLumens(phi, opening / 2), phi / kPi, 1e-12);  // eq:17
     }
     // Frustum: Φ / (4 arcsin(sin(θa/2) sin(θb/2))).
-    for (auto [a, b] : {std::pair{deg(30), deg(60)}, std::pair{deg(90), deg(90)}, std::pair{deg(120), deg(20)}}) {
+    for (auto [a, b] :
+         {std::pair{deg(30), deg(60)}, std::pair{deg(90), deg(90)}, std::pair{deg(120), deg(20)}}) {
         const double printed = phi / (4 * std::asin(std::sin(a / 2) * std::sin(b / 2)));
         EXPECT_NEAR(lighting::frustumIntensityFromLumens(phi, a, b), printed, printed * 1e-12);
         // The denominator is the pyramid's solid angle: seed 002's rightPyramidSolidAngle agrees.
-        EXPECT_NEAR(lighting::frustumSolidAngle(a, b), lighting::rightPyramidSolidAngle(1.0, std::tan(a / 2), std::tan(b / 2)),
-                    1e-12);
+        EXPECT_NEAR(lighting::frustumSolidAngle(a, b),
+                    lighting::rightPyramidSolidAngle(1.0, std::tan(a / 2), std::tan(b / 2)), 1e-12);
     }
     // A 180° × 180° frustum is the hemisphere (2π sr); a narrow one tends to θa·θb.
     EXPECT_NEAR(lighting::frustumSolidAngle(kPi, kPi), 2 * kPi, 1e-12);
@@ -50,7 +51,10 @@ TEST(LightUnits, Table9PointSpotAndFrustumLumensToCandela) {
     // And by brute force: the fraction of the hemisphere inside a 60° × 40° pyramid.
     const double ta = std::tan(deg(30)), tb = std::tan(deg(20));
     const double numeric = brdf::integrateHemisphere(
-        [&](const glm::dvec3& l) { return std::abs(l.x) <= ta * l.z && std::abs(l.y) <= tb * l.z ? 1.0 : 0.0; }, 2000, 2000);
+        [&](const glm::dvec3& l) {
+            return std::abs(l.x) <= ta * l.z && std::abs(l.y) <= tb * l.z ? 1.0 : 0.0;
+        },
+        2000, 2000);
     EXPECT_NEAR(numeric, lighting::frustumSolidAngle(deg(60), deg(40)), 2e-3 * numeric);
 }
 
@@ -71,10 +75,12 @@ TEST(LightUnits, Table10BulbsAtDistance) {
         const float cd625 = static_cast<float>(lights::pointIntensityFromLumens(625));
         const glm::vec3 toLight(0.0f, 0.0f, static_cast<float>(d));
         EXPECT_NEAR(cd625 * lighting::getDistanceAtt(toLight, 0.0f), e625, e625 * 1e-6);
-        EXPECT_NEAR(cd625 * lighting::getDistanceAtt(toLight, 1.0f / (100.0f * 100.0f)), e625, e625 * 1e-6);
+        EXPECT_NEAR(cd625 * lighting::getDistanceAtt(toLight, 1.0f / (100.0f * 100.0f)), e625,
+                    e625 * 1e-6);
         // "Doubling the lumens doubles the illuminance": 1200 / 625 exactly.
         EXPECT_NEAR(e1200 / e625, 1200.0 / 625.0, 1e-12);
-        std::printf("tbl:10  d = %5.3f m: 625 lm -> %8.1f lx, 1200 lm -> %8.1f lx\n", d, e625, e1200);
+        std::printf("tbl:10  d = %5.3f m: 625 lm -> %8.1f lx, 1200 lm -> %8.1f lx\n", d, e625,
+                    e1200);
     }
     // The unrounded values the issue quotes.
     EXPECT_NEAR(lights::illuminance(lights::pointIntensityFromLumens(625), 1.0), 49.7, 0.05);
@@ -85,8 +91,10 @@ TEST(LightUnits, Table10BulbsAtDistance) {
 
 TEST(LightUnits, Listing4AttenuationClampsAtOneCentimetreAndWindowsToZero) {
     // eq:14: below 1 cm the light is as bright as at 1 cm.
-    EXPECT_FLOAT_EQ(lighting::getDistanceAtt(glm::vec3(0.0f, 0.005f, 0.0f), 0.0f), 1.0f / (0.01f * 0.01f));
-    EXPECT_FLOAT_EQ(lighting::getDistanceAtt(glm::vec3(0.0f, 0.0f, 0.0f), 0.0f), 1.0f / (0.01f * 0.01f));
+    EXPECT_FLOAT_EQ(lighting::getDistanceAtt(glm::vec3(0.0f, 0.005f, 0.0f), 0.0f),
+                    1.0f / (0.01f * 0.01f));
+    EXPECT_FLOAT_EQ(lighting::getDistanceAtt(glm::vec3(0.0f, 0.0f, 0.0f), 0.0f),
+                    1.0f / (0.01f * 0.01f));
     // eq:26 (n = 4): reaches exactly 0 at the radius and stays there, decreasing all the way.
     const float invSqrRadius = 1.0f / (5.0f * 5.0f);
     EXPECT_EQ(lighting::getDistanceAtt(glm::vec3(5.0f, 0.0f, 0.0f), invSqrRadius), 0.0f);
@@ -98,18 +106,23 @@ TEST(LightUnits, Listing4AttenuationClampsAtOneCentimetreAndWindowsToZero) {
         previous = a;
     }
     // Half-way the window is (1 − (1/4)²)² = 0.8789.
-    EXPECT_NEAR(lighting::smoothDistanceAtt(2.5f * 2.5f, invSqrRadius), std::pow(1.0f - 0.0625f, 2.0f), 1e-6);
+    EXPECT_NEAR(lighting::smoothDistanceAtt(2.5f * 2.5f, invSqrRadius),
+                std::pow(1.0f - 0.0625f, 2.0f), 1e-6);
 
     // Cone: 1 inside the inner angle, 0 outside the outer, the squared ramp between.
-    const auto so = lighting::spotAngleScaleOffset(static_cast<float>(deg(20)), static_cast<float>(deg(30)));
+    const auto so =
+        lighting::spotAngleScaleOffset(static_cast<float>(deg(20)), static_cast<float>(deg(30)));
     const glm::vec3 spot(0.0f, 0.0f, -1.0f);
     const auto dirAt = [](double angle) {
-        return glm::vec3(static_cast<float>(std::sin(angle)), 0.0f, -static_cast<float>(std::cos(angle)));
+        return glm::vec3(static_cast<float>(std::sin(angle)), 0.0f,
+                         -static_cast<float>(std::cos(angle)));
     };
     EXPECT_FLOAT_EQ(lighting::getAngleAtt(dirAt(deg(10)), spot, so.scale, so.offset), 1.0f);
     EXPECT_FLOAT_EQ(lighting::getAngleAtt(dirAt(deg(35)), spot, so.scale, so.offset), 0.0f);
-    const double ramp = (std::cos(deg(25)) - std::cos(deg(30))) / (std::cos(deg(20)) - std::cos(deg(30)));
-    EXPECT_NEAR(lighting::getAngleAtt(dirAt(deg(25)), spot, so.scale, so.offset), ramp * ramp, 1e-5);
+    const double ramp =
+        (std::cos(deg(25)) - std::cos(deg(30))) / (std::cos(deg(20)) - std::cos(deg(30)));
+    EXPECT_NEAR(lighting::getAngleAtt(dirAt(deg(25)), spot, so.scale, so.offset), ramp * ramp,
+                1e-5);
 }
 
 TEST(LightUnits, Table12AreaLightsLumensToLuminance) {
@@ -117,21 +130,27 @@ TEST(LightUnits, Table12AreaLightsLumensToLuminance) {
     // The table's expressions, as printed.
     EXPECT_NEAR(lighting::sphereLuminanceFromLumens(phi, r), phi / (4 * r * r * kPi * kPi), 1e-9);
     EXPECT_NEAR(lighting::diskLuminanceFromLumens(phi, r), phi / (r * r * kPi * kPi), 1e-9);
-    EXPECT_NEAR(lighting::tubeLuminanceFromLumens(phi, r, l), phi / ((2 * kPi * r * l + 4 * kPi * r * r) * kPi), 1e-9);
+    EXPECT_NEAR(lighting::tubeLuminanceFromLumens(phi, r, l),
+                phi / ((2 * kPi * r * l + 4 * kPi * r * r) * kPi), 1e-9);
     EXPECT_NEAR(lighting::rectangleLuminanceFromLumens(phi, w, h), phi / (kPi * w * h), 1e-9);
     // All are eq:33, Φ / (A π), with the emitting area: sphere 4πr², one-sided disk πr², capsule
     // 2πrl + 4πr², one-sided rectangle wh.
-    EXPECT_NEAR(lighting::sphereLuminanceFromLumens(phi, r), lighting::lambertianLuminance(phi, 4 * kPi * r * r), 1e-9);
-    EXPECT_NEAR(lighting::diskLuminanceFromLumens(phi, r), lighting::lambertianLuminance(phi, kPi * r * r), 1e-9);
+    EXPECT_NEAR(lighting::sphereLuminanceFromLumens(phi, r),
+                lighting::lambertianLuminance(phi, 4 * kPi * r * r), 1e-9);
+    EXPECT_NEAR(lighting::diskLuminanceFromLumens(phi, r),
+                lighting::lambertianLuminance(phi, kPi * r * r), 1e-9);
     EXPECT_NEAR(lighting::tubeLuminanceFromLumens(phi, r, l),
                 lighting::lambertianLuminance(phi, 2 * kPi * r * l + 4 * kPi * r * r), 1e-9);
-    EXPECT_NEAR(lighting::rectangleLuminanceFromLumens(phi, w, h), lighting::lambertianLuminance(phi, w * h), 1e-9);
+    EXPECT_NEAR(lighting::rectangleLuminanceFromLumens(phi, w, h),
+                lighting::lambertianLuminance(phi, w * h), 1e-9);
     // A tube of length 0 is a sphere.
-    EXPECT_NEAR(lighting::tubeLuminanceFromLumens(phi, r, 0.0), lighting::sphereLuminanceFromLumens(phi, r), 1e-9);
+    EXPECT_NEAR(lighting::tubeLuminanceFromLumens(phi, r, 0.0),
+                lighting::sphereLuminanceFromLumens(phi, r), 1e-9);
 
     // The dispatcher: lm through tbl:12, EV100 through eq:12 (2^(EV − 3)), nits unchanged.
     const lighting::AreaLightShape rect{lighting::AreaShape::Rectangle, 0.0, 0.0, w, h};
-    EXPECT_NEAR(lighting::areaLightLuminance(rect, phi, lighting::AreaUnit::Lumens), phi / (kPi * w * h), 1e-9);
+    EXPECT_NEAR(lighting::areaLightLuminance(rect, phi, lighting::AreaUnit::Lumens),
+                phi / (kPi * w * h), 1e-9);
     EXPECT_DOUBLE_EQ(lighting::areaLightLuminance(rect, 10.0, lighting::AreaUnit::Ev100), 128.0);
     EXPECT_DOUBLE_EQ(lighting::areaLightLuminance(rect, 500.0, lighting::AreaUnit::Nits), 500.0);
     // Emissive surfaces: EV100 16 is 8192 nits, EV100 −3 is 1/64 (tbl:7's values through eq:12).
@@ -147,9 +166,11 @@ TEST(LightUnits, AreaLightsInLumensLightLikeTheirPunctualCounterparts) {
     for (double r : {0.01, 0.1, 0.5, 1.5}) {
         const double L = lighting::sphereLuminanceFromLumens(phi, r);
         const double sinSigma = r / d;
-        EXPECT_NEAR(L * capIlluminanceReference(1.0, sinSigma, 400), phi / (4 * kPi * d * d), 1e-4 * phi / (4 * kPi * d * d))
+        EXPECT_NEAR(L * capIlluminanceReference(1.0, sinSigma, 400), phi / (4 * kPi * d * d),
+                    1e-4 * phi / (4 * kPi * d * d))
             << "r = " << r;
-        EXPECT_NEAR(L * lighting::sphereIlluminance(r, d * d, 1.0), phi / (4 * kPi * d * d), 1.001e-3 * phi / (4 * kPi * d * d))
+        EXPECT_NEAR(L * lighting::sphereIlluminance(r, d * d, 1.0), phi / (4 * kPi * d * d),
+                    1.001e-3 * phi / (4 * kPi * d * d))
             << "lst:10 clamps cos θ to 0.999";
         // Seed 004 writes the sphere's radiance as Φ / (8π² r²): half of tbl:12's, and half the
         // point light's illuminance — tbl:12 (a Lambertian emitter, eq:33) is the consistent one.
@@ -160,8 +181,10 @@ TEST(LightUnits, AreaLightsInLumensLightLikeTheirPunctualCounterparts) {
         const double L = lighting::diskLuminanceFromLumens(phi, r);
         const double E = L * lighting::diskIlluminanceAboveHorizon(r, d * d, 1.0, 1.0);
         EXPECT_NEAR(E, phi / (kPi * (d * d + r * r)), 1e-9 * E);
-        EXPECT_NEAR(L * capIlluminanceReference(1.0, r / std::sqrt(r * r + d * d), 400), E, 1e-4 * E);
+        EXPECT_NEAR(L * capIlluminanceReference(1.0, r / std::sqrt(r * r + d * d), 400), E,
+                    1e-4 * E);
     }
-    EXPECT_NEAR(lighting::diskLuminanceFromLumens(phi, 1e-4) * lighting::diskIlluminanceAboveHorizon(1e-4, d * d, 1.0, 1.0),
+    EXPECT_NEAR(lighting::diskLuminanceFromLumens(phi, 1e-4) *
+                    lighting::diskIlluminanceAboveHorizon(1e-4, d * d, 1.0, 1.0),
                 lights::illuminance(lights::spotIntensityFromLumens(phi, 0.5), d), 1e-6);
 }

@@ -46,8 +46,10 @@ bool hitsPolygon(const std::vector<glm::dvec3>& v, const glm::dvec3& d) {
     double sign = 0.0;
     for (size_t i = 0; i < v.size(); ++i) {
         const double s = glm::dot(glm::cross(v[(i + 1) % v.size()] - v[i], p - v[i]), n);
-        if (sign == 0.0) sign = s;
-        else if (s * sign < 0.0) return false;
+        if (sign == 0.0)
+            sign = s;
+        else if (s * sign < 0.0)
+            return false;
     }
     return true;
 }
@@ -68,7 +70,8 @@ double bruteLobe(const std::vector<glm::dvec3>& v, const glm::dvec3& V, float al
         [&](const glm::dvec3& l) {
             if (l.z <= 0.0 || !hitsPolygon(v, l)) return 0.0;
             const glm::dvec3 h = glm::normalize(V + l);
-            return double(brdf::D_GGX(float(h.z), alpha)) / kPi * double(brdf::V_SmithGGXCorrelated(float(l.z), float(V.z), alpha)) * l.z;
+            return double(brdf::D_GGX(float(h.z), alpha)) / kPi *
+                   double(brdf::V_SmithGGXCorrelated(float(l.z), float(V.z), alpha)) * l.z;
         },
         2048);
 }
@@ -102,15 +105,19 @@ TEST(Ltc, TheFitIsCloseToTheLobeAndReproducible) {
     // NdotV 0.7 for mid roughness, the shape a clamped cosine cannot follow).
     for (float r : {0.15f, 0.3f, 0.6f, 1.0f}) {
         SCOPED_TRACE("linearRoughness " + std::to_string(r));
-        EXPECT_LT(ltc::fitDistance(r, 1.0f, ltc::inverseMatrix(ltc::lookup(r, 1.0f).inverse)), 0.05);
-        EXPECT_LT(ltc::fitDistance(r, 0.7f, ltc::inverseMatrix(ltc::lookup(r, 0.7f).inverse)), 0.10);
+        EXPECT_LT(ltc::fitDistance(r, 1.0f, ltc::inverseMatrix(ltc::lookup(r, 1.0f).inverse)),
+                  0.05);
+        EXPECT_LT(ltc::fitDistance(r, 0.7f, ltc::inverseMatrix(ltc::lookup(r, 0.7f).inverse)),
+                  0.10);
     }
     // Fitting a cell again gives the committed entry (the first row starts from the isotropic guess).
     const int col = 40;
     const float r = float(col) / float(ltc::kSize - 1);
     const ltc::Fit fit = ltc::fitCell(r, 1.0f, nullptr, nullptr);
     const ltc::Entry& committed = ltc::table()[size_t(col)];
-    for (size_t i : {0u, 3u}) EXPECT_NEAR(fit.entry.inverse[i], committed.inverse[i], 1e-3 * std::abs(committed.inverse[i]));
+    for (size_t i : {0u, 3u})
+        EXPECT_NEAR(fit.entry.inverse[i], committed.inverse[i],
+                    1e-3 * std::abs(committed.inverse[i]));
     EXPECT_NEAR(fit.entry.magnitude, committed.magnitude, 1e-4);
 }
 
@@ -123,7 +130,8 @@ TEST(Ltc, PolygonIntegralIsTheClippedCosineOverThePolygon) {
     for (size_t k = 0; k < cases.size(); ++k) {
         SCOPED_TRACE("case " + std::to_string(k));
         const auto& v = cases[k];
-        const double brute = integrateSphere([&](const glm::dvec3& d) { return d.z > 0.0 && hitsPolygon(v, d) ? d.z / kPi : 0.0; });
+        const double brute = integrateSphere(
+            [&](const glm::dvec3& d) { return d.z > 0.0 && hitsPolygon(v, d) ? d.z / kPi : 0.0; });
         auto f = toFloat(v);
         const double exact = ltc::polygonIntegral(f);
         EXPECT_NEAR(exact, brute, 2e-3 * std::max(brute, 0.01));
@@ -137,7 +145,10 @@ TEST(Ltc, EllipseIntegralMatchesItsPolygonAboveTheHorizon) {
     // size and obliqueness above the horizon (exact there); crossing the horizon the sphere of the
     // same form factor stands in for the clipped ellipse: measured within 5 % of the polygon here,
     // up to ~30 % for a thin sliver seen edge on just above the horizon.
-    struct Case { glm::vec3 c, a1, a2; float tolerance; };
+    struct Case {
+        glm::vec3 c, a1, a2;
+        float tolerance;
+    };
     const std::vector<Case> cases = {
         {{0.3f, 0.1f, 1.0f}, {0.4f, 0.1f, 0.2f}, {-0.1f, 0.3f, 0.05f}, 2e-3f},
         {{0.0f, 0.0f, 1.0f}, {0.05f, 0.0f, 0.0f}, {0.0f, 0.05f, 0.0f}, 2e-3f},
@@ -154,7 +165,8 @@ TEST(Ltc, EllipseIntegralMatchesItsPolygonAboveTheHorizon) {
             poly.push_back(c.c + std::cos(t) * c.a1 + std::sin(t) * c.a2);
         }
         glm::vec3 d1, d2;
-        const float p = ltc::polygonIntegral(poly, &d1), e = ltc::ellipseIntegral(c.c, c.a1, c.a2, &d2);
+        const float p = ltc::polygonIntegral(poly, &d1),
+                    e = ltc::ellipseIntegral(c.c, c.a1, c.a2, &d2);
         EXPECT_NEAR(e, p, c.tolerance * p);
         if (c.tolerance < 0.01f) {
             EXPECT_GT(glm::dot(glm::normalize(d1), d2), 0.9999f);
@@ -168,7 +180,9 @@ TEST(Ltc, TransformedPolygonIntegratesTheDistribution) {
     // the method rests on, for a committed glossy entry at an oblique view.
     const glm::dmat3 Minv(ltc::inverseMatrix(ltc::lookup(0.4f, 0.5f).inverse));
     const auto v = quad({0.8, 0.1, 1.0}, {0.3, 0.0, -0.1}, {0.0, 0.25, 0.0});
-    const double brute = integrateSphere([&](const glm::dvec3& d) { return hitsPolygon(v, d) ? ltc::distribution(Minv, d) : 0.0; }, 2048);
+    const double brute = integrateSphere(
+        [&](const glm::dvec3& d) { return hitsPolygon(v, d) ? ltc::distribution(Minv, d) : 0.0; },
+        2048);
     std::vector<glm::vec3> t;
     for (const auto& p : v) t.emplace_back(Minv * p);
     EXPECT_NEAR(ltc::polygonIntegral(t), brute, 3e-3 * brute);
@@ -180,9 +194,16 @@ TEST(Ltc, RectangleLightAgainstTheLobe) {
     // over the same rectangle by brute force, for a glossy and a rough surface seen at 45°, the
     // light where the view reflects and off to the side. Printed; bounded at the level measured.
     const glm::dvec3 N(0, 0, 1), V = glm::normalize(glm::dvec3(-1, 0, 1));
-    struct Case { float r; glm::dvec3 centre; double tolerance; };
+    struct Case {
+        float r;
+        glm::dvec3 centre;
+        double tolerance;
+    };
     const std::vector<Case> cases = {
-        {0.3f, {1.0, 0.0, 1.0}, 0.05}, {0.3f, {1.0, 0.6, 0.8}, 0.10}, {0.6f, {1.0, 0.0, 1.0}, 0.05}, {0.6f, {0.5, -0.8, 0.3}, 0.10},
+        {0.3f, {1.0, 0.0, 1.0}, 0.05},
+        {0.3f, {1.0, 0.6, 0.8}, 0.10},
+        {0.6f, {1.0, 0.0, 1.0}, 0.05},
+        {0.6f, {0.5, -0.8, 0.3}, 0.10},
     };
     for (const Case& c : cases) {
         const auto v = quad(c.centre, {0.0, 0.3, 0.0}, {-0.15, 0.0, 0.15});
@@ -196,8 +217,10 @@ TEST(Ltc, RectangleLightAgainstTheLobe) {
         std::vector<glm::vec3> t;
         for (const auto& p : v) t.emplace_back(Minv * p);
         const double ltcValue = double(e.magnitude) * ltc::polygonIntegral(t);
-        std::printf("rect, linearRoughness %.1f, centre (%.1f %.1f %.1f): lobe %.5f, LTC %.5f (%+.1f %%)\n", c.r, c.centre.x, c.centre.y,
-                    c.centre.z, brute, ltcValue, 100.0 * (ltcValue / brute - 1.0));
+        std::printf(
+            "rect, linearRoughness %.1f, centre (%.1f %.1f %.1f): lobe %.5f, LTC %.5f (%+.1f %%)\n",
+            c.r, c.centre.x, c.centre.y, c.centre.z, brute, ltcValue,
+            100.0 * (ltcValue / brute - 1.0));
         EXPECT_NEAR(ltcValue, brute, c.tolerance * brute);
     }
 }
@@ -213,7 +236,11 @@ TEST(Ltc, TheRatioAndTheHorizonClipFollowTheLobe) {
     // to +9 %). Printed; each case away from the horizon at least as close as the closed form alone,
     // and every case within the level measured.
     const glm::dvec3 N(0, 0, 1), V = glm::normalize(glm::dvec3(-1, 0, 1));
-    struct Case { float r; glm::dvec3 centre, u, w; double tolerance; };
+    struct Case {
+        float r;
+        glm::dvec3 centre, u, w;
+        double tolerance;
+    };
     const std::vector<Case> cases = {
         {0.3f, {1.0, 0.0, 1.0}, {0.0, 0.3, 0.0}, {-0.15, 0.0, 0.15}, 0.02},
         {0.3f, {1.0, 0.6, 0.8}, {0.0, 0.3, 0.0}, {-0.15, 0.0, 0.15}, 0.04},
@@ -237,12 +264,16 @@ TEST(Ltc, TheRatioAndTheHorizonClipFollowTheLobe) {
         }
         const double plain = double(e.magnitude) * ltc::polygonIntegral(cosine);
         glm::vec3 mean;
-        const double clipped = double(e.magnitude) * ltc::horizonPolygonIntegral(local, tableInverse, &mean);
-        const double ratio = ltc::lobeRatio(Minv, glm::vec3(N), glm::vec3(V), alpha, e.magnitude, mean);
+        const double clipped =
+            double(e.magnitude) * ltc::horizonPolygonIntegral(local, tableInverse, &mean);
+        const double ratio =
+            ltc::lobeRatio(Minv, glm::vec3(N), glm::vec3(V), alpha, e.magnitude, mean);
         const double corrected = clipped * ratio;
-        std::printf("rect, linearRoughness %.1f, centre (%.2f %.2f %.2f): lobe %.5f, LTC %+.1f %%, clipped %+.1f %%, × ratio %.3f: %+.1f %%\n",
-                    c.r, c.centre.x, c.centre.y, c.centre.z, brute, 100.0 * (plain / brute - 1.0), 100.0 * (clipped / brute - 1.0), ratio,
-                    100.0 * (corrected / brute - 1.0));
+        std::printf(
+            "rect, linearRoughness %.1f, centre (%.2f %.2f %.2f): lobe %.5f, LTC %+.1f %%, clipped "
+            "%+.1f %%, × ratio %.3f: %+.1f %%\n",
+            c.r, c.centre.x, c.centre.y, c.centre.z, brute, 100.0 * (plain / brute - 1.0),
+            100.0 * (clipped / brute - 1.0), ratio, 100.0 * (corrected / brute - 1.0));
         if (c.centre.z > 0.5) {
             EXPECT_LE(std::abs(corrected - brute), std::abs(plain - brute) + 1e-3 * brute);
         }
@@ -258,9 +289,13 @@ TEST(Ltc, TheSphereRatioIsTheLobesOverTheFittedCosinesOnTheCap) {
     // crossing the surface's plane. The exact ratio is up to 1.2 here (no correction would be 20 %
     // off); the 32-tap quadrature stays within 1 % of it (measured: 0.02–0.76 %). Printed.
     const glm::dvec3 N(0, 0, 1);
-    struct Case { double viewDegrees; glm::dvec3 centre; double radius; };
+    struct Case {
+        double viewDegrees;
+        glm::dvec3 centre;
+        double radius;
+    };
     const std::vector<Case> cases = {
-        {45, {1.0, 0.0, 1.0}, 0.2}, {45, {1.0, 0.5, 0.8}, 0.3}, {45, {0.4, 0.0, 0.4}, 0.3},
+        {45, {1.0, 0.0, 1.0}, 0.2}, {45, {1.0, 0.5, 0.8}, 0.3},  {45, {0.4, 0.0, 0.4}, 0.3},
         {75, {2.0, 0.0, 0.6}, 0.3}, {75, {1.5, -0.4, 0.5}, 0.2}, {45, {0.8, 0.0, 0.1}, 0.3},
     };
     for (const Case& c : cases) {
@@ -269,27 +304,37 @@ TEST(Ltc, TheSphereRatioIsTheLobesOverTheFittedCosinesOnTheCap) {
         const float linearRoughness = 0.3f, alpha = brdf::standardAlpha(linearRoughness);
         const ltc::Entry e = ltc::lookup(linearRoughness, float(V.z));
         const glm::dvec3 T1 = glm::normalize(V - N * glm::dot(N, V)), T2 = glm::cross(N, T1);
-        const glm::dmat3 Minv = glm::dmat3(ltc::inverseMatrix(e.inverse)) * glm::transpose(glm::dmat3(T1, T2, N));
-        const double dist = glm::length(c.centre), sinSigma = c.radius / dist, cosSigma = std::sqrt(1.0 - sinSigma * sinSigma);
+        const glm::dmat3 Minv =
+            glm::dmat3(ltc::inverseMatrix(e.inverse)) * glm::transpose(glm::dmat3(T1, T2, N));
+        const double dist = glm::length(c.centre), sinSigma = c.radius / dist,
+                     cosSigma = std::sqrt(1.0 - sinSigma * sinSigma);
         const glm::dvec3 L = c.centre / dist;
-        const glm::dvec3 b1 = glm::normalize(glm::cross(L, glm::dvec3(0, 1, 0))), b2 = glm::cross(L, b1);
+        const glm::dvec3 b1 = glm::normalize(glm::cross(L, glm::dvec3(0, 1, 0))),
+                         b2 = glm::cross(L, b1);
         double lobe = 0.0, fitted = 0.0;
         const int rings = 512, sectors = 1024;
         for (int i = 0; i < rings; ++i) {
-            const double ct = 1.0 - (1.0 - cosSigma) * (i + 0.5) / rings, st = std::sqrt(1.0 - ct * ct);
+            const double ct = 1.0 - (1.0 - cosSigma) * (i + 0.5) / rings,
+                         st = std::sqrt(1.0 - ct * ct);
             for (int j = 0; j < sectors; ++j) {
                 const double phi = 2.0 * kPi * (j + 0.5) / sectors;
                 const glm::dvec3 l = L * ct + (b1 * std::cos(phi) + b2 * std::sin(phi)) * st;
                 if (l.z <= 0.0) continue;
                 const glm::dvec3 h = glm::normalize(V + l);
-                lobe += double(brdf::D_GGX(float(h.z), alpha)) / kPi * double(brdf::V_SmithGGXCorrelated(float(l.z), float(V.z), alpha)) * l.z;
+                lobe += double(brdf::D_GGX(float(h.z), alpha)) / kPi *
+                        double(brdf::V_SmithGGXCorrelated(float(l.z), float(V.z), alpha)) * l.z;
                 fitted += ltc::distribution(Minv, l);
             }
         }
         const double exact = lobe / (double(e.magnitude) * fitted);
-        const double ratio = ltc::sphereRatio(glm::mat3(Minv), glm::vec3(N), glm::vec3(V), alpha, e.magnitude, glm::vec3(L), float(sinSigma * sinSigma));
-        std::printf("sphere at (%.1f %.1f %.1f) r %.1f, view %.0f°: exact ratio %.4f, 32 taps %.4f (%+.2f %%)\n", c.centre.x, c.centre.y,
-                    c.centre.z, c.radius, c.viewDegrees, exact, ratio, 100.0 * (ratio / exact - 1.0));
+        const double ratio =
+            ltc::sphereRatio(glm::mat3(Minv), glm::vec3(N), glm::vec3(V), alpha, e.magnitude,
+                             glm::vec3(L), float(sinSigma * sinSigma));
+        std::printf(
+            "sphere at (%.1f %.1f %.1f) r %.1f, view %.0f°: exact ratio %.4f, 32 taps %.4f (%+.2f "
+            "%%)\n",
+            c.centre.x, c.centre.y, c.centre.z, c.radius, c.viewDegrees, exact, ratio,
+            100.0 * (ratio / exact - 1.0));
         EXPECT_NEAR(ratio, exact, 0.01 * exact);
     }
 }

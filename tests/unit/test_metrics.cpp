@@ -158,7 +158,9 @@ TEST(Metrics, AngularErrorOfOctahedralNormals) {
         const double l1 = std::fabs(x) + std::fabs(y) + std::fabs(z);
         x /= l1, y /= l1, z /= l1;
         double px = x, py = y;
-        if (z < 0) px = (1 - std::fabs(y)) * (x >= 0 ? 1 : -1), py = (1 - std::fabs(x)) * (y >= 0 ? 1 : -1);
+        if (z < 0)
+            px = (1 - std::fabs(y)) * (x >= 0 ? 1 : -1),
+            py = (1 - std::fabs(x)) * (y >= 0 ? 1 : -1);
         out[0] = static_cast<float>(px * 0.5 + 0.5);
         out[1] = static_cast<float>(py * 0.5 + 0.5);
     };
@@ -178,7 +180,8 @@ TEST(Metrics, AngularErrorOfOctahedralNormals) {
     Image e3(1, 1, 3);
     auto bad = compare(e3, e3, c);
     ASSERT_FALSE(bad.has_value());
-    EXPECT_EQ(bad.error().message, "angular: an octahedral normal needs 2 channels, got 3 (set channels, e.g. 'rg')");
+    EXPECT_EQ(bad.error().message,
+              "angular: an octahedral normal needs 2 channels, got 3 (set channels, e.g. 'rg')");
 }
 
 TEST(Metrics, ExactCountsDifferingPixels) {
@@ -210,7 +213,8 @@ TEST(Metrics, ChannelsSelectWhatIsCompared) {
 }
 
 TEST(Metrics, NanAndInfinityRules) {
-    const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+    const float nan = std::numeric_limits<float>::quiet_NaN(),
+                inf = std::numeric_limits<float>::infinity();
     Image e(3, 1, 1), a(3, 1, 1);
     e.at(0, 0, 0) = nan, a.at(0, 0, 0) = nan;  // NaN = NaN
     e.at(1, 0, 0) = inf, a.at(1, 0, 0) = inf;  // same infinity
@@ -247,10 +251,12 @@ double lstar(double y) {
 // sRGB primaries: green L 87.737 a -86.185 b 83.181, blue L 32.303 a 79.197 b -107.864).
 double flipOfGreys(double linearA, double linearB) {
     const double gL = 87.737, ga = -86.185, gb = 83.181, bL = 32.303, ba = 79.197, bb = -107.864;
-    const double hyabGB = std::fabs(gL - bL) + std::hypot(0.01 * gL * ga - 0.01 * bL * ba, 0.01 * gL * gb - 0.01 * bL * bb);
+    const double hyabGB = std::fabs(gL - bL) + std::hypot(0.01 * gL * ga - 0.01 * bL * ba,
+                                                          0.01 * gL * gb - 0.01 * bL * bb);
     const double cmax = std::pow(hyabGB, 0.7);
     const double de = std::pow(std::fabs(lstar(linearA) - lstar(linearB)), 0.7);
-    return de < 0.4 * cmax ? 0.95 / (0.4 * cmax) * de : 0.95 + (de - 0.4 * cmax) / (cmax - 0.4 * cmax) * 0.05;
+    return de < 0.4 * cmax ? 0.95 / (0.4 * cmax) * de
+                           : 0.95 + (de - 0.4 * cmax) / (cmax - 0.4 * cmax) * 0.05;
 }
 
 TEST(Flip, IdenticalImagesScoreZero) {
@@ -289,12 +295,14 @@ TEST(Flip, SymmetricAndGrowsWithTheError) {
     Image ref(48, 48, 3);
     for (uint32_t y = 0; y < 48; ++y)
         for (uint32_t x = 0; x < 48; ++x)
-            for (uint32_t k = 0; k < 3; ++k) ref.at(x, y, k) = 0.2f + 0.6f * float(x + k * 5) / 60.0f;
+            for (uint32_t k = 0; k < 3; ++k)
+                ref.at(x, y, k) = 0.2f + 0.6f * float(x + k * 5) / 60.0f;
     double last = 0.0;
     for (float sigma : {1.0f / 255.0f, 0.02f, 0.08f}) {
         Image test = ref;
         for (float& v : test.pixels) v = std::clamp(v + sigma * noise(rng), 0.0f, 1.0f);
-        const double fwd = run(test, ref, with(Metric::Flip, 1)).value, back = run(ref, test, with(Metric::Flip, 1)).value;
+        const double fwd = run(test, ref, with(Metric::Flip, 1)).value,
+                     back = run(ref, test, with(Metric::Flip, 1)).value;
         EXPECT_NEAR(fwd, back, 1e-9);
         EXPECT_GT(fwd, last);
         last = fwd;
@@ -399,8 +407,9 @@ TEST(HeatMap, BlackAtZeroLightYellowAtTheScale) {
 
 TEST(Half, RoundsToNearestEven) {
     EXPECT_EQ(roundToHalf(1.0f), 1.0f);
-    EXPECT_EQ(roundToHalf(1.0f + 1.0f / 2048.0f), 1.0f);                  // halfway: to even (1.0)
-    EXPECT_EQ(roundToHalf(1.0f + 3.0f / 2048.0f), 1.0f + 2.0f / 1024.0f);  // halfway: to even (1 + 2^-9)
+    EXPECT_EQ(roundToHalf(1.0f + 1.0f / 2048.0f), 1.0f);  // halfway: to even (1.0)
+    EXPECT_EQ(roundToHalf(1.0f + 3.0f / 2048.0f),
+              1.0f + 2.0f / 1024.0f);  // halfway: to even (1 + 2^-9)
     EXPECT_EQ(roundToHalf(1.0f + 1.0f / 1500.0f), 1.0f + 1.0f / 1024.0f);
     EXPECT_EQ(roundToHalf(65504.0f), 65504.0f);
     EXPECT_EQ(roundToHalf(65519.0f), 65504.0f);
@@ -437,8 +446,9 @@ TEST(Storage, QuantisingMatchesTheFileRoundTrip) {
         uint32_t channels;
         float scale;
     };
-    for (const Case& c : {Case{"rgba8", 4, 1.0f}, Case{"rgba8_srgb", 4, 1.0f}, Case{"r8", 1, 1.0f}, Case{"rgba16f", 4, 500.0f},
-                          Case{"rg16f", 2, 1e-3f}, Case{"rgba32f", 4, 1e5f}, Case{"r32ui", 1, 1e4f}}) {
+    for (const Case& c : {Case{"rgba8", 4, 1.0f}, Case{"rgba8_srgb", 4, 1.0f}, Case{"r8", 1, 1.0f},
+                          Case{"rgba16f", 4, 500.0f}, Case{"rg16f", 2, 1e-3f},
+                          Case{"rgba32f", 4, 1e5f}, Case{"r32ui", 1, 1e4f}}) {
         Image img(13, 7, c.channels);
         for (float& v : img.pixels) v = u(rng) * c.scale;
         if (c.format == "r32ui")
@@ -451,7 +461,8 @@ TEST(Storage, QuantisingMatchesTheFileRoundTrip) {
         ASSERT_TRUE(back.has_value()) << back.error().message;
         const Image q = quantizeForStorage(img, s, srgb);
         ASSERT_EQ(back->channels, q.channels) << c.format;
-        for (size_t i = 0; i < q.pixels.size(); ++i) ASSERT_EQ(back->pixels[i], q.pixels[i]) << c.format << " sample " << i;
+        for (size_t i = 0; i < q.pixels.size(); ++i)
+            ASSERT_EQ(back->pixels[i], q.pixels[i]) << c.format << " sample " << i;
         // Quantising twice changes nothing.
         EXPECT_EQ(quantizeForStorage(q, s, srgb).pixels, q.pixels) << c.format;
     }
@@ -530,11 +541,14 @@ TEST(GoldenScripts, EachKindOfMistakeHasItsMessage) {
         EXPECT_NE(at, std::string::npos) << from;
         return text.replace(at, from.size(), to);
     };
-    EXPECT_EQ(loadError("syntax", "return { size = { 1, 2 }"), "syntax.lua:1: '}' expected near <eof>");
+    EXPECT_EQ(loadError("syntax", "return { size = { 1, 2 }"),
+              "syntax.lua:1: '}' expected near <eof>");
     EXPECT_EQ(loadError("not_a_table", "return 42"),
-              "not_a_table.lua: a golden test script returns a table { pipeline = ..., size = ..., captures = ... }, got 42");
+              "not_a_table.lua: a golden test script returns a table { pipeline = ..., size = ..., "
+              "captures = ... }, got 42");
     EXPECT_EQ(loadError("unknown", replace(kGood, "frames = 3", "frmes = 3")),
-              "unknown.lua: frmes: unknown field (did you mean 'frames'?); expected one of: 'doc', 'pipeline', 'scene', "
+              "unknown.lua: frmes: unknown field (did you mean 'frames'?); expected one of: 'doc', "
+              "'pipeline', 'scene', "
               "'camera', 'size', 'frames', 'params', 'frame', 'golden', 'captures'");
     EXPECT_EQ(loadError("too_big", replace(kGood, "{ 64, 32 }", "{ 512, 32 }")),
               "too_big.lua: size[1]: expected a whole number in [1, 256], got 512");
@@ -542,57 +556,79 @@ TEST(GoldenScripts, EachKindOfMistakeHasItsMessage) {
               "size_shape.lua: size: expected { width, height }, got '64x32'");
     EXPECT_EQ(loadError("frames", replace(kGood, "frames = 3", "frames = 0")),
               "frames.lua: frames: expected a whole number in [1, 1000], got 0");
-    EXPECT_EQ(loadError("no_pipeline", replace(kGood, "pipeline = \"scripts/pipelines/test.lua\",", "")),
-              "no_pipeline.lua: pipeline: missing: the pipeline script to render (e.g. 'scripts/pipelines/test.lua')");
-    EXPECT_EQ(loadError("metric", replace(kGood, "\"psnr\"", "\"psnrr\"")),
-              "metric.lua: captures.output.metric: unknown metric 'psnrr' (did you mean 'psnr'?); expected one of: 'max_abs', "
-              "'rmse', 'psnr', 'over_threshold', 'rel_mean', 'rel_max', 'angular', 'exact', 'flip'");
-    EXPECT_EQ(loadError("tolerance", replace(kGood, "metric = \"psnr\", tolerance = 40", "metric = \"psnr\"")),
-              "tolerance.lua: captures.output.tolerance: missing: metric 'psnr' needs one (peak signal-to-noise ratio in dB; the "
+    EXPECT_EQ(
+        loadError("no_pipeline", replace(kGood, "pipeline = \"scripts/pipelines/test.lua\",", "")),
+        "no_pipeline.lua: pipeline: missing: the pipeline script to render (e.g. "
+        "'scripts/pipelines/test.lua')");
+    EXPECT_EQ(
+        loadError("metric", replace(kGood, "\"psnr\"", "\"psnrr\"")),
+        "metric.lua: captures.output.metric: unknown metric 'psnrr' (did you mean 'psnr'?); "
+        "expected one of: 'max_abs', "
+        "'rmse', 'psnr', 'over_threshold', 'rel_mean', 'rel_max', 'angular', 'exact', 'flip'");
+    EXPECT_EQ(loadError("tolerance",
+                        replace(kGood, "metric = \"psnr\", tolerance = 40", "metric = \"psnr\"")),
+              "tolerance.lua: captures.output.tolerance: missing: metric 'psnr' needs one (peak "
+              "signal-to-noise ratio in dB; the "
               "tolerance is the least PSNR allowed)");
     EXPECT_EQ(loadError("negative", replace(kGood, "tolerance = 0 }", "tolerance = -1 }")),
               "negative.lua: captures.pattern[1].tolerance: must not be negative, got -1");
     EXPECT_EQ(loadError("threshold", replace(kGood, "threshold = 1 / 255, ", "")),
-              "threshold.lua: captures.o.threshold: missing: over_threshold counts pixels whose difference exceeds it");
-    EXPECT_EQ(loadError("misplaced", replace(kGood, "metric = \"exact\"", "metric = \"exact\", threshold = 1")),
-              "misplaced.lua: captures.ids.threshold: metric 'exact' does not use 'threshold'; its fields: 'metric', 'tolerance', "
+              "threshold.lua: captures.o.threshold: missing: over_threshold counts pixels whose "
+              "difference exceeds it");
+    EXPECT_EQ(loadError("misplaced",
+                        replace(kGood, "metric = \"exact\"", "metric = \"exact\", threshold = 1")),
+              "misplaced.lua: captures.ids.threshold: metric 'exact' does not use 'threshold'; its "
+              "fields: 'metric', 'tolerance', "
               "'channels'");
     EXPECT_EQ(loadError("channels", replace(kGood, "channels = \"rgb\"", "channels = \"rgx\"")),
-              "channels.lua: captures.pattern[2].channels: expected letters of 'rgba' such as 'rgb', got 'rgx'");
+              "channels.lua: captures.pattern[2].channels: expected letters of 'rgba' such as "
+              "'rgb', got 'rgx'");
     EXPECT_EQ(loadError("oct", replace(kGood, "channels = \"rg\"", "channels = \"rgb\"")),
               "oct.lua: captures.n.channels: an octahedral normal needs 2 channels, got 'rgb'");
     EXPECT_EQ(loadError("encoding", replace(kGood, "\"oct_unorm\"", "\"octa\"")),
-              "encoding.lua: captures.n.encoding: expected one of: 'signed', 'unorm', 'oct', 'oct_unorm', got 'octa'");
+              "encoding.lua: captures.n.encoding: expected one of: 'signed', 'unorm', 'oct', "
+              "'oct_unorm', got 'octa'");
     EXPECT_EQ(loadError("empty", "return { pipeline = 'p.lua', size = { 8, 8 }, captures = {} }"),
-              "empty.lua: captures: expected a table { resource = { metric = ..., tolerance = ... } } with at least one entry, got "
+              "empty.lua: captures: expected a table { resource = { metric = ..., tolerance = ... "
+              "} } with at least one entry, got "
               "table");
     EXPECT_EQ(loadError("camera", replace(kGood, "frames = 3,", "frames = 3, camera = \"main\",")),
               "camera.lua: camera: names a camera of the scene: set 'scene' too");
     EXPECT_EQ(loadError("golden", replace(kGood, "frames = 3,", "frames = 3, golden = \"../x\",")),
               "golden.lua: golden: expected the name of another golden test, got '../x'");
     EXPECT_EQ(loadError("function", replace(kGood, "doc = \"a test\"", "doc = function() end")),
-              "function.lua: doc: a function is not allowed here (only the top-level 'frame' is a function)");
+              "function.lua: doc: a function is not allowed here (only the top-level 'frame' is a "
+              "function)");
     EXPECT_EQ(loadError("frame_type", replace(kGood, "frames = 3,", "frames = 3, frame = 5,")),
               "frame_type.lua: frame: expected a function(ctx), got number");
-    EXPECT_EQ(loadError("mixed", replace(kGood, "{ 64, 32 }", "{ 64, 32, w = 1 }")), "mixed.lua: size: mixes list entries and named fields");
+    EXPECT_EQ(loadError("mixed", replace(kGood, "{ 64, 32 }", "{ 64, 32, w = 1 }")),
+              "mixed.lua: size: mixes list entries and named fields");
 }
 
 TEST(GoldenScripts, TheSandboxHoldsAndLimitsStopRunaways) {
     EXPECT_EQ(loadError("io", "local f = io.open('/etc/passwd') return {}"),
               "io.lua:1: attempt to index a nil value (global 'io')");
-    EXPECT_EQ(loadError("load", "load('return 1') return {}"), "load.lua:1: load is not available to golden test scripts (sandbox)");
-    EXPECT_EQ(loadError("require", "require 'rg' return {}"), "require.lua:1: require is not available to golden test scripts (sandbox)");
-    EXPECT_EQ(loadError("os", "os.execute('touch /tmp/x') return {}"), "os.lua:1: attempt to index a nil value (global 'os')");
+    EXPECT_EQ(loadError("load", "load('return 1') return {}"),
+              "load.lua:1: load is not available to golden test scripts (sandbox)");
+    EXPECT_EQ(loadError("require", "require 'rg' return {}"),
+              "require.lua:1: require is not available to golden test scripts (sandbox)");
+    EXPECT_EQ(loadError("os", "os.execute('touch /tmp/x') return {}"),
+              "os.lua:1: attempt to index a nil value (global 'os')");
     GoldenScript::Limits small;
     small.instructions = 2'000'000;
     auto s = GoldenScript::load(writeScript("runaway", "while true do end"), "runaway.lua", small);
     ASSERT_FALSE(s.has_value());
     EXPECT_EQ(s.error().message.substr(0, s.error().message.find('\n')),
-              "runaway.lua:1: golden test script stopped after 2 million instructions: a runaway loop? (limit: 2 million)");
+              "runaway.lua:1: golden test script stopped after 2 million instructions: a runaway "
+              "loop? (limit: 2 million)");
     small.memoryBytes = 8u << 20;
-    auto m = GoldenScript::load(writeScript("hog", "local t = {} for i = 1, 1e8 do t[i] = i end return {}"), "hog.lua", small);
+    auto m = GoldenScript::load(
+        writeScript("hog", "local t = {} for i = 1, 1e8 do t[i] = i end return {}"), "hog.lua",
+        small);
     ASSERT_FALSE(m.has_value());
-    EXPECT_NE(m.error().message.find("hog.lua:1: golden test script stopped: it used more than 8 MiB of Lua memory"), std::string::npos)
+    EXPECT_NE(m.error().message.find(
+                  "hog.lua:1: golden test script stopped: it used more than 8 MiB of Lua memory"),
+              std::string::npos)
         << m.error().message;
     auto missing = GoldenScript::load("/nonexistent/x.lua", "x.lua");
     ASSERT_FALSE(missing.has_value());
@@ -656,8 +692,11 @@ TEST(GoldenScripts, TheFrameCallbackChangesParametersAndPasses) {
 
 TEST(GoldenScripts, FrameCallbackErrorsNameTheLine) {
     auto frameError = [](const std::string& name, const std::string& body) {
-        auto s = loadScript(name, "return { pipeline = 'p.lua', size = { 8, 8 }, captures = { o = { metric = 'exact' } },\n"
-                                  "frame = function(ctx)\n" + body + "\nend }");
+        auto s = loadScript(name,
+                            "return { pipeline = 'p.lua', size = { 8, 8 }, captures = { o = { "
+                            "metric = 'exact' } },\n"
+                            "frame = function(ctx)\n" +
+                                body + "\nend }");
         EXPECT_TRUE(s.has_value()) << (s ? "" : s.error().message);
         if (!s) return std::string();
         auto r = (*s)->frame({0, 0.0}, fakePipeline());
@@ -668,12 +707,14 @@ TEST(GoldenScripts, FrameCallbackErrorsNameTheLine) {
               "unknown_param.lua:3: ctx.params: unknown parameter 'scal' (did you mean 'scale'?)");
     EXPECT_EQ(frameError("range", "ctx.params.scale = 20"),
               "range.lua:3: ctx.params: parameter 'scale' expects a number in [0, 16], got 20");
-    EXPECT_EQ(frameError("choice", "ctx.params.mode = 'c'"), "choice.lua:3: ctx.params: parameter 'mode' expects one of 'a', 'b', got 'c'");
+    EXPECT_EQ(frameError("choice", "ctx.params.mode = 'c'"),
+              "choice.lua:3: ctx.params: parameter 'mode' expects one of 'a', 'b', got 'c'");
     EXPECT_EQ(frameError("unknown_pass", "ctx.pass('tnt').enabled = false"),
               "unknown_pass.lua:3: ctx.pass: unknown pass 'tnt' (did you mean 'tint'?)");
     EXPECT_EQ(frameError("enabled_type", "ctx.pass('tint').enabled = 1"),
               "enabled_type.lua:3: ctx.pass('tint').enabled: expected a boolean, got number");
-    EXPECT_EQ(frameError("runtime", "local x = nil; x.y = 1"), "runtime.lua:3: attempt to index a nil value (local 'x')");
+    EXPECT_EQ(frameError("runtime", "local x = nil; x.y = 1"),
+              "runtime.lua:3: attempt to index a nil value (local 'x')");
 }
 
 TEST(GoldenScripts, FindingTestsByPattern) {
@@ -684,7 +725,8 @@ TEST(GoldenScripts, FindingTestsByPattern) {
     EXPECT_TRUE(matchesPattern("deferred_pipeline", "*pipe*"));
     EXPECT_FALSE(matchesPattern("test_pipeline", "deferred_*"));
     const std::string dir = tmpDir("find");
-    for (const char* n : {"b.lua", "a.lua", "a_two.lua", "notes.txt"}) std::ofstream(dir + "/" + n) << "return {}";
+    for (const char* n : {"b.lua", "a.lua", "a_two.lua", "notes.txt"})
+        std::ofstream(dir + "/" + n) << "return {}";
     fs::create_directories(dir + "/sub");
     std::ofstream(dir + "/sub/c.lua") << "return {}";
     auto all = findGoldenTests(dir, "");
@@ -728,7 +770,8 @@ RunReport sampleReport() {
     bad.name = "bad <one> & \"two\"";
     bad.status = TestStatus::Failed;
     bad.captures[0].actual.at(1, 1, 0) = 1.0f;
-    bad.captures[0].comparisons[0].result = *compare(bad.captures[0].actual, bad.captures[0].expected, cmp.spec);
+    bad.captures[0].comparisons[0].result =
+        *compare(bad.captures[0].actual, bad.captures[0].expected, cmp.spec);
     bad.captures[0].passed = false;
     bad.firstDivergent = "output";
     bad.message = "first divergent resource in pipeline order: 'output'";
@@ -759,9 +802,16 @@ TEST(Report, JunitCountsFailuresAndErrors) {
     const std::string dir = tmpDir("junit");
     ASSERT_TRUE(writeJunit(dir + "/golden.xml", sampleReport()).has_value());
     const std::string xml = readFile(dir + "/golden.xml");
-    EXPECT_NE(xml.find("<testsuite name=\"golden\" tests=\"3\" failures=\"1\" errors=\"1\""), std::string::npos) << xml;
-    EXPECT_NE(xml.find("<testcase classname=\"golden\" name=\"bad &lt;one&gt; &amp; &quot;two&quot;\""), std::string::npos);
-    EXPECT_NE(xml.find("<failure message=\"first divergent resource in pipeline order: &apos;output&apos;\">"), std::string::npos);
+    EXPECT_NE(xml.find("<testsuite name=\"golden\" tests=\"3\" failures=\"1\" errors=\"1\""),
+              std::string::npos)
+        << xml;
+    EXPECT_NE(
+        xml.find("<testcase classname=\"golden\" name=\"bad &lt;one&gt; &amp; &quot;two&quot;\""),
+        std::string::npos);
+    EXPECT_NE(
+        xml.find(
+            "<failure message=\"first divergent resource in pipeline order: &apos;output&apos;\">"),
+        std::string::npos);
     EXPECT_NE(xml.find("<error message=\"broken.lua:1: unexpected symbol\">"), std::string::npos);
     EXPECT_NE(xml.find("output: max_abs 0.5 &gt; 0 FAIL"), std::string::npos);
 }

@@ -12,7 +12,7 @@ using namespace rg::photometry;
 TEST(Photometry, Ev100FromCameraSettings) {
     EXPECT_NEAR(ev100FromCamera(16, 1.0 / 125, 100), 14.966, 0.0005);  // Sunny 16
     EXPECT_NEAR(ev100FromCamera(16, 1.0 / 100, 100), 14.644, 0.0005);
-    EXPECT_NEAR(ev100FromCamera(16, 1.0 / 125, 200), 13.966, 0.0005);  // one stop more gain
+    EXPECT_NEAR(ev100FromCamera(16, 1.0 / 125, 200), 13.966, 0.0005);       // one stop more gain
     EXPECT_NEAR(ev100FromCamera(16, 1.0 / 125, 100, 1.0), 13.966, 0.0005);  // EC = +1 over-exposes
 }
 
@@ -25,7 +25,7 @@ TEST(Photometry, ExposureIsTheInverseOfTheSaturationLuminance) {
 
 TEST(Photometry, LuminanceOfEv100MatchesTable7) {
     // seed 000 tbl:7: EV100 -4..16 and the luminance (cd/m²) the table prints, rounded by it.
-    const double table[] = {0.008, 0.016, 0.031, 0.063, 0.125, 0.25, 0.5, 1, 2, 4, 8,
+    const double table[] = {0.008, 0.016, 0.031, 0.063, 0.125, 0.25, 0.5,  1,    2,    4,   8,
                             16,    32,    64,    128,   256,   512,  1024, 2048, 4096, 8192};
     for (int ev = -4; ev <= 16; ++ev) {
         const double printed = table[ev + 4];
@@ -60,10 +60,12 @@ TEST(ColourTemperature, MatchesCieIlluminantsAAndD65) {
     EXPECT_NEAR(d65[1], 0.32902, 1e-3);
     const auto planck6504 = colorTemperatureXy(6504.0);
     EXPECT_GT(std::abs(planck6504[1] - 0.32902), 3e-3);  // the black body at 6504 K is not D65
-    std::printf("A: xy %.5f %.5f (CIE 0.44757 0.40745); D65: %.5f %.5f (CIE 0.31271 0.32902); black body at 6504 K: %.5f %.5f\n", a[0], a[1],
-                d65[0], d65[1], planck6504[0], planck6504[1]);
+    std::printf(
+        "A: xy %.5f %.5f (CIE 0.44757 0.40745); D65: %.5f %.5f (CIE 0.31271 0.32902); black body "
+        "at 6504 K: %.5f %.5f\n",
+        a[0], a[1], d65[0], d65[1], planck6504[0], planck6504[1]);
     EXPECT_TRUE(colorTemperatureInRange(1667.0));
-    EXPECT_FALSE(colorTemperatureInRange(1000.0));   // rendered as 1667 K before: now refused
+    EXPECT_FALSE(colorTemperatureInRange(1000.0));  // rendered as 1667 K before: now refused
     EXPECT_FALSE(colorTemperatureInRange(40000.0));
     EXPECT_FALSE(colorTemperatureInRange(3000.0, true));  // the daylight locus starts at 4000 K
     // RGB at luminance 1: A is warm, D65 near white (Rec.709's white point is D65).

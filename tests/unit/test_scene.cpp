@@ -72,11 +72,13 @@ TEST(Mips, SrgbImagesAreFilteredAsLinearLightAlphaStaysLinear) {
 void checkMesh(const rg::Primitive& p, const std::string& what) {
     ASSERT_FALSE(p.indices.empty()) << what;
     for (size_t t = 0; t < p.indices.size(); t += 3) {
-        const rg::Vertex &a = p.vertices[p.indices[t]], &b = p.vertices[p.indices[t + 1]], &c = p.vertices[p.indices[t + 2]];
+        const rg::Vertex &a = p.vertices[p.indices[t]], &b = p.vertices[p.indices[t + 1]],
+                         &c = p.vertices[p.indices[t + 2]];
         const glm::vec3 face = glm::cross(b.position - a.position, c.position - a.position);
         ASSERT_GT(glm::length(face), 0.0f) << what << " degenerate triangle " << t / 3;
         // Counter-clockwise seen from the side the normals point to.
-        EXPECT_GT(glm::dot(face, a.normal + b.normal + c.normal), 0.0f) << what << " triangle " << t / 3;
+        EXPECT_GT(glm::dot(face, a.normal + b.normal + c.normal), 0.0f)
+            << what << " triangle " << t / 3;
     }
     // The analytic tangents agree with what generateTangents derives from the uvs.
     rg::Primitive derived = p;
@@ -88,7 +90,8 @@ void checkMesh(const rg::Primitive& p, const std::string& what) {
         EXPECT_EQ(v.tangent.w, derived.vertices[i].tangent.w) << what << " vertex " << i;
         // Pole vertices of a sphere have no uv gradient of their own: only compare away from them.
         if (std::fabs(v.normal.y) < 0.99f) {
-            EXPECT_GT(glm::dot(glm::vec3(v.tangent), glm::vec3(derived.vertices[i].tangent)), 0.95f) << what << " vertex " << i;
+            EXPECT_GT(glm::dot(glm::vec3(v.tangent), glm::vec3(derived.vertices[i].tangent)), 0.95f)
+                << what << " vertex " << i;
         }
     }
 }
@@ -119,13 +122,15 @@ TEST(SceneGeometry, SphereLevelsOfDetailDropRowsAndStayWithinTheirError) {
     const rg::Primitive p = rg::makeSphere(radius, 96, 0);
     ASSERT_EQ(p.lods.size(), 2u);
     EXPECT_EQ(rg::makeSphere(radius, 48, 0).lods.size(), 1u);  // 24 segments only
-    EXPECT_EQ(p.indices.size(), size_t(3 * (96 * 48 * 2 - 2 * 96)));  // the poles' rows have one triangle a quad
+    EXPECT_EQ(p.indices.size(),
+              size_t(3 * (96 * 48 * 2 - 2 * 96)));  // the poles' rows have one triangle a quad
     const uint32_t row = 97;
     float previous = 0.0f;
     for (size_t l = 0; l < p.lods.size(); ++l) {
         const uint32_t stride = 2u << l, segments = 96 / stride, rings = 48 / stride;
         const rg::PrimitiveLod& lod = p.lods[l];
-        EXPECT_EQ(lod.indices.size(), size_t(3 * (segments * rings * 2 - 2 * segments))) << "level " << l + 1;
+        EXPECT_EQ(lod.indices.size(), size_t(3 * (segments * rings * 2 - 2 * segments)))
+            << "level " << l + 1;
         EXPECT_GT(lod.error, previous);
         previous = lod.error;
         float bulge = 0.0f;
@@ -143,8 +148,8 @@ TEST(SceneGeometry, SphereLevelsOfDetailDropRowsAndStayWithinTheirError) {
             EXPECT_GT(glm::dot(n, c[0] + c[1] + c[2]), 0.0f);
             bulge = std::max(bulge, radius - std::abs(glm::dot(glm::normalize(n), c[0])));
         }
-        std::printf("level %zu: %u segments, %zu triangles, error %.2f mm, largest bulge %.2f mm\n", l + 1, segments,
-                    lod.indices.size() / 3, lod.error * 1e3f, bulge * 1e3f);
+        std::printf("level %zu: %u segments, %zu triangles, error %.2f mm, largest bulge %.2f mm\n",
+                    l + 1, segments, lod.indices.size() / 3, lod.error * 1e3f, bulge * 1e3f);
         EXPECT_LE(bulge, lod.error);
         EXPECT_GT(bulge, 0.5f * lod.error);  // and the bound is not loose by more than 2x
     }

@@ -25,7 +25,9 @@ TEST(ExportGlb, LuaSceneRoundTripsThroughGlb) {
     ASSERT_TRUE(w) << w.error().message;
     // The rect light has no glTF form; the sun (lux) and the bulb (cd) do.
     ASSERT_EQ(warnings.size(), 1u);
-    EXPECT_EQ(warnings[0], "light 'softbox' (rect, nits) is not exported: KHR_lights_punctual has no area lights");
+    EXPECT_EQ(
+        warnings[0],
+        "light 'softbox' (rect, nits) is not exported: KHR_lights_punctual has no area lights");
 
     auto back = rg::loadGltf(path);
     ASSERT_TRUE(back) << errorOf(back);
@@ -52,7 +54,8 @@ TEST(ExportGlb, LuaSceneRoundTripsThroughGlb) {
         EXPECT_EQ(back->nodes[n].name, scene->nodes[n].name);
         EXPECT_EQ(back->nodes[n].mesh, scene->nodes[n].mesh);
         for (int c = 0; c < 4; ++c)
-            for (int r = 0; r < 4; ++r) EXPECT_FLOAT_EQ(back->nodes[n].world[c][r], scene->nodes[n].world[c][r]);
+            for (int r = 0; r < 4; ++r)
+                EXPECT_FLOAT_EQ(back->nodes[n].world[c][r], scene->nodes[n].world[c][r]);
     }
     ASSERT_EQ(back->materials.size(), scene->materials.size());
     for (size_t i = 0; i < scene->materials.size(); ++i) {
@@ -113,7 +116,8 @@ TEST(ExportGlb, LumensBecomeTheCandelaRenderedAndComeBack) {
     exact.exactCone = true;
     exact.castShadows = true;  // extras.rgraph.shadow
     scene.lights = {point, spot, exact};
-    const std::string path = tmpDir("export_lumens") + "/lumens.glb";  // its own folder: tests run in parallel
+    const std::string path =
+        tmpDir("export_lumens") + "/lumens.glb";  // its own folder: tests run in parallel
     std::vector<std::string> warnings;
     auto w = rg::exportGlb(scene, path, &warnings);
     ASSERT_TRUE(w) << w.error().message;
@@ -129,7 +133,8 @@ TEST(ExportGlb, LumensBecomeTheCandelaRenderedAndComeBack) {
     ASSERT_EQ(lights.size(), 3u);
     EXPECT_NEAR(lights[0]["intensity"].get<double>(), 1600.0 / (4.0 * 3.14159265358979), 1e-3);
     EXPECT_NEAR(lights[1]["intensity"].get<double>(), 1000.0 / 3.14159265358979, 1e-3);
-    EXPECT_NEAR(lights[2]["intensity"].get<double>(), 1000.0 / (2.0 * 3.14159265358979 * (1.0 - std::cos(0.5))), 1e-2);
+    EXPECT_NEAR(lights[2]["intensity"].get<double>(),
+                1000.0 / (2.0 * 3.14159265358979 * (1.0 - std::cos(0.5))), 1e-2);
     auto back = rg::loadGltf(path);
     ASSERT_TRUE(back) << errorOf(back);
     ASSERT_EQ(back->lights.size(), 3u);
@@ -145,19 +150,23 @@ TEST(ExportGlb, LumensBecomeTheCandelaRenderedAndComeBack) {
 
 TEST(ExportGlb, TexturesSamplersAndTransformsRoundTrip) {
     const std::string dir = tmpDir("export_tex");
-    writeTestPng(dir + "/a.png", 2, 2, {0, 0, 0, 1, 1, 1, 1, 1, 0.5f, 0.25f, 0.75f, 1, 1, 0, 0, 0.5f});
+    writeTestPng(dir + "/a.png", 2, 2,
+                 {0, 0, 0, 1, 1, 1, 1, 1, 0.5f, 0.25f, 0.75f, 1, 1, 0, 0, 0.5f});
     GltfBuilder g;
     addQuad(g, true);
     g.j["images"] = json::array({{{"uri", "a.png"}}});
     g.j["samplers"] = json::array({{{"magFilter", 9728}, {"minFilter", 9986}, {"wrapS", 33648}}});
     g.j["textures"] = json::array({{{"source", 0}, {"sampler", 0}}});
-    g.j["materials"] = json::array({{{"pbrMetallicRoughness",
-                                      {{"baseColorTexture",
-                                        {{"index", 0},
-                                         {"extensions", {{"KHR_texture_transform", {{"offset", {0.1, 0.2}}, {"rotation", 0.3}, {"scale", {2, 4}}}}}}}}}},
-                                     {"normalTexture", {{"index", 0}, {"texCoord", 1}}},
-                                     {"alphaMode", "MASK"},
-                                     {"alphaCutoff", 0.4}}});
+    g.j["materials"] =
+        json::array({{{"pbrMetallicRoughness",
+                       {{"baseColorTexture",
+                         {{"index", 0},
+                          {"extensions",
+                           {{"KHR_texture_transform",
+                             {{"offset", {0.1, 0.2}}, {"rotation", 0.3}, {"scale", {2, 4}}}}}}}}}},
+                      {"normalTexture", {{"index", 0}, {"texCoord", 1}}},
+                      {"alphaMode", "MASK"},
+                      {"alphaCutoff", 0.4}}});
     g.j["meshes"][0]["primitives"][0]["material"] = 0;
     g.scene({g.node({{"mesh", 0}})});
     auto scene = rg::loadGltf(g.writeGltf(dir, "t"));
@@ -165,14 +174,17 @@ TEST(ExportGlb, TexturesSamplersAndTransformsRoundTrip) {
     ASSERT_TRUE(rg::exportGlb(*scene, dir + "/t.glb"));
     auto back = rg::loadGltf(dir + "/t.glb");
     ASSERT_TRUE(back) << errorOf(back);
-    ASSERT_EQ(back->images.size(), 2u);  // one image, once as sRGB (base colour) and once linear (normal map)
+    ASSERT_EQ(back->images.size(),
+              2u);  // one image, once as sRGB (base colour) and once linear (normal map)
     for (size_t i = 0; i < 2; ++i) {
         EXPECT_EQ(back->images[i].srgb, scene->images[i].srgb);
-        EXPECT_EQ(back->images[i].pixels.pixels, scene->images[i].pixels.pixels);  // 8-bit values survive PNG exactly
+        EXPECT_EQ(back->images[i].pixels.pixels,
+                  scene->images[i].pixels.pixels);  // 8-bit values survive PNG exactly
     }
     const rg::Material &a = scene->materials[0], &b = back->materials[0];
     for (int c = 0; c < 3; ++c)
-        for (int r = 0; r < 3; ++r) EXPECT_NEAR(a.baseColorTex.transform[c][r], b.baseColorTex.transform[c][r], 1e-6f);
+        for (int r = 0; r < 3; ++r)
+            EXPECT_NEAR(a.baseColorTex.transform[c][r], b.baseColorTex.transform[c][r], 1e-6f);
     EXPECT_EQ(b.normalTex.texCoord, 1u);
     EXPECT_EQ(b.alphaMode, rg::AlphaMode::Mask);
     EXPECT_FLOAT_EQ(b.alphaCutoff, 0.4f);
@@ -187,7 +199,8 @@ TEST(ExportGlb, FilesTheSceneNamesAreWrittenRelativeToTheGlb) {
     // extras is refused.
     const std::string dir = tmpDir("export_relative");
     fs::create_directories(dir + "/assets");
-    fs::copy_file(std::string(RG_SOURCE_ROOT) + "/tests/unit/ies/downlight_2002.ies", dir + "/assets/d.ies", fs::copy_options::overwrite_existing);
+    fs::copy_file(std::string(RG_SOURCE_ROOT) + "/tests/unit/ies/downlight_2002.ies",
+                  dir + "/assets/d.ies", fs::copy_options::overwrite_existing);
     rg::Scene scene;
     rg::Light l;
     l.name = "lamp";
@@ -209,15 +222,21 @@ TEST(ExportGlb, FilesTheSceneNamesAreWrittenRelativeToTheGlb) {
     auto back = rg::loadGltf(dir + "/out/s.glb");
     ASSERT_TRUE(back) << errorOf(back);
     ASSERT_EQ(back->lights.size(), 1u);
-    EXPECT_EQ(fs::path(back->lights[0].ies).lexically_normal(), fs::path(dir + "/assets/d.ies").lexically_normal());
+    EXPECT_EQ(fs::path(back->lights[0].ies).lexically_normal(),
+              fs::path(dir + "/assets/d.ies").lexically_normal());
     ASSERT_TRUE(back->environment.has_value());
-    EXPECT_EQ(fs::path(back->environment->file).lexically_normal(), fs::path(dir + "/assets/sky.exr").lexically_normal());
+    EXPECT_EQ(fs::path(back->environment->file).lexically_normal(),
+              fs::path(dir + "/assets/sky.exr").lexically_normal());
     GltfBuilder g;
-    g.j["scenes"] = json::array({{{"nodes", json::array()}, {"extras", {{"rgraph", {{"environment", {{"kind", "hdr"}, {"file", "/etc/passwd"}}}}}}}}});
+    g.j["scenes"] = json::array(
+        {{{"nodes", json::array()},
+          {"extras",
+           {{"rgraph", {{"environment", {{"kind", "hdr"}, {"file", "/etc/passwd"}}}}}}}}});
     g.j["scene"] = 0;
     auto refused = rg::loadGltf(g.writeGltf(dir, "abs"));
     ASSERT_FALSE(refused);
-    EXPECT_NE(refused.error().message.find("'/etc/passwd' is an absolute path"), std::string::npos) << refused.error().message;
+    EXPECT_NE(refused.error().message.find("'/etc/passwd' is an absolute path"), std::string::npos)
+        << refused.error().message;
 }
 
 TEST(ExportGlb, FailedWriteLeavesNothingBehind) {
@@ -226,12 +245,14 @@ TEST(ExportGlb, FailedWriteLeavesNothingBehind) {
     auto r = rg::exportGlb(empty, dir + "/no/such/dir/x.glb");
     ASSERT_FALSE(r);
     EXPECT_EQ(r.error().code, ErrorCode::Io);
-    EXPECT_EQ(r.error().message, "cannot write '" + dir + "/no/such/dir/x.glb': No such file or directory");
+    EXPECT_EQ(r.error().message,
+              "cannot write '" + dir + "/no/such/dir/x.glb': No such file or directory");
     ASSERT_TRUE(rg::exportGlb(empty, dir + "/e.glb"));
     auto back = rg::loadGltf(dir + "/e.glb");
     ASSERT_TRUE(back) << errorOf(back);
     EXPECT_TRUE(back->nodes.empty());
-    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);  // no temp file left
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()),
+              1);  // no temp file left
 }
 
 }  // namespace

@@ -22,10 +22,15 @@ TEST(GltfLoad, ChildUnderTranslatedRotatedParentLandsAtTheRightWorldPosition) {
     // Parent: translate (1, 2, 3), rotate +90° about Y (quaternion x, y, z, w). Child: (1, 0, 0).
     const float s = std::sqrt(0.5f);
     const int child = g.node({{"name", "child"}, {"mesh", 0}, {"translation", {1, 0, 0}}});
-    const int parent = g.node({{"name", "parent"}, {"translation", {1, 2, 3}}, {"rotation", {0, s, 0, s}}, {"children", {child}}});
+    const int parent = g.node({{"name", "parent"},
+                               {"translation", {1, 2, 3}},
+                               {"rotation", {0, s, 0, s}},
+                               {"children", {child}}});
     // The same through a matrix: translate (0, 0, -5), scale 2; its child at (0, 1, 0).
     const int child2 = g.node({{"name", "child2"}, {"mesh", 0}, {"translation", {0, 1, 0}}});
-    const int parent2 = g.node({{"name", "parent2"}, {"matrix", {2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 0, 0, -5, 1}}, {"children", {child2}}});
+    const int parent2 = g.node({{"name", "parent2"},
+                                {"matrix", {2, 0, 0, 0, 0, 2, 0, 0, 0, 0, 2, 0, 0, 0, -5, 1}},
+                                {"children", {child2}}});
     g.scene({parent, parent2});
     auto scene = rg::loadGltf(g.writeGltf(dir, "h"));
     ASSERT_TRUE(scene) << errorOf(scene);
@@ -34,7 +39,8 @@ TEST(GltfLoad, ChildUnderTranslatedRotatedParentLandsAtTheRightWorldPosition) {
     // R_y(90°) maps +x to -z: (1, 2, 3) + (0, 0, -1).
     expectNear(origin(scene->nodes[0].world), {1, 2, 2}, 1e-5f, "child origin");
     // The quad's corner (1, 0, 0) goes to child (1,0,0)+(1,0,0) -> rotated (0,0,-2) -> (1, 2, 1).
-    expectNear(glm::vec3(scene->nodes[0].world * glm::vec4(1, 0, 0, 1)), {1, 2, 1}, 1e-5f, "corner");
+    expectNear(glm::vec3(scene->nodes[0].world * glm::vec4(1, 0, 0, 1)), {1, 2, 1}, 1e-5f,
+               "corner");
     expectNear(origin(scene->nodes[1].world), {0, 2, -5}, 1e-5f, "matrix child origin");
     // Bounds cover both placed quads.
     expectNear(scene->boundsMin, {0, 2, -5}, 1e-5f, "boundsMin");
@@ -48,9 +54,12 @@ TEST(GltfLoad, SeveralPrimitivesIndexedAndNot) {
     const int nrm = g.floats({0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3");
     const int idx8 = g.indices8({0, 1, 2});
     g.j["materials"] = json::array({{{"name", "a"}}, {{"name", "b"}}});
-    g.mesh("two", json::array({{{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}, {"indices", idx8}, {"material", 1}},
-                               {{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}, {"material", 0}},
-                               {{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}}}));
+    g.mesh("two",
+           json::array({{{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}},
+                         {"indices", idx8},
+                         {"material", 1}},
+                        {{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}, {"material", 0}},
+                        {{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}}}));
     g.scene({g.node({{"mesh", 0}})});
     auto scene = rg::loadGltf(g.writeGltf(dir, "p"));
     ASSERT_TRUE(scene) << errorOf(scene);
@@ -60,7 +69,8 @@ TEST(GltfLoad, SeveralPrimitivesIndexedAndNot) {
     EXPECT_EQ(prims[0].material, 1u);
     EXPECT_EQ(prims[1].material, 0u);
     EXPECT_EQ(prims[0].indices, (std::vector<uint32_t>{0, 1, 2}));
-    EXPECT_EQ(prims[1].indices, (std::vector<uint32_t>{0, 1, 2}));  // generated for a non-indexed primitive
+    EXPECT_EQ(prims[1].indices,
+              (std::vector<uint32_t>{0, 1, 2}));  // generated for a non-indexed primitive
     // No material: glTF's default (white, metallic 1, roughness 1), appended after the file's.
     ASSERT_EQ(scene->materials.size(), 3u);
     EXPECT_EQ(prims[2].material, 2u);
@@ -73,7 +83,8 @@ TEST(GltfLoad, SeveralPrimitivesIndexedAndNot) {
 TEST(GltfLoad, TriangleStripAndFanBecomeCounterClockwiseLists) {
     const std::string dir = tmpDir("strip");
     GltfBuilder g;
-    const int pos = g.floats({0, 0, 0, 0, 1, 0, 1, 0, 0, 1, 1, 0}, "VEC3");  // zig-zag strip facing +Z
+    const int pos =
+        g.floats({0, 0, 0, 0, 1, 0, 1, 0, 0, 1, 1, 0}, "VEC3");  // zig-zag strip facing +Z
     const int nrm = g.floats({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3");
     g.mesh("m", json::array({{{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}, {"mode", 5}},
                              {{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}}}, {"mode", 6}}}));
@@ -84,7 +95,8 @@ TEST(GltfLoad, TriangleStripAndFanBecomeCounterClockwiseLists) {
     EXPECT_EQ(strip.indices, (std::vector<uint32_t>{0, 1, 2, 2, 1, 3}));
     EXPECT_EQ(scene->meshes[0].primitives[1].indices, (std::vector<uint32_t>{0, 1, 2, 0, 2, 3}));
     for (size_t t = 0; t < strip.indices.size(); t += 3) {
-        const glm::vec3 a = strip.vertices[strip.indices[t]].position, b = strip.vertices[strip.indices[t + 1]].position,
+        const glm::vec3 a = strip.vertices[strip.indices[t]].position,
+                        b = strip.vertices[strip.indices[t + 1]].position,
                         c = strip.vertices[strip.indices[t + 2]].position;
         // The strip's first triangle (0,1,2) is clockwise seen from +Z, so both face -Z alike.
         EXPECT_LT(glm::cross(b - a, c - a).z, 0.0f) << "triangle " << t / 3;
@@ -99,7 +111,9 @@ TEST(GltfLoad, GeneratedTangentsAreOrthogonalToNormalsAndFollowPlusU) {
     const int pos = g.floats({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, "VEC3");
     const int nrm = g.floats({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3");
     const int uv = g.floats({1, 1, 0, 1, 0, 0, 1, 0}, "VEC2");
-    g.mesh("mirrored", json::array({{{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}, {"TEXCOORD_0", uv}}}, {"indices", g.indices16({0, 1, 2, 0, 2, 3})}}}));
+    g.mesh("mirrored",
+           json::array({{{"attributes", {{"POSITION", pos}, {"NORMAL", nrm}, {"TEXCOORD_0", uv}}},
+                         {"indices", g.indices16({0, 1, 2, 0, 2, 3})}}}));
     g.scene({g.node({{"mesh", 0}}), g.node({{"mesh", 1}})});
     auto scene = rg::loadGltf(g.writeGltf(dir, "t"));
     ASSERT_TRUE(scene) << errorOf(scene);
@@ -128,7 +142,8 @@ TEST(GltfLoad, TangentsOfAnIrregularMeshAreUnitAndOrthogonal) {
         }
     for (int y = 0; y < n; ++y)
         for (int x = 0; x < n; ++x) {
-            const uint32_t a = uint32_t(y * (n + 1) + x), b = a + 1, c = a + uint32_t(n + 1), d = c + 1;
+            const uint32_t a = uint32_t(y * (n + 1) + x), b = a + 1, c = a + uint32_t(n + 1),
+                           d = c + 1;
             p.indices.insert(p.indices.end(), {a, b, d, a, d, c});
         }
     rg::generateTangents(p);
@@ -145,15 +160,19 @@ TEST(GltfLoad, MissingNormalsBecomeFlatNormals) {
     GltfBuilder g;
     // Two triangles sharing an edge at a right angle: one faces +Z, the other +X.
     const int pos = g.floats({0, 0, 0, 1, 0, 0, 0, 1, 0, 0, 0, 0, 0, 1, 0, 0, 0, -1}, "VEC3");
-    g.mesh("fold", json::array({{{"attributes", {{"POSITION", pos}}}, {"indices", g.indices16({0, 1, 2, 0, 5, 4})}}}));
+    g.mesh("fold", json::array({{{"attributes", {{"POSITION", pos}}},
+                                 {"indices", g.indices16({0, 1, 2, 0, 5, 4})}}}));
     g.scene({g.node({{"mesh", 0}})});
     auto scene = rg::loadGltf(g.writeGltf(dir, "f"));
     ASSERT_TRUE(scene) << errorOf(scene);
     const auto& p = scene->meshes[0].primitives[0];
     ASSERT_EQ(p.vertices.size(), 6u);  // unwelded: each triangle its own vertices
-    for (int k = 0; k < 3; ++k) expectNear(p.vertices[size_t(k)].normal, {0, 0, 1}, 1e-6f, "first face");
-    for (int k = 3; k < 6; ++k) expectNear(p.vertices[size_t(k)].normal, {1, 0, 0}, 1e-6f, "second face");
-    for (const auto& v : p.vertices) EXPECT_NEAR(glm::dot(glm::vec3(v.tangent), v.normal), 0.0f, 1e-6f);
+    for (int k = 0; k < 3; ++k)
+        expectNear(p.vertices[size_t(k)].normal, {0, 0, 1}, 1e-6f, "first face");
+    for (int k = 3; k < 6; ++k)
+        expectNear(p.vertices[size_t(k)].normal, {1, 0, 0}, 1e-6f, "second face");
+    for (const auto& v : p.vertices)
+        EXPECT_NEAR(glm::dot(glm::vec3(v.tangent), v.normal), 0.0f, 1e-6f);
 }
 
 TEST(GltfLoad, NormalizedIntegerTexcoordsAndSecondUvSet) {
@@ -164,7 +183,8 @@ TEST(GltfLoad, NormalizedIntegerTexcoordsAndSecondUvSet) {
     const uint16_t uvs[6] = {0, 65535, 32768, 65535, 0, 0};
     const int uv0 = g.accessor(g.view(uvb, 6), kUByte, 3, "VEC2", true);
     const int uv1 = g.accessor(g.view(uvs, 12), kUShort, 3, "VEC2", true);
-    g.mesh("m", json::array({{{"attributes", {{"POSITION", pos}, {"TEXCOORD_0", uv0}, {"TEXCOORD_1", uv1}}}}}));
+    g.mesh("m", json::array({{{"attributes",
+                               {{"POSITION", pos}, {"TEXCOORD_0", uv0}, {"TEXCOORD_1", uv1}}}}}));
     g.scene({g.node({{"mesh", 0}})});
     auto scene = rg::loadGltf(g.writeGltf(dir, "u"));
     ASSERT_TRUE(scene) << errorOf(scene);
@@ -181,12 +201,14 @@ TEST(GltfLoad, NormalizedIntegerTexcoordsAndSecondUvSet) {
 TEST(GltfLoad, MaterialMappingSrgbFlagsAndTextureTransform) {
     const std::string dir = tmpDir("materials");
     // 2x1: a mid sRGB grey and white.
-    writeTestPng(dir + "/albedo.png", 2, 1, {128 / 255.0f, 128 / 255.0f, 128 / 255.0f, 1, 1, 1, 1, 1});
+    writeTestPng(dir + "/albedo.png", 2, 1,
+                 {128 / 255.0f, 128 / 255.0f, 128 / 255.0f, 1, 1, 1, 1, 1});
     writeTestPng(dir + "/data.png", 1, 1, {0.25f, 0.5f, 0.75f, 1});
     GltfBuilder g;
     addQuad(g, true);
     g.j["images"] = json::array({{{"uri", "albedo.png"}}, {{"uri", "data.png"}}});
-    g.j["samplers"] = json::array({{{"magFilter", 9728}, {"minFilter", 9985}, {"wrapS", 33071}, {"wrapT", 33648}}});
+    g.j["samplers"] = json::array(
+        {{{"magFilter", 9728}, {"minFilter", 9985}, {"wrapS", 33071}, {"wrapT", 33648}}});
     g.j["textures"] = json::array({{{"source", 0}, {"sampler", 0}}, {{"source", 1}}});
     const float half = 3.14159265f / 2;
     g.j["materials"] = json::array({{
@@ -197,7 +219,12 @@ TEST(GltfLoad, MaterialMappingSrgbFlagsAndTextureTransform) {
           {"roughnessFactor", 0.3},
           {"baseColorTexture",
            {{"index", 0},
-            {"extensions", {{"KHR_texture_transform", {{"offset", {0.5, 0.25}}, {"rotation", half}, {"scale", {2, 3}}, {"texCoord", 1}}}}}}},
+            {"extensions",
+             {{"KHR_texture_transform",
+               {{"offset", {0.5, 0.25}},
+                {"rotation", half},
+                {"scale", {2, 3}},
+                {"texCoord", 1}}}}}}},
           {"metallicRoughnessTexture", {{"index", 1}}}}},
         {"normalTexture", {{"index", 1}, {"scale", 0.5}}},
         {"occlusionTexture", {{"index", 1}, {"strength", 0.7}, {"texCoord", 1}}},
@@ -250,10 +277,12 @@ TEST(GltfLoad, MaterialMappingSrgbFlagsAndTextureTransform) {
 
     // KHR_texture_transform: uv' = T(offset) R(rotation) S(scale) uv; texCoord overridden to 1.
     EXPECT_EQ(m.baseColorTex.texCoord, 1u);
-    const glm::vec3 u = m.baseColorTex.transform * glm::vec3(1, 0, 1);  // S: (2,0); R(90°): (0,-2); T: (0.5,-1.75)
+    const glm::vec3 u =
+        m.baseColorTex.transform * glm::vec3(1, 0, 1);  // S: (2,0); R(90°): (0,-2); T: (0.5,-1.75)
     EXPECT_NEAR(u.x, 0.5f, 1e-6f);
     EXPECT_NEAR(u.y, -1.75f, 1e-6f);
-    const glm::vec3 v = m.baseColorTex.transform * glm::vec3(0, 1, 1);  // S: (0,3); R: (3,0); T: (3.5,0.25)
+    const glm::vec3 v =
+        m.baseColorTex.transform * glm::vec3(0, 1, 1);  // S: (0,3); R: (3,0); T: (3.5,0.25)
     EXPECT_NEAR(v.x, 3.5f, 1e-6f);
     EXPECT_NEAR(v.y, 0.25f, 1e-6f);
     EXPECT_EQ(m.normalTex.transform, glm::mat3(1.0f));
@@ -271,9 +300,10 @@ TEST(GltfLoad, AlphaModesAndDoubleSided) {
     const std::string dir = tmpDir("alpha");
     GltfBuilder g;
     addQuad(g, true);
-    g.j["materials"] = json::array({{{"name", "o"}},
-                                    {{"name", "m"}, {"alphaMode", "MASK"}, {"alphaCutoff", 0.3}},
-                                    {{"name", "b"}, {"alphaMode", "BLEND"}, {"doubleSided", true}}});
+    g.j["materials"] =
+        json::array({{{"name", "o"}},
+                     {{"name", "m"}, {"alphaMode", "MASK"}, {"alphaCutoff", 0.3}},
+                     {{"name", "b"}, {"alphaMode", "BLEND"}, {"doubleSided", true}}});
     g.scene({g.node({{"mesh", 0}})});
     auto scene = rg::loadGltf(g.writeGltf(dir, "a"));
     ASSERT_TRUE(scene) << errorOf(scene);
@@ -286,22 +316,33 @@ TEST(GltfLoad, AlphaModesAndDoubleSided) {
 
     g.j["materials"][1]["alphaMode"] = "CUTOUT";
     auto bad = rg::loadGltf(g.writeGltf(dir, "a2"));
-    EXPECT_EQ(errorOf(bad), "'" + dir + "/a2.gltf': material 1 'm': alphaMode 'CUTOUT', expected OPAQUE, MASK or BLEND");
+    EXPECT_EQ(errorOf(bad),
+              "'" + dir +
+                  "/a2.gltf': material 1 'm': alphaMode 'CUTOUT', expected OPAQUE, MASK or BLEND");
 }
 
 TEST(GltfLoad, PunctualLightsKeepGltfUnitsAndTakeTheirNodeTransform) {
     const std::string dir = tmpDir("lights");
     GltfBuilder g;
     g.j["extensionsUsed"] = {"KHR_lights_punctual"};
-    g.j["extensions"]["KHR_lights_punctual"]["lights"] = json::array(
-        {{{"name", "bulb"}, {"type", "point"}, {"intensity", 5.0}, {"color", {1, 0.5, 0.25}}, {"range", 10}},
-         {{"name", "spot"}, {"type", "spot"}, {"intensity", 20.0}, {"spot", {{"innerConeAngle", 0.2}, {"outerConeAngle", 0.6}}}},
-         {{"name", "sun"}, {"type", "directional"}, {"intensity", 3.0}}});
+    g.j["extensions"]["KHR_lights_punctual"]["lights"] =
+        json::array({{{"name", "bulb"},
+                      {"type", "point"},
+                      {"intensity", 5.0},
+                      {"color", {1, 0.5, 0.25}},
+                      {"range", 10}},
+                     {{"name", "spot"},
+                      {"type", "spot"},
+                      {"intensity", 20.0},
+                      {"spot", {{"innerConeAngle", 0.2}, {"outerConeAngle", 0.6}}}},
+                     {{"name", "sun"}, {"type", "directional"}, {"intensity", 3.0}}});
     const float s = std::sqrt(0.5f);
-    g.scene({g.node({{"translation", {1, 2, 3}}, {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}}),
+    g.scene({g.node({{"translation", {1, 2, 3}},
+                     {"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}}),
              g.node({{"extensions", {{"KHR_lights_punctual", {{"light", 1}}}}}}),
              // -90° about X turns -Z into -Y: the sun shines straight down.
-             g.node({{"rotation", {-s, 0, 0, s}}, {"extensions", {{"KHR_lights_punctual", {{"light", 2}}}}}})});
+             g.node({{"rotation", {-s, 0, 0, s}},
+                     {"extensions", {{"KHR_lights_punctual", {{"light", 2}}}}}})});
     auto scene = rg::loadGltf(g.writeGltf(dir, "l"));
     ASSERT_TRUE(scene) << errorOf(scene);
     ASSERT_EQ(scene->lights.size(), 3u);
@@ -327,7 +368,10 @@ TEST(GltfLoad, PunctualLightsKeepGltfUnitsAndTakeTheirNodeTransform) {
 TEST(GltfLoad, PerspectiveCameraFromItsNode) {
     const std::string dir = tmpDir("camera");
     GltfBuilder g;
-    g.j["cameras"] = json::array({{{"name", "cam"}, {"type", "perspective"}, {"perspective", {{"yfov", 0.6}, {"znear", 0.1}, {"zfar", 50}}}}});
+    g.j["cameras"] =
+        json::array({{{"name", "cam"},
+                      {"type", "perspective"},
+                      {"perspective", {{"yfov", 0.6}, {"znear", 0.1}, {"zfar", 50}}}}});
     g.scene({g.node({{"camera", 0}, {"translation", {0, 1, 10}}})});
     auto scene = rg::loadGltf(g.writeGltf(dir, "c"));
     ASSERT_TRUE(scene) << errorOf(scene);
@@ -349,8 +393,10 @@ TEST(GltfLoad, OrthographicAndUnnamedCamerasAreKeptAndNamed) {
     // height. An unknown type is an error naming the camera.
     const std::string dir = tmpDir("ortho_camera");
     GltfBuilder g;
-    g.j["cameras"] = json::array({{{"type", "perspective"}, {"perspective", {{"yfov", 0.6}, {"znear", 0.1}}}},
-                                  {{"type", "orthographic"}, {"orthographic", {{"xmag", 4}, {"ymag", 3}, {"znear", 0}, {"zfar", 100}}}}});
+    g.j["cameras"] =
+        json::array({{{"type", "perspective"}, {"perspective", {{"yfov", 0.6}, {"znear", 0.1}}}},
+                     {{"type", "orthographic"},
+                      {"orthographic", {{"xmag", 4}, {"ymag", 3}, {"znear", 0}, {"zfar", 100}}}}});
     g.scene({g.node({{"camera", 0}}), g.node({{"camera", 1}, {"translation", {0, 10, 0}}})});
     auto scene = rg::loadGltf(g.writeGltf(dir, "c"));
     ASSERT_TRUE(scene) << errorOf(scene);
@@ -374,7 +420,8 @@ TEST(GltfLoad, OrthographicAndUnnamedCamerasAreKeptAndNamed) {
     bad.scene({bad.node({{"camera", 0}})});
     auto refused = rg::loadGltf(bad.writeGltf(dir, "bad"));
     ASSERT_FALSE(refused);
-    EXPECT_NE(refused.error().message.find("fisheye"), std::string::npos) << refused.error().message;
+    EXPECT_NE(refused.error().message.find("fisheye"), std::string::npos)
+        << refused.error().message;
 }
 
 TEST(GltfLoad, GlbWithAnEmbeddedImage) {
@@ -384,9 +431,11 @@ TEST(GltfLoad, GlbWithAnEmbeddedImage) {
     GltfBuilder g;
     addQuad(g, true);
     const int view = g.view(png.data(), png.size());
-    g.j["images"] = json::array({{{"bufferView", view}, {"mimeType", "image/png"}, {"name", "red"}}});
+    g.j["images"] =
+        json::array({{{"bufferView", view}, {"mimeType", "image/png"}, {"name", "red"}}});
     g.j["textures"] = json::array({{{"source", 0}}});
-    g.j["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+    g.j["materials"] =
+        json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
     g.j["meshes"][0]["primitives"][0]["material"] = 0;
     g.scene({g.node({{"mesh", 0}})});
     auto scene = rg::loadGltf(g.writeGlb(dir, "e"));

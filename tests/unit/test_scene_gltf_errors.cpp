@@ -26,7 +26,10 @@ TEST(GltfErrors, RequiredUnsupportedExtensionIsRefusedByName) {
     auto r = rg::loadGltf(path);
     ASSERT_FALSE(r);
     EXPECT_EQ(r.error().code, ErrorCode::Unsupported);
-    EXPECT_EQ(r.error().message, "'" + path + "' requires extension 'KHR_draco_mesh_compression', which rgraph does not support");
+    EXPECT_EQ(
+        r.error().message,
+        "'" + path +
+            "' requires extension 'KHR_draco_mesh_compression', which rgraph does not support");
     // Used but not required: loads, with a warning.
     g.j.erase("extensionsRequired");
     std::vector<std::string> warnings;
@@ -34,7 +37,9 @@ TEST(GltfErrors, RequiredUnsupportedExtensionIsRefusedByName) {
     o.warnings = &warnings;
     ASSERT_TRUE(rg::loadGltf(g.writeGlb(dir, "y"), o));
     ASSERT_EQ(warnings.size(), 1u);
-    EXPECT_EQ(warnings[0], "'" + dir + "/y.glb': uses extension 'KHR_draco_mesh_compression', which rgraph ignores");
+    EXPECT_EQ(
+        warnings[0],
+        "'" + dir + "/y.glb': uses extension 'KHR_draco_mesh_compression', which rgraph ignores");
 }
 
 TEST(GltfErrors, MissingFile) {
@@ -50,24 +55,33 @@ TEST(GltfErrors, BrokenJson) {
     writeText(dir + "/b.gltf", "{\n  \"asset\": {\"version\": \"2.0\"},\n  \"nodes\": [ }\n");
     auto r = rg::loadGltf(dir + "/b.gltf");
     EXPECT_EQ(errorOf(r), "'" + dir +
-                              "/b.gltf': invalid JSON at line 3, column 14: syntax error while parsing value - unexpected '}'; "
+                              "/b.gltf': invalid JSON at line 3, column 14: syntax error while "
+                              "parsing value - unexpected '}'; "
                               "expected '[', '{', or a literal");
     // Garbage bytes and valid JSON that is not a glTF.
     writeBytes(dir + "/g.gltf", {0x00, 0xff, 0x13, 0x37});
-    EXPECT_EQ(errorOf(rg::loadGltf(dir + "/g.gltf")).rfind("'" + dir + "/g.gltf': invalid JSON at line 1, column 1:", 0), 0u)
+    EXPECT_EQ(errorOf(rg::loadGltf(dir + "/g.gltf"))
+                  .rfind("'" + dir + "/g.gltf': invalid JSON at line 1, column 1:", 0),
+              0u)
         << errorOf(rg::loadGltf(dir + "/g.gltf"));
     writeText(dir + "/a.gltf", "[1, 2]");
-    EXPECT_EQ(errorOf(rg::loadGltf(dir + "/a.gltf")), "'" + dir + "/a.gltf': invalid glTF: the top level is not a JSON object");
+    EXPECT_EQ(errorOf(rg::loadGltf(dir + "/a.gltf")),
+              "'" + dir + "/a.gltf': invalid glTF: the top level is not a JSON object");
     writeText(dir + "/v.gltf", "{}");
-    EXPECT_EQ(errorOf(rg::loadGltf(dir + "/v.gltf")), "'" + dir + "/v.gltf': invalid glTF: no asset.version (is this a glTF file?)");
+    EXPECT_EQ(errorOf(rg::loadGltf(dir + "/v.gltf")),
+              "'" + dir + "/v.gltf': invalid glTF: no asset.version (is this a glTF file?)");
     writeText(dir + "/old.gltf", R"({"asset": {"version": "1.0"}})");
     auto old = rg::loadGltf(dir + "/old.gltf");
     ASSERT_FALSE(old);
     EXPECT_EQ(old.error().code, ErrorCode::Unsupported);
-    EXPECT_EQ(old.error().message, "'" + dir + "/old.gltf': glTF version 1.0 is not supported (only 2.x)");
+    EXPECT_EQ(old.error().message,
+              "'" + dir + "/old.gltf': glTF version 1.0 is not supported (only 2.x)");
     // What tinygltf itself refuses comes through with its reason.
-    writeText(dir + "/t.gltf", R"({"asset": {"version": "2.0"}, "accessors": [{"count": 1, "type": "VEC3"}]})");
-    EXPECT_EQ(errorOf(rg::loadGltf(dir + "/t.gltf")).rfind("'" + dir + "/t.gltf': invalid glTF: ", 0), 0u);
+    writeText(dir + "/t.gltf",
+              R"({"asset": {"version": "2.0"}, "accessors": [{"count": 1, "type": "VEC3"}]})");
+    EXPECT_EQ(
+        errorOf(rg::loadGltf(dir + "/t.gltf")).rfind("'" + dir + "/t.gltf': invalid glTF: ", 0),
+        0u);
 }
 
 TEST(GltfErrors, TruncatedGlb) {
@@ -78,9 +92,10 @@ TEST(GltfErrors, TruncatedGlb) {
     auto bytes = readBytes(g.writeGlb(dir, "t"));
     bytes.resize(bytes.size() - 40);
     writeBytes(dir + "/t.glb", bytes);
-    EXPECT_EQ(errorOf(rg::loadGltf(dir + "/t.glb")), "'" + dir + "/t.glb': truncated GLB: the header says " +
-                                                         std::to_string(bytes.size() + 40) + " bytes, the file has " +
-                                                         std::to_string(bytes.size()));
+    EXPECT_EQ(errorOf(rg::loadGltf(dir + "/t.glb")),
+              "'" + dir + "/t.glb': truncated GLB: the header says " +
+                  std::to_string(bytes.size() + 40) + " bytes, the file has " +
+                  std::to_string(bytes.size()));
 }
 
 TEST(GltfErrors, MissingBuffer) {
@@ -91,11 +106,13 @@ TEST(GltfErrors, MissingBuffer) {
     const std::string path = g.writeGltf(dir, "scene", "scene.bin");
     fs::remove(dir + "/scene.bin");
     auto r = rg::loadGltf(path);
-    EXPECT_EQ(errorOf(r), "'" + path + "': buffer 0 'scene.bin': cannot open '" + dir + "/scene.bin': No such file or directory");
+    EXPECT_EQ(errorOf(r), "'" + path + "': buffer 0 'scene.bin': cannot open '" + dir +
+                              "/scene.bin': No such file or directory");
     // Too short for its byteLength.
     writeBytes(dir + "/scene.bin", std::vector<unsigned char>(10));
-    EXPECT_EQ(errorOf(rg::loadGltf(path)), "'" + path + "': buffer 0 'scene.bin': the file has 10 bytes, byteLength says " +
-                                               std::to_string(g.bin.size()));
+    EXPECT_EQ(errorOf(rg::loadGltf(path)),
+              "'" + path + "': buffer 0 'scene.bin': the file has 10 bytes, byteLength says " +
+                  std::to_string(g.bin.size()));
 }
 
 TEST(GltfErrors, MissingOrUndecodableImage) {
@@ -104,14 +121,17 @@ TEST(GltfErrors, MissingOrUndecodableImage) {
     addQuad(g, true);
     g.j["images"] = json::array({{{"uri", "missing.png"}}});
     g.j["textures"] = json::array({{{"source", 0}}});
-    g.j["materials"] = json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
+    g.j["materials"] =
+        json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}}});
     g.j["meshes"][0]["primitives"][0]["material"] = 0;
     g.scene({g.node({{"mesh", 0}})});
     const std::string path = g.writeGltf(dir, "i");
-    EXPECT_EQ(errorOf(rg::loadGltf(path)),
-              "'" + path + "': image 0 'missing.png': cannot open '" + dir + "/missing.png': No such file or directory");
+    EXPECT_EQ(errorOf(rg::loadGltf(path)), "'" + path + "': image 0 'missing.png': cannot open '" +
+                                               dir + "/missing.png': No such file or directory");
     writeText(dir + "/missing.png", "not a png");
-    EXPECT_EQ(errorOf(rg::loadGltf(path)).rfind("'" + path + "': image 0 'missing.png': not a PNG or JPEG image (", 0), 0u)
+    EXPECT_EQ(errorOf(rg::loadGltf(path))
+                  .rfind("'" + path + "': image 0 'missing.png': not a PNG or JPEG image (", 0),
+              0u)
         << errorOf(rg::loadGltf(path));
     // Without loading images, the reference stays and nothing is opened.
     rg::GltfOptions o;
@@ -128,28 +148,36 @@ TEST(GltfErrors, AccessorAndBufferViewOutOfRange) {
     const std::vector<float> pos = {0, 0, 0, 1, 0, 0, 0, 1, 0};
     const int view = g.view(pos.data(), 24);  // two vertices' worth...
     g.bin.resize(36);
-    g.accessor(view, kFloat, 3, "VEC3");      // ...read as three
+    g.accessor(view, kFloat, 3, "VEC3");  // ...read as three
     g.mesh("tri", json::array({{{"attributes", {{"POSITION", 0}}}}}));
     g.scene({g.node({{"mesh", 0}})});
     const std::string path = g.writeGltf(dir, "r");
-    EXPECT_EQ(errorOf(rg::loadGltf(path)), "'" + path +
-                                               "': mesh 0 'tri' primitive 0: POSITION: accessor 0 is out of range: it reads bytes "
-                                               "0..36 of buffer view 0, which has 24 bytes");
+    EXPECT_EQ(
+        errorOf(rg::loadGltf(path)),
+        "'" + path +
+            "': mesh 0 'tri' primitive 0: POSITION: accessor 0 is out of range: it reads bytes "
+            "0..36 of buffer view 0, which has 24 bytes");
     // A buffer view past the end of its buffer.
     g.j["bufferViews"][0]["byteLength"] = 36;
     g.j["bufferViews"][0]["byteOffset"] = 8;
     EXPECT_EQ(errorOf(rg::loadGltf(g.writeGltf(dir, "r2"))),
-              "'" + dir + "/r2.gltf': mesh 0 'tri' primitive 0: POSITION: accessor 0: buffer view 0 (bytes 8..44) is outside buffer 0 (36 bytes)");
+              "'" + dir +
+                  "/r2.gltf': mesh 0 'tri' primitive 0: POSITION: accessor 0: buffer view 0 (bytes "
+                  "8..44) is outside buffer 0 (36 bytes)");
     // An accessor index that does not exist.
     g.j["bufferViews"][0]["byteOffset"] = 0;
     g.j["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = 7;
-    EXPECT_EQ(errorOf(rg::loadGltf(g.writeGltf(dir, "r3"))),
-              "'" + dir + "/r3.gltf': mesh 0 'tri' primitive 0: NORMAL: accessor 7 does not exist (1 accessors)");
+    EXPECT_EQ(
+        errorOf(rg::loadGltf(g.writeGltf(dir, "r3"))),
+        "'" + dir +
+            "/r3.gltf': mesh 0 'tri' primitive 0: NORMAL: accessor 7 does not exist (1 accessors)");
     // A wrong accessor type.
     g.j["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = 0;
     g.j["meshes"][0]["primitives"][0]["attributes"]["TEXCOORD_0"] = 0;
-    EXPECT_EQ(errorOf(rg::loadGltf(g.writeGltf(dir, "r4"))),
-              "'" + dir + "/r4.gltf': mesh 0 'tri' primitive 0: TEXCOORD_0: accessor 0 is VEC3, expected VEC2");
+    EXPECT_EQ(
+        errorOf(rg::loadGltf(g.writeGltf(dir, "r4"))),
+        "'" + dir +
+            "/r4.gltf': mesh 0 'tri' primitive 0: TEXCOORD_0: accessor 0 is VEC3, expected VEC2");
 }
 
 TEST(GltfErrors, IndexOutOfRange) {
@@ -161,7 +189,8 @@ TEST(GltfErrors, IndexOutOfRange) {
     g.scene({g.node({{"mesh", 0}})});
     const std::string path = g.writeGltf(dir, "i");
     EXPECT_EQ(errorOf(rg::loadGltf(path)), "'" + path +
-                                               "': mesh 0 'tri' primitive 0: indices: accessor 1: index 5 (element 2) is out of range: "
+                                               "': mesh 0 'tri' primitive 0: indices: accessor 1: "
+                                               "index 5 (element 2) is out of range: "
                                                "the primitive has 3 vertices");
 }
 
@@ -175,28 +204,42 @@ TEST(GltfErrors, UnsupportedPrimitiveMode) {
     auto r = rg::loadGltf(path);
     ASSERT_FALSE(r);
     EXPECT_EQ(r.error().code, ErrorCode::Unsupported);
-    EXPECT_EQ(r.error().message, "'" + path + "': mesh 0 'pts' primitive 0: mode POINTS is not supported (only triangles)");
+    EXPECT_EQ(
+        r.error().message,
+        "'" + path + "': mesh 0 'pts' primitive 0: mode POINTS is not supported (only triangles)");
     g.j["meshes"][0]["primitives"][0]["mode"] = 3;
     EXPECT_EQ(errorOf(rg::loadGltf(g.writeGltf(dir, "m2"))),
-              "'" + dir + "/m2.gltf': mesh 0 'pts' primitive 0: mode LINE_STRIP is not supported (only triangles)");
+              "'" + dir +
+                  "/m2.gltf': mesh 0 'pts' primitive 0: mode LINE_STRIP is not supported (only "
+                  "triangles)");
     g.j["meshes"][0]["primitives"][0].erase("mode");
     g.j["meshes"][0]["primitives"][0]["attributes"].erase("POSITION");
     g.j["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = pos;
-    EXPECT_EQ(errorOf(rg::loadGltf(g.writeGltf(dir, "m3"))), "'" + dir + "/m3.gltf': mesh 0 'pts' primitive 0: no POSITION attribute");
+    EXPECT_EQ(errorOf(rg::loadGltf(g.writeGltf(dir, "m3"))),
+              "'" + dir + "/m3.gltf': mesh 0 'pts' primitive 0: no POSITION attribute");
 }
 
 TEST(GltfErrors, NumbersOutsideTheirGltfRange) {
     const std::string dir = tmpDir("numbers");
     GltfBuilder g;
-    g.j["materials"] = json::array({{{"name", "m"}, {"pbrMetallicRoughness", {{"roughnessFactor", 1.5}}}}});
-    EXPECT_EQ(errorOf(rg::loadGltf(g.writeGltf(dir, "a"))), "'" + dir + "/a.gltf': material 0 'm': roughnessFactor is 1.5, expected a number in [0, 1]");
+    g.j["materials"] =
+        json::array({{{"name", "m"}, {"pbrMetallicRoughness", {{"roughnessFactor", 1.5}}}}});
+    EXPECT_EQ(errorOf(rg::loadGltf(g.writeGltf(dir, "a"))),
+              "'" + dir +
+                  "/a.gltf': material 0 'm': roughnessFactor is 1.5, expected a number in [0, 1]");
     g.j["materials"] = json::array({{{"emissiveFactor", {1, 2, 0}}}});
-    EXPECT_EQ(errorOf(rg::loadGltf(g.writeGltf(dir, "b"))), "'" + dir + "/b.gltf': material 0: emissiveFactor[1] is 2, expected a number in [0, 1]");
+    EXPECT_EQ(
+        errorOf(rg::loadGltf(g.writeGltf(dir, "b"))),
+        "'" + dir + "/b.gltf': material 0: emissiveFactor[1] is 2, expected a number in [0, 1]");
     g.j.erase("materials");
     g.j["extensions"]["KHR_lights_punctual"]["lights"] =
-        json::array({{{"type", "spot"}, {"intensity", 1.0}, {"spot", {{"innerConeAngle", 0.9}, {"outerConeAngle", 0.5}}}}});
+        json::array({{{"type", "spot"},
+                      {"intensity", 1.0},
+                      {"spot", {{"innerConeAngle", 0.9}, {"outerConeAngle", 0.5}}}}});
     g.scene({g.node({{"extensions", {{"KHR_lights_punctual", {{"light", 0}}}}}})});
-    EXPECT_EQ(errorOf(rg::loadGltf(g.writeGltf(dir, "c"))), "'" + dir + "/c.gltf': light 0: spot.innerConeAngle is 0.9, expected a number in [0, 0.5]");
+    EXPECT_EQ(
+        errorOf(rg::loadGltf(g.writeGltf(dir, "c"))),
+        "'" + dir + "/c.gltf': light 0: spot.innerConeAngle is 0.9, expected a number in [0, 0.5]");
 }
 
 TEST(GltfErrors, NodeCycleAndBadTransforms) {
@@ -205,22 +248,28 @@ TEST(GltfErrors, NodeCycleAndBadTransforms) {
     g.node({{"name", "a"}, {"children", {1}}});
     g.node({{"name", "b"}, {"children", {0}}});
     g.scene({0});
-    EXPECT_EQ(errorOf(rg::loadGltf(g.writeGltf(dir, "c"))),
-              "'" + dir + "/c.gltf': node 0 'a' is its own ancestor (the node hierarchy has a cycle)");
+    EXPECT_EQ(
+        errorOf(rg::loadGltf(g.writeGltf(dir, "c"))),
+        "'" + dir + "/c.gltf': node 0 'a' is its own ancestor (the node hierarchy has a cycle)");
     // A node shared by two parents.
     GltfBuilder d;
     const int shared = d.node({{"name", "s"}});
     d.scene({d.node({{"children", {shared}}}), d.node({{"children", {shared}}})});
-    EXPECT_EQ(errorOf(rg::loadGltf(d.writeGltf(dir, "d"))),
-              "'" + dir + "/d.gltf': node 0 's' appears twice in the hierarchy (a glTF node has one parent)");
+    EXPECT_EQ(
+        errorOf(rg::loadGltf(d.writeGltf(dir, "d"))),
+        "'" + dir +
+            "/d.gltf': node 0 's' appears twice in the hierarchy (a glTF node has one parent)");
     // A chain too deep to walk.
     GltfBuilder deep;
-    for (int i = 0; i < 1100; ++i) deep.node(i + 1 < 1100 ? json{{"children", {i + 1}}} : json::object());
+    for (int i = 0; i < 1100; ++i)
+        deep.node(i + 1 < 1100 ? json{{"children", {i + 1}}} : json::object());
     deep.scene({0});
-    EXPECT_EQ(errorOf(rg::loadGltf(deep.writeGltf(dir, "deep"))), "'" + dir + "/deep.gltf': the node hierarchy is deeper than 1000 levels");
+    EXPECT_EQ(errorOf(rg::loadGltf(deep.writeGltf(dir, "deep"))),
+              "'" + dir + "/deep.gltf': the node hierarchy is deeper than 1000 levels");
     GltfBuilder h;
     h.scene({h.node({{"name", "n"}, {"rotation", {0, 0, 1}}})});
-    EXPECT_EQ(errorOf(rg::loadGltf(h.writeGltf(dir, "r"))), "'" + dir + "/r.gltf': node 0 'n': rotation has 3 values, expected 4");
+    EXPECT_EQ(errorOf(rg::loadGltf(h.writeGltf(dir, "r"))),
+              "'" + dir + "/r.gltf': node 0 'n': rotation has 3 values, expected 4");
 }
 
 }  // namespace

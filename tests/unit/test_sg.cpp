@@ -40,7 +40,8 @@ TEST(SphericalGaussian, IntegralIsTheClosedForm) {
     // 2π A / λ (1 − e^{−2λ}) for wide and sharp lobes.
     for (float lambda : {0.05f, 0.5f, 2.0f, 8.0f, 32.0f}) {
         const SphericalGaussian g = sg({0.3f, -0.2f, 0.9f}, lambda, 1.7f);
-        const double numeric = sphereIntegral([&](const glm::vec3& x) { return double(rg::lighting::evaluate(g, x).x); });
+        const double numeric = sphereIntegral(
+            [&](const glm::vec3& x) { return double(rg::lighting::evaluate(g, x).x); });
         EXPECT_NEAR(rg::lighting::integral(g).x / numeric, 1.0, 1e-3) << "λ " << lambda;
     }
 }
@@ -50,11 +51,14 @@ TEST(SphericalGaussian, ProductIsAnSgAndItsIntegralTheInnerProduct) {
     // integral (the inner product) matches numerical integration of G1 G2.
     const SphericalGaussian a = sg({1, 0, 0.2f}, 3.0f, 2.0f), b = sg({0.4f, 1, 0}, 5.0f, 0.5f);
     const SphericalGaussian p = rg::lighting::product(a, b);
-    for (const glm::vec3 x : {glm::vec3(1, 0, 0), glm::normalize(glm::vec3(1, 1, 0)), glm::vec3(0, 0, -1), glm::normalize(glm::vec3(-1, 2, 3))})
-        EXPECT_NEAR(rg::lighting::evaluate(p, x).x, rg::lighting::evaluate(a, x).x * rg::lighting::evaluate(b, x).x,
+    for (const glm::vec3 x : {glm::vec3(1, 0, 0), glm::normalize(glm::vec3(1, 1, 0)),
+                              glm::vec3(0, 0, -1), glm::normalize(glm::vec3(-1, 2, 3))})
+        EXPECT_NEAR(rg::lighting::evaluate(p, x).x,
+                    rg::lighting::evaluate(a, x).x * rg::lighting::evaluate(b, x).x,
                     1e-5 * (1.0 + rg::lighting::evaluate(a, x).x * rg::lighting::evaluate(b, x).x));
-    const double numeric =
-        sphereIntegral([&](const glm::vec3& x) { return double(rg::lighting::evaluate(a, x).x) * rg::lighting::evaluate(b, x).x; });
+    const double numeric = sphereIntegral([&](const glm::vec3& x) {
+        return double(rg::lighting::evaluate(a, x).x) * rg::lighting::evaluate(b, x).x;
+    });
     EXPECT_NEAR(rg::lighting::innerProduct(a, b).x / numeric, 1.0, 1e-3);
 }
 
@@ -70,17 +74,22 @@ TEST(SphericalGaussian, IrradianceThroughTheCosineLobeSgAgainstNumericalIntegrat
         for (float angle : {0.0f, 30.0f, 60.0f, 90.0f, 120.0f}) {
             const float t = angle * float(kPi) / 180.0f;
             const SphericalGaussian g = sg({std::sin(t), 0, std::cos(t)}, lambda, 1.0f);
-            const double numeric = sphereIntegral(
-                [&](const glm::vec3& x) { return double(rg::lighting::evaluate(g, x).x) * std::max(0.0, double(glm::dot(n, x))); });
+            const double numeric = sphereIntegral([&](const glm::vec3& x) {
+                return double(rg::lighting::evaluate(g, x).x) *
+                       std::max(0.0, double(glm::dot(n, x)));
+            });
             if (angle == 0.0f) normalIncidence = numeric;
-            const double error = std::abs(rg::lighting::irradiance(g, n).x - numeric) / normalIncidence;
+            const double error =
+                std::abs(rg::lighting::irradiance(g, n).x - numeric) / normalIncidence;
             worst = std::max(worst, error);
             sum += error;
             ++count;
         }
     }
-    std::printf("SG irradiance via the cosine-lobe SG: mean error %.2f %%, worst %.2f %% of the normal-incidence irradiance\n",
-                100.0 * sum / count, 100.0 * worst);
+    std::printf(
+        "SG irradiance via the cosine-lobe SG: mean error %.2f %%, worst %.2f %% of the "
+        "normal-incidence irradiance\n",
+        100.0 * sum / count, 100.0 * worst);
     EXPECT_LT(sum / count, 0.06);
     EXPECT_LT(worst, 0.15);
 }
@@ -99,10 +108,13 @@ TEST(SphericalGaussian, GoldenSpiralBasisCoversTheSphereWithoutGapsOrBlur) {
         int samples = 0;
         for (int j = 0; j < 64; ++j)
             for (int i = 0; i < 128; ++i) {
-                const double z = -1.0 + (j + 0.5) / 32.0, r = std::sqrt(std::max(0.0, 1.0 - z * z)), phi = (i + 0.5) * 2.0 * kPi / 128;
+                const double z = -1.0 + (j + 0.5) / 32.0, r = std::sqrt(std::max(0.0, 1.0 - z * z)),
+                             phi = (i + 0.5) * 2.0 * kPi / 128;
                 const glm::vec3 x(float(r * std::cos(phi)), float(r * std::sin(phi)), float(z));
                 double sum = 0.0;
-                for (const auto& a : axes) sum += rg::lighting::evaluate(SphericalGaussian{a, lambda, glm::vec3(1.0f)}, x).x;
+                for (const auto& a : axes)
+                    sum +=
+                        rg::lighting::evaluate(SphericalGaussian{a, lambda, glm::vec3(1.0f)}, x).x;
                 lo = std::min(lo, sum);
                 hi = std::max(hi, sum);
                 mean += sum;
@@ -113,13 +125,17 @@ TEST(SphericalGaussian, GoldenSpiralBasisCoversTheSphereWithoutGapsOrBlur) {
         const SphericalGaussian one{axes[0], lambda, glm::vec3(1.0f)};
         const double total = rg::lighting::integral(one).x;
         double cosMean = 0.0;
-        for (size_t i = 1; i < axes.size(); ++i) cosMean = std::max(cosMean, double(glm::dot(axes[0], axes[i])));
-        const double near =
-            sphereIntegral([&](const glm::vec3& x) { return glm::dot(x, axes[0]) >= cosMean ? double(rg::lighting::evaluate(one, x).x) : 0.0; });
-        std::printf("N = %2d: sharpness %.2f, lobe sum %.2f .. %.2f (mean %.2f), %.0f %% of a lobe within its nearest neighbour's angle\n", n,
-                    lambda, lo, hi, mean, 100.0 * near / total);
-        EXPECT_GT(lo / mean, 0.5) << n;   // no gap: nowhere below half the mean
-        EXPECT_LT(hi / mean, 1.6) << n;   // nor a peak of one lobe standing out
+        for (size_t i = 1; i < axes.size(); ++i)
+            cosMean = std::max(cosMean, double(glm::dot(axes[0], axes[i])));
+        const double near = sphereIntegral([&](const glm::vec3& x) {
+            return glm::dot(x, axes[0]) >= cosMean ? double(rg::lighting::evaluate(one, x).x) : 0.0;
+        });
+        std::printf(
+            "N = %2d: sharpness %.2f, lobe sum %.2f .. %.2f (mean %.2f), %.0f %% of a lobe within "
+            "its nearest neighbour's angle\n",
+            n, lambda, lo, hi, mean, 100.0 * near / total);
+        EXPECT_GT(lo / mean, 0.5) << n;     // no gap: nowhere below half the mean
+        EXPECT_LT(hi / mean, 1.6) << n;     // nor a peak of one lobe standing out
         EXPECT_GT(near / total, 0.5) << n;  // most of a lobe stays near its axis
     }
 }
@@ -139,7 +155,10 @@ TEST(SphericalGaussian, NonNegativeFitAgainstL1SphericalHarmonics) {
     };
     const Field fields[] = {
         {"constant", [](const glm::vec3&) { return 1.0f; }},
-        {"directional", [&](const glm::vec3& x) { return 0.05f + 100.0f * std::exp(40.0f * (glm::dot(sun, x) - 1.0f)); }},
+        {"directional",
+         [&](const glm::vec3& x) {
+             return 0.05f + 100.0f * std::exp(40.0f * (glm::dot(sun, x) - 1.0f));
+         }},
         {"half sky", [](const glm::vec3& x) { return x.z > 0.0f ? 1.0f : 0.0f; }},
     };
     // Irradiance by quadrature over the samples (each 4π / count of solid angle).
@@ -150,7 +169,8 @@ TEST(SphericalGaussian, NonNegativeFitAgainstL1SphericalHarmonics) {
     };
     auto relRms = [](const std::vector<double>& a, const std::vector<double>& ref) {
         double num = 0.0, den = 0.0;
-        for (size_t i = 0; i < a.size(); ++i) num += (a[i] - ref[i]) * (a[i] - ref[i]), den += ref[i] * ref[i];
+        for (size_t i = 0; i < a.size(); ++i)
+            num += (a[i] - ref[i]) * (a[i] - ref[i]), den += ref[i] * ref[i];
         return std::sqrt(num / den);
     };
     for (const Field& f : fields) {
@@ -165,28 +185,37 @@ TEST(SphericalGaussian, NonNegativeFitAgainstL1SphericalHarmonics) {
             const double Y[4] = {0.282095, 0.488603 * d.y, 0.488603 * d.z, 0.488603 * d.x};
             for (int k = 0; k < 4; ++k) sh[k] += f.L(d) * Y[k] * 4.0 * kPi / double(dirs.size());
         }
-        auto shL = [&](const glm::vec3& d) { return 0.282095 * sh[0] + 0.488603 * (sh[1] * d.y + sh[2] * d.z + sh[3] * d.x); };
+        auto shL = [&](const glm::vec3& d) {
+            return 0.282095 * sh[0] + 0.488603 * (sh[1] * d.y + sh[2] * d.z + sh[3] * d.x);
+        };
         std::vector<double> shRad, shE;
         double shMin = 1e30;
         for (const auto& d : dirs) shRad.push_back(shL(d)), shMin = std::min(shMin, shL(d));
         for (const auto& n : normals)
-            shE.push_back(kPi * 0.282095 * sh[0] + 2.0 * kPi / 3.0 * 0.488603 * (sh[1] * n.y + sh[2] * n.z + sh[3] * n.x));
+            shE.push_back(kPi * 0.282095 * sh[0] +
+                          2.0 * kPi / 3.0 * 0.488603 * (sh[1] * n.y + sh[2] * n.z + sh[3] * n.x));
         const double shErr = relRms(shRad, truth), shErrE = relRms(shE, truthE);
-        std::printf("%-11s L1 SH: radiance %.3f, irradiance %.4f, min radiance %.3f\n", f.name, shErr, shErrE, shMin);
+        std::printf("%-11s L1 SH: radiance %.3f, irradiance %.4f, min radiance %.3f\n", f.name,
+                    shErr, shErrE, shMin);
         for (int count : {5, 6, 9, 12}) {
             const auto axes = goldenSpiralAxes(count);
             const float lambda = basisSharpness(axes);
             const auto amplitudes = fitNonNegative(axes, lambda, dirs, radiance);
-            for (const auto& a : amplitudes) EXPECT_GE(a.x, 0.0f) << f.name << " N=" << count;  // the seed's non-negative coefficients
+            for (const auto& a : amplitudes)
+                EXPECT_GE(a.x, 0.0f)
+                    << f.name << " N=" << count;  // the seed's non-negative coefficients
             std::vector<double> sgRad, sgE;
-            for (const auto& d : dirs) sgRad.push_back(evaluateBasis(axes, lambda, amplitudes, d).x);
+            for (const auto& d : dirs)
+                sgRad.push_back(evaluateBasis(axes, lambda, amplitudes, d).x);
             for (const auto& n : normals) {
                 double e = 0.0;
-                for (size_t k = 0; k < axes.size(); ++k) e += rg::lighting::irradiance({axes[k], lambda, amplitudes[k]}, n).x;
+                for (size_t k = 0; k < axes.size(); ++k)
+                    e += rg::lighting::irradiance({axes[k], lambda, amplitudes[k]}, n).x;
                 sgE.push_back(e);
             }
             const double err = relRms(sgRad, truth), errE = relRms(sgE, truthE);
-            std::printf("%-11s SG N=%-2d: radiance %.3f, irradiance %.4f\n", f.name, count, err, errE);
+            std::printf("%-11s SG N=%-2d: radiance %.3f, irradiance %.4f\n", f.name, count, err,
+                        errE);
             if (std::string(f.name) == "constant") {
                 // What basisSharpness's width costs: the ripple of the lobes' sum (measured 0.14-0.16
                 // in radiance; at 0.7x the sharpness it is 0.07-0.08, at 0.35x 0.02 — wider lobes,
@@ -201,8 +230,10 @@ TEST(SphericalGaussian, NonNegativeFitAgainstL1SphericalHarmonics) {
                 EXPECT_LT(shMin, 0.0);
             }
             if (std::string(f.name) == "half sky") {
-                EXPECT_LT(err, 0.46) << count;   // measured 0.45 (N=5) .. 0.37 (N=12): an edge the lobes blur
-                EXPECT_LT(errE, 0.25) << count;  // measured 0.24 .. 0.14, the cosine-lobe SG's own error included
+                EXPECT_LT(err, 0.46)
+                    << count;  // measured 0.45 (N=5) .. 0.37 (N=12): an edge the lobes blur
+                EXPECT_LT(errE, 0.25)
+                    << count;  // measured 0.24 .. 0.14, the cosine-lobe SG's own error included
             }
         }
     }

@@ -181,7 +181,7 @@ TEST(ShaderCompiler, ReflectsUniformBlockMembersAndPushConstants) {
     // std140, as commented in blur.comp.
     EXPECT_EQ(params->blockSize, 96u);
     const std::vector<BlockMember> expected = {
-        {"tint", 0, 16}, {"exposure", 16, 4}, {"steps", 20, 4},
+        {"tint", 0, 16},  {"exposure", 16, 4},   {"steps", 20, 4},
         {"texel", 24, 8}, {"transform", 32, 64},
     };
     EXPECT_EQ(params->members, expected);
@@ -292,12 +292,13 @@ TEST(ShaderCompiler, DefinesChangeOutputAndHash) {
 
 TEST(ShaderCompiler, DefinesKeepSourceLineNumbers) {
     ShaderCompiler compiler(options({}));
-    ShaderRequest r = inMemory("#version 460\n"
-                               "layout(local_size_x = 1) in;\n"
-                               "void main() {\n"
-                               "    float x = SCALE * missingThing;\n"
-                               "}\n",
-                               "gen/scaled.comp", "tonemap");
+    ShaderRequest r = inMemory(
+        "#version 460\n"
+        "layout(local_size_x = 1) in;\n"
+        "void main() {\n"
+        "    float x = SCALE * missingThing;\n"
+        "}\n",
+        "gen/scaled.comp", "tonemap");
     r.defines = {{"SCALE", "2.0"}, {"EMPTY", ""}};
     auto m = compiler.compile(r);
     ASSERT_FALSE(m);
@@ -308,12 +309,13 @@ TEST(ShaderCompiler, DefinesKeepSourceLineNumbers) {
 TEST(ShaderCompiler, CompilesInMemorySourceWithIncludes) {
     ShaderCompiler compiler(options({}));
     // An absolute virtual name: includes are searched in its folder.
-    ShaderRequest r = inMemory("#version 460\n"
-                               "#include \"lib/common.glsl\"\n"
-                               "layout(local_size_x = 64) in;\n"
-                               "layout(set = 0, binding = 3) buffer Out { float v[]; } outBuf;\n"
-                               "void main() { outBuf.v[gl_GlobalInvocationID.x] = kPi; }\n",
-                               kShaders + "/generated.comp");
+    ShaderRequest r = inMemory(
+        "#version 460\n"
+        "#include \"lib/common.glsl\"\n"
+        "layout(local_size_x = 64) in;\n"
+        "layout(set = 0, binding = 3) buffer Out { float v[]; } outBuf;\n"
+        "void main() { outBuf.v[gl_GlobalInvocationID.x] = kPi; }\n",
+        kShaders + "/generated.comp");
     auto m = compiler.compile(r);
     ASSERT_TRUE(m) << m.error().describe();
     EXPECT_EQ(m->stage, ShaderStage::Compute);
@@ -328,11 +330,12 @@ TEST(ShaderCompiler, CompilesInMemorySourceWithIncludes) {
 
 TEST(ShaderCompiler, CustomEntryPoint) {
     ShaderCompiler compiler(options({}));
-    ShaderRequest r = inMemory("#version 460\n"
-                               "layout(local_size_x = 2) in;\n"
-                               "layout(set = 0, binding = 0) buffer B { uint x[]; } b;\n"
-                               "void clearPass() { b.x[gl_GlobalInvocationID.x] = 0u; }\n",
-                               "gen/clear.comp");
+    ShaderRequest r = inMemory(
+        "#version 460\n"
+        "layout(local_size_x = 2) in;\n"
+        "layout(set = 0, binding = 0) buffer B { uint x[]; } b;\n"
+        "void clearPass() { b.x[gl_GlobalInvocationID.x] = 0u; }\n",
+        "gen/clear.comp");
     r.entry = "clearPass";
     auto m = compiler.compile(r);
     ASSERT_TRUE(m) << m.error().describe();
@@ -383,14 +386,15 @@ TEST(ShaderErrors, MissingIncludeListsTheSearchedFolders) {
 
 TEST(ShaderErrors, EveryErrorOnItsOwnLine) {
     ShaderCompiler compiler(options({}));
-    auto m = compiler.compile(inMemory("#version 460\n"
-                                       "layout(local_size_x = 1) in;\n"
-                                       "void main() {\n"
-                                       "    float a = notDeclaredA;\n"
-                                       "\n"
-                                       "    notDeclaredB = 2;\n"
-                                       "}\n",
-                                       "gen/multi.comp", "sky"));
+    auto m =
+        compiler.compile(inMemory("#version 460\n"
+                                  "layout(local_size_x = 1) in;\n"
+                                  "void main() {\n"
+                                  "    float a = notDeclaredA;\n"
+                                  "\n"
+                                  "    notDeclaredB = 2;\n"
+                                  "}\n",
+                                  "gen/multi.comp", "sky"));
     ASSERT_FALSE(m);
     EXPECT_EQ(m.error().message,
               "pass 'sky': gen/multi.comp:4: 'notDeclaredA' : undeclared identifier\n"
@@ -399,9 +403,10 @@ TEST(ShaderErrors, EveryErrorOnItsOwnLine) {
 
 TEST(ShaderErrors, SyntaxErrorWithoutPassName) {
     ShaderCompiler compiler(options({}));
-    auto m = compiler.compile(inMemory("layout(local_size_x = 1) in;\n"
-                                       "void main() { int x = 1 }\n",
-                                       "gen/syntax.comp"));
+    auto m =
+        compiler.compile(inMemory("layout(local_size_x = 1) in;\n"
+                                  "void main() { int x = 1 }\n",
+                                  "gen/syntax.comp"));
     ASSERT_FALSE(m);
     EXPECT_EQ(m.error().message,
               "gen/syntax.comp:2: syntax error, unexpected RIGHT_BRACE, expecting COMMA or "
@@ -410,10 +415,11 @@ TEST(ShaderErrors, SyntaxErrorWithoutPassName) {
 
 TEST(ShaderErrors, LinkErrorsAreReported) {
     ShaderCompiler compiler(options({}));
-    auto m = compiler.compile(inMemory("#version 460\n"
-                                       "layout(local_size_x = 1) in;\n"
-                                       "void notMain() {}\n",
-                                       "gen/nomain.comp", "copy"));
+    auto m =
+        compiler.compile(inMemory("#version 460\n"
+                                  "layout(local_size_x = 1) in;\n"
+                                  "void notMain() {}\n",
+                                  "gen/nomain.comp", "copy"));
     ASSERT_FALSE(m);
     EXPECT_EQ(m.error().code, ErrorCode::InvalidInput);
     EXPECT_EQ(m.error().message,
@@ -568,11 +574,12 @@ TEST(ShaderErrors, SelfIncludeIsAnErrorNotAHang) {
     const fs::path tmp = freshTmp("self_include");
     writeText(tmp / "loop.glsl", "// includes itself, no guard\n#include \"loop.glsl\"\n");
     ShaderCompiler compiler(options({tmp.string()}));
-    auto m = compiler.compile(inMemory("#version 460\n"
-                                       "layout(local_size_x = 1) in;\n"
-                                       "#include \"loop.glsl\"\n"
-                                       "void main() {}\n",
-                                       "gen/loop.comp", "loop"));
+    auto m =
+        compiler.compile(inMemory("#version 460\n"
+                                  "layout(local_size_x = 1) in;\n"
+                                  "#include \"loop.glsl\"\n"
+                                  "void main() {}\n",
+                                  "gen/loop.comp", "loop"));
     ASSERT_FALSE(m);
     const std::string first = m.error().message.substr(0, m.error().message.find('\n'));
     EXPECT_EQ(first, "pass 'loop': " + norm(tmp / "loop.glsl") +
@@ -582,11 +589,12 @@ TEST(ShaderErrors, SelfIncludeIsAnErrorNotAHang) {
 
 TEST(ShaderErrors, UnsupportedResourceKindIsNamed) {
     ShaderCompiler compiler(options({}));
-    auto m = compiler.compile(inMemory("#version 460\n"
-                                       "layout(local_size_x = 1) in;\n"
-                                       "layout(set = 0, binding = 0) uniform samplerBuffer lut;\n"
-                                       "void main() {}\n",
-                                       "gen/texel.comp", "lut"));
+    auto m =
+        compiler.compile(inMemory("#version 460\n"
+                                  "layout(local_size_x = 1) in;\n"
+                                  "layout(set = 0, binding = 0) uniform samplerBuffer lut;\n"
+                                  "void main() {}\n",
+                                  "gen/texel.comp", "lut"));
     ASSERT_FALSE(m);
     EXPECT_EQ(m.error().code, ErrorCode::Unsupported);
     EXPECT_EQ(m.error().message,
@@ -596,17 +604,17 @@ TEST(ShaderErrors, UnsupportedResourceKindIsNamed) {
 
 TEST(ShaderCompiler, ReflectsSeparateImagesSamplersAndSpecializedGroupSize) {
     ShaderCompiler compiler(options({}));
-    auto m = compiler.compile(inMemory(
-        "#version 460\n"
-        "layout(local_size_x_id = 0, local_size_y = 2) in;\n"
-        "layout(set = 0, binding = 0) uniform texture2D colorTex;\n"
-        "layout(set = 0, binding = 1) uniform sampler linearSampler;\n"
-        "layout(set = 2, binding = 5) uniform writeonly image2D targets[2];\n"
-        "void main() {\n"
-        "    vec4 c = textureLod(sampler2D(colorTex, linearSampler), vec2(0.5), 0.0);\n"
-        "    imageStore(targets[1], ivec2(gl_GlobalInvocationID.xy), c);\n"
-        "}\n",
-        "gen/separate.comp"));
+    auto m = compiler.compile(
+        inMemory("#version 460\n"
+                 "layout(local_size_x_id = 0, local_size_y = 2) in;\n"
+                 "layout(set = 0, binding = 0) uniform texture2D colorTex;\n"
+                 "layout(set = 0, binding = 1) uniform sampler linearSampler;\n"
+                 "layout(set = 2, binding = 5) uniform writeonly image2D targets[2];\n"
+                 "void main() {\n"
+                 "    vec4 c = textureLod(sampler2D(colorTex, linearSampler), vec2(0.5), 0.0);\n"
+                 "    imageStore(targets[1], ivec2(gl_GlobalInvocationID.xy), c);\n"
+                 "}\n",
+                 "gen/separate.comp"));
     ASSERT_TRUE(m) << m.error().describe();
     const auto& b = m->reflection.bindings;
     ASSERT_EQ(b.size(), 3u);

@@ -19,8 +19,12 @@ TEST(Texels, EveryHalfFloatDecodesExactly) {
     int wrong = 0;
     for (uint32_t h = 0; h < 65536; ++h) {
         const float want = glm::unpackHalf1x16(static_cast<uint16_t>(h));
-        const bool same = std::isnan(want) ? std::isnan(decoded[h]) : std::bit_cast<uint32_t>(want) == std::bit_cast<uint32_t>(decoded[h]);
-        if (!same && ++wrong <= 5) ADD_FAILURE() << "half 0x" << std::hex << h << ": " << decoded[h] << ", expected " << want;
+        const bool same =
+            std::isnan(want) ? std::isnan(decoded[h])
+                             : std::bit_cast<uint32_t>(want) == std::bit_cast<uint32_t>(decoded[h]);
+        if (!same && ++wrong <= 5)
+            ADD_FAILURE() << "half 0x" << std::hex << h << ": " << decoded[h] << ", expected "
+                          << want;
     }
     EXPECT_EQ(wrong, 0);
 }
