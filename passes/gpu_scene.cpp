@@ -14,6 +14,7 @@
 
 #include "core/check.h"
 #include "core/hash.h"
+#include "core/names.h"
 #include "gpu_scene_detail.h"
 #include "lighting/ltc.h"
 
@@ -34,6 +35,22 @@ struct CameraUniforms {
 }  // namespace
 
 GpuScene::~GpuScene() = default;
+
+Result<void> GpuScene::setSetting(const std::string& name, const Value& value) {
+    if (name == "area_light_model") {
+        static const char* const models[] = {"frostbite", "ltc"};  // Lights.count.y
+        for (uint32_t i = 0; i < 2; ++i)
+            if (value.isString() && value.asString() == models[i]) {
+                m_areaLightModel = i;
+                return {};
+            }
+        return fail(ErrorCode::InvalidInput,
+                    "scene setting 'area_light_model': expected \"frostbite\" or \"ltc\", got " +
+                        (value.isString() ? "'" + value.asString() + "'" : value.typeName()));
+    }
+    return fail(ErrorCode::InvalidInput, "the scene has no setting '" + name +
+                                             "' (it has: " + joinQuoted(settingNames()) + ")");
+}
 
 std::optional<uint32_t> GpuScene::layerExtent(const std::string& name) const {
     if (name == kShadowViewsExtent) return m_shadowViewCapacity;

@@ -145,7 +145,11 @@ public:
     // Which area-light model the light loop evaluates (lib/scene.glsl's Lights.count.y): 0 Frostbite's
     // (seed 002 §4.7), 1 linearly transformed cosines (lib/ltc.glsl). Written into each frame slot's
     // Lights block by updateFrame; a session sets it from the pipeline's `area_lights` parameter.
-    void setAreaLightModel(uint32_t model) { m_areaLightModel = model; }
+    // A setting of the scene's GPU data that a pipeline parameter drives (rg.param's `scene`):
+    // "area_light_model" = "frostbite" or "ltc" (0 or 1: the light block's count.y, which
+    // lib/lighting.glsl's loop reads). An unknown setting or value is an error naming what is.
+    Result<void> setSetting(const std::string& name, const Value& value);
+    static std::vector<std::string> settingNames() { return {"area_light_model"}; }
     // Frame slot `slot`'s shadow views (ShadowViews): for every local light with castShadows
     // whose range reaches the camera's view, one perspective view (a spot of outer angle ≤ 60°)
     // or six (a cube), in light order, up to kMaxShadowViews; then per light its first view and

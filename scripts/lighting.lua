@@ -37,7 +37,7 @@ lighting.max_lights = 1024
 -- "frostbite", the seed's approximations (000 lst:10, 002 §4.7: structured sampling, representative
 -- points); "ltc", linearly transformed cosines (shaders/lib/ltc.glsl), the lobe integrated over the
 -- light with the horizon clipped. A field of the scene's light block: switching it rebuilds nothing.
-rg.param "area_lights" { type = "choice", default = "ltc", choices = { "ltc", "frostbite" },
+rg.param "area_lights" { type = "choice", default = "ltc", choices = { "ltc", "frostbite" }, scene = "area_light_model",
     doc = "area-light model: frostbite (seed 002 §4.7) or ltc (linearly transformed cosines)" }
 
 rg.buffer "light_tiles_coarse" {

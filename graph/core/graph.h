@@ -34,9 +34,10 @@ struct TextureDesc {
     uint32_t layers = 1;  // array layers (6 for a cube)
     uint32_t mips = 1;    // 0 = full chain
     bool cube = false;
-    // Layers the scene decides (Lua `scene_layers`), at most `layers`: "shadow_views" — as many as
-    // the scene's shadowed local lights can have views (passes/gpu_scene.h); none: one 1×1 layer.
-    // Applied where a scene is known (the executor's build); without one, `layers` as declared.
+    // Layers the scene decides (Lua `scene_layers`: the name of a layer extent the scene has,
+    // gpu::SceneBinding::layerExtent — the GPU scene's "shadow_views": as many as its shadowed
+    // local lights can have views), at most `layers`; an extent of 0: one 1×1 layer. Applied where
+    // a scene is known (the executor's build); without one, `layers` as declared.
     std::string sceneLayers;
 };
 

@@ -19,8 +19,7 @@
 // of the passes that last write them) that failed: the resource where the divergence starts.
 //
 // Session takes the test's parameters and frame callback through SessionOptions::params and
-// ::frameHook. Built against a Session without them, the runner falls back to driving the
-// executor itself (the same steps, no scenes) and says so when it starts.
+// ::frameHook, and the baker through ::bakeLightmap (a scene's lightmap is baked on first use).
 //
 // --update blesses: it writes the golden of every capture that has none or no longer passes
 // its comparisons, keeps goldens that still pass (so 1-LSB noise never churns the repository),

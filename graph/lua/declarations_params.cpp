@@ -12,12 +12,19 @@ namespace rg::declarations {
 Result<void> Builder::param(const Declaration& d) {
     Where w = where(d);
     const Value& b = d.body;
-    if (auto r = checkFields(w, b, {"type", "default", "min", "max", "choices", "doc"}); !r)
+    if (auto r = checkFields(w, b, {"type", "default", "min", "max", "choices", "doc", "scene"});
+        !r)
         return r;
     ParamDesc p;
     p.name = fullName(d);
     p.origin = d.origin;
     p.doc = b["doc"].asString();
+    if (b.has("scene")) {
+        if (!b["scene"].isString() || !isGlslIdentifier(b["scene"].asString()))
+            return w.at("scene").error(
+                "expected the name of a scene setting, e.g. scene = \"area_light_model\"");
+        p.sceneSetting = b["scene"].asString();
+    }
     auto type = requireString(w, b, "type");
     if (!type) return std::unexpected(type.error());
     static const std::vector<std::pair<std::string, ParamType>> types = {

@@ -74,11 +74,11 @@ Result<void> Builder::texture(const Declaration& d) {
         r.texture.layers = static_cast<uint32_t>(b["layers"].asNumber());
     }
     if (b.has("scene_layers")) {
-        if (!b["scene_layers"].isString() || b["scene_layers"].asString() != "shadow_views")
+        if (!b["scene_layers"].isString() || !isGlslIdentifier(b["scene_layers"].asString()))
             return w.at("scene_layers")
                 .error(
-                    "expected \"shadow_views\" (the layers the scene's shadowed local lights need, "
-                    "at most `layers`)");
+                    "expected the name of a layer extent of the scene, e.g. \"shadow_views\" (the "
+                    "layers its shadowed local lights need, at most `layers`)");
         if (b["cube"].asBool())
             return w.at("scene_layers")
                 .error("a cube's layers are fixed; scene_layers is for arrays");

@@ -25,6 +25,10 @@ struct ParamDesc {
     double min = -1e300, max = 1e300;
     std::vector<std::string> choices;  // Choice
     std::string doc;
+    // Lua `scene = SETTING`: the value also sets the scene's setting of that name each frame
+    // (passes::GpuScene::setSetting, e.g. the area-light model, a field of its light block), so
+    // the C++ core names no parameter of the default pipeline.
+    std::string sceneSetting;
     std::string origin;
 };
 

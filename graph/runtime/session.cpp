@@ -252,6 +252,8 @@ Result<void> Session::load(const std::string& file) {
             !r)
             return r;
     }
+    if (scene)
+        if (auto r = applySceneSettings(*scene, *pipeline); !r) return r;
     auto channels = channelCapturesOf(*pipeline, m_options.captures);
     if (!channels) return std::unexpected(channels.error());
 
@@ -261,13 +263,13 @@ Result<void> Session::load(const std::string& file) {
         Session& s;
         std::string headers = s.m_runtime.shaders().options().generatedDir;
         const gpu::SceneBinding* scene = s.m_runtime.executor().scene();
-        std::function<void(uint32_t)> hook = s.m_frameHook;
+        std::function<void(uint32_t)> hook = s.m_sceneUpdate;
         std::vector<ChannelCapture> channels = s.m_channels;
         bool sceneChanged = false, committed = false;
         ~Rollback() {
             if (committed) return;
             useLayoutHeaders(s.m_runtime, headers);
-            s.m_frameHook = hook;
+            s.m_sceneUpdate = hook;
             s.m_channels = channels;
             if (sceneChanged) s.m_runtime.executor().setScene(scene, hook);
         }
@@ -275,14 +277,14 @@ Result<void> Session::load(const std::string& file) {
     useLayoutHeaders(m_runtime, *headers);
     m_channels = std::move(*channels);
     // The new scene is what the build prepares against.
-    m_frameHook = {};
+    m_sceneUpdate = {};
     if (scene) {
         passes::GpuScene* raw = scene.get();
         const uint32_t w = m_options.compile.outputWidth, h = m_options.compile.outputHeight;
-        m_frameHook = [raw, w, h](uint32_t slot) { raw->updateFrame(slot, w, h); };
+        m_sceneUpdate = [raw, w, h](uint32_t slot) { raw->updateFrame(slot, w, h); };
     }
     if (scene || rollback.scene) {
-        m_runtime.executor().setScene(scene.get(), m_frameHook);
+        m_runtime.executor().setScene(scene.get(), m_sceneUpdate);
         rollback.sceneChanged = true;
     }
     m_runtime.executor().setOnceCache(m_options.onceCache);
@@ -448,13 +450,11 @@ Result<void> Session::frame(VkCommandBuffer hostCmd) {
                     ") cannot be built; the plan stays as it was: " + e.message;
         applied = std::unexpected(e);
     }
-    // The area-light model of the light loop (scripts/lighting.lua's area_lights): a field of the
-    // scene's Lights block, so switching it rebuilds nothing.
-    if (m_scene) {
-        const ParamDesc* model = m_pipeline.findParam("area_lights");
-        m_scene->setAreaLightModel(
-            model && model->value.isString() && model->value.asString() == "ltc" ? 1u : 0u);
-    }
+    // Parameters the pipeline maps onto the scene (rg.param's `scene`): fields of the scene's
+    // GPU data, so switching them rebuilds nothing. Checked at load, so only a value rg.frame
+    // set can fail here.
+    if (m_scene)
+        if (auto r = applySceneSettings(*m_scene, m_pipeline); !r && applied) applied = r;
     if (auto r = m_runtime.executor().frame(hostCmd); !r) return r;
     ++m_frame;
     return applied;

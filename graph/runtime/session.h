@@ -142,7 +142,7 @@ private:
     std::string m_sceneFile;
     double m_sceneLoadMs = 0;
     std::string m_sceneKey;  // the scene's files (contents) and arguments at the last load
-    std::function<void(uint32_t)> m_frameHook;  // writes the scene's camera for a frame slot
+    std::function<void(uint32_t)> m_sceneUpdate;  // writes the scene's camera for a frame slot
     PipelineDesc m_pipeline;
     uint64_t m_frame = 0;
     // The frame whose rg.frame the last load already ran (its changes are in m_pipeline).

@@ -21,6 +21,10 @@ Result<Value> checkedParam(const PipelineDesc& pipeline, const std::string& name
 
 bool hasScenePass(const PipelineDesc& p);
 
+// Sets the scene settings the pipeline's parameters drive (rg.param's `scene`); an error names the
+// parameter where it was declared.
+Result<void> applySceneSettings(passes::GpuScene& scene, const PipelineDesc& pipeline);
+
 // `--capture` names (and the library's keep, serve's image requests) checked against a pipeline:
 // a resource of its graph, or "gbuffer.<channel>" / "<layout>.<channel>", decoded per materialId.
 Result<std::vector<Session::ChannelCapture>> channelCapturesOf(

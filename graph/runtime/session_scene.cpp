@@ -46,6 +46,17 @@ Result<Value> checkedParam(const PipelineDesc& pipeline, const std::string& name
 
 std::string defaultScene() { return projectRoot() + "/scripts/scenes/default.lua"; }
 
+Result<void> applySceneSettings(passes::GpuScene& scene, const PipelineDesc& pipeline) {
+    for (const ParamDesc& p : pipeline.params) {
+        if (p.sceneSetting.empty()) continue;
+        if (auto r = scene.setSetting(p.sceneSetting, p.value); !r)
+            return fail(r.error().code, (p.origin.empty() ? "" : p.origin + ": ") + "params." +
+                                            p.name + ": scene = '" + p.sceneSetting +
+                                            "': " + r.error().message);
+    }
+    return {};
+}
+
 bool hasScenePass(const PipelineDesc& p) {
     return std::any_of(p.graph.passes.begin(), p.graph.passes.end(),
                        [](const PassDesc& d) { return d.kind == "scene"; });

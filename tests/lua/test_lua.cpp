@@ -86,8 +86,8 @@ TEST(LuaErrors, WrongType) {
 TEST(LuaErrors, SceneLayersNamesWhatTheSceneCanSize) {
     EXPECT_EQ(loadError("scene_layers_unknown.lua"),
               kScripts +
-                  "scene_layers_unknown.lua:2: resources.maps.scene_layers: expected "
-                  "\"shadow_views\" (the layers the scene's "
+                  "scene_layers_unknown.lua:2: resources.maps.scene_layers: expected the name "
+                  "of a layer extent of the scene, e.g. \"shadow_views\" (the layers its "
                   "shadowed local lights need, at most `layers`)");
 }
 

@@ -4,6 +4,7 @@
 
 #include "../gpu/gpu_fixture.h"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -169,6 +170,47 @@ TEST_F(LuaGpu, SceneMaterialParametersAreCheckedByName) {
                         "'clear_coat' declares it), got string"),
               std::string::npos)
         << sceneWith("coatStrength = \"full\"");
+}
+
+TEST_F(LuaGpu, ParametersAndResourcesNameWhatTheSceneHas) {
+    // rg.param's `scene = SETTING`: scripts/lighting.lua's area_lights drives the scene's
+    // area_light_model; a setting the scene does not have is an error at the load naming the
+    // parameter where it was declared and the settings there are.
+    const std::string file = std::string(RG_TEST_TMP) + "/scene_setting.lua";
+    std::ifstream in(std::string(RG_SOURCE_ROOT) + "/scripts/pipelines/deferred.lua");
+    const std::string deferred((std::istreambuf_iterator<char>(in)), {});
+    const int line = static_cast<int>(std::count(deferred.begin(), deferred.end(), '\n')) + 1;
+    std::ofstream(file)
+        << deferred << "rg.param \"glow\" { type = \"number\", default = 1, scene = \"glow\" }\n";
+    Session bad(*s_runtime, small());
+    auto r = bad.load(file);
+    ASSERT_FALSE(r);
+    EXPECT_NE(r.error().describe().find("scene_setting.lua:" + std::to_string(line) +
+                                        ": params.glow: scene = 'glow': the scene has no setting "
+                                        "'glow' (it has: 'area_light_model')"),
+              std::string::npos)
+        << r.error().describe();
+
+    // scene_layers names an extent the scene has: an unknown one is an error at the build,
+    // where the scene is known, naming the resource and the extents there are.
+    std::ofstream(file)
+        << deferred
+        << "rg.resource \"maps\" { format = \"d32f\", size = { 64, 64 }, layers = 4, "
+           "scene_layers = \"lights\" }\n";
+    Session layers(*s_runtime, small());
+    auto l = layers.load(file);
+    ASSERT_FALSE(l);
+    EXPECT_NE(l.error().describe().find("scene_setting.lua:" + std::to_string(line) +
+                                        ": resource 'maps': scene_layers = 'lights': the scene has "
+                                        "no such extent (it has 'shadow_views')"),
+              std::string::npos)
+        << l.error().describe();
+
+    Session s(*s_runtime, small());
+    ASSERT_TRUE(s.load(std::string(RG_SOURCE_ROOT) + "/scripts/pipelines/deferred.lua"));
+    const ParamDesc* model = s.pipeline().findParam("area_lights");
+    ASSERT_NE(model, nullptr);
+    EXPECT_EQ(model->sceneSetting, "area_light_model");
 }
 
 TEST_F(LuaGpu, SurfaceFilesResolveNextToTheDeclaringScript) {
