@@ -109,6 +109,11 @@ public:
     uint64_t id() const override { return m_id; }
     std::optional<uint32_t> layerExtent(const std::string& name) const override;
     std::vector<std::string> extentNames() const override { return {kShadowViewsExtent}; }
+    // Its one feature: "lightmap", a baked lightmap (scene.lightmap, from the cache or baked).
+    std::optional<bool> feature(const std::string& name) const override {
+        return name == "lightmap" ? std::optional<bool>(hasLightmap()) : std::nullopt;
+    }
+    std::vector<std::string> featureNames() const override { return {"lightmap"}; }
     static constexpr const char* kShadowViewsExtent = "shadow_views";
 
     const Scene& scene() const { return m_scene; }

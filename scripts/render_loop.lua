@@ -31,7 +31,11 @@ rg.resource "hdr" { format = "rgba16f" }
 -- The baked lightmap's specular radiance along each pixel's reflection (seed 003; lib/lightmap.glsl),
 -- written by every material when the scene has a lightmap (black otherwise); the reflection
 -- composition takes it instead of the distant probe where SSR and the local probes leave off.
-rg.resource "lightmap_specular" { format = "rgba16f" }
+-- It exists only while the scene has a baked lightmap and the lightmap_specular parameter is on
+-- (only_when): otherwise it and every access to it leave the graph, and the passes that read it
+-- lose RG_LIGHTMAP_SPECULAR.
+rg.resource "lightmap_specular" { format = "rgba16f",
+    only_when = { scene = "lightmap", param = "lightmap_specular", defines = { "RG_LIGHTMAP_SPECULAR" } } }
 require("lightmap").gbuffer_writes_specular = true
 
 rg.pass "gbuffer" { kind = "scene", writes = { "GB0", "GB1", "GB2", "GB3", "lightmap_specular", "depth" } }

@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -60,6 +61,15 @@ struct ResourceDesc {
     // import it may be read before it is written in a frame (that reads the previous frame's
     // contents, zero at first); never aliased; it starts and ends every frame ready for sampling.
     bool persistent = false;
+    // Lua `only_when`: the resource exists only while the scene has the feature `sceneFeature`
+    // (gpu::SceneBinding::feature; without a scene it has none) and the boolean parameter `param`
+    // is on; otherwise it and every access to it leave the graph before the build, and a pass
+    // that loses such an access loses `defines` (Session::buildableGraph).
+    struct Condition {
+        std::string sceneFeature, param;
+        std::vector<std::string> defines;
+    };
+    std::optional<Condition> onlyWhen;
     std::string origin;  // where it was declared ("deferred.lua:12"), for error messages
 };
 

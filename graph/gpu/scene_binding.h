@@ -24,6 +24,10 @@ public:
     // then gets one 1×1 layer. extentNames() lists the names, for the error.
     virtual std::optional<uint32_t> layerExtent(const std::string& name) const = 0;
     virtual std::vector<std::string> extentNames() const = 0;
+    // Whether the scene has feature NAME (a resource's `only_when.scene`): nullopt when the scene
+    // knows no such feature; featureNames() lists them, for the error.
+    virtual std::optional<bool> feature(const std::string& name) const = 0;
+    virtual std::vector<std::string> featureNames() const = 0;
 };
 
 }  // namespace rg::gpu

@@ -88,6 +88,21 @@ Result<PipelineDesc> Builder::build(const OutputNames& names) {
     if (auto r = insertModulePasses(); !r) return std::unexpected(r.error());
     if (auto r = checkMaterialReferences(); !r) return std::unexpected(r.error());
     if (auto r = checkSwitches(); !r) return std::unexpected(r.error());
+    for (const ResourceDesc& res : out.graph.resources) {
+        if (!res.onlyWhen || res.onlyWhen->param.empty()) continue;
+        const std::string& name = res.onlyWhen->param;
+        const ParamDesc* p = out.findParam(name);
+        if (p && p->type == ParamType::Boolean) continue;
+        std::vector<std::string> params;
+        for (const auto& q : out.params) params.push_back(q.name);
+        const Where w = where(*resources[res.name]).at("only_when").at("param");
+        return std::unexpected(
+            (p ? w.error("parameter '" + name + "' is a " + paramTypeName(p->type) +
+                         "; only_when takes a boolean one")
+               : w.error("unknown parameter '" + name + "'" + suggestion(name, params) +
+                         " (declare it with rg.param)"))
+                .error());
+    }
 
     out.output = output.empty() ? "output" : output;
     auto it = std::find_if(out.graph.resources.begin(), out.graph.resources.end(),

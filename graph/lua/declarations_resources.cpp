@@ -11,7 +11,7 @@ Result<void> Builder::texture(const Declaration& d) {
     const Value& b = d.body;
     if (auto r = checkFields(w, b,
                              {"format", "size", "scale", "mips", "layers", "scene_layers", "cube",
-                              "export", "import", "persistent", "doc"});
+                              "export", "import", "persistent", "only_when", "doc"});
         !r)
         return r;
     ResourceDesc r;
@@ -93,6 +93,30 @@ Result<void> Builder::texture(const Declaration& d) {
         r.texture.layers = 6;  // one cube; `layers` = 6 × cubes for an array
     r.exported = b["export"].asBool();
     r.imported = b["import"].asBool();
+    if (b.has("only_when")) {
+        const Where ow = w.at("only_when");
+        const Value& c = b["only_when"];
+        if (!c.isTable() || c.asTable().empty())
+            return ow.error(
+                "expected a table { scene = FEATURE, param = NAME, defines = { ... } }, got " +
+                typeOf(c));
+        if (auto e = checkFields(ow, c, {"scene", "param", "defines"}); !e) return e;
+        ResourceDesc::Condition cond;
+        for (const char* f : {"scene", "param"})
+            if (c.has(f) && (!c[f].isString() || !isGlslIdentifier(c[f].asString())))
+                return ow.at(f).error(std::string("expected a name, got ") + typeOf(c[f]));
+        cond.sceneFeature = c["scene"].isString() ? c["scene"].asString() : "";
+        cond.param = c["param"].isString() ? c["param"].asString() : "";
+        if (cond.sceneFeature.empty() && cond.param.empty())
+            return ow.error(
+                "names neither a scene feature (scene = ...) nor a parameter (param = ...)");
+        if (c.has("defines")) {
+            auto defines = stringList(ow.at("defines"), c["defines"]);
+            if (!defines) return std::unexpected(defines.error());
+            cond.defines = *defines;
+        }
+        r.onlyWhen = cond;
+    }
     out.graph.resources.push_back(r);
     return {};
 }

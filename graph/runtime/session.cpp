@@ -91,26 +91,45 @@ void Session::note(const std::string& line) {
 // exist next to the pipeline script made absolute (shaders/ and the root are searched anyway).
 Result<GraphDesc> Session::buildableGraph(const PipelineDesc& p, bool keepMissingShaders) {
     GraphDesc g = graphWithParams(p);
-    // The lightmap's specular target (render_loop.lua's `lightmap_specular`, which the G-buffer's
-    // generated shaders know by name) exists only while the scene has a baked lightmap: without
-    // one, the target and every access to it leave the graph, so it costs no attachment traffic
-    // (~10 ms of a 1280×720 G-buffer on lavapipe).
-    // The same when the pipeline's lightmap_specular parameter is off: then the passes that read it
-    // lose its define (RG_LIGHTMAP_SPECULAR) too and reflect the distant probe.
-    const passes::GpuScene* gpuScene = passes::sceneOf(m_runtime.executor().scene());
-    const ParamDesc* specular = p.findParam("lightmap_specular");
-    const bool specularOff = specular && specular->value.isBool() && !specular->value.asBool();
-    if (!gpuScene || !gpuScene->hasLightmap() || specularOff) {
-        const std::string target = "lightmap_specular";
+    // Resources declared `only_when` (render_loop.lua's lightmap_specular: while the scene has a
+    // baked lightmap and the parameter is on) leave the graph with every access to them when the
+    // condition fails, so they cost no attachment traffic (~10 ms of a 1280×720 G-buffer on
+    // lavapipe), and the passes that accessed them lose the condition's defines (the reflection
+    // then takes the distant probe).
+    const gpu::SceneBinding* bound = m_runtime.executor().scene();
+    std::vector<std::pair<std::string, std::vector<std::string>>> dropped;  // name, defines
+    for (const ResourceDesc& r : g.resources) {
+        if (!r.onlyWhen) continue;
+        const ResourceDesc::Condition& c = *r.onlyWhen;
+        bool keep = true;
+        if (!c.sceneFeature.empty() && bound) {
+            const std::optional<bool> has = bound->feature(c.sceneFeature);
+            if (!has)
+                return fail(ErrorCode::InvalidInput,
+                            (r.origin.empty() ? "" : r.origin + ": ") + "resource '" + r.name +
+                                "': only_when.scene = '" + c.sceneFeature +
+                                "': the scene has no such feature (it has " +
+                                joinQuoted(bound->featureNames()) + ")");
+            keep = *has;
+        } else if (!c.sceneFeature.empty()) {
+            keep = false;  // no scene: no feature
+        }
+        if (keep && !c.param.empty()) {
+            const ParamDesc* on = p.findParam(c.param);
+            keep = on && on->value.isBool() && on->value.asBool();
+        }
+        if (!keep) dropped.emplace_back(r.name, c.defines);
+    }
+    for (const auto& [target, defines] : dropped) {
         std::erase_if(g.resources, [&](const ResourceDesc& r) { return r.name == target; });
         for (auto& pass : g.passes) {
             const size_t before = pass.accesses.size();
             std::erase_if(pass.accesses, [&](const Access& a) { return a.resource == target; });
             if (pass.accesses.size() != before && pass.params.isTable() &&
                 pass.params["defines"].isTable()) {
-                Value::Table defines = pass.params["defines"].asTable();
-                defines.erase("RG_LIGHTMAP_SPECULAR");
-                pass.params.table()["defines"] = Value(defines);
+                Value::Table table = pass.params["defines"].asTable();
+                for (const auto& d : defines) table.erase(d);
+                pass.params.table()["defines"] = Value(table);
             }
         }
     }

@@ -91,6 +91,13 @@ TEST(LuaErrors, SceneLayersNamesWhatTheSceneCanSize) {
                   "shadowed local lights need, at most `layers`)");
 }
 
+TEST(LuaErrors, OnlyWhenTakesABooleanParameter) {
+    EXPECT_EQ(loadError("only_when_param.lua"),
+              kScripts +
+                  "only_when_param.lua:3: resources.extra.only_when.param: parameter 'spec' is a "
+                  "number; only_when takes a boolean one");
+}
+
 TEST(LuaErrors, OutOfRangeValue) {
     EXPECT_EQ(loadError("out_of_range.lua"),
               kScripts +

@@ -206,6 +206,19 @@ TEST_F(LuaGpu, ParametersAndResourcesNameWhatTheSceneHas) {
               std::string::npos)
         << l.error().describe();
 
+    // only_when.scene names a feature the scene has, likewise.
+    std::ofstream(file) << deferred
+                        << "rg.resource \"extra\" { format = \"rgba8\", only_when = { scene = "
+                           "\"sky\" } }\n";
+    Session features(*s_runtime, small());
+    auto f = features.load(file);
+    ASSERT_FALSE(f);
+    EXPECT_NE(f.error().describe().find("scene_setting.lua:" + std::to_string(line) +
+                                        ": resource 'extra': only_when.scene = 'sky': the scene "
+                                        "has no such feature (it has 'lightmap')"),
+              std::string::npos)
+        << f.error().describe();
+
     Session s(*s_runtime, small());
     ASSERT_TRUE(s.load(std::string(RG_SOURCE_ROOT) + "/scripts/pipelines/deferred.lua"));
     const ParamDesc* model = s.pipeline().findParam("area_lights");
