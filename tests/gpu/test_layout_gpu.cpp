@@ -24,6 +24,7 @@
 #include "runtime/runtime.h"
 #include "image/image.h"
 #include "layout/layout.h"
+#include "../unit/layout_test_util.h"
 
 namespace fs = std::filesystem;
 using namespace rg;
@@ -408,14 +409,7 @@ void report(const LayoutInfo& info, const Comparison& c) {
     std::cout << "\n";
 }
 
-ChannelDesc ch(const std::string& name, Encoding e, uint32_t bits, uint32_t components = 0) {
-    ChannelDesc c;
-    c.name = name;
-    c.encoding = e;
-    c.bits = bits;
-    c.components = components;
-    return c;
-}
+using rg::test::ch;  // tests/unit/layout_test_util.h
 
 // ---------------------------------------------------------------------------------------------
 
