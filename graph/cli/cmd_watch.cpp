@@ -24,12 +24,7 @@ const char* const kHelp =
     "usage: rgraph watch [--pipeline FILE.lua] [--scene FILE] [--size WxH] [--out FILE.exr] [--png "
     "FILE.png]\n"
     "                    [--scene-arg NAME=VALUE]... [--set NAME=VALUE]... [--environment "
-    "FILE|sky|none] [--interval MS] [--max-reloads N]\n\n"
-    "--environment FILE|sky|none: replaces the scene's environment (the distant light probe and "
-    "the sky):\n"
-    "an equirectangular .hdr/.exr in nits, the Preetham sky of the scene's sun, or none. A glTF "
-    "scene\n"
-    "with no light and no environment gets the sky, as glTF viewers light published models.\n"
+    "FILE|sky|none] [--interval MS] [--max-reloads N]\n\n" RG_HELP_ENVIRONMENT
     "Renders once, then re-renders whenever a script or shader the pipeline uses changes (polled\n"
     "every MS milliseconds, default 250). A script that fails to load or compile is reported and "
     "the\n"
