@@ -181,11 +181,11 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
     const Built* old = m_built.get();
     const std::string& generatedDir = m_shaders.options().generatedDir;
     const bool samePassInputs =
-        old && old->sceneId == m_sceneId && old->generatedDir == generatedDir;
+        old && old->sceneId == sceneId() && old->generatedDir == generatedDir;
     const Built* oldPasses = m_forceRebuild || !samePassInputs ? nullptr : old;
     auto built = std::make_unique<Built>();
     built->plan = std::move(*plan);
-    built->sceneId = m_sceneId;
+    built->sceneId = sceneId();
     built->generatedDir = generatedDir;
     built->graph = std::move(graph);
     const Plan* planPtr = &built->plan;
@@ -417,7 +417,6 @@ Result<void> Executor::clearPersistent(size_t index) {
 
 void Executor::setScene(const SceneBinding* scene, std::function<void(uint32_t)> perFrame) {
     m_scene = scene;
-    m_sceneId = scene ? scene->id() : 0;
     m_perFrame = std::move(perFrame);
 }
 

@@ -75,6 +75,7 @@ public:
     // Floor mode for the builds that follow (PassSetup::floor): every pass is prepared again.
     void setFloors(bool on);
     const SceneBinding* scene() const { return m_scene; }
+    uint64_t sceneId() const { return m_scene ? m_scene->id() : 0; }  // 0 without a scene
 
     // Contents for an imported texture (uploaded now, then kept in ShaderReadOnly layout).
     Result<void> setImport(const std::string& name, const rg::Image& data);
@@ -164,7 +165,6 @@ private:
     uint64_t m_frameIndex = 0;
     uint64_t m_persistentEpoch = 0;  // FrameInfo::persistentEpoch
     const SceneBinding* m_scene = nullptr;
-    uint64_t m_sceneId = 0;
     std::function<void(uint32_t)> m_perFrame;
     bool m_forceRebuild = false;
     bool m_floors = false;
