@@ -13,33 +13,16 @@
 #include <sstream>
 
 #include "declarations.h"
+#include "lua_host_impl.h"
 #include "lua_sandbox.h"
 
 namespace fs = std::filesystem;
 
 namespace rg {
 
-struct LuaHost::Impl {
-    LuaHostOptions options;
-    lua_State* L = nullptr;
-    lua::Budget budget;  // memory and instructions (lua_sandbox.h)
-    std::vector<Declaration> decls;
-    OutputNames output;
-    std::vector<std::string> files;
-    std::string pipelineDir;
-
-    ~Impl() { close(); }
-    void close() {
-        if (L) lua_close(L);
-        L = nullptr;
-    }
-};
-
 namespace {
 
 const char* kModulesKey = "rgraph.modules";
-
-LuaHost::Impl& implOf(lua_State* L) { return **static_cast<LuaHost::Impl**>(lua_getextraspace(L)); }
 
 std::string chunkName(const LuaHost::Impl& impl, const std::string& path) {
     std::error_code ec;
@@ -69,17 +52,8 @@ Result<void> loadFile(LuaHost::Impl& impl, const std::string& path) {
     return {};
 }
 
-// "file:line" of the Lua code that called the running C function.
-std::string callerOrigin(lua_State* L) {
-    lua_Debug ar;
-    for (int level = 1; lua_getstack(L, level, &ar); ++level) {
-        lua_getinfo(L, "Sl", &ar);
-        if (ar.currentline > 0)
-            return std::string(ar.short_src) + ":" + std::to_string(ar.currentline);
-    }
-    return "?";
-}
-
+using host::callerOrigin;
+using host::implOf;
 using lua::pushValue;
 using lua::toValue;
 
@@ -102,6 +76,11 @@ void recordDeclaration(lua_State* L, DeclKind kind, const std::string& module,
     if (!lua_istable(L, tableIndex))
         raise(L, origin + ": " + declKindName(kind) + " \"" + name +
                      "\": expected a table of fields, got " + luaL_typename(L, tableIndex));
+    if (implOf(L).view && kind != DeclKind::Texture && kind != DeclKind::Buffer &&
+        kind != DeclKind::Pass)
+        raise(L, origin + ": " + declKindName(kind) + " \"" + name +
+                     "\": a view declares passes and resources only (rg.pass, rg.resource, "
+                     "rg.buffer)");
     auto value = toValue(L, tableIndex, std::string(declKindName(kind)) + " '" + name + "'");
     if (!value) raise(L, origin + ": " + value.error().message);
     implOf(L).decls.push_back({kind, name, module, *value, origin});
@@ -144,6 +123,10 @@ int declare(lua_State* L) {
 int setOutput(lua_State* L) {
     OutputNames names;
     names.origin = callerOrigin(L);
+    if (implOf(L).view)
+        raise(L, names.origin +
+                     ": rg.output: a view writes debug_view; the output stays the "
+                     "pipeline's");
     if (lua_type(L, 1) == LUA_TSTRING) {
         names.display = lua_tostring(L, 1);
     } else if (lua_istable(L, 1)) {
@@ -335,6 +318,8 @@ Result<std::vector<Declaration>> LuaHost::loadDeclarations(const std::string& fi
     lua_setfield(L, -2, "output");
     lua_pushcfunction(L, guarded<declareModule>);
     lua_setfield(L, -2, "module");
+    lua_pushcfunction(L, guarded<host::declareView>);
+    lua_setfield(L, -2, "view");
     lua_newtable(L);
     for (size_t i = 0; i < m->options.kinds.size(); ++i) {
         lua_pushstring(L, m->options.kinds[i].name.c_str());

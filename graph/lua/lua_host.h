@@ -50,6 +50,16 @@ struct FrameContext {
              height = 0;  // the output's size in pixels (ctx.width, ctx.height; 0: not known)
 };
 
+// What a debug view's function may ask of the scene (rg.view's v.scene).
+struct ViewFacts {
+    struct Light {
+        std::string name;
+        bool shadow = false;  // casts shadows
+    };
+    std::vector<Light> lights;              // in the scene's order: the GPU light list's index
+    std::optional<uint32_t> lightmapLobes;  // the baked lightmap's SG lobes; none: no lightmap
+};
+
 // What rg.frame(ctx) changed. Parameters are applied without recompiling; enabling,
 // disabling or swapping a shader is structural (the plan is recompiled incrementally).
 struct FrameChanges {
@@ -78,7 +88,16 @@ public:
     // Calls rg.frame(ctx); `current` supplies parameter values and pass states to read.
     Result<FrameChanges> frame(const FrameContext& ctx, const PipelineDesc& current);
 
-    struct Impl;  // the Lua state and what the script declared (lua_host.cpp)
+    // The debug view `view` added to `loaded`, the pipeline load() returned: the function of the
+    // view registered with rg.view under that name (or whose pattern matches it) declares its
+    // passes and resources after the pipeline's, then everything is validated again. Views
+    // come from the scripts the pipeline loaded and, when none of them has `view`, from
+    // scripts/views.lua (the standard views). `scene`: what the scene holds (nullptr: none).
+    // An unknown view, or one the pipeline or scene cannot show, is an error saying why.
+    Result<PipelineDesc> addView(const std::string& view, const PipelineDesc& loaded,
+                                 const ViewFacts* scene);
+
+    struct Impl;  // the Lua state and what the script declared (lua_host_impl.h)
 
 private:
     std::unique_ptr<Impl> m;

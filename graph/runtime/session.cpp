@@ -133,12 +133,8 @@ Result<GraphDesc> Session::buildableGraph(const PipelineDesc& p, bool keepMissin
             }
         }
     }
-    if (!m_options.view.empty()) {  // checked in load()
-        const passes::GpuScene* scene = passes::sceneOf(m_runtime.executor().scene());
-        if (auto r = addDebugView(g, p, m_options.view, scene ? &scene->scene() : nullptr); !r)
-            return std::unexpected(r.error());
-    }
     for (auto& r : g.resources) {
+        if (!m_options.view.empty() && r.name == "debug_view") r.exported = true;
         for (const auto& c : m_options.captures)
             if (r.name == c) r.exported = true;
         for (const auto& ch : m_channels)
@@ -265,11 +261,11 @@ Result<void> Session::load(const std::string& file) {
         pipeline->findParam(name)->value = *checked;
     }
     if (!m_options.view.empty()) {
-        GraphDesc probe = graphWithParams(*pipeline);
-        if (auto r =
-                addDebugView(probe, *pipeline, m_options.view, scene ? &scene->scene() : nullptr);
-            !r)
-            return r;
+        // The view's passes (rg.view; scripts/views.lua) join the pipeline's.
+        const ViewFacts facts = scene ? viewFactsOf(scene->scene()) : ViewFacts{};
+        auto viewed = host->addView(m_options.view, *pipeline, scene ? &facts : nullptr);
+        if (!viewed) return std::unexpected(viewed.error());
+        *pipeline = std::move(*viewed);
     }
     if (scene)
         if (auto r = applySceneSettings(*scene, *pipeline); !r) return r;

@@ -33,8 +33,9 @@ struct SessionOptions {
     // --environment: "" = the scene's own (a glTF scene with no light and no environment gets the
     // sky); "sky", "none", or an equirectangular .hdr/.exr file (graph/scene/environment.h).
     std::string environment;
-    // A debug view instead of the pipeline's display image: normals, basecolor, smoothness,
-    // metalmask, materialid, reflectance, ao, emissive (of the disney G-buffer) or stencil.
+    // A debug view instead of the pipeline's display image: a view of the pipeline's scripts
+    // (rg.view) or of scripts/views.lua (normals, stencil, lights, shadow:LIGHT, sgN, ...),
+    // drawn into `debug_view` after the pipeline's passes.
     std::string view;
     std::vector<std::string> captures;  // resources to export for readback
     bool verbose = false;               // print what each rebuild reused

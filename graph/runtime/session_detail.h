@@ -1,5 +1,5 @@
-// What session.cpp shares with the files beside it (debug_views.cpp, session_scene.cpp,
-// session_captures.cpp); not part of the runtime's interface.
+// What session.cpp shares with the files beside it (session_scene.cpp, session_captures.cpp);
+// not part of the runtime's interface.
 #pragma once
 
 #include <string>
@@ -9,17 +9,15 @@
 
 namespace rg::detail {
 
-// Appends the debug view's passes (debug_views.cpp); an unknown view or one the pipeline cannot
-// show is an error naming the option.
-Result<void> addDebugView(GraphDesc& g, const PipelineDesc& p, const std::string& view,
-                          const Scene* scene);
-
 // A value for parameter `name` of `pipeline`, checked against its type and range: what --set,
 // the golden tests' params and `rgraph serve`'s controls all go through.
 Result<Value> checkedParam(const PipelineDesc& pipeline, const std::string& name,
                            const Value& value);
 
 bool hasScenePass(const PipelineDesc& p);
+
+// What a debug view may ask of the scene (rg.view's v.scene): its lights and baked lightmap.
+ViewFacts viewFactsOf(const Scene& scene);
 
 // Sets the scene settings the pipeline's parameters drive (rg.param's `scene`); an error names the
 // parameter where it was declared.

@@ -62,6 +62,14 @@ bool hasScenePass(const PipelineDesc& p) {
                        [](const PassDesc& d) { return d.kind == "scene"; });
 }
 
+ViewFacts viewFactsOf(const Scene& scene) {
+    ViewFacts facts;
+    for (const Light& l : scene.lights) facts.lights.push_back({l.name, l.castShadows});
+    if (scene.bakedLightmap)
+        facts.lightmapLobes = static_cast<uint32_t>(scene.bakedLightmap->axes.size());
+    return facts;
+}
+
 Result<Scene> readScene(const std::string& file, const std::map<std::string, std::string>& args) {
     const std::string ext = fs::path(file).extension().string();
     if (ext == ".lua") {
