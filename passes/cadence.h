@@ -1,6 +1,6 @@
 #pragma once
 // A pass's `cadence` parameter: every frame, or once per build (passes/builtin_kinds.cpp's
-// compute and mips kinds, passes/scene_pass.cpp's probe capture).
+// compute and mips kinds, passes/scene_pass_capture.cpp's probe capture).
 #include <string>
 
 #include "core/check.h"

@@ -2,6 +2,8 @@
 // per pipeline material (Lua rg.material) whose fragment shader rgraph generates from the
 // material's G-buffer layout and its GLSL surface function; per-material descriptor sets
 // (lavapipe has no descriptor indexing); the stencil buffer gets each material's stencil class.
+// This file holds the kind (its schema and ScenePass, which picks the mode), what every mode draws
+// with (SceneDraws), and the modes that draw from the camera: the G-buffer and forward passes.
 #include <algorithm>
 #include <glm/glm.hpp>
 
@@ -16,142 +18,217 @@ namespace rg::passes {
 using namespace rg::gpu;
 using namespace rg::passes::detail;
 
-std::vector<MaterialInfo> detail::materialsOf(const PassDesc& desc) {
-    std::vector<MaterialInfo> out;
-    for (const Value& m : desc.params["rg_materials"].asList()) {
-        MaterialInfo i;
-        i.name = m["name"].asString();
-        i.id = static_cast<uint32_t>(m["id"].asNumber());
-        i.layout = m["layout"].asString();
-        for (const Value& t : m["targets"].asList()) i.targets.push_back(t.asString());
-        for (const Value& t : m["integer"].asList()) i.targetInteger.push_back(t.asBool());
-        for (const Value& f : m["fills"].asList()) i.fills.push_back(f.asString());
-        i.surface = m["surface"].asString();
-        i.stencilValue = static_cast<uint32_t>(m["stencil_value"].asNumber());
-        i.stencilMask = static_cast<uint32_t>(m["stencil_mask"].asNumber());
-        for (const Value& c : m["custom"].asList()) i.custom.push_back(c.asString());
-        i.shading = m["shading"].asString();
-        i.fixup = m["fixup"].asString();
-        i.origin = m["origin"].asString();
-        for (const auto& [standard, channel] : m["channels"].asTable())
-            i.channels[standard] = channel.asString();
-        out.push_back(i);
-    }
-    return out;
-}
-
 Result<void> ScenePass::prepare(PassSetup& setup) {
     const PassDesc& desc = setup.desc;
     if (!setup.scene)
         return fail(ErrorCode::InvalidInput,
                     passPrefix(desc) + "a 'scene' pass needs a scene (give --scene FILE)");
-    m_forward = desc.params["forward"].asBool();
-    m_shadow = desc.params["shadow"].asBool();
-    m_capture = desc.params["capture"].asBool();
-    if (m_shadow && m_capture)
+    const bool forward = desc.params["forward"].asBool();
+    const bool shadow = desc.params["shadow"].asBool();
+    const bool capture = desc.params["capture"].asBool();
+    if (shadow && capture)
         return fail(ErrorCode::InvalidInput,
                     passPrefix(desc) +
                         "params.capture: a pass is a shadow pass or a probe capture, not both");
-    if (m_forward && m_capture)
+    if (forward && capture)
         return fail(ErrorCode::InvalidInput,
                     passPrefix(desc) +
                         "params.capture: a pass is a forward pass or a probe capture, not both");
+    // A shadow pass ignores params.forward.
+    if (shadow)
+        m_mode = std::make_unique<ShadowScenePass>();
+    else if (capture)
+        m_mode = std::make_unique<CaptureScenePass>();
+    else if (forward)
+        m_mode = std::make_unique<ForwardScenePass>();
+    else
+        m_mode = std::make_unique<GBufferScenePass>();
+    return m_mode->prepare(setup);
+}
+
+Result<void> SceneDraws::prepare(PassSetup& setup) {
     if (auto r = m_cadence.parse(setup); !r) return r;
-    if (m_shadow) return prepareShadow(setup);
+    return prepareDraws(setup);
+}
+
+void SceneDraws::record(RecordContext& rc) {
+    if (!m_cadence.due(rc)) return;
+    recordDraws(rc);
+}
+
+std::vector<std::string> SceneDraws::files() const {
+    std::vector<std::string> out;
+    for (const Group& g : m_groups)
+        for (const auto& f : g.program->files()) out.push_back(f);
+    return out;
+}
+
+Result<void> SceneDraws::findAttachments(const PassDesc& desc, bool depthRead,
+                                         const char* missing) {
     for (const Access& a : desc.accesses) {
         if (a.usage == Usage::ColorAttachment) m_colors.push_back(a);
         if (a.usage == Usage::DepthStencilAttachment ||
-            (m_forward && a.usage == Usage::DepthStencilRead))
+            (depthRead && a.usage == Usage::DepthStencilRead))
             m_depth = a;
     }
-    if (!m_depth)
-        return fail(
-            ErrorCode::InvalidInput,
-            passPrefix(desc) +
-                (m_forward ? "a forward 'scene' pass reads the depth buffer ({ \"depth\", as = "
-                             "\"depth\" })"
-                           : "a 'scene' pass writes a depth buffer (a d32f or d32f_s8 resource)"));
-    if (m_forward && m_colors.size() != 1)
-        return fail(
-            ErrorCode::InvalidInput,
-            passPrefix(desc) + "a forward 'scene' pass writes one colour target (the HDR, loaded)");
-    std::vector<std::string> attachments;
-    for (const Access& a : m_colors) attachments.push_back(a.resource);
+    if (!m_depth) return fail(ErrorCode::InvalidInput, passPrefix(desc) + missing);
+    return {};
+}
+
+std::vector<std::string> SceneDraws::colorNames() const {
+    std::vector<std::string> out;
+    for (const Access& a : m_colors) out.push_back(a.resource);
+    return out;
+}
+
+const PlanResource& SceneDraws::sizeFromDepth(const PassSetup& setup) {
     const PhysicalResource* depth = setup.resources.find(m_depth->resource);
     m_width = depth->plan->width;
     m_height = depth->plan->height;
     m_depthFormat = depth->plan->format;
-    if (m_capture) return prepareCapture(setup, attachments);
+    return *depth->plan;
+}
 
-    if (m_forward) {
-        // One shader per material that has blended draws (and per set of textures); the draws
-        // are sorted back to front across them when recorded.
-        for (const MaterialInfo& info : materialsOf(desc)) {
-            auto variants = drawsByTextures(*sceneOf(setup), [&](const Material& m) {
-                return m.model == info.name && m.alphaMode == AlphaMode::Blend;
-            });
-            if (variants.empty()) continue;
-            const Material& example =
-                sceneOf(setup)
-                    ->scene()
-                    .materials[sceneOf(setup)->draws()[variants.begin()->second.front()].material];
-            const std::string who = "scene material '" + example.name +
-                                    "' is blended, so the forward pass shades it with material '" +
-                                    info.name + "' (" + info.origin + "), ";
-            if (!info.fixup.empty())
-                return fail(ErrorCode::InvalidInput,
-                            passPrefix(desc) + who +
-                                "which fills only part of its layout (the rest comes from the "
-                                "fix-up pass '" +
-                                info.fixup +
-                                "'): a blended surface has no G-buffer to fix up; make it opaque "
-                                "or use another material");
-            if (info.shading.empty())
-                return fail(ErrorCode::InvalidInput,
-                            passPrefix(desc) + who +
-                                "which has no lighting path with a shading function: give it a "
-                                "path declared with rg.path { shading = \"file.glsl\" } "
-                                "with vec3 rgShade(GBuffer_" +
-                                info.layout + " g, vec3 position, vec3 V, ivec2 pixel)");
-            for (auto& [mask, draws] : variants)
-                if (auto r =
-                        addGroup(setup, info, forwardSource(info), "forward_" + info.name + ".frag",
-                                 mask, std::move(draws), attachments);
-                    !r)
-                    return r;
-        }
-        return {};
-    }
-    for (const MaterialInfo& info : materialsOf(desc)) {
-        for (const auto& t : info.targets)
-            if (std::find(attachments.begin(), attachments.end(), t) == attachments.end())
-                return fail(ErrorCode::InvalidInput, passPrefix(desc) + "material '" + info.name +
-                                                         "' writes layout '" + info.layout +
-                                                         "' target '" + t +
-                                                         "', which the pass does not write");
-        // The scene's draws of this material, one shader variant per set of textures.
-        auto variants = drawsByTextures(*sceneOf(setup), [&](const Material& m) {
-            return m.model == info.name && m.alphaMode != AlphaMode::Blend;
-        });
-        if (variants.empty())
-            variants
-                [kTextureBits |
-                 kAlphaMaskVariant];  // no draws: still compiled, so a broken material fails at load
-        for (auto& [mask, draws] : variants)
-            if (auto r = addGroup(setup, info, fragmentSource(info, attachments),
-                                  "material_" + info.name + ".frag", mask, std::move(draws),
-                                  attachments);
-                !r)
-                return r;
-    }
+// Inside a render pass: the viewport and scissor over the target, the scene's vertices and indices.
+void SceneDraws::bindViewAndGeometry(RecordContext& rc) const {
+    VkViewport vp{0, 0, static_cast<float>(m_width), static_cast<float>(m_height), 0, 1};
+    VkRect2D sc{{0, 0}, {m_width, m_height}};
+    vkCmdSetViewport(rc.cmd, 0, 1, &vp);
+    vkCmdSetScissor(rc.cmd, 0, 1, &sc);
+    VkDeviceSize offset = 0;
+    VkBuffer vb = sceneOf(rc)->vertexBuffer();
+    vkCmdBindVertexBuffers(rc.cmd, 0, 1, &vb, &offset);
+    vkCmdBindIndexBuffer(rc.cmd, sceneOf(rc)->indexBuffer(), 0, VK_INDEX_TYPE_UINT32);
+}
+
+// Begins rendering into one layer: `color` (if any) and `depth` cleared (colour to 0, depth to
+// 1), the depth stored with `depthStore`; then the viewport and the scene's geometry.
+void SceneDraws::beginLayer(RecordContext& rc, VkImageView color, VkImageView depth,
+                            VkAttachmentStoreOp depthStore) const {
+    VkRenderingAttachmentInfo c{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    c.imageView = color;
+    c.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    c.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    c.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    VkRenderingAttachmentInfo d{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    d.imageView = depth;
+    d.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+    d.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    d.storeOp = depthStore;
+    d.clearValue.depthStencil = {1.0f, 0};
+    VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
+    ri.renderArea = {{0, 0}, {m_width, m_height}};
+    ri.layerCount = 1;
+    ri.colorAttachmentCount = color != VK_NULL_HANDLE ? 1u : 0u;
+    ri.pColorAttachments = &c;
+    ri.pDepthAttachment = &d;
+    if (formatInfo(m_depthFormat).stencil) ri.pStencilAttachment = &d;
+    vkCmdBeginRendering(rc.cmd, &ri);
+    bindViewAndGeometry(rc);
+}
+
+// One pipeline: the scene vertex shader and `fragment` with RG_TEXTURES = `textures`.
+Result<void> SceneDraws::addGroup(PassSetup& setup, const PassMaterial& info, std::string fragment,
+                                  const std::string& name, uint32_t textures,
+                                  std::vector<size_t> draws,
+                                  const std::vector<std::string>& attachments) {
+    ShaderRequest frag;
+    frag.source = std::move(fragment);
+    frag.virtualName = name;
+    frag.stage = ShaderStage::Fragment;
+    return addGroup(setup, info, "passes/scene.vert", std::move(frag), textures, std::move(draws),
+                    attachments);
+}
+
+Result<void> SceneDraws::addGroup(PassSetup& setup, const PassMaterial& info,
+                                  const std::string& vertex, ShaderRequest frag, uint32_t textures,
+                                  std::vector<size_t> draws,
+                                  const std::vector<std::string>& attachments) {
+    Group g;
+    g.info = info;
+    ShaderRequest vert;
+    vert.path = vertex;
+    frag.defines.emplace_back("RG_TEXTURES", std::to_string(textures & kTextureBits));
+    frag.defines.emplace_back("RG_ALPHA_MASK", (textures & kAlphaMaskVariant) ? "1" : "0");
+    g.program = std::make_unique<ShaderProgram>();
+    if (auto r = g.program->build(setup, {vert, frag}, {{1u, sceneOf(setup)->materialSetLayout()}});
+        !r)
+        return r;
+    if (auto r = createPipeline(setup, g, attachments); !r) return r;
+    g.draws = std::move(draws);
+    m_groups.push_back(std::move(g));
     return {};
 }
 
-void ScenePass::record(RecordContext& rc) {
-    if (!m_cadence.due(rc)) return;
-    if (m_shadow) return recordShadow(rc);
-    if (m_capture) return recordCapture(rc);
-    const PassDesc& desc = rc.desc;
+// The scene's vertex layout (graph/scene's Vertex).
+const VkPipelineVertexInputStateCreateInfo& SceneDraws::vertexInput() {
+    static const VkVertexInputBindingDescription binding{0, sizeof(Vertex),
+                                                         VK_VERTEX_INPUT_RATE_VERTEX};
+    static const VkVertexInputAttributeDescription attrs[] = {
+        {0, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, position))},
+        {1, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, normal))},
+        {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, tangent))},
+        {3, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, uv0))},
+        {4, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, uv1))}};
+    static const VkPipelineVertexInputStateCreateInfo vi{
+        VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
+        nullptr,
+        0,
+        1,
+        &binding,
+        5,
+        attrs};
+    return vi;
+}
+
+Result<void> SceneDraws::createPipeline(PassSetup& setup, Group& g,
+                                        const std::vector<std::string>& attachments) {
+    GraphicsPipelineDesc d;
+    d.program = g.program.get();
+    for (const auto& name : attachments) {
+        d.colorFormats.push_back(toVkFormat(setup.resources.find(name)->plan->format));
+        d.blends.push_back(colorBlend(g, name));
+    }
+    d.depthFormat = toVkFormat(m_depthFormat);
+    if (formatInfo(m_depthFormat).stencil) d.stencilFormat = toVkFormat(m_depthFormat);
+
+    d.vertexInput = &vertexInput();
+    // glTF front faces are counter-clockwise; the projection's y flip (Vulkan's y points
+    // down) keeps them counter-clockwise as seen on screen, which is what Vulkan tests.
+    // Culling is set per draw (double-sided materials).
+    d.cullMode = VK_CULL_MODE_BACK_BIT;
+    d.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+    depthStencil(d, g);
+    d.dynamicStates = {VK_DYNAMIC_STATE_STENCIL_REFERENCE, VK_DYNAMIC_STATE_CULL_MODE};
+    auto pipeline = createGraphicsPipeline(setup.gpu, d);
+    if (!pipeline) return std::unexpected(pipeline.error());
+    g.pipeline = std::move(*pipeline);
+    return {};
+}
+
+VkPipelineColorBlendAttachmentState SceneDraws::colorBlend(const Group& /*g*/,
+                                                           const std::string& /*target*/) const {
+    VkPipelineColorBlendAttachmentState b = blendState("", /*alphaKeepsDestination=*/true);
+    b.colorWriteMask = 0xfu;
+    return b;
+}
+
+void SceneDraws::depthStencil(GraphicsPipelineDesc& d, const Group& g) const {
+    d.depthStencil.depthTestEnable = VK_TRUE;
+    d.depthStencil.depthWriteEnable = VK_TRUE;
+    d.depthStencil.depthCompareOp = VK_COMPARE_OP_LESS;
+    if (formatInfo(m_depthFormat).stencil && g.info.stencilMask) {
+        d.depthStencil.stencilTestEnable = VK_TRUE;
+        VkStencilOpState op{};
+        op.failOp = op.depthFailOp = VK_STENCIL_OP_KEEP;
+        op.passOp = VK_STENCIL_OP_REPLACE;
+        op.compareOp = VK_COMPARE_OP_ALWAYS;
+        op.writeMask = g.info.stencilMask;
+        d.depthStencil.front = d.depthStencil.back = op;
+    }
+}
+
+void CameraScenePass::beginCamera(RecordContext& rc, const VkRenderingAttachmentInfo& depth) const {
     std::vector<VkRenderingAttachmentInfo> colors;
     for (const Access& a : m_colors) {
         const PhysicalResource* r = rc.resources.find(a.resource);
@@ -162,15 +239,6 @@ void ScenePass::record(RecordContext& rc) {
         ai.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
         colors.push_back(ai);
     }
-    const PhysicalResource* d = rc.resources.find(m_depth->resource);
-    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    depth.imageView = d->image->attachmentView();
-    depth.imageLayout = m_forward ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL
-                                  : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-    depth.loadOp =
-        m_forward || m_depth->load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
-    depth.storeOp = m_forward ? VK_ATTACHMENT_STORE_OP_NONE : VK_ATTACHMENT_STORE_OP_STORE;
-    depth.clearValue.depthStencil = {1.0f, 0};
     VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
     ri.renderArea = {{0, 0}, {m_width, m_height}};
     ri.layerCount = 1;
@@ -180,28 +248,23 @@ void ScenePass::record(RecordContext& rc) {
     if (formatInfo(m_depthFormat).stencil) ri.pStencilAttachment = &depth;
     vkCmdBeginRendering(rc.cmd, &ri);
     bindViewAndGeometry(rc);
-    (void)desc;
-    // (group, draw) in drawing order, the draws outside the camera's frustum left out. Opaque
-    // draws: per group (one pipeline bind each), front to back within it by the distance
-    // from the eye to their boxes, so the depth test rejects hidden fragments before they are
-    // shaded. Blended draws: back to front across every group (by the distance of their
-    // origin to the camera), switching shaders as needed.
-    const glm::vec3 eye = sceneOf(rc)->camera().position;
-    std::vector<std::pair<size_t, size_t>> order;
-    std::vector<float> distance(sceneOf(rc)->draws().size(), 0.0f);
+}
+
+template <typename DistanceOf>
+CameraScenePass::DrawOrder CameraScenePass::inView(RecordContext& rc, std::vector<float>& distance,
+                                                   DistanceOf distanceOf) const {
+    DrawOrder order;
+    distance.assign(sceneOf(rc)->draws().size(), 0.0f);
     for (size_t gi = 0; gi < m_groups.size(); ++gi)
         for (size_t i : m_groups[gi].draws) {
             if (!sceneOf(rc)->drawInView(i)) continue;
-            const DrawItem& item = sceneOf(rc)->draws()[i];
-            distance[i] = m_forward
-                              ? glm::distance(glm::vec3(item.world[3]), eye)
-                              : glm::distance(glm::clamp(eye, item.boundsMin, item.boundsMax), eye);
+            distance[i] = distanceOf(sceneOf(rc)->draws()[i]);
             order.emplace_back(gi, i);
         }
-    std::stable_sort(order.begin(), order.end(), [&](const auto& a, const auto& b) {
-        if (m_forward) return distance[a.second] > distance[b.second];
-        return a.first != b.first ? a.first < b.first : distance[a.second] < distance[b.second];
-    });
+    return order;
+}
+
+void CameraScenePass::drawGroups(RecordContext& rc, const DrawOrder& order) {
     size_t bound = SIZE_MAX;
     for (const auto& [gi, i] : order) {
         Group& g = m_groups[gi];
@@ -232,151 +295,156 @@ void ScenePass::record(RecordContext& rc) {
     vkCmdEndRendering(rc.cmd);
 }
 
-std::vector<std::string> ScenePass::files() const {
-    std::vector<std::string> out;
-    for (const Group& g : m_groups)
-        for (const auto& f : g.program->files()) out.push_back(f);
-    return out;
+Result<void> GBufferScenePass::prepareDraws(PassSetup& setup) {
+    const PassDesc& desc = setup.desc;
+    m_specularTarget = desc.params["lightmap_specular"].asString();
+    if (auto r = findAttachments(desc, /*depthRead=*/false, kWritesDepth); !r) return r;
+    const std::vector<std::string> attachments = colorNames();
+    sizeFromDepth(setup);
+    for (const PassMaterial& info : desc.materials) {
+        for (const auto& t : info.targets)
+            if (std::find(attachments.begin(), attachments.end(), t) == attachments.end())
+                return fail(ErrorCode::InvalidInput, passPrefix(desc) + "material '" + info.name +
+                                                         "' writes layout '" + info.layout +
+                                                         "' target '" + t +
+                                                         "', which the pass does not write");
+        // The scene's draws of this material, one shader variant per set of textures.
+        auto variants = drawsByTextures(*sceneOf(setup), [&](const Material& m) {
+            return m.model == info.name && m.alphaMode != AlphaMode::Blend;
+        });
+        if (variants.empty())
+            variants
+                [kTextureBits |
+                 kAlphaMaskVariant];  // no draws: still compiled, so a broken material fails at load
+        for (auto& [mask, draws] : variants)
+            if (auto r = addGroup(setup, info, fragmentSource(info, attachments, m_specularTarget),
+                                  "material_" + info.name + ".frag", mask, std::move(draws),
+                                  attachments);
+                !r)
+                return r;
+    }
+    return {};
 }
 
-// Inside a render pass: the viewport and scissor over the target, the scene's vertices and indices.
-void ScenePass::bindViewAndGeometry(RecordContext& rc) const {
-    VkViewport vp{0, 0, static_cast<float>(m_width), static_cast<float>(m_height), 0, 1};
-    VkRect2D sc{{0, 0}, {m_width, m_height}};
-    vkCmdSetViewport(rc.cmd, 0, 1, &vp);
-    vkCmdSetScissor(rc.cmd, 0, 1, &sc);
-    VkDeviceSize offset = 0;
-    VkBuffer vb = sceneOf(rc)->vertexBuffer();
-    vkCmdBindVertexBuffers(rc.cmd, 0, 1, &vb, &offset);
-    vkCmdBindIndexBuffer(rc.cmd, sceneOf(rc)->indexBuffer(), 0, VK_INDEX_TYPE_UINT32);
+void GBufferScenePass::recordDraws(RecordContext& rc) {
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = rc.resources.find(m_depth->resource)->image->attachmentView();
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
+    depth.loadOp = m_depth->load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    depth.clearValue.depthStencil = {1.0f, 0};
+    beginCamera(rc, depth);
+    // Per group (one pipeline bind each), front to back within it by the distance from the eye
+    // to the draws' boxes, so the depth test rejects hidden fragments before they are shaded.
+    const glm::vec3 eye = sceneOf(rc)->camera().position;
+    std::vector<float> distance;
+    DrawOrder order = inView(rc, distance, [&](const DrawItem& item) {
+        return glm::distance(glm::clamp(eye, item.boundsMin, item.boundsMax), eye);
+    });
+    std::stable_sort(order.begin(), order.end(), [&](const auto& a, const auto& b) {
+        return a.first != b.first ? a.first < b.first : distance[a.second] < distance[b.second];
+    });
+    drawGroups(rc, order);
 }
 
-// Begins rendering into one layer: `color` (if any) and `depth` cleared (colour to 0, depth to
-// 1), the depth stored with `depthStore`; then the viewport and the scene's geometry.
-void ScenePass::beginLayer(RecordContext& rc, VkImageView color, VkImageView depth,
-                           VkAttachmentStoreOp depthStore) const {
-    VkRenderingAttachmentInfo c{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    c.imageView = color;
-    c.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-    c.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    c.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-    VkRenderingAttachmentInfo d{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-    d.imageView = depth;
-    d.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL;
-    d.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
-    d.storeOp = depthStore;
-    d.clearValue.depthStencil = {1.0f, 0};
-    VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
-    ri.renderArea = {{0, 0}, {m_width, m_height}};
-    ri.layerCount = 1;
-    ri.colorAttachmentCount = color != VK_NULL_HANDLE ? 1u : 0u;
-    ri.pColorAttachments = &c;
-    ri.pDepthAttachment = &d;
-    if (formatInfo(m_depthFormat).stencil) ri.pStencilAttachment = &d;
-    vkCmdBeginRendering(rc.cmd, &ri);
-    bindViewAndGeometry(rc);
+VkPipelineColorBlendAttachmentState GBufferScenePass::colorBlend(const Group& g,
+                                                                 const std::string& target) const {
+    VkPipelineColorBlendAttachmentState b = blendState("", /*alphaKeepsDestination=*/true);
+    const bool ofLayout =
+        std::find(g.info.targets.begin(), g.info.targets.end(), target) != g.info.targets.end();
+    const bool filled = g.info.fills.empty() || std::find(g.info.fills.begin(), g.info.fills.end(),
+                                                          target) != g.info.fills.end();
+    // A material writes only the targets of its layout it fills (the fix-up pass does the rest).
+    b.colorWriteMask = (ofLayout && filled) || target == m_specularTarget ? 0xfu : 0u;
+    return b;
 }
 
-// One pipeline: the scene vertex shader and `fragment` with RG_TEXTURES = `textures`.
-Result<void> ScenePass::addGroup(PassSetup& setup, const MaterialInfo& info, std::string fragment,
-                                 const std::string& name, uint32_t textures,
-                                 std::vector<size_t> draws,
-                                 const std::vector<std::string>& attachments) {
-    ShaderRequest frag;
-    frag.source = std::move(fragment);
-    frag.virtualName = name;
-    frag.stage = ShaderStage::Fragment;
-    return addGroup(setup, info, "passes/scene.vert", std::move(frag), textures, std::move(draws),
-                    attachments);
-}
-
-Result<void> ScenePass::addGroup(PassSetup& setup, const MaterialInfo& info,
-                                 const std::string& vertex, ShaderRequest frag, uint32_t textures,
-                                 std::vector<size_t> draws,
-                                 const std::vector<std::string>& attachments) {
-    Group g;
-    g.info = info;
-    ShaderRequest vert;
-    vert.path = vertex;
-    frag.defines.emplace_back("RG_TEXTURES", std::to_string(textures & kTextureBits));
-    frag.defines.emplace_back("RG_ALPHA_MASK", (textures & kAlphaMaskVariant) ? "1" : "0");
-    g.program = std::make_unique<ShaderProgram>();
-    if (auto r = g.program->build(setup, {vert, frag}, {{1u, sceneOf(setup)->materialSetLayout()}});
+Result<void> ForwardScenePass::prepareDraws(PassSetup& setup) {
+    const PassDesc& desc = setup.desc;
+    if (auto r = findAttachments(desc, /*depthRead=*/true,
+                                 "a forward 'scene' pass reads the depth buffer ({ \"depth\", as = "
+                                 "\"depth\" })");
         !r)
         return r;
-    if (auto r = createPipeline(setup, g, attachments); !r) return r;
-    g.draws = std::move(draws);
-    m_groups.push_back(std::move(g));
+    if (m_colors.size() != 1)
+        return fail(
+            ErrorCode::InvalidInput,
+            passPrefix(desc) + "a forward 'scene' pass writes one colour target (the HDR, loaded)");
+    const std::vector<std::string> attachments = colorNames();
+    sizeFromDepth(setup);
+    // One shader per material that has blended draws (and per set of textures); the draws
+    // are sorted back to front across them when recorded.
+    for (const PassMaterial& info : desc.materials) {
+        auto variants = drawsByTextures(*sceneOf(setup), [&](const Material& m) {
+            return m.model == info.name && m.alphaMode == AlphaMode::Blend;
+        });
+        if (variants.empty()) continue;
+        const Material& example =
+            sceneOf(setup)
+                ->scene()
+                .materials[sceneOf(setup)->draws()[variants.begin()->second.front()].material];
+        const std::string who = "scene material '" + example.name +
+                                "' is blended, so the forward pass shades it with material '" +
+                                info.name + "' (" + info.origin + "), ";
+        if (!info.fixup.empty())
+            return fail(ErrorCode::InvalidInput,
+                        passPrefix(desc) + who +
+                            "which fills only part of its layout (the rest comes from the "
+                            "fix-up pass '" +
+                            info.fixup +
+                            "'): a blended surface has no G-buffer to fix up; make it opaque "
+                            "or use another material");
+        if (info.shading.empty())
+            return fail(ErrorCode::InvalidInput,
+                        passPrefix(desc) + who +
+                            "which has no lighting path with a shading function: give it a "
+                            "path declared with rg.path { shading = \"file.glsl\" } "
+                            "with vec3 rgShade(GBuffer_" +
+                            info.layout + " g, vec3 position, vec3 V, ivec2 pixel)");
+        for (auto& [mask, draws] : variants)
+            if (auto r =
+                    addGroup(setup, info, forwardSource(info), "forward_" + info.name + ".frag",
+                             mask, std::move(draws), attachments);
+                !r)
+                return r;
+    }
     return {};
 }
 
-// The scene's vertex layout (graph/scene's Vertex).
-const VkPipelineVertexInputStateCreateInfo& ScenePass::vertexInput() {
-    static const VkVertexInputBindingDescription binding{0, sizeof(Vertex),
-                                                         VK_VERTEX_INPUT_RATE_VERTEX};
-    static const VkVertexInputAttributeDescription attrs[] = {
-        {0, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, position))},
-        {1, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, normal))},
-        {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, tangent))},
-        {3, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, uv0))},
-        {4, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, uv1))}};
-    static const VkPipelineVertexInputStateCreateInfo vi{
-        VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
-        nullptr,
-        0,
-        1,
-        &binding,
-        5,
-        attrs};
-    return vi;
+void ForwardScenePass::recordDraws(RecordContext& rc) {
+    VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    depth.imageView = rc.resources.find(m_depth->resource)->image->attachmentView();
+    depth.imageLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
+    depth.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    depth.storeOp = VK_ATTACHMENT_STORE_OP_NONE;
+    depth.clearValue.depthStencil = {1.0f, 0};
+    beginCamera(rc, depth);
+    // Back to front across every group (by the distance of the draws' origins to the camera),
+    // switching shaders as needed.
+    const glm::vec3 eye = sceneOf(rc)->camera().position;
+    std::vector<float> distance;
+    DrawOrder order = inView(rc, distance, [&](const DrawItem& item) {
+        return glm::distance(glm::vec3(item.world[3]), eye);
+    });
+    std::stable_sort(order.begin(), order.end(), [&](const auto& a, const auto& b) {
+        return distance[a.second] > distance[b.second];
+    });
+    drawGroups(rc, order);
 }
 
-Result<void> ScenePass::createPipeline(PassSetup& setup, Group& g,
-                                       const std::vector<std::string>& attachments) {
-    GraphicsPipelineDesc d;
-    d.program = g.program.get();
-    for (const auto& name : attachments) {
-        d.colorFormats.push_back(toVkFormat(setup.resources.find(name)->plan->format));
-        // Forward: over the lit HDR, src·α + dst·(1 − α), the HDR's alpha kept.
-        VkPipelineColorBlendAttachmentState b =
-            blendState(m_forward ? "alpha" : "", /*alphaKeepsDestination=*/true);
-        const bool ofLayout =
-            std::find(g.info.targets.begin(), g.info.targets.end(), name) != g.info.targets.end();
-        const bool filled =
-            g.info.fills.empty() ||
-            std::find(g.info.fills.begin(), g.info.fills.end(), name) != g.info.fills.end();
-        // A material writes only the targets of its layout it fills (the fix-up pass does the rest).
-        b.colorWriteMask =
-            m_forward || m_capture || (ofLayout && filled) || name == kLightmapSpecularTarget ? 0xfu
-                                                                                              : 0u;
-        d.blends.push_back(b);
-    }
-    d.depthFormat = toVkFormat(m_depthFormat);
-    if (formatInfo(m_depthFormat).stencil) d.stencilFormat = toVkFormat(m_depthFormat);
+// Over the lit HDR, src·α + dst·(1 − α), the HDR's alpha kept.
+VkPipelineColorBlendAttachmentState ForwardScenePass::colorBlend(
+    const Group& /*g*/, const std::string& /*target*/) const {
+    VkPipelineColorBlendAttachmentState b = blendState("alpha", /*alphaKeepsDestination=*/true);
+    b.colorWriteMask = 0xfu;
+    return b;
+}
 
-    d.vertexInput = &vertexInput();
-    // glTF front faces are counter-clockwise; the projection's y flip (Vulkan's y points
-    // down) keeps them counter-clockwise as seen on screen, which is what Vulkan tests.
-    // Culling is set per draw (double-sided materials).
-    d.cullMode = VK_CULL_MODE_BACK_BIT;
-    d.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
+// Tested against the opaque surfaces' depth, not written; no stencil classes.
+void ForwardScenePass::depthStencil(GraphicsPipelineDesc& d, const Group& /*g*/) const {
     d.depthStencil.depthTestEnable = VK_TRUE;
-    d.depthStencil.depthWriteEnable = m_forward ? VK_FALSE : VK_TRUE;
+    d.depthStencil.depthWriteEnable = VK_FALSE;
     d.depthStencil.depthCompareOp = VK_COMPARE_OP_LESS;
-    if (!m_forward && formatInfo(m_depthFormat).stencil && g.info.stencilMask) {
-        d.depthStencil.stencilTestEnable = VK_TRUE;
-        VkStencilOpState op{};
-        op.failOp = op.depthFailOp = VK_STENCIL_OP_KEEP;
-        op.passOp = VK_STENCIL_OP_REPLACE;
-        op.compareOp = VK_COMPARE_OP_ALWAYS;
-        op.writeMask = g.info.stencilMask;
-        d.depthStencil.front = d.depthStencil.back = op;
-    }
-    d.dynamicStates = {VK_DYNAMIC_STATE_STENCIL_REFERENCE, VK_DYNAMIC_STATE_CULL_MODE};
-    auto pipeline = createGraphicsPipeline(setup.gpu, d);
-    if (!pipeline) return std::unexpected(pipeline.error());
-    g.pipeline = std::move(*pipeline);
-    return {};
 }
 
 PassKindInfo scenePassKind() {
@@ -385,48 +453,60 @@ PassKindInfo scenePassKind() {
          PassType::Raster,
          "draws the scene's primitives with each selected material's generated G-buffer shader; "
          "writes stencil classes",
-         {{"materials", "string|list",
-           "pipeline materials to draw (default: every material that is not forward-only)"},
-          {"forward", "boolean",
-           "draw the blended (alpha = 'blend') materials, lit directly, over the colour target it "
-           "loads"},
-          {"paths", "string|list", "draw the materials of these lighting paths"},
-          {"defines", "table",
-           "preprocessor defines for its shaders (the forward pass: RG_IBL with scripts/ibl.lua's "
-           "ibl.lit)"},
-          {"shadow", "boolean",
-           "depth only, into each layer of the depth target it writes, from the views its vertex "
-           "shader computes (scripts/shadows.lua)"},
-          {"capture", "boolean",
-           "the scene's local light probes: every draw that is not blended into six layers per "
-           "probe of the cube texture it writes (with a depth target of as many layers), diffuse "
-           "only (scripts/probes.lua)"},
-          {"cadence", "string",
-           "'frame' (default) or 'once': record only after each build (a probe capture)"},
-          {"fragment", "string", "capture: the fragment shader (default probes/capture.frag)"},
-          {"shader", "string",
-           "shadow: the vertex shader (default shadows/shadow.vert: the matrix of the layer its "
-           "push constant names, from `sun_cascades`); capture: default probes/capture.vert"},
-          {"depth_bias", "list", "shadow: { constant, slope } rasteriser depth bias"},
-          {"cull", "string",
-           "shadow: 'none' (default), 'clockwise' or 'counter_clockwise': single-sided materials' "
-           "faces of that winding in the map are not drawn (the faces turned away from the light, "
-           "for a closed mesh never the nearest)"},
-          {"indirect", "string",
-           "shadow: a buffer the pass reads as { NAME, as = 'indirect' } holding a "
-           "VkDrawIndexedIndirectCommand per layer and scene draw (layer-major, the buffer's "
-           "commands / layers slots each, written by a culling pass such as "
-           "shadows/cascade_cull.comp): each draw is issued through it, so culled draws cost "
-           "nothing; draws beyond the slots are drawn directly"},
-          {"view", "list",
-           "shadow: { first, count }: the target's layer l is view first + l of count (its matrix, "
-           "its indirect slots), default { 0, the target's layers }: one cascade a pass, into a "
-           "map of its own"},
-          {"views", "string",
-           "shadow: 'shader' (default: the layer's matrix is the vertex shader's business) or "
-           "'lights' (the scene's local-light shadow views this frame, one per layer, each drawing "
-           "only the casters its frustum meets; shader default shadows/local_shadow.vert)"},
-          {"rg_materials", "list", "(filled in by rgraph) the resolved materials"}},
+         {
+             {"materials", "string|list",
+              "pipeline materials to draw (default: every material that is not forward-only)"},
+             {"forward", "boolean",
+              "draw the blended (alpha = 'blend') materials, lit directly, over the colour target "
+              "it "
+              "loads"},
+             {"paths", "string|list", "draw the materials of these lighting paths"},
+             {"lightmap_specular", "written",
+              "an attachment it writes that receives from every material the baked lightmap's "
+              "specular radiance along the pixel's reflection (black without a lightmap)"},
+             {"defines", "table",
+              "preprocessor defines for its shaders (the forward pass: RG_IBL with "
+              "scripts/ibl.lua's "
+              "ibl.lit)"},
+             {"shadow", "boolean",
+              "depth only, into each layer of the depth target it writes, from the views its "
+              "vertex "
+              "shader computes (scripts/shadows.lua)"},
+             {"capture", "boolean",
+              "the scene's local light probes: every draw that is not blended into six layers per "
+              "probe of the cube texture it writes (with a depth target of as many layers), "
+              "diffuse "
+              "only (scripts/probes.lua)"},
+             {"cadence", "string",
+              "'frame' (default) or 'once': record only after each build (a probe capture)"},
+             {"fragment", "string", "capture: the fragment shader (default probes/capture.frag)"},
+             {"shader", "string",
+              "shadow: the vertex shader (default shadows/shadow.vert: the matrix of the layer its "
+              "push constant names, from `sun_cascades`); capture: default probes/capture.vert"},
+             {"depth_bias", "list", "shadow: { constant, slope } rasteriser depth bias"},
+             {"cull", "string",
+              "shadow: 'none' (default), 'clockwise' or 'counter_clockwise': single-sided "
+              "materials' "
+              "faces of that winding in the map are not drawn (the faces turned away from the "
+              "light, "
+              "for a closed mesh never the nearest)"},
+             {"indirect", "string",
+              "shadow: a buffer the pass reads as { NAME, as = 'indirect' } holding a "
+              "VkDrawIndexedIndirectCommand per layer and scene draw (layer-major, the buffer's "
+              "commands / layers slots each, written by a culling pass such as "
+              "shadows/cascade_cull.comp): each draw is issued through it, so culled draws cost "
+              "nothing; draws beyond the slots are drawn directly"},
+             {"view", "list",
+              "shadow: { first, count }: the target's layer l is view first + l of count (its "
+              "matrix, "
+              "its indirect slots), default { 0, the target's layers }: one cascade a pass, into a "
+              "map of its own"},
+             {"views", "string",
+              "shadow: 'shader' (default: the layer's matrix is the vertex shader's business) or "
+              "'lights' (the scene's local-light shadow views this frame, one per layer, each "
+              "drawing "
+              "only the casters its frustum meets; shader default shadows/local_shadow.vert)"},
+         },
          Usage::Sampled,
          Usage::ColorAttachment},
         [] { return std::make_unique<ScenePass>(); }};

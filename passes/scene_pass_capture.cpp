@@ -1,5 +1,5 @@
-// The `scene` pass kind's probe capture (capture = true): the scene's local light probes drawn
-// into the six faces of their cubes, each face's draws front to back.
+// The `scene` pass kind's probe capture (capture = true, CaptureScenePass): the scene's local light
+// probes drawn into the six faces of their cubes, each face's draws front to back.
 #include <algorithm>
 
 #include <glm/glm.hpp>
@@ -43,9 +43,11 @@ bool boxInCubeFace(const glm::vec3& lo, const glm::vec3& hi, const glm::vec3& ey
 // many layers: every draw that is not blended, through probes/capture.vert (the face's
 // projection from the probe) and probes/capture.frag (diffuse only, metals with f0 as albedo,
 // alpha 1 where something is drawn), one variant per set of textures.
-Result<void> ScenePass::prepareCapture(PassSetup& setup,
-                                       const std::vector<std::string>& attachments) {
+Result<void> CaptureScenePass::prepareDraws(PassSetup& setup) {
     const PassDesc& desc = setup.desc;
+    if (auto r = findAttachments(desc, /*depthRead=*/false, kWritesDepth); !r) return r;
+    const std::vector<std::string> attachments = colorNames();
+    sizeFromDepth(setup);
     if (m_colors.size() != 1)
         return fail(
             ErrorCode::InvalidInput,
@@ -72,15 +74,14 @@ Result<void> ScenePass::prepareCapture(PassSetup& setup,
     // generated from it (unless the pass names its own `fragment`); the rest, and a material
     // completed by a fix-up pass, through the fragment shader as the standard material.
     const bool generated = !desc.params["fragment"].isString();
-    std::vector<MaterialInfo> materials =
-        generated ? materialsOf(desc) : std::vector<MaterialInfo>{};
+    std::vector<PassMaterial> materials = generated ? desc.materials : std::vector<PassMaterial>{};
     std::erase_if(materials,
-                  [](const MaterialInfo& m) { return !m.fixup.empty() || m.surface.empty(); });
+                  [](const PassMaterial& m) { return !m.fixup.empty() || m.surface.empty(); });
     auto own = [&](const Material& m) {
         return std::any_of(materials.begin(), materials.end(),
                            [&](auto& i) { return i.name == m.model; });
     };
-    for (const MaterialInfo& info : materials) {
+    for (const PassMaterial& info : materials) {
         auto variants = drawsByTextures(*sceneOf(setup), [&](const Material& m) {
             return m.alphaMode != AlphaMode::Blend && m.model == info.name;
         });
@@ -100,7 +101,7 @@ Result<void> ScenePass::prepareCapture(PassSetup& setup,
     });
     if (variants.empty() && m_groups.empty()) variants[31u];
     for (auto& [mask, draws] : variants) {
-        MaterialInfo info;
+        PassMaterial info;
         info.name = "capture";
         ShaderRequest frag;
         frag.path = fragment;
@@ -112,7 +113,7 @@ Result<void> ScenePass::prepareCapture(PassSetup& setup,
     return {};
 }
 
-void ScenePass::recordCapture(RecordContext& rc) {
+void CaptureScenePass::recordDraws(RecordContext& rc) {
     const PhysicalResource* c = rc.resources.find(m_colors.front().resource);
     const PhysicalResource* d = rc.resources.find(m_depth->resource);
     const uint32_t layers =

@@ -1,22 +1,24 @@
-// The `scene` pass kind's instance (scene_pass.cpp: the G-buffer and forward draws, pipelines and
-// what every mode shares; scene_pass_capture.cpp: probe captures; scene_pass_shadow.cpp: shadow
-// maps) and the draw selection its files share. Internal to passes/.
+// The `scene` pass kind's instances and the draw selection their files share. Internal to passes/.
+// ScenePass is the kind's instance: it picks the mode from the parameters and hands the pass to
+// one of four mode classes over SceneDraws, what every mode draws with (scene_pass.cpp, with the
+// G-buffer and forward modes; scene_pass_capture.cpp: probe captures; scene_pass_shadow.cpp:
+// shadow maps).
 #pragma once
 
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cadence.h"
 #include "gpu_scene.h"
+#include "graphics_pipeline.h"
 #include "scene_pass_glsl.h"
 #include "shader_program.h"
 
 namespace rg::passes::detail {
-
-std::vector<MaterialInfo> materialsOf(const PassDesc& desc);
 
 // A scene material's shader variant: the textures it has, as lib/material.glsl's RG_TEXTURES bits,
 // and kAlphaMaskVariant when it is alpha-tested (RG_ALPHA_MASK). Only that variant may discard: a
@@ -52,63 +54,153 @@ std::map<uint32_t, std::vector<size_t>> drawsByTextures(const GpuScene& scene, W
     return out;
 }
 
-class ScenePass final : public gpu::PassInstance {
+// What every mode of the `scene` pass draws with: its groups of draws (one pipeline each, per
+// material and shader variant), the attachments it draws into and their size, and its cadence
+// (params.cadence). A mode prepares its groups (prepareDraws) and records them (recordDraws) in
+// the frames the cadence lets it.
+class SceneDraws : public gpu::PassInstance {
 public:
-    Result<void> prepare(PassSetup& setup) override;
-    void record(RecordContext& rc) override;
-    std::vector<std::string> files() const override;
+    Result<void> prepare(PassSetup& setup) final;
+    void record(RecordContext& rc) final;
+    std::vector<std::string> files() const final;
+    bool dueOnce(uint64_t epoch) const final { return m_cadence.dueOnce(epoch); }
+    void restoredOnce(uint64_t epoch) final { m_cadence.restored(epoch); }
 
-private:
-    void bindViewAndGeometry(RecordContext& rc) const;
-    void beginLayer(RecordContext& rc, VkImageView color, VkImageView depth,
-                    VkAttachmentStoreOp depthStore) const;
-    Result<void> addGroup(PassSetup& setup, const MaterialInfo& info, std::string fragment,
-                          const std::string& name, uint32_t textures, std::vector<size_t> draws,
-                          const std::vector<std::string>& attachments);
-    Result<void> addGroup(PassSetup& setup, const MaterialInfo& info, const std::string& vertex,
-                          ShaderRequest frag, uint32_t textures, std::vector<size_t> draws,
-                          const std::vector<std::string>& attachments);
-
+protected:
     struct Group {
-        MaterialInfo info;
+        PassMaterial info;
         std::unique_ptr<ShaderProgram> program;
         gpu::OwnedPipeline pipeline;
         std::vector<size_t> draws;
     };
 
-    // capture = true (scene_pass_capture.cpp).
-    Result<void> prepareCapture(PassSetup& setup, const std::vector<std::string>& attachments);
-    void recordCapture(RecordContext& rc);
-    // shadow = true (scene_pass_shadow.cpp).
-    Result<void> prepareShadow(PassSetup& setup);
-    void recordShadow(RecordContext& rc);
+    virtual Result<void> prepareDraws(PassSetup& setup) = 0;
+    virtual void recordDraws(RecordContext& rc) = 0;
 
-    static const VkPipelineVertexInputStateCreateInfo& vertexInput();
-    Result<void> createPipeline(PassSetup& setup, Group& g,
-                                const std::vector<std::string>& attachments);
+    // The error of a pass without the depth buffer it writes (the G-buffer pass, a capture).
+    static constexpr const char* kWritesDepth =
+        "a 'scene' pass writes a depth buffer (a d32f or d32f_s8 resource)";
+    // The colour targets the pass writes (m_colors) and its depth buffer (m_depth: the last one it
+    // writes, or with `depthRead` also one it reads); `missing` is the error without one.
+    Result<void> findAttachments(const PassDesc& desc, bool depthRead, const char* missing);
+    // The colour targets' names, as addGroup takes them.
+    std::vector<std::string> colorNames() const;
+    // The size and format of what the pass draws, from its depth buffer; returns that buffer's
+    // plan.
+    const PlanResource& sizeFromDepth(const PassSetup& setup);
 
+    void bindViewAndGeometry(RecordContext& rc) const;
+    void beginLayer(RecordContext& rc, VkImageView color, VkImageView depth,
+                    VkAttachmentStoreOp depthStore) const;
+    Result<void> addGroup(PassSetup& setup, const PassMaterial& info, std::string fragment,
+                          const std::string& name, uint32_t textures, std::vector<size_t> draws,
+                          const std::vector<std::string>& attachments);
+    Result<void> addGroup(PassSetup& setup, const PassMaterial& info, const std::string& vertex,
+                          ShaderRequest frag, uint32_t textures, std::vector<size_t> draws,
+                          const std::vector<std::string>& attachments);
+
+    // What differs between the modes' pipelines (createPipeline): how a group's pipeline blends
+    // into and writes the colour target `target` (default: as is, every channel), and its depth
+    // and stencil state (default: depth tested and written, the material's stencil class
+    // written where the depth format has a stencil).
+    virtual VkPipelineColorBlendAttachmentState colorBlend(const Group& g,
+                                                           const std::string& target) const;
+    virtual void depthStencil(GraphicsPipelineDesc& d, const Group& g) const;
+
+    std::vector<Group> m_groups;
     std::vector<Access> m_colors;
     std::optional<Access> m_depth;
     uint32_t m_width = 0, m_height = 0;
     Format m_depthFormat = Format::D32F;
-    std::vector<Group> m_groups;
-    bool m_forward = false;
-    bool m_shadow = false;
-    bool m_capture = false;  // the scene's light probes, once per build (cadence)
-public:
-    bool dueOnce(uint64_t epoch) const override { return m_cadence.dueOnce(epoch); }
-    void restoredOnce(uint64_t epoch) override { m_cadence.restored(epoch); }
 
 private:
+    static const VkPipelineVertexInputStateCreateInfo& vertexInput();
+    Result<void> createPipeline(PassSetup& setup, Group& g,
+                                const std::vector<std::string>& attachments);
+
     Cadence m_cadence;
-    bool m_lightViews = false;  // shadow: the scene's local-light views rather than the shader's
-    VkCullModeFlags m_shadowCull =
-        VK_CULL_MODE_NONE;   // shadow: params.cull for single-sided materials
-    std::string m_indirect;  // shadow: the buffer of indirect commands per layer and draw
+};
+
+// The modes that draw from the camera into the pass's colour targets and depth buffer, one
+// rendering over all their groups (scene_pass.cpp).
+class CameraScenePass : public SceneDraws {
+protected:
+    using DrawOrder = std::vector<std::pair<size_t, size_t>>;  // (group, draw)
+
+    // Begins rendering into the colour targets (cleared unless loaded) and `depth`; then the
+    // viewport and the scene's geometry.
+    void beginCamera(RecordContext& rc, const VkRenderingAttachmentInfo& depth) const;
+    // The groups' draws inside the camera's frustum, and in `distance` (by draw) each one's
+    // distanceOf(item).
+    template <typename DistanceOf>
+    DrawOrder inView(RecordContext& rc, std::vector<float>& distance, DistanceOf distanceOf) const;
+    // Draws `order`, binding a group's pipeline where it changes, and ends the rendering.
+    void drawGroups(RecordContext& rc, const DrawOrder& order);
+};
+
+// The default mode: the opaque and alpha-tested draws of each material into its G-buffer layout's
+// targets, with its stencil class (scene_pass.cpp).
+class GBufferScenePass final : public CameraScenePass {
+    Result<void> prepareDraws(PassSetup& setup) override;
+    void recordDraws(RecordContext& rc) override;
+    VkPipelineColorBlendAttachmentState colorBlend(const Group& g,
+                                                   const std::string& target) const override;
+
+    std::string m_specularTarget;  // params.lightmap_specular: the lightmap's specular, or ""
+};
+
+// forward = true: the blended draws, lit directly, over the colour target it loads, tested against
+// the depth buffer it reads (scene_pass.cpp).
+class ForwardScenePass final : public CameraScenePass {
+    Result<void> prepareDraws(PassSetup& setup) override;
+    void recordDraws(RecordContext& rc) override;
+    VkPipelineColorBlendAttachmentState colorBlend(const Group& g,
+                                                   const std::string& target) const override;
+    void depthStencil(GraphicsPipelineDesc& d, const Group& g) const override;
+};
+
+// shadow = true: depth only, each layer of the depth target from its view
+// (scene_pass_shadow.cpp).
+class ShadowScenePass final : public SceneDraws {
+    Result<void> prepareDraws(PassSetup& setup) override;
+    void recordDraws(RecordContext& rc) override;
+
+    bool m_lightViews = false;  // the scene's local-light views rather than the shader's
+    VkCullModeFlags m_shadowCull = VK_CULL_MODE_NONE;  // params.cull for single-sided materials
+    std::string m_indirect;  // the buffer of indirect commands per layer and draw
     static constexpr VkDeviceSize kIndirectCommandBytes = sizeof(VkDrawIndexedIndirectCommand);
-    uint32_t m_layers = 1;
-    uint32_t m_firstView = 0;  // shadow: params.view, the view of the target's layer 0
-    uint32_t m_viewCount = 1;  // shadow: the views the indirect buffer holds slots for
+    uint32_t m_layers = 1;     // the depth target's layers
+    uint32_t m_firstView = 0;  // params.view, the view of the target's layer 0
+    uint32_t m_viewCount = 1;  // the views the indirect buffer holds slots for
+};
+
+// capture = true: the scene's local light probes, each into six layers of the cube texture it
+// writes (scene_pass_capture.cpp).
+class CaptureScenePass final : public SceneDraws {
+    Result<void> prepareDraws(PassSetup& setup) override;
+    void recordDraws(RecordContext& rc) override;
+
+    uint32_t m_layers = 1;  // the cube texture's layers, six per probe
+};
+
+// The `scene` kind's instance: checks that the pass has a scene and one mode, then prepares and
+// records it as that mode's instance.
+class ScenePass final : public gpu::PassInstance {
+public:
+    Result<void> prepare(PassSetup& setup) override;
+    void record(RecordContext& rc) override {
+        if (m_mode) m_mode->record(rc);
+    }
+    std::vector<std::string> files() const override {
+        return m_mode ? m_mode->files() : std::vector<std::string>{};
+    }
+    bool dueOnce(uint64_t epoch) const override { return m_mode && m_mode->dueOnce(epoch); }
+    void restoredOnce(uint64_t epoch) override {
+        if (m_mode) m_mode->restoredOnce(epoch);
+    }
+
+private:
+    std::unique_ptr<SceneDraws> m_mode;
 };
 
 }  // namespace rg::passes::detail

@@ -1,5 +1,5 @@
-// The `scene` pass kind's shadow maps (shadow = true): depth only, every layer of the depth target
-// from its view, drawn directly or through a culling pass's indirect commands.
+// The `scene` pass kind's shadow maps (shadow = true, ShadowScenePass): depth only, every layer of
+// the depth target from its view, drawn directly or through a culling pass's indirect commands.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -30,7 +30,7 @@ std::string numberText(double v) {
 // pass reads); every opaque draw, both faces, with the rasteriser's depth bias. (One multiview
 // pass for all layers was tried first: llvmpipe then misplaces triangles clipped at the map's
 // edges in layer 0.)
-Result<void> ScenePass::prepareShadow(PassSetup& setup) {
+Result<void> ShadowScenePass::prepareDraws(PassSetup& setup) {
     const PassDesc& desc = setup.desc;
     for (const Access& a : desc.accesses) {
         if (a.usage == Usage::ColorAttachment)
@@ -43,11 +43,7 @@ Result<void> ScenePass::prepareShadow(PassSetup& setup) {
         return fail(ErrorCode::InvalidInput,
                     passPrefix(desc) +
                         "a shadow 'scene' pass writes a depth texture (d32f, one layer per view)");
-    const PhysicalResource* depth = setup.resources.find(m_depth->resource);
-    m_width = depth->plan->width;
-    m_height = depth->plan->height;
-    m_depthFormat = depth->plan->format;
-    m_layers = depth->plan->layers;
+    m_layers = sizeFromDepth(setup).layers;
     const Value& bias = desc.params["depth_bias"];
     if (!bias.isNil() && !(bias.isList() && bias.asList().size() == 2))
         return fail(ErrorCode::InvalidInput,
@@ -159,7 +155,7 @@ Result<void> ScenePass::prepareShadow(PassSetup& setup) {
     return {};
 }
 
-void ScenePass::recordShadow(RecordContext& rc) {
+void ShadowScenePass::recordDraws(RecordContext& rc) {
     const PhysicalResource* d = rc.resources.find(m_depth->resource);
     Group& g = m_groups.front();
     // views = "lights": the scene's shadow views this frame (GpuScene::updateFrame), each with

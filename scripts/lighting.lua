@@ -83,7 +83,7 @@ function lighting.per_class(pass, class)
 end
 function lighting.frame(ctx)
     if not ctx.scene then return end
-    for _, p in ipairs(lighting.class_passes) do ctx.pass(p.pass).enabled = (ctx.scene.classes[p.class] or 0) > 0 end
+    for _, p in ipairs(lighting.class_passes) do ctx.pass(p.pass).auto_enabled = (ctx.scene.classes[p.class] or 0) > 0 end
 end
 
 -- A lighting pass's declaration, reading the tile lists: adds `light_tiles` to its reads and

@@ -55,7 +55,7 @@ end
 -- Per frame: a scene without probes captures and filters nothing.
 function probes.frame(ctx)
     local any = not ctx.scene or ctx.scene.probes > 0
-    for _, pass in ipairs { "probe_capture", "probe_mips", "probe_prefilter" } do ctx.pass(pass).enabled = any end
+    for _, pass in ipairs { "probe_capture", "probe_mips", "probe_prefilter" } do ctx.pass(pass).auto_enabled = any end
 end
 
 return probes

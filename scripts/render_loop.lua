@@ -38,7 +38,8 @@ rg.resource "lightmap_specular" { format = "rgba16f",
     only_when = { scene = "lightmap", param = "lightmap_specular", defines = { "RG_LIGHTMAP_SPECULAR" } } }
 require("lightmap").gbuffer_writes_specular = true
 
-rg.pass "gbuffer" { kind = "scene", writes = { "GB0", "GB1", "GB2", "GB3", "lightmap_specular", "depth" } }
+rg.pass "gbuffer" { kind = "scene", writes = { "GB0", "GB1", "GB2", "GB3", "lightmap_specular", "depth" },
+    lightmap_specular = "lightmap_specular" }
 
 -- Deferred decals (seed 000 §3.3) after the fix-up: the pass reads copies of GB0..GB2 (there is no
 -- programmable blending), blends Normal/BaseColor/Smoothness (MetalMask/Reflectance on materialId
@@ -81,10 +82,10 @@ function loop.frame(ctx)
     probes.frame(ctx)   -- no local probes: nothing captured
     lighting.frame(ctx)  -- no draws of a class: its lighting pass and fix-up are off
     if ctx.scene then
-        for _, pass in ipairs(loop.decal_passes) do ctx.pass(pass).enabled = ctx.scene.decals > 0 end
+        for _, pass in ipairs(loop.decal_passes) do ctx.pass(pass).auto_enabled = ctx.scene.decals > 0 end
         -- No blended draws, no forward pass: nothing then keeps the sun's maps alive past their
         -- mask passes (scripts/shadows.lua).
-        if loop.forward_pass then ctx.pass(loop.forward_pass).enabled = ctx.scene.blended > 0 end
+        if loop.forward_pass then ctx.pass(loop.forward_pass).auto_enabled = ctx.scene.blended > 0 end
     end
 end
 

@@ -172,14 +172,14 @@ end
 function shadows.frame(ctx)
     local draw = ctx.params.sun_shadows and (not ctx.scene or ctx.scene.suns > 0)
     local half = ctx.params.sun_mask == "half" or (ctx.params.sun_mask == "auto" and ctx.height >= 720)
-    ctx.pass("sun_cull").enabled = draw
-    ctx.pass("sun_classify").enabled = draw and not half
-    ctx.pass("sun_classify_half").enabled = draw and half
+    ctx.pass("sun_cull").auto_enabled = draw
+    ctx.pass("sun_classify").auto_enabled = draw and not half
+    ctx.pass("sun_classify_half").auto_enabled = draw and half
     for i = 0, shadows.cascades - 1 do
-        ctx.pass("shadow_sun" .. i).enabled = draw
-        ctx.pass("sun_mask" .. i).enabled = draw and not half
-        ctx.pass("sun_mask_half" .. i).enabled = draw and half
-        ctx.pass("shadow_clear" .. i).enabled = not draw
+        ctx.pass("shadow_sun" .. i).auto_enabled = draw
+        ctx.pass("sun_mask" .. i).auto_enabled = draw and not half
+        ctx.pass("sun_mask_half" .. i).auto_enabled = draw and half
+        ctx.pass("shadow_clear" .. i).auto_enabled = not draw
     end
 end
 

@@ -332,6 +332,18 @@ Status validateVersions(Compiler& c) {
             lastWriter[m.resource] = static_cast<int32_t>(pi);
         }
     }
+    // An output (or a capture) whose only writers are switched off would be read back unwritten.
+    for (size_t r = 0; r < resources.size(); ++r) {
+        const ResourceDesc& res = resources[r];
+        if (!res.exported || res.imported || res.persistent || lastWriter[r] >= 0 ||
+            disabledWriter[r] < 0)
+            continue;
+        const auto writer = static_cast<uint32_t>(disabledWriter[r]);
+        return invalid(c.passError(writer, "'" + res.name +
+                                               "' is exported (an output or a capture) but not "
+                                               "written: its only writer '" +
+                                               passes[writer].name + "' is disabled"));
+    }
     for (auto& s : c.successors) {
         std::sort(s.begin(), s.end());
         s.erase(std::unique(s.begin(), s.end()), s.end());

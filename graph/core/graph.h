@@ -13,6 +13,7 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <optional>
 #include <string>
 #include <vector>
@@ -104,6 +105,26 @@ struct Access {
     std::string field;  // field path in the script ("passes.lighting.reads[3]"), for errors
 };
 
+// A pipeline material as a `scene` pass draws it (the Lua host resolves it from rg.material, its
+// layout, lighting path and stencil class: graphWithParams): what the pass needs to generate and
+// bind its shaders, typed.
+struct PassMaterial {
+    std::string name;
+    uint32_t id = 0;  // materialId written to the G-buffer
+    std::string layout;
+    std::vector<std::string> targets;  // the layout's targets, in order
+    std::vector<bool> targetInteger;   // integer-format targets take uvec4
+    std::vector<std::string> fills;    // the targets it writes; empty: all
+    std::string surface;               // GLSL file with its surface function
+    uint32_t stencilValue = 0, stencilMask = 0;
+    std::vector<std::string> custom;  // game-team parameter names, in material.custom order
+    std::string shading;              // its lighting path's shading function (forward), or ""
+    std::string fixup;                // the fix-up pass that completes its layout, or ""
+    std::string origin;               // where the material was declared
+    std::map<std::string, std::string> channels;  // standard parameter -> its layout's channel
+    bool operator==(const PassMaterial&) const = default;
+};
+
 struct PassDesc {
     std::string name;
     std::string kind;  // pass kind implemented in passes/ ("fullscreen", "compute", "clear", ...)
@@ -114,6 +135,7 @@ struct PassDesc {
     bool enabled = true;             // disabled passes are dropped before culling, with a reason
     Value params;                    // kind-specific settings (shader, defines, clear value, ...)
     std::string origin;              // "deferred.lua:40", for error messages
+    std::vector<PassMaterial> materials;  // a `scene` pass's materials (graphWithParams)
 };
 
 struct GraphDesc {

@@ -12,7 +12,8 @@ namespace rg {
 struct ParamSpec {
     std::string name;
     // "string", "number", "boolean", "table" (string keys), "list", "number|list" (a number or a
-    // list of numbers), "string|list".
+    // list of numbers), "string|list", "written" (the name of a resource the pass writes: the
+    // Lua host resolves it like the pass's accesses and refuses any other).
     std::string type;
     std::string doc;
 };

@@ -271,6 +271,7 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
                 const auto& instance = old->instances[static_cast<size_t>(o)];
                 if (od.kind == desc.kind && sameAccesses(od.accesses, desc.accesses) &&
                     resourcesKept && withoutUniforms(od.params) == withoutUniforms(desc.params) &&
+                    od.materials == desc.materials &&
                     !sourcesChanged(*instance, old->sourceStamps[static_cast<size_t>(o)])) {
                     built->instances[p] = instance;
                     built->sourceStamps[p] = old->sourceStamps[static_cast<size_t>(o)];

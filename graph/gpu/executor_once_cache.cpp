@@ -45,6 +45,27 @@ void hashValue(ContentHash& h, const Value& v) {
     }
 }
 
+// A scene pass's material, every field (a capture's cache entry depends on each).
+void hashMaterial(ContentHash& h, const PassMaterial& m) {
+    auto strings = [&](const std::vector<std::string>& list) {
+        h.u64(list.size());
+        for (const std::string& s : list) h.str(s);
+    };
+    for (const std::string* s : {&m.name, &m.layout, &m.surface, &m.shading, &m.fixup, &m.origin})
+        h.str(*s);
+    h.u64((uint64_t(m.id) << 40) | (uint64_t(m.stencilValue) << 20) | m.stencilMask);
+    strings(m.targets);
+    h.u64(m.targetInteger.size());
+    for (bool integer : m.targetInteger) h.u64(integer);
+    strings(m.fills);
+    strings(m.custom);
+    h.u64(m.channels.size());
+    for (const auto& [standard, channel] : m.channels) {
+        h.str(standard);
+        h.str(channel);
+    }
+}
+
 void hashFile(ContentHash& h, const std::string& path) {
     std::ifstream in(path, std::ios::binary);
     const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -142,6 +163,7 @@ Executor::OnceSet Executor::cacheableOncePasses(uint32_t slot) const {
         h.str(pass.name);
         h.str(desc.kind);
         hashValue(h, desc.params);
+        for (const PassMaterial& m : desc.materials) hashMaterial(h, m);
         for (const Access& a : desc.accesses) {
             h.str(a.resource);
             h.u64((uint64_t(a.usage) << 1) | uint64_t(a.load));

@@ -14,8 +14,9 @@ Result<const PhysicalResource*> Executor::exportedResource(const std::string& na
     const PhysicalResource* phys = m_built->table.find(name);
     if (!phys) {
         if (m_built->graph.findResource(name))
-            return fail(ErrorCode::InvalidInput,
-                        "resource '" + name + "' is not used by any kept pass");
+            return fail(
+                ErrorCode::InvalidInput,
+                "resource '" + name + "' is not written: no pass that runs writes or reads it");
         return fail(ErrorCode::NotFound, "no resource named '" + name + "'");
     }
     if (!phys->plan->exported && !phys->plan->imported && !phys->plan->persistent)

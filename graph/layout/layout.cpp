@@ -531,36 +531,4 @@ Result<LayoutInfo> analyzeLayout(const LayoutDesc& desc) {
     return info;
 }
 
-LayoutDesc defaultDisneyLayout() {
-    auto ch = [](const char* name, Encoding e, uint32_t bits, uint32_t components = 0) {
-        ChannelDesc c;
-        c.components = components;
-        c.name = name;
-        c.encoding = e;
-        c.bits = bits;
-        return c;
-    };
-    LayoutDesc d;
-    d.name = "disney";
-    d.targets = {
-        {"GB0",
-         Format::RGB10A2Unorm,
-         {ch("normal", Encoding::Oct, 20), ch("smoothness", Encoding::Unorm, 10),
-          ch("materialId", Encoding::Uint, 2)},
-         ""},
-        {"GB1",
-         Format::RGBA8Srgb,
-         {ch("baseColor", Encoding::Srgb, 24), ch("materialData", Encoding::Uint, 5),
-          ch("normalExtra", Encoding::Uint, 3)},
-         ""},
-        {"GB2",
-         Format::RGBA8Unorm,
-         {ch("reserved", Encoding::Unorm, 8), ch("metalMask", Encoding::Unorm, 8),
-          ch("reflectance", Encoding::Unorm, 8), ch("ao", Encoding::Unorm, 8)},
-         ""},
-        {"GB3", Format::RGBA16F, {ch("emissive", Encoding::Float, 48, 3)}, ""},
-    };
-    return d;
-}
-
 }  // namespace rg

@@ -124,13 +124,6 @@ uint32_t valueComponents(const ChannelDesc& c);
 // "origin: " of the most specific declaration that has one (channel, then target, then layout).
 Result<LayoutInfo> analyzeLayout(const LayoutDesc& desc);
 
-// Seed 000 tbl:2 as DESIGN.md §3 draws it (GB3 = rgba16f, emissive in RGB, A unused):
-//   GB0 rgb10a2    normal oct 20 | smoothness unorm 10 | materialId uint 2
-//   GB1 rgba8_srgb baseColor srgb 24 | materialData uint 5, normalExtra uint 3 (both in A)
-//   GB2 rgba8      reserved unorm 8 | metalMask unorm 8 | reflectance unorm 8 | ao unorm 8
-//   GB3 rgba16f    emissive float 48
-LayoutDesc defaultDisneyLayout();
-
 // The GLSL (#version-less, for #include) for one layout: `struct GBuffer_<name>` with one member
 // per channel (float/vecN for unorm, snorm and float; vec3 for oct = the unit normal, vec3 for
 // srgb = linear colour; uint/uvecN for uint), `void packGBuffer_<name>(GBuffer_<name> g, out vec4

@@ -106,12 +106,15 @@ Result<void> Builder::pass(const Declaration& d) {
     p.type = kind->type;
     p.origin = d.origin;
     Value::Table params;
+    std::vector<const ParamSpec*> written;  // checked against the writes below
     for (const auto& spec : kind->params) {
         if (!b.has(spec.name)) continue;
-        if (auto r = expectType(w.at(spec.name), b[spec.name], spec.type); !r) return r;
+        const bool names = spec.type == "written";
+        if (names) written.push_back(&spec);
+        if (auto r = expectType(w.at(spec.name), b[spec.name], names ? "string" : spec.type); !r)
+            return r;
         params[spec.name] = b[spec.name];
     }
-    p.params = Value(params);
     for (const char* field : {"reads", "writes"}) {
         const bool write = std::string(field) == "writes";
         const Value& list = b[field];
@@ -124,6 +127,19 @@ Result<void> Builder::pass(const Declaration& d) {
             p.accesses.push_back(*a);
         }
     }
+    for (const ParamSpec* spec : written) {
+        auto name = resolveResource(w.at(spec->name), d.module, b[spec->name].asString());
+        if (!name) return std::unexpected(name.error());
+        std::vector<std::string> writes;
+        for (const Access& a : p.accesses)
+            if (usageWrites(a.usage)) writes.push_back(a.resource);
+        if (std::find(writes.begin(), writes.end(), *name) == writes.end())
+            return w.at(spec->name)
+                .error("'" + *name + "' is not written by the pass (it writes " +
+                       joinQuoted(writes) + ")");
+        params[spec->name] = Value(*name);
+    }
+    p.params = Value(params);
     auto after = stringList(w.at("after"), b["after"]);
     if (!after) return std::unexpected(after.error());
     for (size_t i = 0; i < after->size(); ++i) {

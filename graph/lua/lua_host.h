@@ -62,12 +62,17 @@ struct ViewFacts {
 
 // What rg.frame(ctx) changed. Parameters are applied without recompiling; enabling,
 // disabling or swapping a shader is structural (the plan is recompiled incrementally).
+// `enabled` are explicit switches (ctx.pass(p).enabled = v; the runtime keeps them until switched
+// again), `automatic` what a module judges from the scene each frame (ctx.pass(p).auto_enabled:
+// the default loop's passes without work), which the runtime applies only to passes no explicit
+// switch has set (Session::frameChanges).
 struct FrameChanges {
     std::map<std::string, Value> params;
     std::map<std::string, bool> enabled;         // pass -> enabled
+    std::map<std::string, bool> automatic;       // pass -> enabled, unless switched explicitly
     std::map<std::string, std::string> shaders;  // pass -> shader path
     bool structural() const { return !enabled.empty() || !shaders.empty(); }
-    bool empty() const { return params.empty() && !structural(); }
+    bool empty() const { return params.empty() && automatic.empty() && !structural(); }
 };
 
 class LuaHost {
@@ -109,7 +114,7 @@ void applyFrameChanges(PipelineDesc& pipeline, const FrameChanges& changes);
 // The GraphDesc to build: the pipeline's graph with every parameter merged into each pass's
 // `uniforms` (a pass's own uniforms win), and the output exported.
 // Also resolves stencil = { class = "name" } to the class's ref and mask, and gives each
-// `scene` pass its materials (params.rg_materials, see sceneMaterials), and the parameters a
+// `scene` pass its materials (PassDesc::materials, see sceneMaterials), and the parameters a
 // pass names in `switches` into its defines.
 GraphDesc graphWithParams(const PipelineDesc& pipeline);
 
@@ -123,9 +128,8 @@ void resolveShaderPaths(GraphDesc& graph, const std::string& pipelineFile,
                         const std::string& projectRoot = "");
 
 // The pipeline materials a scene pass draws (params.materials / params.paths; default all that
-// have a surface), each as { name, id, layout, surface, targets, integer, fills, custom,
-// stencil_value, stencil_mask }: custom lists the numeric material params in key order, the
-// order of MaterialData.custom.
-Value sceneMaterials(const PipelineDesc& pipeline, const Value& passParams);
+// have a surface), typed: `custom` lists the numeric material params in key order, the order of
+// MaterialData.custom.
+std::vector<PassMaterial> sceneMaterials(const PipelineDesc& pipeline, const Value& passParams);
 
 }  // namespace rg

@@ -287,9 +287,13 @@ int passIndex(lua_State* L) {
     const PassDesc& p = passOf(*b.current, name);
     if (key == "name") {
         lua_pushstring(L, name.c_str());
-    } else if (key == "enabled") {
+    } else if (key == "enabled" || key == "auto_enabled") {
+        // What the pass will be: an explicit switch this frame, else an automatic one, else now.
         auto it = b.changes->enabled.find(name);
-        lua_pushboolean(L, it != b.changes->enabled.end() ? it->second : p.enabled);
+        auto automatic = b.changes->automatic.find(name);
+        lua_pushboolean(L, it != b.changes->enabled.end()            ? it->second
+                           : automatic != b.changes->automatic.end() ? automatic->second
+                                                                     : p.enabled);
     } else if (key == "shader") {
         auto it = b.changes->shaders.find(name);
         const std::string s =
@@ -299,7 +303,8 @@ int passIndex(lua_State* L) {
         lua_pushstring(L, p.kind.c_str());
     } else {
         throw ScriptError{"ctx.pass('" + name + "'): no field '" + key +
-                          "'; expected one of: 'name', 'kind', 'enabled', 'shader'"};
+                          "'; expected one of: 'name', 'kind', 'enabled', 'auto_enabled', "
+                          "'shader'"};
     }
     return 1;
 }
@@ -309,15 +314,13 @@ int passNewIndex(lua_State* L) {
     const std::string name = lua_tostring(L, lua_upvalueindex(1));
     const std::string key = stringArg(L, 2, "ctx.pass");
     const PassDesc& p = passOf(*b.current, name);
-    if (key == "enabled") {
+    if (key == "enabled" || key == "auto_enabled") {
         if (!lua_isboolean(L, 3))
-            throw ScriptError{"ctx.pass('" + name + "').enabled: expected a boolean, got " +
+            throw ScriptError{"ctx.pass('" + name + "')." + key + ": expected a boolean, got " +
                               luaL_typename(L, 3)};
-        const bool on = lua_toboolean(L, 3) != 0;
-        if (on == p.enabled)
-            b.changes->enabled.erase(name);
-        else
-            b.changes->enabled[name] = on;
+        // Recorded even when the pass is already so: an explicit switch holds from now on.
+        (key == "enabled" ? b.changes->enabled : b.changes->automatic)[name] =
+            lua_toboolean(L, 3) != 0;
     } else if (key == "shader") {
         if (!p.params.has("shader"))
             throw ScriptError{"ctx.pass('" + name + "').shader: a '" + p.kind +
@@ -332,7 +335,7 @@ int passNewIndex(lua_State* L) {
             b.changes->shaders[name] = shader;
     } else {
         throw ScriptError{"ctx.pass('" + name + "'): cannot set '" + key +
-                          "'; settable: 'enabled', 'shader'"};
+                          "'; settable: 'enabled', 'auto_enabled', 'shader'"};
     }
     return 0;
 }

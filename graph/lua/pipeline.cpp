@@ -161,8 +161,7 @@ GraphDesc graphWithParams(const PipelineDesc& pipeline) {
             t.erase("class");
             pass.params.table()["stencil"] = Value(t);
         }
-        if (pass.kind == "scene")
-            pass.params.table()["rg_materials"] = sceneMaterials(pipeline, pass.params);
+        if (pass.kind == "scene") pass.materials = sceneMaterials(pipeline, pass.params);
     }
     return g;
 }
@@ -428,7 +427,7 @@ std::string describeMaterialSystem(const PipelineDesc& p) {
     return o.str();
 }
 
-Value sceneMaterials(const PipelineDesc& pipeline, const Value& params) {
+std::vector<PassMaterial> sceneMaterials(const PipelineDesc& pipeline, const Value& params) {
     std::vector<std::string> selected, paths;
     auto names = [](const Value& v, std::vector<std::string>& out) {
         if (v.isString()) out.push_back(v.asString());
@@ -436,47 +435,40 @@ Value sceneMaterials(const PipelineDesc& pipeline, const Value& params) {
     };
     names(params["materials"], selected);
     names(params["paths"], paths);
-    Value::List out;
+    std::vector<PassMaterial> out;
     for (const MaterialDesc& m : pipeline.materials) {
         const bool chosen = (selected.empty() && paths.empty()) ||
                             std::find(selected.begin(), selected.end(), m.name) != selected.end() ||
                             std::find(paths.begin(), paths.end(), m.path) != paths.end();
         if (!chosen || m.surface.empty()) continue;
-        Value::Table t;
-        t["name"] = Value(m.name);
-        t["id"] = Value(static_cast<double>(m.id));
-        t["layout"] = Value(m.layout);
-        t["surface"] = Value(m.surface);
-        t["origin"] = Value(m.origin);
+        PassMaterial t;
+        t.name = m.name;
+        t.id = m.id;
+        t.layout = m.layout;
+        t.surface = m.surface;
+        t.origin = m.origin;
         for (const LightingPathDesc& lp : pipeline.lightingPaths)
-            if (lp.name == m.path) t["shading"] = Value(lp.shading);
-        if (!m.fixup.empty()) t["fixup"] = Value(m.fixup);
-        Value::Table channels;
-        for (const auto& [standard, channel] : m.channels) channels[standard] = Value(channel);
-        t["channels"] = Value(channels);
-        Value::List targets, integer, fills, custom;
+            if (lp.name == m.path) t.shading = lp.shading;
+        t.fixup = m.fixup;
+        t.channels = m.channels;
         for (const LayoutDesc& l : pipeline.layouts)
             if (l.name == m.layout)
                 for (const TargetDesc& target : l.targets) {
-                    targets.push_back(Value(target.name));
-                    integer.push_back(Value(formatInfo(target.format).integer));
+                    t.targets.push_back(target.name);
+                    t.targetInteger.push_back(formatInfo(target.format).integer);
                 }
-        for (const auto& f : m.fills) fills.push_back(Value(f));
+        t.fills = m.fills;
         for (const auto& [key, value] : m.params.asTable())
-            if (value.isNumber()) custom.push_back(Value(key));
-        t["targets"] = Value(targets);
-        t["integer"] = Value(integer);
-        t["fills"] = Value(fills);
-        t["custom"] = Value(custom);
+            if (value.isNumber()) t.custom.push_back(key);
         for (const auto& c : pipeline.stencilClasses)
             if (c.name == m.stencil) {
-                t["stencil_value"] = Value(static_cast<double>(c.value));
-                t["stencil_mask"] =
-                    Value(255.0);  // the whole byte: a class's value replaces whatever was under it
+                t.stencilValue = c.value;
+                t.stencilMask =
+                    255;  // the whole byte: a class's value replaces whatever was under it
             }
-        out.push_back(Value(t));
+        out.push_back(std::move(t));
     }
-    return Value(out);
+    return out;
 }
 
 }  // namespace rg

@@ -19,6 +19,7 @@
 #include "core/names.h"
 #include "passes/passes.h"
 #include "scene/environment.h"
+#include "shaders/lib/exposure_state.h"
 
 namespace fs = std::filesystem;
 
@@ -46,12 +47,12 @@ Result<AbsoluteHdr> readAbsoluteHdr(gpu::Executor& executor, const PipelineDesc&
     if (!hdr) return std::unexpected(hdr.error());
     auto state = executor.readbackBuffer(pipeline.exposure);
     if (!state) return std::unexpected(state.error());
-    float s[4] = {};
-    std::memcpy(s, state->data(), std::min<size_t>(sizeof s, state->size()));
+    RgExposureState s{};
+    std::memcpy(&s, state->data(), std::min<size_t>(sizeof s, state->size()));
     AbsoluteHdr out;
-    out.ev100 = s[0];
-    out.exposure = s[1];
-    out.preExposure = s[2] > 0 ? s[2] : 1.0f;
+    out.ev100 = s.ev100;
+    out.exposure = s.exposure;
+    out.preExposure = s.preExposure > 0 ? s.preExposure : 1.0f;
     out.image = std::move(*hdr);
     for (size_t i = 0; i < out.image.pixels.size(); ++i)
         if (i % out.image.channels < 3) out.image.pixels[i] /= out.preExposure;
@@ -326,8 +327,10 @@ Result<void> Session::load(const std::string& file) {
     auto tc = Clock::now();
     std::map<std::string, uint32_t> classes =
         scene ? drawsPerClass(*scene, *pipeline) : std::map<std::string, uint32_t>{};
+    // A new script's switches start afresh (a line removed from rg.frame takes its switch away).
+    std::map<std::string, bool> switches;
     auto first = frameChanges(*host, frameContext(scene ? scene.get() : nullptr, classes),
-                              *pipeline, overrides);
+                              *pipeline, overrides, switches);
     if (!first) return std::unexpected(first.error());
     const double firstCallbackMs = msSince(tc);
     applyFrameChanges(*pipeline, *first);
@@ -370,6 +373,7 @@ Result<void> Session::load(const std::string& file) {
     m_host = std::move(host);
     m_pipeline = std::move(*pipeline);
     m_overrides = std::move(overrides);
+    m_switches = std::move(switches);
     m_rebuilds = 0;
     ++m_loads;
     m_framePrepared = m_frame;
@@ -406,29 +410,35 @@ FrameContext Session::frameContext(const passes::GpuScene* scene,
 
 Result<FrameChanges> Session::frameChanges(LuaHost& host, const FrameContext& ctx,
                                            const PipelineDesc& pipeline,
-                                           const FrameChanges& overrides) {
+                                           const FrameChanges& overrides,
+                                           std::map<std::string, bool>& switches) {
     auto changes = host.frame(ctx, pipeline);
-    if (changes && (m_options.frameHook || !overrides.empty())) {
+    if (!changes) return changes;
+    if (m_options.frameHook) {
         PipelineDesc seen = pipeline;
         applyFrameChanges(seen, *changes);
-        auto more = m_options.frameHook ? m_options.frameHook(ctx, seen)
-                                        : Result<FrameChanges>(FrameChanges{});
+        auto more = m_options.frameHook(ctx, seen);
         if (!more) return std::unexpected(more.error());
-        for (const auto& [k, v] : overrides.params) more->params[k] = v;
-        for (const auto& [k, v] : overrides.enabled) more->enabled[k] = v;
         for (const auto& [k, v] : more->params) changes->params[k] = v;
         for (const auto& [k, v] : more->enabled) changes->enabled[k] = v;
+        for (const auto& [k, v] : more->automatic) changes->automatic[k] = v;
         for (const auto& [k, v] : more->shaders) changes->shaders[k] = v;
-        // A pass the two callbacks leave as it was is no change (no rebuild).
-        std::erase_if(changes->enabled, [&](const auto& e) {
-            const PassDesc* p = pipeline.graph.findPass(e.first);
-            return p && p->enabled == e.second;
-        });
-        std::erase_if(changes->shaders, [&](const auto& e) {
-            const PassDesc* p = pipeline.graph.findPass(e.first);
-            return p && p->params["shader"].asString() == e.second;
-        });
     }
+    for (const auto& [k, v] : changes->enabled) switches[k] = v;
+    for (const auto& [k, v] : switches) changes->enabled.emplace(k, v);  // earlier frames'
+    for (const auto& [k, v] : overrides.params) changes->params[k] = v;
+    for (const auto& [k, v] : overrides.enabled) changes->enabled[k] = v;
+    for (const auto& [k, v] : changes->automatic) changes->enabled.emplace(k, v);
+    changes->automatic.clear();
+    // A pass left as it is is no change (no rebuild).
+    std::erase_if(changes->enabled, [&](const auto& e) {
+        const PassDesc* p = pipeline.graph.findPass(e.first);
+        return p && p->enabled == e.second;
+    });
+    std::erase_if(changes->shaders, [&](const auto& e) {
+        const PassDesc* p = pipeline.graph.findPass(e.first);
+        return p && p->params["shader"].asString() == e.second;
+    });
     return changes;
 }
 
@@ -436,13 +446,14 @@ Result<void> Session::frame(VkCommandBuffer hostCmd) {
     if (!m_host) return fail(ErrorCode::InvalidInput, "no pipeline loaded");
     auto t0 = Clock::now();
     Result<FrameChanges> changes = FrameChanges{};
+    std::map<std::string, bool> switches = m_switches;
     if (m_framePrepared == m_frame) {
         // The load ran this frame's rg.frame already and built its plan with what it changed;
         // overrides set since were applied when they were set (setOverride, setPassOverride).
         m_framePrepared.reset();
     } else {
-        changes =
-            frameChanges(*m_host, frameContext(m_scene.get(), m_classes), m_pipeline, m_overrides);
+        changes = frameChanges(*m_host, frameContext(m_scene.get(), m_classes), m_pipeline,
+                               m_overrides, switches);
         m_callbackMs = msSince(t0);
     }
     // A parameter restated at the value it has (rg.frame and the overrides restate theirs every
@@ -458,6 +469,7 @@ Result<void> Session::frame(VkCommandBuffer hostCmd) {
     Result<void> applied = !changes           ? Result<void>(std::unexpected(changes.error()))
                            : changes->empty() ? Result<void>{}
                                               : apply(*changes);
+    if (applied) m_switches = std::move(switches);
     if (!applied && changes) {
         Error e = applied.error();
         e.message = "frame " + std::to_string(m_frame) + ": rg.frame's changes (" +

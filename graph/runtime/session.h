@@ -126,8 +126,14 @@ private:
     // rg.frame, the frame hook and the overrides change for it in `pipeline`.
     FrameContext frameContext(const passes::GpuScene* scene,
                               const std::map<std::string, uint32_t>& classes) const;
+    // One rule for pass switches: the overrides (the library, the live page) win, then the
+    // explicit switches of rg.frame and the frame hook — kept in `switches` until switched again,
+    // so a script switches a pass once — then the automatic ones (auto_enabled), only for passes
+    // neither has set. `switches` gets this frame's explicit switches (the caller keeps it when
+    // the changes are applied).
     Result<FrameChanges> frameChanges(LuaHost& host, const FrameContext& ctx,
-                                      const PipelineDesc& pipeline, const FrameChanges& overrides);
+                                      const PipelineDesc& pipeline, const FrameChanges& overrides,
+                                      std::map<std::string, bool>& switches);
     Result<std::unique_ptr<passes::GpuScene>> loadScene(PipelineDesc& pipeline);
     // `changes` on top of the running pipeline: updated uniforms, or a rebuild of the passes they
     // touch. A build that fails leaves the pipeline and the executor's plan as they were.
@@ -155,6 +161,8 @@ private:
     std::vector<std::string> m_log;
     std::vector<ChannelCapture> m_channels;
     FrameChanges m_overrides;
+    std::map<std::string, bool>
+        m_switches;  // rg.frame's explicit pass switches, kept (frameChanges)
     // Each pass's shader as last resolved to a file ("origin\npass\nname" -> path): what a pass
     // keeps while the file is missing (buildableGraph).
     std::map<std::string, std::string> m_shaderPaths;
@@ -171,7 +179,8 @@ void useLayoutHeaders(Runtime& runtime, const std::string& dir);
 
 // The pipeline's HDR output as absolute luminance (cd/m²): read back and divided by the
 // pre-exposure it was rendered with (rg.output's `hdr` and `exposure`; colour channels only), with
-// the exposure state beside it (post.lua's RgExposureState: EV100, exposure, pre-exposure).
+// the exposure state beside it (RgExposureState, shaders/lib/exposure_state.h: EV100, exposure,
+// pre-exposure).
 struct AbsoluteHdr {
     Image image;
     float ev100 = 0.0f, exposure = 0.0f, preExposure = 1.0f;

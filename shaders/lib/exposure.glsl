@@ -8,12 +8,7 @@
 
 #include "lib/photometry.glsl"
 
-struct RgExposureState {
-    float ev100;        // EV100 metered (auto) or set (manual) at the end of the last frame
-    float exposure;     // rgExposureFromEv100(ev100): the next frame's pre-exposure
-    float preExposure;  // the pre-exposure this frame's HDR was rendered with
-    float initialized;  // 0 until the first update
-};
+#include "lib/exposure_state.h"  // struct RgExposureState, shared with the C++ core
 
 // The pre-exposure to render this frame's HDR with; before the first update, that of the
 // pipeline's initial EV100 (the camera's settings).

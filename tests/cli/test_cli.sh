@@ -123,6 +123,20 @@ check "view shadow:LIGHT names the shadowed lights" 2 grep "--view shadow:sun: t
 for v in cascades shadow ssao ssr ssr_confidence; do
     check "view $v" 0 grep "wrote $tmp/$v.exr" -- env RG_VALIDATION=1 "$rgraph" render --view $v --size 64x32 --out "$tmp/$v.exr" --png "$tmp/$v.png"
 done
+# Switching off the only writer of the output in rg.frame stops at that frame, naming the pass.
+cat >"$tmp/switch_output.lua" <<'LUA'
+local rg = require "rg"
+rg.resource "pattern" { format = "rgba16f" }
+rg.resource "final" { format = "rgba16f" }
+rg.pass "generate" { kind = "compute", shader = "test/pattern.comp", writes = { "pattern" } }
+rg.pass "show" { kind = "fullscreen", shader = "test/transform.frag", reads = { "pattern" }, writes = { "final" } }
+rg.output "final"
+function rg.frame(ctx)
+    if ctx.frame == 1 then ctx.pass("show").enabled = false end
+end
+LUA
+check "switching off the output's only writer" 2 grep "'final' is exported (an output or a capture) but not written: its only writer 'show' is disabled" -- \
+    "$rgraph" render --pipeline "$tmp/switch_output.lua" --frames 3 --size 32x16 --out "$tmp/so.exr"
 cat >"$tmp/unshadowed.lua" <<'LUA'
 local rg = require "rg"
 require "disney"

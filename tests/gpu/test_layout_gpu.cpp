@@ -410,6 +410,7 @@ void report(const LayoutInfo& info, const Comparison& c) {
 }
 
 using rg::test::ch;  // tests/unit/layout_test_util.h
+using rg::test::defaultDisneyLayout;
 
 // ---------------------------------------------------------------------------------------------
 

@@ -77,6 +77,14 @@ TEST(LuaErrors, SwitchesNameParametersAndDefines) {
     EXPECT_FALSE(isSwitch(*p, "other"));
 }
 
+// A pass parameter that names a resource the pass writes (the scene pass's lightmap_specular).
+TEST(LuaErrors, AWrittenParameterNamesOneOfThePasssWrites) {
+    EXPECT_EQ(loadError("written_not.lua"),
+              kScripts +
+                  "written_not.lua:10: passes.gbuffer.lightmap_specular: 'spec' is not written by "
+                  "the pass (it writes 'GB0', 'GB1', 'GB2', 'GB3', 'depth')");
+}
+
 TEST(LuaErrors, WrongType) {
     EXPECT_EQ(
         loadError("wrong_type.lua"),

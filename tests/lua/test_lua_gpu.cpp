@@ -477,6 +477,47 @@ TEST_F(LuaGpu, OverridesSetAfterTheLoadHoldFromTheFirstFrame) {
     EXPECT_DOUBLE_EQ(s.pipeline().findParam("scale")->value.asNumber(0), 3.0);
 }
 
+// One rule for pass switches: a script's explicit switch holds until switched again, against the
+// default loop's automatic ones (auto_enabled: a class with draws gets its lighting pass), which
+// still decide every pass nobody switched; the library's overrides win over both.
+TEST_F(LuaGpu, ExplicitSwitchesHoldAgainstTheAutomaticOnes) {
+    const std::string file = std::string(RG_TEST_TMP) + "/explicit_switch.lua";
+    std::ofstream(file) << "require \"pipelines.deferred\"\n"
+                           "local loop = rg.frame\n"
+                           "function rg.frame(ctx)\n"
+                           "    loop(ctx)\n"
+                           "    if ctx.frame == 0 then ctx.pass(\"lighting_clearcoat\").enabled = "
+                           "false end\n"
+                           "end\n";
+    SessionOptions o = small();
+    o.scene = std::string(RG_SOURCE_ROOT) + "/tests/gpu/scenes/materials.lua";
+    Session s(*s_runtime, o);
+    ASSERT_TRUE(s.load(file).has_value());
+    auto enabled = [&](const std::string& pass) {
+        return s.pipeline().graph.findPass(pass)->enabled;
+    };
+    for (int f = 0; f < 3; ++f) {
+        ASSERT_TRUE(s.frame().has_value());
+        // The scene draws clear coat, so the loop would switch it on every frame.
+        EXPECT_FALSE(enabled("lighting_clearcoat")) << "frame " << f;
+        // Automatic switches still decide what nobody switched: the scene has decals, a
+        // blended pane and no local probes.
+        EXPECT_TRUE(enabled("decals")) << "frame " << f;
+        EXPECT_TRUE(enabled("forward")) << "frame " << f;
+        EXPECT_FALSE(enabled("probe_capture")) << "frame " << f;
+    }
+    ASSERT_TRUE(s.setPassOverride("lighting_clearcoat", true).has_value());
+    for (int f = 0; f < 2; ++f) {
+        ASSERT_TRUE(s.frame().has_value());
+        EXPECT_TRUE(enabled("lighting_clearcoat")) << "frame " << f;
+    }
+    // A reload starts the script's switches afresh: frame 0 switches it off again, and the
+    // override, which the reload keeps, switches it on.
+    ASSERT_TRUE(s.load(file).has_value());
+    ASSERT_TRUE(s.frame().has_value());
+    EXPECT_TRUE(enabled("lighting_clearcoat"));
+}
+
 // rg.frame runs once a frame, the first at the load: a script counting its calls sees one per frame.
 TEST_F(LuaGpu, FrameCallbackRunsOncePerFrame) {
     const std::string file = patternScript("count_frames.lua",

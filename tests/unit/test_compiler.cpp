@@ -84,6 +84,24 @@ TEST(CompilerCull, DisabledPassIsCulledAndReadingItsOnlyOutputIsAnError) {
               "pass 'tonemap' reads 'bloom', but its only writer 'bloom' is disabled");
 }
 
+// An output whose only writer is switched off is refused when it is switched off, naming the
+// writer, rather than read back unwritten after the frame.
+TEST(CompilerCull, AnOutputWhoseOnlyWriterIsDisabledIsAnError) {
+    GraphDesc g;
+    g.resources = {texture("pattern", Format::RGBA16F),
+                   exported(texture("final", Format::RGBA16F))};
+    g.passes = {compute("generate", {storageWrite("pattern")}),
+                raster("show", {sampled("pattern"), color("final")})};
+    compileOk(g);
+    g.passes[1].enabled = false;
+    EXPECT_EQ(compileError(g),
+              "'final' is exported (an output or a capture) but not written: its only writer "
+              "'show' is disabled");
+    // Another writer that runs keeps it written.
+    g.passes.push_back(raster("fallback", {color("final")}));
+    compileOk(g);
+}
+
 TEST(CompilerCull, WritingAnImportedResourceIsARoot) {
     GraphDesc g;
     g.resources = {imported(texture("swapchain"))};
