@@ -21,10 +21,6 @@ rg.material "clear_coat" {
 }
 
 -- Lights the clear-coat pixels right after the standard ones (the low 3 stencil bits name the path).
-rg.pass "lighting_clearcoat" (reflections.lit(ssr.lit(shadows.masked(ao.lit(probes.lit(ibl.lit(lighting.tiled {
-    kind = "fullscreen", shader = "materials/clearcoat_lighting.frag",
-    reads = { "GB0", "GB1", "GB2", "GB3", "depth", { "depth", as = "depth" }, { "exposure", as = "storage" } },
-    writes = { { "hdr", load = true } }, stencil = { class = "lit_clearcoat" },
-    insert = { after = "lighting_standard" },
-})))))))
+rg.pass "lighting_clearcoat" (reflections.lit(ssr.lit(shadows.masked(ao.lit(probes.lit(ibl.lit(
+    lighting.path_pass { path = "clearcoat", class = "lit_clearcoat" })))))))
 lighting.per_class("lighting_clearcoat", "lit_clearcoat")  -- off while the scene has no clear coat

@@ -33,10 +33,6 @@ rg.material "two_colour" {
     doc = "two-colour base material, seed 000 tbl:3",
 }
 
-rg.pass "lighting_two_colour" (reflections.lit(shadows.masked(ao.lit(ibl.lit(lighting.tiled {
-    kind = "fullscreen", shader = "materials/two_colour_lighting.frag",
-    reads = { "GB0", "GB1", "GB2", "GB3", "depth", { "depth", as = "depth" }, { "exposure", as = "storage" } },
-    writes = { { "hdr", load = true } }, stencil = { class = "lit_two_colour" },
-    insert = { after = "lighting_standard" },
-})))))
+rg.pass "lighting_two_colour" (reflections.lit(shadows.masked(ao.lit(ibl.lit(
+    lighting.path_pass { path = "two_colour", class = "lit_two_colour" })))))
 lighting.per_class("lighting_two_colour", "lit_two_colour")  -- off while the scene has no two-colour material

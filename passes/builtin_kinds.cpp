@@ -175,15 +175,11 @@ public:
     void record(RecordContext& rc) override {
         std::vector<VkRenderingAttachmentInfo> colors;
         for (const Access& a : m_colors) {
-            const PhysicalResource* r = rc.resources.find(a.resource);
-            VkRenderingAttachmentInfo ai{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-            ai.imageView = r->image->attachmentView();
-            ai.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-            ai.loadOp = a.load               ? VK_ATTACHMENT_LOAD_OP_LOAD
-                        : m_writesEveryPixel ? VK_ATTACHMENT_LOAD_OP_DONT_CARE
-                                             : VK_ATTACHMENT_LOAD_OP_CLEAR;
-            ai.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-            ai.clearValue.color = clearColorFor(r->plan->format, rc.desc.params["clear"]);
+            VkRenderingAttachmentInfo ai = colorAttachment(
+                rc, a,
+                m_writesEveryPixel ? VK_ATTACHMENT_LOAD_OP_DONT_CARE : VK_ATTACHMENT_LOAD_OP_CLEAR);
+            ai.clearValue.color =
+                clearColorFor(rc.resources.find(a.resource)->plan->format, rc.desc.params["clear"]);
             colors.push_back(ai);
         }
         VkRenderingAttachmentInfo depth{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};

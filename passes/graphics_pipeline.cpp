@@ -21,6 +21,16 @@ VkPipelineColorBlendAttachmentState blendState(const std::string& mode,
     return b;
 }
 
+VkRenderingAttachmentInfo colorAttachment(const gpu::RecordContext& rc, const Access& a,
+                                          VkAttachmentLoadOp notLoaded) {
+    VkRenderingAttachmentInfo ai{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
+    ai.imageView = rc.resources.find(a.resource)->image->attachmentView();
+    ai.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    ai.loadOp = a.load ? VK_ATTACHMENT_LOAD_OP_LOAD : notLoaded;
+    ai.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    return ai;
+}
+
 Result<gpu::OwnedPipeline> createGraphicsPipeline(gpu::Context& ctx,
                                                   const GraphicsPipelineDesc& desc) {
     VkDevice device = ctx.device();

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "gpu/context.h"
+#include "gpu/pass_kind.h"
 #include "gpu/vk.h"
 #include "shader_program.h"
 
@@ -37,5 +38,10 @@ VkPipelineColorBlendAttachmentState blendState(const std::string& mode,
 
 Result<gpu::OwnedPipeline> createGraphicsPipeline(
     gpu::Context& ctx, const GraphicsPipelineDesc& desc);  // through ctx's pipeline cache
+
+// The colour attachment of access `a` for vkCmdBeginRendering: its image, stored; loaded when the
+// access loads, else `notLoaded` (cleared, or don't-care where every pixel is written).
+VkRenderingAttachmentInfo colorAttachment(const gpu::RecordContext& rc, const Access& a,
+                                          VkAttachmentLoadOp notLoaded);
 
 }  // namespace rg::passes

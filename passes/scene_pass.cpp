@@ -230,15 +230,8 @@ void SceneDraws::depthStencil(GraphicsPipelineDesc& d, const Group& g) const {
 
 void CameraScenePass::beginCamera(RecordContext& rc, const VkRenderingAttachmentInfo& depth) const {
     std::vector<VkRenderingAttachmentInfo> colors;
-    for (const Access& a : m_colors) {
-        const PhysicalResource* r = rc.resources.find(a.resource);
-        VkRenderingAttachmentInfo ai{VK_STRUCTURE_TYPE_RENDERING_ATTACHMENT_INFO};
-        ai.imageView = r->image->attachmentView();
-        ai.imageLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
-        ai.loadOp = a.load ? VK_ATTACHMENT_LOAD_OP_LOAD : VK_ATTACHMENT_LOAD_OP_CLEAR;
-        ai.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
-        colors.push_back(ai);
-    }
+    for (const Access& a : m_colors)
+        colors.push_back(colorAttachment(rc, a, VK_ATTACHMENT_LOAD_OP_CLEAR));
     VkRenderingInfo ri{VK_STRUCTURE_TYPE_RENDERING_INFO};
     ri.renderArea = {{0, 0}, {m_width, m_height}};
     ri.layerCount = 1;

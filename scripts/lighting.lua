@@ -92,4 +92,28 @@ function lighting.tiled(pass)
     return lighting.extend(pass, { { "light_tiles", as = "storage" } }, "RG_LIGHT_TILES")
 end
 
+-- The deferred lighting pass of a lighting path that has a shading function, as a declaration to
+-- give rg.pass: rgraph generates its shader, `lighting_path_<PATH>.frag` (the path's layout
+-- unpacked from the G-buffer, shaded by the path's rgShade at the pixel's world position, written
+-- pre-exposed), so a material package writes no lighting shader and no binding. The pass reads
+-- the G-buffer (`targets`, default GB0..GB3), depth, the exposure state and the tile lists, adds
+-- to `hdr` on the pixels of the stencil class `class`, after `lighting_standard` unless `insert`
+-- says otherwise; wrap it in the light it gathers (ibl.lit, shadows.masked, ao.lit, ...):
+--
+--   rg.pass "lighting_toon" (ao.lit(shadows.masked(ibl.lit(lighting.path_pass { path = "toon", class = "lit_toon" }))))
+--   lighting.per_class("lighting_toon", "lit_toon")  -- off while the scene draws no toon
+function lighting.path_pass(o)
+    if type(o) ~= "table" or type(o.path) ~= "string" or type(o.class) ~= "string" then
+        error("lighting.path_pass: expected { path = \"PATH\", class = \"STENCIL_CLASS\" }", 2)
+    end
+    local reads = {}
+    for _, t in ipairs(o.targets or { "GB0", "GB1", "GB2", "GB3" }) do reads[#reads + 1] = t end
+    for _, r in ipairs { "depth", { "depth", as = "depth" }, { "exposure", as = "storage" } } do reads[#reads + 1] = r end
+    return lighting.tiled {
+        kind = "fullscreen", shader = "lighting_path_" .. o.path .. ".frag",
+        reads = reads, writes = { { "hdr", load = true } }, stencil = { class = o.class },
+        insert = o.insert or { after = "lighting_standard" },
+    }
+end
+
 return lighting

@@ -112,6 +112,15 @@ struct PipelineDesc {
 // only those (an error names the layout and target otherwise).
 Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline);
 
+// The deferred lighting shader of every lighting path that has a shading function and a material
+// (file name "lighting_path_<path>.frag", GLSL text), for the generated folder: the pixel's
+// G-buffer of the path's layout unpacked, shaded by the path's rgShade at its world position, and
+// written pre-exposed — the pass scripts/lighting.lua's lighting.path_pass declares. It binds by
+// name: the layout's targets, `depth` (sampled), `exposure` (RgExposureState) and the `Params`
+// block's initial_ev100; a pass that calls them otherwise maps them with `bind`.
+std::vector<std::pair<std::string, std::string>> generateLightingShaders(
+    const PipelineDesc& pipeline);
+
 // The material system in words (`rgraph graph --format materials`): the materialIds with the
 // materials that share each and their layout and decal parameters, the stencil classes with
 // their values, masks and lighting paths, and what is left free.

@@ -182,6 +182,12 @@ Result<std::string> writeLayoutHeaders(const PipelineDesc& pipeline) {
     if (!dispatch) return std::unexpected(dispatch.error());
     headers.emplace_back("gbuffer_pipeline.glsl", *dispatch);
     hash.str(*dispatch);
+    // Each lighting path's deferred pass (lighting.path_pass).
+    for (auto& [fileName, glsl] : generateLightingShaders(pipeline)) {
+        hash.str(fileName);
+        hash.str(glsl);
+        headers.emplace_back(std::move(fileName), std::move(glsl));
+    }
     const fs::path dir = fs::path(generatedShaderDir()) / hash.hex();
     std::error_code ec;
     fs::create_directories(dir, ec);

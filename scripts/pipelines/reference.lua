@@ -37,7 +37,7 @@ rg.resource "reference_accum" { format = "rgba32f", persistent = true }
 
 -- Instead of deferred.lua's lighting passes: every pixel with geometry (depth < 1), whatever its
 -- stencil class, is integrated here — the standard BRDF, plus the coat lobe of materialId 1
--- (materials/clearcoat_lighting.frag's BRDF per direction), and the two-colour material's diffuse
+-- (materials/clearcoat_shading.glsl's BRDF per direction), and the two-colour material's diffuse
 -- and f0 colours (materials/two_colour.lua); the far plane gets 0. The pass keeps the name of the
 -- standard lighting pass it replaces: materials/clearcoat.lua and two_colour.lua insert their
 -- lighting passes after it, and rg.frame below turns those real-time passes off.

@@ -1,5 +1,6 @@
 // G-buffer layouts from scripts: every layout a shipped pipeline or a README example declares
-// packs and unpacks within its encoding's bound. No GPU.
+// packs and unpacks within its encoding's bound, and the deferred shaders generated per lighting
+// path over them. No GPU.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -113,6 +114,51 @@ TEST(LuaLayouts, EveryDeclaredLayoutRoundTrips) {
         }
     }
     EXPECT_GE(layouts, 3u);  // disney (deferred.lua, the README) and the README's compact layout
+}
+
+}  // namespace
+
+namespace {
+
+// A lighting path with a shading function and a material gets its deferred pass's shader
+// generated (lighting.path_pass declares the pass): its layout unpacked from every target, by
+// name, then the path's rgShade; a path without a material gets none.
+TEST(LuaLayouts, EveryShadedPathGetsItsDeferredShader) {
+    LuaHost host(luaHostOptionsWithoutDevice());
+    auto p = host.load(std::string(RG_SOURCE_ROOT) + "/materials/examples/toon/pipeline.lua");
+    ASSERT_TRUE(p.has_value()) << p.error().describe();
+    const auto shaders = generateLightingShaders(*p);
+    std::vector<std::string> names;
+    for (const auto& [name, text] : shaders) names.push_back(name);
+    EXPECT_EQ(names, (std::vector<std::string>{
+                         "lighting_path_standard.frag", "lighting_path_clearcoat.frag",
+                         "lighting_path_two_colour.frag", "lighting_path_toon.frag"}));
+    const std::string& toon = shaders.back().second;
+    for (const char* part :
+         {"#include \"gbuffer_toon.glsl\"", "toon/toon_shading.glsl\"", "uniform sampler2D GB3;",
+          "uniform sampler2D depth;", "readonly buffer exposure { RgExposureState state; } ex;",
+          "unpackGBuffer_toon(texelFetch(GB0, p, 0), texelFetch(GB1, p, 0), texelFetch(GB2, p, 0), "
+          "texelFetch(GB3, p, 0))",
+          "rgShade(g, position, rgViewDirection(position), p)"})
+        EXPECT_NE(toon.find(part), std::string::npos) << part << "\n" << toon;
+    // Without its material the toon path has nothing to decode: no shader.
+    p->materials.pop_back();
+    EXPECT_EQ(generateLightingShaders(*p).size(), 3u);
+}
+
+// lighting.path_pass names its path and class, or stops at the caller's line.
+TEST(LuaLayouts, APathPassNamesItsPathAndClass) {
+    const std::string file = std::string(RG_TEST_TMP) + "/path_pass_no_class.lua";
+    std::ofstream(file) << "require \"pipelines.deferred\"\n"
+                           "local lighting = require \"lighting\"\n"
+                           "rg.pass \"lighting_x\" (lighting.path_pass { path = \"standard\" })\n";
+    LuaHost host(luaHostOptionsWithoutDevice());
+    auto p = host.load(file);
+    ASSERT_FALSE(p.has_value());
+    EXPECT_EQ(
+        firstLine(p.error()),
+        fs::relative(file, RG_SOURCE_ROOT).string() +
+            ":3: lighting.path_pass: expected { path = \"PATH\", class = \"STENCIL_CLASS\" }");
 }
 
 }  // namespace

@@ -31,10 +31,6 @@ rg.material "toon" {
     doc = "cel-shaded: N·L wrapped and cut into toonBands bands",
 }
 
-rg.pass "lighting_toon" (ao.lit(shadows.masked(ibl.lit(lighting.tiled {
-    kind = "fullscreen", shader = "toon_lighting.frag",
-    reads = { "GB0", "GB1", "GB2", "GB3", "depth", { "depth", as = "depth" }, { "exposure", as = "storage" } },
-    writes = { { "hdr", load = true } }, stencil = { class = "lit_toon" },
-    insert = { after = "lighting_standard" },
-}))))
+-- Its deferred lighting: rgraph generates the pass's shader from the path's shading function.
+rg.pass "lighting_toon" (ao.lit(shadows.masked(ibl.lit(lighting.path_pass { path = "toon", class = "lit_toon" }))))
 lighting.per_class("lighting_toon", "lit_toon")  -- off while the scene has no toon material
