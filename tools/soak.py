@@ -89,8 +89,8 @@ class Server:
             return r.status, r.read()
         except ConnectionRefusedError:
             return "refused", b""
-        except (http.client.RemoteDisconnected, ConnectionResetError, BrokenPipeError):
-            return None, b""
+        except (http.client.RemoteDisconnected, ConnectionResetError, BrokenPipeError) as e:
+            return None, type(e).__name__.encode()
         except OSError as e:  # a timeout: no answer either
             return None, str(e).encode()
         finally:
@@ -195,7 +195,8 @@ def main():
             statuses[status] = statuses.get(status, 0) + 1
             latencies.setdefault(endpoint, []).append(seconds)
             if status is None:
-                problems.append(("no answer", what))
+                when = " (after SIGTERM)" if stopping.is_set() else ""
+                problems.append(("no answer", what + ": " + body[:200].decode(errors="replace") + when))
             elif status == "refused":
                 if not stopping.is_set():
                     problems.append(("connection refused", what))

@@ -72,7 +72,9 @@ struct Device {
     }
 };
 
-// The scene, in code: a floor, three spheres of the standard material, a sun and a lamp.
+// The scene, in code: a floor, three spheres of the standard material, a sun, a warm lamp and a
+// decal. (Material::baseColorMap and the other maps take texture files; Light::ies a profile;
+// Renderer::loadSceneSource a whole Lua scene.)
 rgraph::Scene makeScene() {
     rgraph::Scene s;
     rgraph::Material floor{"floor"};
@@ -103,8 +105,17 @@ rgraph::Scene makeScene() {
     s.lights.push_back(sun);
     rgraph::Light lamp;
     lamp.position[1] = 1.5f, lamp.position[2] = 1.0f;
-    lamp.intensity = 1600.0f;  // lumens
+    lamp.intensity = 1600.0f;    // lumens
+    lamp.temperature = 2700.0f;  // kelvin: a warm incandescent
     s.lights.push_back(lamp);
+    // A decal on the floor in front of the balls: blue, glossy (what it leaves negative stays).
+    rgraph::Decal puddle{"puddle"};
+    puddle.transform[0] = 1.6f, puddle.transform[5] = 0.2f, puddle.transform[10] = 0.8f;
+    puddle.transform[14] = 1.0f;
+    puddle.baseColor[0] = 0.05f, puddle.baseColor[1] = 0.1f, puddle.baseColor[2] = 0.4f;
+    puddle.smoothness = 0.95f;
+    puddle.opacity = 0.7f;
+    s.decals.push_back(puddle);
     s.camera.position[1] = 1.2f, s.camera.position[2] = 3.6f;
     s.camera.target[1] = 0.45f;
     return s;

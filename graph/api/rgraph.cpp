@@ -12,10 +12,12 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/type_ptr.hpp>
 
+#include "core/light_units.h"
 #include "runtime/runtime.h"
 #include "runtime/session.h"
 #include "image/image.h"
 #include "scene/scene.h"
+#include "scene/scene_detail.h"
 
 namespace rgraph {
 
@@ -57,6 +59,24 @@ Mesh fromPrimitive(const std::string& name, const rg::Primitive& p) {
 
 glm::vec3 vec3(const float* v) { return {v[0], v[1], v[2]}; }
 
+// A material's texture file, decoded once per file and encoding: its index in scene.images.
+int32_t textureFile(rg::Scene& s, const std::string& where, const std::string& file, bool srgb) {
+    const std::string path = fs::absolute(file).lexically_normal().string();
+    for (size_t i = 0; i < s.images.size(); ++i)
+        if (s.images[i].name == path && s.images[i].srgb == srgb) return static_cast<int32_t>(i);
+    auto bytes = rg::scene_detail::readFile(path);
+    if (!bytes) throw Error(where + ": " + bytes.error().message);
+    auto image = rg::scene_detail::decodeImage(bytes->data(), bytes->size());
+    if (!image) throw Error(where + ": cannot decode '" + path + "': " + image.error().message);
+    rg::SceneImage si;
+    si.name = path;
+    si.pixels = std::move(*image);
+    si.srgb = srgb;
+    rg::generateMips(si);
+    s.images.push_back(std::move(si));
+    return static_cast<int32_t>(s.images.size() - 1);
+}
+
 // The host's scene as rgraph's: meshes with tangents generated, materials by name, lights in
 // the units they say, the camera; checked as a Lua scene's fields are.
 rg::Scene toScene(const Scene& in) {
@@ -75,7 +95,26 @@ rg::Scene toScene(const Scene& in) {
         r.ao = m.ao;
         r.emissive = vec3(m.emissive);
         r.opacity = m.opacity;
-        r.alphaMode = m.blended ? rg::AlphaMode::Blend : rg::AlphaMode::Opaque;
+        r.alphaMode = m.alpha == Material::Alpha::Blend  ? rg::AlphaMode::Blend
+                      : m.alpha == Material::Alpha::Mask ? rg::AlphaMode::Mask
+                                                         : rg::AlphaMode::Opaque;
+        if (!(m.alphaCutoff >= 0.0f && m.alphaCutoff <= 1.0f))
+            throw Error("scene material '" + m.name + "': alphaCutoff must be in [0, 1]");
+        r.alphaCutoff = m.alphaCutoff;
+        r.doubleSided = m.doubleSided;
+        const std::pair<const std::string*, std::pair<rg::TextureRef*, bool>> maps[] = {
+            {&m.baseColorMap, {&r.baseColorTex, true}},
+            {&m.metallicRoughnessMap, {&r.metallicRoughnessTex, false}},
+            {&m.normalMap, {&r.normalTex, false}},
+            {&m.occlusionMap, {&r.occlusionTex, false}},
+            {&m.emissiveMap, {&r.emissiveTex, true}}};
+        for (const auto& [file, target] : maps)
+            if (!file->empty())
+                target.first->image =
+                    textureFile(s, "scene material '" + m.name + "'", *file, target.second);
+        if (!(m.normalScale >= 0.0f && m.normalScale <= 10.0f))
+            throw Error("scene material '" + m.name + "': normalScale must be in [0, 10]");
+        r.normalScale = m.normalScale;
         rg::Value::Table params;
         for (const auto& [k, v] : m.params) params[k] = rg::Value(v);
         r.extra = rg::Value(params);
@@ -149,7 +188,49 @@ rg::Scene toScene(const Scene& in) {
         r.outerAngle = l.outerAngle;
         r.range = l.range;
         r.castShadows = l.shadows;
+        const std::string where = "scene light " + std::to_string(i);
+        if (l.temperature != 0.0f) {
+            const double lo =
+                l.daylight ? rg::lights::kMinDaylightTemperature : rg::lights::kMinColorTemperature;
+            if (!(l.temperature >= lo && l.temperature <= rg::lights::kMaxColorTemperature))
+                throw Error(where + ": temperature " + std::to_string(l.temperature) +
+                            " K is outside " + std::to_string(static_cast<int>(lo)) + "-" +
+                            std::to_string(static_cast<int>(rg::lights::kMaxColorTemperature)) +
+                            " K (" + (l.daylight ? "daylight" : "black body") + ")");
+            r.temperatureK = l.temperature;
+            r.daylight = l.daylight;
+        }
+        if (!l.ies.empty()) {
+            if (l.type != Light::Type::Point && l.type != Light::Type::Spot)
+                throw Error(where + ": an IES profile applies to point and spot lights");
+            std::error_code ec;
+            r.ies = fs::absolute(l.ies).lexically_normal().string();
+            if (!fs::is_regular_file(r.ies, ec))
+                throw Error(where + ": cannot open IES profile '" + r.ies + "'");
+            if (l.iesMode != "mask" && l.iesMode != "intensity")
+                throw Error(where + ": iesMode '" + l.iesMode +
+                            "': expected 'mask' or 'intensity'");
+            r.iesMode = l.iesMode;
+        }
         s.lights.push_back(r);
+    }
+    for (const Decal& d : in.decals) {
+        rg::Decal r;
+        r.name = d.name;
+        r.world = glm::make_mat4(d.transform);
+        r.opacity = d.opacity;
+        r.hasBaseColor = d.baseColor[0] >= 0.0f;
+        if (r.hasBaseColor) r.baseColor = vec3(d.baseColor);
+        r.hasSmoothness = d.smoothness >= 0.0f;
+        r.smoothness = r.hasSmoothness ? d.smoothness : r.smoothness;
+        r.hasMetalMask = d.metalMask >= 0.0f;
+        r.metalMask = r.hasMetalMask ? d.metalMask : r.metalMask;
+        r.hasReflectance = d.reflectance >= 0.0f;
+        r.reflectance = r.hasReflectance ? d.reflectance : r.reflectance;
+        r.normal = d.normal;
+        if (!(d.opacity >= 0.0f && d.opacity <= 1.0f))
+            throw Error("scene decal '" + d.name + "': opacity must be in [0, 1]");
+        s.decals.push_back(r);
     }
     rg::Camera c;
     c.name = "main";
@@ -170,6 +251,21 @@ rg::Scene toScene(const Scene& in) {
     }
     rg::computeBounds(s);
     return s;
+}
+
+// Lua given as source, written where its errors can point: <cache>/sources/NAME<suffix> (the
+// name reduced to letters, digits, '_' and '-'; `fallback` when nothing is left).
+std::string writeSource(const std::string& name, const char* fallback, const char* suffix,
+                        const std::string& lua) {
+    const fs::path dir = fs::path(rg::cacheDir()) / "sources";
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    std::string safe;
+    for (char c : name)
+        safe += std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' ? c : '_';
+    const fs::path file = dir / ((safe.empty() ? std::string(fallback) : safe) + suffix);
+    std::ofstream(file) << lua;
+    return file.string();
 }
 
 }  // namespace
@@ -272,16 +368,7 @@ void Renderer::loadPipeline(const std::string& file) {
 }
 
 void Renderer::loadPipelineSource(const std::string& name, const std::string& lua) {
-    // Written where its errors can point: <cache>/sources/NAME.lua.
-    const fs::path dir = fs::path(rg::cacheDir()) / "sources";
-    std::error_code ec;
-    fs::create_directories(dir, ec);
-    std::string safe;
-    for (char c : name)
-        safe += std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' ? c : '_';
-    const fs::path file = dir / (safe.empty() ? "pipeline.lua" : safe + ".lua");
-    std::ofstream(file) << lua;
-    loadPipeline(file.string());
+    loadPipeline(writeSource(name, "pipeline", ".lua", lua));
 }
 
 void Renderer::loadScene(const std::string& file) {
@@ -296,6 +383,20 @@ void Renderer::setScene(const Scene& scene) {
     m->reloadWith([&](rg::SessionOptions& o) {
         o.sceneData = data;
         o.scene.clear();
+    });
+}
+
+void Renderer::loadSceneSource(const std::string& name, const std::string& lua,
+                               const std::string& baseDir) {
+    const std::string file = writeSource(name, "scene", ".scene.lua", lua);
+    std::error_code ec;
+    rg::SceneScriptOptions o;
+    o.projectRoot = rg::projectRoot();
+    o.baseDir = baseDir.empty() ? fs::current_path(ec).string() : baseDir;
+    auto data = std::make_shared<const rg::Scene>(check(rg::loadSceneScript(file, o)));
+    m->reloadWith([&](rg::SessionOptions& opts) {
+        opts.sceneData = data;
+        opts.scene.clear();
     });
 }
 

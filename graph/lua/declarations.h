@@ -86,6 +86,9 @@ struct BuildOptions {
 struct OutputNames {
     std::string display, hdr, exposure;
     std::string origin;
+    // Set when a script declared rg.output more than once: the last declaration holds, whole
+    // (fields it leaves out are not kept from the earlier one), and this says which it replaced.
+    std::string replaced;
 };
 
 Result<PipelineDesc> buildPipeline(const std::vector<Declaration>& decls, const OutputNames& output,

@@ -105,6 +105,7 @@ Result<PipelineDesc> Builder::build(const OutputNames& names) {
     }
 
     out.output = output.empty() ? "output" : output;
+    if (!names.replaced.empty()) out.notes.push_back(names.replaced);
     auto it = std::find_if(out.graph.resources.begin(), out.graph.resources.end(),
                            [&](auto& r) { return r.name == out.output; });
     const std::string where = names.origin.empty() ? "rg.output" : names.origin + ": rg.output";

@@ -148,6 +148,17 @@ int setOutput(lua_State* L) {
         raise(L, names.origin +
                      ": rg.output: expected a resource name or { display = , hdr = , exposure = }");
     }
+    const OutputNames& before = implOf(L).output;
+    if (!before.display.empty()) {
+        auto fields = [](const OutputNames& n) {
+            std::string s = "display '" + n.display + "'";
+            if (!n.hdr.empty()) s += ", hdr '" + n.hdr + "'";
+            if (!n.exposure.empty()) s += ", exposure '" + n.exposure + "'";
+            return s;
+        };
+        names.replaced = names.origin + ": rg.output (" + fields(names) + ") replaces the one at " +
+                         before.origin + " (" + fields(before) + ")";
+    }
     implOf(L).output = names;
     return 0;
 }

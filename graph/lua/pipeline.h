@@ -97,6 +97,9 @@ struct PipelineDesc {
     std::vector<ParamDesc> params;
     std::vector<std::string> modules;  // module names in load order
     std::vector<std::string> files;    // every script loaded (for hot reload)
+    // What the load did that a script's author may not have meant (a second rg.output replacing
+    // the first): printed by --verbose, kept in the session's log.
+    std::vector<std::string> notes;
 
     const ParamDesc* findParam(const std::string& name) const;
     ParamDesc* findParam(const std::string& name);

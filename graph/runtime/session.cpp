@@ -390,6 +390,7 @@ Result<void> Session::load(const std::string& file) {
          (firstChanges.empty()
               ? std::string()
               : "; frame " + std::to_string(m_frame) + "'s rg.frame: " + firstChanges));
+    for (const auto& line : m_pipeline.notes) note(line);
     return {};
 }
 

@@ -379,6 +379,9 @@ struct SceneScriptOptions {
     bool generateMips = true;
     std::map<std::string, std::string>
         args;  // the script's `scene.args` (rgraph --scene-arg NAME=VALUE)
+    // The folder the files the script names are relative to; "" = the script's own folder (a
+    // script given as source, the library's Renderer::loadSceneSource, lives elsewhere).
+    std::string baseDir;
 };
 
 // Runs a Lua scene script (scene.material/sphere/plane/box/gltf/light/camera/environment, see

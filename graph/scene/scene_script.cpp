@@ -29,11 +29,13 @@ Where Builder::where(const Declaration& d) {
     return {d, std::string(declKindName(d.kind)) + "." + d.name};
 }
 
-// Files named in a script are relative to the script's folder.
+// Files named in a script are relative to the script's folder (or options.baseDir).
 std::string Builder::resolve(const std::string& file) const {
     fs::path p(file);
     if (p.is_absolute()) return p.string();
-    return (fs::path(scriptPath).parent_path() / p).lexically_normal().string();
+    const fs::path base = options.baseDir.empty() ? fs::path(scriptPath).parent_path()
+                                                  : fs::absolute(options.baseDir);
+    return (base / p).lexically_normal().string();
 }
 void Builder::addFile(const std::string& p) {
     std::error_code ec;

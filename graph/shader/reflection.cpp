@@ -430,6 +430,8 @@ std::optional<ShaderStage> stageFromPath(std::string_view path) {
     if (dot == std::string_view::npos || (slash != std::string_view::npos && dot < slash))
         return std::nullopt;
     const std::string_view ext = path.substr(dot);
+    // HLSL: the stage's extension before .hlsl (fxaa.frag.hlsl).
+    if (ext == ".hlsl") return stageFromPath(path.substr(0, dot));
     if (ext == ".vert") return ShaderStage::Vertex;
     if (ext == ".frag") return ShaderStage::Fragment;
     if (ext == ".comp") return ShaderStage::Compute;

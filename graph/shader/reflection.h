@@ -24,8 +24,8 @@ constexpr uint32_t stageBit(ShaderStage s) { return 1u << static_cast<uint32_t>(
 // "vertex", "fragment", "compute".
 const char* toString(ShaderStage s);
 
-// ".vert" -> Vertex, ".frag" -> Fragment, ".comp" -> Compute (the last extension of the path);
-// nullopt for anything else.
+// ".vert" -> Vertex, ".frag" -> Fragment, ".comp" -> Compute (the last extension of the path, or
+// the one before ".hlsl": "x.frag.hlsl" is an HLSL fragment shader); nullopt for anything else.
 std::optional<ShaderStage> stageFromPath(std::string_view path);
 
 enum class DescriptorType : uint8_t {

@@ -407,12 +407,14 @@ Result<ShaderModule> ShaderCompiler::compile(const ShaderRequest& req) {
     if (!stage)
         return fail(ErrorCode::InvalidInput,
                     prefix + "cannot tell the shader stage of '" + set.rootName +
-                        "' from its extension (expected .vert, .frag or .comp); set "
-                        "ShaderRequest::stage");
+                        "' from its extension (expected .vert, .frag or .comp, then .hlsl for "
+                        "HLSL); set ShaderRequest::stage");
     if (!isIdentifier(req.entry))
         return fail(ErrorCode::InvalidInput,
                     prefix + "entry point '" + req.entry + "' is not a GLSL identifier");
-    std::string preamble = "#extension GL_GOOGLE_include_directive : require\n";
+    // HLSL through glslang's HLSL front end (its own #include; the preamble's defines alike).
+    const bool hlsl = set.rootName.ends_with(".hlsl");
+    std::string preamble = hlsl ? "" : "#extension GL_GOOGLE_include_directive : require\n";
     for (const auto& [name, value] : req.defines) {
         if (!isIdentifier(name))
             return fail(ErrorCode::InvalidInput,
@@ -428,6 +430,7 @@ Result<ShaderModule> ShaderCompiler::compile(const ShaderRequest& req) {
     h.u64(kCacheFormatVersion);
     h.u64(GLSLANG_VERSION_MAJOR * 10000 + GLSLANG_VERSION_MINOR * 100 + GLSLANG_VERSION_PATCH);
     h.u64(static_cast<uint64_t>(*stage));
+    if (hlsl) h.str("hlsl");
     h.str(req.entry);
     h.u64(m_options.debugInfo ? 1 : 0);
     if (m_options.debugInfo) h.str(set.rootName);  // debug info embeds the file name
@@ -497,7 +500,16 @@ Result<ShaderModule> ShaderCompiler::compile(const ShaderRequest& req) {
     shader.setPreamble(preamble.c_str());
     shader.setEntryPoint(req.entry.c_str());
     if (req.entry != "main") shader.setSourceEntryPoint(req.entry.c_str());
-    shader.setEnvInput(glslang::EShSourceGlsl, lang, glslang::EShClientVulkan, 100);
+    shader.setEnvInput(hlsl ? glslang::EShSourceHlsl : glslang::EShSourceGlsl, lang,
+                       glslang::EShClientVulkan, 100);
+    if (hlsl) {
+        // Resources are bound by name, so their registers may be left out: glslang numbers
+        // what has none. A Texture2D and the SamplerState it is sampled with become one combined
+        // image sampler, as rgraph binds them (the sampler's filter is the pass's `filter`).
+        shader.setAutoMapBindings(true);
+        shader.setAutoMapLocations(true);
+        shader.setTextureSamplerTransformMode(EShTexSampTransUpgradeTextureRemoveSampler);
+    }
     shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_3);
     shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_6);
     if (m_options.debugInfo) shader.setDebugInfo(true);
@@ -505,10 +517,11 @@ Result<ShaderModule> ShaderCompiler::compile(const ShaderRequest& req) {
     // first one, and inside an include that early stop shows up as a bogus syntax error in the
     // including file).
     int flags = EShMsgSpvRules | EShMsgVulkanRules | EShMsgCascadingErrors;
+    if (hlsl) flags |= EShMsgReadHlsl;
     if (m_options.debugInfo) flags |= EShMsgDebugInfo;
     const auto messages = static_cast<EShMessages>(flags);
     Includer includer(paths, set);
-    if (!shader.parse(GetDefaultResources(), /* defaultVersion= */ 460, ENoProfile,
+    if (!shader.parse(GetDefaultResources(), /* defaultVersion= */ hlsl ? 100 : 460, ENoProfile,
                       /* forceDefaultVersionAndProfile= */ false, /* forwardCompatible= */ false,
                       messages, includer)) {
         elapsed();
@@ -517,6 +530,10 @@ Result<ShaderModule> ShaderCompiler::compile(const ShaderRequest& req) {
     glslang::TProgram program;
     program.addShader(&shader);
     if (!program.link(messages)) {
+        elapsed();
+        return compileFailure(program.getInfoLog());
+    }
+    if (hlsl && !program.mapIO()) {  // numbers the resources that name no register
         elapsed();
         return compileFailure(program.getInfoLog());
     }

@@ -88,7 +88,16 @@ struct Material {
     float smoothness = 0.5f, metalMask = 0.0f, reflectance = 0.5f, ao = 1.0f;
     float emissive[3] = {0, 0, 0};  // nits
     float opacity = 1.0f;
-    bool blended = false;                  // drawn by the forward pass, with `opacity`
+    // Opaque; Mask: cut out where opacity (× the base colour map's alpha) < alphaCutoff; Blend:
+    // drawn by the forward pass, blended with `opacity`.
+    enum class Alpha { Opaque, Mask, Blend } alpha = Alpha::Opaque;
+    float alphaCutoff = 0.5f;
+    bool doubleSided = false;
+    // Texture files (PNG or JPEG), as glTF's maps, each multiplying its factor: base colour (sRGB;
+    // its alpha × opacity), metallic-roughness (linear; g roughness, b metallic), tangent-space
+    // normal (× normalScale), occlusion (r), emissive (sRGB). "" for none.
+    std::string baseColorMap, metallicRoughnessMap, normalMap, occlusionMap, emissiveMap;
+    float normalScale = 1.0f;
     std::map<std::string, double> params;  // the model's own parameters, by name (checked)
 };
 
@@ -103,6 +112,27 @@ struct Light {
     float innerAngle = 0.0f, outerAngle = 0.785398f;      // spot half-angles, radians
     float range = 0.0f;                                   // metres, 0 = unlimited
     bool shadows = false;
+    // Colour temperature in kelvin, multiplying `color` (0: none): the black body's chromaticity,
+    // or the CIE daylight locus's with `daylight` (4000 K and up).
+    float temperature = 0.0f;
+    bool daylight = false;
+    // An IES (LM-63) profile for a point or spot light (a file; "" for none), and how it sets the
+    // intensity: "mask" (the declared intensity shaped by I / I_max) or "intensity" (its candela).
+    std::string ies;
+    std::string iesMode = "mask";
+};
+
+// A deferred decal: a box (the unit cube [-0.5, 0.5]³ through `transform`) that blends, where it
+// encloses a surface of the G-buffer, the parameters it sets, with `opacity`. A parameter left at
+// a negative value is not blended.
+struct Decal {
+    std::string name;
+    float transform[16] = {1, 0, 0, 0, 0, 1, 0, 0,
+                           0, 0, 1, 0, 0, 0, 0, 1};  // column-major, unit box to world
+    float opacity = 1.0f;
+    float baseColor[3] = {-1, -1, -1};  // linear
+    float smoothness = -1.0f, metalMask = -1.0f, reflectance = -1.0f;
+    bool normal = false;  // the surface's normal towards the box's +Y axis
 };
 
 struct Camera {
@@ -116,6 +146,7 @@ struct Scene {
     std::vector<Mesh> meshes;
     std::vector<Material> materials;
     std::vector<Light> lights;
+    std::vector<Decal> decals;
     Camera camera;
     std::string environment = "sky";  // "sky", "none", or an equirectangular .hdr/.exr file
 };
@@ -166,6 +197,11 @@ public:
     // Takes effect at the next loadPipeline (or right away when a pipeline is loaded).
     void loadScene(const std::string& file);
     void setScene(const Scene& scene);
+    // A Lua scene (scripts/scenes/README.md) given as source, with the name its errors should
+    // say: everything a scene file can declare (textures, decals, probes, IES lights, glTF files,
+    // the lightmap). Relative paths in it are taken from `baseDir` ("" = the current directory).
+    void loadSceneSource(const std::string& name, const std::string& lua,
+                         const std::string& baseDir = "");
     void setSize(uint32_t width, uint32_t height);  // takes effect at the next load
 
     // A pipeline parameter (rg.param) by name, checked against its type and range; a pass

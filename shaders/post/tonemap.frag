@@ -11,7 +11,18 @@
 // The curve and the dither are compiled in when the pass declares them as switches
 // (RG_TONEMAP_CURVE, RG_DITHER: scripts/post.lua) — a CPU rasteriser runs every side of a branch,
 // so the curves not chosen cost ~1 ms at 1280×720 on lavapipe — and read from Params otherwise.
+// Stages: 0 the HDR, 1 exposed (with bloom), 2 tone-mapped (display-referred linear), 3 encoded.
+// A pass runs RG_POST_FROM to RG_POST_TO (default 0 to 3, the whole); from a later stage it reads
+// the image of that stage as `source`, to an earlier one it writes it linear (post.chain splits
+// the pass where a team's pass is put: post.at "exposed", "display_linear").
 #include "lib/exposure.glsl"
+
+#ifndef RG_POST_FROM
+#define RG_POST_FROM 0
+#endif
+#ifndef RG_POST_TO
+#define RG_POST_TO 3
+#endif
 
 layout(location = 0) in vec2 uv;
 layout(location = 0) out vec4 color;
@@ -20,15 +31,21 @@ layout(location = 0) out vec4 color;
 #ifdef RG_TONEMAP_COPY
 layout(location = 1) out vec4 copy;
 #endif
+#if RG_POST_FROM == 0
 layout(set = 0, binding = 0) uniform sampler2D hdr;
 layout(set = 0, binding = 1) uniform sampler2D bloom;
 layout(set = 0, binding = 2, std140) uniform exposure { RgExposureState state; } ex;  // a uniform block: read once per block of pixels
+#else
+layout(set = 0, binding = 0) uniform sampler2D source;
+#endif
 layout(set = 0, binding = 3) uniform Params {
     float tonemap;
+    float dither;
+#if RG_POST_FROM == 0
     float bloom_ec;
     float bloom_levels;
-    float dither;
     float initial_ev100;
+#endif
 } params;
 layout(push_constant) uniform Constants { float rg_frame; } pc;
 
@@ -61,6 +78,7 @@ float hash(uvec3 v) {
 
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy);
+#if RG_POST_FROM == 0
     float pre = ex.state.preExposure > 0.0 ? ex.state.preExposure : rgPreExposure(ex.state, params.initial_ev100);
     float exposure = ex.state.initialized > 0.5 ? ex.state.exposure : pre;
     vec3 image = texelFetch(hdr, p, 0).rgb / pre * exposure;
@@ -69,7 +87,15 @@ void main() {
         float w = exp2(params.bloom_ec);
         image = mix(image, blur, w);
     }
-#if defined(RG_TONEMAP_CURVE) && RG_TONEMAP_CURVE == 0
+#else
+    vec3 image = texelFetch(source, p, 0).rgb;
+#endif
+#if RG_POST_TO == 1
+    color = vec4(image, 1.0);
+#else
+#if RG_POST_FROM >= 2
+    vec3 mapped = image;
+#elif defined(RG_TONEMAP_CURVE) && RG_TONEMAP_CURVE == 0
     vec3 mapped = acesFit(image);
 #elif defined(RG_TONEMAP_CURVE) && RG_TONEMAP_CURVE == 1
     vec3 mapped = pbrNeutral(image);
@@ -78,6 +104,9 @@ void main() {
 #else
     vec3 mapped = params.tonemap < 0.5 ? acesFit(image) : params.tonemap < 1.5 ? pbrNeutral(image) : clamp(image, 0.0, 1.0);
 #endif
+#if RG_POST_TO == 2
+    color = vec4(mapped, 1.0);
+#else
     vec3 display = rgLinearToSrgb(mapped);
 #ifdef RG_DITHER
     if (RG_DITHER != 0) {
@@ -88,6 +117,8 @@ void main() {
         display += (hash(seed) + hash(seed + 7919u) - 1.0) / 255.0;
     }
     color = vec4(clamp(display, 0.0, 1.0), 1.0);
+#endif
+#endif
 #ifdef RG_TONEMAP_COPY
     copy = color;
 #endif

@@ -37,6 +37,8 @@ check "bad device" 2 grep "--device 7: only" -- "$rgraph" render --device 7 --si
 check "missing pipeline" 2 grep "cannot open pipeline script 'nope.lua'" -- "$rgraph" render --pipeline nope.lua
 check "bad script" 2 grep "unknown_field.lua:3: passes.tonemap.shadr: unknown field (did you mean 'shader'?)" -- \
     "$rgraph" render --pipeline tests/lua/scripts/unknown_field.lua
+check "render --verbose: a second rg.output" 0 grep "output_twice.lua:8: rg.output (display 'second') replaces the one at tests/lua/scripts/output_twice.lua:7 (display 'first', hdr 'linear')" -- \
+    "$rgraph" render --pipeline "$root/tests/lua/scripts/output_twice.lua" --size 8x8 --out "$tmp/twice.exr" --verbose
 check "unknown capture" 2 grep "capture 'GB7': the pipeline has no resource named 'GB7'" -- "$rgraph" render --capture GB7 --size 8x8
 # A frame whose rg.frame switches off what a kept pass needs: refused whole (the frame renders the
 # plan as it was), and render stops with exit 2 naming the frame, the switch and the reader.

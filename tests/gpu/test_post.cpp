@@ -6,7 +6,9 @@
 
 #include "gpu_fixture.h"
 
+#include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <cstring>
 
 #include "runtime/runtime.h"
@@ -277,3 +279,121 @@ TEST_F(PostGpu, GlslSrgbMatchesItsDefinition) {
 }
 
 }  // namespace
+
+// post.at: a team's pass at each insertion point of the chain (a pass scaling its `source`).
+// Doubling the image at "linear" is doubling the scene's luminance; doubling it at "exposed" is
+// one stop of exposure compensation; halving it at "display_linear" halves the display's linear
+// value; 1 − x at "display" inverts the display image. The tone mapping is split only where a
+// point is used, and a point that is not used adds no pass.
+TEST_F(PostGpu, TeamPassesGoWhereTheInsertionPointsSay) {
+    struct Frame {
+        Image display;
+        std::vector<std::string> passes;
+    };
+    auto render = [&](const std::string& point, double scale, double offset, double luminance,
+                      double ec) {
+        const std::string file =
+            std::string(RG_TEST_TMP) + "/post_at_" + (point.empty() ? "none" : point) + ".lua";
+        std::ofstream out(file);
+        out << "local rg = require 'rg'\nlocal post = require 'post'\n"
+            << "post.params { exposure_mode = 'manual', dither = false, ec = " << ec << " }\n"
+            << "post.exposure_state()\n"
+            << "rg.param 'luminance' { type = 'number', default = " << luminance
+            << ", min = 0, max = 1e12 }\n"
+            << "rg.resource 'hdr' { format = 'rgba16f' }\n"
+            << "rg.pass 'emit' { kind = 'fullscreen', shader = 'test/emit_ramp.frag', "
+               "reads = { { 'exposure', as = 'storage' } }, writes = { 'hdr' } }\n";
+        if (!point.empty())
+            out << "post.at('" << point << "', 'team', { kind = 'fullscreen', shader = "
+                << "'test/post_scale.frag', uniforms = { post_scale = " << scale
+                << ", post_offset = " << offset << " } })\n";
+        out << "post.chain { input = 'hdr', output = 'display' }\n"
+               "rg.output { display = 'display', hdr = 'hdr', exposure = 'exposure' }\n";
+        out.close();
+        SessionOptions o;
+        o.compile.outputWidth = 64;
+        o.compile.outputHeight = 48;
+        Session s(*s_runtime, o);
+        Frame f;
+        auto r = s.load(file);
+        EXPECT_TRUE(r.has_value()) << r.error().describe();
+        if (!r || !s.frame()) return f;
+        for (const auto& p : s_runtime->executor().plan().passes) f.passes.push_back(p.name);
+        auto img = s_runtime->executor().readback("display");
+        if (img) f.display = std::move(*img);
+        return f;
+    };
+    auto maxDiff = [](const Image& a, const Image& b, auto&& expect) {
+        EXPECT_EQ(a.pixels.size(), b.pixels.size());
+        float worst = 0;
+        for (size_t i = 0; i < std::min(a.pixels.size(), b.pixels.size()); ++i)
+            if (i % 4 != 3) worst = std::max(worst, std::fabs(expect(a.pixels[i]) - b.pixels[i]));
+        return worst;
+    };
+    auto has = [](const Frame& f, const char* pass) {
+        return std::find(f.passes.begin(), f.passes.end(), pass) != f.passes.end();
+    };
+    const double L = 20000;  // the ramp: 0.025 … 1.04 of white at Sunny 16
+    const Frame base = render("", 1, 0, L, 0);
+    ASSERT_FALSE(base.display.pixels.empty());
+    EXPECT_TRUE(has(base, "tonemap"));
+    EXPECT_FALSE(has(base, "expose") || has(base, "encode") || has(base, "team"));
+    auto same = [](float v) { return v; };
+
+    const Frame linear = render("linear", 2, 0, L, 0), brighter = render("", 1, 0, 2 * L, 0);
+    EXPECT_TRUE(has(linear, "team"));
+    EXPECT_LE(maxDiff(brighter.display, linear.display, same), 1.0f / 255) << "linear";
+    EXPECT_GT(maxDiff(base.display, linear.display, same), 0.1f);
+
+    const Frame exposed = render("exposed", 2, 0, L, 0), stop = render("", 1, 0, L, 1);
+    EXPECT_TRUE(has(exposed, "expose") && has(exposed, "tonemap") && !has(exposed, "encode"));
+    EXPECT_LE(maxDiff(stop.display, exposed.display, same), 1.0f / 255) << "exposed";
+
+    const Frame half = render("display_linear", 0.5, 0, L, 0);
+    EXPECT_TRUE(has(half, "tonemap") && has(half, "encode") && !has(half, "expose"));
+    auto halved = [](float v) { return srgbEncode(0.5f * srgbDecode(v)); };
+    EXPECT_LE(maxDiff(base.display, half.display, halved), 2.0f / 255) << "display_linear";
+    EXPECT_GT(maxDiff(base.display, half.display, same), 0.1f);
+
+    const Frame inverted = render("display", -1, 1, L, 0);
+    EXPECT_LE(maxDiff(base.display, inverted.display, [](float v) { return 1.0f - v; }), 1e-6f);
+}
+
+// shaders/post/vignette.frag at post.at "exposed" (the README's example): a uniform field comes
+// out as cos⁴θ of the centre, θ the angle off the optical axis for a 90° vertical field of view.
+TEST_F(PostGpu, TheVignetteFollowsTheCos4Law) {
+    const std::string file = std::string(RG_TEST_TMP) + "/post_vignette.lua";
+    std::ofstream(file)
+        << "local rg = require 'rg'\nlocal post = require 'post'\n"
+           "post.params { exposure_mode = 'manual', dither = false, tonemap = 'linear' }\n"
+           "post.exposure_state()\n"
+           "rg.param 'luminance' { type = 'number', default = 20000, min = 0, max = 1e9 }\n"
+           "rg.param 'highlight' { type = 'number', default = 0, min = 0, max = 1e12 }\n"
+           "rg.param 'vignette' { type = 'number', default = 1, min = 0, max = 1 }\n"
+           "rg.param 'vignette_fov' { type = 'number', default = 90, min = 1, max = 170 }\n"
+           "rg.resource 'hdr' { format = 'rgba16f' }\n"
+           "rg.pass 'emit' { kind = 'fullscreen', shader = 'test/emit.frag', "
+           "reads = { { 'exposure', as = 'storage' } }, writes = { 'hdr' } }\n"
+           "post.at('exposed', 'vignette', { kind = 'fullscreen', shader = "
+           "'post/vignette.frag' })\n"
+           "post.chain { input = 'hdr', output = 'display', bloom_levels = 0, fxaa = false }\n"
+           "rg.output { display = 'display', hdr = 'hdr', exposure = 'exposure' }\n";
+    SessionOptions o;
+    o.compile.outputWidth = 64;
+    o.compile.outputHeight = 48;
+    Session s(*s_runtime, o);
+    auto r = s.load(file);
+    ASSERT_TRUE(r.has_value()) << r.error().describe();
+    ASSERT_TRUE(s.frame().has_value());
+    auto display = s_runtime->executor().readback("display");
+    ASSERT_TRUE(display.has_value());
+    auto linear = [&](int x, int y) { return srgbDecode(display->at(x, y, 1)); };
+    const double centre = (linear(31, 23) + linear(32, 24)) / 2;
+    ASSERT_GT(centre, 0.2);
+    for (const auto& [x, y] :
+         {std::pair{0, 0}, std::pair{63, 24}, std::pair{32, 47}, std::pair{10, 40}}) {
+        const double px = ((x + 0.5) / 64 * 2 - 1) * 64.0 / 48, py = (y + 0.5) / 48 * 2 - 1;
+        const double cos2 = 1 / (1 + px * px + py * py);  // tan(45°) = 1
+        EXPECT_NEAR(linear(x, y) / centre, cos2 * cos2, 0.01) << x << "," << y;
+    }
+}

@@ -428,6 +428,22 @@ TEST(LuaPipeline, ModulesAreNamespacedAndInsertedAfterTheirAnchor) {
     ASSERT_TRUE(compile(graphWithParams(*p), {}).has_value());
 }
 
+// A second rg.output replaces the first one whole (its hdr goes too), and the load keeps a note
+// naming both declarations, which --verbose prints.
+TEST(LuaPipeline, ASecondOutputReplacesTheFirstAndSaysSo) {
+    auto p = load("output_twice.lua");
+    ASSERT_TRUE(p.has_value()) << p.error().message;
+    EXPECT_EQ(p->output, "second");
+    EXPECT_EQ(p->hdr, "");
+    ASSERT_EQ(p->notes.size(), 1u);
+    EXPECT_EQ(p->notes[0],
+              kScripts + "output_twice.lua:8: rg.output (display 'second') replaces the one at " +
+                  kScripts + "output_twice.lua:7 (display 'first', hdr 'linear')");
+    auto once = load("with_modules.lua");  // one rg.output: no note
+    ASSERT_TRUE(once.has_value());
+    EXPECT_TRUE(once->notes.empty());
+}
+
 TEST(LuaPipeline, TwoWritersFromDifferentModulesAreAnError) {
     auto p = load("module_clash.lua");
     ASSERT_TRUE(p.has_value()) << p.error().message;

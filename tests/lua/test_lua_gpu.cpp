@@ -518,6 +518,58 @@ TEST_F(LuaGpu, ExplicitSwitchesHoldAgainstTheAutomaticOnes) {
     EXPECT_TRUE(enabled("lighting_clearcoat"));
 }
 
+// A pass's shader may be HLSL (NAME.comp.hlsl, NAME.frag.hlsl): bound by name like GLSL, its
+// uniforms from the parameters; test/pattern.comp.hlsl and test/transform.frag.hlsl render exactly
+// what their GLSL twins do, alone or together. An error in one names the file and line.
+TEST_F(LuaGpu, AnHlslPassRendersAsItsGlslTwin) {
+    auto render = [&](const std::string& compute, const std::string& shader) {
+        const std::string file = std::string(RG_TEST_TMP) + "/hlsl_" +
+                                 std::to_string(std::hash<std::string>{}(compute + shader)) +
+                                 ".lua";
+        std::ofstream(file) << "local rg = require 'rg'\n"
+                               "rg.param 'scale' { type = 'number', default = 2 }\n"
+                               "rg.resource 'pattern' { format = 'rgba16f' }\n"
+                               "rg.resource 'output' { format = 'rgba16f' }\n"
+                               "rg.pass 'generate' { kind = 'compute', shader = '"
+                            << compute
+                            << "', writes = { 'pattern' } }\n"
+                               "rg.pass 'transform' { kind = 'fullscreen', shader = '"
+                            << shader
+                            << "', reads = { 'pattern' }, writes = { 'output' } }\n"
+                               "rg.output 'output'\n";
+        Session s(*s_runtime, small());
+        auto r = s.load(file);
+        EXPECT_TRUE(r.has_value()) << r.error().describe();
+        if (!r || !s.frame()) return Image{};
+        auto img = s_runtime->executor().readback("output");
+        return img ? std::move(*img) : Image{};
+    };
+    const Image glsl = render("test/pattern.comp", "test/transform.frag");
+    for (const auto& [compute, fragment] :
+         {std::pair{"test/pattern.comp.hlsl", "test/transform.frag"},
+          std::pair{"test/pattern.comp", "test/transform.frag.hlsl"},
+          std::pair{"test/pattern.comp.hlsl", "test/transform.frag.hlsl"}}) {
+        SCOPED_TRACE(std::string(compute) + " + " + fragment);
+        const Image hlsl = render(compute, fragment);
+        ASSERT_FALSE(hlsl.pixels.empty());
+        ASSERT_EQ(glsl.pixels.size(), hlsl.pixels.size());
+        EXPECT_EQ(glsl.pixels, hlsl.pixels);
+        EXPECT_GT(*std::max_element(hlsl.pixels.begin(), hlsl.pixels.end()), 1.0f);  // scale 2
+    }
+
+    const std::string broken = std::string(RG_TEST_TMP) + "/broken.frag.hlsl";
+    std::ofstream(broken) << "float4 main() : SV_Target {\n    return float4(1, 2);\n}\n";
+    const std::string file = std::string(RG_TEST_TMP) + "/hlsl_broken.lua";
+    std::ofstream(file) << "local rg = require 'rg'\nrg.resource 'output' { format = 'rgba16f' }\n"
+                           "rg.pass 'fill' { kind = 'fullscreen', shader = '"
+                        << broken << "', writes = { 'output' } }\nrg.output 'output'\n";
+    Session s(*s_runtime, small());
+    auto r = s.load(file);
+    ASSERT_FALSE(r.has_value());
+    EXPECT_NE(r.error().describe().find("pass 'fill': " + broken + ":2:"), std::string::npos)
+        << r.error().describe();
+}
+
 // rg.frame runs once a frame, the first at the load: a script counting its calls sees one per frame.
 TEST_F(LuaGpu, FrameCallbackRunsOncePerFrame) {
     const std::string file = patternScript("count_frames.lua",

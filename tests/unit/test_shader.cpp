@@ -442,8 +442,8 @@ TEST(ShaderErrors, UnknownExtensionNeedsAnExplicitStage) {
     ASSERT_FALSE(m);
     EXPECT_EQ(m.error().message,
               "pass 'post': cannot tell the shader stage of '" + kShaders +
-                  "/lib/common.glsl' from its extension (expected .vert, .frag or .comp); set "
-                  "ShaderRequest::stage");
+                  "/lib/common.glsl' from its extension (expected .vert, .frag or .comp, then "
+                  ".hlsl for HLSL); set ShaderRequest::stage");
 }
 
 TEST(ShaderErrors, RejectsBadDefines) {
