@@ -143,6 +143,11 @@ float rgSunShadowIn(sampler2D map, int ci, vec3 P, vec3 N) {
     float r = 1.0 / length(row0);
     vec2 nxy = vec2(dot(N, row0), dot(N, row1)) * r;  // N · x, N · y
     float nf = dot(N, row2) * range;                  // N · f
+    // A point whose normal faces away from the sun is occluded by its own surface: 0, whatever
+    // the map says. (Near the terminator the map's depth there is the near side of the same
+    // surface, closer than the biases, and a lookup would call the point lit: a band of full sun
+    // past the terminator.)
+    if (nf >= 0.0) return 0.0;
     nf = sign(nf) * max(abs(nf), 0.2);                // grazing: a bounded slope
     // A uv offset δ is 2r·δ metres across the light; the plane's depth changes by −(N·Δ)/(N·f).
     vec2 slope = -2.0 * r * nxy / (nf * range);

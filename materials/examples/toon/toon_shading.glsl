@@ -2,7 +2,9 @@
 // shader from this function): per light, the illuminance E⊥ it delivers facing it, times the
 // wrapped cosine w(c) = clamp((c + wrap) / (1 + wrap), 0, 1) cut into `steps` bands
 // (ceil(w · steps) / steps), through a Lambert tint; a rim (1 − N·V)⁴ · rim of the same light;
-// the distant probe's diffuse as ambient; emissive. Absolute luminance (nits).
+// the distant probe's diffuse as ambient; emissive. Absolute luminance (nits). The wrapped band
+// past the terminator takes the other lights, not the sun: rgSunVisibility is 0 where the
+// surface faces away from it (the surface occludes it).
 vec3 rgShade(GBuffer_toon g, vec3 position, vec3 V, ivec2 pixel) {
     vec3 N = g.normal;
     vec3 luminance = g.emissive;
