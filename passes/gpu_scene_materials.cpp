@@ -328,7 +328,10 @@ Result<void> GpuScene::createMaterials(Context& ctx) {
         const Material& m = m_scene.materials[i];
         MaterialUniforms u{};
         u.baseColorOpacity = glm::vec4(m.baseColor, m.opacity);
-        u.emissive = glm::vec4(m.emissive, 0.0f);
+        // w: 1 for emission relative to the exposure, its EC folded into the colour (the shaders
+        // multiply by 2^(EV100 − 3): lib/exposure.glsl's rgEmissiveScale).
+        u.emissive = m.emissiveEv ? glm::vec4(m.emissive * std::exp2(m.emissiveEc), 1.0f)
+                                  : glm::vec4(m.emissive, 0.0f);
         u.factors = glm::vec4(m.smoothness, m.metalMask, m.reflectance, m.ao);
         u.factors2 = glm::vec4(m.normalScale, m.occlusionStrength, m.alphaCutoff,
                                static_cast<float>(m.alphaMode));

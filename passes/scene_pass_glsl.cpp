@@ -25,6 +25,24 @@ constexpr const char* kLightmapRadiosity =
     "#endif\n"
     "#endif\n";
 
+// Emission given relative to the exposure (Material::emissiveEv, MaterialData.emissive.w = 1):
+// the G-buffer pass multiplies it by 2^(EV100 − 3) of the exposure state it reads when it
+// defines RG_EMISSIVE_EV (render_loop.lua's does); a pass that reads no exposure state takes
+// Sunny 16's EV100 of 15. Without a branch and from a uniform block: with either a branch on the
+// exposure state or a storage buffer, lavapipe (Mesa 22.3) kept 1.5-25 MiB a frame that it
+// never freed (`rgraph render --frames 60` against 10).
+constexpr const char* kEmissiveExposure =
+    "#ifdef RG_EMISSIVE_EV\n"
+    "#include \"lib/exposure.glsl\"\n"
+    "layout(set = 0, binding = 0, std140) uniform exposure { RgExposureState state; } ex;\n"
+    "layout(set = 0, binding = 1) uniform Params { float initial_ev100; } params;\n"
+    "#define RG_EMISSIVE_SCALE rgEmissiveScale(ex.state, params.initial_ev100)\n"
+    "#else\n"
+    "#define RG_EMISSIVE_SCALE exp2(15.0 - 3.0)\n"
+    "#endif\n";
+constexpr const char* kEmissiveScaled =
+    "    s.emissive *= mix(1.0, RG_EMISSIVE_SCALE, material.emissive.w);\n";
+
 // The start of every shader rgraph generates for a material: the version, what it is, its id.
 std::string materialPrologue(const PassMaterial& m, const std::string& what) {
     std::ostringstream s;
@@ -62,7 +80,8 @@ std::string fragmentSource(const PassMaterial& m, const std::vector<std::string>
       << "layout(location = 0) in vec3 worldPosition;\nlayout(location = 1) in vec3 worldNormal;\n"
       << "layout(location = 2) in vec4 worldTangent;\nlayout(location = 3) in vec2 "
          "uv0;\nlayout(location = 4) in vec2 uv1;\n"
-      << "layout(location = 5) in vec2 lightmapUv;\n";
+      << "layout(location = 5) in vec2 lightmapUv;\n"
+      << kEmissiveExposure;
     for (size_t t = 0; t < m.targets.size(); ++t) {
         auto it = std::find(attachments.begin(), attachments.end(), m.targets[t]);
         size_t location = static_cast<size_t>(it - attachments.begin());
@@ -82,7 +101,8 @@ std::string fragmentSource(const PassMaterial& m, const std::vector<std::string>
          "gl_FrontFacing);\n"
       << "#if RG_ALPHA_MASK\n    if (s.opacity < material.factors2.z) discard;  // alpha "
          "mask\n#endif\n"
-      << kLightmapRadiosity << "    GBuffer_" << m.layout << " g = rgSurface(s);\n";
+      << kEmissiveScaled << kLightmapRadiosity << "    GBuffer_" << m.layout
+      << " g = rgSurface(s);\n";
     for (size_t t = 0; t < m.targets.size(); ++t)
         s << "    " << (m.targetInteger[t] ? "uvec4" : "vec4") << " t" << t << ";\n";
     s << "    packGBuffer_" << m.layout << "(g";
@@ -117,12 +137,13 @@ std::string forwardSource(const PassMaterial& m) {
          "uv0;\nlayout(location = 4) in vec2 uv1;\n"
       << "layout(location = 5) in vec2 lightmapUv;\n"
       << "layout(location = 0) out vec4 color;\n"
-      << "layout(set = 0, binding = 0, std430) readonly buffer exposure { RgExposureState state; } "
-         "ex;\n"
+      << "layout(set = 0, binding = 0, std140) uniform exposure { RgExposureState state; } ex;\n"
       << "layout(set = 0, binding = 1) uniform Params { float initial_ev100; } params;\n"
       << "void main() {\n"
       << "    RgSurface s = rgSampleSurface(worldPosition, worldNormal, worldTangent, uv0, uv1, "
          "gl_FrontFacing);\n"
+      << "    s.emissive *= mix(1.0, rgEmissiveScale(ex.state, params.initial_ev100), "
+         "material.emissive.w);\n"
       << kLightmapRadiosity << "    GBuffer_" << m.layout << " g = rgSurface(s);\n"
       << "    vec3 luminance = rgShade(g, worldPosition, rgViewDirection(worldPosition), "
          "ivec2(gl_FragCoord.xy));\n"
@@ -149,6 +170,8 @@ std::string captureSource(const PassMaterial& m) {
       << surfaceInclude(m)
       << "void rgCaptureSurface(RgSurface s, out vec3 N, out vec3 albedo, out float "
          "linearRoughness, out float ao, out vec3 emissive) {\n"
+      << "    // Emission relative to the exposure, captured at Sunny 16's EV100 of 15.\n"
+      << "    s.emissive *= mix(1.0, exp2(15.0 - 3.0), material.emissive.w);\n"
       << "    GBuffer_" << m.layout << " g = rgSurface(s);\n"
       << "    vec3 baseColor = " << get("baseColor", "vec3(0.5)") << ";\n"
       << "    float metalMask = " << get("metalMask", "0.0") << ";\n"

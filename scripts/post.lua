@@ -91,7 +91,8 @@ function post.params(o)
     rg.param "frame_time" { type = "number", default = o.frame_time or 1 / 60, min = 0, max = 10, doc = "seconds per frame (fixed)" }
     rg.param "initial_ev100" { type = "number", default = o.initial_ev100 or post.ev100(aperture, shutter, iso, ec), min = -32, max = 32,
                                doc = "exposure of the first frame, before anything was metered" }
-    rg.param "bloom_ec" { type = "number", default = o.bloom_ec or -6, min = -32, max = 0, doc = "bloom strength in EV relative to the exposed image" }
+    rg.param "bloom_mix_stops" { type = "number", default = o.bloom_mix_stops or -6, min = -32, max = 0,
+                                 doc = "the blurred image's share of the mix, in stops: (1 - w) image + w blur, w = 2^bloom_mix_stops" }
     rg.param "tonemap" { type = "choice", default = o.tonemap or "aces", choices = { "aces", "neutral", "linear" } }
     rg.param "dither" { type = "boolean", default = o.dither ~= false, doc = "triangular dither before 8-bit quantisation" }
     rg.param "fxaa_threshold" { type = "number", default = 0.125, min = 0, max = 1 }

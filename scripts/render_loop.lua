@@ -38,7 +38,10 @@ rg.resource "lightmap_specular" { format = "rgba16f",
     only_when = { scene = "lightmap", param = "lightmap_specular", defines = { "RG_LIGHTMAP_SPECULAR" } } }
 require("lightmap").gbuffer_writes_specular = true
 
+-- It reads the exposure state for emission given relative to the exposure (a scene material's
+-- emissive_unit = "ev", glTF's emissive): 2^(EV100 + EC − 3), EV100 the last frame's.
 rg.pass "gbuffer" { kind = "scene", writes = { "GB0", "GB1", "GB2", "GB3", "lightmap_specular", "depth" },
+    reads = { { "exposure", as = "uniform" } }, defines = { RG_EMISSIVE_EV = true },
     lightmap_specular = "lightmap_specular" }
 
 -- Deferred decals (seed 000 §3.3) after the fix-up: the pass reads copies of GB0..GB2 (there is no
@@ -67,7 +70,7 @@ function loop.sky_and_forward()
     }
     rg.pass "forward" (shadows.lit(probes.lit(ibl.lit {
         kind = "scene", forward = true,
-        reads = { { "depth", as = "depth" }, { "exposure", as = "storage" } }, writes = { { "hdr", load = true } },
+        reads = { { "depth", as = "depth" }, { "exposure", as = "uniform" } }, writes = { { "hdr", load = true } },
     })))
     loop.forward_pass = "forward"
     return "forward"

@@ -129,9 +129,12 @@ glm::vec3 diffuseAlbedo(const Scene& scene, const Material& m, glm::vec2 uv0) {
     return m.baseColor * textureRgb(scene, m.baseColorTex, uv0) * (1.0f - m.metalMask);
 }
 
+// Emitted luminance; emission given relative to the exposure (Material::emissiveEv) is baked at
+// Sunny 16's EV100 of 15, as the probes capture it: a bake knows no camera.
 glm::vec3 emission(const Scene& scene, const Material& m, glm::vec2 uv0) {
     if (m.emissive == glm::vec3(0.0f)) return glm::vec3(0.0f);
-    return m.emissive * textureRgb(scene, m.emissiveTex, uv0);
+    const float scale = m.emissiveEv ? std::exp2(m.emissiveEc + 15.0f - 3.0f) : 1.0f;
+    return m.emissive * scale * textureRgb(scene, m.emissiveTex, uv0);
 }
 
 class Tracer {

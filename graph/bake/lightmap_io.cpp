@@ -37,6 +37,7 @@ std::string lightmapKey(const Scene& scene, const LightmapSettings& s) {
         h.str(m.model);
         h.pod(m.baseColor), h.pod(m.metalMask), h.pod(m.emissive), h.pod(m.diffuseColor),
             h.pod(m.doubleSided);
+        if (m.emissiveEv) h.pod(m.emissiveEc);  // (only then: older scenes keep their keys)
         for (const TextureRef* t : {&m.baseColorTex, &m.emissiveTex, &m.metallicRoughnessTex}) {
             h.pod(t->texCoord), h.pod(t->transform);
             if (t->image >= 0 && size_t(t->image) < scene.images.size()) {

@@ -166,7 +166,7 @@ Result<Image> writeOutputs(RenderSetup& setup, const std::string& exrPath,
         eo.floats["rgraph.exposure"] = hdr->exposure;
         eo.floats["rgraph.preExposure"] = hdr->preExposure;
         for (const char* p :
-             {"exposure_mode", "aperture", "shutter", "iso", "ec", "tonemap", "bloom_ec"})
+             {"exposure_mode", "aperture", "shutter", "iso", "ec", "tonemap", "bloom_mix_stops"})
             if (const ParamDesc* d = pipeline->findParam(p)) {
                 const std::string key = std::string("rgraph.camera.") + p;
                 if (d->value.isString())

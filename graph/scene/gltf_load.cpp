@@ -270,6 +270,7 @@ Result<void> Loader::parse() {
     dir = fs::path(path).parent_path();
     auto pf = preflight(*bytes);
     if (!pf) return std::unexpected(pf.error());
+    if (auto r = checkSchema(pf->json); !r) return r;
     if (auto r = checkExtensions(pf->json); !r) return r;
     if (auto r = checkBuffers(pf->json); !r) return r;
 

@@ -55,6 +55,7 @@ struct Loader {
 
     Result<Preflight> preflight(const std::vector<unsigned char>& bytes);
     Result<void> checkExtensions(const nlohmann::json& j);
+    Result<void> checkSchema(const nlohmann::json& j);  // gltf_load_schema.cpp
     Result<void> checkBuffers(const nlohmann::json& j);
     Result<void> parse();
 

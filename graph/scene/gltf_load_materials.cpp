@@ -192,8 +192,10 @@ Result<void> Loader::materials() {
         glm::vec3 emissive;
         RG_TRY(emissive,
                ranged3(where + ": emissiveFactor", src.emissiveFactor, glm::vec3(0.0f), 0, 1));
-        // Read as nits (see Material::emissive).
+        // Read relative to the exposure, a factor of 1 white (see kGltfEmissiveEc).
         m.emissive = emissive * strength;
+        m.emissiveEv = true;
+        m.emissiveEc = kGltfEmissiveEc;
         auto tex = [&](const char* what, int index, int texCoord, const tinygltf::ExtensionMap& ext,
                        bool srgb, TextureRef& out) -> Result<void> {
             auto r = texture(where + " " + what, index, texCoord, ext, srgb);

@@ -131,10 +131,16 @@ struct Material {
     float metalMask = 0.0f;     // glTF metallic
     float reflectance = 0.5f;   // dielectric f0 = 0.16 * reflectance^2 (0.5 -> 4 %)
     float ao = 1.0f;            // ambient occlusion factor
-    // Emitted luminance in nits (cd/m²), linear RGB. From glTF: emissiveFactor (× the emissive
-    // texture) × KHR_materials_emissive_strength, read as nits. glTF leaves the emissive unit
-    // undefined; treating it as nits is our choice and the lighting work may revisit it.
+    // Emitted luminance in nits (cd/m²), linear RGB (or, with emissiveEv, a colour relative to
+    // the exposure). From glTF: emissiveFactor (× the emissive texture) ×
+    // KHR_materials_emissive_strength, relative to the exposure (kGltfEmissiveEc).
     glm::vec3 emissive{0.0f};
+    // Emission given relative to the camera's exposure instead (seed 002 §5.1.3): `emissive` is a
+    // colour at `emissiveEc` stops, its luminance emissive · 2^(EV100 + emissiveEc − 3) with the
+    // EV100 the frame is pre-exposed with (the last frame's), so it keeps its place on screen as
+    // exposure adapts. 2^(EV100 − 3) is the average luminance that EV100 meters (seed 000 eq:12).
+    bool emissiveEv = false;
+    float emissiveEc = 0.0f;
     float opacity = 1.0f;  // base colour alpha (glTF baseColorFactor.a)
 
     // Two-colour base material (tbl:3), used when model == "two_colour".
@@ -349,6 +355,11 @@ struct Scene {
 
 // ---------------------------------------------------------------------------------------------
 // Loading and saving
+
+// glTF's emissive has no unit, and viewers show an emissiveFactor of 1 as white: rgraph reads it
+// relative to the exposure (Material::emissiveEv) at the EC where a factor of 1 exposes to 1,
+// white before the tone curve: exposure = 1 / (1.2 · 2^EV100), so EC = log2(1.2 · 8).
+inline constexpr float kGltfEmissiveEc = 3.2630344f;
 
 struct GltfOptions {
     bool loadImages = true;    // false: materials keep their texture references, images stay empty

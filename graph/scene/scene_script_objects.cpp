@@ -26,6 +26,8 @@ Result<void> Builder::material(const Declaration& d) {
                               "reflectance",
                               "ao",
                               "emissive",
+                              "emissive_unit",
+                              "emissive_ec",
                               "opacity",
                               "diffuse_color",
                               "f0",
@@ -65,6 +67,14 @@ Result<void> Builder::material(const Declaration& d) {
     RG_TRY(m.ao, numberF(w, b, "ao", m.ao, Range::unit()));
     RG_TRY(m.opacity, numberF(w, b, "opacity", m.opacity, Range::unit()));
     RG_TRY(m.emissive, colour(w, b, "emissive", m.emissive, Range::nonNegative()));
+    // "nits": emissive is luminance; "ev": a colour at emissive_ec stops relative to the exposure
+    // (seed 002 §5.1.3: luminance = colour · 2^(EV100 + EC − 3)).
+    std::string emissiveUnit;
+    RG_TRY(emissiveUnit, choice(w, b, "emissive_unit", "nits", {"nits", "ev"}, "emissive unit"));
+    m.emissiveEv = emissiveUnit == "ev";
+    if (b.has("emissive_ec") && !m.emissiveEv)
+        return w.at("emissive_ec").error("applies with emissive_unit = \"ev\" only");
+    RG_TRY(m.emissiveEc, numberF(w, b, "emissive_ec", 0.0f, Range::closed(-16, 16)));
     RG_TRY(m.diffuseColor, colour(w, b, "diffuse_color", m.diffuseColor));
     RG_TRY(m.f0, colour(w, b, "f0", m.f0));
     if (b.has("params") && !b["params"].isTable() &&

@@ -16,6 +16,19 @@ float rgPreExposure(RgExposureState s, float initialEv100) {
     return s.initialized > 0.5 ? s.exposure : rgExposureFromEv100(initialEv100);
 }
 
+// The EV100 this frame is pre-exposed with: the last frame's, or the pipeline's initial one.
+float rgFrameEv100(RgExposureState s, float initialEv100) {
+    return mix(initialEv100, s.ev100, step(0.5, s.initialized));
+}
+
+// Emission given relative to the exposure (seed 002 §5.1.3's computeBloomLuminance: luminance =
+// colour · 2^(EV + EC − 3), EV the one metered on the frame before): the factor 2^(EV100 − 3) a
+// colour with its EC folded in is multiplied by — the average luminance EV100 meters (seed 000
+// eq:12, K = 12.5). A material's MaterialData.emissive.w says whether its emission is given so.
+float rgEmissiveScale(RgExposureState s, float initialEv100) {
+    return exp2(rgFrameEv100(s, initialEv100) - 3.0);
+}
+
 // Log-luminance histogram used by auto-exposure: RG_HISTOGRAM_BINS bins over
 // log2(L) in [RG_HISTOGRAM_MIN, RG_HISTOGRAM_MAX); each bin has a count and the sum of the
 // samples' offsets inside the bin (fixed point, RG_HISTOGRAM_FRACTION per bin width), so the

@@ -3,8 +3,9 @@
 // frame's pre-exposure) to an 8-bit display image.
 //  - exposure: the HDR is divided by its pre-exposure and multiplied by the current exposure
 //    (1 / (1.2 · 2^EV100), seed 002 §5.1.2);
-//  - bloom: mixed in with weight 2^bloom_ec, a strength in EV relative to the exposed image
-//    (seed 002 §5.1.3), as (1 − w)·image + w·blur so the mix keeps the energy;
+//  - bloom: mixed in as (1 − w)·image + w·blur, w = 2^bloom_mix_stops, so the mix keeps the
+//    energy (seed 002 §5.1.3's EV-relative luminance is for emission: lib/exposure.glsl's
+//    rgEmissiveScale);
 //  - curves: 0 ACES (Narkowicz's fit of the ACES RRT+ODT), 1 Khronos PBR Neutral (keeps base
 //    colours up to its compression start), 2 linear (clamped);
 //  - sRGB: exact piecewise function (seed 002 §5.1.5), then triangular dither when `dither`.
@@ -42,7 +43,7 @@ layout(set = 0, binding = 3) uniform Params {
     float tonemap;
     float dither;
 #if RG_POST_FROM == 0
-    float bloom_ec;
+    float bloom_mix_stops;
     float bloom_levels;
     float initial_ev100;
 #endif
@@ -84,7 +85,7 @@ void main() {
     vec3 image = texelFetch(hdr, p, 0).rgb / pre * exposure;
     if (params.bloom_levels > 0.0) {
         vec3 blur = texture(bloom, uv).rgb / params.bloom_levels / pre * exposure;
-        float w = exp2(params.bloom_ec);
+        float w = exp2(params.bloom_mix_stops);
         image = mix(image, blur, w);
     }
 #else

@@ -228,7 +228,7 @@ TEST(Library, RendersOnTheHostsDeviceAndTheHostReadsTheImage) {
     const float sky = display.pixels[(5u * 160u + 80u) * display.channels + 2];
     EXPECT_GT(sky, 0.1f);
     r->setPassEnabled("sky", false);
-    r->setParameter("bloom_ec", -8.0);
+    r->setParameter("bloom_mix_stops", -8.0);
     r->render(1);
     rgraph::Image after = r->readDisplay();
     EXPECT_LT(after.pixels[(5u * 160u + 80u) * after.channels + 2], 0.02f);

@@ -397,3 +397,34 @@ TEST_F(PostGpu, TheVignetteFollowsTheCos4Law) {
         EXPECT_NEAR(linear(x, y) / centre, cos2 * cos2, 0.01) << x << "," << y;
     }
 }
+
+// Emission relative to the exposure (emissive_unit = "ev", seed 002 §5.1.3): its luminance is
+// colour · 2^(EV100 + EC − 3) with the EV100 the frame is pre-exposed with, so at two camera
+// settings four stops apart the luminance is 16 times apart and the exposed image the same —
+// from the G-buffer pass and from the forward pass alike.
+TEST_F(PostGpu, EmissionRelativeToTheExposureKeepsItsPlaceOnScreen) {
+    for (const bool forward : {false, true}) {
+        double exposedAt[2] = {0, 0};
+        int k = 0;
+        for (const char* aperture : {"16", "4"}) {
+            SessionOptions o =
+                sceneOptions(std::string(RG_SOURCE_ROOT) + "/tests/gpu/scenes/emissive_ev.lua",
+                             {{"forward", forward ? "1" : "0"}, {"aperture", aperture}}, 64, 48);
+            o.params["exposure_mode"] = Value("manual");
+            Readback r =
+                renderAndRead(o, std::string(RG_SOURCE_ROOT) + "/scripts/pipelines/deferred.lua", 2,
+                              {"hdr"}, {"exposure"});
+            ASSERT_TRUE(r.images.count("hdr") && r.buffers.count("exposure"));
+            float st[4];
+            std::memcpy(st, r.buffers["exposure"].data(), sizeof st);
+            const double ev = st[0];  // manual: the camera's, the same every frame
+            const double want = (forward ? 1.0 : 0.5 * 2.0) * std::exp2(ev - 3.0);
+            const double got = r["hdr"].at(32, 24, 0) / r.preExposure;
+            std::printf("%s, f/%s: EV100 %.3f, red %.1f nits (want %.1f)\n",
+                        forward ? "forward" : "G-buffer", aperture, ev, got, want);
+            EXPECT_NEAR(got, want, want * 0.02);
+            exposedAt[k++] = got * photometry::exposureFromEv100(ev);
+        }
+        EXPECT_NEAR(exposedAt[0], exposedAt[1], exposedAt[0] * 0.02);
+    }
+}

@@ -117,6 +117,8 @@ hostile "glTF: bad base64" "g_bad_base64.gltf" -- $(render --scene g_bad_base64.
 hostile "glTF: primitive without positions" "g_no_position.gltf" -- $(render --scene g_no_position.gltf)
 hostile "glTF: extras name an absolute IES path" "is an absolute path" -- $(render --scene g_extras_absolute_ies.gltf)
 hostile "glTF: node names a missing mesh" "g_bad_node_mesh.gltf" -- $(render --scene g_bad_node_mesh.gltf)
+hostile "glTF: a name that is a number" "nodes[0].name: expected a string, got 42" -- $(render --scene g_wrong_types.gltf)
+hostile "glTF: primitives as an object" "meshes[0].primitives: expected a non-empty array" -- $(render --scene g_primitives_object.gltf)
 
 # ---- IES profiles (through a scene light that names each)
 for f in i_truncated i_negative i_nan i_no_tilt i_tilt_file_missing i_garbage i_bad_type i_huge_angles i_type_b_range i_2019_truncated; do

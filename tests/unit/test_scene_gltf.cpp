@@ -243,7 +243,11 @@ TEST(GltfLoad, MaterialMappingSrgbFlagsAndTextureTransform) {
     EXPECT_FLOAT_EQ(m.metalMask, 0.2f);
     EXPECT_FLOAT_EQ(m.smoothness, 0.7f);   // 1 - perceptual roughness
     EXPECT_FLOAT_EQ(m.reflectance, 0.5f);  // f0 = 0.04
-    expectNear(m.emissive, {100, 50, 25}, 1e-4f, "emissive = factor x strength, in nits");
+    expectNear(m.emissive, {100, 50, 25}, 1e-4f, "emissive = factor x strength");
+    // Relative to the exposure, at the EC where a factor of 1 exposes to 1:
+    // 2^(EV + EC − 3) · 1 / (1.2 · 2^EV) = 1.
+    EXPECT_TRUE(m.emissiveEv);
+    EXPECT_NEAR(std::exp2(m.emissiveEc - 3.0) / 1.2, 1.0, 1e-6);
     EXPECT_FLOAT_EQ(m.normalScale, 0.5f);
     EXPECT_FLOAT_EQ(m.occlusionStrength, 0.7f);
     EXPECT_EQ(m.occlusionTex.texCoord, 1u);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -219,6 +220,56 @@ TEST(GltfErrors, UnsupportedPrimitiveMode) {
               "'" + dir + "/m3.gltf': mesh 0 'pts' primitive 0: no POSITION attribute");
 }
 
+// Fields of the wrong type, which tinygltf would take as absent and render: each is refused with
+// the file and the field's path (glTF 2.0's schema: types, counts, index signs).
+TEST(GltfErrors, FieldsOfTheWrongTypeAreRefusedByTheirPath) {
+    const std::string dir = tmpDir("schema");
+    struct Case {
+        const char* what;
+        std::function<void(json&)> edit;
+        std::string message;
+    };
+    const Case cases[] = {
+        {"name", [](json& j) { j["nodes"][0]["name"] = 42; },
+         "nodes[0].name: expected a string, got 42"},
+        {"primitives", [](json& j) { j["meshes"][0]["primitives"] = json::object(); },
+         "meshes[0].primitives: expected a non-empty array of primitives, got {}"},
+        {"texture index",
+         [](json& j) {
+             j["materials"] =
+                 json::array({{{"pbrMetallicRoughness", {{"baseColorTexture", {{"index", -1}}}}}}});
+         },
+         "materials[0].pbrMetallicRoughness.baseColorTexture.index: expected an index (a whole "
+         "number >= 0), got -1"},
+        {"scale", [](json& j) { j["nodes"][0]["scale"] = "not a number"; },
+         "nodes[0].scale: expected an array of 3 numbers, got \"not a number\""},
+        {"scale element",
+         [](json& j) {
+             j["nodes"][0]["scale"] = {1, "x", 1};
+         },
+         "nodes[0].scale[1]: expected a number, got \"x\""},
+        {"extension",
+         [](json& j) {
+             j["nodes"][0]["extensions"] = {{"KHR_lights_punctual", "light 0"}};
+         },
+         "nodes[0].extensions.KHR_lights_punctual: expected an object, got \"light 0\""},
+        {"attributes",
+         [](json& j) { j["meshes"][0]["primitives"][0]["attributes"]["POSITION"] = 0.5; },
+         "meshes[0].primitives[0].attributes.POSITION: expected an index (a whole number >= 0), "
+         "got 0.5"},
+    };
+    for (const Case& c : cases) {
+        GltfBuilder g;
+        addQuad(g, true);
+        c.edit(g.j);
+        const std::string path = g.writeGltf(dir, "bad");
+        EXPECT_EQ(errorOf(rg::loadGltf(path)), "'" + path + "': " + c.message) << c.what;
+    }
+    GltfBuilder good;  // and the same file unedited loads
+    addQuad(good, true);
+    EXPECT_TRUE(rg::loadGltf(good.writeGltf(dir, "good")));
+}
+
 TEST(GltfErrors, NumbersOutsideTheirGltfRange) {
     const std::string dir = tmpDir("numbers");
     GltfBuilder g;
@@ -268,8 +319,9 @@ TEST(GltfErrors, NodeCycleAndBadTransforms) {
               "'" + dir + "/deep.gltf': the node hierarchy is deeper than 1000 levels");
     GltfBuilder h;
     h.scene({h.node({{"name", "n"}, {"rotation", {0, 0, 1}}})});
-    EXPECT_EQ(errorOf(rg::loadGltf(h.writeGltf(dir, "r"))),
-              "'" + dir + "/r.gltf': node 0 'n': rotation has 3 values, expected 4");
+    EXPECT_EQ(
+        errorOf(rg::loadGltf(h.writeGltf(dir, "r"))),
+        "'" + dir + "/r.gltf': nodes[0].rotation: expected an array of 4 numbers, got [0,0,1]");
 }
 
 }  // namespace

@@ -181,7 +181,8 @@ TEST(SceneScript, MaterialFieldErrors) {
     EXPECT_EQ(lua.error("scene.material \"red\" { metalness = 1 }"),
               "bad.lua:1: scene.material.red.metalness: unknown field; expected one of: 'model', "
               "'base_color', 'smoothness', "
-              "'metal_mask', 'reflectance', 'ao', 'emissive', 'opacity', 'diffuse_color', 'f0', "
+              "'metal_mask', 'reflectance', 'ao', 'emissive', 'emissive_unit', 'emissive_ec', "
+              "'opacity', 'diffuse_color', 'f0', "
               "'params', 'double_sided', 'alpha', "
               "'alpha_cutoff', 'base_color_map', 'metallic_roughness_map', 'normal_map', "
               "'normal_scale', 'occlusion_map', "
