@@ -113,6 +113,7 @@ Result<std::unique_ptr<passes::GpuScene>> Session::loadScene(PipelineDesc& pipel
     auto scene = m_options.sceneData ? Result<Scene>(*m_options.sceneData)
                                      : readScene(file, m_options.sceneArgs);
     if (!scene) return std::unexpected(scene.error());
+    for (const auto& w : scene->warnings) note("warning: " + w);
     const std::string ext =
         m_options.sceneData ? std::string() : fs::path(file).extension().string();
     if (auto r = chooseEnvironment(*scene, m_options.environment,

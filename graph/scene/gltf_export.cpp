@@ -252,6 +252,9 @@ struct Writer {
             x["ao"] = tinygltf::Value(double(m.ao));
             x["diffuse_color"] = jsonOf(m.diffuseColor);
             x["f0"] = jsonOf(m.f0);
+            // The emissive's unit (a reader other than rgraph takes glTF's: relative to exposure).
+            x["emissive_unit"] = tinygltf::Value(std::string(m.emissiveEv ? "ev" : "nits"));
+            if (m.emissiveEv) x["emissive_ec"] = tinygltf::Value(double(m.emissiveEc));
             if (!m.extra.isNil()) x["params"] = jsonOf(m.extra);
             g.extras =
                 tinygltf::Value(tinygltf::Value::Object{{"rgraph", tinygltf::Value(std::move(x))}});

@@ -26,9 +26,11 @@ namespace gltf_load {
 namespace {
 
 // Extensions whose meaning we implement (a file may require them).
-const std::set<std::string> kSupported = {"KHR_texture_transform",
-                                          "KHR_materials_emissive_strength", "KHR_lights_punctual",
-                                          "KHR_mesh_quantization"};
+const std::set<std::string> kSupported = {
+    "KHR_texture_transform",  "KHR_materials_emissive_strength",
+    "KHR_lights_punctual",    "KHR_mesh_quantization",
+    "KHR_materials_ior",      "KHR_materials_specular",
+    "KHR_materials_clearcoat"};
 
 std::string percentDecode(const std::string& uri) {
     std::string out;
@@ -97,6 +99,7 @@ std::unexpected<Error> Loader::error(ErrorCode code, const std::string& msg) con
 }
 void Loader::warn(const std::string& msg) const {
     if (options.warnings) options.warnings->push_back(quote(path) + ": " + msg);
+    warnings.push_back(quote(path) + ": " + msg);
 }
 std::string Loader::named(const std::string& what, size_t index, const std::string& name) {
     return what + " " + std::to_string(index) + (name.empty() ? "" : " '" + name + "'");
@@ -360,6 +363,7 @@ Result<Scene> Loader::run() {
     if (auto r = meshes(); !r) return std::unexpected(r.error());
     if (auto r = nodes(); !r) return std::unexpected(r.error());
     computeBounds(scene);
+    scene.warnings.insert(scene.warnings.end(), warnings.begin(), warnings.end());
     return std::move(scene);
 }
 

@@ -40,6 +40,7 @@ struct Loader {
     std::map<std::pair<int, bool>, int32_t> images;  // (glTF image, srgb) -> Scene image
     std::vector<int32_t> samplers;                   // glTF sampler -> Scene sampler
     int32_t defaultMaterial = -1;
+    mutable std::vector<std::string> warnings;  // what warn() said, for Scene::warnings
 
     // ---- messages and file names (gltf_load.cpp) --------------------------------------------
 
@@ -100,6 +101,9 @@ struct Loader {
                                const tinygltf::ExtensionMap& ext, bool srgb);
     static Value toValue(const tinygltf::Value& v);
     Result<void> materials();
+    Result<float> reflectanceOf(const tinygltf::Material& src, const std::string& where) const;
+    Result<void> clearCoat(const tinygltf::Material& src, const std::string& where,
+                           Material& m) const;
 
     // ---- nodes, cameras, lights (gltf_load_nodes.cpp) ---------------------------------------
 

@@ -160,6 +160,65 @@ Value Loader::toValue(const tinygltf::Value& v) {
     return Value();
 }
 
+// The dielectric f0 of KHR_materials_ior (f0 = ((ior − 1)/(ior + 1))², 4 % at glTF's default
+// 1.5) times KHR_materials_specular's specularFactor and the mean of its specularColorFactor, as
+// the standard material's reflectance (f0 = 0.16 · reflectance², seed 000 tbl:2): a scalar, so a
+// coloured specular keeps its mean (with a warning), and f0 is at most 16 % (ior ≈ 2.33).
+Result<float> Loader::reflectanceOf(const tinygltf::Material& src, const std::string& where) const {
+    double ior = 1.5;
+    if (auto it = src.extensions.find("KHR_materials_ior"); it != src.extensions.end())
+        RG_TRY(ior, ranged(where + ": KHR_materials_ior.ior", number(it->second.Get("ior"), 1.5), 1,
+                           1e3));
+    double f0 = std::pow((ior - 1.0) / (ior + 1.0), 2.0);
+    if (auto it = src.extensions.find("KHR_materials_specular"); it != src.extensions.end()) {
+        const auto& x = it->second;
+        double factor = 1.0;
+        RG_TRY(factor, ranged(where + ": KHR_materials_specular.specularFactor",
+                              number(x.Get("specularFactor"), 1.0), 0, 1));
+        glm::vec3 colour(1.0f);
+        if (x.Has("specularColorFactor")) {
+            const auto& c = x.Get("specularColorFactor");
+            for (int k = 0; k < 3 && c.IsArray() && c.ArrayLen() == 3; ++k)
+                colour[k] = float(number(c.Get(k), 1.0));
+            if (colour.x != colour.y || colour.y != colour.z)
+                warn(where +
+                     ": KHR_materials_specular.specularColorFactor is coloured; rgraph's "
+                     "reflectance is one value, its mean is kept");
+        }
+        if (x.Has("specularTexture") || x.Has("specularColorTexture"))
+            warn(where + ": KHR_materials_specular's textures are ignored (its factors are kept)");
+        f0 *= factor * (colour.x + colour.y + colour.z) / 3.0;
+    }
+    if (f0 > 0.16)
+        warn(where + ": f0 " + std::to_string(f0) + " is above the 16 % reflectance can hold");
+    return float(std::sqrt(std::min(f0, 0.16) / 0.16));
+}
+
+// KHR_materials_clearcoat on the standard model: the pipeline's clear_coat material
+// (materials/clearcoat.lua) with coatStrength = clearcoatFactor and coatSmoothness =
+// 1 − clearcoatRoughnessFactor; its textures are not read (a warning says so).
+Result<void> Loader::clearCoat(const tinygltf::Material& src, const std::string& where,
+                               Material& m) const {
+    auto it = src.extensions.find("KHR_materials_clearcoat");
+    if (it == src.extensions.end()) return {};
+    const auto& x = it->second;
+    double factor = 0.0, roughness = 0.0;
+    RG_TRY(factor, ranged(where + ": KHR_materials_clearcoat.clearcoatFactor",
+                          number(x.Get("clearcoatFactor"), 0.0), 0, 1));
+    RG_TRY(roughness, ranged(where + ": KHR_materials_clearcoat.clearcoatRoughnessFactor",
+                             number(x.Get("clearcoatRoughnessFactor"), 0.0), 0, 1));
+    for (const char* t :
+         {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"})
+        if (x.Has(t))
+            warn(where + ": KHR_materials_clearcoat." + t +
+                 " is ignored (rgraph's clear coat takes the factors)");
+    if (factor <= 0.0) return {};
+    m.model = "clear_coat";
+    m.extra = Value(
+        Value::Table{{"coatStrength", Value(factor)}, {"coatSmoothness", Value(1.0 - roughness)}});
+    return {};
+}
+
 Result<void> Loader::materials() {
     for (size_t i = 0; i < model.materials.size(); ++i) {
         const auto& src = model.materials[i];
@@ -184,7 +243,8 @@ Result<void> Loader::materials() {
         RG_TRY(m.metalMask, ranged(where + ": metallicFactor", pbr.metallicFactor, 0, 1));
         RG_TRY(roughness, ranged(where + ": roughnessFactor", pbr.roughnessFactor, 0, 1));
         m.smoothness = 1.0f - roughness;  // glTF roughness is perceptual (DESIGN.md §5)
-        m.reflectance = 0.5f;             // f0 = 4 %; KHR_materials_specular / _ior are ignored
+        RG_TRY(m.reflectance, reflectanceOf(src, where));
+        if (auto r = clearCoat(src, where, m); !r) return r;
         if (auto it = src.extensions.find("KHR_materials_emissive_strength");
             it != src.extensions.end())
             RG_TRY(strength, ranged(where + ": emissiveStrength",
@@ -250,6 +310,10 @@ Result<void> Loader::materials() {
             m.ao = float(number(x.Get("ao"), m.ao));
             m.diffuseColor = vec3Of(x.Get("diffuse_color"), m.diffuseColor);
             m.f0 = vec3Of(x.Get("f0"), m.f0);
+            if (x.Get("emissive_unit").IsString()) {
+                m.emissiveEv = x.Get("emissive_unit").Get<std::string>() == "ev";
+                m.emissiveEc = m.emissiveEv ? float(number(x.Get("emissive_ec"), 0.0)) : 0.0f;
+            }
             if (x.Has("params")) m.extra = toValue(x.Get("params"));
         }
         scene.materials.push_back(std::move(m));

@@ -350,6 +350,9 @@ struct Scene {
     std::shared_ptr<const Lightmap>
         bakedLightmap;               // the lightmap the G-buffer pass reads (none: not used)
     std::vector<std::string> files;  // every file read (absolute paths), for hot reload
+    // What the loaders skipped or changed without failing (an extension ignored, a coloured
+    // specular kept as its mean): `rgraph render --verbose` prints them.
+    std::vector<std::string> warnings;
     glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};  // world-space box around every node's mesh
 };
 

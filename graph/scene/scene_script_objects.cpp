@@ -186,6 +186,7 @@ Result<void> Builder::object(const Declaration& d) {
 
 // Appends a loaded glTF scene, placed by `t`; names get the declaration's name in front.
 void Builder::merge(Scene&& sub, const glm::mat4& t, const std::string& prefix) {
+    scene.warnings.insert(scene.warnings.end(), sub.warnings.begin(), sub.warnings.end());
     const auto matOff = static_cast<uint32_t>(scene.materials.size());
     const auto imgOff = static_cast<int32_t>(scene.images.size());
     const auto smpOff = static_cast<int32_t>(scene.samplers.size());

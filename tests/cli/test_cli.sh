@@ -39,6 +39,17 @@ check "bad script" 2 grep "unknown_field.lua:3: passes.tonemap.shadr: unknown fi
     "$rgraph" render --pipeline tests/lua/scripts/unknown_field.lua
 check "render --verbose: a second rg.output" 0 grep "output_twice.lua:8: rg.output (display 'second') replaces the one at tests/lua/scripts/output_twice.lua:7 (display 'first', hdr 'linear')" -- \
     "$rgraph" render --pipeline "$root/tests/lua/scripts/output_twice.lua" --size 8x8 --out "$tmp/twice.exr" --verbose
+python3 - "$root/tests/fuzz/corpus/gltf/triangle.gltf" "$tmp/coat.gltf" <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1]))
+j["materials"][0]["extensions"] = {"KHR_materials_clearcoat": {"clearcoatFactor": 1, "clearcoatTexture": {"index": 0}}}
+j["extensionsUsed"] = ["KHR_materials_clearcoat", "KHR_materials_sheen"]
+json.dump(j, open(sys.argv[2], "w"))
+PY
+check "render --verbose: what a glTF loses" 0 grep "KHR_materials_clearcoat.clearcoatTexture is ignored (rgraph's clear coat takes the factors)" -- \
+    "$rgraph" render --scene "$tmp/coat.gltf" --size 8x8 --out "$tmp/coat.exr" --verbose
+check "... and an extension it ignores" 0 grep "uses extension 'KHR_materials_sheen', which rgraph ignores" -- \
+    "$rgraph" render --scene "$tmp/coat.gltf" --size 8x8 --out "$tmp/coat.exr" --verbose
 check "unknown capture" 2 grep "capture 'GB7': the pipeline has no resource named 'GB7'" -- "$rgraph" render --capture GB7 --size 8x8
 # A frame whose rg.frame switches off what a kept pass needs: refused whole (the frame renders the
 # plan as it was), and render stops with exit 2 naming the frame, the switch and the reader.

@@ -70,6 +70,8 @@ TEST(ExportGlb, LuaSceneRoundTripsThroughGlb) {
         EXPECT_NEAR(a.ao, b.ao, 1e-7f);
         EXPECT_NEAR(a.opacity, b.opacity, 1e-7f);
         expectNear(a.emissive, b.emissive, 1e-4f, "emissive (nits, through emissive_strength)");
+        EXPECT_EQ(a.emissiveEv, b.emissiveEv) << "the emissive's unit, through extras";
+        EXPECT_EQ(a.emissiveEc, b.emissiveEc);
         expectNear(a.diffuseColor, b.diffuseColor, 1e-7f, "diffuseColor");
         expectNear(a.f0, b.f0, 1e-7f, "f0");
         EXPECT_EQ(a.alphaMode, b.alphaMode);

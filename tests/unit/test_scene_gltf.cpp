@@ -325,6 +325,60 @@ TEST(GltfLoad, AlphaModesAndDoubleSided) {
                   "/a2.gltf': material 1 'm': alphaMode 'CUTOUT', expected OPAQUE, MASK or BLEND");
 }
 
+// KHR_materials_ior and _specular set the standard material's reflectance (f0 = 0.16 r²), and
+// KHR_materials_clearcoat makes it the pipeline's clear_coat material; what rgraph cannot hold
+// (a coloured specular, the coat's textures) is named in a warning.
+TEST(GltfLoad, IorSpecularAndClearcoatExtensionsMapOntoTheMaterials) {
+    const std::string dir = tmpDir("material_ext");
+    GltfBuilder g;
+    addQuad(g, true);
+    g.j["materials"] =
+        json::array({{{"name", "plain"}},
+                     {{"name", "water"}, {"extensions", {{"KHR_materials_ior", {{"ior", 1.33}}}}}},
+                     {{"name", "dim"},
+                      {"extensions",
+                       {{"KHR_materials_specular",
+                         {{"specularFactor", 0.5}, {"specularColorFactor", {1.0, 0.5, 0.0}}}}}}},
+                     {{"name", "gem"}, {"extensions", {{"KHR_materials_ior", {{"ior", 2.4}}}}}},
+                     {{"name", "car"},
+                      {"extensions",
+                       {{"KHR_materials_clearcoat",
+                         {{"clearcoatFactor", 0.8},
+                          {"clearcoatRoughnessFactor", 0.1},
+                          {"clearcoatNormalTexture", {{"index", 0}}}}}}}},
+                     {{"name", "nocoat"},
+                      {"extensions", {{"KHR_materials_clearcoat", {{"clearcoatFactor", 0.0}}}}}}});
+    g.j["extensionsUsed"] = {"KHR_materials_ior", "KHR_materials_specular",
+                             "KHR_materials_clearcoat"};
+    g.scene({g.node({{"mesh", 0}})});
+    std::vector<std::string> warnings;
+    rg::GltfOptions o;
+    o.warnings = &warnings;
+    o.loadImages = false;
+    auto scene = rg::loadGltf(g.writeGltf(dir, "e"), o);
+    ASSERT_TRUE(scene) << errorOf(scene);
+    const auto& m = scene->materials;
+    auto f0 = [](const rg::Material& x) { return 0.16 * x.reflectance * x.reflectance; };
+    EXPECT_NEAR(f0(m[0]), 0.04, 1e-6);                        // ior 1.5
+    EXPECT_NEAR(f0(m[1]), std::pow(0.33 / 2.33, 2.0), 1e-6);  // water: 2 %
+    EXPECT_NEAR(f0(m[2]), 0.04 * 0.5 * 0.5, 1e-6);            // × 0.5 × mean colour 0.5
+    EXPECT_NEAR(f0(m[3]), 0.16, 1e-6);                        // 17 % held at 16 %
+    EXPECT_EQ(m[4].model, "clear_coat");
+    EXPECT_NEAR(m[4].extra["coatStrength"].asNumber(), 0.8, 1e-6);
+    EXPECT_NEAR(m[4].extra["coatSmoothness"].asNumber(), 0.9, 1e-6);
+    EXPECT_EQ(m[5].model, "standard");  // a coat of 0 is no coat
+    ASSERT_EQ(warnings.size(), 3u);
+    EXPECT_NE(warnings[0].find("material 2 'dim': KHR_materials_specular.specularColorFactor is "
+                               "coloured"),
+              std::string::npos)
+        << warnings[0];
+    EXPECT_NE(warnings[1].find("material 3 'gem': f0 0.1695"), std::string::npos) << warnings[1];
+    EXPECT_NE(warnings[2].find("material 4 'car': KHR_materials_clearcoat.clearcoatNormalTexture "
+                               "is ignored"),
+              std::string::npos)
+        << warnings[2];
+}
+
 TEST(GltfLoad, PunctualLightsKeepGltfUnitsAndTakeTheirNodeTransform) {
     const std::string dir = tmpDir("lights");
     GltfBuilder g;
