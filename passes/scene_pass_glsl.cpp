@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <sstream>
 
+#include "scene/scene.h"
+
 namespace rg::passes::detail {
 
 namespace {
@@ -25,23 +27,23 @@ constexpr const char* kLightmapRadiosity =
     "#endif\n"
     "#endif\n";
 
-// Emission given relative to the exposure (Material::emissiveEv, MaterialData.emissive.w = 1):
-// the G-buffer pass multiplies it by 2^(EV100 − 3) of the exposure state it reads when it
-// defines RG_EMISSIVE_EV (render_loop.lua's does); a pass that reads no exposure state takes
-// Sunny 16's EV100 of 15. Without a branch and from a uniform block: with either a branch on the
-// exposure state or a storage buffer, lavapipe (Mesa 22.3) kept 1.5-25 MiB a frame that it
-// never freed (`rgraph render --frames 60` against 10).
-constexpr const char* kEmissiveExposure =
-    "#ifdef RG_EMISSIVE_EV\n"
-    "#include \"lib/exposure.glsl\"\n"
+// The exposure state and the initial EV100 of the passes that read them (the forward pass; the
+// G-buffer pass with RG_EMISSIVE_EV). A uniform block: with a storage buffer, lavapipe (Mesa
+// 22.3) kept up to 25 MiB a frame that it never freed (`rgraph render --frames 60` against 10).
+constexpr const char* kExposureBlocks =
     "layout(set = 0, binding = 0, std140) uniform exposure { RgExposureState state; } ex;\n"
-    "layout(set = 0, binding = 1) uniform Params { float initial_ev100; } params;\n"
-    "#define RG_EMISSIVE_SCALE rgEmissiveScale(ex.state, params.initial_ev100)\n"
-    "#else\n"
-    "#define RG_EMISSIVE_SCALE exp2(15.0 - 3.0)\n"
-    "#endif\n";
-constexpr const char* kEmissiveScaled =
-    "    s.emissive *= mix(1.0, RG_EMISSIVE_SCALE, material.emissive.w);\n";
+    "layout(set = 0, binding = 1) uniform Params { float initial_ev100; } params;\n";
+
+// Emission given relative to the exposure (Material::emissiveEv, MaterialData.emissive.w = 1)
+// multiplied by `scale`, 2^(EV100 − 3): the exposure state's where the pass reads it, else
+// kEmissiveEv100WithoutExposure's. Without a branch: with one on the exposure state, lavapipe
+// kept ~1.5 MiB a frame.
+std::string emissiveScaled(const std::string& scale) {
+    return "    s.emissive *= mix(1.0, " + scale + ", material.emissive.w);\n";
+}
+const std::string kExposureScale = "rgEmissiveScale(ex.state, params.initial_ev100)";
+const std::string kScaleWithoutExposure =
+    "exp2(" + std::to_string(kEmissiveEv100WithoutExposure) + " - 3.0)";
 
 // The start of every shader rgraph generates for a material: the version, what it is, its id.
 std::string materialPrologue(const PassMaterial& m, const std::string& what) {
@@ -81,7 +83,9 @@ std::string fragmentSource(const PassMaterial& m, const std::vector<std::string>
       << "layout(location = 2) in vec4 worldTangent;\nlayout(location = 3) in vec2 "
          "uv0;\nlayout(location = 4) in vec2 uv1;\n"
       << "layout(location = 5) in vec2 lightmapUv;\n"
-      << kEmissiveExposure;
+      << "#ifdef RG_EMISSIVE_EV\n#include \"lib/exposure.glsl\"\n"
+      << kExposureBlocks << "#define RG_EMISSIVE_SCALE " << kExposureScale << "\n#else\n"
+      << "#define RG_EMISSIVE_SCALE " << kScaleWithoutExposure << "\n#endif\n";
     for (size_t t = 0; t < m.targets.size(); ++t) {
         auto it = std::find(attachments.begin(), attachments.end(), m.targets[t]);
         size_t location = static_cast<size_t>(it - attachments.begin());
@@ -101,7 +105,7 @@ std::string fragmentSource(const PassMaterial& m, const std::vector<std::string>
          "gl_FrontFacing);\n"
       << "#if RG_ALPHA_MASK\n    if (s.opacity < material.factors2.z) discard;  // alpha "
          "mask\n#endif\n"
-      << kEmissiveScaled << kLightmapRadiosity << "    GBuffer_" << m.layout
+      << emissiveScaled("RG_EMISSIVE_SCALE") << kLightmapRadiosity << "    GBuffer_" << m.layout
       << " g = rgSurface(s);\n";
     for (size_t t = 0; t < m.targets.size(); ++t)
         s << "    " << (m.targetInteger[t] ? "uvec4" : "vec4") << " t" << t << ";\n";
@@ -137,14 +141,11 @@ std::string forwardSource(const PassMaterial& m) {
          "uv0;\nlayout(location = 4) in vec2 uv1;\n"
       << "layout(location = 5) in vec2 lightmapUv;\n"
       << "layout(location = 0) out vec4 color;\n"
-      << "layout(set = 0, binding = 0, std140) uniform exposure { RgExposureState state; } ex;\n"
-      << "layout(set = 0, binding = 1) uniform Params { float initial_ev100; } params;\n"
-      << "void main() {\n"
+      << kExposureBlocks << "void main() {\n"
       << "    RgSurface s = rgSampleSurface(worldPosition, worldNormal, worldTangent, uv0, uv1, "
          "gl_FrontFacing);\n"
-      << "    s.emissive *= mix(1.0, rgEmissiveScale(ex.state, params.initial_ev100), "
-         "material.emissive.w);\n"
-      << kLightmapRadiosity << "    GBuffer_" << m.layout << " g = rgSurface(s);\n"
+      << emissiveScaled(kExposureScale) << kLightmapRadiosity << "    GBuffer_" << m.layout
+      << " g = rgSurface(s);\n"
       << "    vec3 luminance = rgShade(g, worldPosition, rgViewDirection(worldPosition), "
          "ivec2(gl_FragCoord.xy));\n"
       << "    color = vec4(luminance * rgPreExposure(ex.state, params.initial_ev100), s.opacity);\n"
@@ -170,9 +171,8 @@ std::string captureSource(const PassMaterial& m) {
       << surfaceInclude(m)
       << "void rgCaptureSurface(RgSurface s, out vec3 N, out vec3 albedo, out float "
          "linearRoughness, out float ao, out vec3 emissive) {\n"
-      << "    // Emission relative to the exposure, captured at Sunny 16's EV100 of 15.\n"
-      << "    s.emissive *= mix(1.0, exp2(15.0 - 3.0), material.emissive.w);\n"
-      << "    GBuffer_" << m.layout << " g = rgSurface(s);\n"
+      << emissiveScaled(kScaleWithoutExposure) << "    GBuffer_" << m.layout
+      << " g = rgSurface(s);\n"
       << "    vec3 baseColor = " << get("baseColor", "vec3(0.5)") << ";\n"
       << "    float metalMask = " << get("metalMask", "0.0") << ";\n"
       << "    vec3 f0 = "

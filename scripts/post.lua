@@ -162,14 +162,13 @@ function post.chain(o)
     if #post.inserted.exposed > 0 then table.insert(cuts, 1) end
     if #post.inserted.display_linear > 0 then table.insert(cuts, 2) end
     table.insert(cuts, 3)
-    local stage_names = { [1] = "expose", [2] = "tonemap", [3] = "encode" }
     local source = input
     for k = 2, #cuts do
         local from, to = cuts[k - 1], cuts[k]
         local last = to == 3
         -- The pass that applies the curve is `tonemap`; one that ends before it `expose`, one
         -- after it `encode`.
-        local name = (from <= 1 and to >= 2) and "tonemap" or stage_names[to]
+        local name = to == 1 and "expose" or from == 2 and "encode" or "tonemap"
         local image = last and mapped or (to == 1 and "exposed" or "tonemapped")
         if not last then rg.resource(image) { format = "rgba16f" } end
         local switches = {}

@@ -59,22 +59,15 @@ Mesh fromPrimitive(const std::string& name, const rg::Primitive& p) {
 
 glm::vec3 vec3(const float* v) { return {v[0], v[1], v[2]}; }
 
-// A material's texture file, decoded once per file and encoding: its index in scene.images.
+// A material's texture file (scene_detail::textureFile, decoded once per file and encoding): its
+// index in scene.images, with its mips.
 int32_t textureFile(rg::Scene& s, const std::string& where, const std::string& file, bool srgb) {
-    const std::string path = fs::absolute(file).lexically_normal().string();
-    for (size_t i = 0; i < s.images.size(); ++i)
-        if (s.images[i].name == path && s.images[i].srgb == srgb) return static_cast<int32_t>(i);
-    auto bytes = rg::scene_detail::readFile(path);
-    if (!bytes) throw Error(where + ": " + bytes.error().message);
-    auto image = rg::scene_detail::decodeImage(bytes->data(), bytes->size());
-    if (!image) throw Error(where + ": cannot decode '" + path + "': " + image.error().message);
-    rg::SceneImage si;
-    si.name = path;
-    si.pixels = std::move(*image);
-    si.srgb = srgb;
-    rg::generateMips(si);
-    s.images.push_back(std::move(si));
-    return static_cast<int32_t>(s.images.size() - 1);
+    auto index =
+        rg::scene_detail::textureFile(s, fs::absolute(file).lexically_normal().string(), srgb);
+    if (!index) throw Error(where + ": " + index.error().message);
+    rg::SceneImage& image = s.images[static_cast<size_t>(*index)];
+    if (image.mips.empty()) rg::generateMips(image);
+    return *index;
 }
 
 // The host's scene as rgraph's: meshes with tangents generated, materials by name, lights in

@@ -130,10 +130,11 @@ glm::vec3 diffuseAlbedo(const Scene& scene, const Material& m, glm::vec2 uv0) {
 }
 
 // Emitted luminance; emission given relative to the exposure (Material::emissiveEv) is baked at
-// Sunny 16's EV100 of 15, as the probes capture it: a bake knows no camera.
+// kEmissiveEv100WithoutExposure, as the probes capture it: a bake knows no camera.
 glm::vec3 emission(const Scene& scene, const Material& m, glm::vec2 uv0) {
     if (m.emissive == glm::vec3(0.0f)) return glm::vec3(0.0f);
-    const float scale = m.emissiveEv ? std::exp2(m.emissiveEc + 15.0f - 3.0f) : 1.0f;
+    const float scale =
+        m.emissiveEv ? std::exp2(m.emissiveEc + kEmissiveEv100WithoutExposure - 3.0f) : 1.0f;
     return m.emissive * scale * textureRgb(scene, m.emissiveTex, uv0);
 }
 

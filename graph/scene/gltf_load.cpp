@@ -97,10 +97,7 @@ struct Preflight {
 std::unexpected<Error> Loader::error(ErrorCode code, const std::string& msg) const {
     return fail(code, quote(path) + ": " + msg);
 }
-void Loader::warn(const std::string& msg) const {
-    if (options.warnings) options.warnings->push_back(quote(path) + ": " + msg);
-    warnings.push_back(quote(path) + ": " + msg);
-}
+void Loader::warn(const std::string& msg) { scene.warnings.push_back(quote(path) + ": " + msg); }
 std::string Loader::named(const std::string& what, size_t index, const std::string& name) {
     return what + " " + std::to_string(index) + (name.empty() ? "" : " '" + name + "'");
 }
@@ -363,7 +360,6 @@ Result<Scene> Loader::run() {
     if (auto r = meshes(); !r) return std::unexpected(r.error());
     if (auto r = nodes(); !r) return std::unexpected(r.error());
     computeBounds(scene);
-    scene.warnings.insert(scene.warnings.end(), warnings.begin(), warnings.end());
     return std::move(scene);
 }
 

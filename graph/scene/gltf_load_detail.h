@@ -40,12 +40,11 @@ struct Loader {
     std::map<std::pair<int, bool>, int32_t> images;  // (glTF image, srgb) -> Scene image
     std::vector<int32_t> samplers;                   // glTF sampler -> Scene sampler
     int32_t defaultMaterial = -1;
-    mutable std::vector<std::string> warnings;  // what warn() said, for Scene::warnings
 
     // ---- messages and file names (gltf_load.cpp) --------------------------------------------
 
     std::unexpected<Error> error(ErrorCode code, const std::string& msg) const;
-    void warn(const std::string& msg) const;
+    void warn(const std::string& msg);  // a line of Scene::warnings
     static std::string named(const std::string& what, size_t index, const std::string& name);
     std::string resolve(const std::string& uri) const;
     Result<std::string> extrasFile(const std::string& name, const std::string& label) const;
@@ -101,9 +100,8 @@ struct Loader {
                                const tinygltf::ExtensionMap& ext, bool srgb);
     static Value toValue(const tinygltf::Value& v);
     Result<void> materials();
-    Result<float> reflectanceOf(const tinygltf::Material& src, const std::string& where) const;
-    Result<void> clearCoat(const tinygltf::Material& src, const std::string& where,
-                           Material& m) const;
+    Result<float> reflectanceOf(const tinygltf::Material& src, const std::string& where);
+    Result<void> clearCoat(const tinygltf::Material& src, const std::string& where, Material& m);
 
     // ---- nodes, cameras, lights (gltf_load_nodes.cpp) ---------------------------------------
 

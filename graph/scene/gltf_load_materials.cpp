@@ -164,7 +164,7 @@ Value Loader::toValue(const tinygltf::Value& v) {
 // 1.5) times KHR_materials_specular's specularFactor and the mean of its specularColorFactor, as
 // the standard material's reflectance (f0 = 0.16 · reflectance², seed 000 tbl:2): a scalar, so a
 // coloured specular keeps its mean (with a warning), and f0 is at most 16 % (ior ≈ 2.33).
-Result<float> Loader::reflectanceOf(const tinygltf::Material& src, const std::string& where) const {
+Result<float> Loader::reflectanceOf(const tinygltf::Material& src, const std::string& where) {
     double ior = 1.5;
     if (auto it = src.extensions.find("KHR_materials_ior"); it != src.extensions.end())
         RG_TRY(ior, ranged(where + ": KHR_materials_ior.ior", number(it->second.Get("ior"), 1.5), 1,
@@ -198,7 +198,7 @@ Result<float> Loader::reflectanceOf(const tinygltf::Material& src, const std::st
 // (materials/clearcoat.lua) with coatStrength = clearcoatFactor and coatSmoothness =
 // 1 − clearcoatRoughnessFactor; its textures are not read (a warning says so).
 Result<void> Loader::clearCoat(const tinygltf::Material& src, const std::string& where,
-                               Material& m) const {
+                               Material& m) {
     auto it = src.extensions.find("KHR_materials_clearcoat");
     if (it == src.extensions.end()) return {};
     const auto& x = it->second;

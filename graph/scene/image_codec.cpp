@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "scene.h"
 #include "scene_detail.h"
 
 #pragma GCC diagnostic push
@@ -103,6 +104,24 @@ Result<std::vector<unsigned char>> encodePng(const Image& image) {
                                bytes.data(), static_cast<int>(image.width * image.channels));
     if (!ok) return fail(ErrorCode::Io, "PNG encoding failed");
     return out;
+}
+
+Result<int32_t> textureFile(Scene& scene, const std::string& path, bool srgb) {
+    for (size_t i = 0; i < scene.images.size(); ++i)
+        if (scene.images[i].name == path && scene.images[i].srgb == srgb)
+            return static_cast<int32_t>(i);
+    auto bytes = readFile(path);
+    if (!bytes) return std::unexpected(bytes.error());
+    auto image = decodeImage(bytes->data(), bytes->size());
+    if (!image)
+        return fail(ErrorCode::InvalidInput,
+                    "cannot decode " + quote(path) + ": " + image.error().message);
+    SceneImage si;
+    si.name = path;
+    si.pixels = std::move(*image);
+    si.srgb = srgb;
+    scene.images.push_back(std::move(si));
+    return static_cast<int32_t>(scene.images.size() - 1);
 }
 
 }  // namespace rg::scene_detail

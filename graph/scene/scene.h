@@ -350,8 +350,8 @@ struct Scene {
     std::shared_ptr<const Lightmap>
         bakedLightmap;               // the lightmap the G-buffer pass reads (none: not used)
     std::vector<std::string> files;  // every file read (absolute paths), for hot reload
-    // What the loaders skipped or changed without failing (an extension ignored, a coloured
-    // specular kept as its mean): `rgraph render --verbose` prints them.
+    // What the loaders skipped or changed without failing, a line each (an orthographic camera,
+    // an extension ignored, a coloured specular kept as its mean): `render --verbose` prints them.
     std::vector<std::string> warnings;
     glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};  // world-space box around every node's mesh
 };
@@ -364,12 +364,13 @@ struct Scene {
 // white before the tone curve: exposure = 1 / (1.2 · 2^EV100), so EC = log2(1.2 · 8).
 inline constexpr float kGltfEmissiveEc = 3.2630344f;
 
+// The EV100 emission relative to the exposure is taken at where no camera's is at hand (probe
+// captures, the lightmap baker, a scene pass that reads no exposure state): Sunny 16's.
+inline constexpr float kEmissiveEv100WithoutExposure = 15.0f;
+
 struct GltfOptions {
     bool loadImages = true;    // false: materials keep their texture references, images stay empty
     bool generateMips = true;  // fill SceneImage::mips
-    // When not null, receives one line for each thing the loader skipped or changed (an
-    // orthographic camera, an unused extension, ...). The scene is still valid.
-    std::vector<std::string>* warnings = nullptr;
 };
 
 // Loads a .gltf (with its external .bin files and images, or data: URIs) or a .glb.

@@ -15,6 +15,10 @@
         lhs = std::move(*rg_try_);                             \
     } while (0)
 
+namespace rg {
+struct Scene;
+}
+
 namespace rg::scene_detail {
 
 // Decodes a PNG or JPEG held in memory into four float channels in [0, 1] (8-bit samples / 255,
@@ -32,5 +36,10 @@ std::string errnoText(int err);
 
 // The whole file, or NotFound/Io "cannot open 'path': reason" (`path` as given).
 Result<std::vector<unsigned char>> readFile(const std::string& path);
+
+// A material's texture file in scene.images, decoded once per file and encoding (`path` as
+// given, the image's name; mips are the caller's): its index, or readFile's error, or "cannot
+// decode 'path': reason".
+Result<int32_t> textureFile(Scene& scene, const std::string& path, bool srgb);
 
 }  // namespace rg::scene_detail

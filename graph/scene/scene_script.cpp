@@ -64,20 +64,9 @@ Result<int32_t> Builder::textureFile(const Where& w, const Value& b, const std::
                                      bool srgb) {
     std::string path;
     RG_TRY(path, existingFile(w, b, field));
-    for (size_t i = 0; i < scene.images.size(); ++i)
-        if (scene.images[i].name == path && scene.images[i].srgb == srgb)
-            return static_cast<int32_t>(i);
-    auto bytes = readFile(path);
-    if (!bytes) return w.at(field).error(bytes.error().message);
-    auto image = decodeImage(bytes->data(), bytes->size());
-    if (!image)
-        return w.at(field).error("cannot decode " + quote(path) + ": " + image.error().message);
-    SceneImage si;
-    si.name = path;
-    si.pixels = std::move(*image);
-    si.srgb = srgb;
-    scene.images.push_back(std::move(si));
-    return static_cast<int32_t>(scene.images.size() - 1);
+    auto index = scene_detail::textureFile(scene, path, srgb);
+    if (!index) return w.at(field).error(index.error().message);
+    return *index;
 }
 
 Result<glm::mat4> Builder::transform(const Where& w, const Value& b) {

@@ -351,12 +351,11 @@ TEST(GltfLoad, IorSpecularAndClearcoatExtensionsMapOntoTheMaterials) {
     g.j["extensionsUsed"] = {"KHR_materials_ior", "KHR_materials_specular",
                              "KHR_materials_clearcoat"};
     g.scene({g.node({{"mesh", 0}})});
-    std::vector<std::string> warnings;
     rg::GltfOptions o;
-    o.warnings = &warnings;
     o.loadImages = false;
     auto scene = rg::loadGltf(g.writeGltf(dir, "e"), o);
     ASSERT_TRUE(scene) << errorOf(scene);
+    const std::vector<std::string>& warnings = scene->warnings;
     const auto& m = scene->materials;
     auto f0 = [](const rg::Material& x) { return 0.16 * x.reflectance * x.reflectance; };
     EXPECT_NEAR(f0(m[0]), 0.04, 1e-6);                        // ior 1.5

@@ -33,10 +33,9 @@ TEST(GltfErrors, RequiredUnsupportedExtensionIsRefusedByName) {
             "' requires extension 'KHR_draco_mesh_compression', which rgraph does not support");
     // Used but not required: loads, with a warning.
     g.j.erase("extensionsRequired");
-    std::vector<std::string> warnings;
-    rg::GltfOptions o;
-    o.warnings = &warnings;
-    ASSERT_TRUE(rg::loadGltf(g.writeGlb(dir, "y"), o));
+    auto loaded = rg::loadGltf(g.writeGlb(dir, "y"));
+    ASSERT_TRUE(loaded);
+    const std::vector<std::string>& warnings = loaded->warnings;
     ASSERT_EQ(warnings.size(), 1u);
     EXPECT_EQ(
         warnings[0],
