@@ -6,7 +6,7 @@
 -- the standard lighting pass. Its stencil class is a variant of the standard class (variant_of: the same low bits, a
 -- value of its own in the high bits): the standard lighting, testing the low bits, lights it; the
 -- fix-up, testing all eight, finds it. After the fix-up its pixels decode as the standard
--- material's, so it shares materialId 0 (and with it how decals and debug views treat them).
+-- material's: the same layout, and the decals of the standard material.
 local rg = require "rg"
 require "disney"
 require "ibl"  -- env_sh, the distant probe's SH the fix-up reads
@@ -17,6 +17,8 @@ rg.param "foliage_reflectance" { type = "number", default = 0.35, min = 0, max =
 rg.material "foliage" {
     id = 0, layout = "disney", stencil = "foliage", surface = "materials/foliage.glsl",
     fills = { "GB0", "GB1" }, fixup = "foliage_fixup",
+    -- After the fix-up its pixels are the standard material's: decals blend the same parameters.
+    decals = { "normal", "baseColor", "smoothness", "metalMask", "reflectance" },
 }
 
 rg.pass "foliage_fixup" {

@@ -386,6 +386,7 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
         Usage usage;
         bool previousMip =
             false;  // `<image>_previous`: the mip before the one a per-mip variant writes
+        bool stencil = false;  // the stencil aspect (as = "stencil")
     };
     std::vector<Bound> bound;
     const Value& bindMap = desc.params["bind"];
@@ -431,19 +432,25 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
         std::string want = bindMap[b.name].isString() ? bindMap[b.name].asString() : "";
         const Access* access = nullptr;
         for (const auto& a : desc.accesses) {
-            if (want.empty() ? glslName(a.resource) == b.name : a.resource == want) {
-                if (!access || usageFits(b.type, a.usage)) access = &a;
-            }
+            // A stencil read (as = "stencil") binds `<resource>_stencil` only.
+            const bool named = a.stencil      ? glslName(a.resource) + "_stencil" == b.name
+                               : want.empty() ? glslName(a.resource) == b.name
+                                              : a.resource == want;
+            if (named && (!access || usageFits(b.type, a.usage))) access = &a;
         }
         std::string where = "shader binding '" + b.name + "' (set " + std::to_string(b.set) +
                             ", binding " + std::to_string(b.binding) + ", " + toString(b.type) +
                             ")";
         if (!access)
-            return fail(ErrorCode::InvalidInput,
-                        passPrefix(desc) + where + " matches no resource the pass reads or writes" +
-                            (want.empty() ? "; list it in reads/writes or map it with bind = { " +
-                                                b.name + " = \"resource\" }"
-                                          : " (params.bind names '" + want + "')"));
+            return fail(
+                ErrorCode::InvalidInput,
+                passPrefix(desc) + where + " matches no resource the pass reads or writes" +
+                    (b.name.ends_with("_stencil")
+                         ? "; a stencil is read with { \"" + b.name.substr(0, b.name.size() - 8) +
+                               "\", as = \"stencil\" } in reads"
+                     : want.empty() ? "; list it in reads/writes or map it with bind = { " +
+                                          b.name + " = \"resource\" }"
+                                    : " (params.bind names '" + want + "')"));
         if (!usageFits(b.type, access->usage))
             return fail(ErrorCode::InvalidInput,
                         passPrefix(desc) + where + " is bound to '" + access->resource +
@@ -457,7 +464,7 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
             return fail(ErrorCode::InvalidInput, passPrefix(desc) + where + " is bound to '" +
                                                      access->resource + "', which is a " +
                                                      (phys->image ? "texture" : "buffer"));
-        bound.push_back({&b, phys, access->usage});
+        bound.push_back({&b, phys, access->usage, false, access->stencil});
     }
 
     m_sets.resize(slots);
@@ -500,6 +507,7 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
                 images.push_back({nearest ? m_nearest.get() : m_linear.get(),
                                   bd.previousMip ? img.mipView(mip > 0 ? mip - 1 : 0)
                                   : storage      ? img.mipView(mip)
+                                  : bd.stencil   ? img.stencilView()
                                                  : img.view(),
                                   storage || bd.previousMip ? VK_IMAGE_LAYOUT_GENERAL
                                   : depthAttached ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL

@@ -15,6 +15,7 @@
 -- captures; the lighting does not read it, so the graph culls it otherwise (it cost ~7 ms a frame
 -- at 1280×720 on lavapipe, the upsample inside the lighting ~2-3).
 local rg = require "rg"
+local reader = require "gbuffer_reader"  -- the G-buffer decoded by each pixel's material
 local lighting = require "lighting"
 
 local ao = {}
@@ -45,7 +46,7 @@ rg.pass "ao_depth" {
     depth = { compare = "always", value = 1, write = true },
 }
 rg.pass "gtao" {
-    kind = "fullscreen", shader = "passes/gtao.frag", reads = { "ao_depth", "GB0", { "ao_mask", as = "depth" } },
+    kind = "fullscreen", shader = "passes/gtao.frag", reads = reader.reads { "ao_depth", { "ao_mask", as = "depth" } },
     writes = { "ao_half" }, insert = { after = "ao_depth" }, filter = "nearest",
     depth = { compare = "greater", value = 0.5 }, clear = { 1, 0, 0, 0 },
 }

@@ -12,6 +12,7 @@
 -- split-sum DFG and specular occlusion (lib/ibl.glsl rgStandardIbl) instead of composing its own;
 -- a lobe other than the pixel's (the clear coat's) still composes its own with the same function.
 local rg = require "rg"
+local reader = require "gbuffer_reader"  -- the G-buffer decoded by each pixel's material
 local lightmap = require "lightmap"  -- the lightmap's reflection, where the G-buffer writes it (render_loop.lua)
 local lighting = require "lighting"
 require "ibl"     -- the distant probe
@@ -28,7 +29,7 @@ rg.resource "reflection" { format = "rgba16f",
 -- cannot) and they keep the clear, 0 — what the shader writes there (~23 -> ~19.5 ms at 1280x720).
 local compose = {
     kind = "fullscreen", shader = "passes/reflection_compose.frag",
-    reads = { "GB0", "depth", { "depth", as = "depth" }, "ssr", "env_specular", { "env_sh", as = "uniform" }, "dfg", "probe_specular" }, writes = { "reflection" },
+    reads = reader.reads { "depth", { "depth", as = "depth" }, "ssr", "env_specular", { "env_sh", as = "uniform" }, "dfg", "probe_specular" }, writes = { "reflection" },
     defines = { RG_IBL = true, RG_SSR = true, RG_PROBES = true }, insert = { before = "lighting_standard" },
     depth = { compare = "greater", value = 1 },
 }

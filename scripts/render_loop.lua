@@ -45,8 +45,9 @@ rg.pass "gbuffer" { kind = "scene", writes = { "GB0", "GB1", "GB2", "GB3", "ligh
     lightmap_specular = "lightmap_specular" }
 
 -- Deferred decals (seed 000 §3.3) after the fix-up: the pass reads copies of GB0..GB2 (there is no
--- programmable blending), blends Normal/BaseColor/Smoothness (MetalMask/Reflectance on materialId
--- 0 only) of the scene's decal boxes and re-packs.
+-- programmable blending), blends Normal/BaseColor/Smoothness (MetalMask/Reflectance on the
+-- standard material only) of the scene's decal boxes and re-packs each pixel with the layout of
+-- its material, which the stencil names.
 loop.decal_passes = { "decals_copy0", "decals_copy1", "decals_copy2", "decals" }
 for i = 0, 2 do
     rg.resource("GB" .. i .. "_in") { format = ({ "rgb10a2", "rgba8_srgb", "rgba8" })[i + 1] }
@@ -54,7 +55,7 @@ for i = 0, 2 do
 end
 rg.pass "decals" {
     kind = "fullscreen", shader = "passes/decals.frag",
-    reads = { "GB0_in", "GB1_in", "GB2_in", "depth" },
+    reads = { "GB0_in", "GB1_in", "GB2_in", "depth", { "depth", as = "stencil" } },
     writes = { { "GB0", load = true }, { "GB1", load = true }, { "GB2", load = true } },
 }
 

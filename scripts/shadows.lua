@@ -26,6 +26,7 @@
 -- light loop of a `shadows.lit` pass filters them as it does the sun's, with the penumbra of the
 -- light's radius. A frame without such views draws nothing.
 local rg = require "rg"
+local reader = require "gbuffer_reader"  -- the G-buffer decoded by each pixel's material
 local lighting = require "lighting"
 
 local shadows = {}
@@ -123,13 +124,13 @@ for i = 0, shadows.cascades - 1 do
     }
     rg.pass ("sun_mask" .. i) {
         kind = "fullscreen", shader = "shadows/sun_mask.frag", defines = { RG_SUN_CASCADE = i },
-        reads = { "GB0", "depth", { "sun_cascades", as = "uniform" }, map, { "sun_cascade_mask", as = "depth" } },
+        reads = reader.reads { "depth", { "sun_cascades", as = "uniform" }, map, { "sun_cascade_mask", as = "depth" } },
         writes = { { "sun_visibility", load = true } }, bind = { sun_shadow = map },
         depth = { compare = "equal", value = (i + 1) / 8 }, insert = { after = "gbuffer" },
     }
     rg.pass ("sun_mask_half" .. i) {
         kind = "fullscreen", shader = "shadows/sun_mask.frag", defines = { RG_SUN_CASCADE = i, RG_SUN_MASK_HALF = true },
-        reads = { "GB0", "depth", { "sun_cascades", as = "uniform" }, map, { "sun_cascade_mask_half", as = "depth" } },
+        reads = reader.reads { "depth", { "sun_cascades", as = "uniform" }, map, { "sun_cascade_mask_half", as = "depth" } },
         writes = { { "sun_visibility_half", load = true } }, bind = { sun_shadow = map },
         depth = { compare = "equal", value = (i + 1) / 8 }, insert = { after = "gbuffer" },
     }

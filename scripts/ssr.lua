@@ -17,6 +17,7 @@
 -- lit image for the next. A pipeline that never calls ssr.history() gets no reflections from SSR
 -- (an empty history has confidence 0).
 local rg = require "rg"
+local reader = require "gbuffer_reader"  -- the G-buffer decoded by each pixel's material
 local lighting = require "lighting"
 
 local ssr = {}
@@ -40,11 +41,11 @@ rg.pass "hiz" {
 -- (the sky, rough surfaces) are never shaded and keep the cleared 0 — what ssr.frag writes there.
 rg.resource "ssr_mask" { format = "d16", scale = { 0.5, 0.5 }, doc = "SSR's half-resolution pixels that trace a ray: depth 0" }
 rg.pass "ssr_mask" {
-    kind = "fullscreen", shader = "ssr/ssr_mask.frag", reads = { "GB0", "depth" }, writes = { { "ssr_mask", as = "depth" } },
+    kind = "fullscreen", shader = "ssr/ssr_mask.frag", reads = reader.reads { "depth" }, writes = { { "ssr_mask", as = "depth" } },
     filter = "nearest", insert = { before = "lighting_standard" }, depth = { compare = "always", value = 1, write = true },
 }
 rg.pass "ssr" {
-    kind = "fullscreen", shader = "ssr/ssr.frag", reads = { "GB0", "depth", "hiz", "hdr_history", { "exposure", as = "uniform" }, { "ssr_mask", as = "depth" } },
+    kind = "fullscreen", shader = "ssr/ssr.frag", reads = reader.reads { "depth", "hiz", "hdr_history", { "exposure", as = "uniform" }, { "ssr_mask", as = "depth" } },
     writes = { "ssr" }, insert = { before = "lighting_standard" }, depth = { compare = "greater", value = 0.5 },
 }
 

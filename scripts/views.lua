@@ -20,6 +20,7 @@ end
 
 -- Stops the view with "--view NAME: the pipeline has no 'RESOURCE' (hint)" unless it has it.
 function views.need(v, resource, hint)
+    if type(resource) == "table" then resource = resource[1] end  -- { "depth", as = "stencil" }
     if not v.resources[resource] then
         v.fail("the pipeline has no '" .. resource .. "' (" .. hint .. ")")
     end
@@ -37,7 +38,7 @@ end
 -- The G-buffer views: every pixel decoded with its own material's layout (gbuffer_pipeline.glsl)
 -- and the standard parameter shown; a parameter the pixel's layout lacks shows as magenta
 -- stripes (shaders/passes/debug_view.frag, whose `view` uniform picks it).
-local gbuffer = { "GB0", "GB1", "GB2", "GB3", "depth" }
+local gbuffer = { "GB0", "GB1", "GB2", "GB3", "depth", { "depth", as = "stencil" } }
 local function gbuffer_view(v, index)
     for _, r in ipairs(gbuffer) do
         views.need(v, r, "views read the G-buffer GB0..GB3 and depth")
@@ -49,7 +50,7 @@ local channels = {
     { "basecolor", "the base colour" },
     { "smoothness", "the smoothness, grey" },
     { "metalmask", "the metal mask, grey" },
-    { "materialid", "the materialId, one colour each" },
+    { "materialid", "the material identity (its stencil value), one colour each" },
     { "reflectance", "the reflectance, grey" },
     { "ao", "the baked ambient occlusion, grey" },
     { "emissive", "the emission (or the lightmap's radiosity), x / (1 + x) of nits / 300" },
@@ -123,7 +124,7 @@ local function sun_view(cascades_on_screen)
             views.fullscreen { shader = "passes/shadow_map_view.frag", reads = maps, defines = defines }
             return
         end
-        local reads = { "GB0", "depth", { "sun_cascades", as = "uniform" } }
+        local reads = require("gbuffer_reader").reads { "depth", { "sun_cascades", as = "uniform" } }
         for _, m in ipairs(maps) do reads[#reads + 1] = m end
         views.fullscreen { shader = "passes/cascade_view.frag", reads = reads, defines = defines }
     end

@@ -103,6 +103,9 @@ struct Access {
     bool load =
         false;  // attachments and copy destinations: keep previous contents (load op LOAD / blend)
     std::string field;  // field path in the script ("passes.lighting.reads[3]"), for errors
+    // Sampled: the stencil aspect of a depth/stencil texture (`as = "stencil"`), bound to the
+    // shader's `usampler2D <resource>_stencil` (the value in .r).
+    bool stencil = false;
 };
 
 // A pipeline material as a `scene` pass draws it (the Lua host resolves it from rg.material, its

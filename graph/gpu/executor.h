@@ -92,7 +92,9 @@ public:
     Result<void> finish();  // waits for every submitted frame and gathers their timings
 
     // Reads one layer and mip (default: mip 0 / layer 0) of an exported texture after finish().
-    Result<rg::Image> readback(const std::string& resource, uint32_t layer = 0, uint32_t mip = 0);
+    // `stencil`: a depth/stencil texture's stencil values (one channel, 0..255).
+    Result<rg::Image> readback(const std::string& resource, uint32_t layer = 0, uint32_t mip = 0,
+                               bool stencil = false);
     Result<std::vector<uint8_t>> readbackBuffer(const std::string& resource);
     // What a readback pass copied in the last finished frame.
     Result<rg::Image> passResult(const std::string& pass);

@@ -26,7 +26,8 @@ Result<const PhysicalResource*> Executor::exportedResource(const std::string& na
     return phys;
 }
 
-Result<rg::Image> Executor::readback(const std::string& name, uint32_t layer, uint32_t mip) {
+Result<rg::Image> Executor::readback(const std::string& name, uint32_t layer, uint32_t mip,
+                                     bool stencil) {
     auto found = exportedResource(name);
     if (!found) return std::unexpected(found.error());
     const PhysicalResource* phys = *found;
@@ -40,16 +41,19 @@ Result<rg::Image> Executor::readback(const std::string& name, uint32_t layer, ui
                         std::to_string(mip) + " (it has " + std::to_string(r.layers) + " and " +
                         std::to_string(r.mips) + ")");
     const uint32_t width = std::max(r.width >> mip, 1u), height = std::max(r.height >> mip, 1u);
-    const uint32_t texelBytes = copyTexelBytes(r.format);
+    if (stencil && !formatInfo(r.format).stencil)
+        return fail(ErrorCode::InvalidInput, "resource '" + name + "' has no stencil");
+    const uint32_t texelBytes = stencil ? 1u : copyTexelBytes(r.format);
     const size_t texels = size_t(width) * height;
     auto host = Buffer::create(m_ctx, name + ".readback", texels * texelBytes,
                                VK_BUFFER_USAGE_TRANSFER_DST_BIT, true);
     if (!host) return std::unexpected(host.error());
     VkImage image = phys->image->image();
     VkImageAspectFlags aspect = aspectOf(r.format);
-    VkImageAspectFlags copyAspect = formatInfo(r.format).depth
-                                        ? static_cast<VkImageAspectFlags>(VK_IMAGE_ASPECT_DEPTH_BIT)
-                                        : aspect;
+    VkImageAspectFlags copyAspect =
+        stencil                      ? static_cast<VkImageAspectFlags>(VK_IMAGE_ASPECT_STENCIL_BIT)
+        : formatInfo(r.format).depth ? static_cast<VkImageAspectFlags>(VK_IMAGE_ASPECT_DEPTH_BIT)
+                                     : aspect;
     Layout last =
         r.imported && r.finalLayout == Layout::Undefined ? Layout::ShaderReadOnly : r.finalLayout;
     auto sub = m_ctx.submitNow([&](VkCommandBuffer cmd) {
@@ -72,7 +76,11 @@ Result<rg::Image> Executor::readback(const std::string& name, uint32_t layer, ui
     out.height = height;
     out.channels = isDepthStencil(r.format) ? 1 : formatInfo(r.format).components;
     out.pixels.resize(texels * out.channels);
-    decodeTexels(r.format, host->mapped(), texels, out.pixels.data());
+    if (stencil) {
+        const auto* bytes = static_cast<const uint8_t*>(host->mapped());
+        for (size_t i = 0; i < texels; ++i) out.pixels[i] = static_cast<float>(bytes[i]);
+    } else
+        decodeTexels(r.format, host->mapped(), texels, out.pixels.data());
     return out;
 }
 

@@ -205,6 +205,16 @@ Result<void> Image::createViews(Context& ctx) {
     m_view = OwnedImageView(
         dev, makeView(dev, m_image.get(), m_desc, all, 0, m_desc.mips, m_desc.layers, r));
     RG_VK_TRY(r);
+    if (formatInfo(m_desc.format).stencil) {
+        VkImageViewCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};
+        info.image = m_image.get();
+        info.viewType = all;
+        info.format = toVkFormat(m_desc.format);
+        info.subresourceRange = {VK_IMAGE_ASPECT_STENCIL_BIT, 0, m_desc.mips, 0, m_desc.layers};
+        VkImageView v = VK_NULL_HANDLE;
+        RG_VK_TRY(vkCreateImageView(dev, &info, nullptr, &v));
+        m_stencilView = OwnedImageView(dev, v);
+    }
     // Attachment view keeps both aspects of a depth/stencil format.
     {
         VkImageViewCreateInfo info{VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO};

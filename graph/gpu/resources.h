@@ -42,6 +42,9 @@ public:
     VkImageView view() const { return m_view.get(); }  // all mips and layers
     VkImageView mipView(uint32_t mip) const { return m_mipViews[mip].get(); }
     VkImageView attachmentView() const { return m_attachmentView.get(); }  // mip 0, layer 0 (2D)
+    // A depth/stencil format's stencil aspect, all mips and layers (a pass's `as = "stencil"`
+    // read: usampler2D, the value in .r); null for other formats.
+    VkImageView stencilView() const { return m_stencilView.get(); }
     // Mip 0, layer `layer` (2D): one layer of a layered target as an attachment.
     VkImageView layerView(uint32_t layer) const {
         return layer == 0 ? m_attachmentView.get() : m_layerViews[layer - 1].get();
@@ -56,6 +59,7 @@ private:
     Allocation m_memory;
     OwnedImageView m_view;
     OwnedImageView m_attachmentView;
+    OwnedImageView m_stencilView;
     std::vector<OwnedImageView> m_layerViews;  // layers 1..n-1 (layer 0 is m_attachmentView)
     std::vector<OwnedImageView> m_mipViews;
 };

@@ -80,11 +80,10 @@ Result<PipelineDesc> Builder::build(const OutputNames& names) {
     for (const auto& d : decls)
         if (d.kind == DeclKind::Pass)
             if (auto r = pass(d); !r) return std::unexpected(r.error());
-    std::map<uint32_t, const Declaration*> ids;
     for (const auto& d : decls)
         if (d.kind == DeclKind::Material)
-            if (auto r = material(d, ids); !r) return std::unexpected(r.error());
-    if (auto r = checkMaterialIdPlacement(); !r) return std::unexpected(r.error());
+            if (auto r = material(d); !r) return std::unexpected(r.error());
+    if (auto r = materialIdentities(); !r) return std::unexpected(r.error());
     if (auto r = insertModulePasses(); !r) return std::unexpected(r.error());
     if (auto r = checkMaterialReferences(); !r) return std::unexpected(r.error());
     if (auto r = checkSwitches(); !r) return std::unexpected(r.error());

@@ -88,8 +88,8 @@ struct Builder {
     // rg.material (declarations_materials.cpp).
     Result<void> standardChannels(const Where& w, const Value& b, const LayoutDesc& layout,
                                   MaterialDesc& m);
-    Result<void> material(const Declaration& d, std::map<uint32_t, const Declaration*>& ids);
-    Result<void> checkMaterialIdPlacement();
+    Result<void> material(const Declaration& d);
+    Result<void> materialIdentities();
     Result<void> checkMaterialReferences();
 };
 

@@ -1,5 +1,6 @@
 // rg.material: id, layout, surface, lighting path, stencil, fills and fix-up, standard channels,
-// decals and params; then materialId's place across layouts and the passes' material choices.
+// decals and params; then each material's identity (its stencil value) and the passes' material
+// choices.
 #include "declarations_detail.h"
 
 #include <algorithm>
@@ -95,7 +96,7 @@ Result<void> Builder::standardChannels(const Where& w, const Value& b, const Lay
     return {};
 }
 
-Result<void> Builder::material(const Declaration& d, std::map<uint32_t, const Declaration*>& ids) {
+Result<void> Builder::material(const Declaration& d) {
     Where w = where(d);
     const Value& b = d.body;
     if (auto r = checkFields(w, b,
@@ -106,10 +107,11 @@ Result<void> Builder::material(const Declaration& d, std::map<uint32_t, const De
     MaterialDesc m;
     m.name = fullName(d);
     m.origin = d.origin;
-    if (!b.has("id")) return w.at("id").error("missing (expected the materialId, a whole number)");
-    if (!isInteger(b["id"]) || b["id"].asNumber() < 0)
+    // `id`: what the surface writes as RG_MATERIAL_ID into a layout's materialId channel, if it
+    // keeps one; no reader decodes by it (a pixel's material is its stencil value).
+    if (b.has("id") && (!isInteger(b["id"]) || b["id"].asNumber() < 0))
         return w.at("id").error("expected a whole number >= 0");
-    m.id = static_cast<uint32_t>(b["id"].asNumber());
+    m.id = b.has("id") ? static_cast<uint32_t>(b["id"].asNumber()) : 0;
     auto layoutName = requireString(w, b, "layout");
     if (!layoutName) return std::unexpected(layoutName.error());
     auto lit = std::find_if(out.layouts.begin(), out.layouts.end(), [&](auto& l) {
@@ -190,27 +192,6 @@ Result<void> Builder::material(const Declaration& d, std::map<uint32_t, const De
                                           m.layout +
                                           "': a path's lighting pass and shading function decode "
                                           "one layout, so declare a path of its own");
-    // A materialId names how its pixels decode (decals, debug views): materials may share
-    // one when they decode alike, as foliage shares the standard material's after its fix-up.
-    if (ids.count(m.id)) {
-        const MaterialDesc& first = *std::find_if(out.materials.begin(), out.materials.end(),
-                                                  [&](auto& x) { return x.id == m.id; });
-        const std::string shared = std::to_string(m.id) + " is the id of material '" + first.name +
-                                   "' (" + first.origin + ")";
-        if (first.layout != m.layout)
-            return w.at("id").error(shared + " of layout '" + first.layout +
-                                    "': materials share an id only when their pixels decode alike "
-                                    "(the same layout); choose a free id");
-        if (!b.has("channels") && !b.has("decals")) {
-            m.channels = first.channels;
-            m.decals = first.decals;
-        } else if (first.channels != m.channels || first.decals != m.decals)
-            return w.at(b.has("decals") ? "decals" : "channels")
-                .error(shared +
-                       " with other channels or decals: materials sharing an id decode alike; "
-                       "match them or choose a free id");
-    }
-    ids.emplace(m.id, &d);
     if (b.has("params"))
         if (auto r = expectType(w.at("params"), b["params"], "table"); !r) return r;
     m.params = b["params"];
@@ -267,56 +248,71 @@ Result<void> Builder::material(const Declaration& d, std::map<uint32_t, const De
     return {};
 }
 
-// Decals and debug views find a pixel's layout from its materialId, so every layout a
-// material uses keeps materialId in the same place (000 §3.2: "MaterialId at the same place
-// for every material", to interpret MaterialData): the same target, bits and width.
-Result<void> Builder::checkMaterialIdPlacement() {
-    struct Place {
-        std::string target;
-        uint32_t component = 0, bitOffset = 0, bits = 0;
-        Encoding encoding = Encoding::Uint;
-        bool operator==(const Place&) const = default;
+// A pixel's material is its stencil value, its identity: the G-buffer pass writes it, and every
+// pass that decodes the G-buffer (decals, debug views, the sun's mask, SSR, AO, the reference,
+// captures) reads it as a stencil texture and unpacks the pixel with that material's layout
+// (gbuffer_pipeline.glsl). A material takes its stencil class's value (the class of its path,
+// or `stencil`) when that is free or held by a material that decodes alike (the same layout,
+// channels and decals); otherwise, unless it named its stencil class, the next free variant of
+// the class (the high bits: the class's lighting pass, testing the low bits, still lights it). A
+// material without a class takes a value whose low bits are 0: no lighting pass lights it.
+Result<void> Builder::materialIdentities() {
+    const uint32_t bits = options.stencilBits;
+    const uint32_t low = (1u << bits) - 1, variants = (1u << (8 - bits)) - 1;
+    std::map<uint32_t, const StencilClassDesc*> declared;
+    for (const StencilClassDesc& c : out.stencilClasses) declared[c.value] = &c;
+    std::map<uint32_t, const MaterialDesc*> held;
+    auto alike = [](const MaterialDesc& a, const MaterialDesc& b) {
+        return a.layout == b.layout && a.channels == b.channels && a.decals == b.decals;
     };
-    auto describe = [](const Place& p) {
-        static const char* comps = "RGBA";
-        return "target " + p.target + "." + comps[p.component] + " bits " +
-               std::to_string(p.bitOffset) + ".." + std::to_string(p.bitOffset + p.bits - 1) +
-               " (" + std::string(encodingName(p.encoding)) + ")";
-    };
-    std::optional<Place> first;
-    const MaterialDesc* firstMaterial = nullptr;
-    for (const MaterialDesc& m : out.materials) {
-        const LayoutDesc& l = *std::find_if(out.layouts.begin(), out.layouts.end(),
-                                            [&](auto& x) { return x.name == m.layout; });
-        auto info = analyzeLayout(l);
-        if (!info) return std::unexpected(info.error());
-        const int c = info->find("materialId");
-        const Declaration& d = *std::find_if(decls.begin(), decls.end(), [&](auto& x) {
-            return x.kind == DeclKind::Material && fullName(x) == m.name;
-        });
-        if (c < 0)
-            return where(d).at("layout").error(
-                "layout '" + l.name +
-                "' has no materialId channel: decals and debug views tell a pixel's layout by it "
-                "(declare \"materialId:uint:2\" where the other layouts keep it)");
-        const ChannelPlacement& pl = info->channels[static_cast<size_t>(c)];
-        Place p{l.targets[pl.target].name, pl.component, pl.bitOffset,
-                info->channelDesc(static_cast<size_t>(c)).bits,
-                info->channelDesc(static_cast<size_t>(c)).encoding};
-        if (p.encoding != Encoding::Uint)
-            return where(d).at("layout").error("layout '" + l.name + "' keeps materialId as " +
-                                               std::string(encodingName(p.encoding)) +
-                                               "; it must be a uint field");
-        if (!first) {
-            first = p;
-            firstMaterial = &m;
-        } else if (!(p == *first))
-            return where(d).at("layout").error(
-                "layout '" + l.name + "' keeps materialId in " + describe(p) + ", but layout '" +
-                firstMaterial->layout + "' (material '" + firstMaterial->name + "', " +
-                firstMaterial->origin + ") keeps it in " + describe(*first) +
-                ": every layout of a pipeline keeps materialId in the same place");
-    }
+    // Materials that name their class first, so that their values do not depend on the order.
+    for (int round = 0; round < 2; ++round)
+        for (MaterialDesc& m : out.materials) {
+            const Declaration& d = *std::find_if(decls.begin(), decls.end(), [&](auto& x) {
+                return x.kind == DeclKind::Material && fullName(x) == m.name;
+            });
+            if (d.body.has("stencil") != (round == 0)) continue;
+            auto cls = std::find_if(out.stencilClasses.begin(), out.stencilClasses.end(),
+                                    [&](auto& c) { return c.name == m.stencil; });
+            const uint32_t value = cls == out.stencilClasses.end() ? 0 : cls->value;
+            std::vector<uint32_t> candidates;
+            if (value != 0) candidates.push_back(value);
+            if (!d.body.has("stencil"))
+                for (uint32_t k = 1; k <= variants; ++k) {
+                    const uint32_t v = (value & low) | (k << bits);
+                    if (!declared.count(v)) candidates.push_back(v);
+                }
+            auto pick = std::find_if(candidates.begin(), candidates.end(), [&](uint32_t v) {
+                return !held.count(v) || alike(*held[v], m);
+            });
+            if (pick != candidates.end()) {
+                m.identity = *pick;
+                held.emplace(m.identity, &m);
+                continue;
+            }
+            const std::string className =
+                value ? "stencil class '" + m.stencil + "'" : std::string("no class");
+            if (!candidates.empty() && d.body.has("stencil")) {
+                const MaterialDesc& other = *held[value];
+                return where(d).at("stencil").error(
+                    "its pixels would carry stencil value " + std::to_string(value) + " (" +
+                    className + "), the identity of material '" + other.name + "' (" +
+                    other.origin + "), which decodes otherwise (layout '" + other.layout +
+                    "'): materials sharing a stencil value share their layout, channels and "
+                    "decals; "
+                    "give it a class of its own (rg.stencil \"...\" { variant_of = \"" +
+                    m.stencil +
+                    "\" } keeps the class's lighting) or leave out stencil to have a variant "
+                    "chosen");
+            }
+            std::vector<std::string> holders;
+            for (const auto& [v, h] : held)
+                if ((v & low) == (value & low)) holders.push_back(h->name);
+            return where(d).error("no material identity left for " + className + ": its " +
+                                  std::to_string(candidates.size()) +
+                                  " stencil values are held by materials " + joinQuoted(holders) +
+                                  " and declared variants; declare a stencil class of its own");
+        }
     return {};
 }
 

@@ -54,7 +54,8 @@ Result<Access> Builder::access(const Where& w, const Declaration& d, const Value
     static const std::vector<std::pair<std::string, Usage>> readUsages = {
         {"sampled", Usage::Sampled},     {"storage", Usage::StorageRead},
         {"uniform", Usage::UniformRead}, {"depth", Usage::DepthStencilRead},
-        {"copy", Usage::CopySrc},        {"indirect", Usage::IndirectRead}};
+        {"copy", Usage::CopySrc},        {"indirect", Usage::IndirectRead},
+        {"stencil", Usage::Sampled}};
     static const std::vector<std::pair<std::string, Usage>> writeUsages = {
         {"color", Usage::ColorAttachment},
         {"depth", Usage::DepthStencilAttachment},
@@ -79,6 +80,18 @@ Result<Access> Builder::access(const Where& w, const Declaration& d, const Value
                                     "; expected one of: " + joinQuoted(names));
         }
         a.usage = it->second;
+        if (!write && as == "stencil") {
+            // The stencil of a depth/stencil texture, sampled (a pixel's material identity).
+            std::optional<Format> f;
+            if (rd->kind == DeclKind::Texture && rd->body["format"].isString())
+                f = parseFormat(rd->body["format"].asString());
+            if (!f || !formatInfo(*f).stencil)
+                return w.at("as").error(
+                    "'" + a.resource + "' has no stencil" +
+                    (f ? " (format " + std::string(formatName(*f)) + ")" : "") +
+                    ": as = \"stencil\" reads the stencil of a depth/stencil texture (d32f_s8)");
+            a.stencil = true;
+        }
     }
     return a;
 }

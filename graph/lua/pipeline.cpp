@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <map>
+#include <set>
 #include <sstream>
 #include <cmath>
 #include <cstdio>
@@ -257,13 +258,14 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
             return fail(ErrorCode::InvalidInput, m.origin + ": material '" + m.name +
                                                      "' and material '" + defines[id]->name +
                                                      "' (" + defines[id]->origin +
-                                                     ") both become RG_MATERIAL_ID_" + id +
+                                                     ") both become RG_MATERIAL_IDENTITY_" + id +
                                                      " in the generated GLSL; rename one");
         defines[id] = &m;
-        o << "#define RG_MATERIAL_ID_" << id << " " << m.id << "u\n";
+        o << "#define RG_MATERIAL_IDENTITY_" << id << " " << m.identity << "u\n";
     }
     for (const LayoutDesc* l : layouts) o << "#include \"gbuffer_" << l->name << ".glsl\"\n";
-    o << "struct RgGBufferView {\n    uint materialId;\n    uint has;     // RG_VIEW_* of the "
+    o << "struct RgGBufferView {\n    uint identity;  // the pixel's stencil value: its material\n "
+         "   uint has;     // RG_VIEW_* of the "
          "parameters its layout holds\n"
          "    uint decals;  // RG_VIEW_* of the parameters decals blend on it\n"
          "    vec3 normal;\n    vec3 baseColor;\n    float smoothness;\n    float metalMask;\n    "
@@ -301,8 +303,8 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
                                                  "most four (GB0..GB3 in the default loop)");
     const std::string params4 = "vec4 t0, vec4 t1, vec4 t2, vec4 t3";
     if (layouts.empty()) {
-        o << "RgGBufferView rgDecodeGBuffer(" << params4
-          << ") {\n    RgGBufferView v;\n    v.materialId = 0u; v.has = 0u; v.decals = 0u;\n"
+        o << "RgGBufferView rgDecodeGBuffer(uint identity, " << params4
+          << ") {\n    RgGBufferView v;\n    v.identity = identity; v.has = 0u; v.decals = 0u;\n"
              "    v.normal = vec3(0.0, 0.0, 1.0); v.baseColor = vec3(0.0); v.smoothness = 0.0; "
              "v.metalMask = 0.0;\n"
              "    v.reflectance = 0.0; v.f0 = vec3(0.0); v.ao = 1.0; v.emissive = vec3(0.0);\n    "
@@ -310,10 +312,11 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
              "void rgEncodeDecals(RgGBufferView v, "
           << params4
           << ", out vec4 o0, out vec4 o1, out vec4 o2, out vec4 o3) {\n"
-             "    o0 = t0; o1 = t1; o2 = t2; o3 = t3;\n}\n#define RG_DECAL_TARGETS 0\n#endif\n";
+             "    o0 = t0; o1 = t1; o2 = t2; o3 = t3;\n}\n"
+             "#define rgGBufferAt(p) rgDecodeGBuffer(0u, vec4(0.0), vec4(0.0), vec4(0.0), "
+             "vec4(0.0))\n#define RG_DECAL_TARGETS 0\n#endif\n";
         return o.str();
     }
-    const LayoutDesc& first = *layouts.front();
     auto params = [&](const std::string& prefix, bool out) {
         std::string s;
         for (size_t i = 0; i < 4; ++i)
@@ -331,13 +334,12 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
         }
         return s;
     };
+    // By identity (materials sharing one decode alike: Builder::materialIdentities).
     std::map<uint32_t, const MaterialDesc*> byId;
-    for (const MaterialDesc& m : pipeline.materials) byId.emplace(m.id, &m);
-    o << "RgGBufferView rgDecodeGBuffer(" << params("t", false) << ") {\n"
+    for (const MaterialDesc& m : pipeline.materials) byId.emplace(m.identity, &m);
+    o << "RgGBufferView rgDecodeGBuffer(uint identity, " << params("t", false) << ") {\n"
       << "    RgGBufferView v;\n"
-      << "    v.materialId = unpackGBuffer_" << first.name << "(" << args(first, "t").substr(2)
-      << ").materialId;\n"
-      << "    v.has = 0u; v.decals = 0u;\n"
+      << "    v.identity = identity; v.has = 0u; v.decals = 0u;\n"
       << "    v.normal = vec3(0.0, 0.0, 1.0); v.baseColor = vec3(0.0); v.smoothness = 0.0; "
          "v.metalMask = 0.0;\n"
       << "    v.reflectance = 0.0; v.f0 = vec3(0.0); v.ao = 1.0; v.emissive = vec3(0.0);\n";
@@ -348,7 +350,7 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
         for (const auto& s : m->decals) decals |= bit(s);
         const LayoutDesc& l = **std::find_if(layouts.begin(), layouts.end(),
                                              [&](auto* x) { return x->name == m->layout; });
-        o << sep << "if (v.materialId == " << id << "u) {  // " << m->name << "\n"
+        o << sep << "if (v.identity == " << id << "u) {  // " << m->name << "\n"
           << "        GBuffer_" << l.name << " g = unpackGBuffer_" << l.name << "("
           << args(l, "t").substr(2) << ");\n"
           << "        v.has = " << has << "u; v.decals = " << decals << "u;\n";
@@ -366,7 +368,7 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
         if (m->decals.empty()) continue;
         const LayoutDesc& l = **std::find_if(layouts.begin(), layouts.end(),
                                              [&](auto* x) { return x->name == m->layout; });
-        o << sep << "if (v.materialId == " << id << "u) {  // " << m->name << "\n"
+        o << sep << "if (v.identity == " << id << "u) {  // " << m->name << "\n"
           << "        GBuffer_" << l.name << " g = unpackGBuffer_" << l.name << "("
           << args(l, "t").substr(2) << ");\n";
         for (const auto& s : m->decals)
@@ -406,46 +408,48 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
                         decalTargets |= 1u << k;
                     }
     }
-    o << "#define RG_DECAL_TARGETS " << decalTargets << "\n#endif\n";
+    // rgGBufferAt(p): what a G-buffer reader calls, with samplers named after the targets and
+    // `depth_stencil` (its reads: the targets and { "depth", as = "stencil" }), which the header
+    // declares from binding RG_GBUFFER_BINDING on when a shader defines it.
+    o << "#ifdef RG_GBUFFER_BINDING\n";
+    for (size_t i = 0; i < targets.size(); ++i)
+        o << "layout(set = 0, binding = RG_GBUFFER_BINDING + " << i << ") uniform sampler2D "
+          << targets[i] << ";\n";
+    o << "layout(set = 0, binding = RG_GBUFFER_BINDING + 4) uniform usampler2D depth_stencil;\n"
+      << "#endif\n";
+    o << "#define rgGBufferAt(p) rgDecodeGBuffer(texelFetch(depth_stencil, p, 0).r";
+    for (size_t i = 0; i < 4; ++i)
+        o << ", " << (i < targets.size() ? "texelFetch(" + targets[i] + ", p, 0)" : "vec4(0.0)");
+    o << ")\n#define RG_DECAL_TARGETS " << decalTargets << "\n#endif\n";
     return o.str();
 }
 
 std::string describeMaterialSystem(const PipelineDesc& p) {
     std::ostringstream o;
     char line[512];
-    // materialId: its width from the first material's layout (all layouts agree: checked).
-    uint32_t idBits = 0;
-    for (const MaterialDesc& m : p.materials) {
-        for (const LayoutDesc& l : p.layouts)
-            if (l.name == m.layout)
-                for (const TargetDesc& t : l.targets)
-                    for (const ChannelDesc& c : t.channels)
-                        if (c.name == "materialId") idBits = c.bits;
-        if (idBits) break;
-    }
-    const uint32_t ids = idBits ? (idBits >= 31 ? 0x7FFFFFFFu : 1u << idBits) : 0u;
-    o << "materialIds (" << idBits << " bits: " << ids
-      << " ids; an id names how a pixel decodes, so materials of one layout and the same\n"
-      << "decal parameters may share one):\n";
-    std::map<uint32_t, std::vector<const MaterialDesc*>> byId;
-    for (const MaterialDesc& m : p.materials) byId[m.id].push_back(&m);
-    for (const auto& [id, ms] : byId) {
+    // Identities: the stencil values 1..255 (0 is no material); one held by a material, or the
+    // value of a declared stencil class, is taken.
+    constexpr uint32_t kIdentities = 255;
+    o << "material identities (a pixel's stencil value names its material: every pass that\n"
+      << "decodes the G-buffer reads it; materials of one layout, channels and decals may share "
+         "one):\n";
+    std::map<uint32_t, std::vector<const MaterialDesc*>> byIdentity;
+    for (const MaterialDesc& m : p.materials) byIdentity[m.identity].push_back(&m);
+    std::set<uint32_t> taken;
+    for (const StencilClassDesc& c : p.stencilClasses) taken.insert(c.value);
+    for (const auto& [identity, ms] : byIdentity) {
+        taken.insert(identity);
         std::string names, decals;
         for (const MaterialDesc* m : ms) names += (names.empty() ? "" : ", ") + m->name;
         for (const std::string& d : ms.front()->decals) decals += (decals.empty() ? "" : " ") + d;
-        std::snprintf(line, sizeof line, "  %3u  layout %-12s decals %-48s materials %s\n", id,
-                      ms.front()->layout.c_str(), decals.empty() ? "(none)" : decals.c_str(),
-                      names.c_str());
+        std::snprintf(
+            line, sizeof line, "  0x%02X %-16s layout %-12s decals %-40s materials %s\n", identity,
+            ms.front()->stencil.empty() ? "(no class)" : ms.front()->stencil.c_str(),
+            ms.front()->layout.c_str(), decals.empty() ? "(none)" : decals.c_str(), names.c_str());
         o << line;
     }
-    std::vector<uint32_t> free;
-    for (uint32_t i = 0; i < ids && free.size() < 8; ++i)
-        if (!byId.count(i)) free.push_back(i);
-    o << "  free: ";
-    if (free.empty()) o << "none";
-    for (size_t i = 0; i < free.size(); ++i) o << (i ? ", " : "") << free[i];
-    if (ids > byId.size() + free.size()) o << ", ...";
-    o << " (" << (ids - static_cast<uint32_t>(byId.size())) << " of " << ids << ")\n\n";
+    o << "  free: " << (kIdentities - static_cast<uint32_t>(taken.size())) << " of " << kIdentities
+      << " (a material takes its class's value, else a free variant of it)\n\n";
     o << "stencil classes (8 bits: a class takes 1..15 in the low 4 bits and its pass tests them, "
          "so it lights\n"
       << "its variants too; a variant keeps its base's low bits and takes 1..15 in the high 4):\n";
@@ -503,12 +507,9 @@ std::vector<PassMaterial> sceneMaterials(const PipelineDesc& pipeline, const Val
         t.fills = m.fills;
         for (const auto& [key, value] : m.params.asTable())
             if (value.isNumber()) t.custom.push_back(key);
-        for (const auto& c : pipeline.stencilClasses)
-            if (c.name == m.stencil) {
-                t.stencilValue = c.value;
-                t.stencilMask =
-                    255;  // the whole byte: a class's value replaces whatever was under it
-            }
+        // Its identity, the whole byte: it replaces whatever was under it.
+        t.stencilValue = m.identity;
+        t.stencilMask = 255;
         out.push_back(std::move(t));
     }
     return out;

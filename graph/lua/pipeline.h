@@ -66,7 +66,10 @@ inline const char* const kDecalParameters[] = {"normal", "baseColor", "smoothnes
 
 struct MaterialDesc {
     std::string name;
-    uint32_t id = 0;                 // materialId written to the G-buffer
+    uint32_t id = 0;  // RG_MATERIAL_ID: written to a layout's materialId, if any
+    // Its pixels' stencil value (class in the low kStencilPathBits, variant in the high): how
+    // every G-buffer reader knows which layout decodes a pixel (Builder::materialIdentities).
+    uint32_t identity = 0;
     std::string layout;              // G-buffer layout
     std::string surface;             // GLSL file with the surface function
     std::string path;                // lighting path

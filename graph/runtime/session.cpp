@@ -138,9 +138,14 @@ Result<GraphDesc> Session::buildableGraph(const PipelineDesc& p, bool keepMissin
         if (!m_options.view.empty() && r.name == "debug_view") r.exported = true;
         for (const auto& c : m_options.captures)
             if (r.name == c) r.exported = true;
-        for (const auto& ch : m_channels)
+        for (const auto& ch : m_channels) {
             for (const auto& t : ch.layout.targets)
                 if (r.name == t.name) r.exported = true;
+            for (const auto& [_, lc] : ch.byId)
+                for (const auto& t : lc.first.targets)
+                    if (r.name == t.name) r.exported = true;
+            if (r.name == ch.stencil) r.exported = true;
+        }
     }
     std::vector<std::string> declared;  // each pass's shader as the script names it
     for (const auto& pass : g.passes)

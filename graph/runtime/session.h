@@ -96,15 +96,16 @@ public:
     double lastSceneLoadMs() const { return m_sceneLoadMs; }
     // A capture that names a G-buffer channel ("gbuffer.smoothness" or "<layout>.<channel>"):
     // the layout that holds it. Its targets are exported; `render` decodes the channel.
-    // `--capture gbuffer.X` / `LAYOUT.X`: decoded per pixel by its materialId with that
-    // material's layout (`layout` tells the id; `byId` gives each id's layout and channel —
+    // `--capture gbuffer.X` / `LAYOUT.X`: decoded per pixel with its material's layout, the
+    // material named by the pixel's stencil (`stencil`; `byId` gives each identity's layout and channel —
     // gbuffer.X maps a standard name through the material's `channels`); pixels whose material
     // has no such channel are NaN.
     struct ChannelCapture {
         std::string name;
         LayoutDesc layout;
         std::string channel;
-        std::map<uint32_t, std::pair<LayoutDesc, std::string>> byId;
+        std::map<uint32_t, std::pair<LayoutDesc, std::string>> byId;  // by identity
+        std::string stencil;  // the depth whose stencil holds the identities, or ""
     };
     const std::vector<ChannelCapture>& channelCaptures() const { return m_channels; }
     // A channel capture read back and decoded, after a frame: see ChannelCapture.

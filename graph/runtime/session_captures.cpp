@@ -1,5 +1,6 @@
 // Session's captures of G-buffer channels ("gbuffer.<channel>", "<layout>.<channel>"): the
-// names checked against the pipeline's layouts, and each channel decoded per materialId on the CPU.
+// names checked against the pipeline's layouts, and each pixel's channel decoded on the CPU with
+// the layout of its material, which the G-buffer's stencil names (MaterialDesc::identity).
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -18,7 +19,8 @@
 namespace rg {
 
 // One `--capture gbuffer.X` / `LAYOUT.X` as an image: each pixel decoded on the CPU with its
-// material's layout (by its materialId), NaN where that material has no such channel.
+// material's layout (by its identity, the stencil value), NaN where that material has no such
+// channel.
 Result<Image> Session::channelImage(const ChannelCapture& ch) const {
     auto info = analyzeLayout(ch.layout);
     if (!info) return std::unexpected(info.error());
@@ -28,7 +30,7 @@ Result<Image> Session::channelImage(const ChannelCapture& ch) const {
         if (!img) return std::unexpected(img.error());
         targets.push_back(std::move(*img));
     }
-    // Each pixel decoded with its material's layout (by materialId), else with ch.layout.
+    // Each pixel decoded with its material's layout (by its stencil), else with ch.layout.
     struct Decoder {
         LayoutInfo info;
         std::vector<Image*> targets;
@@ -63,7 +65,12 @@ Result<Image> Session::channelImage(const ChannelCapture& ch) const {
         if (!d) return std::unexpected(d.error());
         byId.emplace(id, std::move(*d));
     }
-    const int idIndex = main->info.find("materialId");
+    Image identities;
+    if (!byId.empty() && !ch.stencil.empty()) {
+        auto img = m_runtime.executor().readback(ch.stencil, 0, 0, true);
+        if (!img) return std::unexpected(img.error());
+        identities = std::move(*img);
+    }
     const ChannelDesc& desc = main->index >= 0
                                   ? main->info.channelDesc(static_cast<size_t>(main->index))
                                   : byId.begin()->second.info.channelDesc(
@@ -84,8 +91,8 @@ Result<Image> Session::channelImage(const ChannelCapture& ch) const {
     for (uint32_t y = 0; y < out.height; ++y)
         for (uint32_t x = 0; x < out.width; ++x) {
             const Decoder* d = &*main;
-            if (!byId.empty() && idIndex >= 0) {
-                auto it = byId.find(decode(*main, x, y)[static_cast<size_t>(idIndex)].u[0]);
+            if (!identities.pixels.empty()) {
+                auto it = byId.find(static_cast<uint32_t>(identities.at(x, y, 0)));
                 d = it == byId.end() ? nullptr : &it->second;
             }
             if (!d || d->index < 0) {
@@ -102,7 +109,7 @@ Result<Image> Session::channelImage(const ChannelCapture& ch) const {
 }
 
 // `--capture` names (and the library's keep, serve's image requests) checked against a pipeline:
-// a resource of its graph, or "gbuffer.<channel>" / "<layout>.<channel>", decoded per materialId.
+// a resource of its graph, or "gbuffer.<channel>" / "<layout>.<channel>", decoded per material.
 Result<std::vector<Session::ChannelCapture>> detail::channelCapturesOf(
     const PipelineDesc& pipeline, const std::vector<std::string>& captures) {
     using ChannelCapture = Session::ChannelCapture;
@@ -127,7 +134,7 @@ Result<std::vector<Session::ChannelCapture>> detail::channelCapturesOf(
                     found = true;
                 }
             }
-            // Per materialId: the material's own layout, and its channel for a standard name.
+            // Per identity: the material's own layout, and its channel for a standard name.
             for (const MaterialDesc& m : pipeline.materials) {
                 const LayoutDesc& l =
                     *std::find_if(pipeline.layouts.begin(), pipeline.layouts.end(),
@@ -157,15 +164,23 @@ Result<std::vector<Session::ChannelCapture>> detail::channelCapturesOf(
                         ? std::make_pair(channels.back().layout, channels.back().channel)
                         : channels.back().byId.begin()->second;
                 if (shape(l, name) == shape(first.first, first.second))
-                    channels.back().byId.emplace(m.id, std::make_pair(l, name));
+                    channels.back().byId.emplace(m.identity, std::make_pair(l, name));
             }
-            if (found && !channels.back().byId.empty()) {
-                // The layout that tells the id: the first material's (every one keeps materialId alike).
-                const MaterialDesc& first = pipeline.materials.front();
-                channels.back().layout =
-                    *std::find_if(pipeline.layouts.begin(), pipeline.layouts.end(),
-                                  [&](auto& x) { return x.name == first.layout; });
-            }
+            // The identities: the stencil of the depth the G-buffer pass (a scene pass drawing
+            // materials into the layouts' targets) writes.
+            if (found && !channels.back().byId.empty())
+                for (const PassDesc& pass : pipeline.graph.passes) {
+                    if (pass.kind != "scene" || pass.params["forward"].asBool() ||
+                        pass.params["shadow"].asBool() || pass.params["capture"].asBool())
+                        continue;
+                    for (const Access& a : pass.accesses)
+                        if (a.usage == Usage::DepthStencilAttachment)
+                            if (const ResourceDesc* r = pipeline.graph.findResource(a.resource);
+                                r && r->kind == ResourceKind::Texture &&
+                                formatInfo(r->texture.format).stencil &&
+                                channels.back().stencil.empty())
+                                channels.back().stencil = a.resource;
+                }
         }
         if (!found)
             return fail(ErrorCode::NotFound,

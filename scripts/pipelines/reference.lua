@@ -43,7 +43,7 @@ rg.resource "reference_accum" { format = "rgba32f", persistent = true }
 -- lighting passes after it, and rg.frame below turns those real-time passes off.
 rg.pass "lighting_standard" {
     kind = "compute", shader = "passes/reference.comp", dispatch = "hdr",
-    reads = { "GB0", "GB1", "GB2", "GB3", "depth", { "exposure", as = "storage" } },
+    reads = { "GB0", "GB1", "GB2", "GB3", "depth", { "depth", as = "stencil" }, { "exposure", as = "storage" } },
     writes = { { "hdr", as = "storage" }, { "reference_accum", as = "storage_rw", load = true } },
 }
 

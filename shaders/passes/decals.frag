@@ -3,7 +3,7 @@
 // blends the standard parameters with linear alpha blending, in decoded form (no programmable
 // blending here: the pass reads copies of the targets and re-packs). Each pixel is decoded and
 // re-packed with its own material's layout (gbuffer_pipeline.glsl, generated from the pipeline's
-// materials: RgGBufferView by materialId) and only the parameters its material lets decals blend
+// materials: RgGBufferView by the pixel's stencil value, its material identity) and only the parameters its material lets decals blend
 // (rg.material's `decals`: by default the common Normal, BaseColor and Smoothness; MetalMask and
 // Reflectance on the standard material) change; MaterialId, MaterialData and a layout's own
 // channels are never blended. Pixels no decal touches keep the G-buffer as it is (discard).
@@ -22,6 +22,7 @@ layout(set = 0, binding = 0) uniform sampler2D GB0_in;
 layout(set = 0, binding = 1) uniform sampler2D GB1_in;
 layout(set = 0, binding = 2) uniform sampler2D GB2_in;
 layout(set = 0, binding = 3) uniform sampler2D depth;
+layout(set = 0, binding = 4) uniform usampler2D depth_stencil;  // the material identity
 
 void main() {
     if (decals.count.x == 0u) discard;  // a scene without decals pays for one load per pixel
@@ -29,7 +30,7 @@ void main() {
     float d = texelFetch(depth, p, 0).r;
     if (d >= 1.0) discard;
     vec4 t0 = texelFetch(GB0_in, p, 0), t1 = texelFetch(GB1_in, p, 0), t2 = texelFetch(GB2_in, p, 0);
-    RgGBufferView g = rgDecodeGBuffer(t0, t1, t2, vec4(0.0));
+    RgGBufferView g = rgDecodeGBuffer(texelFetch(depth_stencil, p, 0).r, t0, t1, t2, vec4(0.0));
     if (g.decals == 0u) discard;  // a material decals leave alone
     vec3 position = rgWorldPosition(uv, d);
     bool touched = false;

@@ -9,7 +9,8 @@
 // normal's length, over the same unoccluded (below). 1 = open, 0 = closed. Directions turn per pixel (a 4×4 pattern the
 // ao_blur pass averages out). Written with the pixel's view distance beside it (rg16f).
 #include "lib/scene.glsl"
-#include "gbuffer_disney.glsl"
+#define RG_GBUFFER_BINDING 40  // GB0..GB3 and depth_stencil: the pixel decoded by its material
+#include "gbuffer_pipeline.glsl"
 
 // The estimate is the ratio of the slices' visible cosine-weighted arcs to what the same slices
 // would see unoccluded (cos n + n sin n each, times its projected normal's length): both sums
@@ -28,7 +29,6 @@
 layout(location = 0) in vec2 uv;
 layout(location = 0) out vec4 color;
 layout(set = 0, binding = 0) uniform sampler2D ao_depth;  // the view distance at every half-resolution texel's pixel 2h
-layout(set = 0, binding = 1) uniform sampler2D GB0;
 layout(set = 0, binding = 2) uniform Params { float ao_radius; } params;
 
 // What rgViewPosition computes for texel h's pixel 2h, with the per-frame constants hoisted out
@@ -61,7 +61,7 @@ void main() {
     ivec2 half_ = ivec2(gl_FragCoord.xy);
     ivec2 full = half_ * 2;
     vec3 P = viewPosition(half_);
-    vec3 Nw = unpackGBuffer_disney(texelFetch(GB0, full, 0), vec4(0.0), vec4(0.0), vec4(0.0)).normal;
+    vec3 Nw = rgGBufferAt(full).normal;
     vec3 N = normalize(mat3(camera.view) * Nw);
     vec3 V = rgCameraOrthographic() ? vec3(0.0, 0.0, 1.0) : normalize(-P);
     // The radius on screen, in full-resolution pixels (the projection's y scale).

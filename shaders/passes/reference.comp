@@ -39,7 +39,7 @@
 // sample reads the radiance where it points, the two combined with the power heuristic as for
 // the lights — so a small bright source in an HDRI converges as fast as a sky. Unoccluded like
 // the split sum it checks, unless reference_shadows.
-// Clear coat (RG_MATERIAL_ID_clear_coat, materials/clearcoat.lua) gets its coat lobe too, evaluated per
+// Clear coat (RG_MATERIAL_IDENTITY_clear_coat, materials/clearcoat.lua) gets its coat lobe too, evaluated per
 // direction as materials/clearcoat_lighting.frag does for one light direction. The two-colour
 // material (materials/two_colour.lua) is unpacked with its own layout into the same diffuse colour
 // and f0.
@@ -63,6 +63,7 @@ layout(set = 0, binding = 1) uniform sampler2D GB1;
 layout(set = 0, binding = 2) uniform sampler2D GB2;
 layout(set = 0, binding = 3) uniform sampler2D GB3;
 layout(set = 0, binding = 4) uniform sampler2D depth;
+layout(set = 0, binding = 11) uniform usampler2D depth_stencil;  // the material identity
 layout(set = 0, binding = 5, std430) readonly buffer exposure { RgExposureState state; } ex;
 layout(set = 0, binding = 6, rgba16f) uniform writeonly image2D hdr;
 layout(set = 0, binding = 7, rgba32f) uniform image2D reference_accum;
@@ -130,7 +131,7 @@ struct Shading {
     vec3 Vs;          // V lifted above the horizon for sampling the GGX visible normals
     float NdotVs;
     vec3 T, B;        // tangent frame around N
-    bool coat;        // RG_MATERIAL_ID_clear_coat (materials/clearcoat.lua): a second GGX lobe on top
+    bool coat;        // RG_MATERIAL_IDENTITY_clear_coat (materials/clearcoat.lua): a second GGX lobe on top
     float coatStrength, coatAlpha;
     vec3 lobeProbability;  // of picking the diffuse, GGX and coat lobes for the BRDF sample
 };
@@ -451,7 +452,7 @@ void main() {
     // Each pixel decoded with its own material's layout (gbuffer_pipeline.glsl): the standard
     // parameters it holds, neutral values for those it does not.
     vec4 t0 = texelFetch(GB0, p, 0), t1 = texelFetch(GB1, p, 0), t2 = texelFetch(GB2, p, 0), t3 = texelFetch(GB3, p, 0);
-    RgGBufferView g = rgDecodeGBuffer(t0, t1, t2, t3);
+    RgGBufferView g = rgDecodeGBuffer(texelFetch(depth_stencil, p, 0).r, t0, t1, t2, t3);
     if ((g.has & RG_VIEW_SMOOTHNESS) == 0u) g.smoothness = 0.5;
     if ((g.has & RG_VIEW_REFLECTANCE) == 0u) g.reflectance = 0.5;
     Shading s;
@@ -479,8 +480,8 @@ void main() {
     rgBasis(s.N, s.T, s.B);
     // materials/clearcoat_lighting.frag's coat: strength in MaterialData, smoothness in GB2.r.
     // The clear coat's own channels (materials/clearcoat.lua: the disney layout's MaterialData and GB2.r).
-#ifdef RG_MATERIAL_ID_clear_coat
-    s.coat = g.materialId == RG_MATERIAL_ID_clear_coat;
+#ifdef RG_MATERIAL_IDENTITY_clear_coat
+    s.coat = g.identity == RG_MATERIAL_IDENTITY_clear_coat;
     GBuffer_disney coat = unpackGBuffer_disney(t0, t1, t2, t3);
     s.coatStrength = float(coat.materialData) / 31.0;
     s.coatAlpha = max((1.0 - coat.reserved) * (1.0 - coat.reserved), 1e-3);

@@ -9,11 +9,11 @@
 // probe's). Pixels without geometry get 0.
 #include "lib/scene.glsl"
 #include "lib/ibl.glsl"
-#include "gbuffer_disney.glsl"
+#define RG_GBUFFER_BINDING 40  // GB0..GB3 and depth_stencil: the pixel decoded by its material
+#include "gbuffer_pipeline.glsl"
 
 layout(location = 0) in vec2 uv;
 layout(location = 0) out vec4 color;
-layout(set = 0, binding = 0) uniform sampler2D GB0;
 layout(set = 0, binding = 1) uniform sampler2D depth;
 // The baked lightmap's specular radiance (lib/lightmap.glsl, written by the G-buffer pass when the
 // pipeline's G-buffer has it: RG_LIGHTMAP_SPECULAR): with a scene lightmap, what the rest of the
@@ -29,7 +29,7 @@ void main() {
     float z = texelFetch(depth, p, 0).r;
     color = vec4(0.0);
     if (z >= 1.0) return;
-    GBuffer_disney g = unpackGBuffer_disney(texelFetch(GB0, p, 0), vec4(0.0), vec4(0.0), vec4(0.0));
+    RgGBufferView g = rgGBufferAt(p);
     vec3 P = rgWorldPosition(uv, z);
     vec3 N = g.normal;
     vec3 V = rgViewDirection(P);

@@ -11,7 +11,8 @@
 #define RG_SUN_MASK_WRITER 1
 #include "lib/scene.glsl"
 #include "lib/shadows.glsl"
-#include "gbuffer_disney.glsl"
+#define RG_GBUFFER_BINDING 40  // GB0..GB3 and depth_stencil: the pixel decoded by its material
+#include "gbuffer_pipeline.glsl"
 
 #ifndef RG_SUN_CASCADE
 #define RG_SUN_CASCADE 0
@@ -19,7 +20,6 @@
 
 layout(location = 0) in vec2 uv;
 layout(location = 0) out vec4 color;
-layout(set = 0, binding = 0) uniform sampler2D GB0;
 layout(set = 0, binding = 1) uniform sampler2D depth;
 
 void main() {
@@ -29,12 +29,12 @@ void main() {
     ivec2 q = ivec2(gl_FragCoord.xy) * 2;
     float z = texelFetch(depth, q, 0).r;
     vec3 P = rgWorldPosition((vec2(q) + 0.5) * camera.viewport.zw, z);
-    vec3 N = unpackGBuffer_disney(texelFetch(GB0, q, 0), vec4(0.0), vec4(0.0), vec4(0.0)).normal;
+    vec3 N = rgGBufferAt(q).normal;
     color = vec4(rgSunShadowIn(sun_shadow, RG_SUN_CASCADE, P, N), rgViewDistance(z), 0.0, 1.0);
 #else
     ivec2 p = ivec2(gl_FragCoord.xy);
     vec3 P = rgWorldPosition(uv, texelFetch(depth, p, 0).r);
-    vec3 N = unpackGBuffer_disney(texelFetch(GB0, p, 0), vec4(0.0), vec4(0.0), vec4(0.0)).normal;
+    vec3 N = rgGBufferAt(p).normal;
     color = vec4(rgSunShadowIn(sun_shadow, RG_SUN_CASCADE, P, N));
 #endif
 }

@@ -14,11 +14,11 @@
 #include "lib/scene.glsl"
 #include "lib/ibl.glsl"
 #include "lib/exposure.glsl"
-#include "gbuffer_disney.glsl"
+#define RG_GBUFFER_BINDING 40  // GB0..GB3 and depth_stencil: the pixel decoded by its material
+#include "gbuffer_pipeline.glsl"
 
 layout(location = 0) in vec2 uv;
 layout(location = 0) out vec4 color;
-layout(set = 0, binding = 0) uniform sampler2D GB0;
 layout(set = 0, binding = 1) uniform sampler2D depth;
 layout(set = 0, binding = 2) uniform sampler2D hiz;
 layout(set = 0, binding = 3) uniform sampler2D hdr_history;
@@ -43,7 +43,7 @@ void main() {
     float z = texelFetch(depth, p, 0).r;
     color = vec4(0.0);
     if (z >= 1.0) return;
-    GBuffer_disney g = unpackGBuffer_disney(texelFetch(GB0, p, 0), vec4(0.0), vec4(0.0), vec4(0.0));
+    RgGBufferView g = rgGBufferAt(p);
     float linearRoughness = 1.0 - g.smoothness;
     if (linearRoughness > params.ssr_max_roughness) return;
     vec2 size = vec2(textureSize(depth, 0));

@@ -147,31 +147,45 @@ TEST(LuaErrors, CycleIsReportedByTheCompiler) {
               kScripts + "cycle.lua:4: cycle between passes: 'first' -> 'second' -> 'first'");
 }
 
-TEST(LuaErrors, MaterialIdCollisionNamesBothDeclarations) {
-    // Materials share an id only when their pixels decode alike: the same layout...
+TEST(LuaErrors, MaterialsNamingOneStencilValueMustDecodeAlike) {
+    // A pixel's stencil value is its material's identity: two materials that name the same class
+    // share it, so their pixels must decode alike.
     EXPECT_EQ(loadError("id_collision.lua"),
               kScripts +
-                  "id_collision.lua:5: materials.toon.id: 1 is the id of material 'clearcoat' (" +
+                  "id_collision.lua:5: materials.toon.stencil: its pixels would carry stencil "
+                  "value 1 (stencil class 'lit_standard'), the identity of material 'glossy' (" +
                   kScripts +
-                  "id_collision.lua:4) of layout 'disney': materials share an id only when their "
-                  "pixels decode alike (the same layout); choose a free id");
-    // ...and the same decal parameters.
-    EXPECT_EQ(
-        loadError("id_decals_differ.lua"),
-        kScripts +
-            "id_decals_differ.lua:4: materials.glossy.decals: 0 is the id of material 'standard' "
-            "(materials/disney.lua:23) with other channels "
-            "or decals: materials sharing an id decode alike; match them or choose a free id");
+                  "id_collision.lua:4), which decodes otherwise (layout 'disney'): materials "
+                  "sharing a stencil value share their layout, channels and decals; give it a "
+                  "class of its own (rg.stencil \"...\" { variant_of = \"lit_standard\" } keeps "
+                  "the class's lighting) or leave out stencil to have a variant chosen");
+    // A class's 16 values: the standard material's, then 15 variants; the sixteenth material
+    // that decodes otherwise finds none.
+    EXPECT_EQ(loadError("id_exhausted.lua"),
+              kScripts +
+                  "id_exhausted.lua:10: materials.m16: no material identity left for stencil "
+                  "class "
+                  "'lit_standard': its 16 stencil values are held by materials 'standard', 'm1', "
+                  "'m2', 'm3', 'm4', 'm5', 'm6', 'm7', 'm8', 'm9', 'm10', 'm11', 'm12', 'm13', "
+                  "'m14', 'm15' and declared variants; declare a stencil class of its own");
 }
 
-TEST(LuaErrors, MaterialIdKeptInDifferentBitsIsRefused) {
-    EXPECT_EQ(loadError("id_placement.lua"),
-              kScripts +
-                  "id_placement.lua:8: materials.wide.layout: layout 'wide' keeps materialId in "
-                  "target GB0.A bits 0..2 (uint), but layout "
-                  "'disney' (material 'standard', materials/disney.lua:23) keeps it in target "
-                  "GB0.A bits 0..1 (uint): every layout of a "
-                  "pipeline keeps materialId in the same place");
+TEST(LuaPipeline, MaterialsTakeTheirClassValueOrAVariantOfIt) {
+    auto identity = [](const PipelineDesc& p, const std::string& name) {
+        for (const MaterialDesc& m : p.materials)
+            if (m.name == name) return m.identity;
+        return 0xFFFFu;
+    };
+    auto p = load("id_decals_differ.lua");
+    ASSERT_TRUE(p.has_value()) << p.error().message;
+    EXPECT_EQ(identity(*p, "standard"), 0x01u);
+    EXPECT_EQ(identity(*p, "glossy"), 0x11u);  // other decals: the first free variant
+    EXPECT_EQ(identity(*p, "matte"), 0x01u);   // decodes as the standard material: shares it
+    // No class: low bits 0 (no lighting pass lights it); a materialId of its own width is fine.
+    auto w = load("id_placement.lua");
+    ASSERT_TRUE(w.has_value()) << w.error().message;
+    EXPECT_EQ(identity(*w, "wide"), 0x10u);
+    EXPECT_EQ(identity(*w, "standard"), 0x01u);
 }
 
 TEST(LuaErrors, PathDecodesOneLayout) {
@@ -412,7 +426,7 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // Every script it pulled in is known, for hot reload.
     EXPECT_EQ(
         p->files.size(),
-        15u);  // deferred, post, lighting, render_loop, ibl, shadows, probes, ao, ssr, reflections, lightmap, disney, clearcoat, foliage, two_colour
+        16u);  // deferred, post, lighting, render_loop, ibl, shadows, probes, ao, ssr, reflections, lightmap, gbuffer_reader, disney, clearcoat, foliage, two_colour
 }
 
 TEST(LuaPipeline, ModulesAreNamespacedAndInsertedAfterTheirAnchor) {

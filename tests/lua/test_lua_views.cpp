@@ -76,7 +76,9 @@ TEST(LuaViews, AStandardViewIsAPassAfterThePipelines) {
     EXPECT_EQ(last.params["uniforms"]["view"].asNumber(), 0.0);
     std::vector<std::string> reads;
     for (const auto& a : last.accesses) reads.push_back(a.resource);
-    EXPECT_EQ(reads, (std::vector<std::string>{"GB0", "GB1", "GB2", "GB3", "depth", "debug_view"}));
+    EXPECT_EQ(reads, (std::vector<std::string>{"GB0", "GB1", "GB2", "GB3", "depth", "depth",
+                                               "debug_view"}));
+    EXPECT_TRUE(last.accesses[5].stencil);  // the pixel's material identity
     EXPECT_TRUE(p->graph.findResource("debug_view"));
     // The standard views' file is one of the pipeline's (a change to it reloads under watch).
     EXPECT_TRUE(std::any_of(p->files.begin(), p->files.end(),
@@ -198,7 +200,7 @@ TEST(LuaViews, BadViewDeclarationsAreErrorsAtTheirLine) {
     EXPECT_EQ(loadError("view_twice", "\nrg.view \"normals\" { build = function(v) end }\n"),
               tmp +
                   "view_twice.lua:9: rg.view \"normals\": already declared at "
-                  "scripts/views.lua:59");
+                  "scripts/views.lua:60");
     EXPECT_EQ(loadError("view_name", "\nrg.view \"a b\" { build = function(v) end }\n"),
               tmp +
                   "view_name.lua:9: rg.view: expected a name (letters, digits, '_', '-' and "

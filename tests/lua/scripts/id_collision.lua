@@ -1,5 +1,5 @@
 local rg = require "rg"
 require "disney"
-rg.layout "toon" { { "GB0", "rgb10a2", { "normal:oct:20", "bands:unorm:10", "materialId:uint:2" } } }
-rg.material "clearcoat" { id = 1, layout = "disney", path = "standard" }
-rg.material "toon" { id = 1, layout = "toon", stencil = "lit_standard" }
+rg.layout "toon" { { "GB0", "rgb10a2", { "normal:oct:20", "bands:unorm:10", "spare:uint:2" } } }
+rg.material "glossy" { layout = "disney", stencil = "lit_standard" }
+rg.material "toon" { layout = "toon", stencil = "lit_standard" }
