@@ -50,8 +50,8 @@ rg.pass "ssr" {
 }
 
 -- A lighting pass's declaration that composes SSR over the probes (lib/ibl.glsl RG_SSR): reads
--- `ssr`. The `ssr` pass decodes GB0 of the `disney` layout (normal, smoothness), which the
--- clear-coat and two-colour layouts share, so their lighting paths take it too.
+-- `ssr`. The `ssr` pass decodes each pixel's normal and smoothness with its material's layout
+-- (gbuffer_reader.lua), so every lighting path may take it.
 function ssr.lit(pass)
     return lighting.extend(pass, { "ssr" }, "RG_SSR")
 end

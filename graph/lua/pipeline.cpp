@@ -5,6 +5,7 @@
 #include <map>
 #include <set>
 #include <sstream>
+#include <tuple>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -314,7 +315,8 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
           << ", out vec4 o0, out vec4 o1, out vec4 o2, out vec4 o3) {\n"
              "    o0 = t0; o1 = t1; o2 = t2; o3 = t3;\n}\n"
              "#define rgGBufferAt(p) rgDecodeGBuffer(0u, vec4(0.0), vec4(0.0), vec4(0.0), "
-             "vec4(0.0))\n#define RG_DECAL_TARGETS 0\n#endif\n";
+             "vec4(0.0))\n#define rgGBufferNormalAt(p) vec3(0.0, 0.0, 1.0)\n"
+             "#define rgGBufferSmoothnessAt(p) 0.0\n#define RG_DECAL_TARGETS 0\n#endif\n";
         return o.str();
     }
     auto params = [&](const std::string& prefix, bool out) {
@@ -408,6 +410,57 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
                         decalTargets |= 1u << k;
                     }
     }
+    // Per standard channel, its decode alone, one branch per place materials keep it: a reader
+    // that wants the normal (the sun's mask, AO) or the smoothness (SSR) decodes just that, with
+    // no test at all when every material keeps it in the same place (the stencil then goes
+    // unread: the default loop's normal and smoothness are GB0's for every material). Pixels of
+    // a material without it get the neutral value.
+    for (const auto& [name, type, neutral] : {std::tuple<std::string, std::string, std::string>{
+                                                  "normal", "vec3", "vec3(0.0, 0.0, 1.0)"},
+                                              {"smoothness", "float", "0.0"}}) {
+        std::vector<std::pair<std::string, std::vector<const MaterialDesc*>>> places;
+        for (const auto& [id, m] : byId) {
+            auto c = m->channels.find(name);
+            if (c == m->channels.end()) continue;
+            const LayoutDesc& l = **std::find_if(layouts.begin(), layouts.end(),
+                                                 [&](auto* x) { return x->name == m->layout; });
+            auto info = analyzeLayout(l);
+            if (!info) return std::unexpected(info.error());
+            const ChannelPlacement& pl = info->channels[static_cast<size_t>(info->find(c->second))];
+            const ChannelDesc& cd = info->channelDesc(static_cast<size_t>(info->find(c->second)));
+            std::string place = l.targets[pl.target].name + ":" +
+                                std::string(formatName(l.targets[pl.target].format)) + ":" +
+                                std::string(encodingName(cd.encoding)) + ":" +
+                                std::to_string(cd.bits);
+            for (uint32_t k = 0; k < pl.components; ++k)
+                place += ":" + std::to_string(pl.slots[k].component) + "." +
+                         std::to_string(pl.slots[k].bitOffset);
+            auto it = std::find_if(places.begin(), places.end(),
+                                   [&](auto& x) { return x.first == place; });
+            if (it == places.end()) it = places.insert(places.end(), {place, {}});
+            it->second.push_back(m);
+        }
+        std::string fn =
+            "rgDecode" + std::string(1, static_cast<char>(std::toupper(name[0]))) + name.substr(1);
+        o << type << " " << fn << "(uint identity, " << params("t", false) << ") {\n";
+        bool unconditional = false;
+        for (const auto& [place, ms] : places) {
+            const MaterialDesc& m = *ms.front();
+            const LayoutDesc& l = **std::find_if(layouts.begin(), layouts.end(),
+                                                 [&](auto* x) { return x->name == m.layout; });
+            std::string test;
+            for (const MaterialDesc* x : ms)
+                test += (test.empty() ? "" : " || ") + std::string("identity == ") +
+                        std::to_string(x->identity) + "u";
+            const bool all = places.size() == 1 && ms.size() == byId.size();
+            unconditional = unconditional || all;
+            o << "    " << (all ? "" : "if (" + test + ") ") << "return unpackGBuffer_" << l.name
+              << "(" << args(l, "t").substr(2) << ")." << m.channels.at(name) << ";  // " << place
+              << "\n";
+        }
+        if (!unconditional) o << "    return " << neutral << ";\n";
+        o << "}\n";
+    }
     // rgGBufferAt(p): what a G-buffer reader calls, with samplers named after the targets and
     // `depth_stencil` (its reads: the targets and { "depth", as = "stencil" }), which the header
     // declares from binding RG_GBUFFER_BINDING on when a shader defines it.
@@ -417,10 +470,14 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
           << targets[i] << ";\n";
     o << "layout(set = 0, binding = RG_GBUFFER_BINDING + 4) uniform usampler2D depth_stencil;\n"
       << "#endif\n";
-    o << "#define rgGBufferAt(p) rgDecodeGBuffer(texelFetch(depth_stencil, p, 0).r";
+    std::string fetch = "(texelFetch(depth_stencil, p, 0).r";
     for (size_t i = 0; i < 4; ++i)
-        o << ", " << (i < targets.size() ? "texelFetch(" + targets[i] + ", p, 0)" : "vec4(0.0)");
-    o << ")\n#define RG_DECAL_TARGETS " << decalTargets << "\n#endif\n";
+        fetch += ", " + (i < targets.size() ? "texelFetch(" + targets[i] + ", p, 0)" : "vec4(0.0)");
+    fetch += ")";
+    o << "#define rgGBufferAt(p) rgDecodeGBuffer" << fetch << "\n"
+      << "#define rgGBufferNormalAt(p) rgDecodeNormal" << fetch << "\n"
+      << "#define rgGBufferSmoothnessAt(p) rgDecodeSmoothness" << fetch << "\n"
+      << "#define RG_DECAL_TARGETS " << decalTargets << "\n#endif\n";
     return o.str();
 }
 

@@ -17,7 +17,7 @@ void main() {
     float z = texelFetch(depth, p, 0).r;
     if (z >= 1.0) { color = vec4(0.0, 0.0, 0.0, 1.0); return; }
     vec3 P = rgWorldPosition(uv, z);
-    vec3 N = rgGBufferAt(p).normal;
+    vec3 N = rgGBufferNormalAt(p);
     int ci = rgCascadeAt(P);
     const vec3 palette[5] = vec3[5](vec3(0.9, 0.25, 0.2), vec3(0.25, 0.8, 0.25), vec3(0.25, 0.45, 0.95), vec3(0.95, 0.85, 0.2), vec3(0.5));
     float lit = rgCascades.c.info.x > 0.0 ? rgSunShadow(P, N) : 1.0;

@@ -61,7 +61,7 @@ void main() {
     ivec2 half_ = ivec2(gl_FragCoord.xy);
     ivec2 full = half_ * 2;
     vec3 P = viewPosition(half_);
-    vec3 Nw = rgGBufferAt(full).normal;
+    vec3 Nw = rgGBufferNormalAt(full);
     vec3 N = normalize(mat3(camera.view) * Nw);
     vec3 V = rgCameraOrthographic() ? vec3(0.0, 0.0, 1.0) : normalize(-P);
     // The radius on screen, in full-resolution pixels (the projection's y scale).

@@ -1,7 +1,7 @@
 #version 460
 // Image-based lights composition (seed 002 §4.9.5), as a pass of its own: for every pixel with
 // geometry, the specular radiance reflected along the dominant direction of its G-buffer normal
-// and roughness (GB0, shared by the disney, clear-coat and two-colour layouts) — the screen-space
+// and roughness (decoded with the pixel's material's layout: rgGBufferNormalAt) — the screen-space
 // reflection first (RG_SSR), then the local probes holding the point by priority until Alpha
 // reaches 1 (RG_PROBES, appendix F's parallax and fade), then the distant probe for the rest —
 // in nits, composed once, for every lighting path to weight by its split-sum DFG (lib/ibl.glsl,
@@ -29,11 +29,10 @@ void main() {
     float z = texelFetch(depth, p, 0).r;
     color = vec4(0.0);
     if (z >= 1.0) return;
-    RgGBufferView g = rgGBufferAt(p);
     vec3 P = rgWorldPosition(uv, z);
-    vec3 N = g.normal;
+    vec3 N = rgGBufferNormalAt(p);
     vec3 V = rgViewDirection(P);
-    float linearRoughness = 1.0 - g.smoothness;
+    float linearRoughness = 1.0 - rgGBufferSmoothnessAt(p);
     vec3 Rd = rgSpecularDominantDir(N, reflect(-V, N), linearRoughness * linearRoughness);
     float covered;
 #ifdef RG_USE_LIGHTMAP_SPECULAR

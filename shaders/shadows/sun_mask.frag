@@ -29,12 +29,12 @@ void main() {
     ivec2 q = ivec2(gl_FragCoord.xy) * 2;
     float z = texelFetch(depth, q, 0).r;
     vec3 P = rgWorldPosition((vec2(q) + 0.5) * camera.viewport.zw, z);
-    vec3 N = rgGBufferAt(q).normal;
+    vec3 N = rgGBufferNormalAt(q);
     color = vec4(rgSunShadowIn(sun_shadow, RG_SUN_CASCADE, P, N), rgViewDistance(z), 0.0, 1.0);
 #else
     ivec2 p = ivec2(gl_FragCoord.xy);
     vec3 P = rgWorldPosition(uv, texelFetch(depth, p, 0).r);
-    vec3 N = rgGBufferAt(p).normal;
+    vec3 N = rgGBufferNormalAt(p);
     color = vec4(rgSunShadowIn(sun_shadow, RG_SUN_CASCADE, P, N));
 #endif
 }

@@ -43,12 +43,11 @@ void main() {
     float z = texelFetch(depth, p, 0).r;
     color = vec4(0.0);
     if (z >= 1.0) return;
-    RgGBufferView g = rgGBufferAt(p);
-    float linearRoughness = 1.0 - g.smoothness;
+    float linearRoughness = 1.0 - rgGBufferSmoothnessAt(p);
     if (linearRoughness > params.ssr_max_roughness) return;
     vec2 size = vec2(textureSize(depth, 0));
     vec3 P = rgViewPosition((vec2(p) + 0.5) / size, z);
-    vec3 N = normalize(mat3(camera.view) * g.normal);
+    vec3 N = normalize(mat3(camera.view) * rgGBufferNormalAt(p));
     vec3 V = rgCameraOrthographic() ? vec3(0.0, 0.0, 1.0) : normalize(-P);
     float alpha = linearRoughness * linearRoughness;
     vec3 R = normalize(rgSpecularDominantDir(N, reflect(-V, N), alpha));

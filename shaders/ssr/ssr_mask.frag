@@ -17,7 +17,6 @@ layout(set = 0, binding = 2) uniform Params { float ssr_max_roughness; } params;
 void main() {
     ivec2 p = ivec2(gl_FragCoord.xy) * 2;
     float z = texelFetch(depth, p, 0).r;
-    RgGBufferView g = rgGBufferAt(p);
-    bool traces = z < 1.0 && !(1.0 - g.smoothness > params.ssr_max_roughness);
+    bool traces = z < 1.0 && !(1.0 - rgGBufferSmoothnessAt(p) > params.ssr_max_roughness);
     gl_FragDepth = traces ? 0.0 : 1.0;
 }

@@ -5,18 +5,35 @@
 #include <gtest/gtest.h>
 
 #include <cstring>
+#include <filesystem>
 #include <map>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <unistd.h>
 
 #include "runtime/runtime.h"
 #include "runtime/session.h"
 #include "image/image.h"
 
 namespace rg {
+
+// A fresh folder outside the repository (a game team's package folder), removed afterwards.
+struct TempFolder {
+    std::filesystem::path dir;
+    explicit TempFolder(const std::string& name)
+        : dir(std::filesystem::temp_directory_path() /
+              ("rgraph_" + name + "_" + std::to_string(::getpid()))) {
+        std::filesystem::remove_all(dir);
+        std::filesystem::create_directories(dir);
+    }
+    ~TempFolder() {
+        std::error_code ec;
+        std::filesystem::remove_all(dir, ec);
+    }
+};
 
 // A scene camera's view-projection at width x height, as passes/gpu_scene.cpp builds it (near
 // 0.05 m, far 1000 m, y down), and the pixel a world point lands on through it.

@@ -29,20 +29,6 @@ const std::string kRoot = RG_SOURCE_ROOT;
 constexpr uint32_t W = 192, H = 160;
 constexpr float kPi = 3.14159265358979f;
 
-// A fresh folder outside the repository, removed afterwards.
-struct TempFolder {
-    fs::path dir;
-    explicit TempFolder(const std::string& name)
-        : dir(fs::temp_directory_path() / ("rgraph_" + name + "_" + std::to_string(::getpid()))) {
-        fs::remove_all(dir);
-        fs::create_directories(dir);
-    }
-    ~TempFolder() {
-        std::error_code ec;
-        fs::remove_all(dir, ec);
-    }
-};
-
 // Seen from straight above: two thin toon slabs (grey tint 0.5, two bands, no wrap, no rim), the
 // left one opaque (G-buffer + the toon lighting pass), the right one blended at opacity 1 (the
 // forward pass, generated from the toon path's shading), a decal painting red over the left
