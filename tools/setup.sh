@@ -13,6 +13,7 @@ packages=(
   libopenexr-dev liblua5.4-dev libpng-dev zlib1g-dev libgtest-dev
   libcpp-httplib-dev  # rgraph serve
   libembree-dev  # rgraph bake: the lightmap baker's ray casts
+  libmeshoptimizer-dev  # levels of detail for every mesh (graph/scene/mesh_lod.cpp)
   libxxhash-dev  # the content hash of every cache key (graph/core/hash.h)
   clang-format  # tools/format.sh and the format test: the house's C++ layout (.clang-format)
   chromium  # the golden-test report is checked in a real (headless) browser

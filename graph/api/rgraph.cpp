@@ -16,6 +16,7 @@
 #include "runtime/runtime.h"
 #include "runtime/session.h"
 #include "image/image.h"
+#include "scene/mesh_lod.h"
 #include "scene/scene.h"
 #include "scene/scene_detail.h"
 
@@ -242,6 +243,7 @@ rg::Scene toScene(const Scene& in) {
         e.file = fs::absolute(in.environment).string();
         s.environment = e;
     }
+    rg::buildMeshLods(s);
     rg::computeBounds(s);
     return s;
 }

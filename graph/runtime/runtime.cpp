@@ -5,6 +5,7 @@
 #include <filesystem>
 
 #include "passes/passes.h"
+#include "scene/mesh_lod.h"
 
 namespace rg {
 
@@ -60,6 +61,7 @@ std::string cacheDir() {
 std::string generatedShaderDir() { return cacheDir() + "/generated"; }
 
 void prepareEnvironment() {
+    setMeshLodCacheDir(cacheDir() + "/lods");  // meshoptimizer's levels of detail, by content
     std::string mesa = cacheDir() + "/mesa";
     std::error_code ec;
     fs::create_directories(mesa, ec);

@@ -114,6 +114,14 @@ Result<std::unique_ptr<passes::GpuScene>> Session::loadScene(PipelineDesc& pipel
                                      : readScene(file, m_options.sceneArgs);
     if (!scene) return std::unexpected(scene.error());
     for (const auto& w : scene->warnings) note("warning: " + w);
+    if (const Scene::LodStats& l = scene->lodStats; l.primitives > 0) {
+        char line[160];
+        std::snprintf(line, sizeof line,
+                      "levels of detail: %zu meshes, %zu levels (%zu meshes' from the cache), "
+                      "%.1f ms",
+                      l.primitives, l.levels, l.cached, l.ms);
+        note(line);
+    }
     const std::string ext =
         m_options.sceneData ? std::string() : fs::path(file).extension().string();
     if (auto r = chooseEnvironment(*scene, m_options.environment,

@@ -11,6 +11,7 @@
 #include <set>
 
 #include "gltf_load_detail.h"
+#include "mesh_lod.h"
 #include "scene.h"
 #include "scene_detail.h"
 #include "tinygltf.h"
@@ -359,6 +360,7 @@ Result<Scene> Loader::run() {
     if (auto r = materials(); !r) return std::unexpected(r.error());
     if (auto r = meshes(); !r) return std::unexpected(r.error());
     if (auto r = nodes(); !r) return std::unexpected(r.error());
+    if (options.buildLods) buildMeshLods(scene);
     computeBounds(scene);
     return std::move(scene);
 }

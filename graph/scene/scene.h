@@ -55,9 +55,10 @@ struct PrimitiveLod {
 struct Primitive {
     std::vector<Vertex> vertices;
     std::vector<uint32_t> indices;
-    // Levels of detail, finest first, where a shape can drop rows of its vertices exactly (the
-    // generated sphere): passes that draw it from a view take the coarsest whose error, projected,
-    // stays within a pixel or texel (passes/gpu_scene.h DrawItem::lods).
+    // Levels of detail, finest first: a generated sphere's exact ones (rows of its vertices
+    // dropped), else meshoptimizer's with their measured errors (mesh_lod.h); passes that draw it
+    // from a view take the coarsest whose error, projected, stays within a pixel or texel
+    // (passes/gpu_scene.h DrawItem::lods).
     std::vector<PrimitiveLod> lods;
     uint32_t material = 0;  // index into Scene::materials
     // Whether uv1 is a lightmap parameterisation: charts inside [0, 1]², not overlapping, with a
@@ -354,6 +355,13 @@ struct Scene {
     // an extension ignored, a coloured specular kept as its mean): `render --verbose` prints them.
     std::vector<std::string> warnings;
     glm::vec3 boundsMin{0.0f}, boundsMax{0.0f};  // world-space box around every node's mesh
+    // What building levels of detail did (mesh_lod.h buildMeshLods), summed over its calls.
+    struct LodStats {
+        size_t primitives = 0;  // primitives given levels
+        size_t levels = 0;      // levels built or read in all
+        size_t cached = 0;      // primitives whose levels came from a cache (memory or file)
+        double ms = 0.0;        // time spent, cache look-ups included
+    } lodStats;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -371,6 +379,7 @@ inline constexpr float kEmissiveEv100WithoutExposure = 15.0f;
 struct GltfOptions {
     bool loadImages = true;    // false: materials keep their texture references, images stay empty
     bool generateMips = true;  // fill SceneImage::mips
+    bool buildLods = true;     // levels of detail for its meshes (mesh_lod.h buildMeshLods)
 };
 
 // Loads a .gltf (with its external .bin files and images, or data: URIs) or a .glb.
@@ -392,6 +401,7 @@ struct SceneScriptOptions {
     std::string projectRoot;  // "" = RG_ROOT when set, else the source tree this was built from
     bool loadImages = true;   // passed on to the glTF files the script names
     bool generateMips = true;
+    bool buildLods = true;  // levels of detail for the meshes without (mesh_lod.h buildMeshLods)
     std::map<std::string, std::string>
         args;  // the script's `scene.args` (rgraph --scene-arg NAME=VALUE)
     // The folder the files the script names are relative to; "" = the script's own folder (a

@@ -11,6 +11,7 @@
 
 #include "lua/declarations.h"
 #include "lua/lua_host.h"
+#include "mesh_lod.h"
 #include "scene.h"
 #include "scene_detail.h"
 #include "scene_script_detail.h"
@@ -173,6 +174,7 @@ Result<Scene> Builder::build(const std::vector<Declaration>& decls) {
     if (options.generateMips)
         for (auto& img : scene.images)
             if (img.mips.empty() && img.pixels.width > 0) generateMips(img);
+    if (options.buildLods) buildMeshLods(scene);
     computeBounds(scene);
     if (scene.cameras.empty()) defaultCamera();
     return std::move(scene);

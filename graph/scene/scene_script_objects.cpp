@@ -249,6 +249,7 @@ Result<void> Builder::gltf(const Declaration& d) {
     GltfOptions go;
     go.loadImages = options.loadImages;
     go.generateMips = options.generateMips;
+    go.buildLods = false;  // the script's end builds them for every mesh
     bool castShadows = true;
     RG_TRY(castShadows, boolean(w, b, "cast_shadows", true));
     auto sub = loadGltf(resolve(b["file"].asString()), go);

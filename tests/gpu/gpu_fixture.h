@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <map>
@@ -19,6 +21,23 @@
 #include "image/image.h"
 
 namespace rg {
+
+// How two renders of one view differ in green (the channel the eye weighs most): the mean
+// |difference| relative to the mean of `b`, and the share of pixels off by more than 5 %.
+struct RenderDifference {
+    double mean = 0.0, share = 0.0;
+};
+inline RenderDifference greenDifference(const Image& a, const Image& b) {
+    size_t off = 0;
+    double diff = 0.0, sum = 0.0;
+    for (size_t i = 0; i + 1 < a.pixels.size() && i + 1 < b.pixels.size(); i += a.channels) {
+        const float x = a.pixels[i + 1], y = b.pixels[i + 1];
+        off += std::abs(x - y) > 0.05f * std::max({x, y, 1e-3f});
+        diff += std::abs(x - y);
+        sum += y;
+    }
+    return {sum > 0 ? diff / sum : 1.0, double(off) / double(a.pixels.size() / a.channels)};
+}
 
 // A fresh folder outside the repository (a game team's package folder), removed afterwards.
 struct TempFolder {
@@ -130,6 +149,18 @@ protected:
             state && state->size() >= 16)
             std::memcpy(&out.preExposure, state->data() + 8, sizeof(float));
         return out;
+    }
+
+    // The default pipeline's HDR of `scene` at width x height, with the levels of detail or with
+    // every mesh in full (RG_LOD=0).
+    static Image renderHdr(const std::string& scene, bool levelsOfDetail, uint32_t width,
+                           uint32_t height) {
+        if (!levelsOfDetail) setenv("RG_LOD", "0", 1);
+        Readback r = renderAndRead(sceneOptions(scene, {}, width, height),
+                                   std::string(RG_SOURCE_ROOT) + "/scripts/pipelines/deferred.lua",
+                                   1, {"hdr"});
+        unsetenv("RG_LOD");
+        return r.images.empty() ? Image() : r["hdr"];
     }
 
     inline static Runtime* s_runtime = nullptr;
