@@ -88,6 +88,11 @@ void Session::note(const std::string& line) {
     if (m_options.verbose) std::fprintf(stderr, "rgraph: %s\n", line.c_str());
 }
 
+void Session::warn(const std::string& line) {
+    m_log.push_back(line);
+    if (m_options.verbose || m_options.warnings) std::fprintf(stderr, "rgraph: %s\n", line.c_str());
+}
+
 // The pipeline's graph with parameters as uniforms, captures exported, and shader paths that
 // exist next to the pipeline script made absolute (shaders/ and the root are searched anyway).
 Result<GraphDesc> Session::buildableGraph(const PipelineDesc& p, bool keepMissingShaders) {

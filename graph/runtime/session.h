@@ -39,6 +39,10 @@ struct SessionOptions {
     std::string view;
     std::vector<std::string> captures;  // resources to export for readback
     bool verbose = false;               // print what each rebuild reused
+    // Print what the scene's loaders skipped or changed (Scene::warnings: an extension ignored,
+    // a texture without a source) even when not verbose; the command line does, the library
+    // leaves them to Renderer's log.
+    bool warnings = false;
     bool levelsOfDetail =
         true;  // the primitives' coarser levels where they stay within a pixel (GpuSceneOptions)
     // The folder whose once/ holds the outputs of passes with cadence = "once", restored from there
@@ -140,6 +144,7 @@ private:
     // touch. A build that fails leaves the pipeline and the executor's plan as they were.
     Result<void> apply(const FrameChanges& changes);
     void note(const std::string& line);
+    void warn(const std::string& line);  // note(), printed also when options.warnings
 
     Runtime& m_runtime;
     SessionOptions m_options;

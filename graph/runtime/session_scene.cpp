@@ -113,7 +113,7 @@ Result<std::unique_ptr<passes::GpuScene>> Session::loadScene(PipelineDesc& pipel
     auto scene = m_options.sceneData ? Result<Scene>(*m_options.sceneData)
                                      : readScene(file, m_options.sceneArgs);
     if (!scene) return std::unexpected(scene.error());
-    for (const auto& w : scene->warnings) note("warning: " + w);
+    for (const auto& w : scene->warnings) warn("warning: " + w);
     if (const Scene::LodStats& l = scene->lodStats; l.primitives > 0) {
         char line[160];
         std::snprintf(line, sizeof line,

@@ -28,10 +28,10 @@ namespace {
 
 // Extensions whose meaning we implement (a file may require them).
 const std::set<std::string> kSupported = {
-    "KHR_texture_transform",  "KHR_materials_emissive_strength",
-    "KHR_lights_punctual",    "KHR_mesh_quantization",
-    "KHR_materials_ior",      "KHR_materials_specular",
-    "KHR_materials_clearcoat"};
+    "KHR_texture_transform",   "KHR_materials_emissive_strength",
+    "KHR_lights_punctual",     "KHR_mesh_quantization",
+    "KHR_materials_ior",       "KHR_materials_specular",
+    "KHR_materials_clearcoat", "KHR_materials_unlit"};
 
 std::string percentDecode(const std::string& uri) {
     std::string out;

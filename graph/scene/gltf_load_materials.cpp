@@ -290,6 +290,20 @@ Result<void> Loader::materials() {
                ranged(where + ": normalTexture.scale", src.normalTexture.scale, -1e6, 1e6));
         RG_TRY(m.occlusionStrength,
                ranged(where + ": occlusionTexture.strength", src.occlusionTexture.strength, 0, 1));
+        // KHR_materials_unlit: the base colour shown as it is, whatever the light — emission
+        // relative to the exposure as glTF's emissive is read (a factor of 1 white before the
+        // tone curve), over a surface that reflects nothing (black, no metal, no specular). The
+        // base colour texture still gives the opacity.
+        if (src.extensions.count("KHR_materials_unlit")) {
+            m.emissive = m.baseColor;
+            m.emissiveTex = m.baseColorTex;
+            m.emissiveEv = true;
+            m.emissiveEc = kGltfEmissiveEc;
+            m.baseColor = glm::vec3(0.0f);
+            m.metalMask = 0.0f;
+            m.reflectance = 0.0f;
+            m.metallicRoughnessTex = m.normalTex = m.occlusionTex = TextureRef{};
+        }
         if (src.alphaMode == "OPAQUE" || src.alphaMode.empty())
             m.alphaMode = AlphaMode::Opaque;
         else if (src.alphaMode == "MASK")

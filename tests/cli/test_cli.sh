@@ -48,8 +48,8 @@ json.dump(j, open(sys.argv[2], "w"))
 PY
 check "render --verbose: what a glTF loses" 0 grep "KHR_materials_clearcoat.clearcoatTexture is ignored (rgraph's clear coat takes the factors)" -- \
     "$rgraph" render --scene "$tmp/coat.gltf" --size 8x8 --out "$tmp/coat.exr" --verbose
-check "... and an extension it ignores" 0 grep "uses extension 'KHR_materials_sheen', which rgraph ignores" -- \
-    "$rgraph" render --scene "$tmp/coat.gltf" --size 8x8 --out "$tmp/coat.exr" --verbose
+check "... and an extension it ignores, without --verbose" 0 grep "uses extension 'KHR_materials_sheen', which rgraph ignores" -- \
+    "$rgraph" render --scene "$tmp/coat.gltf" --size 8x8 --out "$tmp/coat.exr"
 check "unknown capture" 2 grep "capture 'GB7': the pipeline has no resource named 'GB7'" -- "$rgraph" render --capture GB7 --size 8x8
 # A frame whose rg.frame switches off what a kept pass needs: refused whole (the frame renders the
 # plan as it was), and render stops with exit 2 naming the frame, the switch and the reader.

@@ -378,6 +378,42 @@ TEST(GltfLoad, IorSpecularAndClearcoatExtensionsMapOntoTheMaterials) {
         << warnings[2];
 }
 
+// KHR_materials_unlit: the base colour becomes emission relative to the exposure (as glTF's
+// emissive), the surface reflects nothing; without the extension the same material is lit.
+TEST(GltfLoad, UnlitShowsItsBaseColourAsEmission) {
+    const std::string dir = tmpDir("unlit");
+    for (bool unlit : {true, false}) {
+        GltfBuilder g;
+        addQuad(g, true);
+        json m = {{"name", "label"},
+                  {"pbrMetallicRoughness",
+                   {{"baseColorFactor", {0.8, 0.4, 0.2, 0.5}}, {"metallicFactor", 1.0}}}};
+        if (unlit) m["extensions"] = {{"KHR_materials_unlit", json::object()}};
+        g.j["materials"] = json::array({m});
+        if (unlit) g.j["extensionsUsed"] = {"KHR_materials_unlit"};
+        g.scene({g.node({{"mesh", 0}})});
+        rg::GltfOptions o;
+        o.loadImages = false;
+        auto scene = rg::loadGltf(g.writeGltf(dir, unlit ? "unlit" : "lit"), o);
+        ASSERT_TRUE(scene) << errorOf(scene);
+        const rg::Material& x = scene->materials[0];
+        EXPECT_TRUE(scene->warnings.empty()) << scene->warnings[0];
+        EXPECT_FLOAT_EQ(x.opacity, 0.5f);
+        if (unlit) {
+            EXPECT_EQ(x.emissive, glm::vec3(0.8f, 0.4f, 0.2f));
+            EXPECT_TRUE(x.emissiveEv);
+            EXPECT_FLOAT_EQ(x.emissiveEc, rg::kGltfEmissiveEc);
+            EXPECT_EQ(x.baseColor, glm::vec3(0.0f));
+            EXPECT_EQ(x.metalMask, 0.0f);
+            EXPECT_EQ(x.reflectance, 0.0f);
+        } else {
+            EXPECT_EQ(x.emissive, glm::vec3(0.0f));
+            EXPECT_EQ(x.baseColor, glm::vec3(0.8f, 0.4f, 0.2f));
+            EXPECT_EQ(x.metalMask, 1.0f);
+        }
+    }
+}
+
 TEST(GltfLoad, PunctualLightsKeepGltfUnitsAndTakeTheirNodeTransform) {
     const std::string dir = tmpDir("lights");
     GltfBuilder g;
