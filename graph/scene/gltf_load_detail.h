@@ -101,6 +101,8 @@ struct Loader {
     static Value toValue(const tinygltf::Value& v);
     Result<void> materials();
     Result<float> reflectanceOf(const tinygltf::Material& src, const std::string& where);
+    Result<void> specularGlossiness(const tinygltf::Material& src, const std::string& where,
+                                    Material& m);
     Result<void> clearCoat(const tinygltf::Material& src, const std::string& where, Material& m);
 
     // ---- nodes, cameras, lights (gltf_load_nodes.cpp) ---------------------------------------

@@ -219,6 +219,56 @@ Result<void> Loader::clearCoat(const tinygltf::Material& src, const std::string&
     return {};
 }
 
+// KHR_materials_pbrSpecularGlossiness onto the two-colour base material (seed 000 tbl:3), which
+// holds exactly its two colours: diffuseFactor (× diffuseTexture, sRGB, as the base colour
+// texture; its alpha the opacity) as the diffuse colour, specularFactor as the f0 colour and
+// glossinessFactor as the smoothness. specularGlossinessTexture has no place there: a warning says
+// so and its factors stand alone.
+Result<void> Loader::specularGlossiness(const tinygltf::Material& src, const std::string& where,
+                                        Material& m) {
+    auto it = src.extensions.find("KHR_materials_pbrSpecularGlossiness");
+    if (it == src.extensions.end()) return {};
+    const auto& x = it->second;
+    const std::string ext = where + ": KHR_materials_pbrSpecularGlossiness.";
+    auto list = [](const tinygltf::Value& v) {
+        std::vector<double> out;
+        for (int k = 0; v.IsArray() && k < int(v.ArrayLen()); ++k)
+            out.push_back(v.Get(k).IsNumber() ? v.Get(k).GetNumberAsDouble() : -1.0);
+        return out;
+    };
+    std::vector<double> diffuse = list(x.Get("diffuseFactor"));
+    double alpha = 1.0;
+    if (diffuse.size() == 4) {
+        RG_TRY(alpha, ranged(ext + "diffuseFactor[3]", diffuse[3], 0, 1));
+        diffuse.pop_back();
+    }
+    RG_TRY(m.diffuseColor, ranged3(ext + "diffuseFactor", diffuse, glm::vec3(1.0f), 0, 1));
+    RG_TRY(m.f0,
+           ranged3(ext + "specularFactor", list(x.Get("specularFactor")), glm::vec3(1.0f), 0, 1));
+    double glossiness = 1.0;
+    RG_TRY(glossiness,
+           ranged(ext + "glossinessFactor", number(x.Get("glossinessFactor"), 1.0), 0, 1));
+    m.model = "two_colour";
+    m.baseColor = m.diffuseColor;  // what debug views and decals call it (its channels map)
+    m.opacity = float(alpha);
+    m.smoothness = float(glossiness);
+    m.metalMask = 0.0f;
+    m.metallicRoughnessTex = TextureRef{};  // the metallic-roughness model's: not this one's
+    if (x.Get("diffuseTexture").IsObject()) {
+        const auto& t = x.Get("diffuseTexture");
+        tinygltf::ExtensionMap none;
+        auto r = texture(where + " diffuseTexture", indexOf(t.Get("index")),
+                         t.Get("texCoord").IsNumber() ? indexOf(t.Get("texCoord")) : 0, none, true);
+        if (!r) return std::unexpected(r.error());
+        m.baseColorTex = *r;
+    }
+    if (x.Has("specularGlossinessTexture"))
+        warn(ext +
+             "specularGlossinessTexture is ignored (the two-colour material takes the "
+             "factors)");
+    return {};
+}
+
 Result<void> Loader::materials() {
     for (size_t i = 0; i < model.materials.size(); ++i) {
         const auto& src = model.materials[i];
@@ -315,6 +365,7 @@ Result<void> Loader::materials() {
                                                       "', expected OPAQUE, MASK or BLEND");
         RG_TRY(m.alphaCutoff, ranged(where + ": alphaCutoff", src.alphaCutoff, 0, HUGE_VAL));
         m.doubleSided = src.doubleSided;
+        if (auto r = specularGlossiness(src, where, m); !r) return r;
         // What glTF cannot say, as exportGlb wrote it.
         if (src.extras.IsObject() && src.extras.Has("rgraph") &&
             src.extras.Get("rgraph").IsObject()) {

@@ -414,6 +414,41 @@ TEST(GltfLoad, UnlitShowsItsBaseColourAsEmission) {
     }
 }
 
+// KHR_materials_pbrSpecularGlossiness becomes the two-colour material (seed 000 tbl:3): its diffuse
+// and specular colours, glossiness as smoothness; its specular-glossiness texture is named in a
+// warning. Without the extension the same material is the standard one.
+TEST(GltfLoad, SpecularGlossinessBecomesTheTwoColourMaterial) {
+    const std::string dir = tmpDir("specgloss");
+    GltfBuilder g;
+    addQuad(g, true);
+    g.j["materials"] = json::array({{{"name", "oxide"},
+                                     {"extensions",
+                                      {{"KHR_materials_pbrSpecularGlossiness",
+                                        {{"diffuseFactor", {0.3, 0.2, 0.1, 0.75}},
+                                         {"specularFactor", {0.6, 0.5, 0.2}},
+                                         {"glossinessFactor", 0.4},
+                                         {"specularGlossinessTexture", {{"index", 0}}}}}}}},
+                                    {{"name", "plain"}}});
+    g.j["extensionsUsed"] = {"KHR_materials_pbrSpecularGlossiness"};
+    g.scene({g.node({{"mesh", 0}})});
+    rg::GltfOptions o;
+    o.loadImages = false;
+    auto scene = rg::loadGltf(g.writeGltf(dir, "sg"), o);
+    ASSERT_TRUE(scene) << errorOf(scene);
+    const rg::Material& x = scene->materials[0];
+    EXPECT_EQ(x.model, "two_colour");
+    EXPECT_EQ(x.diffuseColor, glm::vec3(0.3f, 0.2f, 0.1f));
+    EXPECT_EQ(x.f0, glm::vec3(0.6f, 0.5f, 0.2f));
+    EXPECT_FLOAT_EQ(x.smoothness, 0.4f);
+    EXPECT_FLOAT_EQ(x.opacity, 0.75f);
+    EXPECT_EQ(scene->materials[1].model, "standard");
+    ASSERT_EQ(scene->warnings.size(), 1u);
+    EXPECT_NE(scene->warnings[0].find("material 0 'oxide': KHR_materials_pbrSpecularGlossiness."
+                                      "specularGlossinessTexture is ignored"),
+              std::string::npos)
+        << scene->warnings[0];
+}
+
 TEST(GltfLoad, PunctualLightsKeepGltfUnitsAndTakeTheirNodeTransform) {
     const std::string dir = tmpDir("lights");
     GltfBuilder g;
