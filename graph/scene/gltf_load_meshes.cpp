@@ -68,10 +68,6 @@ Result<Primitive> Loader::primitive(size_t meshIndex, size_t primIndex) {
     if (!mode)
         return error(ErrorCode::InvalidInput, where + ": mode " + std::to_string(prim.mode) +
                                                   " is not a glTF primitive mode");
-    if (prim.mode != TINYGLTF_MODE_TRIANGLES && prim.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
-        prim.mode != TINYGLTF_MODE_TRIANGLE_FAN)
-        return error(ErrorCode::Unsupported,
-                     where + ": mode " + mode + " is not supported (only triangles)");
     auto attr = [&](const char* name) {
         auto it = prim.attributes.find(name);
         return it == prim.attributes.end() ? -1 : it->second;
@@ -174,6 +170,16 @@ Result<void> Loader::meshes() {
         mesh.name =
             model.meshes[m].name.empty() ? "mesh " + std::to_string(m) : model.meshes[m].name;
         for (size_t p = 0; p < model.meshes[m].primitives.size(); ++p) {
+            // Points and lines are not drawn yet: the rest of the file still is (a mesh with one
+            // line primitive used to take its whole file down).
+            const int mode = model.meshes[m].primitives[p].mode;
+            if (mode == TINYGLTF_MODE_POINTS || mode == TINYGLTF_MODE_LINE ||
+                mode == TINYGLTF_MODE_LINE_LOOP || mode == TINYGLTF_MODE_LINE_STRIP) {
+                warn(named("mesh", m, model.meshes[m].name) + " primitive " + std::to_string(p) +
+                     ": mode " + modeName(mode) +
+                     " is not drawn (rgraph draws triangles only); skipped");
+                continue;
+            }
             auto prim = primitive(m, p);
             if (!prim) return std::unexpected(prim.error());
             mesh.primitives.push_back(std::move(*prim));

@@ -386,7 +386,8 @@ struct GltfOptions {
 // - Every node of the default scene (or every root node when there is none) becomes a Node with
 //   its world transform; cameras and KHR_lights_punctual lights take their node's transform.
 // - Triangle primitives (TRIANGLES, TRIANGLE_STRIP, TRIANGLE_FAN; indexed or not) become
-//   triangle lists; other modes are refused by name. Missing normals become flat normals;
+//   triangle lists; points and lines are skipped with a warning naming them (the rest of the
+//   file loads), a mode glTF does not have is refused. Missing normals become flat normals;
 //   missing tangents are generated (see generateTangents).
 // - Materials map as DESIGN.md §5 says: smoothness = 1 - roughness, metalMask = metallic,
 //   reflectance 0.5 (KHR_materials_specular / _ior are ignored), emissive in nits × strength.

@@ -194,24 +194,31 @@ TEST(GltfErrors, IndexOutOfRange) {
                                                "the primitive has 3 vertices");
 }
 
-TEST(GltfErrors, UnsupportedPrimitiveMode) {
+// Points and lines are skipped with a warning naming them; the file's triangles still load.
+TEST(GltfErrors, PointAndLinePrimitivesAreSkippedWithAWarning) {
     const std::string dir = tmpDir("mode");
     GltfBuilder g;
     const int pos = g.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
-    g.mesh("pts", json::array({{{"attributes", {{"POSITION", pos}}}, {"mode", 0}}}));
+    g.mesh("pts", json::array({{{"attributes", {{"POSITION", pos}}}, {"mode", 0}},
+                               {{"attributes", {{"POSITION", pos}}}, {"mode", 4}}}));
     g.scene({g.node({{"mesh", 0}})});
     const std::string path = g.writeGltf(dir, "m");
     auto r = rg::loadGltf(path);
-    ASSERT_FALSE(r);
-    EXPECT_EQ(r.error().code, ErrorCode::Unsupported);
-    EXPECT_EQ(
-        r.error().message,
-        "'" + path + "': mesh 0 'pts' primitive 0: mode POINTS is not supported (only triangles)");
+    ASSERT_TRUE(r) << errorOf(r);
+    ASSERT_EQ(r->meshes[0].primitives.size(), 1u);  // the triangle
+    ASSERT_EQ(r->warnings.size(), 1u);
+    EXPECT_EQ(r->warnings[0], "'" + path +
+                                  "': mesh 0 'pts' primitive 0: mode POINTS is not drawn (rgraph "
+                                  "draws triangles only); skipped");
     g.j["meshes"][0]["primitives"][0]["mode"] = 3;
-    EXPECT_EQ(errorOf(rg::loadGltf(g.writeGltf(dir, "m2"))),
-              "'" + dir +
-                  "/m2.gltf': mesh 0 'pts' primitive 0: mode LINE_STRIP is not supported (only "
-                  "triangles)");
+    auto strip = rg::loadGltf(g.writeGltf(dir, "m2"));
+    ASSERT_TRUE(strip) << errorOf(strip);
+    ASSERT_EQ(strip->warnings.size(), 1u);
+    EXPECT_NE(strip->warnings[0].find("mode LINE_STRIP is not drawn"), std::string::npos);
+    g.j["meshes"][0]["primitives"][0]["mode"] = 9;
+    EXPECT_EQ(
+        errorOf(rg::loadGltf(g.writeGltf(dir, "m4"))),
+        "'" + dir + "/m4.gltf': mesh 0 'pts' primitive 0: mode 9 is not a glTF primitive mode");
     g.j["meshes"][0]["primitives"][0].erase("mode");
     g.j["meshes"][0]["primitives"][0]["attributes"].erase("POSITION");
     g.j["meshes"][0]["primitives"][0]["attributes"]["NORMAL"] = pos;
