@@ -107,11 +107,18 @@ for i in range(count):
     if not expect_valid:
         if "failed" not in verdict:
             sys.exit(f"edit {i}: an invalid script was accepted: {verdict}")
-        # This edit's report: from its verdict to the next one (or the end).
-        start = [k for k, l in enumerate(lines) if l.startswith("rgraph watch: ") and ("reloaded" in l or "failed" in l)][before]
-        after = "\n".join(lines[start:])
-        if "watched.lua" not in after and "no_such_shader" not in after:
-            sys.exit(f"edit {i}: the report does not name the script:\n{after}")
+        # This edit's report: from its verdict to the next one (or the end). Its lines after the
+        # verdict may still be on their way to the log (a separate write): wait for them a while.
+        named_by = time.time() + 10
+        while True:
+            start = [k for k, l in enumerate(lines) if l.startswith("rgraph watch: ") and ("reloaded" in l or "failed" in l)][before]
+            after = "\n".join(lines[start:])
+            if "watched.lua" in after or "no_such_shader" in after:
+                break
+            if time.time() > named_by:
+                sys.exit(f"edit {i}: the report does not name the script:\n{after}")
+            time.sleep(0.01)
+            seen, lines = verdicts()
     ok += expect_valid
     bad += not expect_valid
 
