@@ -7,6 +7,9 @@
 #   default frame   the default pipeline and scene at 1280x720, N frames (default 10), with floors
 #   many lights     scripts/scenes/many_lights.lua at 640x360 with 16 / 64 / 256 / 1024 lights:
 #                   both light culling passes + lighting_standard, and its ratio 1024 / 64
+#   levels of detail  scripts/scenes/field.lua (1000 dense spheres) at the default size, with its
+#                   levels of detail and with every mesh in full (RG_LOD=0): gbuffer, the sun's
+#                   maps and the frame
 #   compile         a generated 200-pass pipeline (a chain of compute passes): graph compile time
 #   start-up        wall time of `rgraph render --frames 1` of the default scene, cold (empty
 #                   caches) and warm (the run after it): process start to the image written, and
@@ -27,14 +30,14 @@ while [ $# -gt 0 ]; do
         --out) out=$2; shift 2 ;;
         --frames) frames=$2; shift 2 ;;
         --quick) quick=1; shift ;;
-        -h|--help) sed -n '2,17p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        -h|--help) sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) echo "tools/bench.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
 done
 [ -x "$rgraph" ] || { echo "tools/bench.sh: no rgraph at $rgraph (run tools/setup.sh)" >&2; exit 2; }
 mkdir -p "$out"
-size=1280x720 lights_size=640x360 counts="16 64 256 1024"
-if [ $quick = 1 ]; then size=96x64 lights_size=64x48 frames=2 counts="16 64"; fi
+size=1280x720 lights_size=640x360 counts="16 64 256 1024" objects=1000
+if [ $quick = 1 ]; then size=96x64 lights_size=64x48 frames=2 counts="16 64" objects=20; fi
 
 now_ms() { date +%s%3N; }
 step() { echo "tools/bench.sh: $*" >&2; }
@@ -46,6 +49,12 @@ for n in $counts; do
     step "many lights: $n at $lights_size"
     "$rgraph" bench --scene "$root/scripts/scenes/many_lights.lua" --scene-arg lights="$n" --size "$lights_size" \
         --frames "$frames" --json "$out/lights_$n.json" >"$out/lights_$n.txt"
+done
+
+for lod in 1 0; do
+    step "levels of detail: $objects spheres at $size, RG_LOD=$lod"
+    RG_LOD=$lod "$rgraph" bench --scene "$root/scripts/scenes/field.lua" --scene-arg objects="$objects" --size "$size" \
+        --frames "$frames" --json "$out/field_lod$lod.json" >"$out/field_lod$lod.txt"
 done
 
 step "compile: a generated 200-pass pipeline"
@@ -77,6 +86,10 @@ load = lambda name: json.load(open(f"{out}/{name}"))
 default = load("default.json")
 lights = {n: load(f"lights_{n}.json") for n in counts}
 compile_ = load("compile.json")
+field = {lod: load(f"field_lod{lod}.json") for lod in (1, 0)}
+def passes(b, *names):
+    p = {x["name"]: x["medianMs"] for x in b["passes"]}
+    return sum(v for k, v in p.items() if any(k.startswith(n) for n in names))
 startup = load("startup.json")
 def lighting(b):
     p = {x["name"]: x["medianMs"] for x in b["passes"]}
@@ -87,6 +100,9 @@ suite = {
                 "floorTotalMs": default.get("floorTotalMs"), "passes": default["passes"], "loadMs": default.get("loadMs"),
                 "transientBytesAliased": default["transientBytesAliased"], "transientBytesUnaliased": default["transientBytesUnaliased"]},
     "manyLights": {str(n): {"lightingMs": lighting(lights[n]), "frameMs": lights[n]["frameTotalMs"]["median"]} for n in counts},
+    "levelsOfDetail": {("lod" if lod else "full"): {"gbufferMs": passes(field[lod], "gbuffer"),
+                                                   "sunMapsMs": passes(field[lod], "shadow_sun"),
+                                                   "frameMs": field[lod]["frameTotalMs"]["median"]} for lod in (1, 0)},
     "compile200Ms": compile_["compileMs"],
     "startupMs": startup,
 }
@@ -105,6 +121,10 @@ for n in counts:
     md.append(f"| {n} | {lighting(lights[n]):.2f} | {lights[n]['frameTotalMs']['median']:.2f} |")
 if "ratio1024to64" in suite["manyLights"]:
     md.append(f"\n1024 / 64 lights: {suite['manyLights']['ratio1024to64']:.2f}x")
+md += ["", "| field of dense spheres | gbuffer ms | sun's maps ms | frame ms |", "| --- | ---: | ---: | ---: |"]
+for lod, label in ((1, "levels of detail"), (0, "full meshes (RG_LOD=0)")):
+    d = suite["levelsOfDetail"]["lod" if lod else "full"]
+    md.append(f"| {label} | {d['gbufferMs']:.2f} | {d['sunMapsMs']:.2f} | {d['frameMs']:.2f} |")
 md += ["", f"200-pass graph compile: {compile_['compileMs']:.3f} ms",
        f"Start-up to the first image written: cold {startup['coldMs']} ms, warm {startup['warmMs']} ms "
        f"(warm, to the first frame done: {startup['warmFirstFrameMs']} ms)",
