@@ -5,7 +5,7 @@
 
 #include <algorithm>
 #include <map>
-#include <optional>
+#include <set>
 #include <vector>
 
 namespace rg::declarations {
@@ -259,8 +259,8 @@ Result<void> Builder::material(const Declaration& d) {
 Result<void> Builder::materialIdentities() {
     const uint32_t bits = options.stencilBits;
     const uint32_t low = (1u << bits) - 1, variants = (1u << (8 - bits)) - 1;
-    std::map<uint32_t, const StencilClassDesc*> declared;
-    for (const StencilClassDesc& c : out.stencilClasses) declared[c.value] = &c;
+    std::set<uint32_t> declared;  // the stencil classes' values, variants' included
+    for (const StencilClassDesc& c : out.stencilClasses) declared.insert(c.value);
     std::map<uint32_t, const MaterialDesc*> held;
     auto alike = [](const MaterialDesc& a, const MaterialDesc& b) {
         return a.layout == b.layout && a.channels == b.channels && a.decals == b.decals;
@@ -271,13 +271,14 @@ Result<void> Builder::materialIdentities() {
             const Declaration& d = *std::find_if(decls.begin(), decls.end(), [&](auto& x) {
                 return x.kind == DeclKind::Material && fullName(x) == m.name;
             });
-            if (d.body.has("stencil") != (round == 0)) continue;
+            const bool named = d.body.has("stencil");
+            if (named != (round == 0)) continue;
             auto cls = std::find_if(out.stencilClasses.begin(), out.stencilClasses.end(),
                                     [&](auto& c) { return c.name == m.stencil; });
             const uint32_t value = cls == out.stencilClasses.end() ? 0 : cls->value;
             std::vector<uint32_t> candidates;
             if (value != 0) candidates.push_back(value);
-            if (!d.body.has("stencil"))
+            if (!named)
                 for (uint32_t k = 1; k <= variants; ++k) {
                     const uint32_t v = (value & low) | (k << bits);
                     if (!declared.count(v)) candidates.push_back(v);
@@ -292,7 +293,7 @@ Result<void> Builder::materialIdentities() {
             }
             const std::string className =
                 value ? "stencil class '" + m.stencil + "'" : std::string("no class");
-            if (!candidates.empty() && d.body.has("stencil")) {
+            if (!candidates.empty() && named) {
                 const MaterialDesc& other = *held[value];
                 return where(d).at("stencil").error(
                     "its pixels would carry stencil value " + std::to_string(value) + " (" +

@@ -326,6 +326,11 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
                  std::to_string(i);
         return s;
     };
+    // A material's layout (every material's is in `layouts`).
+    auto layoutOf = [&](const MaterialDesc& m) -> const LayoutDesc& {
+        return **std::find_if(layouts.begin(), layouts.end(),
+                              [&](auto* x) { return x->name == m.layout; });
+    };
     // Arguments of one layout's unpack/pack, by target name.
     auto args = [&](const LayoutDesc& l, const std::string& prefix) {
         std::string s;
@@ -350,8 +355,7 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
         uint32_t has = 0, decals = 0;
         for (const auto& [s, _] : m->channels) has |= bit(s);
         for (const auto& s : m->decals) decals |= bit(s);
-        const LayoutDesc& l = **std::find_if(layouts.begin(), layouts.end(),
-                                             [&](auto* x) { return x->name == m->layout; });
+        const LayoutDesc& l = layoutOf(*m);
         o << sep << "if (v.identity == " << id << "u) {  // " << m->name << "\n"
           << "        GBuffer_" << l.name << " g = unpackGBuffer_" << l.name << "("
           << args(l, "t").substr(2) << ");\n"
@@ -368,8 +372,7 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
     sep = "    ";
     for (const auto& [id, m] : byId) {
         if (m->decals.empty()) continue;
-        const LayoutDesc& l = **std::find_if(layouts.begin(), layouts.end(),
-                                             [&](auto* x) { return x->name == m->layout; });
+        const LayoutDesc& l = layoutOf(*m);
         o << sep << "if (v.identity == " << id << "u) {  // " << m->name << "\n"
           << "        GBuffer_" << l.name << " g = unpackGBuffer_" << l.name << "("
           << args(l, "t").substr(2) << ");\n";
@@ -387,8 +390,7 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
                    p.params["shader"].asString() == "passes/decals.frag";
         });
     for (const MaterialDesc& m : pipeline.materials) {
-        const LayoutDesc& l = **std::find_if(layouts.begin(), layouts.end(),
-                                             [&](auto* x) { return x->name == m.layout; });
+        const LayoutDesc& l = layoutOf(m);
         for (const auto& d : m.decals)
             for (const TargetDesc& t : l.targets)
                 for (const ChannelDesc& c : t.channels)
@@ -415,6 +417,12 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
     // no test at all when every material keeps it in the same place (the stencil then goes
     // unread: the default loop's normal and smoothness are GB0's for every material). Pixels of
     // a material without it get the neutral value.
+    std::map<const LayoutDesc*, LayoutInfo> infos;  // each layout's channel places, once
+    for (const LayoutDesc* l : layouts) {
+        auto info = analyzeLayout(*l);
+        if (!info) return std::unexpected(info.error());
+        infos.emplace(l, std::move(*info));
+    }
     for (const auto& [name, type, neutral] : {std::tuple<std::string, std::string, std::string>{
                                                   "normal", "vec3", "vec3(0.0, 0.0, 1.0)"},
                                               {"smoothness", "float", "0.0"}}) {
@@ -422,12 +430,11 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
         for (const auto& [id, m] : byId) {
             auto c = m->channels.find(name);
             if (c == m->channels.end()) continue;
-            const LayoutDesc& l = **std::find_if(layouts.begin(), layouts.end(),
-                                                 [&](auto* x) { return x->name == m->layout; });
-            auto info = analyzeLayout(l);
-            if (!info) return std::unexpected(info.error());
-            const ChannelPlacement& pl = info->channels[static_cast<size_t>(info->find(c->second))];
-            const ChannelDesc& cd = info->channelDesc(static_cast<size_t>(info->find(c->second)));
+            const LayoutDesc& l = layoutOf(*m);
+            const LayoutInfo& info = infos.at(&l);
+            const size_t index = static_cast<size_t>(info.find(c->second));
+            const ChannelPlacement& pl = info.channels[index];
+            const ChannelDesc& cd = info.channelDesc(index);
             std::string place = l.targets[pl.target].name + ":" +
                                 std::string(formatName(l.targets[pl.target].format)) + ":" +
                                 std::string(encodingName(cd.encoding)) + ":" +
@@ -446,8 +453,7 @@ Result<std::string> generatePipelineGlsl(const PipelineDesc& pipeline) {
         bool unconditional = false;
         for (const auto& [place, ms] : places) {
             const MaterialDesc& m = *ms.front();
-            const LayoutDesc& l = **std::find_if(layouts.begin(), layouts.end(),
-                                                 [&](auto* x) { return x->name == m.layout; });
+            const LayoutDesc& l = layoutOf(m);
             std::string test;
             for (const MaterialDesc* x : ms)
                 test += (test.empty() ? "" : " || ") + std::string("identity == ") +

@@ -189,13 +189,15 @@ std::vector<PrimitiveLod> simplify(const Primitive& p) {
     return lods;
 }
 
-std::mutex& cacheMutex() {
-    static std::mutex m;
-    return m;
-}
-std::string& cacheDirectory() {
-    static std::string dir;
-    return dir;
+// The process-wide cache: levels by content key, and the folder of their files.
+struct LodCache {
+    std::mutex mutex;
+    std::string dir;
+    std::unordered_map<uint64_t, std::vector<PrimitiveLod>> levels;
+};
+LodCache& lodCache() {
+    static LodCache cache;
+    return cache;
 }
 
 // A level file: "RGLOD1", the level count, then per level its error and its indices.
@@ -252,8 +254,9 @@ void writeLods(const std::string& file, const std::vector<PrimitiveLod>& lods) {
 }  // namespace
 
 void setMeshLodCacheDir(std::string dir) {
-    std::lock_guard lock(cacheMutex());
-    cacheDirectory() = std::move(dir);
+    LodCache& cache = lodCache();
+    std::lock_guard lock(cache.mutex);
+    cache.dir = std::move(dir);
 }
 
 float meshDeviation(const std::vector<Vertex>& vertices, const std::vector<uint32_t>& from,
@@ -262,12 +265,11 @@ float meshDeviation(const std::vector<Vertex>& vertices, const std::vector<uint3
 }
 
 LodStats buildMeshLods(Scene& scene) {
-    static std::unordered_map<uint64_t, std::vector<PrimitiveLod>> cache;
-    std::mutex& mutex = cacheMutex();
+    LodCache& cache = lodCache();
     std::string dir;
     {
-        std::lock_guard lock(mutex);
-        dir = cacheDirectory();
+        std::lock_guard lock(cache.mutex);
+        dir = cache.dir;
     }
     const auto start = std::chrono::steady_clock::now();
     LodStats stats;
@@ -293,8 +295,8 @@ LodStats buildMeshLods(Scene& scene) {
             h.bytes(p.indices.data(), p.indices.size() * sizeof(uint32_t));
             const uint64_t key = h.value();
             {
-                std::lock_guard lock(mutex);
-                if (auto it = cache.find(key); it != cache.end()) {
+                std::lock_guard lock(cache.mutex);
+                if (auto it = cache.levels.find(key); it != cache.levels.end()) {
                     p.lods = it->second;
                     ++stats.cached;
                     continue;
@@ -305,8 +307,8 @@ LodStats buildMeshLods(Scene& scene) {
             const std::string file = dir.empty() ? "" : dir + "/" + h.hex() + ".lod";
             if (!file.empty() && readLods(file, p.vertices.size(), p.lods)) {
                 ++stats.cached;
-                std::lock_guard lock(mutex);
-                cache[key] = p.lods;
+                std::lock_guard lock(cache.mutex);
+                cache.levels[key] = p.lods;
                 continue;
             }
             if (auto it = pending.find(key); it != pending.end()) {
@@ -331,8 +333,8 @@ LodStats buildMeshLods(Scene& scene) {
     for (auto& [p, twin] : twins) p->lods = twin->lods;
     for (const Work& w : work) {
         if (!w.file.empty() && !w.primitive->lods.empty()) writeLods(w.file, w.primitive->lods);
-        std::lock_guard lock(mutex);
-        cache[w.key] = w.primitive->lods;
+        std::lock_guard lock(cache.mutex);
+        cache.levels[w.key] = w.primitive->lods;
     }
     for (const Primitive* p : asked)
         if (!p->lods.empty()) {
