@@ -21,12 +21,12 @@ local lighting = require "lighting"
 local ibl = {}
 
 ibl.source_size = 256   -- the cube the environment is resampled into (texels per face)
-ibl.specular_size = 128 -- the pre-filtered cube; 8 mips: linear roughness 0, 1/49, 4/49 .. 1
+ibl.specular_size = 256 -- the pre-filtered cube (seed 002 §4.9.2: 256–512); 9 mips: linear roughness 0, 1/64, 4/64 .. 1
 
 rg.resource "env_source" { format = "rgba16f", size = { ibl.source_size, ibl.source_size }, cube = true, mips = "full", persistent = true,
     doc = "the environment as a cube with its mip chain (nits)" }
-rg.resource "env_specular" { format = "rgba16f", size = { ibl.specular_size, ibl.specular_size }, cube = true, mips = 8, persistent = true,
-    doc = "the specular pre-filtered probe: mip m for linear roughness (m / 7)²" }
+rg.resource "env_specular" { format = "rgba16f", size = { ibl.specular_size, ibl.specular_size }, cube = true, mips = 9, persistent = true,
+    doc = "the specular pre-filtered probe: mip m for linear roughness (m / 8)²" }
 rg.resource "env_smooth" { format = "rgba16f", size = { ibl.source_size, ibl.source_size }, cube = true, mips = "full", persistent = true,
     doc = "env_source without its hot texels (env_hot), with its mip chain: what the pre-filter samples" }
 rg.buffer "env_hot" { size = 16 + 4096 * 32, persistent = true,

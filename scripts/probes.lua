@@ -24,7 +24,7 @@ require "ibl"  -- the capture adds the distant probe's diffuse (env_sh, dfg)
 local probes = {}
 
 probes.max = 8       -- graph/scene/scene.h kMaxProbes
-probes.size = 128    -- texels per face of a capture and of its pre-filtered cube (8 mips, as env_specular)
+probes.size = 128    -- texels per face of a capture and of its pre-filtered cube (8 mips; the distant probe's env_specular is 256², 9 mips: a probe's capture dominates its cost)
 
 rg.resource "probe_radiance" { format = "rgba16f", size = { probes.size, probes.size }, cube = true, layers = 6 * probes.max,
     mips = "full", persistent = true, doc = "the probes' captures (nits; alpha: something seen), cube k for probe k, with mips" }

@@ -19,12 +19,15 @@
 
 // Help lines several commands share, as string-literal macros so that each command's help stays
 // one literal.
-#define RG_HELP_ENVIRONMENT                                                                   \
-    "--environment FILE|sky|none: replaces the scene's environment (the distant light probe " \
-    "and the sky):\n"                                                                         \
-    "an equirectangular .hdr/.exr in nits, the Preetham sky of the scene's sun, or none. A "  \
-    "glTF scene\n"                                                                            \
-    "with no light and no environment gets the sky, as glTF viewers light published models.\n"
+#define RG_HELP_ENVIRONMENT                                                                    \
+    "--environment FILE|sky|none: replaces the scene's environment (the distant light probe "  \
+    "and the sky):\n"                                                                          \
+    "an equirectangular .hdr/.exr in nits, the Preetham sky of the scene's sun, or none. A "   \
+    "glTF scene\n"                                                                             \
+    "with no light and no environment gets the sky, as glTF viewers light published models.\n" \
+    "--environment-sun auto|light|remove|keep: what becomes of a sun in an .hdr/.exr "         \
+    "environment\n(scripts/scenes/README.md, scene.environment's sun; default: the scene's, "  \
+    "else auto).\n"
 #define RG_HELP_SCENE_ARGS_AND_SET                                                              \
     "--scene-arg NAME=VALUE (repeatable): sets scene.args.NAME for a Lua scene (a number when " \
     "it reads as one).\n"                                                                       \

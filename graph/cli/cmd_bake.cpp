@@ -60,6 +60,7 @@ int cmdBake(int argc, char** argv) {
                                                   "scene.lightmap \"gi\" { density = 4 })"));
     if (auto r = chooseEnvironment(*scene, "", ext == ".gltf" || ext == ".glb"); !r)
         return report(r.error());
+    if (auto sun = takeEnvironmentSun(*scene); !sun) return report(sun.error());
     bake::PrepareOptions po;
     po.cacheDir = cacheDir() + "/lightmaps";
     po.rebake = args.has("rebake");

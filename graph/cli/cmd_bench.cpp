@@ -52,7 +52,7 @@ int cmdBench(int argc, char** argv) {
     Args args;
     if (auto done = parseCommand(argc, argv, "bench",
                                  {"pipeline", "scene", "scene-arg", "set", "camera", "environment",
-                                  "size", "frames", "json", "device", "floors"},
+                                  "environment-sun", "size", "frames", "json", "device", "floors"},
                                  kHelp, args))
         return *done;
     auto setup = setupRun(args, "bench", 20, {});

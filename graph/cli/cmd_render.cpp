@@ -62,8 +62,8 @@ int cmdRender(int argc, char** argv) {
     Args args;
     if (auto done = parseCommand(
             argc, argv, "render",
-            {"pipeline", "scene", "scene-arg", "set", "camera", "environment", "size", "frames",
-             "out", "png", "capture", "view", "device", "verbose", "no-cache"},
+            {"pipeline", "scene", "scene-arg", "set", "camera", "environment", "environment-sun",
+             "size", "frames", "out", "png", "capture", "view", "device", "verbose", "no-cache"},
             kHelp, args))
         return *done;
     const auto captures = args.all("capture");

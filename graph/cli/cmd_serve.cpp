@@ -39,11 +39,11 @@ const char* const kHelp =
 
 int cmdServe(int argc, char** argv) {
     Args args;
-    if (auto done =
-            parseCommand(argc, argv, "serve",
-                         {"pipeline", "scene", "scene-arg", "set", "camera", "environment", "size",
-                          "device", "port", "host", "token", "interval", "no-cache"},
-                         kHelp, args))
+    if (auto done = parseCommand(
+            argc, argv, "serve",
+            {"pipeline", "scene", "scene-arg", "set", "camera", "environment", "environment-sun",
+             "size", "device", "port", "host", "token", "interval", "no-cache"},
+            kHelp, args))
         return *done;
     ServeOptions so;
     uint32_t port = 8080, interval = 100;

@@ -34,11 +34,11 @@ const char* const kHelp =
 
 int cmdWatch(int argc, char** argv) {
     Args args;
-    if (auto done =
-            parseCommand(argc, argv, "watch",
-                         {"pipeline", "scene", "scene-arg", "set", "camera", "environment", "size",
-                          "out", "png", "device", "interval", "max-reloads", "no-cache"},
-                         kHelp, args))
+    if (auto done = parseCommand(
+            argc, argv, "watch",
+            {"pipeline", "scene", "scene-arg", "set", "camera", "environment", "environment-sun",
+             "size", "out", "png", "device", "interval", "max-reloads", "no-cache"},
+            kHelp, args))
         return *done;
     uint32_t interval = 250, maxReloads = 0;
     if (args.has("interval") && !parseCount(args.get("interval"), interval))

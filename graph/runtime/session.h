@@ -33,6 +33,9 @@ struct SessionOptions {
     // --environment: "" = the scene's own (a glTF scene with no light and no environment gets the
     // sky); "sky", "none", or an equirectangular .hdr/.exr file (graph/scene/environment.h).
     std::string environment;
+    // --environment-sun: "" = the scene's own mode; "auto", "light", "remove" or "keep" (scene.h
+    // Environment::sun) for an "hdr" environment.
+    std::string environmentSun;
     // A debug view instead of the pipeline's display image: a view of the pipeline's scripts
     // (rg.view) or of scripts/views.lua (normals, stencil, lights, shadow:LIGHT, sgN, ...),
     // drawn into `debug_view` after the pipeline's passes.

@@ -128,6 +128,17 @@ Result<std::unique_ptr<passes::GpuScene>> Session::loadScene(PipelineDesc& pipel
                                    /*litByDefault=*/ext == ".gltf" || ext == ".glb");
         !r)
         return std::unexpected(r.error());
+    if (const std::string& mode = m_options.environmentSun; !mode.empty()) {
+        if (mode != "auto" && mode != "light" && mode != "remove" && mode != "keep")
+            return fail(
+                ErrorCode::InvalidInput,
+                "--environment-sun: expected auto, light, remove or keep, got '" + mode + "'");
+        if (scene->environment) scene->environment->sun = mode;
+    }
+    if (auto sun = takeEnvironmentSun(*scene); !sun)
+        return std::unexpected(sun.error());
+    else if (!sun->empty())
+        note(*sun);
     for (Material& m : scene->materials) {
         auto pm = std::find_if(pipeline.materials.begin(), pipeline.materials.end(),
                                [&](auto& x) { return x.name == m.model; });

@@ -141,7 +141,7 @@ Image skyImage(const SkyParams& p, uint32_t width) {
     return img;
 }
 
-Result<Image> environmentImage(const Scene& scene) {
+Result<Image> environmentImage(const Scene& scene, bool keepSun) {
     if (!scene.environment) return fail(ErrorCode::InvalidInput, "the scene has no environment");
     const Environment& e = *scene.environment;
     const std::string what = "environment '" + e.name + "'";
@@ -204,6 +204,8 @@ Result<Image> environmentImage(const Scene& scene) {
             for (int c = 0; c < 3; ++c) out.at(x, y, static_cast<uint32_t>(c)) = L[c];
             out.at(x, y, 3) = 1.0f;
         }
+    if (e.kind == "hdr" && e.sun != "keep" && !keepSun)
+        if (auto sun = findEnvironmentSun(out)) removeEnvironmentSun(out, *sun);
     return out;
 }
 

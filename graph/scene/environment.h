@@ -13,6 +13,8 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <string>
 #include <vector>
 
 #include <glm/vec2.hpp>
@@ -52,10 +54,12 @@ glm::vec3 preethamSky(glm::vec3 direction, const SkyParams& p);
 // (its illuminance integrated from the image's own upper half): L = ρ (E_sun + E_sky) / π.
 Image skyImage(const SkyParams& p, uint32_t width = 512);
 
-// The scene's environment as an RGBA equirectangular image in nits (width ≥ 1). No environment:
-// none (the caller binds black). The sky takes its sun from the scene's first sun light (default:
-// 45° up, from +Z, kClearSkySunLux). Errors name the environment and the file.
-Result<Image> environmentImage(const Scene& scene);
+// The scene's environment as an RGBA equirectangular image in nits (width ≥ 1), its sun taken
+// out unless its `sun` mode is "keep" (findEnvironmentSun). No environment: none (the caller
+// binds black). The sky takes its sun from the scene's first sun light (default:
+// 45° up, from +Z, kClearSkySunLux). Errors name the environment and the file. `keepSun` leaves
+// an "hdr" image's sun in whatever its mode.
+Result<Image> environmentImage(const Scene& scene, bool keepSun = false);
 
 // A piecewise-constant importance-sampling distribution of an equirectangular environment over a
 // grid of width × height cells (the reference mode's environment samples, shaders/passes/
@@ -79,6 +83,39 @@ struct EnvironmentCdf {
     float pdf(glm::vec3 direction) const;
 };
 EnvironmentCdf environmentCdf(const Image& equirect, uint32_t width = 256, uint32_t height = 128);
+
+// A sun in an equirectangular environment image (seed 002 §4.9.1.1: the strong sources are taken
+// out of the distant probe and lit as lights). Found from the brightest texel: the texels
+// connected to it (8-neighbours, wrapping in longitude) whose luminance exceeds kSunHotContrast ×
+// the image's mean (the GPU's env_hot rule) are the sun; they are refilled with the radiance of
+// the ring just outside them, and what they held above it is the sun's light.
+struct EnvironmentSun {
+    glm::vec3 toSun{0.0f, 1.0f, 0.0f};  // unit: the excess luminance's centroid direction
+    glm::vec3 illuminance{0.0f};  // lux perpendicular to the rays, RGB: Σ (L − fill) Ω per channel
+    // Radians: the uniform disk of the same angular spread about toSun (a disk of radius r has
+    // ⟨θ²⟩ = r² / 2), at least the real sun's 0.2664° when the image cannot resolve it.
+    float angularRadius = 0.0f;
+    float solidAngle = 0.0f;       // steradians the taken texels cover
+    glm::vec3 fill{0.0f};          // the radiance they are given: the mean of the ring around them
+    float peakNits = 0.0f;         // the brightest texel's luminance
+    std::vector<uint32_t> texels;  // y · width + x of each taken texel
+};
+inline constexpr float kSunHotContrast = 20.0f;     // region: luminance > 20 × the mean
+inline constexpr float kSunPeakContrast = 1000.0f;  // a sun: the peak > 1000 × the mean
+inline constexpr float kSunMaxSolidAngle = 0.05f;   // sr (a disk of ~7.2°): larger is no sun
+// None when the peak is under kSunPeakContrast × the mean or the region covers more than
+// kSunMaxSolidAngle (an overcast sky's bright patch, a window). Deterministic, one pass.
+std::optional<EnvironmentSun> findEnvironmentSun(const Image& equirect);
+// Writes the sun's fill over its texels (the image findEnvironmentSun was given).
+void removeEnvironmentSun(Image& equirect, const EnvironmentSun& sun);
+
+// The environment's sun as its `sun` mode says (scene.h Environment::sun): with "light" (or
+// "auto" and no sun light in the scene) appends a sun light named "<environment> sun" of the
+// found direction, illuminance (its colour the illuminance's chromaticity) and angular radius,
+// marked fromEnvironment; environmentImage takes the texels out for every mode but "keep".
+// Returns a line saying what was done ("" when nothing: no "hdr" environment, "keep", no sun,
+// or already taken). Errors are environmentImage's.
+Result<std::string> takeEnvironmentSun(Scene& scene);
 
 // The environment a render uses (the --environment option): "" keeps the scene's — except that,
 // with `litByDefault` (a glTF file, as published), a scene with no light and no environment gets

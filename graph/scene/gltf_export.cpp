@@ -344,6 +344,7 @@ struct Writer {
             root.nodes.push_back(int(model.nodes.size() - 1));
         }
         for (const auto& l : scene.lights) {
+            if (l.fromEnvironment) continue;  // the environment's sun: taken out again on load
             const bool punctual = l.type == LightType::Point || l.type == LightType::Spot;
             // Lumens become the candela rgraph renders them with (tbl:9: Φ/4π; spots eq:17: Φ/π),
             // so the exported file lights the same.
@@ -403,6 +404,7 @@ struct Writer {
             x["unit"] = tinygltf::Value(e.unit);
             x["rotation"] = tinygltf::Value(double(e.rotation));
             x["turbidity"] = tinygltf::Value(double(e.turbidity));
+            x["sun"] = tinygltf::Value(e.sun);
             root.extras = tinygltf::Value(tinygltf::Value::Object{
                 {"rgraph", tinygltf::Value(tinygltf::Value::Object{
                                {"environment", tinygltf::Value(std::move(x))}})}});

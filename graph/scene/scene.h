@@ -228,6 +228,8 @@ struct Light {
     // true = eq:16's exact cone (I = Φ / 2π(1 − cos θ_outer)).
     bool exactCone = false;
     float sunAngularRadius = 0.00465f;  // radians (the sun seen from the earth: 0.2664°)
+    // The sun taken out of the scene's environment image (takeEnvironmentSun), not declared.
+    bool fromEnvironment = false;
     // A local light that casts shadows (a shadow map per frame while its range reaches the view:
     // scripts/shadows.lua's local maps). The sun's shadow is the pipeline's (`sun_shadows`).
     bool castShadows = false;
@@ -264,6 +266,12 @@ struct Environment {
     std::string unit = "nits";  // sky and image-based light: luminance (tbl:8)
     float rotation = 0.0f;      // radians about +Y
     float turbidity = 2.5f;     // "sky": Preetham's atmospheric turbidity (2 clear .. 10 hazy)
+    // "hdr": what becomes of a sun in the image (seed 002 §4.9.1.1; environment.h
+    // findEnvironmentSun): "light" — taken out of the image and added to the scene as a sun light
+    // of its direction, illuminance and angular size; "remove" — taken out, the scene's own sun
+    // stands for it; "keep" — left in the image; "auto" (the default) — "remove" when the scene
+    // has a sun light of its own, else "light". Never counted twice.
+    std::string sun = "auto";
 };
 
 // A deferred decal (seed 000 §3.3): a box that, where it encloses the G-buffer's surface, blends

@@ -194,7 +194,8 @@ Result<void> Builder::environment(const Declaration& d) {
     Where w = where(d);
     const Value& b = d.body;
     if (auto r = checkFields(
-            w, b, {"kind", "file", "color", "intensity", "unit", "rotation", "turbidity", "doc"});
+            w, b,
+            {"kind", "file", "color", "intensity", "unit", "rotation", "turbidity", "sun", "doc"});
         !r)
         return r;
     Environment e;
@@ -209,6 +210,11 @@ Result<void> Builder::environment(const Declaration& d) {
     if (b.has("turbidity") && e.kind != "sky")
         return w.at("turbidity").error("applies to kind = \"sky\" only");
     RG_TRY(e.turbidity, numberF(w, b, "turbidity", e.turbidity, Range::closed(1.7, 10)));
+    if (b.has("sun") && e.kind != "hdr")
+        return w.at("sun").error(
+            "applies to kind = \"hdr\" only (a sky's sun is the scene's light)");
+    RG_TRY(e.sun,
+           choice(w, b, "sun", "auto", {"auto", "light", "remove", "keep"}, "environment sun"));
     if (e.kind == "hdr") {
         if (!b.has("file"))
             return w.at("file").error(

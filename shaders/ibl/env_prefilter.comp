@@ -40,11 +40,13 @@ int rgSourceLevels() { return textureQueryLevels(env_smooth); }
 #endif
 layout(push_constant) uniform Constants { float rg_mip; float rg_mipCount; } pc;
 
-// Samples per texel: 128, and for the distant probe 1024 in the small mips (16² texels a face and
-// fewer: little cost), whose broad lobes read coarse mips where the smooth remainder's horizon
-// still bleeds (qwantani at roughness 1: 13.5 % → 2 %). The local probes' many small cubes keep 128.
+// Samples per texel: 128, and for the distant probe 384 at 32² and 1024 in the mips of 16² and
+// fewer (little cost), whose broad lobes read coarse mips where the smooth remainder's horizon
+// still bleeds (qwantani at roughness 1: 13.5 % → 2 %; chinese_garden's branches against the sky
+// at linear roughness 0.14, the 256² cube's 32² mip: 5.5 % → 2.6 %, tests/gpu/test_ibl.cpp).
+// The local probes' many small cubes keep 128.
 #ifdef RG_HOT_TEXELS
-uint rgSamples(int size) { return size > 16 ? 128u : 1024u; }
+uint rgSamples(int size) { return size > 32 ? 128u : size > 16 ? 384u : 1024u; }
 #else
 uint rgSamples(int size) { return 128u; }
 #endif
@@ -90,7 +92,9 @@ void main() {
     float texelSolidAngle = 4.0 * RG_PI / (6.0 * sourceSize * sourceSize);
     vec4 sum = vec4(0.0);
     float weight = 0.0;
-    uint samples = rgSamples(size.x);
+    // A lobe far narrower than this mip's texel (half its weight within ~α of N; a texel spans 2 / size
+    // at a face's centre) is a mirror at this resolution: a few samples find what 128 would.
+    uint samples = alpha < 0.25 / float(size.x) ? 16u : rgSamples(size.x);
     for (uint i = 0u; i < samples; ++i) {
         vec2 u = hammersley(i, samples);
         // GGX half vector around N: cos²θ = (1 − u) / (1 + (α² − 1) u).

@@ -18,6 +18,7 @@
 #include "runtime/session.h"
 #include "image/image.h"
 #include "lighting/brdf.h"
+#include "scene/environment.h"
 
 using namespace rg;
 
@@ -310,6 +311,7 @@ TEST_F(Ibl, PrefilteredProbeMatchesTheExactPrefilter) {
         o.compile.outputHeight = 32;
         o.scene = kRoot + "/tests/gpu/scenes/furnace_grid.lua";
         o.environment = file;
+        o.environmentSun = "keep";  // the sun stays in the cube: the hot texels' path is measured
         o.captures = {"env_source", "env_specular", "env_sh"};
         Session s(rt(), o);
         auto loaded = s.load(kRoot + "/scripts/pipelines/deferred.lua");
@@ -381,7 +383,7 @@ TEST_F(Ibl, PrefilteredProbeMatchesTheExactPrefilter) {
                 dim ? 100 * meanDim / dim : 0.0);
             EXPECT_LE(worstLit, 0.10) << name;
         }
-        const uint32_t mips = 8;
+        const uint32_t mips = 9;  // scripts/ibl.lua: env_specular 256², 9 mips
         std::printf("%s: pre-filtered probe against the exact pre-filter (relative error, green)\n",
                     name.c_str());
         for (uint32_t m = 1; m < mips; ++m) {
@@ -424,4 +426,65 @@ TEST_F(Ibl, PrefilteredProbeMatchesTheExactPrefilter) {
         }
     }
     std::printf("worst over every environment and resolved mip: %.1f %%\n", 100 * worstOverall);
+}
+
+// Seed 002 §4.9.1.1 under an HDRI's sun (environment_sun.cpp): with `sun = "light"` the sun
+// leaves the probe — no texel of the cube the lighting filters is left above 20 × its mean — and
+// lights the scene as a sun light; with "keep" it stays in the probe. Counted once either way:
+// the rough white sphere's centre facing the sun-lit side agrees between the two within 10 % (the
+// order-2 SH's error on lit directions, ~7.5 %), where counting it twice would add ~80 %. A
+// synthetic sky of 10 nits and a 2° sun of 40 000 nits (under the half-float cube's 65 504).
+TEST_F(Ibl, AnHdrisSunIsTakenOutIntoALightAndCountedOnce) {
+    const uint32_t w = 1024, h = 512;
+    Image sky(w, h, 3);
+    const glm::dvec3 toSun = glm::normalize(glm::dvec3(0.3, 0.5, 0.8));
+    const double cosRadius = std::cos(2.0 * 3.14159265358979 / 180.0);
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x) {
+            const glm::dvec3 d(equirectDirection({float((x + 0.5) / w), float((y + 0.5) / h)}));
+            for (uint32_t c = 0; c < 3; ++c)
+                sky.at(x, y, c) = glm::dot(d, toSun) >= cosRadius ? 4e4f : 10.0f;
+        }
+    const std::string file = testing::TempDir() + "/hdri_sun.exr";
+    ASSERT_TRUE(writeExr(file, {{"", {"R", "G", "B"}, sky}}).has_value());
+    float centre[2] = {};
+    for (int mode = 0; mode < 2; ++mode) {
+        SessionOptions o = sceneOptions(kRoot + "/tests/gpu/scenes/furnace_grid.lua", {}, 160, 64);
+        o.environment = file;
+        o.environmentSun = mode ? "light" : "keep";
+        o.params["ao_radius"] = Value(0.05);
+        Readback r =
+            renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 2, {"hdr", "env_source"});
+        ASSERT_EQ(r.images.size(), 2u);
+        // The rough dielectric (row 0, last column: x = 2, y = −0.5 m at 40 m, fov 8.5°): the
+        // 3 × 3 pixels at its centre, in nits.
+        const Image& hdr = r["hdr"];
+        const double half = 40.0 * std::tan(4.25 * 3.14159265358979 / 180.0);  // metres
+        const int cx = int(hdr.width / 2 + 2.0 / half * hdr.height / 2),
+                  cy = int(hdr.height / 2 + 0.5 / half * hdr.height / 2);
+        double sum = 0.0;
+        for (int dy = -1; dy <= 1; ++dy)
+            for (int dx = -1; dx <= 1; ++dx) sum += hdr.at(uint32_t(cx + dx), uint32_t(cy + dy), 1);
+        centre[mode] = float(sum / 9.0 / r.preExposure);
+        // The cube the probe is filtered from: its brightest texel against its mean.
+        double peak = 0.0, mean = 0.0;
+        size_t n = 0;
+        for (uint32_t f = 0; f < 6; ++f) {
+            auto face = rt().executor().readback("env_source", f, 0);
+            ASSERT_TRUE(face.has_value()) << face.error().describe();
+            for (size_t i = 1; i < face->pixels.size(); i += face->channels, ++n) {
+                peak = std::max(peak, double(face->pixels[i]));
+                mean += face->pixels[i];
+            }
+        }
+        mean /= double(n);
+        std::printf(
+            "sun %s: the rough sphere's centre %.1f nits, the cube's peak %.0f x its mean\n",
+            mode ? "light" : "keep", double(centre[mode]), peak / mean);
+        if (mode)
+            EXPECT_LT(peak, 20.0 * mean);
+        else
+            EXPECT_GT(peak, 1000.0 * mean);
+    }
+    EXPECT_NEAR(centre[1] / centre[0], 1.0, 0.10);
 }

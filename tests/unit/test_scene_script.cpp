@@ -365,6 +365,9 @@ TEST(SceneScript, CameraAndEnvironmentFieldErrors) {
     EXPECT_EQ(lua.error("scene.environment \"e\" { kind = \"sky\", unit = \"lux\" }"),
               "bad.lua:1: scene.environment.e.unit: an environment's luminance is in 'nits' (seed "
               "000 tbl:8), got 'lux'");
+    EXPECT_EQ(lua.error("scene.environment \"e\" { kind = \"sky\", sun = \"keep\" }"),
+              "bad.lua:1: scene.environment.e.sun: applies to kind = \"hdr\" only (a sky's sun is "
+              "the scene's light)");
     EXPECT_EQ(lua.error("scene.environment \"z\" { kind = \"sky\" }\nscene.environment \"b\" { "
                         "kind = \"sky\" }"),
               "bad.lua:2: scene.environment.b: a scene has one environment; 'z' is declared at "
