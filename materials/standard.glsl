@@ -9,7 +9,7 @@ GBuffer_disney rgSurface(RgSurface s) {
     g.baseColor = s.baseColor;
     g.materialData = 0u;
     g.normalExtra = 0u;
-    g.reserved = 0.0;
+    g.reserved = s.radiosity;  // 1: GB3 holds the lightmap's radiosity alone (AO-occluded)
     g.metalMask = s.metalMask;
     g.reflectance = s.reflectance;
     g.ao = s.ao;

@@ -11,13 +11,15 @@ vec3 rgShade(GBuffer_disney g, vec3 position, vec3 V, ivec2 pixel) {
     vec3 diffuseColor = g.baseColor * (1.0 - g.metalMask);
     vec3 f0 = mix(vec3(rgDielectricF0(g.reflectance)), g.baseColor, g.metalMask);
     float linearRoughness = 1.0 - g.smoothness;
-    // GB2's reserved channel, which the standard material's own surfaces leave 0: 1 where a fix-up
-    // wrote the distant probe's diffuse into GB3 as radiosity (seed 000 lst:3, materials/foliage):
-    // that pixel gets no second probe diffuse, and its radiosity is occluded as the probe's would
-    // be, by min(material AO, SSAO) (seed 002 §4.10.3).
+    // GB2's reserved channel: 1 where GB3 holds radiosity alone — the baked lightmap's on a surface
+    // without emission of its own (materials/standard.glsl), or the distant probe's diffuse a
+    // fix-up wrote (seed 000 lst:3, materials/foliage): that pixel gets no second probe diffuse,
+    // and its radiosity is occluded as the probe's would be, by min(material AO, SSAO) (seed 002
+    // §4.10.3). GB3's radiosity already carries the material's AO (lib/lightmap.glsl; foliage's
+    // is 1), so it is scaled by min(material AO, SSAO) / material AO.
     float ao = rgAmbientOcclusion(g.ao, position);
     bool radiosity = g.reserved > 0.5;
-    vec3 luminance = radiosity ? g.emissive * ao : g.emissive;
+    vec3 luminance = radiosity ? g.emissive * (ao / max(g.ao, 1e-3)) : g.emissive;
     RgLightList list = rgLightList(pixel);  // the tile's lights (lib/light_tiles.glsl); every light without tiles
     float sun = rgSunVisibility(position, g.normal);  // the sun's shadow (RG_SHADOWS), once
 #if defined(RG_LIGHT_TILES) && defined(RG_SCENE_GLOBAL_LIGHTS)

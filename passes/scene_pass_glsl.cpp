@@ -13,7 +13,9 @@ namespace {
 
 // With a baked lightmap (lib/lightmap.glsl), the surface's radiosity joins its emission before the
 // material's surface function runs: whatever layout it packs, the light leaves the surface as the
-// emissive term does (GB3 in the disney layout, seed 000 tbl:2).
+// emissive term does (GB3 in the disney layout, seed 000 tbl:2). A surface with no emission of its
+// own marks it as radiosity (RgSurface::radiosity): the standard surface keeps that in GB2.reserved
+// and its lighting occludes it by min(baked AO, SSAO) (seed 002 §4.10.3).
 // RG_LIGHTMAP_VIEW (`rgraph render --view lightmap` / `sgN`) writes the lightmap instead: the
 // irradiance, or lobe N's amplitude, as the emission the debug view decodes.
 constexpr const char* kLightmapRadiosity =
@@ -22,6 +24,7 @@ constexpr const char* kLightmapRadiosity =
     "    s.emissive = rgLightmapView(RG_LIGHTMAP_VIEW - 1, s, worldNormal, worldTangent, "
     "lightmapUv, gl_FrontFacing);\n"
     "#else\n"
+    "    s.radiosity = all(equal(s.emissive, vec3(0.0))) ? 1.0 : 0.0;\n"
     "    s.emissive += rgLightmapRadiosity(s, worldNormal, worldTangent, lightmapUv, "
     "gl_FrontFacing);\n"
     "#endif\n"

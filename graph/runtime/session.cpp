@@ -272,17 +272,19 @@ Result<void> Session::load(const std::string& file) {
         return fail(ErrorCode::InvalidInput,
                     "--scene: pipeline '" + file + "' has no scene pass to draw it");
     }
-    for (const auto& [name, value] : m_options.params) {
-        auto checked = checkedParam(*pipeline, name, value);
-        if (!checked) return std::unexpected(checked.error());
-        pipeline->findParam(name)->value = *checked;
-    }
     if (!m_options.view.empty()) {
         // The view's passes (rg.view; scripts/views.lua) join the pipeline's.
         const ViewFacts facts = scene ? viewFactsOf(scene->scene()) : ViewFacts{};
         auto viewed = host->addView(m_options.view, *pipeline, scene ? &facts : nullptr);
         if (!viewed) return std::unexpected(viewed.error());
         *pipeline = std::move(*viewed);
+    }
+    // Parameters after the view: the pipeline a view returns is declared anew, with the
+    // parameters' defaults (a view of the AO ignored --set ao_radius before).
+    for (const auto& [name, value] : m_options.params) {
+        auto checked = checkedParam(*pipeline, name, value);
+        if (!checked) return std::unexpected(checked.error());
+        pipeline->findParam(name)->value = *checked;
     }
     if (scene)
         if (auto r = applySceneSettings(*scene, *pipeline); !r) return r;

@@ -33,6 +33,10 @@ struct RgSurface {
     vec3 diffuseColor;  // two-colour model (tbl:3), linear, times the base colour texture
     vec3 f0;            // two-colour model: specular colour at normal incidence
     bool twoColour;     // the material is a two-colour one (its lighting takes diffuseColor and f0)
+    // 1 where `emissive` holds only baked radiosity (the scene's lightmap; a surface without
+    // emission of its own): the lighting occludes it by AO as it would the probe's diffuse
+    // (seed 002 §4.10.3). Written to GB2.reserved by the standard surface function.
+    float radiosity;
 };
 
 // Which of the five textures the material has (bits 1 base colour, 2 metallic-roughness,
@@ -90,6 +94,7 @@ RgSurface rgSampleSurface(vec3 position, vec3 normal, vec4 tangent, vec2 uv0, ve
     s.diffuseColor = material.diffuseColor.rgb * base.rgb;
     s.f0 = material.f0.rgb;
     s.twoColour = material.diffuseColor.w > 0.5;
+    s.radiosity = 0.0;
     vec3 m = rgSampleMaterialTexture(normalTex, 4, 2, uv0, uv1, vec4(0.5, 0.5, 1.0, 1.0)).xyz * 2.0 - 1.0;
     m.xy *= material.factors2.x;
     s.normal = normalize(rgTangentFrame(normal, tangent, frontFacing) * m);

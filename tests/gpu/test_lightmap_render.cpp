@@ -40,6 +40,9 @@ TEST_F(LightmapRender, CornellBoxMatchesAMonteCarloReferenceWithIndirectLight) {
     // furnace test below checks it).
     SessionOptions o = options();
     o.params["lightmap_specular"] = Value(false);
+    // The reference has no screen-space AO (the lightmap holds the room's own occlusion): AO's
+    // search shrunk to 5 cm. With it at its 1 m, the corners darken (the next test).
+    o.params["ao_radius"] = Value(0.05);
     Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 1, {"hdr"});
     ASSERT_EQ(r.images.count("hdr"), 1u);
     const Image& hdr = r["hdr"];
@@ -176,6 +179,58 @@ TEST_F(LightmapRender, SpecularIsThePrefilteredRadianceInAFurnace) {
         EXPECT_GT(lo, 0.85) << smoothness;
         EXPECT_LT(hi, 1.1) << smoothness;
     }
+}
+
+// Seed 002 §4.10.3: the baked radiosity is occluded by min(baked AO, SSAO) as the probe's diffuse
+// would be (materials/standard_shading.glsl, GB2.reserved = 1 where GB3 holds radiosity alone).
+// The Cornell box lit by its lightmap only, its diffuse alone (no lightmap specular): each pixel's
+// luminance with AO at its 1 m against the same with AO's search shrunk to 5 cm changes by the
+// ratio of the two AO images (the `ssao` view, which takes the pipeline's --set parameters as the
+// frame does), in the room's creases where AO is under 0.9.
+TEST_F(LightmapRender, RadiosityIsOccludedByTheScreenSpaceAo) {
+    auto frame = [&](double radius, const std::string& view) {
+        SessionOptions o = options();
+        o.params["lightmap_specular"] = Value(false);
+        o.params["ao_radius"] = Value(radius);
+        o.view = view;
+        return renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 1,
+                             {view.empty() ? "hdr" : "debug_view"});
+    };
+    Readback aoOff = frame(0.05, "ssao"), on = frame(1.0, ""), off = frame(0.05, ""),
+             aoOn = frame(1.0, "ssao");
+    ASSERT_EQ(on.images.size(), 1u);
+    ASSERT_EQ(aoOn.images.size(), 1u);
+    double sum = 0.0, worst = 0.0, darkest = 1.0;
+    int count = 0;
+    for (uint32_t y = 2; y < N - 2; ++y)
+        for (uint32_t x = 2; x < N - 2; ++x) {
+            const double a = aoOn["debug_view"].at(x, y, 0), b = aoOff["debug_view"].at(x, y, 0);
+            const double lumOff = off["hdr"].at(x, y, 1) / off.preExposure;
+            if (a >= 0.9 || b < 0.5 || lumOff < 0.5) continue;
+            const double ratio = (on["hdr"].at(x, y, 1) / on.preExposure) / lumOff;
+            const double e = std::abs(ratio / (a / b) - 1.0);
+            sum += e, worst = std::max(worst, e), darkest = std::min(darkest, ratio), ++count;
+        }
+    ASSERT_GT(count, 100);
+    std::printf(
+        "radiosity under AO: %d crease pixels, luminance ratio against the AO ratio: mean error "
+        "%.2f %%, worst %.2f %%; darkest ratio %.2f\n",
+        count, 100 * sum / count, 100 * worst, darkest);
+    EXPECT_LT(sum / count, 0.02);
+    EXPECT_LT(darkest, 0.8);  // the creases really darken (before: 1, the radiosity as baked)
+
+    // The material's own AO counts once: min(0.5, SSAO ≈ 1), not 0.5 × min(0.5, …). The furnace's
+    // open plane (ρ 0.8, E = π): radiosity 0.8 × 0.5 = 0.4 nits.
+    SessionOptions o = options();
+    o.scene = kRoot + "/tests/gpu/scenes/lightmap_furnace.lua";
+    o.sceneArgs = {{"ao", "0.5"}};
+    o.params["lightmap_specular"] = Value(false);
+    Readback plane = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 1, {"hdr"});
+    ASSERT_EQ(plane.images.size(), 1u);
+    const double centre = plane["hdr"].at(N / 2, 3 * N / 4, 1) / plane.preExposure;
+    std::printf("furnace plane of AO 0.5: %.3f nits (radiosity 0.4 and a little specular)\n",
+                centre);
+    EXPECT_NEAR(centre, 0.4, 0.04);
 }
 
 TEST_F(LightmapRender, ThePipelineSwitchTurnsItOff) {
