@@ -164,6 +164,7 @@ Result<VkBuffer> GpuScene::makeBvhBuffer() const {
     // The draws' triangles, from the scene's meshes under each node's transform.
     for (const Node& node : m_scene.nodes) {
         if (node.mesh < 0 || static_cast<size_t>(node.mesh) >= m_scene.meshes.size()) continue;
+        if (node.lightShape) continue;  // an area light's shape: its own rays must not find it
         for (const Primitive& p : m_scene.meshes[static_cast<size_t>(node.mesh)].primitives) {
             const uint32_t material =
                 std::min<uint32_t>(p.material, static_cast<uint32_t>(m_scene.materials.size() - 1));

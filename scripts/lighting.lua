@@ -39,6 +39,11 @@ lighting.max_lights = 1024
 -- light with the horizon clipped. A field of the scene's light block: switching it rebuilds nothing.
 rg.param "area_lights" { type = "choice", default = "ltc", choices = { "ltc", "frostbite" }, scene = "area_light_model",
     doc = "area-light model: frostbite (seed 002 §4.7) or ltc (linearly transformed cosines)" }
+-- Every sphere, disk, rect and tube light drawn as its emissive shape at its luminance (seed 002
+-- §4.8; graph/runtime/light_shapes.h): the scene gains a mesh per light when it loads. A light's
+-- own `visible = false` hides one; this hides them all (a study of the light's lighting alone).
+rg.param "light_shapes" { type = "boolean", default = true,
+    doc = "draw the area lights' emissive shapes (seed 002 §4.8); read when the scene loads" }
 
 rg.buffer "light_tiles_coarse" {
     size = 16, tile = lighting.coarse_tile, tile_bytes = 4 * lighting.coarse_words,

@@ -11,6 +11,7 @@
 #include <limits>
 #include <map>
 
+#include "light_shapes.h"
 #include "bake/lightmap.h"
 #include "core/names.h"
 #include "passes/passes.h"
@@ -175,18 +176,23 @@ Result<std::unique_ptr<passes::GpuScene>> Session::loadScene(PipelineDesc& pipel
             if (def.isNumber()) custom[key] = m.extra[key].isNumber() ? m.extra[key] : def;
         m.extra = Value(custom);
     }
-    // Baked GI (scene.lightmap): from the cache, or baked now; the pipeline's `lightmap` parameter
-    // (scripts/lightmap.lua) turns it off.
-    if (scene->lightmap) {
-        const ParamDesc* use = pipeline.findParam("lightmap");
+    // A boolean parameter read when the scene loads: the pipeline's value, or --set's (checked).
+    auto switchedOn = [&](const char* name) -> Result<bool> {
+        const ParamDesc* use = pipeline.findParam(name);
         Value on = use ? use->value : Value(true);
-        if (auto set = m_options.params.find("lightmap");
-            use && set != m_options.params.end()) {  // --set lightmap=...
-            auto checked = checkedParam(pipeline, "lightmap", set->second);
+        if (auto set = m_options.params.find(name); use && set != m_options.params.end()) {
+            auto checked = checkedParam(pipeline, name, set->second);
             if (!checked) return std::unexpected(checked.error());
             on = *checked;
         }
-        if (!on.isBool() || on.asBool()) {
+        return !on.isBool() || on.asBool();
+    };
+    // Baked GI (scene.lightmap): from the cache, or baked now; the pipeline's `lightmap` parameter
+    // (scripts/lightmap.lua) turns it off.
+    if (scene->lightmap) {
+        auto on = switchedOn("lightmap");
+        if (!on) return std::unexpected(on.error());
+        if (*on) {
             bake::PrepareOptions po;
             po.cacheDir = cacheDir() + "/lightmaps";
             po.bake = m_options.bakeLightmap;
@@ -194,6 +200,20 @@ Result<std::unique_ptr<passes::GpuScene>> Session::loadScene(PipelineDesc& pipel
                 return fail(r.error().code, scene->lightmap->origin + ": scene.lightmap." +
                                                 scene->lightmap->name + ": " + r.error().message);
         }
+    }
+    // The area lights' emissive shapes (seed 002 §4.8), after the bake: the lightmap neither
+    // charts nor sees them. The `light_shapes` parameter (scripts/lighting.lua) turns them off; a
+    // pipeline without the standard material draws none.
+    auto shapesOn = switchedOn("light_shapes");
+    if (!shapesOn) return std::unexpected(shapesOn.error());
+    if (auto standard = std::find_if(pipeline.materials.begin(), pipeline.materials.end(),
+                                     [](auto& x) { return x.name == "standard"; });
+        *shapesOn && standard != pipeline.materials.end()) {
+        Value::Table defaults;
+        for (const auto& [key, def] : standard->params.asTable())
+            if (def.isNumber()) defaults[key] = def;
+        auto shapes = addLightShapes(*scene, Value(defaults));
+        if (!shapes) return std::unexpected(shapes.error());
     }
     passes::GpuSceneOptions sceneOptions;
     sceneOptions.levelsOfDetail = m_options.levelsOfDetail;

@@ -187,6 +187,66 @@ Primitive makePlane(float width, float depth, uint32_t material) {
     return p;
 }
 
+Primitive makeDisk(float radius, uint32_t segments, uint32_t material) {
+    Primitive p;
+    p.material = material;
+    segments = std::max(segments, 3u);
+    const float pi = 3.14159265358979f;
+    // The centre, then the rim counter-clockwise seen from +Y (the angle from +X towards −Z).
+    Vertex centre;
+    centre.normal = glm::vec3(0, 1, 0);
+    centre.tangent = glm::vec4(1, 0, 0, 1);
+    centre.uv0 = centre.uv1 = glm::vec2(0.5f);
+    p.vertices.push_back(centre);
+    for (uint32_t s = 0; s < segments; ++s) {
+        const float a = 2.0f * pi * float(s) / float(segments);
+        Vertex v = centre;
+        v.position = glm::vec3(std::cos(a), 0.0f, -std::sin(a)) * radius;
+        v.uv0 = v.uv1 = glm::vec2(0.5f + 0.5f * std::cos(a), 0.5f + 0.5f * std::sin(a));
+        p.vertices.push_back(v);
+    }
+    for (uint32_t s = 0; s < segments; ++s)
+        p.indices.insert(p.indices.end(), {0, 1 + s, 1 + (s + 1) % segments});
+    p.lightmapUv = true;  // one chart: the disk inscribed in the uv square
+    return p;
+}
+
+Primitive makeCapsule(float radius, float length, uint32_t segments, uint32_t material) {
+    Primitive p;
+    p.material = material;
+    segments = std::max(segments, 3u);
+    const uint32_t half = std::max(segments / 4, 1u);  // rings per hemisphere
+    const float pi = 3.14159265358979f;
+    // Rings from the +Y pole to the equator, raised by length / 2, then from the equator to the
+    // −Y pole, lowered by length / 2: the band between the two equators is the cylinder.
+    std::vector<std::pair<float, float>> rings;  // polar angle, offset along Y
+    for (uint32_t r = 0; r <= half; ++r)
+        rings.emplace_back(0.5f * pi * float(r) / float(half), 0.5f * length);
+    for (uint32_t r = 0; r <= half; ++r)
+        rings.emplace_back(0.5f * pi * (1.0f + float(r) / float(half)), -0.5f * length);
+    for (size_t r = 0; r < rings.size(); ++r)
+        for (uint32_t s = 0; s <= segments; ++s) {
+            const auto [theta, offset] = rings[r];
+            const float u = float(s) / float(segments), phi = u * 2.0f * pi;
+            const glm::vec3 n(std::sin(theta) * std::cos(phi), std::cos(theta),
+                              -std::sin(theta) * std::sin(phi));
+            Vertex v;
+            v.normal = n;
+            v.position = n * radius + glm::vec3(0.0f, offset, 0.0f);
+            v.uv0 = v.uv1 = glm::vec2(u, float(r) / float(rings.size() - 1));
+            v.tangent = glm::vec4(-std::sin(phi), 0.0f, -std::cos(phi), 1.0f);
+            p.vertices.push_back(v);
+        }
+    const uint32_t row = segments + 1, last = static_cast<uint32_t>(rings.size() - 1);
+    for (uint32_t r = 0; r < last; ++r)
+        for (uint32_t s = 0; s < segments; ++s) {
+            const uint32_t a = r * row + s, b = a + 1, c = a + row, d = c + 1;
+            if (r != 0) p.indices.insert(p.indices.end(), {a, c, b});
+            if (r != last - 1) p.indices.insert(p.indices.end(), {b, c, d});
+        }
+    return p;
+}
+
 Primitive makeBox(glm::vec3 size, uint32_t material) {
     Primitive p;
     p.material = material;

@@ -182,6 +182,9 @@ struct Node {
     // the maps its depth fill; it still receives shadows, and the ray casts (the reference mode,
     // the probe capture's shadow rays, the lightmap bake) still see it.
     bool castShadows = true;
+    // An area light's emissive shape (runtime/light_shapes.h): drawn, but left out of every ray
+    // cast (the BVH of the probe capture's and the reference's shadow rays).
+    bool lightShape = false;
 };
 
 enum class LightType : uint8_t {
@@ -230,6 +233,9 @@ struct Light {
     float sunAngularRadius = 0.00465f;  // radians (the sun seen from the earth: 0.2664°)
     // The sun taken out of the scene's environment image (takeEnvironmentSun), not declared.
     bool fromEnvironment = false;
+    // Sphere, disk, rect and tube lights: drawn as their emissive shape at the light's luminance
+    // (seed 002 §4.8; runtime/light_shapes.h).
+    bool visible = true;
     // A local light that casts shadows (a shadow map per frame while its range reaches the view:
     // scripts/shadows.lua's local maps). The sun's shadow is the pipeline's (`sun_shadows`).
     bool castShadows = false;
@@ -455,6 +461,10 @@ Primitive makeSphere(float radius, uint32_t segments,
                      uint32_t material);  // segments around, segments/2 rings
 Primitive makePlane(float width, float depth, uint32_t material);  // XZ plane, normal +Y
 Primitive makeBox(glm::vec3 size, uint32_t material);
+// A disk in the XZ plane facing +Y (one-sided), a fan of `segments` triangles.
+Primitive makeDisk(float radius, uint32_t segments, uint32_t material);
+// A capsule along Y: a cylinder of `length` between two hemispheres of `radius`.
+Primitive makeCapsule(float radius, float length, uint32_t segments, uint32_t material);
 // Generated shapes carry lightmap uvs (Primitive::lightmapUv): a plane and a sphere their uv square,
 // a box its faces in a 3 × 2 grid, each inset by this fraction of its cell.
 inline constexpr float kBoxChartInset = 0.1f;

@@ -20,12 +20,12 @@ namespace scene_script {
 Result<void> Builder::light(const Declaration& d) {
     Where w = where(d);
     const Value& b = d.body;
-    if (auto r = checkFields(w, b,
-                             {"type",        "intensity",      "unit",      "color",  "temperature",
-                              "locus",       "position",       "direction", "target", "up",
-                              "baked",       "radius",         "width",     "height", "length",
-                              "inner_angle", "outer_angle",    "range",     "ies",    "ies_mode",
-                              "exact_cone",  "angular_radius", "shadow",    "doc"});
+    if (auto r = checkFields(
+            w, b, {"type",        "intensity",      "unit",      "color",   "temperature",
+                   "locus",       "position",       "direction", "target",  "up",
+                   "baked",       "radius",         "width",     "height",  "length",
+                   "inner_angle", "outer_angle",    "range",     "ies",     "ies_mode",
+                   "exact_cone",  "angular_radius", "shadow",    "visible", "doc"});
         !r)
         return r;
     Light l;
@@ -183,6 +183,9 @@ Result<void> Builder::light(const Declaration& d) {
     RG_TRY(l.exactCone, boolean(w, b, "exact_cone", false));
     RG_TRY(l.castShadows, boolean(w, b, "shadow", false));
     RG_TRY(l.baked, boolean(w, b, "baked", false));
+    if (auto r = only("visible", !punctual && !sun, "sphere, disk, rect and tube lights"); !r)
+        return r;
+    RG_TRY(l.visible, boolean(w, b, "visible", true));
     float angular = 0.2664f;
     RG_TRY(angular, numberF(w, b, "angular_radius", angular, Range::openLow(0, 10)));
     l.sunAngularRadius = angular * kDegrees;

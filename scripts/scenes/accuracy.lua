@@ -42,6 +42,7 @@ local lights = {
 local l = lights[light]
 if not l then error("scene.args.light: expected sphere, disk, rect or tube, got '" .. tostring(light) .. "'") end
 l.intensity, l.unit, l.position = 2000, "lm", p.position
+l.visible = false  -- the light's lighting on the floor is measured, not its emissive shape
 scene.light "key" (l)
 
 scene.camera "view" {

@@ -22,10 +22,13 @@ struct RgProbe {
     vec4 influence;      // xyz: the influence box's half extents (a sphere: its radius in x), same centre and axes
 };
 
+// RG_NO_PROBE_BINDING: the functions alone, no scene binding (shaders/test/ibl_terms.comp).
+#ifndef RG_NO_PROBE_BINDING
 layout(set = 0, binding = RG_PROBES_BINDING, std140) uniform Probes {
     uvec4 count;
     RgProbe probe[RG_MAX_PROBES];
 } rgProbes;
+#endif
 
 // The scene's probe shapes (rgraph defines it for passes with a scene: 1 spheres only, 2 boxes
 // only, 3 both): with one shape the other's branch compiles away — both sides of a branch run on a

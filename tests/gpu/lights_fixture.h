@@ -218,6 +218,7 @@ protected:
         o.compile.outputHeight = H;
         o.scene = scene;
         o.captures = {"GB0", "GB1", "GB2", "GB3"};
+        o.params["light_shapes"] = Value(false);  // the light's lighting alone, not its look
         Session s(*s_runtime, o);
         Frame out;
         auto r = s.load(kRoot + "/scripts/pipelines/deferred.lua");

@@ -44,6 +44,7 @@ protected:
         o.compile.outputHeight = H;
         o.scene = kRoot + "/tests/gpu/scenes/" + scene;
         o.params["exposure_mode"] = Value("manual");
+        o.params["light_shapes"] = Value(false);  // the lights' lighting alone, not their look
         // The same meshes in both (the reference mode draws the full ones): the lights' terms are
         // compared, not the spheres' levels of detail.
         o.levelsOfDetail = false;
