@@ -25,6 +25,7 @@
     "an equirectangular .hdr/.exr in nits, the Preetham sky of the scene's sun, or none. A "   \
     "glTF scene\n"                                                                             \
     "with no light and no environment gets the sky, as glTF viewers light published models.\n" \
+    "--variant NAME: a glTF scene's material variant (KHR_materials_variants).\n"              \
     "--environment-sun auto|light|remove|keep: what becomes of a sun in an .hdr/.exr "         \
     "environment\n(scripts/scenes/README.md, scene.environment's sun; default: the scene's, "  \
     "else auto).\n"

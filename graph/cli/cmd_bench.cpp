@@ -50,10 +50,11 @@ const char* const kHelp =
 
 int cmdBench(int argc, char** argv) {
     Args args;
-    if (auto done = parseCommand(argc, argv, "bench",
-                                 {"pipeline", "scene", "scene-arg", "set", "camera", "environment",
-                                  "environment-sun", "size", "frames", "json", "device", "floors"},
-                                 kHelp, args))
+    if (auto done = parseCommand(
+            argc, argv, "bench",
+            {"pipeline", "scene", "scene-arg", "set", "camera", "environment", "environment-sun",
+             "variant", "size", "frames", "json", "device", "floors"},
+            kHelp, args))
         return *done;
     auto setup = setupRun(args, "bench", 20, {});
     if (!setup) return report(setup.error());

@@ -60,11 +60,11 @@ const char* const kHelp =
 
 int cmdRender(int argc, char** argv) {
     Args args;
-    if (auto done = parseCommand(
-            argc, argv, "render",
-            {"pipeline", "scene", "scene-arg", "set", "camera", "environment", "environment-sun",
-             "size", "frames", "out", "png", "capture", "view", "device", "verbose", "no-cache"},
-            kHelp, args))
+    if (auto done = parseCommand(argc, argv, "render",
+                                 {"pipeline", "scene", "scene-arg", "set", "camera", "environment",
+                                  "environment-sun", "variant", "size", "frames", "out", "png",
+                                  "capture", "view", "device", "verbose", "no-cache"},
+                                 kHelp, args))
         return *done;
     const auto captures = args.all("capture");
     auto paths = outputPaths(args, "out/render.exr");

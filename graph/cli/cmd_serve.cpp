@@ -42,7 +42,7 @@ int cmdServe(int argc, char** argv) {
     if (auto done = parseCommand(
             argc, argv, "serve",
             {"pipeline", "scene", "scene-arg", "set", "camera", "environment", "environment-sun",
-             "size", "device", "port", "host", "token", "interval", "no-cache"},
+             "variant", "size", "device", "port", "host", "token", "interval", "no-cache"},
             kHelp, args))
         return *done;
     ServeOptions so;

@@ -37,7 +37,7 @@ int cmdWatch(int argc, char** argv) {
     if (auto done = parseCommand(
             argc, argv, "watch",
             {"pipeline", "scene", "scene-arg", "set", "camera", "environment", "environment-sun",
-             "size", "out", "png", "device", "interval", "max-reloads", "no-cache"},
+             "variant", "size", "out", "png", "device", "interval", "max-reloads", "no-cache"},
             kHelp, args))
         return *done;
     uint32_t interval = 250, maxReloads = 0;

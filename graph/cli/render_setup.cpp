@@ -75,6 +75,7 @@ Result<RenderSetup> setupRun(const Args& args, const char* command, uint32_t def
     so.camera = args.get("camera");
     so.environment = args.get("environment");
     so.environmentSun = args.get("environment-sun");
+    so.variant = args.get("variant");
     so.verbose = verbose;
     so.warnings = true;  // what a scene's loader skipped, always (Scene::warnings)
     // The once-per-build outputs' disk cache: not for bench, whose first-frame column times those passes.

@@ -36,6 +36,8 @@ struct SessionOptions {
     // --environment-sun: "" = the scene's own mode; "auto", "light", "remove" or "keep" (scene.h
     // Environment::sun) for an "hdr" environment.
     std::string environmentSun;
+    // --variant: a glTF scene's KHR_materials_variants variant by name ("" = its defaults).
+    std::string variant;
     // A debug view instead of the pipeline's display image: a view of the pipeline's scripts
     // (rg.view) or of scripts/views.lua (normals, stencil, lights, shadow:LIGHT, sgN, ...),
     // drawn into `debug_view` after the pipeline's passes.

@@ -71,8 +71,14 @@ ViewFacts viewFactsOf(const Scene& scene) {
     return facts;
 }
 
-Result<Scene> readScene(const std::string& file, const std::map<std::string, std::string>& args) {
+Result<Scene> readScene(const std::string& file, const std::map<std::string, std::string>& args,
+                        const std::string& variant) {
     const std::string ext = fs::path(file).extension().string();
+    if (!variant.empty() && ext != ".gltf" && ext != ".glb")
+        return fail(ErrorCode::InvalidInput,
+                    "--variant: applies to a .gltf or .glb scene (a Lua scene gives scene.gltf its "
+                    "variant), got '" +
+                        file + "'");
     if (ext == ".lua") {
         SceneScriptOptions o;
         o.args = args;
@@ -80,7 +86,9 @@ Result<Scene> readScene(const std::string& file, const std::map<std::string, std
         return loadSceneScript(file, o);
     }
     if (ext == ".gltf" || ext == ".glb") {
-        auto scene = loadGltf(file);
+        GltfOptions go;
+        go.variant = variant;
+        auto scene = loadGltf(file, go);
         if (!scene) return scene;
         if (scene->cameras.empty()) {
             // Frame the bounds from the front, slightly above.
@@ -112,7 +120,7 @@ Result<std::unique_ptr<passes::GpuScene>> Session::loadScene(PipelineDesc& pipel
                              : m_options.scene.empty() ? defaultScene()
                                                        : m_options.scene;
     auto scene = m_options.sceneData ? Result<Scene>(*m_options.sceneData)
-                                     : readScene(file, m_options.sceneArgs);
+                                     : readScene(file, m_options.sceneArgs, m_options.variant);
     if (!scene) return std::unexpected(scene.error());
     for (const auto& w : scene->warnings) warn("warning: " + w);
     if (const Scene::LodStats& l = scene->lodStats; l.primitives > 0) {

@@ -35,7 +35,9 @@ const std::set<std::string> kSupported = {"KHR_texture_transform",
                                           "KHR_materials_specular",
                                           "KHR_materials_clearcoat",
                                           "KHR_materials_unlit",
-                                          "KHR_materials_pbrSpecularGlossiness"};
+                                          "KHR_materials_pbrSpecularGlossiness",
+                                          "EXT_mesh_gpu_instancing",
+                                          "KHR_materials_variants"};
 
 std::string percentDecode(const std::string& uri) {
     std::string out;
@@ -361,6 +363,7 @@ glm::vec3 Loader::vec3Of(const tinygltf::Value& v, glm::vec3 def) {
 Result<Scene> Loader::run() {
     if (auto r = parse(); !r) return std::unexpected(r.error());
     convertSamplers();
+    if (auto r = chooseVariant(); !r) return std::unexpected(r.error());
     if (auto r = materials(); !r) return std::unexpected(r.error());
     if (auto r = meshes(); !r) return std::unexpected(r.error());
     if (auto r = nodes(); !r) return std::unexpected(r.error());

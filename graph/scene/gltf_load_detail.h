@@ -77,6 +77,10 @@ struct Loader {
     // ---- meshes (gltf_load_meshes.cpp) ------------------------------------------------------
 
     Result<uint32_t> materialIndex(const std::string& where, int m);
+    int variant = -1;  // KHR_materials_variants: options.variant's index, -1 for the defaults
+    Result<void> chooseVariant();
+    // The glTF material a primitive takes in the chosen variant (its own without one).
+    Result<int> variantMaterial(const std::string& where, const tinygltf::Primitive& prim);
     Result<Primitive> primitive(size_t meshIndex, size_t primIndex);
     Result<void> meshes();
 
@@ -108,6 +112,8 @@ struct Loader {
     // ---- nodes, cameras, lights (gltf_load_nodes.cpp) ---------------------------------------
 
     Result<glm::mat4> localTransform(size_t index);
+    static constexpr size_t kMaxInstances = size_t(1) << 20;  // EXT_mesh_gpu_instancing, per node
+    Result<void> instances(size_t index, const std::string& name, const glm::mat4& world);
     Result<void> camera(size_t nodeIndex, const glm::mat4& world);
     Result<void> light(size_t nodeIndex, const glm::mat4& world);
     Result<void> enter(size_t index, const glm::mat4& parent, std::vector<bool>& onPath,

@@ -37,6 +37,55 @@ const char* modeName(int mode) {
 
 }  // namespace
 
+// KHR_materials_variants: the root's list of variant names; options.variant picks one.
+Result<void> Loader::chooseVariant() {
+    if (options.variant.empty()) return {};
+    std::vector<std::string> names;
+    if (auto it = model.extensions.find("KHR_materials_variants"); it != model.extensions.end()) {
+        const tinygltf::Value& list = it->second.Get("variants");
+        for (size_t i = 0; list.IsArray() && i < list.ArrayLen(); ++i) {
+            const tinygltf::Value& name = list.Get(int(i)).Get("name");
+            names.push_back(name.IsString() ? name.Get<std::string>() : "");
+        }
+    }
+    for (size_t i = 0; i < names.size(); ++i)
+        if (names[i] == options.variant) {
+            variant = int(i);
+            return {};
+        }
+    std::string all;
+    for (const auto& n : names) all += (all.empty() ? "'" : ", '") + n + "'";
+    return error(ErrorCode::InvalidInput,
+                 "material variant '" + options.variant + "' is not in the file (" +
+                     (names.empty() ? std::string("it declares no KHR_materials_variants")
+                                    : "its variants: " + all) +
+                     ")");
+}
+
+Result<int> Loader::variantMaterial(const std::string& where, const tinygltf::Primitive& prim) {
+    if (variant < 0) return prim.material;
+    auto it = prim.extensions.find("KHR_materials_variants");
+    if (it == prim.extensions.end()) return prim.material;
+    const tinygltf::Value& mappings = it->second.Get("mappings");
+    if (!mappings.IsArray())
+        return error(ErrorCode::InvalidInput,
+                     where + ": KHR_materials_variants.mappings: expected an array");
+    for (size_t i = 0; i < mappings.ArrayLen(); ++i) {
+        const tinygltf::Value& m = mappings.Get(int(i));
+        const tinygltf::Value& variants = m.Get("variants");
+        for (size_t k = 0; variants.IsArray() && k < variants.ArrayLen(); ++k)
+            if (indexOf(variants.Get(int(k))) == variant) {
+                const int material = indexOf(m.Get("material"));
+                if (material < 0)
+                    return error(ErrorCode::InvalidInput,
+                                 where + ": KHR_materials_variants.mappings[" + std::to_string(i) +
+                                     "].material: expected a material index");
+                return material;
+            }
+    }
+    return prim.material;
+}
+
 Result<uint32_t> Loader::materialIndex(const std::string& where, int m) {
     if (m < 0) {
         if (defaultMaterial < 0) {
@@ -145,7 +194,9 @@ Result<Primitive> Loader::primitive(size_t meshIndex, size_t primIndex) {
         p.indices = std::move(idx);
     }
 
-    auto m = materialIndex(where, prim.material);
+    auto chosen = variantMaterial(where, prim);
+    if (!chosen) return std::unexpected(chosen.error());
+    auto m = materialIndex(where, *chosen);
     if (!m) return std::unexpected(m.error());
     p.material = *m;
     // glTF 3.7.2.1: without normals, flat normals, and tangents are then ignored.

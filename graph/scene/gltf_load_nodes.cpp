@@ -5,6 +5,7 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
 
 #include "gltf_load_detail.h"
 #include "scene_detail.h"
@@ -190,6 +191,62 @@ Result<void> Loader::light(size_t nodeIndex, const glm::mat4& world) {
     return {};
 }
 
+// EXT_mesh_gpu_instancing: the node's mesh once per instance, each at the node's transform times
+// the instance's TRANSLATION, ROTATION (a unit quaternion, x y z w) and SCALE (each optional, all
+// of one count), as a node of its own named "NAME #i".
+Result<void> Loader::instances(size_t index, const std::string& name, const glm::mat4& world) {
+    const auto& n = model.nodes[index];
+    const std::string where = named("node", index, n.name) + ": EXT_mesh_gpu_instancing";
+    const tinygltf::Value& attributes =
+        n.extensions.at("EXT_mesh_gpu_instancing").Get("attributes");
+    if (!attributes.IsObject())
+        return error(ErrorCode::InvalidInput, where + ".attributes: expected an object");
+    struct Attribute {
+        const char* semantic;
+        int type;
+        std::vector<float> values;
+    } attrs[] = {{"TRANSLATION", TINYGLTF_TYPE_VEC3, {}},
+                 {"ROTATION", TINYGLTF_TYPE_VEC4, {}},
+                 {"SCALE", TINYGLTF_TYPE_VEC3, {}}};
+    size_t count = 0;
+    bool any = false;
+    for (Attribute& a : attrs) {
+        if (!attributes.Has(a.semantic)) continue;
+        const int accessorIndex = indexOf(attributes.Get(a.semantic));
+        auto values = readFloats(where, a.semantic, accessorIndex, a.type);
+        if (!values) return std::unexpected(values.error());
+        const size_t c = values->size() / (a.type == TINYGLTF_TYPE_VEC4 ? 4 : 3);
+        if (any && c != count)
+            return error(ErrorCode::InvalidInput,
+                         where + ": " + a.semantic + " has " + std::to_string(c) +
+                             " instances, the attributes before it " + std::to_string(count));
+        count = c;
+        any = true;
+        a.values = std::move(*values);
+    }
+    if (!any)
+        return error(ErrorCode::InvalidInput,
+                     where + ".attributes: none of TRANSLATION, ROTATION, SCALE");
+    if (count > kMaxInstances)
+        return error(ErrorCode::InvalidInput, where + ": " + std::to_string(count) +
+                                                  " instances (at most " +
+                                                  std::to_string(kMaxInstances) + ")");
+    for (size_t i = 0; i < count; ++i) {
+        glm::vec3 t(0.0f), s(1.0f);
+        glm::quat q(1.0f, 0.0f, 0.0f, 0.0f);
+        if (!attrs[0].values.empty()) t = glm::make_vec3(&attrs[0].values[3 * i]);
+        if (!attrs[1].values.empty()) {
+            const float* r = &attrs[1].values[4 * i];
+            q = glm::normalize(glm::quat(r[3], r[0], r[1], r[2]));
+        }
+        if (!attrs[2].values.empty()) s = glm::make_vec3(&attrs[2].values[3 * i]);
+        const glm::mat4 local =
+            glm::translate(glm::mat4(1.0f), t) * glm::mat4_cast(q) * glm::scale(glm::mat4(1.0f), s);
+        scene.nodes.push_back({name + " #" + std::to_string(i), world * local, n.mesh});
+    }
+    return {};
+}
+
 // Each node once: glTF nodes have at most one parent, and a node reached twice (a shared
 // child, a cycle) would repeat or never end. Depth first with a stack of its own (not the
 // call stack: a hostile hierarchy thousands deep must not overflow it).
@@ -217,8 +274,12 @@ Result<void> Loader::enter(size_t index, const glm::mat4& parent, std::vector<bo
                                                       std::to_string(n.mesh) + " does not exist (" +
                                                       std::to_string(model.meshes.size()) +
                                                       " meshes)");
-        scene.nodes.push_back(
-            {n.name.empty() ? scene.meshes[size_t(n.mesh)].name : n.name, world, n.mesh});
+        const std::string name = n.name.empty() ? scene.meshes[size_t(n.mesh)].name : n.name;
+        if (auto it = n.extensions.find("EXT_mesh_gpu_instancing"); it != n.extensions.end()) {
+            if (auto r = instances(index, name, world); !r) return r;
+        } else {
+            scene.nodes.push_back({name, world, n.mesh});
+        }
     }
     if (n.camera >= 0)
         if (auto r = camera(index, world); !r) return r;

@@ -394,6 +394,9 @@ struct GltfOptions {
     bool loadImages = true;    // false: materials keep their texture references, images stay empty
     bool generateMips = true;  // fill SceneImage::mips
     bool buildLods = true;     // levels of detail for its meshes (mesh_lod.h buildMeshLods)
+    // KHR_materials_variants: the variant whose materials the primitives take ("" = the file's
+    // default materials). A name the file does not have is an error listing the ones it has.
+    std::string variant;
 };
 
 // Loads a .gltf (with its external .bin files and images, or data: URIs) or a .glb.

@@ -235,8 +235,8 @@ void Builder::merge(Scene&& sub, const glm::mat4& t, const std::string& prefix) 
 Result<void> Builder::gltf(const Declaration& d) {
     Where w = where(d);
     const Value& b = d.body;
-    if (auto r =
-            checkFields(w, b, {"file", "position", "rotation", "scale", "cast_shadows", "doc"});
+    if (auto r = checkFields(
+            w, b, {"file", "position", "rotation", "scale", "cast_shadows", "variant", "doc"});
         !r)
         return r;
     if (!b.has("file"))
@@ -250,6 +250,7 @@ Result<void> Builder::gltf(const Declaration& d) {
     go.loadImages = options.loadImages;
     go.generateMips = options.generateMips;
     go.buildLods = false;  // the script's end builds them for every mesh
+    RG_TRY(go.variant, string(w, b, "variant", ""));
     bool castShadows = true;
     RG_TRY(castShadows, boolean(w, b, "cast_shadows", true));
     auto sub = loadGltf(resolve(b["file"].asString()), go);

@@ -84,6 +84,8 @@ check "render metadata is typed" 0 -- python3 -c "d=open('$tmp/r.exr','rb').read
 # --environment: replaces the scene's distant probe; a published glTF with no light is lit by the sky.
 check "environment none" 0 grep "wrote $tmp/e.exr" -- \
     env RG_VALIDATION=1 "$rgraph" render --environment none --size 32x16 --out "$tmp/e.exr" --png "$tmp/e.png"
+check "variant on a Lua scene" 2 grep "--variant: applies to a .gltf or .glb scene" -- \
+    "$rgraph" render --variant rust --size 8x8 --out "$tmp/v.exr"
 check "environment sun mode" 2 grep "--environment-sun: expected auto, light, remove or keep, got 'twice'" -- \
     "$rgraph" render --environment-sun twice --size 8x8 --out "$tmp/s.exr"
 check "environment missing file" 2 grep "--environment: cannot open 'nowhere.hdr'" -- "$rgraph" render --environment nowhere.hdr --size 8x8

@@ -576,3 +576,97 @@ TEST(GltfLoad, GlbWithAnEmbeddedImage) {
 }
 
 }  // namespace
+
+// EXT_mesh_gpu_instancing: the node's mesh once per instance, at the node's transform times the
+// instance's translation, rotation and scale; attributes of different counts are refused naming
+// both. Without the extension the node is drawn once.
+TEST(GltfLoad, GpuInstancingPlacesEveryInstance) {
+    const std::string dir = tmpDir("instancing");
+    auto build = [&](bool instanced, bool mismatched) {
+        GltfBuilder g;
+        addQuad(g, false);
+        const int t = g.floats({1, 0, 0, 0, 2, 0, 0, 0, 3}, "VEC3");
+        // Instance 1 turned 90° about +Y: (x, y, z, w) = (0, sin 45°, 0, cos 45°).
+        const float h = 0.70710678f;
+        const int r = g.floats({0, 0, 0, 1, 0, h, 0, h, 0, 0, 0, 1}, "VEC4");
+        const int s = g.floats(mismatched ? std::vector<float>{2, 2, 2, 1, 1, 1}
+                                          : std::vector<float>{2, 2, 2, 1, 1, 1, 1, 1, 1},
+                               "VEC3");
+        json node = {{"mesh", 0}, {"name", "tree"}, {"translation", {0, 10, 0}}};
+        if (instanced) {
+            node["extensions"] = {
+                {"EXT_mesh_gpu_instancing",
+                 {{"attributes", {{"TRANSLATION", t}, {"ROTATION", r}, {"SCALE", s}}}}}};
+            g.j["extensionsUsed"] = {"EXT_mesh_gpu_instancing"};
+        }
+        g.scene({g.node(node)});
+        rg::GltfOptions o;
+        o.loadImages = false;
+        return rg::loadGltf(g.writeGltf(dir, instanced ? "instanced" : "single"), o);
+    };
+    auto scene = build(true, false);
+    ASSERT_TRUE(scene) << errorOf(scene);
+    ASSERT_EQ(scene->nodes.size(), 3u);
+    EXPECT_EQ(scene->nodes[1].name, "tree #1");
+    // Instance 0: translated by (1, 10, 0), scaled 2: the local +X axis has length 2.
+    const glm::mat4& a = scene->nodes[0].world;
+    EXPECT_NEAR(a[3][0], 1.0f, 1e-6f);
+    EXPECT_NEAR(a[3][1], 10.0f, 1e-6f);
+    EXPECT_NEAR(a[0][0], 2.0f, 1e-6f);
+    // Instance 1: at (0, 12, 0), its local +X turned onto −Z.
+    const glm::mat4& b = scene->nodes[1].world;
+    EXPECT_NEAR(b[3][1], 12.0f, 1e-6f);
+    EXPECT_NEAR(b[0][2], -1.0f, 1e-5f);
+    EXPECT_NEAR(b[0][0], 0.0f, 1e-5f);
+    EXPECT_NEAR(scene->nodes[2].world[3][2], 3.0f, 1e-6f);
+    EXPECT_TRUE(scene->warnings.empty()) << scene->warnings[0];
+
+    auto single = build(false, false);
+    ASSERT_TRUE(single) << errorOf(single);
+    EXPECT_EQ(single->nodes.size(), 1u);
+
+    auto bad = build(true, true);
+    ASSERT_FALSE(bad);
+    EXPECT_NE(bad.error().message.find("SCALE has 2 instances, the attributes before it 3"),
+              std::string::npos)
+        << bad.error().message;
+}
+
+// KHR_materials_variants: with a variant chosen by name (GltfOptions::variant, --variant, the Lua
+// scene.gltf's `variant`) each primitive takes the material its mappings give that variant, the
+// others keep their own; without one, the file's defaults; a name the file lacks is refused with
+// the names it has.
+TEST(GltfLoad, MaterialVariantsPickEachPrimitivesMaterial) {
+    const std::string dir = tmpDir("variants");
+    GltfBuilder g;
+    addQuad(g, false);
+    g.j["materials"] = json::array(
+        {{{"name", "plain"}},
+         {{"name", "red"}, {"pbrMetallicRoughness", {{"baseColorFactor", {1, 0, 0, 1}}}}},
+         {{"name", "blue"}, {"pbrMetallicRoughness", {{"baseColorFactor", {0, 0, 1, 1}}}}}});
+    g.j["meshes"][0]["primitives"][0]["material"] = 0;
+    g.j["meshes"][0]["primitives"][0]["extensions"] = {
+        {"KHR_materials_variants",
+         {{"mappings",
+           {{{"material", 1}, {"variants", {0}}}, {{"material", 2}, {"variants", {1}}}}}}}};
+    g.j["extensions"] = {
+        {"KHR_materials_variants", {{"variants", {{{"name", "rust"}}, {{"name", "sea"}}}}}}};
+    g.j["extensionsUsed"] = {"KHR_materials_variants"};
+    g.scene({g.node({{"mesh", 0}})});
+    const std::string file = g.writeGltf(dir, "variants");
+    auto materialOf = [&](const std::string& variant) -> std::string {
+        rg::GltfOptions o;
+        o.loadImages = false;
+        o.variant = variant;
+        auto scene = rg::loadGltf(file, o);
+        if (!scene) return "error: " + scene.error().message;
+        return scene->materials[scene->meshes[0].primitives[0].material].name;
+    };
+    EXPECT_EQ(materialOf(""), "plain");
+    EXPECT_EQ(materialOf("rust"), "red");
+    EXPECT_EQ(materialOf("sea"), "blue");
+    const std::string bad = materialOf("gold");
+    EXPECT_NE(bad.find("material variant 'gold' is not in the file (its variants: 'rust', 'sea')"),
+              std::string::npos)
+        << bad;
+}
