@@ -14,6 +14,7 @@ packages=(
   libcpp-httplib-dev  # rgraph serve
   libembree-dev  # rgraph bake: the lightmap baker's ray casts
   libmeshoptimizer-dev  # levels of detail for every mesh (graph/scene/mesh_lod.cpp)
+  libdraco-dev  # KHR_draco_mesh_compression (graph/scene/gltf_load_draco.cpp)
   libxxhash-dev  # the content hash of every cache key (graph/core/hash.h)
   clang-format  # tools/format.sh and the format test: the house's C++ layout (.clang-format)
   chromium  # the golden-test report is checked in a real (headless) browser

@@ -37,7 +37,8 @@ const std::set<std::string> kSupported = {"KHR_texture_transform",
                                           "KHR_materials_unlit",
                                           "KHR_materials_pbrSpecularGlossiness",
                                           "EXT_mesh_gpu_instancing",
-                                          "KHR_materials_variants"};
+                                          "KHR_materials_variants",
+                                          "KHR_draco_mesh_compression"};
 
 std::string percentDecode(const std::string& uri) {
     std::string out;
@@ -270,6 +271,23 @@ Result<void> Loader::checkBuffers(const nlohmann::json& j) {
     return {};
 }
 
+bool Loader::dropDracoIndices(nlohmann::json& j) {
+    bool changed = false;
+    if (!j.contains("meshes") || !j["meshes"].is_array()) return false;
+    for (auto& mesh : j["meshes"]) {
+        if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array())
+            continue;
+        for (auto& prim : mesh["primitives"])
+            if (prim.is_object() && prim.contains("indices") && prim.contains("extensions") &&
+                prim["extensions"].is_object() &&
+                prim["extensions"].contains("KHR_draco_mesh_compression")) {
+                prim.erase("indices");
+                changed = true;
+            }
+    }
+    return changed;
+}
+
 Result<void> Loader::parse() {
     auto bytes = readFile(path);
     if (!bytes) return std::unexpected(bytes.error());
@@ -280,6 +298,27 @@ Result<void> Loader::parse() {
     if (auto r = checkSchema(pf->json); !r) return r;
     if (auto r = checkExtensions(pf->json); !r) return r;
     if (auto r = checkBuffers(pf->json); !r) return r;
+    // A Draco primitive's index accessor has no buffer view (its indices are in the compressed
+    // view), which tinygltf refuses: the JSON it reads leaves them out (gltf_load_draco.cpp decodes them).
+    if (dropDracoIndices(pf->json)) {
+        std::string text = pf->json.dump();
+        if (!pf->binary) {
+            bytes->assign(text.begin(), text.end());
+        } else {
+            while (text.size() % 4) text.push_back(' ');
+            const uint32_t oldJson = uint32_t((*bytes)[12]) | uint32_t((*bytes)[13]) << 8 |
+                                     uint32_t((*bytes)[14]) << 16 | uint32_t((*bytes)[15]) << 24;
+            std::vector<unsigned char> glb(bytes->begin(), bytes->begin() + 20);
+            glb.insert(glb.end(), text.begin(), text.end());
+            glb.insert(glb.end(), bytes->begin() + 20 + oldJson, bytes->end());
+            auto put = [&](size_t at, uint32_t v) {
+                for (int k = 0; k < 4; ++k) glb[at + size_t(k)] = (unsigned char)(v >> (8 * k));
+            };
+            put(8, uint32_t(glb.size()));
+            put(12, uint32_t(text.size()));
+            *bytes = std::move(glb);
+        }
+    }
 
     tinygltf::TinyGLTF gltf;
     imageState.model = &model;

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <map>
+#include <optional>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <utility>
@@ -57,6 +58,7 @@ struct Loader {
     Result<void> checkExtensions(const nlohmann::json& j);
     Result<void> checkSchema(const nlohmann::json& j);  // gltf_load_schema.cpp
     Result<void> checkBuffers(const nlohmann::json& j);
+    static bool dropDracoIndices(nlohmann::json& j);  // true when it changed the JSON
     Result<void> parse();
 
     // ---- accessors (gltf_load_accessors.cpp) ------------------------------------------------
@@ -82,6 +84,15 @@ struct Loader {
     // The glTF material a primitive takes in the chosen variant (its own without one).
     Result<int> variantMaterial(const std::string& where, const tinygltf::Primitive& prim);
     Result<Primitive> primitive(size_t meshIndex, size_t primIndex);
+    // KHR_draco_mesh_compression's decoded attributes (by glTF semantic) and triangle list
+    // (gltf_load_draco.cpp); none for a primitive without it.
+    struct Draco {
+        std::map<std::string, std::vector<float>> attributes;
+        std::map<std::string, int> components;
+        std::vector<uint32_t> indices;
+        uint32_t points = 0;
+    };
+    Result<std::optional<Draco>> draco(const std::string& where, const tinygltf::Primitive& prim);
     Result<void> meshes();
 
     // ---- numbers glTF gives a range, JSON values (gltf_load.cpp) ----------------------------

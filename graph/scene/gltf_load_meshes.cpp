@@ -123,7 +123,24 @@ Result<Primitive> Loader::primitive(size_t meshIndex, size_t primIndex) {
     };
     if (attr("POSITION") < 0)
         return error(ErrorCode::InvalidInput, where + ": no POSITION attribute");
-    auto pos = readFloats(where, "POSITION", attr("POSITION"), TINYGLTF_TYPE_VEC3);
+    auto compressed = draco(where, prim);
+    if (!compressed) return std::unexpected(compressed.error());
+    // An attribute from the Draco buffer when it holds it, else from its accessor.
+    auto floats = [&](const char* semantic, int type) -> Result<std::vector<float>> {
+        if (*compressed)
+            if (auto d = (*compressed)->attributes.find(semantic);
+                d != (*compressed)->attributes.end()) {
+                const int comps = tinygltf::GetNumComponentsInType(static_cast<uint32_t>(type));
+                if ((*compressed)->components[semantic] != comps)
+                    return error(ErrorCode::InvalidInput,
+                                 where + ": KHR_draco_mesh_compression." + semantic + " has " +
+                                     std::to_string((*compressed)->components[semantic]) +
+                                     " components, expected " + std::to_string(comps));
+                return d->second;
+            }
+        return readFloats(where, semantic, attr(semantic), type);
+    };
+    auto pos = floats("POSITION", TINYGLTF_TYPE_VEC3);
     if (!pos) return std::unexpected(pos.error());
     const size_t n = pos->size() / 3;
     Primitive p;
@@ -134,7 +151,7 @@ Result<Primitive> Loader::primitive(size_t meshIndex, size_t primIndex) {
     // Other attributes must have as many elements as POSITION.
     auto optional = [&](const char* semantic, int type) -> Result<std::vector<float>> {
         if (attr(semantic) < 0) return std::vector<float>{};
-        auto v = readFloats(where, semantic, attr(semantic), type);
+        auto v = floats(semantic, type);
         if (!v) return v;
         const size_t comps = size_t(tinygltf::GetNumComponentsInType(static_cast<uint32_t>(type)));
         if (v->size() / comps != n)
@@ -167,7 +184,14 @@ Result<Primitive> Loader::primitive(size_t meshIndex, size_t primIndex) {
     p.lightmapUv = !uv1->empty();
 
     std::vector<uint32_t> idx;
-    if (prim.indices >= 0) {
+    if (*compressed) {
+        idx = std::move((*compressed)->indices);
+        for (uint32_t i : idx)
+            if (i >= n)
+                return error(ErrorCode::InvalidInput,
+                             where + ": KHR_draco_mesh_compression: index " + std::to_string(i) +
+                                 " beyond the " + std::to_string(n) + " vertices");
+    } else if (prim.indices >= 0) {
         auto r = readIndices(where, prim.indices, n);
         if (!r) return std::unexpected(r.error());
         idx = std::move(*r);

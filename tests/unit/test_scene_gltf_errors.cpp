@@ -2,10 +2,15 @@
 // indices, modes, ranges, the node hierarchy), each with its exact error text. No GPU.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
+
+#include <draco/compression/encode.h>
+#include <draco/mesh/triangle_soup_mesh_builder.h>
 
 #include "scene_test_util.h"
 
@@ -21,25 +26,23 @@ TEST(GltfErrors, RequiredUnsupportedExtensionIsRefusedByName) {
     const std::string dir = tmpDir("ext");
     GltfBuilder g;
     addQuad(g, true);
-    g.j["extensionsUsed"] = {"KHR_draco_mesh_compression", "KHR_texture_transform"};
-    g.j["extensionsRequired"] = {"KHR_texture_transform", "KHR_draco_mesh_compression"};
+    g.j["extensionsUsed"] = {"KHR_texture_basisu", "KHR_texture_transform"};
+    g.j["extensionsRequired"] = {"KHR_texture_transform", "KHR_texture_basisu"};
     const std::string path = g.writeGlb(dir, "x");
     auto r = rg::loadGltf(path);
     ASSERT_FALSE(r);
     EXPECT_EQ(r.error().code, ErrorCode::Unsupported);
     EXPECT_EQ(
         r.error().message,
-        "'" + path +
-            "' requires extension 'KHR_draco_mesh_compression', which rgraph does not support");
+        "'" + path + "' requires extension 'KHR_texture_basisu', which rgraph does not support");
     // Used but not required: loads, with a warning.
     g.j.erase("extensionsRequired");
     auto loaded = rg::loadGltf(g.writeGlb(dir, "y"));
     ASSERT_TRUE(loaded);
     const std::vector<std::string>& warnings = loaded->warnings;
     ASSERT_EQ(warnings.size(), 1u);
-    EXPECT_EQ(
-        warnings[0],
-        "'" + dir + "/y.glb': uses extension 'KHR_draco_mesh_compression', which rgraph ignores");
+    EXPECT_EQ(warnings[0],
+              "'" + dir + "/y.glb': uses extension 'KHR_texture_basisu', which rgraph ignores");
 }
 
 TEST(GltfErrors, MissingFile) {
@@ -331,3 +334,103 @@ TEST(GltfErrors, NodeCycleAndBadTransforms) {
 }
 
 }  // namespace
+
+// KHR_draco_mesh_compression (Debian's libdraco-dev): a quad's positions and normals compressed
+// by Draco's own encoder decode to the same vertices and triangles as the uncompressed file; a
+// buffer that is not Draco, or an attribute id the mesh lacks, is an error naming the primitive.
+TEST(GltfErrors, DracoCompressedPrimitivesDecodeOrAreRefusedByName) {
+    const std::string dir = tmpDir("draco");
+    const glm::vec3 corners[4] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+    const uint32_t faces[2][3] = {{0, 1, 2}, {0, 2, 3}};
+    draco::TriangleSoupMeshBuilder builder;
+    builder.Start(2);
+    const int pos = builder.AddAttribute(draco::GeometryAttribute::POSITION, 3, draco::DT_FLOAT32);
+    const int nrm = builder.AddAttribute(draco::GeometryAttribute::NORMAL, 3, draco::DT_FLOAT32);
+    const glm::vec3 up(0, 0, 1);
+    for (int f = 0; f < 2; ++f) {
+        builder.SetAttributeValuesForFace(pos, draco::FaceIndex(f), &corners[faces[f][0]],
+                                          &corners[faces[f][1]], &corners[faces[f][2]]);
+        builder.SetAttributeValuesForFace(nrm, draco::FaceIndex(f), &up, &up, &up);
+    }
+    std::unique_ptr<draco::Mesh> mesh = builder.Finalize();
+    ASSERT_TRUE(mesh);
+    draco::Encoder encoder;
+    draco::EncoderBuffer encoded;
+    ASSERT_TRUE(encoder.EncodeMeshToBuffer(*mesh, &encoded).ok());
+    const int posId = int(mesh->attribute(pos)->unique_id()),
+              nrmId = int(mesh->attribute(nrm)->unique_id());
+
+    auto load = [&](const std::string& name, const std::vector<char>& bytes, int positionId) {
+        GltfBuilder g;
+        const int view = g.view(bytes.data(), bytes.size());
+        auto accessor = [&](int count, const char* type) {
+            g.j["accessors"].push_back({{"componentType", 5126}, {"count", count}, {"type", type}});
+            return int(g.j["accessors"].size() - 1);
+        };
+        const int p = accessor(int(mesh->num_points()), "VEC3"),
+                  n = accessor(int(mesh->num_points()), "VEC3");
+        g.j["accessors"].push_back({{"componentType", 5125}, {"count", 6}, {"type", "SCALAR"}});
+        const int idx = int(g.j["accessors"].size() - 1);
+        g.mesh(
+            "quad",
+            json::array({{{"attributes", {{"POSITION", p}, {"NORMAL", n}}},
+                          {"indices", idx},
+                          {"extensions",
+                           {{"KHR_draco_mesh_compression",
+                             {{"bufferView", view},
+                              {"attributes", {{"POSITION", positionId}, {"NORMAL", nrmId}}}}}}}}}));
+        g.j["extensionsUsed"] = {"KHR_draco_mesh_compression"};
+        g.j["extensionsRequired"] = {"KHR_draco_mesh_compression"};
+        g.scene({g.node({{"mesh", 0}})});
+        rg::GltfOptions o;
+        o.loadImages = false;
+        o.buildLods = false;
+        return rg::loadGltf(g.writeGltf(dir, name), o);
+    };
+    const std::vector<char> bytes(encoded.data(), encoded.data() + encoded.size());
+    auto scene = load("quad", bytes, posId);
+    ASSERT_TRUE(scene) << errorOf(scene);
+    const rg::Primitive& prim = scene->meshes[0].primitives[0];
+    ASSERT_EQ(prim.indices.size(), 6u);
+    // The same two triangles (Draco may reorder faces and rotate corners, never the winding):
+    // each decoded triangle, rotated to start at its lowest corner, is one of the quad's.
+    auto canonical = [](std::array<glm::vec3, 3> t) {
+        auto key = [](glm::vec3 p) { return p.x * 10.0f + p.y; };
+        while (key(t[0]) > key(t[1]) || key(t[0]) > key(t[2]))
+            std::rotate(t.begin(), t.begin() + 1, t.end());
+        return t;
+    };
+    std::vector<std::array<glm::vec3, 3>> want, got;
+    for (int f = 0; f < 2; ++f)
+        want.push_back(
+            canonical({corners[faces[f][0]], corners[faces[f][1]], corners[faces[f][2]]}));
+    for (int f = 0; f < 2; ++f) {
+        std::array<glm::vec3, 3> t;
+        for (int k = 0; k < 3; ++k) {
+            const rg::Vertex& v = prim.vertices[prim.indices[size_t(3 * f + k)]];
+            t[size_t(k)] = v.position;
+            expectNear(v.normal, up, 1e-6f, "normal");
+        }
+        got.push_back(canonical(t));
+    }
+    for (const auto& t : got)
+        EXPECT_TRUE(std::find(want.begin(), want.end(), t) != want.end())
+            << "a triangle the quad does not have: (" << t[0].x << ", " << t[0].y << ") (" << t[1].x
+            << ", " << t[1].y << ") (" << t[2].x << ", " << t[2].y << ")";
+
+    std::vector<char> garbage = bytes;
+    for (size_t i = 0; i < garbage.size(); i += 2) garbage[i] = char(0x5a);
+    auto broken = load("garbage", garbage, posId);
+    ASSERT_FALSE(broken);
+    EXPECT_NE(broken.error().message.find(
+                  "mesh 0 'quad' primitive 0: KHR_draco_mesh_compression: the buffer view does not "
+                  "decode"),
+              std::string::npos)
+        << broken.error().message;
+    auto missing = load("missing", bytes, 7);
+    ASSERT_FALSE(missing);
+    EXPECT_NE(missing.error().message.find(
+                  "KHR_draco_mesh_compression.attributes.POSITION: no attribute of that id"),
+              std::string::npos)
+        << missing.error().message;
+}
