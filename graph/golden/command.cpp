@@ -14,7 +14,8 @@ constexpr int kOk = 0, kFailed = 1, kUsage = 2;
 
 const char* kHelp =
     "usage: rgraph test [PATTERN] [--update] [--report DIR] [--junit FILE]\n"
-    "                   [--dir DIR] [--images DIR] [--out DIR] [--device N] [--verbose]\n"
+    "                   [--dir DIR] [--images DIR] [--out DIR] [--device N] [--shard K/N] "
+    "[--verbose]\n"
     "\n"
     "Runs the golden-image tests: each tests/golden/NAME.lua renders a pipeline at a small size "
     "for\n"
@@ -34,6 +35,10 @@ const char* kHelp =
     "  --out DIR       where a failure writes actual, expected and diff images (default "
     "out/golden)\n"
     "  --device N      the Vulkan device (see 'rgraph devices')\n"
+    "  --shard K/N     run shard K of N: the matched tests sorted by name, every N-th from the "
+    "K-th,\n"
+    "                  so that N shards run each test exactly once (on N machines or "
+    "processes)\n"
     "  --verbose       print every rebuild a frame callback causes\n"
     "\n"
     "Determinism profile (recorded in each golden.json): LP_NUM_THREADS=2 unless set, frame time\n"
@@ -72,7 +77,7 @@ int goldenCommand(int argc, char** argv) {
                 value = name.substr(eq + 1);
                 name = name.substr(0, eq);
             } else if (name == "report" || name == "junit" || name == "dir" || name == "images" ||
-                       name == "out" || name == "device") {
+                       name == "out" || name == "device" || name == "shard") {
                 if (i + 1 >= argc) return usage("option --" + name + " needs a value");
                 value = argv[++i];
             }
@@ -91,6 +96,18 @@ int goldenCommand(int argc, char** argv) {
                     value.find_first_not_of("0123456789") != std::string::npos)
                     return usage("--device must be a device index (see 'rgraph devices')");
                 o.device = static_cast<uint32_t>(std::stoul(value));
+            } else if (name == "shard") {
+                const auto slash = value.find('/');
+                const std::string k = value.substr(0, slash),
+                                  n = slash == std::string::npos ? "" : value.substr(slash + 1);
+                auto whole = [](const std::string& s) {
+                    return !s.empty() && s.size() <= 4 &&
+                           s.find_first_not_of("0123456789") == std::string::npos;
+                };
+                if (!whole(k) || !whole(n) || std::stoul(k) < 1 || std::stoul(k) > std::stoul(n))
+                    return usage("--shard must be K/N with 1 <= K <= N, got '" + value + "'");
+                o.shard = static_cast<uint32_t>(std::stoul(k));
+                o.shards = static_cast<uint32_t>(std::stoul(n));
             } else
                 return usage("unknown option --" + name);
             if (value.empty()) return usage("option --" + name + " needs a value");

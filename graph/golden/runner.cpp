@@ -687,6 +687,18 @@ Result<RunReport> runGoldenTests(const RunnerOptions& optionsIn, std::FILE* out)
                         (names.empty() ? " (it has none)" : " (tests: " + names + ")"));
     }
 
+    // This shard's tests: every shards-th by name, from the shard-th (N shards run each once).
+    if (options.shards > 1) {
+        std::sort(files->begin(), files->end(), [](const std::string& a, const std::string& b) {
+            return fs::path(a).stem().string() < fs::path(b).stem().string();
+        });
+        std::vector<std::string> mine;
+        for (size_t i = 0; i < files->size(); ++i)
+            if (i % options.shards == options.shard - 1) mine.push_back((*files)[i]);
+        std::fprintf(out, "rgraph test: shard %u/%u: %zu of %zu tests\n", options.shard,
+                     options.shards, mine.size(), files->size());
+        *files = std::move(mine);
+    }
     // The determinism profile's thread count, before the Vulkan driver reads it.
     setenv("LP_NUM_THREADS", kThreads, /*overwrite=*/0);
     const auto t0 = Clock::now();

@@ -45,6 +45,9 @@ struct RunnerOptions {
     std::string junitFile;              // write JUnit XML when set
     bool update = false;
     bool verbose = false;  // print each rebuild of the session
+    // --shard K/N: the tests (matched by the pattern, sorted by name) whose position is K − 1
+    // modulo N, so that N shards run each test exactly once. 1/1 = every test.
+    uint32_t shard = 1, shards = 1;
     std::optional<uint32_t> device;
 };
 

@@ -6,7 +6,8 @@
 #   update     --update blesses new goldens (and golden.json), a second run passes, a second
 #              --update reports them unchanged; a changed test fails, --update rewrites and says
 #              what changed, and removes a golden no capture names;
-#   usage      no match, a broken test script and a bad option exit 2 with their message.
+#   usage      no match, a broken test script and a bad option exit 2 with their message;
+#   shards     --shard K/N for K = 1..3: every test of the suite runs in exactly one shard.
 set -uo pipefail
 case_name=$1 bin=$2 root=$3 tmp=$4/$1
 rm -rf "$tmp" && mkdir -p "$tmp"
@@ -98,9 +99,24 @@ usage)
   "$bin" --frobnicate >"$tmp/log" 2>&1
   expect_rc $? 2 "an unknown option"
   expect_in "$tmp/log" "rgraph test: unknown option --frobnicate (see 'rgraph test --help')"
+  "$bin" --shard 4/3 >"$tmp/log" 2>&1
+  expect_rc $? 2 "a shard out of range"
+  expect_in "$tmp/log" "rgraph test: --shard must be K/N with 1 <= K <= N, got '4/3' (see 'rgraph test --help')"
   "$bin" --help >"$tmp/log" 2>&1
   expect_rc $? 0 "--help"
   expect_in "$tmp/log" "usage: rgraph test [PATTERN] [--update] [--report DIR] [--junit FILE]"
+  ;;
+shards)
+  # Three shards of the project's golden suite: each test runs in exactly one, and the three
+  # JUnit files together hold every test once.
+  all=$(ls "$root/tests/golden/"*.lua | xargs -n1 basename | sed 's/\.lua$//' | sort)
+  for k in 1 2 3; do
+    "$bin" --shard "$k/3" --out "$tmp/out" --junit "$tmp/junit$k.xml" >"$tmp/log$k" 2>&1
+    expect_rc $? 0 "shard $k/3"
+    expect_in "$tmp/log$k" "rgraph test: shard $k/3: "
+  done
+  ran=$(cat "$tmp"/junit*.xml | grep -o '<testcase [^>]*name="[^"]*"' | sed 's/.*name="//; s/"$//' | sort)
+  [ "$ran" = "$all" ] || fail "the shards ran: $(echo $ran) — expected each of: $(echo $all)"
   ;;
 *)
   echo "unknown case $case_name"; exit 2 ;;
