@@ -210,6 +210,13 @@ public:
     bool hasLightmap() const { return m_scene.bakedLightmap != nullptr; }
     VkImageView lightmapView() const { return m_lightmap.view(); }
     uint32_t lightCount() const { return m_lightCount; }
+    // GPU memory the scene holds (bytes, as the device reports each image's requirements):
+    // geometry (vertices, indices, the draw list, the BVH once built), textures (the materials'
+    // images with their mips, the defaults), and the environment and lightmap images.
+    struct Memory {
+        uint64_t geometry = 0, textures = 0, environment = 0, lightmap = 0;
+    };
+    Memory memory() const;
     uint32_t iesProfileCount() const { return m_iesProfileCount; }
 
 private:

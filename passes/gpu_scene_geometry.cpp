@@ -153,6 +153,19 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
                   VK_BUFFER_USAGE_INDEX_BUFFER_BIT, "scene.indices");
 }
 
+GpuScene::Memory GpuScene::memory() const {
+    Memory m;
+    m.geometry = m_vertices.size() + m_indices.size() + m_drawBuffer.size() + m_bvh.size();
+    auto bytes = [&](const gpu::Image& image) -> uint64_t {
+        return image ? gpu::Image::requirements(*m_ctx, image.desc()).size : 0;
+    };
+    for (const gpu::Image& image : m_images) m.textures += bytes(image);
+    m.textures += bytes(m_white) + bytes(m_flatNormal);
+    m.environment = bytes(m_environment);
+    m.lightmap = bytes(m_lightmap);
+    return m;
+}
+
 VkBuffer GpuScene::bvhBuffer() const {
     auto buffer = makeBvhBuffer();
     return buffer ? *buffer : VK_NULL_HANDLE;  // ShaderProgram reports it (makeBindingBuffer)

@@ -154,10 +154,16 @@ int cmdBench(int argc, char** argv) {
                 "(read, build, upload)\n",
                 scene->draws().size(), static_cast<unsigned long long>(triangles),
                 scene->scene().materials.size(), scene->lightCount(), sceneLoadMs);
-            j["scene"] = {{"draws", scene->draws().size()},
-                          {"triangles", triangles},
-                          {"lights", scene->lightCount()},
-                          {"loadMs", sceneLoadMs}};
+            const passes::GpuScene::Memory mem = scene->memory();
+            const auto mib = [](uint64_t b) { return static_cast<double>(b) / (1 << 20); };
+            std::printf(
+                "scene memory: geometry %.2f MiB, textures %.2f MiB, environment %.2f MiB, "
+                "lightmap %.2f MiB\n",
+                mib(mem.geometry), mib(mem.textures), mib(mem.environment), mib(mem.lightmap));
+            j["scene"] = {{"draws", scene->draws().size()},      {"triangles", triangles},
+                          {"lights", scene->lightCount()},       {"loadMs", sceneLoadMs},
+                          {"geometryBytes", mem.geometry},       {"textureBytes", mem.textures},
+                          {"environmentBytes", mem.environment}, {"lightmapBytes", mem.lightmap}};
         }
         j["luaFrameMs"] = {{"median", cb.median}, {"min", cb.min}, {"max", cb.max}};
         j["loadMs"] = loadMs;
