@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <map>
 #include <optional>
+#include <set>
 #include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <utility>
@@ -41,6 +42,7 @@ struct Loader {
     std::map<std::pair<int, bool>, int32_t> images;  // (glTF image, srgb) -> Scene image
     std::vector<int32_t> samplers;                   // glTF sampler -> Scene sampler
     int32_t defaultMaterial = -1;
+    std::set<int> basisuWarned;  // textures whose KHR_texture_basisu fallback was named
 
     // ---- messages and file names (gltf_load.cpp) --------------------------------------------
 

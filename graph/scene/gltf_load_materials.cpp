@@ -103,10 +103,21 @@ Result<TextureRef> Loader::texture(const std::string& where, int index, int texC
                      where + ": texture " + std::to_string(index) + " does not exist (" +
                          std::to_string(model.textures.size()) + " textures)");
     const auto& tex = model.textures[size_t(index)];
+    // KHR_texture_basisu (KTX2 / Basis Universal) has no Debian library: the texture's fallback
+    // image (its plain `source`) is used, said once per texture; without one, the texture is left
+    // out, said as well.
+    const bool basisu = tex.extensions.count("KHR_texture_basisu") > 0;
     if (tex.source < 0) {
-        warn(where + ": texture " + std::to_string(index) + " has no PNG/JPEG source; ignored");
+        warn(where + ": texture " + std::to_string(index) +
+             (basisu ? " is KHR_texture_basisu only (KTX2, which rgraph cannot decode) and has no "
+                       "PNG/JPEG fallback; ignored"
+                     : " has no PNG/JPEG source; ignored"));
         return ref;
     }
+    if (basisu && basisuWarned.insert(index).second)
+        warn(where + ": texture " + std::to_string(index) +
+             ": KHR_texture_basisu's KTX2 image cannot be decoded here; its fallback image " +
+             std::to_string(tex.source) + " is used");
     if (size_t(tex.source) >= model.images.size())
         return error(ErrorCode::InvalidInput, where + ": texture " + std::to_string(index) +
                                                   " names image " + std::to_string(tex.source) +

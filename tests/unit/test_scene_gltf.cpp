@@ -670,3 +670,44 @@ TEST(GltfLoad, MaterialVariantsPickEachPrimitivesMaterial) {
               std::string::npos)
         << bad;
 }
+
+// KHR_texture_basisu (KTX2) has no Debian decoder: a texture with a plain fallback image uses it
+// and says so once; one with only the KTX2 image is left out with a warning naming why; a file
+// that requires the extension stays refused (GltfErrors.RequiredUnsupportedExtensionIsRefusedByName).
+TEST(GltfLoad, BasisuTexturesFallBackToTheirPlainImageWithAWarning) {
+    const std::string dir = tmpDir("basisu");
+    GltfBuilder g;
+    addQuad(g, true);
+    g.j["images"] = json::array({{{"uri", "albedo.png"}}, {{"uri", "albedo.ktx2"}}});
+    g.j["textures"] =
+        json::array({{{"source", 0}, {"extensions", {{"KHR_texture_basisu", {{"source", 1}}}}}},
+                     {{"extensions", {{"KHR_texture_basisu", {{"source", 1}}}}}}});
+    g.j["materials"] = json::array(
+        {{{"name", "fallback"}, {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 0}}}}}},
+         {{"name", "ktx2_only"},
+          {"pbrMetallicRoughness", {{"baseColorTexture", {{"index", 1}}}}}}});
+    g.j["meshes"][0]["primitives"][0]["material"] = 0;
+    g.j["extensionsUsed"] = {"KHR_texture_basisu"};
+    g.scene({g.node({{"mesh", 0}})});
+    rg::GltfOptions o;
+    o.loadImages = false;
+    auto scene = rg::loadGltf(g.writeGltf(dir, "basisu"), o);
+    ASSERT_TRUE(scene) << errorOf(scene);
+    const auto material = [&](const std::string& name) {
+        for (const auto& m : scene->materials)
+            if (m.name == name) return m;
+        return rg::Material{};
+    };
+    EXPECT_TRUE(material("fallback").baseColorTex.valid());
+    EXPECT_FALSE(material("ktx2_only").baseColorTex.valid());
+    std::string all;
+    for (const auto& w : scene->warnings) all += w + "\n";
+    EXPECT_NE(all.find("texture 0: KHR_texture_basisu's KTX2 image cannot be decoded here; its "
+                       "fallback image 0 is used"),
+              std::string::npos)
+        << all;
+    EXPECT_NE(all.find("texture 1 is KHR_texture_basisu only (KTX2, which rgraph cannot decode) "
+                       "and has no PNG/JPEG fallback; ignored"),
+              std::string::npos)
+        << all;
+}
