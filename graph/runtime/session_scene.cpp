@@ -71,6 +71,15 @@ ViewFacts viewFactsOf(const Scene& scene) {
     return facts;
 }
 
+// A scene material's game-team parameters in the order its pipeline material declares them: the
+// numeric ones, each the material's value where it gives one, else the declared default.
+Value numericParams(const MaterialDesc& pm, const Value& given) {
+    Value::Table out;
+    for (const auto& [key, def] : pm.params.asTable())
+        if (def.isNumber()) out[key] = given[key].isNumber() ? given[key] : def;
+    return Value(out);
+}
+
 Result<Scene> readScene(const std::string& file, const std::map<std::string, std::string>& args,
                         const std::string& variant) {
     const std::string ext = fs::path(file).extension().string();
@@ -138,7 +147,8 @@ Result<std::unique_ptr<passes::GpuScene>> Session::loadScene(PipelineDesc& pipel
         !r)
         return std::unexpected(r.error());
     if (const std::string& mode = m_options.environmentSun; !mode.empty()) {
-        if (mode != "auto" && mode != "light" && mode != "remove" && mode != "keep")
+        if (std::find(kEnvironmentSunModes.begin(), kEnvironmentSunModes.end(), mode) ==
+            kEnvironmentSunModes.end())
             return fail(
                 ErrorCode::InvalidInput,
                 "--environment-sun: expected auto, light, remove or keep, got '" + mode + "'");
@@ -179,10 +189,7 @@ Result<std::unique_ptr<passes::GpuScene>> Session::loadScene(PipelineDesc& pipel
                             where + key + ": expected a number (as model '" + m.model +
                                 "' declares it), got " + value.typeName());
         }
-        Value::Table custom;
-        for (const auto& [key, def] : pm->params.asTable())
-            if (def.isNumber()) custom[key] = m.extra[key].isNumber() ? m.extra[key] : def;
-        m.extra = Value(custom);
+        m.extra = numericParams(*pm, m.extra);
     }
     // A boolean parameter read when the scene loads: the pipeline's value, or --set's (checked).
     auto switchedOn = [&](const char* name) -> Result<bool> {
@@ -217,10 +224,7 @@ Result<std::unique_ptr<passes::GpuScene>> Session::loadScene(PipelineDesc& pipel
     if (auto standard = std::find_if(pipeline.materials.begin(), pipeline.materials.end(),
                                      [](auto& x) { return x.name == "standard"; });
         *shapesOn && standard != pipeline.materials.end()) {
-        Value::Table defaults;
-        for (const auto& [key, def] : standard->params.asTable())
-            if (def.isNumber()) defaults[key] = def;
-        auto shapes = addLightShapes(*scene, Value(defaults));
+        auto shapes = addLightShapes(*scene, numericParams(*standard, Value()));
         if (!shapes) return std::unexpected(shapes.error());
     }
     passes::GpuSceneOptions sceneOptions;

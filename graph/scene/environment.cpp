@@ -144,6 +144,7 @@ Image skyImage(const SkyParams& p, uint32_t width) {
 Result<Image> environmentImage(const Scene& scene, bool keepSun) {
     if (!scene.environment) return fail(ErrorCode::InvalidInput, "the scene has no environment");
     const Environment& e = *scene.environment;
+    if (e.image && !keepSun) return *e.image;  // takeEnvironmentSun's (the file read once)
     const std::string what = "environment '" + e.name + "'";
     Image src;
     if (e.kind == "color") {

@@ -58,7 +58,8 @@ Image skyImage(const SkyParams& p, uint32_t width = 512);
 // out unless its `sun` mode is "keep" (findEnvironmentSun). No environment: none (the caller
 // binds black). The sky takes its sun from the scene's first sun light (default:
 // 45° up, from +Z, kClearSkySunLux). Errors name the environment and the file. `keepSun` leaves
-// an "hdr" image's sun in whatever its mode.
+// an "hdr" image's sun in whatever its mode. Environment::image, when takeEnvironmentSun kept one,
+// is returned as it is.
 Result<Image> environmentImage(const Scene& scene, bool keepSun = false);
 
 // A piecewise-constant importance-sampling distribution of an equirectangular environment over a

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 
 #include <glm/geometric.hpp>
 
@@ -143,6 +144,9 @@ Result<std::string> takeEnvironmentSun(Scene& scene) {
     auto image = environmentImage(scene, /*keepSun=*/true);
     if (!image) return std::unexpected(image.error());
     const auto sun = findEnvironmentSun(*image);
+    // The image the GPU scene and the baker will ask for, sun taken out: kept, not read again.
+    if (sun) removeEnvironmentSun(*image, *sun);
+    scene.environment->image = std::make_shared<const Image>(std::move(*image));
     const std::string what = "environment '" + env.name + "'";
     if (!sun) return what + ": no sun found (no compact source over 1000 x the mean)";
     const glm::vec3 s = sun->toSun;

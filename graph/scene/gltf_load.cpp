@@ -98,6 +98,7 @@ bool isDataUri(const std::string& uri) { return uri.rfind("data:", 0) == 0; }
 struct Preflight {
     nlohmann::json json;
     bool binary = false;
+    size_t jsonChunk = 0;  // a GLB's JSON chunk length (its data starts at byte 20)
 };
 
 // ---- messages and file names ----------------------------------------------------------------
@@ -178,6 +179,7 @@ Result<Preflight> Loader::preflight(const std::vector<unsigned char>& bytes) {
                          "truncated GLB: the JSON chunk has " + std::to_string(jsonSize) +
                              " bytes, " + std::to_string(bytes.size() - 20) + " are left");
         json = bytes.data() + 20;
+        pf.jsonChunk = jsonSize;
     }
     try {
         pf.json = nlohmann::json::parse(json, json + jsonSize);
@@ -306,11 +308,10 @@ Result<void> Loader::parse() {
             bytes->assign(text.begin(), text.end());
         } else {
             while (text.size() % 4) text.push_back(' ');
-            const uint32_t oldJson = uint32_t((*bytes)[12]) | uint32_t((*bytes)[13]) << 8 |
-                                     uint32_t((*bytes)[14]) << 16 | uint32_t((*bytes)[15]) << 24;
             std::vector<unsigned char> glb(bytes->begin(), bytes->begin() + 20);
             glb.insert(glb.end(), text.begin(), text.end());
-            glb.insert(glb.end(), bytes->begin() + 20 + oldJson, bytes->end());
+            glb.insert(glb.end(), bytes->begin() + 20 + std::ptrdiff_t(pf->jsonChunk),
+                       bytes->end());
             auto put = [&](size_t at, uint32_t v) {
                 for (int k = 0; k < 4; ++k) glb[at + size_t(k)] = (unsigned char)(v >> (8 * k));
             };

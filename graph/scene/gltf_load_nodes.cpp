@@ -342,7 +342,8 @@ Result<void> Loader::environment(const tinygltf::Value& extras) {
     e.rotation = float(number(x.Get("rotation"), e.rotation));
     e.turbidity = std::clamp(float(number(x.Get("turbidity"), e.turbidity)), 1.7f, 10.0f);
     e.sun = str("sun", e.sun);
-    if (e.sun != "auto" && e.sun != "light" && e.sun != "remove" && e.sun != "keep")
+    if (std::find(kEnvironmentSunModes.begin(), kEnvironmentSunModes.end(), e.sun) ==
+        kEnvironmentSunModes.end())
         return fail(ErrorCode::InvalidInput,
                     "scene extras.rgraph.environment.sun: expected 'auto', 'light', 'remove' or "
                     "'keep', got '" +

@@ -278,7 +278,12 @@ struct Environment {
     // stands for it; "keep" — left in the image; "auto" (the default) — "remove" when the scene
     // has a sun light of its own, else "light". Never counted twice.
     std::string sun = "auto";
+    // What environmentImage returns, kept by takeEnvironmentSun, which had to read the file and
+    // find the sun anyway (the sun taken out unless "keep"): the file is read once per load.
+    std::shared_ptr<const Image> image;
 };
+// Environment::sun's values (the Lua field, glTF extras, --environment-sun).
+inline const std::vector<std::string> kEnvironmentSunModes = {"auto", "light", "remove", "keep"};
 
 // A deferred decal (seed 000 §3.3): a box that, where it encloses the G-buffer's surface, blends
 // the common parameters — Normal (towards the box's +Y axis), BaseColor, Smoothness, and on

@@ -216,8 +216,7 @@ Result<void> Builder::environment(const Declaration& d) {
     if (b.has("sun") && e.kind != "hdr")
         return w.at("sun").error(
             "applies to kind = \"hdr\" only (a sky's sun is the scene's light)");
-    RG_TRY(e.sun,
-           choice(w, b, "sun", "auto", {"auto", "light", "remove", "keep"}, "environment sun"));
+    RG_TRY(e.sun, choice(w, b, "sun", "auto", kEnvironmentSunModes, "environment sun"));
     if (e.kind == "hdr") {
         if (!b.has("file"))
             return w.at("file").error(
