@@ -90,50 +90,99 @@ Result<void> GpuScene::createFrameData(Context& ctx, const GpuSceneOptions& opti
                     glm::vec4(0.0f, 0.0f, 0.0f, table->lights[i].intensity.a);
     m_lightCount = static_cast<uint32_t>(table->lights.size());
     m_iesProfileCount = static_cast<uint32_t>(table->profiles.size());
-    // scene.glsl's Lights block: a uvec4 header, RG_MAX_LIGHTS lights, the LTC table (two vec4 per
-    // entry), then every profile's texels (one float more, so the runtime array is never empty).
-    const size_t ltcBytes = size_t(ltc::kSize) * ltc::kSize * 32;
-    const size_t ltcOffset = 16 + size_t(kMaxLights) * sizeof(GpuLight);
-    const size_t lightBytes = ltcOffset + ltcBytes;
-    const size_t texelCount = size_t(kIesWidth) * kIesHeight;
-    const size_t bytes = lightBytes + (m_iesProfileCount * texelCount + 1) * sizeof(float);
+    // scene.glsl's Lights block: a uvec4 header, then the scene's lights — at least as many bytes
+    // as the LightsWindow uniform block sees of it.
+    const VkDeviceSize lightBytes = std::max<VkDeviceSize>(
+        16 + VkDeviceSize(m_lightCount) * sizeof(GpuLight), kLightsWindowBytes);
+    const VkDeviceSize shadowViewBytes = this->shadowViewBytes();
+    if (auto r =
+            checkStorageRange(ctx, "its " + std::to_string(m_lightCount) + " lights", lightBytes);
+        !r)
+        return r;
+    if (auto r = createLightTables(ctx, *table); !r) return r;
+    // lib/light_tiles.glsl's GlobalLights: the lights that reach every pixel (its
+    // rgReachesEverything: the sun, lights without a range), ascending — for every tile's loop.
+    std::vector<uint32_t> global{0, 0, 0, 0};
+    for (uint32_t i = 0; i < m_lightCount; ++i) {
+        const GpuLight& l = table->lights[i];
+        if (static_cast<int>(l.positionType.w + 0.5f) == static_cast<int>(GpuLightType::Sun) ||
+            l.directionRange.w <= 0.0f)
+            global.push_back(i);
+    }
+    global[0] = static_cast<uint32_t>(global.size() - 4);
+    global.push_back(0);  // the runtime array is never empty
+    auto globalBuffer = Buffer::create(ctx, "scene.global_lights", global.size() * sizeof(uint32_t),
+                                       VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    if (!globalBuffer) return std::unexpected(globalBuffer.error());
+    std::memcpy(globalBuffer->mapped(), global.data(), global.size() * sizeof(uint32_t));
+    m_globalLights = std::move(*globalBuffer);
     for (uint32_t s = 0; s < ctx.framesInFlight(); ++s) {
         auto cam = Buffer::create(ctx, "scene.camera", sizeof(CameraUniforms),
                                   VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
         if (!cam) return std::unexpected(cam.error());
         m_cameraBuffers.push_back(std::move(*cam));
-        auto views = Buffer::create(ctx, "scene.shadow_views", kShadowViewBytes,
+        auto views = Buffer::create(ctx, "scene.shadow_views", shadowViewBytes,
                                     VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
         if (!views) return std::unexpected(views.error());
-        std::memset(views->mapped(), 0, kShadowViewBytes);
+        std::memset(views->mapped(), 0, shadowViewBytes);
         m_shadowViewBuffers.push_back(std::move(*views));
         auto lights = Buffer::create(
-            ctx, "scene.lights", bytes,
+            ctx, "scene.lights", lightBytes,
             VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
         if (!lights) return std::unexpected(lights.error());
         auto* p = static_cast<uint8_t*>(lights->mapped());
-        std::memset(p, 0, bytes);
-        const uint32_t header[4] = {m_lightCount, m_areaLightModel, kIesWidth, kIesHeight};
+        std::memset(p, 0, lightBytes);
+        const uint32_t header[4] = {m_lightCount, m_areaLightModel, 0, 0};
         std::memcpy(p, header, sizeof header);
         if (m_lightCount)
             std::memcpy(p + 16, table->lights.data(), table->lights.size() * sizeof(GpuLight));
-        float* ltcOut = reinterpret_cast<float*>(p + ltcOffset);
-        for (const ltc::Entry& e : ltc::table()) {
-            const float entry[8] = {e.inverse[0], e.inverse[1], e.inverse[2], e.inverse[3],
-                                    e.magnitude,  e.fresnel,    0.0f,         0.0f};
-            std::memcpy(ltcOut, entry, sizeof entry);
-            ltcOut += 8;
-        }
-        for (size_t i = 0; i < table->profiles.size(); ++i) {
-            const IesTexture& t = table->profiles[i];
-            RG_CHECK(t.texels.size() == texelCount)
-                << "IES profile baked at " << t.width << " x " << t.height;
-            std::memcpy(p + lightBytes + i * texelCount * sizeof(float), t.texels.data(),
-                        texelCount * sizeof(float));
-        }
         m_lightBuffers.push_back(std::move(*lights));
     }
     return {};
+}
+
+// scene.glsl's LightTables block: a uvec4 header (the IES profiles' width, height and count), the
+// LTC table (two vec4 per entry), then every profile's texels (one float more, so that the runtime
+// array is never empty). The same for every frame slot.
+Result<void> GpuScene::createLightTables(Context& ctx, const GpuLightTable& table) {
+    const size_t ltcBytes = size_t(ltc::kSize) * ltc::kSize * 32;
+    const size_t texelCount = size_t(kIesWidth) * kIesHeight;
+    const size_t bytes = 16 + ltcBytes + (m_iesProfileCount * texelCount + 1) * sizeof(float);
+    auto buffer =
+        Buffer::create(ctx, "scene.light_tables", bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    if (!buffer) return std::unexpected(buffer.error());
+    auto* p = static_cast<uint8_t*>(buffer->mapped());
+    std::memset(p, 0, bytes);
+    const uint32_t header[4] = {kIesWidth, kIesHeight, m_iesProfileCount, 0};
+    std::memcpy(p, header, sizeof header);
+    float* ltcOut = reinterpret_cast<float*>(p + 16);
+    for (const ltc::Entry& e : ltc::table()) {
+        const float entry[8] = {e.inverse[0], e.inverse[1], e.inverse[2], e.inverse[3],
+                                e.magnitude,  e.fresnel,    0.0f,         0.0f};
+        std::memcpy(ltcOut, entry, sizeof entry);
+        ltcOut += 8;
+    }
+    for (size_t i = 0; i < table.profiles.size(); ++i) {
+        const IesTexture& t = table.profiles[i];
+        RG_CHECK(t.texels.size() == texelCount)
+            << "IES profile baked at " << t.width << " x " << t.height;
+        std::memcpy(p + 16 + ltcBytes + i * texelCount * sizeof(float), t.texels.data(),
+                    texelCount * sizeof(float));
+    }
+    m_lightTables = std::move(*buffer);
+    return {};
+}
+
+// A storage buffer of `bytes` must fit the device's maxStorageBufferRange (128 MiB at least):
+// a scene beyond it is refused naming what it holds and the limit, never bound past its end.
+Result<void> GpuScene::checkStorageRange(Context& ctx, const std::string& what,
+                                         VkDeviceSize bytes) const {
+    const VkDeviceSize limit = ctx.properties().limits.maxStorageBufferRange;
+    if (bytes <= limit) return {};
+    return fail(ErrorCode::InvalidInput, "the scene's " + what + " take " + std::to_string(bytes) +
+                                             " bytes of GPU buffer, over the device's "
+                                             "maxStorageBufferRange of " +
+                                             std::to_string(limit));
 }
 
 Result<void> GpuScene::selectCamera(const std::string& name) {
@@ -208,8 +257,8 @@ void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
 uint64_t GpuScene::contentHash(uint32_t slot) const {
     ContentHash h;
     h.u64(m_staticHash.value());
-    for (const Buffer* b : {&m_cameraBuffers[slot], &m_lightBuffers[slot],
-                            &m_shadowViewBuffers[slot], &m_decals, &m_probes})
+    for (const Buffer* b : {&m_cameraBuffers[slot], &m_lightBuffers[slot], &m_lightTables,
+                            &m_globalLights, &m_shadowViewBuffers[slot], &m_decals, &m_probes})
         h.bytes(b->mapped(), b->size());
     return h.value();
 }
@@ -217,6 +266,8 @@ uint64_t GpuScene::contentHash(uint32_t slot) const {
 VkBuffer GpuScene::bindingBuffer(std::string_view name, uint32_t slot) const {
     if (name == "Camera") return cameraBuffer(slot);
     if (name == "Lights" || name == "LightsWindow") return lightBuffer(slot);
+    if (name == "LightTables") return m_lightTables.buffer();
+    if (name == "GlobalLights") return m_globalLights.buffer();
     if (name == "ShadowViews") return shadowViewBuffer(slot);
     if (name == "Decals") return decalBuffer();
     if (name == "Probes") return probeBuffer();
@@ -232,7 +283,8 @@ Result<VkBuffer> GpuScene::makeBindingBuffer(std::string_view name, uint32_t slo
     if (VkBuffer buffer = bindingBuffer(name, slot); buffer != VK_NULL_HANDLE) return buffer;
     return fail(ErrorCode::NotFound,
                 "the scene has no buffer binding '" + std::string(name) +
-                    "', expected one of: 'Camera', 'Lights', 'LightsWindow', "
+                    "', expected one of: 'Camera', 'Lights', 'LightsWindow', 'LightTables', "
+                    "'GlobalLights', "
                     "'ShadowViews', 'Decals', 'Probes', 'SceneDraws', 'SceneBvh', "
                     "'SceneEnvironmentCdf'");
 }

@@ -171,8 +171,8 @@ public:
     // index range and vertex offset, and whether it casts shadows (opaque): what a culling pass
     // needs to write indirect draw commands (shaders/shadows/cascade_cull.comp).
     VkBuffer drawBuffer() const { return m_drawBuffer.buffer(); }
-    // The buffer behind scene binding `name` (a shader block of that name: Camera, Lights and
-    // LightsWindow, ShadowViews — frame slot `slot`'s — Decals, Probes, SceneDraws, SceneBvh, SceneEnvironmentCdf), VK_NULL_HANDLE for
+    // The buffer behind scene binding `name` (a shader block of that name: Camera, Lights,
+    // LightsWindow, LightTables and GlobalLights, ShadowViews — frame slot `slot`'s — Decals, Probes, SceneDraws, SceneBvh, SceneEnvironmentCdf), VK_NULL_HANDLE for
     // another name or a buffer that could not be made.
     VkBuffer bindingBuffer(std::string_view name, uint32_t slot) const;
     // The same, or why there is none: the failure of the Vulkan call behind a buffer built on
@@ -227,6 +227,11 @@ private:
     Result<void> uploadImages(gpu::Context& ctx);
     Result<void> createMaterials(gpu::Context& ctx);
     Result<void> createFrameData(gpu::Context& ctx, const GpuSceneOptions& options);
+    Result<void> createLightTables(gpu::Context& ctx, const GpuLightTable& table);
+    Result<void> checkStorageRange(gpu::Context& ctx, const std::string& what,
+                                   VkDeviceSize bytes) const;
+    // The ShadowViews block's size: its header, kMaxShadowViews views and an ivec4 per light.
+    VkDeviceSize shadowViewBytes() const;
 
     Scene m_scene;
     gpu::Context* m_ctx = nullptr;
@@ -247,6 +252,8 @@ private:
     std::vector<gpu::Buffer> m_materialBuffers;
     std::vector<VkDescriptorSet> m_materialSets;
     std::vector<gpu::Buffer> m_cameraBuffers, m_lightBuffers, m_shadowViewBuffers;
+    gpu::Buffer m_lightTables;   // LightTables: the LTC table and IES profiles, for every slot
+    gpu::Buffer m_globalLights;  // GlobalLights: the lights that reach every pixel
     std::vector<std::vector<size_t>> m_shadowViewDraws;  // per view of this frame
     mutable gpu::Buffer m_bvh;                           // bvhBuffer(), once built
     Result<VkBuffer> makeBvhBuffer() const;              // bvhBuffer(), or why it failed
@@ -258,7 +265,7 @@ private:
     bool m_levelsOfDetail = true;    // GpuSceneOptions::levelsOfDetail
     mutable bool m_fullMeshes = false;  // drawFullMeshes()
     std::vector<glm::ivec4>
-        m_lightViews;  // per light (kMaxLights): first view (−1: none), count — as uploaded
+        m_lightViews;  // per light of the scene: first view (−1: none), count — as uploaded
     void updateShadowViews(uint32_t slot, const glm::mat4& cameraViewProj);
     gpu::Buffer m_decals;
     Result<void> createDecals(gpu::Context& ctx);

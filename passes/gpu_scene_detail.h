@@ -32,8 +32,8 @@ inline bool boxMeetsFrustum(const std::array<glm::vec4, 6>& planes, glm::vec3 lo
     return true;
 }
 
-// The size of the ShadowViews block: a uvec4 header, the views, then an ivec4 per light.
-inline constexpr size_t kShadowViewBytes =
-    16 + size_t(kMaxShadowViews) * sizeof(GpuShadowView) + size_t(kMaxLights) * 16;
+// Where the ShadowViews block's per-light table starts: after a uvec4 header and the views.
+inline constexpr size_t kShadowLightViewsOffset =
+    16 + size_t(kMaxShadowViews) * sizeof(GpuShadowView);
 
 }  // namespace rg::passes::detail

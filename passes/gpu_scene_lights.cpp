@@ -41,6 +41,11 @@ uint32_t shadowViewCapacity(const Scene& scene) {
     return views;
 }
 
+VkDeviceSize GpuScene::shadowViewBytes() const {
+    return detail::kShadowLightViewsOffset +
+           std::max<size_t>(m_scene.lights.size(), 1) * sizeof(glm::ivec4);
+}
+
 std::pair<uint32_t, uint32_t> GpuScene::shadowViewsOf(size_t light) const {
     if (light >= m_lightViews.size() || m_lightViews[light].y == 0) return {0, 0};
     return {static_cast<uint32_t>(m_lightViews[light].x),
@@ -49,7 +54,7 @@ std::pair<uint32_t, uint32_t> GpuScene::shadowViewsOf(size_t light) const {
 
 void GpuScene::updateShadowViews(uint32_t slot, const glm::mat4& cameraViewProj) {
     m_shadowViewDraws.clear();
-    m_lightViews.assign(kMaxLights, glm::ivec4(-1, 0, 0, 0));
+    m_lightViews.assign(std::max<size_t>(m_scene.lights.size(), 1), glm::ivec4(-1, 0, 0, 0));
     std::vector<GpuShadowView> views;
     const auto camera = frustumPlanes(cameraViewProj);
     // A light without a range reaches as far as the scene goes.
@@ -102,7 +107,7 @@ void GpuScene::updateShadowViews(uint32_t slot, const glm::mat4& cameraViewProj)
     const glm::uvec4 header(static_cast<uint32_t>(views.size()), 0, 0, 0);
     std::memcpy(p, &header, sizeof header);
     if (!views.empty()) std::memcpy(p + 16, views.data(), views.size() * sizeof(GpuShadowView));
-    std::memcpy(p + 16 + size_t(kMaxShadowViews) * sizeof(GpuShadowView), m_lightViews.data(),
+    std::memcpy(p + detail::kShadowLightViewsOffset, m_lightViews.data(),
                 m_lightViews.size() * sizeof(glm::ivec4));
 }
 

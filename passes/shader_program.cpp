@@ -56,6 +56,8 @@ bool isSceneBinding(const ReflectedBinding& b) {
         {"Camera", DescriptorType::UniformBuffer},
         {"Lights", DescriptorType::StorageBuffer},
         {"LightsWindow", DescriptorType::UniformBuffer},
+        {"LightTables", DescriptorType::StorageBuffer},
+        {"GlobalLights", DescriptorType::StorageBuffer},
         {"Decals", DescriptorType::StorageBuffer},
         {"ShadowViews", DescriptorType::StorageBuffer},
         {"SceneDraws", DescriptorType::StorageBuffer},

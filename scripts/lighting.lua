@@ -1,16 +1,19 @@
--- Light culling per screen tile for the deferred lighting passes (seed 000 §4; DESIGN §3).
+-- Light culling for the deferred lighting passes (seed 000 §4; DESIGN §3), clustered then tiled:
 --
---   local lighting = require "lighting"   -- declares `light_tiles` and the `light_culling` pass
+--   local lighting = require "lighting"   -- declares the light lists and the passes that fill them
 --   rg.pass "lighting_x" (lighting.tiled { kind = "fullscreen", shader = ..., reads = { ... }, ... })
 --
--- Culling runs in two levels after the pass named "gbuffer" (shaders/passes/light_culling.comp),
--- each reading its depth: `light_culling_coarse` lists, per 32x32-pixel tile, the ranged lights
--- whose range reaches the tile's surfaces out of all of the scene's; `light_culling` then lists, per
--- 4x4-pixel tile, those of its coarse tile's list that reach its own surfaces. Small tiles keep
--- each pixel's loop to the lights near it; the coarse level keeps their test from costing
--- tiles × lights. `lighting.tiled` makes a lighting pass read the fine lists (the shader's light
--- loop, through lib/light_tiles.glsl, then visits only the tile's lights). A pipeline that never
--- uses `lighting.tiled` loses both passes to the graph's culling, and its shaders loop over all.
+-- First a froxel grid (shaders/passes/light_froxels.comp): the screen in columns of 32x32 pixels,
+-- each cut into 16 slices of view distance; every ranged light goes into the lists of the froxels
+-- its range meets (one invocation per light: the cost is the lights times the froxels each covers,
+-- not froxels times lights), and the lists are sorted. Then, after the pass named "gbuffer",
+-- `light_culling` lists per 4x4-pixel tile the lights of the froxels its surfaces' depths span
+-- that reach those surfaces. Small tiles keep each pixel's loop to the lights near it. The lights
+-- that reach every pixel (the sun, lights without a range) are the scene's global list, read by
+-- every lighting loop before the tile's. `lighting.tiled` makes a lighting pass read the tile lists
+-- (the shader's light loop, through lib/light_tiles.glsl, then visits only the tile's lights). A
+-- pipeline that never uses `lighting.tiled` loses these passes to the graph's culling, and its
+-- shaders loop over all.
 local rg = require "rg"
 
 local lighting = {}
@@ -22,16 +25,23 @@ local lighting = {}
 -- 1024 with 8x8 tiles (1.34x: at 1024 the ranges are a quarter as wide, so a tile's footprint
 -- adds more lights around them), 7.3-7.9 and 9.2 with 4x4 tiles (~1.21x).
 lighting.tile = 4
-lighting.coarse_tile = 32    -- pixels per side of the coarse level's tiles
 -- Words per fine tile: the count, then up to 62 indices of ranged lights, 16 bits each (128 B per
--- tile; 7 MiB at 1280x720); per coarse tile up to 255, a word each (1 KiB per tile). Lights without a range and the sun
--- reach every pixel and are listed once, in the global list (count + up to 1024 indices,
--- shaders/lib/scene.glsl's RG_MAX_LIGHTS). A tile reached by more ranged lights than its list
--- holds keeps the lowest indices (the `lights` view shows them); a fine tile under an overflowing
--- coarse tile tests every light.
+-- tile; 7 MiB at 1280x720). A tile reached by more ranged lights than its list holds keeps the
+-- lowest indices (the `lights` view shows them).
 lighting.tile_words = 32
-lighting.coarse_words = 256
-lighting.max_lights = 1024
+-- The froxel grid: pixels per side of its columns, slices per column, and words per froxel (two
+-- 16-bit light indices each: up to 254 lights; 8 KiB per column, 7.4 MiB at 1280x720). A froxel
+-- reached by more lights than that keeps the first that arrived, and the tiles under it are marked
+-- (the `lights` view shows them magenta).
+lighting.coarse_tile = 32
+lighting.froxel_slices = 16
+lighting.froxel_words = 128
+-- Work groups of 64 of the binning pass (each invocation takes every (64 x this)-th light) and of
+-- the sort (one froxel per invocation up to 64 x this froxels: 4K's 130 000 at 1024).
+lighting.froxel_groups = 256
+lighting.sort_groups = 1024
+-- The most lights a scene may have: shaders/lib/limits.h's RG_MAX_LIGHTS (the lists' 16-bit indices).
+lighting.max_lights = rg.limits.max_lights
 
 -- How the light loop (shaders/lib/lighting.glsl) evaluates sphere, disk, rectangle and tube lights:
 -- "frostbite", the seed's approximations (000 lst:10, 002 §4.7: structured sampling, representative
@@ -45,25 +55,41 @@ rg.param "area_lights" { type = "choice", default = "ltc", choices = { "ltc", "f
 rg.param "light_shapes" { type = "boolean", default = true,
     doc = "draw the area lights' emissive shapes (seed 002 §4.8); read when the scene loads" }
 
-rg.buffer "light_tiles_coarse" {
-    size = 16, tile = lighting.coarse_tile, tile_bytes = 4 * lighting.coarse_words,
-    doc = "per 32x32 tile the ranged lights that reach it (light_culling.comp's coarse level)",
+local froxel_defines = { RG_COARSE_TILE_SIZE = lighting.coarse_tile, RG_FROXEL_SLICES = lighting.froxel_slices }
+rg.buffer "light_froxel_counts" {
+    size = 4, tile = lighting.coarse_tile, tile_bytes = 4 * lighting.froxel_slices,
+    doc = "per froxel (32x32-pixel column, slice of view distance) how many ranged lights reach it",
+}
+rg.buffer "light_froxels" {
+    size = 4, tile = lighting.coarse_tile, tile_bytes = 4 * lighting.froxel_slices * lighting.froxel_words,
+    doc = "per froxel the ranged lights that reach it, ascending (light_froxels.comp)",
 }
 rg.buffer "light_tiles" {
-    size = 16 + 4 * (lighting.max_lights + 1), tile = lighting.tile, tile_bytes = 4 * lighting.tile_words,
-    doc = "the lights that reach every pixel, then per 4x4 tile the ranged lights that reach it (light_culling.comp)",
+    size = 16, tile = lighting.tile, tile_bytes = 4 * lighting.tile_words,
+    doc = "per 4x4 tile the ranged lights that reach its surfaces (light_culling.comp)",
 }
-rg.pass "light_culling_coarse" {
-    kind = "compute", shader = "passes/light_culling.comp",
-    reads = { "depth" }, writes = { { "light_tiles_coarse", as = "storage" } },
-    dispatch = "depth", tile = lighting.coarse_tile, insert = { after = "gbuffer" },
-    defines = { RG_CULL_COARSE = true, RG_COARSE_TILE_SIZE = lighting.coarse_tile },
+rg.pass "light_froxels_clear" {
+    kind = "clear", writes = { "light_froxel_counts" }, insert = { after = "gbuffer" },
+}
+rg.pass "light_froxels" {
+    kind = "compute", shader = "passes/light_froxels.comp", groups = { lighting.froxel_groups, 1, 1 },
+    reads = { "depth" },
+    writes = { { "light_froxel_counts", as = "storage_rw" }, { "light_froxels", as = "storage" } },
+    insert = { after = "light_froxels_clear" }, defines = froxel_defines,
+}
+rg.pass "light_froxels_sort" {
+    kind = "compute", shader = "passes/light_froxels.comp", groups = { lighting.sort_groups, 1, 1 },
+    reads = { "depth", { "light_froxel_counts", as = "storage" } },
+    writes = { { "light_froxels", as = "storage_rw" } },
+    insert = { after = "light_froxels" },
+    defines = { RG_FROXEL_SORT = true, RG_COARSE_TILE_SIZE = lighting.coarse_tile, RG_FROXEL_SLICES = lighting.froxel_slices },
 }
 rg.pass "light_culling" {
     kind = "compute", shader = "passes/light_culling.comp",
-    reads = { "depth", { "light_tiles_coarse", as = "storage" } }, writes = { { "light_tiles", as = "storage" } },
-    dispatch = "depth", tile = lighting.tile, insert = { after = "light_culling_coarse" },
-    defines = { RG_TILE_SIZE = lighting.tile },
+    reads = { "depth", { "light_froxel_counts", as = "storage" }, { "light_froxels", as = "storage" } },
+    writes = { { "light_tiles", as = "storage" } },
+    dispatch = "depth", tile = lighting.tile, insert = { after = "light_froxels_sort" },
+    defines = { RG_TILE_SIZE = lighting.tile, RG_COARSE_TILE_SIZE = lighting.coarse_tile, RG_FROXEL_SLICES = lighting.froxel_slices },
 }
 
 -- Adds `reads` to a pass declaration's reads and `define` to its defines: what the `.lit` and

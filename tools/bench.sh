@@ -5,8 +5,8 @@
 #   tools/bench.sh [--out DIR] [--frames N] [--quick]
 #
 #   default frame   the default pipeline and scene at 1280x720, N frames (default 10), with floors
-#   many lights     scripts/scenes/many_lights.lua at 640x360 with 16 / 64 / 256 / 1024 lights:
-#                   both light culling passes + lighting_standard, and its ratio 1024 / 64
+#   many lights     scripts/scenes/many_lights.lua at 640x360 with 16 to 65 536 lights: the light
+#                   culling passes (froxels, tiles) + lighting_standard, and its ratios to 64 lights
 #   levels of detail  scripts/scenes/field.lua (1000 dense spheres) at the default size, with its
 #                   levels of detail and with every mesh in full (RG_LOD=0): gbuffer, the sun's
 #                   maps and the frame
@@ -36,7 +36,7 @@ while [ $# -gt 0 ]; do
 done
 [ -x "$rgraph" ] || { echo "tools/bench.sh: no rgraph at $rgraph (run tools/setup.sh)" >&2; exit 2; }
 mkdir -p "$out"
-size=1280x720 lights_size=640x360 counts="16 64 256 1024" objects=1000
+size=1280x720 lights_size=640x360 counts="16 64 256 1024 4096 16384 65536" objects=1000
 if [ $quick = 1 ]; then size=96x64 lights_size=64x48 frames=2 counts="16 64" objects=20; fi
 
 now_ms() { date +%s%3N; }
@@ -93,7 +93,7 @@ def passes(b, *names):
 startup = load("startup.json")
 def lighting(b):
     p = {x["name"]: x["medianMs"] for x in b["passes"]}
-    return p.get("light_culling_coarse", 0.0) + p.get("light_culling", 0.0) + p.get("lighting_standard", 0.0)
+    return sum(v for k, v in p.items() if k.startswith("light_froxels") or k in ("light_culling", "lighting_standard"))
 suite = {
     "device": default["device"],
     "default": {"size": default["size"], "frames": default["frames"], "frameTotalMs": default["frameTotalMs"],
@@ -106,8 +106,9 @@ suite = {
     "compile200Ms": compile_["compileMs"],
     "startupMs": startup,
 }
-if 1024 in lights and 64 in lights:
-    suite["manyLights"]["ratio1024to64"] = lighting(lights[1024]) / max(lighting(lights[64]), 1e-9)
+for n in (1024, 16384, 65536):
+    if n in lights and 64 in lights:
+        suite["manyLights"][f"ratio{n}to64"] = lighting(lights[n]) / max(lighting(lights[64]), 1e-9)
 json.dump(suite, open(f"{out}/bench.json", "w"), indent=2)
 a, u = default["transientBytesAliased"], default["transientBytesUnaliased"]
 md = [f"# rgraph bench: {default['device']}", "",
@@ -119,8 +120,9 @@ for p in default["passes"]:
 md += ["", "| many lights | light culling + lighting ms | frame ms |", "| --- | ---: | ---: |"]
 for n in counts:
     md.append(f"| {n} | {lighting(lights[n]):.2f} | {lights[n]['frameTotalMs']['median']:.2f} |")
-if "ratio1024to64" in suite["manyLights"]:
-    md.append(f"\n1024 / 64 lights: {suite['manyLights']['ratio1024to64']:.2f}x")
+for n in (1024, 16384, 65536):
+    if f"ratio{n}to64" in suite["manyLights"]:
+        md.append(f"\n{n} / 64 lights: {suite['manyLights'][f'ratio{n}to64']:.2f}x")
 md += ["", "| field of dense spheres | gbuffer ms | sun's maps ms | frame ms |", "| --- | ---: | ---: | ---: |"]
 for lod, label in ((1, "levels of detail"), (0, "full meshes (RG_LOD=0)")):
     d = suite["levelsOfDetail"]["lod" if lod else "full"]

@@ -32,8 +32,8 @@ Result<GpuLightTable> convertLights(const std::vector<Light>& lights, IesMode ie
     GpuLightTable table;
     if (lights.size() > kMaxLights)
         return fail(ErrorCode::InvalidInput, "the scene has " + std::to_string(lights.size()) +
-                                                 " lights; the GPU light list holds at most " +
-                                                 std::to_string(kMaxLights));
+                                                 " lights; at most " + std::to_string(kMaxLights) +
+                                                 " (the light lists' 16-bit indices)");
     for (const Light& l : lights) {
         const std::string label = lightLabel(l);
         const bool punctual = l.type == LightType::Point || l.type == LightType::Spot;

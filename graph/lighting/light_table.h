@@ -16,10 +16,11 @@
 
 namespace rg::lighting {
 
-// The Lights block's fixed light array (shaders/lib/limits.h, which scene.glsl includes too).
+// The most lights a scene may have (shaders/lib/limits.h, which the shaders include too): the
+// tile lists' 16-bit light indices.
 inline constexpr uint32_t kMaxLights = RG_MAX_LIGHTS;
 // IES profiles are baked at this size (bakeIes' θ × cos φ texels, seed 000 lst:5), each 256 KiB
-// in every frame slot's light buffer; a scene may use this many different profile files.
+// in the scene's light tables; a scene may use this many different profile files.
 inline constexpr uint32_t kIesWidth = 256, kIesHeight = 256;
 inline constexpr uint32_t kMaxIesProfiles = 16;
 

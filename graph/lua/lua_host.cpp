@@ -15,6 +15,7 @@
 #include "declarations.h"
 #include "lua_host_impl.h"
 #include "lua_sandbox.h"
+#include "shaders/lib/limits.h"
 
 namespace fs = std::filesystem;
 
@@ -337,6 +338,14 @@ Result<std::vector<Declaration>> LuaHost::loadDeclarations(const std::string& fi
         lua_rawseti(L, -2, static_cast<lua_Integer>(i + 1));
     }
     lua_setfield(L, -2, "kinds");
+    // The limits the C++ core and the shaders share (shaders/lib/limits.h), for scripts that size
+    // buffers by them: written once there.
+    lua_newtable(L);
+    lua_pushinteger(L, RG_MAX_LIGHTS);
+    lua_setfield(L, -2, "max_lights");
+    lua_pushinteger(L, RG_MAX_SHADOW_VIEWS);
+    lua_setfield(L, -2, "max_shadow_views");
+    lua_setfield(L, -2, "limits");
     lua_pushvalue(L, -1);
     lua_setglobal(L, "rg");
     lua_getfield(L, LUA_REGISTRYINDEX, kModulesKey);

@@ -1,6 +1,6 @@
 -- Many small lights over a floor with a 5x5 grid of spheres: the light-culling benchmark.
 --   rgraph bench --scene scripts/scenes/many_lights.lua --scene-arg lights=256
--- scene.args.lights (default 64, 1..1024) point lights hang 0.3 m over a 16 m x 16 m floor on a
+-- scene.args.lights (default 64, 1..65536) point lights hang 0.3 m (at most half their range) over a 16 m x 16 m floor on a
 -- jittered grid. Their range shrinks as the count grows so that about `overlap` lights (default
 -- 4) reach each point of the floor whatever the count — the lights per pixel stay about the same
 -- while the lights in the scene grow — and their flux shrinks with the area each one covers, so
@@ -8,8 +8,8 @@
 local scene = require "scene"
 
 local count = scene.args.lights or 64
-if type(count) ~= "number" or count ~= math.floor(count) or count < 1 or count > 1024 then
-  error("scene.args.lights: expected 1..1024 lights, got " .. tostring(count))
+if type(count) ~= "number" or count ~= math.floor(count) or count < 1 or count > 65536 then
+  error("scene.args.lights: expected 1..65536 lights, got " .. tostring(count))
 end
 local overlap = scene.args.overlap or 4
 -- --scene-arg ranged=0: the same lights without a range (they reach every pixel: culling lists
@@ -33,6 +33,8 @@ local range = math.sqrt(overlap * area / (math.pi * count))
 -- 2000 lm per 1 m² that a light covers (π r² / overlap): the floor sees roughly the same
 -- illuminance at any count.
 local flux = 2000 * math.pi * range * range / overlap
+-- Under half the range, so that each light's range still meets the floor when thousands shrink it.
+local height = math.min(0.3, 0.5 * range)
 
 -- A fixed linear congruential sequence: the same scene every run.
 local state = 12345
@@ -46,7 +48,7 @@ for k = 0, count - 1 do
   local gx, gz = k % side, math.floor(k / side)
   scene.light(string.format("light_%d", k)) {
     type = "point", intensity = flux, unit = "lm", temperature = 2500 + 5000 * random(),
-    position = { -size / 2 + (gx + random()) * cell, 0.3, -size / 2 + (gz + random()) * cell },
+    position = { -size / 2 + (gx + random()) * cell, height, -size / 2 + (gz + random()) * cell },
     range = ranged and range or nil,
   }
 end

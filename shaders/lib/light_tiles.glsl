@@ -12,19 +12,80 @@
 #include "lib/scene.glsl"
 
 // Pixels per tile side; the culling pass runs one invocation per tile. The light_tiles buffer is
-// declared with the same tile size (rg.buffer { tile = 8, tile_bytes = ... }, scripts/lighting.lua)
-// and room for the global list: size = 16 + 4 · (RG_MAX_LIGHTS + 1). The coarse level
-// (light_tiles_coarse, written first) has tiles of RG_COARSE_TILE_SIZE pixels.
+// declared with the same tile size (rg.buffer { tile = 4, tile_bytes = ... }, scripts/lighting.lua).
+// The froxel grid (light_froxels, written first) has columns of RG_COARSE_TILE_SIZE pixels, each
+// cut into RG_FROXEL_SLICES slices of view distance.
 #ifndef RG_TILE_SIZE
 #define RG_TILE_SIZE 8
 #endif
 #ifndef RG_COARSE_TILE_SIZE
 #define RG_COARSE_TILE_SIZE 32
 #endif
+#ifndef RG_FROXEL_SLICES
+#define RG_FROXEL_SLICES 16
+#endif
 
 #ifndef RG_LIGHT_TILES_BINDING
 #define RG_LIGHT_TILES_BINDING 12
 #endif
+
+// The lights that reach every pixel — the sun, lights without a range — in light order: a list of
+// the scene's (passes/gpu_scene.cpp), made once when it loads, as the lights are.
+#ifndef RG_GLOBAL_LIGHTS_BINDING
+#define RG_GLOBAL_LIGHTS_BINDING 37
+#endif
+#if defined(RG_LIGHT_TILES) || defined(RG_LIGHT_TILES_WRITER)
+layout(set = RG_CAMERA_SET, binding = RG_GLOBAL_LIGHTS_BINDING, std430) readonly buffer GlobalLights {
+    uvec4 count;   // x: how many
+    uint light[];  // their indices, ascending
+} globalLights;
+#endif
+
+// Whether a light reaches every pixel (the global list's rule; passes/gpu_scene.cpp's twin).
+bool rgReachesEverything(RgLight light) {
+    return int(light.positionType.w + 0.5) == RG_LIGHT_SUN || light.directionRange.w <= 0.0;
+}
+
+// ---- The froxel grid --------------------------------------------------------------------------
+// Slices of view distance d over the depths the scene's bounds span (within the near and far
+// planes): geometric for a perspective camera (d_k = near · (far/near)^(k/S), each slice as
+// deep as it is far away, so a froxel is about as deep as it is wide), even for an orthographic
+// one. A distance outside falls in the first or last slice, for writers and readers alike.
+struct RgFroxelRange {
+    float near, far;
+};
+RgFroxelRange rgFroxelRange() {
+    float a = rgViewDistance(0.0), b = rgViewDistance(1.0);
+    // The scene's bounds along the view axis: the nearest and farthest of its box's corners (a
+    // linear function is extreme at a corner), within the near and far planes.
+    float nearest = 1e30, farthest = -1e30;
+    for (int c = 0; c < 8; ++c) {
+        vec3 corner = vec3((c & 1) != 0 ? camera.sceneMax.x : camera.sceneMin.x, (c & 2) != 0 ? camera.sceneMax.y : camera.sceneMin.y,
+                           (c & 4) != 0 ? camera.sceneMax.z : camera.sceneMin.z);
+        float d = rgViewDepth(corner);
+        nearest = min(nearest, d);
+        farthest = max(farthest, d);
+    }
+    float near = max(min(a, b), nearest);
+    if (!rgCameraOrthographic()) near = max(near, 1e-4);
+    float far = min(farthest, max(a, b));
+    return RgFroxelRange(near, max(far, near * 1.01 + 1e-3));
+}
+uint rgFroxelSlice(RgFroxelRange r, float d) {
+    float t = rgCameraOrthographic() ? (d - r.near) / (r.far - r.near) : log(max(d, r.near) / r.near) / log(r.far / r.near);
+    return uint(clamp(int(floor(t * float(RG_FROXEL_SLICES))), 0, RG_FROXEL_SLICES - 1));
+}
+// Where slice k begins (k = RG_FROXEL_SLICES: where the last ends).
+float rgFroxelSliceStart(RgFroxelRange r, uint k) {
+    float t = float(k) / float(RG_FROXEL_SLICES);
+    return rgCameraOrthographic() ? mix(r.near, r.far, t) : r.near * pow(r.far / r.near, t);
+}
+// The view-space point at normalised screen position ndc (−1..1) and view distance d.
+vec3 rgViewPointAt(vec2 ndc, float d) {
+    if (rgCameraOrthographic())
+        return vec3((ndc.x - camera.proj[3][0]) / camera.proj[0][0], (ndc.y - camera.proj[3][1]) / camera.proj[1][1], -d);
+    return vec3(ndc.x * d / camera.proj[0][0], ndc.y * d / camera.proj[1][1], -d);
+}
 
 struct RgLightList {
     uint base;    // index of the tile's first word after its count in light_tiles.data
@@ -35,12 +96,13 @@ struct RgLightList {
 // A tile's list holds two 16-bit light indices per word (RG_MAX_LIGHTS ≤ 65536), the lower half
 // first: `stride` words hold the count and 2 (stride − 1) lights.
 uint rgTileCapacity(uint stride) { return 2u * (stride - 1u); }
+// Set in a tile's count when a froxel it read had lost lights (more reached it than its list held).
+#define RG_TILE_INCOMPLETE 0x80000000u
 
 #if defined(RG_LIGHT_TILES) && !defined(RG_LIGHT_TILES_WRITER)
 layout(set = 0, binding = RG_LIGHT_TILES_BINDING, std430) readonly buffer light_tiles {
-    uvec4 header;                    // tiles x, tiles y, stride (words per tile), tile size
-    uint global[RG_MAX_LIGHTS + 1];  // count, then the lights that reach every pixel
-    uint data[];                     // per tile: count, then the ranged lights that reach it (16 bits each)
+    uvec4 header;  // tiles x, tiles y, stride (words per tile), tile size
+    uint data[];   // per tile: count, then the ranged lights that reach it (16 bits each)
 } lightTiles;
 
 uint rgLightTileIndex(ivec2 pixel) {
@@ -49,21 +111,25 @@ uint rgLightTileIndex(ivec2 pixel) {
 }
 // How many ranged lights reach the tile (may exceed what its list holds: see rgLightList).
 uint rgTileLightTotal(ivec2 pixel) {
-    return lightTiles.header.z < 2u ? 0u : lightTiles.data[rgLightTileIndex(pixel) * lightTiles.header.z];
+    return lightTiles.header.z < 2u ? 0u : lightTiles.data[rgLightTileIndex(pixel) * lightTiles.header.z] & ~RG_TILE_INCOMPLETE;
+}
+// Whether the tile's list may lack lights that reach it: a froxel over it overflowed.
+bool rgTileIncomplete(ivec2 pixel) {
+    return lightTiles.header.z >= 2u && (lightTiles.data[rgLightTileIndex(pixel) * lightTiles.header.z] & RG_TILE_INCOMPLETE) != 0u;
 }
 RgLightList rgLightList(ivec2 pixel) {
     uint stride = lightTiles.header.z;
-    uint global = lightTiles.global[0];
+    uint global = globalLights.count.x;
     if (stride < 2u) return RgLightList(0u, global, global);  // no room for tile lists
     uint base = rgLightTileIndex(pixel) * stride;
-    return RgLightList(base + 1u, global + min(lightTiles.data[base], rgTileCapacity(stride)), global);
+    return RgLightList(base + 1u, global + min(lightTiles.data[base] & ~RG_TILE_INCOMPLETE, rgTileCapacity(stride)), global);
 }
 uint rgListLight(RgLightList list, uint k) {
-    if (k < list.global) return lightTiles.global[1u + k];
+    if (k < list.global) return globalLights.light[k];
     uint j = k - list.global;
     return (lightTiles.data[list.base + (j >> 1u)] >> ((j & 1u) * 16u)) & 0xFFFFu;
 }
-#else
+#elif !defined(RG_LIGHT_TILES_WRITER)
 RgLightList rgLightList(ivec2 pixel) { return RgLightList(0u, lights.count.x, 0u); }
 uint rgListLight(RgLightList list, uint k) { return k; }
 #endif

@@ -71,7 +71,7 @@ float rgIesAttenuation(RgLight light, vec3 L) {
     float phiCoord = d.z * 0.5 + 0.5;
     float theta = abs(d.x) + abs(d.y) > 0.0 ? atan(d.y, d.x) : 0.0;  // atan(0, 0) is undefined in GLSL
     float thetaCoord = theta * (0.5 / RG_PI);
-    int width = int(lights.count.z), height = int(lights.count.w);
+    int width = int(lightTables.header.x), height = int(lightTables.header.y);
     float fx = thetaCoord * float(width) - 0.5, fy = phiCoord * float(height) - 0.5;
     float x0 = floor(fx), y0 = floor(fy);
     float wx = fx - x0, wy = fy - y0;
@@ -79,8 +79,8 @@ float rgIesAttenuation(RgLight light, vec3 L) {
     int i1 = (i0 + 1) % width;
     int j0 = clamp(int(y0), 0, height - 1), j1 = clamp(int(y0) + 1, 0, height - 1);
     uint base = uint(light.intensity.a + 0.5) * uint(width * height);
-    float t00 = lights.iesTexels[base + uint(j0 * width + i0)], t10 = lights.iesTexels[base + uint(j0 * width + i1)];
-    float t01 = lights.iesTexels[base + uint(j1 * width + i0)], t11 = lights.iesTexels[base + uint(j1 * width + i1)];
+    float t00 = lightTables.iesTexels[base + uint(j0 * width + i0)], t10 = lightTables.iesTexels[base + uint(j0 * width + i1)];
+    float t01 = lightTables.iesTexels[base + uint(j1 * width + i0)], t11 = lightTables.iesTexels[base + uint(j1 * width + i1)];
     return mix(mix(t00, t10, wx), mix(t01, t11, wx), wy);
 }
 

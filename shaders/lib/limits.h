@@ -4,10 +4,10 @@
 #ifndef RG_LIMITS_H
 #define RG_LIMITS_H
 
-// The most lights a scene sends to the GPU: the Lights block's light array has a fixed size so that
-// the IES profiles follow it in the same block; the light tiles' global list and ShadowViews'
-// per-light table are sized by it too.
-#define RG_MAX_LIGHTS 1024
+// The most lights a scene may have: the light lists (lib/light_tiles.glsl) hold 16-bit light
+// indices. The Lights block and ShadowViews' per-light table are sized by the scene's own count;
+// the light tiles' global list (the lights that reach every pixel) by this.
+#define RG_MAX_LIGHTS 65536
 
 // The most shadow views of local lights a frame can have (lib/shadows.glsl's ShadowViews block):
 // a cube light takes six, a spot of outer angle ≤ 60° one.

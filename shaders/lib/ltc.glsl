@@ -22,8 +22,8 @@ void rgLtcLookup(float linearRoughness, float NdotV, out mat3 Minv, out vec2 alb
     ivec2 i0 = min(ivec2(t), ivec2(RG_LTC_SIZE - 2));
     vec2 w = t - vec2(i0);
     int k = 2 * (i0.y * RG_LTC_SIZE + i0.x), row = 2 * RG_LTC_SIZE;
-    vec4 m = mix(mix(lights.ltc[k], lights.ltc[k + 2], w.x), mix(lights.ltc[k + row], lights.ltc[k + row + 2], w.x), w.y);
-    vec4 a = mix(mix(lights.ltc[k + 1], lights.ltc[k + 3], w.x), mix(lights.ltc[k + row + 1], lights.ltc[k + row + 3], w.x), w.y);
+    vec4 m = mix(mix(lightTables.ltc[k], lightTables.ltc[k + 2], w.x), mix(lightTables.ltc[k + row], lightTables.ltc[k + row + 2], w.x), w.y);
+    vec4 a = mix(mix(lightTables.ltc[k + 1], lightTables.ltc[k + 3], w.x), mix(lightTables.ltc[k + row + 1], lightTables.ltc[k + row + 3], w.x), w.y);
     // [[a, 0, b], [0, 1, 0], [c, 0, d]] row-major; GLSL's mat3 takes columns.
     Minv = mat3(vec3(m.x, 0.0, m.z), vec3(0.0, 1.0, 0.0), vec3(m.y, 0.0, m.w));
     albedo = vec2(a.x - a.y, a.y);

@@ -54,7 +54,7 @@ struct RgShadowView {
 layout(set = RG_CAMERA_SET, binding = RG_SHADOW_VIEWS_BINDING, std430) readonly buffer ShadowViews {
     uvec4 count;                       // x: views this frame
     RgShadowView view[RG_MAX_SHADOW_VIEWS];
-    ivec4 lightViews[RG_MAX_LIGHTS];   // per light: first view (−1: none), how many
+    ivec4 lightViews[];  // per light of the scene: first view (−1: none), how many
 } rgShadowViews;
 
 // The distance along view v's axis of the depth `d` its map holds (the perspective depth, linearised).

@@ -1,7 +1,7 @@
 #version 460
 // The `lights` debug view: how many lights reach each 4x4 tile (scripts/lighting.lua's tile) (light_culling.comp's lists: the
 // global ones plus the tile's): black 0, then blue -> green -> yellow -> red at 32 and more;
-// magenta where more ranged lights reach the tile than its list holds. Pixels where nothing was drawn are dimmed.
+// magenta where more ranged lights reach the tile than its list holds, or a froxel over it lost some. Pixels where nothing was drawn are dimmed.
 #include "lib/lighting.glsl"
 
 layout(location = 0) in vec2 uv;
@@ -13,7 +13,7 @@ void main() {
     RgLightList list = rgLightList(p);
     uint total = list.global + rgTileLightTotal(p);  // the lights that reach every pixel + the tile's
     vec3 c;
-    if (total > list.count) {
+    if (total > list.count || rgTileIncomplete(p)) {
         c = vec3(1.0, 0.0, 1.0);
     } else {
         float t = clamp(float(total) / 32.0, 0.0, 1.0);

@@ -209,7 +209,7 @@ TEST_F(Lights, ConversionRefusesWhatTheShadersCannotTake) {
     r = passes::convertLights(many);
     ASSERT_FALSE(r.has_value());
     EXPECT_EQ(r.error().message,
-              "the scene has 1025 lights; the GPU light list holds at most 1024");
+              "the scene has 65537 lights; at most 65536 (the light lists' 16-bit indices)");
 }
 
 }  // namespace

@@ -363,12 +363,12 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // The environment filtering (scripts/ibl.lua, required by render_loop) comes first, then the
     // local probes' capture and filtering (scripts/probes.lua). Then the sun's cascades, its caster
     // culling, its maps' clears (without a sun) and the local lights' maps (scripts/shadows.lua), the
-    // G-buffer half with the passes inserted after it (light culling, screen-space AO's
+    // G-buffer half with the passes inserted after it (the light froxels' clear, screen-space AO's
     // half-resolution depths, each cascade's map drawn and filtered into the sun's mask at once, the
     // foliage fix-up, then the AO itself on the fixed-up normals: scripts/ao.lua), the Hi-Z
     // pyramid, SSR's mask and SSR (scripts/ssr.lua), the composition of SSR and the probes
     // (scripts/reflections.lua), the lighting, the sky and forward.
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 52),
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 54),
               (std::vector<std::string>{"env_cube",
                                         "env_mips",
                                         "env_irradiance",
@@ -386,7 +386,7 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
                                         "shadow_clear2",
                                         "shadow_local",
                                         "gbuffer",
-                                        "light_culling_coarse",
+                                        "light_froxels_clear",
                                         "ao_depth",
                                         "sun_visibility_clear",
                                         "sun_classify",
@@ -405,6 +405,8 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
                                         "gtao",
                                         "ao_blur",
                                         "ao_upsample",
+                                        "light_froxels",
+                                        "light_froxels_sort",
                                         "light_culling",
                                         "decals_copy0",
                                         "decals_copy1",

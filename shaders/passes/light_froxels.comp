@@ -1,0 +1,131 @@
+#version 460
+// The froxel grid of light culling (clustered shading; scripts/lighting.lua): columns of
+// RG_COARSE_TILE_SIZE² pixels, each cut into RG_FROXEL_SLICES slices of view distance
+// (lib/light_tiles.glsl's rgFroxelSlice). Two passes, built from this file:
+//
+//   `light_froxels` (the default): one invocation per light, striding over the scene's lights (the
+//   pass dispatches a fixed number of work groups). A ranged light's sphere of influence — the
+//   range of lst:4's window, which also ends area lights (lighting.glsl rgRangeWindow) — bounds
+//   a rectangle of columns (its view-space box projected) and a run of slices (its depth ± range);
+//   the light goes into the list of every froxel there whose view-space box it meets. Lists grow
+//   by an atomic count, so their order is the order the lights arrived in.
+//   `light_froxels_sort` (RG_FROXEL_SORT): one invocation per column (the pass dispatches over
+//   the depth in columns) sorts each of its froxels'
+//   lists into ascending light order, so that every list — and every sum over one — is the same
+//   from run to run.
+//
+// The cost is lights × the froxels each one covers, not froxels × lights: a scene of many small
+// lights costs about what a few large ones do (the fine tiles, shaders/passes/light_culling.comp,
+// then read only the froxels their surfaces' depths span). Lights that reach every pixel (the sun,
+// lights without a range) are in the scene's global list instead.
+//
+// Layouts: light_froxel_counts: per froxel (column-major: ((y · columns x) + x) · slices + slice)
+// how many lights reach it (cleared each frame by the `light_froxels_clear` pass); light_froxels:
+// per froxel `stride` words, two 16-bit light indices each, the lower half first. A froxel reached
+// by more lights than its list holds keeps the first that arrived: its count says so, and the tiles
+// under it are marked (the `lights` view shows them magenta). No invocation ever walks every light:
+// lavapipe ends a shader's loops after 65 535 iterations in all, so a loop over 65 536 lights
+// would stop short without a word.
+#define RG_LIGHT_TILES_WRITER
+#include "lib/scene.glsl"
+#include "lib/light_tiles.glsl"
+
+layout(local_size_x = 64) in;
+layout(set = 0, binding = 0) uniform sampler2D depth;  // its size is the frame's
+layout(set = 0, binding = 1, std430) buffer light_froxel_counts { uint count[]; } counts;
+layout(set = 0, binding = 2, std430) buffer light_froxels { uint data[]; } froxels;
+
+#ifdef RG_FROXEL_SORT
+uint entry(uint base, uint k) { return (froxels.data[base + (k >> 1u)] >> ((k & 1u) * 16u)) & 0xFFFFu; }
+void setEntry(uint base, uint k, uint v) {
+    uint word = froxels.data[base + (k >> 1u)];
+    uint shift = (k & 1u) * 16u;
+    froxels.data[base + (k >> 1u)] = (word & ~(0xFFFFu << shift)) | (v << shift);
+}
+#endif
+
+void main() {
+    const uvec2 size = uvec2(textureSize(depth, 0));
+    const uvec2 columns = (size + uvec2(RG_COARSE_TILE_SIZE - 1)) / uvec2(RG_COARSE_TILE_SIZE);
+    const uint froxelCount = columns.x * columns.y * uint(RG_FROXEL_SLICES);
+    const uint stride = uint(froxels.data.length()) / froxelCount;
+    const uint capacity = 2u * stride;
+    if (stride == 0u) return;  // a buffer declared for a smaller frame: no lists
+#ifdef RG_FROXEL_SORT
+    // Insertion sort: the lists are short (tens of lights) and mostly in order already (each
+    // invocation of the binning pass takes lights in ascending order). One froxel per invocation
+    // as far as the dispatch goes: lavapipe ends a shader's loops after 65 535 iterations in all
+    // (DESIGN §8), and a reversed list of 254 takes 32 000.
+    const uint invocations = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
+    for (uint f = gl_GlobalInvocationID.x; f < froxelCount; f += invocations) {
+        const uint n = min(counts.count[f], capacity), base = f * stride;
+        for (uint k = 1u; k < n; ++k) {
+            const uint v = entry(base, k);
+            uint j = k;
+            for (; j > 0u && entry(base, j - 1u) > v; --j) setEntry(base, j, entry(base, j - 1u));
+            if (j != k) setEntry(base, j, v);
+        }
+    }
+#else
+    const RgFroxelRange range = rgFroxelRange();
+    const bool ortho = rgCameraOrthographic();
+    const uint invocations = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
+    for (uint i = gl_GlobalInvocationID.x; i < lights.count.x; i += invocations) {
+        const RgLight light = lights.light[i];
+        if (rgReachesEverything(light)) continue;  // in the global list
+        const vec3 c = (camera.view * vec4(light.positionType.xyz, 1.0)).xyz;
+        const float r = inversesqrt(light.directionRange.w);
+        const float dMin = -c.z - r, dMax = -c.z + r;
+        if (dMax < range.near) continue;  // wholly in front of the near plane
+        const uint s0 = rgFroxelSlice(range, max(dMin, range.near)), s1 = rgFroxelSlice(range, dMax);
+        // The columns its view-space box covers on screen: the whole screen when the box
+        // crosses a perspective camera's near plane.
+        vec2 lo = vec2(-1.0), hi = vec2(1.0);
+        if (ortho || dMin > range.near) {
+            lo = vec2(1e30);
+            hi = vec2(-1e30);
+            for (int k = 0; k < 8; ++k) {
+                vec3 corner = c + r * vec3((k & 1) != 0 ? 1.0 : -1.0, (k & 2) != 0 ? 1.0 : -1.0, (k & 4) != 0 ? 1.0 : -1.0);
+                vec4 clip = camera.proj * vec4(corner, 1.0);
+                vec2 ndc = clip.xy / clip.w;
+                lo = min(lo, ndc);
+                hi = max(hi, ndc);
+            }
+        }
+        if (any(greaterThan(lo, vec2(1.0))) || any(lessThan(hi, vec2(-1.0)))) continue;  // off screen
+        const ivec2 c0 = clamp(ivec2(floor((lo * 0.5 + 0.5) * vec2(size) / float(RG_COARSE_TILE_SIZE))), ivec2(0), ivec2(columns) - 1);
+        const ivec2 c1 = clamp(ivec2(floor((hi * 0.5 + 0.5) * vec2(size) / float(RG_COARSE_TILE_SIZE))), ivec2(0), ivec2(columns) - 1);
+        for (int y = c0.y; y <= c1.y; ++y)
+            for (int x = c0.x; x <= c1.x; ++x) {
+                // The column's four corner rays, in normalised screen coordinates.
+                const vec2 a = vec2(ivec2(x, y) * RG_COARSE_TILE_SIZE) / vec2(size) * 2.0 - 1.0;
+                const vec2 b = min(vec2(ivec2(x + 1, y + 1) * RG_COARSE_TILE_SIZE) / vec2(size), vec2(1.0)) * 2.0 - 1.0;
+                float d0 = rgFroxelSliceStart(range, s0);
+                for (uint s = s0; s <= s1; ++s) {
+                    // The froxel's view-space box: its 8 corners. The last slice also holds what
+                    // lies past the scene's far end: there it reaches as far as the light does.
+                    const float d1 = rgFroxelSliceStart(range, s + 1u);
+                    const float near = d0, far = s == uint(RG_FROXEL_SLICES - 1) ? max(d1, dMax) : d1;
+                    vec3 boxMin = vec3(1e30), boxMax = vec3(-1e30);
+                    for (int k = 0; k < 8; ++k) {
+                        vec3 v = rgViewPointAt(vec2((k & 1) != 0 ? b.x : a.x, (k & 2) != 0 ? b.y : a.y), (k & 4) != 0 ? far : near);
+                        boxMin = min(boxMin, v);
+                        boxMax = max(boxMax, v);
+                    }
+                    d0 = d1;
+                    const vec3 outside = max(max(boxMin - c, c - boxMax), vec3(0.0));
+                    if (dot(outside, outside) * light.directionRange.w >= 1.0) continue;  // beyond its range
+                    const uint f = (uint(y) * columns.x + uint(x)) * uint(RG_FROXEL_SLICES) + s;
+                    const uint n = atomicAdd(counts.count[f], 1u);
+                    if (n < capacity) {
+                        // Two lights share a word: each clears and sets its own half (disjoint
+                        // bits, so the two lanes' atomics commute), whatever the word held.
+                        const uint word = f * stride + (n >> 1u), shift = (n & 1u) * 16u;
+                        atomicAnd(froxels.data[word], ~(0xFFFFu << shift));
+                        atomicOr(froxels.data[word], i << shift);
+                    }
+                }
+            }
+    }
+#endif
+}
