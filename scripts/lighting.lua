@@ -57,7 +57,7 @@ rg.param "light_shapes" { type = "boolean", default = true,
 
 local froxel_defines = { RG_COARSE_TILE_SIZE = lighting.coarse_tile, RG_FROXEL_SLICES = lighting.froxel_slices }
 rg.buffer "light_froxel_counts" {
-    size = 4, tile = lighting.coarse_tile, tile_bytes = 4 * lighting.froxel_slices,
+    size = 16, tile = lighting.coarse_tile, tile_bytes = 4 * lighting.froxel_slices,
     doc = "per froxel (32x32-pixel column, slice of view distance) how many ranged lights reach it",
 }
 rg.buffer "light_froxels" {
@@ -115,6 +115,13 @@ end
 function lighting.frame(ctx)
     if not ctx.scene then return end
     for _, p in ipairs(lighting.class_passes) do ctx.pass(p.pass).auto_enabled = (ctx.scene.classes[p.class] or 0) > 0 end
+end
+
+-- A pass that lights surfaces the G-buffer does not hold (forward: blended surfaces), reading the
+-- froxel grid at each fragment's depth: adds the froxel buffers to its reads and RG_LIGHT_FROXELS to
+-- its defines. Returns the table it was given.
+function lighting.clustered(pass)
+    return lighting.extend(pass, { { "light_froxel_counts", as = "storage" }, { "light_froxels", as = "storage" } }, "RG_LIGHT_FROXELS")
 end
 
 -- A lighting pass's declaration, reading the tile lists: adds `light_tiles` to its reads and

@@ -61,18 +61,18 @@ rg.pass "decals" {
 
 -- After the lighting: the sky (the scene's environment, lib/environment.glsl) where nothing was drawn (depth still at the far plane; "equal" would
 -- depend on the rasteriser reproducing 1.0 exactly, less_equal against the cleared 1.0 does not),
--- then the blended materials, lit directly with the same light loop, over the lit HDR (back to
--- front). Returns the forward pass's name.
+-- then the blended materials, lit directly with the same light loop over their froxels' lights
+-- (lighting.clustered), over the lit HDR (back to front). Returns the forward pass's name.
 function loop.sky_and_forward()
     rg.pass "sky" {
         kind = "fullscreen", shader = "passes/sky.frag",
         reads = { { "depth", as = "depth" }, { "exposure", as = "uniform" } }, writes = { { "hdr", load = true } },
         depth = { compare = "less_equal", value = 1 },
     }
-    rg.pass "forward" (shadows.lit(probes.lit(ibl.lit {
+    rg.pass "forward" (lighting.clustered(shadows.lit(probes.lit(ibl.lit {
         kind = "scene", forward = true,
         reads = { { "depth", as = "depth" }, { "exposure", as = "uniform" } }, writes = { { "hdr", load = true } },
-    })))
+    }))))
     loop.forward_pass = "forward"
     return "forward"
 end

@@ -53,6 +53,13 @@ for k = 0, count - 1 do
   }
 end
 
+-- --scene-arg glass=1: a blended pane over the near half of the floor, lit in the forward pass
+-- from the froxels' lists (scripts/lighting.lua's lighting.clustered).
+if (scene.args.glass or 0) ~= 0 then
+  scene.material "glass" { base_color = { 0.9, 0.95, 1.0 }, smoothness = 0.9, alpha = "blend", opacity = 0.4, double_sided = true }
+  scene.box "pane" { size = { 14, 0.02, 6 }, position = { 0, 0.12, 4 }, material = "glass" }
+end
+
 scene.camera "main" {
   position = { 0, 11, 13 }, target = { 0, 0, 0.5 }, fov = 55,
   aperture = 4, shutter = 1 / 60, iso = 800,

@@ -4,8 +4,9 @@
 //     for (uint k = 0u; k < list.count; ++k) { uint i = rgListLight(list, k); ... }
 // With RG_LIGHT_TILES defined (the pass's `defines`, and `{ "light_tiles", as = "storage" }` in its
 // reads) that is the lights that reach every pixel (the sun, lights without a range) followed by
-// the pixel's tile's ranged lights; without, every light of the scene — so one shader works with
-// and without culling.
+// the pixel's tile's ranged lights (RG_GLOBAL_LIGHTS alone declares the first list); with RG_LIGHT_FROXELS (a forward pass: `lighting.clustered`),
+// those of the fragment's froxel; without either, every light of the scene — so one shader works
+// with and without culling.
 #ifndef RG_LIGHT_TILES_GLSL
 #define RG_LIGHT_TILES_GLSL
 
@@ -34,7 +35,7 @@
 #ifndef RG_GLOBAL_LIGHTS_BINDING
 #define RG_GLOBAL_LIGHTS_BINDING 37
 #endif
-#if defined(RG_LIGHT_TILES) || defined(RG_LIGHT_TILES_WRITER)
+#if defined(RG_LIGHT_TILES) || defined(RG_LIGHT_FROXELS) || defined(RG_LIGHT_TILES_WRITER) || defined(RG_GLOBAL_LIGHTS)
 layout(set = RG_CAMERA_SET, binding = RG_GLOBAL_LIGHTS_BINDING, std430) readonly buffer GlobalLights {
     uvec4 count;   // x: how many
     uint light[];  // their indices, ascending
@@ -128,6 +129,33 @@ uint rgListLight(RgLightList list, uint k) {
     if (k < list.global) return globalLights.light[k];
     uint j = k - list.global;
     return (lightTiles.data[list.base + (j >> 1u)] >> ((j & 1u) * 16u)) & 0xFFFFu;
+}
+#elif defined(RG_LIGHT_FROXELS) && !defined(RG_LIGHT_TILES_WRITER)
+// A pass without a depth buffer of its own surfaces (forward: blended surfaces over the opaque
+// ones) reads the froxel grid instead, at its fragment's own depth: the lights that reach every
+// pixel, then those of the fragment's froxel (ascending, 16 bits each). A fragment-shader reader.
+#ifndef RG_LIGHT_FROXELS_BINDING
+#define RG_LIGHT_FROXELS_BINDING 38
+#endif
+layout(set = 0, binding = RG_LIGHT_FROXELS_BINDING, std430) readonly buffer light_froxel_counts {
+    uvec4 header;  // columns x, columns y, slices, stride (words per froxel)
+    uint count[];
+} froxelCounts;
+layout(set = 0, binding = RG_LIGHT_FROXELS_BINDING + 1, std430) readonly buffer light_froxels { uint data[]; } froxelLists;
+
+RgLightList rgLightList(ivec2 pixel) {
+    uint global = globalLights.count.x;
+    uvec4 h = froxelCounts.header;
+    if (h.w == 0u || h.z != uint(RG_FROXEL_SLICES)) return RgLightList(0u, global, global);  // no lists
+    uvec2 column = min(uvec2(pixel) / uint(RG_COARSE_TILE_SIZE), h.xy - 1u);
+    uint slice = rgFroxelSlice(rgFroxelRange(), rgViewDistance(gl_FragCoord.z));
+    uint f = (column.y * h.x + column.x) * h.z + slice;
+    return RgLightList(f * h.w, global + min(froxelCounts.count[f], 2u * h.w), global);
+}
+uint rgListLight(RgLightList list, uint k) {
+    if (k < list.global) return globalLights.light[k];
+    uint j = k - list.global;
+    return (froxelLists.data[list.base + (j >> 1u)] >> ((j & 1u) * 16u)) & 0xFFFFu;
 }
 #elif !defined(RG_LIGHT_TILES_WRITER)
 RgLightList rgLightList(ivec2 pixel) { return RgLightList(0u, lights.count.x, 0u); }

@@ -37,7 +37,10 @@ layout(set = 0, binding = 1, std430) writeonly buffer light_tiles {
     uvec4 header;
     uint data[];
 } tiles;
-layout(set = 0, binding = 2, std430) readonly buffer light_froxel_counts { uint count[]; } froxelCounts;
+layout(set = 0, binding = 2, std430) readonly buffer light_froxel_counts {
+    uvec4 header;  // columns x, columns y, slices, stride (light_froxels.comp)
+    uint count[];
+} froxelCounts;
 layout(set = 0, binding = 3, std430) readonly buffer light_froxels { uint data[]; } froxels;
 
 void main() {
@@ -82,7 +85,7 @@ void main() {
         // The froxels of the tile's column its depths span, and how much each list holds.
         const uvec2 columns = (uvec2(size) + uvec2(RG_COARSE_TILE_SIZE - 1)) / uvec2(RG_COARSE_TILE_SIZE);
         const uvec2 column = t * uvec2(RG_TILE_SIZE) / uvec2(RG_COARSE_TILE_SIZE);
-        const uint froxelStride = uint(froxels.data.length()) / (columns.x * columns.y * uint(RG_FROXEL_SLICES));
+        const uint froxelStride = froxelCounts.header.w;
         const RgFroxelRange range = rgFroxelRange();
         const float dA = rgViewDistance(minDepth), dB = rgViewDistance(maxDepth);
         const uint s0 = rgFroxelSlice(range, min(dA, dB)), s1 = rgFroxelSlice(range, max(dA, dB));

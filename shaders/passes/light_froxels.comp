@@ -19,8 +19,8 @@
 // then read only the froxels their surfaces' depths span). Lights that reach every pixel (the sun,
 // lights without a range) are in the scene's global list instead.
 //
-// Layouts: light_froxel_counts: per froxel (column-major: ((y · columns x) + x) · slices + slice)
-// how many lights reach it (cleared each frame by the `light_froxels_clear` pass); light_froxels:
+// Layouts: light_froxel_counts: a header (columns x, columns y, slices, stride), then per froxel
+// (((y · columns x) + x) · slices + slice) how many lights reach it (cleared each frame by the `light_froxels_clear` pass); light_froxels:
 // per froxel `stride` words, two 16-bit light indices each, the lower half first. A froxel reached
 // by more lights than its list holds keeps the first that arrived: its count says so, and the tiles
 // under it are marked (the `lights` view shows them magenta). No invocation ever walks every light:
@@ -32,7 +32,10 @@
 
 layout(local_size_x = 64) in;
 layout(set = 0, binding = 0) uniform sampler2D depth;  // its size is the frame's
-layout(set = 0, binding = 1, std430) buffer light_froxel_counts { uint count[]; } counts;
+layout(set = 0, binding = 1, std430) buffer light_froxel_counts {
+    uvec4 header;  // columns x, columns y, slices, stride (words per froxel): for readers
+    uint count[];
+} counts;
 layout(set = 0, binding = 2, std430) buffer light_froxels { uint data[]; } froxels;
 
 #ifdef RG_FROXEL_SORT
@@ -48,8 +51,12 @@ void main() {
     const uvec2 size = uvec2(textureSize(depth, 0));
     const uvec2 columns = (size + uvec2(RG_COARSE_TILE_SIZE - 1)) / uvec2(RG_COARSE_TILE_SIZE);
     const uint froxelCount = columns.x * columns.y * uint(RG_FROXEL_SLICES);
-    const uint stride = uint(froxels.data.length()) / froxelCount;
+    // Buffers declared for a smaller frame than the depth's: no lists (stride 0).
+    const uint stride = uint(counts.count.length()) >= froxelCount ? uint(froxels.data.length()) / froxelCount : 0u;
     const uint capacity = 2u * stride;
+#ifndef RG_FROXEL_SORT
+    if (gl_GlobalInvocationID.x == 0u) counts.header = uvec4(columns, uint(RG_FROXEL_SLICES), stride);
+#endif
     if (stride == 0u) return;  // a buffer declared for a smaller frame: no lists
 #ifdef RG_FROXEL_SORT
     // Insertion sort: the lists are short (tens of lights) and mostly in order already (each

@@ -10,6 +10,8 @@
 // One invocation; RG_CASCADES (1..4) and RG_SHADOW_SIZE (texels) come from scripts/shadows.lua.
 #include "lib/scene.glsl"
 #include "lib/shadows.glsl"
+#define RG_GLOBAL_LIGHTS  // the scene's GlobalLights list: the sun is among the few lights there
+#include "lib/light_tiles.glsl"
 
 layout(local_size_x = 1) in;
 layout(set = 0, binding = 0, std430) writeonly buffer sun_cascades { RgCascades c; } out_;
@@ -30,8 +32,8 @@ void main() {
     r.info = vec4(0.0, 0.0, float(RG_SHADOW_SIZE), 0.0);
     r.bias = vec4(params.shadow_depth_bias, params.shadow_normal_offset, params.shadow_softness, float(RG_SUN_PCF_TAPS));
     int sun = -1;
-    for (uint i = 0u; i < lights.count.x; ++i)
-        if (int(lights.light[i].positionType.w + 0.5) == RG_LIGHT_SUN) { sun = int(i); break; }
+    for (uint k = 0u; k < globalLights.count.x; ++k)
+        if (int(lights.light[globalLights.light[k]].positionType.w + 0.5) == RG_LIGHT_SUN) { sun = int(globalLights.light[k]); break; }
     if (sun < 0) { out_.c = r; return; }
     RgLight light = lights.light[sun];
     vec3 f = normalize(light.directionRange.xyz);  // the way the light travels

@@ -27,7 +27,7 @@ struct TiledFrame {
     std::vector<uint32_t> tiles;  // light_tiles, when tiled
 };
 TiledFrame renderManyLights(Runtime& rt, uint32_t lights, bool tiled, uint32_t w, uint32_t h,
-                            bool ranged = true) {
+                            bool ranged = true, bool glass = false) {
     std::string pipeline = kRoot + "/scripts/pipelines/deferred.lua";
     if (!tiled) {
         const std::string dir = std::string(RG_TEST_TMP) + "/untiled";
@@ -42,6 +42,13 @@ TiledFrame renderManyLights(Runtime& rt, uint32_t lights, bool tiled, uint32_t w
         const size_t at = module.find(tiledBody);
         EXPECT_NE(at, std::string::npos) << "scripts/lighting.lua: lighting.tiled changed";
         if (at != std::string::npos) module.replace(at, tiledBody.size(), "return pass");
+        // And lighting.clustered (the forward pass's froxel lists) too.
+        const std::string clusteredBody =
+            "return lighting.extend(pass, { { \"light_froxel_counts\", as = \"storage\" }, { "
+            "\"light_froxels\", as = \"storage\" } }, \"RG_LIGHT_FROXELS\")";
+        const size_t c = module.find(clusteredBody);
+        EXPECT_NE(c, std::string::npos) << "scripts/lighting.lua: lighting.clustered changed";
+        if (c != std::string::npos) module.replace(c, clusteredBody.size(), "return pass");
         std::ofstream(dir + "/lighting.lua") << module;
         pipeline = dir + "/deferred.lua";
     }
@@ -51,6 +58,7 @@ TiledFrame renderManyLights(Runtime& rt, uint32_t lights, bool tiled, uint32_t w
     o.scene = kRoot + "/scripts/scenes/many_lights.lua";
     o.sceneArgs["lights"] = std::to_string(lights);
     o.sceneArgs["ranged"] = ranged ? "1" : "0";
+    o.sceneArgs["glass"] = glass ? "1" : "0";
     o.params["exposure_mode"] = Value("manual");
     if (tiled) o.captures = {"light_tiles"};
     Session s(rt, o);
@@ -62,6 +70,9 @@ TiledFrame renderManyLights(Runtime& rt, uint32_t lights, bool tiled, uint32_t w
     const bool culls = std::any_of(planned.begin(), planned.end(),
                                    [](const auto& p) { return p.name == "light_culling"; });
     EXPECT_EQ(culls, tiled);
+    const bool bins = std::any_of(planned.begin(), planned.end(),
+                                  [](const auto& p) { return p.name == "light_froxels"; });
+    EXPECT_EQ(bins, tiled);
     auto fr = s.frame();
     EXPECT_TRUE(fr.has_value()) << fr.error().describe();
     auto hdr = rt.executor().readback("hdr");
@@ -82,14 +93,15 @@ TEST_F(Lights, TileCullingChangesNoPixel) {
     // A light left out of a tile's list is one whose range window is zero at every surface of the
     // tile, and the lists keep the scene's order: the culled image is the unculled one, bit for bit.
     // 300 lights without a range reach every pixel: listed once, globally, not per tile (a tile
-    // list holds 255), so none is lost.
+    // list holds 62), so none is lost. A blended pane is lit in the forward pass from its
+    // fragments' froxels (lighting.clustered), in the same order.
     const struct {
         uint32_t n;
-        bool ranged;
-    } cases[] = {{16u, true}, {256u, true}, {4096u, true}, {300u, false}};
-    for (const auto& [n, ranged] : cases) {
-        TiledFrame culled = renderManyLights(rt(), n, true, 200, 120, ranged);
-        TiledFrame all = renderManyLights(rt(), n, false, 200, 120, ranged);
+        bool ranged, glass;
+    } cases[] = {{16u, true, false}, {256u, true, true}, {4096u, true, true}, {300u, false, false}};
+    for (const auto& [n, ranged, glass] : cases) {
+        TiledFrame culled = renderManyLights(rt(), n, true, 200, 120, ranged, glass);
+        TiledFrame all = renderManyLights(rt(), n, false, 200, 120, ranged, glass);
         ASSERT_EQ(culled.hdr.pixels.size(), all.hdr.pixels.size());
         size_t differ = 0;
         double sum = 0;
@@ -97,8 +109,9 @@ TEST_F(Lights, TileCullingChangesNoPixel) {
             differ += culled.hdr.pixels[i] != all.hdr.pixels[i];
             sum += all.hdr.pixels[i];
         }
-        std::printf("%u %s lights: %zu of %zu values differ\n", n, ranged ? "ranged" : "unranged",
-                    differ, all.hdr.pixels.size());
+        std::printf("%u %s lights%s: %zu of %zu values differ\n", n, ranged ? "ranged" : "unranged",
+                    glass ? " (a blended pane lit in the forward pass)" : "", differ,
+                    all.hdr.pixels.size());
         EXPECT_EQ(differ, 0u) << n << " lights";
         EXPECT_GT(sum, 0.0);
     }
