@@ -10,6 +10,8 @@
 #   levels of detail  scripts/scenes/field.lua (1000 dense spheres) at the default size, with its
 #                   levels of detail and with every mesh in full (RG_LOD=0): gbuffer, the sun's
 #                   maps and the frame
+#   city            scripts/scenes/city.lua with 10 000 nodes at the default size: gbuffer, the
+#                   sun's maps, CPU recording and the frame, against the default frame
 #   compile         a generated 200-pass pipeline (a chain of compute passes): graph compile time
 #   start-up        wall time of `rgraph render --frames 1` of the default scene, cold (empty
 #                   caches) and warm (the run after it): process start to the image written, and
@@ -36,8 +38,8 @@ while [ $# -gt 0 ]; do
 done
 [ -x "$rgraph" ] || { echo "tools/bench.sh: no rgraph at $rgraph (run tools/setup.sh)" >&2; exit 2; }
 mkdir -p "$out"
-size=1280x720 lights_size=640x360 counts="16 64 256 1024 4096 16384 65536" objects=1000
-if [ $quick = 1 ]; then size=96x64 lights_size=64x48 frames=2 counts="16 64" objects=20; fi
+size=1280x720 lights_size=640x360 counts="16 64 256 1024 4096 16384 65536" objects=1000 nodes=10000
+if [ $quick = 1 ]; then size=96x64 lights_size=64x48 frames=2 counts="16 64" objects=20 nodes=200; fi
 
 now_ms() { date +%s%3N; }
 step() { echo "tools/bench.sh: $*" >&2; }
@@ -56,6 +58,10 @@ for lod in 1 0; do
     RG_LOD=$lod "$rgraph" bench --scene "$root/scripts/scenes/field.lua" --scene-arg objects="$objects" --size "$size" \
         --frames "$frames" --json "$out/field_lod$lod.json" >"$out/field_lod$lod.txt"
 done
+
+step "city: $nodes nodes at $size"
+"$rgraph" bench --scene "$root/scripts/scenes/city.lua" --scene-arg nodes="$nodes" --size "$size" \
+    --frames "$frames" --json "$out/city.json" >"$out/city.txt"
 
 step "compile: a generated 200-pass pipeline"
 {
@@ -79,7 +85,7 @@ rm -rf "$cache"
 first=$(sed -n 's/.*timings: device \([0-9]*\) ms, pipeline and scene load \([0-9]*\) ms, 1 frame \([0-9]*\) ms.*/\1 \2 \3/p' "$out/startup_warm.txt" | awk '{print $1 + $2 + $3}')
 echo "{\"coldMs\": $((t1 - t0)), \"warmMs\": $((t2 - t1)), \"warmFirstFrameMs\": ${first:-0}}" >"$out/startup.json"
 
-python3 - "$out" "$counts" <<'EOF'
+python3 - "$out" "$counts" "$nodes" <<'EOF'
 import json, sys
 out, counts = sys.argv[1], [int(c) for c in sys.argv[2].split()]
 load = lambda name: json.load(open(f"{out}/{name}"))
@@ -87,6 +93,7 @@ default = load("default.json")
 lights = {n: load(f"lights_{n}.json") for n in counts}
 compile_ = load("compile.json")
 field = {lod: load(f"field_lod{lod}.json") for lod in (1, 0)}
+city = load("city.json")
 def passes(b, *names):
     p = {x["name"]: x["medianMs"] for x in b["passes"]}
     return sum(v for k, v in p.items() if any(k.startswith(n) for n in names))
@@ -103,6 +110,9 @@ suite = {
     "levelsOfDetail": {("lod" if lod else "full"): {"gbufferMs": passes(field[lod], "gbuffer"),
                                                    "sunMapsMs": passes(field[lod], "shadow_sun"),
                                                    "frameMs": field[lod]["frameTotalMs"]["median"]} for lod in (1, 0)},
+    "city": {"nodes": int(sys.argv[3]), "gbufferMs": passes(city, "gbuffer"), "sunMapsMs": passes(city, "shadow_sun"),
+             "frameMs": city["frameTotalMs"]["median"], "cpuRecordMs": city["cpuRecordMs"]["median"],
+             "ratioToDefault": city["frameTotalMs"]["median"] / max(default["frameTotalMs"]["median"], 1e-9)},
     "compile200Ms": compile_["compileMs"],
     "startupMs": startup,
 }
@@ -127,6 +137,9 @@ md += ["", "| field of dense spheres | gbuffer ms | sun's maps ms | frame ms |",
 for lod, label in ((1, "levels of detail"), (0, "full meshes (RG_LOD=0)")):
     d = suite["levelsOfDetail"]["lod" if lod else "full"]
     md.append(f"| {label} | {d['gbufferMs']:.2f} | {d['sunMapsMs']:.2f} | {d['frameMs']:.2f} |")
+c = suite["city"]
+md += ["", f"City of {c['nodes']} nodes: frame {c['frameMs']:.1f} ms ({c['ratioToDefault']:.2f}x the default frame), "
+       f"gbuffer {c['gbufferMs']:.1f} ms, the sun's maps {c['sunMapsMs']:.1f} ms, CPU recording {c['cpuRecordMs']:.1f} ms"]
 md += ["", f"200-pass graph compile: {compile_['compileMs']:.3f} ms",
        f"Start-up to the first image written: cold {startup['coldMs']} ms, warm {startup['warmMs']} ms "
        f"(warm, to the first frame done: {startup['warmFirstFrameMs']} ms)",

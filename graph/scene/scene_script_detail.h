@@ -82,6 +82,9 @@ struct Builder {
     size_t generatedVertices =
         0;  // budget for sphere/plane/box meshes (a script is a loop away from millions)
     static constexpr size_t kMaxGeneratedVertices = size_t(1) << 24;
+    // Generated meshes by what made them (kind, dimensions, segments, material): nodes declared
+    // alike share one mesh — uploaded, simplified and counted against the budget once.
+    std::map<std::string, int32_t> generatedMeshes;
 
     // ---- files and transforms (scene_script.cpp) ---------------------------------------------
 

@@ -1,6 +1,7 @@
 // scene.material, scene.sphere/plane/box, scene.gltf and scene.decal -> the Scene's materials,
 // meshes, nodes and decals (a glTF file's scene merged in, placed and renamed).
 #include <algorithm>
+#include <functional>
 
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -148,7 +149,9 @@ Result<void> Builder::object(const Declaration& d) {
     RG_TRY(world, transform(w, b));
     uint32_t material = 0;
     RG_TRY(material, materialRef(w, b));
-    Primitive p;
+    // What the mesh is made from, and the mesh itself once made (shared by nodes declared alike).
+    std::string key;
+    std::function<Primitive()> make;
     if (d.kind == DeclKind::Sphere) {
         float radius = 0.5f;
         double segments = 48;
@@ -156,31 +159,41 @@ Result<void> Builder::object(const Declaration& d) {
         Range seg = Range::closed(3, 1024);
         seg.integer = true;
         RG_TRY(segments, number(w, b, "segments", segments, seg));
-        const auto s = static_cast<size_t>(segments);
-        if (generatedVertices + (s + 1) * (std::max<size_t>(s / 2, 2) + 1) > kMaxGeneratedVertices)
-            return w.error("the scene's generated meshes would have more than " +
-                           std::to_string(kMaxGeneratedVertices) + " vertices");
-        p = makeSphere(radius, static_cast<uint32_t>(segments), material);
+        key = "sphere " + std::to_string(radius) + " " + std::to_string(segments);
+        make = [=] { return makeSphere(radius, static_cast<uint32_t>(segments), material); };
     } else if (d.kind == DeclKind::Plane) {
         std::vector<float> size = {10.0f, 10.0f};
         if (b.has("size"))
             RG_TRY(size, numbers(w.at("size"), b["size"], 2, "{width, depth} in metres",
                                  Range::positive()));
-        p = makePlane(size[0], size[1], material);
+        key = "plane " + std::to_string(size[0]) + " " + std::to_string(size[1]);
+        make = [=] { return makePlane(size[0], size[1], material); };
     } else {
         glm::vec3 size(1.0f);
         RG_TRY(size, vec3(w, b, "size", size, "{x, y, z} in metres", Range::positive()));
-        p = makeBox(size, material);
+        key = "box " + std::to_string(size.x) + " " + std::to_string(size.y) + " " +
+              std::to_string(size.z);
+        make = [=] { return makeBox(size, material); };
     }
+    key += " material " + std::to_string(material);
     bool castShadows = true;
     RG_TRY(castShadows, boolean(w, b, "cast_shadows", true));
-    generatedVertices += p.vertices.size();
-    Mesh mesh;
-    mesh.name = d.name;
-    mesh.primitives.push_back(std::move(p));
-    scene.nodes.push_back({d.name, world, static_cast<int32_t>(scene.meshes.size())});
+    auto [at, made] = generatedMeshes.emplace(key, static_cast<int32_t>(scene.meshes.size()));
+    if (made) {
+        Primitive p = make();
+        if (generatedVertices + p.vertices.size() > kMaxGeneratedVertices) {
+            generatedMeshes.erase(at);
+            return w.error("the scene's generated meshes would have more than " +
+                           std::to_string(kMaxGeneratedVertices) + " vertices");
+        }
+        generatedVertices += p.vertices.size();
+        Mesh mesh;
+        mesh.name = d.name;
+        mesh.primitives.push_back(std::move(p));
+        scene.meshes.push_back(std::move(mesh));
+    }
+    scene.nodes.push_back({d.name, world, at->second});
     scene.nodes.back().castShadows = castShadows;
-    scene.meshes.push_back(std::move(mesh));
     return {};
 }
 

@@ -56,11 +56,13 @@ for gz = 0, side - 1 do
         local w, d = 6 + 3 * random(), 6 + 3 * random()
         -- Mostly low blocks, a few towers: height 6 m to 80 m, skewed low.
         local h = 6 + 74 * random() ^ 4
-        scene.box(name) { size = { w, h, d }, position = { x, h / 2, z }, rotation = { 0, 10 * (random() - 0.5), 0 },
+        -- One unit box scaled (and one sphere below): every building shares a mesh, as a city's
+        -- instanced props would.
+        scene.box(name) { scale = { w, h, d }, position = { x, h / 2, z }, rotation = { 0, 10 * (random() - 0.5), 0 },
           material = "facade" .. math.floor(random() * materials) }
       else
         local r = 1.5 + random()
-        scene.sphere(name) { radius = r, segments = 24, position = { x, r + 0.5, z }, material = "leaves" }
+        scene.sphere(name) { radius = 1, scale = r, segments = 24, position = { x, r + 0.5, z }, material = "leaves" }
       end
       placed = placed + 1
     end
