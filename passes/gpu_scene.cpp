@@ -69,6 +69,9 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(Context& ctx, Scene scene,
     if (s->m_scene.materials.empty()) s->m_scene.materials.push_back(Material{});
     const char* lodEnv = std::getenv("RG_LOD");
     s->m_levelsOfDetail = options.levelsOfDetail && !(lodEnv && std::string_view(lodEnv) == "0");
+    // RG_INSTANCING=0: every camera draw on its own (to compare: the image is the same).
+    const char* instancingEnv = std::getenv("RG_INSTANCING");
+    s->m_instancing = !(instancingEnv && std::string_view(instancingEnv) == "0");
     if (auto r = s->uploadGeometry(ctx); !r) return std::unexpected(r.error());
     if (auto r = s->uploadImages(ctx); !r) return std::unexpected(r.error());
     if (auto r = s->createMaterials(ctx); !r) return std::unexpected(r.error());
@@ -137,8 +140,26 @@ Result<void> GpuScene::createFrameData(Context& ctx, const GpuSceneOptions& opti
         if (m_lightCount)
             std::memcpy(p + 16, table->lights.data(), table->lights.size() * sizeof(GpuLight));
         m_lightBuffers.push_back(std::move(*lights));
+        // SceneInstances: room for every draw four times a frame (the G-buffer, forward and
+        // any other camera pass), one word each.
+        const VkDeviceSize instanceBytes = (4 * std::max<VkDeviceSize>(m_draws.size(), 1)) * 4;
+        auto instances = Buffer::create(ctx, "scene.instances", instanceBytes,
+                                        VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+        if (!instances) return std::unexpected(instances.error());
+        std::memset(instances->mapped(), 0, instanceBytes);
+        m_instanceBuffers.push_back(std::move(*instances));
     }
+    m_instanceCursor.assign(ctx.framesInFlight(), 0);
     return {};
+}
+
+std::pair<uint32_t, uint32_t*> GpuScene::reserveInstances(uint32_t slot, uint32_t count) const {
+    if (!m_instancing) return {0, nullptr};
+    const Buffer& b = m_instanceBuffers[slot];
+    const uint32_t first = m_instanceCursor[slot];
+    if (first + uint64_t(count) > b.size() / 4) return {0, nullptr};
+    m_instanceCursor[slot] = first + count;
+    return {first, static_cast<uint32_t*>(b.mapped()) + first};
 }
 
 // scene.glsl's LightTables block: a uvec4 header (the IES profiles' width, height and count), the
@@ -250,6 +271,7 @@ void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
         m_drawLod[d] = level;
     }
     updateShadowViews(slot, u.viewProj);
+    m_instanceCursor[slot] = 0;
     std::memcpy(static_cast<uint8_t*>(m_lightBuffers[slot].mapped()) + 4, &m_areaLightModel,
                 sizeof m_areaLightModel);
 }
@@ -272,6 +294,8 @@ VkBuffer GpuScene::bindingBuffer(std::string_view name, uint32_t slot) const {
     if (name == "Decals") return decalBuffer();
     if (name == "Probes") return probeBuffer();
     if (name == "SceneDraws") return drawBuffer();
+    if (name == "SceneTransforms") return m_transforms.buffer();
+    if (name == "SceneInstances") return m_instanceBuffers[slot].buffer();
     if (name == "SceneBvh") return bvhBuffer();
     if (name == "SceneEnvironmentCdf") return environmentCdfBuffer();
     return VK_NULL_HANDLE;
@@ -285,7 +309,8 @@ Result<VkBuffer> GpuScene::makeBindingBuffer(std::string_view name, uint32_t slo
                 "the scene has no buffer binding '" + std::string(name) +
                     "', expected one of: 'Camera', 'Lights', 'LightsWindow', 'LightTables', "
                     "'GlobalLights', "
-                    "'ShadowViews', 'Decals', 'Probes', 'SceneDraws', 'SceneBvh', "
+                    "'ShadowViews', 'Decals', 'Probes', 'SceneDraws', 'SceneTransforms', "
+                    "'SceneInstances', 'SceneBvh', "
                     "'SceneEnvironmentCdf'");
 }
 

@@ -171,8 +171,19 @@ public:
     // index range and vertex offset, and whether it casts shadows (opaque): what a culling pass
     // needs to write indirect draw commands (shaders/shadows/cascade_cull.comp).
     VkBuffer drawBuffer() const { return m_drawBuffer.buffer(); }
+    // Instanced camera draws (scene.vert): `SceneTransforms` holds per draw its world matrix, the
+    // normal matrix's three columns and the lightmap rect (8 vec4); `SceneInstances`, per frame
+    // slot, lists draw indices that a run of draws sharing a mesh, level of detail and material
+    // is drawn from as one instanced draw (firstInstance = the run's first entry, so
+    // gl_InstanceIndex indexes the list). reserveInstances hands out `count` entries of slot
+    // `slot`'s list for this frame — their first index and where to write them — or a null
+    // pointer when the list is full or RG_INSTANCING=0 (the caller then draws one at a time);
+    // updateFrame empties it.
+    std::pair<uint32_t, uint32_t*> reserveInstances(uint32_t slot, uint32_t count) const;
+    // How many entries of slot `slot`'s list the frame recorded there handed out.
+    uint32_t instancesUsed(uint32_t slot) const { return m_instanceCursor[slot]; }
     // The buffer behind scene binding `name` (a shader block of that name: Camera, Lights,
-    // LightsWindow, LightTables and GlobalLights, ShadowViews — frame slot `slot`'s — Decals, Probes, SceneDraws, SceneBvh, SceneEnvironmentCdf), VK_NULL_HANDLE for
+    // LightsWindow, LightTables and GlobalLights, SceneTransforms, SceneInstances, ShadowViews — frame slot `slot`'s — Decals, Probes, SceneDraws, SceneBvh, SceneEnvironmentCdf), VK_NULL_HANDLE for
     // another name or a buffer that could not be made.
     VkBuffer bindingBuffer(std::string_view name, uint32_t slot) const;
     // The same, or why there is none: the failure of the Vulkan call behind a buffer built on
@@ -252,6 +263,12 @@ private:
     std::vector<gpu::Buffer> m_materialBuffers;
     std::vector<VkDescriptorSet> m_materialSets;
     std::vector<gpu::Buffer> m_cameraBuffers, m_lightBuffers, m_shadowViewBuffers;
+    gpu::Buffer m_transforms;                    // SceneTransforms: 8 vec4 per draw
+    std::vector<gpu::Buffer> m_instanceBuffers;  // SceneInstances, per slot
+    // Entries of each slot's SceneInstances handed out this frame: scratch of the recording, which
+    // runs on a const scene.
+    mutable std::vector<uint32_t> m_instanceCursor;
+    bool m_instancing = true;    // RG_INSTANCING=0: none
     gpu::Buffer m_lightTables;   // LightTables: the LTC table and IES profiles, for every slot
     gpu::Buffer m_globalLights;  // GlobalLights: the lights that reach every pixel
     std::vector<std::vector<size_t>> m_shadowViewDraws;  // per view of this frame

@@ -120,6 +120,22 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
         for (const DrawItem& item : m_draws) m_staticHash.bytes(&item.world, sizeof item.world);
         m_drawBuffer = std::move(*buf);
     }
+    // SceneTransforms: per draw what scene.vert's push constants hold for a single draw.
+    {
+        std::vector<glm::vec4> t(8 * std::max<size_t>(m_draws.size(), 1), glm::vec4(0.0f));
+        for (size_t d = 0; d < m_draws.size(); ++d) {
+            const DrawItem& item = m_draws[d];
+            glm::vec4* w = &t[8 * d];
+            for (int c = 0; c < 4; ++c) w[c] = item.world[c];
+            for (int c = 0; c < 3; ++c) w[4 + c] = item.normalMatrix[c];
+            w[7] = item.lightmapRect;
+        }
+        auto buf = Buffer::create(ctx, "scene.transforms", t.size() * sizeof(glm::vec4),
+                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+        if (!buf) return std::unexpected(buf.error());
+        std::memcpy(buf->mapped(), t.data(), t.size() * sizeof(glm::vec4));
+        m_transforms = std::move(*buf);
+    }
     if (vertices.empty()) {  // keep valid (empty) buffers for an empty scene
         vertices.resize(1);
         indices.resize(3, 0);

@@ -5,6 +5,8 @@
 // This file holds the kind (its schema and ScenePass, which picks the mode), what every mode draws
 // with (SceneDraws), and the modes that draw from the camera: the G-buffer and forward passes.
 #include <algorithm>
+#include <map>
+#include <tuple>
 #include <glm/glm.hpp>
 
 #include "core/check.h"
@@ -258,8 +260,23 @@ CameraScenePass::DrawOrder CameraScenePass::inView(RecordContext& rc, std::vecto
 }
 
 void CameraScenePass::drawGroups(RecordContext& rc, const DrawOrder& order) {
+    const GpuScene& scene = *sceneOf(rc);
+    const auto& draws = scene.draws();
+    // The same mesh range (at the level of detail the camera takes) and material: what a run of
+    // consecutive draws in the order must share to be one instanced draw.
+    auto sameRun = [&](size_t a, size_t b) {
+        const DrawLod &la = scene.viewLod(a), &lb = scene.viewLod(b);
+        return draws[a].material == draws[b].material &&
+               draws[a].vertexOffset == draws[b].vertexOffset && la.firstIndex == lb.firstIndex &&
+               la.indexCount == lb.indexCount;
+    };
     size_t bound = SIZE_MAX;
-    for (const auto& [gi, i] : order) {
+    uint32_t boundMaterial = UINT32_MAX;
+    for (size_t a = 0; a < order.size();) {
+        const auto [gi, first] = order[a];
+        size_t end = a + 1;
+        while (end < order.size() && order[end].first == gi && sameRun(first, order[end].second))
+            ++end;
         Group& g = m_groups[gi];
         if (gi != bound) {
             vkCmdBindPipeline(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.pipeline.get());
@@ -267,23 +284,46 @@ void CameraScenePass::drawGroups(RecordContext& rc, const DrawOrder& order) {
             vkCmdSetStencilReference(rc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK,
                                      g.info.stencilValue);  // unused when forward
             bound = gi;
+            boundMaterial = UINT32_MAX;
         }
-        const DrawItem& item = sceneOf(rc)->draws()[i];
-        const Material& m = sceneOf(rc)->scene().materials[item.material];
-        VkDescriptorSet set = sceneOf(rc)->materialSet(item.material);
-        vkCmdBindDescriptorSets(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.program->layout(), 1, 1,
-                                &set, 0, nullptr);
-        vkCmdSetCullMode(rc.cmd, m.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT);
-        // scene.vert's Draw: world, the normal matrix's three columns, the lightmap rect.
-        glm::vec4 push[8] = {item.world[0],        item.world[1],        item.world[2],
-                             item.world[3],        item.normalMatrix[0], item.normalMatrix[1],
-                             item.normalMatrix[2], item.lightmapRect};
-        vkCmdPushConstants(rc.cmd, g.program->layout(),
-                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                           sizeof push, push);
+        const DrawItem& item = draws[first];
+        if (item.material != boundMaterial) {
+            const Material& m = scene.scene().materials[item.material];
+            VkDescriptorSet set = scene.materialSet(item.material);
+            vkCmdBindDescriptorSets(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.program->layout(), 1,
+                                    1, &set, 0, nullptr);
+            vkCmdSetCullMode(rc.cmd, m.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT);
+            boundMaterial = item.material;
+        }
         // The level of detail for the camera (GpuScene::viewLod: at most a pixel of error).
-        const DrawLod& lod = sceneOf(rc)->viewLod(i);
-        vkCmdDrawIndexed(rc.cmd, lod.indexCount, 1, lod.firstIndex, item.vertexOffset, 0);
+        const DrawLod& lod = scene.viewLod(first);
+        const auto count = static_cast<uint32_t>(end - a);
+        auto [base, list] = count > 1 ? scene.reserveInstances(rc.frame.slot, count)
+                                      : std::pair<uint32_t, uint32_t*>{0, nullptr};
+        if (list) {
+            // One instanced draw: scene.vert reads each instance's transform (all-zero push
+            // constants say so) through this frame's instance list.
+            for (size_t k = a; k < end; ++k) *list++ = static_cast<uint32_t>(order[k].second);
+            const glm::vec4 zeros[8] = {};
+            vkCmdPushConstants(rc.cmd, g.program->layout(),
+                               VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                               sizeof zeros, zeros);
+            vkCmdDrawIndexed(rc.cmd, lod.indexCount, count, lod.firstIndex, item.vertexOffset,
+                             base);
+        } else {
+            for (size_t k = a; k < end; ++k) {
+                const DrawItem& d = draws[order[k].second];
+                // scene.vert's Draw: world, the normal matrix's three columns, the lightmap rect.
+                glm::vec4 push[8] = {d.world[0],        d.world[1],        d.world[2],
+                                     d.world[3],        d.normalMatrix[0], d.normalMatrix[1],
+                                     d.normalMatrix[2], d.lightmapRect};
+                vkCmdPushConstants(rc.cmd, g.program->layout(),
+                                   VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                                   sizeof push, push);
+                vkCmdDrawIndexed(rc.cmd, lod.indexCount, 1, lod.firstIndex, d.vertexOffset, 0);
+            }
+        }
+        a = end;
     }
     vkCmdEndRendering(rc.cmd);
 }
@@ -334,8 +374,27 @@ void GBufferScenePass::recordDraws(RecordContext& rc) {
     DrawOrder order = inView(rc, distance, [&](const DrawItem& item) {
         return glm::distance(glm::clamp(eye, item.boundsMin, item.boundsMax), eye);
     });
+    // Draws that share a mesh range and material go together, as one instanced draw
+    // (drawGroups): batches by their nearest draw, each batch's draws by their own distance.
+    const GpuScene& scene = *sceneOf(rc);
+    std::map<std::tuple<uint32_t, int32_t, uint32_t, uint32_t>, float> nearest;
+    auto batchOf = [&](size_t i) {
+        const DrawLod& lod = scene.viewLod(i);
+        return std::tuple(scene.draws()[i].material, scene.draws()[i].vertexOffset, lod.firstIndex,
+                          lod.indexCount);
+    };
+    for (const auto& [gi, i] : order) {
+        auto [at, added] = nearest.emplace(batchOf(i), distance[i]);
+        if (!added) at->second = std::min(at->second, distance[i]);
+    }
+    std::vector<float> batchDistance(distance.size(), 0.0f);
+    for (const auto& [gi, i] : order) batchDistance[i] = nearest[batchOf(i)];
     std::stable_sort(order.begin(), order.end(), [&](const auto& a, const auto& b) {
-        return a.first != b.first ? a.first < b.first : distance[a.second] < distance[b.second];
+        if (a.first != b.first) return a.first < b.first;
+        if (batchDistance[a.second] != batchDistance[b.second])
+            return batchDistance[a.second] < batchDistance[b.second];
+        if (batchOf(a.second) != batchOf(b.second)) return batchOf(a.second) < batchOf(b.second);
+        return distance[a.second] < distance[b.second];
     });
     drawGroups(rc, order);
 }

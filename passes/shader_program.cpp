@@ -61,6 +61,8 @@ bool isSceneBinding(const ReflectedBinding& b) {
         {"Decals", DescriptorType::StorageBuffer},
         {"ShadowViews", DescriptorType::StorageBuffer},
         {"SceneDraws", DescriptorType::StorageBuffer},
+        {"SceneTransforms", DescriptorType::StorageBuffer},
+        {"SceneInstances", DescriptorType::StorageBuffer},
         {"SceneBvh", DescriptorType::StorageBuffer},
         {"Probes", DescriptorType::UniformBuffer},
         {"SceneEnvironmentCdf", DescriptorType::StorageBuffer},

@@ -1,5 +1,7 @@
 #version 460
-// Scene draws: world transform from push constants, the camera from the scene.
+// Scene draws: the world transform from push constants — or, for a run of draws drawn as one
+// instanced draw (passes/scene_pass.cpp), from the scene's per-draw transforms through its
+// instance list — the camera from the scene.
 #include "lib/scene.glsl"
 
 layout(location = 0) in vec3 inPosition;
@@ -15,20 +17,37 @@ layout(location = 3) out vec2 uv0;
 layout(location = 4) out vec2 uv1;
 layout(location = 5) out vec2 lightmapUv;  // the node's square of the scene's lightmap atlas
 
-// 128 bytes, the push-constant size every Vulkan device has.
+// 128 bytes, the push-constant size every Vulkan device has. All zeros: an instanced run.
 layout(push_constant) uniform Draw {
     mat4 world;
     vec4 normalMatrix[3];  // inverse transpose of world's upper 3x3, its columns
     vec4 lightmapRect;     // atlas uv = uv1 * xy + zw (0: no lightmap)
 } draw;
 
+// Per draw: world's four columns, the normal matrix's three, the lightmap rect (passes/gpu_scene.h).
+#ifndef RG_TRANSFORMS_BINDING
+#define RG_TRANSFORMS_BINDING 34
+#endif
+layout(set = RG_CAMERA_SET, binding = RG_TRANSFORMS_BINDING, std430) readonly buffer SceneTransforms { vec4 t[]; } sceneTransforms;
+// This frame's instance lists: the draw of each instance, at firstInstance + its index.
+layout(set = RG_CAMERA_SET, binding = RG_TRANSFORMS_BINDING + 1, std430) readonly buffer SceneInstances { uint draw[]; } sceneInstances;
+
 void main() {
-    vec4 p = draw.world * vec4(inPosition, 1.0);
+    mat4 world = draw.world;
+    mat3 normalMatrix = mat3(draw.normalMatrix[0].xyz, draw.normalMatrix[1].xyz, draw.normalMatrix[2].xyz);
+    vec4 lightmapRect = draw.lightmapRect;
+    if (draw.world[3][3] == 0.0) {  // no affine transform has it: an instanced run
+        uint base = 8u * sceneInstances.draw[gl_InstanceIndex];
+        world = mat4(sceneTransforms.t[base], sceneTransforms.t[base + 1u], sceneTransforms.t[base + 2u], sceneTransforms.t[base + 3u]);
+        normalMatrix = mat3(sceneTransforms.t[base + 4u].xyz, sceneTransforms.t[base + 5u].xyz, sceneTransforms.t[base + 6u].xyz);
+        lightmapRect = sceneTransforms.t[base + 7u];
+    }
+    vec4 p = world * vec4(inPosition, 1.0);
     worldPosition = p.xyz;
-    worldNormal = mat3(draw.normalMatrix[0].xyz, draw.normalMatrix[1].xyz, draw.normalMatrix[2].xyz) * inNormal;
-    worldTangent = vec4(mat3(draw.world) * inTangent.xyz, inTangent.w);
+    worldNormal = normalMatrix * inNormal;
+    worldTangent = vec4(mat3(world) * inTangent.xyz, inTangent.w);
     uv0 = inUv0;
     uv1 = inUv1;
-    lightmapUv = inUv1 * draw.lightmapRect.xy + draw.lightmapRect.zw;
+    lightmapUv = inUv1 * lightmapRect.xy + lightmapRect.zw;
     gl_Position = camera.viewProj * p;
 }

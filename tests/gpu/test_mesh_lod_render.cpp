@@ -11,6 +11,7 @@
 #include <fstream>
 
 #include "passes/gpu_scene.h"
+#include "runtime/session.h"
 #include "scene/scene.h"
 
 using namespace rg;
@@ -65,6 +66,42 @@ TEST_F(MeshLodRender, FarSpheresTakeCoarserLevelsAndTheImageStays) {
         levels.front(), levels.back(), 100.0 * d.mean, 100.0 * d.share);
     EXPECT_LT(d.mean, 0.01);
     EXPECT_LT(d.share, 0.01);
+}
+
+// Nodes a scene script declares alike share one mesh, and the G-buffer draws a run of them as
+// one instanced draw (passes/scene_pass.cpp drawGroups, scene.vert): the image is the one drawing
+// them one at a time gives (RG_INSTANCING=0), bit for bit.
+TEST_F(MeshLodRender, InstancedRunsDrawWhatSingleDrawsDo) {
+    const std::string city = std::string(RG_SOURCE_ROOT) + "/scripts/scenes/city.lua";
+    auto render = [&](bool instancing, uint32_t* instances) {
+        if (!instancing) setenv("RG_INSTANCING", "0", 1);
+        SessionOptions o = sceneOptions(city, {}, 320, 180);
+        o.sceneArgs["nodes"] = "400";
+        o.sceneArgs["materials"] = "4";
+        o.captures = {"hdr"};
+        Session s(*s_runtime, o);
+        Image hdr;
+        auto r = s.load(std::string(RG_SOURCE_ROOT) + "/scripts/pipelines/deferred.lua");
+        EXPECT_TRUE(r.has_value()) << r.error().describe();
+        if (r && s.frame()) {
+            if (auto img = s_runtime->executor().readback("hdr")) hdr = std::move(*img);
+            EXPECT_LT(s.gpuScene()->scene().meshes.size(), 16u) << "the nodes share meshes";
+            *instances = s.gpuScene()->instancesUsed(0);
+        }
+        unsetenv("RG_INSTANCING");
+        return hdr;
+    };
+    uint32_t instanced = 0, single = 0;
+    const Image a = render(true, &instanced), b = render(false, &single);
+    ASSERT_EQ(a.pixels.size(), b.pixels.size());
+    ASSERT_FALSE(a.pixels.empty());
+    size_t differ = 0;
+    for (size_t i = 0; i < a.pixels.size(); ++i) differ += a.pixels[i] != b.pixels[i];
+    std::printf("%u draws drawn as instances, %zu of %zu values differ\n", instanced, differ,
+                a.pixels.size());
+    EXPECT_GT(instanced, 50u) << "runs of shared meshes are drawn instanced";
+    EXPECT_EQ(single, 0u);
+    EXPECT_EQ(differ, 0u);
 }
 
 }  // namespace
