@@ -54,6 +54,13 @@ Result<void> GpuScene::setSetting(const std::string& name, const Value& value) {
 
 std::optional<uint32_t> GpuScene::layerExtent(const std::string& name) const {
     if (name == kShadowViewsExtent) return m_shadowViewCapacity;
+    if (name == kShadowBatchesExtent) return static_cast<uint32_t>(m_shadowBatches.size());
+    if (name == kShadowCastersExtent) {
+        uint32_t casters = 0;
+        for (const ShadowBatch& b : m_shadowBatches)
+            casters += static_cast<uint32_t>(b.draws.size());
+        return casters;
+    }
     return std::nullopt;
 }
 

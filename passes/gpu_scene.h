@@ -108,13 +108,26 @@ public:
     // (an address can be a freed scene's).
     uint64_t id() const override { return m_id; }
     std::optional<uint32_t> layerExtent(const std::string& name) const override;
-    std::vector<std::string> extentNames() const override { return {kShadowViewsExtent}; }
+    std::vector<std::string> extentNames() const override {
+        return {kShadowViewsExtent, kShadowCastersExtent, kShadowBatchesExtent};
+    }
     // Its one feature: "lightmap", a baked lightmap (scene.lightmap, from the cache or baked).
     std::optional<bool> feature(const std::string& name) const override {
         return name == "lightmap" ? std::optional<bool>(hasLightmap()) : std::nullopt;
     }
     std::vector<std::string> featureNames() const override { return {"lightmap"}; }
     static constexpr const char* kShadowViewsExtent = "shadow_views";
+    // The draws that cast shadows, and their batches: casters sharing a mesh (vertex offset,
+    // index range) and cull mode, which a culling pass draws as one instanced draw per level of
+    // detail (shaders/shadows/cascade_cull.comp; buffers sized with scene_count).
+    static constexpr const char* kShadowCastersExtent = "shadow_casters";
+    static constexpr const char* kShadowBatchesExtent = "shadow_batches";
+    // Shadow batch b: its draws (ascending), and the cull mode they share.
+    struct ShadowBatch {
+        std::vector<uint32_t> draws;
+        bool doubleSided = false;
+    };
+    const std::vector<ShadowBatch>& shadowBatches() const { return m_shadowBatches; }
 
     const Scene& scene() const { return m_scene; }
     const std::vector<DrawItem>& draws() const { return m_draws; }
@@ -180,6 +193,9 @@ public:
     // pointer when the list is full or RG_INSTANCING=0 (the caller then draws one at a time);
     // updateFrame empties it.
     std::pair<uint32_t, uint32_t*> reserveInstances(uint32_t slot, uint32_t count) const;
+    // Whether draws that share a mesh are drawn instanced (RG_INSTANCING=0: one at a time, the
+    // camera's and the sun's shadows' alike).
+    bool instancing() const { return m_instancing; }
     // How many entries of slot `slot`'s list the frame recorded there handed out.
     uint32_t instancesUsed(uint32_t slot) const { return m_instanceCursor[slot]; }
     // The buffer behind scene binding `name` (a shader block of that name: Camera, Lights,
@@ -264,6 +280,7 @@ private:
     std::vector<VkDescriptorSet> m_materialSets;
     std::vector<gpu::Buffer> m_cameraBuffers, m_lightBuffers, m_shadowViewBuffers;
     gpu::Buffer m_transforms;                    // SceneTransforms: 8 vec4 per draw
+    std::vector<ShadowBatch> m_shadowBatches;    // the casters by mesh and cull mode
     std::vector<gpu::Buffer> m_instanceBuffers;  // SceneInstances, per slot
     // Entries of each slot's SceneInstances handed out this frame: scratch of the recording, which
     // runs on a const scene.

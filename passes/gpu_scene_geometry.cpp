@@ -4,6 +4,8 @@
 #include "gpu_scene.h"
 
 #include <algorithm>
+#include <map>
+#include <tuple>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -88,11 +90,35 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
                                                       lod.error * scale};
             }
     }
-    // SceneDraws: a uvec4 header (draw count), then per draw (boxMin, firstIndex), (boxMax,
-    // indexCount), (vertexOffset, material, casts shadows, level-of-detail count), then the levels'
-    // first indices, index counts and errors (lib/scene.glsl RgDraw) — 96 bytes.
+    // The casters' batches: the same mesh (vertex offset, full index range) and cull mode, in draw
+    // order; each batch's instance slots follow the batches before it (RgDraw's `shadow`).
+    std::vector<glm::uvec4> shadowWord(m_draws.size(), glm::uvec4(0));
     {
-        constexpr size_t kWords = 6;
+        std::map<std::tuple<int32_t, uint32_t, uint32_t, bool>, uint32_t> batchOf;
+        for (size_t d = 0; d < m_draws.size(); ++d) {
+            const DrawItem& item = m_draws[d];
+            if (!item.castsShadows) continue;
+            const bool doubleSided = m_scene.materials[item.material].doubleSided;
+            auto [at, added] = batchOf.emplace(
+                std::tuple(item.vertexOffset, item.firstIndex, item.indexCount, doubleSided),
+                static_cast<uint32_t>(m_shadowBatches.size()));
+            if (added) m_shadowBatches.push_back({{}, doubleSided});
+            m_shadowBatches[at->second].draws.push_back(static_cast<uint32_t>(d));
+        }
+        uint32_t slot = 0;
+        for (size_t b = 0; b < m_shadowBatches.size(); ++b) {
+            const auto members = static_cast<uint32_t>(m_shadowBatches[b].draws.size());
+            for (uint32_t d : m_shadowBatches[b].draws)
+                shadowWord[d] = glm::uvec4(static_cast<uint32_t>(b) + 1, slot, members, 0);
+            slot += members;
+        }
+    }
+    // SceneDraws: a uvec4 header (draw count), then per draw (boxMin, firstIndex), (boxMax,
+    // indexCount), (vertexOffset, material, casts shadows, level-of-detail count), the levels'
+    // first indices, index counts and errors, then its shadow batch (lib/scene.glsl RgDraw) — 112
+    // bytes.
+    {
+        constexpr size_t kWords = 7;
         std::vector<glm::vec4> words(1 + kWords * std::max<size_t>(m_draws.size(), 1),
                                      glm::vec4(0.0f));
         words[0] = glm::vec4(std::bit_cast<float>(static_cast<uint32_t>(m_draws.size())), 0.0f,
@@ -111,6 +137,7 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
                 w[4][static_cast<int>(l)] = std::bit_cast<float>(item.lods[l].indexCount);
                 w[5][static_cast<int>(l)] = item.lods[l].error;
             }
+            for (int k = 0; k < 4; ++k) w[6][k] = std::bit_cast<float>(shadowWord[d][k]);
         }
         auto buf = Buffer::create(ctx, "scene.draws", words.size() * sizeof(glm::vec4),
                                   VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);

@@ -544,10 +544,11 @@ PassKindInfo scenePassKind() {
               "for a closed mesh never the nearest)"},
              {"indirect", "string",
               "shadow: a buffer the pass reads as { NAME, as = 'indirect' } holding a "
-              "VkDrawIndexedIndirectCommand per layer and scene draw (layer-major, the buffer's "
-              "commands / layers slots each, written by a culling pass such as "
-              "shadows/cascade_cull.comp): each draw is issued through it, so culled draws cost "
-              "nothing; draws beyond the slots are drawn directly"},
+              "VkDrawIndexedIndirectCommand per view, caster batch (GpuScene::shadowBatches) "
+              "and level of detail (view-major), written by a culling pass such as "
+              "shadows/cascade_cull.comp with the instances each draws (the vertex shader gets "
+              "RG_SHADOW_INSTANCES): one instanced draw per batch and level; a buffer without "
+              "room for the scene's batches draws every caster directly"},
              {"view", "list",
               "shadow: { first, count }: the target's layer l is view first + l of count (its "
               "matrix, "

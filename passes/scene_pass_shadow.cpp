@@ -91,8 +91,10 @@ Result<void> ShadowScenePass::prepareDraws(PassSetup& setup) {
     m_shadowCull = cull == "none"                ? VK_CULL_MODE_NONE
                    : cull == "counter_clockwise" ? VK_CULL_MODE_FRONT_BIT
                                                  : VK_CULL_MODE_BACK_BIT;
-    // indirect = "buffer": a culling pass wrote one indirect command per layer and draw
-    // (shaders/shadows/cascade_cull.comp); draws past the buffer's slots are drawn directly.
+    // indirect = "buffer": a culling pass wrote an indirect command per view, caster batch and
+    // level of detail (shaders/shadows/cascade_cull.comp), drawing the instances it lists (the
+    // vertex shader built with RG_SHADOW_INSTANCES); a buffer without room for the scene's
+    // batches (none) draws every caster directly.
     if (desc.params["indirect"].isString()) {
         m_indirect = desc.params["indirect"].asString();
         const bool read =
@@ -116,6 +118,7 @@ Result<void> ShadowScenePass::prepareDraws(PassSetup& setup) {
     vert.path = desc.params["shader"].isString() ? desc.params["shader"].asString()
                 : m_lightViews                   ? "shadows/local_shadow.vert"
                                                  : "shadows/shadow.vert";
+    if (!m_indirect.empty()) vert.defines.emplace_back("RG_SHADOW_INSTANCES", "1");
     g.program = std::make_unique<ShaderProgram>();
     if (auto r = g.program->build(setup, {vert}); !r) return r;
     GraphicsPipelineDesc d;
@@ -164,14 +167,39 @@ void ShadowScenePass::recordDraws(RecordContext& rc) {
     const uint32_t layers =
         m_lightViews ? std::min(m_layers, sceneOf(rc)->shadowViewCount()) : m_layers;
     const PhysicalResource* indirect = m_indirect.empty() ? nullptr : rc.resources.find(m_indirect);
-    const VkDeviceSize slots =
+    const auto& batches = sceneOf(rc)->shadowBatches();
+    // Commands per view: 4 levels per batch (cascade_cull.comp).
+    const VkDeviceSize perView =
         indirect ? indirect->plan->bufferSize / kIndirectCommandBytes / std::max(m_viewCount, 1u)
                  : 0;
+    const bool batched = indirect && perView >= 4 * batches.size() && !batches.empty() &&
+                         rc.gpu.drawIndirectFirstInstance() && sceneOf(rc)->instancing();
     for (uint32_t layer = 0; layer < layers; ++layer) {
         const uint32_t view = m_firstView + layer;
         beginLayer(rc, VK_NULL_HANDLE, d->image->layerView(layer), VK_ATTACHMENT_STORE_OP_STORE);
         vkCmdBindPipeline(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.pipeline.get());
         g.program->bind(rc, VK_PIPELINE_BIND_POINT_GRAPHICS);
+        if (batched) {
+            // Per batch and level the instances the culling pass listed (instanceCount 0: none).
+            struct {
+                glm::mat4 world;
+                glm::vec4 layer;
+            } push{glm::mat4(0.0f), glm::vec4(static_cast<float>(view))};
+            vkCmdPushConstants(rc.cmd, g.program->layout(), VK_SHADER_STAGE_VERTEX_BIT, 0,
+                               sizeof push, &push);
+            for (size_t b = 0; b < batches.size(); ++b) {
+                vkCmdSetCullMode(rc.cmd, batches[b].doubleSided ? VkCullModeFlags(VK_CULL_MODE_NONE)
+                                                                : m_shadowCull);
+                const uint32_t levels = sceneOf(rc)->draws()[batches[b].draws.front()].lodCount;
+                for (uint32_t l = 0; l < std::min(levels, 4u); ++l)
+                    vkCmdDrawIndexedIndirect(
+                        rc.cmd, indirect->buffer->buffer(),
+                        ((view * perView / 4 + b) * 4 + l) * kIndirectCommandBytes, 1,
+                        kIndirectCommandBytes);
+            }
+            vkCmdEndRendering(rc.cmd);
+            continue;
+        }
         for (size_t i : m_lightViews ? sceneOf(rc)->shadowViewDraws(layer) : g.draws) {
             const DrawItem& item = sceneOf(rc)->draws()[i];
             vkCmdSetCullMode(rc.cmd, sceneOf(rc)->scene().materials[item.material].doubleSided
@@ -183,16 +211,10 @@ void ShadowScenePass::recordDraws(RecordContext& rc) {
             } push{item.world, glm::vec4(static_cast<float>(view))};
             vkCmdPushConstants(rc.cmd, g.program->layout(), VK_SHADER_STAGE_VERTEX_BIT, 0,
                                sizeof push, &push);
-            if (indirect && i < slots) {
-                vkCmdDrawIndexedIndirect(rc.cmd, indirect->buffer->buffer(),
-                                         (view * slots + i) * kIndirectCommandBytes, 1,
-                                         kIndirectCommandBytes);
-            } else {
-                // The camera's level of detail: a caster finer than its receiver (the G-buffer's
-                // surface) would stand in front of it by up to the coarser one's error.
-                const DrawLod& lod = sceneOf(rc)->viewLod(i);
-                vkCmdDrawIndexed(rc.cmd, lod.indexCount, 1, lod.firstIndex, item.vertexOffset, 0);
-            }
+            // The camera's level of detail: a caster finer than its receiver (the G-buffer's
+            // surface) would stand in front of it by up to the coarser one's error.
+            const DrawLod& lod = sceneOf(rc)->viewLod(i);
+            vkCmdDrawIndexed(rc.cmd, lod.indexCount, 1, lod.firstIndex, item.vertexOffset, 0);
         }
         vkCmdEndRendering(rc.cmd);
     }

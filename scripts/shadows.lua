@@ -56,20 +56,26 @@ rg.buffer "sun_cascades" { size = 4 * 64 + 5 * 16, doc = "the sun's cascades thi
 -- 16-bit depth: the cascades are orthographic, so depth is linear along the light and 1/65535 of a
 -- cascade's depth range is a millimetre or two (the receiver bias is 2 cm); half of d32f's memory,
 -- the default frame's image within 7/255 of d32f's in 71 of 2.8 M channels.
--- Caster culling per cascade: one indirect draw command per cascade and scene draw, with no
--- instance where the draw's box lies beside the cascade (shaders/shadows/cascade_cull.comp); room
--- for shadows.max_culled_draws draws a cascade, the rest drawn into every cascade.
-shadows.max_culled_draws = 4096
-rg.buffer "sun_shadow_draws" { size = shadows.cascades * shadows.max_culled_draws * 20,
-    doc = "the sun's shadow draws: an indirect command per cascade and draw (VkDrawIndexedIndirectCommand)" }
-
+-- Caster culling per cascade and instance (shaders/shadows/cascade_cull.comp): the casters that
+-- share a mesh and cull mode are a batch, drawn into each cascade as one instanced indirect draw
+-- per level of detail with the casters whose boxes meet it — batches × levels draws a cascade
+-- rather than one per caster. Both buffers are sized by the scene (scene_count): a command per
+-- cascade, batch and level; an instance slot per cascade, level and caster.
+rg.buffer "sun_shadow_draws" { size = 20, scene_count = "shadow_batches", count_bytes = shadows.cascades * 4 * 20,
+    doc = "the sun's shadow draws: an indirect command per cascade, caster batch and level of detail (VkDrawIndexedIndirectCommand)" }
+rg.buffer "sun_shadow_instances" { size = 4, scene_count = "shadow_casters", count_bytes = shadows.cascades * 4 * 4,
+    doc = "the casters each of sun_shadow_draws' commands draws: a draw index per instance" }
+-- Work groups of 64 of the culling pass: each invocation takes every (64 x this)-th draw.
+shadows.cull_groups = 256
 rg.pass "sun_cascades" {
     kind = "compute", shader = "shadows/sun_cascades.comp", writes = { { "sun_cascades", as = "storage" } }, groups = { 1, 1, 1 },
     defines = { RG_CASCADES = shadows.cascades, RG_SHADOW_SIZE = shadows.size },
 }
+rg.pass "sun_cull_clear" { kind = "clear", writes = { "sun_shadow_draws" } }
 rg.pass "sun_cull" {
-    kind = "compute", shader = "shadows/cascade_cull.comp", groups = { 1, 1, 1 }, defines = { RG_CASCADES = shadows.cascades },
-    reads = { { "sun_cascades", as = "storage" } }, writes = { { "sun_shadow_draws", as = "storage" } },
+    kind = "compute", shader = "shadows/cascade_cull.comp", groups = { shadows.cull_groups, 1, 1 }, defines = { RG_CASCADES = shadows.cascades },
+    reads = { { "sun_cascades", as = "storage" } },
+    writes = { { "sun_shadow_draws", as = "storage_rw" }, { "sun_shadow_instances", as = "storage" } },
 }
 
 -- The cascade code of each pixel (a depth mask for the mask passes' equal test, so that each
@@ -118,7 +124,8 @@ for i = 0, shadows.cascades - 1 do
     -- PSNR 116 dB). sun_cascades.comp's basis (x, y = x × f, depth along f) has no y flip, so a face
     -- counter-clockwise towards the sun lands clockwise in the map. Double-sided materials draw both.
     rg.pass ("shadow_sun" .. i) {
-        kind = "scene", shadow = true, reads = { { "sun_cascades", as = "storage" }, { "sun_shadow_draws", as = "indirect" } },
+        kind = "scene", shadow = true,
+        reads = { { "sun_cascades", as = "storage" }, { "sun_shadow_draws", as = "indirect" }, { "sun_shadow_instances", as = "storage" } },
         writes = { map }, indirect = "sun_shadow_draws", view = { i, shadows.cascades }, depth_bias = { 1.0, 1.5 },
         after = { "shadow_clear" .. i }, cull = "counter_clockwise", insert = { after = "gbuffer" },
     }
@@ -174,6 +181,7 @@ function shadows.frame(ctx)
     local draw = ctx.params.sun_shadows and (not ctx.scene or ctx.scene.suns > 0)
     local half = ctx.params.sun_mask == "half" or (ctx.params.sun_mask == "auto" and ctx.height >= 720)
     ctx.pass("sun_cull").auto_enabled = draw
+    ctx.pass("sun_cull_clear").auto_enabled = draw
     ctx.pass("sun_classify").auto_enabled = draw and not half
     ctx.pass("sun_classify_half").auto_enabled = draw and half
     for i = 0, shadows.cascades - 1 do

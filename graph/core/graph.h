@@ -49,6 +49,10 @@ struct BufferDesc {
     // of the output, ceil(w / tileSize) x ceil(h / tileSize) tiles; 0 = a fixed size.
     uint32_t tileSize = 0;
     uint64_t tileBytes = 0;
+    // Scene-sized buffers: `countBytes` more per item of the scene's extent `sceneCount` (e.g.
+    // "shadow_casters"), settled when the graph is built with a scene; without one, none.
+    std::string sceneCount;
+    uint64_t countBytes = 0;
 };
 
 struct ResourceDesc {

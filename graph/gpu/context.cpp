@@ -312,6 +312,9 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     features.features.samplerAnisotropy = supported.features.samplerAnisotropy;
     features.features.fragmentStoresAndAtomics = supported.features.fragmentStoresAndAtomics;
     features.features.independentBlend = supported.features.independentBlend;
+    // Indirect draws that start at an instance (the shadow passes' batches of casters).
+    features.features.drawIndirectFirstInstance = supported.features.drawIndirectFirstInstance;
+    ctx->m_drawIndirectFirstInstance = supported.features.drawIndirectFirstInstance == VK_TRUE;
     features.features.imageCubeArray =
         VK_TRUE;  // cube textures of several cubes (light probes); required by describe()
 

@@ -71,6 +71,8 @@ public:
     uint32_t queueFamily() const { return m_queueFamily; }
     const DeviceInfo& deviceInfo() const { return m_info; }
     const VkPhysicalDeviceProperties& properties() const { return m_properties; }
+    // Whether indirect draws may start at an instance other than 0 (drawIndirectFirstInstance).
+    bool drawIndirectFirstInstance() const { return m_drawIndirectFirstInstance; }
     Allocator& allocator() { return *m_allocator; }
     uint32_t framesInFlight() const { return m_framesInFlight; }
     double timestampPeriodNs() const { return m_properties.limits.timestampPeriod; }
@@ -121,6 +123,7 @@ private:
     OwnedCommandPool m_oneShotPool;
     uint32_t m_framesInFlight = 2;
     uint32_t m_currentSlot = 0;
+    bool m_drawIndirectFirstInstance = false;
     // One queue per frame slot, plus those pushed before the first frame.
     std::vector<std::vector<std::function<void()>>> m_deletions;
 

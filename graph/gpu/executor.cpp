@@ -127,23 +127,35 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
         if (auto r = createSlots(); !r) return r;
     GraphDesc graph = graphIn;
     if (auto r = resolveKinds(graph); !r) return r;
-    // Resources the scene sizes (scene_layers = NAME): the layers the scene's extent NAME says,
-    // at most those declared — e.g. a shadow-view array gets the views its shadowed local lights
-    // can use; an extent of 0 gets one 1×1 layer, not the declared capacity (24 MiB at 1024² × 6
-    // in d32f).
+    // Resources the scene sizes: a buffer's scene_count = NAME gives count_bytes more per item of
+    // the scene's extent NAME (none without a scene); a texture's scene_layers = NAME the layers
+    // the extent says, at most those declared — e.g. a shadow-view array gets the views its
+    // shadowed local lights can use; an extent of 0 gets one 1×1 layer, not the declared capacity
+    // (24 MiB at 1024² × 6 in d32f). A name the scene lacks is an error naming the resource.
+    auto extentOf = [&](const ResourceDesc& r, const std::string& field,
+                        const std::string& name) -> Result<uint32_t> {
+        if (!m_scene) return 0u;
+        if (const std::optional<uint32_t> extent = m_scene->layerExtent(name)) return *extent;
+        std::string names;
+        for (const auto& n : m_scene->extentNames())
+            names += (names.empty() ? "'" : ", '") + n + "'";
+        return fail(ErrorCode::InvalidInput, (r.origin.empty() ? "" : r.origin + ": ") +
+                                                 "resource '" + r.name + "': " + field + " = '" +
+                                                 name + "': the scene has no such extent (it has " +
+                                                 names + ")");
+    };
+    for (ResourceDesc& r : graph.resources) {
+        if (r.kind != ResourceKind::Buffer || r.buffer.sceneCount.empty()) continue;
+        auto extent = extentOf(r, "scene_count", r.buffer.sceneCount);
+        if (!extent) return std::unexpected(extent.error());
+        r.buffer.size += uint64_t(*extent) * r.buffer.countBytes;
+        r.buffer.sceneCount.clear();
+    }
     if (m_scene)
         for (ResourceDesc& r : graph.resources) {
             if (r.kind != ResourceKind::Texture || r.texture.sceneLayers.empty()) continue;
-            const std::optional<uint32_t> extent = m_scene->layerExtent(r.texture.sceneLayers);
-            if (!extent) {
-                std::string names;
-                for (const auto& n : m_scene->extentNames())
-                    names += (names.empty() ? "'" : ", '") + n + "'";
-                return fail(ErrorCode::InvalidInput,
-                            (r.origin.empty() ? "" : r.origin + ": ") + "resource '" + r.name +
-                                "': scene_layers = '" + r.texture.sceneLayers +
-                                "': the scene has no such extent (it has " + names + ")");
-            }
+            auto extent = extentOf(r, "scene_layers", r.texture.sceneLayers);
+            if (!extent) return std::unexpected(extent.error());
             r.texture.layers = std::clamp(*extent, 1u, r.texture.layers);
             if (*extent == 0) {
                 r.texture.sizeMode = SizeMode::Absolute;

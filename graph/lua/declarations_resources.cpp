@@ -124,8 +124,9 @@ Result<void> Builder::texture(const Declaration& d) {
 Result<void> Builder::buffer(const Declaration& d) {
     Where w = where(d);
     const Value& b = d.body;
-    if (auto r = checkFields(
-            w, b, {"size", "tile", "tile_bytes", "export", "import", "persistent", "doc"});
+    if (auto r = checkFields(w, b,
+                             {"size", "tile", "tile_bytes", "scene_count", "count_bytes", "export",
+                              "import", "persistent", "doc"});
         !r)
         return r;
     ResourceDesc r;
@@ -149,6 +150,24 @@ Result<void> Builder::buffer(const Declaration& d) {
                 .error("expected a whole number of bytes per tile, 4..1048576");
         r.buffer.tileSize = static_cast<uint32_t>(b["tile"].asNumber());
         r.buffer.tileBytes = static_cast<uint64_t>(b["tile_bytes"].asNumber());
+    }
+    // Scene-sized: `count_bytes` more for every item of a count the scene has.
+    if (b.has("scene_count") != b.has("count_bytes"))
+        return w.at(b.has("scene_count") ? "count_bytes" : "scene_count")
+            .error("missing (a scene-sized buffer gives both scene_count and count_bytes)");
+    if (b.has("scene_count")) {
+        if (b.has("tile"))
+            return w.at("scene_count")
+                .error("a buffer is sized by screen tiles or by the scene, not both");
+        if (!b["scene_count"].isString() || !isGlslIdentifier(b["scene_count"].asString()))
+            return w.at("scene_count")
+                .error("expected the name of a count of the scene, e.g. \"shadow_casters\"");
+        if (!isInteger(b["count_bytes"]) || b["count_bytes"].asNumber() < 4 ||
+            b["count_bytes"].asNumber() > (1 << 20))
+            return w.at("count_bytes")
+                .error("expected a whole number of bytes per item, 4..1048576");
+        r.buffer.sceneCount = b["scene_count"].asString();
+        r.buffer.countBytes = static_cast<uint64_t>(b["count_bytes"].asNumber());
     }
     for (const char* flag : {"export", "import", "persistent"})
         if (b.has(flag))

@@ -1,13 +1,19 @@
 #version 460
 // Caster culling for the sun's cascades (seed 002 §4.10.4, #13: "shadow casters outside a light's
-// frustum are not drawn"): for each cascade and each draw of the scene, the indirect draw command
-// the shadow pass issues for it — the index range of the draw's coarsest level of detail the
-// cascade's texels cannot tell from the full one, one instance when its world box meets the
-// cascade's orthographic box across the light, none when it lies beside it (or is blended). Depth
-// is not culled: a caster nearer the sun than the slice still shadows it (sun_cascades.comp spans
-// the scene's bounds along the light). Commands are laid out cascade by cascade, each cascade
-// holding the same number of slots (the buffer's commands / RG_CASCADES); the scene pass draws
-// directly the draws beyond them.
+// frustum are not drawn"), per instance: each caster (a draw that casts shadows) whose world box
+// meets a cascade's orthographic box across the light joins, in that cascade, the indirect draw
+// of its shadow batch (the casters sharing its mesh and cull mode: GpuScene::shadowBatches) at
+// the level of detail it takes there — the coarsest the cascade's texels cannot tell from the
+// full one, never finer than the camera's. Depth is not culled: a caster nearer the sun than the
+// slice still shadows it (sun_cascades.comp spans the scene's bounds along the light).
+//
+// sun_shadow_draws (cleared first): per cascade, per batch, per level an indexed indirect command
+// ((cascade · batches + batch) · 4 + level); its instance count grows by an atomic add, and every
+// caster that joins writes the same index range and first instance. sun_shadow_instances: per
+// cascade and level a region of one slot per caster, each batch's run at its first slot
+// (RgDraw.shadow.y): instance k of a command is the draw at firstInstance + k. The shadow passes
+// draw every command (shadow.vert with RG_SHADOW_INSTANCES): batches × levels draws a cascade
+// instead of one per caster.
 #define RG_SCENE_DRAWS 1
 #include "lib/scene.glsl"
 #include "lib/shadows.glsl"
@@ -15,7 +21,8 @@
 layout(local_size_x = 64) in;
 layout(set = 0, binding = 0, std430) readonly buffer sun_cascades { RgCascades c; } cascades;
 struct DrawIndexedIndirect { uint indexCount, instanceCount, firstIndex; int vertexOffset; uint firstInstance; };
-layout(set = 0, binding = 1, std430) writeonly buffer sun_shadow_draws { DrawIndexedIndirect command[]; } commands;
+layout(set = 0, binding = 1, std430) buffer sun_shadow_draws { DrawIndexedIndirect command[]; } commands;
+layout(set = 0, binding = 2, std430) writeonly buffer sun_shadow_instances { uint draw[]; } instances;
 
 bool boxMeetsCascade(vec3 lo, vec3 hi, mat4 m) {
     vec2 cmin = vec2(1e30), cmax = vec2(-1e30);
@@ -49,22 +56,34 @@ uint cameraLevel(RgDraw draw) {
 }
 
 void main() {
-    uint slots = uint(commands.command.length()) / uint(RG_CASCADES);
-    uint count = min(sceneDraws.header.x, slots);
-    int cascadesInUse = int(cascades.c.info.x + 0.5);
-    for (uint d = gl_LocalInvocationIndex; d < count; d += 64u) {
+    const uint batches = uint(commands.command.length()) / uint(RG_CASCADES * 4);
+    const uint slots = uint(instances.draw.length()) / uint(RG_CASCADES * 4);  // casters per region
+    const int cascadesInUse = int(cascades.c.info.x + 0.5);
+    // Each invocation takes every (invocations)-th draw: lavapipe ends a shader's loops after
+    // 65 535 iterations in all (DESIGN §8), so no invocation walks many.
+    const uint invocations = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
+    for (uint d = gl_GlobalInvocationID.x; d < sceneDraws.header.x; d += invocations) {
         RgDraw draw = sceneDraws.draw[d];
-        for (int c = 0; c < RG_CASCADES; ++c) {
-            bool visible = draw.info.z != 0u && c < cascadesInUse && boxMeetsCascade(draw.boxMin.xyz, draw.boxMax.xyz, cascades.c.viewProj[c]);
+        const uint batch = draw.shadow.x;
+        if (batch == 0u || batch > batches || draw.shadow.y + draw.shadow.z > slots) continue;
+        const uint cameraLod = cameraLevel(draw);
+        for (int c = 0; c < min(cascadesInUse, RG_CASCADES); ++c) {
+            if (!boxMeetsCascade(draw.boxMin.xyz, draw.boxMax.xyz, cascades.c.viewProj[c])) continue;
             // The coarsest level of detail whose error stays within a texel of this cascade — and
             // never finer than the one the camera sees the draw with: a coarser level lies inside
             // the finer ones (its vertices are theirs), so a receiver drawn coarser than its own
             // caster would sit behind it by up to the error and shadow itself.
-            uint level = cameraLevel(draw);
+            uint level = cameraLod;
             for (uint l = level + 1u; l < min(draw.info.w, 4u); ++l)
                 if (draw.lodError[l] <= cascades.c.texelWorld[c]) level = l;
-            commands.command[uint(c) * slots + d] = DrawIndexedIndirect(draw.lodCount[level], visible ? 1u : 0u,
-                                                                        draw.lodFirst[level], int(draw.info.x), 0u);
+            const uint k = (uint(c) * batches + batch - 1u) * 4u + level;
+            const uint first = (uint(c) * 4u + level) * slots + draw.shadow.y;
+            commands.command[k].indexCount = draw.lodCount[level];
+            commands.command[k].firstIndex = draw.lodFirst[level];
+            commands.command[k].vertexOffset = int(draw.info.x);
+            commands.command[k].firstInstance = first;
+            const uint n = atomicAdd(commands.command[k].instanceCount, 1u);
+            instances.draw[first + n] = d;
         }
     }
 }

@@ -69,8 +69,9 @@ TEST_F(MeshLodRender, FarSpheresTakeCoarserLevelsAndTheImageStays) {
 }
 
 // Nodes a scene script declares alike share one mesh, and the G-buffer draws a run of them as
-// one instanced draw (passes/scene_pass.cpp drawGroups, scene.vert): the image is the one drawing
-// them one at a time gives (RG_INSTANCING=0), bit for bit.
+// one instanced draw (passes/scene_pass.cpp drawGroups, scene.vert), the sun's cascades each
+// batch of casters per level of detail (cascade_cull.comp, shadow.vert): the image is the one
+// drawing them one at a time gives (RG_INSTANCING=0), bit for bit.
 TEST_F(MeshLodRender, InstancedRunsDrawWhatSingleDrawsDo) {
     const std::string city = std::string(RG_SOURCE_ROOT) + "/scripts/scenes/city.lua";
     auto render = [&](bool instancing, uint32_t* instances) {

@@ -328,29 +328,41 @@ TEST_F(Shadows, CascadesSkipTheCastersBesideThem) {
     // sun_cull's indirect commands (scripts/shadows.lua): the shadow box from above, the light along
     // (−1, −1, 0). The nearest cascade covers the view 0–3 m from a camera 12 m up: the ground far
     // below along the light falls in it, the box (7 m across the light from that slice) does not;
-    // the farthest cascade reaches the ground around the box and draws both. Draws: 0 the ground, 1 the box.
+    // the farthest cascade reaches the ground around the box and draws both. Draws and caster
+    // batches: 0 the ground, 1 the box (a mesh each), one level of detail each.
     SessionOptions o =
         sceneOptions(kRoot + "/tests/gpu/scenes/shadow_box.lua", {{"sun", "x45"}}, N, N);
     Readback r = renderAndRead(o, kRoot + "/scripts/pipelines/deferred.lua", 1, {"hdr"},
-                               {"sun_shadow_draws"});
+                               {"sun_shadow_draws", "sun_shadow_instances"});
     ASSERT_EQ(r.buffers.count("sun_shadow_draws"), 1u);
-    const auto& bytes = r.buffers["sun_shadow_draws"];
-    std::vector<uint32_t> words(bytes.size() / 4);
-    std::memcpy(words.data(), bytes.data(), words.size() * 4);
-    const size_t slots = words.size() / 5 / 3;  // commands of 5 words, 3 cascades
-    ASSERT_GE(slots, 2u);
-    auto instances = [&](size_t cascade, size_t draw) {
-        return words[(cascade * slots + draw) * 5 + 1];
+    ASSERT_EQ(r.buffers.count("sun_shadow_instances"), 1u);
+    auto wordsOf = [&](const std::string& name) {
+        const auto& bytes = r.buffers[name];
+        std::vector<uint32_t> words(bytes.size() / 4);
+        std::memcpy(words.data(), bytes.data(), words.size() * 4);
+        return words;
     };
-    auto indexCount = [&](size_t cascade, size_t draw) {
-        return words[(cascade * slots + draw) * 5];
+    const std::vector<uint32_t> words = wordsOf("sun_shadow_draws"),
+                                list = wordsOf("sun_shadow_instances");
+    // Commands of 5 words per cascade (3), batch and level (4): one word to spare.
+    const size_t batches = words.size() / 5 / 3 / 4;
+    ASSERT_EQ(batches, 2u);
+    auto word = [&](size_t cascade, size_t batch, size_t k) {
+        return words[((cascade * batches + batch) * 4 + 0) * 5 + k];
     };
-    EXPECT_EQ(indexCount(0, 0), 6u);   // the plane: two triangles
-    EXPECT_EQ(indexCount(2, 1), 36u);  // the box: twelve
-    EXPECT_EQ(instances(0, 0), 1u);
-    EXPECT_EQ(instances(0, 1), 0u);
-    EXPECT_EQ(instances(2, 0), 1u);
-    EXPECT_EQ(instances(2, 1), 1u);
+    EXPECT_EQ(word(0, 0, 0), 6u);   // the plane: two triangles
+    EXPECT_EQ(word(2, 1, 0), 36u);  // the box: twelve
+    EXPECT_EQ(word(0, 0, 1), 1u);   // instances
+    EXPECT_EQ(word(0, 1, 1), 0u);
+    EXPECT_EQ(word(2, 0, 1), 1u);
+    EXPECT_EQ(word(2, 1, 1), 1u);
+    // Each drawn command's one instance is its caster: draw 0, draw 1.
+    for (size_t c : {0u, 2u})
+        for (size_t b = 0; b < 2; ++b)
+            if (word(c, b, 1) == 1u) {
+                ASSERT_LT(word(c, b, 4), list.size());
+                EXPECT_EQ(list[word(c, b, 4)], b) << "cascade " << c;
+            }
 }
 
 // ---- Local lights (tests/gpu/scenes/local_shadow_box.lua): a point light and a spot over the box ----

@@ -136,6 +136,10 @@ TEST(LuaPipeline, TiledBufferGrowsWithTheOutput) {
               kScripts +
                   "tiled_buffer_half.lua:2: resources.lists.tile_bytes: missing (a tiled buffer "
                   "gives both tile, in pixels, and tile_bytes)");
+    EXPECT_EQ(loadError("scene_buffer_half.lua"),
+              kScripts +
+                  "scene_buffer_half.lua:2: resources.lists.count_bytes: missing (a scene-sized "
+                  "buffer gives both scene_count and count_bytes)");
 }
 
 TEST(LuaErrors, CycleIsReportedByTheCompiler) {
@@ -368,7 +372,7 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // foliage fix-up, then the AO itself on the fixed-up normals: scripts/ao.lua), the Hi-Z
     // pyramid, SSR's mask and SSR (scripts/ssr.lua), the composition of SSR and the probes
     // (scripts/reflections.lua), the lighting, the sky and forward.
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 54),
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 55),
               (std::vector<std::string>{"env_cube",
                                         "env_mips",
                                         "env_irradiance",
@@ -380,6 +384,7 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
                                         "probe_mips",
                                         "probe_prefilter",
                                         "sun_cascades",
+                                        "sun_cull_clear",
                                         "sun_cull",
                                         "shadow_clear0",
                                         "shadow_clear1",

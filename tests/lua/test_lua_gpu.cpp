@@ -200,11 +200,24 @@ TEST_F(LuaGpu, ParametersAndResourcesNameWhatTheSceneHas) {
     Session layers(*s_runtime, small());
     auto l = layers.load(file);
     ASSERT_FALSE(l);
-    EXPECT_NE(l.error().describe().find("scene_setting.lua:" + std::to_string(line) +
-                                        ": resource 'maps': scene_layers = 'lights': the scene has "
-                                        "no such extent (it has 'shadow_views')"),
+    EXPECT_NE(l.error().describe().find(
+                  "scene_setting.lua:" + std::to_string(line) +
+                  ": resource 'maps': scene_layers = 'lights': the scene has "
+                  "no such extent (it has 'shadow_views', 'shadow_casters', 'shadow_batches')"),
               std::string::npos)
         << l.error().describe();
+    // So does a buffer's scene_count.
+    std::ofstream(file) << deferred
+                        << "rg.buffer \"lists\" { size = 16, scene_count = \"lamps\", "
+                           "count_bytes = 8 }\n";
+    Session counts(*s_runtime, small());
+    auto c = counts.load(file);
+    ASSERT_FALSE(c);
+    EXPECT_NE(c.error().describe().find("scene_setting.lua:" + std::to_string(line) +
+                                        ": resource 'lists': scene_count = 'lamps': the scene "
+                                        "has no such extent"),
+              std::string::npos)
+        << c.error().describe();
 
     // only_when.scene names a feature the scene has, likewise.
     std::ofstream(file) << deferred
