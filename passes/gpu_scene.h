@@ -143,6 +143,14 @@ public:
     // every frame from the G-buffer's surfaces: they must be the same). The sun's cascades may
     // stay coarser: a caster inside its receiver shadows nothing the full one would not.
     void drawFullMeshes() const { m_fullMeshes = true; }
+    // Draw d's camera batch at the level of detail viewLod gives: draws with the same key share a
+    // mesh range and material (one instanced draw, passes/scene_pass.cpp), keys below
+    // cameraBatchKeys().
+    uint32_t cameraBatchKey(size_t d) const {
+        return m_cameraBatch[d] * kMaxDrawLods +
+               (d < m_drawLod.size() && !m_fullMeshes ? m_drawLod[d] : 0);
+    }
+    size_t cameraBatchKeys() const { return m_cameraBatchCount * size_t(kMaxDrawLods); }
     VkBuffer vertexBuffer() const { return m_vertices.buffer(); }
     VkBuffer indexBuffer() const { return m_indices.buffer(); }
     VkDescriptorSetLayout materialSetLayout() const { return m_materialLayout.get(); }
@@ -279,8 +287,10 @@ private:
     std::vector<gpu::Buffer> m_materialBuffers;
     std::vector<VkDescriptorSet> m_materialSets;
     std::vector<gpu::Buffer> m_cameraBuffers, m_lightBuffers, m_shadowViewBuffers;
-    gpu::Buffer m_transforms;                    // SceneTransforms: 8 vec4 per draw
-    std::vector<ShadowBatch> m_shadowBatches;    // the casters by mesh and cull mode
+    gpu::Buffer m_transforms;                  // SceneTransforms: 8 vec4 per draw
+    std::vector<ShadowBatch> m_shadowBatches;  // the casters by mesh and cull mode
+    std::vector<uint32_t> m_cameraBatch;       // per draw: its mesh range and material's batch
+    uint32_t m_cameraBatchCount = 0;
     std::vector<gpu::Buffer> m_instanceBuffers;  // SceneInstances, per slot
     // Entries of each slot's SceneInstances handed out this frame: scratch of the recording, which
     // runs on a const scene.

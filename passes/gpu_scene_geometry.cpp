@@ -90,6 +90,20 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
                                                       lod.error * scale};
             }
     }
+    // The camera's batches: the same mesh (vertex offset, full index range) and material.
+    {
+        std::map<std::tuple<int32_t, uint32_t, uint32_t, uint32_t>, uint32_t> batchOf;
+        m_cameraBatch.resize(m_draws.size());
+        for (size_t d = 0; d < m_draws.size(); ++d) {
+            const DrawItem& item = m_draws[d];
+            m_cameraBatch[d] = batchOf
+                                   .emplace(std::tuple(item.vertexOffset, item.firstIndex,
+                                                       item.indexCount, item.material),
+                                            static_cast<uint32_t>(batchOf.size()))
+                                   .first->second;
+        }
+        m_cameraBatchCount = static_cast<uint32_t>(batchOf.size());
+    }
     // The casters' batches: the same mesh (vertex offset, full index range) and cull mode, in draw
     // order; each batch's instance slots follow the batches before it (RgDraw's `shadow`).
     std::vector<glm::uvec4> shadowWord(m_draws.size(), glm::uvec4(0));

@@ -5,7 +5,7 @@
 // This file holds the kind (its schema and ScenePass, which picks the mode), what every mode draws
 // with (SceneDraws), and the modes that draw from the camera: the G-buffer and forward passes.
 #include <algorithm>
-#include <map>
+#include <limits>
 #include <tuple>
 #include <glm/glm.hpp>
 
@@ -262,13 +262,11 @@ CameraScenePass::DrawOrder CameraScenePass::inView(RecordContext& rc, std::vecto
 void CameraScenePass::drawGroups(RecordContext& rc, const DrawOrder& order) {
     const GpuScene& scene = *sceneOf(rc);
     const auto& draws = scene.draws();
-    // The same mesh range (at the level of detail the camera takes) and material: what a run of
-    // consecutive draws in the order must share to be one instanced draw.
+    // The same mesh range (at the level of detail the camera takes) and material — the same
+    // camera batch key: what a run of consecutive draws in the order must share to be one
+    // instanced draw.
     auto sameRun = [&](size_t a, size_t b) {
-        const DrawLod &la = scene.viewLod(a), &lb = scene.viewLod(b);
-        return draws[a].material == draws[b].material &&
-               draws[a].vertexOffset == draws[b].vertexOffset && la.firstIndex == lb.firstIndex &&
-               la.indexCount == lb.indexCount;
+        return scene.cameraBatchKey(a) == scene.cameraBatchKey(b);
     };
     size_t bound = SIZE_MAX;
     uint32_t boundMaterial = UINT32_MAX;
@@ -377,25 +375,29 @@ void GBufferScenePass::recordDraws(RecordContext& rc) {
     // Draws that share a mesh range and material go together, as one instanced draw
     // (drawGroups): batches by their nearest draw, each batch's draws by their own distance.
     const GpuScene& scene = *sceneOf(rc);
-    std::map<std::tuple<uint32_t, int32_t, uint32_t, uint32_t>, float> nearest;
-    auto batchOf = [&](size_t i) {
-        const DrawLod& lod = scene.viewLod(i);
-        return std::tuple(scene.draws()[i].material, scene.draws()[i].vertexOffset, lod.firstIndex,
-                          lod.indexCount);
-    };
+    std::vector<float> nearest(scene.cameraBatchKeys(), std::numeric_limits<float>::max());
     for (const auto& [gi, i] : order) {
-        auto [at, added] = nearest.emplace(batchOf(i), distance[i]);
-        if (!added) at->second = std::min(at->second, distance[i]);
+        float& n = nearest[scene.cameraBatchKey(i)];
+        n = std::min(n, distance[i]);
     }
-    std::vector<float> batchDistance(distance.size(), 0.0f);
-    for (const auto& [gi, i] : order) batchDistance[i] = nearest[batchOf(i)];
-    std::stable_sort(order.begin(), order.end(), [&](const auto& a, const auto& b) {
-        if (a.first != b.first) return a.first < b.first;
-        if (batchDistance[a.second] != batchDistance[b.second])
-            return batchDistance[a.second] < batchDistance[b.second];
-        if (batchOf(a.second) != batchOf(b.second)) return batchOf(a.second) < batchOf(b.second);
-        return distance[a.second] < distance[b.second];
+    struct Key {
+        size_t group;
+        float batchDistance;
+        uint32_t batch;
+        float distance;
+        size_t draw;
+    };
+    std::vector<Key> keys;
+    keys.reserve(order.size());
+    for (const auto& [gi, i] : order) {
+        const uint32_t b = scene.cameraBatchKey(i);
+        keys.push_back({gi, nearest[b], b, distance[i], i});
+    }
+    std::sort(keys.begin(), keys.end(), [](const Key& a, const Key& b) {
+        return std::tie(a.group, a.batchDistance, a.batch, a.distance, a.draw) <
+               std::tie(b.group, b.batchDistance, b.batch, b.distance, b.draw);
     });
+    for (size_t k = 0; k < keys.size(); ++k) order[k] = {keys[k].group, keys[k].draw};
     drawGroups(rc, order);
 }
 

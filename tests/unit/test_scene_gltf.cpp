@@ -619,6 +619,9 @@ TEST(GltfLoad, GpuInstancingPlacesEveryInstance) {
     EXPECT_NEAR(b[0][2], -1.0f, 1e-5f);
     EXPECT_NEAR(b[0][0], 0.0f, 1e-5f);
     EXPECT_NEAR(scene->nodes[2].world[3][2], 3.0f, 1e-6f);
+    // One mesh for all: the renderer draws them as instances of it (passes/scene_pass.cpp).
+    EXPECT_EQ(scene->meshes.size(), 1u);
+    for (const auto& n : scene->nodes) EXPECT_EQ(n.mesh, 0);
     EXPECT_TRUE(scene->warnings.empty()) << scene->warnings[0];
 
     auto single = build(false, false);
