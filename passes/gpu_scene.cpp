@@ -250,31 +250,28 @@ void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
     m_previousViewProj = u.viewProj;
     std::memcpy(m_cameraBuffers[slot].mapped(), &u, sizeof u);
     const auto planes = frustumPlanes(u.viewProj);
-    m_drawInView.resize(m_draws.size());
-    for (size_t d = 0; d < m_draws.size(); ++d)
-        m_drawInView[d] = boxMeetsFrustum(planes, m_draws[d].boundsMin, m_draws[d].boundsMax);
-    // Levels of detail: a world length L at view depth z spans L · |proj[1][1]| · height / (2z)
-    // pixels (orthographic: without the z); each draw takes the coarsest level whose error spans at
-    // most a pixel at the nearest depth of its box (the full one where the box reaches the
-    // near plane).
+    // Per draw: whether its box meets the frustum, and its level of detail — a world length L
+    // at view depth z spans L · |proj[1][1]| · height / (2z) pixels (orthographic: without the
+    // z); each draw takes the coarsest level whose error spans at most a pixel at the nearest
+    // depth of its box (the full one where the box reaches the near plane).
     const glm::vec3 forward = glm::normalize(c.target - c.position);
+    const glm::vec3 absForward = glm::abs(forward);
     const float pixelsPerMetre = std::abs(u.proj[1][1]) * static_cast<float>(height) * 0.5f;
+    m_drawInView.resize(m_draws.size());
     m_drawLod.assign(m_draws.size(), 0);
-    for (size_t d = 0; d < m_draws.size(); ++d) {
-        const DrawItem& item = m_draws[d];
+    for (size_t d = 0; d < m_drawCull.size(); ++d) {
+        const DrawCull& item = m_drawCull[d];
+        m_drawInView[d] = boxMeetsFrustum(planes, item.lo, item.hi);
         if (item.lodCount < 2) continue;
-        float nearest = std::numeric_limits<float>::max();
-        for (int k = 0; k < 8; ++k) {
-            const glm::vec3 corner((k & 1) ? item.boundsMax.x : item.boundsMin.x,
-                                   (k & 2) ? item.boundsMax.y : item.boundsMin.y,
-                                   (k & 4) ? item.boundsMax.z : item.boundsMin.z);
-            nearest = std::min(nearest, glm::dot(corner - c.position, forward));
-        }
+        // The box's nearest depth: its centre's less the half extents along |forward| (the
+        // smallest of the linear function over the eight corners).
+        const glm::vec3 centre = 0.5f * (item.lo + item.hi), half = 0.5f * (item.hi - item.lo);
+        const float nearest = glm::dot(centre - c.position, forward) - glm::dot(half, absForward);
         if (!c.orthographic && nearest <= c.nearPlane) continue;
         const float scale = c.orthographic ? pixelsPerMetre : pixelsPerMetre / nearest;
         uint8_t level = 0;
         for (uint32_t l = 1; l < item.lodCount; ++l)
-            if (item.lods[l].error * scale <= 1.0f) level = static_cast<uint8_t>(l);
+            if (item.error[l - 1] * scale <= 1.0f) level = static_cast<uint8_t>(l);
         m_drawLod[d] = level;
     }
     updateShadowViews(slot, u.viewProj);

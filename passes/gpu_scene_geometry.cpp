@@ -90,6 +90,15 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
                                                       lod.error * scale};
             }
     }
+    m_drawCull.resize(m_draws.size());
+    for (size_t d = 0; d < m_draws.size(); ++d) {
+        const DrawItem& item = m_draws[d];
+        DrawCull& c = m_drawCull[d];
+        c.lo = item.boundsMin;
+        c.hi = item.boundsMax;
+        c.lodCount = item.lodCount;
+        for (uint32_t l = 1; l < item.lodCount; ++l) c.error[l - 1] = item.lods[l].error;
+    }
     // The camera's batches: the same mesh (vertex offset, full index range) and material.
     {
         std::map<std::tuple<int32_t, uint32_t, uint32_t, uint32_t>, uint32_t> batchOf;

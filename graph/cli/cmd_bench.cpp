@@ -60,8 +60,8 @@ int cmdBench(int argc, char** argv) {
     if (!setup) return report(setup.error());
     Runtime& rt = *setup->runtime;
     gpu::Executor& ex = rt.executor();
-    std::map<std::string, std::vector<double>> perPass, floorPass;
-    std::vector<double> totals, records, callbacks, floorTotals;
+    std::map<std::string, std::vector<double>> perPass, floorPass, perPassCpu;
+    std::vector<double> totals, records, sceneUpdates, callbacks, floorTotals;
     std::map<std::string, double> firstFrame;
     // One warm-up frame: the first draw of each pipeline JIT-compiles on lavapipe, and passes of
     // cadence "once" (environment filtering, lookup tables) run only there; its times are the
@@ -82,7 +82,9 @@ int cmdBench(int argc, char** argv) {
             }
             frameTotals.push_back(total);
             if (!main) continue;
+            for (const auto& t : ex.lastTimings()) perPassCpu[t.name].push_back(t.cpuMs);
             records.push_back(ex.lastRecordMs());
+            sceneUpdates.push_back(ex.lastSceneUpdateMs());
             if (setup->session) callbacks.push_back(setup->session->lastFrameCallbackMs());
         }
         return {};
@@ -119,8 +121,13 @@ int cmdBench(int argc, char** argv) {
     j["device"] = rt.gpu().deviceInfo().name;
     for (const auto& p : plan.passes) {
         Stat s = stats(perPass[p.name]);
-        nlohmann::json pj = {{"name", p.name}, {"kind", p.kind}, {"medianMs", s.median},
-                             {"minMs", s.min}, {"maxMs", s.max}, {"firstMs", firstFrame[p.name]}};
+        nlohmann::json pj = {{"name", p.name},
+                             {"kind", p.kind},
+                             {"medianMs", s.median},
+                             {"minMs", s.min},
+                             {"maxMs", s.max},
+                             {"firstMs", firstFrame[p.name]},
+                             {"cpuMedianMs", stats(perPassCpu[p.name]).median}};
         if (floors) {
             const Stat fl = stats(floorPass[p.name]);
             std::printf("%-24s %10.3f %10.3f %10.3f %10.3f %10.3f\n", p.name.c_str(), s.median,
@@ -140,6 +147,19 @@ int cmdBench(int argc, char** argv) {
     } else
         std::printf("%-24s %10.3f %10.3f %10.3f\n", "frame total", t.median, t.min, t.max);
     std::printf("%-24s %10.3f %10.3f %10.3f\n", "CPU recording", rec.median, rec.min, rec.max);
+    // Where the recording's CPU time goes: the scene's update (camera, culling, levels of detail)
+    // and the passes that record the most.
+    const Stat update = stats(sceneUpdates);
+    std::vector<std::pair<double, std::string>> cpuPasses;
+    for (const auto& [name, ms] : perPassCpu) cpuPasses.emplace_back(stats(ms).median, name);
+    std::sort(cpuPasses.rbegin(), cpuPasses.rend());
+    std::string top;
+    for (size_t i = 0; i < std::min<size_t>(cpuPasses.size(), 4); ++i)
+        top += (i ? ", " : "") + cpuPasses[i].second + " " +
+               std::to_string(cpuPasses[i].first).substr(0, 5);
+    std::printf("  of which scene update %.3f ms; most recording: %s\n", update.median,
+                top.c_str());
+    j["sceneUpdateMs"] = update.median;
     if (setup->session) {
         Stat cb = stats(callbacks);
         std::printf("%-24s %10.3f %10.3f %10.3f\n", "rg.frame (Lua)", cb.median, cb.min, cb.max);

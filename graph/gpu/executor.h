@@ -123,6 +123,8 @@ public:
     const BuildStats& buildStats() const { return m_buildStats; }
     const std::vector<PassTiming>& lastTimings() const { return m_lastTimings; }
     double lastRecordMs() const { return m_lastRecordMs; }
+    // Of it, the scene's per-frame update (setScene's perFrame: camera, culling, levels of detail).
+    double lastSceneUpdateMs() const { return m_lastSceneUpdateMs; }
     uint64_t framesSubmitted() const { return m_frameIndex; }
     std::vector<std::string> files() const;  // shader files of every pass
 
@@ -175,6 +177,7 @@ private:
     uint32_t m_buildCount = 0;
     std::vector<PassTiming> m_lastTimings;
     double m_lastRecordMs = 0.0;
+    double m_lastSceneUpdateMs = 0.0;
     std::string m_onceDir;
     std::optional<OnceSet> m_onceToSave;  // recorded this frame: written after it
     OnceCacheStats m_onceStats;

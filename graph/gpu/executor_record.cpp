@@ -103,6 +103,7 @@ Result<void> Executor::frame(VkCommandBuffer hostCmd) {
 
     auto t0 = Clock::now();
     if (m_perFrame) m_perFrame(slotIndex);
+    m_lastSceneUpdateMs = msSince(t0);
     if (!m_onceDir.empty() && !m_floors && !hostCmd)
         if (auto r = onceCacheBeforeFrame(slotIndex); !r) return r;
     VkDevice dev = m_ctx.device();
