@@ -40,8 +40,8 @@ lighting.froxel_words = 128
 -- the sort (one froxel per invocation up to 64 x this froxels: 4K's 130 000 at 1024).
 lighting.froxel_groups = 256
 lighting.sort_groups = 1024
--- The most lights a scene may have: shaders/lib/limits.h's RG_MAX_LIGHTS (the lists' 16-bit indices).
-lighting.max_lights = rg.limits.max_lights
+-- The most lights a scene may have is rg.limits.max_lights (shaders/lib/limits.h's RG_MAX_LIGHTS:
+-- the lists' 16-bit indices); nothing here is sized by it.
 
 -- How the light loop (shaders/lib/lighting.glsl) evaluates sphere, disk, rectangle and tube lights:
 -- "frostbite", the seed's approximations (000 lst:10, 002 §4.7: structured sampling, representative

@@ -90,7 +90,10 @@ void main() {
         const float dA = rgViewDistance(minDepth), dB = rgViewDistance(maxDepth);
         const uint s0 = rgFroxelSlice(range, min(dA, dB)), s1 = rgFroxelSlice(range, max(dA, dB));
         const uint froxel0 = (column.y * columns.x + column.x) * uint(RG_FROXEL_SLICES);
-        // A froxel whose list overflowed lost lights: the tile's list is marked incomplete.
+        // A froxel whose list overflowed lost lights, and froxels without room for lists (a
+        // buffer declared for a smaller frame) hold none of the ranged lights: either way the
+        // tile's list is marked incomplete.
+        incomplete = froxelStride == 0u && lights.count.x > globalLights.count.x;
         for (uint s = s0; s <= s1; ++s) incomplete = incomplete || froxelCounts.count[froxel0 + s] > 2u * froxelStride;
         // Merge the froxels' ascending lists (a light in several is taken once).
         uint cursor[RG_FROXEL_SLICES], length[RG_FROXEL_SLICES];
