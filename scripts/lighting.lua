@@ -121,7 +121,11 @@ end
 -- froxel grid at each fragment's depth: adds the froxel buffers to its reads and RG_LIGHT_FROXELS to
 -- its defines. Returns the table it was given.
 function lighting.clustered(pass)
-    return lighting.extend(pass, { { "light_froxel_counts", as = "storage" }, { "light_froxels", as = "storage" } }, "RG_LIGHT_FROXELS")
+    lighting.extend(pass, { { "light_froxel_counts", as = "storage" }, { "light_froxels", as = "storage" } }, "RG_LIGHT_FROXELS")
+    -- The grid as the froxel passes build it (lib/light_tiles.glsl's readers need its columns and slices).
+    pass.defines.RG_COARSE_TILE_SIZE = lighting.coarse_tile
+    pass.defines.RG_FROXEL_SLICES = lighting.froxel_slices
+    return pass
 end
 
 -- A lighting pass's declaration, reading the tile lists: adds `light_tiles` to its reads and
