@@ -168,12 +168,21 @@ void ShadowScenePass::recordDraws(RecordContext& rc) {
         m_lightViews ? std::min(m_layers, sceneOf(rc)->shadowViewCount()) : m_layers;
     const PhysicalResource* indirect = m_indirect.empty() ? nullptr : rc.resources.find(m_indirect);
     const auto& batches = sceneOf(rc)->shadowBatches();
-    // Commands per view: 4 levels per batch (cascade_cull.comp).
-    const VkDeviceSize perView =
-        indirect ? indirect->plan->bufferSize / kIndirectCommandBytes / std::max(m_viewCount, 1u)
-                 : 0;
-    const bool batched = indirect && perView >= 4 * batches.size() && !batches.empty() &&
-                         rc.gpu.drawIndirectFirstInstance() && sceneOf(rc)->instancing();
+    // Commands per view: 4 levels per batch (cascade_cull.comp), when the buffer has room for them.
+    const VkDeviceSize perView = 4 * batches.size();
+    const bool batched =
+        indirect && !batches.empty() &&
+        indirect->plan->bufferSize >= m_viewCount * perView * kIndirectCommandBytes &&
+        rc.gpu.drawIndirectFirstInstance() && sceneOf(rc)->instancing();
+    // shadow.vert's push constants: a draw's world (all zero: a batch's instances) and the view.
+    auto push = [&](const glm::mat4& world, uint32_t view) {
+        const struct {
+            glm::mat4 world;
+            glm::vec4 view;
+        } constants{world, glm::vec4(static_cast<float>(view))};
+        vkCmdPushConstants(rc.cmd, g.program->layout(), VK_SHADER_STAGE_VERTEX_BIT, 0,
+                           sizeof constants, &constants);
+    };
     for (uint32_t layer = 0; layer < layers; ++layer) {
         const uint32_t view = m_firstView + layer;
         beginLayer(rc, VK_NULL_HANDLE, d->image->layerView(layer), VK_ATTACHMENT_STORE_OP_STORE);
@@ -181,21 +190,15 @@ void ShadowScenePass::recordDraws(RecordContext& rc) {
         g.program->bind(rc, VK_PIPELINE_BIND_POINT_GRAPHICS);
         if (batched) {
             // Per batch and level the instances the culling pass listed (instanceCount 0: none).
-            struct {
-                glm::mat4 world;
-                glm::vec4 layer;
-            } push{glm::mat4(0.0f), glm::vec4(static_cast<float>(view))};
-            vkCmdPushConstants(rc.cmd, g.program->layout(), VK_SHADER_STAGE_VERTEX_BIT, 0,
-                               sizeof push, &push);
+            push(glm::mat4(0.0f), view);
             for (size_t b = 0; b < batches.size(); ++b) {
                 vkCmdSetCullMode(rc.cmd, batches[b].doubleSided ? VkCullModeFlags(VK_CULL_MODE_NONE)
                                                                 : m_shadowCull);
                 const uint32_t levels = sceneOf(rc)->draws()[batches[b].draws.front()].lodCount;
                 for (uint32_t l = 0; l < std::min(levels, 4u); ++l)
-                    vkCmdDrawIndexedIndirect(
-                        rc.cmd, indirect->buffer->buffer(),
-                        ((view * perView / 4 + b) * 4 + l) * kIndirectCommandBytes, 1,
-                        kIndirectCommandBytes);
+                    vkCmdDrawIndexedIndirect(rc.cmd, indirect->buffer->buffer(),
+                                             (view * perView + 4 * b + l) * kIndirectCommandBytes,
+                                             1, kIndirectCommandBytes);
             }
             vkCmdEndRendering(rc.cmd);
             continue;
@@ -205,12 +208,7 @@ void ShadowScenePass::recordDraws(RecordContext& rc) {
             vkCmdSetCullMode(rc.cmd, sceneOf(rc)->scene().materials[item.material].doubleSided
                                          ? VkCullModeFlags(VK_CULL_MODE_NONE)
                                          : m_shadowCull);
-            struct {
-                glm::mat4 world;
-                glm::vec4 layer;
-            } push{item.world, glm::vec4(static_cast<float>(view))};
-            vkCmdPushConstants(rc.cmd, g.program->layout(), VK_SHADER_STAGE_VERTEX_BIT, 0,
-                               sizeof push, &push);
+            push(item.world, view);
             // The camera's level of detail: a caster finer than its receiver (the G-buffer's
             // surface) would stand in front of it by up to the coarser one's error.
             const DrawLod& lod = sceneOf(rc)->viewLod(i);

@@ -55,7 +55,12 @@ rg.param "area_lights" { type = "choice", default = "ltc", choices = { "ltc", "f
 rg.param "light_shapes" { type = "boolean", default = true,
     doc = "draw the area lights' emissive shapes (seed 002 §4.8); read when the scene loads" }
 
-local froxel_defines = { RG_COARSE_TILE_SIZE = lighting.coarse_tile, RG_FROXEL_SLICES = lighting.froxel_slices }
+-- The grid's defines (the column size and slices every froxel writer and reader shares), with `extra`.
+local function froxel_defines(extra)
+    local d = { RG_COARSE_TILE_SIZE = lighting.coarse_tile, RG_FROXEL_SLICES = lighting.froxel_slices }
+    for k, v in pairs(extra or {}) do d[k] = v end
+    return d
+end
 rg.buffer "light_froxel_counts" {
     size = 16, tile = lighting.coarse_tile, tile_bytes = 4 * lighting.froxel_slices,
     doc = "per froxel (32x32-pixel column, slice of view distance) how many ranged lights reach it",
@@ -75,21 +80,21 @@ rg.pass "light_froxels" {
     kind = "compute", shader = "passes/light_froxels.comp", groups = { lighting.froxel_groups, 1, 1 },
     reads = { "depth" },
     writes = { { "light_froxel_counts", as = "storage_rw" }, { "light_froxels", as = "storage" } },
-    insert = { after = "light_froxels_clear" }, defines = froxel_defines,
+    insert = { after = "light_froxels_clear" }, defines = froxel_defines(),
 }
 rg.pass "light_froxels_sort" {
     kind = "compute", shader = "passes/light_froxels.comp", groups = { lighting.sort_groups, 1, 1 },
     reads = { "depth", { "light_froxel_counts", as = "storage" } },
     writes = { { "light_froxels", as = "storage_rw" } },
     insert = { after = "light_froxels" },
-    defines = { RG_FROXEL_SORT = true, RG_COARSE_TILE_SIZE = lighting.coarse_tile, RG_FROXEL_SLICES = lighting.froxel_slices },
+    defines = froxel_defines { RG_FROXEL_SORT = true },
 }
 rg.pass "light_culling" {
     kind = "compute", shader = "passes/light_culling.comp",
     reads = { "depth", { "light_froxel_counts", as = "storage" }, { "light_froxels", as = "storage" } },
     writes = { { "light_tiles", as = "storage" } },
     dispatch = "depth", tile = lighting.tile, insert = { after = "light_froxels_sort" },
-    defines = { RG_TILE_SIZE = lighting.tile, RG_COARSE_TILE_SIZE = lighting.coarse_tile, RG_FROXEL_SLICES = lighting.froxel_slices },
+    defines = froxel_defines { RG_TILE_SIZE = lighting.tile },
 }
 
 -- Adds `reads` to a pass declaration's reads and `define` to its defines: what the `.lit` and
@@ -123,8 +128,7 @@ end
 function lighting.clustered(pass)
     lighting.extend(pass, { { "light_froxel_counts", as = "storage" }, { "light_froxels", as = "storage" } }, "RG_LIGHT_FROXELS")
     -- The grid as the froxel passes build it (lib/light_tiles.glsl's readers need its columns and slices).
-    pass.defines.RG_COARSE_TILE_SIZE = lighting.coarse_tile
-    pass.defines.RG_FROXEL_SLICES = lighting.froxel_slices
+    for k, v in pairs(froxel_defines()) do pass.defines[k] = v end
     return pass
 end
 
