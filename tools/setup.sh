@@ -18,6 +18,7 @@ packages=(
   libxxhash-dev  # the content hash of every cache key (graph/core/hash.h)
   clang-format  # tools/format.sh and the format test: the house's C++ layout (.clang-format)
   chromium  # the golden-test report is checked in a real (headless) browser
+  python3-distributed  # tools/farm.py: shards on a Dask cluster (a local one in the tests)
 )
 tools/install_packages.sh "rgraph setup" "${packages[@]}"
 

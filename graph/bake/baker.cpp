@@ -12,7 +12,8 @@
 //      marked baked, its direct light at the texel as a delta of illuminance E from direction d:
 //      + E · G_k(d) (an area light: one point sampled on it per path).
 // Then the non-negative least-squares fit on the hemisphere's exact Gram matrix, and a dilation of
-// the covered texels into the border around every node's square.
+// the covered texels into the border around every node's square (dilateLightmap; a shard leaves
+// that to the merge).
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -514,9 +515,17 @@ Result<Lightmap> bakeLightmap(const Scene& scene, const LightmapAtlas& atlas,
                 }
         }
     }
+    // The covered texels, and of them this shard's runs (BakeOptions::shard, kShardRun).
+    const uint32_t shards = std::max(options.shards, 1u);
+    if (options.shard >= shards)
+        return fail(ErrorCode::InvalidInput, "lightmap: shard " +
+                                                 std::to_string(options.shard + 1) + " of " +
+                                                 std::to_string(shards) + " does not exist");
     std::vector<uint32_t> work;
+    uint32_t covered = 0;
     for (uint32_t i = 0; i < texels; ++i)
-        if (owner[i].distance < 1e29f) work.push_back(i);
+        if (owner[i].distance < 1e29f && (covered++ / kShardRun) % shards == options.shard)
+            work.push_back(i);
 
     const LightmapFit fit = lightmapFit(settings.lobes, lm.sharpness);
     lm.unit = fit.unit;
@@ -627,40 +636,13 @@ Result<Lightmap> bakeLightmap(const Scene& scene, const LightmapAtlas& atlas,
     }
     for (auto& t : pool) t.join();
 
-    // Dilate the baked texels into the unbaked ones around them (each node's border and its
-    // charts' gutters): a texel takes the mean of its baked 8-neighbours, four rings deep, so
-    // bilinear filtering never reads an empty texel at a chart's edge.
-    std::vector<uint8_t> filled = lm.coverage;
-    std::vector<glm::vec3> sum(lm.axes.size());
-    for (int ring = 0; ring < 4; ++ring) {
-        std::vector<uint8_t> next = filled;
-        for (uint32_t y = 0; y < lm.height; ++y)
-            for (uint32_t x = 0; x < lm.width; ++x) {
-                const size_t i = size_t(y) * lm.width + x;
-                if (filled[i]) continue;
-                int count = 0;
-                std::fill(sum.begin(), sum.end(), glm::vec3(0.0f));
-                for (int dy = -1; dy <= 1; ++dy)
-                    for (int dx = -1; dx <= 1; ++dx) {
-                        const int nx = int(x) + dx, ny = int(y) + dy;
-                        if (nx < 0 || ny < 0 || nx >= int(lm.width) || ny >= int(lm.height))
-                            continue;
-                        const size_t j = size_t(ny) * lm.width + size_t(nx);
-                        if (!filled[j]) continue;
-                        ++count;
-                        for (size_t k = 0; k < lm.axes.size(); ++k) sum[k] += lm.lobes[k][j];
-                    }
-                if (count == 0) continue;
-                for (size_t k = 0; k < lm.axes.size(); ++k) lm.lobes[k][i] = sum[k] / float(count);
-                next[i] = 1;
-            }
-        filled.swap(next);
-    }
+    if (shards == 1) dilateLightmap(lm);  // a shard's part is dilated when merged
     if (stats) {
         stats->seconds =
             std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
         stats->rays = totalRays.load();
         stats->texels = static_cast<uint32_t>(work.size());
+        stats->covered = covered;
     }
     return lm;
 }

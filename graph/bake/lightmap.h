@@ -91,9 +91,16 @@ glm::vec3 lightmapIrradiance(const Lightmap& lightmap, uint32_t x, uint32_t y, g
 
 struct BakeStats {
     double seconds = 0.0;
-    uint64_t rays = 0;    // Embree ray casts: intersections and shadow rays
-    uint32_t texels = 0;  // covered texels baked
+    uint64_t rays = 0;     // Embree ray casts: intersections and shadow rays
+    uint32_t texels = 0;   // covered texels baked
+    uint32_t covered = 0;  // covered texels of the whole atlas (= texels unless sharded)
 };
+
+// A sharded bake (rgraph bake --shard K/N): the atlas's covered texels, in row order, dealt out in
+// runs of kShardRun, run r to shard r mod N, so every shard gets a like share of every part of
+// the atlas. A texel's paths are seeded by the texel alone, so a shard's texels come out exactly
+// as the whole bake makes them, and N merged shards are that bake bit for bit.
+inline constexpr uint32_t kShardRun = 256;
 
 struct BakeOptions {
     unsigned threads = 0;  // 0: every core
@@ -101,6 +108,9 @@ struct BakeOptions {
     // Called from the baking threads' coordinator about twice a second: the fraction done and the
     // estimated seconds left.
     std::function<void(double fraction, double secondsLeft)> progress;
+    // Bake only shard `shard` (0-based) of `shards`: just its texels, undilated (Lightmap::coverage
+    // marks them), for mergeLightmapParts.
+    uint32_t shard = 0, shards = 1;
 };
 
 // Bakes the scene's lightmap (scene.lightmap's settings, the atlas from packLightmap). Errors name
@@ -125,8 +135,28 @@ glm::vec3 lightmapSpecular(const Lightmap& lightmap, size_t texel, glm::vec3 N, 
 // "coverage.Y"; the header says the basis: rgraph.lightmap.lobes, .sharpness, .axes ("x y z" per
 // lobe, ';'-separated, tangent space), .unit (the amplitudes of a uniform 1-nit hemisphere), .density,
 // .key, .space = "tangent".
-Result<void> writeLightmapExr(const std::string& path, const Lightmap& lightmap);
-Result<Lightmap> readLightmapExr(const std::string& path);
+// A part of a sharded bake carries rgraph.lightmap.shard (1-based) and .shards, .texels (its
+// covered texels) and .covered (the whole atlas's) in its header; readLightmapExr refuses a part
+// unless asked for one (`part`), so a part is never taken for a whole lightmap. Written to a
+// temporary file beside `path` and renamed: a reader (another worker, a render) never sees half.
+struct LightmapPart {
+    uint32_t shard = 0, shards = 1;  // 0-based
+    uint32_t texels = 0, covered = 0;
+};
+Result<void> writeLightmapExr(const std::string& path, const Lightmap& lightmap,
+                              const LightmapPart* part = nullptr);
+Result<Lightmap> readLightmapExr(const std::string& path, LightmapPart* part = nullptr);
+
+// Fills the texels no surface covers around the covered ones (every node's border, its charts'
+// gutters): each takes the mean of its filled 8-neighbours, four rings deep, so bilinear filtering
+// never reads an empty texel at a chart's edge. The whole bake's last step, and the merge's.
+void dilateLightmap(Lightmap& lightmap);
+
+// Joins the parts of a sharded bake into the whole lightmap, dilated: bit-identical to baking it
+// in one go. Refused, naming the file: a part of another scene or settings (key, size, basis), a
+// shard given twice, a shard missing (with the ones that are), parts whose texels overlap or do not
+// add up to the atlas's covered texels.
+Result<Lightmap> mergeLightmapParts(const std::vector<std::string>& paths);
 
 // The baker as a value (rg_baker's bakeLightmap): the renderer's library takes baked lightmaps from
 // the cache and bakes only when its host links the baker and hands it over.
@@ -142,10 +172,22 @@ struct PrepareOptions {
     BakeFunction bake = nullptr;
     bool quiet = false;
     bool rebake = false;
+    unsigned threads = 0;         // baking threads (0: every core)
     BakeStats* stats = nullptr;   // filled when it baked
     bool* fromCache = nullptr;    // set to whether it came from the cache
     std::string* path = nullptr;  // the cache file
 };
 Result<void> prepareLightmap(Scene& scene, const PrepareOptions& options);
+
+// One shard of the scene's bake (0-based `shard` of `shards`): packs the atlas into the nodes,
+// then reads <cacheDir>/<key>.shard-K-of-N.exr, or bakes the shard with `options.bake` and
+// writes it there; a rerun finds a finished shard, and two workers baking the same one each write
+// a whole file (renamed into place). options.path/fromCache/stats are set as prepareLightmap does.
+struct LightmapShard {
+    Lightmap lightmap;
+    LightmapPart part;
+};
+Result<LightmapShard> prepareLightmapShard(Scene& scene, const PrepareOptions& options,
+                                           uint32_t shard, uint32_t shards);
 
 }  // namespace rg::bake

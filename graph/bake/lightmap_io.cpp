@@ -10,6 +10,7 @@
 #include "scene/scene_detail.h"
 #include "image/image.h"
 #include "lighting/sg.h"
+#include "core/temp_path.h"
 
 namespace rg::bake {
 
@@ -93,7 +94,8 @@ glm::vec3 lightmapSpecular(const Lightmap& lm, size_t texel, glm::vec3 N, glm::v
     return ld / std::max(one, 1e-6f);
 }
 
-Result<void> writeLightmapExr(const std::string& path, const Lightmap& lm) {
+Result<void> writeLightmapExr(const std::string& path, const Lightmap& lm,
+                              const LightmapPart* part) {
     std::vector<ImageLayer> layers;
     for (size_t k = 0; k < lm.lobes.size(); ++k) {
         ImageLayer layer{"sg" + std::to_string(k), {"R", "G", "B"}, Image(lm.width, lm.height, 3)};
@@ -119,10 +121,29 @@ Result<void> writeLightmapExr(const std::string& path, const Lightmap& lm) {
     o.ints["rgraph.lightmap.lobes"] = static_cast<int>(lm.axes.size());
     o.floats["rgraph.lightmap.sharpness"] = lm.sharpness;
     o.floats["rgraph.lightmap.density"] = lm.density;
-    return writeExr(path, layers, o);
+    if (part) {
+        o.ints["rgraph.lightmap.shard"] = static_cast<int>(part->shard + 1);
+        o.ints["rgraph.lightmap.shards"] = static_cast<int>(part->shards);
+        o.ints["rgraph.lightmap.texels"] = static_cast<int>(part->texels);
+        o.ints["rgraph.lightmap.covered"] = static_cast<int>(part->covered);
+    }
+    // Beside the target under a name of this writer's own, then renamed over it.
+    const std::string tmp = tempPathBeside(path);
+    if (auto r = writeExr(tmp, layers, o); !r) {
+        std::error_code ec;
+        std::filesystem::remove(tmp, ec);
+        return r;
+    }
+    std::error_code ec;
+    std::filesystem::rename(tmp, path, ec);
+    if (ec) {
+        std::filesystem::remove(tmp, ec);
+        return fail(ErrorCode::Io, "cannot write '" + path + "': " + ec.message());
+    }
+    return {};
 }
 
-Result<Lightmap> readLightmapExr(const std::string& path) {
+Result<Lightmap> readLightmapExr(const std::string& path, LightmapPart* part) {
     auto file = readExr(path);
     if (!file) return std::unexpected(file.error());
     auto bad = [&](const std::string& why) {
@@ -138,6 +159,27 @@ Result<Lightmap> readLightmapExr(const std::string& path) {
     if (lobes->second < 1 || lobes->second > 64)
         return bad("rgraph.lightmap.lobes is " + std::to_string(lobes->second));
     lm.sharpness = static_cast<float>(sharp->second);
+    const auto shard = file->ints.find("rgraph.lightmap.shard"),
+               shards = file->ints.find("rgraph.lightmap.shards");
+    if (shard != file->ints.end() && !part)
+        return fail(ErrorCode::InvalidInput,
+                    path + ": is shard " + std::to_string(shard->second) + " of " +
+                        (shards != file->ints.end() ? std::to_string(shards->second) : "?") +
+                        " of a sharded bake, not a whole lightmap: merge the shards with `rgraph "
+                        "bake --merge PART...`");
+    if (part) {
+        auto get = [&](const char* name) {
+            auto it = file->ints.find(name);
+            return it == file->ints.end() ? -1 : it->second;
+        };
+        const int k = get("rgraph.lightmap.shard"), n = get("rgraph.lightmap.shards"),
+                  texels = get("rgraph.lightmap.texels"), covered = get("rgraph.lightmap.covered");
+        if (k < 1 || n < 1 || k > n || texels < 0 || covered < texels)
+            return bad(
+                "not a shard of a sharded bake (its header lacks a valid "
+                "rgraph.lightmap.shard, .shards, .texels or .covered)");
+        *part = {uint32_t(k - 1), uint32_t(n), uint32_t(texels), uint32_t(covered)};
+    }
     if (auto d = file->floats.find("rgraph.lightmap.density"); d != file->floats.end())
         lm.density = static_cast<float>(d->second);
     if (auto k = file->metadata.find("rgraph.lightmap.key"); k != file->metadata.end())
@@ -182,6 +224,48 @@ Result<Lightmap> readLightmapExr(const std::string& path) {
     return lm;
 }
 
+namespace {
+
+// options.bake with progress and ETA on stderr (unless quiet); the figures are printed unless the
+// caller takes them (options.stats), which is then filled.
+Result<Lightmap> bakeWithProgress(const Scene& scene, const LightmapAtlas& atlas,
+                                  const PrepareOptions& options, BakeOptions bo, BakeStats& stats) {
+    const LightmapSettings& settings = *scene.lightmap;
+    bo.threads = options.threads;
+    const bool tty = isatty(fileno(stderr));
+    if (!options.quiet) {
+        std::fprintf(stderr,
+                     "rgraph: baking lightmap '%s'%s: %ux%u texels, %d lobes, %d paths per texel, "
+                     "%d bounces\n",
+                     settings.name.c_str(),
+                     bo.shards > 1 ? (" shard " + std::to_string(bo.shard + 1) + "/" +
+                                      std::to_string(bo.shards))
+                                         .c_str()
+                                   : "",
+                     atlas.width, atlas.height, settings.lobes, settings.samples, settings.bounces);
+        bo.progress = [tty, last = -1](double fraction, double left) mutable {
+            const int percent = static_cast<int>(fraction * 100.0);
+            if (!tty && percent / 10 == last / 10) return;
+            last = percent;
+            std::fprintf(stderr,
+                         tty ? "\rrgraph: baking %3d %%, %.0f s left   "
+                             : "rgraph: baking %3d %%, %.0f s left\n",
+                         percent, left);
+        };
+    }
+    auto baked = options.bake(scene, atlas, settings, bo, &stats);
+    if (!options.quiet && tty) std::fprintf(stderr, "\n");
+    if (!baked) return std::unexpected(baked.error());
+    if (options.stats) *options.stats = stats;
+    if (!options.quiet && !options.stats)  // a caller that takes the figures prints them
+        std::fprintf(stderr, "rgraph: baked %u texels in %.1f s (%.2f M rays/s)\n", stats.texels,
+                     stats.seconds,
+                     stats.seconds > 0 ? double(stats.rays) / stats.seconds * 1e-6 : 0.0);
+    return baked;
+}
+
+}  // namespace
+
 Result<void> prepareLightmap(Scene& scene, const PrepareOptions& options) {
     if (!scene.lightmap) return {};
     const LightmapSettings& settings = *scene.lightmap;
@@ -207,38 +291,57 @@ Result<void> prepareLightmap(Scene& scene, const PrepareOptions& options) {
                     "not baked for this scene (no " + key +
                         ".exr in the lightmap cache): bake it with "
                         "`rgraph bake SCENE`, or render with a host that links the baker");
-    BakeOptions bo;
-    const bool tty = isatty(fileno(stderr));
-    if (!options.quiet) {
-        std::fprintf(stderr,
-                     "rgraph: baking lightmap '%s': %ux%u texels, %d lobes, %d paths per texel, %d "
-                     "bounces\n",
-                     settings.name.c_str(), atlas->width, atlas->height, settings.lobes,
-                     settings.samples, settings.bounces);
-        bo.progress = [tty, last = -1](double fraction, double left) mutable {
-            const int percent = static_cast<int>(fraction * 100.0);
-            if (!tty && percent / 10 == last / 10) return;
-            last = percent;
-            std::fprintf(stderr,
-                         tty ? "\rrgraph: baking %3d %%, %.0f s left   "
-                             : "rgraph: baking %3d %%, %.0f s left\n",
-                         percent, left);
-        };
-    }
     BakeStats stats;
-    auto baked = options.bake(scene, *atlas, settings, bo, &stats);
-    if (!options.quiet && tty) std::fprintf(stderr, "\n");
+    auto baked = bakeWithProgress(scene, *atlas, options, BakeOptions{}, stats);
     if (!baked) return std::unexpected(baked.error());
     baked->key = key;
-    if (options.stats) *options.stats = stats;
-    if (!options.quiet && !options.stats)  // a caller that takes the figures prints them
-        std::fprintf(stderr, "rgraph: baked %u texels in %.1f s (%.2f M rays/s)\n", stats.texels,
-                     stats.seconds,
-                     stats.seconds > 0 ? double(stats.rays) / stats.seconds * 1e-6 : 0.0);
     std::filesystem::create_directories(options.cacheDir, ec);
     if (auto r = writeLightmapExr(path, *baked); !r) return std::unexpected(r.error());
     scene.bakedLightmap = std::make_shared<const Lightmap>(std::move(*baked));
     return {};
+}
+
+Result<LightmapShard> prepareLightmapShard(Scene& scene, const PrepareOptions& options,
+                                           uint32_t shard, uint32_t shards) {
+    if (!scene.lightmap)
+        return fail(ErrorCode::InvalidInput, "the scene declares no scene.lightmap");
+    if (shards < 1 || shard >= shards)
+        return fail(ErrorCode::InvalidInput, "shard " + std::to_string(shard + 1) + " of " +
+                                                 std::to_string(shards) + " does not exist");
+    const LightmapSettings& settings = *scene.lightmap;
+    auto atlas = packLightmap(scene, settings);
+    if (!atlas) return std::unexpected(atlas.error());
+    applyAtlas(scene, *atlas);
+    const std::string key = lightmapKey(scene, settings);
+    const std::string path = options.cacheDir + "/" + key + ".shard-" + std::to_string(shard + 1) +
+                             "-of-" + std::to_string(shards) + ".exr";
+    if (options.path) *options.path = path;
+    std::error_code ec;
+    if (!options.rebake && std::filesystem::is_regular_file(path, ec)) {
+        LightmapShard cached;
+        auto lm = readLightmapExr(path, &cached.part);
+        if (lm && lm->key == key && lm->width == atlas->width && lm->height == atlas->height &&
+            int(lm->axes.size()) == settings.lobes && cached.part.shard == shard &&
+            cached.part.shards == shards) {
+            if (options.fromCache) *options.fromCache = true;
+            cached.lightmap = std::move(*lm);
+            return cached;
+        }
+    }
+    if (options.fromCache) *options.fromCache = false;
+    if (!options.bake) return fail(ErrorCode::NotFound, "no baker to bake a shard with");
+    BakeOptions bo;
+    bo.shard = shard;
+    bo.shards = shards;
+    BakeStats stats;
+    auto baked = bakeWithProgress(scene, *atlas, options, bo, stats);
+    if (!baked) return std::unexpected(baked.error());
+    baked->key = key;
+    LightmapShard result{std::move(*baked), {shard, shards, stats.texels, stats.covered}};
+    std::filesystem::create_directories(options.cacheDir, ec);
+    if (auto r = writeLightmapExr(path, result.lightmap, &result.part); !r)
+        return std::unexpected(r.error());
+    return result;
 }
 
 std::vector<glm::vec3> lightmapAxes(int lobes) { return lighting::goldenSpiralAxes(lobes, true); }

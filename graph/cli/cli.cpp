@@ -100,6 +100,18 @@ bool parseSize(const std::string& s, uint32_t& w, uint32_t& h) {
     return true;
 }
 
+bool parseShard(const std::string& s, uint32_t& shard, uint32_t& shards) {
+    const auto slash = s.find('/');
+    if (slash == std::string::npos) return false;
+    uint32_t k = 0, n = 0;
+    if (!parseCount(s.substr(0, slash), k) || !parseCount(s.substr(slash + 1), n) || k > n ||
+        n > 65536)
+        return false;
+    shard = k - 1;
+    shards = n;
+    return true;
+}
+
 bool parseCount(const std::string& s, uint32_t& n, bool allowZero) {
     char* end = nullptr;
     unsigned long v = std::strtoul(s.c_str(), &end, 10);

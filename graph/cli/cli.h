@@ -72,6 +72,8 @@ std::optional<int> parseCommand(int argc, char** argv, const char* command,
 
 bool parseSize(const std::string& s, uint32_t& w, uint32_t& h);
 bool parseCount(const std::string& s, uint32_t& n, bool allowZero = false);
+// "K/N" with 1 <= K <= N <= 65536, as a 0-based shard of N.
+bool parseShard(const std::string& s, uint32_t& shard, uint32_t& shards);
 
 std::string defaultPipeline();
 std::string pipelineArg(const Args& args);
@@ -82,11 +84,20 @@ Result<GraphDesc> loadGraph(const Args& args);
 struct RenderSetup {
     std::unique_ptr<Runtime> runtime;
     std::unique_ptr<Session> session;  // null for builtin:NAME graphs
-    uint32_t frames = 1;
+    uint32_t frames = 1;               // to run, warm-up included
+    // --frames A..B (render): the frames run are numbered from firstFrame = A - warm-up, and
+    // those from rangeStart = A on are each written (framePath).
+    bool range = false;
+    uint64_t firstFrame = 0, rangeStart = 0;
     std::string pipeline;
     double deviceMs = 0.0;  // Vulkan instance and device
 
-    Result<void> frame() { return session ? session->frame() : runtime->executor().frame(); }
+    uint64_t framesRun = 0;
+    Result<void> frame() {
+        ++framesRun;
+        return session ? session->frame() : runtime->executor().frame();
+    }
+    uint64_t lastFrameNumber() const { return firstFrame + framesRun - 1; }
     std::string output() const { return session ? session->pipeline().output : "output"; }
 };
 
@@ -103,6 +114,9 @@ std::string number(double v);
 // layer per capture) and the PNG (the display image). Returns the display image.
 Result<Image> writeOutputs(RenderSetup& setup, const std::string& exrPath,
                            const std::string& pngPath, const std::vector<std::string>& captures);
+// Frame `frame`'s file of a sequence: a run of '#' in the file name replaced by the number,
+// zero-padded to the run's length ("shot.####.exr"), else ".NNNN" before the extension.
+std::string framePath(const std::string& path, uint64_t frame);
 // The EXR and PNG paths a command writes (--out, --png).
 Result<std::pair<std::string, std::string>> outputPaths(const Args& args,
                                                         const std::string& defaultExr);

@@ -30,9 +30,34 @@ Result<RenderSetup> setupRun(const Args& args, const char* command, uint32_t def
             std::string(command) +
                 ": --size must be WIDTHxHEIGHT with each side in 1..16384, e.g. 1280x720; got '" +
                 args.get("size") + "'");
-    if (args.has("frames") && !parseCount(args.get("frames"), s.frames))
-        return fail(ErrorCode::InvalidInput,
-                    std::string(command) + ": --frames must be a positive whole number");
+    const bool render = std::string(command) == "render";
+    if (const std::string f = args.get("frames"); render && f.find("..") != std::string::npos) {
+        // A..B: frames A to B of the sequence, after --warmup W unwritten frames before A.
+        uint32_t a = 0, b = 0, warmup = 0;
+        const auto dots = f.find("..");
+        if (!parseCount(f.substr(0, dots), a, true) || !parseCount(f.substr(dots + 2), b, true) ||
+            b < a)
+            return fail(ErrorCode::InvalidInput,
+                        "render: --frames A..B needs whole numbers 0 <= A <= B, got '" + f + "'");
+        if (args.has("warmup") && !parseCount(args.get("warmup"), warmup, true))
+            return fail(ErrorCode::InvalidInput,
+                        "render: --warmup must be a whole number of frames, got '" +
+                            args.get("warmup") + "'");
+        if (warmup > a)
+            return fail(ErrorCode::InvalidInput,
+                        "render: --warmup " + std::to_string(warmup) + " reaches before frame 0 (" +
+                            "the range starts at " + std::to_string(a) + ")");
+        s.range = true;
+        s.rangeStart = a;
+        s.firstFrame = a - warmup;
+        s.frames = b - a + 1 + warmup;
+    } else if (args.has("frames") && !parseCount(args.get("frames"), s.frames)) {
+        return fail(ErrorCode::InvalidInput, std::string(command) +
+                                                 ": --frames must be a positive whole number" +
+                                                 (render ? " or a range A..B" : ""));
+    } else if (args.has("warmup")) {
+        return fail(ErrorCode::InvalidInput, "render: --warmup goes with --frames A..B");
+    }
     RuntimeOptions ro;
     if (args.has("device")) {
         const std::string v = args.get("device");
@@ -64,6 +89,7 @@ Result<RenderSetup> setupRun(const Args& args, const char* command, uint32_t def
         }
         if (auto r = s.runtime->executor().build(*graph, opts); !r)
             return std::unexpected(r.error());
+        s.runtime->executor().setFrameNumberBase(s.firstFrame);
         return s;
     }
     SessionOptions so;
@@ -77,6 +103,7 @@ Result<RenderSetup> setupRun(const Args& args, const char* command, uint32_t def
     so.environmentSun = args.get("environment-sun");
     so.variant = args.get("variant");
     so.verbose = verbose;
+    so.firstFrame = s.firstFrame;
     so.warnings = true;  // what a scene's loader skipped, always (Scene::warnings)
     // The once-per-build outputs' disk cache: not for bench, whose first-frame column times those passes.
     if (std::string(command) != "bench" && !args.has("no-cache")) so.onceCache = cacheDir();
@@ -153,7 +180,10 @@ Result<Image> writeOutputs(RenderSetup& setup, const std::string& exrPath,
     ExrWriteOptions eo;
     eo.metadata["rgraph.pipeline"] = logicalName(setup.pipeline);
     eo.metadata["rgraph.device"] = exrMetaDevice(*setup.runtime);
-    eo.ints["rgraph.frames"] = static_cast<int>(setup.frames);
+    if (setup.range)  // the frame this file holds (how many ran before it depends on the warm-up)
+        eo.ints["rgraph.frame"] = static_cast<int>(setup.lastFrameNumber());
+    else
+        eo.ints["rgraph.frames"] = static_cast<int>(setup.frames);
     std::vector<ImageLayer> layers;
     const PipelineDesc* pipeline = setup.session ? &setup.session->pipeline() : nullptr;
     Image png = *display;
@@ -231,6 +261,24 @@ Result<Image> writeOutputs(RenderSetup& setup, const std::string& exrPath,
 // The EXR and PNG paths a command writes: --out FILE.exr (default `defaultExr`), and --png
 // FILE.png or, without it, the EXR's path with .png — so an explicit --out never writes into the
 // default folder. Other extensions are refused rather than written under a wrong name.
+std::string framePath(const std::string& path, uint64_t frame) {
+    const size_t slash = path.find_last_of('/');
+    const size_t nameStart = slash == std::string::npos ? 0 : slash + 1;
+    const size_t hash = path.find('#', nameStart);
+    if (hash != std::string::npos) {
+        size_t end = hash;
+        while (end < path.size() && path[end] == '#') ++end;
+        std::string digits = std::to_string(frame);
+        if (digits.size() < end - hash) digits.insert(0, end - hash - digits.size(), '0');
+        return path.substr(0, hash) + digits + path.substr(end);
+    }
+    const size_t dot = path.find_last_of('.');
+    char number[32];
+    std::snprintf(number, sizeof number, ".%04llu", static_cast<unsigned long long>(frame));
+    if (dot == std::string::npos || dot < nameStart) return path + number;
+    return path.substr(0, dot) + number + path.substr(dot);
+}
+
 Result<std::pair<std::string, std::string>> outputPaths(const Args& args,
                                                         const std::string& defaultExr) {
     auto endsWith = [](std::string path, const std::string& ext) {

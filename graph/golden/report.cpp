@@ -1,4 +1,5 @@
 #include "golden/report.h"
+#include "core/temp_path.h"
 
 #include <unistd.h>
 
@@ -22,7 +23,7 @@ Result<void> writeTextFile(const std::string& path, const std::string& text) {
     std::error_code ec;
     if (auto parent = fs::path(path).parent_path(); !parent.empty())
         fs::create_directories(parent, ec);
-    const std::string tmp = path + ".tmp-" + std::to_string(::getpid());
+    const std::string tmp = tempPathBeside(path);
     {
         std::ofstream out(tmp, std::ios::binary);
         out << text;

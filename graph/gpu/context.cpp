@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "core/check.h"
+#include "core/temp_path.h"
 
 namespace rg::gpu {
 
@@ -370,7 +371,7 @@ Result<void> Context::savePipelineCache() const {
     RG_VK_TRY(vkGetPipelineCacheData(m_device, m_pipelineCache, &size, nullptr));
     std::vector<char> data(size);
     RG_VK_TRY(vkGetPipelineCacheData(m_device, m_pipelineCache, &size, data.data()));
-    const std::string tmp = m_pipelineCachePath + ".tmp" + std::to_string(::getpid());
+    const std::string tmp = tempPathBeside(m_pipelineCachePath);
     {
         std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
         out.write(data.data(), static_cast<std::streamsize>(size));

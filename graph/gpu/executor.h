@@ -126,6 +126,10 @@ public:
     // Of it, the scene's per-frame update (setScene's perFrame: camera, culling, levels of detail).
     double lastSceneUpdateMs() const { return m_lastSceneUpdateMs; }
     uint64_t framesSubmitted() const { return m_frameIndex; }
+    // The frame number shaders see (rg_frame, rg_time = number / 60 s) is `first` + the frames
+    // submitted: a range of a sequence (rgraph render --frames A..B) numbers its frames as the
+    // whole run would.
+    void setFrameNumberBase(uint64_t first) { m_frameNumberBase = first; }
     std::vector<std::string> files() const;  // shader files of every pass
 
 private:
@@ -167,6 +171,7 @@ private:
     std::map<std::string, HostImage> m_hostImports, m_hostExports;
     Result<void> recordHostCopies(VkCommandBuffer cmd, bool imports);
     uint64_t m_frameIndex = 0;
+    uint64_t m_frameNumberBase = 0;  // setFrameNumberBase
     uint64_t m_persistentEpoch = 0;  // FrameInfo::persistentEpoch
     const SceneBinding* m_scene = nullptr;
     std::function<void(uint32_t)> m_perFrame;

@@ -14,6 +14,7 @@
 
 #include "core/hash.h"
 #include "executor_detail.h"
+#include "core/temp_path.h"
 
 namespace rg::gpu {
 
@@ -332,7 +333,7 @@ Result<void> Executor::onceCacheAfterFrame(VkFence fence) {
     const std::filesystem::path path = onceCachePath(m_onceDir, set.key);
     std::error_code ec;
     std::filesystem::create_directories(path.parent_path(), ec);
-    const std::filesystem::path temp = path.string() + ".tmp" + std::to_string(::getpid());
+    const std::filesystem::path temp = tempPathBeside(path.string());
     {
         std::ofstream out(temp, std::ios::binary | std::ios::trunc);
         const uint64_t count = set.resources.size();

@@ -136,8 +136,8 @@ Result<void> Executor::frame(VkCommandBuffer hostCmd) {
                   VK_ACCESS_2_MEMORY_READ_BIT | VK_ACCESS_2_MEMORY_WRITE_BIT);
     if (auto r = recordHostCopies(cmd, /*imports=*/true); !r) return r;
 
-    FrameInfo info{m_frameIndex, static_cast<double>(m_frameIndex) / 60.0, slotIndex,
-                   m_persistentEpoch};
+    const uint64_t number = m_frameNumberBase + m_frameIndex;
+    FrameInfo info{number, static_cast<double>(number) / 60.0, slotIndex, m_persistentEpoch};
     for (size_t i = 0; i < m_built->plan.passes.size(); ++i) {
         const PlanPass& pass = m_built->plan.passes[i];
         m_ctx.beginLabel(cmd, pass.name);

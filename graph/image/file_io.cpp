@@ -1,4 +1,5 @@
 #include "image/file_io.h"
+#include "core/temp_path.h"
 
 #include <unistd.h>
 
@@ -41,10 +42,8 @@ Result<std::vector<char>> readWholeFile(const std::string& path) {
 }
 
 Result<AtomicFileWriter> AtomicFileWriter::open(const std::string& path) {
-    // pid + counter: two writers of the same path (threads or processes) never share a temp file.
-    static std::atomic<unsigned> counter{0};
-    std::string tempPath =
-        path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter.fetch_add(1));
+    // Two writers of the same path (threads, processes, machines) never share a temp file.
+    std::string tempPath = tempPathBeside(path);
     std::FILE* f = std::fopen(tempPath.c_str(), "wb");
     if (!f) {
         const int err = errno;

@@ -20,6 +20,7 @@
 #include "passes/passes.h"
 #include "scene/environment.h"
 #include "shaders/lib/exposure_state.h"
+#include "core/temp_path.h"
 
 namespace fs = std::filesystem;
 
@@ -70,7 +71,10 @@ LuaHostOptions luaHostOptionsWithoutDevice() {
 }
 
 Session::Session(Runtime& runtime, SessionOptions options)
-    : m_runtime(runtime), m_options(std::move(options)) {}
+    : m_runtime(runtime), m_options(std::move(options)), m_frame(m_options.firstFrame) {
+    // (A fresh runtime's executor: its frame numbers then match the script's ctx.frame.)
+    if (m_frame) m_runtime.executor().setFrameNumberBase(m_frame);
+}
 Session::~Session() {
     // The executor must not keep drawing (or calling back into) a scene that goes away with us,
     // and the frames still in flight draw with its buffers: they finish first.
@@ -207,7 +211,7 @@ Result<std::string> writeLayoutHeaders(const PipelineDesc& pipeline) {
         std::ifstream in(file);
         std::string old((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
         if (old == glsl) continue;
-        const fs::path tmp = file.string() + ".tmp" + std::to_string(::getpid());
+        const fs::path tmp = tempPathBeside(file.string());
         std::ofstream(tmp) << glsl;
         fs::rename(tmp, file, ec);
         if (ec) return fail(ErrorCode::Io, "cannot write '" + file.string() + "': " + ec.message());

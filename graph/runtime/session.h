@@ -62,6 +62,9 @@ struct SessionOptions {
     // Called every frame after the script's rg.frame with the pipeline as rg.frame left it; its
     // changes are applied on top (the golden tests' frame callbacks).
     std::function<Result<FrameChanges>(const FrameContext&, const PipelineDesc&)> frameHook;
+    // The number the first frame renders as (ctx.frame; ctx.time = frame / 60 s): a range of a
+    // scripted sequence (rgraph render --frames A..B) starts where the whole run would be.
+    uint64_t firstFrame = 0;
 };
 
 class Session {

@@ -18,6 +18,7 @@
 #include "core/light_units.h"
 #include "scene_detail.h"
 #include "tinygltf.h"
+#include "core/temp_path.h"
 
 namespace fs = std::filesystem;
 
@@ -446,9 +447,7 @@ Result<void> exportGlb(const Scene& scene, const std::string& path,
     auto bytes = w.run();
     if (!bytes) return fail(bytes.error().code, quote(path) + ": " + bytes.error().message);
     // Write beside the target and rename: a failed write never leaves half a file at `path`.
-    static std::atomic<unsigned> counter{0};
-    const std::string temp =
-        path + ".tmp-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+    const std::string temp = tempPathBeside(path);
     std::FILE* f = std::fopen(temp.c_str(), "wb");
     if (!f) return fail(ErrorCode::Io, "cannot write " + quote(path) + ": " + errnoText(errno));
     const bool written = std::fwrite(bytes->data(), 1, bytes->size(), f) == bytes->size();

@@ -19,6 +19,7 @@
 #include <meshoptimizer.h>
 
 #include "core/hash.h"
+#include "core/temp_path.h"
 
 namespace rg {
 
@@ -230,7 +231,7 @@ bool readLods(const std::string& file, size_t vertices, std::vector<PrimitiveLod
 void writeLods(const std::string& file, const std::vector<PrimitiveLod>& lods) {
     std::error_code ec;
     std::filesystem::create_directories(std::filesystem::path(file).parent_path(), ec);
-    const std::string tmp = file + ".tmp" + std::to_string(::getpid());
+    const std::string tmp = tempPathBeside(file);
     {
         std::ofstream out(tmp, std::ios::binary);
         const uint32_t count = static_cast<uint32_t>(lods.size());

@@ -1,5 +1,6 @@
 #include "shader/shader_compiler.h"
 #include "core/hash.h"
+#include "core/temp_path.h"
 
 #include <glslang/Public/ResourceLimits.h>
 #include <glslang/Public/ShaderLang.h>
@@ -326,11 +327,9 @@ std::vector<uint32_t> loadCached(const std::string& path) {
 // file or a whole one. A cache that cannot be written is not an error, only a slower next run.
 void storeCached(const std::string& dir, const std::string& path,
                  const std::vector<uint32_t>& spirv) {
-    static std::atomic<uint64_t> counter{0};
     std::error_code ec;
     fs::create_directories(dir, ec);
-    const std::string tmp =
-        path + ".tmp." + std::to_string(::getpid()) + "." + std::to_string(counter.fetch_add(1));
+    const std::string tmp = tempPathBeside(path);
     {
         std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
         if (!out) return;

@@ -96,6 +96,18 @@ check "bake progress" 0 grep "rgraph: baking 100 %" -- env RG_CACHE_DIR="$tmp/ca
 check "bake cached" 0 grep "up to date in the cache" -- env RG_CACHE_DIR="$tmp/cache" "$rgraph" bake "${lm[@]}"
 check "bake rebakes a changed scene" 0 grep "rgraph: baked " -- env RG_CACHE_DIR="$tmp/cache" "$rgraph" bake "${lm[@]}" --scene-arg light=dynamic
 check "bake EXR layers" 0 -- python3 -c "d=open('$tmp/lm.exr','rb').read(8192); assert b'sg0.R' in d and b'sg8.B' in d and b'rgraph.lightmap.axes' in d and b'rgraph.lightmap.sharpness' in d, d[:300]"
+# Sharded bakes (tools/farm.py): the part's figures and cache, and what is refused.
+check "bake shard" 0 grep "rgraph: baked shard 2/3: " -- env RG_CACHE_DIR="$tmp/cache" "$rgraph" bake "${lm[@]}" --shard 2/3 --out "$tmp/part2.exr"
+check "bake shard cached" 0 grep "rgraph: shard 2/3 (" -- env RG_CACHE_DIR="$tmp/cache" "$rgraph" bake "${lm[@]}" --shard 2/3
+check "bake shard out of range" 2 grep "--shard must be K/N with 1 <= K <= N, got '4/3'" -- "$rgraph" bake "${lm[@]}" --shard 4/3
+check "bake merge of one shard" 2 grep "lack shard 1/3, 3/3 (given 1 of 3): a merge never writes a partial lightmap" -- \
+    env RG_CACHE_DIR="$tmp/cache" "$rgraph" bake --merge "$tmp/part2.exr" --out "$tmp/never.exr"
+check "bake merge of a whole lightmap" 2 grep "lm.exr: not an rgraph lightmap: not a shard of a sharded bake" -- "$rgraph" bake --merge "$tmp/lm.exr"
+check "bake merge with a scene" 2 grep "--merge takes parts, not --scene" -- "$rgraph" bake --merge "$tmp/part2.exr" --scene x.lua
+check "render frame range backwards" 2 grep "render: --frames A..B needs whole numbers 0 <= A <= B, got '3..1'" -- "$rgraph" render --frames 3..1 --size 8x8
+check "render warm-up before frame 0" 2 grep "render: --warmup 4 reaches before frame 0" -- "$rgraph" render --frames 2..3 --warmup 4 --size 8x8
+check "render frame range" 0 grep "wrote frames 2..3: $tmp/seq/f.0002.exr .. $tmp/seq/f.0003.exr and PNGs (16x8, 2 written, 1 warm-up" -- \
+    "$rgraph" render --frames 2..3 --warmup 1 --size 16x8 --out "$tmp/seq/f.####.exr"
 check "bake without a lightmap" 2 grep "declares no scene.lightmap" -- "$rgraph" bake --scene scripts/scenes/furnace.lua
 check "lightmap view of a lobe it lacks" 2 grep "the lightmap has lobes sg0 .. sg8" -- \
     env RG_CACHE_DIR="$tmp/cache" "$rgraph" render "${lm[@]}" --view sg9 --size 8x8 --out "$tmp/v.exr"

@@ -1,0 +1,161 @@
+#!/usr/bin/python3
+"""tools/farm.py on a local Dask cluster of 3 worker processes: the Cornell bake in 4 shards merged
+bit-identical to the whole bake, a rerun served by the cache, a worker killed in the middle of a
+shard with the result still identical, the golden suite in 3 shards as one JUnit file holding every
+test once, and a sequence's frames rendered in chunks identical to one run.
+
+usage: test_farm.py RGRAPH SOURCE_ROOT
+"""
+
+import glob
+import logging
+import os
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+import xml.etree.ElementTree as ET
+
+RGRAPH, ROOT = os.path.abspath(sys.argv[1]), os.path.abspath(sys.argv[2])
+FARM = [sys.executable, os.path.join(ROOT, "tools", "farm.py"), "--rgraph", RGRAPH]
+# Big enough that a shard takes a few seconds (a worker can be killed inside one), small enough for CI.
+SCENE = ["--scene", "scripts/scenes/cornell.lua", "--scene-arg", "samples=384"]
+failures = []
+
+
+def check(name, ok, detail=""):
+    print(("ok   " if ok else "FAIL ") + name + (f": {detail}" if detail and not ok else ""), flush=True)
+    if not ok:
+        failures.append(name)
+
+
+def run(argv, env=None, **kw):
+    t0 = time.monotonic()
+    p = subprocess.run(argv, cwd=ROOT, env={**os.environ, **(env or {})}, capture_output=True,
+                       text=True, **kw)
+    p.seconds = time.monotonic() - t0
+    return p
+
+
+def same_bytes(a, b):
+    with open(a, "rb") as fa, open(b, "rb") as fb:
+        return fa.read() == fb.read()
+
+
+def main():
+    tmp = tempfile.mkdtemp(prefix="rgraph-farm-")
+    try:
+        test_bake(tmp)
+        test_kill(tmp)
+        test_golden(tmp)
+        test_render(tmp)
+    finally:
+        shutil.rmtree(tmp, ignore_errors=True)
+    print(f"{len(failures)} failed" if failures else "all passed")
+    return 1 if failures else 0
+
+
+def test_bake(tmp):
+    whole = os.path.join(tmp, "whole.exr")
+    p = run([RGRAPH, "bake", *SCENE, "--rebake", "--out", whole], {"RG_CACHE_DIR": f"{tmp}/cache-whole"})
+    check("whole bake", p.returncode == 0, p.stderr)
+    print(f"     whole bake: {p.seconds:.1f} s", flush=True)
+    merged = os.path.join(tmp, "merged.exr")
+    env = {"RG_CACHE_DIR": f"{tmp}/cache-farm"}
+    p = run([*FARM, "--workers", "3", "--work", f"{tmp}/work", "bake", "--shards", "4", *SCENE,
+             "--out", merged], env)
+    check("farm bake, 4 shards on 3 workers", p.returncode == 0, p.stdout + p.stderr)
+    print(f"     farm bake: {p.seconds:.1f} s", flush=True)
+    check("farm bake shows progress and an ETA", "4/4 shards done" in p.stderr and "ETA" in p.stderr, p.stderr)
+    check("4 merged shards are the whole bake bit for bit", os.path.isfile(merged) and same_bytes(merged, whole))
+    p = run([*FARM, "--workers", "3", "--work", f"{tmp}/work", "bake", "--shards", "4", *SCENE,
+             "--out", merged], env)
+    check("a rerun finds every shard in the cache", p.returncode == 0 and
+          "all 4 shards up to date in the cache" in p.stderr, p.stderr)
+    parts = sorted(glob.glob(f"{tmp}/work/bake-part-*-of-4.exr"))
+    p = run([RGRAPH, "bake", "--merge", *parts[:3], "--out", f"{tmp}/partial.exr"])
+    check("a merge without every shard is refused, naming it",
+          p.returncode == 2 and "lack shard 4/4" in p.stderr and not os.path.exists(f"{tmp}/partial.exr"),
+          p.stderr)
+    p = run([RGRAPH, "bake", "--merge", parts[0], parts[0], *parts[2:]])
+    check("a shard given twice is refused", p.returncode == 2 and "is given twice" in p.stderr, p.stderr)
+    other = os.path.join(tmp, "other-part.exr")
+    p = run([RGRAPH, "bake", *SCENE, "--scene-arg", "light=dynamic", "--shard", "2/4", "--out", other],
+            {"RG_CACHE_DIR": f"{tmp}/cache-other"})
+    p = run([RGRAPH, "bake", "--merge", parts[0], other, *parts[2:]])
+    check("a part of another scene is refused", p.returncode == 2 and "is of another bake" in p.stderr,
+          p.stderr)
+    p = run([RGRAPH, "render", *SCENE[:2], "--size", "8x8", "--out", f"{tmp}/x.exr"],
+            {"RG_CACHE_DIR": f"{tmp}/cache-farm"})
+    check("the merged bake is in the cache for render", p.returncode == 0, p.stderr)
+
+
+def test_kill(tmp):
+    """A worker killed (SIGKILL) while it bakes a shard: the scheduler runs the shard again
+    elsewhere, and the merge is still the whole bake bit for bit."""
+    from distributed import Client, LocalCluster
+
+    cluster = LocalCluster(n_workers=3, threads_per_worker=1, processes=True,
+                           dashboard_address=None, silence_logs=logging.ERROR)
+    client = Client(cluster)
+    try:
+        work = f"{tmp}/work-kill"
+        merged = os.path.join(tmp, "merged-kill.exr")
+        farm = subprocess.Popen([*FARM, "--scheduler", cluster.scheduler_address, "--work", work,
+                                 "bake", "--shards", "4", *SCENE, "--out", merged], cwd=ROOT,
+                                env={**os.environ, "RG_CACHE_DIR": f"{tmp}/cache-kill"},
+                                stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        killed = None
+        deadline = time.monotonic() + 60
+        while killed is None and time.monotonic() < deadline and farm.poll() is None:
+            marks = glob.glob(f"{work}/attempts/bake/*")
+            busy = {w: t for w, t in client.processing().items() if t}
+            if marks and busy:
+                time.sleep(0.7)  # inside the shard's bake
+                pids = client.run(os.getpid)
+                worker = sorted(busy)[0]
+                os.kill(pids[worker], signal.SIGKILL)
+                killed = worker
+            time.sleep(0.05)
+        out, err = farm.communicate(timeout=300)
+        check("a worker was killed in the middle of a shard", killed is not None)
+        check("the farm finished after the worker died", farm.returncode == 0, out + err)
+        check("the killed worker's shard ran again", "ran 2 times" in err, err)
+        check("the merge is still the whole bake bit for bit",
+              os.path.isfile(merged) and same_bytes(merged, os.path.join(tmp, "whole.exr")))
+    finally:
+        client.close()
+        cluster.close()
+
+
+def test_golden(tmp):
+    junit = os.path.join(tmp, "junit.xml")
+    p = run([*FARM, "--workers", "3", "--work", f"{tmp}/work-test", "test", "--shards", "3",
+             "--junit", junit])
+    check("the golden suite in 3 shards", p.returncode == 0, p.stdout + p.stderr)
+    print(f"     golden suite in 3 shards: {p.seconds:.1f} s", flush=True)
+    names = [c.get("name") for c in ET.parse(junit).getroot().iter("testcase")] if os.path.isfile(junit) else []
+    expected = sorted(os.path.basename(f)[:-4] for f in glob.glob(f"{ROOT}/tests/golden/*.lua"))
+    check("one JUnit file holds every test once", sorted(names) == expected, f"{sorted(names)} vs {expected}")
+    shards = {c.get("shard") for c in ET.parse(junit).getroot().iter("testcase")} if names else set()
+    check("the tests ran in 3 shards", shards == {"1/3", "2/3", "3/3"}, str(shards))
+
+
+def test_render(tmp):
+    # The default pipeline carries history (SSR's previous frame, exposure): chunks warm up from 0.
+    opts = ["--size", "64x36"]
+    p = run([RGRAPH, "render", "--frames", "0..5", "--out", f"{tmp}/one/f.####.exr", *opts])
+    check("one run of frames 0..5", p.returncode == 0, p.stderr)
+    p = run([*FARM, "--workers", "3", "--work", f"{tmp}/work-render", "render", "--frames", "0..5",
+             "--chunk", "2", "--out", f"{tmp}/farm/f.####.exr", "--", *opts])
+    check("frames 0..5 in chunks of 2", p.returncode == 0, p.stdout + p.stderr)
+    same = [f for f in range(6) for ext in ("exr", "png")
+            if os.path.isfile(f"{tmp}/farm/f.{f:04d}.{ext}") and
+            same_bytes(f"{tmp}/farm/f.{f:04d}.{ext}", f"{tmp}/one/f.{f:04d}.{ext}")]
+    check("every chunked frame is the one run's bit for bit", len(same) == 12, f"{len(same)} of 12 files")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
