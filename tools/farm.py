@@ -3,7 +3,7 @@
 frame ranges of a sequence.
 
     tools/farm.py [CLUSTER] bake   --shards N [--scene FILE] [--scene-arg NAME=VALUE]... [--out FILE.exr]
-    tools/farm.py [CLUSTER] test   --shards N [--junit FILE] [PATTERN]
+    tools/farm.py [CLUSTER] test   --shards N [--junit FILE] [PATTERN]   (on every device family)
     tools/farm.py [CLUSTER] render --frames A..B [--chunk C] [--warmup W] --out PATH [-- RENDER-OPTIONS]
 
 CLUSTER: --workers N starts a local cluster of N worker processes (default 2); --scheduler ADDRESS
@@ -15,8 +15,8 @@ machines, a shared folder.
 Each shard is one Dask task running one rgraph process. A task whose rgraph fails is retried
 (--retries, default 2); a task whose worker dies (the machine, the process, the network) is run
 again by the scheduler on another. Results are joined on this machine: `rgraph bake --merge` (the
-whole lightmap, bit-identical to one bake), one JUnit file (every test once), the frames checked
-present. Exit 0 when all is done, 1 when tests failed, 2 for bad usage, 3 naming the shard that
+whole lightmap, bit-identical to one bake), one JUnit file (a suite per device family the workers
+have, `rgraph devices --family`, every test once in each), the frames checked present. Exit 0 when all is done, 1 when tests failed, 2 for bad usage, 3 naming the shard that
 failed for good.
 """
 
@@ -73,7 +73,7 @@ def log(msg):
     print(f"farm: {msg}", file=sys.stderr, flush=True)
 
 
-def run_tasks(client, tasks, retries, label):
+def run_tasks(client, tasks, retries, label, workers=None):
     """Submits (name, argv, ok_codes) tasks, shows progress and an ETA, returns their results in
     order; on a task that failed for good, exits 3 naming it."""
     from distributed import as_completed
@@ -83,11 +83,13 @@ def run_tasks(client, tasks, retries, label):
     shutil.rmtree(attempts, ignore_errors=True)
     futures = {}
     for name, argv, ok in tasks:
-        f = client.submit(run_shard, name, argv, ROOT, env, attempts, ok, key=f"rgraph-{label}-{name}-{time.time_ns()}",
-                          retries=retries, pure=False)
+        placement = {"workers": workers, "allow_other_workers": False} if workers else {}
+        f = client.submit(run_shard, name, argv, ROOT, env, attempts, ok,
+                          key=f"rgraph-{label}-{name}-{time.time_ns()}".replace(" ", "-"),
+                          retries=retries, pure=False, **placement)
         futures[f] = name
     start, done, results = time.monotonic(), 0, {}
-    log(f"{label}: {len(tasks)} shards on {len(client.scheduler_info()['workers'])} workers")
+    log(f"{label}: {len(tasks)} shards on {len(workers or client.scheduler_info()['workers'])} workers")
     for f in as_completed(list(futures)):
         name = futures[f]
         if f.status != "finished":
@@ -169,45 +171,66 @@ def bake(client):
     return 0
 
 
+def device_family(rgraph_path):
+    """Runs on a worker: the family its device's goldens are kept under (rgraph devices --family)."""
+    p = subprocess.run([rgraph_path, "devices", "--family"], capture_output=True, text=True)
+    return p.stdout.strip() or "unknown"
+
+
 def test(client):
+    """The golden suite in N shards on every device family the cluster has: per family, its
+    shards run on its workers only; one JUnit file holds a suite per family, every test once in
+    each."""
     n = ARGS.shards
-    tasks, files = [], []
-    for spec, junit in shard_files("junit", "xml"):
-        files.append(junit)
-        argv = [rgraph(), "test", "--shard", spec, "--junit", junit,
-                "--out", junit[:-4] + "-images"]
-        if ARGS.pattern:
-            argv.insert(2, ARGS.pattern)
-        tasks.append((f"shard {spec}", argv, (0, 1)))  # 1: tests failed, the shard still ran
-    results, wall = run_tasks(client, tasks, ARGS.retries, "test")
+    families = {}
+    for worker, family in client.run(device_family, rgraph()).items():
+        families.setdefault(family, []).append(worker)
+    log(f"test: device families: " + ", ".join(f"{f} ({len(w)} workers)" for f, w in sorted(families.items())))
     merged = ET.Element("testsuites", name="rgraph golden")
-    suite = ET.SubElement(merged, "testsuite", name="golden")
-    seen, tests, failures, errors, seconds = {}, 0, 0, 0, 0.0
-    for k, f in enumerate(files, 1):
-        for case in ET.parse(f).getroot().iter("testcase"):
-            name = case.get("name")
-            if name in seen:
-                log(f"test: {name} ran in shard {seen[name]} and {k}/{n}")
-                sys.exit(3)
-            seen[name] = f"{k}/{n}"
-            case.set("shard", f"{k}/{n}")
-            suite.append(case)
-            tests += 1
-            failures += case.find("failure") is not None
-            errors += case.find("error") is not None
-            seconds += float(case.get("time", "0"))
-    for e in (merged, suite):
-        e.set("tests", str(tests)), e.set("failures", str(failures)), e.set("errors", str(errors))
-        e.set("time", f"{seconds:.3f}")
+    totals, status = [], 0
+    for family, workers in sorted(families.items()):
+        tasks, files = [], []
+        for spec, junit in shard_files(f"junit-{family}", "xml"):
+            files.append(junit)
+            argv = [rgraph(), "test", "--shard", spec, "--junit", junit, "--out", junit[:-4] + "-images"]
+            if ARGS.pattern:
+                argv.insert(2, ARGS.pattern)
+            tasks.append((f"{family} shard {spec}", argv, (0, 1)))  # 1: tests failed, the shard ran
+        results, wall = run_tasks(client, tasks, ARGS.retries, f"test-{family}", workers=workers)
+        suite = ET.SubElement(merged, "testsuite", name=f"golden ({family})")
+        ET.SubElement(ET.SubElement(suite, "properties"), "property", name="device_family", value=family)
+        seen, tests, failures, errors, seconds = {}, 0, 0, 0, 0.0
+        for k, f in enumerate(files, 1):
+            for case in ET.parse(f).getroot().iter("testcase"):
+                name = case.get("name")
+                if name in seen:
+                    log(f"test: {family}: {name} ran in shard {seen[name]} and {k}/{n}")
+                    sys.exit(3)
+                seen[name] = f"{k}/{n}"
+                case.set("shard", f"{k}/{n}")
+                case.set("classname", f"golden.{family}")
+                suite.append(case)
+                tests += 1
+                failures += case.find("failure") is not None
+                errors += case.find("error") is not None
+                seconds += float(case.get("time", "0"))
+        suite.set("tests", str(tests)), suite.set("failures", str(failures)), suite.set("errors", str(errors))
+        suite.set("time", f"{seconds:.3f}")
+        totals.append((tests, failures, errors, seconds))
+        print(f"farm: {family}: {tests} tests in {n} shards: {tests - failures - errors} passed, "
+              f"{failures} failed, {errors} errors (wall {wall:.1f} s)")
+        for r in results:
+            for line in r["stdout"].splitlines():
+                if line.startswith(("FAIL", "ERROR")):
+                    print(f"farm: {family}: {line}")
+        status = status or (1 if failures or errors else 0)
+    for i, key in enumerate(("tests", "failures", "errors")):
+        merged.set(key, str(sum(t[i] for t in totals)))
+    merged.set("time", f"{sum(t[3] for t in totals):.3f}")
     out = ARGS.junit or os.path.join(ARGS.work, "junit.xml")
     ET.ElementTree(merged).write(out, encoding="UTF-8", xml_declaration=True)
-    log(f"test: {tests} tests in {n} shards ({failures} failed, {errors} errors), "
-        f"wall {wall:.1f} s; JUnit {out}")
-    for r in results:
-        for line in r["stdout"].splitlines():
-            if "FAIL" in line or "ERROR" in line:
-                print(line)
-    return 1 if failures or errors else 0
+    log(f"test: JUnit {out} ({len(families)} device families)")
+    return status
 
 
 def frame_path(path, frame):

@@ -96,17 +96,44 @@ glm::vec3 lightmapSpecular(const Lightmap& lm, size_t texel, glm::vec3 N, glm::v
 
 Result<void> writeLightmapExr(const std::string& path, const Lightmap& lm,
                               const LightmapPart* part) {
+    // A whole lightmap: the atlas, a layer per lobe and the coverage. A part: only its texels, in
+    // rows of kShardRun, their atlas indices in layer "texel" (hi × 65536 + lo, exact as floats),
+    // so N parts hold one atlas's worth between them, not N.
+    std::vector<uint32_t> texels;
+    if (part)
+        for (uint32_t i = 0; i < lm.coverage.size(); ++i)
+            if (lm.coverage[i]) texels.push_back(i);
+    const uint32_t width = part ? kShardRun : lm.width;
+    const uint32_t height =
+        part ? std::max<uint32_t>(1, uint32_t((texels.size() + kShardRun - 1) / kShardRun))
+             : lm.height;
     std::vector<ImageLayer> layers;
     for (size_t k = 0; k < lm.lobes.size(); ++k) {
-        ImageLayer layer{"sg" + std::to_string(k), {"R", "G", "B"}, Image(lm.width, lm.height, 3)};
-        for (size_t i = 0; i < lm.lobes[k].size(); ++i)
-            for (int c = 0; c < 3; ++c) layer.image.pixels[i * 3 + size_t(c)] = lm.lobes[k][i][c];
+        ImageLayer layer{"sg" + std::to_string(k), {"R", "G", "B"}, Image(width, height, 3)};
+        if (part)
+            for (size_t j = 0; j < texels.size(); ++j)
+                for (int c = 0; c < 3; ++c)
+                    layer.image.pixels[j * 3 + size_t(c)] = lm.lobes[k][texels[j]][c];
+        else
+            for (size_t i = 0; i < lm.lobes[k].size(); ++i)
+                for (int c = 0; c < 3; ++c)
+                    layer.image.pixels[i * 3 + size_t(c)] = lm.lobes[k][i][c];
         layers.push_back(std::move(layer));
     }
-    ImageLayer coverage{"coverage", {"Y"}, Image(lm.width, lm.height, 1)};
-    for (size_t i = 0; i < lm.coverage.size(); ++i)
-        coverage.image.pixels[i] = lm.coverage[i] ? 1.0f : 0.0f;
-    layers.push_back(std::move(coverage));
+    if (part) {
+        ImageLayer index{"texel", {"hi", "lo"}, Image(width, height, 2)};
+        std::fill(index.image.pixels.begin(), index.image.pixels.end(), -1.0f);
+        for (size_t j = 0; j < texels.size(); ++j) {
+            index.image.pixels[j * 2] = float(texels[j] >> 16);
+            index.image.pixels[j * 2 + 1] = float(texels[j] & 0xffffu);
+        }
+        layers.push_back(std::move(index));
+    } else {
+        ImageLayer coverage{"coverage", {"Y"}, Image(lm.width, lm.height, 1)};
+        for (size_t i = 0; i < lm.coverage.size(); ++i)
+            coverage.image.pixels[i] = lm.coverage[i] ? 1.0f : 0.0f;
+        layers.push_back(std::move(coverage));
+    }
     ExrWriteOptions o;
     o.pixelType = ExrPixelType::Float;
     std::ostringstream axes;
@@ -126,6 +153,8 @@ Result<void> writeLightmapExr(const std::string& path, const Lightmap& lm,
         o.ints["rgraph.lightmap.shards"] = static_cast<int>(part->shards);
         o.ints["rgraph.lightmap.texels"] = static_cast<int>(part->texels);
         o.ints["rgraph.lightmap.covered"] = static_cast<int>(part->covered);
+        o.ints["rgraph.lightmap.width"] = static_cast<int>(lm.width);
+        o.ints["rgraph.lightmap.height"] = static_cast<int>(lm.height);
     }
     // Beside the target under a name of this writer's own, then renamed over it.
     const std::string tmp = tempPathBeside(path);
@@ -207,6 +236,44 @@ Result<Lightmap> readLightmapExr(const std::string& path, LightmapPart* part) {
             if (l.name == name) return &l;
         return nullptr;
     };
+    if (part) {  // a part's texels into the atlas they came from (writeLightmapExr)
+        const int w =
+            file->ints.count("rgraph.lightmap.width") ? file->ints["rgraph.lightmap.width"] : 0;
+        const int h =
+            file->ints.count("rgraph.lightmap.height") ? file->ints["rgraph.lightmap.height"] : 0;
+        const ImageLayer* index = layer("texel");
+        if (w < 1 || h < 1 || w > 65536 || h > 65536 || !index || index->image.channels < 2)
+            return bad(
+                "a shard without its atlas size (rgraph.lightmap.width, .height) or its "
+                "texel layer");
+        lm.width = uint32_t(w), lm.height = uint32_t(h);
+        const size_t atlas = size_t(lm.width) * lm.height, rows = index->image.pixels.size() / 2;
+        if (rows < part->texels)
+            return bad("its texel layer holds fewer texels than its header says");
+        lm.lobes.assign(size_t(lobes->second), std::vector<glm::vec3>(atlas, glm::vec3(0.0f)));
+        lm.coverage.assign(atlas, 0);
+        std::vector<const ImageLayer*> sg;
+        for (int k = 0; k < lobes->second; ++k) {
+            sg.push_back(layer("sg" + std::to_string(k)));
+            if (!sg.back() || sg.back()->image.channels < 3 ||
+                sg.back()->image.pixels.size() / sg.back()->image.channels != rows)
+                return bad("no RGB layer sg" + std::to_string(k) + " beside its texel layer");
+        }
+        for (size_t j = 0; j < part->texels; ++j) {
+            const float hi = index->image.pixels[j * 2], lo = index->image.pixels[j * 2 + 1];
+            const bool valid = hi >= 0.0f && hi < 65536.0f && lo >= 0.0f && lo < 65536.0f;
+            const size_t i = valid ? size_t(hi) * 65536u + size_t(lo) : atlas;
+            if (i >= atlas || lm.coverage[i])
+                return bad("its texel layer names texel " + std::to_string(j) +
+                           " outside the atlas or twice");
+            lm.coverage[i] = 1;
+            for (int k = 0; k < lobes->second; ++k)
+                for (uint32_t c = 0; c < 3; ++c)
+                    lm.lobes[size_t(k)][i][int(c)] =
+                        sg[size_t(k)]->image.pixels[j * sg[size_t(k)]->image.channels + c];
+        }
+        return lm;
+    }
     for (int k = 0; k < lobes->second; ++k) {
         const ImageLayer* l = layer("sg" + std::to_string(k));
         if (!l || l->image.channels < 3) return bad("no RGB layer sg" + std::to_string(k));

@@ -38,7 +38,7 @@ int usageError(const std::string& msg, const char* command) {
 
 Args Args::parse(int argc, char** argv, int first, const std::vector<std::string>& known) {
     static const std::vector<std::string> flags = {"verbose", "floors", "rebake", "no-cache",
-                                                   "ibl"};  // options without a value
+                                                   "ibl",     "family"};  // options without a value
     Args a;
     for (int i = first; i < argc; ++i) {
         std::string arg = argv[i];

@@ -239,9 +239,9 @@ Result<GoldenTest> parseGoldenTest(const Value& table, bool hasFrame, const std:
                    "a golden test script returns a table { pipeline = ..., size = ..., captures = "
                    "... }, got " +
                        describeValue(table));
-    static const std::vector<std::string> known = {"doc",    "pipeline", "scene",  "camera",
-                                                   "size",   "frames",   "params", "frame",
-                                                   "golden", "captures"};
+    static const std::vector<std::string> known = {"doc",    "pipeline", "scene",       "camera",
+                                                   "size",   "frames",   "params",      "frame",
+                                                   "golden", "captures", "cross_device"};
     for (const auto& [key, value] : table.asTable())
         if (std::find(known.begin(), known.end(), key) == known.end())
             return err(key, unknownField(key, known));
@@ -316,24 +316,48 @@ Result<GoldenTest> parseGoldenTest(const Value& table, bool hasFrame, const std:
                    "expected a table { resource = { metric = ..., tolerance = ... } } with at "
                    "least one entry, got " +
                        describeValue(caps));
-    for (const auto& [resource, spec] : caps.asTable()) {
-        const std::string path = "captures." + resource;
-        CaptureSpec cap;
-        cap.resource = resource;
-        if (spec.isList()) {
-            if (spec.asList().empty()) return err(path, "expected at least one comparison");
-            for (size_t i = 0; i < spec.asList().size(); ++i) {
-                auto c = parseComparison(spec.asList()[i], path + "[" + std::to_string(i + 1) + "]",
-                                         err);
+    auto specs = [&](const Value& table,
+                     const std::string& field) -> Result<std::vector<CaptureSpec>> {
+        std::vector<CaptureSpec> out;
+        for (const auto& [resource, spec] : table.asTable()) {
+            const std::string path = field + "." + resource;
+            CaptureSpec cap;
+            cap.resource = resource;
+            if (spec.isList()) {
+                if (spec.asList().empty()) return err(path, "expected at least one comparison");
+                for (size_t i = 0; i < spec.asList().size(); ++i) {
+                    auto c = parseComparison(spec.asList()[i],
+                                             path + "[" + std::to_string(i + 1) + "]", err);
+                    if (!c) return std::unexpected(c.error());
+                    cap.comparisons.push_back(*c);
+                }
+            } else {
+                auto c = parseComparison(spec, path, err);
                 if (!c) return std::unexpected(c.error());
                 cap.comparisons.push_back(*c);
             }
-        } else {
-            auto c = parseComparison(spec, path, err);
-            if (!c) return std::unexpected(c.error());
-            cap.comparisons.push_back(*c);
+            out.push_back(std::move(cap));
         }
-        t.captures.push_back(std::move(cap));
+        return out;
+    };
+    auto captures = specs(caps, "captures");
+    if (!captures) return std::unexpected(captures.error());
+    t.captures = std::move(*captures);
+    if (table.has("cross_device")) {
+        const Value& cross = table["cross_device"];
+        if (!cross.isTable() || cross.asTable().empty())
+            return err("cross_device",
+                       "expected a table { capture = { metric = ..., tolerance = ... } } naming "
+                       "captures, got " +
+                           describeValue(cross));
+        for (const auto& [resource, spec] : cross.asTable())
+            if (!caps.has(resource))
+                return err("cross_device." + resource,
+                           "not one of the test's captures (a cross-device bound compares a "
+                           "captured image with the primary device family's golden)");
+        auto bounds = specs(cross, "cross_device");
+        if (!bounds) return std::unexpected(bounds.error());
+        t.crossDevice = std::move(*bounds);
     }
     return t;
 }

@@ -16,6 +16,9 @@
 //           output = { metric = "psnr", tolerance = 50 },
 //           pattern = { { metric = "max_abs", tolerance = 0 }, { metric = "flip", tolerance = 0.01 } },
 //       },
+//       cross_device = {                                -- optional: captures -> comparison(s) that
+//           output = { metric = "flip", tolerance = 0.05 }, -- any device family must meet against
+//       },                                              --   the primary family's goldens
 //   }
 //
 // Comparison fields: metric (required), tolerance (required except for `exact`, default 0),
@@ -59,6 +62,9 @@ struct GoldenTest {
     bool hasFrameCallback = false;
     std::string golden;  // whose golden images: this test's name unless `golden` is set
     std::vector<CaptureSpec> captures;  // by resource name
+    // The bound every device family's run meets against the primary family's goldens
+    // (golden/golden_set.h); each names one of `captures`.
+    std::vector<CaptureSpec> crossDevice;
 };
 
 // Validates the table a golden test script returned. `where` prefixes every error

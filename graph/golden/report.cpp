@@ -499,6 +499,10 @@ Result<void> writeJunit(const std::string& file, const RunReport& run) {
       << failures << "\" errors=\"" << errors << "\" time=\"" << seconds(run.seconds) << "\">\n";
     x << "  <testsuite name=\"golden\" tests=\"" << run.tests.size() << "\" failures=\"" << failures
       << "\" errors=\"" << errors << "\" skipped=\"0\" time=\"" << seconds(run.seconds) << "\">\n";
+    x << "    <properties>\n      <property name=\"device_family\" value=\""
+      << xmlEscape(run.environment.family) << "\"/>\n      <property name=\"device\" value=\""
+      << xmlEscape(run.environment.device) << "\"/>\n      <property name=\"driver\" value=\""
+      << xmlEscape(run.environment.driver) << "\"/>\n    </properties>\n";
     for (const auto& t : run.tests) {
         x << "    <testcase classname=\"golden\" name=\"" << xmlEscape(t.name) << "\" file=\""
           << xmlEscape(t.file) << "\" time=\"" << seconds(t.seconds) << "\">\n";

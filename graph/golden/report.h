@@ -73,6 +73,7 @@ struct TestOutcome {
 
 // Where the run happened: what the goldens record beside themselves.
 struct RunEnvironment {
+    std::string family;  // the device family its goldens are kept under (golden/golden_set.h)
     std::string device;  // "llvmpipe (LLVM 15.0.6, 256 bits)"
     std::string driver;  // "llvmpipe Mesa 22.3.6 (LLVM 15.0.6)"
     std::string mesa;    // "22.3.6" ("" when the driver is not Mesa)

@@ -15,6 +15,7 @@
 
 #include "runtime/runtime.h"
 #include "runtime/session.h"
+#include "golden/golden_set.h"
 #include "golden/golden_test.h"
 #include "golden/storage.h"
 #include "lua/declarations.h"
@@ -31,92 +32,13 @@ double secondsSince(Clock::time_point t) {
 }
 
 constexpr double kFrameTime = 1.0 / 60.0;  // the profile's fixed frame time
-constexpr const char* kThreads =
-    "2";  // the profile's LP_NUM_THREADS unless the environment sets one
 const std::vector<std::string> kProfileOff = {"dither", "dithering", "jitter", "taa_jitter"};
 const char* kFrameTimeParam =
     "frame_time";  // a pipeline's own fixed frame time is pinned to kFrameTime
 
-// ---- where files are ----
-
-std::string relativeToRoot(const std::string& path) {
-    std::error_code ec;
-    const fs::path abs = fs::weakly_canonical(path, ec);
-    const fs::path root = fs::weakly_canonical(projectRoot(), ec);
-    const std::string rel = fs::relative(abs, root, ec).string();
-    if (ec || rel.empty() || rel.rfind("..", 0) == 0) return path;
-    return rel;
-}
-
 std::string fromRoot(const std::string& path) {
     if (fs::path(path).is_absolute()) return path;
     return (fs::path(projectRoot()) / path).string();
-}
-
-// ---- the environment the goldens record ----
-
-std::string readCpuInfo(const char* key) {
-    std::ifstream in("/proc/cpuinfo");
-    std::string line;
-    while (std::getline(in, line))
-        if (line.rfind(key, 0) == 0) {
-            auto colon = line.find(':');
-            if (colon != std::string::npos) {
-                std::string v = line.substr(colon + 1);
-                v.erase(0, v.find_first_not_of(" \t"));
-                return v;
-            }
-        }
-    return "";
-}
-
-RunEnvironment environmentOf(Runtime& rt) {
-    RunEnvironment e;
-    e.device = rt.gpu().deviceInfo().name;
-    e.driver = rt.gpu().deviceInfo().driver;
-    if (auto at = e.driver.find("Mesa "); at != std::string::npos) {
-        e.mesa = e.driver.substr(at + 5);
-        e.mesa = e.mesa.substr(0, e.mesa.find_first_of(" )"));
-    }
-    e.cpu = readCpuInfo("model name");
-    // The features LLVM's code generation for lavapipe depends on: they decide the vector width
-    // and whether FMA contracts, which is where 1-LSB differences between hosts come from.
-    const std::string flags = " " + readCpuInfo("flags") + " ";
-    for (const char* f : {"sse4_1", "sse4_2", "avx", "avx2", "fma", "f16c", "avx512f"})
-        if (flags.find(" " + std::string(f) + " ") != std::string::npos)
-            e.cpuFeatures += (e.cpuFeatures.empty() ? "" : " ") + std::string(f);
-    if (const char* t = std::getenv("LP_NUM_THREADS")) e.lpNumThreads = t;
-    if (const char* w = std::getenv("LP_NATIVE_VECTOR_WIDTH")) e.vectorWidth = w;
-    return e;
-}
-
-std::string profileLine(const RunEnvironment& e) {
-    std::string s = "LP_NUM_THREADS=" + e.lpNumThreads;
-    if (!e.vectorWidth.empty()) s += ", LP_NATIVE_VECTOR_WIDTH=" + e.vectorWidth;
-    s += ", frame time 1/60 s, dither and jitter parameters off";
-    return s;
-}
-
-nlohmann::ordered_json environmentJson(const RunEnvironment& e) {
-    nlohmann::ordered_json j;
-    j["device"] = e.device;
-    j["driver"] = e.driver;
-    j["mesa"] = e.mesa;
-    j["cpu"] = e.cpu;
-    j["cpu_features"] = e.cpuFeatures;
-    j["lp_num_threads"] = e.lpNumThreads;
-    if (!e.vectorWidth.empty()) j["lp_native_vector_width"] = e.vectorWidth;
-    return j;
-}
-
-// ---- golden image files (storage.h) ----
-
-bool samePixels(const Image& a, const Image& b) {
-    if (a.width != b.width || a.height != b.height || a.channels != b.channels) return false;
-    for (size_t i = 0; i < a.pixels.size(); ++i)
-        if (!(a.pixels[i] == b.pixels[i] || (std::isnan(a.pixels[i]) && std::isnan(b.pixels[i]))))
-            return false;
-    return true;
 }
 
 // ---- rendering a test ----
@@ -324,162 +246,6 @@ std::expected<Rendered, TestError> render(Runtime& rt, GoldenScript& script,
     return r;
 }
 
-// ---- comparing, blessing, reporting ----
-
-void compareCapture(CaptureOutcome& co, const CaptureSpec& spec) {
-    co.passed = true;
-    co.comparisons.clear();
-    for (const auto& cmp : spec.comparisons) {
-        ComparisonOutcome o;
-        o.spec = cmp;
-        auto r = compare(co.actual, co.expected, cmp);
-        if (r)
-            o.result = std::move(*r);
-        else
-            o.error = r.error().message;
-        co.passed = co.passed && o.passed();
-        co.comparisons.push_back(std::move(o));
-    }
-}
-
-std::string verdicts(const CaptureOutcome& co) {
-    std::string s;
-    for (const auto& c : co.comparisons)
-        s += (s.empty() ? "" : ", ") + (c.error.empty() ? c.result.verdict() : c.error);
-    return s;
-}
-
-std::string sizeText(uint32_t w, uint32_t h) { return std::to_string(w) + "x" + std::to_string(h); }
-
-nlohmann::ordered_json sidecarWithoutEnvironment(const GoldenTest& t,
-                                                 const std::vector<CaptureOutcome>& caps,
-                                                 const std::vector<std::string>& profileApplied) {
-    nlohmann::ordered_json j;
-    j["test"] = t.name;
-    j["pipeline"] = t.pipeline;
-    if (!t.scene.empty()) j["scene"] = t.scene;
-    if (!t.camera.empty()) j["camera"] = t.camera;
-    j["size"] = sizeText(t.width, t.height);
-    j["frames"] = t.frames;
-    nlohmann::ordered_json params = nlohmann::ordered_json::object();
-    for (const auto& [k, v] : t.params)
-        params[k] = v.isNumber()   ? nlohmann::ordered_json(v.asNumber())
-                    : v.isBool()   ? nlohmann::ordered_json(v.asBool())
-                    : v.isString() ? nlohmann::ordered_json(v.asString())
-                                   : nlohmann::ordered_json(v.typeName());
-    j["params"] = params;
-    nlohmann::ordered_json captures = nlohmann::ordered_json::object();
-    for (const auto& c : caps) {
-        nlohmann::ordered_json cj;
-        cj["file"] = c.resource + storageExtension(c.storage);
-        cj["format"] = c.format;
-        cj["storage"] = storageName(c.storage);
-        cj["size"] = sizeText(c.actual.width, c.actual.height);
-        nlohmann::ordered_json cmps = nlohmann::ordered_json::array();
-        for (const auto& cmp : c.comparisons) cmps.push_back(cmp.spec.describe());
-        cj["comparisons"] = cmps;
-        captures[c.resource] = cj;
-    }
-    j["captures"] = captures;
-    nlohmann::ordered_json profile;
-    profile["lp_num_threads"] = kThreads;
-    profile["frame_time"] = "1/60 s";
-    profile["applied"] = profileApplied;
-    j["profile"] = profile;
-    return j;
-}
-
-// Blesses the test's goldens; returns what changed, one line each.
-Result<std::vector<std::string>> bless(const GoldenTest& t, std::vector<CaptureOutcome>& caps,
-                                       const std::string& dir, const RunEnvironment& env,
-                                       const std::vector<std::string>& profileApplied) {
-    std::vector<std::string> changes;
-    bool wrote = false;
-    std::set<std::string> keep = {"golden.json"};
-    for (auto& c : caps) {
-        const std::string file = c.resource + storageExtension(c.storage);
-        keep.insert(file);
-        const bool missing = c.expected.width == 0;
-        const bool shapeChanged = !missing && (c.expected.width != c.actual.width ||
-                                               c.expected.height != c.actual.height ||
-                                               c.expected.channels != c.actual.channels);
-        if (!missing && !shapeChanged && c.passed) {
-            changes.push_back(samePixels(c.actual, c.expected)
-                                  ? c.resource + ": unchanged"
-                                  : c.resource + ": kept, within tolerance (" + verdicts(c) + ")");
-            continue;
-        }
-        std::map<std::string, std::string> meta = {{"rgraph.test", t.name},
-                                                   {"rgraph.resource", c.resource},
-                                                   {"rgraph.format", c.format},
-                                                   {"rgraph.device", env.device},
-                                                   {"rgraph.driver", env.driver}};
-        if (auto r = writeStored(c.expectedFile, c.actual, c.storage, isSrgbFormat(c.format), meta);
-            !r)
-            return std::unexpected(r.error());
-        wrote = true;
-        if (missing)
-            changes.push_back(c.resource + ": new golden " + relativeToRoot(c.expectedFile) + " (" +
-                              c.format + ", " + std::to_string(c.actual.width) + "x" +
-                              std::to_string(c.actual.height) + ")");
-        else if (shapeChanged)
-            changes.push_back(c.resource + ": updated " + relativeToRoot(c.expectedFile) +
-                              " (was " + std::to_string(c.expected.width) + "x" +
-                              std::to_string(c.expected.height) + "x" +
-                              std::to_string(c.expected.channels) + ")");
-        else
-            changes.push_back(c.resource + ": updated " + relativeToRoot(c.expectedFile) +
-                              " (was: " + verdicts(c) + ")");
-        c.expected = c.actual;
-        c.note = changes.back();
-        // The report shows the state after blessing.
-        for (auto& cmp : c.comparisons) {
-            auto r = compare(c.actual, c.expected, cmp.spec);
-            if (r) cmp.result = std::move(*r), cmp.error.clear();
-        }
-        c.passed = true;
-    }
-    std::error_code ec;
-    if (fs::is_directory(dir, ec))
-        for (const auto& entry : fs::directory_iterator(dir, ec)) {
-            const std::string name = entry.path().filename().string();
-            const std::string ext = entry.path().extension().string();
-            if ((ext == ".exr" || ext == ".png") && !keep.count(name)) {
-                fs::remove(entry.path(), ec);
-                changes.push_back("removed " + relativeToRoot(entry.path().string()) +
-                                  " (no capture names it)");
-                wrote = true;
-            }
-        }
-
-    // golden.json: what the goldens were made with. The environment is only replaced when an
-    // image was written, so re-running --update on another machine changes nothing.
-    const std::string sidecar = (fs::path(dir) / "golden.json").string();
-    nlohmann::ordered_json j = sidecarWithoutEnvironment(t, caps, profileApplied);
-    std::string old;
-    {
-        std::ifstream in(sidecar);
-        old.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-    }
-    nlohmann::ordered_json made = environmentJson(env);
-    if (!wrote && !old.empty()) {
-        auto parsed = nlohmann::ordered_json::parse(old, nullptr, false);
-        if (!parsed.is_discarded() && parsed.contains("made_with")) made = parsed["made_with"];
-    }
-    j["made_with"] = made;
-    const std::string text = j.dump(2) + "\n";
-    if (text != old) {
-        fs::create_directories(dir, ec);
-        const std::string tmp = sidecar + ".tmp";
-        std::ofstream(tmp) << text;
-        fs::rename(tmp, sidecar, ec);
-        if (ec) return fail(ErrorCode::Io, "cannot write '" + sidecar + "': " + ec.message());
-        if (!wrote)
-            changes.push_back("golden.json: updated (the test's captures or comparisons changed)");
-    }
-    return changes;
-}
-
 // Writes actual, expected and diff heat maps of a failing capture under outDir/test/.
 void writeArtefacts(CaptureOutcome& c, const std::string& dir) {
     const std::string base = (fs::path(dir) / c.resource).string();
@@ -544,7 +310,13 @@ TestOutcome runOne(Runtime& rt, const std::string& file, const RunnerOptions& op
     t.log = rendered->log;
     const uint32_t validationMessages = rendered->validationMessages;
 
-    const std::string goldenDir = (fs::path(options.imageDir) / test.golden).string();
+    // Which goldens this device compares with (golden_set.h): its family's; for a family without
+    // goldens of its own, the primary family's — through the cross-device bound alone where the
+    // test states one, else by its own comparisons.
+    const GoldenSet set =
+        chooseGoldenSet((fs::path(options.imageDir) / test.golden).string(), env.family);
+    const bool borrowed = set.foreign && !set.own && !options.update;
+    const bool crossOnly = borrowed && !test.crossDevice.empty();
     for (const auto& spec : test.captures) {
         const Capture& cap = rendered->captures.at(spec.resource);
         CaptureOutcome co;
@@ -555,8 +327,9 @@ TestOutcome runOne(Runtime& rt, const std::string& file, const RunnerOptions& op
         co.writerPass = cap.writer;
         co.order = cap.order;
         co.actual = quantizeForStorage(cap.image, co.storage, isSrgbFormat(cap.format));
-        co.expectedFile =
-            (fs::path(goldenDir) / (spec.resource + storageExtension(co.storage))).string();
+        co.expectedFile = (fs::path(borrowed ? set.primaryDir : set.dir) /
+                           (spec.resource + storageExtension(co.storage)))
+                              .string();
         std::error_code ec;
         if (fs::exists(co.expectedFile, ec)) {
             auto expected = readStored(co.expectedFile, co.storage, isSrgbFormat(cap.format));
@@ -568,9 +341,13 @@ TestOutcome runOne(Runtime& rt, const std::string& file, const RunnerOptions& op
             co.note = "no golden image " + relativeToRoot(co.expectedFile) +
                       ": bless it with 'rgraph test " + test.name + " --update'";
         }
-        if (co.expected.width > 0)
+        if (crossOnly) {
+            co.passed = true;
+            co.note = "not compared: no goldens of device family '" + set.family + "' (these are " +
+                      set.primaryFamily + "'s); the cross-device bound decides";
+        } else if (co.expected.width > 0) {
             compareCapture(co, spec);
-        else {
+        } else {
             co.passed = false;
             for (const auto& cmp : spec.comparisons)
                 co.comparisons.push_back(ComparisonOutcome{cmp, {}, "no golden image", ""});
@@ -588,7 +365,7 @@ TestOutcome runOne(Runtime& rt, const std::string& file, const RunnerOptions& op
         std::vector<std::string> applied;
         for (const auto& line : t.log)
             if (line.rfind("profile: ", 0) == 0) applied.push_back(line.substr(9));
-        auto changes = bless(test, t.captures, goldenDir, env, applied);
+        auto changes = bless(test, t.captures, set.dir, env, applied);
         if (!changes) {
             t.status = TestStatus::Error;
             t.message = changes.error().describe();
@@ -599,6 +376,16 @@ TestOutcome runOne(Runtime& rt, const std::string& file, const RunnerOptions& op
     } else if (options.update) {
         t.changes.push_back("not blessed: it compares with the goldens of '" + test.golden + "'");
     }
+
+    // A foreign family's run also meets the test's cross-device bound against the primary goldens.
+    // (Not when it borrowed them for its own comparisons: that is the same check, tighter.)
+    if (!borrowed || crossOnly)
+        for (auto& c : crossDeviceOutcomes(test, t.captures, set))
+            t.captures.push_back(std::move(c));
+    std::stable_sort(t.captures.begin(), t.captures.end(),
+                     [](const CaptureOutcome& a, const CaptureOutcome& b) {
+                         return a.order != b.order ? a.order < b.order : a.resource < b.resource;
+                     });
 
     t.status = TestStatus::Passed;
     for (auto& c : t.captures) {
@@ -614,7 +401,7 @@ TestOutcome runOne(Runtime& rt, const std::string& file, const RunnerOptions& op
     }
     if (t.status == TestStatus::Failed) {
         // Say when the goldens came from another device or driver: a likely cause of small differences.
-        std::ifstream in(fs::path(goldenDir) / "golden.json");
+        std::ifstream in(fs::path(set.own ? set.dir : set.primaryDir) / "golden.json");
         std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
         auto j = nlohmann::ordered_json::parse(text, nullptr, false);
         if (!j.is_discarded() && j.contains("made_with")) {
@@ -639,7 +426,9 @@ TestOutcome runOne(Runtime& rt, const std::string& file, const RunnerOptions& op
 void print(std::FILE* out, const TestOutcome& t) {
     std::fprintf(out, "%-5s %-32s %6.2f s\n", testStatusName(t.status), t.name.c_str(), t.seconds);
     for (const auto& c : t.captures) {
-        if (c.expected.width == 0)
+        if (c.comparisons.empty() && !c.note.empty())
+            std::fprintf(out, "        %-16s %s\n", c.resource.c_str(), c.note.c_str());
+        else if (c.expected.width == 0)
             std::fprintf(out, "        %-16s %-44s %s\n", c.resource.c_str(), "no golden image",
                          c.resource == t.firstDivergent ? "FAIL  <- first divergent" : "FAIL");
         for (const auto& cmp : c.comparisons) {
@@ -700,7 +489,7 @@ Result<RunReport> runGoldenTests(const RunnerOptions& optionsIn, std::FILE* out)
         *files = std::move(mine);
     }
     // The determinism profile's thread count, before the Vulkan driver reads it.
-    setenv("LP_NUM_THREADS", kThreads, /*overwrite=*/0);
+    setenv("LP_NUM_THREADS", kProfileThreads, /*overwrite=*/0);
     const auto t0 = Clock::now();
     RuntimeOptions ro;
     ro.device = options.device;
@@ -711,9 +500,10 @@ Result<RunReport> runGoldenTests(const RunnerOptions& optionsIn, std::FILE* out)
     report.update = options.update;
     report.environment = environmentOf(**rt);
     report.profile = profileLine(report.environment);
-    std::fprintf(out, "rgraph test: %zu golden test%s from %s on %s (%s; %s)\n", files->size(),
-                 files->size() == 1 ? "" : "s", relativeToRoot(options.testDir).c_str(),
-                 report.environment.device.c_str(), report.environment.driver.c_str(),
+    std::fprintf(out, "rgraph test: %zu golden test%s from %s on %s (%s; family %s; %s)\n",
+                 files->size(), files->size() == 1 ? "" : "s",
+                 relativeToRoot(options.testDir).c_str(), report.environment.device.c_str(),
+                 report.environment.driver.c_str(), report.environment.family.c_str(),
                  report.profile.c_str());
     std::fflush(out);
     for (const auto& file : *files) {

@@ -87,6 +87,11 @@ def test_bake(tmp):
     p = run([RGRAPH, "bake", "--merge", parts[0], other, *parts[2:]])
     check("a part of another scene is refused", p.returncode == 2 and "is of another bake" in p.stderr,
           p.stderr)
+    p = run([*FARM, "--workers", "2", "--retries", "1", "--work", f"{tmp}/work-fail", "bake",
+             "--shards", "2", "--scene", "scripts/scenes/furnace.lua"])
+    check("a shard that fails for good is named, after its retries",
+          p.returncode == 3 and "failed for good" in p.stderr and "declares no scene.lightmap" in p.stderr
+          and "ran 2 times" not in p.stdout, p.stderr)
     p = run([RGRAPH, "render", *SCENE[:2], "--size", "8x8", "--out", f"{tmp}/x.exr"],
             {"RG_CACHE_DIR": f"{tmp}/cache-farm"})
     check("the merged bake is in the cache for render", p.returncode == 0, p.stderr)
@@ -113,7 +118,7 @@ def test_kill(tmp):
             marks = glob.glob(f"{work}/attempts/bake/*")
             busy = {w: t for w, t in client.processing().items() if t}
             if marks and busy:
-                time.sleep(0.7)  # inside the shard's bake
+                time.sleep(0.4)  # inside the shard's bake
                 pids = client.run(os.getpid)
                 worker = sorted(busy)[0]
                 os.kill(pids[worker], signal.SIGKILL)
@@ -131,16 +136,44 @@ def test_kill(tmp):
 
 
 def test_golden(tmp):
-    junit = os.path.join(tmp, "junit.xml")
-    p = run([*FARM, "--workers", "3", "--work", f"{tmp}/work-test", "test", "--shards", "3",
-             "--junit", junit])
-    check("the golden suite in 3 shards", p.returncode == 0, p.stdout + p.stderr)
-    print(f"     golden suite in 3 shards: {p.seconds:.1f} s", flush=True)
-    names = [c.get("name") for c in ET.parse(junit).getroot().iter("testcase")] if os.path.isfile(junit) else []
-    expected = sorted(os.path.basename(f)[:-4] for f in glob.glob(f"{ROOT}/tests/golden/*.lua"))
-    check("one JUnit file holds every test once", sorted(names) == expected, f"{sorted(names)} vs {expected}")
-    shards = {c.get("shard") for c in ET.parse(junit).getroot().iter("testcase")} if names else set()
-    check("the tests ran in 3 shards", shards == {"1/3", "2/3", "3/3"}, str(shards))
+    """The golden suite in 3 shards on a cluster of two device families: two workers on the
+    machine's own, one whose family is set apart (RG_DEVICE_FAMILY, as a farm names a second GPU
+    kind); one JUnit file with a suite per family, each holding every test once."""
+    from distributed import Client, LocalCluster
+
+    cluster = LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
+                           dashboard_address=None, silence_logs=logging.ERROR)
+    client = Client(cluster)
+    second = subprocess.Popen(["/usr/bin/dask-worker", cluster.scheduler_address, "--nthreads", "1",
+                               "--no-dashboard", "--no-nanny"],
+                              env={**os.environ, "RG_DEVICE_FAMILY": "second"},
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    try:
+        client.wait_for_workers(3, timeout=60)
+        junit = os.path.join(tmp, "junit.xml")
+        p = run([*FARM, "--scheduler", cluster.scheduler_address, "--work", f"{tmp}/work-test",
+                 "test", "--shards", "3", "--junit", junit])
+        check("the golden suite in 3 shards on two device families", p.returncode == 0,
+              p.stdout + p.stderr)
+        print(f"     golden suite, 3 shards x 2 families: {p.seconds:.1f} s", flush=True)
+        check("reported per device family", "farm: llvmpipe: " in p.stdout and "farm: second: " in p.stdout,
+              p.stdout)
+        expected = sorted(os.path.basename(f)[:-4] for f in glob.glob(f"{ROOT}/tests/golden/*.lua"))
+        suites = {s.get("name"): s for s in ET.parse(junit).getroot().iter("testsuite")} \
+            if os.path.isfile(junit) else {}
+        check("one JUnit file with a suite per family",
+              sorted(suites) == ["golden (llvmpipe)", "golden (second)"], str(sorted(suites)))
+        for name, suite in suites.items():
+            names = [c.get("name") for c in suite.iter("testcase")]
+            check(f"{name} holds every test once", sorted(names) == expected,
+                  f"{sorted(names)} vs {expected}")
+            shards = {c.get("shard") for c in suite.iter("testcase")}
+            check(f"{name} ran in 3 shards", shards == {"1/3", "2/3", "3/3"}, str(shards))
+    finally:
+        second.terminate()
+        second.wait(timeout=30)
+        client.close()
+        cluster.close()
 
 
 def test_render(tmp):

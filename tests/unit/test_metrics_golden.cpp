@@ -149,10 +149,11 @@ TEST(GoldenScripts, EachKindOfMistakeHasItsMessage) {
     EXPECT_EQ(loadError("not_a_table", "return 42"),
               "not_a_table.lua: a golden test script returns a table { pipeline = ..., size = ..., "
               "captures = ... }, got 42");
-    EXPECT_EQ(loadError("unknown", replace(kGood, "frames = 3", "frmes = 3")),
-              "unknown.lua: frmes: unknown field (did you mean 'frames'?); expected one of: 'doc', "
-              "'pipeline', 'scene', "
-              "'camera', 'size', 'frames', 'params', 'frame', 'golden', 'captures'");
+    EXPECT_EQ(
+        loadError("unknown", replace(kGood, "frames = 3", "frmes = 3")),
+        "unknown.lua: frmes: unknown field (did you mean 'frames'?); expected one of: 'doc', "
+        "'pipeline', 'scene', "
+        "'camera', 'size', 'frames', 'params', 'frame', 'golden', 'captures', 'cross_device'");
     EXPECT_EQ(loadError("too_big", replace(kGood, "{ 64, 32 }", "{ 512, 32 }")),
               "too_big.lua: size[1]: expected a whole number in [1, 256], got 512");
     EXPECT_EQ(loadError("size_shape", replace(kGood, "{ 64, 32 }", "\"64x32\"")),
@@ -195,6 +196,21 @@ TEST(GoldenScripts, EachKindOfMistakeHasItsMessage) {
               "empty.lua: captures: expected a table { resource = { metric = ..., tolerance = ... "
               "} } with at least one entry, got "
               "table");
+    EXPECT_EQ(loadError("cross", replace(kGood, "frames = 3,",
+                                         "frames = 3, cross_device = { display = { metric = "
+                                         "\"flip\", tolerance = 0.05 } },")),
+              "cross.lua: cross_device.display: not one of the test's captures (a cross-device "
+              "bound compares a captured image with the primary device family's golden)");
+    EXPECT_EQ(
+        loadError("cross_shape", replace(kGood, "frames = 3,", "frames = 3, cross_device = 1,")),
+        "cross_shape.lua: cross_device: expected a table { capture = { metric = ..., tolerance "
+        "= ... } } naming captures, got 1");
+    EXPECT_EQ(loadError("cross_metric", replace(kGood, "frames = 3,",
+                                                "frames = 3, cross_device = { output = { metric = "
+                                                "\"flp\", tolerance = 0.05 } },")),
+              "cross_metric.lua: cross_device.output.metric: unknown metric 'flp' (did you mean "
+              "'flip'?); expected one of: 'max_abs', 'rmse', 'psnr', 'over_threshold', 'rel_mean', "
+              "'rel_max', 'angular', 'exact', 'flip'");
     EXPECT_EQ(loadError("camera", replace(kGood, "frames = 3,", "frames = 3, camera = \"main\",")),
               "camera.lua: camera: names a camera of the scene: set 'scene' too");
     EXPECT_EQ(loadError("golden", replace(kGood, "frames = 3,", "frames = 3, golden = \"../x\",")),
