@@ -89,6 +89,20 @@ public:
             std::snprintf(value, sizeof value, "%.9g", depthState["value"].asNumber(0.0));
             vert.defines.emplace_back("RG_FULLSCREEN_DEPTH", value);
         }
+        // A pass for frames whose camera moved (or stood still): its triangle is placed outside
+        // the clip volume on the others, by the scene's Camera block (lib/scene.glsl's
+        // temporal.x) in fullscreen.vert — the whole pass then costs its attachments' load and
+        // store, where a branch in the fragment shader costs both sides on lavapipe.
+        if (const Value& camera = desc.params["camera"]; !camera.isNil()) {
+            if (!camera.isString() ||
+                (camera.asString() != "moved" && camera.asString() != "still"))
+                return fail(ErrorCode::InvalidInput,
+                            passPrefix(desc) + "params.camera: expected 'moved' or 'still', got " +
+                                camera.typeName() +
+                                (camera.isString() ? " '" + camera.asString() + "'" : ""));
+            vert.defines.emplace_back("RG_FULLSCREEN_CAMERA",
+                                      camera.asString() == "moved" ? "1" : "0");
+        }
         ShaderRequest frag;
         frag.path = *shader;
         frag.stage = ShaderStage::Fragment;
@@ -691,7 +705,11 @@ void registerBuiltinPassKinds(PassRegistry& registry) {
                {"stencil", "table", "{ ref = N, compare = 'equal', mask = 255 }: stencil test"},
                {"depth", "table",
                 "{ compare = 'less', value = 0, write = false }: depth test of the triangle at "
-                "depth `value`"}}),
+                "depth `value`"},
+               {"camera", "string",
+                "'moved' or 'still': draws only on frames whose scene camera moved (or stood "
+                "still) since the last; on the others the triangle lies outside the clip volume "
+                "and nothing is shaded"}}),
          Usage::Sampled, Usage::ColorAttachment}));
     registry.add(kind<ComputePass>(
         {"compute", PassType::Compute,

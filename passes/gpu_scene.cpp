@@ -29,8 +29,23 @@ struct CameraUniforms {
     glm::mat4 viewProj, view, proj, invViewProj;
     glm::vec4 position, viewport;
     glm::vec4 sceneMin, sceneMax;  // scene.glsl's Camera: the scene's bounds
-    glm::mat4 previousViewProj;    // the frame before's (reprojection); this frame's on the first
+    glm::mat4
+        previousViewProj;  // the frame before's unjittered (reprojection); this frame's on the first
+    glm::mat4 unjitteredViewProj;  // viewProj without the sub-pixel jitter (motion, culling)
+    glm::vec4 jitter;  // xy: this frame's jitter, zw: the last frame's, in uv units (pixels / size)
+    glm::vec4 temporal;  // x: 1 when the camera moved since the last frame (0 on the first)
 };
+
+// The Halton sequence's element `index` (1-based) in base `base`: the sub-pixel jitter's
+// low-discrepancy points (2, 3), as TAA implementations take them (e.g. Karis 2014).
+float halton(uint32_t index, uint32_t base) {
+    float f = 1.0f, r = 0.0f;
+    for (; index > 0; index /= base) {
+        f /= static_cast<float>(base);
+        r += f * static_cast<float>(index % base);
+    }
+    return r;
+}
 
 }  // namespace
 
@@ -47,6 +62,20 @@ Result<void> GpuScene::setSetting(const std::string& name, const Value& value) {
         return fail(ErrorCode::InvalidInput,
                     "scene setting 'area_light_model': expected \"frostbite\" or \"ltc\", got " +
                         (value.isString() ? "'" + value.asString() + "'" : value.typeName()));
+    }
+    if (name == "jitter" || name == "antialiasing") {
+        if (name == "jitter" && value.isBool()) {
+            m_jitterWanted = value.asBool();
+            return {};
+        }
+        if (name == "antialiasing" && value.isString()) {
+            m_temporalResolve = value.asString() == "taa";
+            return {};
+        }
+        return fail(ErrorCode::InvalidInput,
+                    "scene setting '" + name + "': expected " +
+                        (name == "jitter" ? "a boolean" : "the antialiasing choice") + ", got " +
+                        value.typeName());
     }
     return fail(ErrorCode::InvalidInput, "the scene has no setting '" + name +
                                              "' (it has: " + joinQuoted(settingNames()) + ")");
@@ -226,7 +255,7 @@ Result<void> GpuScene::selectCamera(const std::string& name) {
 }
 
 void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
-    const Camera& c = camera();
+    const Camera c = camera().at(m_time);
     const float aspect = static_cast<float>(width) / static_cast<float>(std::max(1u, height));
     const float fovy = c.focalLength > 0 ? 2.0f * std::atan(c.sensorHeight / (2.0f * c.focalLength))
                                          : c.verticalFov;
@@ -239,6 +268,26 @@ void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
         u.proj = glm::perspectiveRH_ZO(fovy, aspect, c.nearPlane, c.farPlane);
     }
     u.proj[1][1] *= -1.0f;  // Vulkan's y points down
+    u.unjitteredViewProj = u.proj * u.view;
+    // The sub-pixel jitter of a temporally resolved frame (TAA): Halton (2, 3) over 8 frames, ±½
+    // pixel, moving every pass that rasterises or reconstructs positions by the same offset; the
+    // unjittered matrix stays for motion, reprojection and culling. The first frame, which has no
+    // history to resolve with, is not jittered: a one-frame render is the image itself.
+    glm::vec2 jitter(0.0f);
+    if (m_jitterWanted && m_temporalResolve && m_jitterFrame++ > 0) {
+        const uint32_t index = 1 + (m_jitterFrame - 2) % 8;
+        jitter = glm::vec2(halton(index, 2) - 0.5f, halton(index, 3) - 0.5f) /
+                 glm::vec2(static_cast<float>(width), static_cast<float>(height));
+        // An NDC offset of 2 × the uv offset: perspective clip x += o·w (w = −z_view), orthographic
+        // clip x += o.
+        const glm::vec2 ndc = 2.0f * jitter;
+        if (c.orthographic)
+            u.proj[3][0] += ndc.x, u.proj[3][1] += ndc.y;
+        else
+            u.proj[2][0] -= ndc.x, u.proj[2][1] -= ndc.y;
+    }
+    u.jitter = glm::vec4(jitter, m_previousJitter.value_or(jitter));
+    m_previousJitter = jitter;
     u.viewProj = u.proj * u.view;
     u.invViewProj = glm::inverse(u.viewProj);
     u.position = glm::vec4(c.position, 1.0f);
@@ -246,10 +295,12 @@ void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
                            1.0f / static_cast<float>(width), 1.0f / static_cast<float>(height));
     u.sceneMin = glm::vec4(m_scene.boundsMin, 1.0f);
     u.sceneMax = glm::vec4(m_scene.boundsMax, 1.0f);
-    u.previousViewProj = m_previousViewProj.value_or(u.viewProj);
-    m_previousViewProj = u.viewProj;
+    u.previousViewProj = m_previousViewProj.value_or(u.unjitteredViewProj);
+    u.temporal =
+        glm::vec4(u.previousViewProj != u.unjitteredViewProj ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f);
+    m_previousViewProj = u.unjitteredViewProj;
     std::memcpy(m_cameraBuffers[slot].mapped(), &u, sizeof u);
-    const auto planes = frustumPlanes(u.viewProj);
+    const auto planes = frustumPlanes(u.unjitteredViewProj);
     // Per draw: whether its box meets the frustum, and its level of detail — a world length L
     // at view depth z spans L · |proj[1][1]| · height / (2z) pixels (orthographic: without the
     // z); each draw takes the coarsest level whose error spans at most a pixel at the nearest

@@ -159,8 +159,11 @@ public:
     // The camera the frame renders with (the scene's first, or `name`).
     const Camera& camera() const { return m_scene.cameras.at(m_camera); }
     Result<void> selectCamera(const std::string& name);
-    // Writes frame slot `slot`'s camera for an output of width x height.
+    // Writes frame slot `slot`'s camera for an output of width x height: the camera at the frame's
+    // time (setTime) along its path (Camera::path).
     void updateFrame(uint32_t slot, uint32_t width, uint32_t height);
+    // The time of the frames updateFrame writes next (seconds; a session's ctx.time).
+    void setTime(double seconds) { m_time = seconds; }
     // A key of everything the scene gives the GPU as frame slot `slot` holds it now: geometry,
     // images and samplers, materials, the environment and lightmap (hashed as uploaded), and the
     // slot's camera, lights, shadow views, decals and probes — what the disk cache of
@@ -175,7 +178,11 @@ public:
     // "area_light_model" = "frostbite" or "ltc" (0 or 1: the light block's count.y, which
     // lib/lighting.glsl's loop reads). An unknown setting or value is an error naming what is.
     Result<void> setSetting(const std::string& name, const Value& value);
-    static std::vector<std::string> settingNames() { return {"area_light_model"}; }
+    // "jitter" (boolean) and "antialiasing" ("taa" jitters; the pipeline's `taa_jitter` and
+    // `antialiasing` parameters): the camera's sub-pixel jitter (updateFrame) is on when both are.
+    static std::vector<std::string> settingNames() {
+        return {"area_light_model", "jitter", "antialiasing"};
+    }
     // Frame slot `slot`'s shadow views (ShadowViews): for every local light with castShadows
     // whose range reaches the camera's view, one perspective view (a spot of outer angle ≤ 60°)
     // or six (a cube), in light order, up to kMaxShadowViews; then per light its first view and
@@ -328,6 +335,10 @@ private:
     uint32_t m_lightCount = 0;
     uint32_t m_iesProfileCount = 0;
     uint32_t m_areaLightModel = 0;
+    bool m_jitterWanted = false, m_temporalResolve = false;  // setSetting "jitter", "antialiasing"
+    uint32_t m_jitterFrame = 0;                              // the Halton sequence's position
+    double m_time = 0.0;                                     // setTime
+    std::optional<glm::vec2> m_previousJitter;
     size_t m_camera = 0;
     std::optional<glm::mat4>
         m_previousViewProj;  // the last frame's camera (Camera.previousViewProj)

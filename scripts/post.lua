@@ -1,14 +1,15 @@
--- The physical camera and the post chain (seed 002 §5.1–§5.3): auto-exposure from a
--- log-luminance histogram, an energy-conserving bloom, tone mapping, the exact sRGB transfer
--- function, FXAA. A pipeline uses it as
+-- The physical camera and the post chain (seed 002 §5.1–§5.3): temporal anti-aliasing (TAA) or
+-- FXAA, auto-exposure from a log-luminance histogram, an energy-conserving bloom, tone mapping, the
+-- exact sRGB transfer function. A pipeline uses it as
 --
 --   local post = require "post"
 --   post.params { exposure_mode = "auto" }   -- camera and post parameters (rg.param)
 --   post.exposure_state()                    -- the persistent `exposure` buffer HDR passes read
 --   ... passes that render `hdr` (luminance × pre-exposure, see shaders/lib/exposure.glsl) ...
 --   post.at("display", "vignette", { kind = "fullscreen", shader = ... })  -- a team's pass, see below
---   post.chain { input = "hdr", output = "display" }
+--   post.chain { input = "hdr", output = "display", depth = "depth" }  -- depth: TAA's reprojection
 --   rg.output { display = "display", hdr = "hdr", exposure = "exposure" }
+--   function rg.frame(ctx) post.frame(ctx) end  -- the `antialiasing` parameter's passes
 local rg = require "rg"
 local post = {}
 
@@ -97,6 +98,7 @@ function post.params(o)
     rg.param "dither" { type = "boolean", default = o.dither ~= false, doc = "triangular dither before 8-bit quantisation" }
     rg.param "fxaa_threshold" { type = "number", default = 0.125, min = 0, max = 1 }
     rg.param "fxaa_subpixel" { type = "number", default = 0.75, min = 0, max = 1 }
+    post.antialiasing = o.antialiasing or "taa"  -- the default of the parameter post.chain declares with TAA
     post.declared = true
 end
 
@@ -105,13 +107,68 @@ function post.exposure_state()
     rg.buffer "exposure" { size = 16, persistent = true }
 end
 
+-- TAA (shaders/post/taa.frag) on the pre-exposed HDR, first in the chain: `taa` blends the
+-- frame into its history (`taa_history`, persistent; kept by `taa_history_copy`), reprojected by
+-- the camera's motion from `depth`. With another antialiasing, `taa_off` copies the HDR through
+-- instead (post.frame switches them). Returns the image the chain goes on with.
+local function temporal(input, depth)
+    rg.param "antialiasing" { type = "choice", default = post.antialiasing, choices = { "taa", "fxaa", "none" },
+                              scene = "antialiasing",
+                              doc = "taa: temporal, over jittered frames; fxaa: FXAA 3.11 on the display image; none" }
+    rg.param "taa_jitter" { type = "boolean", default = true, scene = "jitter",
+                            doc = "TAA's sub-pixel camera jitter (Halton 2, 3 over 8 frames); off in the golden tests' profile" }
+    rg.param "taa_feedback" { type = "number", default = 0.9, min = 0, max = 0.99,
+                              doc = "the history's share of a TAA pixel (before its luminance weighting)" }
+    rg.resource "taa" { format = "rgba16f", doc = "the HDR resolved over time: this frame blended into the reprojected history" }
+    rg.resource "taa_history" { format = "rgba16f", persistent = true, doc = "the last frame's `taa` (alpha 0: empty)" }
+    -- Two passes, one drawing on each frame (the fullscreen kind's `camera`): `taa` while the
+    -- camera stands still (the history at the pixel itself), `taa_moving` when it moved (reprojected
+    -- by the motion, read through a Catmull-Rom filter).
+    rg.pass "taa" {
+        kind = "fullscreen", shader = "post/taa.frag", camera = "still",
+        reads = { input, "taa_history", { "exposure", as = "uniform" } }, writes = { "taa" },
+        bind = { source = input },
+    }
+    rg.pass "taa_moving" {
+        kind = "fullscreen", shader = "post/taa.frag", camera = "moved", filter = "linear",
+        defines = { RG_TAA_MOVING = true },
+        reads = { input, depth, "taa_history", { "exposure", as = "uniform" } },
+        writes = { { "taa", load = true } }, bind = { source = input, depth = depth },
+    }
+    rg.pass "taa_off" { kind = "copy", reads = { input }, writes = { "taa" }, after = { "taa_moving" } }
+    post.taa = true
+    return "taa"
+end
+
+-- After the chain: TAA's history for the next frame.
+local function keep_history()
+    rg.pass "taa_history_copy" { kind = "copy", reads = { "taa" }, writes = { "taa_history" } }
+end
+
+-- Switches the passes of the `antialiasing` parameter (declared with TAA, by a chain given
+-- `depth`): call it from rg.frame.
+function post.frame(ctx)
+    if not post.taa then return end
+    local aa = ctx.params.antialiasing
+    ctx.pass("taa").enabled = aa == "taa"
+    ctx.pass("taa_moving").enabled = aa == "taa"
+    ctx.pass("taa_history_copy").enabled = aa == "taa"
+    ctx.pass("taa_off").enabled = aa ~= "taa"
+    if post.fxaa then
+        ctx.pass("fxaa_edges").enabled = aa == "fxaa"
+        ctx.pass("fxaa").enabled = aa == "fxaa"
+    end
+end
+
 -- o.input: the HDR target; o.output: the display image to create (rgba8, sRGB-encoded values);
+-- o.depth: the depth buffer, for TAA (without it, or without post.params, no TAA);
 -- o.bloom_levels (default 5, 0 = no bloom); o.fxaa (default true). Auto-exposure meters the
 -- first bloom level (half size, the same average luminance: a quarter of the atomics) or the
 -- input itself without bloom.
 function post.chain(o)
     local input, output = assert(o.input, "post.chain: input"), assert(o.output, "post.chain: output")
     post.chained = true
+    if o.depth and post.declared then input = temporal(input, o.depth) end
     input = insert_passes("linear", input)
     local levels = o.bloom_levels or 5
     local meter = levels >= 1 and "bloom_down1" or input
@@ -154,6 +211,7 @@ function post.chain(o)
     -- The tone mapping in stages (post/tonemap.frag's RG_POST_FROM/RG_POST_TO): 0 the HDR, 1
     -- exposed, 2 tone-mapped, 3 sRGB-encoded; a pass for each run of stages between used points.
     local fxaa = o.fxaa ~= false
+    post.fxaa = fxaa
     local display = #post.inserted.display > 0 and (output .. "_chain") or output
     local mapped = fxaa and (output .. "_ldr") or display
     rg.resource(mapped) { format = "rgba8" }
@@ -209,6 +267,7 @@ function post.chain(o)
         }
     end
     insert_passes("display", display, output)
+    if post.taa then keep_history() end
 end
 
 return post

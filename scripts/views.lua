@@ -108,6 +108,11 @@ rg.view "probes" { doc = "which local light probe reflects each pixel (palette c
     views.fullscreen { shader = "passes/probe_view.frag", reads = { "depth" } }
 end }
 
+rg.view "motion" { doc = "each pixel's screen motion since the last frame, as TAA reprojects by it: hue the direction, brightness the length (full at 8 pixels)", build = function(v)
+    views.need(v, "depth", "the motion is the camera's, found from each pixel's depth")
+    views.fullscreen { shader = "passes/motion_view.frag", reads = { "depth" } }
+end }
+
 rg.view "ssao" { doc = "the screen-space ambient occlusion", build = function(v)
     views.need(v, "ssao", "require \"ao\"")
     views.fullscreen { shader = "passes/ssao_view.frag", reads = { "ssao" } }

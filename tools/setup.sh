@@ -19,7 +19,7 @@ packages=(
   clang-format  # tools/format.sh and the format test: the house's C++ layout (.clang-format)
   chromium  # the golden-test report is checked in a real (headless) browser
   python3-distributed  # tools/farm.py: shards on a Dask cluster (a local one in the tests)
-  python3-pil  # tests/golden/test_device_goldens.py alters golden PNGs
+  python3-pil python3-numpy  # tests that alter golden PNGs and measure TAA's error
 )
 tools/install_packages.sh "rgraph setup" "${packages[@]}"
 

@@ -30,6 +30,8 @@ Result<Frame> renderCase(Runtime& rt, const AccuracyOptions& o, const AccuracyCa
     so.sceneArgs = {{"light", c.light}, {"placement", c.placement}, {"material", c.material}};
     so.captures = {"hdr", "depth"};
     so.params["exposure_mode"] = Value("manual");
+    // The real-time image against the reference pixel by pixel: not jittered.
+    so.paramsIfDeclared["taa_jitter"] = Value(false);
     if (reference) {
         so.params["reference_seed"] = Value(static_cast<double>(seed));
         so.params["reference_samples"] = Value(static_cast<double>(o.samples));

@@ -272,13 +272,29 @@ Status validateVersions(Compiler& c) {
     c.needs.assign(passCount, {});
     std::vector<int32_t> lastWriter(resources.size(), -1);
     std::vector<int32_t> disabledWriter(resources.size(), -1);
+    std::vector<std::vector<uint32_t>> disabledWriters(resources.size());
     std::vector<std::vector<uint32_t>> readers(resources.size());
+    // "its only writer 'a' is disabled" / "its writers 'a' and 'b' are disabled"
+    auto disabledText = [&](size_t resource) {
+        const auto& list = disabledWriters[resource];
+        std::string names;
+        for (size_t i = 0; i < list.size(); ++i)
+            names += (i == 0                 ? ""
+                      : i + 1 == list.size() ? " and "
+                                             : ", ") +
+                     ("'" + passes[list[i]].name + "'");
+        return list.size() == 1 ? "its only writer " + names + " is disabled"
+                                : "its writers " + names + " are disabled";
+    };
 
     for (uint32_t pi = 0; pi < passCount; ++pi) {
         const PassDesc& p = passes[pi];
         if (!p.enabled) {
             for (const MergedAccess& m : c.merged[pi])
-                if (m.writes) disabledWriter[m.resource] = static_cast<int32_t>(pi);
+                if (m.writes) {
+                    disabledWriter[m.resource] = static_cast<int32_t>(pi);
+                    disabledWriters[m.resource].push_back(pi);
+                }
             continue;
         }
         for (const std::string& name : p.after) {
@@ -292,10 +308,8 @@ Status validateVersions(Compiler& c) {
                 c.addEdge(static_cast<uint32_t>(lastWriter[m.resource]), pi, /* need= */ true);
             } else if (!r.imported && !r.persistent) {
                 if (disabledWriter[m.resource] >= 0)
-                    return invalid(c.passError(
-                        pi, "pass '" + p.name + "' reads '" + r.name + "', but its only writer '" +
-                                passes[static_cast<size_t>(disabledWriter[m.resource])].name +
-                                "' is disabled"));
+                    return invalid(c.passError(pi, "pass '" + p.name + "' reads '" + r.name +
+                                                       "', but " + disabledText(m.resource)));
                 std::string text =
                     "pass '" + p.name + "' reads '" + r.name + "' before any pass writes it";
                 for (uint32_t later = pi + 1; later < passCount; ++later) {
@@ -341,8 +355,8 @@ Status validateVersions(Compiler& c) {
         const auto writer = static_cast<uint32_t>(disabledWriter[r]);
         return invalid(c.passError(writer, "'" + res.name +
                                                "' is exported (an output or a capture) but not "
-                                               "written: its only writer '" +
-                                               passes[writer].name + "' is disabled"));
+                                               "written: " +
+                                               disabledText(r)));
     }
     for (auto& s : c.successors) {
         std::sort(s.begin(), s.end());

@@ -290,6 +290,12 @@ Result<void> Session::load(const std::string& file) {
         if (!checked) return std::unexpected(checked.error());
         pipeline->findParam(name)->value = *checked;
     }
+    for (const auto& [name, value] : m_options.paramsIfDeclared) {
+        if (!pipeline->findParam(name) || m_options.params.count(name)) continue;
+        auto checked = checkedParam(*pipeline, name, value);
+        if (!checked) return std::unexpected(checked.error());
+        pipeline->findParam(name)->value = *checked;
+    }
     if (scene)
         if (auto r = applySceneSettings(*scene, *pipeline); !r) return r;
     auto channels = channelCapturesOf(*pipeline, m_options.captures);
@@ -505,6 +511,7 @@ Result<void> Session::frame(VkCommandBuffer hostCmd) {
     // set can fail here.
     if (m_scene)
         if (auto r = applySceneSettings(*m_scene, m_pipeline); !r && applied) applied = r;
+    if (m_scene) m_scene->setTime(static_cast<double>(m_frame) / 60.0);  // its camera's path
     if (auto r = m_runtime.executor().frame(hostCmd); !r) return r;
     ++m_frame;
     return applied;

@@ -59,6 +59,9 @@ struct SessionOptions {
     // Parameter values set when a script loads (after the scene's camera settings), checked like
     // ctx.params: the golden tests' `params` and determinism profile.
     std::map<std::string, Value> params;
+    // Values for parameters a pipeline may not declare, set where it does (checked the same): a
+    // test harness's profile, e.g. taa_jitter = false for images compared pixel by pixel.
+    std::map<std::string, Value> paramsIfDeclared;
     // Called every frame after the script's rg.frame with the pipeline as rg.frame left it; its
     // changes are applied on top (the golden tests' frame callbacks).
     std::function<Result<FrameChanges>(const FrameContext&, const PipelineDesc&)> frameHook;

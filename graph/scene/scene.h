@@ -261,6 +261,16 @@ struct Camera {
     float shutter = 0.008f;                       // seconds (1/125)
     float iso = 100.0f;
     float exposureCompensation = 0.0f;  // EV
+    // A camera move (scene.camera's `path`): keys in time order; at time t (seconds, a frame's
+    // ctx.time) the position and target pass through the keys on Catmull-Rom curves (tangents
+    // from the neighbouring keys; held before the first and after the last). Empty: it stands.
+    struct Key {
+        float time = 0.0f;
+        glm::vec3 position{0.0f}, target{0.0f};
+    };
+    std::vector<Key> path;
+    // This camera at `seconds` along its path (itself when it has none).
+    Camera at(double seconds) const;
 };
 
 struct Environment {

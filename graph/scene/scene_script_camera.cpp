@@ -17,9 +17,10 @@ namespace scene_script {
 Result<void> Builder::camera(const Declaration& d) {
     Where w = where(d);
     const Value& b = d.body;
-    if (auto r = checkFields(w, b,
-                             {"position", "target", "up", "fov", "focal_length", "sensor_height",
-                              "height", "aperture", "shutter", "iso", "ec", "near", "far", "doc"});
+    if (auto r = checkFields(
+            w, b,
+            {"position", "target", "up", "fov", "focal_length", "sensor_height", "height",
+             "aperture", "shutter", "iso", "ec", "near", "far", "path", "doc"});
         !r)
         return r;
     Camera c;
@@ -69,6 +70,36 @@ Result<void> Builder::camera(const Declaration& d) {
     if (c.farPlane <= c.nearPlane)
         return w.at("far").error("is " + formatNumber(c.farPlane) + ", not beyond near (" +
                                  formatNumber(c.nearPlane) + ")");
+    // path = { { time = 0, position = {...}, target = {...} }, ... }: a camera move.
+    if (b.has("path")) {
+        const Value& path = b["path"];
+        if (!path.isList() || path.asList().size() < 2)
+            return w.at("path").error(
+                "expected a list of at least two keys { time = s, position = {x, y, z}, target = "
+                "{x, y, z} }, got " +
+                describe(path));
+        for (size_t i = 0; i < path.asList().size(); ++i) {
+            const Where wk = w.at("path").index(i);
+            const Value& key = path.asList()[i];
+            if (!key.isTable())
+                return wk.error(
+                    "expected a key { time = s, position = {x, y, z}, target = {x, y, z} }");
+            if (auto r = checkFields(wk, key, {"time", "position", "target"}); !r) return r;
+            if (!key.has("time") || !key.has("position") || !key.has("target"))
+                return wk.error("a key needs time, position and target");
+            Camera::Key k;
+            RG_TRY(k.time, numberF(wk, key, "time", 0.0f, Range::closed(0, 1e6)));
+            RG_TRY(k.position, vec3(wk, key, "position", k.position));
+            RG_TRY(k.target, vec3(wk, key, "target", k.target));
+            if (!c.path.empty() && k.time <= c.path.back().time)
+                return wk.at("time").error("is " + formatNumber(k.time) +
+                                           ", not after the key before (" +
+                                           formatNumber(c.path.back().time) + ")");
+            if (glm::length(k.target - k.position) < 1e-6f)
+                return wk.at("target").error("equals position; the camera needs a direction");
+            c.path.push_back(k);
+        }
+    }
     scene.cameras.push_back(c);
     return {};
 }
@@ -88,5 +119,36 @@ void Builder::defaultCamera() {
 }
 
 }  // namespace scene_script
+
+Camera Camera::at(double seconds) const {
+    if (path.empty()) return *this;
+    Camera c = *this;
+    const float t = static_cast<float>(seconds);
+    if (t <= path.front().time || path.size() == 1) {
+        c.position = path.front().position, c.target = path.front().target;
+        return c;
+    }
+    if (t >= path.back().time) {
+        c.position = path.back().position, c.target = path.back().target;
+        return c;
+    }
+    size_t i = 0;
+    while (path[i + 1].time < t) ++i;
+    const Key &a = path[i], &b = path[i + 1];
+    const float span = b.time - a.time, u = (t - a.time) / span;
+    // Cubic Hermite with Catmull-Rom tangents (per second, from the neighbours; zero at the ends).
+    auto tangent = [&](size_t k, glm::vec3 Key::*field) {
+        if (k == 0 || k + 1 >= path.size()) return glm::vec3(0.0f);
+        return (path[k + 1].*field - path[k - 1].*field) / (path[k + 1].time - path[k - 1].time);
+    };
+    auto curve = [&](glm::vec3 Key::*field) {
+        const float u2 = u * u, u3 = u2 * u;
+        return (2 * u3 - 3 * u2 + 1) * (a.*field) + (u3 - 2 * u2 + u) * span * tangent(i, field) +
+               (-2 * u3 + 3 * u2) * (b.*field) + (u3 - u2) * span * tangent(i + 1, field);
+    };
+    c.position = curve(&Key::position);
+    c.target = curve(&Key::target);
+    return c;
+}
 
 }  // namespace rg

@@ -32,9 +32,10 @@ rg.pass "lighting_standard" (reflections.lit(ao.lit(shadows.masked(ibl.lit(light
 loop.sky_and_forward()
 ssr.history()
 
-post.chain { input = "hdr", output = "display" }
+post.chain { input = "hdr", output = "display", depth = "depth" }
 rg.output { display = "display", hdr = "hdr", exposure = "exposure" }
 
 function rg.frame(ctx)
     loop.frame(ctx)  -- no decals in the scene: no decal passes; no sun: no shadow draws; no probes: no capture
+    post.frame(ctx)  -- TAA, FXAA or neither: the antialiasing parameter
 end

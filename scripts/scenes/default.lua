@@ -57,9 +57,16 @@ scene.light "lamp" {
   position = { 4.0, 2.2, 0.5 }, range = 12,
 }
 
+-- --scene-arg move=1: the camera moves (a sequence: rgraph render --frames A..B, TAA's moving
+-- case) — over two seconds it swings right and down towards the grid, through three keys.
 scene.camera "main" {
   position = { 0.0, 5.0, 10.5 }, target = { 0.0, 0.3, 0.0 }, fov = 40,
   aperture = 8, shutter = 1 / 125, iso = 100,
+  path = scene.args.move and {
+    { time = 0, position = { 0.0, 5.0, 10.5 }, target = { 0.0, 0.3, 0.0 } },
+    { time = 1, position = { 3.0, 4.0, 9.0 }, target = { 0.5, 0.3, 0.0 } },
+    { time = 2, position = { 5.0, 3.0, 7.0 }, target = { 1.0, 0.3, 0.0 } },
+  } or nil,
 }
 
 scene.environment "sky" { kind = "sky", intensity = 1, unit = "nits" }

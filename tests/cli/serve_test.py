@@ -126,13 +126,13 @@ for name, url, body, expect in [
     ("wrong type", "/api/param", {"name": "ec", "value": "bright"}, "ec"),
     ("out of range", "/api/param", {"name": "ec", "value": 100}, "[-16, 16]"),
     ("not JSON", "/api/param", b"{name", "expected"),
-    ("enabled not a boolean", "/api/pass", {"name": "fxaa", "enabled": "no"}, "expected"),
+    ("enabled not a boolean", "/api/pass", {"name": "taa", "enabled": "no"}, "expected"),
 ]:
     code, _, reply = request(base + url, body)
     check("400 for " + name, code == 400 and expect in json.loads(reply).get("error", ""), (code, reply))
 s = state(base)
 check("bad requests changed nothing", any(p["name"] == "ec" and p["value"] == 1.5 for p in s["params"]) and
-      all(p["enabled"] for p in s["passes"] if p["name"] in ("gbuffer", "fxaa")))
+      all(p["enabled"] for p in s["passes"] if p["name"] in ("gbuffer", "taa")))
 
 # Intermediates: an HDR target, a G-buffer channel decoded by its layout, an EXR download.
 for resource, fmt, magic in [("hdr", "png", b"\x89PNG"), ("GB1", "png", b"\x89PNG"), ("gbuffer.smoothness", "png", b"\x89PNG"),
@@ -158,7 +158,7 @@ check("the next image is served", code == 200 and body[:4] == b"\x89PNG", (code,
 # A switch that would leave a kept pass without its input: 400 with the compiler's reason, and
 # nothing changes (the plan keeps rendering, a parameter set next is applied).
 code, _, body = request(base + "/api/pass", {"name": "tonemap", "enabled": False})
-check("400 for a switch that breaks the graph", code == 400 and "fxaa_edges" in json.loads(body).get("error", ""), (code, body[:300]))
+check("400 for a switch that breaks the graph", code == 400 and "its writers 'tonemap' and 'fxaa' are disabled" in json.loads(body).get("error", ""), (code, body[:300]))
 s = state(base)
 check("the refused switch changed nothing", any(p["name"] == "tonemap" and p["enabled"] and p["kept"] for p in s["passes"]) and not s.get("error"),
       ([p for p in s["passes"] if p["name"] == "tonemap"], s.get("error")))

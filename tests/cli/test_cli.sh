@@ -65,7 +65,7 @@ EOF
 check "rg.frame switching off a needed pass" 2 grep "frame 1: rg.frame's changes (disabled 'tonemap') cannot be built; the plan stays as it was: " -- \
     "$rgraph" render --pipeline "$tmp/switch_off.lua" --size 16x16 --frames 3 --out "$tmp/s.exr" --png "$tmp/s.png"
 check "... with the compiler's reason" 2 grep "pass 'fxaa_edges' reads 'display_ldr', but its only writer 'tonemap' is disabled" -- \
-    "$rgraph" render --pipeline "$tmp/switch_off.lua" --size 16x16 --frames 3 --out "$tmp/s.exr" --png "$tmp/s.png"
+    "$rgraph" render --pipeline "$tmp/switch_off.lua" --set antialiasing=fxaa --size 16x16 --frames 3 --out "$tmp/s.exr" --png "$tmp/s.png"
 check "unknown scene file type" 2 grep "expected a .lua scene script, a .gltf or a .glb file" -- "$rgraph" render --scene README.md --size 8x8
 check "missing scene" 2 grep "nope.gltf" -- "$rgraph" render --scene nope.gltf --size 8x8
 check "render" 0 grep "wrote $tmp/r.exr and $tmp/r.png (64x32" -- \
@@ -127,7 +127,7 @@ check "unlit glb without environment" 0 grep "wrote $tmp/n.exr" -- \
     "$rgraph" render --scene "$tmp/unlit.glb" --environment none --size 48x32 --out "$tmp/n.exr" --png "$tmp/n.png"
 # The box's pixels: lit under the default sky, black with none (relative error of the unlit image against the lit one: 100 %).
 check "sky lights the glb" 0 grep "mean relative error 1" -- "$rgraph" compare "$tmp/n.exr" "$tmp/u.exr"
-check "graph json parses" 0 -- bash -c "'$rgraph' graph --format json --size 64x64 | python3 -c 'import json,sys; p=json.load(sys.stdin); n=[x[\"name\"] for x in p[\"passes\"]]; assert n[:7]==[\"env_cube\",\"env_mips\",\"env_irradiance\",\"env_hot\",\"env_smooth_mips\",\"env_prefilter\",\"dfg_table\"] and n[7:10]==[\"probe_capture\",\"probe_mips\",\"probe_prefilter\"] and n[10:17]==[\"sun_cascades\",\"sun_cull_clear\",\"sun_cull\",\"shadow_clear0\",\"shadow_clear1\",\"shadow_clear2\",\"shadow_local\"] and n[17:39]==[\"gbuffer\",\"light_froxels_clear\",\"ao_depth\",\"sun_visibility_clear\",\"sun_classify\",\"sun_visibility_half_clear\",\"sun_classify_half\",\"shadow_sun0\",\"sun_mask0\",\"sun_mask_half0\",\"shadow_sun1\",\"sun_mask1\",\"sun_mask_half1\",\"shadow_sun2\",\"sun_mask2\",\"sun_mask_half2\",\"foliage_fixup\",\"gtao\",\"ao_blur\",\"light_froxels\",\"light_froxels_sort\",\"light_culling\"] and n[42:52]==[\"decals\",\"hiz\",\"ssr_mask\",\"ssr\",\"reflection_compose\",\"lighting_standard\",\"lighting_clearcoat\",\"lighting_two_colour\",\"sky\",\"forward\"] and n[-3:]==[\"tonemap\",\"fxaa_edges\",\"fxaa\"], n'"
+check "graph json parses" 0 -- bash -c "'$rgraph' graph --format json --size 64x64 | python3 -c 'import json,sys; p=json.load(sys.stdin); n=[x[\"name\"] for x in p[\"passes\"]]; assert n[:7]==[\"env_cube\",\"env_mips\",\"env_irradiance\",\"env_hot\",\"env_smooth_mips\",\"env_prefilter\",\"dfg_table\"] and n[7:10]==[\"probe_capture\",\"probe_mips\",\"probe_prefilter\"] and n[10:17]==[\"sun_cascades\",\"sun_cull_clear\",\"sun_cull\",\"shadow_clear0\",\"shadow_clear1\",\"shadow_clear2\",\"shadow_local\"] and n[17:39]==[\"gbuffer\",\"light_froxels_clear\",\"ao_depth\",\"sun_visibility_clear\",\"sun_classify\",\"sun_visibility_half_clear\",\"sun_classify_half\",\"shadow_sun0\",\"sun_mask0\",\"sun_mask_half0\",\"shadow_sun1\",\"sun_mask1\",\"sun_mask_half1\",\"shadow_sun2\",\"sun_mask2\",\"sun_mask_half2\",\"foliage_fixup\",\"gtao\",\"ao_blur\",\"light_froxels\",\"light_froxels_sort\",\"light_culling\"] and n[42:52]==[\"decals\",\"hiz\",\"ssr_mask\",\"ssr\",\"reflection_compose\",\"lighting_standard\",\"lighting_clearcoat\",\"lighting_two_colour\",\"sky\",\"forward\"] and n[-4:]==[\"tonemap\",\"fxaa_edges\",\"fxaa\",\"taa_history_copy\"], n'"
 check "graph materials" 0 grep "  free: 251 of 255" -- "$rgraph" graph --format materials
 check "graph materials: identities first" 0 grep "material identities (a pixel's stencil value" -- "$rgraph" graph --format materials
 check "graph materials: foliage is a variant" 0 grep "0x11 mask 0xFF  foliage          variant of lit_standard" -- "$rgraph" graph --format materials
@@ -135,6 +135,18 @@ check "graph materials of a built-in graph" 2 grep "built-in graphs declare no m
 check "export-scene" 0 grep "wrote $tmp/materials.glb (6 meshes" -- "$rgraph" export-scene --scene tests/gpu/scenes/materials.lua --out "$tmp/materials.glb"
 check "render a glb" 0 grep "wrote $tmp/g.exr" -- "$rgraph" render --scene "$tmp/materials.glb" --size 64x32 --out "$tmp/g.exr" --png "$tmp/g.png"
 check "debug view" 0 grep "wrote $tmp/v.exr" -- "$rgraph" render --scene tests/gpu/scenes/materials.lua --view materialid --size 64x32 --out "$tmp/v.exr" --png "$tmp/v.png"
+check "motion view" 0 grep "wrote $tmp/mv.exr" -- "$rgraph" render --view motion --scene-arg move=1 --frames 3 --size 32x16 --out "$tmp/mv.exr"
+cat >"$tmp/badpath.lua" <<'LUA'
+local scene = require "scene"
+scene.box "box" { size = { 1, 1, 1 } }
+scene.camera "main" { position = { 2, 1, 3 }, target = { 0, 0, 0 }, path = {
+    { time = 1, position = { 2, 1, 3 }, target = { 0, 0, 0 } },
+    { time = 0.5, position = { 3, 1, 3 }, target = { 0, 0, 0 } },
+} }
+LUA
+check "camera path out of order" 2 grep "badpath.lua:3: scene.camera.main.path[2].time: is 0.5, not after the key before (1)" -- \
+    "$rgraph" render --scene "$tmp/badpath.lua" --size 8x8 --out "$tmp/bp.exr"
+check "antialiasing choice" 2 grep "parameter 'antialiasing' expects one of 'taa', 'fxaa', 'none', got 'msaa'" -- "$rgraph" render --set antialiasing=msaa --size 8x8 --out "$tmp/aa.exr"
 check "unknown view" 2 grep "--view: unknown view 'albedo'" -- "$rgraph" render --view albedo --size 8x8
 # Every shipped scene loads and renders through the default pipeline (their material parameters
 # are checked by name against the pipeline's materials).
@@ -210,7 +222,7 @@ check "reference vs real time" 0 grep "mean relative error" -- \
 check "luminance beyond half floats" 0 grep "mean relative error 0" -- \
     bash -c "'$rgraph' render --scene tests/gpu/scenes/reference_sun.lua --size 48x32 --out '$tmp/sun.exr' --png '$tmp/sun.png' >/dev/null && '$rgraph' compare '$tmp/sun.exr' '$tmp/sun.exr'"
 check "bench" 0 grep "frame total" -- "$rgraph" bench --size 64x64 --frames 3 --json "$tmp/bench.json"
-check "bench json" 0 -- python3 -c "import json; b=json.load(open('$tmp/bench.json')); assert len(b['passes'])==54 and b['scene']['draws']>0 and b['frames']==3 and b['scene']['geometryBytes']>0 and b['scene']['environmentBytes']>0"
+check "bench json" 0 -- python3 -c "import json; b=json.load(open('$tmp/bench.json')); assert len(b['passes'])==55 and b['scene']['draws']>0 and b['frames']==3 and b['scene']['geometryBytes']>0 and b['scene']['environmentBytes']>0"
 # Transient aliasing on the default frame at its default size: the sun's cascade maps take turns in
 # one range (scripts/shadows.lua), and the heaps are placed for the passes the first frame runs.
 check "aliasing saves 40 %" 0 -- bash -c "'$rgraph' bench --size 1280x720 --frames 1 --json '$tmp/memory.json' >/dev/null && python3 -c \"import json; b=json.load(open('$tmp/memory.json')); s=1-b['transientBytesAliased']/b['transientBytesUnaliased']; assert s>=0.40, s\""

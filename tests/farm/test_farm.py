@@ -74,6 +74,16 @@ def test_bake(tmp):
              "--out", merged], env)
     check("a rerun finds every shard in the cache", p.returncode == 0 and
           "all 4 shards up to date in the cache" in p.stderr, p.stderr)
+    # Two workers baking the same shard into one cache at once: both finish, the entry is whole.
+    race = {"RG_CACHE_DIR": f"{tmp}/cache-race"}
+    argv = [RGRAPH, "bake", *SCENE, "--shard", "3/4", "--rebake"]
+    procs = [subprocess.Popen(argv, cwd=ROOT, env={**os.environ, **race}, stdout=subprocess.PIPE,
+                              stderr=subprocess.PIPE, text=True) for _ in range(2)]
+    codes = [p.wait(timeout=300) for p in procs]
+    p = run([RGRAPH, "bake", *SCENE, "--shard", "3/4"], race)
+    leftovers = [f for f in glob.glob(f"{tmp}/cache-race/lightmaps/*") if ".tmp-" in f]
+    check("two writers of one cache entry leave it whole", codes == [0, 0] and p.returncode == 0 and
+          "up to date in the cache" in p.stdout and not leftovers, f"{codes} {p.stdout} {leftovers}")
     parts = sorted(glob.glob(f"{tmp}/work/bake-part-*-of-4.exr"))
     p = run([RGRAPH, "bake", "--merge", *parts[:3], "--out", f"{tmp}/partial.exr"])
     check("a merge without every shard is refused, naming it",

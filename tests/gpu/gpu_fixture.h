@@ -106,6 +106,7 @@ protected:
         o.compile.outputWidth = width;
         o.compile.outputHeight = height;
         o.params["exposure_mode"] = Value("manual");
+        o.paramsIfDeclared["taa_jitter"] = Value(false);  // pixels compared one by one
         return o;
     }
 

@@ -219,6 +219,7 @@ protected:
         o.scene = scene;
         o.captures = {"GB0", "GB1", "GB2", "GB3"};
         o.params["light_shapes"] = Value(false);  // the light's lighting alone, not its look
+        o.paramsIfDeclared["taa_jitter"] = Value(false);  // pixels compared one by one
         Session s(*s_runtime, o);
         Frame out;
         auto r = s.load(kRoot + "/scripts/pipelines/deferred.lua");

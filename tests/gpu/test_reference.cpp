@@ -45,6 +45,7 @@ protected:
         o.scene = kRoot + "/tests/gpu/scenes/" + scene;
         o.params["exposure_mode"] = Value("manual");
         o.params["light_shapes"] = Value(false);  // the lights' lighting alone, not their look
+        o.paramsIfDeclared["taa_jitter"] = Value(false);  // pixels compared one by one
         // The same meshes in both (the reference mode draws the full ones): the lights' terms are
         // compared, not the spheres' levels of detail.
         o.levelsOfDetail = false;

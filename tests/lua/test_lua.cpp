@@ -51,7 +51,7 @@ TEST(LuaErrors, UnknownFieldSuggestsTheClosest) {
                   "'kind', 'reads', 'writes', 'after', 'enabled', 'side_effect', 'doc', 'insert', "
                   "'shader', 'defines', "
                   "'switches', 'bind', 'uniforms', 'constants', 'filter', 'clear', 'blend', "
-                  "'stencil', 'depth'");
+                  "'stencil', 'depth', 'camera'");
 }
 
 // switches = { param = "DEFINE" } names a declared parameter and a define (a GLSL identifier).

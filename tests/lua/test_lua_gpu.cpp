@@ -185,10 +185,11 @@ TEST_F(LuaGpu, ParametersAndResourcesNameWhatTheSceneHas) {
     Session bad(*s_runtime, small());
     auto r = bad.load(file);
     ASSERT_FALSE(r);
-    EXPECT_NE(r.error().describe().find("scene_setting.lua:" + std::to_string(line) +
-                                        ": params.glow: scene = 'glow': the scene has no setting "
-                                        "'glow' (it has: 'area_light_model')"),
-              std::string::npos)
+    EXPECT_NE(
+        r.error().describe().find("scene_setting.lua:" + std::to_string(line) +
+                                  ": params.glow: scene = 'glow': the scene has no setting "
+                                  "'glow' (it has: 'area_light_model', 'jitter', 'antialiasing')"),
+        std::string::npos)
         << r.error().describe();
 
     // scene_layers names an extent the scene has: an unknown one is an error at the build,

@@ -126,11 +126,12 @@ TEST(LuaViews, SceneViewsAskTheScene) {
     EXPECT_EQ(findPass(*lobe, "gbuffer")->params["defines"]["RG_LIGHTMAP_VIEW"].asNumber(), 5.0);
     EXPECT_FALSE(findPass(d.pipeline, "gbuffer")->params["defines"].has("RG_LIGHTMAP_VIEW"));
     EXPECT_EQ(d.error("sg9", &scene), "--view sg9: the lightmap has lobes sg0 .. sg8");
-    EXPECT_EQ(d.error("sg"),
-              "--view: unknown view 'sg'; expected one of: 'normals', 'basecolor', 'smoothness', "
-              "'metalmask', 'materialid', 'reflectance', 'ao', 'emissive', 'stencil', 'lights', "
-              "'ssr', 'ssr_confidence', 'reflection', 'probes', 'ssao', 'cascades', 'shadow', "
-              "'shadow:LIGHT', 'lightmap', 'sgN'");
+    EXPECT_EQ(
+        d.error("sg"),
+        "--view: unknown view 'sg'; expected one of: 'normals', 'basecolor', 'smoothness', "
+        "'metalmask', 'materialid', 'reflectance', 'ao', 'emissive', 'stencil', 'lights', "
+        "'ssr', 'ssr_confidence', 'reflection', 'probes', 'motion', 'ssao', 'cascades', 'shadow', "
+        "'shadow:LIGHT', 'lightmap', 'sgN'");
 }
 
 TEST(LuaViews, AViewNamesWhatThePipelineLacks) {

@@ -1,0 +1,20 @@
+// Screen motion since the last frame, from a pixel's depth and the two cameras (lib/scene.glsl):
+// the position a pixel's surface had on screen the frame before is where the last frame's
+// unjittered camera (Camera.previousViewProj) projects it. The scene's surfaces do not move
+// between frames (nodes keep their transforms), so the camera's motion is all the motion there
+// is; the sub-pixel jitter (Camera.jitter) is left out, as TAA reprojection wants it.
+#ifndef RG_MOTION_GLSL
+#define RG_MOTION_GLSL
+
+#include "lib/scene.glsl"
+
+// uv of this frame (the pixel's centre, jittered raster) minus the uv the same surface point had
+// on the last frame's screen; uv units (pixels / size).
+vec2 rgMotion(vec2 uv, float depth) {
+    vec4 world = vec4(rgWorldPosition(uv, depth), 1.0);
+    vec4 now = camera.unjitteredViewProj * world;
+    vec4 before = camera.previousViewProj * world;
+    return (now.xy / now.w - before.xy / before.w) * 0.5;
+}
+
+#endif
