@@ -255,7 +255,8 @@ Result<void> GpuScene::selectCamera(const std::string& name) {
 }
 
 void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
-    const Camera c = camera().at(m_time);
+    m_frameCamera = camera().at(m_time);
+    const Camera& c = m_frameCamera;
     const float aspect = static_cast<float>(width) / static_cast<float>(std::max(1u, height));
     const float fovy = c.focalLength > 0 ? 2.0f * std::atan(c.sensorHeight / (2.0f * c.focalLength))
                                          : c.verticalFov;

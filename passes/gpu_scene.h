@@ -164,6 +164,8 @@ public:
     void updateFrame(uint32_t slot, uint32_t width, uint32_t height);
     // The time of the frames updateFrame writes next (seconds; a session's ctx.time).
     void setTime(double seconds) { m_time = seconds; }
+    // The camera of the frame updateFrame wrote last: camera() at that frame's time along its path.
+    const Camera& frameCamera() const { return m_frameCamera; }
     // A key of everything the scene gives the GPU as frame slot `slot` holds it now: geometry,
     // images and samplers, materials, the environment and lightmap (hashed as uploaded), and the
     // slot's camera, lights, shadow views, decals and probes — what the disk cache of
@@ -338,6 +340,7 @@ private:
     bool m_jitterWanted = false, m_temporalResolve = false;  // setSetting "jitter", "antialiasing"
     uint32_t m_jitterFrame = 0;                              // the Halton sequence's position
     double m_time = 0.0;                                     // setTime
+    Camera m_frameCamera;                                    // frameCamera
     std::optional<glm::vec2> m_previousJitter;
     size_t m_camera = 0;
     std::optional<glm::mat4>

@@ -367,7 +367,7 @@ void GBufferScenePass::recordDraws(RecordContext& rc) {
     beginCamera(rc, depth);
     // Per group (one pipeline bind each), front to back within it by the distance from the eye
     // to the draws' boxes, so the depth test rejects hidden fragments before they are shaded.
-    const glm::vec3 eye = sceneOf(rc)->camera().position;
+    const glm::vec3 eye = sceneOf(rc)->frameCamera().position;
     std::vector<float> distance;
     DrawOrder order = inView(rc, distance, [&](const DrawItem& item) {
         return glm::distance(glm::clamp(eye, item.boundsMin, item.boundsMax), eye);
@@ -475,7 +475,7 @@ void ForwardScenePass::recordDraws(RecordContext& rc) {
     beginCamera(rc, depth);
     // Back to front across every group (by the distance of the draws' origins to the camera),
     // switching shaders as needed.
-    const glm::vec3 eye = sceneOf(rc)->camera().position;
+    const glm::vec3 eye = sceneOf(rc)->frameCamera().position;
     std::vector<float> distance;
     DrawOrder order = inView(rc, distance, [&](const DrawItem& item) {
         return glm::distance(glm::vec3(item.world[3]), eye);

@@ -123,26 +123,28 @@ local function temporal(input, depth)
     rg.resource "taa_history" { format = "rgba16f", persistent = true, doc = "the last frame's `taa` (alpha 0: empty)" }
     -- Two passes, one drawing on each frame (the fullscreen kind's `camera`): `taa` while the
     -- camera stands still (the history at the pixel itself), `taa_moving` when it moved (reprojected
-    -- by the motion, read through a Catmull-Rom filter).
+    -- by the motion, read through a Catmull-Rom filter). Enabled as the parameter's default says,
+    -- so that a pipeline that never calls post.frame still renders that choice.
+    local on = post.antialiasing == "taa"
     rg.pass "taa" {
-        kind = "fullscreen", shader = "post/taa.frag", camera = "still",
+        kind = "fullscreen", shader = "post/taa.frag", camera = "still", enabled = on,
         reads = { input, "taa_history", { "exposure", as = "uniform" } }, writes = { "taa" },
         bind = { source = input },
     }
     rg.pass "taa_moving" {
-        kind = "fullscreen", shader = "post/taa.frag", camera = "moved", filter = "linear",
+        kind = "fullscreen", shader = "post/taa.frag", camera = "moved", filter = "linear", enabled = on,
         defines = { RG_TAA_MOVING = true },
         reads = { input, depth, "taa_history", { "exposure", as = "uniform" } },
         writes = { { "taa", load = true } }, bind = { source = input, depth = depth },
     }
-    rg.pass "taa_off" { kind = "copy", reads = { input }, writes = { "taa" }, after = { "taa_moving" } }
+    rg.pass "taa_off" { kind = "copy", reads = { input }, writes = { "taa" }, after = { "taa_moving" }, enabled = not on }
     post.taa = true
     return "taa"
 end
 
 -- After the chain: TAA's history for the next frame.
 local function keep_history()
-    rg.pass "taa_history_copy" { kind = "copy", reads = { "taa" }, writes = { "taa_history" } }
+    rg.pass "taa_history_copy" { kind = "copy", reads = { "taa" }, writes = { "taa_history" }, enabled = post.antialiasing == "taa" }
 end
 
 -- Switches the passes of the `antialiasing` parameter (declared with TAA, by a chain given
@@ -257,12 +259,15 @@ function post.chain(o)
         -- pixel without an edge: the same image for ~6.5 ms (mask 3, filter 2.2, the copy 1.3) instead
         -- of ~12.5 at 1280x720.
         rg.resource "fxaa_edges" { format = "d16", doc = "FXAA's edge mask: depth 0 where its contrast test finds an edge" }
+        -- (With TAA in the chain, on only when `antialiasing` says fxaa.)
+        local fxaa_on = not post.taa or post.antialiasing == "fxaa"
         rg.pass "fxaa_edges" {
             kind = "fullscreen", shader = "post/fxaa_edges.frag", reads = { mapped }, writes = { { "fxaa_edges", as = "depth" } },
+            enabled = fxaa_on,
             bind = { source = mapped }, depth = { compare = "always", value = 1, write = true },
         }
         rg.pass "fxaa" {
-            kind = "fullscreen", shader = "post/fxaa.frag", reads = { mapped, { "fxaa_edges", as = "depth" } },
+            kind = "fullscreen", shader = "post/fxaa.frag", reads = { mapped, { "fxaa_edges", as = "depth" } }, enabled = fxaa_on,
             writes = { { display, load = true } }, bind = { source = mapped }, depth = { compare = "greater", value = 1 },
         }
     end

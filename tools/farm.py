@@ -38,17 +38,16 @@ class ShardFailed(Exception):
     """An rgraph run that failed: its command, exit status and last lines."""
 
 
-def _die_with_parent():
-    # The rgraph process ends with its worker: a killed worker leaves no orphan baking on.
-    libc = ctypes.CDLL("libc.so.6", use_errno=True)
-    libc.prctl(1, signal.SIGKILL)  # PR_SET_PDEATHSIG
+def mark_name(name):
+    """A shard's name as its attempt marks are named."""
+    return name.replace("/", "-of-").replace(" ", "_")
 
 
 def run_shard(name, argv, cwd, env, attempts_dir, ok_codes=(0,)):
-    """Runs on a worker: one rgraph process. Each start leaves a mark in attempts_dir, so the
-    driver can tell which shards ran more than once."""
+    """Runs on a worker: one rgraph process. Each start leaves a mark in attempts_dir (the host and
+    the worker's pid), so the driver can tell which shards ran more than once."""
     os.makedirs(attempts_dir, exist_ok=True)
-    safe = name.replace("/", "-of-").replace(" ", "_")
+    safe = mark_name(name)
     n = 1
     while True:
         try:
@@ -58,9 +57,12 @@ def run_shard(name, argv, cwd, env, attempts_dir, ok_codes=(0,)):
             break
         except FileExistsError:
             n += 1
+    # The rgraph process ends with its worker (PR_SET_PDEATHSIG): a killed worker leaves no orphan
+    # baking on. libc is loaded here, in the worker: nothing is loaded between fork and exec.
+    libc = ctypes.CDLL("libc.so.6", use_errno=True)
     start = time.monotonic()
     proc = subprocess.run(argv, cwd=cwd, env={**os.environ, **env}, capture_output=True, text=True,
-                          preexec_fn=_die_with_parent)
+                          preexec_fn=lambda: libc.prctl(1, signal.SIGKILL))
     seconds = time.monotonic() - start
     if proc.returncode not in ok_codes:
         tail = "\n".join((proc.stdout + proc.stderr).strip().splitlines()[-6:])
@@ -78,7 +80,8 @@ def run_tasks(client, tasks, retries, label, workers=None):
     order; on a task that failed for good, exits 3 naming it."""
     from distributed import as_completed
 
-    env = {"RG_CACHE_DIR": os.environ.get("RG_CACHE_DIR", os.path.join(ROOT, "out", "cache"))}
+    # The workers' cache is this machine's (RG_CACHE_DIR, else rgraph's default), as the merge's.
+    env = {"RG_CACHE_DIR": os.environ["RG_CACHE_DIR"]} if os.environ.get("RG_CACHE_DIR") else {}
     attempts = os.path.join(ARGS.work, "attempts", label)
     shutil.rmtree(attempts, ignore_errors=True)
     futures = {}
@@ -97,7 +100,9 @@ def run_tasks(client, tasks, retries, label, workers=None):
             for other in futures:
                 other.cancel()
             kind = type(err).__name__
-            log(f"{label}: {name} failed for good ({kind}, after {retries} retries): {err}")
+            runs = len([m for m in os.listdir(attempts) if m.rsplit(".", 1)[0] == mark_name(name)]) \
+                if os.path.isdir(attempts) else 0
+            log(f"{label}: {name} failed for good ({kind}, after {runs} runs): {err}")
             sys.exit(3)
         results[name] = f.result()
         done += 1
@@ -110,7 +115,7 @@ def run_tasks(client, tasks, retries, label, workers=None):
         base = mark.rsplit(".", 1)[0]
         ran[base] = ran.get(base, 0) + 1
     for name, _, _ in tasks:
-        count = ran.get(name.replace("/", "-of-").replace(" ", "_"), 1)
+        count = ran.get(mark_name(name), 1)
         if count > 1:
             log(f"{label}: {name} ran {count} times (a worker died or the run failed; retried)")
     return [results[name] for name, _, _ in tasks], time.monotonic() - start

@@ -264,8 +264,8 @@ Result<Lightmap> readLightmapExr(const std::string& path, LightmapPart* part) {
             const bool valid = hi >= 0.0f && hi < 65536.0f && lo >= 0.0f && lo < 65536.0f;
             const size_t i = valid ? size_t(hi) * 65536u + size_t(lo) : atlas;
             if (i >= atlas || lm.coverage[i])
-                return bad("its texel layer names texel " + std::to_string(j) +
-                           " outside the atlas or twice");
+                return bad("its texel layer's entry " + std::to_string(j) +
+                           " names a texel outside the atlas, or one named before");
             lm.coverage[i] = 1;
             for (int k = 0; k < lobes->second; ++k)
                 for (uint32_t c = 0; c < 3; ++c)

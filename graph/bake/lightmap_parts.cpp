@@ -71,7 +71,8 @@ Result<Lightmap> mergeLightmapParts(const std::vector<std::string>& paths) {
                              std::to_string(whole.width) + "x" + std::to_string(whole.height));
             if (lm->axes != whole.axes || lm->sharpness != whole.sharpness ||
                 lm->unit != whole.unit || lm->density != whole.density)
-                return other("basis", "(lobes, sharpness or density)", "the first part's");
+                return other("basis", "(lobes, sharpness, density or unit amplitudes)",
+                             "the first part's");
             if (part.covered != first.covered)
                 return other("covered texels", std::to_string(part.covered),
                              std::to_string(first.covered));
@@ -93,10 +94,6 @@ Result<Lightmap> mergeLightmapParts(const std::vector<std::string>& paths) {
             ++mine;
             for (size_t k = 0; k < whole.lobes.size(); ++k) whole.lobes[k][i] = lm->lobes[k][i];
         }
-        if (mine != part.texels)
-            return fail(ErrorCode::InvalidInput,
-                        path + ": " + shardName + " covers " + std::to_string(mine) +
-                            " texels, its header says " + std::to_string(part.texels));
         texels += mine;
     }
     std::string missing;

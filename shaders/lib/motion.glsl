@@ -8,8 +8,9 @@
 
 #include "lib/scene.glsl"
 
-// uv of this frame (the pixel's centre, jittered raster) minus the uv the same surface point had
-// on the last frame's screen; uv units (pixels / size).
+// Where the surface point seen at uv (the pixel's centre in this frame's jittered raster) is now,
+// by the unjittered camera, minus where it was on the last frame's screen: uv units (pixels /
+// size); the jitter cancels out of the difference.
 vec2 rgMotion(vec2 uv, float depth) {
     vec4 world = vec4(rgWorldPosition(uv, depth), 1.0);
     vec4 now = camera.unjitteredViewProj * world;

@@ -1,5 +1,5 @@
 #version 460
-// Temporal anti-aliasing (scripts/taa.lua): this frame's HDR (jittered by Camera.jitter, a
+// Temporal anti-aliasing (scripts/post.lua's chain): this frame's HDR (jittered by Camera.jitter, a
 // Halton (2, 3) sequence over 8 frames) blended into the history reprojected by the camera's
 // motion (lib/motion.glsl), after Karis, "High Quality Temporal Supersampling" (SIGGRAPH 2014):
 //   - the motion of the nearest surface of the pixel and its four diagonal neighbours, so an edge's

@@ -5,7 +5,7 @@ scene at 640×360; the reference at 2560×1440 without antialiasing, box-filtere
 Settings that do not change with the resolution, so that what is measured is aliasing: manual
 exposure, no dither, full meshes (RG_LOD=0), the sun's mask at full resolution, SSR off
 (ssr_max_roughness = 0) and the AO radius at its least (the half-resolution AO and SSR render
-differently at 4× the pixels; with them the TAA/FXAA p99 ratio is 0.89, all of it inside the
+differently at 4× the pixels; with them the TAA/FXAA p99 ratio is 0.91, all of it inside the
 spheres, not at edges).
 
   - still: 16 frames, the last compared; TAA's p99 display error must be at most 0.6 × FXAA's;

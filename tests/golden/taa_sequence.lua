@@ -3,7 +3,7 @@
 -- the frames are the same every run: the first frame unjittered, then 8 jittered ones resolved
 -- into the history. The default scene at a size where its sphere rows alias.
 return {
-    doc = "TAA over 9 jittered frames of the default scene: the resolved HDR and the display image",
+    doc = "TAA over 9 frames of the default scene (8 jittered): the resolved HDR and the display image",
     pipeline = "scripts/pipelines/deferred.lua",
     scene = "scripts/scenes/default.lua",
     camera = "main",

@@ -64,6 +64,10 @@ def scale_png(path, factor, offset=0):
 
 
 def main():
+    family = subprocess.run([RGRAPH, "devices", "--family"], capture_output=True, text=True).stdout.strip()
+    if family != "llvmpipe":  # the goldens here are lavapipe's: this device would be the second family
+        print(f"skipped: the primary goldens are llvmpipe's and this device's family is '{family}'")
+        return 77
     tmp = tempfile.mkdtemp(prefix="rgraph-device-goldens-")
     try:
         images = os.path.join(tmp, "images")
