@@ -234,7 +234,7 @@ def test(client):
     merged.set("time", f"{sum(t[3] for t in totals):.3f}")
     out = ARGS.junit or os.path.join(ARGS.work, "junit.xml")
     ET.ElementTree(merged).write(out, encoding="UTF-8", xml_declaration=True)
-    log(f"test: JUnit {out} ({len(families)} device families)")
+    log(f"test: JUnit {out} ({len(families)} device famil{'y' if len(families) == 1 else 'ies'})")
     return status
 
 
