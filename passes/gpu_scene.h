@@ -164,6 +164,12 @@ public:
     void updateFrame(uint32_t slot, uint32_t width, uint32_t height);
     // The time of the frames updateFrame writes next (seconds; a session's ctx.time).
     void setTime(double seconds) { m_time = seconds; }
+    // A camera cut: the next frame has no last frame (no motion, the jitter sequence anew).
+    void cut() {
+        m_previousViewProj.reset();
+        m_previousJitter.reset();
+        m_jitterFrame = 0;
+    }
     // The camera of the frame updateFrame wrote last: camera() at that frame's time along its path.
     const Camera& frameCamera() const { return m_frameCamera; }
     // A key of everything the scene gives the GPU as frame slot `slot` holds it now: geometry,

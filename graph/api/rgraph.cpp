@@ -416,6 +416,11 @@ void Renderer::setPassEnabled(const std::string& pass, bool enabled) {
     check(m->session->setPassOverride(pass, enabled));
 }
 
+void Renderer::cameraCut() {
+    m->loaded();
+    m->session->cut();
+}
+
 void Renderer::render(uint32_t frames) {
     m->loaded();
     for (uint32_t f = 0; f < frames; ++f) check(m->session->frame());

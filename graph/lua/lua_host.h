@@ -71,6 +71,9 @@ struct FrameChanges {
     std::map<std::string, bool> enabled;         // pass -> enabled
     std::map<std::string, bool> automatic;       // pass -> enabled, unless switched explicitly
     std::map<std::string, std::string> shaders;  // pass -> shader path
+    // ctx.cut(): a camera cut before this frame — every history (the graph's persistent resources:
+    // TAA's, SSR's, the exposure) and the camera's last frame start afresh.
+    bool cut = false;
     bool structural() const { return !enabled.empty() || !shaders.empty(); }
     bool empty() const { return params.empty() && automatic.empty() && !structural(); }
 };

@@ -356,6 +356,11 @@ int ctxPass(lua_State* L) {
     return 1;
 }
 
+int ctxCut(lua_State* L) {
+    bindingOf(L).changes->cut = true;
+    return 0;
+}
+
 // Builds the ctx and calls the function below it, inside the protected call: a memory error
 // while building the ctx is then an ordinary script error, not a panic. No C++ object lives here.
 int frameTrampoline(lua_State* L) {
@@ -401,6 +406,8 @@ int frameTrampoline(lua_State* L) {
     lua_setfield(L, -2, "params");
     lua_pushcfunction(L, guarded<ctxPass>);
     lua_setfield(L, -2, "pass");
+    lua_pushcfunction(L, guarded<ctxCut>);
+    lua_setfield(L, -2, "cut");
     lua_call(L, 1, 0);  // the script's function (below the ctx)
     return 0;
 }

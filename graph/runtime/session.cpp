@@ -512,6 +512,11 @@ Result<void> Session::frame(VkCommandBuffer hostCmd) {
     if (m_scene)
         if (auto r = applySceneSettings(*m_scene, m_pipeline); !r && applied) applied = r;
     if (m_scene) m_scene->setTime(static_cast<double>(m_frame) / 60.0);  // its camera's path
+    if (m_cutRequested || (changes && changes->cut)) {  // a camera cut: no history carries over
+        m_cutRequested = false;
+        if (auto r = m_runtime.executor().resetPersistent(); !r) return r;
+        if (m_scene) m_scene->cut();
+    }
     if (auto r = m_runtime.executor().frame(hostCmd); !r) return r;
     ++m_frame;
     return applied;

@@ -86,6 +86,9 @@ public:
     // cannot be built with (a pass a kept pass needs switched off, a switch whose shader does not
     // compile) is an error, and nothing changes — the running plan keeps rendering.
     Result<void> setOverride(const std::string& param, const Value& value);
+    // A camera cut before the next frame (as rg.frame's ctx.cut()): every history — the graph's
+    // persistent resources (TAA's, SSR's, the exposure) — and the camera's last frame start afresh.
+    void cut() { m_cutRequested = true; }
     Result<void> setPassOverride(const std::string& pass, bool enabled);
     const FrameChanges& overrides() const { return m_overrides; }
     // Overrides carried over from another session (the library's reload for a new scene or size),
@@ -169,6 +172,7 @@ private:
     std::function<void(uint32_t)> m_sceneUpdate;  // writes the scene's camera for a frame slot
     PipelineDesc m_pipeline;
     uint64_t m_frame = 0;
+    bool m_cutRequested = false;  // cut()
     // The frame whose rg.frame the last load already ran (its changes are in m_pipeline).
     std::optional<uint64_t> m_framePrepared;
     uint32_t m_rebuilds = 0;

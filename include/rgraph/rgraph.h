@@ -208,6 +208,9 @@ public:
     // switched on or off. Both apply from the next frame, as rg.frame's changes do.
     void setParameter(const std::string& name, const Value& value);
     void setPassEnabled(const std::string& pass, bool enabled);
+    // A camera cut before the next frame: every history (TAA's, SSR's, the exposure) and the
+    // camera's last frame start afresh, as a script's ctx.cut() does.
+    void cameraCut();
 
     // Renders `frames` frames (submitting on rgraph's queue, or the host's) and waits for them.
     void render(uint32_t frames = 1);

@@ -66,6 +66,19 @@ check "rg.frame switching off a needed pass" 2 grep "frame 1: rg.frame's changes
     "$rgraph" render --pipeline "$tmp/switch_off.lua" --size 16x16 --frames 3 --out "$tmp/s.exr" --png "$tmp/s.png"
 check "... with the compiler's reason" 2 grep "pass 'fxaa_edges' reads 'display_ldr', but its only writer 'tonemap' is disabled" -- \
     "$rgraph" render --pipeline "$tmp/switch_off.lua" --set antialiasing=fxaa --size 16x16 --frames 3 --out "$tmp/s.exr" --png "$tmp/s.png"
+# A camera cut (ctx.cut()) on the last of four frames: every history starts afresh (TAA's and SSR's
+# histories, the exposure, the jitter sequence), so that frame is the first frame of a new run.
+cat > "$tmp/cut.lua" <<'EOF'
+require "pipelines.deferred"
+local rg = require "rg"
+local loopFrame = rg.frame
+function rg.frame(ctx)
+  loopFrame(ctx)
+  if ctx.frame == 3 then ctx.cut() end
+end
+EOF
+check "a camera cut starts every history afresh" 0 -- bash -c "'$rgraph' render --pipeline '$tmp/cut.lua' --frames 4 --size 64x36 --set dither=false --set taa_jitter=true --out '$tmp/cut.exr' >/dev/null && '$rgraph' render --frames 1 --size 64x36 --set dither=false --out '$tmp/first.exr' >/dev/null && '$rgraph' compare '$tmp/cut.exr' '$tmp/first.exr' --tolerance 0"
+check "... and without it they carry over" 1 -- bash -c "'$rgraph' render --frames 4 --size 64x36 --set dither=false --set taa_jitter=true --out '$tmp/nocut.exr' >/dev/null && '$rgraph' compare '$tmp/nocut.exr' '$tmp/first.exr' --tolerance 0 >/dev/null"
 check "unknown scene file type" 2 grep "expected a .lua scene script, a .gltf or a .glb file" -- "$rgraph" render --scene README.md --size 8x8
 check "missing scene" 2 grep "nope.gltf" -- "$rgraph" render --scene nope.gltf --size 8x8
 check "render" 0 grep "wrote $tmp/r.exr and $tmp/r.png (64x32" -- \
