@@ -271,7 +271,6 @@ Status validateVersions(Compiler& c) {
     c.successors.assign(passCount, {});
     c.needs.assign(passCount, {});
     std::vector<int32_t> lastWriter(resources.size(), -1);
-    std::vector<int32_t> disabledWriter(resources.size(), -1);
     std::vector<std::vector<uint32_t>> disabledWriters(resources.size());
     std::vector<std::vector<uint32_t>> readers(resources.size());
     // "its only writer 'a' is disabled" / "its writers 'a' and 'b' are disabled"
@@ -291,10 +290,7 @@ Status validateVersions(Compiler& c) {
         const PassDesc& p = passes[pi];
         if (!p.enabled) {
             for (const MergedAccess& m : c.merged[pi])
-                if (m.writes) {
-                    disabledWriter[m.resource] = static_cast<int32_t>(pi);
-                    disabledWriters[m.resource].push_back(pi);
-                }
+                if (m.writes) disabledWriters[m.resource].push_back(pi);
             continue;
         }
         for (const std::string& name : p.after) {
@@ -307,7 +303,7 @@ Status validateVersions(Compiler& c) {
             if (lastWriter[m.resource] >= 0) {
                 c.addEdge(static_cast<uint32_t>(lastWriter[m.resource]), pi, /* need= */ true);
             } else if (!r.imported && !r.persistent) {
-                if (disabledWriter[m.resource] >= 0)
+                if (!disabledWriters[m.resource].empty())
                     return invalid(c.passError(pi, "pass '" + p.name + "' reads '" + r.name +
                                                        "', but " + disabledText(m.resource)));
                 std::string text =
@@ -350,9 +346,9 @@ Status validateVersions(Compiler& c) {
     for (size_t r = 0; r < resources.size(); ++r) {
         const ResourceDesc& res = resources[r];
         if (!res.exported || res.imported || res.persistent || lastWriter[r] >= 0 ||
-            disabledWriter[r] < 0)
+            disabledWriters[r].empty())
             continue;
-        const auto writer = static_cast<uint32_t>(disabledWriter[r]);
+        const uint32_t writer = disabledWriters[r].back();
         return invalid(c.passError(writer, "'" + res.name +
                                                "' is exported (an output or a capture) but not "
                                                "written: " +
