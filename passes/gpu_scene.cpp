@@ -33,7 +33,8 @@ struct CameraUniforms {
         previousViewProj;  // the frame before's unjittered (reprojection); this frame's on the first
     glm::mat4 unjitteredViewProj;  // viewProj without the sub-pixel jitter (motion, culling)
     glm::vec4 jitter;  // xy: this frame's jitter, zw: the last frame's, in uv units (pixels / size)
-    glm::vec4 temporal;  // x: 1 when the camera moved since the last frame (0 on the first)
+    glm::vec4 temporal;  // x: 1 when the camera moved since the last frame (0 on the first),
+                         // y: frames since the first frame or the last camera cut
 };
 
 // The Halton sequence's element `index` (1-based) in base `base`: the sub-pixel jitter's
@@ -297,8 +298,8 @@ void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
     u.sceneMin = glm::vec4(m_scene.boundsMin, 1.0f);
     u.sceneMax = glm::vec4(m_scene.boundsMax, 1.0f);
     u.previousViewProj = m_previousViewProj.value_or(u.unjitteredViewProj);
-    u.temporal =
-        glm::vec4(u.previousViewProj != u.unjitteredViewProj ? 1.0f : 0.0f, 0.0f, 0.0f, 0.0f);
+    u.temporal = glm::vec4(u.previousViewProj != u.unjitteredViewProj ? 1.0f : 0.0f,
+                           static_cast<float>(m_framesSinceCut++), 0.0f, 0.0f);
     m_previousViewProj = u.unjitteredViewProj;
     std::memcpy(m_cameraBuffers[slot].mapped(), &u, sizeof u);
     const auto planes = frustumPlanes(u.unjitteredViewProj);

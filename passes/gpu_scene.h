@@ -164,11 +164,13 @@ public:
     void updateFrame(uint32_t slot, uint32_t width, uint32_t height);
     // The time of the frames updateFrame writes next (seconds; a session's ctx.time).
     void setTime(double seconds) { m_time = seconds; }
-    // A camera cut: the next frame has no last frame (no motion, the jitter sequence anew).
+    // A camera cut: the next frame has no last frame (no motion, the jitter sequence and the
+    // frame count of Camera.temporal.y anew).
     void cut() {
         m_previousViewProj.reset();
         m_previousJitter.reset();
         m_jitterFrame = 0;
+        m_framesSinceCut = 0;
     }
     // The camera of the frame updateFrame wrote last: camera() at that frame's time along its path.
     const Camera& frameCamera() const { return m_frameCamera; }
@@ -345,6 +347,7 @@ private:
     uint32_t m_areaLightModel = 0;
     bool m_jitterWanted = false, m_temporalResolve = false;  // setSetting "jitter", "antialiasing"
     uint32_t m_jitterFrame = 0;                              // the Halton sequence's position
+    uint32_t m_framesSinceCut = 0;                           // Camera.temporal.y, from a cut
     double m_time = 0.0;                                     // setTime
     Camera m_frameCamera;                                    // frameCamera
     std::optional<glm::vec2> m_previousJitter;

@@ -522,6 +522,9 @@ PassKindInfo scenePassKind() {
               "preprocessor defines for its shaders (the forward pass: RG_IBL with "
               "scripts/ibl.lua's "
               "ibl.lit)"},
+             {"switches", "table",
+              "parameters compiled into its shaders as defines, as for the fullscreen kind "
+              "(render_loop.lua: specular anti-aliasing); changing one rebuilds the pass"},
              {"shadow", "boolean",
               "depth only, into each layer of the depth target it writes, from the views its "
               "vertex "

@@ -108,9 +108,10 @@ function post.exposure_state()
 end
 
 -- TAA (shaders/post/taa.frag) on the pre-exposed HDR, first in the chain: `taa` blends the
--- frame into its history (`taa_history`, persistent; kept by `taa_history_copy`), reprojected by
--- the camera's motion from `depth`. With another antialiasing, `taa_off` copies the HDR through
--- instead (post.frame switches them). Returns the image the chain goes on with.
+-- frame into its history (`taa_history`, the `taa` image's history: rg.resource's `history`,
+-- kept by the pass `taa_history_keep` while TAA reads it, emptied when the passes writing `taa`
+-- change), reprojected by the camera's motion from `depth`. With another antialiasing, `taa_off`
+-- copies the HDR through instead (post.frame switches them). Returns the image the chain goes on with.
 local function temporal(input, depth)
     rg.param "antialiasing" { type = "choice", default = post.antialiasing, choices = { "taa", "fxaa", "none" },
                               scene = "antialiasing",
@@ -119,8 +120,8 @@ local function temporal(input, depth)
                             doc = "TAA's sub-pixel camera jitter (Halton 2, 3 over 8 frames); off in the golden tests' profile" }
     rg.param "taa_feedback" { type = "number", default = 0.9, min = 0, max = 0.99,
                               doc = "the history's share of a TAA pixel (before its luminance weighting)" }
-    rg.resource "taa" { format = "rgba16f", doc = "the HDR resolved over time: this frame blended into the reprojected history" }
-    rg.resource "taa_history" { format = "rgba16f", persistent = true, doc = "the last frame's `taa` (alpha 0: empty)" }
+    rg.resource "taa" { format = "rgba16f", history = "taa_history",
+                        doc = "the HDR resolved over time: this frame blended into the reprojected history (`taa_history`: alpha 0 where empty)" }
     -- Two passes, one drawing on each frame (the fullscreen kind's `camera`): `taa` while the
     -- camera stands still (the history at the pixel itself), `taa_moving` when it moved (reprojected
     -- by the motion, read through a Catmull-Rom filter). Enabled as the parameter's default says,
@@ -142,11 +143,6 @@ local function temporal(input, depth)
     return "taa"
 end
 
--- After the chain: TAA's history for the next frame.
-local function keep_history()
-    rg.pass "taa_history_copy" { kind = "copy", reads = { "taa" }, writes = { "taa_history" }, enabled = post.antialiasing == "taa" }
-end
-
 -- Switches the passes of the `antialiasing` parameter (declared with TAA, by a chain given
 -- `depth`): call it from rg.frame.
 function post.frame(ctx)
@@ -154,7 +150,6 @@ function post.frame(ctx)
     local aa = ctx.params.antialiasing
     ctx.pass("taa").enabled = aa == "taa"
     ctx.pass("taa_moving").enabled = aa == "taa"
-    ctx.pass("taa_history_copy").enabled = aa == "taa"
     ctx.pass("taa_off").enabled = aa ~= "taa"
     if post.fxaa then
         ctx.pass("fxaa_edges").enabled = aa == "fxaa"
@@ -272,7 +267,6 @@ function post.chain(o)
         }
     end
     insert_passes("display", display, output)
-    if post.taa then keep_history() end
 end
 
 return post

@@ -38,11 +38,23 @@ rg.resource "lightmap_specular" { format = "rgba16f",
     only_when = { scene = "lightmap", param = "lightmap_specular", defines = { "RG_LIGHTMAP_SPECULAR" } } }
 require("lightmap").gbuffer_writes_specular = true
 
+-- Specular anti-aliasing in the scene passes (lib/material.glsl, rgSpecularAntialiasing; seed
+-- 002 §5.3's pre-filtering): the normal's variance over a pixel — from the normal map's filtered
+-- length (Toksvig) and the shading normal's screen-space derivatives (Kaplanyan et al. 2016) —
+-- widens the GGX roughness, so highlights on dense normal detail do not sparkle. Compiled in.
+rg.param "specular_aa" { type = "boolean", default = true, doc = "specular anti-aliasing in the G-buffer and forward passes" }
+rg.param "specular_aa_variance" { type = "number", default = 0.0417, min = 0, max = 1,
+    doc = "σ² of the screen-space term: 1/24, a box pixel's (the normal's variance per slope axis over it, per unit of its derivatives)" }
+rg.param "specular_aa_threshold" { type = "number", default = 0.18, min = 0, max = 1,
+    doc = "κ: the most the screen-space term adds to the GGX α²" }
+loop.specular_aa = { specular_aa = "RG_SPECULAR_AA", specular_aa_variance = "RG_SPECULAR_AA_VARIANCE",
+                     specular_aa_threshold = "RG_SPECULAR_AA_THRESHOLD" }
+
 -- It reads the exposure state for emission given relative to the exposure (a scene material's
 -- emissive_unit = "ev", glTF's emissive): 2^(EV100 + EC − 3), EV100 the last frame's.
 rg.pass "gbuffer" { kind = "scene", writes = { "GB0", "GB1", "GB2", "GB3", "lightmap_specular", "depth" },
     reads = { { "exposure", as = "uniform" } }, defines = { RG_EMISSIVE_EV = true },
-    lightmap_specular = "lightmap_specular" }
+    lightmap_specular = "lightmap_specular", switches = loop.specular_aa }
 
 -- Deferred decals (seed 000 §3.3) after the fix-up: the pass reads copies of GB0..GB2 (there is no
 -- programmable blending), blends Normal/BaseColor/Smoothness (MetalMask/Reflectance on the
@@ -70,7 +82,7 @@ function loop.sky_and_forward()
         depth = { compare = "less_equal", value = 1 },
     }
     rg.pass "forward" (lighting.clustered(shadows.lit(probes.lit(ibl.lit {
-        kind = "scene", forward = true,
+        kind = "scene", forward = true, switches = loop.specular_aa,
         reads = { { "depth", as = "depth" }, { "exposure", as = "uniform" } }, writes = { { "hdr", load = true } },
     }))))
     loop.forward_pass = "forward"

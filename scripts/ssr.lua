@@ -3,19 +3,19 @@
 --   local ssr = require "ssr"     -- Hi-Z pyramid and SSR, inserted before `lighting_standard`
 --   rg.pass "lighting_standard" (ssr.lit { ... })  -- the lighting composes SSR over the probes
 --   loop.sky_and_forward()
---   ssr.history()                 -- the lit image kept for the next frame's SSR
 --
 -- `hiz` (compute, per_mip over its own chain) builds the nearest-depth pyramid; `ssr`
 -- (fullscreen) marches the reflected ray through it and reads the previous frame's lit image
--- (`hdr_history`, persistent, with mips for rough reflections) where the previous frame's camera
+-- (`hdr_history`, the history of `hdr`, with mips for rough reflections) where the previous frame's camera
 -- saw the hit, in nits, with a confidence in alpha. Both go right before the pass named
 -- `lighting_standard` (after the G-buffer, its fix-up and the decals, whichever module requires
 -- this first: the materials' own lighting passes take SSR too). A lighting pass wrapped in
 -- `ssr.lit` (defines RG_SSR) composes it over the probes' specular, in the same split-sum
 -- (lib/ibl.glsl) — scripts/reflections.lua's composition pass does that once per pixel for the
--- G-buffer's lighting paths; `ssr_history_copy` + `ssr_history_mips` keep this frame's
--- lit image for the next. A pipeline that never calls ssr.history() gets no reflections from SSR
--- (an empty history has confidence 0).
+-- G-buffer's lighting paths. `hdr_history` is rg.history's: the graph keeps it (`hdr_history_keep`
+-- copies the lit image after every other pass, `hdr_history_mips` fills its mips) and empties it
+-- when the passes writing `hdr` change — a lighting pass switched or reloaded — or the camera cuts;
+-- an empty history has confidence 0, and the probes reflect.
 local rg = require "rg"
 local reader = require "gbuffer_reader"  -- the G-buffer decoded by each pixel's material
 local lighting = require "lighting"
@@ -30,7 +30,8 @@ rg.param "ssr_max_roughness" { type = "number", default = 0.6, min = 0, max = 1,
 rg.resource "hiz" { format = "r32f", mips = "full", doc = "nearest depth pyramid (Hi-Z)" }
 rg.resource "ssr" { format = "rgba16f", scale = { 0.5, 0.5 },
     doc = "screen-space reflection at half resolution (the composition reads it bilinearly): rgb luminance (nits), a confidence" }
-rg.resource "hdr_history" { format = "rgba16f", mips = "full", persistent = true, doc = "the previous frame's lit image, with mips" }
+-- (The mips: a blit chain, the mips kind — per frame ~2.3 ms, against ~5.3 as post/downsample.comp.)
+rg.history "hdr_history" { of = "hdr", mips = "full", doc = "the previous frame's lit image, with mips" }
 
 rg.pass "hiz" {
     kind = "compute", shader = "ssr/hiz.comp", reads = { "depth" }, writes = { { "hiz", as = "storage" } },
@@ -56,13 +57,7 @@ function ssr.lit(pass)
     return lighting.extend(pass, { "ssr" }, "RG_SSR")
 end
 
--- After everything that lights the HDR: keep it (and its mips) for the next frame.
-function ssr.history()
-    rg.pass "ssr_history_copy" { kind = "copy", reads = { "hdr" }, writes = { "hdr_history" } }
-    -- A blit chain (the mips kind), not post/downsample.comp as env_mips: per frame the blits cost
-    -- ~2.3 ms and the per-mip compute ~5.3 (its dispatches and barriers); only the first frame pays
-    -- lavapipe's blit-shader build (~65 ms).
-    rg.pass "ssr_history_mips" { kind = "mips", writes = { "hdr_history" } }
-end
+-- Kept for pipelines written when the history was kept by hand: it keeps itself now.
+function ssr.history() end
 
 return ssr

@@ -32,6 +32,7 @@ Result<Frame> renderCase(Runtime& rt, const AccuracyOptions& o, const AccuracyCa
     so.params["exposure_mode"] = Value("manual");
     // The real-time image against the reference pixel by pixel: not jittered.
     so.paramsIfDeclared["taa_jitter"] = Value(false);
+    so.paramsIfDeclared["specular_aa"] = Value(false);  // roughness as the scene gives it
     if (reference) {
         so.params["reference_seed"] = Value(static_cast<double>(seed));
         so.params["reference_samples"] = Value(static_cast<double>(o.samples));

@@ -18,22 +18,39 @@ namespace rg::cli {
 namespace {
 
 const char* const kHelp =
-    "usage: rgraph compare A.exr B.exr [--layer NAME] [--heatmap FILE.png] [--tolerance T]\n\n"
+    "usage: rgraph compare A.exr B.exr [--layer NAME] [--heatmap FILE.png] [--tolerance T]\n"
+    "                      [--downsample N]\n\n"
     "Compares layer NAME (default 'hdr', else the first layer) of A against B (the reference): "
     "mean and\n"
     "max relative error |a - b| / max(|b|, 1e-3), RMSE and PSNR (peak: B's maximum), over RGB. "
     "--heatmap\n"
     "writes the per-pixel relative error as a colour map (black 0, white >= the max). With "
     "--tolerance,\n"
-    "exits 1 when the mean relative error exceeds it.\n";
+    "exits 1 when the mean relative error exceeds it. --downsample N: B is a supersampled render, "
+    "N times\n"
+    "A's width and height, box-filtered to A's size (the mean of its N x N texels, in its "
+    "linear values)\n"
+    "before the comparison.\n";
+
+// The mean of each n x n block of `image` (its width and height multiples of n).
+Image boxDownsample(const Image& image, uint32_t n) {
+    Image out(image.width / n, image.height / n, image.channels);
+    const float scale = 1.0f / static_cast<float>(n * n);
+    for (uint32_t y = 0; y < image.height; ++y)
+        for (uint32_t x = 0; x < image.width; ++x)
+            for (uint32_t c = 0; c < image.channels; ++c)
+                out.pixels[(size_t(y / n) * out.width + x / n) * out.channels + c] +=
+                    image.pixels[(size_t(y) * image.width + x) * image.channels + c] * scale;
+    return out;
+}
 
 }  // namespace
 
 int cmdCompare(int argc, char** argv) {
     using namespace rg::golden;
     Args args;
-    if (auto done =
-            parseCommand(argc, argv, "compare", {"layer", "heatmap", "tolerance"}, kHelp, args))
+    if (auto done = parseCommand(argc, argv, "compare",
+                                 {"layer", "heatmap", "tolerance", "downsample"}, kHelp, args))
         return *done;
     const auto files = args.all("");
     if (files.size() != 2)
@@ -53,6 +70,22 @@ int cmdCompare(int argc, char** argv) {
     if (!ia) return report(ia.error());
     auto ib = pick(*b, files[1]);
     if (!ib) return report(ib.error());
+    if (args.has("downsample")) {
+        const std::string v = args.get("downsample");
+        char* end = nullptr;
+        const long n = std::strtol(v.c_str(), &end, 10);
+        if (end == v.c_str() || *end != '\0' || n < 1 || n > 64)
+            return usageError("--downsample: expected a whole number 1..64, got '" + v + "'",
+                              "compare");
+        const uint32_t f = static_cast<uint32_t>(n);
+        if (ib->width != ia->width * f || ib->height != ia->height * f)
+            return usageError("--downsample " + v + ": '" + files[1] + "' is " +
+                                  std::to_string(ib->width) + "x" + std::to_string(ib->height) +
+                                  ", not " + v + " times " + std::to_string(ia->width) + "x" +
+                                  std::to_string(ia->height),
+                              "compare");
+        ib = boxDownsample(*ib, f);
+    }
     std::vector<uint32_t> rgb;
     for (uint32_t c = 0; c < std::min(3u, ib->channels); ++c) rgb.push_back(c);
     float peak = 0;

@@ -23,7 +23,8 @@ std::string quotedList(const std::vector<std::string>& names) {
 
 }  // namespace
 
-// cull: keep side-effect passes and writers of exported/imported resources, and what they need.
+// cull: keep side-effect passes and writers of exported/imported/persistent resources, and
+// what they need; then the keep passes of the histories a kept pass reads.
 void cull(Compiler& c) {
     const auto& passes = c.graph.passes;
     const auto& resources = c.graph.resources;
@@ -32,10 +33,11 @@ void cull(Compiler& c) {
     for (uint32_t pi = 0; pi < passes.size(); ++pi) {
         if (!passes[pi].enabled) continue;
         bool root = passes[pi].sideEffect;
-        for (const MergedAccess& m : c.merged[pi])
-            root = root ||
-                   (m.writes && (resources[m.resource].exported || resources[m.resource].imported ||
-                                 resources[m.resource].persistent));
+        for (const MergedAccess& m : c.merged[pi]) {
+            const ResourceDesc& r = resources[m.resource];
+            root = root || (m.writes &&
+                            (r.exported || r.imported || (r.persistent && r.historyOf.empty())));
+        }
         if (root) {
             c.kept[pi] = true;
             work.push_back(pi);
@@ -43,14 +45,42 @@ void cull(Compiler& c) {
     }
     // Only RAW, WAW and `after` edges keep a pass: a WAR edge orders a reader before the next
     // writer, but that writer does not need the reader's work.
-    while (!work.empty()) {
-        const uint32_t p = work.back();
-        work.pop_back();
-        for (uint32_t q : c.needs[p]) {
-            if (c.kept[q]) continue;
-            c.kept[q] = true;
-            work.push_back(q);
+    auto propagate = [&] {
+        while (!work.empty()) {
+            const uint32_t p = work.back();
+            work.pop_back();
+            for (uint32_t q : c.needs[p]) {
+                if (c.kept[q]) continue;
+                c.kept[q] = true;
+                work.push_back(q);
+            }
         }
+    };
+    propagate();
+    // A history (rg.resource's `history`) is read the frame after it is written, which no edge
+    // says: the passes writing one (its keep passes) stay while a kept pass reads it — without
+    // a reader (TAA switched off) the copy is not made.
+    auto readByKept = [&](uint32_t resource) {
+        for (uint32_t q = 0; q < passes.size(); ++q)
+            if (c.kept[q])
+                for (const MergedAccess& m : c.merged[q])
+                    if (m.resource == resource && m.reads) return true;
+        return false;
+    };
+    for (bool more = true; more;) {
+        more = false;
+        for (uint32_t pi = 0; pi < passes.size(); ++pi) {
+            if (c.kept[pi] || !passes[pi].enabled) continue;
+            for (const MergedAccess& m : c.merged[pi])
+                if (m.writes && !resources[m.resource].historyOf.empty() &&
+                    readByKept(m.resource)) {
+                    c.kept[pi] = true;
+                    work.push_back(pi);
+                    more = true;
+                    break;
+                }
+        }
+        propagate();
     }
     for (uint32_t pi = 0; pi < passes.size(); ++pi) {
         if (c.kept[pi]) continue;

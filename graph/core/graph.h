@@ -66,6 +66,10 @@ struct ResourceDesc {
     // import it may be read before it is written in a frame (that reads the previous frame's
     // contents, zero at first); never aliased; it starts and ends every frame ready for sampling.
     bool persistent = false;
+    // A history (Lua rg.resource's `history`): the persistent copy of this resource's last frame.
+    // The passes that keep it stay while a kept pass reads it (compile's cull), and the executor
+    // empties it when the passes writing `historyOf` change (gpu::Executor::build).
+    std::string historyOf;
     // Lua `only_when`: the resource exists only while the scene has the feature `sceneFeature`
     // (gpu::SceneBinding::feature; without a scene it has none) and the boolean parameter `param`
     // is on; otherwise it and every access to it leave the graph before the build, and a pass

@@ -301,6 +301,32 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
             .push_back(planPtr->passes[p].name);
     m_buildStats.prepareMs = msSince(t2);
 
+    // A history (rg.resource's `history`) whose source is now written otherwise than last frame
+    // starts empty: a pass writing the source was prepared anew (its shader reloaded, its
+    // parameters or inputs changed, a new scene) or the set of passes writing it changed (one
+    // switched on or off). A resized source resizes its history, which a new resource clears.
+    auto writersOf = [](const Plan& plan, const std::string& resource) {
+        std::vector<std::string> names;
+        const int32_t r = plan.findResource(resource);
+        if (r < 0) return names;
+        for (const PlanPass& pass : plan.passes)
+            if (std::any_of(pass.accesses.begin(), pass.accesses.end(), [&](const PlanAccess& a) {
+                    return a.resource == static_cast<uint32_t>(r) && usageWrites(a.usage);
+                }))
+                names.push_back(pass.name);
+        return names;
+    };
+    std::vector<bool> historyStale(planPtr->resources.size(), false);
+    for (size_t i = 0; i < planPtr->resources.size(); ++i) {
+        const std::string& source = built->graph.resources[planPtr->resources[i].desc].historyOf;
+        if (source.empty() || !resourceReused[i]) continue;
+        const auto writers = writersOf(*planPtr, source);
+        historyStale[i] = !old || writers != writersOf(old->plan, source);
+        for (size_t p = 0; p < passCount && !historyStale[i]; ++p)
+            historyStale[i] = prepared[p] && std::find(writers.begin(), writers.end(),
+                                                       planPtr->passes[p].name) != writers.end();
+    }
+
     // Upload imported contents into resources that are new.
     for (size_t i = 0; i < planPtr->resources.size(); ++i) {
         const PlanResource& r = planPtr->resources[i];
@@ -327,6 +353,8 @@ Result<void> Executor::build(const GraphDesc& graphIn, const CompileOptions& opt
             if (auto u = setImport(r.name, m_importData[r.name]); !u) return u;
         if (r.persistent && !resourceReused[i])
             if (auto u = clearPersistent(i); !u) return u;
+        if (historyStale[i])  // the once passes' outputs stand: no new epoch
+            if (auto u = clearContents(i); !u) return u;
     }
     return {};
 }
@@ -392,9 +420,14 @@ Result<void> Executor::prepareInParallel(Built& built, const Plan& plan,
     return {};
 }
 
-// A new persistent resource starts as zeros, in the state every frame expects it in.
+// A new persistent resource starts as zeros, in the state every frame expects it in; the
+// passes due once per persistent epoch (cadence "once") run again.
 Result<void> Executor::clearPersistent(size_t index) {
     ++m_persistentEpoch;
+    return clearContents(index);
+}
+
+Result<void> Executor::clearContents(size_t index) {
     const PlanResource& r = m_built->plan.resources[index];
     Image* image = m_built->images[index].get();
     Buffer* buffer = m_built->buffers[index].get();

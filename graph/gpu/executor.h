@@ -148,7 +148,8 @@ private:
     Result<void> createSlots();
     Result<void> collect(FrameSlot& slot);
     void recordBarriers(VkCommandBuffer cmd, const std::vector<Barrier>& barriers);
-    Result<void> clearPersistent(size_t index);
+    Result<void> clearPersistent(size_t index);  // zeros, and a new persistent epoch
+    Result<void> clearContents(size_t index);    // zeros only (an emptied history)
     Result<void> prepareInParallel(Built& built, const Plan& plan,
                                    const std::vector<size_t>& passes);
     Result<const PhysicalResource*> exportedResource(const std::string& name);

@@ -51,6 +51,8 @@ const char* declKindName(DeclKind k) {
             return "path";
         case DeclKind::Material:
             return "material";
+        case DeclKind::History:
+            return "history";
         case DeclKind::SceneMaterial:
             return "scene.material";
         case DeclKind::Sphere:

@@ -22,6 +22,7 @@ enum class DeclKind : uint8_t {
     Stencil,
     Path,
     Material,
+    History,  // rg.history: a texture's last frame, kept by the graph
     // Scenes (scene.*): graph/scene builds a Scene from these
     SceneMaterial,
     Sphere,

@@ -33,20 +33,37 @@ Result<void> Builder::collectNames() {
             return w.error("expected a table after " + std::string(declKindName(d.kind)) + " \"" +
                            d.name + "\", got " + typeOf(d.body));
         // Textures and buffers share one namespace.
-        size_t slot = d.kind == DeclKind::Buffer ? static_cast<size_t>(DeclKind::Texture)
-                                                 : static_cast<size_t>(d.kind);
+        size_t slot = d.kind == DeclKind::Buffer || d.kind == DeclKind::History
+                          ? static_cast<size_t>(DeclKind::Texture)
+                          : static_cast<size_t>(d.kind);
         auto [it, fresh] = seen[slot].emplace(fullName(d), &d);
         if (!fresh)
             return w.error(std::string(declKindName(d.kind)) + " '" + fullName(d) +
                            "' is declared twice (first at " + it->second->origin + ")");
-        if (d.kind == DeclKind::Texture || d.kind == DeclKind::Buffer) {
+        if (d.kind == DeclKind::Texture || d.kind == DeclKind::Buffer ||
+            d.kind == DeclKind::History) {
+            if (resources.count(fullName(d)))  // a history's name (rg.resource's `history`)
+                return w.error("'" + fullName(d) + "' is declared twice (first as the history of " +
+                               fullName(*resources[fullName(d)]) + " at " +
+                               resources[fullName(d)]->origin + ")");
             resources[fullName(d)] = &d;
             resourceNames.push_back(fullName(d));
+            if (d.kind == DeclKind::Texture && d.body.isTable() && d.body.has("history"))
+                if (auto r = history(d); !r) return r;
         } else if (d.kind == DeclKind::Pass) {
+            if (passes.count(fullName(d)))  // a history's keep pass
+                return w.error("pass '" + fullName(d) +
+                               "' is declared twice (first as a keep pass of the "
+                               "history at " +
+                               passes[fullName(d)]->origin + ")");
             passes[fullName(d)] = &d;
             passNames.push_back(fullName(d));
         }
     }
+    // rg.history names its source, which may be declared after it.
+    for (const auto& d : decls)
+        if (d.kind == DeclKind::History)
+            if (auto r = history(d); !r) return r;
     return {};
 }
 
@@ -73,6 +90,7 @@ Result<PipelineDesc> Builder::build(const OutputNames& names) {
         }
         if (!r) return std::unexpected(r.error());
     }
+    if (auto r = historyResources(); !r) return std::unexpected(r.error());
     if (auto r = stencils(); !r) return std::unexpected(r.error());
     for (const auto& d : decls)
         if (d.kind == DeclKind::Path)
@@ -85,6 +103,7 @@ Result<PipelineDesc> Builder::build(const OutputNames& names) {
             if (auto r = material(d); !r) return std::unexpected(r.error());
     if (auto r = materialIdentities(); !r) return std::unexpected(r.error());
     if (auto r = insertModulePasses(); !r) return std::unexpected(r.error());
+    if (auto r = historyPasses(); !r) return std::unexpected(r.error());  // after every other pass
     if (auto r = checkMaterialReferences(); !r) return std::unexpected(r.error());
     if (auto r = checkSwitches(); !r) return std::unexpected(r.error());
     for (const ResourceDesc& res : out.graph.resources) {

@@ -3,6 +3,7 @@
 // (declarations.cpp). Internal to graph/lua.
 #pragma once
 
+#include <deque>
 #include <map>
 #include <string>
 #include <vector>
@@ -26,6 +27,16 @@ struct Builder {
     std::map<std::string, const Declaration*> resources;  // full name -> declaration
     std::map<std::string, const Declaration*> passes;
     std::vector<std::string> resourceNames, passNames;
+    // A texture's history (rg.resource's `history`): the persistent copy of its last frame and
+    // the passes that keep it, declared by the Builder at the source's line.
+    struct History {
+        std::string source, name;  // full names
+        Value mips;                // the history's own `mips`, when given
+        const Declaration* decl = nullptr;
+        std::vector<const Declaration*> keep;  // the copy (and the mips chain) after the frame
+    };
+    std::vector<History> histories;
+    std::deque<Declaration> synthesized;  // the keep passes' declarations (stable addresses)
 
     static std::string fullName(const Declaration& d) {
         return d.module.empty() ? d.name : d.module + "." + d.name;
@@ -34,6 +45,7 @@ struct Builder {
         switch (k) {
             case DeclKind::Texture:
             case DeclKind::Buffer:
+            case DeclKind::History:
                 return "resources";
             case DeclKind::Pass:
                 return "passes";
@@ -63,6 +75,10 @@ struct Builder {
 
     // rg.resource, rg.buffer (declarations_resources.cpp).
     Result<void> texture(const Declaration& d);
+    Result<void> history(const Declaration& d);  // collectNames: the names a history adds
+    Result<void> historyResources();             // rg.history's textures, once all are built
+    Result<void> historyResource(const History& h, const ResourceDesc& source, const Where& w);
+    Result<void> historyPasses();  // after every pass: the keep passes
     Result<void> buffer(const Declaration& d);
 
     // rg.pass (declarations_passes.cpp).

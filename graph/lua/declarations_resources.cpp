@@ -2,6 +2,7 @@
 // (bytes, screen tiles), each imported, exported or persistent.
 #include "declarations_detail.h"
 
+#include <algorithm>
 #include <vector>
 
 namespace rg::declarations {
@@ -11,7 +12,7 @@ Result<void> Builder::texture(const Declaration& d) {
     const Value& b = d.body;
     if (auto r = checkFields(w, b,
                              {"format", "size", "scale", "mips", "layers", "scene_layers", "cube",
-                              "export", "import", "persistent", "only_when", "doc"});
+                              "export", "import", "persistent", "only_when", "history", "doc"});
         !r)
         return r;
     ResourceDesc r;
@@ -118,6 +119,144 @@ Result<void> Builder::texture(const Declaration& d) {
         r.onlyWhen = cond;
     }
     out.graph.resources.push_back(r);
+    if (b.has("history")) {
+        if (r.imported)
+            return w.at("history").error(
+                "an imported texture's contents come from outside the graph: it has no history "
+                "of its own");
+        auto h = std::find_if(histories.begin(), histories.end(),
+                              [&](const History& x) { return x.decl == &d; });
+        if (auto e = historyResource(*h, r, w.at("history")); !e) return e;
+    }
+    return {};
+}
+
+// The history's texture: the source's format, size and layers (its own mips when given),
+// persistent, never exported.
+Result<void> Builder::historyResource(const History& h, const ResourceDesc& source,
+                                      const Where& w) {
+    ResourceDesc past = source;
+    past.name = h.name;
+    past.origin = h.decl->origin;
+    past.persistent = true;
+    past.exported = false;
+    past.historyOf = source.name;
+    if (!h.mips.isNil()) {
+        const Value& m = h.mips;
+        if (m.isString() && m.asString() == "full")
+            past.texture.mips = 0;
+        else if (isInteger(m) && m.asNumber() >= 1 && m.asNumber() <= 16)
+            past.texture.mips = static_cast<uint32_t>(m.asNumber());
+        else
+            return w.at("mips").error("expected a whole number in 1..16 or \"full\"");
+    }
+    out.graph.resources.push_back(past);
+    return {};
+}
+
+// rg.history "NAME" { of = TEXTURE, mips = M }: a module's history of a texture another file
+// declares (SSR's of the lit image), as rg.resource's `history` field gives one.
+Result<void> Builder::historyResources() {
+    for (const History& h : histories) {
+        if (h.decl->kind != DeclKind::History) continue;
+        const Where w = where(*h.decl);
+        auto source = std::find_if(out.graph.resources.begin(), out.graph.resources.end(),
+                                   [&](const ResourceDesc& r) { return r.name == h.source; });
+        if (source->imported)
+            return w.at("of").error("'" + h.source +
+                                    "' is imported: its contents come from outside the graph");
+        const ResourceDesc copy = *source;  // the push below may move the vector
+        if (auto e = historyResource(h, copy, w); !e) return e;
+    }
+    return {};
+}
+
+// A history's names and keep passes (collectNames). rg.resource's field, `history = NAME` or
+// `{ name = NAME, mips = M }`, or rg.history "NAME" { of = TEXTURE, mips = M }: NAME (in the
+// declaration's module) reads the texture as the last frame left it — a persistent texture of
+// its format and size (its own mips when given), zeros at first and whenever it is emptied
+// (gpu::Executor: the passes writing the texture were rebuilt or switched, the texture resized,
+// a camera cut). Its keep passes: NAME_keep copies the texture into it after every other pass,
+// and NAME_mips fills its mips when it has more than one.
+Result<void> Builder::history(const Declaration& d) {
+    const bool declared = d.kind == DeclKind::History;
+    Where w = declared ? where(d) : where(d).at("history");
+    const Value& v = declared ? d.body : d.body["history"];
+    History h;
+    h.decl = &d;
+    std::string name;
+    if (declared) {
+        if (auto r = checkFields(w, v, {"of", "mips", "doc"}); !r) return r;
+        if (!v["of"].isString())
+            return w.at("of").error("expected the name of the texture whose history it is, got " +
+                                    typeOf(v["of"]));
+        auto source = resolveResource(w.at("of"), d.module, v["of"].asString());
+        if (!source) return std::unexpected(source.error());
+        if (resources[*source]->kind != DeclKind::Texture)
+            return w.at("of").error("'" + *source + "' is a " +
+                                    declKindName(resources[*source]->kind) +
+                                    "; a history is a texture's (rg.resource)");
+        h.source = *source;
+        h.name = fullName(d);
+        h.mips = v["mips"];
+    } else {
+        h.source = fullName(d);
+        if (v.isString()) {
+            name = v.asString();
+        } else if (v.isTable()) {
+            if (auto r = checkFields(w, v, {"name", "mips"}); !r) return r;
+            if (!v["name"].isString())
+                return w.at("name").error("expected the history's name, got " + typeOf(v["name"]));
+            name = v["name"].asString();
+            h.mips = v["mips"];
+        } else {
+            return w.error("expected a name or { name = NAME, mips = M }, got " + typeOf(v));
+        }
+        h.name = d.module.empty() ? name : d.module + "." + name;
+    }
+    const std::string shortName = declared ? d.name : name;
+    if (!isGlslIdentifier(shortName))
+        return w.error("'" + shortName + "' is not a name a shader can bind (letters, digits, _)");
+    if (!declared) {
+        if (resources.count(h.name))
+            return w.error("'" + h.name + "' is already declared (at " + resources[h.name]->origin +
+                           ")");
+        resources[h.name] = &d;
+        resourceNames.push_back(h.name);
+    }
+    const bool mips = h.mips.isString() || h.mips.asNumber(1) > 1;
+    const std::string keepName = h.name + "_keep", mipsName = h.name + "_mips";
+    for (const std::string& pass : {keepName, mipsName}) {
+        if (pass == mipsName && !mips) break;
+        if (passes.count(pass))
+            return w.error("its keep pass '" + pass + "' is already declared (at " +
+                           passes[pass]->origin + ")");
+        Declaration keep;
+        keep.kind = DeclKind::Pass;
+        keep.name = pass;
+        keep.origin = d.origin;
+        Value::Table body;
+        if (pass == keepName) {
+            body["kind"] = Value("copy");
+            body["reads"] = Value(Value::List{Value(h.source)});
+        } else {
+            body["kind"] = Value("mips");
+        }
+        body["writes"] = Value(Value::List{Value(h.name)});
+        keep.body = Value(std::move(body));
+        synthesized.push_back(std::move(keep));
+        passes[pass] = &synthesized.back();
+        passNames.push_back(pass);
+        h.keep.push_back(&synthesized.back());
+    }
+    histories.push_back(std::move(h));
+    return {};
+}
+
+Result<void> Builder::historyPasses() {
+    for (const History& h : histories)
+        for (const Declaration* keep : h.keep)
+            if (auto r = pass(*keep); !r) return r;
     return {};
 }
 

@@ -181,7 +181,8 @@ void pushDeclarers(lua_State* L, const std::string& module) {
         {"resource", DeclKind::Texture}, {"buffer", DeclKind::Buffer},
         {"pass", DeclKind::Pass},        {"param", DeclKind::Param},
         {"layout", DeclKind::Layout},    {"stencil", DeclKind::Stencil},
-        {"path", DeclKind::Path},        {"material", DeclKind::Material}};
+        {"path", DeclKind::Path},        {"material", DeclKind::Material},
+        {"history", DeclKind::History}};
     for (const auto& [name, kind] : fns) {
         lua_pushinteger(L, static_cast<lua_Integer>(kind));
         lua_pushstring(L, module.c_str());

@@ -9,7 +9,7 @@ local loop = require "render_loop"  -- the materials, the G-buffer, its scene pa
 local ibl = require "ibl"  -- the distant light probe, filtered once per environment (seed 002 §4.9)
 local shadows = require "shadows"  -- the sun's cascaded shadow map (seed 002 §4.10.4)
 local ao = require "ao"  -- screen-space ambient occlusion (seed 002 §4.10.3)
-local ssr = require "ssr"  -- screen-space reflections over the probe (seed 002 §4.9.4, §4.9.5)
+require "ssr"  -- screen-space reflections over the probe (seed 002 §4.9.4, §4.9.5)
 local probes = require "probes"  -- the scene's local light probes, captured once per scene (§4.9.1.2)
 local reflections = require "reflections"  -- SSR, local probes and distant probe composed by their own pass (§4.9.5)
 require "lightmap"  -- the scene's baked SG lightmap, when it declares one (seed 003)
@@ -27,10 +27,9 @@ rg.pass "lighting_standard" (reflections.lit(ao.lit(shadows.masked(ibl.lit(light
     writes = { "hdr" }, stencil = { class = "lit_standard" },  -- and its variants: foliage
 })))))
 
--- The sky where nothing was drawn, then blended materials lit with the same light loop; the lit
--- image is kept for the next frame's reflections.
+-- The sky where nothing was drawn, then blended materials lit with the same light loop (the lit
+-- image is kept for the next frame's reflections by its history, scripts/ssr.lua).
 loop.sky_and_forward()
-ssr.history()
 
 post.chain { input = "hdr", output = "display", depth = "depth" }
 rg.output { display = "display", hdr = "hdr", exposure = "exposure" }

@@ -77,6 +77,44 @@ mat3 rgTangentFrame(vec3 normal, vec4 tangent, bool frontFacing) {
     return mat3(t, cross(n, t) * tangent.w, n);
 }
 
+// Specular anti-aliasing (seed 002 §5.3: aliasing comes from estimating a pixel's integral of
+// L(v) with one sample; besides supersampling, pre-filtering). The NDF is filtered over the
+// normals the pixel's footprint covers by adding their variance to the GGX roughness's α², so a
+// glossy highlight on dense normal detail, or on a surface curving faster than a pixel resolves,
+// widens and dims instead of sparkling. The variance, per slope axis:
+//   - inside the normal map's filter footprint, from the filtered normal's length (Toksvig,
+//     "Mipmapping normal maps", 2005): the box-filtered mips average unit normals into a shorter
+//     one, |n̄| ≈ 1 − ⟨θ²⟩/2, so (1 − |n̄|) / |n̄| ≈ ⟨θ²⟩/2. The length is taken relative to the
+//     base level's at the same place: the bilinear blend of neighbouring texels shortens the
+//     normal by itself, and that is interpolation, not an average over the pixel;
+//   - across the pixel, from the screen-space derivatives of the shading normal (Kaplanyan,
+//     Hill, Patney & Lefohn, "Filtering Distributions of Normals for Shading Antialiasing", HPG
+//     2016): a normal varying linearly over a box pixel varies by ⟨θ²⟩ = (|∂n/∂x|² + |∂n/∂y|²)/12,
+//     so RG_SPECULAR_AA_VARIANCE (σ², 1/24 for the box) × (|∂n/∂x|² + |∂n/∂y|²), at most
+//     RG_SPECULAR_AA_THRESHOLD (κ, Kaplanyan's 0.18).
+// α'² = min(α² + v_map + v_screen, 1). Beckmann's α² is twice the slope variance; GGX's heavier
+// tails take it once: against a 4×4 supersampled render in HDR (tests/cli/specular_aa.py's floor)
+// twice gave an RMSE of 15 611 and a mean relative error of 0.405, once 16 158 and 0.346 (without:
+// 29 429, 0.303). Frostbite's smoothness is 1 − √α: the result goes back as 1 − (α'²)^¼. On with
+// RG_SPECULAR_AA: the pipeline's `specular_aa` parameters (scripts/render_loop.lua) compile it in.
+#ifndef RG_SPECULAR_AA
+#define RG_SPECULAR_AA 0
+#endif
+#ifndef RG_SPECULAR_AA_VARIANCE
+#define RG_SPECULAR_AA_VARIANCE 0.0417
+#endif
+#ifndef RG_SPECULAR_AA_THRESHOLD
+#define RG_SPECULAR_AA_THRESHOLD 0.18
+#endif
+float rgSpecularAntialiasing(float smoothness, vec3 n, float mapLength) {
+    vec3 dx = dFdx(n), dy = dFdy(n);
+    float screen = min(float(RG_SPECULAR_AA_VARIANCE) * (dot(dx, dx) + dot(dy, dy)), float(RG_SPECULAR_AA_THRESHOLD));
+    float map = max((1.0 - mapLength) / max(mapLength, 1e-3), 0.0);
+    float roughness = 1.0 - smoothness;
+    float alpha2 = min(roughness * roughness * roughness * roughness + screen + map, 1.0);
+    return 1.0 - sqrt(sqrt(alpha2));
+}
+
 RgSurface rgSampleSurface(vec3 position, vec3 normal, vec4 tangent, vec2 uv0, vec2 uv1, bool frontFacing) {
     RgSurface s;
     s.position = position;
@@ -96,8 +134,18 @@ RgSurface rgSampleSurface(vec3 position, vec3 normal, vec4 tangent, vec2 uv0, ve
     s.twoColour = material.diffuseColor.w > 0.5;
     s.radiosity = 0.0;
     vec3 m = rgSampleMaterialTexture(normalTex, 4, 2, uv0, uv1, vec4(0.5, 0.5, 1.0, 1.0)).xyz * 2.0 - 1.0;
+#if RG_SPECULAR_AA
+    // How much shorter than the base level's the filtered normal is (rgSpecularAntialiasing).
+    float mapLength = 1.0;
+#if ((RG_TEXTURES) & 4) != 0
+    mapLength = min(length(m) / max(length(textureLod(normalTex, rgTextureUv(2, uv0, uv1), 0.0).xyz * 2.0 - 1.0), 1e-3), 1.0);
+#endif
+#endif
     m.xy *= material.factors2.x;
     s.normal = normalize(rgTangentFrame(normal, tangent, frontFacing) * m);
+#if RG_SPECULAR_AA
+    s.smoothness = rgSpecularAntialiasing(s.smoothness, s.normal, mapLength);
+#endif
     return s;
 }
 

@@ -7,7 +7,7 @@
 // the cosine lobe between the two horizons integrated analytically around the normal projected
 // into the slice:  ¼ (−cos(2h − n) + cos n + 2h sin n)  per side, weighted by the projected
 // normal's length, over the same unoccluded (below). 1 = open, 0 = closed. Directions turn per pixel (a 4×4 pattern the
-// ao_blur pass averages out). Written with the pixel's view distance beside it (rg16f).
+// ao_blur pass averages out) and, with RG_AO_TEMPORAL, per frame (ao_temporal.frag accumulates them). Written with the pixel's view distance beside it (rg16f).
 #include "lib/scene.glsl"
 #define RG_GBUFFER_BINDING 40  // GB0..GB3 and depth_stencil: the pixel decoded by its material
 #include "gbuffer_pipeline.glsl"
@@ -66,10 +66,18 @@ void main() {
     vec3 V = rgCameraOrthographic() ? vec3(0.0, 0.0, 1.0) : normalize(-P);
     // The radius on screen, in full-resolution pixels (the projection's y scale).
     float radiusPx = clamp(params.ao_radius * abs(camera.proj[1][1]) * 0.5 * camera.viewport.y / (rgCameraOrthographic() ? 1.0 : max(-P.z, 1e-3)), 2.0, 96.0);
-    // 4×4 interleaved rotations and step offsets.
+    // 4×4 interleaved rotations and step offsets; accumulated over frames (RG_AO_TEMPORAL:
+    // ao_temporal.frag), both move on by a low-discrepancy fraction of the pattern's step each
+    // frame (the golden ratio's additive recurrences) — counted from the first frame or the last
+    // camera cut (Camera.temporal.y), which starts as without.
     int k = (half_.x & 3) + 4 * (half_.y & 3);
-    float rotation = float(k) / 16.0 * 3.14159265 / float(RG_AO_SLICES);
-    float jitter = float((k * 7) & 15) / 16.0;
+#ifdef RG_AO_TEMPORAL
+    vec2 onward = fract(camera.temporal.y * vec2(0.6180340, 0.7548777));
+#else
+    vec2 onward = vec2(0.0);
+#endif
+    float rotation = (float(k) + onward.x) / 16.0 * 3.14159265 / float(RG_AO_SLICES);
+    float jitter = (float((k * 7) & 15) + onward.y) / 16.0;
     float visibility = 0.0, unoccluded = 0.0;
     // Slice s's screen direction (y down) at angle rotation + s π / slices: the first's, turned by
     // a constant step per slice (one sine and cosine a pixel rather than one a slice).

@@ -106,7 +106,8 @@ protected:
         o.compile.outputWidth = width;
         o.compile.outputHeight = height;
         o.params["exposure_mode"] = Value("manual");
-        o.paramsIfDeclared["taa_jitter"] = Value(false);  // pixels compared one by one
+        o.paramsIfDeclared["taa_jitter"] = Value(false);   // pixels compared one by one
+        o.paramsIfDeclared["specular_aa"] = Value(false);  // roughness as the scene gives it
         return o;
     }
 

@@ -219,7 +219,8 @@ protected:
         o.scene = scene;
         o.captures = {"GB0", "GB1", "GB2", "GB3"};
         o.params["light_shapes"] = Value(false);  // the light's lighting alone, not its look
-        o.paramsIfDeclared["taa_jitter"] = Value(false);  // pixels compared one by one
+        o.paramsIfDeclared["taa_jitter"] = Value(false);   // pixels compared one by one
+        o.paramsIfDeclared["specular_aa"] = Value(false);  // roughness as the scene gives it
         Session s(*s_runtime, o);
         Frame out;
         auto r = s.load(kRoot + "/scripts/pipelines/deferred.lua");

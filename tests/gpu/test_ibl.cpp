@@ -62,7 +62,8 @@ protected:
         o.compile.outputHeight = h;
         o.scene = kRoot + "/tests/gpu/scenes/" + scene;
         o.params["exposure_mode"] = Value("manual");
-        o.paramsIfDeclared["taa_jitter"] = Value(false);  // pixels compared one by one
+        o.paramsIfDeclared["taa_jitter"] = Value(false);   // pixels compared one by one
+        o.paramsIfDeclared["specular_aa"] = Value(false);  // roughness as the scene gives it
         // The probe alone: the reference integrates it unoccluded, so screen-space AO (the spheres
         // occlude their neighbours) is reduced to a 5 cm search.
         o.params["ao_radius"] = Value(0.05);

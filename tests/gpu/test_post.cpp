@@ -428,3 +428,50 @@ TEST_F(PostGpu, EmissionRelativeToTheExposureKeepsItsPlaceOnScreen) {
         EXPECT_NEAR(exposedAt[0], exposedAt[1], exposedAt[0] * 0.02);
     }
 }
+
+// rg.resource's `history` (tests/lua/scripts/history.lua): `count` reads its last frame through
+// `count_history` and adds 1, so frame N holds N — until the history is emptied: by a camera
+// cut, by a switch of the passes writing `count`, by a rebuild of one (a compiled-in switch).
+// A uniform change rebuilds nothing and keeps it; its keep pass goes last.
+TEST_F(PostGpu, AHistoryCarriesTheLastFrameUntilWhatWritesItChanges) {
+    SessionOptions o;
+    o.compile.outputWidth = 16;
+    o.compile.outputHeight = 8;
+    Session s(*s_runtime, o);
+    ASSERT_TRUE(s.load(kScripts + "history.lua").has_value());
+    auto count = [&] {
+        EXPECT_TRUE(s.frame().has_value());
+        auto img = s_runtime->executor().readback("count");
+        EXPECT_TRUE(img.has_value());
+        return img ? img->at(3, 5, 0) : -1.0f;
+    };
+    const auto& passes = s_runtime->executor().plan().passes;
+    ASSERT_FALSE(passes.empty());
+    EXPECT_EQ(passes.back().name, "count_history_keep");
+    EXPECT_EQ(count(), 1.0f);
+    EXPECT_EQ(count(), 2.0f);
+    EXPECT_EQ(count(), 3.0f);
+    s.cut();  // a camera cut: every history empty
+    EXPECT_EQ(count(), 1.0f);
+    EXPECT_EQ(count(), 2.0f);
+    // Another pass writes `count` now: its first frame starts from nothing (2, not 4).
+    auto r = s.setPassOverride("count_twice", true);
+    ASSERT_TRUE(r.has_value()) << r.error().describe();
+    ASSERT_TRUE(s.setPassOverride("count", false).has_value());
+    EXPECT_EQ(count(), 2.0f);
+    EXPECT_EQ(count(), 4.0f);
+    ASSERT_TRUE(s.setPassOverride("count", true).has_value());
+    ASSERT_TRUE(s.setPassOverride("count_twice", false).has_value());
+    EXPECT_EQ(count(), 1.0f);
+    EXPECT_EQ(count(), 2.0f);
+    // A uniform changes nothing that was built: the history carries on.
+    ASSERT_TRUE(s.setOverride("step", Value(0.5)).has_value());
+    EXPECT_EQ(count(), 2.5f);
+    // A compiled-in switch prepares `count` anew: from nothing again.
+    ASSERT_TRUE(s.setOverride("hundred", Value(true)).has_value());
+    EXPECT_EQ(count(), 100.5f);
+    EXPECT_EQ(count(), 201.0f);
+    EXPECT_NE(std::find(s_runtime->executor().lastBuildReport().passesPrepared.begin(),
+                        s_runtime->executor().lastBuildReport().passesPrepared.end(), "count"),
+              s_runtime->executor().lastBuildReport().passesPrepared.end());
+}

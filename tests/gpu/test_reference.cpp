@@ -45,7 +45,8 @@ protected:
         o.scene = kRoot + "/tests/gpu/scenes/" + scene;
         o.params["exposure_mode"] = Value("manual");
         o.params["light_shapes"] = Value(false);  // the lights' lighting alone, not their look
-        o.paramsIfDeclared["taa_jitter"] = Value(false);  // pixels compared one by one
+        o.paramsIfDeclared["taa_jitter"] = Value(false);   // pixels compared one by one
+        o.paramsIfDeclared["specular_aa"] = Value(false);  // roughness as the scene gives it
         // The same meshes in both (the reference mode draws the full ones): the lights' terms are
         // compared, not the spheres' levels of detail.
         o.levelsOfDetail = false;

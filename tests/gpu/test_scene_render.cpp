@@ -39,6 +39,8 @@ protected:
         o.compile.outputHeight = H;
         o.scene = kRoot + "/tests/gpu/scenes/" + scene;
         o.sceneArgs = args;
+        // The G-buffer holds the scene's smoothness, not one widened by specular anti-aliasing.
+        o.paramsIfDeclared["specular_aa"] = Value(false);
         if (scene !=
             "materials.lua") {  // the probe alone: a fixed exposure, no screen-space occlusion
             o.params["exposure_mode"] = Value("manual");

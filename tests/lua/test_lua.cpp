@@ -106,6 +106,24 @@ TEST(LuaErrors, OnlyWhenTakesABooleanParameter) {
                   "number; only_when takes a boolean one");
 }
 
+// rg.resource's `history` names a resource of its own, and its table takes name and mips only;
+// rg.history's `of` names a texture.
+TEST(LuaErrors, AHistoryNamesAResourceOfItsOwn) {
+    EXPECT_EQ(loadError("history_clash.lua"),
+              kScripts +
+                  "history_clash.lua:3: resources.taa_history: 'taa_history' is declared "
+                  "twice (first as the history of taa at " +
+                  kScripts + "history_clash.lua:2)");
+    EXPECT_EQ(loadError("history_of_buffer.lua"),
+              kScripts +
+                  "history_of_buffer.lua:4: resources.counts_history.of: 'counts' is a "
+                  "buffer; a history is a texture's (rg.resource)");
+    EXPECT_EQ(loadError("history_bad.lua"),
+              kScripts +
+                  "history_bad.lua:2: resources.ao.history.mip: unknown field (did you "
+                  "mean 'mips'?); expected one of: 'name', 'mips'");
+}
+
 TEST(LuaErrors, OutOfRangeValue) {
     EXPECT_EQ(loadError("out_of_range.lua"),
               kScripts +
@@ -372,7 +390,8 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // foliage fix-up, then the AO itself on the fixed-up normals: scripts/ao.lua), the Hi-Z
     // pyramid, SSR's mask and SSR (scripts/ssr.lua), the composition of SSR and the probes
     // (scripts/reflections.lua), the lighting, the sky and forward.
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 55),
+    ASSERT_GE(order.size(), 58u);
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 54),
               (std::vector<std::string>{"env_cube",
                                         "env_mips",
                                         "env_irradiance",
@@ -409,6 +428,7 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
                                         "foliage_fixup",
                                         "gtao",
                                         "ao_blur",
+                                        "ao_temporal",
                                         "ao_upsample",
                                         "light_froxels",
                                         "light_froxels_sort",
@@ -425,9 +445,11 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
                                         "lighting_clearcoat",
                                         "lighting_two_colour",
                                         "sky",
-                                        "forward",
-                                        "ssr_history_copy",
-                                        "ssr_history_mips"}));
+                                        "forward"}));
+    // The histories' keep passes come after every other (rg.resource's `history`, rg.history).
+    EXPECT_EQ(std::vector<std::string>(order.end() - 4, order.end()),
+              (std::vector<std::string>{"ao_history_keep", "taa_history_keep", "hdr_history_keep",
+                                        "hdr_history_mips"}));
     auto plan = compile(graphWithParams(*p), {});
     ASSERT_TRUE(plan.has_value()) << plan.error().message;
     // Every script it pulled in is known, for hot reload.

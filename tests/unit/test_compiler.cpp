@@ -112,6 +112,28 @@ TEST(CompilerCull, WritingAnImportedResourceIsARoot) {
     EXPECT_EQ(p.resources[0].heap, -1);
 }
 
+// A history (rg.resource's `history`) is read the frame after its keep pass writes it: the keep
+// pass stays while a kept pass reads the history, and goes (with the reason) when none does —
+// TAA switched off leaves no copy behind.
+TEST(CompilerCull, AHistoryIsKeptWhileAKeptPassReadsIt) {
+    ResourceDesc history = texture("taa_history", Format::RGBA16F);
+    history.persistent = true;
+    history.historyOf = "taa";
+    GraphDesc g;
+    g.resources = {texture("taa", Format::RGBA16F), history, exported(texture("display"))};
+    g.passes = {raster("taa", {sampled("taa_history"), color("taa")}),
+                raster("tonemap", {sampled("taa"), color("display")}),
+                raster("taa_history_keep",
+                       {use("taa", Usage::CopySrc), use("taa_history", Usage::CopyDst)})};
+    Plan p = compileOk(g);
+    EXPECT_EQ(passOrder(p), (std::vector<std::string>{"taa", "tonemap", "taa_history_keep"}));
+    g.passes[0] = raster("taa", {color("taa")});  // nothing reads the history now
+    p = compileOk(g);
+    EXPECT_EQ(passOrder(p), (std::vector<std::string>{"taa", "tonemap"}));
+    EXPECT_EQ(culledReason(p, "taa_history_keep"),
+              "writes only 'taa_history', which no kept pass reads and is not exported");
+}
+
 // ---------------------------------------------------------------------------------------------
 // Ordering
 
