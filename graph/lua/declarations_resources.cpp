@@ -7,6 +7,18 @@
 
 namespace rg::declarations {
 
+namespace {
+
+// `mips`: a whole number 1..16, or "full" (0: the whole chain).
+Result<uint32_t> mipCount(const Where& w, const Value& m) {
+    if (m.isString() && m.asString() == "full") return 0u;
+    if (isInteger(m) && m.asNumber() >= 1 && m.asNumber() <= 16)
+        return static_cast<uint32_t>(m.asNumber());
+    return w.error("expected a whole number in 1..16 or \"full\"");
+}
+
+}  // namespace
+
 Result<void> Builder::texture(const Declaration& d) {
     Where w = where(d);
     const Value& b = d.body;
@@ -61,13 +73,9 @@ Result<void> Builder::texture(const Declaration& d) {
             return w.at("scale").error("expected a value in (0, 16]");
     }
     if (b.has("mips")) {
-        const Value& m = b["mips"];
-        if (m.isString() && m.asString() == "full")
-            r.texture.mips = 0;
-        else if (isInteger(m) && m.asNumber() >= 1 && m.asNumber() <= 16)
-            r.texture.mips = static_cast<uint32_t>(m.asNumber());
-        else
-            return w.at("mips").error("expected a whole number in 1..16 or \"full\"");
+        auto mips = mipCount(w.at("mips"), b["mips"]);
+        if (!mips) return std::unexpected(mips.error());
+        r.texture.mips = *mips;
     }
     if (b.has("layers")) {
         if (!isInteger(b["layers"]) || b["layers"].asNumber() < 1 || b["layers"].asNumber() > 2048)
@@ -142,13 +150,9 @@ Result<void> Builder::historyResource(const History& h, const ResourceDesc& sour
     past.exported = false;
     past.historyOf = source.name;
     if (!h.mips.isNil()) {
-        const Value& m = h.mips;
-        if (m.isString() && m.asString() == "full")
-            past.texture.mips = 0;
-        else if (isInteger(m) && m.asNumber() >= 1 && m.asNumber() <= 16)
-            past.texture.mips = static_cast<uint32_t>(m.asNumber());
-        else
-            return w.at("mips").error("expected a whole number in 1..16 or \"full\"");
+        auto mips = mipCount(w.at("mips"), h.mips);
+        if (!mips) return std::unexpected(mips.error());
+        past.texture.mips = *mips;
     }
     out.graph.resources.push_back(past);
     return {};

@@ -7,9 +7,12 @@
 #include "gpu_fixture.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
-#include <fstream>
 #include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "runtime/runtime.h"
 #include "runtime/session.h"
@@ -474,4 +477,47 @@ TEST_F(PostGpu, AHistoryCarriesTheLastFrameUntilWhatWritesItChanges) {
     EXPECT_NE(std::find(s_runtime->executor().lastBuildReport().passesPrepared.begin(),
                         s_runtime->executor().lastBuildReport().passesPrepared.end(), "count"),
               s_runtime->executor().lastBuildReport().passesPrepared.end());
+}
+
+// A hot reload (what `rgraph watch` does when a file changes) keeps a history whose writers are
+// unchanged and empties it when the shader of one changed: the counter of history.lua, copied
+// with its shader beside it, goes on over a reload of the same files and starts again once the
+// shader is edited.
+TEST_F(PostGpu, AHotReloadEmptiesTheHistoryOfAnEditedShaderOnly) {
+    namespace fs = std::filesystem;
+    const fs::path dir = fs::path(RG_TEST_TMP) / "history_reload";
+    fs::create_directories(dir);
+    fs::copy_file(kScripts + "history.lua", dir / "history.lua",
+                  fs::copy_options::overwrite_existing);
+    std::string pipeline;
+    {
+        std::ifstream in(dir / "history.lua");
+        pipeline.assign(std::istreambuf_iterator<char>(in), {});
+    }
+    // The shader beside the pipeline (a pass's shader is found in the pipeline's folder too).
+    for (size_t at; (at = pipeline.find("test/count.frag")) != std::string::npos;)
+        pipeline.replace(at, std::string("test/count.frag").size(), "count_copy.frag");
+    std::ofstream(dir / "history.lua") << pipeline;
+    const fs::path shader = dir / "count_copy.frag";
+    fs::copy_file(std::string(RG_SOURCE_ROOT) + "/shaders/test/count.frag", shader,
+                  fs::copy_options::overwrite_existing);
+    SessionOptions o;
+    o.compile.outputWidth = 16;
+    o.compile.outputHeight = 8;
+    Session s(*s_runtime, o);
+    ASSERT_TRUE(s.load((dir / "history.lua").string()).has_value());
+    auto count = [&] {
+        EXPECT_TRUE(s.frame().has_value());
+        auto img = s_runtime->executor().readback("count");
+        return img ? img->at(3, 5, 0) : -1.0f;
+    };
+    EXPECT_EQ(count(), 1.0f);
+    EXPECT_EQ(count(), 2.0f);
+    ASSERT_TRUE(s.load((dir / "history.lua").string()).has_value());  // nothing changed
+    EXPECT_EQ(count(), 3.0f);
+    std::ofstream(shader, std::ios::app) << "// edited\n";
+    fs::last_write_time(shader, fs::last_write_time(shader) + std::chrono::seconds(2));
+    ASSERT_TRUE(s.load((dir / "history.lua").string()).has_value());  // the shader changed
+    EXPECT_EQ(count(), 1.0f);
+    EXPECT_EQ(count(), 2.0f);
 }
