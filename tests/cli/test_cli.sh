@@ -217,6 +217,10 @@ check "two-colour channel capture" 0 grep "wrote $tmp/tc.exr" -- \
 check "compare identical" 0 grep "mean relative error 0" -- "$rgraph" compare "$tmp/r.exr" "$tmp/r.exr" --heatmap "$tmp/heat.png"
 check "compare differs" 1 grep "above the tolerance" -- "$rgraph" compare "$tmp/g.exr" "$tmp/r.exr" --tolerance 0.001
 check "compare missing layer" 2 grep "has no layer 'nope'" -- "$rgraph" compare "$tmp/r.exr" "$tmp/r.exr" --layer nope
+# A supersampled reference: box-filtered to the image's size first; a size that is not N times is refused.
+check "compare --downsample" 0 grep "mean relative error" -- bash -c "'$rgraph' render --size 32x16 --frames 3 --out '$tmp/half.exr' >/dev/null && '$rgraph' compare '$tmp/half.exr' '$tmp/r.exr' --downsample 2"
+check "compare --downsample: not N times" 2 grep "is 64x32, not 2 times 64x32" -- "$rgraph" compare "$tmp/r.exr" "$tmp/r.exr" --downsample 2
+check "compare --downsample: not a number" 2 grep "expected a whole number 1..64, got 'x'" -- "$rgraph" compare "$tmp/r.exr" "$tmp/r.exr" --downsample x
 check "graph dot" 0 grep "digraph rgraph" -- "$rgraph" graph --pipeline scripts/pipelines/test.lua
 check "scene args" 0 grep "wrote $tmp/ml.exr" -- \
     env RG_VALIDATION=1 "$rgraph" render --scene scripts/scenes/many_lights.lua --scene-arg lights=8 --set exposure_mode=manual \
