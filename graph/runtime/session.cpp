@@ -285,13 +285,11 @@ Result<void> Session::load(const std::string& file) {
     }
     // Parameters after the view: the pipeline a view returns is declared anew, with the
     // parameters' defaults (a view of the AO ignored --set ao_radius before).
-    for (const auto& [name, value] : m_options.params) {
-        auto checked = checkedParam(*pipeline, name, value);
-        if (!checked) return std::unexpected(checked.error());
-        pipeline->findParam(name)->value = *checked;
-    }
-    for (const auto& [name, value] : m_options.paramsIfDeclared) {
-        if (!pipeline->findParam(name) || m_options.params.count(name)) continue;
+    // paramsIfDeclared join where the pipeline declares them and params do not set them.
+    std::map<std::string, Value> values = m_options.params;
+    for (const auto& [name, value] : m_options.paramsIfDeclared)
+        if (pipeline->findParam(name)) values.emplace(name, value);
+    for (const auto& [name, value] : values) {
         auto checked = checkedParam(*pipeline, name, value);
         if (!checked) return std::unexpected(checked.error());
         pipeline->findParam(name)->value = *checked;
