@@ -38,7 +38,8 @@ const std::set<std::string> kSupported = {"KHR_texture_transform",
                                           "KHR_materials_pbrSpecularGlossiness",
                                           "EXT_mesh_gpu_instancing",
                                           "KHR_materials_variants",
-                                          "KHR_draco_mesh_compression"};
+                                          "KHR_draco_mesh_compression",
+                                          "EXT_meshopt_compression"};
 
 std::string percentDecode(const std::string& uri) {
     std::string out;
@@ -302,7 +303,9 @@ Result<void> Loader::parse() {
     if (auto r = checkBuffers(pf->json); !r) return r;
     // A Draco primitive's index accessor has no buffer view (its indices are in the compressed
     // view), which tinygltf refuses: the JSON it reads leaves them out (gltf_load_draco.cpp decodes them).
-    if (dropDracoIndices(pf->json)) {
+    // A meshopt fallback buffer has no uri, which tinygltf refuses too (gltf_load_meshopt.cpp).
+    const bool draco = dropDracoIndices(pf->json);
+    if (placeholdMeshoptFallbacks(pf->json) || draco) {
         std::string text = pf->json.dump();
         if (!pf->binary) {
             bytes->assign(text.begin(), text.end());
@@ -402,6 +405,7 @@ glm::vec3 Loader::vec3Of(const tinygltf::Value& v, glm::vec3 def) {
 
 Result<Scene> Loader::run() {
     if (auto r = parse(); !r) return std::unexpected(r.error());
+    if (auto r = meshopt(); !r) return std::unexpected(r.error());
     convertSamplers();
     if (auto r = chooseVariant(); !r) return std::unexpected(r.error());
     if (auto r = materials(); !r) return std::unexpected(r.error());

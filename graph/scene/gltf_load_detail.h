@@ -3,6 +3,7 @@
 // tinygltf runs, the messages and the steps in order (gltf_load.cpp). Internal to rg_scene.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <filesystem>
 #include <map>
@@ -61,6 +62,12 @@ struct Loader {
     Result<void> checkSchema(const nlohmann::json& j);  // gltf_load_schema.cpp
     Result<void> checkBuffers(const nlohmann::json& j);
     static bool dropDracoIndices(nlohmann::json& j);  // true when it changed the JSON
+    // EXT_meshopt_compression (gltf_load_meshopt.cpp): fallback buffers (no bytes in the file)
+    // by index with their declared byteLength; the JSON tinygltf reads gives each a placeholder
+    // byte, and meshopt() decodes the compressed views into them.
+    std::map<size_t, uint64_t> meshoptFallbacks;
+    bool placeholdMeshoptFallbacks(nlohmann::json& j);  // true when it changed the JSON
+    Result<void> meshopt();
     Result<void> parse();
 
     // ---- accessors (gltf_load_accessors.cpp) ------------------------------------------------
@@ -85,7 +92,19 @@ struct Loader {
     Result<void> chooseVariant();
     // The glTF material a primitive takes in the chosen variant (its own without one).
     Result<int> variantMaterial(const std::string& where, const tinygltf::Primitive& prim);
-    Result<Primitive> primitive(size_t meshIndex, size_t primIndex);
+    // Skinning data a primitive carries for a node that skins it: `influences` joints per
+    // vertex (4 per JOINTS_n / WEIGHTS_n pair), vertex-major.
+    struct Skinning {
+        size_t influences = 0;
+        std::vector<uint32_t> joints;
+        std::vector<float> weights;
+        bool flatNormals = false;        // generated: made anew once posed
+        bool generatedTangents = false;  // the same
+    };
+    std::vector<std::vector<Skinning>> meshSkinning;  // per Scene mesh, per primitive
+    Result<Primitive> primitive(size_t meshIndex, size_t primIndex,
+                                const std::vector<double>& weights, Skinning& skin);
+    Result<Mesh> mesh(size_t m, const std::vector<double>& weights);
     // KHR_draco_mesh_compression's decoded attributes (by glTF semantic) and triangle list
     // (gltf_load_draco.cpp); none for a primitive without it.
     struct Draco {
@@ -96,6 +115,27 @@ struct Loader {
     };
     Result<std::optional<Draco>> draco(const std::string& where, const tinygltf::Primitive& prim);
     Result<void> meshes();
+
+    // ---- morph targets and skins (gltf_load_skin.cpp) ---------------------------------------
+
+    // Mesh m's weights (its own or a node's) checked against its primitives' morph targets.
+    Result<void> morphWeights(size_t m, const std::vector<double>& weights,
+                              const std::string& where);
+    Result<void> morph(const std::string& where, const tinygltf::Primitive& prim,
+                       const std::vector<double>& weights, Primitive& p, bool normals,
+                       bool tangents);
+    std::map<std::pair<int, std::vector<double>>, int32_t>
+        morphed;                                 // (mesh, weights) -> Scene mesh
+    Result<int32_t> nodeMesh(size_t nodeIndex);  // the node's mesh at the node's weights
+    struct SkinnedNode {
+        size_t node;       // glTF node
+        size_t sceneNode;  // its Scene node, posed by skins()
+    };
+    std::vector<SkinnedNode> skinned;
+    std::vector<std::optional<glm::mat4>> worlds;  // per glTF node, once the walk has entered it
+    std::vector<int> parents;                      // per glTF node (-1: a root), built on demand
+    Result<glm::mat4> worldOf(size_t node);
+    Result<void> skins();
 
     // ---- numbers glTF gives a range, JSON values (gltf_load.cpp) ----------------------------
 
@@ -117,6 +157,10 @@ struct Loader {
                                const tinygltf::ExtensionMap& ext, bool srgb);
     static Value toValue(const tinygltf::Value& v);
     Result<void> materials();
+    static constexpr int kMaxTexCoord = 31;  // TEXCOORD_n a texture may name
+    // Per Scene material: the glTF TEXCOORD_n each of a vertex's two uv slots holds.
+    std::vector<std::array<int, 2>> materialSlots;
+    void uvSlots(const std::string& where, Material& m);
     Result<float> reflectanceOf(const tinygltf::Material& src, const std::string& where);
     Result<void> specularGlossiness(const tinygltf::Material& src, const std::string& where,
                                     Material& m);
@@ -126,7 +170,8 @@ struct Loader {
 
     Result<glm::mat4> localTransform(size_t index);
     static constexpr size_t kMaxInstances = size_t(1) << 20;  // EXT_mesh_gpu_instancing, per node
-    Result<void> instances(size_t index, const std::string& name, const glm::mat4& world);
+    Result<void> instances(size_t index, const std::string& name, const glm::mat4& world,
+                           int32_t mesh);
     Result<void> camera(size_t nodeIndex, const glm::mat4& world);
     Result<void> light(size_t nodeIndex, const glm::mat4& world);
     Result<void> enter(size_t index, const glm::mat4& parent, std::vector<bool>& onPath,

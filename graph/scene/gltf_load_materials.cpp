@@ -2,6 +2,8 @@
 // textures with KHR_texture_transform, the metallic-roughness factors and rgraph's extras.
 #include <cmath>
 
+#include <set>
+
 #include "gltf_load_detail.h"
 #include "scene_detail.h"
 #include "tinygltf.h"
@@ -144,13 +146,50 @@ Result<TextureRef> Loader::texture(const std::string& where, int index, int texC
         ref.transform = uvTransform(offset, rotation, scale);
         if (t.Has("texCoord")) coord = indexOf(t.Get("texCoord"));
     }
-    if (coord < 0 || coord > 1) {
-        warn(where + ": texCoord " + std::to_string(coord) +
-             " is not supported (TEXCOORD_0 and _1 only); using TEXCOORD_0");
+    if (coord < 0 || coord > kMaxTexCoord) {
+        warn(where + ": texCoord " + std::to_string(coord) + " is not a TEXCOORD_n (0.." +
+             std::to_string(kMaxTexCoord) + "); using TEXCOORD_0");
         coord = 0;
     }
+    // The glTF set for now: uvSlots() makes it one of the two a vertex carries.
     ref.texCoord = static_cast<uint32_t>(coord);
     return ref;
+}
+
+// A vertex carries two texture coordinate sets (uv0, uv1); a material's textures may name any
+// TEXCOORD_n. Sets 0 and 1 stay in their own slots (TEXCOORD_1 is also the lightmap's); another
+// set takes a slot the material's textures leave unused, and every primitive drawn with the
+// material reads that set into it (primitive()). A third set has no slot: named in a warning, its
+// textures read slot 0.
+void Loader::uvSlots(const std::string& where, Material& m) {
+    TextureRef* refs[] = {&m.baseColorTex, &m.metallicRoughnessTex, &m.normalTex, &m.occlusionTex,
+                          &m.emissiveTex};
+    std::set<uint32_t> used;
+    for (const TextureRef* r : refs)
+        if (r->image >= 0) used.insert(r->texCoord);
+    std::array<int, 2> slots = {0, 1};
+    for (uint32_t set : used) {
+        if (set <= 1) continue;
+        // A slot still holding its own set (0 or 1), which the material does not use.
+        int free = -1;
+        for (int k = 0; k < 2 && free < 0; ++k)
+            if (slots[size_t(k)] == k && !used.count(uint32_t(k))) free = k;
+        if (free >= 0) {
+            slots[size_t(free)] = int(set);
+            continue;
+        }
+        warn(where +
+             ": its textures name more than two texture coordinate sets; those on "
+             "TEXCOORD_" +
+             std::to_string(set) + " read TEXCOORD_" + std::to_string(slots[0]));
+    }
+    for (TextureRef* r : refs) {
+        uint32_t slot = 0;
+        for (uint32_t k = 0; k < 2; ++k)
+            if (slots[k] == int(r->texCoord)) slot = k;
+        r->texCoord = slot;
+    }
+    materialSlots.push_back(slots);
 }
 
 // A tinygltf JSON value -> Value (for material params written by exportGlb).
@@ -377,6 +416,7 @@ Result<void> Loader::materials() {
         RG_TRY(m.alphaCutoff, ranged(where + ": alphaCutoff", src.alphaCutoff, 0, HUGE_VAL));
         m.doubleSided = src.doubleSided;
         if (auto r = specularGlossiness(src, where, m); !r) return r;
+        uvSlots(where, m);
         // What glTF cannot say, as exportGlb wrote it.
         if (src.extras.IsObject() && src.extras.Has("rgraph") &&
             src.extras.Get("rgraph").IsObject()) {

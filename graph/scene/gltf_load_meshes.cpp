@@ -108,7 +108,8 @@ Result<uint32_t> Loader::materialIndex(const std::string& where, int m) {
     return static_cast<uint32_t>(m);
 }
 
-Result<Primitive> Loader::primitive(size_t meshIndex, size_t primIndex) {
+Result<Primitive> Loader::primitive(size_t meshIndex, size_t primIndex,
+                                    const std::vector<double>& weights, Skinning& skin) {
     const auto& mesh = model.meshes[meshIndex];
     const auto& prim = mesh.primitives[primIndex];
     const std::string where =
@@ -165,9 +166,19 @@ Result<Primitive> Loader::primitive(size_t meshIndex, size_t primIndex) {
     if (!normals) return std::unexpected(normals.error());
     auto tangents = optional("TANGENT", TINYGLTF_TYPE_VEC4);
     if (!tangents) return std::unexpected(tangents.error());
-    auto uv0 = optional("TEXCOORD_0", TINYGLTF_TYPE_VEC2);
+    // The material first: it says which TEXCOORD_n fill the vertex's two uv slots (uvSlots()).
+    auto chosen = variantMaterial(where, prim);
+    if (!chosen) return std::unexpected(chosen.error());
+    auto m = materialIndex(where, *chosen);
+    if (!m) return std::unexpected(m.error());
+    p.material = *m;
+    const std::array<int, 2> slots =
+        *m < materialSlots.size() ? materialSlots[*m] : std::array<int, 2>{0, 1};
+    const std::string set0 = "TEXCOORD_" + std::to_string(slots[0]),
+                      set1 = "TEXCOORD_" + std::to_string(slots[1]);
+    auto uv0 = optional(set0.c_str(), TINYGLTF_TYPE_VEC2);
     if (!uv0) return std::unexpected(uv0.error());
-    auto uv1 = optional("TEXCOORD_1", TINYGLTF_TYPE_VEC2);
+    auto uv1 = optional(set1.c_str(), TINYGLTF_TYPE_VEC2);
     if (!uv1) return std::unexpected(uv1.error());
     for (size_t i = 0; i < n; ++i) {
         Vertex& v = p.vertices[i];
@@ -181,7 +192,35 @@ Result<Primitive> Loader::primitive(size_t meshIndex, size_t primIndex) {
         if (!uv1->empty()) v.uv1 = glm::vec2((*uv1)[2 * i], (*uv1)[2 * i + 1]);
     }
     // TEXCOORD_1 is the lightmap parameterisation game teams author (charts in [0, 1]²).
-    p.lightmapUv = !uv1->empty();
+    p.lightmapUv = slots[1] == 1 && !uv1->empty();
+    if (auto r = morph(where, prim, weights, p, !normals->empty(), !tangents->empty()); !r)
+        return std::unexpected(r.error());
+    // JOINTS_n / WEIGHTS_n: kept beside the primitive for a node that skins it (skins()).
+    for (int set = 0; set < 2; ++set) {
+        const std::string j = "JOINTS_" + std::to_string(set), w = "WEIGHTS_" + std::to_string(set);
+        if (attr(j.c_str()) < 0 && attr(w.c_str()) < 0) break;
+        if (attr(j.c_str()) < 0 || attr(w.c_str()) < 0)
+            return error(
+                ErrorCode::InvalidInput,
+                where + ": " + (attr(j.c_str()) < 0 ? w + " without " + j : j + " without " + w));
+        auto joints = optional(j.c_str(), TINYGLTF_TYPE_VEC4);
+        if (!joints) return std::unexpected(joints.error());
+        auto amounts = optional(w.c_str(), TINYGLTF_TYPE_VEC4);
+        if (!amounts) return std::unexpected(amounts.error());
+        skin.influences += 4;
+        skin.joints.resize(n * skin.influences);
+        skin.weights.resize(n * skin.influences);
+        for (size_t i = 0; i < n; ++i)
+            for (size_t k = 0; k < 4; ++k) {
+                const float joint = (*joints)[4 * i + k];
+                if (!(joint >= 0.0f && joint < 65536.0f))
+                    return error(ErrorCode::InvalidInput, where + ": " + j + "[" +
+                                                              std::to_string(i) + "] names joint " +
+                                                              fmt(double(joint)));
+                skin.joints[i * skin.influences + size_t(4 * set) + k] = uint32_t(joint);
+                skin.weights[i * skin.influences + size_t(4 * set) + k] = (*amounts)[4 * i + k];
+            }
+    }
 
     std::vector<uint32_t> idx;
     if (*compressed) {
@@ -218,12 +257,20 @@ Result<Primitive> Loader::primitive(size_t meshIndex, size_t primIndex) {
         p.indices = std::move(idx);
     }
 
-    auto chosen = variantMaterial(where, prim);
-    if (!chosen) return std::unexpected(chosen.error());
-    auto m = materialIndex(where, *chosen);
-    if (!m) return std::unexpected(m.error());
-    p.material = *m;
-    // glTF 3.7.2.1: without normals, flat normals, and tangents are then ignored.
+    // glTF 3.7.2.1: without normals, flat normals, and tangents are then ignored. Flat normals
+    // give each triangle its own corners: the skinning data follows them, and a skinned copy
+    // makes both anew from its posed positions.
+    skin.flatNormals = normals->empty();
+    skin.generatedTangents = normals->empty() || tangents->empty();
+    if (normals->empty() && skin.influences > 0) {
+        Skinning corners{skin.influences, {}, {}, true, true};
+        for (uint32_t i : p.indices)
+            for (size_t k = 0; k < skin.influences; ++k) {
+                corners.joints.push_back(skin.joints[i * skin.influences + k]);
+                corners.weights.push_back(skin.weights[i * skin.influences + k]);
+            }
+        skin = std::move(corners);
+    }
     if (normals->empty())
         generateFlatNormals(p);
     else
@@ -239,27 +286,42 @@ Result<Primitive> Loader::primitive(size_t meshIndex, size_t primIndex) {
     return p;
 }
 
-Result<void> Loader::meshes() {
-    for (size_t m = 0; m < model.meshes.size(); ++m) {
-        Mesh mesh;
-        mesh.name =
-            model.meshes[m].name.empty() ? "mesh " + std::to_string(m) : model.meshes[m].name;
-        for (size_t p = 0; p < model.meshes[m].primitives.size(); ++p) {
-            // Points and lines are not drawn yet: the rest of the file still is (a mesh with one
-            // line primitive used to take its whole file down).
-            const int mode = model.meshes[m].primitives[p].mode;
-            if (mode == TINYGLTF_MODE_POINTS || mode == TINYGLTF_MODE_LINE ||
-                mode == TINYGLTF_MODE_LINE_LOOP || mode == TINYGLTF_MODE_LINE_STRIP) {
+// glTF mesh m at the given morph weights; its primitives' skinning data is pushed onto
+// meshSkinning beside the Scene mesh it becomes.
+Result<Mesh> Loader::mesh(size_t m, const std::vector<double>& weights) {
+    Mesh mesh;
+    mesh.name = model.meshes[m].name.empty() ? "mesh " + std::to_string(m) : model.meshes[m].name;
+    std::vector<Skinning> skinning;
+    for (size_t p = 0; p < model.meshes[m].primitives.size(); ++p) {
+        // Points and lines are not drawn yet: the rest of the file still is (a mesh with one
+        // line primitive used to take its whole file down).
+        const int mode = model.meshes[m].primitives[p].mode;
+        if (mode == TINYGLTF_MODE_POINTS || mode == TINYGLTF_MODE_LINE ||
+            mode == TINYGLTF_MODE_LINE_LOOP || mode == TINYGLTF_MODE_LINE_STRIP) {
+            if (m >= scene.meshes.size())  // once, not again for a node's own morph weights
                 warn(named("mesh", m, model.meshes[m].name) + " primitive " + std::to_string(p) +
                      ": mode " + modeName(mode) +
                      " is not drawn (rgraph draws triangles only); skipped");
-                continue;
-            }
-            auto prim = primitive(m, p);
-            if (!prim) return std::unexpected(prim.error());
-            mesh.primitives.push_back(std::move(*prim));
+            continue;
         }
-        scene.meshes.push_back(std::move(mesh));
+        Skinning skin;
+        auto prim = primitive(m, p, weights, skin);
+        if (!prim) return std::unexpected(prim.error());
+        mesh.primitives.push_back(std::move(*prim));
+        skinning.push_back(std::move(skin));
+    }
+    meshSkinning.push_back(std::move(skinning));
+    return mesh;
+}
+
+Result<void> Loader::meshes() {
+    for (size_t m = 0; m < model.meshes.size(); ++m) {
+        const std::string where = named("mesh", m, model.meshes[m].name) + ": weights";
+        if (auto r = morphWeights(m, model.meshes[m].weights, where); !r)
+            return std::unexpected(r.error());
+        auto mesh = this->mesh(m, model.meshes[m].weights);
+        if (!mesh) return std::unexpected(mesh.error());
+        scene.meshes.push_back(std::move(*mesh));
     }
     return {};
 }

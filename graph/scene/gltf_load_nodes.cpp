@@ -194,7 +194,8 @@ Result<void> Loader::light(size_t nodeIndex, const glm::mat4& world) {
 // EXT_mesh_gpu_instancing: the node's mesh once per instance, each at the node's transform times
 // the instance's TRANSLATION, ROTATION (a unit quaternion, x y z w) and SCALE (each optional, all
 // of one count), as a node of its own named "NAME #i".
-Result<void> Loader::instances(size_t index, const std::string& name, const glm::mat4& world) {
+Result<void> Loader::instances(size_t index, const std::string& name, const glm::mat4& world,
+                               int32_t mesh) {
     const auto& n = model.nodes[index];
     const std::string where = named("node", index, n.name) + ": EXT_mesh_gpu_instancing";
     const tinygltf::Value& attributes =
@@ -242,7 +243,7 @@ Result<void> Loader::instances(size_t index, const std::string& name, const glm:
         if (!attrs[2].values.empty()) s = glm::make_vec3(&attrs[2].values[3 * i]);
         const glm::mat4 local =
             glm::translate(glm::mat4(1.0f), t) * glm::mat4_cast(q) * glm::scale(glm::mat4(1.0f), s);
-        scene.nodes.push_back({name + " #" + std::to_string(i), world * local, n.mesh});
+        scene.nodes.push_back({name + " #" + std::to_string(i), world * local, mesh});
     }
     return {};
 }
@@ -268,6 +269,7 @@ Result<void> Loader::enter(size_t index, const glm::mat4& parent, std::vector<bo
     auto local = localTransform(index);
     if (!local) return std::unexpected(local.error());
     world = parent * *local;
+    worlds[index] = world;
     if (n.mesh >= 0) {
         if (size_t(n.mesh) >= scene.meshes.size())
             return error(ErrorCode::InvalidInput, named("node", index, n.name) + ": mesh " +
@@ -275,10 +277,17 @@ Result<void> Loader::enter(size_t index, const glm::mat4& parent, std::vector<bo
                                                       std::to_string(model.meshes.size()) +
                                                       " meshes)");
         const std::string name = n.name.empty() ? scene.meshes[size_t(n.mesh)].name : n.name;
+        int32_t mesh = n.mesh;
+        RG_TRY(mesh, nodeMesh(index));
         if (auto it = n.extensions.find("EXT_mesh_gpu_instancing"); it != n.extensions.end()) {
-            if (auto r = instances(index, name, world); !r) return r;
+            if (n.skin >= 0)
+                warn(named("node", index, n.name) +
+                     ": a skin on an instanced node is not applied (its instances are placed as "
+                     "given)");
+            if (auto r = instances(index, name, world, mesh); !r) return r;
         } else {
-            scene.nodes.push_back({name, world, n.mesh});
+            if (n.skin >= 0) skinned.push_back({index, scene.nodes.size()});
+            scene.nodes.push_back({name, world, mesh});
         }
     }
     if (n.camera >= 0)
@@ -369,6 +378,7 @@ Result<void> Loader::nodes() {
             if (!child[i]) roots.push_back(int(i));
     }
     std::vector<bool> onPath(model.nodes.size(), false), seen(model.nodes.size(), false);
+    worlds.assign(model.nodes.size(), std::nullopt);
     for (int r : roots) {
         if (r < 0 || size_t(r) >= model.nodes.size())
             return error(ErrorCode::InvalidInput,
@@ -376,7 +386,7 @@ Result<void> Loader::nodes() {
                              std::to_string(model.nodes.size()) + " nodes)");
         if (auto v = visit(size_t(r), glm::mat4(1.0f), onPath, seen, 0); !v) return v;
     }
-    return {};
+    return skins();
 }
 
 }  // namespace gltf_load

@@ -162,8 +162,16 @@ bool checkMesh(Schema& s, const json& m, const std::string& at) {
         if (!s.index(prim, "indices", pa) || !s.index(prim, "material", pa) ||
             !s.integer(prim, "mode", pa))
             return false;
-        if (auto t = prim.find("targets"); t != prim.end() && !t->is_array())
-            return s.fail(pa + ".targets", "an array", *t);
+        if (auto t = prim.find("targets"); t != prim.end()) {
+            if (!t->is_array()) return s.fail(pa + ".targets", "an array", *t);
+            for (size_t k = 0; k < t->size(); ++k) {
+                const std::string ta = pa + ".targets[" + std::to_string(k) + "]";
+                if (!(*t)[k].is_object())
+                    return s.fail(ta, "an object of accessor indices", (*t)[k]);
+                for (const auto& [name, value] : (*t)[k].items())
+                    if (!s.index((*t)[k], name.c_str(), ta)) return false;
+            }
+        }
     }
     return s.numbers(m, "weights", 0, at);
 }

@@ -55,6 +55,7 @@ inline constexpr int kFloat = 5126, kUByte = 5121, kUShort = 5123, kUInt = 5125;
 struct GltfBuilder {
     json j = {{"asset", {{"version", "2.0"}}}};
     std::vector<unsigned char> bin;
+    json moreBuffers = json::array();  // buffers 1, 2, ... after the one `bin` becomes
 
     int view(const void* data, size_t size) {
         while (bin.size() % 4) bin.push_back(0);
@@ -107,6 +108,7 @@ struct GltfBuilder {
             doc["buffers"] = json::array({{{"uri", b}, {"byteLength", bin.size()}}});
             writeBytes(dir + "/" + b, bin);
         }
+        for (const json& b : moreBuffers) doc["buffers"].push_back(b);
         const std::string path = dir + "/" + name + ".gltf";
         writeText(path, doc.dump(1));
         return path;
@@ -116,6 +118,7 @@ struct GltfBuilder {
         std::vector<unsigned char> b = bin;
         while (b.size() % 4) b.push_back(0);
         if (!b.empty()) doc["buffers"] = json::array({{{"byteLength", bin.size()}}});
+        for (const json& extra : moreBuffers) doc["buffers"].push_back(extra);
         std::string text = doc.dump();
         while (text.size() % 4) text += ' ';
         std::vector<unsigned char> out;
