@@ -131,5 +131,6 @@ int cmdBake(int argc, char** argv);
 int cmdAccuracy(int argc, char** argv);
 int cmdCompare(int argc, char** argv);
 int cmdBench(int argc, char** argv);
+int cmdGallery(int argc, char** argv);
 
 }  // namespace rg::cli

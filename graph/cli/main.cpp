@@ -30,6 +30,7 @@ const char* kMainHelp =
     "  test      run the golden-image tests (tests/golden/*.lua): --update, --report DIR, --junit "
     "FILE\n"
     "  compare   error between two EXR renders: relative error, RMSE, PSNR, heat map\n"
+    "  gallery   every glTF in a folder rendered into one page: image, status, warnings\n"
     "\n"
     "'rgraph COMMAND --help' describes each command. Exit codes: 0 success, 1 failed check or\n"
     "device failure, 2 bad usage or bad input.\n"
@@ -56,6 +57,7 @@ int main(int argc, char** argv) {
     if (cmd == "accuracy") return cmdAccuracy(argc, argv);
     if (cmd == "test") return rg::goldenCommand(argc, argv);
     if (cmd == "compare") return cmdCompare(argc, argv);
+    if (cmd == "gallery") return cmdGallery(argc, argv);
     std::fprintf(stderr, "rgraph: unknown command '%s'\n\n%s", cmd.c_str(), kMainHelp);
     return kUsage;
 }

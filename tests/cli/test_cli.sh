@@ -221,6 +221,11 @@ check "compare missing layer" 2 grep "has no layer 'nope'" -- "$rgraph" compare 
 check "compare --downsample" 0 grep "mean relative error" -- bash -c "'$rgraph' render --size 32x16 --frames 3 --out '$tmp/half.exr' >/dev/null && '$rgraph' compare '$tmp/half.exr' '$tmp/r.exr' --downsample 2"
 check "compare --downsample: not N times" 2 grep "is 64x32, not 2 times 64x32" -- "$rgraph" compare "$tmp/r.exr" "$tmp/r.exr" --downsample 2
 check "compare --downsample: not a number" 2 grep "expected a whole number 1..64, got 'x'" -- "$rgraph" compare "$tmp/r.exr" "$tmp/r.exr" --downsample x
+mkdir -p "$tmp/no_gltf"
+check "gallery: no folder" 2 grep "gallery needs a folder" -- "$rgraph" gallery
+check "gallery: not a folder" 2 grep "is not a folder" -- "$rgraph" gallery "$tmp/r.exr"
+check "gallery: no glTF" 2 grep "no .gltf or .glb files under" -- "$rgraph" gallery "$tmp/no_gltf"
+check "gallery: bad size" 2 grep "--size 'big': expected WxH" -- "$rgraph" gallery "$tmp/no_gltf" --size big
 check "graph dot" 0 grep "digraph rgraph" -- "$rgraph" graph --pipeline scripts/pipelines/test.lua
 check "scene args" 0 grep "wrote $tmp/ml.exr" -- \
     env RG_VALIDATION=1 "$rgraph" render --scene scripts/scenes/many_lights.lua --scene-arg lights=8 --set exposure_mode=manual \
