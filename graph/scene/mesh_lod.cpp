@@ -68,7 +68,9 @@ public:
         const float side = std::clamp(std::round(2.0f * std::cbrt(float(triangles))), 1.0f, 128.0f);
         m_cell = std::max({extent.x, extent.y, extent.z}) / side;
         m_lo = lo;
-        m_n = glm::max(glm::ivec3(glm::ceil(extent / m_cell)), glm::ivec3(1));
+        const glm::vec3 cells = glm::ceil(extent / m_cell);  // at most side + 1 each, or NaN
+        for (int k = 0; k < 3; ++k)
+            m_n[k] = cells[k] >= 1.0f ? int(std::min(cells[k], side + 1.0f)) : 1;
         std::vector<uint32_t> count(size_t(m_n.x) * m_n.y * m_n.z + 1, 0);
         auto each = [&](size_t t, auto&& f) {
             glm::vec3 a = v[indices[3 * t]].position, b = v[indices[3 * t + 1]].position,
@@ -122,8 +124,14 @@ public:
     }
 
 private:
+    // Clamped while still a float: a point far outside (or a NaN from an extent that overflowed
+    // to infinity) must not reach the int conversion.
     glm::ivec3 cellOf(const glm::vec3& p) const {
-        return glm::clamp(glm::ivec3(glm::floor((p - m_lo) / m_cell)), glm::ivec3(0), m_n - 1);
+        const glm::vec3 f = glm::floor((p - m_lo) / m_cell);
+        glm::ivec3 c;
+        for (int k = 0; k < 3; ++k)
+            c[k] = f[k] >= 0.0f ? int(std::min(f[k], float(m_n[k] - 1))) : 0;
+        return c;
     }
     size_t index(const glm::ivec3& c) const {
         return (size_t(c.z) * size_t(m_n.y) + size_t(c.y)) * size_t(m_n.x) + size_t(c.x);
