@@ -5,6 +5,7 @@
 // This file holds the kind (its schema and ScenePass, which picks the mode), what every mode draws
 // with (SceneDraws), and the modes that draw from the camera: the G-buffer and forward passes.
 #include <algorithm>
+#include <iterator>
 #include <limits>
 #include <tuple>
 #include <glm/glm.hpp>
@@ -171,14 +172,15 @@ const VkPipelineVertexInputStateCreateInfo& SceneDraws::vertexInput() {
         {1, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, normal))},
         {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, tangent))},
         {3, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, uv0))},
-        {4, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, uv1))}};
+        {4, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, uv1))},
+        {5, 0, VK_FORMAT_R16G16B16A16_UNORM, static_cast<uint32_t>(offsetof(Vertex, color))}};
     static const VkPipelineVertexInputStateCreateInfo vi{
         VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
         nullptr,
         0,
         1,
         &binding,
-        5,
+        static_cast<uint32_t>(std::size(attrs)),
         attrs};
     return vi;
 }

@@ -85,7 +85,7 @@ std::string fragmentSource(const PassMaterial& m, const std::vector<std::string>
       << "layout(location = 0) in vec3 worldPosition;\nlayout(location = 1) in vec3 worldNormal;\n"
       << "layout(location = 2) in vec4 worldTangent;\nlayout(location = 3) in vec2 "
          "uv0;\nlayout(location = 4) in vec2 uv1;\n"
-      << "layout(location = 5) in vec2 lightmapUv;\n"
+      << "layout(location = 5) in vec2 lightmapUv;\nlayout(location = 6) in vec4 vertexColor;\n"
       << "#ifdef RG_EMISSIVE_EV\n#include \"lib/exposure.glsl\"\n"
       << kExposureBlocks << "#define RG_EMISSIVE_SCALE " << kExposureScale << "\n#else\n"
       << "#define RG_EMISSIVE_SCALE " << kScaleWithoutExposure << "\n#endif\n";
@@ -105,6 +105,7 @@ std::string fragmentSource(const PassMaterial& m, const std::vector<std::string>
         s << "layout(location = " << specularLocation << ") out vec4 lightmapSpecular;\n";
     s << "void main() {\n"
       << "    RgSurface s = rgSampleSurface(worldPosition, worldNormal, worldTangent, uv0, uv1, "
+         "vertexColor, "
          "gl_FrontFacing);\n"
       << "#if RG_ALPHA_MASK\n    if (s.opacity < material.factors2.z) discard;  // alpha "
          "mask\n#endif\n"
@@ -142,10 +143,11 @@ std::string forwardSource(const PassMaterial& m) {
       << "layout(location = 0) in vec3 worldPosition;\nlayout(location = 1) in vec3 worldNormal;\n"
       << "layout(location = 2) in vec4 worldTangent;\nlayout(location = 3) in vec2 "
          "uv0;\nlayout(location = 4) in vec2 uv1;\n"
-      << "layout(location = 5) in vec2 lightmapUv;\n"
+      << "layout(location = 5) in vec2 lightmapUv;\nlayout(location = 6) in vec4 vertexColor;\n"
       << "layout(location = 0) out vec4 color;\n"
       << kExposureBlocks << "void main() {\n"
       << "    RgSurface s = rgSampleSurface(worldPosition, worldNormal, worldTangent, uv0, uv1, "
+         "vertexColor, "
          "gl_FrontFacing);\n"
       << emissiveScaled(kExposureScale) << kLightmapRadiosity << "    GBuffer_" << m.layout
       << " g = rgSurface(s);\n"

@@ -158,9 +158,11 @@ def grid(nx, ny, fn):
 
 
 def sphere(r=0.5, seg=32):
-    return grid(seg, seg // 2, lambda u, v: np.stack(
-        [-r * np.sin(v * math.pi) * np.cos(u * 2 * math.pi), r * np.cos(v * math.pi),
-         r * np.sin(v * math.pi) * np.sin(u * 2 * math.pi)], -1))
+    pos, nrm, uv, idx = grid(seg, seg // 2, lambda u, v: np.stack(
+        [r * np.sin(v * math.pi) * np.cos(u * 2 * math.pi), r * np.cos(v * math.pi),
+         -r * np.sin(v * math.pi) * np.sin(u * 2 * math.pi)], -1))
+    # The exact normals (the derivatives vanish at the poles); the triangles turned to face out.
+    return pos, pos / r, uv, idx.reshape(-1, 3)[:, ::-1].reshape(-1)
 
 
 def quad(w=1.0, h=1.0):
@@ -170,7 +172,7 @@ def quad(w=1.0, h=1.0):
 def tube(r=0.15, length=1.6, rings=16, seg=16):
     """A capped-less tube along +y from 0 to `length` (skins and morphs bend it)."""
     return grid(seg, rings, lambda u, v: np.stack(
-        [r * np.cos(u * 2 * math.pi), length * (1 - v), -r * np.sin(u * 2 * math.pi)], -1))
+        [r * np.cos(u * 2 * math.pi), length * v, -r * np.sin(u * 2 * math.pi)], -1))
 
 
 def look_at(eye, target):
@@ -223,6 +225,19 @@ def lines_and_points(d):
     d.node(mesh=d.mesh([d.prim((pos, nrm, None, None), m),
                         d.prim((pos + [1.2, 0, 0], nrm, None, np.array([0, 1, 1, 2, 2, 0])), m, mode=1),
                         d.prim((pos + [2.4, 0, 0], nrm, None, None), m, mode=0)]))
+
+
+def vertex_colors(d):
+    # COLOR_0 times the base colour: a white sphere coloured by its normal (float RGB), and a
+    # quad with red, green, blue and white corners (normalised unsigned bytes, RGBA).
+    pos, nrm, uv, idx = sphere(0.45)
+    white = d.material(pbr((1, 1, 1)))
+    d.node(mesh=d.mesh([d.prim((pos, nrm, uv, idx), white, {"COLOR_0": d.accessor(nrm * 0.5 + 0.5)})]),
+           translation=[-0.55, 0, 0])
+    corners = np.array([[255, 0, 0, 255], [0, 255, 0, 255], [0, 0, 255, 255], [255, 255, 255, 255]])
+    d.node(mesh=d.mesh([d.prim(quad(0.9, 0.9), white,
+                               {"COLOR_0": d.accessor(corners, UBYTE, normalized=True)})]),
+           translation=[0.55, 0, 0])
 
 
 def texture_transform(d):
@@ -413,7 +428,7 @@ def broken_required(d):
 
 
 MODELS = [basic, metal_rough_spheres, primitive_modes, lines_and_points, texture_transform,
-          texcoord_sets, quantized, morph_targets, skin, instancing, variants, unlit,
+          texcoord_sets, vertex_colors, quantized, morph_targets, skin, instancing, variants, unlit,
           emissive_label, clearcoat, ior_specular, specular_glossiness, alpha_modes,
           punctual_lights, camera, broken_index, broken_schema, broken_required]
 

@@ -268,8 +268,8 @@ struct Writer {
             tinygltf::Mesh g;
             g.name = mesh.name;
             for (const auto& p : mesh.primitives) {
-                std::vector<float> pos, nrm, tan, uv0, uv1;
-                bool hasUv1 = false;
+                std::vector<float> pos, nrm, tan, uv0, uv1, color;
+                bool hasUv1 = false, hasColor = false;
                 for (const auto& v : p.vertices) {
                     pos.insert(pos.end(), {v.position.x, v.position.y, v.position.z});
                     nrm.insert(nrm.end(), {v.normal.x, v.normal.y, v.normal.z});
@@ -277,6 +277,8 @@ struct Writer {
                     uv0.insert(uv0.end(), {v.uv0.x, v.uv0.y});
                     uv1.insert(uv1.end(), {v.uv1.x, v.uv1.y});
                     hasUv1 = hasUv1 || v.uv1 != glm::vec2(0.0f);
+                    for (int k = 0; k < 4; ++k) color.push_back(float(v.color[k]) / 65535.0f);
+                    hasColor = hasColor || v.color != glm::u16vec4(65535);
                 }
                 tinygltf::Primitive gp;
                 gp.mode = TINYGLTF_MODE_TRIANGLES;
@@ -287,6 +289,8 @@ struct Writer {
                 gp.attributes["TEXCOORD_0"] = addFloats<2>(uv0, TINYGLTF_TYPE_VEC2, false);
                 if (hasUv1)
                     gp.attributes["TEXCOORD_1"] = addFloats<2>(uv1, TINYGLTF_TYPE_VEC2, false);
+                if (hasColor)
+                    gp.attributes["COLOR_0"] = addFloats<4>(color, TINYGLTF_TYPE_VEC4, false);
                 tinygltf::Accessor ia;
                 ia.bufferView = addView(p.indices.data(), p.indices.size() * sizeof(uint32_t),
                                         TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);

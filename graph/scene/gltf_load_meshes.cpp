@@ -1,5 +1,6 @@
 // glTF meshes -> Scene meshes: each primitive's attributes and indices read through the checked
 // accessors, strips and fans made lists, missing normals and tangents generated.
+#include <algorithm>
 #include <cmath>
 
 #include "gltf_load_detail.h"
@@ -190,6 +191,19 @@ Result<Primitive> Loader::primitive(size_t meshIndex, size_t primIndex,
                           (*tangents)[4 * i + 3] < 0 ? -1.0f : 1.0f);
         if (!uv0->empty()) v.uv0 = glm::vec2((*uv0)[2 * i], (*uv0)[2 * i + 1]);
         if (!uv1->empty()) v.uv1 = glm::vec2((*uv1)[2 * i], (*uv1)[2 * i + 1]);
+    }
+    // COLOR_0 (glTF 3.7.2.1): RGB or RGBA, float or normalised unsigned byte/short, linear.
+    if (attr("COLOR_0") >= 0) {
+        auto acc = accessor(where + ": COLOR_0", attr("COLOR_0"));
+        if (!acc) return std::unexpected(acc.error());
+        const bool rgb = (*acc)->type == TINYGLTF_TYPE_VEC3;
+        auto color = optional("COLOR_0", rgb ? TINYGLTF_TYPE_VEC3 : TINYGLTF_TYPE_VEC4);
+        if (!color) return std::unexpected(color.error());
+        const size_t comps = rgb ? 3 : 4;
+        for (size_t i = 0; i < n; ++i)
+            for (size_t k = 0; k < comps; ++k)
+                p.vertices[i].color[int(k)] = static_cast<uint16_t>(
+                    std::lround(std::clamp((*color)[comps * i + k], 0.0f, 1.0f) * 65535.0f));
     }
     // TEXCOORD_1 is the lightmap parameterisation game teams author (charts in [0, 1]²).
     p.lightmapUv = slots[1] == 1 && !uv1->empty();

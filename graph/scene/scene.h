@@ -26,6 +26,7 @@
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/type_precision.hpp>
 
 #include "core/result.h"
 #include "core/value.h"
@@ -42,6 +43,9 @@ struct Vertex {
     glm::vec4 tangent{1.0f, 0.0f, 0.0f, 1.0f};  // xyz along +u, w = handedness (±1), see above
     glm::vec2 uv0{0.0f};
     glm::vec2 uv1{0.0f};
+    // glTF's COLOR_0, linear RGBA as 16-bit unorm (white: none): multiplies the material's base
+    // colour (and diffuse colour) and opacity (lib/material.glsl rgSampleSurface).
+    glm::u16vec4 color{65535, 65535, 65535, 65535};
 };
 
 // A triangle list: every 3 indices are one counter-clockwise triangle.

@@ -115,10 +115,12 @@ float rgSpecularAntialiasing(float smoothness, vec3 n, float mapLength) {
     return 1.0 - sqrt(sqrt(alpha2));
 }
 
-RgSurface rgSampleSurface(vec3 position, vec3 normal, vec4 tangent, vec2 uv0, vec2 uv1, bool frontFacing) {
+// vertexColor: the mesh's COLOR_0 (white without), a factor of the base colour and opacity as
+// glTF defines it (and of the two-colour material's diffuse colour).
+RgSurface rgSampleSurface(vec3 position, vec3 normal, vec4 tangent, vec2 uv0, vec2 uv1, vec4 vertexColor, bool frontFacing) {
     RgSurface s;
     s.position = position;
-    vec4 base = rgSampleMaterialTexture(baseColorTex, 1, 0, uv0, uv1, vec4(1.0));
+    vec4 base = rgSampleMaterialTexture(baseColorTex, 1, 0, uv0, uv1, vec4(1.0)) * vertexColor;
     s.baseColor = material.baseColorOpacity.rgb * base.rgb;
     s.opacity = material.baseColorOpacity.a * base.a;
     vec4 mr = rgSampleMaterialTexture(metallicRoughnessTex, 2, 1, uv0, uv1, vec4(1.0));

@@ -9,12 +9,14 @@ layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec4 inTangent;
 layout(location = 3) in vec2 inUv0;
 layout(location = 4) in vec2 inUv1;
+layout(location = 5) in vec4 inColor;  // COLOR_0 (white without)
 
 layout(location = 0) out vec3 worldPosition;
 layout(location = 1) out vec3 worldNormal;
 layout(location = 2) out vec4 worldTangent;
 layout(location = 3) out vec2 uv0;
 layout(location = 4) out vec2 uv1;
+layout(location = 6) out vec4 vertexColor;
 layout(location = 5) out vec2 lightmapUv;  // the node's square of the scene's lightmap atlas
 
 // 128 bytes, the push-constant size every Vulkan device has. All zeros: an instanced run.
@@ -48,6 +50,7 @@ void main() {
     worldTangent = vec4(mat3(world) * inTangent.xyz, inTangent.w);
     uv0 = inUv0;
     uv1 = inUv1;
+    vertexColor = inColor;
     lightmapUv = inUv1 * lightmapRect.xy + lightmapRect.zw;
     gl_Position = camera.viewProj * p;
 }

@@ -13,12 +13,14 @@ layout(location = 1) in vec3 inNormal;
 layout(location = 2) in vec4 inTangent;
 layout(location = 3) in vec2 inUv0;
 layout(location = 4) in vec2 inUv1;
+layout(location = 5) in vec4 inColor;  // COLOR_0 (white without)
 
 layout(location = 0) out vec3 worldPosition;
 layout(location = 1) out vec3 worldNormal;
 layout(location = 2) out vec4 worldTangent;
 layout(location = 3) out vec2 uv0;
 layout(location = 4) out vec2 uv1;
+layout(location = 6) out vec4 vertexColor;
 layout(location = 5) flat out vec3 eye;
 
 layout(push_constant) uniform Draw {
@@ -35,6 +37,7 @@ void main() {
     worldTangent = vec4(mat3(draw.world) * inTangent.xyz, inTangent.w);
     uv0 = inUv0;
     uv1 = inUv1;
+    vertexColor = inColor;
     uint layer = uint(draw.layer.x + 0.5);
     uint face = layer % 6u;
     eye = rgProbes.probe[layer / 6u].positionShape.xyz;

@@ -22,6 +22,7 @@ layout(location = 2) in vec4 worldTangent;
 layout(location = 3) in vec2 uv0;
 layout(location = 4) in vec2 uv1;
 layout(location = 5) flat in vec3 eye;
+layout(location = 6) in vec4 vertexColor;
 layout(location = 0) out vec4 color;
 layout(set = 0, binding = 0, std140) uniform env_sh { vec4 coefficients[9]; } rgEnvSh;
 layout(set = 0, binding = 1) uniform sampler2D dfg;
@@ -41,7 +42,7 @@ void rgCaptureSurface(RgSurface s, out vec3 N, out vec3 albedo, out float linear
 void main() {
     // The facing from the geometry: the capture's face projections do not keep one winding.
     vec3 V = normalize(eye - worldPosition);
-    RgSurface s = rgSampleSurface(worldPosition, worldNormal, worldTangent, uv0, uv1, dot(worldNormal, V) >= 0.0);
+    RgSurface s = rgSampleSurface(worldPosition, worldNormal, worldTangent, uv0, uv1, vertexColor, dot(worldNormal, V) >= 0.0);
 #if RG_ALPHA_MASK
     if (s.opacity < material.factors2.z) discard;  // alpha mask (only this variant discards: passes/scene_pass.cpp variantKey)
 #endif

@@ -355,3 +355,37 @@ TEST(GltfGeometry, TexturesReadTheTexcoordSetTheyName) {
                      "TEXCOORD_0") != std::string::npos;
     EXPECT_TRUE(named) << (scene->warnings.empty() ? "no warnings" : scene->warnings.back());
 }
+
+// COLOR_0: float RGB (alpha 1) and normalised unsigned short RGBA load as the vertex's linear
+// colour (16-bit unorm), white without; exportGlb writes it back and the file loads the same.
+TEST(GltfGeometry, VertexColorsLoadAndRoundTrip) {
+    const std::string dir = tmpDir("color");
+    GltfBuilder g;
+    const std::vector<float> pos = {0, 0, 0, 1, 0, 0, 1, 1, 0};
+    const int p = g.floats(pos, "VEC3");
+    const int rgb = g.floats({1, 0, 0, 0, 0.5f, 0, 0.25f, 0.25f, 2.0f}, "VEC3");
+    const std::vector<uint16_t> rgba = {0, 65535, 0, 32768, 65535, 65535, 65535, 0, 1, 2, 3, 4};
+    const int shorts = g.accessor(g.view(rgba.data(), rgba.size() * 2), kUShort, 3, "VEC4", true);
+    g.mesh("tri", json::array({{{"attributes", {{"POSITION", p}, {"COLOR_0", rgb}}}},
+                               {{"attributes", {{"POSITION", p}, {"COLOR_0", shorts}}}},
+                               {{"attributes", {{"POSITION", p}}}}}));
+    g.scene({g.node({{"mesh", 0}})});
+    auto scene = rg::loadGltf(g.writeGltf(dir, "color"), noImages());
+    ASSERT_TRUE(scene) << errorOf(scene);
+    auto check = [](const rg::Scene& s, const char* what) {
+        const auto& prims = s.meshes[0].primitives;
+        // Flat normals gave each triangle its own corners, in index order.
+        EXPECT_EQ(prims[0].vertices[0].color, glm::u16vec4(65535, 0, 0, 65535)) << what;
+        EXPECT_EQ(prims[0].vertices[1].color, glm::u16vec4(0, 32768, 0, 65535)) << what;
+        EXPECT_EQ(prims[0].vertices[2].color, glm::u16vec4(16384, 16384, 65535, 65535))
+            << what << ": 0.25 and a value above 1 clamped";
+        EXPECT_EQ(prims[1].vertices[1].color, glm::u16vec4(65535, 65535, 65535, 0)) << what;
+        EXPECT_EQ(prims[1].vertices[2].color, glm::u16vec4(1, 2, 3, 4)) << what;
+        EXPECT_EQ(prims[2].vertices[0].color, glm::u16vec4(65535)) << what << ": none is white";
+    };
+    check(*scene, "loaded");
+    ASSERT_TRUE(rg::exportGlb(*scene, dir + "/color.glb"));
+    auto back = rg::loadGltf(dir + "/color.glb", noImages());
+    ASSERT_TRUE(back) << errorOf(back);
+    check(*back, "exported and loaded again");
+}
