@@ -127,6 +127,11 @@ struct Loader {
     std::map<std::pair<int, std::vector<double>>, int32_t>
         morphed;                                 // (mesh, weights) -> Scene mesh
     Result<int32_t> nodeMesh(size_t nodeIndex);  // the node's mesh at the node's weights
+    // Vertices in the copies morphed or posed per node, and their bound (a hostile file with many
+    // skinned nodes must not exhaust memory).
+    size_t copiedVertices = 0;
+    static constexpr size_t kMaxCopiedVertices = size_t(1) << 24;
+    Result<void> copying(const Mesh& mesh, const std::string& where);
     struct SkinnedNode {
         size_t node;       // glTF node
         size_t sceneNode;  // its Scene node, posed by skins()

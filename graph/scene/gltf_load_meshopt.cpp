@@ -132,6 +132,13 @@ Result<void> Loader::meshopt() {
             return error(ErrorCode::InvalidInput, what + ": decodes to " + std::to_string(bytes) +
                                                       " bytes, more than the view's byteLength " +
                                                       std::to_string(view.byteLength));
+        // The buffer's declared length is the file's word: what is allocated stays within what a
+        // view may decode.
+        if (view.byteOffset + bytes > kMaxDecodedBytes)
+            return error(ErrorCode::InvalidInput, what + ": the view ends at byte " +
+                                                      std::to_string(view.byteOffset + bytes) +
+                                                      " of its fallback buffer (at most " +
+                                                      std::to_string(kMaxDecodedBytes) + ")");
         const uint64_t declared = meshoptFallbacks[size_t(view.buffer)];
         if (view.byteOffset + bytes > declared)
             return error(ErrorCode::InvalidInput, what + ": the view ends at byte " +

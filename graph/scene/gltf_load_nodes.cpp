@@ -271,7 +271,7 @@ Result<void> Loader::enter(size_t index, const glm::mat4& parent, std::vector<bo
     world = parent * *local;
     worlds[index] = world;
     if (n.mesh >= 0) {
-        if (size_t(n.mesh) >= scene.meshes.size())
+        if (size_t(n.mesh) >= model.meshes.size())  // not scene.meshes: it also holds copies
             return error(ErrorCode::InvalidInput, named("node", index, n.name) + ": mesh " +
                                                       std::to_string(n.mesh) + " does not exist (" +
                                                       std::to_string(model.meshes.size()) +

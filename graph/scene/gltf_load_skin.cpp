@@ -87,6 +87,16 @@ Result<void> Loader::morph(const std::string& where, const tinygltf::Primitive& 
     return {};
 }
 
+Result<void> Loader::copying(const Mesh& mesh, const std::string& where) {
+    for (const auto& p : mesh.primitives) copiedVertices += p.vertices.size();
+    if (copiedVertices > kMaxCopiedVertices)
+        return error(ErrorCode::InvalidInput,
+                     where + ": the meshes copied for morph weights and skins of nodes reach " +
+                         std::to_string(copiedVertices) + " vertices (at most " +
+                         std::to_string(kMaxCopiedVertices) + ")");
+    return {};
+}
+
 // A node's weights replace its mesh's (§3.7.2.2): a node with weights of its own draws a copy of
 // the mesh morphed by them, one copy per distinct set of weights.
 Result<int32_t> Loader::nodeMesh(size_t nodeIndex) {
@@ -99,6 +109,8 @@ Result<int32_t> Loader::nodeMesh(size_t nodeIndex) {
     if (auto it = morphed.find(key); it != morphed.end()) return it->second;
     auto mesh = this->mesh(m, n.weights);
     if (!mesh) return std::unexpected(mesh.error());
+    if (auto r = copying(*mesh, named("node", nodeIndex, n.name)); !r)
+        return std::unexpected(r.error());
     const auto index = static_cast<int32_t>(scene.meshes.size());
     scene.meshes.push_back(std::move(*mesh));
     morphed[key] = index;
@@ -170,6 +182,7 @@ Result<void> Loader::skins() {
         }
         const int32_t source = scene.nodes[s.sceneNode].mesh;
         const glm::mat4 nodeWorld = scene.nodes[s.sceneNode].world;
+        if (auto r = copying(scene.meshes[size_t(source)], where); !r) return r;
         Mesh posed = scene.meshes[size_t(source)];
         for (size_t p = 0; p < posed.primitives.size(); ++p) {
             const Skinning& sk = meshSkinning[size_t(source)][p];

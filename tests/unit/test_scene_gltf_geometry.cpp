@@ -164,6 +164,15 @@ TEST(GltfGeometry, MeshoptCompressedViewsDecodeToTheMeshTheyEncode) {
     ASSERT_FALSE(huge);
     EXPECT_NE(huge.error().message.find("elements of 12 bytes cannot come from"), std::string::npos)
         << huge.error().message;
+    // So is a view placed far into a fallback buffer that claims terabytes.
+    GltfBuilder far = build(positions, "ATTRIBUTES");
+    far.j["bufferViews"][0]["byteOffset"] = uint64_t(1) << 40;
+    far.moreBuffers[0]["byteLength"] = uint64_t(1) << 41;
+    auto farAway = rg::loadGltf(far.writeGltf(dir, "far"), noImages());
+    ASSERT_FALSE(farAway);
+    EXPECT_NE(farAway.error().message.find("of its fallback buffer (at most 2147483648)"),
+              std::string::npos)
+        << farAway.error().message;
 }
 
 // Morph targets (glTF §3.7.2.2): a quad lifted by its target's POSITION displacement times the
@@ -215,6 +224,15 @@ TEST(GltfGeometry, MorphTargetsApplyTheMeshsAndTheNodesWeights) {
         wrong.error().message.find("mesh 0 'quad': weights has 1 values, the mesh 2 morph targets"),
         std::string::npos)
         << wrong.error().message;
+    // A node naming a mesh beyond the file's is refused, even once a morphed copy exists.
+    GltfBuilder beyond = build(nullptr, {1.0, 0.0});
+    beyond.j["nodes"].push_back({{"mesh", 1}});
+    beyond.j["scenes"][0]["nodes"].push_back(2);
+    auto noMesh = rg::loadGltf(beyond.writeGltf(dir, "beyond"), noImages());
+    ASSERT_FALSE(noMesh);
+    EXPECT_NE(noMesh.error().message.find("node 2: mesh 1 does not exist (1 meshes)"),
+              std::string::npos)
+        << noMesh.error().message;
     auto wrongNode =
         rg::loadGltf(build(nullptr, {1, 2, 3}).writeGltf(dir, "wrongnode"), noImages());
     ASSERT_FALSE(wrongNode);
