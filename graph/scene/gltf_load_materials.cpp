@@ -304,21 +304,25 @@ Result<void> Loader::specularGlossiness(const tinygltf::Material& src, const std
     m.smoothness = float(glossiness);
     m.metalMask = 0.0f;
     m.metallicRoughnessTex = TextureRef{};  // the metallic-roughness model's: not this one's
-    // The extension's textures (sRGB colour; a specular-glossiness texture's alpha stays linear).
-    auto read = [&](const char* name, TextureRef& out) -> Result<void> {
-        const tinygltf::Value& t = x.Get(name);
-        if (!t.IsObject()) return {};
-        const tinygltf::ExtensionMap none;
-        auto r = texture(where + " " + name, indexOf(t.Get("index")),
+    if (x.Get("diffuseTexture").IsObject()) {
+        const auto& t = x.Get("diffuseTexture");
+        tinygltf::ExtensionMap none;
+        auto r = texture(where + " diffuseTexture", indexOf(t.Get("index")),
                          t.Get("texCoord").IsNumber() ? indexOf(t.Get("texCoord")) : 0, none, true);
         if (!r) return std::unexpected(r.error());
-        out = *r;
-        return {};
-    };
-    if (auto r = read("diffuseTexture", m.baseColorTex); !r) return r;
-    // The specular colour and glossiness take the metallic-roughness texture's slot, which the
-    // two-colour material reads so (lib/material.glsl).
-    return read("specularGlossinessTexture", m.metallicRoughnessTex);
+        m.baseColorTex = *r;
+    }
+    // Its specular colour (sRGB) and glossiness (alpha, linear) take the metallic-roughness
+    // texture's slot, which the two-colour material reads so (lib/material.glsl).
+    if (x.Get("specularGlossinessTexture").IsObject()) {
+        const auto& t = x.Get("specularGlossinessTexture");
+        tinygltf::ExtensionMap none;
+        auto r = texture(where + " specularGlossinessTexture", indexOf(t.Get("index")),
+                         t.Get("texCoord").IsNumber() ? indexOf(t.Get("texCoord")) : 0, none, true);
+        if (!r) return std::unexpected(r.error());
+        m.metallicRoughnessTex = *r;
+    }
+    return {};
 }
 
 Result<void> Loader::materials() {
