@@ -361,21 +361,11 @@ def ior_specular(d):
 
 
 def specular_glossiness(d):
-    # Glossiness 0.2, 0.6, 0.95; the fourth sphere's specular-glossiness texture: bands of gold
-    # and dark specular colour, glossy (alpha 1) and rough (alpha 0.3) in turn.
-    pix = np.zeros((64, 64, 4), np.uint8)
-    band = (np.arange(64) // 8) % 2 == 0
-    pix[band] = (255, 200, 60, 255)
-    pix[~band] = (40, 40, 40, 77)
-    t = d.image(pix)
-    for i, gloss in enumerate((0.2, 0.6, 0.95, 1.0)):
-        sg = {"diffuseFactor": [0.1, 0.3, 0.6, 1], "specularFactor": [0.5, 0.5, 0.5],
-              "glossinessFactor": gloss}
-        if i == 3:
-            sg.update(diffuseFactor=[0.05, 0.05, 0.05, 1], specularFactor=[1, 1, 1],
-                      specularGlossinessTexture={"index": t})
-        m = {"extensions": {"KHR_materials_pbrSpecularGlossiness": sg}}
-        d.node(mesh=d.mesh([d.prim(sphere(0.25), d.material(m))]), translation=[(i - 1.5) * 0.6, 0, 0])
+    for i, gloss in enumerate((0.2, 0.6, 0.95)):
+        m = {"extensions": {"KHR_materials_pbrSpecularGlossiness": {
+            "diffuseFactor": [0.1, 0.3, 0.6, 1], "specularFactor": [0.5, 0.5, 0.5],
+            "glossinessFactor": gloss}}}
+        d.node(mesh=d.mesh([d.prim(sphere(0.3), d.material(m))]), translation=[(i - 1) * 0.7, 0, 0])
     d.uses("KHR_materials_pbrSpecularGlossiness")
 
 

@@ -312,16 +312,10 @@ Result<void> Loader::specularGlossiness(const tinygltf::Material& src, const std
         if (!r) return std::unexpected(r.error());
         m.baseColorTex = *r;
     }
-    // Its specular colour (sRGB) and glossiness (alpha, linear) take the metallic-roughness
-    // texture's slot, which the two-colour material reads so (lib/material.glsl).
-    if (x.Get("specularGlossinessTexture").IsObject()) {
-        const auto& t = x.Get("specularGlossinessTexture");
-        tinygltf::ExtensionMap none;
-        auto r = texture(where + " specularGlossinessTexture", indexOf(t.Get("index")),
-                         t.Get("texCoord").IsNumber() ? indexOf(t.Get("texCoord")) : 0, none, true);
-        if (!r) return std::unexpected(r.error());
-        m.metallicRoughnessTex = *r;
-    }
+    if (x.Has("specularGlossinessTexture"))
+        warn(ext +
+             "specularGlossinessTexture is ignored (the two-colour material takes the "
+             "factors)");
     return {};
 }
 

@@ -124,24 +124,16 @@ RgSurface rgSampleSurface(vec3 position, vec3 normal, vec4 tangent, vec2 uv0, ve
     s.baseColor = material.baseColorOpacity.rgb * base.rgb;
     s.opacity = material.baseColorOpacity.a * base.a;
     vec4 mr = rgSampleMaterialTexture(metallicRoughnessTex, 2, 1, uv0, uv1, vec4(1.0));
-    s.twoColour = material.diffuseColor.w > 0.5;
-    if (s.twoColour) {
-        // The two-colour material's texture in this slot is glTF's specular-glossiness one
-        // (KHR_materials_pbrSpecularGlossiness): the f0 colour in RGB (sRGB, decoded by the
-        // sampler), glossiness — smoothness — in A.
-        s.smoothness = material.factors.x * mr.a;
-        s.metalMask = material.factors.y;
-    } else {
-        // glTF: roughness in G, metallic in B; smoothness = 1 − roughness.
-        s.smoothness = 1.0 - (1.0 - material.factors.x) * mr.g;
-        s.metalMask = material.factors.y * mr.b;
-    }
+    // glTF: roughness in G, metallic in B; smoothness = 1 − roughness.
+    s.smoothness = 1.0 - (1.0 - material.factors.x) * mr.g;
+    s.metalMask = material.factors.y * mr.b;
     s.reflectance = material.factors.z;
     float occlusion = rgSampleMaterialTexture(occlusionTex, 8, 3, uv0, uv1, vec4(1.0)).r;
     s.ao = material.factors.w * mix(1.0, occlusion, material.factors2.y);
     s.emissive = material.emissive.rgb * rgSampleMaterialTexture(emissiveTex, 16, 4, uv0, uv1, vec4(1.0)).rgb;
     s.diffuseColor = material.diffuseColor.rgb * base.rgb;
-    s.f0 = material.f0.rgb * (s.twoColour ? mr.rgb : vec3(1.0));
+    s.f0 = material.f0.rgb;
+    s.twoColour = material.diffuseColor.w > 0.5;
     s.radiosity = 0.0;
     vec3 m = rgSampleMaterialTexture(normalTex, 4, 2, uv0, uv1, vec4(0.5, 0.5, 1.0, 1.0)).xyz * 2.0 - 1.0;
 #if RG_SPECULAR_AA
