@@ -162,19 +162,13 @@ bool writePage(const std::string& path, const std::string& dir, const std::strin
 
 int cmdGallery(int argc, char** argv) {
     Args args;
-    if (argc >= 3 && argv[2][0] != '-') {
-        // DIR first, then options.
-        if (auto done =
-                parseCommand(argc - 1, argv + 1, "gallery",
-                             {"out", "size", "frames", "pipeline", "set", "timeout"}, kHelp, args))
-            return *done;
-    } else {
-        if (auto done =
-                parseCommand(argc, argv, "gallery",
-                             {"out", "size", "frames", "pipeline", "set", "timeout"}, kHelp, args))
-            return *done;
-        return usageError("gallery needs a folder (rgraph gallery DIR)", "gallery");
-    }
+    // DIR first, then the options: they are read from after it (--help works without one).
+    const int dirFirst = argc >= 3 && argv[2][0] != '-' ? 1 : 0;
+    if (auto done =
+            parseCommand(argc - dirFirst, argv + dirFirst, "gallery",
+                         {"out", "size", "frames", "pipeline", "set", "timeout"}, kHelp, args))
+        return *done;
+    if (!dirFirst) return usageError("gallery needs a folder (rgraph gallery DIR)", "gallery");
     const std::string dir = argv[2];
     std::error_code ec;
     if (!fs::is_directory(dir, ec)) return usageError("'" + dir + "' is not a folder", "gallery");
