@@ -64,6 +64,16 @@ struct DrawItem {
     bool castsShadows = true;
 };
 
+// A node's points or lines (Mesh::points, Mesh::lines): their index range — single vertices or
+// pairs — in the scene's buffers, drawn by the `scene` kind's lines mode (scene_pass_lines.cpp).
+struct LineDrawItem {
+    uint32_t firstIndex = 0, indexCount = 0;
+    int32_t vertexOffset = 0;
+    uint32_t material = 0;  // index into Scene::materials
+    glm::mat4 world{1.0f};
+    bool points = false;  // a point list, else a segment list
+};
+
 // The shadow views of the scene's local lights (lib/shadows.glsl's ShadowViews block): how many
 // views a frame can have, and one view as the GPU reads it.
 inline constexpr uint32_t kMaxShadowViews = RG_MAX_SHADOW_VIEWS;  // shaders/lib/limits.h
@@ -131,6 +141,8 @@ public:
 
     const Scene& scene() const { return m_scene; }
     const std::vector<DrawItem>& draws() const { return m_draws; }
+    // The points and lines every node with such a mesh draws, in node order.
+    const std::vector<LineDrawItem>& lineDraws() const { return m_lineDraws; }
     // Whether draw d's world box meets the camera's frustum this frame (updateFrame): the camera's
     // scene passes skip the draws it does not.
     bool drawInView(size_t d) const { return d >= m_drawInView.size() || m_drawInView[d] != 0; }
@@ -288,6 +300,7 @@ private:
     Scene m_scene;
     gpu::Context* m_ctx = nullptr;
     std::vector<DrawItem> m_draws;
+    std::vector<LineDrawItem> m_lineDraws;
     gpu::Buffer m_vertices, m_indices;
     std::vector<gpu::Image> m_images;
     gpu::Image m_white, m_flatNormal;  // defaults for missing textures

@@ -1,6 +1,7 @@
 // GpuScene's geometry: every primitive's vertices and indices (its levels of detail after the
-// full index list) in one vertex and one index buffer, a draw per node and primitive with its
-// world box (SceneDraws), and the opaque triangles' ray-cast hierarchy (SceneBvh).
+// full index list; then the mesh's points and lines) in one vertex and one index buffer, a draw
+// per node and primitive with its world box (SceneDraws), a line draw per node and point or
+// line primitive, and the opaque triangles' ray-cast hierarchy (SceneBvh).
 #include "gpu_scene.h"
 
 #include <algorithm>
@@ -45,6 +46,7 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
             lods;  // the coarser index lists after the full one, errors in the primitive's space
     };
     std::vector<std::vector<Range>> meshRanges;
+    std::vector<std::vector<LineDrawItem>> meshStrokes;
     for (const Mesh& mesh : m_scene.meshes) {
         std::vector<Range> ranges;
         for (const Primitive& p : mesh.primitives) {
@@ -64,9 +66,28 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
             }
         }
         meshRanges.push_back(std::move(ranges));
+        // Its points and lines, after its triangles.
+        std::vector<LineDrawItem> strokes;
+        for (const auto* list : {&mesh.lines, &mesh.points})
+            for (const Primitive& p : *list) {
+                if (p.indices.empty()) continue;
+                strokes.push_back(
+                    {static_cast<uint32_t>(indices.size()), static_cast<uint32_t>(p.indices.size()),
+                     static_cast<int32_t>(vertices.size()),
+                     std::min<uint32_t>(p.material,
+                                        static_cast<uint32_t>(m_scene.materials.size() - 1)),
+                     glm::mat4(1.0f), list == &mesh.points});
+                vertices.insert(vertices.end(), p.vertices.begin(), p.vertices.end());
+                indices.insert(indices.end(), p.indices.begin(), p.indices.end());
+            }
+        meshStrokes.push_back(std::move(strokes));
     }
     for (const Node& node : m_scene.nodes) {
         if (node.mesh < 0 || static_cast<size_t>(node.mesh) >= meshRanges.size()) continue;
+        for (LineDrawItem stroke : meshStrokes[static_cast<size_t>(node.mesh)]) {
+            stroke.world = node.world;
+            m_lineDraws.push_back(stroke);
+        }
         const glm::mat4 normal = glm::mat4(glm::transpose(glm::inverse(glm::mat3(node.world))));
         const auto& ranges = meshRanges[static_cast<size_t>(node.mesh)];
         for (size_t k = 0; k < ranges.size(); ++k)
@@ -168,6 +189,13 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
         std::memcpy(buf->mapped(), words.data(), words.size() * sizeof(glm::vec4));
         m_staticHash.bytes(words.data(), words.size() * sizeof(glm::vec4));
         for (const DrawItem& item : m_draws) m_staticHash.bytes(&item.world, sizeof item.world);
+        for (const LineDrawItem& item : m_lineDraws) {
+            const uint32_t words[] = {item.firstIndex, item.indexCount,
+                                      static_cast<uint32_t>(item.vertexOffset), item.material,
+                                      item.points ? 1u : 0u};
+            m_staticHash.bytes(words, sizeof words);
+            m_staticHash.bytes(&item.world, sizeof item.world);
+        }
         m_drawBuffer = std::move(*buf);
     }
     // SceneTransforms: per draw what scene.vert's push constants hold for a single draw.

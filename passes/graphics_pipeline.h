@@ -1,6 +1,7 @@
 // The graphics pipeline both raster pass kinds build (fullscreen in builtin_kinds.cpp, scene in
 // scene_pass.cpp): dynamic rendering into the given attachment formats, one viewport and scissor
-// (always dynamic), filled triangles, one sample. What differs between kinds — vertex input,
+// (always dynamic), filled primitives (triangle lists unless the description says otherwise), one
+// sample. What differs between kinds — vertex input,
 // culling, depth/stencil, blending, further dynamic state — is in the description.
 #pragma once
 
@@ -20,6 +21,8 @@ struct GraphicsPipelineDesc {
     VkFormat depthFormat = VK_FORMAT_UNDEFINED;
     VkFormat stencilFormat = VK_FORMAT_UNDEFINED;
     const VkPipelineVertexInputStateCreateInfo* vertexInput = nullptr;  // none: no vertex buffers
+    // Line and point lists are one pixel wide (the vertex shader writes gl_PointSize = 1).
+    VkPrimitiveTopology topology = VK_PRIMITIVE_TOPOLOGY_TRIANGLE_LIST;
     VkCullModeFlags cullMode = VK_CULL_MODE_NONE;
     VkFrontFace frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     VkPipelineDepthStencilStateCreateInfo depthStencil{

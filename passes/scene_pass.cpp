@@ -37,8 +37,19 @@ Result<void> ScenePass::prepare(PassSetup& setup) {
         return fail(ErrorCode::InvalidInput,
                     passPrefix(desc) +
                         "params.capture: a pass is a forward pass or a probe capture, not both");
+    const bool lines = desc.params["lines"].asBool();
+    if (lines && (shadow || capture || forward))
+        return fail(ErrorCode::InvalidInput,
+                    passPrefix(desc) +
+                        "params.lines: a pass that draws the points and lines is "
+                        "not also a " +
+                        (shadow    ? "shadow pass"
+                         : capture ? "probe capture"
+                                   : "forward pass"));
     // A shadow pass ignores params.forward.
-    if (shadow)
+    if (lines)
+        m_mode = std::make_unique<LinesScenePass>();
+    else if (shadow)
         m_mode = std::make_unique<ShadowScenePass>();
     else if (capture)
         m_mode = std::make_unique<CaptureScenePass>();
@@ -163,25 +174,33 @@ Result<void> SceneDraws::addGroup(PassSetup& setup, const PassMaterial& info,
     return {};
 }
 
-// The scene's vertex layout (graph/scene's Vertex).
-const VkPipelineVertexInputStateCreateInfo& SceneDraws::vertexInput() {
+const VkVertexInputBindingDescription& detail::sceneVertexBinding() {
     static const VkVertexInputBindingDescription binding{0, sizeof(Vertex),
                                                          VK_VERTEX_INPUT_RATE_VERTEX};
-    static const VkVertexInputAttributeDescription attrs[] = {
-        {0, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, position))},
-        {1, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, normal))},
-        {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, tangent))},
-        {3, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, uv0))},
-        {4, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, uv1))},
-        {5, 0, VK_FORMAT_R16G16B16A16_UNORM, static_cast<uint32_t>(offsetof(Vertex, color))}};
+    return binding;
+}
+
+const std::array<VkVertexInputAttributeDescription, 6>& detail::sceneVertexAttributes() {
+    static const std::array<VkVertexInputAttributeDescription, 6> attrs = {
+        {{0, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, position))},
+         {1, 0, VK_FORMAT_R32G32B32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, normal))},
+         {2, 0, VK_FORMAT_R32G32B32A32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, tangent))},
+         {3, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, uv0))},
+         {4, 0, VK_FORMAT_R32G32_SFLOAT, static_cast<uint32_t>(offsetof(Vertex, uv1))},
+         {5, 0, VK_FORMAT_R16G16B16A16_UNORM, static_cast<uint32_t>(offsetof(Vertex, color))}}};
+    return attrs;
+}
+
+// The scene's vertex layout (graph/scene's Vertex), every attribute.
+const VkPipelineVertexInputStateCreateInfo& SceneDraws::vertexInput() {
     static const VkPipelineVertexInputStateCreateInfo vi{
         VK_STRUCTURE_TYPE_PIPELINE_VERTEX_INPUT_STATE_CREATE_INFO,
         nullptr,
         0,
         1,
-        &binding,
-        static_cast<uint32_t>(std::size(attrs)),
-        attrs};
+        &sceneVertexBinding(),
+        static_cast<uint32_t>(sceneVertexAttributes().size()),
+        sceneVertexAttributes().data()};
     return vi;
 }
 
@@ -415,19 +434,23 @@ VkPipelineColorBlendAttachmentState GBufferScenePass::colorBlend(const Group& g,
     return b;
 }
 
+Result<void> CameraScenePass::findOverlayAttachments(const PassSetup& setup,
+                                                     const std::string& mode) {
+    const std::string missing =
+        "a " + mode + " 'scene' pass reads the depth buffer ({ \"depth\", as = \"depth\" })";
+    if (auto r = findAttachments(setup.desc, /*depthRead=*/true, missing.c_str()); !r) return r;
+    if (m_colors.size() != 1)
+        return fail(ErrorCode::InvalidInput,
+                    passPrefix(setup.desc) + "a " + mode +
+                        " 'scene' pass writes one colour target (the HDR, loaded)");
+    sizeFromDepth(setup);
+    return {};
+}
+
 Result<void> ForwardScenePass::prepareDraws(PassSetup& setup) {
     const PassDesc& desc = setup.desc;
-    if (auto r = findAttachments(desc, /*depthRead=*/true,
-                                 "a forward 'scene' pass reads the depth buffer ({ \"depth\", as = "
-                                 "\"depth\" })");
-        !r)
-        return r;
-    if (m_colors.size() != 1)
-        return fail(
-            ErrorCode::InvalidInput,
-            passPrefix(desc) + "a forward 'scene' pass writes one colour target (the HDR, loaded)");
+    if (auto r = findOverlayAttachments(setup, "forward"); !r) return r;
     const std::vector<std::string> attachments = colorNames();
-    sizeFromDepth(setup);
     // One shader per material that has blended draws (and per set of textures); the draws
     // are sorted back to front across them when recorded.
     for (const PassMaterial& info : desc.materials) {
@@ -516,6 +539,10 @@ PassKindInfo scenePassKind() {
               "draw the blended (alpha = 'blend') materials, lit directly, over the colour target "
               "it "
               "loads"},
+             {"lines", "boolean",
+              "draw the scene's points and lines (glTF POINTS, LINES, LINE_LOOP, LINE_STRIP), "
+              "unlit, one pixel wide, over the colour target it loads, tested against the depth "
+              "buffer it reads"},
              {"paths", "string|list", "draw the materials of these lighting paths"},
              {"lightmap_specular", "written",
               "an attachment it writes that receives from every material the baked lightmap's "

@@ -5,6 +5,7 @@
 // shadow maps).
 #pragma once
 
+#include <array>
 #include <map>
 #include <memory>
 #include <optional>
@@ -53,6 +54,11 @@ std::map<uint32_t, std::vector<size_t>> drawsByTextures(const GpuScene& scene, W
         out[variantKey(scene.scene().materials[scene.draws()[d].material])].push_back(d);
     return out;
 }
+
+// The scene's vertex buffer binding and its attributes (graph/scene's Vertex) by shader location:
+// 0 position, 1 normal, 2 tangent, 3 uv0, 4 uv1, 5 COLOR_0 (scene_pass.cpp).
+const VkVertexInputBindingDescription& sceneVertexBinding();
+const std::array<VkVertexInputAttributeDescription, 6>& sceneVertexAttributes();
 
 // What every mode of the `scene` pass draws with: its groups of draws (one pipeline each, per
 // material and shader variant), the attachments it draws into and their size, and its cadence
@@ -134,6 +140,9 @@ protected:
     // distanceOf(item).
     template <typename DistanceOf>
     DrawOrder inView(RecordContext& rc, std::vector<float>& distance, DistanceOf distanceOf) const;
+    // The attachments of a mode that draws over the one colour target it loads, tested against
+    // the depth buffer it reads (forward, lines: `mode` names it in errors), and their size.
+    Result<void> findOverlayAttachments(const PassSetup& setup, const std::string& mode);
     // Draws `order`, binding a group's pipeline where it changes, and ends the rendering.
     void drawGroups(RecordContext& rc, const DrawOrder& order);
 };
@@ -157,6 +166,13 @@ class ForwardScenePass final : public CameraScenePass {
     VkPipelineColorBlendAttachmentState colorBlend(const Group& g,
                                                    const std::string& target) const override;
     void depthStencil(GraphicsPipelineDesc& d, const Group& g) const override;
+};
+
+// lines = true: the scene's points and lines (GpuScene::lineDraws), unlit, one pixel wide, over
+// the colour target it loads, tested against the depth buffer it reads (scene_pass_lines.cpp).
+class LinesScenePass final : public CameraScenePass {
+    Result<void> prepareDraws(PassSetup& setup) override;
+    void recordDraws(RecordContext& rc) override;
 };
 
 // shadow = true: depth only, each layer of the depth target from its view

@@ -73,13 +73,19 @@ rg.pass "decals" {
 
 -- After the lighting: the sky (the scene's environment, lib/environment.glsl) where nothing was drawn (depth still at the far plane; "equal" would
 -- depend on the rasteriser reproducing 1.0 exactly, less_equal against the cleared 1.0 does not),
--- then the blended materials, lit directly with the same light loop over their froxels' lights
+-- then the scene's points and lines, then the blended materials, lit directly with the same light loop over their froxels' lights
 -- (lighting.clustered), over the lit HDR (back to front). Returns the forward pass's name.
 function loop.sky_and_forward()
     rg.pass "sky" {
         kind = "fullscreen", shader = "passes/sky.frag",
         reads = { { "depth", as = "depth" }, { "exposure", as = "uniform" } }, writes = { { "hdr", load = true } },
         depth = { compare = "less_equal", value = 1 },
+    }
+    -- The scene's points and lines (glTF POINTS and LINES), unlit as viewers draw them, one
+    -- pixel wide, before the blended surfaces that may lie in front of them.
+    rg.pass "lines" {
+        kind = "scene", lines = true,
+        reads = { { "depth", as = "depth" }, { "exposure", as = "uniform" } }, writes = { { "hdr", load = true } },
     }
     rg.pass "forward" (lighting.clustered(shadows.lit(probes.lit(ibl.lit {
         kind = "scene", forward = true, switches = loop.specular_aa,
@@ -101,7 +107,10 @@ function loop.frame(ctx)
         for _, pass in ipairs(loop.decal_passes) do ctx.pass(pass).auto_enabled = ctx.scene.decals > 0 end
         -- No blended draws, no forward pass: nothing then keeps the sun's maps alive past their
         -- mask passes (scripts/shadows.lua).
-        if loop.forward_pass then ctx.pass(loop.forward_pass).auto_enabled = ctx.scene.blended > 0 end
+        if loop.forward_pass then
+            ctx.pass(loop.forward_pass).auto_enabled = ctx.scene.blended > 0
+            ctx.pass("lines").auto_enabled = ctx.scene.lines > 0
+        end
     end
 end
 

@@ -218,13 +218,23 @@ def primitive_modes(d):
 
 
 def lines_and_points(d):
-    # POINTS and LINES beside a triangle: rgraph draws the triangle and names what it skips.
+    # Every mode that is not triangles, beside a triangle: LINES (its outline), a LINE_STRIP
+    # (a zigzag), a LINE_LOOP with COLOR_0 (red, green, blue, white corners), POINTS (a 9×9 grid)
+    # — drawn unlit in the material's base colour, one pixel wide.
     pos = np.array([[0, 0, 0], [1, 0, 0], [0.5, 0.8, 0]], float)
     nrm = np.tile([0, 0, 1.0], (3, 1))
     m = d.material(pbr((0.9, 0.9, 0.2)))
-    d.node(mesh=d.mesh([d.prim((pos, nrm, None, None), m),
-                        d.prim((pos + [1.2, 0, 0], nrm, None, np.array([0, 1, 1, 2, 2, 0])), m, mode=1),
-                        d.prim((pos + [2.4, 0, 0], nrm, None, None), m, mode=0)]))
+    zig = np.array([[0.25 * i, 0.8 * (i % 2), 0] for i in range(5)], float)
+    square = np.array([[0, 0, 0], [0.8, 0, 0], [0.8, 0.8, 0], [0, 0.8, 0]], float)
+    corners = np.array([[255, 0, 0, 255], [0, 255, 0, 255], [0, 0, 255, 255], [255, 255, 255, 255]])
+    grid = np.array([[0.1 * x, 0.1 * y, 0] for y in range(9) for x in range(9)], float)
+    white = d.material(pbr((1, 1, 1)))
+    d.node(mesh=d.mesh([d.prim((pos - [2.4, 0, 0], nrm, None, None), m),
+                        d.prim((pos - [1.2, 0, 0], nrm, None, np.array([0, 1, 1, 2, 2, 0])), m, mode=1),
+                        d.prim((zig, np.tile([0, 0, 1.0], (5, 1)), None, None), m, mode=3),
+                        d.prim((square + [1.2, 0, 0], np.tile([0, 0, 1.0], (4, 1)), None, None), white,
+                               {"COLOR_0": d.accessor(corners, UBYTE, normalized=True)}, mode=2),
+                        d.prim((grid + [2.2, 0, 0], np.tile([0, 0, 1.0], (81, 1)), None, None), m, mode=0)]))
 
 
 def vertex_colors(d):

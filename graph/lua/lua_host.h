@@ -41,6 +41,7 @@ struct FrameContext {
         uint32_t suns = 0;     // directional lights (shadow cascades follow the first)
         uint32_t probes = 0;   // local light probes
         uint32_t blended = 0;  // draws of blended materials (the forward pass's)
+        uint32_t lines = 0;    // draws of points and lines (a lines pass's)
         // Draws per stencil class (ctx.scene.classes.NAME): a pass that works on one class's
         // pixels only has nothing to do without them (scripts/lighting.lua's lighting.per_class).
         std::map<std::string, uint32_t> classes;

@@ -388,6 +388,8 @@ int frameTrampoline(lua_State* L) {
         lua_setfield(L, -2, "probes");
         lua_pushinteger(L, ctx.scene->blended);
         lua_setfield(L, -2, "blended");
+        lua_pushinteger(L, ctx.scene->lines);
+        lua_setfield(L, -2, "lines");
         lua_newtable(L);
         for (const auto& [cls, draws] : ctx.scene->classes) {
             lua_pushinteger(L, draws);

@@ -428,9 +428,11 @@ FrameContext Session::frameContext(const passes::GpuScene* scene,
                               [](const Light& l) { return l.type == LightType::Directional; })),
             static_cast<uint32_t>(scene->scene().probes.size()),
             static_cast<uint32_t>(std::count_if(
-                scene->draws().begin(), scene->draws().end(), [&](const passes::DrawItem& d) {
+                scene->draws().begin(), scene->draws().end(),
+                [&](const passes::DrawItem& d) {
                     return scene->scene().materials[d.material].alphaMode == AlphaMode::Blend;
-                }))};
+                })),
+            static_cast<uint32_t>(scene->lineDraws().size())};
     if (scene) ctx.scene->classes = classes;
     return ctx;
 }

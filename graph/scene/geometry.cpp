@@ -288,13 +288,15 @@ void computeBounds(Scene& scene) {
     bool any = false;
     for (const auto& node : scene.nodes) {
         if (node.mesh < 0 || size_t(node.mesh) >= scene.meshes.size()) continue;
-        for (const auto& prim : scene.meshes[size_t(node.mesh)].primitives)
-            for (const auto& v : prim.vertices) {
-                const glm::vec3 w = glm::vec3(node.world * glm::vec4(v.position, 1.0f));
-                lo = glm::min(lo, w);
-                hi = glm::max(hi, w);
-                any = true;
-            }
+        const Mesh& mesh = scene.meshes[size_t(node.mesh)];
+        for (const auto* list : {&mesh.primitives, &mesh.lines, &mesh.points})
+            for (const auto& prim : *list)
+                for (const auto& v : prim.vertices) {
+                    const glm::vec3 w = glm::vec3(node.world * glm::vec4(v.position, 1.0f));
+                    lo = glm::min(lo, w);
+                    hi = glm::max(hi, w);
+                    any = true;
+                }
     }
     scene.boundsMin = any ? lo : glm::vec3(0.0f);
     scene.boundsMax = any ? hi : glm::vec3(0.0f);

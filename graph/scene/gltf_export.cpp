@@ -267,40 +267,46 @@ struct Writer {
         for (const auto& mesh : scene.meshes) {
             tinygltf::Mesh g;
             g.name = mesh.name;
-            for (const auto& p : mesh.primitives) {
-                std::vector<float> pos, nrm, tan, uv0, uv1, color;
-                bool hasUv1 = false, hasColor = false;
-                for (const auto& v : p.vertices) {
-                    pos.insert(pos.end(), {v.position.x, v.position.y, v.position.z});
-                    nrm.insert(nrm.end(), {v.normal.x, v.normal.y, v.normal.z});
-                    tan.insert(tan.end(), {v.tangent.x, v.tangent.y, v.tangent.z, v.tangent.w});
-                    uv0.insert(uv0.end(), {v.uv0.x, v.uv0.y});
-                    uv1.insert(uv1.end(), {v.uv1.x, v.uv1.y});
-                    hasUv1 = hasUv1 || v.uv1 != glm::vec2(0.0f);
-                    for (int k = 0; k < 4; ++k) color.push_back(float(v.color[k]) / 65535.0f);
-                    hasColor = hasColor || v.color != glm::u16vec4(65535);
+            // Triangles, then the lines and points (as LINES and POINTS).
+            const std::pair<const std::vector<Primitive>*, int> lists[] = {
+                {&mesh.primitives, TINYGLTF_MODE_TRIANGLES},
+                {&mesh.lines, TINYGLTF_MODE_LINE},
+                {&mesh.points, TINYGLTF_MODE_POINTS}};
+            for (const auto& [list, mode] : lists)
+                for (const auto& p : *list) {
+                    std::vector<float> pos, nrm, tan, uv0, uv1, color;
+                    bool hasUv1 = false, hasColor = false;
+                    for (const auto& v : p.vertices) {
+                        pos.insert(pos.end(), {v.position.x, v.position.y, v.position.z});
+                        nrm.insert(nrm.end(), {v.normal.x, v.normal.y, v.normal.z});
+                        tan.insert(tan.end(), {v.tangent.x, v.tangent.y, v.tangent.z, v.tangent.w});
+                        uv0.insert(uv0.end(), {v.uv0.x, v.uv0.y});
+                        uv1.insert(uv1.end(), {v.uv1.x, v.uv1.y});
+                        hasUv1 = hasUv1 || v.uv1 != glm::vec2(0.0f);
+                        for (int k = 0; k < 4; ++k) color.push_back(float(v.color[k]) / 65535.0f);
+                        hasColor = hasColor || v.color != glm::u16vec4(65535);
+                    }
+                    tinygltf::Primitive gp;
+                    gp.mode = mode;
+                    gp.material = int(p.material);
+                    gp.attributes["POSITION"] = addFloats<3>(pos, TINYGLTF_TYPE_VEC3, true);
+                    gp.attributes["NORMAL"] = addFloats<3>(nrm, TINYGLTF_TYPE_VEC3, false);
+                    gp.attributes["TANGENT"] = addFloats<4>(tan, TINYGLTF_TYPE_VEC4, false);
+                    gp.attributes["TEXCOORD_0"] = addFloats<2>(uv0, TINYGLTF_TYPE_VEC2, false);
+                    if (hasUv1)
+                        gp.attributes["TEXCOORD_1"] = addFloats<2>(uv1, TINYGLTF_TYPE_VEC2, false);
+                    if (hasColor)
+                        gp.attributes["COLOR_0"] = addFloats<4>(color, TINYGLTF_TYPE_VEC4, false);
+                    tinygltf::Accessor ia;
+                    ia.bufferView = addView(p.indices.data(), p.indices.size() * sizeof(uint32_t),
+                                            TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
+                    ia.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
+                    ia.type = TINYGLTF_TYPE_SCALAR;
+                    ia.count = p.indices.size();
+                    model.accessors.push_back(ia);
+                    gp.indices = int(model.accessors.size() - 1);
+                    g.primitives.push_back(gp);
                 }
-                tinygltf::Primitive gp;
-                gp.mode = TINYGLTF_MODE_TRIANGLES;
-                gp.material = int(p.material);
-                gp.attributes["POSITION"] = addFloats<3>(pos, TINYGLTF_TYPE_VEC3, true);
-                gp.attributes["NORMAL"] = addFloats<3>(nrm, TINYGLTF_TYPE_VEC3, false);
-                gp.attributes["TANGENT"] = addFloats<4>(tan, TINYGLTF_TYPE_VEC4, false);
-                gp.attributes["TEXCOORD_0"] = addFloats<2>(uv0, TINYGLTF_TYPE_VEC2, false);
-                if (hasUv1)
-                    gp.attributes["TEXCOORD_1"] = addFloats<2>(uv1, TINYGLTF_TYPE_VEC2, false);
-                if (hasColor)
-                    gp.attributes["COLOR_0"] = addFloats<4>(color, TINYGLTF_TYPE_VEC4, false);
-                tinygltf::Accessor ia;
-                ia.bufferView = addView(p.indices.data(), p.indices.size() * sizeof(uint32_t),
-                                        TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER);
-                ia.componentType = TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT;
-                ia.type = TINYGLTF_TYPE_SCALAR;
-                ia.count = p.indices.size();
-                model.accessors.push_back(ia);
-                gp.indices = int(model.accessors.size() - 1);
-                g.primitives.push_back(gp);
-            }
             model.meshes.push_back(g);
         }
     }

@@ -252,6 +252,26 @@ Result<Primitive> Loader::primitive(size_t meshIndex, size_t primIndex,
         idx.resize(n);
         for (size_t i = 0; i < n; ++i) idx[i] = static_cast<uint32_t>(i);
     }
+    // Points stay as they are; strips and loops of lines become segment lists (glTF 3.7.2.1).
+    if (prim.mode == TINYGLTF_MODE_POINTS) {
+        p.indices = std::move(idx);
+        return p;
+    }
+    if (prim.mode == TINYGLTF_MODE_LINE) {
+        if (idx.size() % 2 != 0)
+            warn(where + ": " + std::to_string(idx.size()) +
+                 " indices is not a whole number of segments; the last is ignored");
+        idx.resize(idx.size() - idx.size() % 2);
+        p.indices = std::move(idx);
+        return p;
+    }
+    if (prim.mode == TINYGLTF_MODE_LINE_STRIP || prim.mode == TINYGLTF_MODE_LINE_LOOP) {
+        for (size_t i = 0; i + 1 < idx.size(); ++i)
+            p.indices.insert(p.indices.end(), {idx[i], idx[i + 1]});
+        if (prim.mode == TINYGLTF_MODE_LINE_LOOP && idx.size() > 2)
+            p.indices.insert(p.indices.end(), {idx.back(), idx.front()});
+        return p;
+    }
     // Strips and fans become lists; a strip's odd triangles swap two corners to stay CCW.
     if (prim.mode == TINYGLTF_MODE_TRIANGLE_STRIP) {
         for (size_t i = 0; i + 2 < idx.size(); ++i)
@@ -301,30 +321,31 @@ Result<Primitive> Loader::primitive(size_t meshIndex, size_t primIndex,
 }
 
 // glTF mesh m at the given morph weights; its primitives' skinning data is pushed onto
-// meshSkinning beside the Scene mesh it becomes.
+// meshSkinning beside the Scene mesh it becomes (triangles, then lines, then points: the order
+// skins() poses them in).
 Result<Mesh> Loader::mesh(size_t m, const std::vector<double>& weights) {
     Mesh mesh;
     mesh.name = model.meshes[m].name.empty() ? "mesh " + std::to_string(m) : model.meshes[m].name;
-    std::vector<Skinning> skinning;
+    std::vector<Skinning> skinning[3];
     for (size_t p = 0; p < model.meshes[m].primitives.size(); ++p) {
-        // Points and lines are not drawn yet: the rest of the file still is (a mesh with one
-        // line primitive used to take its whole file down).
         const int mode = model.meshes[m].primitives[p].mode;
-        if (mode == TINYGLTF_MODE_POINTS || mode == TINYGLTF_MODE_LINE ||
-            mode == TINYGLTF_MODE_LINE_LOOP || mode == TINYGLTF_MODE_LINE_STRIP) {
-            if (m >= scene.meshes.size())  // once, not again for a node's own morph weights
-                warn(named("mesh", m, model.meshes[m].name) + " primitive " + std::to_string(p) +
-                     ": mode " + modeName(mode) +
-                     " is not drawn (rgraph draws triangles only); skipped");
-            continue;
-        }
+        const int kind = mode == TINYGLTF_MODE_POINTS ? 2
+                         : mode == TINYGLTF_MODE_LINE || mode == TINYGLTF_MODE_LINE_LOOP ||
+                                 mode == TINYGLTF_MODE_LINE_STRIP
+                             ? 1
+                             : 0;
         Skinning skin;
         auto prim = primitive(m, p, weights, skin);
         if (!prim) return std::unexpected(prim.error());
-        mesh.primitives.push_back(std::move(*prim));
-        skinning.push_back(std::move(skin));
+        (kind == 0   ? mesh.primitives
+         : kind == 1 ? mesh.lines
+                     : mesh.points)
+            .push_back(std::move(*prim));
+        skinning[kind].push_back(std::move(skin));
     }
-    meshSkinning.push_back(std::move(skinning));
+    for (int kind = 1; kind < 3; ++kind)
+        skinning[0].insert(skinning[0].end(), skinning[kind].begin(), skinning[kind].end());
+    meshSkinning.push_back(std::move(skinning[0]));
     return mesh;
 }
 

@@ -88,7 +88,8 @@ Result<void> Loader::morph(const std::string& where, const tinygltf::Primitive& 
 }
 
 Result<void> Loader::copying(const Mesh& mesh, const std::string& where) {
-    for (const auto& p : mesh.primitives) copiedVertices += p.vertices.size();
+    for (const auto* list : {&mesh.primitives, &mesh.lines, &mesh.points})
+        for (const auto& p : *list) copiedVertices += p.vertices.size();
     if (copiedVertices > kMaxCopiedVertices)
         return error(ErrorCode::InvalidInput,
                      where + ": the meshes copied for morph weights and skins of nodes reach " +
@@ -184,12 +185,16 @@ Result<void> Loader::skins() {
         const glm::mat4 nodeWorld = scene.nodes[s.sceneNode].world;
         if (auto r = copying(scene.meshes[size_t(source)], where); !r) return r;
         Mesh posed = scene.meshes[size_t(source)];
-        for (size_t p = 0; p < posed.primitives.size(); ++p) {
+        // Its triangles, lines and points, in meshSkinning's order.
+        std::vector<Primitive*> parts;
+        for (auto* list : {&posed.primitives, &posed.lines, &posed.points})
+            for (Primitive& prim : *list) parts.push_back(&prim);
+        for (size_t p = 0; p < parts.size(); ++p) {
             const Skinning& sk = meshSkinning[size_t(source)][p];
             if (sk.influences == 0)
                 warn(where + ": primitive " + std::to_string(p) +
                      " has no JOINTS_0/WEIGHTS_0; drawn with the node's transform");
-            auto& vertices = posed.primitives[p].vertices;
+            auto& vertices = parts[p]->vertices;
             for (size_t i = 0; i < vertices.size(); ++i) {
                 glm::mat4 m(0.0f);
                 float sum = 0.0f;
@@ -215,8 +220,8 @@ Result<void> Loader::skins() {
                 if (glm::length(tan) > 0.0f)
                     v.tangent = glm::vec4(glm::normalize(tan), v.tangent.w);
             }
-            if (sk.flatNormals) generateFlatNormals(posed.primitives[p]);
-            if (sk.generatedTangents) generateTangents(posed.primitives[p]);
+            if (sk.flatNormals) generateFlatNormals(*parts[p]);
+            if (sk.generatedTangents) generateTangents(*parts[p]);
         }
         scene.nodes[s.sceneNode].mesh = static_cast<int32_t>(scene.meshes.size());
         scene.nodes[s.sceneNode].world = glm::mat4(1.0f);

@@ -72,7 +72,14 @@ struct Primitive {
 
 struct Mesh {
     std::string name;
-    std::vector<Primitive> primitives;
+    std::vector<Primitive> primitives;  // triangle lists
+    // Points and line segments (glTF modes POINTS, and LINES, LINE_LOOP, LINE_STRIP as segment
+    // lists: every 2 indices one segment): drawn one pixel wide by the `scene` pass kind's
+    // `lines` mode, unlit (their material's base colour shown as glTF's emissive is, plus its
+    // emission), as glTF viewers draw them. They have no levels of detail, no lightmap uvs, cast
+    // no shadows and no ray meets them. Their vertices' normals and tangents are not used.
+    std::vector<Primitive> lines;
+    std::vector<Primitive> points;
 };
 
 // ---------------------------------------------------------------------------------------------

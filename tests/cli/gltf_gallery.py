@@ -27,7 +27,6 @@ EXPECTED = {
     "broken_index.gltf": ("refused", "mesh 0 primitive 0: material 7 does not exist"),
     "broken_schema.gltf": ("refused", "nodes[0].scale: expected an array of 3 numbers"),
     "broken_required.gltf": ("refused", "requires extension 'KHR_not_an_extension'"),
-    "lines_and_points.gltf": ("warnings", "mode LINES is not drawn"),
     "ior_specular.gltf": ("warnings", "is above the 16 % reflectance can hold"),
 }
 

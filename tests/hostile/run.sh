@@ -80,6 +80,7 @@ hostile "material: decal channel in GB3" "fourth target" -- $(render --pipeline 
 hostile "material: variant of a variant" "m_variant_of_variant.lua:3" -- $(render --pipeline m_variant_of_variant.lua)
 hostile "pipeline: zero layers" "p_zero_layers.lua:2" -- $(render --pipeline p_zero_layers.lua)
 hostile "pipeline: pass reads what it writes" "p_read_own_write.lua" -- $(render --pipeline p_read_own_write.lua)
+hostile "pipeline: a lines pass that is also forward" "p_lines_forward.lua:8: pass 'strokes': params.lines" -- $(render --pipeline p_lines_forward.lua)
 
 # ---- Lua scenes
 hostile "scene: syntax error" "s_syntax.lua" -- $(render --scene s_syntax.lua)

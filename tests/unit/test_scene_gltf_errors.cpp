@@ -197,27 +197,25 @@ TEST(GltfErrors, IndexOutOfRange) {
                                                "the primitive has 3 vertices");
 }
 
-// Points and lines are skipped with a warning naming them; the file's triangles still load.
-TEST(GltfErrors, PointAndLinePrimitivesAreSkippedWithAWarning) {
+// An unknown mode and a primitive without positions are refused; LINES with an odd index count
+// lose the last one with a warning. The file's other primitives still load.
+TEST(GltfErrors, PrimitiveModesAndPositionsAreChecked) {
     const std::string dir = tmpDir("mode");
     GltfBuilder g;
     const int pos = g.floats({0, 0, 0, 1, 0, 0, 0, 1, 0}, "VEC3");
-    g.mesh("pts", json::array({{{"attributes", {{"POSITION", pos}}}, {"mode", 0}},
+    g.mesh("pts", json::array({{{"attributes", {{"POSITION", pos}}}, {"mode", 1}},
                                {{"attributes", {{"POSITION", pos}}}, {"mode", 4}}}));
     g.scene({g.node({{"mesh", 0}})});
     const std::string path = g.writeGltf(dir, "m");
     auto r = rg::loadGltf(path);
     ASSERT_TRUE(r) << errorOf(r);
     ASSERT_EQ(r->meshes[0].primitives.size(), 1u);  // the triangle
+    ASSERT_EQ(r->meshes[0].lines.size(), 1u);
+    EXPECT_EQ(r->meshes[0].lines[0].indices, (std::vector<uint32_t>{0, 1}));
     ASSERT_EQ(r->warnings.size(), 1u);
     EXPECT_EQ(r->warnings[0], "'" + path +
-                                  "': mesh 0 'pts' primitive 0: mode POINTS is not drawn (rgraph "
-                                  "draws triangles only); skipped");
-    g.j["meshes"][0]["primitives"][0]["mode"] = 3;
-    auto strip = rg::loadGltf(g.writeGltf(dir, "m2"));
-    ASSERT_TRUE(strip) << errorOf(strip);
-    ASSERT_EQ(strip->warnings.size(), 1u);
-    EXPECT_NE(strip->warnings[0].find("mode LINE_STRIP is not drawn"), std::string::npos);
+                                  "': mesh 0 'pts' primitive 0: 3 indices is not a whole number "
+                                  "of segments; the last is ignored");
     g.j["meshes"][0]["primitives"][0]["mode"] = 9;
     EXPECT_EQ(
         errorOf(rg::loadGltf(g.writeGltf(dir, "m4"))),

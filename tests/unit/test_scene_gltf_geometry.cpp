@@ -264,7 +264,9 @@ TEST(GltfGeometry, SkinnedMeshesArePosedByTheirJoints) {
             {"WEIGHTS_0", g.floats(weights, "VEC4")}};
         if (withNormals) attrs["NORMAL"] = g.floats(nrm, "VEC3");
         const int idx = g.indices16({0, 1, 3, 0, 3, 2, 2, 3, 5, 2, 5, 4});
-        g.mesh("strip", json::array({{{"attributes", attrs}, {"indices", idx}}}));
+        // The same vertices as a LINE_STRIP too: lines are posed like triangles.
+        g.mesh("strip", json::array({{{"attributes", attrs}, {"indices", idx}},
+                                     {{"attributes", attrs}, {"mode", 3}}}));
         // Joint 1's bind pose is at (0, 1, 0): its inverse moves down by 1.
         const glm::mat4 inverseBind1 = glm::translate(glm::mat4(1.0f), glm::vec3(0, -1, 0));
         std::vector<float> ibm(32);
@@ -298,6 +300,11 @@ TEST(GltfGeometry, SkinnedMeshesArePosedByTheirJoints) {
     expectNear(glm::vec3(v[5].tangent), {0, 1, 0}, 1e-6f, "joint 1's tangent");
     expectNear(glm::vec3(v[0].tangent), {1, 0, 0}, 1e-6f, "joint 0's tangent");
     for (const rg::Vertex& x : v) expectNear(x.normal, {0, 0, 1}, 1e-6f, "normal");
+    const auto& line = scene->meshes[size_t(scene->nodes[0].mesh)].lines;
+    ASSERT_EQ(line.size(), 1u);
+    EXPECT_EQ(line[0].indices, (std::vector<uint32_t>{0, 1, 1, 2, 2, 3, 3, 4, 4, 5}));
+    expectNear(line[0].vertices[3].position, {0.5f, 1.5f, 0}, 1e-6f, "line, blended");
+    expectNear(line[0].vertices[5].position, {-1, 2, 0}, 1e-6f, "line, joint 1");
     // The source mesh is unchanged (another node could draw it unskinned).
     expectNear(scene->meshes[0].primitives[0].vertices[5].position, {1, 2, 0}, 0.0f, "source");
 
@@ -406,4 +413,51 @@ TEST(GltfGeometry, VertexColorsLoadAndRoundTrip) {
     auto back = rg::loadGltf(dir + "/color.glb", noImages());
     ASSERT_TRUE(back) << errorOf(back);
     check(*back, "exported and loaded again");
+}
+
+// Points and lines (glTF 3.7.2.1): LINES as they are, LINE_STRIP and LINE_LOOP as segment lists
+// (a loop closed back to its first vertex), POINTS as they are — each in the mesh's own list,
+// with its material and COLOR_0; a mesh of lines alone still bounds the scene.
+TEST(GltfGeometry, PointsAndLinesLoadAsSegmentAndPointLists) {
+    const std::string dir = tmpDir("lines");
+    GltfBuilder g;
+    const int p = g.floats({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, "VEC3");
+    const int rgb = g.floats({1, 0, 0, 0, 1, 0, 0, 0, 1, 1, 1, 1}, "VEC3");
+    const int idx = g.indices16({3, 2, 1, 0});
+    g.j["materials"] = {{{"name", "ink"}}};
+    auto prim = [&](int mode, bool indexed) {
+        json j = {
+            {"attributes", {{"POSITION", p}, {"COLOR_0", rgb}}}, {"mode", mode}, {"material", 0}};
+        if (indexed) j["indices"] = idx;
+        return j;
+    };
+    g.mesh("strokes", json::array({prim(1, true), prim(3, false), prim(2, true), prim(0, false),
+                                   prim(2, false)}));
+    g.scene({g.node({{"mesh", 0}, {"translation", {0, 0, -5}}})});
+    auto scene = rg::loadGltf(g.writeGltf(dir, "lines"), noImages());
+    ASSERT_TRUE(scene) << errorOf(scene);
+    EXPECT_TRUE(scene->warnings.empty()) << scene->warnings.front();
+    const rg::Mesh& m = scene->meshes[0];
+    EXPECT_TRUE(m.primitives.empty());
+    ASSERT_EQ(m.lines.size(), 4u);
+    EXPECT_EQ(m.lines[0].indices, (std::vector<uint32_t>{3, 2, 1, 0}));              // LINES
+    EXPECT_EQ(m.lines[1].indices, (std::vector<uint32_t>{0, 1, 1, 2, 2, 3}));        // strip
+    EXPECT_EQ(m.lines[2].indices, (std::vector<uint32_t>{3, 2, 2, 1, 1, 0, 0, 3}));  // loop
+    EXPECT_EQ(m.lines[3].indices, (std::vector<uint32_t>{0, 1, 1, 2, 2, 3, 3, 0}));  // loop
+    ASSERT_EQ(m.points.size(), 1u);
+    EXPECT_EQ(m.points[0].indices, (std::vector<uint32_t>{0, 1, 2, 3}));
+    EXPECT_EQ(m.points[0].vertices.size(), 4u);
+    EXPECT_EQ(m.lines[1].vertices[1].color, glm::u16vec4(0, 65535, 0, 65535));
+    EXPECT_EQ(scene->materials[m.lines[0].material].name, "ink");
+    expectNear(scene->boundsMin, {0, 0, -5}, 0.0f, "bounds");
+    expectNear(scene->boundsMax, {1, 1, -5}, 0.0f, "bounds");
+    // exportGlb writes them back as LINES and POINTS.
+    ASSERT_TRUE(rg::exportGlb(*scene, dir + "/lines.glb"));
+    auto back = rg::loadGltf(dir + "/lines.glb", noImages());
+    ASSERT_TRUE(back) << errorOf(back);
+    ASSERT_EQ(back->meshes[0].lines.size(), 4u);
+    ASSERT_EQ(back->meshes[0].points.size(), 1u);
+    for (size_t k = 0; k < 4; ++k) EXPECT_EQ(back->meshes[0].lines[k].indices, m.lines[k].indices);
+    EXPECT_EQ(back->meshes[0].points[0].indices, m.points[0].indices);
+    EXPECT_EQ(back->meshes[0].lines[1].vertices[1].color, glm::u16vec4(0, 65535, 0, 65535));
 }
