@@ -18,6 +18,9 @@ rg.path "clearcoat" { stencil = "lit_clearcoat", shading = "clearcoat_shading.gl
 rg.material "clear_coat" {
     id = 1, layout = "disney", path = "clearcoat", surface = "materials/clearcoat.glsl",
     params = { coatSmoothness = 0.9, coatStrength = 1.0 },
+    -- Its own textures (a scene material's `textures`, glTF's clearcoatTexture and
+    -- clearcoatRoughnessTexture): R times the strength, G times the coat's roughness.
+    textures = { "coatStrengthMap", "coatRoughnessMap" },
 }
 
 -- Lights the clear-coat pixels right after the standard ones (the low 3 stencil bits name the path).

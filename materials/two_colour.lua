@@ -30,6 +30,8 @@ rg.material "two_colour" {
     -- Decals blend their base colour into the diffuse colour; debug views show it as base colour
     -- and the f0 colour (its own name) as reflectance.
     channels = { baseColor = "diffuseColor" },
+    -- glTF's specularGlossinessTexture: RGB times f0, A times the smoothness (two_colour.glsl).
+    textures = { "specularGlossinessMap" },
     doc = "two-colour base material, seed 000 tbl:3",
 }
 

@@ -22,10 +22,13 @@ namespace {
 // std140 layout of MaterialData (shaders/lib/material.glsl).
 struct MaterialUniforms {
     glm::vec4 baseColorOpacity, emissive, factors, factors2, diffuseColor, f0;
-    glm::vec4 uvTransform[10];
+    glm::vec4 uvTransform[16];  // 5 standard maps, kMaterialTextureSlots own ones, one spare
     glm::vec4 custom[4];
 };
-static_assert(sizeof(MaterialUniforms) == 320);
+static_assert(sizeof(MaterialUniforms) == 416);
+// The standard maps and the model's own: bindings 1 .. kMaterialBindings - 1.
+constexpr uint32_t kMaterialTextures = 5 + kMaterialTextureSlots;
+static_assert(2 * kMaterialTextures <= 16);
 
 VkFilter toVk(Filter f) { return f == Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR; }
 VkSamplerAddressMode toVk(Wrap w) {
@@ -296,7 +299,7 @@ Result<void> GpuScene::createMaterials(Context& ctx) {
     std::vector<VkDescriptorSetLayoutBinding> bindings;
     bindings.push_back({0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
                         VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
-    for (uint32_t b = 1; b <= 5; ++b)
+    for (uint32_t b = 1; b <= kMaterialTextures; ++b)
         bindings.push_back({b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
                             VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
     VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
@@ -307,8 +310,9 @@ Result<void> GpuScene::createMaterials(Context& ctx) {
     m_materialLayout = OwnedDescriptorSetLayout(dev, layout);
 
     const auto count = static_cast<uint32_t>(m_scene.materials.size());
-    VkDescriptorPoolSize sizes[] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, count},
-                                    {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, count * 5}};
+    VkDescriptorPoolSize sizes[] = {
+        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, count},
+        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, count * kMaterialTextures}};
     VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     pi.maxSets = count;
     pi.poolSizeCount = 2;
@@ -337,9 +341,17 @@ Result<void> GpuScene::createMaterials(Context& ctx) {
                                static_cast<float>(m.alphaMode));
         u.diffuseColor = glm::vec4(m.diffuseColor, m.model == "two_colour" ? 1.0f : 0.0f);
         u.f0 = glm::vec4(m.f0, 0.0f);
-        const TextureRef* refs[5] = {&m.baseColorTex, &m.metallicRoughnessTex, &m.normalTex,
-                                     &m.occlusionTex, &m.emissiveTex};
-        for (int t = 0; t < 5; ++t) {
+        // The five standard maps, then the model's own textures in slot order (none: white).
+        const TextureRef none;
+        const TextureRef* refs[kMaterialTextures] = {&m.baseColorTex, &m.metallicRoughnessTex,
+                                                     &m.normalTex, &m.occlusionTex, &m.emissiveTex};
+        for (uint32_t t = 5; t < kMaterialTextures; ++t) refs[t] = &none;
+        {
+            uint32_t t = 5;
+            for (const auto& [name, ref] : m.textures)
+                if (t < kMaterialTextures) refs[t++] = &ref;
+        }
+        for (uint32_t t = 0; t < kMaterialTextures; ++t) {
             const glm::mat3& x = refs[t]->transform;  // column-major: x[col][row]
             u.uvTransform[2 * t] =
                 glm::vec4(x[0][0], x[1][0], x[2][0], static_cast<float>(refs[t]->texCoord));
@@ -364,15 +376,15 @@ Result<void> GpuScene::createMaterials(Context& ctx) {
         m_materialBuffers.push_back(std::move(*buf));
 
         VkDescriptorBufferInfo bi{m_materialBuffers.back().buffer(), 0, VK_WHOLE_SIZE};
-        VkDescriptorImageInfo ii[5];
-        VkWriteDescriptorSet writes[6];
+        VkDescriptorImageInfo ii[kMaterialTextures];
+        VkWriteDescriptorSet writes[kMaterialTextures + 1];
         writes[0] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
         writes[0].dstSet = m_materialSets[i];
         writes[0].dstBinding = 0;
         writes[0].descriptorCount = 1;
         writes[0].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
         writes[0].pBufferInfo = &bi;
-        for (int t = 0; t < 5; ++t) {
+        for (uint32_t t = 0; t < kMaterialTextures; ++t) {
             const TextureRef& ref = *refs[t];
             const bool has = ref.image >= 0 && static_cast<size_t>(ref.image) < m_images.size();
             VkImageView view = has ? m_images[static_cast<size_t>(ref.image)].view()
@@ -389,7 +401,7 @@ Result<void> GpuScene::createMaterials(Context& ctx) {
             writes[t + 1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
             writes[t + 1].pImageInfo = &ii[t];
         }
-        vkUpdateDescriptorSets(dev, 6, writes, 0, nullptr);
+        vkUpdateDescriptorSets(dev, kMaterialTextures + 1, writes, 0, nullptr);
     }
     return {};
 }

@@ -21,18 +21,24 @@
 
 namespace rg::passes::detail {
 
-// A scene material's shader variant: the textures it has, as lib/material.glsl's RG_TEXTURES bits,
-// and kAlphaMaskVariant when it is alpha-tested (RG_ALPHA_MASK). Only that variant may discard: a
-// shader that can discard makes the rasteriser test and write depth after shading, so every
-// fragment of an opaque draw would be shaded even where a nearer surface hides it (on lavapipe,
-// 3× the G-buffer's cost in the default scene).
-inline constexpr uint32_t kTextureBits = 31u, kAlphaMaskVariant = 32u;
+// A scene material's shader variant: the textures it has, as lib/material.glsl's RG_TEXTURES bits
+// (1, 2, 4, 8, 16: the five standard maps; 64 << i: its model's own texture i, Material::textures
+// in order), and kAlphaMaskVariant when it is alpha-tested (RG_ALPHA_MASK). Only that variant may
+// discard: a shader that can discard makes the rasteriser test and write depth after shading, so
+// every fragment of an opaque draw would be shaded even where a nearer surface hides it (on
+// lavapipe, 3× the G-buffer's cost in the default scene).
+inline constexpr uint32_t kTextureBits = 31u | 448u, kAlphaMaskVariant = 32u;
 inline uint32_t variantKey(const Material& m) {
     const TextureRef* refs[] = {&m.baseColorTex, &m.metallicRoughnessTex, &m.normalTex,
                                 &m.occlusionTex, &m.emissiveTex};
     uint32_t key = 0;
     for (uint32_t t = 0; t < 5; ++t)
         if (refs[t]->valid()) key |= 1u << t;
+    uint32_t own = 0;
+    for (const auto& [name, ref] : m.textures) {
+        if (own < kMaterialTextureSlots && ref.valid()) key |= 64u << own;
+        ++own;
+    }
     if (m.alphaMode == AlphaMode::Mask) key |= kAlphaMaskVariant;
     return key;
 }

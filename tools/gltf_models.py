@@ -353,12 +353,19 @@ def emissive_label(d):
 
 
 def clearcoat(d):
-    for i, coat in enumerate((0.0, 1.0)):
+    # No coat, a smooth coat, and a coat in bands: clearcoatTexture's R (coat or none) across
+    # clearcoatRoughnessTexture's G (smooth or rough) in cells.
+    bands = checker(64, 4, (255, 255, 255), (0, 0, 0))
+    rough = checker(64, 8, (0, 200, 0), (0, 20, 0))
+    for i, coat in enumerate((0.0, 1.0, 1.0)):
         m = pbr((0.6, 0.05, 0.05), 0, 0.6)
         if coat:
-            m["extensions"] = {"KHR_materials_clearcoat": {"clearcoatFactor": coat,
-                                                           "clearcoatRoughnessFactor": 0.05}}
-        d.node(mesh=d.mesh([d.prim(sphere(0.4), d.material(m))]), translation=[(i - 0.5) * 1.0, 0, 0])
+            x = {"clearcoatFactor": coat, "clearcoatRoughnessFactor": 0.5 if i == 2 else 0.05}
+            if i == 2:
+                x["clearcoatTexture"] = {"index": d.image(bands)}
+                x["clearcoatRoughnessTexture"] = {"index": d.image(rough)}
+            m["extensions"] = {"KHR_materials_clearcoat": x}
+        d.node(mesh=d.mesh([d.prim(sphere(0.3), d.material(m))]), translation=[(i - 1) * 0.7, 0, 0])
     d.uses("KHR_materials_clearcoat")
 
 
@@ -371,11 +378,19 @@ def ior_specular(d):
 
 
 def specular_glossiness(d):
-    for i, gloss in enumerate((0.2, 0.6, 0.95)):
-        m = {"extensions": {"KHR_materials_pbrSpecularGlossiness": {
-            "diffuseFactor": [0.1, 0.3, 0.6, 1], "specularFactor": [0.5, 0.5, 0.5],
-            "glossinessFactor": gloss}}}
-        d.node(mesh=d.mesh([d.prim(sphere(0.3), d.material(m))]), translation=[(i - 1) * 0.7, 0, 0])
+    # Three glossiness factors, then specularGlossinessTexture in cells: gold and glossy, or dark
+    # and rough (RGB sRGB × specularFactor, A × glossinessFactor).
+    cells = checker(64, 4, (255, 200, 80), (30, 30, 30))
+    cells[..., 3] = np.where(cells[..., 0] > 128, 240, 60)
+    for i, gloss in enumerate((0.2, 0.6, 0.95, 1.0)):
+        x = {"diffuseFactor": [0.1, 0.3, 0.6, 1], "specularFactor": [0.5, 0.5, 0.5],
+             "glossinessFactor": gloss}
+        if i == 3:
+            x["specularFactor"] = [1, 1, 1]
+            x["diffuseFactor"] = [0.02, 0.02, 0.02, 1]
+            x["specularGlossinessTexture"] = {"index": d.image(cells)}
+        m = {"extensions": {"KHR_materials_pbrSpecularGlossiness": x}}
+        d.node(mesh=d.mesh([d.prim(sphere(0.25), d.material(m))]), translation=[(i - 1.5) * 0.6, 0, 0])
     d.uses("KHR_materials_pbrSpecularGlossiness")
 
 

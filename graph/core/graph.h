@@ -12,6 +12,7 @@
 // Schedule = stable topological order of those edges (declaration order breaks ties).
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -119,6 +120,10 @@ struct Access {
 // A pipeline material as a `scene` pass draws it (the Lua host resolves it from rg.material, its
 // layout, lighting path and stencil class: graphWithParams): what the pass needs to generate and
 // bind its shaders, typed.
+// The textures of its own a pipeline material may declare (rg.material's `textures`): scene draws
+// bind them after the five standard maps (shaders/lib/material.glsl materialTexture0..2).
+inline constexpr size_t kMaterialTextureSlots = 3;
+
 struct PassMaterial {
     std::string name;
     uint32_t id = 0;  // materialId written to the G-buffer
@@ -128,10 +133,11 @@ struct PassMaterial {
     std::vector<std::string> fills;    // the targets it writes; empty: all
     std::string surface;               // GLSL file with its surface function
     uint32_t stencilValue = 0, stencilMask = 0;
-    std::vector<std::string> custom;  // game-team parameter names, in material.custom order
-    std::string shading;              // its lighting path's shading function (forward), or ""
-    std::string fixup;                // the fix-up pass that completes its layout, or ""
-    std::string origin;               // where the material was declared
+    std::vector<std::string> custom;    // game-team parameter names, in material.custom order
+    std::vector<std::string> textures;  // its own textures' names, in slot order
+    std::string shading;                // its lighting path's shading function (forward), or ""
+    std::string fixup;                  // the fix-up pass that completes its layout, or ""
+    std::string origin;                 // where the material was declared
     std::map<std::string, std::string> channels;  // standard parameter -> its layout's channel
     bool operator==(const PassMaterial&) const = default;
 };

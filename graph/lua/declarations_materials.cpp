@@ -101,7 +101,7 @@ Result<void> Builder::material(const Declaration& d) {
     const Value& b = d.body;
     if (auto r = checkFields(w, b,
                              {"id", "layout", "surface", "path", "stencil", "fills", "fixup",
-                              "params", "channels", "decals", "doc"});
+                              "params", "textures", "channels", "decals", "doc"});
         !r)
         return r;
     MaterialDesc m;
@@ -221,11 +221,12 @@ Result<void> Builder::material(const Declaration& d) {
             "worldTangent",
             "uv0",
             "uv1"};  // the generated code
-        for (const auto& [name, value] : m.params.asTable()) {
-            const Where pw = w.at("params").at(name);
+        // A parameter's or texture's name, checked where `pw` says.
+        auto checkName = [&](const Where& pw, const std::string& name,
+                             const char* what) -> Result<void> {
             if (!isGlslIdentifier(name))
-                return pw.error(
-                    "a material parameter's name must be a GLSL identifier (letters, digits, _)");
+                return pw.error(std::string("a material ") + what +
+                                "'s name must be a GLSL identifier (letters, digits, _)");
             if (name.rfind("rg", 0) == 0 || name.rfind("RG_", 0) == 0 || name.rfind("gl_", 0) == 0)
                 return pw.error(
                     "names starting with 'rg', 'RG_' or 'gl_' are rgraph's and GLSL's; choose "
@@ -242,7 +243,31 @@ Result<void> Builder::material(const Declaration& d) {
                                 "' of the generated G-buffer shader (the sampled surface's fields "
                                 "and its variables: " +
                                 joinQuoted(reserved) + "); choose another");
+            return {};
+        };
+        for (const auto& [name, value] : m.params.asTable())
+            if (auto r = checkName(w.at("params").at(name), name, "parameter"); !r) return r;
+        // Its own textures (at most kMaterialTextureSlots): `NAME(s)` in its surface function
+        // samples one at the surface's uv (passes/scene_pass_glsl.cpp surfaceInclude).
+        auto textures = stringList(w.at("textures"), b["textures"]);
+        if (!textures) return std::unexpected(textures.error());
+        if (textures->size() > kMaterialTextureSlots)
+            return w.at("textures")
+                .error("at most " + std::to_string(kMaterialTextureSlots) +
+                       " textures a material, got " + std::to_string(textures->size()));
+        for (size_t i = 0; i < textures->size(); ++i) {
+            const std::string& name = (*textures)[i];
+            if (auto r = checkName(w.at("textures").index(i), name, "texture"); !r) return r;
+            if (!m.params[name].isNil() ||
+                std::count(textures->begin(), textures->begin() + long(i), name))
+                return w.at("textures")
+                    .index(i)
+                    .error("'" + name +
+                           "' is already a parameter or texture of "
+                           "this material; choose another");
         }
+        m.textures = *textures;
+        std::sort(m.textures.begin(), m.textures.end());
     }
     out.materials.push_back(m);
     return {};

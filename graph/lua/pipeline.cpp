@@ -570,6 +570,7 @@ std::vector<PassMaterial> sceneMaterials(const PipelineDesc& pipeline, const Val
         t.fills = m.fills;
         for (const auto& [key, value] : m.params.asTable())
             if (value.isNumber()) t.custom.push_back(key);
+        t.textures = m.textures;
         // Its identity, the whole byte: it replaces whatever was under it.
         t.stencilValue = m.identity;
         t.stencilMask = 255;

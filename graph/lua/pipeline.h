@@ -77,6 +77,9 @@ struct MaterialDesc {
     std::vector<std::string> fills;  // targets it writes; empty = all targets of the layout
     std::string fixup;               // pass that fills the rest, when fills is partial
     Value params;                    // material parameters and their defaults
+    // Its own textures' names, sorted (the order of their slots: Material::textures), at most
+    // kMaterialTextureSlots.
+    std::vector<std::string> textures;
     // Standard name (kStandardChannels) -> the layout's channel holding it, resolved: every
     // standard name the layout has under its own name or under the declared `channels` name.
     std::map<std::string, std::string> channels;

@@ -190,6 +190,19 @@ Result<std::unique_ptr<passes::GpuScene>> Session::loadScene(PipelineDesc& pipel
                                 "' declares it), got " + value.typeName());
         }
         m.extra = numericParams(*pm, m.extra);
+        // Its own textures by name: one the model does not declare is an error; the ones it
+        // declares and the scene leaves out are white, so the map's order is the slots'.
+        const std::string at =
+            (m.origin.empty() ? file + ": material '" + m.name + "'" : m.origin) + ".textures.";
+        for (const auto& [key, ref] : m.textures)
+            if (std::find(pm->textures.begin(), pm->textures.end(), key) == pm->textures.end())
+                return fail(
+                    ErrorCode::InvalidInput,
+                    at + key + ": model '" + m.model + "' has no texture '" + key + "'" +
+                        suggestion(key, pm->textures) +
+                        (pm->textures.empty() ? " (it takes none)"
+                                              : "; its textures: " + joinQuoted(pm->textures)));
+        for (const auto& name : pm->textures) m.textures[name];
     }
     // A boolean parameter read when the scene loads: the pipeline's value, or --set's (checked).
     auto switchedOn = [&](const char* name) -> Result<bool> {

@@ -166,6 +166,8 @@ struct Loader {
     // Per Scene material: the glTF TEXCOORD_n each of a vertex's two uv slots holds.
     std::vector<std::array<int, 2>> materialSlots;
     void uvSlots(const std::string& where, Material& m);
+    Result<TextureRef> extensionTexture(const std::string& where, const tinygltf::Value& info,
+                                        bool srgb);
     Result<float> reflectanceOf(const tinygltf::Material& src, const std::string& where);
     Result<void> specularGlossiness(const tinygltf::Material& src, const std::string& where,
                                     Material& m);

@@ -162,8 +162,7 @@ Result<TextureRef> Loader::texture(const std::string& where, int index, int texC
 // material reads that set into it (primitive()). A third set has no slot: named in a warning, its
 // textures read slot 0.
 void Loader::uvSlots(const std::string& where, Material& m) {
-    TextureRef* refs[] = {&m.baseColorTex, &m.metallicRoughnessTex, &m.normalTex, &m.occlusionTex,
-                          &m.emissiveTex};
+    const std::vector<TextureRef*> refs = m.textureRefs();
     std::set<uint32_t> used;
     for (const TextureRef* r : refs)
         if (r->image >= 0) used.insert(r->texCoord);
@@ -244,9 +243,22 @@ Result<float> Loader::reflectanceOf(const tinygltf::Material& src, const std::st
     return float(std::sqrt(std::min(f0, 0.16) / 0.16));
 }
 
+// A textureInfo inside a material extension (KHR_materials_clearcoat's, specular-glossiness'):
+// its index, texCoord and KHR_texture_transform, as texture() reads the core ones.
+Result<TextureRef> Loader::extensionTexture(const std::string& where, const tinygltf::Value& info,
+                                            bool srgb) {
+    tinygltf::ExtensionMap ext;
+    if (const auto& e = info.Get("extensions"); e.IsObject())
+        for (const auto& key : e.Keys()) ext[key] = e.Get(key);
+    return texture(where, indexOf(info.Get("index")),
+                   info.Get("texCoord").IsNumber() ? indexOf(info.Get("texCoord")) : 0, ext, srgb);
+}
+
 // KHR_materials_clearcoat on the standard model: the pipeline's clear_coat material
 // (materials/clearcoat.lua) with coatStrength = clearcoatFactor and coatSmoothness =
-// 1 − clearcoatRoughnessFactor; its textures are not read (a warning says so).
+// 1 − clearcoatRoughnessFactor, its textures as the model's own: clearcoatTexture's R multiplies
+// the strength (coatStrengthMap), clearcoatRoughnessTexture's G the roughness (coatRoughnessMap).
+// The coat's normal map has no place in the disney layout (one normal a pixel): a warning says so.
 Result<void> Loader::clearCoat(const tinygltf::Material& src, const std::string& where,
                                Material& m) {
     auto it = src.extensions.find("KHR_materials_clearcoat");
@@ -257,12 +269,17 @@ Result<void> Loader::clearCoat(const tinygltf::Material& src, const std::string&
                           number(x.Get("clearcoatFactor"), 0.0), 0, 1));
     RG_TRY(roughness, ranged(where + ": KHR_materials_clearcoat.clearcoatRoughnessFactor",
                              number(x.Get("clearcoatRoughnessFactor"), 0.0), 0, 1));
-    for (const char* t :
-         {"clearcoatTexture", "clearcoatRoughnessTexture", "clearcoatNormalTexture"})
-        if (x.Has(t))
-            warn(where + ": KHR_materials_clearcoat." + t +
-                 " is ignored (rgraph's clear coat takes the factors)");
+    if (x.Has("clearcoatNormalTexture"))
+        warn(where +
+             ": KHR_materials_clearcoat.clearcoatNormalTexture is ignored (the clear coat's "
+             "G-buffer keeps one normal, the base's)");
     if (factor <= 0.0) return {};
+    for (const auto& [field, name] : {std::pair{"clearcoatTexture", "coatStrengthMap"},
+                                      std::pair{"clearcoatRoughnessTexture", "coatRoughnessMap"}})
+        if (x.Get(field).IsObject()) {
+            RG_TRY(m.textures[name], extensionTexture(where + " KHR_materials_clearcoat." + field,
+                                                      x.Get(field), false));
+        }
     m.model = "clear_coat";
     m.extra = Value(
         Value::Table{{"coatStrength", Value(factor)}, {"coatSmoothness", Value(1.0 - roughness)}});
@@ -272,8 +289,9 @@ Result<void> Loader::clearCoat(const tinygltf::Material& src, const std::string&
 // KHR_materials_pbrSpecularGlossiness onto the two-colour base material (seed 000 tbl:3), which
 // holds exactly its two colours: diffuseFactor (× diffuseTexture, sRGB, as the base colour
 // texture; its alpha the opacity) as the diffuse colour, specularFactor as the f0 colour and
-// glossinessFactor as the smoothness. specularGlossinessTexture has no place there: a warning says
-// so and its factors stand alone.
+// glossinessFactor as the smoothness; specularGlossinessTexture (RGB sRGB, A linear) is the
+// model's own texture specularGlossinessMap, multiplying f0 and smoothness
+// (materials/two_colour.glsl).
 Result<void> Loader::specularGlossiness(const tinygltf::Material& src, const std::string& where,
                                         Material& m) {
     auto it = src.extensions.find("KHR_materials_pbrSpecularGlossiness");
@@ -304,18 +322,13 @@ Result<void> Loader::specularGlossiness(const tinygltf::Material& src, const std
     m.smoothness = float(glossiness);
     m.metalMask = 0.0f;
     m.metallicRoughnessTex = TextureRef{};  // the metallic-roughness model's: not this one's
-    if (x.Get("diffuseTexture").IsObject()) {
-        const auto& t = x.Get("diffuseTexture");
-        tinygltf::ExtensionMap none;
-        auto r = texture(where + " diffuseTexture", indexOf(t.Get("index")),
-                         t.Get("texCoord").IsNumber() ? indexOf(t.Get("texCoord")) : 0, none, true);
-        if (!r) return std::unexpected(r.error());
-        m.baseColorTex = *r;
-    }
-    if (x.Has("specularGlossinessTexture"))
-        warn(ext +
-             "specularGlossinessTexture is ignored (the two-colour material takes the "
-             "factors)");
+    if (x.Get("diffuseTexture").IsObject())
+        RG_TRY(m.baseColorTex,
+               extensionTexture(where + " diffuseTexture", x.Get("diffuseTexture"), true));
+    if (x.Get("specularGlossinessTexture").IsObject())
+        RG_TRY(m.textures["specularGlossinessMap"],
+               extensionTexture(where + " specularGlossinessTexture",
+                                x.Get("specularGlossinessTexture"), true));
     return {};
 }
 

@@ -172,6 +172,19 @@ struct Material {
     bool doubleSided = false;
 
     Value extra;  // a table of other parameters for game-team materials (clear coat, foliage, ...)
+    // A game-team material's own textures by the names its pipeline material declares
+    // (rg.material's `textures`; the clear coat's coat maps, the two-colour material's
+    // specular-glossiness map); each multiplies what its surface function says. When the scene
+    // loads, the names are checked against the model's and every one it lacks is added without an
+    // image (white), so the map's order is the model's slot order.
+    std::map<std::string, TextureRef> textures;
+    // Every texture reference it has: the five maps, then its model's own in name order.
+    std::vector<TextureRef*> textureRefs() {
+        std::vector<TextureRef*> out = {&baseColorTex, &metallicRoughnessTex, &normalTex,
+                                        &occlusionTex, &emissiveTex};
+        for (auto& [name, ref] : textures) out.push_back(&ref);
+        return out;
+    }
     // Where it was declared, for errors found once the pipeline is known: "file:line:
     // scene.material.NAME" (Lua scenes) or "file: material 'NAME'" (glTF); empty when made in code.
     std::string origin;

@@ -19,30 +19,14 @@ namespace scene_script {
 Result<void> Builder::material(const Declaration& d) {
     Where w = where(d);
     const Value& b = d.body;
-    if (auto r = checkFields(w, b,
-                             {"model",
-                              "base_color",
-                              "smoothness",
-                              "metal_mask",
-                              "reflectance",
-                              "ao",
-                              "emissive",
-                              "emissive_unit",
-                              "emissive_ec",
-                              "opacity",
-                              "diffuse_color",
-                              "f0",
-                              "params",
-                              "double_sided",
-                              "alpha",
-                              "alpha_cutoff",
-                              "base_color_map",
-                              "metallic_roughness_map",
-                              "normal_map",
-                              "normal_scale",
-                              "occlusion_map",
-                              "emissive_map",
-                              "doc"});
+    if (auto r = checkFields(w, b, {"model",        "base_color",     "smoothness",
+                                    "metal_mask",   "reflectance",    "ao",
+                                    "emissive",     "emissive_unit",  "emissive_ec",
+                                    "opacity",      "diffuse_color",  "f0",
+                                    "params",       "double_sided",   "alpha",
+                                    "alpha_cutoff", "base_color_map", "metallic_roughness_map",
+                                    "normal_map",   "normal_scale",   "occlusion_map",
+                                    "emissive_map", "textures",       "doc"});
         !r)
         return r;
     Material m;
@@ -103,6 +87,19 @@ Result<void> Builder::material(const Declaration& d) {
         {"emissive_map", {&m.emissiveTex, true}}};
     for (const auto& [field, target] : maps)
         if (b.has(field)) RG_TRY(target.first->image, textureFile(w, b, field, target.second));
+    // The model's own textures (rg.material's `textures`) by name: a file each, linear (its
+    // surface function says what the channels mean); the names are checked against the model
+    // when the pipeline is known.
+    if (b.has("textures")) {
+        const Value& t = b["textures"];
+        if (!t.isTable() && !(t.isList() && t.asList().empty()))
+            return w.at("textures")
+                .error("expected a table of texture files by the names the model declares, got " +
+                       describe(t));
+        const Where tw = w.at("textures");
+        for (const auto& [name, file] : t.asTable())
+            RG_TRY(m.textures[name].image, textureFile(tw, t, name, false));
+    }
     if (b.has("normal_scale") && !b.has("normal_map"))
         return w.at("normal_scale").error("applies with a normal_map only");
     RG_TRY(m.normalScale, numberF(w, b, "normal_scale", m.normalScale, Range::closed(0, 10)));
@@ -205,18 +202,19 @@ void Builder::merge(Scene&& sub, const glm::mat4& t, const std::string& prefix) 
     const auto smpOff = static_cast<int32_t>(scene.samplers.size());
     const auto meshOff = static_cast<int32_t>(scene.meshes.size());
     for (auto& m : sub.materials) {
-        for (TextureRef* tex : {&m.baseColorTex, &m.metallicRoughnessTex, &m.normalTex,
-                                &m.occlusionTex, &m.emissiveTex}) {
+        auto offset = [&](TextureRef* tex) {
             if (tex->image >= 0) tex->image += imgOff;
             if (tex->sampler >= 0) tex->sampler += smpOff;
-        }
+        };
+        for (TextureRef* tex : m.textureRefs()) offset(tex);
         m.name = prefix + "/" + m.name;
         scene.materials.push_back(std::move(m));
     }
     for (auto& img : sub.images) scene.images.push_back(std::move(img));
     for (auto& s : sub.samplers) scene.samplers.push_back(s);
     for (auto& mesh : sub.meshes) {
-        for (auto& p : mesh.primitives) p.material += matOff;
+        for (auto* list : {&mesh.primitives, &mesh.lines, &mesh.points})
+            for (auto& p : *list) p.material += matOff;
         mesh.name = prefix + "/" + mesh.name;
         scene.meshes.push_back(std::move(mesh));
     }

@@ -10,7 +10,7 @@ layout(set = 1, binding = 0) uniform MaterialData {
     vec4 factors2;          // normalScale, occlusionStrength, alphaCutoff, alphaMode (0 opaque, 1 mask, 2 blend)
     vec4 diffuseColor;      // two-colour model (tbl:3); w: 1 for a two-colour material
     vec4 f0;                // two-colour model
-    vec4 uvTransform[10];   // per texture: two rows of the affine uv matrix; w of the first row: texCoord
+    vec4 uvTransform[16];   // per texture (5 standard, 3 of the model's own): two rows of the affine uv matrix; w of the first row: texCoord
     vec4 custom[4];         // game-team material parameters, in declaration order
 } material;
 layout(set = 1, binding = 1) uniform sampler2D baseColorTex;
@@ -18,6 +18,12 @@ layout(set = 1, binding = 2) uniform sampler2D metallicRoughnessTex;
 layout(set = 1, binding = 3) uniform sampler2D normalTex;
 layout(set = 1, binding = 4) uniform sampler2D occlusionTex;
 layout(set = 1, binding = 5) uniform sampler2D emissiveTex;
+// The material model's own textures (rg.material's `textures`, in sorted name order): its surface
+// function reads texture i as NAME(s), which the generated shader defines as
+// rgMaterialTexture(i, s) — white where the scene material has none.
+layout(set = 1, binding = 6) uniform sampler2D materialTexture0;
+layout(set = 1, binding = 7) uniform sampler2D materialTexture1;
+layout(set = 1, binding = 8) uniform sampler2D materialTexture2;
 
 // What a surface function starts from: the material's parameters with its textures applied.
 struct RgSurface {
@@ -37,15 +43,17 @@ struct RgSurface {
     // emission of its own): the lighting occludes it by AO as it would the probe's diffuse
     // (seed 002 §4.10.3). Written to GB2.reserved by the standard surface function.
     float radiosity;
+    vec2 uv0, uv1;  // the vertex's two uv sets, for the model's own textures (rgMaterialTexture)
 };
 
 // Which of the five textures the material has (bits 1 base colour, 2 metallic-roughness,
-// 4 normal, 8 occlusion, 16 emissive): the scene pass compiles one variant per combination its
+// 4 normal, 8 occlusion, 16 emissive; 64, 128, 256 the model's own textures 0, 1, 2): the scene
+// pass compiles one variant per combination its
 // draws use, so an absent texture is not sampled — its default (white; the flat normal) would
 // leave the surface exactly as the factors give it, and on a CPU rasteriser the five filtered
 // samples of tiny triangles are most of the G-buffer's cost. Without it, every texture is sampled.
 #ifndef RG_TEXTURES
-#define RG_TEXTURES 31
+#define RG_TEXTURES 479
 #endif
 // 1 for an alpha-tested material's variant: the only one whose fragment shader may discard
 // (passes/scene_pass.cpp variantKey: a shader that can discard loses the early depth test).
@@ -62,6 +70,11 @@ vec2 rgTextureUv(int texture, vec2 uv0, vec2 uv1) {
 // Texture `slot` of the material (bit `bit` of RG_TEXTURES), or its default when it has none.
 #define rgSampleMaterialTexture(tex, bit, slot, uv0, uv1, absent) \
     (((RG_TEXTURES) & (bit)) != 0 ? texture(tex, rgTextureUv(slot, uv0, uv1)) : (absent))
+
+// The material model's own texture i (0, 1, 2) at the surface's uv, white without one.
+#define rgMaterialTexture0(s) rgSampleMaterialTexture(materialTexture0, 64, 5, (s).uv0, (s).uv1, vec4(1.0))
+#define rgMaterialTexture1(s) rgSampleMaterialTexture(materialTexture1, 128, 6, (s).uv0, (s).uv1, vec4(1.0))
+#define rgMaterialTexture2(s) rgSampleMaterialTexture(materialTexture2, 256, 7, (s).uv0, (s).uv1, vec4(1.0))
 
 // The surface's tangent frame (tangent, bitangent, normal as columns) from the interpolated
 // vertex normal and tangent, facing the viewer: the normal map's frame, and the baked lightmap's
@@ -135,6 +148,8 @@ RgSurface rgSampleSurface(vec3 position, vec3 normal, vec4 tangent, vec2 uv0, ve
     s.f0 = material.f0.rgb;
     s.twoColour = material.diffuseColor.w > 0.5;
     s.radiosity = 0.0;
+    s.uv0 = uv0;
+    s.uv1 = uv1;
     vec3 m = rgSampleMaterialTexture(normalTex, 4, 2, uv0, uv1, vec4(0.5, 0.5, 1.0, 1.0)).xyz * 2.0 - 1.0;
 #if RG_SPECULAR_AA
     // How much shorter than the base level's the filtered normal is (rgSpecularAntialiasing).

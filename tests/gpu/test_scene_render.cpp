@@ -67,9 +67,15 @@ protected:
         glm::vec2 ndc = glm::vec2(clip) / clip.w;
         return glm::ivec2((ndc * 0.5f + 0.5f) * glm::vec2(W, H));
     }
-    // The disney G-buffer at a pixel, decoded with the layout's C++ unpack.
-    static std::vector<ChannelValue> gbufferAt(const Session& s, glm::ivec2 px, LayoutInfo& info) {
-        auto li = analyzeLayout(s.pipeline().layouts.front());
+    // The G-buffer at a pixel decoded as layout `layout` (default: the first, disney) with the
+    // layout's C++ unpack.
+    static std::vector<ChannelValue> gbufferAt(const Session& s, glm::ivec2 px, LayoutInfo& info,
+                                               const std::string& layout = "") {
+        const auto& layouts = s.pipeline().layouts;
+        auto l = std::find_if(layouts.begin(), layouts.end(),
+                              [&](auto& x) { return layout.empty() || x.name == layout; });
+        EXPECT_NE(l, layouts.end()) << layout;
+        auto li = analyzeLayout(*l);
         EXPECT_TRUE(li.has_value());
         info = *li;
         std::vector<TexelValue> texels;
@@ -346,22 +352,10 @@ const glm::vec3 kOxide{-2.3f, 0.5f, 0.2f}, kOxideEdge{-2.3f, 0.95f, -0.1f};
 
 TEST_F(SceneRender, TwoColourMaterialFillsItsLayout) {
     auto s = render("scripts/pipelines/deferred.lua", {"GB0", "GB1", "GB2", "GB3"});
-    const PipelineDesc& p = s->pipeline();
-    auto layout = std::find_if(p.layouts.begin(), p.layouts.end(),
-                               [](auto& l) { return l.name == "two_colour"; });
-    ASSERT_NE(layout, p.layouts.end());
-    auto info = analyzeLayout(*layout);
-    ASSERT_TRUE(info.has_value());
+    LayoutInfo layoutInfo;
+    const LayoutInfo* info = &layoutInfo;
     auto at = [&](glm::vec3 point) {
-        const glm::ivec2 px = pixelOf(*s, point);
-        std::vector<TexelValue> texels;
-        for (const auto& t : info->desc.targets) {
-            auto img = s_runtime->executor().readback(t.name);
-            EXPECT_TRUE(img.has_value()) << t.name;
-            texels.push_back(texelFromFloats(
-                t.format, &img->pixels[(size_t(px.y) * W + px.x) * img->channels], img->channels));
-        }
-        return unpackTexel(*info, texels);
+        return gbufferAt(*s, pixelOf(*s, point), layoutInfo, "two_colour");
     };
     // Above the decal: the material as declared, each channel within its encoding.
     auto g = at(kOxideEdge);
@@ -386,6 +380,91 @@ TEST_F(SceneRender, TwoColourMaterialFillsItsLayout) {
     EXPECT_NEAR(dc("smoothness").v[0], 0.5f * 0.5f + 0.9f * 0.5f, 1.0f / 1023);
     for (int c = 0; c < 3; ++c) EXPECT_EQ(dc("f0").v[c], ch("f0").v[c]) << "f0[" << c << "]";
     EXPECT_EQ(dc("ao").v[0], ch("ao").v[0]);
+}
+
+// A material model's own textures (rg.material's `textures`, a scene material's `textures`): the
+// clear coat's coatStrengthMap (R × strength) and coatRoughnessMap (G × roughness), the two-colour
+// material's specularGlossinessMap (RGB × f0, A × smoothness), each read at the surface's uv into
+// the G-buffer — left half of each plane the texture's left texel, right half its right one. A
+// texture name the model does not declare is refused naming the scene's material.
+TEST_F(SceneRender, MaterialModelsReadTheirOwnTextures) {
+    const std::string dir = RG_TEST_TMP;
+    std::filesystem::create_directories(dir);
+    // 8×1: four texels of `left`, four of `right` (bilinear filtering at a half's middle reads
+    // that half's value alone).
+    auto png = [&](const char* name, std::vector<float> both) {
+        Image img(8, 1, 4);
+        for (uint32_t x = 0; x < 8; ++x)
+            for (uint32_t c = 0; c < 4; ++c) img.pixels[4 * x + c] = both[(x < 4 ? 0 : 4) + c];
+        EXPECT_TRUE(writePng(dir + "/" + name, img).has_value());
+    };
+    png("coat.png", {1, 1, 1, 1, 0, 0, 0, 1});
+    png("rough.png", {0, 0.5f, 0, 1, 0, 1, 0, 1});
+    png("specgloss.png", {1, 0.5f, 0.25f, 1, 0.2f, 0.2f, 0.2f, 0.5f});
+    auto write = [&](const std::string& coatTextures) {
+        const std::string file = dir + "/own_textures.lua";
+        std::ofstream(file)
+            << "local scene = require 'scene'\n"
+            << "scene.material 'coat' { model = 'clear_coat', base_color = { 0.5, 0.1, 0.1 }, "
+               "params = { coatStrength = 1, coatSmoothness = 0.8 }, textures = { "
+            << coatTextures << " } }\n"
+            << "scene.material 'oxide' { model = 'two_colour', diffuse_color = { 0.2, 0.2, 0.2 }, "
+               "f0 = { 0.5, 0.5, 0.5 }, smoothness = 0.8, textures = { specularGlossinessMap = "
+               "'specgloss.png' } }\n"
+            << "scene.plane 'top' { size = { 2, 1 }, position = { 0, 0.6, 0 }, rotation = { 90, "
+               "0, 0 }, material = 'coat' }\n"
+            << "scene.plane 'bottom' { size = { 2, 1 }, position = { 0, -0.6, 0 }, rotation = { "
+               "90, 0, 0 }, material = 'oxide' }\n"
+            << "scene.camera 'main' { position = { 0, 0, 4 }, target = { 0, 0, 0 }, fov = 40 }\n";
+        return file;
+    };
+    SessionOptions o;
+    o.compile.outputWidth = W;
+    o.compile.outputHeight = H;
+    o.paramsIfDeclared["specular_aa"] = Value(false);
+    o.scene = write("coatStrengthMap = 'coat.png', coatRoughnessMap = 'rough.png'");
+    o.captures = {"GB0", "GB1", "GB2", "GB3"};
+    Session s(*s_runtime, o);
+    auto r = s.load(kRoot + "/scripts/pipelines/deferred.lua");
+    ASSERT_TRUE(r.has_value()) << r.error().describe();
+    ASSERT_TRUE(s.frame().has_value());
+    auto decode = [&](const char* layout, glm::vec3 point) {
+        LayoutInfo info;
+        auto values = gbufferAt(s, pixelOf(s, point), info, layout);
+        std::map<std::string, ChannelValue> out;
+        for (const auto& t : info.desc.targets)
+            for (const auto& c : t.channels) out[c.name] = values[size_t(info.find(c.name))];
+        return out;
+    };
+    // Clear coat: strength 1 × R (1 | 0) in 5 bits; smoothness 1 − 0.2 × G (0.5 | 1).
+    auto coatLeft = decode("disney", {-0.5f, 0.6f, 0}),
+         coatRight = decode("disney", {0.5f, 0.6f, 0});
+    EXPECT_EQ(coatLeft["materialData"].u[0], 31u);
+    EXPECT_EQ(coatRight["materialData"].u[0], 0u);
+    EXPECT_NEAR(coatLeft["reserved"].v[0], 1.0f - 0.2f * 128.0f / 255.0f, 0.5f / 255 + 1e-3f);
+    EXPECT_NEAR(coatRight["reserved"].v[0], 0.8f, 0.5f / 255 + 1e-3f);
+    // Two-colour: f0 0.5 × RGB, smoothness 0.8 × A.
+    auto oxideLeft = decode("two_colour", {-0.5f, -0.6f, 0}),
+         oxideRight = decode("two_colour", {0.5f, -0.6f, 0});
+    const float f0Left[3] = {0.5f, 0.5f * 128.0f / 255.0f, 0.5f * 64.0f / 255.0f};  // 8-bit texels
+    for (int c = 0; c < 3; ++c) {
+        EXPECT_NEAR(oxideLeft["f0"].v[c], f0Left[c], 1.0f / 255 + 1e-3f) << c;
+        EXPECT_NEAR(oxideRight["f0"].v[c], 0.5f * 51.0f / 255.0f, 1.0f / 255 + 1e-3f) << c;
+    }
+    EXPECT_NEAR(oxideLeft["smoothness"].v[0], 0.8f, 1.0f / 1023 + 1e-3f);
+    EXPECT_NEAR(oxideRight["smoothness"].v[0], 0.8f * 128.0f / 255.0f, 1.0f / 1023 + 1e-3f);
+
+    // A texture the clear coat does not have.
+    SessionOptions bad = o;
+    bad.scene = write("coatNormalMap = 'coat.png'");
+    Session b(*s_runtime, bad);
+    auto e = b.load(kRoot + "/scripts/pipelines/deferred.lua");
+    ASSERT_FALSE(e.has_value());
+    EXPECT_NE(e.error().message.find("own_textures.lua:2: scene.material.coat.textures."
+                                     "coatNormalMap: model 'clear_coat' has no texture "
+                                     "'coatNormalMap'"),
+              std::string::npos)
+        << e.error().message;
 }
 
 TEST_F(SceneRender, TwoColourLightsAsTheStandardMaterialItConvertsFrom) {

@@ -246,6 +246,18 @@ TEST(LuaErrors, MaterialParameterNamesCannotClashWithTheGeneratedShader) {
         << loadError("param_reserved.lua");
 }
 
+TEST(LuaErrors, MaterialTexturesAreFewAndNamedApart) {
+    // A texture becomes NAME(s) in the generated shader, beside the parameters' names.
+    EXPECT_EQ(loadError("material_textures_bad.lua"),
+              kScripts +
+                  "material_textures_bad.lua:4: materials.toon.textures[1]: 'ink' is already a "
+                  "parameter or texture of this material; choose another");
+    EXPECT_EQ(loadError("material_textures_many.lua"),
+              kScripts +
+                  "material_textures_many.lua:4: materials.toon.textures: at most 3 textures a "
+                  "material, got 4");
+}
+
 TEST(LuaErrors, StencilExhaustion) {
     EXPECT_EQ(loadError("stencil_exhaustion.lua"),
               kScripts +
@@ -389,9 +401,9 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // half-resolution depths, each cascade's map drawn and filtered into the sun's mask at once, the
     // foliage fix-up, then the AO itself on the fixed-up normals: scripts/ao.lua), the Hi-Z
     // pyramid, SSR's mask and SSR (scripts/ssr.lua), the composition of SSR and the probes
-    // (scripts/reflections.lua), the lighting, the sky and forward.
-    ASSERT_GE(order.size(), 58u);
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 54),
+    // (scripts/reflections.lua), the lighting, the sky, the points and lines, and forward.
+    ASSERT_GE(order.size(), 59u);
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 55),
               (std::vector<std::string>{"env_cube",
                                         "env_mips",
                                         "env_irradiance",
@@ -445,6 +457,7 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
                                         "lighting_clearcoat",
                                         "lighting_two_colour",
                                         "sky",
+                                        "lines",
                                         "forward"}));
     // The histories' keep passes come after every other (rg.resource's `history`, rg.history).
     EXPECT_EQ(std::vector<std::string>(order.end() - 4, order.end()),

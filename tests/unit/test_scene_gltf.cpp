@@ -345,11 +345,17 @@ TEST(GltfLoad, IorSpecularAndClearcoatExtensionsMapOntoTheMaterials) {
                        {{"KHR_materials_clearcoat",
                          {{"clearcoatFactor", 0.8},
                           {"clearcoatRoughnessFactor", 0.1},
+                          {"clearcoatTexture", {{"index", 0}, {"texCoord", 1}}},
+                          {"clearcoatRoughnessTexture",
+                           {{"index", 1},
+                            {"extensions", {{"KHR_texture_transform", {{"scale", {2.0, 4.0}}}}}}}},
                           {"clearcoatNormalTexture", {{"index", 0}}}}}}}},
                      {{"name", "nocoat"},
                       {"extensions", {{"KHR_materials_clearcoat", {{"clearcoatFactor", 0.0}}}}}}});
+    g.j["images"] = json::array({{{"uri", "coat.png"}}, {{"uri", "rough.png"}}});
+    g.j["textures"] = json::array({{{"source", 0}}, {{"source", 1}}});
     g.j["extensionsUsed"] = {"KHR_materials_ior", "KHR_materials_specular",
-                             "KHR_materials_clearcoat"};
+                             "KHR_materials_clearcoat", "KHR_texture_transform"};
     g.scene({g.node({{"mesh", 0}})});
     rg::GltfOptions o;
     o.loadImages = false;
@@ -365,6 +371,17 @@ TEST(GltfLoad, IorSpecularAndClearcoatExtensionsMapOntoTheMaterials) {
     EXPECT_EQ(m[4].model, "clear_coat");
     EXPECT_NEAR(m[4].extra["coatStrength"].asNumber(), 0.8, 1e-6);
     EXPECT_NEAR(m[4].extra["coatSmoothness"].asNumber(), 0.9, 1e-6);
+    // Its textures as the clear-coat model's own (materials/clearcoat.lua), linear, each with its
+    // set and transform.
+    ASSERT_EQ(m[4].textures.size(), 2u);
+    const rg::TextureRef& coat = m[4].textures.at("coatStrengthMap");
+    const rg::TextureRef& rough = m[4].textures.at("coatRoughnessMap");
+    ASSERT_TRUE(coat.valid() && rough.valid());
+    EXPECT_EQ(scene->images[size_t(coat.image)].name.find("coat"), 0u);
+    EXPECT_FALSE(scene->images[size_t(coat.image)].srgb);
+    EXPECT_EQ(coat.texCoord, 1u);  // TEXCOORD_1, in its own slot
+    EXPECT_EQ(rough.transform[0][0], 2.0f);
+    EXPECT_EQ(rough.transform[1][1], 4.0f);
     EXPECT_EQ(m[5].model, "standard");  // a coat of 0 is no coat
     ASSERT_EQ(warnings.size(), 3u);
     EXPECT_NE(warnings[0].find("material 2 'dim': KHR_materials_specular.specularColorFactor is "
@@ -415,8 +432,8 @@ TEST(GltfLoad, UnlitShowsItsBaseColourAsEmission) {
 }
 
 // KHR_materials_pbrSpecularGlossiness becomes the two-colour material (seed 000 tbl:3): its diffuse
-// and specular colours, glossiness as smoothness; its specular-glossiness texture is named in a
-// warning. Without the extension the same material is the standard one.
+// and specular colours, glossiness as smoothness, its specular-glossiness texture (sRGB) the
+// model's own specularGlossinessMap. Without the extension the same material is the standard one.
 TEST(GltfLoad, SpecularGlossinessBecomesTheTwoColourMaterial) {
     const std::string dir = tmpDir("specgloss");
     GltfBuilder g;
@@ -430,6 +447,8 @@ TEST(GltfLoad, SpecularGlossinessBecomesTheTwoColourMaterial) {
                                          {"specularGlossinessTexture", {{"index", 0}}}}}}}},
                                     {{"name", "plain"}}});
     g.j["extensionsUsed"] = {"KHR_materials_pbrSpecularGlossiness"};
+    g.j["images"] = json::array({{{"uri", "sg.png"}}});
+    g.j["textures"] = json::array({{{"source", 0}}});
     g.scene({g.node({{"mesh", 0}})});
     rg::GltfOptions o;
     o.loadImages = false;
@@ -442,11 +461,11 @@ TEST(GltfLoad, SpecularGlossinessBecomesTheTwoColourMaterial) {
     EXPECT_FLOAT_EQ(x.smoothness, 0.4f);
     EXPECT_FLOAT_EQ(x.opacity, 0.75f);
     EXPECT_EQ(scene->materials[1].model, "standard");
-    ASSERT_EQ(scene->warnings.size(), 1u);
-    EXPECT_NE(scene->warnings[0].find("material 0 'oxide': KHR_materials_pbrSpecularGlossiness."
-                                      "specularGlossinessTexture is ignored"),
-              std::string::npos)
-        << scene->warnings[0];
+    ASSERT_EQ(x.textures.size(), 1u);
+    const rg::TextureRef& sg = x.textures.at("specularGlossinessMap");
+    ASSERT_TRUE(sg.valid());
+    EXPECT_TRUE(scene->images[size_t(sg.image)].srgb);
+    EXPECT_TRUE(scene->warnings.empty()) << scene->warnings[0];
 }
 
 TEST(GltfLoad, PunctualLightsKeepGltfUnitsAndTakeTheirNodeTransform) {

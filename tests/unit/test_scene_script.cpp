@@ -186,7 +186,10 @@ TEST(SceneScript, MaterialFieldErrors) {
               "'params', 'double_sided', 'alpha', "
               "'alpha_cutoff', 'base_color_map', 'metallic_roughness_map', 'normal_map', "
               "'normal_scale', 'occlusion_map', "
-              "'emissive_map', 'doc'");
+              "'emissive_map', 'textures', 'doc'");
+    EXPECT_EQ(lua.error("scene.material \"red\" { textures = 3 }"),
+              "bad.lua:1: scene.material.red.textures: expected a table of texture files by the "
+              "names the model declares, got 3");
 }
 
 TEST(SceneScript, MaterialTextureFiles) {
