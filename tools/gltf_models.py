@@ -4,6 +4,8 @@ glTF-Asset-Generator: each a self-contained .gltf (buffers and images as data UR
 its feature at a glance, plus a few deliberately broken files the loader must refuse.
 
 Usage: tools/gltf_models.py OUT_DIR [--list]
+       tools/gltf_models.py OUT_DIR --many N   (many_meshes_N.gltf and .bin: N nodes, each with a
+                                                mesh of its own — the loader's speed)
 
 `rgraph gallery OUT_DIR --out OUT_DIR/index.html` renders them all into one page. Needs
 python3-numpy (Debian)."""
@@ -127,8 +129,14 @@ class Doc:
             if required:
                 self.j.setdefault("extensionsRequired", []).append(e)
 
-    def write(self, path):
-        if self.bin:
+    def write(self, path, external=False):
+        # The buffer inside the file as a data URI, or (external) in a .bin beside it.
+        if self.bin and external:
+            name = os.path.splitext(os.path.basename(path))[0] + ".bin"
+            with open(os.path.join(os.path.dirname(path), name), "wb") as f:
+                f.write(bytes(self.bin))
+            self.j["buffers"] = [{"byteLength": len(self.bin), "uri": name}]
+        elif self.bin:
             self.j["buffers"] = [{"byteLength": len(self.bin), "uri": "data:application/octet-stream;base64," +
                                   base64.b64encode(bytes(self.bin)).decode()}]
         for k in [k for k, v in self.j.items() if v == []]:
@@ -452,6 +460,16 @@ def broken_required(d):
     d.uses("KHR_not_an_extension", required=True)
 
 
+def many_meshes(d, n):
+    # n nodes on a square grid, each drawing a distinct mesh (a sphere of its own radius): what
+    # loading a large asset costs when nothing is shared.
+    m = d.material(pbr((0.7, 0.7, 0.7)))
+    side = int(math.ceil(math.sqrt(n)))
+    for i in range(n):
+        mesh = d.mesh([d.prim(sphere(0.3 + 0.1 * (i % 97) / 97, 12), m)])
+        d.node(mesh=mesh, translation=[(i % side) * 1.0, 0, (i // side) * 1.0])
+
+
 MODELS = [basic, metal_rough_spheres, primitive_modes, lines_and_points, texture_transform,
           texcoord_sets, vertex_colors, quantized, morph_targets, skin, instancing, variants, unlit,
           emissive_label, clearcoat, ior_specular, specular_glossiness, alpha_modes,
@@ -467,6 +485,13 @@ def main(argv):
         return 0
     out = argv[1]
     os.makedirs(out, exist_ok=True)
+    if "--many" in argv:
+        n = int(argv[argv.index("--many") + 1])
+        d = Doc()
+        many_meshes(d, n)
+        d.write(os.path.join(out, f"many_meshes_{n}.gltf"), external=True)
+        print(f"gltf_models: wrote many_meshes_{n}.gltf ({n} nodes and meshes) to {out}")
+        return 0
     for make in MODELS:
         d = Doc()
         make(d)

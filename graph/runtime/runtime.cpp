@@ -6,6 +6,7 @@
 
 #include "passes/passes.h"
 #include "scene/mesh_lod.h"
+#include "scene/scene.h"
 
 namespace rg {
 
@@ -61,7 +62,8 @@ std::string cacheDir() {
 std::string generatedShaderDir() { return cacheDir() + "/generated"; }
 
 void prepareEnvironment() {
-    setMeshLodCacheDir(cacheDir() + "/lods");  // meshoptimizer's levels of detail, by content
+    setGltfDecodeCacheDir(cacheDir() + "/decoded");  // Draco-compressed glTF geometry, decoded
+    setMeshLodCacheDir(cacheDir() + "/lods");        // meshoptimizer's levels of detail, by content
     std::string mesa = cacheDir() + "/mesa";
     std::error_code ec;
     fs::create_directories(mesa, ec);

@@ -1,6 +1,7 @@
 #include "session.h"
 #include "session_detail.h"
 #include "core/hash.h"
+#include "core/read_whole.h"
 
 #include <algorithm>
 #include <chrono>
@@ -383,8 +384,10 @@ Result<void> Session::load(const std::string& file) {
                 ";";
         for (const auto& f : scene->scene().files) {
             std::ifstream in(f, std::ios::binary);
+            std::string bytes;
+            if (in) readWhole(in, bytes);
             ContentHash h;
-            h.str(std::string((std::istreambuf_iterator<char>(in)), {}));
+            h.str(bytes);
             sceneKey += f + ":" + h.hex() + ";";
         }
     }

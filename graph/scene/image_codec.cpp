@@ -5,6 +5,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "core/read_whole.h"
 #include "scene.h"
 #include "scene_detail.h"
 
@@ -46,9 +47,8 @@ Result<std::vector<unsigned char>> readFile(const std::string& path) {
         return fail(err == ENOENT ? ErrorCode::NotFound : ErrorCode::Io,
                     "cannot open " + quote(path) + ": " + errnoText(err));
     }
-    std::vector<unsigned char> bytes((std::istreambuf_iterator<char>(in)),
-                                     std::istreambuf_iterator<char>());
-    if (in.bad())
+    std::vector<unsigned char> bytes;
+    if (!readWhole(in, bytes))
         return fail(ErrorCode::Io,
                     "cannot read " + quote(path) + ": " + errnoText(errno ? errno : EIO));
     return bytes;

@@ -429,6 +429,11 @@ inline constexpr float kGltfEmissiveEc = 3.2630344f;
 // captures, the lightmap baker, a scene pass that reads no exposure state): Sunny 16's.
 inline constexpr float kEmissiveEv100WithoutExposure = 15.0f;
 
+// The folder where glTF geometry that is slower to decode than to read (KHR_draco_mesh_compression)
+// is kept decoded, by the content hash of the compressed bytes ("" = none, the default; the
+// runtime sets <cache>/decoded): a file that does not read back whole is decoded anew.
+void setGltfDecodeCacheDir(std::string dir);
+
 struct GltfOptions {
     bool loadImages = true;    // false: materials keep their texture references, images stay empty
     bool generateMips = true;  // fill SceneImage::mips

@@ -5,6 +5,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
 #include <functional>
 #include <string>
 #include <vector>
@@ -415,6 +418,42 @@ TEST(GltfErrors, DracoCompressedPrimitivesDecodeOrAreRefusedByName) {
         EXPECT_TRUE(std::find(want.begin(), want.end(), t) != want.end())
             << "a triangle the quad does not have: (" << t[0].x << ", " << t[0].y << ") (" << t[1].x
             << ", " << t[1].y << ") (" << t[2].x << ", " << t[2].y << ")";
+
+    // The decoded primitive is kept by the content hash of the compressed bytes: the second load
+    // reads it back (seen here by editing the kept file: every 1.0f becomes 2.0f); a kept file cut
+    // short is not believed, the buffer is decoded anew and the file written again.
+    {
+        const std::string cache = dir + "/decoded";
+        std::filesystem::remove_all(cache);
+        rg::setGltfDecodeCacheDir(cache);
+        ASSERT_TRUE(load("cached", bytes, posId));
+        std::vector<std::string> files;
+        for (const auto& e : std::filesystem::directory_iterator(cache))
+            files.push_back(e.path().string());
+        ASSERT_EQ(files.size(), 1u);
+        auto kept = readBytes(files[0]);
+        const size_t whole = kept.size();
+        const float one = 1.0f, two = 2.0f;
+        for (size_t i = 0; i + 4 <= kept.size(); i += 4)
+            if (std::memcmp(&kept[i], &one, 4) == 0) std::memcpy(&kept[i], &two, 4);
+        std::ofstream(files[0], std::ios::binary)
+            .write(reinterpret_cast<const char*>(kept.data()), std::streamsize(kept.size()));
+        auto edited = load("cached", bytes, posId);
+        ASSERT_TRUE(edited) << errorOf(edited);
+        float largest = 0.0f;
+        for (const rg::Vertex& v : edited->meshes[0].primitives[0].vertices)
+            largest = std::max({largest, v.position.x, v.position.y});
+        EXPECT_EQ(largest, 2.0f) << "the kept file was not read";
+        std::filesystem::resize_file(files[0], whole - 5);
+        auto cut = load("cached", bytes, posId);
+        ASSERT_TRUE(cut) << errorOf(cut);
+        largest = 0.0f;
+        for (const rg::Vertex& v : cut->meshes[0].primitives[0].vertices)
+            largest = std::max({largest, v.position.x, v.position.y});
+        EXPECT_EQ(largest, 1.0f) << "a file cut short was believed";
+        EXPECT_EQ(std::filesystem::file_size(files[0]), whole);
+        rg::setGltfDecodeCacheDir("");
+    }
 
     std::vector<char> garbage = bytes;
     for (size_t i = 0; i < garbage.size(); i += 2) garbage[i] = char(0x5a);
