@@ -26,7 +26,7 @@ struct MaterialUniforms {
     glm::vec4 custom[4];
 };
 static_assert(sizeof(MaterialUniforms) == 416);
-// The standard maps and the model's own: bindings 1 .. kMaterialBindings - 1.
+// The standard maps and the model's own: bindings 1 .. kMaterialTextures of set 1.
 constexpr uint32_t kMaterialTextures = 5 + kMaterialTextureSlots;
 static_assert(2 * kMaterialTextures <= 16);
 

@@ -1,8 +1,8 @@
 // The graphics pipeline both raster pass kinds build (fullscreen in builtin_kinds.cpp, scene in
 // scene_pass.cpp): dynamic rendering into the given attachment formats, one viewport and scissor
 // (always dynamic), filled primitives (triangle lists unless the description says otherwise), one
-// sample. What differs between kinds — vertex input,
-// culling, depth/stencil, blending, further dynamic state — is in the description.
+// sample. What differs between kinds — vertex input, topology, culling, depth/stencil, blending,
+// further dynamic state — is in the description.
 #pragma once
 
 #include <vector>

@@ -257,6 +257,23 @@ struct Writer {
             x["emissive_unit"] = tinygltf::Value(std::string(m.emissiveEv ? "ev" : "nits"));
             if (m.emissiveEv) x["emissive_ec"] = tinygltf::Value(double(m.emissiveEc));
             if (!m.extra.isNil()) x["params"] = jsonOf(m.extra);
+            // The model's own textures, as textureInfo objects by name (and whether the image is
+            // sRGB-encoded, which the name does not say).
+            tinygltf::Value::Object own;
+            for (const auto& [name, ref] : m.textures)
+                if (int t = textureOf(ref); t >= 0) {
+                    tinygltf::TextureInfo info;
+                    fillInfo(info, ref, t);
+                    tinygltf::Value::Object o{
+                        {"index", tinygltf::Value(info.index)},
+                        {"texCoord", tinygltf::Value(info.texCoord)},
+                        {"srgb", tinygltf::Value(scene.images[size_t(ref.image)].srgb)}};
+                    if (!info.extensions.empty())
+                        o["extensions"] = tinygltf::Value(tinygltf::Value::Object(
+                            info.extensions.begin(), info.extensions.end()));
+                    own[name] = tinygltf::Value(std::move(o));
+                }
+            if (!own.empty()) x["textures"] = tinygltf::Value(std::move(own));
             g.extras =
                 tinygltf::Value(tinygltf::Value::Object{{"rgraph", tinygltf::Value(std::move(x))}});
             model.materials.push_back(g);

@@ -429,6 +429,18 @@ Result<void> Loader::materials() {
         RG_TRY(m.alphaCutoff, ranged(where + ": alphaCutoff", src.alphaCutoff, 0, HUGE_VAL));
         m.doubleSided = src.doubleSided;
         if (auto r = specularGlossiness(src, where, m); !r) return r;
+        // The model's own textures as exportGlb wrote them (extras.rgraph.textures).
+        if (src.extras.IsObject() && src.extras.Has("rgraph") &&
+            src.extras.Get("rgraph").Get("textures").IsObject()) {
+            const auto& own = src.extras.Get("rgraph").Get("textures");
+            for (const auto& name : own.Keys()) {
+                const auto& info = own.Get(name);
+                if (!info.IsObject()) continue;
+                const bool srgb = info.Get("srgb").IsBool() && info.Get("srgb").Get<bool>();
+                RG_TRY(m.textures[name],
+                       extensionTexture(where + " extras.rgraph.textures." + name, info, srgb));
+            }
+        }
         uvSlots(where, m);
         // What glTF cannot say, as exportGlb wrote it.
         if (src.extras.IsObject() && src.extras.Has("rgraph") &&

@@ -20,7 +20,7 @@ layout(set = 1, binding = 4) uniform sampler2D occlusionTex;
 layout(set = 1, binding = 5) uniform sampler2D emissiveTex;
 // The material model's own textures (rg.material's `textures`, in sorted name order): its surface
 // function reads texture i as NAME(s), which the generated shader defines as
-// rgMaterialTexture(i, s) — white where the scene material has none.
+// rgMaterialTexture<i>(s) — white where the scene material has none.
 layout(set = 1, binding = 6) uniform sampler2D materialTexture0;
 layout(set = 1, binding = 7) uniform sampler2D materialTexture1;
 layout(set = 1, binding = 8) uniform sampler2D materialTexture2;

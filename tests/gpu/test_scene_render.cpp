@@ -455,6 +455,25 @@ TEST_F(SceneRender, MaterialModelsReadTheirOwnTextures) {
     EXPECT_NEAR(oxideLeft["smoothness"].v[0], 0.8f, 1.0f / 1023 + 1e-3f);
     EXPECT_NEAR(oxideRight["smoothness"].v[0], 0.8f * 128.0f / 255.0f, 1.0f / 1023 + 1e-3f);
 
+    // exportGlb keeps them (extras.rgraph.textures): loaded back, each material has its model's
+    // textures by name, on the same image, with the same encoding.
+    ASSERT_TRUE(exportGlb(*s.scene(), dir + "/own_textures.glb"));
+    auto back = loadGltf(dir + "/own_textures.glb");
+    ASSERT_TRUE(back.has_value()) << back.error().message;
+    for (const Material& m : s.scene()->materials) {
+        auto it = std::find_if(back->materials.begin(), back->materials.end(),
+                               [&](const Material& x) { return x.name == m.name; });
+        ASSERT_NE(it, back->materials.end()) << m.name;
+        for (const auto& [name, ref] : m.textures) {
+            if (!ref.valid()) continue;
+            ASSERT_TRUE(it->textures.count(name) && it->textures.at(name).valid()) << name;
+            const SceneImage& a = s.scene()->images[size_t(ref.image)];
+            const SceneImage& b = back->images[size_t(it->textures.at(name).image)];
+            EXPECT_EQ(a.srgb, b.srgb) << name;
+            EXPECT_EQ(a.pixels.pixels, b.pixels.pixels) << name;
+        }
+    }
+
     // A texture the clear coat does not have.
     SessionOptions bad = o;
     bad.scene = write("coatNormalMap = 'coat.png'");
