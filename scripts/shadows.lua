@@ -158,13 +158,10 @@ rg.pass "shadow_local" {
 -- A lighting pass's declaration, shadowed by the maps themselves (a forward pass: its pixels are
 -- not the G-buffer's): reads every cascade's map and the cascades, defines RG_SHADOWS.
 function shadows.lit(pass)
-    -- The cascades as a storage buffer: read as a uniform block, lavapipe (Mesa 22.3) compiled
-    -- the forward pass's shader anew at every rebinding and kept the old code (~2.8 MiB a frame).
-    local reads = { { "sun_cascades", as = "storage" }, "local_shadow" }
+    local reads = { { "sun_cascades", as = "uniform" }, "local_shadow" }
     for i = 0, shadows.cascades - 1 do table.insert(reads, "sun_shadow" .. i) end
     lighting.extend(pass, reads, "RG_SHADOWS")
     pass.defines.RG_SUN_CASCADES = shadows.cascades
-    pass.defines.RG_SUN_CASCADES_STORAGE = true
     return pass
 end
 

@@ -79,13 +79,7 @@ float rgShadowViewDistance(RgShadowView v, float d) {
 // A uniform block (the passes read `sun_cascades` as = "uniform"): every pixel reads it at the
 // same offsets, which lavapipe loads once for all the pixels it shades together — a storage
 // buffer it reads lane by lane in a fragment shader (the mask passes' ~25 floats).
-#ifdef RG_SUN_CASCADES_STORAGE
-// A scene pass's (shadows.lit): a uniform block there made lavapipe compile its shader anew at
-// every rebinding, never freeing the old code.
-layout(set = 0, binding = RG_SHADOW_BINDING + 1, std430) readonly buffer sun_cascades { RgCascades c; } rgCascades;
-#else
 layout(set = 0, binding = RG_SHADOW_BINDING + 1, std140) uniform sun_cascades { RgCascades c; } rgCascades;
-#endif
 #if defined(RG_SUN_CASCADES_ONLY)
 // The cascades alone (shaders/shadows/sun_classify.frag): no map.
 #elif defined(RG_SUN_MASK_WRITER)

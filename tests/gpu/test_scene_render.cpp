@@ -12,7 +12,6 @@
 #include <fstream>
 #include <iterator>
 #include <map>
-#include <unistd.h>
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "runtime/runtime.h"
@@ -485,32 +484,6 @@ TEST_F(SceneRender, MaterialModelsReadTheirOwnTextures) {
                                      "'coatNormalMap'"),
               std::string::npos)
         << e.error().message;
-}
-
-// Lavapipe (Mesa 22.3) recompiles a shader every time its uniform buffers are rebound when it has
-// values it may inline (a uniform loaded into a variable used five times or more) and never frees
-// the old code: the forward pass once read the sun's cascades as a uniform block, and a blended
-// surface under a sun grew the process by ~2.8 MiB a frame. It reads them as a storage buffer now
-// (scripts/shadows.lua shadows.lit): 30 more frames keep the resident set within 24 MiB.
-TEST_F(SceneRender, BlendedSurfacesUnderTheSunKeepMemoryFlat) {
-    auto rss = [] {
-        std::ifstream statm("/proc/self/statm");
-        uint64_t size = 0, resident = 0;
-        statm >> size >> resident;
-        return resident * uint64_t(sysconf(_SC_PAGESIZE));
-    };
-    SessionOptions o;
-    o.compile.outputWidth = 160;
-    o.compile.outputHeight = 90;
-    o.scene = kRoot + "/tests/gpu/scenes/materials.lua";  // a glass pane under a sun
-    Session s(*s_runtime, o);
-    auto r = s.load(kRoot + "/scripts/pipelines/deferred.lua");
-    ASSERT_TRUE(r.has_value()) << r.error().describe();
-    for (int f = 0; f < 10; ++f) ASSERT_TRUE(s.frame().has_value());
-    const uint64_t before = rss();
-    for (int f = 0; f < 30; ++f) ASSERT_TRUE(s.frame().has_value());
-    const double grownMiB = (double(rss()) - double(before)) / (1024.0 * 1024.0);
-    EXPECT_LT(grownMiB, 24.0) << "the process grew by " << grownMiB << " MiB in 30 frames";
 }
 
 TEST_F(SceneRender, TwoColourLightsAsTheStandardMaterialItConvertsFrom) {
