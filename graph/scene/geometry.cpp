@@ -1,7 +1,10 @@
 // Generated geometry: tangent frames, flat normals, the Lua scene's primitives, bounds.
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <limits>
+#include <unordered_map>
+#include <vector>
 
 #include "scene.h"
 
@@ -42,42 +45,107 @@ glm::vec3 safeNormalize(const glm::vec3& v, const glm::vec3& fallback) {
 
 }  // namespace
 
-void generateTangents(Primitive& p) {
+// Tangents by the MikkTSpace algorithm (M. Mikkelsen, "Simulation of Wrinkled Surfaces Revisited",
+// 2008), which glTF 2.0 §3.7.2.1 names for a normal-mapped mesh without TANGENT: the frame baked
+// normal maps assume. Per triangle, dP/du and the sign of its uv area; at each corner that dP/du
+// projected into the plane of the corner's normal and made unit, weighted by the corner's angle in
+// that plane; summed over the corners whose vertices share position, normal and uv (identical
+// vertices are one, as the algorithm welds them) and the triangle's uv orientation, so a vertex
+// between mirrored uv halves becomes two. Not kept from it: the tangents' magnitudes (glTF's are
+// unit) and its finer grouping of corners by how far their tangents diverge.
+std::vector<uint32_t> generateTangents(Primitive& p, uint32_t uvSlot) {
     const size_t n = p.vertices.size();
-    std::vector<glm::vec3> tan(n, glm::vec3(0.0f)), bitan(n, glm::vec3(0.0f));
+    auto uvOf = [&](const Vertex& v) { return uvSlot == 1 ? v.uv1 : v.uv0; };
+    // Identical vertices (position, normal, the slot's uv) share one sum: the first of them.
+    std::vector<uint32_t> weld(n);
+    {
+        struct Key {
+            float f[8];
+            bool operator==(const Key& o) const { return std::memcmp(f, o.f, sizeof f) == 0; }
+        };
+        struct Hash {
+            size_t operator()(const Key& k) const {
+                uint64_t h = 1469598103934665603ull;  // FNV-1a over the words
+                for (float x : k.f) {
+                    uint32_t b = 0;
+                    std::memcpy(&b, &x, 4);
+                    h = (h ^ b) * 1099511628211ull;
+                }
+                return static_cast<size_t>(h);
+            }
+        };
+        std::unordered_map<Key, uint32_t, Hash> first;
+        first.reserve(n);
+        for (size_t i = 0; i < n; ++i) {
+            const Vertex& v = p.vertices[i];
+            const glm::vec2 uv = uvOf(v);
+            const Key k{{v.position.x, v.position.y, v.position.z, v.normal.x, v.normal.y,
+                         v.normal.z, uv.x, uv.y}};
+            weld[i] = first.emplace(k, static_cast<uint32_t>(i)).first->second;
+        }
+    }
+    // Per welded vertex and side — 0: the triangle's uv area is negative (glTF's usual, v growing
+    // downwards: w = +1), 1: positive (a mirrored half: w = −1) — the angle-weighted sum.
+    std::vector<glm::vec3> sum(2 * n, glm::vec3(0.0f));
+    std::vector<uint8_t> cornerSide(p.indices.size(), 0), cornerValid(p.indices.size(), 0);
     for (size_t t = 0; t + 2 < p.indices.size(); t += 3) {
-        const uint32_t i0 = p.indices[t], i1 = p.indices[t + 1], i2 = p.indices[t + 2];
-        if (i0 >= n || i1 >= n || i2 >= n) continue;
-        const Vertex &a = p.vertices[i0], &b = p.vertices[i1], &c = p.vertices[i2];
-        const glm::vec3 e1 = b.position - a.position, e2 = c.position - a.position;
-        const glm::vec2 d1 = b.uv0 - a.uv0, d2 = c.uv0 - a.uv0;
+        const uint32_t idx[3] = {p.indices[t], p.indices[t + 1], p.indices[t + 2]};
+        if (idx[0] >= n || idx[1] >= n || idx[2] >= n) continue;
+        const Vertex* v[3] = {&p.vertices[idx[0]], &p.vertices[idx[1]], &p.vertices[idx[2]]};
+        const glm::vec3 e1 = v[1]->position - v[0]->position, e2 = v[2]->position - v[0]->position;
+        const glm::vec2 d1 = uvOf(*v[1]) - uvOf(*v[0]), d2 = uvOf(*v[2]) - uvOf(*v[0]);
         const float det = d1.x * d2.y - d2.x * d1.y;
-        if (std::fabs(det) < 1e-20f || !std::isfinite(det)) continue;
-        // Solve e = dP/du * du + dP/dv * dv for the two edges.
-        const float r = 1.0f / det;
-        const glm::vec3 dPdu = (e1 * d2.y - e2 * d1.y) * r;
-        const glm::vec3 dPdv = (e2 * d1.x - e1 * d2.x) * r;
-        // Unnormalised sums weight each triangle by its area in uv space: large faces dominate,
-        // which is the usual choice and keeps slivers from swinging the frame.
-        for (uint32_t i : {i0, i1, i2}) {
-            tan[i] += dPdu;
-            bitan[i] -= dPdv;  // the bitangent points along -v (up in the image), see scene.h
+        if (std::fabs(det) < 1e-20f || !std::isfinite(det)) continue;  // no uv gradient
+        const glm::vec3 dPdu = (e1 * d2.y - e2 * d1.y) / det;
+        const uint8_t side = det > 0.0f ? 1 : 0;
+        for (int k = 0; k < 3; ++k) {
+            const glm::vec3 nrm = safeNormalize(v[k]->normal, glm::vec3(0, 0, 1));
+            auto inPlane = [&](const glm::vec3& e) { return e - nrm * glm::dot(nrm, e); };
+            const glm::vec3 os = inPlane(dPdu);
+            const float len = glm::length(os);
+            if (!(len > 1e-20f) || !std::isfinite(len)) continue;
+            // The corner's angle between its two edges, both in the normal's plane.
+            const glm::vec3 a = safeNormalize(inPlane(v[(k + 1) % 3]->position - v[k]->position),
+                                              glm::vec3(0.0f)),
+                            b = safeNormalize(inPlane(v[(k + 2) % 3]->position - v[k]->position),
+                                              glm::vec3(0.0f));
+            const float angle = std::acos(std::clamp(glm::dot(a, b), -1.0f, 1.0f));
+            sum[2 * size_t(weld[idx[k]]) + side] += angle * (os / len);
+            cornerSide[t + size_t(k)] = side;
+            cornerValid[t + size_t(k)] = 1;
         }
     }
-    for (size_t i = 0; i < n; ++i) {
-        Vertex& v = p.vertices[i];
-        const glm::vec3 nrm = safeNormalize(v.normal, glm::vec3(0, 0, 1));
-        // Gram-Schmidt: remove the normal component.
-        glm::vec3 t = tan[i] - nrm * glm::dot(nrm, tan[i]);
+    // Each vertex takes its side's sum; one that corners of both sides use is split, a copy
+    // taking the mirrored side's tangent and those corners.
+    auto frame = [&](size_t i, uint8_t side) {
+        const glm::vec3 nrm = safeNormalize(p.vertices[i].normal, glm::vec3(0, 0, 1));
+        const glm::vec3& s = sum[2 * size_t(weld[i]) + side];
+        const glm::vec3 t = s - nrm * glm::dot(nrm, s);
         const float len = glm::length(t);
-        if (!(len > 1e-12f) || !std::isfinite(len)) {
-            v.tangent = glm::vec4(anyPerpendicular(nrm), 1.0f);
-            continue;
+        if (!(len > 1e-12f) || !std::isfinite(len))
+            return glm::vec4(anyPerpendicular(nrm), 1.0f);  // no uv gradient reaches it
+        return glm::vec4(t / len, side == 0 ? 1.0f : -1.0f);
+    };
+    std::vector<uint8_t> sides(n, 0);  // bit 1 << side: a corner of that side uses the vertex
+    for (size_t c = 0; c < p.indices.size(); ++c)
+        if (cornerValid[c]) sides[p.indices[c]] |= uint8_t(1u << cornerSide[c]);
+    std::vector<uint32_t> copiedFrom, twin(n, UINT32_MAX);
+    for (size_t i = 0; i < n; ++i) {
+        p.vertices[i].tangent = frame(i, sides[i] == 2 ? 1 : 0);
+        if (sides[i] == 3) {
+            twin[i] = static_cast<uint32_t>(n + copiedFrom.size());
+            copiedFrom.push_back(static_cast<uint32_t>(i));
         }
-        t /= len;
-        const float w = glm::dot(glm::cross(nrm, t), bitan[i]) < 0.0f ? -1.0f : 1.0f;
-        v.tangent = glm::vec4(t, w);
     }
+    for (uint32_t i : copiedFrom) {
+        Vertex copy = p.vertices[i];
+        copy.tangent = frame(i, 1);
+        p.vertices.push_back(copy);
+    }
+    for (size_t c = 0; c < p.indices.size(); ++c)
+        if (cornerValid[c] && cornerSide[c] == 1 && twin[p.indices[c]] != UINT32_MAX)
+            p.indices[c] = twin[p.indices[c]];
+    return copiedFrom;
 }
 
 void generateFlatNormals(Primitive& p) {

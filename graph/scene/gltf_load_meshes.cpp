@@ -316,7 +316,17 @@ Result<Primitive> Loader::primitive(size_t meshIndex, size_t primIndex,
             else if (std::fabs(len - 1.0f) > 1e-6f)
                 v.normal /= len;
         }
-    if (normals->empty() || tangents->empty()) generateTangents(p);
+    // From the uv set the material's normal map reads (its slot, uvSlots()); a vertex split
+    // between mirrored uv halves takes its skinning data along.
+    if (normals->empty() || tangents->empty()) {
+        const uint32_t slot =
+            *m < scene.materials.size() ? std::min(scene.materials[*m].normalTex.texCoord, 1u) : 0u;
+        for (uint32_t from : generateTangents(p, slot))
+            for (size_t k = 0; k < skin.influences; ++k) {
+                skin.joints.push_back(skin.joints[size_t(from) * skin.influences + k]);
+                skin.weights.push_back(skin.weights[size_t(from) * skin.influences + k]);
+            }
+    }
     return p;
 }
 

@@ -1,6 +1,7 @@
 // glTF morph targets and skins, applied once at load (rgraph has no animation yet): a mesh at its
 // default weights (a node's own weights give that node a copy at those), a skinned mesh in the
 // pose its joints' nodes give (glTF 2.0 §3.7.2.2 and §3.7.3).
+#include <algorithm>
 #include <cmath>
 
 #include <glm/gtc/type_ptr.hpp>
@@ -221,7 +222,13 @@ Result<void> Loader::skins() {
                     v.tangent = glm::vec4(glm::normalize(tan), v.tangent.w);
             }
             if (sk.flatNormals) generateFlatNormals(*parts[p]);
-            if (sk.generatedTangents) generateTangents(*parts[p]);
+            if (sk.generatedTangents) {  // from the normal map's uv set, as primitive() did
+                const uint32_t m = parts[p]->material;
+                generateTangents(*parts[p],
+                                 m < scene.materials.size()
+                                     ? std::min(scene.materials[m].normalTex.texCoord, 1u)
+                                     : 0u);
+            }
         }
         scene.nodes[s.sceneNode].mesh = static_cast<int32_t>(scene.meshes.size());
         scene.nodes[s.sceneNode].world = glm::mat4(1.0f);

@@ -461,3 +461,84 @@ TEST(GltfGeometry, PointsAndLinesLoadAsSegmentAndPointLists) {
     EXPECT_EQ(back->meshes[0].points[0].indices, m.points[0].indices);
     EXPECT_EQ(back->meshes[0].lines[1].vertices[1].color, glm::u16vec4(0, 65535, 0, 65535));
 }
+
+// MikkTSpace (glTF 2.0 §3.7.2.1): each corner's dP/du weighted by the corner's angle, and a vertex
+// between mirrored uv halves split in two. The expected frames follow from the algorithm's
+// definition on meshes simple enough to do by hand.
+TEST(GltfGeometry, GeneratedTangentsFollowMikkTSpace) {
+    // Two quads side by side, the right one's u mirrored: the seam vertices (x = 1) serve both.
+    // Left: u = x (dP/du = +x, uv area negative: w = +1); right: u = 2 − x (−x, w = −1).
+    rg::Primitive strip;
+    for (int y = 0; y <= 1; ++y)
+        for (int x = 0; x <= 2; ++x) {
+            rg::Vertex v;
+            v.position = glm::vec3(x, y, 0);
+            v.normal = glm::vec3(0, 0, 1);
+            v.uv0 = glm::vec2(x <= 1 ? float(x) : float(2 - x), 1.0f - float(y));
+            strip.vertices.push_back(v);
+        }
+    strip.indices = {0, 1, 4, 0, 4, 3, 1, 2, 5, 1, 5, 4};
+    const std::vector<uint32_t> copied = rg::generateTangents(strip);
+    EXPECT_EQ(copied, (std::vector<uint32_t>{1, 4}));  // the seam's two vertices
+    ASSERT_EQ(strip.vertices.size(), 8u);
+    for (size_t c = 0; c < strip.indices.size(); ++c) {
+        const glm::vec4 t = strip.vertices[strip.indices[c]].tangent;
+        const bool right = c >= 6;
+        expectNear(glm::vec3(t), {right ? -1.0f : 1.0f, 0, 0}, 1e-6f,
+                   "corner " + std::to_string(c));
+        EXPECT_EQ(t.w, right ? -1.0f : 1.0f) << "corner " << c;
+        EXPECT_EQ(strip.vertices[strip.indices[c]].position,
+                  glm::vec3(float(c < 6 ? std::array{0, 1, 1, 0, 1, 0}[c % 6]
+                                        : std::array{1, 2, 2, 1, 2, 1}[c % 6]),
+                            float(std::array{0, 0, 1, 0, 1, 1}[c % 6]), 0.0f))
+            << "the split keeps every corner where it was";
+    }
+
+    // One vertex shared by a 90° corner whose uvs give dP/du = +x and a 30° corner whose uvs give
+    // +y: MikkTSpace weights them by angle, (π/2)·x + (π/6)·y, at atan(1/3) = 18.4° from x — not
+    // by uv area (45° here, both gradients being unit).
+    rg::Primitive fan;
+    auto vertex = [&](glm::vec3 p, glm::vec2 uv) {
+        rg::Vertex v;
+        v.position = p;
+        v.normal = glm::vec3(0, 0, 1);
+        v.uv0 = uv;
+        fan.vertices.push_back(v);
+        return static_cast<uint32_t>(fan.vertices.size() - 1);
+    };
+    const float c120 = std::cos(glm::radians(120.0f)), s120 = std::sin(glm::radians(120.0f));
+    const float c150 = std::cos(glm::radians(150.0f)), s150 = std::sin(glm::radians(150.0f));
+    const uint32_t o = vertex({0, 0, 0}, {0, 0});
+    // First corner: u = x, v = −y. Second: u = y, v = x.
+    const uint32_t a = vertex({1, 0, 0}, {1, 0}), b = vertex({0, 1, 0}, {0, -1});
+    const uint32_t c = vertex({2 * c120, 2 * s120, 0}, {2 * s120, 2 * c120}),
+                   d = vertex({2 * c150, 2 * s150, 0}, {2 * s150, 2 * c150});
+    fan.indices = {o, a, b, o, c, d};
+    EXPECT_TRUE(rg::generateTangents(fan).empty());
+    const glm::vec3 want = glm::normalize(glm::vec3(glm::pi<float>() / 2, glm::pi<float>() / 6, 0));
+    expectNear(glm::vec3(fan.vertices[o].tangent), want, 1e-5f, "angle-weighted");
+    EXPECT_EQ(fan.vertices[o].tangent.w, 1.0f);
+
+    // The loader takes the normal map's uv set: TEXCOORD_1 runs along +y where TEXCOORD_0 runs
+    // along +x, and the normal map names set 1.
+    const std::string dir = tmpDir("mikk");
+    GltfBuilder g;
+    const int p = g.floats({0, 0, 0, 1, 0, 0, 1, 1, 0, 0, 1, 0}, "VEC3");
+    const int n = g.floats({0, 0, 1, 0, 0, 1, 0, 0, 1, 0, 0, 1}, "VEC3");
+    const int uv0 = g.floats({0, 1, 1, 1, 1, 0, 0, 0}, "VEC2");
+    const int uv1 = g.floats({0, 0, 0, 1, 1, 1, 1, 0}, "VEC2");  // (u, v) = (y, x)
+    g.mesh(
+        "quad",
+        json::array({{{"attributes",
+                       {{"POSITION", p}, {"NORMAL", n}, {"TEXCOORD_0", uv0}, {"TEXCOORD_1", uv1}}},
+                      {"indices", g.indices16({0, 1, 2, 0, 2, 3})},
+                      {"material", 0}}}));
+    g.j["images"] = json::array({{{"uri", "n.png"}}});
+    g.j["textures"] = json::array({{{"source", 0}}});
+    g.j["materials"] = json::array({{{"normalTexture", {{"index", 0}, {"texCoord", 1}}}}});
+    g.scene({g.node({{"mesh", 0}})});
+    auto scene = rg::loadGltf(g.writeGltf(dir, "m"), noImages());
+    ASSERT_TRUE(scene) << errorOf(scene);
+    for (const rg::Vertex& v : scene->meshes[0].primitives[0].vertices)
+        expectNear(glm::vec3(v.tangent), {0, 1, 0}, 1e-6f, "tangent along TEXCOORD_1's u");
+}
