@@ -343,14 +343,8 @@ Result<void> GpuScene::createMaterials(Context& ctx) {
         u.f0 = glm::vec4(m.f0, 0.0f);
         // The five standard maps, then the model's own textures in slot order (none: white).
         const TextureRef none;
-        const TextureRef* refs[kMaterialTextures] = {&m.baseColorTex, &m.metallicRoughnessTex,
-                                                     &m.normalTex, &m.occlusionTex, &m.emissiveTex};
-        for (uint32_t t = 5; t < kMaterialTextures; ++t) refs[t] = &none;
-        {
-            uint32_t t = 5;
-            for (const auto& [name, ref] : m.textures)
-                if (t < kMaterialTextures) refs[t++] = &ref;
-        }
+        std::vector<const TextureRef*> refs = m.textureRefs();
+        refs.resize(kMaterialTextures, &none);
         for (uint32_t t = 0; t < kMaterialTextures; ++t) {
             const glm::mat3& x = refs[t]->transform;  // column-major: x[col][row]
             u.uvTransform[2 * t] =

@@ -29,16 +29,10 @@ namespace rg::passes::detail {
 // lavapipe, 3× the G-buffer's cost in the default scene).
 inline constexpr uint32_t kTextureBits = 31u | 448u, kAlphaMaskVariant = 32u;
 inline uint32_t variantKey(const Material& m) {
-    const TextureRef* refs[] = {&m.baseColorTex, &m.metallicRoughnessTex, &m.normalTex,
-                                &m.occlusionTex, &m.emissiveTex};
+    const std::vector<const TextureRef*> refs = m.textureRefs();
     uint32_t key = 0;
-    for (uint32_t t = 0; t < 5; ++t)
-        if (refs[t]->valid()) key |= 1u << t;
-    uint32_t own = 0;
-    for (const auto& [name, ref] : m.textures) {
-        if (own < kMaterialTextureSlots && ref.valid()) key |= 64u << own;
-        ++own;
-    }
+    for (size_t t = 0; t < refs.size() && t < 5 + kMaterialTextureSlots; ++t)
+        if (refs[t]->valid()) key |= t < 5 ? 1u << t : 64u << (t - 5);
     if (m.alphaMode == AlphaMode::Mask) key |= kAlphaMaskVariant;
     return key;
 }

@@ -429,20 +429,8 @@ Result<void> Loader::materials() {
         RG_TRY(m.alphaCutoff, ranged(where + ": alphaCutoff", src.alphaCutoff, 0, HUGE_VAL));
         m.doubleSided = src.doubleSided;
         if (auto r = specularGlossiness(src, where, m); !r) return r;
-        // The model's own textures as exportGlb wrote them (extras.rgraph.textures).
-        if (src.extras.IsObject() && src.extras.Has("rgraph") &&
-            src.extras.Get("rgraph").Get("textures").IsObject()) {
-            const auto& own = src.extras.Get("rgraph").Get("textures");
-            for (const auto& name : own.Keys()) {
-                const auto& info = own.Get(name);
-                if (!info.IsObject()) continue;
-                const bool srgb = info.Get("srgb").IsBool() && info.Get("srgb").Get<bool>();
-                RG_TRY(m.textures[name],
-                       extensionTexture(where + " extras.rgraph.textures." + name, info, srgb));
-            }
-        }
-        uvSlots(where, m);
-        // What glTF cannot say, as exportGlb wrote it.
+        // What glTF cannot say, as exportGlb wrote it; its own textures before uvSlots() places
+        // every texture's set.
         if (src.extras.IsObject() && src.extras.Has("rgraph") &&
             src.extras.Get("rgraph").IsObject()) {
             const auto& x = src.extras.Get("rgraph");
@@ -456,7 +444,16 @@ Result<void> Loader::materials() {
                 m.emissiveEc = m.emissiveEv ? float(number(x.Get("emissive_ec"), 0.0)) : 0.0f;
             }
             if (x.Has("params")) m.extra = toValue(x.Get("params"));
+            const auto& own = x.Get("textures");  // the model's own, as textureInfo by name
+            for (const auto& name : own.IsObject() ? own.Keys() : std::vector<std::string>{}) {
+                const auto& info = own.Get(name);
+                if (!info.IsObject()) continue;
+                const bool srgb = info.Get("srgb").IsBool() && info.Get("srgb").Get<bool>();
+                RG_TRY(m.textures[name],
+                       extensionTexture(where + " extras.rgraph.textures." + name, info, srgb));
+            }
         }
+        uvSlots(where, m);
         scene.materials.push_back(std::move(m));
     }
     return {};

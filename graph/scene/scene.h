@@ -178,12 +178,17 @@ struct Material {
     // loads, the names are checked against the model's and every one it lacks is added without an
     // image (white), so the map's order is the model's slot order.
     std::map<std::string, TextureRef> textures;
-    // Every texture reference it has: the five maps, then its model's own in name order.
+    // Every texture reference it has: the five maps, then its model's own in name order (the
+    // order of their bindings and RG_TEXTURES bits, passes/scene_pass_detail.h variantKey).
     std::vector<TextureRef*> textureRefs() {
         std::vector<TextureRef*> out = {&baseColorTex, &metallicRoughnessTex, &normalTex,
                                         &occlusionTex, &emissiveTex};
         for (auto& [name, ref] : textures) out.push_back(&ref);
         return out;
+    }
+    std::vector<const TextureRef*> textureRefs() const {
+        std::vector<TextureRef*> refs = const_cast<Material*>(this)->textureRefs();
+        return {refs.begin(), refs.end()};
     }
     // Where it was declared, for errors found once the pipeline is known: "file:line:
     // scene.material.NAME" (Lua scenes) or "file: material 'NAME'" (glTF); empty when made in code.

@@ -202,11 +202,10 @@ void Builder::merge(Scene&& sub, const glm::mat4& t, const std::string& prefix) 
     const auto smpOff = static_cast<int32_t>(scene.samplers.size());
     const auto meshOff = static_cast<int32_t>(scene.meshes.size());
     for (auto& m : sub.materials) {
-        auto offset = [&](TextureRef* tex) {
+        for (TextureRef* tex : m.textureRefs()) {
             if (tex->image >= 0) tex->image += imgOff;
             if (tex->sampler >= 0) tex->sampler += smpOff;
-        };
-        for (TextureRef* tex : m.textureRefs()) offset(tex);
+        }
         m.name = prefix + "/" + m.name;
         scene.materials.push_back(std::move(m));
     }
