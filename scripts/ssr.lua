@@ -6,8 +6,10 @@
 --
 -- `hiz` (compute, per_mip over its own chain) builds the nearest-depth pyramid; `ssr`
 -- (fullscreen) marches the reflected ray through it and reads the previous frame's lit image
--- (`hdr_history`, the history of `hdr`, with mips for rough reflections) where the previous frame's camera
--- saw the hit, in nits, with a confidence in alpha. Both go right before the pass named
+-- (`hdr_history`, the history of `hdr`, with mips for rough reflections) where the previous
+-- frame's camera saw the hit, in nits, with a confidence in alpha (`ssr_trace`: one pixel of each
+-- 2×2 block, a different one every frame); `ssr_temporal` accumulates those into `ssr` over
+-- frames. All go right before the pass named
 -- `lighting_standard` (after the G-buffer, its fix-up and the decals, whichever module requires
 -- this first: the materials' own lighting passes take SSR too). A lighting pass wrapped in
 -- `ssr.lit` (defines RG_SSR) composes it over the probes' specular, in the same split-sum
@@ -28,8 +30,15 @@ rg.param "ssr_thickness" { type = "number", default = 0.3, min = 0.01, max = 10,
 rg.param "ssr_max_roughness" { type = "number", default = 0.6, min = 0, max = 1, doc = "linear roughness from which the probes alone reflect" }
 
 rg.resource "hiz" { format = "r32f", mips = "full", doc = "nearest depth pyramid (Hi-Z)" }
-rg.resource "ssr" { format = "rgba16f", scale = { 0.5, 0.5 },
-    doc = "screen-space reflection at half resolution (the composition reads it bilinearly): rgb luminance (nits), a confidence" }
+rg.param "ssr_feedback" { type = "number", default = 0.85, min = 0, max = 0.98,
+    doc = "the share of the last frame's reflection (reprojected, clamped) in each frame's: 0 takes this frame's ray alone" }
+
+rg.resource "ssr_trace" { format = "rgba16f", scale = { 0.5, 0.5 },
+    doc = "this frame's ray for each 2×2 block, from the corner ssr_pixel.glsl turns to: rgb luminance (nits), a confidence (−1: unknown)" }
+rg.resource "ssr" { format = "rgba16f", scale = { 0.5, 0.5 }, history = "ssr_history",
+    doc = "screen-space reflection at half resolution, accumulated over frames (the composition reads it bilinearly): rgb luminance (nits), a confidence" }
+rg.resource "ssr_distance" { format = "r16f", scale = { 0.5, 0.5 }, history = "ssr_distance_history",
+    doc = "the view distance (m) at each `ssr` texel's block, for the next frame's reprojection; 0: nothing accumulated" }
 -- (The mips: a blit chain, the mips kind — per frame ~2.3 ms, against ~5.3 as post/downsample.comp.)
 rg.history "hdr_history" { of = "hdr", mips = "full", doc = "the previous frame's lit image, with mips" }
 
@@ -44,10 +53,20 @@ rg.resource "ssr_mask" { format = "d16", scale = { 0.5, 0.5 }, doc = "SSR's half
 rg.pass "ssr_mask" {
     kind = "fullscreen", shader = "ssr/ssr_mask.frag", reads = reader.reads { "depth" }, writes = { { "ssr_mask", as = "depth" } },
     filter = "nearest", insert = { before = "lighting_standard" }, depth = { compare = "always", value = 1, write = true },
+    defines = { RG_SSR_TEMPORAL = true },
 }
 rg.pass "ssr" {
     kind = "fullscreen", shader = "ssr/ssr.frag", reads = reader.reads { "depth", "hiz", "hdr_history", { "exposure", as = "uniform" }, { "ssr_mask", as = "depth" } },
-    writes = { "ssr" }, insert = { before = "lighting_standard" }, depth = { compare = "greater", value = 0.5 },
+    writes = { "ssr_trace" }, insert = { before = "lighting_standard" }, depth = { compare = "greater", value = 0.5 },
+    defines = { RG_SSR_TEMPORAL = true },
+}
+-- Over frames: `ssr` traces a different corner of each block every frame and `ssr_temporal`
+-- blends each texel's ray into its reprojected history (ssr/ssr_temporal.frag; the histories kept
+-- by `ssr_history_keep` and `ssr_distance_history_keep`, emptied by a camera cut or a rebuilt pass).
+rg.pass "ssr_temporal" {
+    kind = "fullscreen", shader = "ssr/ssr_temporal.frag", reads = { "ssr_trace", "ssr_history", "ssr_distance_history", "hiz", { "ssr_mask", as = "depth" } },
+    writes = { "ssr", "ssr_distance" }, insert = { before = "lighting_standard" }, filter = "nearest",
+    depth = { compare = "greater", value = 0.5 },
 }
 
 -- A lighting pass's declaration that composes SSR over the probes (lib/ibl.glsl RG_SSR): reads

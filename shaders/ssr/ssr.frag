@@ -9,13 +9,15 @@
 // lighting passes blend it with: lib/ibl.glsl, RG_SSR); a the confidence: 0 on a miss, fading at the screen's edges, for
 // rays turned towards the camera, for hits far behind the surface, for hits the march found late
 // in its step budget (Params.ssr_steps), and with roughness (past
-// Params.ssr_max_roughness the probes alone reflect); 0 where the history holds nothing yet (its
-// alpha: the first frame) or the previous camera did not see the hit.
+// Params.ssr_max_roughness the probes alone reflect); 0 where the previous camera did not see the
+// hit. Where the history holds nothing yet (its alpha: the first frame, a cut) the reflection is
+// unknown rather than absent: −1 with RG_SSR_TEMPORAL (`ssr_temporal` then starts afresh), else 0. The pixel traced turns through its 2×2 block with RG_SSR_TEMPORAL (ssr_pixel.glsl).
 #include "lib/scene.glsl"
 #include "lib/ibl.glsl"
 #include "lib/exposure.glsl"
 #define RG_GBUFFER_BINDING 40  // GB0..GB3 and depth_stencil: the pixel decoded by its material
 #include "gbuffer_pipeline.glsl"
+#include "ssr_pixel.glsl"
 
 layout(location = 0) in vec2 uv;
 layout(location = 0) out vec4 color;
@@ -38,8 +40,8 @@ vec3 project(vec3 v) {
 }
 
 void main() {
-    // Half resolution: one ray for each 2×2 block of pixels, from its top-left pixel's surface.
-    ivec2 p = ivec2(gl_FragCoord.xy) * 2;
+    // Half resolution: one ray for each 2×2 block of pixels, from one pixel's surface.
+    ivec2 p = rgSsrTracedPixel(ivec2(gl_FragCoord.xy));
     float z = texelFetch(depth, p, 0).r;
     color = vec4(0.0);
     if (z >= 1.0) return;
@@ -109,5 +111,11 @@ void main() {
     vec2 uvBefore = before.xy / before.w * 0.5 + 0.5;
     if (before.w <= 0.0 || any(lessThan(uvBefore, vec2(0.0))) || any(greaterThan(uvBefore, vec2(1.0)))) return;
     vec4 history = textureLod(hdr_history, uvBefore, lod);
+#ifdef RG_SSR_TEMPORAL
+    if (history.a == 0.0) {  // an empty history (all of it: the first frame, a cut)
+        color = vec4(0.0, 0.0, 0.0, -1.0);
+        return;
+    }
+#endif
     color = vec4(history.rgb / rgPreExposure(ex.state, params.initial_ev100), confidence * clamp(history.a, 0.0, 1.0));
 }

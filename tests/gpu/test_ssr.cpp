@@ -35,7 +35,7 @@ glm::ivec2 pixelOf(glm::vec3 p) {
 }
 
 // The SSR at full-resolution pixel (x, y): `ssr` is traced at half resolution (scripts/ssr.lua),
-// one ray per 2×2 pixels.
+// one ray per 2×2 pixels (accumulated over frames: the block).
 float ssrAt(const Image& ssr, int x, int y, int c) {
     return ssr.at(static_cast<uint32_t>(x / 2), static_cast<uint32_t>(y / 2), c);
 }
@@ -127,6 +127,85 @@ TEST_F(Ssr, ClearCoatAndTwoColourPathsTakeTheReflection) {
         EXPECT_GT(r, 5.0f * g) << floor;
         EXPECT_GT(b0, r0) << floor;
     }
+}
+
+// A texel premultiplied by its confidence (what the composition weighs), red and confidence.
+glm::vec2 premultiplied(const Image& im, uint32_t x, uint32_t y) {
+    const float a = im.at(x, y, 3);
+    return a < 0.0f ? glm::vec2(-1.0f) : glm::vec2(im.at(x, y, 0) * a, a);
+}
+
+TEST_F(Ssr, TemporalAccumulationHoldsTheWholeBlock) {
+    // `ssr` traces one corner of each 2×2 block a frame (ssr/ssr_pixel.glsl), `ssr_temporal`
+    // accumulates them: after a dozen still frames each texel should hold the mean of its block's
+    // four rays — the last four frames' traces, one per corner — far closer than any single
+    // frame's ray, which steps the box's mirrored edges by two pixels.
+    SessionOptions o = sceneOptions(kRoot + "/tests/gpu/scenes/ssr_mirror.lua", {}, W, H);
+    o.captures = {"ssr", "ssr_trace"};
+    Session s(*s_runtime, o);
+    ASSERT_TRUE(s.load(kRoot + "/scripts/pipelines/deferred.lua").has_value());
+    constexpr int kFrames = 12;
+    std::vector<Image> traces, resolved;
+    for (int f = 0; f < kFrames; ++f) {
+        auto fr = s.frame();
+        ASSERT_TRUE(fr.has_value()) << fr.error().describe();
+        auto trace = s_runtime->executor().readback("ssr_trace");
+        auto ssr = s_runtime->executor().readback("ssr");
+        ASSERT_TRUE(trace && ssr);
+        traces.push_back(std::move(*trace));
+        resolved.push_back(std::move(*ssr));
+    }
+    const uint32_t w = traces[0].width, h = traces[0].height;
+    // The first frame has no lit image to reflect yet: every ray is unknown (−1) and `ssr` holds
+    // nothing; the second takes those rays whole (nothing accumulated to blend with), so the
+    // reflection does not fade in.
+    int unknown = 0, equal = 0, hits = 0;
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x) {
+            EXPECT_EQ(resolved[0].at(x, y, 3), 0.0f);
+            unknown += traces[0].at(x, y, 3) < 0.0f;
+            const float a = traces[1].at(x, y, 3);
+            if (a <= 0.0f || traces[0].at(x, y, 3) >= 0.0f) continue;
+            ++hits;
+            equal += std::abs(resolved[1].at(x, y, 3) - a) <= 1e-3f &&
+                     std::abs(resolved[1].at(x, y, 0) - traces[1].at(x, y, 0)) <=
+                         2e-3f * traces[1].at(x, y, 0) + 1e-3f;
+        }
+    EXPECT_GT(unknown, 100);
+    // Once the lit image has a history, every ray knows (an unknown one would empty its texel).
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x)
+            ASSERT_GE(traces.back().at(x, y, 3), 0.0f) << x << ", " << y;
+    EXPECT_GT(hits, 50);
+    EXPECT_EQ(equal, hits);
+    // The reference: the mean of the last four traces (each corner once), premultiplied.
+    double single = 0.0, accumulated = 0.0, change = 0.0, traceChange = 0.0;
+    int counted = 0;
+    for (uint32_t y = 0; y < h; ++y)
+        for (uint32_t x = 0; x < w; ++x) {
+            glm::vec2 ref(0.0f);
+            for (int k = kFrames - 4; k < kFrames; ++k)
+                ref += 0.25f * premultiplied(traces[k], x, y);
+            if (ref.y <= 0.0f) continue;
+            ++counted;
+            for (int k = kFrames - 4; k < kFrames; ++k)
+                single += 0.25 * std::abs(premultiplied(traces[k], x, y).x - ref.x);
+            accumulated += std::abs(premultiplied(resolved[kFrames - 1], x, y).x - ref.x);
+            change += std::abs(premultiplied(resolved[kFrames - 1], x, y).x -
+                               premultiplied(resolved[kFrames - 2], x, y).x);
+            traceChange += std::abs(premultiplied(traces[kFrames - 1], x, y).x -
+                                    premultiplied(traces[kFrames - 2], x, y).x);
+        }
+    ASSERT_GT(counted, 100);
+    single /= counted, accumulated /= counted, change /= counted, traceChange /= counted;
+    std::printf(
+        "%d texels reflecting: mean |red x confidence - the block's mean| %.3g for one frame's "
+        "ray, "
+        "%.3g accumulated (%.2fx); frame-to-frame change %.3g accumulated, %.3g traced\n",
+        counted, single, accumulated, accumulated / single, change, traceChange);
+    EXPECT_GT(single, 0.0);
+    EXPECT_LT(accumulated, 0.4 * single);
+    EXPECT_LT(change, 0.4 * traceChange);
 }
 
 }  // namespace

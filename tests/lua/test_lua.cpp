@@ -403,7 +403,7 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // pyramid, SSR's mask and SSR (scripts/ssr.lua), the composition of SSR and the probes
     // (scripts/reflections.lua), the lighting, the sky, the points and lines, and forward.
     ASSERT_GE(order.size(), 59u);
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 55),
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 56),
               (std::vector<std::string>{"env_cube",
                                         "env_mips",
                                         "env_irradiance",
@@ -452,6 +452,7 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
                                         "hiz",
                                         "ssr_mask",
                                         "ssr",
+                                        "ssr_temporal",
                                         "reflection_compose",
                                         "lighting_standard",
                                         "lighting_clearcoat",
@@ -460,8 +461,9 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
                                         "lines",
                                         "forward"}));
     // The histories' keep passes come after every other (rg.resource's `history`, rg.history).
-    EXPECT_EQ(std::vector<std::string>(order.end() - 4, order.end()),
-              (std::vector<std::string>{"ao_history_keep", "taa_history_keep", "hdr_history_keep",
+    EXPECT_EQ(std::vector<std::string>(order.end() - 6, order.end()),
+              (std::vector<std::string>{"ssr_history_keep", "ssr_distance_history_keep",
+                                        "ao_history_keep", "taa_history_keep", "hdr_history_keep",
                                         "hdr_history_mips"}));
     auto plan = compile(graphWithParams(*p), {});
     ASSERT_TRUE(plan.has_value()) << plan.error().message;
