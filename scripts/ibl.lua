@@ -12,7 +12,8 @@
 --   env_prefilter  the specular pre-filtered cube, one mip per roughness (mip = sqrt(α_lin) · (mips − 1)),
 --                  GGX importance sampling of env_smooth with filtered samples, plus the hot texels exactly;
 --   env_irradiance the diffuse probe as 9 spherical-harmonic coefficients;
---   dfg_table      the 128×128 DFG table: the split-sum's two specular terms and the Disney diffuse.
+--   dfg_table      the 128×128 DFG table: the split-sum's two specular terms, the Disney diffuse
+--                  and the sheen lobe's albedo (materials/sheen.lua).
 -- `ibl.lit` makes a lighting pass read them (lib/ibl.glsl with RG_IBL: the distant probe's diffuse
 -- and specular along the seed's dominant directions, with specular occlusion from AO).
 local rg = require "rg"
@@ -33,7 +34,7 @@ rg.buffer "env_hot" { size = 16 + 4096 * 32, persistent = true,
     doc = "the environment's hot texels (a sun): count, then direction and solid angle, radiance per texel" }
 rg.buffer "env_sh" { size = 9 * 16, persistent = true, doc = "the environment's radiance as order-2 spherical harmonics (9 RGB)" }
 rg.resource "dfg" { format = "rgba16f", size = { 128, 128 }, persistent = true,
-    doc = "pre-integrated DFG: x, y the split-sum specular terms, z the Disney diffuse, over (N·V, linear roughness)" }
+    doc = "pre-integrated DFG: x, y the split-sum specular terms, z the Disney diffuse, over (N·V, linear roughness); w the sheen lobe's albedo over (N·V, sheen roughness)" }
 
 rg.pass "env_cube" {
     kind = "compute", shader = "ibl/env_cube.comp", writes = { { "env_source", as = "storage" } }, cadence = "once",

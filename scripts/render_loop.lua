@@ -13,6 +13,7 @@ require "disney"     -- the standard material, its layout (tbl:2), stencil class
 require "clearcoat"  -- a game team's clear-coat material and its lighting path
 require "foliage"    -- a game team's foliage material and its G-buffer fix-up
 require "two_colour" -- the two-colour base material (tbl:3) and its lighting path
+require "sheen"      -- a cloth material (glTF KHR_materials_sheen) and its lighting path
 
 local ibl = require "ibl"   -- the distant light probe: the forward pass is lit by it too
 local shadows = require "shadows"  -- the sun's shadow map: and shadowed by it

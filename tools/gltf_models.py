@@ -402,6 +402,26 @@ def specular_glossiness(d):
     d.uses("KHR_materials_pbrSpecularGlossiness")
 
 
+def sheen(d):
+    # A dark red cloth without sheen, then a white sheen smooth and rough, a coloured one, and one
+    # whose colour comes from sheenColorTexture (stripes, sRGB) and roughness from
+    # sheenRoughnessTexture's alpha (cells).
+    stripes = checker(64, 4, (255, 255, 255), (60, 120, 255))
+    stripes[..., 0] = np.where(np.arange(64)[None, :] // 16 % 2 == 0, 255, 60)
+    stripes[..., 1] = stripes[..., 0]
+    fuzz = checker(64, 8, (0, 0, 0), (0, 0, 0))
+    fuzz[..., 3] = np.where(checker(64, 8)[..., 0] > 128, 255, 60)
+    for i, (colour, rough) in enumerate((((0, 0, 0), 0.5), ((1, 1, 1), 0.3), ((1, 1, 1), 0.8),
+                                          ((1.0, 0.6, 0.2), 0.5), ((1, 1, 1), 1.0))):
+        x = {"sheenColorFactor": list(colour), "sheenRoughnessFactor": rough}
+        if i == 4:
+            x["sheenColorTexture"] = {"index": d.image(stripes)}
+            x["sheenRoughnessTexture"] = {"index": d.image(fuzz)}
+        m = pbr((0.25, 0.02, 0.03), 0, 0.7, extensions={"KHR_materials_sheen": x})
+        d.node(mesh=d.mesh([d.prim(sphere(0.22), d.material(m))]), translation=[(i - 2) * 0.55, 0, 0])
+    d.uses("KHR_materials_sheen")
+
+
 def alpha_modes(d):
     # OPAQUE ignores alpha 0.5, MASK cuts the checker's dark cells (alpha from its brightness),
     # BLEND shows the sphere behind through alpha 0.5.
@@ -472,7 +492,7 @@ def many_meshes(d, n):
 
 MODELS = [basic, metal_rough_spheres, primitive_modes, lines_and_points, texture_transform,
           texcoord_sets, vertex_colors, quantized, morph_targets, skin, instancing, variants, unlit,
-          emissive_label, clearcoat, ior_specular, specular_glossiness, alpha_modes,
+          emissive_label, clearcoat, sheen, ior_specular, specular_glossiness, alpha_modes,
           punctual_lights, camera, broken_index, broken_schema, broken_required]
 
 

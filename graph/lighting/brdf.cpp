@@ -138,6 +138,24 @@ double specularAlbedo(float NdotV, float linearRoughness, float f0, float f90, i
     return sum / (static_cast<double>(samples) * samples);
 }
 
+double sheenBrdf(double NdotH, double NdotL, double NdotV, double sheenRoughness) {
+    const double alpha = std::max(sheenRoughness * sheenRoughness, 1e-3);
+    const double sin2h = std::max(1.0 - NdotH * NdotH, 1.0 / 128.0);
+    const double d = (2.0 + 1.0 / alpha) * std::pow(sin2h, 0.5 / alpha) / (2.0 * kPiD);
+    return d / (4.0 * std::max(NdotL + NdotV - NdotL * NdotV, 1e-4));
+}
+
+double sheenAlbedo(float NdotV, float sheenRoughness, int cells) {
+    RG_CHECK(cells > 0) << "sheenAlbedo needs at least one cell, got " << cells;
+    const glm::dvec3 v = viewVector(NdotV);
+    return integrateHemisphere(
+        [&](const glm::dvec3& l) {
+            const glm::dvec3 h = glm::normalize(v + l);
+            return sheenBrdf(h.z, l.z, v.z, sheenRoughness) * l.z;
+        },
+        cells, 4 * cells);
+}
+
 double diffuseAlbedo(float NdotV, float linearRoughness, int samples) {
     RG_CHECK(samples > 0) << "diffuseAlbedo needs at least one sample, got " << samples;
     const glm::dvec3 v = viewVector(NdotV);

@@ -75,6 +75,16 @@ double specularAlbedo(float NdotV, float linearRoughness, float f0, float f90, i
 // diffuse colour. Cosine-weighted stratified grid of samples × samples directions.
 double diffuseAlbedo(float NdotV, float linearRoughness, int samples = 128);
 
+// The sheen lobe (shaders/lib/brdf.glsl, glTF KHR_materials_sheen): Estevez and Kulla's "Charlie"
+// distribution with α = max(sheenRoughness², 1e-3) and Neubelt and Pettineo's visibility; their
+// product is the lobe's BRDF for a white sheen colour.
+double sheenBrdf(double NdotH, double NdotL, double NdotV, double sheenRoughness);
+
+// Directional albedo of the sheen lobe, ∫ sheenBrdf ⟨n·l⟩ dl, for a view at NdotV: the DFG
+// table's w (shaders/ibl/dfg.comp). Brute force over an equal-area grid of cells × 4·cells
+// directions (integrateHemisphere): independent of the table's cosine-distributed samples.
+double sheenAlbedo(float NdotV, float sheenRoughness, int cells = 256);
+
 // Directional albedo of the standard BRDF for a grey material — what rgStandardBrdf integrates to:
 // diffuseColor · diffuseAlbedo + specularAlbedo with f90 = standardF90(f0) (eq:6, Figure 9 (c)).
 double standardAlbedo(float NdotV, float linearRoughness, float diffuseColor, float f0,

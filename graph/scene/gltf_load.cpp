@@ -27,19 +27,14 @@ namespace gltf_load {
 namespace {
 
 // Extensions whose meaning we implement (a file may require them).
-const std::set<std::string> kSupported = {"KHR_texture_transform",
-                                          "KHR_materials_emissive_strength",
-                                          "KHR_lights_punctual",
-                                          "KHR_mesh_quantization",
-                                          "KHR_materials_ior",
-                                          "KHR_materials_specular",
-                                          "KHR_materials_clearcoat",
-                                          "KHR_materials_unlit",
-                                          "KHR_materials_pbrSpecularGlossiness",
-                                          "EXT_mesh_gpu_instancing",
-                                          "KHR_materials_variants",
-                                          "KHR_draco_mesh_compression",
-                                          "EXT_meshopt_compression"};
+const std::set<std::string> kSupported = {
+    "KHR_texture_transform",      "KHR_materials_emissive_strength",
+    "KHR_lights_punctual",        "KHR_mesh_quantization",
+    "KHR_materials_ior",          "KHR_materials_specular",
+    "KHR_materials_clearcoat",    "KHR_materials_sheen",
+    "KHR_materials_unlit",        "KHR_materials_pbrSpecularGlossiness",
+    "EXT_mesh_gpu_instancing",    "KHR_materials_variants",
+    "KHR_draco_mesh_compression", "EXT_meshopt_compression"};
 
 std::string percentDecode(const std::string& uri) {
     std::string out;

@@ -172,6 +172,7 @@ struct Loader {
     Result<void> specularGlossiness(const tinygltf::Material& src, const std::string& where,
                                     Material& m);
     Result<void> clearCoat(const tinygltf::Material& src, const std::string& where, Material& m);
+    Result<void> sheen(const tinygltf::Material& src, const std::string& where, Material& m);
 
     // ---- nodes, cameras, lights (gltf_load_nodes.cpp) ---------------------------------------
 

@@ -1,8 +1,10 @@
 // glTF materials -> Scene materials: samplers, images (decoded once per image and encoding),
 // textures with KHR_texture_transform, the metallic-roughness factors and rgraph's extras.
+#include <algorithm>
 #include <cmath>
 
 #include <set>
+#include <tuple>
 
 #include "gltf_load_detail.h"
 #include "scene_detail.h"
@@ -286,6 +288,54 @@ Result<void> Loader::clearCoat(const tinygltf::Material& src, const std::string&
     return {};
 }
 
+// KHR_materials_sheen on the standard model: the pipeline's sheen material (materials/sheen.lua)
+// with sheenColorR/G/B = sheenColorFactor and sheenRoughnessFactor, its textures as the model's
+// own: sheenColorTexture (RGB, sRGB) times the colour (sheenColorMap), sheenRoughnessTexture's
+// alpha times the roughness (sheenRoughnessMap). A black sheen (the default) is no sheen. One
+// model a material: beside a clear coat the sheen is dropped with a warning; the sheen layout
+// keeps f0 at 4 %, so an IOR or specular extension that changed it is warned about too.
+Result<void> Loader::sheen(const tinygltf::Material& src, const std::string& where, Material& m) {
+    auto it = src.extensions.find("KHR_materials_sheen");
+    if (it == src.extensions.end()) return {};
+    const auto& x = it->second;
+    const std::string ext = where + ": KHR_materials_sheen.";
+    std::vector<double> factor;
+    for (int k = 0;
+         x.Get("sheenColorFactor").IsArray() && k < int(x.Get("sheenColorFactor").ArrayLen()); ++k)
+        factor.push_back(x.Get("sheenColorFactor").Get(k).IsNumber()
+                             ? x.Get("sheenColorFactor").Get(k).GetNumberAsDouble()
+                             : -1.0);
+    glm::vec3 colour(0.0f);
+    RG_TRY(colour, ranged3(ext + "sheenColorFactor", factor, glm::vec3(0.0f), 0, 1));
+    double roughness = 0.0;
+    RG_TRY(roughness,
+           ranged(ext + "sheenRoughnessFactor", number(x.Get("sheenRoughnessFactor"), 0.0), 0, 1));
+    if (std::max({colour.x, colour.y, colour.z}) <= 0.0f) return {};
+    if (m.model != "standard") {
+        warn(where + ": KHR_materials_sheen is ignored: the material is already a '" + m.model +
+             "' (one model a material)");
+        return {};
+    }
+    if (std::abs(m.reflectance - 0.5f) > 1e-3f)
+        warn(where +
+             ": the sheen material keeps f0 at 4 %; KHR_materials_ior/specular's reflectance " +
+             std::to_string(m.reflectance) + " is dropped");
+    for (const auto& [field, name, srgb] :
+         {std::tuple{"sheenColorTexture", "sheenColorMap", true},
+          std::tuple{"sheenRoughnessTexture", "sheenRoughnessMap", false}})
+        if (x.Get(field).IsObject()) {
+            RG_TRY(m.textures[name],
+                   extensionTexture(where + " KHR_materials_sheen." + field, x.Get(field), srgb));
+        }
+    m.model = "sheen";
+    m.reflectance = 0.5f;
+    m.extra = Value(Value::Table{{"sheenColorR", Value(double(colour.x))},
+                                 {"sheenColorG", Value(double(colour.y))},
+                                 {"sheenColorB", Value(double(colour.z))},
+                                 {"sheenRoughnessFactor", Value(roughness)}});
+    return {};
+}
+
 // KHR_materials_pbrSpecularGlossiness onto the two-colour base material (seed 000 tbl:3), which
 // holds exactly its two colours: diffuseFactor (× diffuseTexture, sRGB, as the base colour
 // texture; its alpha the opacity) as the diffuse colour, specularFactor as the f0 colour and
@@ -358,6 +408,7 @@ Result<void> Loader::materials() {
         m.smoothness = 1.0f - roughness;  // glTF roughness is perceptual (DESIGN.md §5)
         RG_TRY(m.reflectance, reflectanceOf(src, where));
         if (auto r = clearCoat(src, where, m); !r) return r;
+        if (auto r = sheen(src, where, m); !r) return r;
         if (auto it = src.extensions.find("KHR_materials_emissive_strength");
             it != src.extensions.end())
             RG_TRY(strength, ranged(where + ": emissiveStrength",

@@ -37,13 +37,14 @@ rg.resource "reference_accum" { format = "rgba32f", persistent = true }
 
 -- Instead of deferred.lua's lighting passes: every pixel with geometry (depth < 1), whatever its
 -- stencil class, is integrated here — the standard BRDF, plus the coat lobe of materialId 1
--- (materials/clearcoat_shading.glsl's BRDF per direction), and the two-colour material's diffuse
--- and f0 colours (materials/two_colour.lua); the far plane gets 0. The pass keeps the name of the
+-- (materials/clearcoat_shading.glsl's BRDF per direction), the two-colour material's diffuse
+-- and f0 colours (materials/two_colour.lua) and the sheen material's lobe (materials/sheen.lua,
+-- its albedo from the DFG table); the far plane gets 0. The pass keeps the name of the
 -- standard lighting pass it replaces: materials/clearcoat.lua and two_colour.lua insert their
 -- lighting passes after it, and rg.frame below turns those real-time passes off.
 rg.pass "lighting_standard" {
     kind = "compute", shader = "passes/reference.comp", dispatch = "hdr",
-    reads = { "GB0", "GB1", "GB2", "GB3", "depth", { "depth", as = "stencil" }, { "exposure", as = "storage" } },
+    reads = { "GB0", "GB1", "GB2", "GB3", "depth", { "depth", as = "stencil" }, { "exposure", as = "storage" }, "dfg" },
     writes = { { "hdr", as = "storage" }, { "reference_accum", as = "storage_rw", load = true } },
 }
 
@@ -58,6 +59,7 @@ rg.output { display = "display", hdr = "hdr", exposure = "exposure" }
 function rg.frame(ctx)
     ctx.pass("lighting_clearcoat").enabled = false   -- the reference lights clear coat itself
     ctx.pass("lighting_two_colour").enabled = false  -- and the two-colour material
+    ctx.pass("lighting_sheen").enabled = false       -- and the sheen material
     ctx.pass("light_culling").enabled = false        -- nothing here reads tile lists
     ctx.pass("forward").enabled = ctx.params.reference_forward
     loop.frame(ctx)  -- as deferred.lua: no decals, no decal passes

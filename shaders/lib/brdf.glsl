@@ -42,6 +42,18 @@ float D_GGX(float NdotH, float alpha) {
     return a2 / (f * f);
 }
 
+// The sheen lobe (glTF KHR_materials_sheen; the seeds have no cloth model): Estevez and Kulla's
+// "Charlie" distribution, D(h) = (2 + 1/α) sin(θh)^(1/α) / 2π with α = sheenRoughness², and
+// Neubelt and Pettineo's visibility 1 / (4 (NdotL + NdotV − NdotL·NdotV)); the lobe's BRDF is
+// their product (no Fresnel: the sheen colour is its reflectance). sin² is floored so the power of
+// a near-zero base stays finite.
+float rgSheenAlpha(float sheenRoughness) { return max(sheenRoughness * sheenRoughness, 1e-3); }
+float D_Charlie(float NdotH, float alpha) {
+    float sin2h = max(1.0 - NdotH * NdotH, 1.0 / 128.0);
+    return (2.0 + 1.0 / alpha) * pow(sin2h, 0.5 / alpha) / (2.0 * RG_PI);
+}
+float V_Neubelt(float NdotL, float NdotV) { return 1.0 / (4.0 * max(NdotL + NdotV - NdotL * NdotV, 1e-4)); }
+
 // f0 of a dielectric from Frostbite's reflectance parameter: 0.16 · reflectance² (§3.2.1).
 float rgDielectricF0(float reflectance) { return 0.16 * reflectance * reflectance; }
 

@@ -58,6 +58,17 @@ vec3 rgDfg(float NdotV, float linearRoughness) {
 #endif
 }
 
+// The sheen lobe's directional albedo E at N·V for a sheen roughness (the table's w: D_Charlie ·
+// V_Neubelt over the hemisphere, lib/brdf.glsl); 0 without the table (RG_IBL).
+float rgSheenAlbedo(float NdotV, float sheenRoughness) {
+#ifdef RG_IBL
+    vec2 uv = clamp(vec2(NdotV, sheenRoughness), vec2(0.5 / RG_DFG_SIZE), vec2(1.0 - 0.5 / RG_DFG_SIZE));
+    return textureLod(dfg, uv, 0.0).w;
+#else
+    return 0.0;
+#endif
+}
+
 // The screen-space reflection of the shaded pixel (scripts/ssr.lua's `ssr` pass: rgb in nits, a
 // its confidence), or none without RG_SSR.
 #ifdef RG_SSR

@@ -42,7 +42,9 @@
 // Clear coat (RG_MATERIAL_IDENTITY_clear_coat, materials/clearcoat.lua) gets its coat lobe too, evaluated per
 // direction as materials/clearcoat_lighting.frag does for one light direction. The two-colour
 // material (materials/two_colour.lua) is unpacked with its own layout into the same diffuse colour
-// and f0.
+// and f0. The sheen material (RG_MATERIAL_IDENTITY_sheen, materials/sheen.lua) adds its Charlie lobe
+// per direction and scales the base by 1 − max(sheen colour) · E (E from the DFG table's w, as
+// materials/sheen_shading.glsl); its broad lobe is sampled by the cosine lobe.
 //
 // Progressive: each frame adds Params.reference_samples samples to the running mean in the
 // persistent `reference_accum` (rgb: absolute cd/m²; a: how many frames it holds — the target
@@ -75,6 +77,7 @@ layout(set = 0, binding = 8) uniform Params {
     float initial_ev100;
 } params;
 layout(set = 0, binding = 9) uniform sampler2D SceneEnvironment;  // the scene's (1x1 black without one)
+layout(set = 0, binding = 26) uniform sampler2D dfg;  // scripts/ibl.lua's table: w the sheen lobe's albedo
 layout(set = 0, binding = 10, std430) readonly buffer SceneEnvironmentCdf {
     uvec4 size;    // columns, rows
     float data[];  // rows + 1 marginal CDF values, rows × (columns + 1) conditional ones, rows × columns cell probabilities
@@ -133,6 +136,8 @@ struct Shading {
     vec3 T, B;        // tangent frame around N
     bool coat;        // RG_MATERIAL_IDENTITY_clear_coat (materials/clearcoat.lua): a second GGX lobe on top
     float coatStrength, coatAlpha;
+    vec3 sheenColor;       // RG_MATERIAL_IDENTITY_sheen (materials/sheen.lua): 0 for every other material
+    float sheenAlpha, sheenScaling;  // the Charlie lobe's α; 1 − max(sheen colour) · E(N·V)
     vec3 lobeProbability;  // of picking the diffuse, GGX and coat lobes for the BRDF sample
 };
 
@@ -151,6 +156,7 @@ vec3 brdfCos(Shading s, vec3 L) {
     float D = D_GGX(NdotH, s.alpha);
     float Fd = Fr_DisneyDiffuse(s.NdotV, NdotL, LdotH, s.linearRoughness) / RG_PI;
     vec3 base = (s.diffuseColor * Fd + D * F * Vis / RG_PI) * NdotL;
+    base = base * s.sheenScaling + s.sheenColor * D_Charlie(NdotH, s.sheenAlpha) * V_Neubelt(NdotL, s.NdotV) * NdotL;
     if (!s.coat) return base;
     float Fc = F_Schlick(0.04, 1.0, LdotH) * s.coatStrength;
     float coat = D_GGX(NdotH, s.coatAlpha) * V_SmithGGXCorrelated(NdotL, s.NdotV, s.coatAlpha) * Fc / RG_PI * NdotL;
@@ -489,6 +495,18 @@ void main() {
     s.coat = false;
     s.coatStrength = 0.0;
     s.coatAlpha = 1.0;
+#endif
+    s.sheenColor = vec3(0.0);
+    s.sheenAlpha = 1.0;
+    s.sheenScaling = 1.0;
+#ifdef RG_MATERIAL_IDENTITY_sheen
+    if (g.identity == RG_MATERIAL_IDENTITY_sheen) {
+        GBuffer_sheen sheen = unpackGBuffer_sheen(t0, t1, t2, t3);
+        s.sheenColor = sheen.sheenColor;
+        s.sheenAlpha = rgSheenAlpha(sheen.sheenRoughness);
+        vec2 at = clamp(vec2(clamp(dot(s.N, s.V), 1e-4, 1.0), sheen.sheenRoughness), vec2(0.5 / 128.0), vec2(1.0 - 0.5 / 128.0));
+        s.sheenScaling = clamp(1.0 - max(s.sheenColor.r, max(s.sheenColor.g, s.sheenColor.b)) * textureLod(dfg, at, 0.0).w, 0.0, 1.0);
+    }
 #endif
     // Lobe selection by the lobes' albedo estimates (diffuse colour, Schlick at N·V for the GGX
     // lobes), each present lobe picked with probability at least 0.1 so that none is starved.

@@ -310,26 +310,27 @@ scene.camera "main" { position = { 0, 4, 0.001 }, target = { 0, 0, 0 }, fov = 40
     LuaHost host(luaHostOptionsWithoutDevice());
     auto p = host.load((tmp.dir / "pipeline.lua").string());
     ASSERT_TRUE(p.has_value()) << p.error().message;
-    ASSERT_EQ(p->materials.size(), 9u);
+    ASSERT_EQ(p->materials.size(), 10u);
     for (int k = 1; k <= 5; ++k) {
         auto c = std::find_if(p->stencilClasses.begin(), p->stencilClasses.end(),
                               [&](auto& x) { return x.name == "lit_flat" + std::to_string(k); });
         ASSERT_NE(c, p->stencilClasses.end());
-        EXPECT_EQ(c->value,
-                  3u + static_cast<uint32_t>(
-                           k));  // after lit_standard 1, lit_clearcoat 2, lit_two_colour 3
+        EXPECT_EQ(
+            c->value,
+            4u + static_cast<uint32_t>(
+                     k));  // after lit_standard 1, lit_clearcoat 2, lit_two_colour 3, lit_sheen 4
         EXPECT_EQ(c->mask, 0x0Fu);
     }
     const std::string text = describeMaterialSystem(*p);
     for (int k = 1; k <= 5; ++k) {
         char line[64];
-        std::snprintf(line, sizeof line, "0x%02X lit_flat%d", 3 + k, k);
+        std::snprintf(line, sizeof line, "0x%02X lit_flat%d", 4 + k, k);
         EXPECT_NE(text.find(line), std::string::npos) << text;
-        EXPECT_EQ(p->materials[static_cast<size_t>(3 + k)].identity, 3u + static_cast<uint32_t>(k));
+        EXPECT_EQ(p->materials[static_cast<size_t>(4 + k)].identity, 4u + static_cast<uint32_t>(k));
     }
-    EXPECT_NE(text.find("0x08 mask 0x0F  lit_flat5"), std::string::npos) << text;
-    EXPECT_NE(text.find("free: 7 of 15 classes"), std::string::npos) << text;
-    EXPECT_NE(text.find("free: 246 of 255"), std::string::npos) << text;  // 9 values taken
+    EXPECT_NE(text.find("0x09 mask 0x0F  lit_flat5"), std::string::npos) << text;
+    EXPECT_NE(text.find("free: 6 of 15 classes"), std::string::npos) << text;
+    EXPECT_NE(text.find("free: 245 of 255"), std::string::npos) << text;  // 10 values taken
 
     SessionOptions o = sceneOptions((tmp.dir / "scene.lua").string(), {}, W, H);
     Readback r = renderAndRead(o, (tmp.dir / "pipeline.lua").string(), 1, {"hdr"});

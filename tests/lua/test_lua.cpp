@@ -348,14 +348,16 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     LuaHost host(luaHostOptionsWithoutDevice());
     auto p = host.load(std::string(RG_SOURCE_ROOT) + "/scripts/pipelines/deferred.lua");
     ASSERT_TRUE(p.has_value()) << p.error().message;
-    ASSERT_EQ(p->layouts.size(), 2u);
+    ASSERT_EQ(p->layouts.size(), 3u);
     EXPECT_EQ(p->layouts[0].name, "disney");
     EXPECT_EQ(p->layouts[0].targets.size(), 4u);
     EXPECT_EQ(p->layouts[1].name, "two_colour");  // tbl:3, over the same four targets
     EXPECT_EQ(p->layouts[1].targets.size(), 4u);
-    // The standard material, two game-team materials and the two-colour base material, each
-    // with its id and stencil class.
-    ASSERT_EQ(p->materials.size(), 4u);
+    EXPECT_EQ(p->layouts[2].name, "sheen");  // and the cloth material's
+    EXPECT_EQ(p->layouts[2].targets.size(), 4u);
+    // The standard material, two game-team materials, the two-colour base material and the sheen
+    // material, each with its id and stencil class.
+    ASSERT_EQ(p->materials.size(), 5u);
     EXPECT_EQ(p->materials[0].name, "standard");
     EXPECT_EQ(p->materials[0].id, 0u);
     EXPECT_EQ(p->materials[0].stencil, "lit_standard");
@@ -370,7 +372,9 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     EXPECT_EQ(p->materials[2].stencil, "foliage");
     EXPECT_EQ(p->materials[3].id, 2u);  // id 3 is left free for a game team
     EXPECT_EQ(p->materials[3].stencil, "lit_two_colour");
-    ASSERT_EQ(p->stencilClasses.size(), 4u);
+    EXPECT_EQ(p->materials[4].name, "sheen");
+    EXPECT_EQ(p->materials[4].stencil, "lit_sheen");
+    ASSERT_EQ(p->stencilClasses.size(), 5u);
     EXPECT_EQ(p->stencilClasses[0].value, 1u);  // lit_standard, allocated
     EXPECT_EQ(p->stencilClasses[1].value, 2u);  // lit_clearcoat, allocated
     EXPECT_EQ(p->stencilClasses[2].value,
@@ -379,6 +383,7 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     EXPECT_EQ(p->stencilClasses[2].base, "lit_standard");
     EXPECT_EQ(p->stencilClasses[0].mask, 0x0Fu);  // a class's pass lights its variants too
     EXPECT_EQ(p->stencilClasses[3].value, 3u);    // lit_two_colour, allocated
+    EXPECT_EQ(p->stencilClasses[4].value, 4u);    // lit_sheen, allocated
     // Decals: the standard material takes all five parameters, the others the common three,
     // the two-colour material's base colour into its diffuse colour.
     EXPECT_EQ(p->materials[0].decals, (std::vector<std::string>{"normal", "baseColor", "smoothness",
@@ -403,7 +408,7 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // pyramid, SSR's mask and SSR (scripts/ssr.lua), the composition of SSR and the probes
     // (scripts/reflections.lua), the lighting, the sky, the points and lines, and forward.
     ASSERT_GE(order.size(), 59u);
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 56),
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 57),
               (std::vector<std::string>{"env_cube",
                                         "env_mips",
                                         "env_irradiance",
@@ -457,6 +462,7 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
                                         "lighting_standard",
                                         "lighting_clearcoat",
                                         "lighting_two_colour",
+                                        "lighting_sheen",
                                         "sky",
                                         "lines",
                                         "forward"}));
@@ -470,7 +476,7 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // Every script it pulled in is known, for hot reload.
     EXPECT_EQ(
         p->files.size(),
-        16u);  // deferred, post, lighting, render_loop, ibl, shadows, probes, ao, ssr, reflections, lightmap, gbuffer_reader, disney, clearcoat, foliage, two_colour
+        17u);  // deferred, post, lighting, render_loop, ibl, shadows, probes, ao, ssr, reflections, lightmap, gbuffer_reader, disney, clearcoat, foliage, two_colour, sheen
 }
 
 TEST(LuaPipeline, ModulesAreNamespacedAndInsertedAfterTheirAnchor) {

@@ -132,7 +132,8 @@ TEST(LuaLayouts, EveryShadedPathGetsItsDeferredShader) {
     for (const auto& [name, text] : shaders) names.push_back(name);
     EXPECT_EQ(names, (std::vector<std::string>{
                          "lighting_path_standard.frag", "lighting_path_clearcoat.frag",
-                         "lighting_path_two_colour.frag", "lighting_path_toon.frag"}));
+                         "lighting_path_two_colour.frag", "lighting_path_sheen.frag",
+                         "lighting_path_toon.frag"}));
     const std::string& toon = shaders.back().second;
     for (const char* part :
          {"#include \"gbuffer_toon.glsl\"", "toon/toon_shading.glsl\"", "uniform sampler2D GB3;",
@@ -143,7 +144,7 @@ TEST(LuaLayouts, EveryShadedPathGetsItsDeferredShader) {
         EXPECT_NE(toon.find(part), std::string::npos) << part << "\n" << toon;
     // Without its material the toon path has nothing to decode: no shader.
     p->materials.pop_back();
-    EXPECT_EQ(generateLightingShaders(*p).size(), 3u);
+    EXPECT_EQ(generateLightingShaders(*p).size(), 4u);
 }
 
 // lighting.path_pass names its path and class, or stops at the caller's line.

@@ -395,6 +395,71 @@ TEST(GltfLoad, IorSpecularAndClearcoatExtensionsMapOntoTheMaterials) {
         << warnings[2];
 }
 
+// KHR_materials_sheen makes a material the pipeline's sheen material (materials/sheen.lua): its
+// factors as the model's parameters, its textures as the model's own (the colour sRGB, the
+// roughness linear); a black sheen is none; beside a clear coat, or over an IOR it cannot keep,
+// a warning says what is dropped; a factor out of range is refused naming the JSON path.
+TEST(GltfLoad, SheenMakesTheSheenMaterial) {
+    const std::string dir = tmpDir("sheen");
+    GltfBuilder g;
+    addQuad(g, true);
+    const json velvet = {{"sheenColorFactor", {0.9, 0.5, 0.2}},
+                         {"sheenRoughnessFactor", 0.4},
+                         {"sheenColorTexture", {{"index", 0}}},
+                         {"sheenRoughnessTexture", {{"index", 1}, {"texCoord", 1}}}};
+    g.j["materials"] =
+        json::array({{{"name", "velvet"}, {"extensions", {{"KHR_materials_sheen", velvet}}}},
+                     {{"name", "black"},
+                      {"extensions", {{"KHR_materials_sheen", {{"sheenRoughnessFactor", 0.5}}}}}},
+                     {{"name", "both"},
+                      {"extensions",
+                       {{"KHR_materials_clearcoat", {{"clearcoatFactor", 1.0}}},
+                        {"KHR_materials_sheen", {{"sheenColorFactor", {1.0, 1.0, 1.0}}}}}}},
+                     {{"name", "water"},
+                      {"extensions",
+                       {{"KHR_materials_ior", {{"ior", 1.33}}},
+                        {"KHR_materials_sheen", {{"sheenColorFactor", {1.0, 1.0, 1.0}}}}}}}});
+    g.j["images"] = json::array({{{"uri", "tint.png"}}, {{"uri", "fuzz.png"}}});
+    g.j["textures"] = json::array({{{"source", 0}}, {{"source", 1}}});
+    g.j["extensionsUsed"] = {"KHR_materials_sheen", "KHR_materials_clearcoat", "KHR_materials_ior"};
+    g.scene({g.node({{"mesh", 0}})});
+    rg::GltfOptions o;
+    o.loadImages = false;
+    auto scene = rg::loadGltf(g.writeGltf(dir, "s"), o);
+    ASSERT_TRUE(scene) << errorOf(scene);
+    const auto& m = scene->materials;
+    EXPECT_EQ(m[0].model, "sheen");
+    EXPECT_NEAR(m[0].extra["sheenColorR"].asNumber(), 0.9, 1e-6);
+    EXPECT_NEAR(m[0].extra["sheenColorG"].asNumber(), 0.5, 1e-6);
+    EXPECT_NEAR(m[0].extra["sheenColorB"].asNumber(), 0.2, 1e-6);
+    EXPECT_NEAR(m[0].extra["sheenRoughnessFactor"].asNumber(), 0.4, 1e-6);
+    ASSERT_EQ(m[0].textures.size(), 2u);
+    const rg::TextureRef& tint = m[0].textures.at("sheenColorMap");
+    const rg::TextureRef& fuzz = m[0].textures.at("sheenRoughnessMap");
+    ASSERT_TRUE(tint.valid() && fuzz.valid());
+    EXPECT_TRUE(scene->images[size_t(tint.image)].srgb);
+    EXPECT_FALSE(scene->images[size_t(fuzz.image)].srgb);
+    EXPECT_EQ(fuzz.texCoord, 1u);
+    EXPECT_EQ(m[1].model, "standard");  // a black sheen is no sheen
+    EXPECT_EQ(m[2].model, "clear_coat");
+    EXPECT_EQ(m[3].model, "sheen");
+    EXPECT_NEAR(m[3].reflectance, 0.5, 1e-6);  // f0 4 %, the sheen layout's
+    ASSERT_EQ(scene->warnings.size(), 2u);
+    EXPECT_NE(scene->warnings[0].find("material 2 'both': KHR_materials_sheen is ignored: the "
+                                      "material is already a 'clear_coat'"),
+              std::string::npos)
+        << scene->warnings[0];
+    EXPECT_NE(scene->warnings[1].find("material 3 'water': the sheen material keeps f0 at 4 %"),
+              std::string::npos)
+        << scene->warnings[1];
+
+    g.j["materials"][0]["extensions"]["KHR_materials_sheen"]["sheenRoughnessFactor"] = 1.5;
+    auto bad = rg::loadGltf(g.writeGltf(dir, "s2"), o);
+    EXPECT_NE(errorOf(bad).find("material 0 'velvet': KHR_materials_sheen.sheenRoughnessFactor"),
+              std::string::npos)
+        << errorOf(bad);
+}
+
 // KHR_materials_unlit: the base colour becomes emission relative to the exposure (as glTF's
 // emissive), the surface reflects nothing; without the extension the same material is lit.
 TEST(GltfLoad, UnlitShowsItsBaseColourAsEmission) {
