@@ -41,7 +41,7 @@ vec3 project(vec3 v) {
 
 void main() {
     // Half resolution: one ray for each 2×2 block of pixels, from one pixel's surface.
-    ivec2 p = rgSsrTracedPixel(ivec2(gl_FragCoord.xy));
+    ivec2 p = rgSsrTracedPixel(ivec2(gl_FragCoord.xy), textureSize(depth, 0));
     float z = texelFetch(depth, p, 0).r;
     color = vec4(0.0);
     if (z >= 1.0) return;

@@ -17,6 +17,7 @@ layout(set = 0, binding = 1) uniform sampler2D depth;
 layout(set = 0, binding = 2) uniform Params { float ssr_max_roughness; } params;
 
 bool traces(ivec2 p) {
+    p = min(p, textureSize(depth, 0) - 1);  // an odd width or height: its last pixel again
     return texelFetch(depth, p, 0).r < 1.0 && !(1.0 - rgGBufferSmoothnessAt(p) > params.ssr_max_roughness);
 }
 
@@ -27,7 +28,7 @@ void main() {
     ivec2 p = ivec2(gl_FragCoord.xy) * 2;
     bool any = traces(p) || traces(p + ivec2(1, 0)) || traces(p + ivec2(0, 1)) || traces(p + ivec2(1, 1));
 #else
-    bool any = traces(rgSsrTracedPixel(ivec2(gl_FragCoord.xy)));
+    bool any = traces(rgSsrTracedPixel(ivec2(gl_FragCoord.xy), textureSize(depth, 0)));
 #endif
     gl_FragDepth = any ? 0.0 : 1.0;
 }

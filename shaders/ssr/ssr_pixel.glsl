@@ -6,12 +6,14 @@
 #ifndef RG_SSR_PIXEL_GLSL
 #define RG_SSR_PIXEL_GLSL
 
-ivec2 rgSsrTracedPixel(ivec2 texel) {
+// `size`: the full-resolution target's, so that an odd width or height reads its last pixel again
+// rather than past it.
+ivec2 rgSsrTracedPixel(ivec2 texel, ivec2 size) {
 #ifdef RG_SSR_TEMPORAL
     const ivec2 corner[4] = ivec2[](ivec2(0, 0), ivec2(1, 1), ivec2(1, 0), ivec2(0, 1));
-    return texel * 2 + corner[int(camera.temporal.y + 0.5) & 3];
+    return min(texel * 2 + corner[int(camera.temporal.y + 0.5) & 3], size - 1);
 #else
-    return texel * 2;
+    return min(texel * 2, size - 1);
 #endif
 }
 
