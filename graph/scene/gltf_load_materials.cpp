@@ -16,6 +16,19 @@ using namespace scene_detail;
 
 namespace gltf_load {
 
+namespace {
+
+// An extension's array of numbers as doubles, −1 for an entry that is not a number (the range
+// checks then name it); empty when the value is not an array.
+std::vector<double> numbers(const tinygltf::Value& v) {
+    std::vector<double> out;
+    for (int k = 0; v.IsArray() && k < int(v.ArrayLen()); ++k)
+        out.push_back(v.Get(k).IsNumber() ? v.Get(k).GetNumberAsDouble() : -1.0);
+    return out;
+}
+
+}  // namespace
+
 void Loader::convertSamplers() {
     for (const auto& s : model.samplers) {
         SamplerDesc d;
@@ -299,14 +312,9 @@ Result<void> Loader::sheen(const tinygltf::Material& src, const std::string& whe
     if (it == src.extensions.end()) return {};
     const auto& x = it->second;
     const std::string ext = where + ": KHR_materials_sheen.";
-    std::vector<double> factor;
-    for (int k = 0;
-         x.Get("sheenColorFactor").IsArray() && k < int(x.Get("sheenColorFactor").ArrayLen()); ++k)
-        factor.push_back(x.Get("sheenColorFactor").Get(k).IsNumber()
-                             ? x.Get("sheenColorFactor").Get(k).GetNumberAsDouble()
-                             : -1.0);
     glm::vec3 colour(0.0f);
-    RG_TRY(colour, ranged3(ext + "sheenColorFactor", factor, glm::vec3(0.0f), 0, 1));
+    RG_TRY(colour, ranged3(ext + "sheenColorFactor", numbers(x.Get("sheenColorFactor")),
+                           glm::vec3(0.0f), 0, 1));
     double roughness = 0.0;
     RG_TRY(roughness,
            ranged(ext + "sheenRoughnessFactor", number(x.Get("sheenRoughnessFactor"), 0.0), 0, 1));
@@ -348,25 +356,25 @@ Result<void> Loader::specularGlossiness(const tinygltf::Material& src, const std
     if (it == src.extensions.end()) return {};
     const auto& x = it->second;
     const std::string ext = where + ": KHR_materials_pbrSpecularGlossiness.";
-    auto list = [](const tinygltf::Value& v) {
-        std::vector<double> out;
-        for (int k = 0; v.IsArray() && k < int(v.ArrayLen()); ++k)
-            out.push_back(v.Get(k).IsNumber() ? v.Get(k).GetNumberAsDouble() : -1.0);
-        return out;
-    };
-    std::vector<double> diffuse = list(x.Get("diffuseFactor"));
+    std::vector<double> diffuse = numbers(x.Get("diffuseFactor"));
     double alpha = 1.0;
     if (diffuse.size() == 4) {
         RG_TRY(alpha, ranged(ext + "diffuseFactor[3]", diffuse[3], 0, 1));
         diffuse.pop_back();
     }
     RG_TRY(m.diffuseColor, ranged3(ext + "diffuseFactor", diffuse, glm::vec3(1.0f), 0, 1));
-    RG_TRY(m.f0,
-           ranged3(ext + "specularFactor", list(x.Get("specularFactor")), glm::vec3(1.0f), 0, 1));
+    RG_TRY(m.f0, ranged3(ext + "specularFactor", numbers(x.Get("specularFactor")), glm::vec3(1.0f),
+                         0, 1));
     double glossiness = 1.0;
     RG_TRY(glossiness,
            ranged(ext + "glossinessFactor", number(x.Get("glossinessFactor"), 1.0), 0, 1));
+    if (m.model != "standard")
+        warn(where +
+             ": KHR_materials_pbrSpecularGlossiness makes it the two-colour material; its '" +
+             m.model + "' extension is dropped (one model a material)");
     m.model = "two_colour";
+    m.extra = Value();
+    m.textures.clear();
     m.baseColor = m.diffuseColor;  // what debug views and decals call it (its channels map)
     m.opacity = float(alpha);
     m.smoothness = float(glossiness);
@@ -467,6 +475,10 @@ Result<void> Loader::materials() {
             m.metalMask = 0.0f;
             m.reflectance = 0.0f;
             m.metallicRoughnessTex = m.normalTex = m.occlusionTex = TextureRef{};
+            // Nothing reflects: no coat, no sheen either.
+            m.model = "standard";
+            m.extra = Value();
+            m.textures.clear();
         }
         if (src.alphaMode == "OPAQUE" || src.alphaMode.empty())
             m.alphaMode = AlphaMode::Opaque;

@@ -398,7 +398,8 @@ TEST(GltfLoad, IorSpecularAndClearcoatExtensionsMapOntoTheMaterials) {
 // KHR_materials_sheen makes a material the pipeline's sheen material (materials/sheen.lua): its
 // factors as the model's parameters, its textures as the model's own (the colour sRGB, the
 // roughness linear); a black sheen is none; beside a clear coat, or over an IOR it cannot keep,
-// a warning says what is dropped; a factor out of range is refused naming the JSON path.
+// a warning says what is dropped; an unlit material keeps none; a factor out of range is refused
+// naming the JSON path.
 TEST(GltfLoad, SheenMakesTheSheenMaterial) {
     const std::string dir = tmpDir("sheen");
     GltfBuilder g;
@@ -418,10 +419,15 @@ TEST(GltfLoad, SheenMakesTheSheenMaterial) {
                      {{"name", "water"},
                       {"extensions",
                        {{"KHR_materials_ior", {{"ior", 1.33}}},
+                        {"KHR_materials_sheen", {{"sheenColorFactor", {1.0, 1.0, 1.0}}}}}}},
+                     {{"name", "flat"},
+                      {"extensions",
+                       {{"KHR_materials_unlit", json::object()},
                         {"KHR_materials_sheen", {{"sheenColorFactor", {1.0, 1.0, 1.0}}}}}}}});
     g.j["images"] = json::array({{{"uri", "tint.png"}}, {{"uri", "fuzz.png"}}});
     g.j["textures"] = json::array({{{"source", 0}}, {{"source", 1}}});
-    g.j["extensionsUsed"] = {"KHR_materials_sheen", "KHR_materials_clearcoat", "KHR_materials_ior"};
+    g.j["extensionsUsed"] = {"KHR_materials_sheen", "KHR_materials_clearcoat", "KHR_materials_ior",
+                             "KHR_materials_unlit"};
     g.scene({g.node({{"mesh", 0}})});
     rg::GltfOptions o;
     o.loadImages = false;
@@ -444,6 +450,8 @@ TEST(GltfLoad, SheenMakesTheSheenMaterial) {
     EXPECT_EQ(m[2].model, "clear_coat");
     EXPECT_EQ(m[3].model, "sheen");
     EXPECT_NEAR(m[3].reflectance, 0.5, 1e-6);  // f0 4 %, the sheen layout's
+    EXPECT_EQ(m[4].model, "standard");         // unlit: nothing reflects, no sheen either
+    EXPECT_TRUE(m[4].textures.empty());
     ASSERT_EQ(scene->warnings.size(), 2u);
     EXPECT_NE(scene->warnings[0].find("material 2 'both': KHR_materials_sheen is ignored: the "
                                       "material is already a 'clear_coat'"),
