@@ -12,8 +12,8 @@ vec3 rgShade(GBuffer_sheen g, vec3 position, vec3 V, ivec2 pixel) {
     float linearRoughness = 1.0 - g.smoothness;
     float sheenAlpha = rgSheenAlpha(g.sheenRoughness);
     float NdotV = clamp(dot(N, V), 1e-4, 1.0);
-    // What the sheen takes from the base (clamped: E exceeds 1 at grazing views of the smoothest).
-    float scaling = clamp(1.0 - max(g.sheenColor.r, max(g.sheenColor.g, g.sheenColor.b)) * rgSheenAlbedo(NdotV, g.sheenRoughness), 0.0, 1.0);
+    // What the sheen takes from the base.
+    float scaling = rgSheenScaling(g.sheenColor, rgSheenAlbedo(NdotV, g.sheenRoughness));
     vec3 luminance = g.emissive;
     RgLightList list = rgLightList(pixel);  // the tile's lights (lib/light_tiles.glsl)
     float sun = rgSunVisibility(position, N);  // the sun's shadow (RG_SHADOWS), once
@@ -21,9 +21,9 @@ vec3 rgShade(GBuffer_sheen g, vec3 position, vec3 V, ivec2 pixel) {
         RgLightSample s = rgEvaluateLight(rgListLight(list, k), position, N, V, linearRoughness, sun);
         vec3 H = rgSafeNormalize(V + s.Ld, N);
         float NdotL = clamp(dot(N, s.Ld), 0.0, 1.0);
-        float sheen = D_Charlie(clamp(dot(N, H), 0.0, 1.0), sheenAlpha) * V_Neubelt(NdotL, NdotV);
+        vec3 sheen = rgSheenBrdf(g.sheenColor, clamp(dot(N, H), 0.0, 1.0), NdotL, NdotV, sheenAlpha);
         luminance += rgStandardLighting(s, N, V, diffuseColor, f0, linearRoughness) * scaling +
-                     g.sheenColor * sheen * s.diffuseIlluminance;
+                     sheen * s.diffuseIlluminance;
     }
     float ao = rgAmbientOcclusion(g.ao, position);
     luminance += rgStandardIbl(position, N, V, diffuseColor, f0, linearRoughness, ao) * scaling;  // the probes (RG_IBL, RG_REFLECTION)

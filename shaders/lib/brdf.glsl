@@ -53,6 +53,15 @@ float D_Charlie(float NdotH, float alpha) {
     return (2.0 + 1.0 / alpha) * pow(sin2h, 0.5 / alpha) / (2.0 * RG_PI);
 }
 float V_Neubelt(float NdotL, float NdotV) { return 1.0 / (4.0 * max(NdotL + NdotV - NdotL * NdotV, 1e-4)); }
+// The sheen lobe for one direction (its BRDF, before ⟨n·l⟩), and what it leaves the base beneath:
+// 1 − max(sheen colour) · E, E its directional albedo at the view (clamped: E exceeds 1 at grazing
+// views of the smoothest sheens). Shared by materials/sheen_shading.glsl and passes/reference.comp.
+vec3 rgSheenBrdf(vec3 sheenColor, float NdotH, float NdotL, float NdotV, float alpha) {
+    return sheenColor * D_Charlie(NdotH, alpha) * V_Neubelt(NdotL, NdotV);
+}
+float rgSheenScaling(vec3 sheenColor, float albedo) {
+    return clamp(1.0 - max(sheenColor.r, max(sheenColor.g, sheenColor.b)) * albedo, 0.0, 1.0);
+}
 
 // f0 of a dielectric from Frostbite's reflectance parameter: 0.16 · reflectance² (§3.2.1).
 float rgDielectricF0(float reflectance) { return 0.16 * reflectance * reflectance; }

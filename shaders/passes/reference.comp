@@ -156,7 +156,7 @@ vec3 brdfCos(Shading s, vec3 L) {
     float D = D_GGX(NdotH, s.alpha);
     float Fd = Fr_DisneyDiffuse(s.NdotV, NdotL, LdotH, s.linearRoughness) / RG_PI;
     vec3 base = (s.diffuseColor * Fd + D * F * Vis / RG_PI) * NdotL;
-    base = base * s.sheenScaling + s.sheenColor * D_Charlie(NdotH, s.sheenAlpha) * V_Neubelt(NdotL, s.NdotV) * NdotL;
+    base = base * s.sheenScaling + rgSheenBrdf(s.sheenColor, NdotH, NdotL, s.NdotV, s.sheenAlpha) * NdotL;
     if (!s.coat) return base;
     float Fc = F_Schlick(0.04, 1.0, LdotH) * s.coatStrength;
     float coat = D_GGX(NdotH, s.coatAlpha) * V_SmithGGXCorrelated(NdotL, s.NdotV, s.coatAlpha) * Fc / RG_PI * NdotL;
@@ -505,7 +505,7 @@ void main() {
         s.sheenColor = sheen.sheenColor;
         s.sheenAlpha = rgSheenAlpha(sheen.sheenRoughness);
         vec2 at = clamp(vec2(clamp(dot(s.N, s.V), 1e-4, 1.0), sheen.sheenRoughness), vec2(0.5 / 128.0), vec2(1.0 - 0.5 / 128.0));
-        s.sheenScaling = clamp(1.0 - max(s.sheenColor.r, max(s.sheenColor.g, s.sheenColor.b)) * textureLod(dfg, at, 0.0).w, 0.0, 1.0);
+        s.sheenScaling = rgSheenScaling(s.sheenColor, textureLod(dfg, at, 0.0).w);
     }
 #endif
     // Lobe selection by the lobes' albedo estimates (diffuse colour, Schlick at N·V for the GGX
