@@ -82,6 +82,19 @@ Result<void> GpuScene::setSetting(const std::string& name, const Value& value) {
                                              "' (it has: " + joinQuoted(settingNames()) + ")");
 }
 
+std::optional<bool> GpuScene::feature(const std::string& name) const {
+    if (name == "lightmap") return hasLightmap();
+    static constexpr std::string_view kMaterial = "material:";
+    if (name.starts_with(kMaterial)) {
+        const std::string_view model = std::string_view(name).substr(kMaterial.size());
+        return std::any_of(m_draws.begin(), m_draws.end(), [&](const DrawItem& d) {
+            return d.material < m_scene.materials.size() &&
+                   m_scene.materials[d.material].model == model;
+        });
+    }
+    return std::nullopt;
+}
+
 std::optional<uint32_t> GpuScene::layerExtent(const std::string& name) const {
     if (name == kShadowViewsExtent) return m_shadowViewCapacity;
     if (name == kShadowBatchesExtent) return static_cast<uint32_t>(m_shadowBatches.size());

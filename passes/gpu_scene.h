@@ -121,11 +121,13 @@ public:
     std::vector<std::string> extentNames() const override {
         return {kShadowViewsExtent, kShadowCastersExtent, kShadowBatchesExtent};
     }
-    // Its one feature: "lightmap", a baked lightmap (scene.lightmap, from the cache or baked).
-    std::optional<bool> feature(const std::string& name) const override {
-        return name == "lightmap" ? std::optional<bool>(hasLightmap()) : std::nullopt;
+    // Its features: "lightmap", a baked lightmap (scene.lightmap, from the cache or baked), and
+    // "material:MODEL", whether a draw's material is of that pipeline material (any name: false
+    // for one the scene does not draw) — what render_loop.lua's `opaque` copy exists for.
+    std::optional<bool> feature(const std::string& name) const override;
+    std::vector<std::string> featureNames() const override {
+        return {"lightmap", "material:MODEL"};
     }
-    std::vector<std::string> featureNames() const override { return {"lightmap"}; }
     static constexpr const char* kShadowViewsExtent = "shadow_views";
     // The draws that cast shadows, and their batches: casters sharing a mesh (vertex offset,
     // index range) and cull mode, which a culling pass draws as one instanced draw per level of

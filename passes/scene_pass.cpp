@@ -364,6 +364,18 @@ Result<void> GBufferScenePass::prepareDraws(PassSetup& setup) {
         auto variants = drawsByTextures(*sceneOf(setup), [&](const Material& m) {
             return m.model == info.name && m.alphaMode != AlphaMode::Blend;
         });
+        // A forward-only material's shading reads what lies behind the surface: only the forward
+        // pass draws it (its surface function is still compiled here, below, so it fails at load).
+        if (info.forward && !variants.empty()) {
+            const GpuScene& scene = *sceneOf(setup);
+            const Material& example =
+                scene.scene().materials[scene.draws()[variants.begin()->second.front()].material];
+            return fail(ErrorCode::InvalidInput,
+                        passPrefix(desc) + "scene material '" + example.name +
+                            "' is of material '" + info.name + "' (" + info.origin +
+                            "), which only the forward pass draws (forward = true: its shading "
+                            "reads the frame behind it); make it blended (alpha = \"blend\")");
+        }
         if (variants.empty())
             variants
                 [kTextureBits |

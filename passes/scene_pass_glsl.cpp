@@ -142,14 +142,17 @@ std::string forwardSource(const PassMaterial& m) {
     s << "#include \"lib/material.glsl\"\n#include \"lib/lighting.glsl\"\n#include "
          "\"lib/exposure.glsl\"\n#include \"lib/ibl.glsl\"\n"
       << "#include \"lib/lightmap.glsl\"\n"
-      << "#include \"gbuffer_" << m.layout << ".glsl\"\n"
-      << surfaceInclude(m) << "#include \"" << m.shading << "\"\n"
+      << "#include \"gbuffer_" << m.layout
+      << ".glsl\"\n"
+      // The exposure state before the shading function: one that reads the pre-exposed frame
+      // (the transmission's opaque copy) divides by the pre-exposure.
+      << kExposureBlocks << surfaceInclude(m) << "#include \"" << m.shading << "\"\n"
       << "layout(location = 0) in vec3 worldPosition;\nlayout(location = 1) in vec3 worldNormal;\n"
       << "layout(location = 2) in vec4 worldTangent;\nlayout(location = 3) in vec2 "
          "uv0;\nlayout(location = 4) in vec2 uv1;\n"
       << "layout(location = 5) in vec2 lightmapUv;\nlayout(location = 6) in vec4 vertexColor;\n"
       << "layout(location = 0) out vec4 color;\n"
-      << kExposureBlocks << "void main() {\n"
+      << "void main() {\n"
       << "    RgSurface s = rgSampleSurface(worldPosition, worldNormal, worldTangent, uv0, uv1, "
          "vertexColor, "
          "gl_FrontFacing);\n"

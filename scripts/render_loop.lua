@@ -14,6 +14,7 @@ require "clearcoat"  -- a game team's clear-coat material and its lighting path
 require "foliage"    -- a game team's foliage material and its G-buffer fix-up
 require "two_colour" -- the two-colour base material (tbl:3) and its lighting path
 require "sheen"      -- a cloth material (glTF KHR_materials_sheen) and its lighting path
+require "transmission"  -- glass and liquids (glTF KHR_materials_transmission, _volume), forward only
 
 local ibl = require "ibl"   -- the distant light probe: the forward pass is lit by it too
 local shadows = require "shadows"  -- the sun's shadow map: and shadowed by it
@@ -38,6 +39,14 @@ rg.resource "hdr" { format = "rgba16f" }
 rg.resource "lightmap_specular" { format = "rgba16f",
     only_when = { scene = "lightmap", param = "lightmap_specular", defines = { "RG_LIGHTMAP_SPECULAR" } } }
 require("lightmap").gbuffer_writes_specular = true
+
+-- The opaque frame — the lit opaque surfaces, the sky and the lines — for the transmission material
+-- (materials/transmission.lua) to see through: copied before the forward pass draws over it and
+-- filtered into mips (a rough surface reads a coarser one). It exists only while the scene draws a
+-- transmission material (only_when): otherwise it, its copy and mips leave the graph, and the
+-- forward pass loses RG_OPAQUE.
+rg.resource "opaque" { format = "rgba16f", mips = "full",
+    only_when = { scene = "material:transmission", defines = { "RG_OPAQUE" } } }
 
 -- Specular anti-aliasing in the scene passes (lib/material.glsl, rgSpecularAntialiasing; seed
 -- 002 §5.3's pre-filtering): the normal's variance over a pixel — from the normal map's filtered
@@ -88,9 +97,14 @@ function loop.sky_and_forward()
         kind = "scene", lines = true,
         reads = { { "depth", as = "depth" }, { "exposure", as = "uniform" } }, writes = { { "hdr", load = true } },
     }
+    -- What the transmission material sees through (`opaque`, above): the frame so far, with mips
+    -- (a blit chain).
+    rg.pass "opaque_copy" { kind = "copy", reads = { "hdr" }, writes = { "opaque" } }
+    rg.pass "opaque_mips" { kind = "mips", writes = { { "opaque", load = true } } }
     rg.pass "forward" (lighting.clustered(shadows.lit(probes.lit(ibl.lit {
         kind = "scene", forward = true, switches = loop.specular_aa,
-        reads = { { "depth", as = "depth" }, { "exposure", as = "uniform" } }, writes = { { "hdr", load = true } },
+        reads = { { "depth", as = "depth" }, { "exposure", as = "uniform" }, "opaque" },
+        writes = { { "hdr", load = true } }, defines = { RG_OPAQUE = true },
     }))))
     loop.forward_pass = "forward"
     return "forward"

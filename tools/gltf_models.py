@@ -422,6 +422,36 @@ def sheen(d):
     d.uses("KHR_materials_sheen")
 
 
+def transmission(d):
+    # Five glass spheres before a checker wall: thin-walled (only its reflections), a solid ball
+    # of IOR 1.5 (the wall refracted, upside down), the same absorbing to amber over 0.2 m
+    # (KHR_materials_volume), frosted (roughness 0.5), and one whose transmissionTexture lets
+    # light through in stripes only (the rest a white diffuse).
+    wall = pbr((1, 1, 1), 0, 0.8)
+    wall["pbrMetallicRoughness"]["baseColorTexture"] = {
+        "index": d.image(checker(64, 8, (255, 200, 40), (20, 60, 160)))}
+    wall = d.material(wall)
+    d.node(mesh=d.mesh([d.prim(quad(3.2, 1.2), wall)]), translation=[0, 0, -0.5])
+    stripes = checker(64, 1, (0, 0, 0), (0, 0, 0))
+    stripes[..., 0] = np.where(np.arange(64)[None, :] // 8 % 2 == 0, 255, 0)
+    r = 0.22
+    for i, (volume, rough, texture) in enumerate(((None, 0.0, False),
+                                                  ({"thicknessFactor": 2 * r}, 0.0, False),
+                                                  ({"thicknessFactor": 2 * r, "attenuationDistance": 0.2,
+                                                    "attenuationColor": [1.0, 0.6, 0.15]}, 0.0, False),
+                                                  ({"thicknessFactor": 2 * r}, 0.5, False),
+                                                  (None, 0.1, True))):
+        x = {"transmissionFactor": 1.0}
+        if texture:
+            x["transmissionTexture"] = {"index": d.image(stripes)}
+        ext = {"KHR_materials_transmission": x}
+        if volume:
+            ext["KHR_materials_volume"] = volume
+        m = pbr((1, 1, 1), 0, rough, extensions=ext)
+        d.node(mesh=d.mesh([d.prim(sphere(r), d.material(m))]), translation=[(i - 2) * 0.58, 0, 0])
+    d.uses("KHR_materials_transmission", "KHR_materials_volume")
+
+
 def alpha_modes(d):
     # OPAQUE ignores alpha 0.5, MASK cuts the checker's dark cells (alpha from its brightness),
     # BLEND shows the sphere behind through alpha 0.5.
@@ -492,7 +522,7 @@ def many_meshes(d, n):
 
 MODELS = [basic, metal_rough_spheres, primitive_modes, lines_and_points, texture_transform,
           texcoord_sets, vertex_colors, quantized, morph_targets, skin, instancing, variants, unlit,
-          emissive_label, clearcoat, sheen, ior_specular, specular_glossiness, alpha_modes,
+          emissive_label, clearcoat, sheen, transmission, ior_specular, specular_glossiness, alpha_modes,
           punctual_lights, camera, broken_index, broken_schema, broken_required]
 
 

@@ -137,6 +137,7 @@ struct PassMaterial {
     std::vector<std::string> textures;  // its own textures' names, in slot order
     std::string shading;                // its lighting path's shading function (forward), or ""
     std::string fixup;                  // the fix-up pass that completes its layout, or ""
+    bool forward = false;               // drawn by the forward pass only, never into the G-buffer
     std::string origin;                 // where the material was declared
     std::map<std::string, std::string> channels;  // standard parameter -> its layout's channel
     bool operator==(const PassMaterial&) const = default;

@@ -112,11 +112,16 @@ std::vector<std::string> Builder::stencilNames() const {
 Result<void> Builder::path(const Declaration& d) {
     Where w = where(d);
     if (auto r = checkFields(w, d.body, {"stencil", "shading", "doc"}); !r) return r;
-    auto stencil = requireString(w, d.body, "stencil");
-    if (!stencil) return std::unexpected(stencil.error());
-    if (!hasStencil(*stencil))
-        return w.at("stencil").error("unknown stencil class '" + *stencil + "'" +
-                                     suggestion(*stencil, stencilNames()));
+    // Without a stencil class a path is the forward pass's only (a material drawn forward, such as
+    // the transmission): no deferred lighting pass lights it, and it takes no class.
+    std::string stencil;
+    if (d.body.has("stencil")) {
+        if (auto r = expectType(w.at("stencil"), d.body["stencil"], "string"); !r) return r;
+        stencil = d.body["stencil"].asString();
+        if (!hasStencil(stencil))
+            return w.at("stencil").error("unknown stencil class '" + stencil + "'" +
+                                         suggestion(stencil, stencilNames()));
+    }
     std::string shading;
     if (d.body.has("shading")) {
         if (auto r = expectType(w.at("shading"), d.body["shading"], "string"); !r) return r;
@@ -124,7 +129,7 @@ Result<void> Builder::path(const Declaration& d) {
         shading = nextToDeclaration(d.origin, d.body["shading"].asString(), options.projectRoot);
     }
     out.lightingPaths.push_back(
-        {fullName(d), *stencil, shading, d.body["doc"].asString(), d.origin});
+        {fullName(d), stencil, shading, d.body["doc"].asString(), d.origin});
     return {};
 }
 

@@ -101,7 +101,7 @@ Result<void> Builder::material(const Declaration& d) {
     const Value& b = d.body;
     if (auto r = checkFields(w, b,
                              {"id", "layout", "surface", "path", "stencil", "fills", "fixup",
-                              "params", "textures", "channels", "decals", "doc"});
+                              "params", "textures", "channels", "decals", "forward", "doc"});
         !r)
         return r;
     MaterialDesc m;
@@ -172,6 +172,12 @@ Result<void> Builder::material(const Declaration& d) {
                                                 suggestion((*fills)[i], targets));
     }
     m.fills = *fills;
+    // `forward = true`: a material whose shading needs what lies behind it (a transmission's
+    // refraction of the opaque frame) is drawn by the forward pass only, never into the G-buffer.
+    if (b.has("forward")) {
+        if (!b["forward"].isBool()) return w.at("forward").error("expected a boolean");
+        m.forward = b["forward"].asBool();
+    }
     m.fixup = b["fixup"].asString();
     if (!m.fixup.empty()) {
         auto p = resolvePass(w.at("fixup"), d.module, m.fixup);

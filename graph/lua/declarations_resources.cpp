@@ -111,9 +111,23 @@ Result<void> Builder::texture(const Declaration& d) {
                 typeOf(c));
         if (auto e = checkFields(ow, c, {"scene", "param", "defines"}); !e) return e;
         ResourceDesc::Condition cond;
-        for (const char* f : {"scene", "param"})
-            if (c.has(f) && (!c[f].isString() || !isGlslIdentifier(c[f].asString())))
+        // A scene feature is a name, or a name:name ("material:transmission": the scene draws
+        // that pipeline material).
+        auto featureName = [](const std::string& s) {
+            const size_t colon = s.find(':');
+            return colon == std::string::npos ? isGlslIdentifier(s)
+                                              : isGlslIdentifier(s.substr(0, colon)) &&
+                                                    isGlslIdentifier(s.substr(colon + 1));
+        };
+        for (const char* f : {"scene", "param"}) {
+            if (!c.has(f)) continue;
+            if (!c[f].isString())
                 return ow.at(f).error(std::string("expected a name, got ") + typeOf(c[f]));
+            const std::string& name = c[f].asString();
+            if (std::string(f) == "scene" ? !featureName(name) : !isGlslIdentifier(name))
+                return ow.at(f).error("'" + name + "' is not a name" +
+                                      (std::string(f) == "scene" ? " (or name:name)" : ""));
+        }
         cond.sceneFeature = c["scene"].isString() ? c["scene"].asString() : "";
         cond.param = c["param"].isString() ? c["param"].asString() : "";
         if (cond.sceneFeature.empty() && cond.param.empty())

@@ -190,7 +190,8 @@ std::vector<std::pair<std::string, std::string>> generateLightingShaders(
     const PipelineDesc& pipeline) {
     std::vector<std::pair<std::string, std::string>> out;
     for (const LightingPathDesc& path : pipeline.lightingPaths) {
-        if (path.shading.empty()) continue;
+        if (path.shading.empty() || path.stencil.empty())
+            continue;  // forward only: no deferred pass
         // The layout its materials have (one per path: buildPipeline checks it).
         auto m = std::find_if(pipeline.materials.begin(), pipeline.materials.end(),
                               [&](const MaterialDesc& x) { return x.path == path.name; });
@@ -560,6 +561,7 @@ std::vector<PassMaterial> sceneMaterials(const PipelineDesc& pipeline, const Val
         for (const LightingPathDesc& lp : pipeline.lightingPaths)
             if (lp.name == m.path) t.shading = lp.shading;
         t.fixup = m.fixup;
+        t.forward = m.forward;
         t.channels = m.channels;
         for (const LayoutDesc& l : pipeline.layouts)
             if (l.name == m.layout)

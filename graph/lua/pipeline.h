@@ -84,6 +84,7 @@ struct MaterialDesc {
     // standard name the layout has under its own name or under the declared `channels` name.
     std::map<std::string, std::string> channels;
     std::vector<std::string> decals;  // the standard parameters decals blend on its pixels
+    bool forward = false;  // drawn by the forward pass only (its scene materials must be blended)
     std::string origin;
 };
 

@@ -131,6 +131,14 @@ Result<GraphDesc> Session::buildableGraph(const PipelineDesc& p, bool keepMissin
         }
         if (!keep) dropped.emplace_back(r.name, c.defines);
     }
+    // A pass that wrote only dropped resources (render_loop.lua's copy of the opaque frame and its
+    // mips) has nothing left to do: it leaves with them.
+    auto writes = [](const PassDesc& pass) {
+        return std::any_of(pass.accesses.begin(), pass.accesses.end(),
+                           [](const Access& a) { return usageWrites(a.usage); });
+    };
+    std::vector<bool> wrote(g.passes.size());
+    for (size_t i = 0; i < g.passes.size(); ++i) wrote[i] = writes(g.passes[i]);
     for (const auto& [target, defines] : dropped) {
         std::erase_if(g.resources, [&](const ResourceDesc& r) { return r.name == target; });
         for (auto& pass : g.passes) {
@@ -144,6 +152,9 @@ Result<GraphDesc> Session::buildableGraph(const PipelineDesc& p, bool keepMissin
             }
         }
     }
+    if (!dropped.empty())
+        for (size_t i = 0; i < g.passes.size(); ++i)
+            if (wrote[i] && !writes(g.passes[i])) g.passes[i].enabled = false;
     for (auto& r : g.resources) {
         if (!m_options.view.empty() && r.name == "debug_view") r.exported = true;
         for (const auto& c : m_options.captures)

@@ -34,7 +34,8 @@ const std::set<std::string> kSupported = {
     "KHR_materials_clearcoat",    "KHR_materials_sheen",
     "KHR_materials_unlit",        "KHR_materials_pbrSpecularGlossiness",
     "EXT_mesh_gpu_instancing",    "KHR_materials_variants",
-    "KHR_draco_mesh_compression", "EXT_meshopt_compression"};
+    "KHR_draco_mesh_compression", "EXT_meshopt_compression",
+    "KHR_materials_transmission", "KHR_materials_volume"};
 
 std::string percentDecode(const std::string& uri) {
     std::string out;
@@ -406,6 +407,7 @@ Result<Scene> Loader::run() {
     if (auto r = materials(); !r) return std::unexpected(r.error());
     if (auto r = meshes(); !r) return std::unexpected(r.error());
     if (auto r = nodes(); !r) return std::unexpected(r.error());
+    volumeScale();
     if (options.buildLods) buildMeshLods(scene);
     computeBounds(scene);
     return std::move(scene);

@@ -2,6 +2,7 @@
 // textures with KHR_texture_transform, the metallic-roughness factors and rgraph's extras.
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include <set>
 #include <tuple>
@@ -289,6 +290,11 @@ Result<void> Loader::clearCoat(const tinygltf::Material& src, const std::string&
              ": KHR_materials_clearcoat.clearcoatNormalTexture is ignored (the clear coat's "
              "G-buffer keeps one normal, the base's)");
     if (factor <= 0.0) return {};
+    if (m.model != "standard") {
+        warn(where + ": KHR_materials_clearcoat is ignored: the material is already a '" + m.model +
+             "' (one model a material)");
+        return {};
+    }
     for (const auto& [field, name] : {std::pair{"clearcoatTexture", "coatStrengthMap"},
                                       std::pair{"clearcoatRoughnessTexture", "coatRoughnessMap"}})
         if (x.Get(field).IsObject()) {
@@ -341,6 +347,59 @@ Result<void> Loader::sheen(const tinygltf::Material& src, const std::string& whe
                                  {"sheenColorG", Value(double(colour.y))},
                                  {"sheenColorB", Value(double(colour.z))},
                                  {"sheenRoughnessFactor", Value(roughness)}});
+    return {};
+}
+
+// KHR_materials_transmission (with KHR_materials_volume) on the standard model: the pipeline's
+// transmission material (materials/transmission.lua), drawn by the forward pass over the opaque
+// frame it refracts — so the material becomes blended, whatever its alphaMode —
+// transmissionFactor and thicknessFactor, attenuationDistance (absent: 0, none) and
+// attenuationColor as its params, transmissionTexture (R) and thicknessTexture (G) as its own
+// textures. The IOR stays the reflectance (reflectanceOf). A factor of 0 without a texture is no
+// transmission. The volume's thickness is put in the world's units by volumeScale.
+Result<void> Loader::transmission(const tinygltf::Material& src, const std::string& where,
+                                  Material& m) {
+    auto it = src.extensions.find("KHR_materials_transmission");
+    auto volume = src.extensions.find("KHR_materials_volume");
+    if (it == src.extensions.end()) {
+        if (volume != src.extensions.end())
+            warn(where +
+                 ": KHR_materials_volume is ignored without KHR_materials_transmission "
+                 "(a volume is seen only through a transmitting surface)");
+        return {};
+    }
+    const auto& x = it->second;
+    const std::string ext = where + ": KHR_materials_transmission.";
+    double factor = 0.0;
+    RG_TRY(factor,
+           ranged(ext + "transmissionFactor", number(x.Get("transmissionFactor"), 0.0), 0, 1));
+    if (factor <= 0.0 && !x.Get("transmissionTexture").IsObject()) return {};
+    if (x.Get("transmissionTexture").IsObject())
+        RG_TRY(m.textures["transmissionMap"],
+               extensionTexture(ext + "transmissionTexture", x.Get("transmissionTexture"), false));
+    double thickness = 0.0, distance = 0.0;
+    glm::vec3 colour(1.0f);
+    if (volume != src.extensions.end()) {
+        const auto& v = volume->second;
+        const std::string vol = where + ": KHR_materials_volume.";
+        RG_TRY(thickness,
+               ranged(vol + "thicknessFactor", number(v.Get("thicknessFactor"), 0.0), 0, HUGE_VAL));
+        if (v.Has("attenuationDistance"))
+            RG_TRY(distance, ranged(vol + "attenuationDistance",
+                                    number(v.Get("attenuationDistance"), 0.0), 1e-9, HUGE_VAL));
+        RG_TRY(colour, ranged3(vol + "attenuationColor", numbers(v.Get("attenuationColor")),
+                               glm::vec3(1.0f), 0, 1));
+        if (v.Get("thicknessTexture").IsObject())
+            RG_TRY(m.textures["thicknessMap"],
+                   extensionTexture(vol + "thicknessTexture", v.Get("thicknessTexture"), false));
+    }
+    m.model = "transmission";
+    m.extra = Value(Value::Table{{"transmissionFactor", Value(factor)},
+                                 {"thicknessFactor", Value(thickness)},
+                                 {"attenuationDistance", Value(distance)},
+                                 {"attenuationColorR", Value(double(colour.x))},
+                                 {"attenuationColorG", Value(double(colour.y))},
+                                 {"attenuationColorB", Value(double(colour.z))}});
     return {};
 }
 
@@ -415,6 +474,9 @@ Result<void> Loader::materials() {
         RG_TRY(roughness, ranged(where + ": roughnessFactor", pbr.roughnessFactor, 0, 1));
         m.smoothness = 1.0f - roughness;  // glTF roughness is perceptual (DESIGN.md §5)
         RG_TRY(m.reflectance, reflectanceOf(src, where));
+        // One model a material: a transmission first (it decides whether anything is seen
+        // behind the surface), then a coat or a sheen.
+        if (auto r = transmission(src, where, m); !r) return r;
         if (auto r = clearCoat(src, where, m); !r) return r;
         if (auto r = sheen(src, where, m); !r) return r;
         if (auto it = src.extensions.find("KHR_materials_emissive_strength");
@@ -490,12 +552,21 @@ Result<void> Loader::materials() {
             return error(ErrorCode::InvalidInput, where + ": alphaMode '" + src.alphaMode +
                                                       "', expected OPAQUE, MASK or BLEND");
         RG_TRY(m.alphaCutoff, ranged(where + ": alphaCutoff", src.alphaCutoff, 0, HUGE_VAL));
+        // A transmission is drawn by the forward pass only (over the opaque frame it refracts).
+        if (m.model == "transmission" && m.alphaMode != AlphaMode::Blend) {
+            if (m.alphaMode == AlphaMode::Mask)
+                warn(where +
+                     ": alphaMode MASK on a transmission is drawn blended (the forward "
+                     "pass draws transmission), its cut-off not applied");
+            m.alphaMode = AlphaMode::Blend;
+        }
         m.doubleSided = src.doubleSided;
         if (auto r = specularGlossiness(src, where, m); !r) return r;
         // What glTF cannot say, as exportGlb wrote it; its own textures before uvSlots() places
         // every texture's set.
-        if (src.extras.IsObject() && src.extras.Has("rgraph") &&
-            src.extras.Get("rgraph").IsObject()) {
+        const bool exported = src.extras.IsObject() && src.extras.Has("rgraph") &&
+                              src.extras.Get("rgraph").IsObject();
+        if (exported) {
             const auto& x = src.extras.Get("rgraph");
             if (x.Get("model").IsString()) m.model = x.Get("model").Get<std::string>();
             m.reflectance = float(number(x.Get("reflectance"), m.reflectance));
@@ -517,9 +588,47 @@ Result<void> Loader::materials() {
             }
         }
         uvSlots(where, m);
+        // A volume's thickness is in its mesh's space (volumeScale puts it in the world's), unless
+        // exportGlb wrote it, already in the world's.
+        if (m.model == "transmission" && !exported && m.extra["thicknessFactor"].asNumber() > 0.0)
+            volumes.push_back(scene.materials.size());
         scene.materials.push_back(std::move(m));
     }
     return {};
+}
+
+// KHR_materials_volume gives the thickness in the coordinate space of the mesh: each volume's
+// thicknessFactor times the scale of the nodes that draw it (the mean length of their world
+// transform's axes, as the glTF sample viewer scales it). A material is one set of parameters:
+// nodes of other scales take the first one's, with a warning.
+void Loader::volumeScale() {
+    for (size_t mi : volumes) {
+        std::optional<float> scale;
+        bool differ = false;
+        for (const Node& n : scene.nodes) {
+            if (n.mesh < 0 || static_cast<size_t>(n.mesh) >= scene.meshes.size()) continue;
+            const auto& prims = scene.meshes[static_cast<size_t>(n.mesh)].primitives;
+            if (std::none_of(prims.begin(), prims.end(),
+                             [&](const Primitive& p) { return p.material == mi; }))
+                continue;
+            const float s =
+                (glm::length(glm::vec3(n.world[0])) + glm::length(glm::vec3(n.world[1])) +
+                 glm::length(glm::vec3(n.world[2]))) /
+                3.0f;
+            if (!scale) scale = s;
+            differ = differ || std::abs(s - *scale) > 0.01f * *scale;
+        }
+        if (!scale) continue;
+        Material& m = scene.materials[mi];
+        m.extra.table()["thicknessFactor"] = Value(m.extra["thicknessFactor"].asNumber() * *scale);
+        if (differ)
+            warn("material '" + m.name +
+                 "': KHR_materials_volume's thickness is scaled by its first "
+                 "node's scale " +
+                 std::to_string(*scale) +
+                 "; nodes of other scales draw it with "
+                 "that thickness too");
+    }
 }
 
 }  // namespace gltf_load

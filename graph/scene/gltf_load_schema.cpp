@@ -4,6 +4,8 @@
 // each an error naming the file and the field's path, e.g. "nodes[3].scale: expected an array of
 // 3 numbers, got \"big\"". Only types, counts and index signs: whether an index names something
 // that exists is checked where it is used.
+#include <vector>
+
 #include <nlohmann/json.hpp>
 
 #include "gltf_load_detail.h"
@@ -128,8 +130,72 @@ private:
     }
 };
 
+// The fields of the material extensions rgraph reads (gltf_load_materials.cpp), by type: a number,
+// an array of 3 or 4 numbers, a textureInfo. A field of the wrong type is an error here, as a
+// core field's is, not the default it would otherwise silently become.
+struct ExtensionField {
+    const char* name;
+    int kind;  // 0 a number, 3 or 4 an array of that many numbers, -1 a textureInfo
+};
+struct MaterialExtension {
+    const char* name;
+    std::vector<ExtensionField> fields;
+};
+const std::vector<MaterialExtension>& materialExtensions() {
+    static const std::vector<MaterialExtension> table = {
+        {"KHR_materials_ior", {{"ior", 0}}},
+        {"KHR_materials_emissive_strength", {{"emissiveStrength", 0}}},
+        {"KHR_materials_specular",
+         {{"specularFactor", 0},
+          {"specularColorFactor", 3},
+          {"specularTexture", -1},
+          {"specularColorTexture", -1}}},
+        {"KHR_materials_clearcoat",
+         {{"clearcoatFactor", 0},
+          {"clearcoatRoughnessFactor", 0},
+          {"clearcoatTexture", -1},
+          {"clearcoatRoughnessTexture", -1},
+          {"clearcoatNormalTexture", -1}}},
+        {"KHR_materials_sheen",
+         {{"sheenColorFactor", 3},
+          {"sheenRoughnessFactor", 0},
+          {"sheenColorTexture", -1},
+          {"sheenRoughnessTexture", -1}}},
+        {"KHR_materials_transmission", {{"transmissionFactor", 0}, {"transmissionTexture", -1}}},
+        {"KHR_materials_volume",
+         {{"thicknessFactor", 0},
+          {"attenuationDistance", 0},
+          {"attenuationColor", 3},
+          {"thicknessTexture", -1}}},
+        {"KHR_materials_pbrSpecularGlossiness",
+         {{"diffuseFactor", 4},
+          {"specularFactor", 3},
+          {"glossinessFactor", 0},
+          {"diffuseTexture", -1},
+          {"specularGlossinessTexture", -1}}},
+    };
+    return table;
+}
+
+bool checkMaterialExtensions(Schema& s, const json& m, const std::string& at) {
+    auto e = m.find("extensions");
+    if (e == m.end() || !e->is_object()) return true;  // common() reports a wrong type
+    for (const MaterialExtension& x : materialExtensions()) {
+        auto v = e->find(x.name);
+        if (v == e->end() || !v->is_object()) continue;
+        const std::string here = at + ".extensions." + x.name;
+        for (const ExtensionField& f : x.fields)
+            if (!(f.kind == 0  ? s.number(*v, f.name, here)
+                  : f.kind > 0 ? s.numbers(*v, f.name, static_cast<size_t>(f.kind), here)
+                               : s.textureInfo(*v, f.name, here)))
+                return false;
+    }
+    return true;
+}
+
 bool checkMaterial(Schema& s, const json& m, const std::string& at) {
-    if (!s.object(m, "pbrMetallicRoughness", at)) return false;
+    if (!s.object(m, "pbrMetallicRoughness", at) || !checkMaterialExtensions(s, m, at))
+        return false;
     if (auto p = m.find("pbrMetallicRoughness"); p != m.end()) {
         const std::string pa = at + ".pbrMetallicRoughness";
         if (!s.numbers(*p, "baseColorFactor", 4, pa) || !s.number(*p, "metallicFactor", pa) ||

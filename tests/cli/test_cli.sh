@@ -43,12 +43,12 @@ python3 - "$root/tests/fuzz/corpus/gltf/triangle.gltf" "$tmp/coat.gltf" <<'PY'
 import json, sys
 j = json.load(open(sys.argv[1]))
 j["materials"][0]["extensions"] = {"KHR_materials_clearcoat": {"clearcoatFactor": 1, "clearcoatNormalTexture": {"index": 0}}}
-j["extensionsUsed"] = ["KHR_materials_clearcoat", "KHR_materials_transmission"]
+j["extensionsUsed"] = ["KHR_materials_clearcoat", "KHR_materials_iridescence"]
 json.dump(j, open(sys.argv[2], "w"))
 PY
 check "render --verbose: what a glTF loses" 0 grep "KHR_materials_clearcoat.clearcoatNormalTexture is ignored (the clear coat's G-buffer keeps one normal, the base's)" -- \
     "$rgraph" render --scene "$tmp/coat.gltf" --size 8x8 --out "$tmp/coat.exr" --verbose
-check "... and an extension it ignores, without --verbose" 0 grep "uses extension 'KHR_materials_transmission', which rgraph ignores" -- \
+check "... and an extension it ignores, without --verbose" 0 grep "uses extension 'KHR_materials_iridescence', which rgraph ignores" -- \
     "$rgraph" render --scene "$tmp/coat.gltf" --size 8x8 --out "$tmp/coat.exr"
 check "unknown capture" 2 grep "capture 'GB7': the pipeline has no resource named 'GB7'" -- "$rgraph" render --capture GB7 --size 8x8
 # A frame whose rg.frame switches off what a kept pass needs: refused whole (the frame renders the
@@ -140,8 +140,8 @@ check "unlit glb without environment" 0 grep "wrote $tmp/n.exr" -- \
     "$rgraph" render --scene "$tmp/unlit.glb" --environment none --size 48x32 --out "$tmp/n.exr" --png "$tmp/n.png"
 # The box's pixels: lit under the default sky, black with none (relative error of the unlit image against the lit one: 100 %).
 check "sky lights the glb" 0 grep "mean relative error 1" -- "$rgraph" compare "$tmp/n.exr" "$tmp/u.exr"
-check "graph json parses" 0 -- bash -c "'$rgraph' graph --format json --size 64x64 | python3 -c 'import json,sys; p=json.load(sys.stdin); n=[x[\"name\"] for x in p[\"passes\"]]; assert n[:7]==[\"env_cube\",\"env_mips\",\"env_irradiance\",\"env_hot\",\"env_smooth_mips\",\"env_prefilter\",\"dfg_table\"] and n[7:10]==[\"probe_capture\",\"probe_mips\",\"probe_prefilter\"] and n[10:17]==[\"sun_cascades\",\"sun_cull_clear\",\"sun_cull\",\"shadow_clear0\",\"shadow_clear1\",\"shadow_clear2\",\"shadow_local\"] and n[17:40]==[\"gbuffer\",\"light_froxels_clear\",\"ao_depth\",\"sun_visibility_clear\",\"sun_classify\",\"sun_visibility_half_clear\",\"sun_classify_half\",\"shadow_sun0\",\"sun_mask0\",\"sun_mask_half0\",\"shadow_sun1\",\"sun_mask1\",\"sun_mask_half1\",\"shadow_sun2\",\"sun_mask2\",\"sun_mask_half2\",\"foliage_fixup\",\"gtao\",\"ao_blur\",\"ao_temporal\",\"light_froxels\",\"light_froxels_sort\",\"light_culling\"] and n[43:56]==[\"decals\",\"hiz\",\"ssr_mask\",\"ssr\",\"ssr_temporal\",\"reflection_compose\",\"lighting_standard\",\"lighting_clearcoat\",\"lighting_two_colour\",\"lighting_sheen\",\"sky\",\"lines\",\"forward\"] and n[-7:]==[\"tonemap\",\"ssr_history_keep\",\"ssr_distance_history_keep\",\"ao_history_keep\",\"taa_history_keep\",\"hdr_history_keep\",\"hdr_history_mips\"], n'"
-check "graph materials" 0 grep "  free: 250 of 255" -- "$rgraph" graph --format materials
+check "graph json parses" 0 -- bash -c "'$rgraph' graph --format json --size 64x64 | python3 -c 'import json,sys; p=json.load(sys.stdin); n=[x[\"name\"] for x in p[\"passes\"]]; assert n[:7]==[\"env_cube\",\"env_mips\",\"env_irradiance\",\"env_hot\",\"env_smooth_mips\",\"env_prefilter\",\"dfg_table\"] and n[7:10]==[\"probe_capture\",\"probe_mips\",\"probe_prefilter\"] and n[10:17]==[\"sun_cascades\",\"sun_cull_clear\",\"sun_cull\",\"shadow_clear0\",\"shadow_clear1\",\"shadow_clear2\",\"shadow_local\"] and n[17:40]==[\"gbuffer\",\"light_froxels_clear\",\"ao_depth\",\"sun_visibility_clear\",\"sun_classify\",\"sun_visibility_half_clear\",\"sun_classify_half\",\"shadow_sun0\",\"sun_mask0\",\"sun_mask_half0\",\"shadow_sun1\",\"sun_mask1\",\"sun_mask_half1\",\"shadow_sun2\",\"sun_mask2\",\"sun_mask_half2\",\"foliage_fixup\",\"gtao\",\"ao_blur\",\"ao_temporal\",\"light_froxels\",\"light_froxels_sort\",\"light_culling\"] and n[43:58]==[\"decals\",\"hiz\",\"ssr_mask\",\"ssr\",\"ssr_temporal\",\"reflection_compose\",\"lighting_standard\",\"lighting_clearcoat\",\"lighting_two_colour\",\"lighting_sheen\",\"sky\",\"lines\",\"opaque_copy\",\"opaque_mips\",\"forward\"] and n[-7:]==[\"tonemap\",\"ssr_history_keep\",\"ssr_distance_history_keep\",\"ao_history_keep\",\"taa_history_keep\",\"hdr_history_keep\",\"hdr_history_mips\"], n'"
+check "graph materials" 0 grep "  free: 249 of 255" -- "$rgraph" graph --format materials
 check "graph materials: identities first" 0 grep "material identities (a pixel's stencil value" -- "$rgraph" graph --format materials
 check "graph materials: foliage is a variant" 0 grep "0x11 mask 0xFF  foliage          variant of lit_standard" -- "$rgraph" graph --format materials
 check "graph materials of a built-in graph" 2 grep "built-in graphs declare no materials" -- "$rgraph" graph --pipeline builtin:triangle --format materials

@@ -348,16 +348,17 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     LuaHost host(luaHostOptionsWithoutDevice());
     auto p = host.load(std::string(RG_SOURCE_ROOT) + "/scripts/pipelines/deferred.lua");
     ASSERT_TRUE(p.has_value()) << p.error().message;
-    ASSERT_EQ(p->layouts.size(), 3u);
+    ASSERT_EQ(p->layouts.size(), 4u);
     EXPECT_EQ(p->layouts[0].name, "disney");
     EXPECT_EQ(p->layouts[0].targets.size(), 4u);
     EXPECT_EQ(p->layouts[1].name, "two_colour");  // tbl:3, over the same four targets
     EXPECT_EQ(p->layouts[1].targets.size(), 4u);
     EXPECT_EQ(p->layouts[2].name, "sheen");  // and the cloth material's
     EXPECT_EQ(p->layouts[2].targets.size(), 4u);
+    EXPECT_EQ(p->layouts[3].name, "transmission");  // the unpacked form the forward pass shades
     // The standard material, two game-team materials, the two-colour base material and the sheen
-    // material, each with its id and stencil class.
-    ASSERT_EQ(p->materials.size(), 5u);
+    // material, each with its id and stencil class; the transmission, forward only, without one.
+    ASSERT_EQ(p->materials.size(), 6u);
     EXPECT_EQ(p->materials[0].name, "standard");
     EXPECT_EQ(p->materials[0].id, 0u);
     EXPECT_EQ(p->materials[0].stencil, "lit_standard");
@@ -374,6 +375,10 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     EXPECT_EQ(p->materials[3].stencil, "lit_two_colour");
     EXPECT_EQ(p->materials[4].name, "sheen");
     EXPECT_EQ(p->materials[4].stencil, "lit_sheen");
+    EXPECT_EQ(p->materials[5].name, "transmission");
+    EXPECT_TRUE(p->materials[5].forward);
+    EXPECT_EQ(p->materials[5].stencil, "");
+    EXPECT_EQ(p->materials[5].identity, 0x10u);  // no class: low bits 0, no lighting pass
     ASSERT_EQ(p->stencilClasses.size(), 5u);
     EXPECT_EQ(p->stencilClasses[0].value, 1u);  // lit_standard, allocated
     EXPECT_EQ(p->stencilClasses[1].value, 2u);  // lit_clearcoat, allocated
@@ -406,9 +411,10 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // half-resolution depths, each cascade's map drawn and filtered into the sun's mask at once, the
     // foliage fix-up, then the AO itself on the fixed-up normals: scripts/ao.lua), the Hi-Z
     // pyramid, SSR's mask and SSR (scripts/ssr.lua), the composition of SSR and the probes
-    // (scripts/reflections.lua), the lighting, the sky, the points and lines, and forward.
-    ASSERT_GE(order.size(), 59u);
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 57),
+    // (scripts/reflections.lua), the lighting, the sky, the points and lines, the copy of the opaque
+    // frame the transmission sees through, and forward.
+    ASSERT_GE(order.size(), 61u);
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 59),
               (std::vector<std::string>{"env_cube",
                                         "env_mips",
                                         "env_irradiance",
@@ -465,6 +471,8 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
                                         "lighting_sheen",
                                         "sky",
                                         "lines",
+                                        "opaque_copy",
+                                        "opaque_mips",
                                         "forward"}));
     // The histories' keep passes come after every other (rg.resource's `history`, rg.history).
     EXPECT_EQ(std::vector<std::string>(order.end() - 6, order.end()),
@@ -476,7 +484,7 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // Every script it pulled in is known, for hot reload.
     EXPECT_EQ(
         p->files.size(),
-        17u);  // deferred, post, lighting, render_loop, ibl, shadows, probes, ao, ssr, reflections, lightmap, gbuffer_reader, disney, clearcoat, foliage, two_colour, sheen
+        18u);  // deferred, post, lighting, render_loop, ibl, shadows, probes, ao, ssr, reflections, lightmap, gbuffer_reader, disney, clearcoat, foliage, two_colour, sheen, transmission
 }
 
 TEST(LuaPipeline, ModulesAreNamespacedAndInsertedAfterTheirAnchor) {

@@ -1,5 +1,5 @@
-// glTF material extensions: KHR_materials_ior, _specular, _clearcoat, _sheen, _unlit and
-// _pbrSpecularGlossiness onto rgraph's material models (graph/scene/gltf_load_materials.cpp). No GPU.
+// glTF material extensions: KHR_materials_ior, _specular, _clearcoat, _sheen, _transmission,
+// _volume, _unlit and _pbrSpecularGlossiness onto rgraph's material models (graph/scene/gltf_load_materials.cpp). No GPU.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -152,6 +152,98 @@ TEST(GltfLoad, SheenMakesTheSheenMaterial) {
     EXPECT_NE(errorOf(bad).find("material 0 'velvet': KHR_materials_sheen.sheenRoughnessFactor"),
               std::string::npos)
         << errorOf(bad);
+}
+
+// KHR_materials_transmission (and _volume) make the pipeline's transmission material, blended
+// (the forward pass draws it over the opaque frame it refracts), with its factors as params and
+// its textures as the model's own; without the extension the same material is an opaque standard.
+TEST(GltfLoad, TransmissionMakesTheTransmissionMaterial) {
+    const std::string dir = tmpDir("transmission");
+    GltfBuilder g;
+    addQuad(g, true);
+    const json glass = {{"transmissionFactor", 0.9}, {"transmissionTexture", {{"index", 0}}}};
+    const json volume = {{"thicknessFactor", 0.25},
+                         {"thicknessTexture", {{"index", 1}, {"texCoord", 1}}},
+                         {"attenuationDistance", 0.5},
+                         {"attenuationColor", {0.9, 0.6, 0.3}}};
+    g.j["materials"] = json::array(
+        {{{"name", "bottle"},
+          {"alphaMode", "MASK"},
+          {"extensions",
+           {{"KHR_materials_transmission", glass},
+            {"KHR_materials_volume", volume},
+            {"KHR_materials_ior", {{"ior", 1.33}}}}}},
+         {{"name", "pane"},
+          {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}}}},
+         {{"name", "none"}, {"extensions", {{"KHR_materials_transmission", json::object()}}}},
+         {{"name", "coated"},
+          {"extensions",
+           {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
+            {"KHR_materials_clearcoat", {{"clearcoatFactor", 1.0}}}}}},
+         {{"name", "lonely"},
+          {"extensions", {{"KHR_materials_volume", {{"thicknessFactor", 1.0}}}}}}});
+    g.j["images"] = json::array({{{"uri", "clear.png"}}, {{"uri", "thick.png"}}});
+    g.j["textures"] = json::array({{{"source", 0}}, {{"source", 1}}});
+    g.j["extensionsUsed"] = {"KHR_materials_transmission", "KHR_materials_volume",
+                             "KHR_materials_ior", "KHR_materials_clearcoat"};
+    // The bottle drawn at twice and three times its mesh's size: the thickness, in the mesh's
+    // space, becomes the first node's in the world's.
+    g.j["meshes"][0]["primitives"][0]["material"] = 0;
+    g.scene(
+        {g.node({{"mesh", 0}, {"scale", {2, 2, 2}}}), g.node({{"mesh", 0}, {"scale", {3, 3, 3}}})});
+    rg::GltfOptions o;
+    o.loadImages = false;
+    auto scene = rg::loadGltf(g.writeGltf(dir, "s"), o);
+    ASSERT_TRUE(scene) << errorOf(scene);
+    const auto& m = scene->materials;
+    EXPECT_EQ(m[0].model, "transmission");
+    EXPECT_EQ(m[0].alphaMode, rg::AlphaMode::Blend);
+    EXPECT_NEAR(m[0].extra["transmissionFactor"].asNumber(), 0.9, 1e-6);
+    EXPECT_NEAR(m[0].extra["thicknessFactor"].asNumber(), 0.5, 1e-6);  // 0.25 × 2
+    EXPECT_NEAR(m[0].extra["attenuationDistance"].asNumber(), 0.5, 1e-6);
+    EXPECT_NEAR(m[0].extra["attenuationColorR"].asNumber(), 0.9, 1e-6);
+    EXPECT_NEAR(m[0].extra["attenuationColorB"].asNumber(), 0.3, 1e-6);
+    // IOR 1.33: f0 = (0.33 / 2.33)² = 0.16 r².
+    EXPECT_NEAR(0.16 * m[0].reflectance * m[0].reflectance, std::pow(0.33 / 2.33, 2.0), 1e-5);
+    ASSERT_EQ(m[0].textures.size(), 2u);
+    EXPECT_TRUE(m[0].textures.at("transmissionMap").valid());
+    EXPECT_EQ(m[0].textures.at("thicknessMap").texCoord, 1u);
+    EXPECT_EQ(m[1].model, "transmission");  // thin-walled: no volume
+    EXPECT_NEAR(m[1].extra["thicknessFactor"].asNumber(), 0.0, 1e-9);
+    EXPECT_NEAR(m[1].extra["attenuationDistance"].asNumber(), 0.0, 1e-9);  // 0: glTF's +∞
+    EXPECT_EQ(m[2].model, "standard");  // a factor of 0 and no texture: no transmission
+    EXPECT_EQ(m[2].alphaMode, rg::AlphaMode::Opaque);
+    EXPECT_EQ(m[3].model, "transmission");  // one model a material: the transmission first
+    EXPECT_EQ(m[4].model, "standard");
+    ASSERT_EQ(scene->warnings.size(), 4u);
+    EXPECT_NE(scene->warnings[0].find("material 0 'bottle': alphaMode MASK on a transmission is "
+                                      "drawn blended"),
+              std::string::npos)
+        << scene->warnings[0];
+    EXPECT_NE(scene->warnings[1].find("material 3 'coated': KHR_materials_clearcoat is ignored: "
+                                      "the material is already a 'transmission'"),
+              std::string::npos)
+        << scene->warnings[1];
+    EXPECT_NE(scene->warnings[2].find("material 4 'lonely': KHR_materials_volume is ignored "
+                                      "without KHR_materials_transmission"),
+              std::string::npos)
+        << scene->warnings[2];
+    EXPECT_NE(scene->warnings[3].find("material 'bottle': KHR_materials_volume's thickness is "
+                                      "scaled by its first node's scale 2"),
+              std::string::npos)
+        << scene->warnings[3];
+
+    g.j["materials"][0]["extensions"]["KHR_materials_volume"]["attenuationDistance"] = 0;
+    auto bad = rg::loadGltf(g.writeGltf(dir, "s2"), o);
+    EXPECT_NE(errorOf(bad).find("material 0 'bottle': KHR_materials_volume.attenuationDistance"),
+              std::string::npos)
+        << errorOf(bad);
+    g.j["materials"][0]["extensions"]["KHR_materials_volume"].erase("attenuationDistance");
+    g.j["materials"][0]["extensions"]["KHR_materials_transmission"]["transmissionFactor"] = "1";
+    auto wrong = rg::loadGltf(g.writeGltf(dir, "s3"), o);
+    EXPECT_NE(errorOf(wrong).find("KHR_materials_transmission.transmissionFactor"),
+              std::string::npos)
+        << errorOf(wrong);
 }
 
 // KHR_materials_unlit: the base colour becomes emission relative to the exposure (as glTF's
