@@ -60,17 +60,19 @@ std::string materialPrologue(const PassMaterial& m, const std::string& what) {
 
 // The material's surface function with its numeric parameters as names (`#define NAME
 // material.custom[i][j]`) and its own textures as functions of the surface (`#define NAME(s)
-// rgMaterialTexture<i>(s)`) around it only, so the library and shading code included elsewhere may
-// use the same names for their own variables.
+// rgMaterialTexture<i>(s)`, and `NAME_present` whether the scene material has it: white stands in
+// otherwise, which a normal map cannot take as flat) around it only, so the library and shading
+// code included elsewhere may use the same names for their own variables.
 std::string surfaceInclude(const PassMaterial& m) {
     std::ostringstream s;
     for (size_t i = 0; i < m.custom.size(); ++i)
         s << "#define " << m.custom[i] << " material.custom[" << i / 4 << "][" << i % 4 << "]\n";
     for (size_t i = 0; i < m.textures.size(); ++i)
-        s << "#define " << m.textures[i] << "(s) rgMaterialTexture" << i << "(s)\n";
+        s << "#define " << m.textures[i] << "(s) rgMaterialTexture" << i << "(s)\n"
+          << "#define " << m.textures[i] << "_present rgHasMaterialTexture" << i << "\n";
     s << "#include \"" << m.surface << "\"\n";
     for (const auto& c : m.custom) s << "#undef " << c << "\n";
-    for (const auto& t : m.textures) s << "#undef " << t << "\n";
+    for (const auto& t : m.textures) s << "#undef " << t << "\n#undef " << t << "_present\n";
     return s.str();
 }
 

@@ -360,20 +360,39 @@ def emissive_label(d):
     d.uses("KHR_materials_emissive_strength")
 
 
+def ripples(n=64, waves=6, depth=0.6):
+    """A tangent-space normal map of ridges across u (RGB, +Y up as glTF's)."""
+    u = (np.arange(n) + 0.5) / n
+    slope = depth * np.cos(u * waves * 2 * math.pi)
+    nrm = np.stack([-slope, np.zeros(n), np.ones(n)], -1)
+    nrm /= np.linalg.norm(nrm, axis=-1, keepdims=True)
+    img = np.zeros((n, n, 4), np.uint8)
+    img[..., :3] = np.round((nrm[None, :, :] * 0.5 + 0.5) * 255).astype(np.uint8)
+    img[..., 3] = 255
+    return img
+
+
 def clearcoat(d):
     # No coat, a smooth coat, and a coat in bands: clearcoatTexture's R (coat or none) across
-    # clearcoatRoughnessTexture's G (smooth or rough) in cells.
+    # clearcoatRoughnessTexture's G (smooth or rough) in cells. Then a rippled base (normalTexture)
+    # under a smooth coat — its reflections stay smooth, the coat takes the vertex normal — and the
+    # same with the ripples as clearcoatNormalTexture too: the coat's reflections ripple.
     bands = checker(64, 4, (255, 255, 255), (0, 0, 0))
     rough = checker(64, 8, (0, 200, 0), (0, 20, 0))
-    for i, coat in enumerate((0.0, 1.0, 1.0)):
+    bumps = d.image(ripples())
+    for i, coat in enumerate((0.0, 1.0, 1.0, 1.0, 1.0)):
         m = pbr((0.6, 0.05, 0.05), 0, 0.6)
         if coat:
             x = {"clearcoatFactor": coat, "clearcoatRoughnessFactor": 0.5 if i == 2 else 0.05}
             if i == 2:
                 x["clearcoatTexture"] = {"index": d.image(bands)}
                 x["clearcoatRoughnessTexture"] = {"index": d.image(rough)}
+            if i >= 3:
+                m["normalTexture"] = {"index": bumps}
+            if i == 4:
+                x["clearcoatNormalTexture"] = {"index": bumps, "scale": 1.0}
             m["extensions"] = {"KHR_materials_clearcoat": x}
-        d.node(mesh=d.mesh([d.prim(sphere(0.3), d.material(m))]), translation=[(i - 1) * 0.7, 0, 0])
+        d.node(mesh=d.mesh([d.prim(sphere(0.3), d.material(m))]), translation=[(i - 2) * 0.7, 0, 0])
     d.uses("KHR_materials_clearcoat")
 
 

@@ -217,7 +217,9 @@ Result<void> Builder::material(const Declaration& d) {
             "emissive",
             "diffuseColor",
             "f0",
-            "twoColour",  // RgSurface (shaders/lib/material.glsl)
+            "twoColour",
+            "radiosity",
+            "tangentFrame",  // RgSurface (shaders/lib/material.glsl)
             "material",
             "s",
             "g",

@@ -271,39 +271,50 @@ Result<TextureRef> Loader::extensionTexture(const std::string& where, const tiny
 }
 
 // KHR_materials_clearcoat on the standard model: the pipeline's clear_coat material
-// (materials/clearcoat.lua) with coatStrength = clearcoatFactor and coatSmoothness =
-// 1 − clearcoatRoughnessFactor, its textures as the model's own: clearcoatTexture's R multiplies
-// the strength (coatStrengthMap), clearcoatRoughnessTexture's G the roughness (coatRoughnessMap).
-// The coat's normal map has no place in the disney layout (one normal a pixel): a warning says so.
+// (materials/clearcoat.lua) with coatStrength = clearcoatFactor, coatSmoothness =
+// 1 − clearcoatRoughnessFactor and coatNormalScale = clearcoatNormalTexture.scale, its textures as
+// the model's own: clearcoatTexture's R multiplies the strength (coatStrengthMap),
+// clearcoatRoughnessTexture's G the roughness (coatRoughnessMap), clearcoatNormalTexture is the
+// coat's normal (coatNormalMap; without it the coat takes the vertex normal, not the base's map).
+// The clear coat layout keeps the base's f0 at 4 %: an IOR or specular extension that changed it is
+// warned about.
 Result<void> Loader::clearCoat(const tinygltf::Material& src, const std::string& where,
                                Material& m) {
     auto it = src.extensions.find("KHR_materials_clearcoat");
     if (it == src.extensions.end()) return {};
     const auto& x = it->second;
-    double factor = 0.0, roughness = 0.0;
-    RG_TRY(factor, ranged(where + ": KHR_materials_clearcoat.clearcoatFactor",
-                          number(x.Get("clearcoatFactor"), 0.0), 0, 1));
-    RG_TRY(roughness, ranged(where + ": KHR_materials_clearcoat.clearcoatRoughnessFactor",
+    const std::string ext = where + ": KHR_materials_clearcoat.";
+    double factor = 0.0, roughness = 0.0, normalScale = 1.0;
+    RG_TRY(factor, ranged(ext + "clearcoatFactor", number(x.Get("clearcoatFactor"), 0.0), 0, 1));
+    RG_TRY(roughness, ranged(ext + "clearcoatRoughnessFactor",
                              number(x.Get("clearcoatRoughnessFactor"), 0.0), 0, 1));
-    if (x.Has("clearcoatNormalTexture"))
-        warn(where +
-             ": KHR_materials_clearcoat.clearcoatNormalTexture is ignored (the clear coat's "
-             "G-buffer keeps one normal, the base's)");
+    if (x.Get("clearcoatNormalTexture").IsObject())
+        RG_TRY(normalScale,
+               ranged(ext + "clearcoatNormalTexture.scale",
+                      number(x.Get("clearcoatNormalTexture").Get("scale"), 1.0), -1e6, 1e6));
     if (factor <= 0.0) return {};
     if (m.model != "standard") {
         warn(where + ": KHR_materials_clearcoat is ignored: the material is already a '" + m.model +
              "' (one model a material)");
         return {};
     }
+    if (std::abs(m.reflectance - 0.5f) > 1e-3f)
+        warn(where +
+             ": the clear coat material keeps the base's f0 at 4 %; KHR_materials_ior/specular's "
+             "reflectance " +
+             std::to_string(m.reflectance) + " is dropped");
     for (const auto& [field, name] : {std::pair{"clearcoatTexture", "coatStrengthMap"},
-                                      std::pair{"clearcoatRoughnessTexture", "coatRoughnessMap"}})
+                                      std::pair{"clearcoatRoughnessTexture", "coatRoughnessMap"},
+                                      std::pair{"clearcoatNormalTexture", "coatNormalMap"}})
         if (x.Get(field).IsObject()) {
             RG_TRY(m.textures[name], extensionTexture(where + " KHR_materials_clearcoat." + field,
                                                       x.Get(field), false));
         }
     m.model = "clear_coat";
-    m.extra = Value(
-        Value::Table{{"coatStrength", Value(factor)}, {"coatSmoothness", Value(1.0 - roughness)}});
+    m.reflectance = 0.5f;
+    m.extra = Value(Value::Table{{"coatStrength", Value(factor)},
+                                 {"coatSmoothness", Value(1.0 - roughness)},
+                                 {"coatNormalScale", Value(normalScale)}});
     return {};
 }
 

@@ -44,6 +44,9 @@ struct RgSurface {
     // (seed 002 §4.10.3). Written to GB2.reserved by the standard surface function.
     float radiosity;
     vec2 uv0, uv1;  // the vertex's two uv sets, for the model's own textures (rgMaterialTexture)
+    // The normal map's frame: tangent, bitangent and the interpolated vertex normal (facing the
+    // viewer) as columns — for a second normal map of the model's own (a clear coat's).
+    mat3 tangentFrame;
 };
 
 // Which of the five textures the material has (bits 1 base colour, 2 metallic-roughness,
@@ -71,7 +74,11 @@ vec2 rgTextureUv(int texture, vec2 uv0, vec2 uv1) {
 #define rgSampleMaterialTexture(tex, bit, slot, uv0, uv1, absent) \
     (((RG_TEXTURES) & (bit)) != 0 ? texture(tex, rgTextureUv(slot, uv0, uv1)) : (absent))
 
-// The material model's own texture i (0, 1, 2) at the surface's uv, white without one.
+// The material model's own texture i (0, 1, 2) at the surface's uv, white without one; whether the
+// scene material has it (a surface function reads it as NAME_present).
+#define rgHasMaterialTexture0 (((RG_TEXTURES) & 64) != 0)
+#define rgHasMaterialTexture1 (((RG_TEXTURES) & 128) != 0)
+#define rgHasMaterialTexture2 (((RG_TEXTURES) & 256) != 0)
 #define rgMaterialTexture0(s) rgSampleMaterialTexture(materialTexture0, 64, 5, (s).uv0, (s).uv1, vec4(1.0))
 #define rgMaterialTexture1(s) rgSampleMaterialTexture(materialTexture1, 128, 6, (s).uv0, (s).uv1, vec4(1.0))
 #define rgMaterialTexture2(s) rgSampleMaterialTexture(materialTexture2, 256, 7, (s).uv0, (s).uv1, vec4(1.0))
@@ -159,7 +166,8 @@ RgSurface rgSampleSurface(vec3 position, vec3 normal, vec4 tangent, vec2 uv0, ve
 #endif
 #endif
     m.xy *= material.factors2.x;
-    s.normal = normalize(rgTangentFrame(normal, tangent, frontFacing) * m);
+    s.tangentFrame = rgTangentFrame(normal, tangent, frontFacing);
+    s.normal = normalize(s.tangentFrame * m);
 #if RG_SPECULAR_AA
     s.smoothness = rgSpecularAntialiasing(s.smoothness, s.normal, mapLength);
 #endif

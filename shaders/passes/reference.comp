@@ -39,8 +39,9 @@
 // sample reads the radiance where it points, the two combined with the power heuristic as for
 // the lights — so a small bright source in an HDRI converges as fast as a sky. Unoccluded like
 // the split sum it checks, unless reference_shadows.
-// Clear coat (RG_MATERIAL_IDENTITY_clear_coat, materials/clearcoat.lua) gets its coat lobe too, evaluated per
-// direction as materials/clearcoat_lighting.frag does for one light direction. The two-colour
+// Clear coat (RG_MATERIAL_IDENTITY_clear_coat, materials/clearcoat.lua) gets its coat lobe too, about
+// the coat's own normal, evaluated per direction as materials/clearcoat_shading.glsl does for one
+// light direction. The two-colour
 // material (materials/two_colour.lua) is unpacked with its own layout into the same diffuse colour
 // and f0. The sheen material (RG_MATERIAL_IDENTITY_sheen, materials/sheen.lua) adds its Charlie lobe
 // per direction and scales the base by 1 − max(sheen colour) · E (E from the DFG table's w, as
@@ -136,13 +137,16 @@ struct Shading {
     vec3 T, B;        // tangent frame around N
     bool coat;        // RG_MATERIAL_IDENTITY_clear_coat (materials/clearcoat.lua): a second GGX lobe on top
     float coatStrength, coatAlpha;
+    vec3 coatN, coatT, coatB;  // the coat's own normal (the vertex normal or its normal map) and frame
+    vec3 coatVs;               // V lifted above the coat's horizon, as Vs
+    float coatNdotV, coatNdotVs;
     vec3 sheenColor;       // RG_MATERIAL_IDENTITY_sheen (materials/sheen.lua): 0 for every other material
     float sheenAlpha, sheenScaling;  // the Charlie lobe's α; 1 − max(sheen colour) · E(N·V)
     vec3 lobeProbability;  // of picking the diffuse, GGX and coat lobes for the BRDF sample
 };
 
 // rgStandardBrdf: (diffuse · Fr_DisneyDiffuse / π + D · F · Vis / π) · ⟨n·l⟩, term for term. With a
-// coat (materials/clearcoat_lighting.frag, per direction): base · (1 − Fc) + D_c · Vis_c · Fc / π · ⟨n·l⟩,
+// coat (materials/clearcoat_shading.glsl, per direction, about the coat's normal): base · (1 − Fc) + D_c · Vis_c · Fc / π · ⟨n·l⟩,
 // Fc = F_Schlick(0.04, 1, ⟨l·h⟩) · coatStrength.
 vec3 brdfCos(Shading s, vec3 L) {
     float NdotL = dot(s.N, L);
@@ -158,8 +162,12 @@ vec3 brdfCos(Shading s, vec3 L) {
     vec3 base = (s.diffuseColor * Fd + D * F * Vis / RG_PI) * NdotL;
     base = base * s.sheenScaling + rgSheenBrdf(s.sheenColor, NdotH, NdotL, s.NdotV, s.sheenAlpha) * NdotL;
     if (!s.coat) return base;
-    float Fc = F_Schlick(0.04, 1.0, LdotH) * s.coatStrength;
-    float coat = D_GGX(NdotH, s.coatAlpha) * V_SmithGGXCorrelated(NdotL, s.NdotV, s.coatAlpha) * Fc / RG_PI * NdotL;
+    // The coat about its own normal (materials/clearcoat_shading.glsl).
+    float coatNdotL = clamp(dot(s.coatN, L), 0.0, 1.0);
+    vec3 Hc = rgSafeNormalize(s.V + L, s.coatN);
+    float Fc = F_Schlick(0.04, 1.0, clamp(dot(L, Hc), 0.0, 1.0)) * s.coatStrength;
+    float coat = D_GGX(clamp(dot(s.coatN, Hc), 0.0, 1.0), s.coatAlpha) *
+                 V_SmithGGXCorrelated(coatNdotL, s.coatNdotV, s.coatAlpha) * Fc / RG_PI * coatNdotL;
     return base * (1.0 - Fc) + vec3(coat);
 }
 
@@ -172,7 +180,10 @@ float brdfPdf(Shading s, vec3 L) {
     float NdotH = dot(s.N, H), VdotH = dot(s.Vs, H);
     float pdf = s.lobeProbability.x * NdotL / RG_PI;
     pdf += s.lobeProbability.y * rgGgxVisibleReflectionPdf(s.NdotVs, NdotH, VdotH, s.alpha);
-    if (s.lobeProbability.z > 0.0) pdf += s.lobeProbability.z * rgGgxVisibleReflectionPdf(s.NdotVs, NdotH, VdotH, s.coatAlpha);
+    if (s.lobeProbability.z > 0.0 && dot(s.coatN, L) > 0.0) {
+        vec3 Hc = rgSafeNormalize(s.coatVs + L, s.coatN);
+        pdf += s.lobeProbability.z * rgGgxVisibleReflectionPdf(s.coatNdotVs, dot(s.coatN, Hc), dot(s.coatVs, Hc), s.coatAlpha);
+    }
     return pdf;
 }
 
@@ -183,10 +194,15 @@ float sampleBrdf(Shading s, inout RgRng rng, out vec3 L) {
     if (pick >= s.lobeProbability.x) {
         // The coat lobe only when there is one (rounding could put `pick` past x + y without).
         bool coatLobe = s.lobeProbability.z > 0.0 && pick >= s.lobeProbability.x + s.lobeProbability.y;
-        float alpha = coatLobe ? s.coatAlpha : s.alpha;
-        vec3 Ve = vec3(dot(s.Vs, s.T), dot(s.Vs, s.B), s.NdotVs);
-        vec3 H = rgToWorld(rgSampleGgxVisibleNormal(Ve, alpha, u), s.T, s.B, s.N);
-        L = reflect(-s.Vs, H);
+        if (coatLobe) {  // about the coat's normal
+            vec3 Ve = vec3(dot(s.coatVs, s.coatT), dot(s.coatVs, s.coatB), s.coatNdotVs);
+            vec3 H = rgToWorld(rgSampleGgxVisibleNormal(Ve, s.coatAlpha, u), s.coatT, s.coatB, s.coatN);
+            L = reflect(-s.coatVs, H);
+        } else {
+            vec3 Ve = vec3(dot(s.Vs, s.T), dot(s.Vs, s.B), s.NdotVs);
+            vec3 H = rgToWorld(rgSampleGgxVisibleNormal(Ve, s.alpha, u), s.T, s.B, s.N);
+            L = reflect(-s.Vs, H);
+        }
     } else {
         L = rgToWorld(rgSampleCosineHemisphere(u), s.T, s.B, s.N);
     }
@@ -484,18 +500,26 @@ void main() {
     s.Vs = rawNdotV > 1e-3 ? s.V : normalize(s.V + (1e-3 - rawNdotV) * s.N);
     s.NdotVs = max(dot(s.N, s.Vs), 1e-3);
     rgBasis(s.N, s.T, s.B);
-    // materials/clearcoat_lighting.frag's coat: strength in MaterialData, smoothness in GB2.r.
-    // The clear coat's own channels (materials/clearcoat.lua: the disney layout's MaterialData and GB2.r).
-#ifdef RG_MATERIAL_IDENTITY_clear_coat
-    s.coat = g.identity == RG_MATERIAL_IDENTITY_clear_coat;
-    GBuffer_disney coat = unpackGBuffer_disney(t0, t1, t2, t3);
-    s.coatStrength = float(coat.materialData) / 31.0;
-    s.coatAlpha = max((1.0 - coat.reserved) * (1.0 - coat.reserved), 1e-3);
-#else
+    // The clear coat's own channels (materials/clearcoat.lua's layout): strength, smoothness and
+    // normal, with the coat's view terms and sampling frame as the base's above.
     s.coat = false;
     s.coatStrength = 0.0;
     s.coatAlpha = 1.0;
+    s.coatN = s.N;
+#ifdef RG_MATERIAL_IDENTITY_clear_coat
+    if (g.identity == RG_MATERIAL_IDENTITY_clear_coat) {
+        GBuffer_clearcoat coat = unpackGBuffer_clearcoat(t0, t1, t2, t3);
+        s.coat = true;
+        s.coatStrength = coat.coatWeight;
+        s.coatAlpha = max((1.0 - coat.coatGloss) * (1.0 - coat.coatGloss), 1e-3);
+        s.coatN = coat.coatNormal;
+    }
 #endif
+    s.coatNdotV = abs(dot(s.coatN, s.V)) + 1e-5;
+    float rawCoatNdotV = dot(s.coatN, s.V);
+    s.coatVs = rawCoatNdotV > 1e-3 ? s.V : normalize(s.V + (1e-3 - rawCoatNdotV) * s.coatN);
+    s.coatNdotVs = max(dot(s.coatN, s.coatVs), 1e-3);
+    rgBasis(s.coatN, s.coatT, s.coatB);
     s.sheenColor = vec3(0.0);
     s.sheenAlpha = 1.0;
     s.sheenScaling = 1.0;
@@ -511,7 +535,7 @@ void main() {
     // Lobe selection by the lobes' albedo estimates (diffuse colour, Schlick at N·V for the GGX
     // lobes), each present lobe picked with probability at least 0.1 so that none is starved.
     const vec3 luma = vec3(0.2126, 0.7152, 0.0722);
-    float Fc = s.coat ? F_Schlick(0.04, 1.0, s.NdotV) * s.coatStrength : 0.0;
+    float Fc = s.coat ? F_Schlick(0.04, 1.0, s.coatNdotV) * s.coatStrength : 0.0;
     vec3 w = vec3(dot(s.diffuseColor, luma) * (1.0 - Fc), dot(F_Schlick(s.f0, s.f90, s.NdotV), luma) * (1.0 - Fc), Fc);
     w /= max(w.x + w.y + w.z, 1e-6);
     w = max(w, vec3(0.1, 0.1, s.coat ? 0.1 : 0.0));

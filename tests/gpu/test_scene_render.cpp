@@ -138,11 +138,18 @@ TEST_F(SceneRender, GBufferHoldsTheMaterialParameters) {
     const auto& n = ch("normal").v;
     EXPECT_GT(glm::dot(glm::vec3(n[0], n[1], n[2]), toCamera), 0.97f);
 
-    auto c = gbufferAt(*s, pixelOf(*s, kCoated), info);
-    auto cc = [&](const char* n) { return c[static_cast<size_t>(info.find(n))]; };
-    EXPECT_EQ(cc("materialId").u[0], 1u);
-    EXPECT_NEAR(cc("reserved").v[0], 0.95f, 0.5f / 255 + 1e-5f);  // coat smoothness
-    EXPECT_EQ(cc("materialData").u[0], 31u);                      // coat strength 1 in 5 bits
+    // The clear coat in its own layout (materials/clearcoat.lua): the coat's smoothness, strength
+    // and normal (the vertex normal: the sphere has no normal maps), the base's normal in GB0.
+    LayoutInfo coatInfo;
+    auto c = gbufferAt(*s, pixelOf(*s, kCoated), coatInfo, "clearcoat");
+    auto cc = [&](const char* n) { return c[static_cast<size_t>(coatInfo.find(n))]; };
+    EXPECT_NEAR(cc("coatGloss").v[0], 0.95f, 0.5f / 255 + 1e-5f);
+    EXPECT_NEAR(cc("coatWeight").v[0], 1.0f, 1e-6f);
+    const auto& cn = cc("coatNormal").v;
+    const auto& bn = cc("normal").v;
+    const glm::vec3 coatToCamera = glm::normalize(s->scene()->cameras.front().position - kCoated);
+    EXPECT_GT(glm::dot(glm::vec3(cn[0], cn[1], cn[2]), coatToCamera), 0.97f);
+    EXPECT_GT(glm::dot(glm::vec3(cn[0], cn[1], cn[2]), glm::vec3(bn[0], bn[1], bn[2])), 0.999f);
 }
 
 TEST_F(SceneRender, FoliageIsFixedUpAfterFillingOnlyTwoTargets) {
@@ -330,7 +337,7 @@ TEST_F(SceneRender, PassesOfTheSceneStencilClassesRun) {
 
 TEST_F(SceneRender, DecalsBlendTheCommonParametersOnly) {
     // materials.lua's "stain" decal (red, smoothness 0.9, metal 1, opacity 0.8) covers part of the
-    // floor (materialId 0) and of the clear-coat sphere (materialId 1).
+    // floor (materialId 0) and of the clear-coat sphere (its own layout).
     auto s = render("scripts/pipelines/deferred.lua", {"GB0", "GB1", "GB2", "GB3"});
     LayoutInfo info;
     auto floor = gbufferAt(*s, pixelOf(*s, {0.5f, 0.0f, 0.8f}), info);
@@ -339,11 +346,11 @@ TEST_F(SceneRender, DecalsBlendTheCommonParametersOnly) {
     EXPECT_NEAR(srgbEncode(f("baseColor").v[0]), srgbEncode(0.2f * 0.2f + 0.9f * 0.8f), 1.0f / 255);
     EXPECT_NEAR(f("smoothness").v[0], 0.3f * 0.2f + 0.9f * 0.8f, 1.0f / 1023);
     EXPECT_NEAR(f("metalMask").v[0], 0.8f, 1.0f / 255);  // base material: metal mask blends
-    auto coat = gbufferAt(*s, pixelOf(*s, {0.3f, 0.5f, 0.4f}), info);
-    auto c = [&](const char* n) { return coat[static_cast<size_t>(info.find(n))]; };
-    EXPECT_EQ(c("materialId").u[0], 1u);     // never blended
-    EXPECT_EQ(c("materialData").u[0], 31u);  // the coat's strength survives
-    EXPECT_EQ(c("metalMask").v[0], 0.0f);    // not on materialId 1
+    LayoutInfo coatInfo;
+    auto coat = gbufferAt(*s, pixelOf(*s, {0.3f, 0.5f, 0.4f}), coatInfo, "clearcoat");
+    auto c = [&](const char* n) { return coat[static_cast<size_t>(coatInfo.find(n))]; };
+    EXPECT_NEAR(c("coatWeight").v[0], 1.0f, 1e-6f);  // the coat's strength survives
+    EXPECT_EQ(c("metalMask").v[0], 0.0f);            // not on the clear coat
     EXPECT_NEAR(srgbEncode(c("baseColor").v[0]), srgbEncode(0.8f * 0.2f + 0.9f * 0.8f), 1.0f / 255);
 }
 
@@ -436,13 +443,13 @@ TEST_F(SceneRender, MaterialModelsReadTheirOwnTextures) {
             for (const auto& c : t.channels) out[c.name] = values[size_t(info.find(c.name))];
         return out;
     };
-    // Clear coat: strength 1 × R (1 | 0) in 5 bits; smoothness 1 − 0.2 × G (0.5 | 1).
-    auto coatLeft = decode("disney", {-0.5f, 0.6f, 0}),
-         coatRight = decode("disney", {0.5f, 0.6f, 0});
-    EXPECT_EQ(coatLeft["materialData"].u[0], 31u);
-    EXPECT_EQ(coatRight["materialData"].u[0], 0u);
-    EXPECT_NEAR(coatLeft["reserved"].v[0], 1.0f - 0.2f * 128.0f / 255.0f, 0.5f / 255 + 1e-3f);
-    EXPECT_NEAR(coatRight["reserved"].v[0], 0.8f, 0.5f / 255 + 1e-3f);
+    // Clear coat: strength 1 × R (1 | 0); smoothness 1 − 0.2 × G (0.5 | 1).
+    auto coatLeft = decode("clearcoat", {-0.5f, 0.6f, 0}),
+         coatRight = decode("clearcoat", {0.5f, 0.6f, 0});
+    EXPECT_NEAR(coatLeft["coatWeight"].v[0], 1.0f, 1e-6f);
+    EXPECT_NEAR(coatRight["coatWeight"].v[0], 0.0f, 1e-6f);
+    EXPECT_NEAR(coatLeft["coatGloss"].v[0], 1.0f - 0.2f * 128.0f / 255.0f, 0.5f / 255 + 1e-3f);
+    EXPECT_NEAR(coatRight["coatGloss"].v[0], 0.8f, 0.5f / 255 + 1e-3f);
     // Two-colour: f0 0.5 × RGB, smoothness 0.8 × A.
     auto oxideLeft = decode("two_colour", {-0.5f, -0.6f, 0}),
          oxideRight = decode("two_colour", {0.5f, -0.6f, 0});
@@ -475,13 +482,13 @@ TEST_F(SceneRender, MaterialModelsReadTheirOwnTextures) {
 
     // A texture the clear coat does not have.
     SessionOptions bad = o;
-    bad.scene = write("coatNormalMap = 'coat.png'");
+    bad.scene = write("coatTintMap = 'coat.png'");
     Session b(*s_runtime, bad);
     auto e = b.load(kRoot + "/scripts/pipelines/deferred.lua");
     ASSERT_FALSE(e.has_value());
     EXPECT_NE(e.error().message.find("own_textures.lua:2: scene.material.coat.textures."
-                                     "coatNormalMap: model 'clear_coat' has no texture "
-                                     "'coatNormalMap'"),
+                                     "coatTintMap: model 'clear_coat' has no texture "
+                                     "'coatTintMap'"),
               std::string::npos)
         << e.error().message;
 }

@@ -348,14 +348,16 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     LuaHost host(luaHostOptionsWithoutDevice());
     auto p = host.load(std::string(RG_SOURCE_ROOT) + "/scripts/pipelines/deferred.lua");
     ASSERT_TRUE(p.has_value()) << p.error().message;
-    ASSERT_EQ(p->layouts.size(), 4u);
+    ASSERT_EQ(p->layouts.size(), 5u);
     EXPECT_EQ(p->layouts[0].name, "disney");
     EXPECT_EQ(p->layouts[0].targets.size(), 4u);
-    EXPECT_EQ(p->layouts[1].name, "two_colour");  // tbl:3, over the same four targets
+    EXPECT_EQ(p->layouts[1].name, "clearcoat");  // two normals, the base's and the coat's
     EXPECT_EQ(p->layouts[1].targets.size(), 4u);
-    EXPECT_EQ(p->layouts[2].name, "sheen");  // and the cloth material's
+    EXPECT_EQ(p->layouts[2].name, "two_colour");  // tbl:3, over the same four targets
     EXPECT_EQ(p->layouts[2].targets.size(), 4u);
-    EXPECT_EQ(p->layouts[3].name, "transmission");  // the unpacked form the forward pass shades
+    EXPECT_EQ(p->layouts[3].name, "sheen");  // and the cloth material's
+    EXPECT_EQ(p->layouts[3].targets.size(), 4u);
+    EXPECT_EQ(p->layouts[4].name, "transmission");  // the unpacked form the forward pass shades
     // The standard material, two game-team materials, the two-colour base material and the sheen
     // material, each with its id and stencil class; the transmission, forward only, without one.
     ASSERT_EQ(p->materials.size(), 6u);
@@ -363,7 +365,7 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     EXPECT_EQ(p->materials[0].id, 0u);
     EXPECT_EQ(p->materials[0].stencil, "lit_standard");
     EXPECT_EQ(p->materials[1].name, "clear_coat");
-    EXPECT_EQ(p->materials[1].id, 1u);
+    EXPECT_EQ(p->materials[1].id, 0u);  // its own layout, without a materialId
     EXPECT_EQ(p->materials[1].stencil, "lit_clearcoat");
     EXPECT_EQ(p->materials[2].name, "foliage");
     EXPECT_EQ(p->materials[2].fills, (std::vector<std::string>{"GB0", "GB1"}));

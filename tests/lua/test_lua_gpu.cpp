@@ -161,7 +161,7 @@ TEST_F(LuaGpu, SceneMaterialParametersAreCheckedByName) {
             .find("params_scene.lua:2: scene.material.coated.params.coatSmoothnes: model "
                   "'clear_coat' has no "
                   "parameter 'coatSmoothnes' (did you mean 'coatSmoothness'?); its parameters: "
-                  "'coatSmoothness', 'coatStrength'"),
+                  "'coatNormalScale', 'coatSmoothness', 'coatStrength'"),
         std::string::npos)
         << sceneWith("coatSmoothnes = 0.5");
     EXPECT_NE(sceneWith("coatStrength = \"full\"")

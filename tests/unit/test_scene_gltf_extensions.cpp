@@ -12,8 +12,9 @@ namespace {
 using namespace rg::test;
 
 // KHR_materials_ior and _specular set the standard material's reflectance (f0 = 0.16 r²), and
-// KHR_materials_clearcoat makes it the pipeline's clear_coat material; what rgraph cannot hold
-// (a coloured specular, the coat's textures) is named in a warning.
+// KHR_materials_clearcoat makes it the pipeline's clear_coat material, its textures (the coat's
+// normal map too) the model's own; what rgraph cannot hold (a coloured specular, a coated base's
+// IOR) is named in a warning.
 TEST(GltfLoad, IorSpecularAndClearcoatExtensionsMapOntoTheMaterials) {
     const std::string dir = tmpDir("material_ext");
     GltfBuilder g;
@@ -35,7 +36,8 @@ TEST(GltfLoad, IorSpecularAndClearcoatExtensionsMapOntoTheMaterials) {
                           {"clearcoatRoughnessTexture",
                            {{"index", 1},
                             {"extensions", {{"KHR_texture_transform", {{"scale", {2.0, 4.0}}}}}}}},
-                          {"clearcoatNormalTexture", {{"index", 0}}}}}}}},
+                          {"clearcoatNormalTexture", {{"index", 0}, {"scale", 0.5}}}}},
+                        {"KHR_materials_ior", {{"ior", 1.33}}}}}},
                      {{"name", "nocoat"},
                       {"extensions", {{"KHR_materials_clearcoat", {{"clearcoatFactor", 0.0}}}}}}});
     g.j["images"] = json::array({{{"uri", "coat.png"}}, {{"uri", "rough.png"}}});
@@ -57,9 +59,12 @@ TEST(GltfLoad, IorSpecularAndClearcoatExtensionsMapOntoTheMaterials) {
     EXPECT_EQ(m[4].model, "clear_coat");
     EXPECT_NEAR(m[4].extra["coatStrength"].asNumber(), 0.8, 1e-6);
     EXPECT_NEAR(m[4].extra["coatSmoothness"].asNumber(), 0.9, 1e-6);
+    EXPECT_NEAR(m[4].extra["coatNormalScale"].asNumber(), 0.5, 1e-6);
+    EXPECT_NEAR(f0(m[4]), 0.04, 1e-6);  // the clear coat layout's base f0
     // Its textures as the clear-coat model's own (materials/clearcoat.lua), linear, each with its
     // set and transform.
-    ASSERT_EQ(m[4].textures.size(), 2u);
+    ASSERT_EQ(m[4].textures.size(), 3u);
+    EXPECT_TRUE(m[4].textures.at("coatNormalMap").valid());
     const rg::TextureRef& coat = m[4].textures.at("coatStrengthMap");
     const rg::TextureRef& rough = m[4].textures.at("coatRoughnessMap");
     ASSERT_TRUE(coat.valid() && rough.valid());
@@ -75,8 +80,8 @@ TEST(GltfLoad, IorSpecularAndClearcoatExtensionsMapOntoTheMaterials) {
               std::string::npos)
         << warnings[0];
     EXPECT_NE(warnings[1].find("material 3 'gem': f0 0.1695"), std::string::npos) << warnings[1];
-    EXPECT_NE(warnings[2].find("material 4 'car': KHR_materials_clearcoat.clearcoatNormalTexture "
-                               "is ignored"),
+    EXPECT_NE(warnings[2].find("material 4 'car': the clear coat material keeps the base's f0 at "
+                               "4 %"),
               std::string::npos)
         << warnings[2];
 }
