@@ -106,6 +106,15 @@ TEST(LuaErrors, OnlyWhenTakesABooleanParameter) {
                   "number; only_when takes a boolean one");
 }
 
+// A scene feature is a name or name:name ("material:transmission" on line 2 is one); "material:"
+// is neither.
+TEST(LuaErrors, OnlyWhenNamesASceneFeature) {
+    EXPECT_EQ(loadError("only_when_scene_name.lua"),
+              kScripts +
+                  "only_when_scene_name.lua:3: resources.extra.only_when.scene: 'material:' is not "
+                  "a name (or name:name)");
+}
+
 // rg.resource's `history` names a resource of its own, and its table takes name and mips only;
 // rg.history's `of` names a texture.
 TEST(LuaErrors, AHistoryNamesAResourceOfItsOwn) {
