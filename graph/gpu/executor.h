@@ -138,8 +138,9 @@ private:
         VkCommandBuffer cmd = VK_NULL_HANDLE;
         OwnedFence fence;
         OwnedQueryPool queries;
-        uint32_t queryCount = 0;
-        bool pending = false;  // submitted, timings not yet read
+        uint32_t queryCapacity = 0;  // the pool's size
+        uint32_t queryCount = 0;     // the pass timestamps collect() reads
+        bool pending = false;        // submitted, timings not yet read
         std::vector<std::string> passNames;
         std::vector<double> passCpuMs;
     };

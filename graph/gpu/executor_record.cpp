@@ -107,16 +107,25 @@ Result<void> Executor::frame(VkCommandBuffer hostCmd) {
     if (!m_onceDir.empty() && !m_floors && !hostCmd)
         if (auto r = onceCacheBeforeFrame(slotIndex); !r) return r;
     VkDevice dev = m_ctx.device();
-    const uint32_t queries = hostCmd ? 0u : static_cast<uint32_t>(m_built->plan.passes.size() * 2);
-    if (queries > slot.queryCount || !slot.queries) {
+    // Per pass its begin and end timestamps (queries 2i, 2i + 1), and one more written right after
+    // the begin (2n + i) that is never read: it makes lavapipe take the begin time before the
+    // pass's work. llvmpipe bins a timestamp into the scene being built and takes the time when
+    // that scene is rasterised, at the next flush; lavapipe flushes before every timestamp not at
+    // the top of the pipe. A compute pass's dispatch runs at once, between the two, so without the
+    // extra flush its begin time was taken after its work and the work counted nowhere (a compute
+    // pass doing 11 ms of fetches read 0.07 ms).
+    const uint32_t passes = hostCmd ? 0u : static_cast<uint32_t>(m_built->plan.passes.size());
+    const uint32_t queries = 3 * passes;
+    if (queries > slot.queryCapacity || !slot.queries) {
         VkQueryPoolCreateInfo qi{VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO};
         qi.queryType = VK_QUERY_TYPE_TIMESTAMP;
-        qi.queryCount = std::max(queries, 2u);
+        qi.queryCount = std::max(queries, 3u);
         VkQueryPool pool = VK_NULL_HANDLE;
         RG_VK_TRY(vkCreateQueryPool(dev, &qi, nullptr, &pool));
         slot.queries = OwnedQueryPool(dev, pool);
+        slot.queryCapacity = qi.queryCount;
     }
-    slot.queryCount = queries;
+    slot.queryCount = 2 * passes;  // the ones collect() reads
     slot.passNames.clear();
     slot.passCpuMs.clear();
 
@@ -142,9 +151,12 @@ Result<void> Executor::frame(VkCommandBuffer hostCmd) {
         const PlanPass& pass = m_built->plan.passes[i];
         m_ctx.beginLabel(cmd, pass.name);
         recordBarriers(cmd, pass.barriers);
-        if (queries)
+        if (queries) {
             vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.queries.get(),
                                  static_cast<uint32_t>(2 * i));
+            vkCmdWriteTimestamp2(cmd, VK_PIPELINE_STAGE_2_ALL_COMMANDS_BIT, slot.queries.get(),
+                                 static_cast<uint32_t>(2 * passes + i));
+        }
         RecordContext rc{m_ctx,          cmd,           pass, m_built->graph.passes[pass.desc],
                          m_built->table, m_built->plan, info, m_scene};
         const auto recordStart = Clock::now();
