@@ -4,9 +4,10 @@
 // base colour × the volume's transmittance × the opaque frame's radiance where the refracted view
 // ray leaves the volume. As the glTF sample viewer does it (KHR_materials_volume's "thickness" is
 // the distance the ray travels inside): the exit point is P + refract(−V, N, 1/η) · thickness,
-// projected with this frame's camera, read at mip log2(width) · linear roughness · clamp(2η − 2,
-// 0, 1) (a rough surface blurs what lies behind it, less so as η nears 1). The IOR η is the
-// reflectance's: f0 = 0.16 · reflectance² = ((η − 1)/(η + 1))².
+// projected with this frame's camera, read at mip log2(the frame's larger side) · linear roughness ·
+// clamp(2η − 2, 0, 1) (a rough surface blurs what lies behind it, less so as η nears 1). The IOR η
+// is the reflectance's: f0 = 0.16 · reflectance² = ((η − 1)/(η + 1))² (so at most 2.33, and
+// KHR_materials_specular's factor, which scales f0, changes it too).
 //
 // The opaque frame holds luminance × this frame's pre-exposure (the HDR it copies): divided back
 // here. Without it (RG_OPAQUE: the scene draws no transmission material, or a pass that does not
@@ -30,7 +31,9 @@ vec3 rgTransmittedRadiance(GBuffer_transmission g, vec3 position, vec3 N, vec3 V
     float ior = rgIorOfReflectance(g.reflectance);
     vec3 exitPoint = position + refract(-V, N, 1.0 / ior) * g.thickness;
     vec4 clip = camera.viewProj * vec4(exitPoint, 1.0);
-    vec2 uv = clip.xy / clip.w * 0.5 + 0.5;
+    // An exit point behind the eye (a thick volume at the near plane) has no place on screen: the
+    // pixel's own.
+    vec2 uv = clip.w > 1e-6 ? clip.xy / clip.w * 0.5 + 0.5 : gl_FragCoord.xy * camera.viewport.zw;
     float lod = log2(float(max(textureSize(opaque, 0).x, textureSize(opaque, 0).y))) * linearRoughness *
                 clamp(2.0 * ior - 2.0, 0.0, 1.0);
     return textureLod(opaque, uv, lod).rgb / rgPreExposure(ex.state, params.initial_ev100);
@@ -44,7 +47,7 @@ vec3 rgShade(GBuffer_transmission g, vec3 position, vec3 V, ivec2 pixel) {
     float linearRoughness = 1.0 - g.smoothness;
     float transmission = g.transmission * (1.0 - g.metalMask);  // a metal transmits nothing
     vec3 f0 = mix(vec3(rgDielectricF0(g.reflectance)), g.baseColor, g.metalMask);
-    vec3 diffuseColor = g.baseColor * (1.0 - g.metalMask) * (1.0 - transmission);
+    vec3 diffuseColor = g.baseColor * (1.0 - g.metalMask) * (1.0 - g.transmission);
     vec3 luminance = g.emissive;
     RgLightList list = rgLightList(pixel);  // the froxel's lights (lib/light_tiles.glsl)
     float sun = rgSunVisibility(position, N);  // the sun's shadow (RG_SHADOWS), once

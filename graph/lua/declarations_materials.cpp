@@ -178,6 +178,12 @@ Result<void> Builder::material(const Declaration& d) {
         if (!b["forward"].isBool()) return w.at("forward").error("expected a boolean");
         m.forward = b["forward"].asBool();
     }
+    // A path without a class is the forward pass's only: a material on it that the G-buffer pass
+    // could draw would have no lighting pass (black).
+    if (!m.path.empty() && m.stencil.empty() && !m.forward)
+        return w.at("path").error("lighting path '" + m.path +
+                                  "' has no stencil class (it is the forward pass's only): give "
+                                  "the material forward = true, or the path a stencil class");
     m.fixup = b["fixup"].asString();
     if (!m.fixup.empty()) {
         auto p = resolvePass(w.at("fixup"), d.module, m.fixup);

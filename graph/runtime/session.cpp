@@ -113,6 +113,19 @@ Result<GraphDesc> Session::buildableGraph(const PipelineDesc& p, bool keepMissin
         if (!r.onlyWhen) continue;
         const ResourceDesc::Condition& c = *r.onlyWhen;
         bool keep = true;
+        // "material:NAME" names a material of the pipeline (a misspelt one would drop the
+        // resource in every scene, in silence).
+        if (c.sceneFeature.starts_with("material:")) {
+            const std::string model = c.sceneFeature.substr(9);
+            std::vector<std::string> names;
+            for (const MaterialDesc& m : p.materials) names.push_back(m.name);
+            if (std::find(names.begin(), names.end(), model) == names.end())
+                return fail(ErrorCode::InvalidInput,
+                            (r.origin.empty() ? "" : r.origin + ": ") + "resource '" + r.name +
+                                "': only_when.scene = '" + c.sceneFeature +
+                                "': the pipeline declares no material '" + model + "' (it has " +
+                                joinQuoted(names) + ")");
+        }
         if (!c.sceneFeature.empty() && bound) {
             const std::optional<bool> has = bound->feature(c.sceneFeature);
             if (!has)

@@ -366,8 +366,7 @@ Result<void> Loader::sheen(const tinygltf::Material& src, const std::string& whe
 // frame it refracts — so the material becomes blended, whatever its alphaMode —
 // transmissionFactor and thicknessFactor, attenuationDistance (absent: 0, none) and
 // attenuationColor as its params, transmissionTexture (R) and thicknessTexture (G) as its own
-// textures. The IOR stays the reflectance (reflectanceOf). A factor of 0 without a texture is no
-// transmission. The volume's thickness is put in the world's units by volumeScale.
+// textures. The IOR stays the reflectance (reflectanceOf). A factor of 0 is no transmission. The volume's thickness is put in the world's units by volumeScale.
 Result<void> Loader::transmission(const tinygltf::Material& src, const std::string& where,
                                   Material& m) {
     auto it = src.extensions.find("KHR_materials_transmission");
@@ -384,7 +383,7 @@ Result<void> Loader::transmission(const tinygltf::Material& src, const std::stri
     double factor = 0.0;
     RG_TRY(factor,
            ranged(ext + "transmissionFactor", number(x.Get("transmissionFactor"), 0.0), 0, 1));
-    if (factor <= 0.0 && !x.Get("transmissionTexture").IsObject()) return {};
+    if (factor <= 0.0) return {};  // glTF's transmission is the factor times the texture's R
     if (x.Get("transmissionTexture").IsObject())
         RG_TRY(m.textures["transmissionMap"],
                extensionTexture(ext + "transmissionTexture", x.Get("transmissionTexture"), false));
@@ -563,14 +562,6 @@ Result<void> Loader::materials() {
             return error(ErrorCode::InvalidInput, where + ": alphaMode '" + src.alphaMode +
                                                       "', expected OPAQUE, MASK or BLEND");
         RG_TRY(m.alphaCutoff, ranged(where + ": alphaCutoff", src.alphaCutoff, 0, HUGE_VAL));
-        // A transmission is drawn by the forward pass only (over the opaque frame it refracts).
-        if (m.model == "transmission" && m.alphaMode != AlphaMode::Blend) {
-            if (m.alphaMode == AlphaMode::Mask)
-                warn(where +
-                     ": alphaMode MASK on a transmission is drawn blended (the forward "
-                     "pass draws transmission), its cut-off not applied");
-            m.alphaMode = AlphaMode::Blend;
-        }
         m.doubleSided = src.doubleSided;
         if (auto r = specularGlossiness(src, where, m); !r) return r;
         // What glTF cannot say, as exportGlb wrote it; its own textures before uvSlots() places
@@ -598,6 +589,15 @@ Result<void> Loader::materials() {
                        extensionTexture(where + " extras.rgraph.textures." + name, info, srgb));
             }
         }
+        // A transmission (the final model, after specular-glossiness and exportGlb's extras) is
+        // drawn by the forward pass only, over the opaque frame it refracts.
+        if (m.model == "transmission" && m.alphaMode != AlphaMode::Blend) {
+            if (m.alphaMode == AlphaMode::Mask)
+                warn(where +
+                     ": alphaMode MASK on a transmission is drawn blended (the forward "
+                     "pass draws transmission), its cut-off not applied");
+            m.alphaMode = AlphaMode::Blend;
+        }
         uvSlots(where, m);
         // A volume's thickness is in its mesh's space (volumeScale puts it in the world's), unless
         // exportGlb wrote it, already in the world's.
@@ -610,7 +610,8 @@ Result<void> Loader::materials() {
 
 // KHR_materials_volume gives the thickness in the coordinate space of the mesh: each volume's
 // thicknessFactor times the scale of the nodes that draw it (the mean length of their world
-// transform's axes, as the glTF sample viewer scales it). A material is one set of parameters:
+// transform's axes; the glTF sample viewer scales the refracted ray per axis, the same for a uniform
+// scale). Skinned nodes (posed in the world) keep it as given. A material is one set of parameters:
 // nodes of other scales take the first one's, with a warning.
 void Loader::volumeScale() {
     for (size_t mi : volumes) {

@@ -44,8 +44,8 @@ struct RgSurface {
     // (seed 002 §4.10.3). Written to GB2.reserved by the standard surface function.
     float radiosity;
     vec2 uv0, uv1;  // the vertex's two uv sets, for the model's own textures (rgMaterialTexture)
-    // The normal map's frame: tangent, bitangent and the interpolated vertex normal (facing the
-    // viewer) as columns — for a second normal map of the model's own (a clear coat's).
+    // The normal map's frame: tangent, bitangent and the interpolated vertex normal (flipped on a
+    // back face) as columns — for a second normal map of the model's own (a clear coat's).
     mat3 tangentFrame;
 };
 

@@ -148,19 +148,23 @@ struct Shading {
 // rgStandardBrdf: (diffuse · Fr_DisneyDiffuse / π + D · F · Vis / π) · ⟨n·l⟩, term for term. With a
 // coat (materials/clearcoat_shading.glsl, per direction, about the coat's normal): base · (1 − Fc) + D_c · Vis_c · Fc / π · ⟨n·l⟩,
 // Fc = F_Schlick(0.04, 1, ⟨l·h⟩) · coatStrength.
+// Each layer sees L above its own normal's horizon: a coat over a normal-mapped base reflects
+// directions the base's normal turns away from.
 vec3 brdfCos(Shading s, vec3 L) {
+    vec3 base = vec3(0.0);
     float NdotL = dot(s.N, L);
-    if (NdotL <= 0.0) return vec3(0.0);
-    vec3 H = rgSafeNormalize(s.V + L, s.N);
-    float LdotH = clamp(dot(L, H), 0.0, 1.0);
-    float NdotH = clamp(dot(s.N, H), 0.0, 1.0);
-    NdotL = min(NdotL, 1.0);
-    vec3 F = F_Schlick(s.f0, s.f90, LdotH);
-    float Vis = V_SmithGGXCorrelated(NdotL, s.NdotV, s.alpha);
-    float D = D_GGX(NdotH, s.alpha);
-    float Fd = Fr_DisneyDiffuse(s.NdotV, NdotL, LdotH, s.linearRoughness) / RG_PI;
-    vec3 base = (s.diffuseColor * Fd + D * F * Vis / RG_PI) * NdotL;
-    base = base * s.sheenScaling + rgSheenBrdf(s.sheenColor, NdotH, NdotL, s.NdotV, s.sheenAlpha) * NdotL;
+    if (NdotL > 0.0) {
+        vec3 H = rgSafeNormalize(s.V + L, s.N);
+        float LdotH = clamp(dot(L, H), 0.0, 1.0);
+        float NdotH = clamp(dot(s.N, H), 0.0, 1.0);
+        NdotL = min(NdotL, 1.0);
+        vec3 F = F_Schlick(s.f0, s.f90, LdotH);
+        float Vis = V_SmithGGXCorrelated(NdotL, s.NdotV, s.alpha);
+        float D = D_GGX(NdotH, s.alpha);
+        float Fd = Fr_DisneyDiffuse(s.NdotV, NdotL, LdotH, s.linearRoughness) / RG_PI;
+        base = (s.diffuseColor * Fd + D * F * Vis / RG_PI) * NdotL;
+        base = base * s.sheenScaling + rgSheenBrdf(s.sheenColor, NdotH, NdotL, s.NdotV, s.sheenAlpha) * NdotL;
+    }
     if (!s.coat) return base;
     // The coat about its own normal (materials/clearcoat_shading.glsl).
     float coatNdotL = clamp(dot(s.coatN, L), 0.0, 1.0);
@@ -173,16 +177,20 @@ vec3 brdfCos(Shading s, vec3 L) {
 
 // pdf (solid angle) of the BRDF sampling strategy: the mixture of the cosine lobe and the GGX
 // visible-normal reflections of the base (and of the coat).
+// With a coat, every lobe's density counts wherever the BRDF is not zero: the base's GGX
+// reflections below the base's horizon too, where the coat still reflects.
 float brdfPdf(Shading s, vec3 L) {
     float NdotL = dot(s.N, L);
-    if (NdotL <= 0.0) return 0.0;
+    if (NdotL <= 0.0 && !s.coat) return 0.0;
     vec3 H = rgSafeNormalize(s.Vs + L, s.N);
     float NdotH = dot(s.N, H), VdotH = dot(s.Vs, H);
-    float pdf = s.lobeProbability.x * NdotL / RG_PI;
-    pdf += s.lobeProbability.y * rgGgxVisibleReflectionPdf(s.NdotVs, NdotH, VdotH, s.alpha);
+    float pdf = s.lobeProbability.x * max(NdotL, 0.0) / RG_PI;
+    if (NdotH > 0.0) pdf += s.lobeProbability.y * rgGgxVisibleReflectionPdf(s.NdotVs, NdotH, VdotH, s.alpha);
     if (s.lobeProbability.z > 0.0 && dot(s.coatN, L) > 0.0) {
         vec3 Hc = rgSafeNormalize(s.coatVs + L, s.coatN);
-        pdf += s.lobeProbability.z * rgGgxVisibleReflectionPdf(s.coatNdotVs, dot(s.coatN, Hc), dot(s.coatVs, Hc), s.coatAlpha);
+        float NcdotH = dot(s.coatN, Hc);
+        if (NcdotH > 0.0)
+            pdf += s.lobeProbability.z * rgGgxVisibleReflectionPdf(s.coatNdotVs, NcdotH, dot(s.coatVs, Hc), s.coatAlpha);
     }
     return pdf;
 }

@@ -115,6 +115,15 @@ TEST(LuaErrors, OnlyWhenNamesASceneFeature) {
                   "a name (or name:name)");
 }
 
+// A path without a stencil class is the forward pass's only: its materials say forward = true.
+TEST(LuaErrors, AClasslessPathIsForwardOnly) {
+    EXPECT_EQ(loadError("forward_path_needs_forward.lua"),
+              kScripts +
+                  "forward_path_needs_forward.lua:4: materials.veil.path: lighting path 'veil' has "
+                  "no stencil class (it is the forward pass's only): give the material forward = "
+                  "true, or the path a stencil class");
+}
+
 // rg.resource's `history` names a resource of its own, and its table takes name and mips only;
 // rg.history's `of` names a texture.
 TEST(LuaErrors, AHistoryNamesAResourceOfItsOwn) {

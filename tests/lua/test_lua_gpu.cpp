@@ -233,6 +233,19 @@ TEST_F(LuaGpu, ParametersAndResourcesNameWhatTheSceneHas) {
                                   "has no such feature (it has 'lightmap', 'material:MODEL')"),
         std::string::npos)
         << f.error().describe();
+    // "material:NAME" names a material the pipeline declares: a misspelt one would drop the
+    // resource in every scene.
+    std::ofstream(file) << deferred
+                        << "rg.resource \"extra\" { format = \"rgba8\", only_when = { scene = "
+                           "\"material:transmision\" } }\n";
+    Session misspelt(*s_runtime, small());
+    auto m = misspelt.load(file);
+    ASSERT_FALSE(m);
+    EXPECT_NE(m.error().describe().find(": resource 'extra': only_when.scene = "
+                                        "'material:transmision': the pipeline declares no material "
+                                        "'transmision' (it has 'standard', "),
+              std::string::npos)
+        << m.error().describe();
 
     Session s(*s_runtime, small());
     ASSERT_TRUE(s.load(std::string(RG_SOURCE_ROOT) + "/scripts/pipelines/deferred.lua"));

@@ -180,7 +180,9 @@ TEST(GltfLoad, TransmissionMakesTheTransmissionMaterial) {
             {"KHR_materials_ior", {{"ior", 1.33}}}}}},
          {{"name", "pane"},
           {"extensions", {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}}}}},
-         {{"name", "none"}, {"extensions", {{"KHR_materials_transmission", json::object()}}}},
+         {{"name", "none"},
+          {"extensions",
+           {{"KHR_materials_transmission", {{"transmissionTexture", {{"index", 0}}}}}}}},
          {{"name", "coated"},
           {"extensions",
            {{"KHR_materials_transmission", {{"transmissionFactor", 1.0}}},
@@ -216,7 +218,7 @@ TEST(GltfLoad, TransmissionMakesTheTransmissionMaterial) {
     EXPECT_EQ(m[1].model, "transmission");  // thin-walled: no volume
     EXPECT_NEAR(m[1].extra["thicknessFactor"].asNumber(), 0.0, 1e-9);
     EXPECT_NEAR(m[1].extra["attenuationDistance"].asNumber(), 0.0, 1e-9);  // 0: glTF's +∞
-    EXPECT_EQ(m[2].model, "standard");  // a factor of 0 and no texture: no transmission
+    EXPECT_EQ(m[2].model, "standard");  // a factor of 0 (× the texture): no transmission
     EXPECT_EQ(m[2].alphaMode, rg::AlphaMode::Opaque);
     EXPECT_EQ(m[3].model, "transmission");  // one model a material: the transmission first
     EXPECT_EQ(m[4].model, "standard");
