@@ -59,7 +59,7 @@ vec3 rgShade(GBuffer_transmission g, vec3 position, vec3 V, ivec2 pixel) {
     if (transmission > 0.0) {
         float NdotV = clamp(dot(N, V), 1e-4, 1.0);
         vec3 dfgTerms = rgDfg(NdotV, linearRoughness);  // 0 without the table (RG_IBL)
-        float f90 = clamp(50.0 * dot(f0, vec3(0.33)), 0.0, 1.0);  // as rgStandardIbl
+        float f90 = rgF90(f0);  // as rgStandardIbl
         vec3 reflected = f0 * dfgTerms.x + f90 * dfgTerms.y;
         luminance += transmission * (1.0 - reflected) * g.baseColor * g.volumeColor *
                      rgTransmittedRadiance(g, position, N, V, linearRoughness);

@@ -84,9 +84,8 @@ Result<void> GpuScene::setSetting(const std::string& name, const Value& value) {
 
 std::optional<bool> GpuScene::feature(const std::string& name) const {
     if (name == "lightmap") return hasLightmap();
-    static constexpr std::string_view kMaterial = "material:";
-    if (name.starts_with(kMaterial)) {
-        const std::string_view model = std::string_view(name).substr(kMaterial.size());
+    if (name.starts_with(kMaterialFeature)) {
+        const std::string_view model = std::string_view(name).substr(kMaterialFeature.size());
         return std::any_of(m_draws.begin(), m_draws.end(), [&](const DrawItem& d) {
             return d.material < m_scene.materials.size() &&
                    m_scene.materials[d.material].model == model;

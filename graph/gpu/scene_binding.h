@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace rg::gpu {
@@ -28,6 +29,9 @@ public:
     // knows no such feature; featureNames() lists them, for the error.
     virtual std::optional<bool> feature(const std::string& name) const = 0;
     virtual std::vector<std::string> featureNames() const = 0;
+    // The features "material:NAME": whether a draw is of pipeline material NAME (the GPU scene's;
+    // the session checks that NAME is a material of the pipeline).
+    static constexpr std::string_view kMaterialFeature = "material:";
 };
 
 }  // namespace rg::gpu

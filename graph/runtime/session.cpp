@@ -115,8 +115,9 @@ Result<GraphDesc> Session::buildableGraph(const PipelineDesc& p, bool keepMissin
         bool keep = true;
         // "material:NAME" names a material of the pipeline (a misspelt one would drop the
         // resource in every scene, in silence).
-        if (c.sceneFeature.starts_with("material:")) {
-            const std::string model = c.sceneFeature.substr(9);
+        if (c.sceneFeature.starts_with(gpu::SceneBinding::kMaterialFeature)) {
+            const std::string model =
+                c.sceneFeature.substr(gpu::SceneBinding::kMaterialFeature.size());
             std::vector<std::string> names;
             for (const MaterialDesc& m : p.materials) names.push_back(m.name);
             if (std::find(names.begin(), names.end(), model) == names.end())

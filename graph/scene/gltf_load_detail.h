@@ -173,6 +173,8 @@ struct Loader {
                                     Material& m);
     Result<void> clearCoat(const tinygltf::Material& src, const std::string& where, Material& m);
     Result<void> sheen(const tinygltf::Material& src, const std::string& where, Material& m);
+    bool takesModel(const std::string& where, const char* extension, const char* keeps,
+                    Material& m);
     Result<void> transmission(const tinygltf::Material& src, const std::string& where, Material& m);
     std::vector<size_t> volumes;  // Scene materials with a volume in their mesh's space
     void volumeScale();           // ...times the scale of the nodes drawing them

@@ -270,6 +270,24 @@ Result<TextureRef> Loader::extensionTexture(const std::string& where, const tiny
                    info.Get("texCoord").IsNumber() ? indexOf(info.Get("texCoord")) : 0, ext, srgb);
 }
 
+// One model a material: whether the standard material may take the model of `extension` (else a
+// warning says the extension is ignored). The models that take it keep f0 at 4 % in their
+// layouts, so an IOR or specular extension that had changed the reflectance is named in a warning
+// ("<keeps> f0 at 4 %") and the reflectance set back to 0.5.
+bool Loader::takesModel(const std::string& where, const char* extension, const char* keeps,
+                        Material& m) {
+    if (m.model != "standard") {
+        warn(where + ": " + extension + " is ignored: the material is already a '" + m.model +
+             "' (one model a material)");
+        return false;
+    }
+    if (std::abs(m.reflectance - 0.5f) > 1e-3f)
+        warn(where + ": " + keeps + " f0 at 4 %; KHR_materials_ior/specular's reflectance " +
+             std::to_string(m.reflectance) + " is dropped");
+    m.reflectance = 0.5f;
+    return true;
+}
+
 // KHR_materials_clearcoat on the standard model: the pipeline's clear_coat material
 // (materials/clearcoat.lua) with coatStrength = clearcoatFactor, coatSmoothness =
 // 1 − clearcoatRoughnessFactor and coatNormalScale = clearcoatNormalTexture.scale, its textures as
@@ -292,17 +310,9 @@ Result<void> Loader::clearCoat(const tinygltf::Material& src, const std::string&
         RG_TRY(normalScale,
                ranged(ext + "clearcoatNormalTexture.scale",
                       number(x.Get("clearcoatNormalTexture").Get("scale"), 1.0), -1e6, 1e6));
-    if (factor <= 0.0) return {};
-    if (m.model != "standard") {
-        warn(where + ": KHR_materials_clearcoat is ignored: the material is already a '" + m.model +
-             "' (one model a material)");
+    if (factor <= 0.0 || !takesModel(where, "KHR_materials_clearcoat",
+                                     "the clear coat material keeps the base's", m))
         return {};
-    }
-    if (std::abs(m.reflectance - 0.5f) > 1e-3f)
-        warn(where +
-             ": the clear coat material keeps the base's f0 at 4 %; KHR_materials_ior/specular's "
-             "reflectance " +
-             std::to_string(m.reflectance) + " is dropped");
     for (const auto& [field, name] : {std::pair{"clearcoatTexture", "coatStrengthMap"},
                                       std::pair{"clearcoatRoughnessTexture", "coatRoughnessMap"},
                                       std::pair{"clearcoatNormalTexture", "coatNormalMap"}})
@@ -311,7 +321,6 @@ Result<void> Loader::clearCoat(const tinygltf::Material& src, const std::string&
                                                       x.Get(field), false));
         }
     m.model = "clear_coat";
-    m.reflectance = 0.5f;
     m.extra = Value(Value::Table{{"coatStrength", Value(factor)},
                                  {"coatSmoothness", Value(1.0 - roughness)},
                                  {"coatNormalScale", Value(normalScale)}});
@@ -335,16 +344,9 @@ Result<void> Loader::sheen(const tinygltf::Material& src, const std::string& whe
     double roughness = 0.0;
     RG_TRY(roughness,
            ranged(ext + "sheenRoughnessFactor", number(x.Get("sheenRoughnessFactor"), 0.0), 0, 1));
-    if (std::max({colour.x, colour.y, colour.z}) <= 0.0f) return {};
-    if (m.model != "standard") {
-        warn(where + ": KHR_materials_sheen is ignored: the material is already a '" + m.model +
-             "' (one model a material)");
+    if (std::max({colour.x, colour.y, colour.z}) <= 0.0f ||
+        !takesModel(where, "KHR_materials_sheen", "the sheen material keeps", m))
         return {};
-    }
-    if (std::abs(m.reflectance - 0.5f) > 1e-3f)
-        warn(where +
-             ": the sheen material keeps f0 at 4 %; KHR_materials_ior/specular's reflectance " +
-             std::to_string(m.reflectance) + " is dropped");
     for (const auto& [field, name, srgb] :
          {std::tuple{"sheenColorTexture", "sheenColorMap", true},
           std::tuple{"sheenRoughnessTexture", "sheenRoughnessMap", false}})
@@ -353,7 +355,6 @@ Result<void> Loader::sheen(const tinygltf::Material& src, const std::string& whe
                    extensionTexture(where + " KHR_materials_sheen." + field, x.Get(field), srgb));
         }
     m.model = "sheen";
-    m.reflectance = 0.5f;
     m.extra = Value(Value::Table{{"sheenColorR", Value(double(colour.x))},
                                  {"sheenColorG", Value(double(colour.y))},
                                  {"sheenColorB", Value(double(colour.z))},

@@ -68,6 +68,9 @@ float rgDielectricF0(float reflectance) { return 0.16 * reflectance * reflectanc
 
 // The standard material's BRDF times NdotL for one light direction: diffuse + specular.
 // Returns the factor that multiplies the light's illuminance (lux) to give luminance.
+// Specular micro-occlusion (seed 002 §4.10.2, Schüler): f0 below 2 % darkens f90.
+float rgF90(vec3 f0) { return clamp(50.0 * dot(f0, vec3(0.33)), 0.0, 1.0); }
+
 vec3 rgStandardBrdf(vec3 N, vec3 V, vec3 L, vec3 diffuseColor, vec3 f0, float linearRoughness) {
     float NdotV = abs(dot(N, V)) + 1e-5;  // lst:2: avoids artefacts at grazing view angles
     vec3 H = normalize(V + L);
@@ -75,7 +78,7 @@ vec3 rgStandardBrdf(vec3 N, vec3 V, vec3 L, vec3 diffuseColor, vec3 f0, float li
     float NdotH = clamp(dot(N, H), 0.0, 1.0);
     float NdotL = clamp(dot(N, L), 0.0, 1.0);
     float alpha = max(linearRoughness * linearRoughness, 1e-3);  // a perfect mirror has no highlight of finite size
-    float f90 = clamp(50.0 * dot(f0, vec3(0.33)), 0.0, 1.0);     // specular micro-occlusion (seed 002 §4.10.2, Schüler): f0 below 2% darkens f90
+    float f90 = rgF90(f0);
     vec3 F = F_Schlick(f0, f90, LdotH);
     float Vis = V_SmithGGXCorrelated(NdotL, NdotV, alpha);
     float D = D_GGX(NdotH, alpha);

@@ -524,7 +524,7 @@ vec3 rgSpecularBrdf(vec3 N, vec3 V, vec3 L, vec3 f0, float linearRoughness) {
     float NdotH = clamp(dot(N, H), 0.0, 1.0);
     float NdotL = clamp(dot(N, L), 0.0, 1.0);
     float alpha = max(linearRoughness * linearRoughness, 1e-3);
-    float f90 = clamp(50.0 * dot(f0, vec3(0.33)), 0.0, 1.0);
+    float f90 = rgF90(f0);
     vec3 F = F_Schlick(f0, f90, LdotH);
     return D_GGX(NdotH, alpha) * F * V_SmithGGXCorrelated(NdotL, NdotV, alpha) / RG_PI * NdotL;
 }
@@ -536,7 +536,7 @@ vec3 rgStandardLighting(RgLightSample s, vec3 N, vec3 V, vec3 diffuseColor, vec3
     float diffuse = s.ltcAlbedo.z > 0.0 ? s.ltcAlbedo.z / RG_PI : rgDiffuseBrdf(N, V, s.Ld, linearRoughness);
     vec3 specular;
     if (s.ltcAlbedo.x + s.ltcAlbedo.y > 0.0) {
-        float f90 = clamp(50.0 * dot(f0, vec3(0.33)), 0.0, 1.0);
+        float f90 = rgF90(f0);
         specular = s.specularLtc * (f0 * s.ltcAlbedo.x + f90 * s.ltcAlbedo.y);
     } else {
         specular = rgSpecularBrdf(N, V, s.Ls, f0, linearRoughness) * s.specularIlluminance * s.specularNormalisation;

@@ -145,6 +145,17 @@ struct Shading {
     vec3 lobeProbability;  // of picking the diffuse, GGX and coat lobes for the BRDF sample
 };
 
+// A layer's view terms about its normal N: lst:2's |N·V| + 1e-5, and for sampling V above the
+// surface — where N faces away from the camera, the (arbitrary but consistent) sampling view is V
+// raised to a grazing 1e-3 above the horizon — with its N·V and the tangent frame around N.
+void viewTerms(vec3 N, vec3 V, out float NdotV, out vec3 Vs, out float NdotVs, out vec3 T, out vec3 B) {
+    NdotV = abs(dot(N, V)) + 1e-5;
+    float rawNdotV = dot(N, V);
+    Vs = rawNdotV > 1e-3 ? V : normalize(V + (1e-3 - rawNdotV) * N);
+    NdotVs = max(dot(N, Vs), 1e-3);
+    rgBasis(N, T, B);
+}
+
 // rgStandardBrdf: (diffuse · Fr_DisneyDiffuse / π + D · F · Vis / π) · ⟨n·l⟩, term for term. With a
 // coat (materials/clearcoat_shading.glsl, per direction, about the coat's normal): base · (1 − Fc) + D_c · Vis_c · Fc / π · ⟨n·l⟩,
 // Fc = F_Schlick(0.04, 1, ⟨l·h⟩) · coatStrength.
@@ -498,16 +509,10 @@ void main() {
         s.diffuseColor = g.baseColor;
         s.f0 = g.f0;
     }
-    s.f90 = clamp(50.0 * dot(s.f0, vec3(0.33)), 0.0, 1.0);
+    s.f90 = rgF90(s.f0);
     s.linearRoughness = 1.0 - g.smoothness;
     s.alpha = max(s.linearRoughness * s.linearRoughness, 1e-3);
-    s.NdotV = abs(dot(s.N, s.V)) + 1e-5;
-    // Sampling needs V above the surface; where the G-buffer normal faces away from the camera the
-    // (arbitrary but consistent) sampling view is V raised to a grazing 1e-3 above the horizon.
-    float rawNdotV = dot(s.N, s.V);
-    s.Vs = rawNdotV > 1e-3 ? s.V : normalize(s.V + (1e-3 - rawNdotV) * s.N);
-    s.NdotVs = max(dot(s.N, s.Vs), 1e-3);
-    rgBasis(s.N, s.T, s.B);
+    viewTerms(s.N, s.V, s.NdotV, s.Vs, s.NdotVs, s.T, s.B);
     // The clear coat's own channels (materials/clearcoat.lua's layout): strength, smoothness and
     // normal, with the coat's view terms and sampling frame as the base's above.
     s.coat = false;
@@ -523,11 +528,7 @@ void main() {
         s.coatN = coat.coatNormal;
     }
 #endif
-    s.coatNdotV = abs(dot(s.coatN, s.V)) + 1e-5;
-    float rawCoatNdotV = dot(s.coatN, s.V);
-    s.coatVs = rawCoatNdotV > 1e-3 ? s.V : normalize(s.V + (1e-3 - rawCoatNdotV) * s.coatN);
-    s.coatNdotVs = max(dot(s.coatN, s.coatVs), 1e-3);
-    rgBasis(s.coatN, s.coatT, s.coatB);
+    viewTerms(s.coatN, s.V, s.coatNdotV, s.coatVs, s.coatNdotVs, s.coatT, s.coatB);
     s.sheenColor = vec3(0.0);
     s.sheenAlpha = 1.0;
     s.sheenScaling = 1.0;
