@@ -84,6 +84,7 @@ Result<void> GpuScene::setSetting(const std::string& name, const Value& value) {
 
 std::optional<bool> GpuScene::feature(const std::string& name) const {
     if (name == "lightmap") return hasLightmap();
+    if (name == "motion") return moves();
     if (name.starts_with(kMaterialFeature)) {
         const std::string_view model = std::string_view(name).substr(kMaterialFeature.size());
         return std::any_of(m_draws.begin(), m_draws.end(), [&](const DrawItem& d) {
@@ -202,8 +203,9 @@ Result<void> GpuScene::createFrameData(Context& ctx, const GpuSceneOptions& opti
     return {};
 }
 
-std::pair<uint32_t, uint32_t*> GpuScene::reserveInstances(uint32_t slot, uint32_t count) const {
-    if (!m_instancing) return {0, nullptr};
+std::pair<uint32_t, uint32_t*> GpuScene::reserveInstances(uint32_t slot, uint32_t count,
+                                                          bool always) const {
+    if (!m_instancing && !always) return {0, nullptr};
     const Buffer& b = m_instanceBuffers[slot];
     const uint32_t first = m_instanceCursor[slot];
     if (first + uint64_t(count) > b.size() / 4) return {0, nullptr};
@@ -268,6 +270,7 @@ Result<void> GpuScene::selectCamera(const std::string& name) {
 }
 
 void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
+    updateMoving(slot, !m_previousViewProj.has_value());
     m_frameCamera = camera().at(m_time);
     const Camera& c = m_frameCamera;
     const float aspect = static_cast<float>(width) / static_cast<float>(std::max(1u, height));
@@ -307,10 +310,16 @@ void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
     u.position = glm::vec4(c.position, 1.0f);
     u.viewport = glm::vec4(static_cast<float>(width), static_cast<float>(height),
                            1.0f / static_cast<float>(width), 1.0f / static_cast<float>(height));
-    u.sceneMin = glm::vec4(m_scene.boundsMin, 1.0f);
-    u.sceneMax = glm::vec4(m_scene.boundsMax, 1.0f);
+    // The bounds at load and wherever the moving nodes are now (the sun's cascades take their
+    // depth range from them).
+    u.sceneMin =
+        glm::vec4(moves() ? glm::min(m_scene.boundsMin, m_movingMin) : m_scene.boundsMin, 1.0f);
+    u.sceneMax =
+        glm::vec4(moves() ? glm::max(m_scene.boundsMax, m_movingMax) : m_scene.boundsMax, 1.0f);
     u.previousViewProj = m_previousViewProj.value_or(u.unjitteredViewProj);
-    u.temporal = glm::vec4(u.previousViewProj != u.unjitteredViewProj ? 1.0f : 0.0f,
+    // Pixels moved when the camera or a node did (the fullscreen kind's camera = "moved" passes:
+    // TAA's reprojection).
+    u.temporal = glm::vec4(u.previousViewProj != u.unjitteredViewProj || m_nodesMoved ? 1.0f : 0.0f,
                            static_cast<float>(m_framesSinceCut++), 0.0f, 0.0f);
     m_previousViewProj = u.unjitteredViewProj;
     std::memcpy(m_cameraBuffers[slot].mapped(), &u, sizeof u);
@@ -362,8 +371,8 @@ VkBuffer GpuScene::bindingBuffer(std::string_view name, uint32_t slot) const {
     if (name == "ShadowViews") return shadowViewBuffer(slot);
     if (name == "Decals") return decalBuffer();
     if (name == "Probes") return probeBuffer();
-    if (name == "SceneDraws") return drawBuffer();
-    if (name == "SceneTransforms") return m_transforms.buffer();
+    if (name == "SceneDraws") return drawBuffer(slot);
+    if (name == "SceneTransforms") return m_transforms[m_transforms.size() > 1 ? slot : 0].buffer();
     if (name == "SceneInstances") return m_instanceBuffers[slot].buffer();
     if (name == "SceneBvh") return bvhBuffer();
     if (name == "SceneEnvironmentCdf") return environmentCdfBuffer();

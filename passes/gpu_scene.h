@@ -125,8 +125,9 @@ public:
     // "material:MODEL", whether a draw's material is of that pipeline material (any name: false
     // for one the scene does not draw) — what render_loop.lua's `opaque` copy exists for.
     std::optional<bool> feature(const std::string& name) const override;
+    // and "motion", whether a node moves (Node::dynamic): render_loop.lua's motion target.
     std::vector<std::string> featureNames() const override {
-        return {"lightmap", "material:MODEL"};
+        return {"lightmap", "material:MODEL", "motion"};
     }
     static constexpr const char* kShadowViewsExtent = "shadow_views";
     // The draws that cast shadows, and their batches: casters sharing a mesh (vertex offset,
@@ -222,16 +223,33 @@ public:
     // The draws as shaders see them (`SceneDraws`, lib/scene.glsl RgDraw): each draw's world box,
     // index range and vertex offset, and whether it casts shadows (opaque): what a culling pass
     // needs to write indirect draw commands (shaders/shadows/cascade_cull.comp).
-    VkBuffer drawBuffer() const { return m_drawBuffer.buffer(); }
+    // Frame slot `slot`'s: a scene whose nodes move writes their boxes there each frame.
+    VkBuffer drawBuffer(uint32_t slot) const {
+        return m_drawBuffers[m_drawBuffers.size() > 1 ? slot : 0].buffer();
+    }
+    // Nodes that move (Node::dynamic: a path, or placed by setNodeTransform): updateFrame places
+    // them at the frame's time, their draws' transforms, boxes and levels of detail with them,
+    // and keeps each draw's last world matrix in SceneTransforms for the motion the camera's
+    // passes write (scene.vert with RG_MOTION).
+    bool moves() const { return !m_moving.empty(); }
+    bool drawMoves(size_t d) const { return d < m_drawMoves.size() && m_drawMoves[d] != 0; }
+    // Places dynamic node `name` at `world` from the next frame (its path, if it has one, no
+    // longer applies). An error for a node the scene lacks or one declared static.
+    Result<void> setNodeTransform(const std::string& name, const glm::mat4& world);
     // Instanced camera draws (scene.vert): `SceneTransforms` holds per draw its world matrix, the
-    // normal matrix's three columns and the lightmap rect (8 vec4); `SceneInstances`, per frame
+    // normal matrix's three columns, the lightmap rect and the last frame's world matrix
+    // (kTransformWords vec4; per frame slot when nodes move); `SceneInstances`, per frame
     // slot, lists draw indices that a run of draws sharing a mesh, level of detail and material
     // is drawn from as one instanced draw (firstInstance = the run's first entry, so
     // gl_InstanceIndex indexes the list). reserveInstances hands out `count` entries of slot
     // `slot`'s list for this frame — their first index and where to write them — or a null
     // pointer when the list is full or RG_INSTANCING=0 (the caller then draws one at a time);
     // updateFrame empties it.
-    std::pair<uint32_t, uint32_t*> reserveInstances(uint32_t slot, uint32_t count) const;
+    // A draw that moves always takes the list (`always`): only there does scene.vert find its
+    // last frame's transform.
+    std::pair<uint32_t, uint32_t*> reserveInstances(uint32_t slot, uint32_t count,
+                                                    bool always = false) const;
+    static constexpr uint32_t kTransformWords = RG_TRANSFORM_WORDS;  // shaders/lib/limits.h
     // Whether draws that share a mesh are drawn instanced (RG_INSTANCING=0: one at a time, the
     // camera's and the sun's shadows' alike).
     bool instancing() const { return m_instancing; }
@@ -319,7 +337,32 @@ private:
     std::vector<gpu::Buffer> m_materialBuffers;
     std::vector<VkDescriptorSet> m_materialSets;
     std::vector<gpu::Buffer> m_cameraBuffers, m_lightBuffers, m_shadowViewBuffers;
-    gpu::Buffer m_transforms;                  // SceneTransforms: 8 vec4 per draw
+    // SceneTransforms (kTransformWords vec4 per draw) and SceneDraws: one, or one per frame slot
+    // when nodes move.
+    std::vector<gpu::Buffer> m_transforms, m_drawBuffers;
+    // Draw d's record of SceneTransforms at `out`: `world` (its world matrix now), its normal
+    // matrix and lightmap rect, and `previous`, the last frame's world matrix.
+    void writeTransform(glm::vec4* out, size_t d, const glm::mat4& previous) const;
+    Result<void> perSlot(gpu::Context& ctx, const char* name, const std::vector<glm::vec4>& words,
+                         std::vector<gpu::Buffer>& out) const;
+    // The nodes that move (gpu_scene_motion.cpp): their draws and line draws, each draw's box in
+    // its mesh's space, and where setNodeTransform placed the node.
+    struct Moving {
+        size_t node = 0;
+        uint32_t firstDraw = 0, drawCount = 0, firstLine = 0, lineCount = 0;
+        std::vector<std::pair<glm::vec3, glm::vec3>> boxes;
+        std::optional<glm::mat4> placed;
+    };
+    std::vector<Moving> m_moving;
+    std::vector<uint8_t> m_drawMoves;                // per draw: 1 when its node moves
+    glm::vec3 m_movingMin{0.0f}, m_movingMax{0.0f};  // the moving draws' boxes this frame
+    bool m_nodesMoved =
+        false;  // a node's transform differs from the last frame's (Camera.temporal.x)
+    // Records node `node`'s draws from firstDraw and line draws from firstLine (uploadGeometry).
+    void addMoving(size_t node, uint32_t firstDraw, uint32_t firstLine);
+    // Places the moving nodes for this frame and writes slot `slot`'s records of their draws;
+    // `fresh` (the first frame, a cut): the last frame's transforms are this frame's.
+    void updateMoving(uint32_t slot, bool fresh);
     std::vector<ShadowBatch> m_shadowBatches;  // the casters by mesh and cull mode
     std::vector<uint32_t> m_cameraBatch;       // per draw: its mesh range and material's batch
     // Per draw what updateFrame's culling and level choice read, packed (40 bytes rather than a
@@ -343,8 +386,7 @@ private:
     mutable gpu::Buffer m_bvh;                           // bvhBuffer(), once built
     Result<VkBuffer> makeBvhBuffer() const;              // bvhBuffer(), or why it failed
     Result<VkBuffer> makeEnvironmentCdfBuffer() const;   // environmentCdfBuffer(), or why it failed
-    ContentHash m_staticHash;  // what was uploaded at creation (contentHash)
-    gpu::Buffer m_drawBuffer;
+    ContentHash m_staticHash;        // what was uploaded at creation (contentHash)
     std::vector<char> m_drawInView;  // per draw: its box meets the camera's frustum (updateFrame)
     std::vector<uint8_t> m_drawLod;  // per draw: the level of detail viewLod gives (updateFrame)
     bool m_levelsOfDetail = true;    // GpuSceneOptions::levelsOfDetail

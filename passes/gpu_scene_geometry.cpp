@@ -35,6 +35,20 @@ std::pair<glm::vec3, glm::vec3> worldBox(const std::vector<Vertex>& vertices,
 
 }  // namespace
 
+// A host-visible storage buffer holding `words` — one per frame slot when nodes move (updateMoving
+// writes their draws' records each frame), else one for every slot.
+Result<void> GpuScene::perSlot(Context& ctx, const char* name, const std::vector<glm::vec4>& words,
+                               std::vector<Buffer>& out) const {
+    for (uint32_t slot = 0; slot < (m_moving.empty() ? 1 : ctx.framesInFlight()); ++slot) {
+        auto buf = Buffer::create(ctx, name, words.size() * sizeof(glm::vec4),
+                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+        if (!buf) return std::unexpected(buf.error());
+        std::memcpy(buf->mapped(), words.data(), words.size() * sizeof(glm::vec4));
+        out.push_back(std::move(*buf));
+    }
+    return {};
+}
+
 Result<void> GpuScene::uploadGeometry(Context& ctx) {
     std::vector<Vertex> vertices;
     std::vector<uint32_t> indices;
@@ -82,8 +96,11 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
             }
         meshStrokes.push_back(std::move(strokes));
     }
-    for (const Node& node : m_scene.nodes) {
+    for (size_t n = 0; n < m_scene.nodes.size(); ++n) {
+        const Node& node = m_scene.nodes[n];
         if (node.mesh < 0 || static_cast<size_t>(node.mesh) >= meshRanges.size()) continue;
+        const auto firstDraw = static_cast<uint32_t>(m_draws.size());
+        const auto firstLine = static_cast<uint32_t>(m_lineDraws.size());
         for (LineDrawItem stroke : meshStrokes[static_cast<size_t>(node.mesh)]) {
             stroke.world = node.world;
             m_lineDraws.push_back(stroke);
@@ -110,6 +127,7 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
                         item.lods[item.lodCount++] = {lod.firstIndex, lod.indexCount,
                                                       lod.error * scale};
             }
+        if (node.dynamic) addMoving(n, firstDraw, firstLine);
     }
     m_drawCull.resize(m_draws.size());
     for (size_t d = 0; d < m_draws.size(); ++d) {
@@ -183,10 +201,7 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
             }
             for (int k = 0; k < 4; ++k) w[6][k] = std::bit_cast<float>(shadowWord[d][k]);
         }
-        auto buf = Buffer::create(ctx, "scene.draws", words.size() * sizeof(glm::vec4),
-                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-        if (!buf) return std::unexpected(buf.error());
-        std::memcpy(buf->mapped(), words.data(), words.size() * sizeof(glm::vec4));
+        if (auto r = perSlot(ctx, "scene.draws", words, m_drawBuffers); !r) return r;
         m_staticHash.bytes(words.data(), words.size() * sizeof(glm::vec4));
         for (const DrawItem& item : m_draws) m_staticHash.bytes(&item.world, sizeof item.world);
         for (const LineDrawItem& item : m_lineDraws) {
@@ -196,23 +211,15 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
             m_staticHash.bytes(words, sizeof words);
             m_staticHash.bytes(&item.world, sizeof item.world);
         }
-        m_drawBuffer = std::move(*buf);
     }
-    // SceneTransforms: per draw what scene.vert's push constants hold for a single draw.
+    // SceneTransforms: per draw what scene.vert's push constants hold for a single draw, then the
+    // last frame's world matrix (the same for a draw that does not move): kTransformWords vec4.
     {
-        std::vector<glm::vec4> t(8 * std::max<size_t>(m_draws.size(), 1), glm::vec4(0.0f));
-        for (size_t d = 0; d < m_draws.size(); ++d) {
-            const DrawItem& item = m_draws[d];
-            glm::vec4* w = &t[8 * d];
-            for (int c = 0; c < 4; ++c) w[c] = item.world[c];
-            for (int c = 0; c < 3; ++c) w[4 + c] = item.normalMatrix[c];
-            w[7] = item.lightmapRect;
-        }
-        auto buf = Buffer::create(ctx, "scene.transforms", t.size() * sizeof(glm::vec4),
-                                  VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-        if (!buf) return std::unexpected(buf.error());
-        std::memcpy(buf->mapped(), t.data(), t.size() * sizeof(glm::vec4));
-        m_transforms = std::move(*buf);
+        std::vector<glm::vec4> t(kTransformWords * std::max<size_t>(m_draws.size(), 1),
+                                 glm::vec4(0.0f));
+        for (size_t d = 0; d < m_draws.size(); ++d)
+            writeTransform(&t[kTransformWords * d], d, m_draws[d].world);
+        if (auto r = perSlot(ctx, "scene.transforms", t, m_transforms); !r) return r;
     }
     if (vertices.empty()) {  // keep valid (empty) buffers for an empty scene
         vertices.resize(1);
@@ -249,7 +256,9 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
 
 GpuScene::Memory GpuScene::memory() const {
     Memory m;
-    m.geometry = m_vertices.size() + m_indices.size() + m_drawBuffer.size() + m_bvh.size();
+    m.geometry = m_vertices.size() + m_indices.size() + m_bvh.size();
+    for (const auto* list : {&m_drawBuffers, &m_transforms})
+        for (const Buffer& b : *list) m.geometry += b.size();
     auto bytes = [&](const gpu::Image& image) -> uint64_t {
         return image ? gpu::Image::requirements(*m_ctx, image.desc()).size : 0;
     };

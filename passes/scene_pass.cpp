@@ -162,6 +162,9 @@ Result<void> SceneDraws::addGroup(PassSetup& setup, const PassMaterial& info,
     g.info = info;
     ShaderRequest vert;
     vert.path = vertex;
+    if (!m_motionTarget.empty() &&
+        std::find(attachments.begin(), attachments.end(), m_motionTarget) != attachments.end())
+        vert.defines.emplace_back("RG_MOTION", "1");
     frag.defines.emplace_back("RG_TEXTURES", std::to_string(textures & kTextureBits));
     frag.defines.emplace_back("RG_ALPHA_MASK", (textures & kAlphaMaskVariant) ? "1" : "0");
     g.program = std::make_unique<ShaderProgram>();
@@ -317,8 +320,12 @@ void CameraScenePass::drawGroups(RecordContext& rc, const DrawOrder& order) {
         // The level of detail for the camera (GpuScene::viewLod: at most a pixel of error).
         const DrawLod& lod = scene.viewLod(first);
         const auto count = static_cast<uint32_t>(end - a);
-        auto [base, list] = count > 1 ? scene.reserveInstances(rc.frame.slot, count)
-                                      : std::pair<uint32_t, uint32_t*>{0, nullptr};
+        // A draw that moves goes through the list even alone: its last frame's transform is
+        // there (scene.vert's motion).
+        bool moves = false;
+        for (size_t k = a; k < end && !moves; ++k) moves = scene.drawMoves(order[k].second);
+        auto [base, list] = count > 1 || moves ? scene.reserveInstances(rc.frame.slot, count, moves)
+                                               : std::pair<uint32_t, uint32_t*>{0, nullptr};
         if (list) {
             // One instanced draw: scene.vert reads each instance's transform (all-zero push
             // constants say so) through this frame's instance list.
@@ -350,6 +357,7 @@ void CameraScenePass::drawGroups(RecordContext& rc, const DrawOrder& order) {
 Result<void> GBufferScenePass::prepareDraws(PassSetup& setup) {
     const PassDesc& desc = setup.desc;
     m_specularTarget = desc.params["lightmap_specular"].asString();
+    m_motionTarget = desc.params["motion"].asString();
     if (auto r = findAttachments(desc, /*depthRead=*/false, kWritesDepth); !r) return r;
     const std::vector<std::string> attachments = colorNames();
     sizeFromDepth(setup);
@@ -381,9 +389,10 @@ Result<void> GBufferScenePass::prepareDraws(PassSetup& setup) {
                 [kTextureBits |
                  kAlphaMaskVariant];  // no draws: still compiled, so a broken material fails at load
         for (auto& [mask, draws] : variants)
-            if (auto r = addGroup(setup, info, fragmentSource(info, attachments, m_specularTarget),
-                                  "material_" + info.name + ".frag", mask, std::move(draws),
-                                  attachments);
+            if (auto r = addGroup(
+                    setup, info,
+                    fragmentSource(info, attachments, m_specularTarget, m_motionTarget),
+                    "material_" + info.name + ".frag", mask, std::move(draws), attachments);
                 !r)
                 return r;
     }
@@ -442,7 +451,8 @@ VkPipelineColorBlendAttachmentState GBufferScenePass::colorBlend(const Group& g,
     const bool filled = g.info.fills.empty() || std::find(g.info.fills.begin(), g.info.fills.end(),
                                                           target) != g.info.fills.end();
     // A material writes only the targets of its layout it fills (the fix-up pass does the rest).
-    b.colorWriteMask = (ofLayout && filled) || target == m_specularTarget ? 0xfu : 0u;
+    b.colorWriteMask =
+        (ofLayout && filled) || target == m_specularTarget || target == m_motionTarget ? 0xfu : 0u;
     return b;
 }
 
@@ -451,16 +461,22 @@ Result<void> CameraScenePass::findOverlayAttachments(const PassSetup& setup,
     const std::string missing =
         "a " + mode + " 'scene' pass reads the depth buffer ({ \"depth\", as = \"depth\" })";
     if (auto r = findAttachments(setup.desc, /*depthRead=*/true, missing.c_str()); !r) return r;
-    if (m_colors.size() != 1)
-        return fail(ErrorCode::InvalidInput,
-                    passPrefix(setup.desc) + "a " + mode +
-                        " 'scene' pass writes one colour target (the HDR, loaded)");
+    // The HDR, and the motion target the forward pass may write beside it.
+    const bool withMotion = m_colors.size() == 2 && m_colors[1].resource == m_motionTarget;
+    if (m_colors.size() != 1 && !withMotion)
+        return fail(
+            ErrorCode::InvalidInput,
+            passPrefix(setup.desc) + "a " + mode +
+                " 'scene' pass writes one colour target (the HDR, loaded)" +
+                (m_motionTarget.empty() ? ""
+                                        : ", then its motion target '" + m_motionTarget + "'"));
     sizeFromDepth(setup);
     return {};
 }
 
 Result<void> ForwardScenePass::prepareDraws(PassSetup& setup) {
     const PassDesc& desc = setup.desc;
+    m_motionTarget = desc.params["motion"].asString();
     if (auto r = findOverlayAttachments(setup, "forward"); !r) return r;
     const std::vector<std::string> attachments = colorNames();
     // One shader per material that has blended draws (and per set of textures); the draws
@@ -494,8 +510,8 @@ Result<void> ForwardScenePass::prepareDraws(PassSetup& setup) {
                             info.layout + " g, vec3 position, vec3 V, ivec2 pixel)");
         for (auto& [mask, draws] : variants)
             if (auto r =
-                    addGroup(setup, info, forwardSource(info), "forward_" + info.name + ".frag",
-                             mask, std::move(draws), attachments);
+                    addGroup(setup, info, forwardSource(info, attachments, m_motionTarget),
+                             "forward_" + info.name + ".frag", mask, std::move(draws), attachments);
                 !r)
                 return r;
     }
@@ -559,6 +575,11 @@ PassKindInfo scenePassKind() {
              {"lightmap_specular", "written",
               "an attachment it writes that receives from every material the baked lightmap's "
               "specular radiance along the pixel's reflection (black without a lightmap)"},
+             {"motion", "written",
+              "an attachment it writes (rg16f) that receives each pixel's screen motion since "
+              "the last frame, in uv units, from the draws' last world matrices and the last "
+              "frame's camera (the G-buffer and forward passes; the forward pass blends it with "
+              "the surface's opacity); its vertex shader gets RG_MOTION"},
              {"defines", "table",
               "preprocessor defines for its shaders (the forward pass: RG_IBL with "
               "scripts/ibl.lua's "

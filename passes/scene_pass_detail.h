@@ -115,6 +115,9 @@ protected:
 
     std::vector<Group> m_groups;
     std::vector<Access> m_colors;
+    // params.motion (the G-buffer and forward modes): the screen motion's attachment, or "";
+    // while the pass writes it, scene.vert gets RG_MOTION.
+    std::string m_motionTarget;
     std::optional<Access> m_depth;
     uint32_t m_width = 0, m_height = 0;
     Format m_depthFormat = Format::D32F;

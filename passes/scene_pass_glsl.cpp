@@ -76,12 +76,27 @@ std::string surfaceInclude(const PassMaterial& m) {
     return s.str();
 }
 
+// The location of attachment `name` among `attachments`, −1 without one.
+int locationOf(const std::vector<std::string>& attachments, const std::string& name) {
+    const auto it =
+        name.empty() ? attachments.end() : std::find(attachments.begin(), attachments.end(), name);
+    return it == attachments.end() ? -1 : static_cast<int>(it - attachments.begin());
+}
+
+// The motion target's output and scene.vert's two positions it is found from (RG_MOTION).
+std::string motionOutput(int location) {
+    if (location < 0) return "";
+    return "#include \"lib/motion.glsl\"\nlayout(location = 7) in vec4 motionNow;\n"
+           "layout(location = 8) in vec4 motionBefore;\nlayout(location = " +
+           std::to_string(location) + ") out vec4 rgMotionTarget;\n";
+}
+
 }  // namespace
 
 // The fragment shader of one material: sample the surface, run the material's surface
 // function, pack with the layout's generated code into the pass's attachments.
 std::string fragmentSource(const PassMaterial& m, const std::vector<std::string>& attachments,
-                           const std::string& specularTarget) {
+                           const std::string& specularTarget, const std::string& motionTarget) {
     std::ostringstream s;
     s << materialPrologue(m, "G-buffer shader");
     s << "#include \"lib/scene.glsl\"\n#include \"lib/material.glsl\"\n#include "
@@ -101,14 +116,12 @@ std::string fragmentSource(const PassMaterial& m, const std::vector<std::string>
         s << "layout(location = " << location << ") out " << (m.targetInteger[t] ? "uvec4" : "vec4")
           << " target" << t << ";\n";
     }
-    // The lightmap's specular radiance, when the pass writes it.
-    const auto spec = specularTarget.empty()
-                          ? attachments.end()
-                          : std::find(attachments.begin(), attachments.end(), specularTarget);
-    const int specularLocation =
-        spec == attachments.end() ? -1 : static_cast<int>(spec - attachments.begin());
+    // The lightmap's specular radiance and the motion, when the pass writes them.
+    const int specularLocation = locationOf(attachments, specularTarget);
     if (specularLocation >= 0)
         s << "layout(location = " << specularLocation << ") out vec4 lightmapSpecular;\n";
+    const int motionLocation = locationOf(attachments, motionTarget);
+    s << motionOutput(motionLocation);
     s << "void main() {\n"
       << "    RgSurface s = rgSampleSurface(worldPosition, worldNormal, worldTangent, uv0, uv1, "
          "vertexColor, "
@@ -129,6 +142,8 @@ std::string fragmentSource(const PassMaterial& m, const std::vector<std::string>
              "lightmapUv, gl_FrontFacing, "
              "normalize(camera.position.xyz - worldPosition)), 1.0);\n"
           << "#else\n    lightmapSpecular = vec4(0.0);\n#endif\n";
+    if (motionLocation >= 0)
+        s << "    rgMotionTarget = vec4(rgClipMotion(motionNow, motionBefore), 0.0, 1.0);\n";
     s << "}\n";
     return s.str();
 }
@@ -138,7 +153,9 @@ std::string fragmentSource(const PassMaterial& m, const std::vector<std::string>
 // into its layout's unpacked form, then lit by its lighting path's shading function (rgShade,
 // the same function the path's deferred lighting pass calls) over every light of the scene,
 // written pre-exposed with the surface's opacity.
-std::string forwardSource(const PassMaterial& m) {
+std::string forwardSource(const PassMaterial& m, const std::vector<std::string>& attachments,
+                          const std::string& motionTarget) {
+    const int motionLocation = locationOf(attachments, motionTarget);
     std::ostringstream s;
     s << materialPrologue(m, "forward shading");
     s << "#include \"lib/material.glsl\"\n#include \"lib/lighting.glsl\"\n#include "
@@ -154,7 +171,7 @@ std::string forwardSource(const PassMaterial& m) {
          "uv0;\nlayout(location = 4) in vec2 uv1;\n"
       << "layout(location = 5) in vec2 lightmapUv;\nlayout(location = 6) in vec4 vertexColor;\n"
       << "layout(location = 0) out vec4 color;\n"
-      << "void main() {\n"
+      << motionOutput(motionLocation) << "void main() {\n"
       << "    RgSurface s = rgSampleSurface(worldPosition, worldNormal, worldTangent, uv0, uv1, "
          "vertexColor, "
          "gl_FrontFacing);\n"
@@ -162,8 +179,11 @@ std::string forwardSource(const PassMaterial& m) {
       << " g = rgSurface(s);\n"
       << "    vec3 luminance = rgShade(g, worldPosition, rgViewDirection(worldPosition), "
          "ivec2(gl_FragCoord.xy));\n"
-      << "    color = vec4(luminance * rgPreExposure(ex.state, params.initial_ev100), s.opacity);\n"
-      << "}\n";
+      << "    color = vec4(luminance * rgPreExposure(ex.state, params.initial_ev100), "
+         "s.opacity);\n";
+    if (motionLocation >= 0)
+        s << "    rgMotionTarget = vec4(rgClipMotion(motionNow, motionBefore), 0.0, s.opacity);\n";
+    s << "}\n";
     return s.str();
 }
 

@@ -63,11 +63,11 @@ rg.pass "ao_blur" {
 -- Over frames: gtao turns its directions every frame (RG_AO_TEMPORAL) and `ao_temporal` blends
 -- each texel's filtered AO into its reprojected history (passes/ao_temporal.frag; the history
 -- kept by `ao_history_keep`, emptied by a camera cut or a rebuilt gtao).
-rg.pass "ao_temporal" {
+rg.pass "ao_temporal" (require("motion").reads {
     kind = "fullscreen", shader = "passes/ao_temporal.frag", reads = { "ao_blurred", "ao_history", { "ao_mask", as = "depth" } },
     writes = { "ao_filtered" }, insert = { after = "ao_blur" }, filter = "linear",
     depth = { compare = "greater", value = 0.5 }, clear = { 1, 0, 1, 0 },
-}
+})
 rg.pass "ao_upsample" {
     kind = "fullscreen", shader = "passes/ao_upsample.frag", reads = { "ao_filtered", "depth" }, writes = { "ssao" },
     insert = { after = "ao_temporal" }, filter = "nearest",

@@ -112,7 +112,7 @@ end
 -- kept by the pass `taa_history_keep` while TAA reads it, emptied when the passes writing `taa`
 -- change), reprojected by the camera's motion from `depth`. With another antialiasing, `taa_off`
 -- copies the HDR through instead (post.frame switches them). Returns the image the chain goes on with.
-local function temporal(input, depth)
+local function temporal(input, depth, motion)
     rg.param "antialiasing" { type = "choice", default = post.antialiasing, choices = { "taa", "fxaa", "none" },
                               scene = "antialiasing",
                               doc = "taa: temporal, over jittered frames; fxaa: FXAA 3.11 on the display image; none" }
@@ -132,11 +132,16 @@ local function temporal(input, depth)
         reads = { input, "taa_history", { "exposure", as = "uniform" } }, writes = { "taa" },
         bind = { source = input },
     }
+    local reads = { input, depth, "taa_history", { "exposure", as = "uniform" } }
+    local bind = { source = input, depth = depth }
+    if motion then  -- objects' motion (render_loop.lua's target, while the scene has moving nodes)
+        table.insert(reads, motion)
+        bind.motion = motion
+    end
     rg.pass "taa_moving" {
         kind = "fullscreen", shader = "post/taa.frag", camera = "moved", filter = "linear", enabled = on,
-        defines = { RG_TAA_MOVING = true },
-        reads = { input, depth, "taa_history", { "exposure", as = "uniform" } },
-        writes = { { "taa", load = true } }, bind = { source = input, depth = depth },
+        defines = { RG_TAA_MOVING = true, RG_MOTION = motion and true or nil },
+        reads = reads, writes = { { "taa", load = true } }, bind = bind,
     }
     rg.pass "taa_off" { kind = "copy", reads = { input }, writes = { "taa" }, after = { "taa_moving" }, enabled = not on }
     post.taa = true
@@ -165,7 +170,7 @@ end
 function post.chain(o)
     local input, output = assert(o.input, "post.chain: input"), assert(o.output, "post.chain: output")
     post.chained = true
-    if o.depth and post.declared then input = temporal(input, o.depth) end
+    if o.depth and post.declared then input = temporal(input, o.depth, o.motion) end
     input = insert_passes("linear", input)
     local levels = o.bloom_levels or 5
     local meter = levels >= 1 and "bloom_down1" or input

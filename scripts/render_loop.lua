@@ -9,6 +9,14 @@
 --   loop.sky_and_forward()                         -- the sky, then blended materials
 --   function rg.frame(ctx) loop.frame(ctx) end     -- skips the decal passes without decals
 local rg = require "rg"
+-- Each pixel's screen motion since the last frame (scripts/motion.lua), for TAA (post.chain's
+-- `motion`), SSR's and AO's histories to reproject by: written by the G-buffer pass from every
+-- draw's last world matrix and the last frame's camera, and by the forward pass over it for
+-- blended surfaces (with their opacity). It exists only while a node of the scene moves: where
+-- nothing moves, a pixel's motion is the camera's alone and is found exactly from the depth.
+-- Declared first: the material packages' lighting passes bring SSR's and AO's passes, which read it.
+require("motion").declare()
+
 require "disney"     -- the standard material, its layout (tbl:2), stencil class and lighting path
 require "clearcoat"  -- a game team's clear-coat material and its lighting path
 require "foliage"    -- a game team's foliage material and its G-buffer fix-up
@@ -62,9 +70,9 @@ loop.specular_aa = { specular_aa = "RG_SPECULAR_AA", specular_aa_variance = "RG_
 
 -- It reads the exposure state for emission given relative to the exposure (a scene material's
 -- emissive_unit = "ev", glTF's emissive): 2^(EV100 + EC − 3), EV100 the last frame's.
-rg.pass "gbuffer" { kind = "scene", writes = { "GB0", "GB1", "GB2", "GB3", "lightmap_specular", "depth" },
+rg.pass "gbuffer" { kind = "scene", writes = { "GB0", "GB1", "GB2", "GB3", "lightmap_specular", "motion", "depth" },
     reads = { { "exposure", as = "uniform" } }, defines = { RG_EMISSIVE_EV = true },
-    lightmap_specular = "lightmap_specular", switches = loop.specular_aa }
+    lightmap_specular = "lightmap_specular", motion = "motion", switches = loop.specular_aa }
 
 -- Deferred decals (seed 000 §3.3) after the fix-up: the pass reads copies of GB0..GB2 (there is no
 -- programmable blending), blends Normal/BaseColor/Smoothness (MetalMask/Reflectance on the
@@ -104,7 +112,8 @@ function loop.sky_and_forward()
     rg.pass "forward" (lighting.clustered(shadows.lit(probes.lit(ibl.lit {
         kind = "scene", forward = true, switches = loop.specular_aa,
         reads = { { "depth", as = "depth" }, { "exposure", as = "uniform" }, "opaque" },
-        writes = { { "hdr", load = true } }, defines = { RG_OPAQUE = true },
+        writes = { { "hdr", load = true }, { "motion", load = true } }, motion = "motion",
+        defines = { RG_OPAQUE = true },
     }))))
     loop.forward_pass = "forward"
     return "forward"

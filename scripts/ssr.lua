@@ -55,19 +55,19 @@ rg.pass "ssr_mask" {
     filter = "nearest", insert = { before = "lighting_standard" }, depth = { compare = "always", value = 1, write = true },
     defines = { RG_SSR_TEMPORAL = true },
 }
-rg.pass "ssr" {
+rg.pass "ssr" (require("motion").reads {
     kind = "fullscreen", shader = "ssr/ssr.frag", reads = reader.reads { "depth", "hiz", "hdr_history", { "exposure", as = "uniform" }, { "ssr_mask", as = "depth" } },
     writes = { "ssr_trace" }, insert = { before = "lighting_standard" }, depth = { compare = "greater", value = 0.5 },
     defines = { RG_SSR_TEMPORAL = true },
-}
+})
 -- Over frames: `ssr` traces a different corner of each block every frame and `ssr_temporal`
 -- blends each texel's ray into its reprojected history (ssr/ssr_temporal.frag; the histories kept
 -- by `ssr_history_keep` and `ssr_distance_history_keep`, emptied by a camera cut or a rebuilt pass).
-rg.pass "ssr_temporal" {
+rg.pass "ssr_temporal" (require("motion").reads {
     kind = "fullscreen", shader = "ssr/ssr_temporal.frag", reads = { "ssr_trace", "ssr_history", "ssr_distance_history", "hiz", { "ssr_mask", as = "depth" } },
     writes = { "ssr", "ssr_distance" }, insert = { before = "lighting_standard" }, filter = "nearest",
     depth = { compare = "greater", value = 0.5 },
-}
+})
 
 -- A lighting pass's declaration that composes SSR over the probes (lib/ibl.glsl RG_SSR): reads
 -- `ssr`. The `ssr` pass decodes each pixel's normal and smoothness with its material's layout

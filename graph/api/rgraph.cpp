@@ -156,6 +156,7 @@ rg::Scene toScene(const Scene& in) {
         mesh.primitives.push_back(std::move(p));
         s.nodes.push_back(
             {m.name, glm::make_mat4(m.transform), static_cast<int32_t>(s.meshes.size())});
+        s.nodes.back().dynamic = m.dynamic;
         s.meshes.push_back(std::move(mesh));
     }
     static const rg::LightType kTypes[] = {rg::LightType::Point,       rg::LightType::Spot,
@@ -419,6 +420,11 @@ void Renderer::setPassEnabled(const std::string& pass, bool enabled) {
 void Renderer::cameraCut() {
     m->loaded();
     m->session->cut();
+}
+
+void Renderer::setTransform(const std::string& mesh, const float transform[16]) {
+    m->loaded();
+    check(m->session->setNodeTransform(mesh, glm::make_mat4(transform)));
 }
 
 void Renderer::render(uint32_t frames) {

@@ -31,6 +31,13 @@ Result<LightmapAtlas> packLightmap(const Scene& scene, const LightmapSettings& s
         const Node& n = scene.nodes[i];
         if (n.mesh < 0 || size_t(n.mesh) >= scene.meshes.size()) continue;
         const Mesh& mesh = scene.meshes[size_t(n.mesh)];
+        // Baked light belongs to where a surface stands: a node that moves would carry the light
+        // of its first pose along (and its baked shadow would stay behind).
+        if (n.dynamic)
+            return fail(ErrorCode::InvalidInput,
+                        "lightmap '" + settings.name + "': node '" + n.name +
+                            "' moves (a path, or a dynamic mesh): a lightmapped scene's nodes "
+                            "stand still; take the lightmap or the move away");
         for (const auto& p : mesh.primitives)
             if (!p.lightmapUv)
                 return fail(

@@ -604,6 +604,11 @@ Result<void> Session::setOverride(const std::string& param, const Value& value) 
     return {};
 }
 
+Result<void> Session::setNodeTransform(const std::string& name, const glm::mat4& world) {
+    if (!m_scene) return fail(ErrorCode::InvalidInput, "setTransform: no scene is loaded");
+    return m_scene->setNodeTransform(name, world);
+}
+
 Result<void> Session::setPassOverride(const std::string& pass, bool enabled) {
     if (!m_host) return fail(ErrorCode::InvalidInput, "no pipeline loaded");
     const PassDesc* desc = m_pipeline.graph.findPass(pass);

@@ -89,6 +89,9 @@ public:
     // A camera cut before the next frame (as rg.frame's ctx.cut()): every history — the graph's
     // persistent resources (TAA's, SSR's, the exposure) — and the camera's last frame start afresh.
     void cut() { m_cutRequested = true; }
+    // Places the scene's dynamic node `name` at `world` from the next frame
+    // (passes::GpuScene::setNodeTransform); an error without a scene.
+    Result<void> setNodeTransform(const std::string& name, const glm::mat4& world);
     Result<void> setPassOverride(const std::string& pass, bool enabled);
     const FrameChanges& overrides() const { return m_overrides; }
     // Overrides carried over from another session (the library's reload for a new scene or size),

@@ -214,6 +214,24 @@ struct Node {
     // An area light's emissive shape (runtime/light_shapes.h): drawn, but left out of every ray
     // cast (the BVH of the probe capture's and the reference's shadow rays).
     bool lightShape = false;
+    // A node that moves after the scene loads: along `path`, or as the library's
+    // Renderer::setTransform places it. Its draws carry this frame's and the last frame's
+    // transforms (the motion target the G-buffer and forward passes write); `world` is its
+    // transform at load, which what is computed once sees (probe captures, the lightmap bake, the
+    // reference mode's and the probes' ray casts).
+    bool dynamic = false;
+    // A move (a Lua scene object's `path`): keys in time order; at time t (seconds, a frame's
+    // ctx.time) the placement's position and rotation (radians about X, then Y, then Z) pass
+    // through the keys on Catmull-Rom curves, as a camera's path does, and the node's world
+    // transform is translate(position) · rotate(rotation) · `placed`.
+    struct Key {
+        float time = 0.0f;
+        glm::vec3 position{0.0f}, rotation{0.0f};
+    };
+    std::vector<Key> path;
+    glm::mat4 placed{1.0f};  // below the path's placement: the object's scale, a glTF node's own
+    // The node's world transform at `seconds` along its path (`world` without one).
+    glm::mat4 at(double seconds) const;
 };
 
 enum class LightType : uint8_t {

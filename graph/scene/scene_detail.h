@@ -21,6 +21,26 @@ struct Scene;
 
 namespace rg::scene_detail {
 
+// A path's field at time t: through its keys (ascending `time`) on a cubic Hermite curve with
+// Catmull-Rom tangents (per second, from the neighbouring keys; zero at the ends), held before the
+// first key and after the last. A camera's and a node's paths.
+template <typename Key>
+glm::vec3 pathCurve(const std::vector<Key>& path, float t, glm::vec3 Key::*field) {
+    if (t <= path.front().time || path.size() == 1) return path.front().*field;
+    if (t >= path.back().time) return path.back().*field;
+    size_t i = 0;
+    while (path[i + 1].time < t) ++i;
+    const Key &a = path[i], &b = path[i + 1];
+    const float span = b.time - a.time, u = (t - a.time) / span;
+    auto tangent = [&](size_t k) {
+        if (k == 0 || k + 1 >= path.size()) return glm::vec3(0.0f);
+        return (path[k + 1].*field - path[k - 1].*field) / (path[k + 1].time - path[k - 1].time);
+    };
+    const float u2 = u * u, u3 = u2 * u;
+    return (2 * u3 - 3 * u2 + 1) * (a.*field) + (u3 - 2 * u2 + u) * span * tangent(i) +
+           (-2 * u3 + 3 * u2) * (b.*field) + (u3 - u2) * span * tangent(i + 1);
+}
+
 // Decodes a PNG or JPEG held in memory into four float channels in [0, 1] (8-bit samples / 255,
 // 16-bit / 65535), no colour conversion. The error message is the decoder's reason.
 Result<Image> decodeImage(const unsigned char* data, size_t size);

@@ -94,6 +94,50 @@ Result<glm::mat4> Builder::transform(const Where& w, const Value& b) {
     return glm::scale(m, scale);
 }
 
+Result<void> Builder::nodePath(const Where& w, const Value& b, size_t first) {
+    if (!b.has("path")) return {};
+    const Value& path = b["path"];
+    const char* shape = "{ time = s, position = {x, y, z}, rotation = {x, y, z} in degrees }";
+    if (!path.isList() || path.asList().size() < 2)
+        return w.at("path").error(std::string("expected a list of at least two keys ") + shape +
+                                  ", got " + describe(path));
+    glm::vec3 position, rotation;
+    RG_TRY(position, vec3(w, b, "position", glm::vec3(0.0f)));
+    RG_TRY(rotation, vec3(w, b, "rotation", glm::vec3(0.0f), "{x, y, z} in degrees"));
+    std::vector<Node::Key> keys;
+    for (size_t i = 0; i < path.asList().size(); ++i) {
+        const Where wk = w.at("path").index(i);
+        const Value& key = path.asList()[i];
+        if (!key.isTable()) return wk.error(std::string("expected a key ") + shape);
+        if (auto r = checkFields(wk, key, {"time", "position", "rotation"}); !r) return r;
+        if (!key.has("time")) return wk.error("a key needs a time");
+        Node::Key k;
+        RG_TRY(k.time, numberF(wk, key, "time", 0.0f, Range::closed(0, 1e6)));
+        RG_TRY(k.position, vec3(wk, key, "position", position));
+        RG_TRY(k.rotation, vec3(wk, key, "rotation", rotation, "{x, y, z} in degrees"));
+        k.rotation *= kDegrees;
+        if (!keys.empty() && k.time <= keys.back().time)
+            return wk.at("time").error("is " + formatNumber(k.time) +
+                                       ", not after the key before (" +
+                                       formatNumber(keys.back().time) + ")");
+        keys.push_back(k);
+    }
+    // What lies below the placement: translate(position) · R cancelled from the node's world.
+    glm::mat4 unplace = glm::translate(glm::mat4(1.0f), position);
+    unplace = glm::rotate(unplace, rotation.z * kDegrees, glm::vec3(0, 0, 1));
+    unplace = glm::rotate(unplace, rotation.y * kDegrees, glm::vec3(0, 1, 0));
+    unplace = glm::rotate(unplace, rotation.x * kDegrees, glm::vec3(1, 0, 0));
+    unplace = glm::inverse(unplace);
+    for (size_t n = first; n < scene.nodes.size(); ++n) {
+        Node& node = scene.nodes[n];
+        node.dynamic = true;
+        node.path = keys;
+        node.placed = unplace * node.world;
+        node.world = node.at(0.0);  // where the first frame has it
+    }
+    return {};
+}
+
 // ---- declarations ---------------------------------------------------------------------------
 
 Result<void> Builder::names(const std::vector<Declaration>& decls) {

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "lua/declarations.h"
 #include "scene.h"
 #include "scene_detail.h"
@@ -124,31 +126,22 @@ Camera Camera::at(double seconds) const {
     if (path.empty()) return *this;
     Camera c = *this;
     const float t = static_cast<float>(seconds);
-    if (t <= path.front().time || path.size() == 1) {
-        c.position = path.front().position, c.target = path.front().target;
-        return c;
-    }
-    if (t >= path.back().time) {
-        c.position = path.back().position, c.target = path.back().target;
-        return c;
-    }
-    size_t i = 0;
-    while (path[i + 1].time < t) ++i;
-    const Key &a = path[i], &b = path[i + 1];
-    const float span = b.time - a.time, u = (t - a.time) / span;
-    // Cubic Hermite with Catmull-Rom tangents (per second, from the neighbours; zero at the ends).
-    auto tangent = [&](size_t k, glm::vec3 Key::*field) {
-        if (k == 0 || k + 1 >= path.size()) return glm::vec3(0.0f);
-        return (path[k + 1].*field - path[k - 1].*field) / (path[k + 1].time - path[k - 1].time);
-    };
-    auto curve = [&](glm::vec3 Key::*field) {
-        const float u2 = u * u, u3 = u2 * u;
-        return (2 * u3 - 3 * u2 + 1) * (a.*field) + (u3 - 2 * u2 + u) * span * tangent(i, field) +
-               (-2 * u3 + 3 * u2) * (b.*field) + (u3 - u2) * span * tangent(i + 1, field);
-    };
-    c.position = curve(&Key::position);
-    c.target = curve(&Key::target);
+    c.position = scene_detail::pathCurve(path, t, &Key::position);
+    c.target = scene_detail::pathCurve(path, t, &Key::target);
     return c;
+}
+
+glm::mat4 Node::at(double seconds) const {
+    if (path.empty()) return world;
+    const float t = static_cast<float>(seconds);
+    const glm::vec3 position = scene_detail::pathCurve(path, t, &Key::position);
+    const glm::vec3 rotation = scene_detail::pathCurve(path, t, &Key::rotation);
+    // About X, then Y, then Z (R = Rz · Ry · Rx), as a scene object's `rotation`.
+    glm::mat4 m = glm::translate(glm::mat4(1.0f), position);
+    m = glm::rotate(m, rotation.z, glm::vec3(0, 0, 1));
+    m = glm::rotate(m, rotation.y, glm::vec3(0, 1, 0));
+    m = glm::rotate(m, rotation.x, glm::vec3(1, 0, 0));
+    return m * placed;
 }
 
 }  // namespace rg

@@ -95,6 +95,11 @@ struct Builder {
     Result<int32_t> textureFile(const Where& w, const Value& b, const std::string& field,
                                 bool srgb);
     static Result<glm::mat4> transform(const Where& w, const Value& b);
+    // An object's or glTF file's `path` (a move: keys { time, position, rotation }, each field
+    // defaulting to the declaration's own) on nodes [first, scene.nodes.size()), which the
+    // declaration placed with `transform`: each node becomes dynamic and keeps the part of its
+    // transform below the placement (scale, a glTF node's own). Nothing without a `path`.
+    Result<void> nodePath(const Where& w, const Value& b, size_t first);
 
     // ---- declarations ----------------------------------------------------------------------
 

@@ -135,8 +135,8 @@ Result<uint32_t> Builder::materialRef(const Where& w, const Value& b) {
 Result<void> Builder::object(const Declaration& d) {
     Where w = where(d);
     const Value& b = d.body;
-    std::vector<std::string> fields = {"position", "rotation",     "scale",
-                                       "material", "cast_shadows", "doc"};
+    std::vector<std::string> fields = {"position",     "rotation", "scale", "material",
+                                       "cast_shadows", "doc",      "path"};
     if (d.kind == DeclKind::Sphere)
         fields.insert(fields.end(), {"radius", "segments"});
     else
@@ -191,7 +191,7 @@ Result<void> Builder::object(const Declaration& d) {
     }
     scene.nodes.push_back({d.name, world, at->second});
     scene.nodes.back().castShadows = castShadows;
-    return {};
+    return nodePath(w, b, scene.nodes.size() - 1);
 }
 
 // Appends a loaded glTF scene, placed by `t`; names get the declaration's name in front.
@@ -246,7 +246,8 @@ Result<void> Builder::gltf(const Declaration& d) {
     Where w = where(d);
     const Value& b = d.body;
     if (auto r = checkFields(
-            w, b, {"file", "position", "rotation", "scale", "cast_shadows", "variant", "doc"});
+            w, b,
+            {"file", "position", "rotation", "scale", "cast_shadows", "variant", "path", "doc"});
         !r)
         return r;
     if (!b.has("file"))
@@ -272,7 +273,7 @@ Result<void> Builder::gltf(const Declaration& d) {
     merge(std::move(*sub), t, d.name);
     if (!castShadows)
         for (size_t n = firstNode; n < scene.nodes.size(); ++n) scene.nodes[n].castShadows = false;
-    return {};
+    return nodePath(w, b, firstNode);
 }
 
 Result<void> Builder::decal(const Declaration& d) {

@@ -74,6 +74,10 @@ struct Mesh {
     std::string material;       // a Material's name
     float transform[16] = {1, 0, 0, 0, 0, 1, 0, 0,
                            0, 0, 1, 0, 0, 0, 0, 1};  // column-major, model to world
+    // It moves after the scene loads (Renderer::setTransform): its draws carry this frame's and
+    // the last frame's transforms, so the pipeline writes its motion (TAA follows it). What is
+    // computed once — probe captures, the reference mode's rays — sees it at `transform`.
+    bool dynamic = false;
 };
 // Meshes as rgraph's Lua scenes make them (centred on the origin): the same vertices, so a scene
 // built from them renders as the Lua scene does.
@@ -211,6 +215,10 @@ public:
     // A camera cut before the next frame: every history (TAA's, SSR's, the exposure) and the
     // camera's last frame start afresh, as a script's ctx.cut() does.
     void cameraCut();
+    // Places a dynamic mesh (Mesh::dynamic, by name; or a Lua scene object with a `path`, which
+    // it then no longer follows) at `transform` (column-major, model to world) from the next
+    // frame. A mesh the scene lacks or one not dynamic is an error.
+    void setTransform(const std::string& mesh, const float transform[16]);
 
     // Renders `frames` frames (submitting on rgraph's queue, or the host's) and waits for them.
     void render(uint32_t frames = 1);

@@ -31,7 +31,7 @@ rg.pass "lighting_standard" (reflections.lit(ao.lit(shadows.masked(ibl.lit(light
 -- image is kept for the next frame's reflections by its history, scripts/ssr.lua).
 loop.sky_and_forward()
 
-post.chain { input = "hdr", output = "display", depth = "depth" }
+post.chain { input = "hdr", output = "display", depth = "depth", motion = "motion" }
 rg.output { display = "display", hdr = "hdr", exposure = "exposure" }
 
 function rg.frame(ctx)

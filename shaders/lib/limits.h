@@ -13,4 +13,9 @@
 // a cube light takes six, a spot of outer angle ≤ 60° one.
 #define RG_MAX_SHADOW_VIEWS 48
 
+// The vec4 words of one draw in the scene's SceneTransforms (passes/gpu_scene.h): its world
+// matrix's four columns, the normal matrix's three, the lightmap rect, the last frame's world
+// matrix's four (passes/scene.vert, shadows/shadow.vert).
+#define RG_TRANSFORM_WORDS 12
+
 #endif

@@ -1,8 +1,9 @@
 // Screen motion since the last frame, from a pixel's depth and the two cameras (lib/scene.glsl):
 // the position a pixel's surface had on screen the frame before is where the last frame's
-// unjittered camera (Camera.previousViewProj) projects it. The scene's surfaces do not move
-// between frames (nodes keep their transforms), so the camera's motion is all the motion there
-// is; the sub-pixel jitter (Camera.jitter) is left out, as TAA reprojection wants it.
+// unjittered camera (Camera.previousViewProj) projects it. That is all the motion of a surface
+// that stands still; a scene whose nodes move (Node::dynamic) has the motion target too, which
+// the G-buffer and forward passes write from each draw's last world matrix (rgClipMotion). The
+// sub-pixel jitter (Camera.jitter) is left out, as TAA reprojection wants it.
 #ifndef RG_MOTION_GLSL
 #define RG_MOTION_GLSL
 
@@ -15,6 +16,13 @@ vec2 rgMotion(vec2 uv, float depth) {
     vec4 world = vec4(rgWorldPosition(uv, depth), 1.0);
     vec4 now = camera.unjitteredViewProj * world;
     vec4 before = camera.previousViewProj * world;
+    return (now.xy / now.w - before.xy / before.w) * 0.5;
+}
+
+// The motion of a rasterised point from its clip positions by this frame's unjittered camera and
+// by the last frame's camera and transform (passes/scene.vert's RG_MOTION outputs): uv units, as
+// rgMotion.
+vec2 rgClipMotion(vec4 now, vec4 before) {
     return (now.xy / now.w - before.xy / before.w) * 0.5;
 }
 

@@ -4,7 +4,8 @@
 // (RG_AO_TEMPORAL), so successive frames sample directions the others did not; here each texel's
 // filtered AO (ao_blur.frag) is blended into the AO its surface had on the last frame — the
 // history `ao_history` (rg.resource's `history` of `ao_resolved`), reprojected by the camera's
-// motion (the surface point from its view distance, projected by the last frame's camera).
+// motion (the surface point from its view distance, projected by the last frame's camera) — where
+// nodes move (RG_MOTION), by the motion target's.
 // The history is rejected where its view distance is not the one the point had on the last
 // frame (a disocclusion: a surface that was hidden, or a silhouette's other side), where it is
 // empty (0: the first frame, a camera cut, a rebuilt gtao) and off the last frame's screen.
@@ -16,6 +17,9 @@ layout(location = 0) out vec4 color;
 layout(set = 0, binding = 0) uniform sampler2D ao_blurred;  // AO, view distance (m)[, sun]: ao_blur.frag's
 layout(set = 0, binding = 1) uniform sampler2D ao_history;   // the last frame's ao_resolved
 layout(set = 0, binding = 2) uniform Params { float ao_feedback; } params;
+#ifdef RG_MOTION
+layout(set = 0, binding = 3) uniform sampler2D motion;  // while nodes move (scripts/motion.lua)
+#endif
 
 void main() {
     ivec2 h = ivec2(gl_FragCoord.xy);
@@ -31,7 +35,12 @@ void main() {
     vec3 P = vec3((ndc - xyOffset) / vec2(camera.proj[0][0], camera.proj[1][1]) * (ortho ? 1.0 : d), -d);
     vec3 world = transpose(mat3(camera.view)) * (P - camera.view[3].xyz);
     vec4 clip = camera.previousViewProj * vec4(world, 1.0);
+#ifdef RG_MOTION
+    // Where nodes move, the surface's own motion (the motion target at the texel's pixel 2h).
+    vec2 before = (vec2(h * 2) + 0.5) / camera.viewport.xy - texelFetch(motion, h * 2, 0).xy;
+#else
     vec2 before = clip.xy / clip.w * 0.5 + 0.5;
+#endif
     // A perspective clip w is the view distance; an orthographic camera that moved is not
     // followed (its history is dropped), one standing still keeps the distance.
     float expected = ortho ? (camera.temporal.x > 0.5 ? -1.0 : d) : clip.w;

@@ -1,7 +1,10 @@
 #version 460
 // Scene draws: the world transform from push constants — or, for a run of draws drawn as one
 // instanced draw (passes/scene_pass.cpp), from the scene's per-draw transforms through its
-// instance list — the camera from the scene.
+// instance list — the camera from the scene. With RG_MOTION (a pass that writes the motion
+// target, scripts/render_loop.lua) also where the vertex is by this frame's unjittered camera and
+// where it was by the last frame's camera and world matrix (a draw that moves is always drawn
+// through the list, which holds that matrix; a single draw has not moved).
 #include "lib/scene.glsl"
 
 layout(location = 0) in vec3 inPosition;
@@ -18,6 +21,10 @@ layout(location = 3) out vec2 uv0;
 layout(location = 4) out vec2 uv1;
 layout(location = 6) out vec4 vertexColor;
 layout(location = 5) out vec2 lightmapUv;  // the node's square of the scene's lightmap atlas
+#ifdef RG_MOTION
+layout(location = 7) out vec4 motionNow;     // clip position, this frame's unjittered camera
+layout(location = 8) out vec4 motionBefore;  // clip position on the last frame
+#endif
 
 // 128 bytes, the push-constant size every Vulkan device has. All zeros: an instanced run.
 layout(push_constant) uniform Draw {
@@ -26,7 +33,8 @@ layout(push_constant) uniform Draw {
     vec4 lightmapRect;     // atlas uv = uv1 * xy + zw (0: no lightmap)
 } draw;
 
-// Per draw: world's four columns, the normal matrix's three, the lightmap rect (passes/gpu_scene.h).
+// Per draw: world's four columns, the normal matrix's three, the lightmap rect, the last frame's
+// world (RG_TRANSFORM_WORDS, passes/gpu_scene.h).
 #ifndef RG_TRANSFORMS_BINDING
 #define RG_TRANSFORMS_BINDING 34
 #endif
@@ -38,11 +46,17 @@ void main() {
     mat4 world = draw.world;
     mat3 normalMatrix = mat3(draw.normalMatrix[0].xyz, draw.normalMatrix[1].xyz, draw.normalMatrix[2].xyz);
     vec4 lightmapRect = draw.lightmapRect;
+#ifdef RG_MOTION
+    mat4 previousWorld = draw.world;
+#endif
     if (draw.world[3][3] == 0.0) {  // no affine transform has it: an instanced run
-        uint base = 8u * sceneInstances.draw[gl_InstanceIndex];
+        uint base = uint(RG_TRANSFORM_WORDS) * sceneInstances.draw[gl_InstanceIndex];
         world = mat4(sceneTransforms.t[base], sceneTransforms.t[base + 1u], sceneTransforms.t[base + 2u], sceneTransforms.t[base + 3u]);
         normalMatrix = mat3(sceneTransforms.t[base + 4u].xyz, sceneTransforms.t[base + 5u].xyz, sceneTransforms.t[base + 6u].xyz);
         lightmapRect = sceneTransforms.t[base + 7u];
+#ifdef RG_MOTION
+        previousWorld = mat4(sceneTransforms.t[base + 8u], sceneTransforms.t[base + 9u], sceneTransforms.t[base + 10u], sceneTransforms.t[base + 11u]);
+#endif
     }
     vec4 p = world * vec4(inPosition, 1.0);
     worldPosition = p.xyz;
@@ -53,4 +67,8 @@ void main() {
     vertexColor = inColor;
     lightmapUv = inUv1 * lightmapRect.xy + lightmapRect.zw;
     gl_Position = camera.viewProj * p;
+#ifdef RG_MOTION
+    motionNow = camera.unjitteredViewProj * p;
+    motionBefore = camera.previousViewProj * (previousWorld * vec4(inPosition, 1.0));
+#endif
 }

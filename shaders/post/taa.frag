@@ -1,7 +1,8 @@
 #version 460
 // Temporal anti-aliasing (scripts/post.lua's chain): this frame's HDR (jittered by Camera.jitter, a
 // Halton (2, 3) sequence over 8 frames) blended into the history reprojected by the camera's
-// motion (lib/motion.glsl), after Karis, "High Quality Temporal Supersampling" (SIGGRAPH 2014):
+// motion (lib/motion.glsl) — and the objects' own, from the motion target, in a scene whose nodes
+// move (RG_MOTION) — after Karis, "High Quality Temporal Supersampling" (SIGGRAPH 2014):
 //   - the motion of the nearest surface of the pixel and its four diagonal neighbours, so an edge's
 //     pixels follow the foreground;
 //   - the history read with a Catmull-Rom filter (5 bilinear taps, Jimenez 2016) — a bilinear read
@@ -27,6 +28,10 @@ layout(location = 0) out vec4 color;
 layout(set = 0, binding = 0) uniform sampler2D source;
 #ifdef RG_TAA_MOVING
 layout(set = 0, binding = 1) uniform sampler2D depth;
+#ifdef RG_MOTION
+// The motion the G-buffer and forward passes wrote (scripts/render_loop.lua), while nodes move.
+layout(set = 0, binding = 5) uniform sampler2D motion;
+#endif
 #endif
 layout(set = 0, binding = 2) uniform sampler2D taa_history;
 layout(set = 0, binding = 3) uniform Params {
@@ -79,7 +84,13 @@ void main() {
         float d = texelFetch(depth, q, 0).r;
         if (d < nearest) nearest = d, nearestPixel = q;
     }
+#ifdef RG_MOTION
+    // A surface's own motion where one was drawn (moving nodes), the camera's beyond.
+    before = uv - (nearest < 1.0 ? texelFetch(motion, nearestPixel, 0).xy
+                                 : rgMotion((vec2(nearestPixel) + 0.5) / vec2(last + 1), nearest));
+#else
     before = uv - rgMotion((vec2(nearestPixel) + 0.5) / vec2(last + 1), nearest);
+#endif
     vec4 history = historyCatmullRom(before);
 #else
     vec4 history = texelFetch(taa_history, pixel, 0);

@@ -26,7 +26,7 @@ void main() {
     mat4 world = draw.world;
 #ifdef RG_SHADOW_INSTANCES
     if (draw.world[3][3] == 0.0) {  // all-zero push constants: a batch
-        uint base = 8u * instances.draw[gl_InstanceIndex];
+        uint base = uint(RG_TRANSFORM_WORDS) * instances.draw[gl_InstanceIndex];
         world = mat4(sceneTransforms.t[base], sceneTransforms.t[base + 1u], sceneTransforms.t[base + 2u], sceneTransforms.t[base + 3u]);
     }
 #endif

@@ -4,7 +4,8 @@
 // pixel to where it leaves the view or Params.ssr_distance: the step grows a level each time the
 // ray stays in front of a cell's nearest depth and shrinks when it does not, a hit at level 0.
 // Output: rgb the previous frame's lit image (`hdr_history`, pre-exposed) at the hit, reprojected
-// by the previous frame's camera (Camera.previousViewProj), blurred by
+// by the previous frame's camera (Camera.previousViewProj; where nodes move, RG_MOTION, by the
+// motion target at the hit), blurred by
 // roughness through its mips, in nits (divided by this frame's pre-exposure, as the probes the
 // lighting passes blend it with: lib/ibl.glsl, RG_SSR); a the confidence: 0 on a miss, fading at the screen's edges, for
 // rays turned towards the camera, for hits far behind the surface, for hits the march found late
@@ -32,6 +33,9 @@ layout(set = 0, binding = 4) uniform Params {
     float initial_ev100;
 } params;
 layout(set = 0, binding = 5, std140) uniform exposure { RgExposureState state; } ex;  // a uniform block: read once per block of pixels
+#ifdef RG_MOTION
+layout(set = 0, binding = 6) uniform sampler2D motion;  // while nodes move (scripts/motion.lua)
+#endif
 
 // View position → (screen uv, depth) by the projection.
 vec3 project(vec3 v) {
@@ -109,6 +113,10 @@ void main() {
     // it. Off its screen, or where it holds nothing yet (alpha 0: the first frame), no reflection.
     vec4 before = camera.previousViewProj * vec4(rgWorldPosition(at.xy, hitDepth), 1.0);
     vec2 uvBefore = before.xy / before.w * 0.5 + 0.5;
+#ifdef RG_MOTION
+    // Where nodes move, where the hit's own surface was (the motion target at the hit).
+    uvBefore = at.xy - texelFetch(motion, clamp(ivec2(at.xy * size), ivec2(0), ivec2(size) - 1), 0).xy;
+#endif
     if (before.w <= 0.0 || any(lessThan(uvBefore, vec2(0.0))) || any(greaterThan(uvBefore, vec2(1.0)))) return;
     vec4 history = textureLod(hdr_history, uvBefore, lod);
 #ifdef RG_SSR_TEMPORAL

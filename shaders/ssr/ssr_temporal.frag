@@ -6,7 +6,8 @@
 // one pixel of it (the edges of reflected objects stop stepping by two pixels), and a hit found
 // late in the march (ssr.frag's fading speck) is averaged with its neighbours' misses.
 //   - Reprojected by the camera's motion: the block's nearest surface point (Hi-Z level 1) projected
-//     by the last frame's camera, as ao_temporal.frag does; the history's view distance
+//     by the last frame's camera, as ao_temporal.frag does (where nodes move, RG_MOTION, by the
+//     motion target's); the history's view distance
 //     (`ssr_distance_history`) must be the one the point had then, else it is a disocclusion and the
 //     history is dropped; dropped too off the last frame's screen and where it is empty (distance 0:
 //     the first frame, a cut, a rebuilt pass).
@@ -27,6 +28,9 @@ layout(set = 0, binding = 1) uniform sampler2D ssr_history;
 layout(set = 0, binding = 2) uniform sampler2D ssr_distance_history;
 layout(set = 0, binding = 3) uniform sampler2D hiz;  // ssr.lua's nearest-depth pyramid
 layout(set = 0, binding = 4) uniform Params { float ssr_feedback; } params;
+#ifdef RG_MOTION
+layout(set = 0, binding = 5) uniform sampler2D motion;  // while nodes move (scripts/motion.lua)
+#endif
 
 // A trace texel premultiplied by its confidence; an unknown one (−1) as `fallback`.
 vec4 premultiplied(vec4 t, vec4 fallback) { return t.a < 0.0 ? fallback : vec4(t.rgb * t.a, t.a); }
@@ -45,7 +49,12 @@ void main() {
     // Read at the nearest texel: a bilinear read costs four, and the clamp below bounds what a
     // texel's shift can bring.
     vec4 clip = camera.previousViewProj * vec4(rgWorldPosition(at, z), 1.0);
+#ifdef RG_MOTION
+    // Where nodes move, the surface's own motion (the motion target at the block's first pixel).
+    ivec2 before = ivec2(floor((at - texelFetch(motion, 2 * h, 0).xy) * vec2(last + 1)));
+#else
     ivec2 before = ivec2(floor((clip.xy / clip.w * 0.5 + 0.5) * vec2(last + 1)));
+#endif
     bool ortho = rgCameraOrthographic();
     float expected = ortho ? (camera.temporal.x > 0.5 ? -1.0 : d) : clip.w;
     bool onScreen = all(greaterThanEqual(before, ivec2(0))) && all(lessThanEqual(before, last)) && expected > 0.0;

@@ -515,3 +515,54 @@ rg.output "output"
 }
 
 }  // namespace
+
+// A dynamic mesh moves where the host puts it, and the pipeline writes its motion; a mesh declared
+// static stays, and moving it is an error naming it.
+TEST(Library, ADynamicMeshMovesAndWritesItsMotion) {
+    rgraph::Scene s;
+    s.environment = "none";
+    rgraph::Material glow{"glow"};
+    glow.baseColor[0] = glow.baseColor[1] = glow.baseColor[2] = 0.0f;
+    glow.emissive[0] = glow.emissive[1] = glow.emissive[2] = 50.0f;
+    s.materials.push_back(glow);
+    rgraph::Mesh mover = rgraph::makeBox(0.6f, 0.6f, 0.6f);
+    mover.name = "mover";
+    mover.material = "glow";
+    mover.dynamic = true;
+    rgraph::Mesh post = rgraph::makeBox(0.3f, 0.3f, 0.3f);
+    post.name = "post";
+    post.material = "glow";
+    post.transform[12] = 1.2f;
+    s.meshes = {mover, post};
+    s.camera.position[0] = 0.0f, s.camera.position[1] = 0.0f, s.camera.position[2] = 5.0f;
+    s.camera.target[1] = 0.0f;
+    auto r = rgraph::Renderer::create(options());
+    r->setSize(64, 64);
+    r->setScene(s);
+    r->keep("motion");
+    r->loadPipeline(kRoot + "/scripts/pipelines/deferred.lua");
+    r->render(2);
+    // 0.1 m to the right between two frames, seen 4.7 m away (the box's front face) by a 45°
+    // field: 0.1 / (2 · 4.7 · tan 22.5°) of the image's width.
+    float moved[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0.1f, 0, 0, 1};
+    r->setTransform("mover", moved);
+    r->render(1);
+    const rgraph::Image m = r->readResource("motion");
+    ASSERT_EQ(m.width, 64u);
+    const float want = 0.1f / (2.0f * 4.7f * std::tan(0.3926991f));
+    const float got = m.pixels[(32 * 64 + 33) * m.channels];
+    std::printf("library: the dynamic mesh's motion %.5f uv, expected %.5f\n", got, want);
+    EXPECT_NEAR(got, want, 0.01f * want);
+    EXPECT_EQ(m.pixels[(32 * 64 + 50) * m.channels], 0.0f);  // the static post
+    // Standing still again: no motion.
+    r->render(1);
+    EXPECT_EQ(r->readResource("motion").pixels[(32 * 64 + 33) * m.channels], 0.0f);
+    try {
+        r->setTransform("post", moved);
+        FAIL() << "a static mesh was moved";
+    } catch (const rgraph::Error& e) {
+        EXPECT_NE(std::string(e.what()).find("node 'post' was declared static"), std::string::npos)
+            << e.what();
+    }
+    EXPECT_THROW(r->setTransform("nosuch", moved), rgraph::Error);
+}

@@ -504,7 +504,7 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // Every script it pulled in is known, for hot reload.
     EXPECT_EQ(
         p->files.size(),
-        18u);  // deferred, post, lighting, render_loop, ibl, shadows, probes, ao, ssr, reflections, lightmap, gbuffer_reader, disney, clearcoat, foliage, two_colour, sheen, transmission
+        19u);  // deferred, post, lighting, render_loop, motion, ibl, shadows, probes, ao, ssr, reflections, lightmap, gbuffer_reader, disney, clearcoat, foliage, two_colour, sheen, transmission
 }
 
 TEST(LuaPipeline, ModulesAreNamespacedAndInsertedAfterTheirAnchor) {

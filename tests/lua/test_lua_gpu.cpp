@@ -227,11 +227,11 @@ TEST_F(LuaGpu, ParametersAndResourcesNameWhatTheSceneHas) {
     Session features(*s_runtime, small());
     auto f = features.load(file);
     ASSERT_FALSE(f);
-    EXPECT_NE(
-        f.error().describe().find("scene_setting.lua:" + std::to_string(line) +
-                                  ": resource 'extra': only_when.scene = 'sky': the scene "
-                                  "has no such feature (it has 'lightmap', 'material:MODEL')"),
-        std::string::npos)
+    EXPECT_NE(f.error().describe().find(
+                  "scene_setting.lua:" + std::to_string(line) +
+                  ": resource 'extra': only_when.scene = 'sky': the scene "
+                  "has no such feature (it has 'lightmap', 'material:MODEL', 'motion')"),
+              std::string::npos)
         << f.error().describe();
     // "material:NAME" names a material the pipeline declares: a misspelt one would drop the
     // resource in every scene.

@@ -104,6 +104,23 @@ TEST(LightmapAtlas, AMeshWithoutLightmapUvsIsNamed) {
     EXPECT_NE(atlas.error().message.find("TEXCOORD_1"), std::string::npos);
 }
 
+TEST(LightmapAtlas, ANodeThatMovesIsRefusedByName) {
+    rg::Scene scene;
+    rg::Mesh mesh;
+    mesh.name = "cart_mesh";
+    mesh.primitives.push_back(rg::makePlane(1, 1, 0));
+    scene.meshes.push_back(mesh);
+    scene.nodes.push_back({"cart", glm::mat4(1.0f), 0});
+    scene.nodes.back().dynamic = true;  // a path, or the library's dynamic mesh
+    rg::LightmapSettings s;
+    s.name = "gi";
+    auto atlas = rg::bake::packLightmap(scene, s);
+    ASSERT_FALSE(atlas);
+    EXPECT_EQ(atlas.error().message,
+              "lightmap 'gi': node 'cart' moves (a path, or a dynamic mesh): a lightmapped "
+              "scene's nodes stand still; take the lightmap or the move away");
+}
+
 TEST(LightmapScene, DeclarationIsChecked) {
     const fs::path dir = fs::path(RG_TEST_TMP) / "lightmap_scene";
     fs::create_directories(dir);

@@ -109,7 +109,7 @@ TEST(SceneScript, ObjectFieldErrors) {
     EXPECT_EQ(lua.error("\nscene.sphere \"ball\" { radus = 1 }"),
               "bad.lua:2: scene.sphere.ball.radus: unknown field (did you mean 'radius'?); "
               "expected one of: 'position', 'rotation', "
-              "'scale', 'material', 'cast_shadows', 'doc', 'radius', 'segments'");
+              "'scale', 'material', 'cast_shadows', 'doc', 'path', 'radius', 'segments'");
     EXPECT_EQ(
         lua.error("scene.sphere \"ball\" { segments = 2.5 }"),
         "bad.lua:1: scene.sphere.ball.segments: expected a whole number in [3, 1024], got 2.5");
@@ -135,7 +135,7 @@ TEST(SceneScript, ObjectFieldErrors) {
     EXPECT_EQ(lua.error("scene.sphere \"a\" { 1, radius = 2 }"),
               "bad.lua:1: scene.sphere.a: unexpected positional value 1; expected named fields: "
               "'position', 'rotation', 'scale', "
-              "'material', 'cast_shadows', 'doc', 'radius', 'segments'");
+              "'material', 'cast_shadows', 'doc', 'path', 'radius', 'segments'");
     EXPECT_EQ(lua.error("scene.box \"b\" { cast_shadows = 0 }"),
               "bad.lua:1: scene.box.b.cast_shadows: expected a boolean, got 0");
     EXPECT_EQ(lua.error("scene.sphere \"a\" { 1, 2 }"),
@@ -461,6 +461,50 @@ TEST(SceneScript, DefaultCameraFramesTheBounds) {
     // Objects without a material share a grey default one.
     EXPECT_EQ(scene->materials.size(), 1u);
     EXPECT_EQ(scene->materials[0].name, "default");
+}
+
+TEST(SceneScript, ObjectsMoveAlongTheirPaths) {
+    ScriptRunner lua("paths");
+    auto scene =
+        lua.run("s.lua",
+                "scene.box \"b\" { position = { 1, 2, 3 }, rotation = { 0, 0, 90 }, "
+                "scale = 2, path = {\n"
+                "  { time = 0, rotation = { 0, 0, 0 } }, { time = 1, position = { 2, 2, 3 } },\n"
+                "  { time = 2, position = { 3, 2, 3 }, rotation = { 0, 0, 180 } },\n"
+                "  { time = 3, position = { 4, 2, 3 }, rotation = { 0, 0, 270 } } } }\n"
+                "scene.sphere \"s\" {}");
+    ASSERT_TRUE(scene) << errorOf(scene);
+    ASSERT_EQ(scene->nodes.size(), 2u);
+    const rg::Node& box = scene->nodes[0];
+    EXPECT_TRUE(box.dynamic);
+    EXPECT_FALSE(scene->nodes[1].dynamic);
+    EXPECT_EQ(scene->nodes[1].at(5.0), scene->nodes[1].world);  // no path: where it stands
+    // A key without position or rotation keeps the declaration's; the first frame is at t = 0.
+    expectNear(origin(box.world), {1, 2, 3}, 1e-6f, "at load");
+    expectNear(glm::vec3(box.world[0]), {2, 0, 0}, 1e-6f, "at load: the first key's rotation");
+    expectNear(origin(box.at(0.0)), {1, 2, 3}, 1e-6f, "first key");
+    // Between evenly spaced keys on a line, Catmull-Rom tangents are the constant speed: exactly
+    // linear from t = 1 to 2 (1 m/s), eased into the first key's rest before.
+    expectNear(origin(box.at(1.25)), {2.25f, 2, 3}, 1e-5f, "middle segment");
+    expectNear(origin(box.at(1.75)), {2.75f, 2, 3}, 1e-5f, "middle segment");
+    EXPECT_LT(origin(box.at(0.25)).x, 1.25f);  // eased out of the first key
+    expectNear(origin(box.at(9.0)), {4, 2, 3}, 1e-6f, "held after the last key");
+    // Rotation about Z at 90°/s (keys every 90°), the scale kept: the box's +x axis turns from +y
+    // (90°, the declaration's own rotation at key 1) through 135° at t = 1.5 (twice its length:
+    // scale 2).
+    const glm::vec3 axis = glm::vec3(box.at(1.5)[0]);
+    expectNear(axis, {-std::sqrt(2.0f), std::sqrt(2.0f), 0}, 1e-5f, "turned 135°, scaled 2");
+    // Errors name the key and field.
+    EXPECT_EQ(lua.error("scene.box \"b\" { path = { { time = 0 } } }"),
+              "bad.lua:1: scene.box.b.path: expected a list of at least two keys { time = s, "
+              "position = {x, y, z}, rotation = {x, y, z} in degrees }, got {a table}");
+    EXPECT_EQ(lua.error("scene.box \"b\" { path = { { time = 1 }, { time = 1 } } }"),
+              "bad.lua:1: scene.box.b.path[2].time: is 1, not after the key before (1)");
+    EXPECT_EQ(lua.error("scene.box \"b\" { path = { { time = 0 }, { position = { 1, 2, 3 } } } }"),
+              "bad.lua:1: scene.box.b.path[2]: a key needs a time");
+    EXPECT_EQ(lua.error("scene.box \"b\" { path = { { time = 0 }, { time = 1, scale = 2 } } }"),
+              "bad.lua:1: scene.box.b.path[2].scale: unknown field; expected one of: 'time', "
+              "'position', 'rotation'");
 }
 
 TEST(SceneScript, GltfIsMergedWithItsTransform) {

@@ -1,0 +1,100 @@
+// GpuScene's moving nodes (Node::dynamic): placed each frame at the frame's time along their
+// paths, or where the library put them, with their draws' transforms, boxes and levels of detail;
+// each draw keeps its last frame's world matrix in SceneTransforms for the motion the G-buffer and
+// forward passes write (shaders/passes/scene.vert with RG_MOTION).
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+#include "gpu_scene.h"
+
+namespace rg::passes {
+
+void GpuScene::writeTransform(glm::vec4* out, size_t d, const glm::mat4& previous) const {
+    const DrawItem& item = m_draws[d];
+    for (int c = 0; c < 4; ++c) out[c] = item.world[c];
+    for (int c = 0; c < 3; ++c) out[4 + c] = item.normalMatrix[c];
+    out[7] = item.lightmapRect;
+    for (int c = 0; c < 4; ++c) out[8 + c] = previous[c];
+}
+
+void GpuScene::addMoving(size_t node, uint32_t firstDraw, uint32_t firstLine) {
+    const Node& n = m_scene.nodes[node];
+    Moving m;
+    m.node = node;
+    m.firstDraw = firstDraw;
+    m.drawCount = static_cast<uint32_t>(m_draws.size()) - firstDraw;
+    m.firstLine = firstLine;
+    m.lineCount = static_cast<uint32_t>(m_lineDraws.size()) - firstLine;
+    // Each draw's box in the mesh's own space (the draws follow the mesh's primitives with an
+    // index range, in order).
+    for (const Primitive& p : m_scene.meshes[static_cast<size_t>(n.mesh)].primitives) {
+        if (p.indices.empty()) continue;
+        glm::vec3 lo(INFINITY), hi(-INFINITY);
+        for (const Vertex& v : p.vertices)
+            lo = glm::min(lo, v.position), hi = glm::max(hi, v.position);
+        if (p.vertices.empty()) lo = hi = glm::vec3(0.0f);
+        m.boxes.emplace_back(lo, hi);
+    }
+    m_drawMoves.resize(m_draws.size(), 0);
+    std::fill(m_drawMoves.begin() + firstDraw, m_drawMoves.end(), uint8_t(1));
+    m_moving.push_back(std::move(m));
+}
+
+Result<void> GpuScene::setNodeTransform(const std::string& name, const glm::mat4& world) {
+    for (Moving& m : m_moving)
+        if (m_scene.nodes[m.node].name == name) {
+            m.placed = world;
+            return {};
+        }
+    const bool exists = std::any_of(m_scene.nodes.begin(), m_scene.nodes.end(),
+                                    [&](const Node& n) { return n.name == name; });
+    return fail(exists ? ErrorCode::InvalidInput : ErrorCode::NotFound,
+                exists ? "node '" + name +
+                             "' was declared static: only a dynamic node moves after the scene "
+                             "loads (Mesh::dynamic, or a `path` in a Lua scene)"
+                       : "the scene has no node '" + name + "'");
+}
+
+void GpuScene::updateMoving(uint32_t slot, bool fresh) {
+    if (m_moving.empty()) return;
+    auto* transforms = static_cast<glm::vec4*>(m_transforms[slot].mapped());
+    auto* words = static_cast<glm::vec4*>(m_drawBuffers[slot].mapped());
+    m_nodesMoved = false;
+    m_movingMin = glm::vec3(INFINITY);
+    m_movingMax = glm::vec3(-INFINITY);
+    for (const Moving& m : m_moving) {
+        const Node& node = m_scene.nodes[m.node];
+        const glm::mat4 world = m.placed ? *m.placed : node.at(m_time);
+        const glm::mat4 normal = glm::mat4(glm::transpose(glm::inverse(glm::mat3(world))));
+        for (uint32_t k = 0; k < m.drawCount; ++k) {
+            const size_t d = m.firstDraw + k;
+            DrawItem& item = m_draws[d];
+            const glm::mat4 previous = fresh ? world : item.world;
+            m_nodesMoved = m_nodesMoved || previous != world;
+            item.world = world;
+            item.normalMatrix = normal;
+            // The mesh-space box's corners under the transform: a box around the draw.
+            const auto [lo, hi] = m.boxes[k];
+            glm::vec3 wlo(INFINITY), whi(-INFINITY);
+            for (int c = 0; c < 8; ++c) {
+                const glm::vec3 corner((c & 1) ? hi.x : lo.x, (c & 2) ? hi.y : lo.y,
+                                       (c & 4) ? hi.z : lo.z);
+                const glm::vec3 p = glm::vec3(world * glm::vec4(corner, 1.0f));
+                wlo = glm::min(wlo, p), whi = glm::max(whi, p);
+            }
+            item.boundsMin = m_drawCull[d].lo = wlo;
+            item.boundsMax = m_drawCull[d].hi = whi;
+            m_movingMin = glm::min(m_movingMin, wlo);
+            m_movingMax = glm::max(m_movingMax, whi);
+            writeTransform(transforms + kTransformWords * d, d, previous);
+            // SceneDraws (lib/scene.glsl RgDraw): the box's corners, their w words kept.
+            glm::vec4* w = words + 1 + 7 * d;
+            w[0] = glm::vec4(wlo, w[0].w);
+            w[1] = glm::vec4(whi, w[1].w);
+        }
+        for (uint32_t k = 0; k < m.lineCount; ++k) m_lineDraws[m.firstLine + k].world = world;
+    }
+}
+
+}  // namespace rg::passes
