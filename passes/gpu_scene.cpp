@@ -33,8 +33,9 @@ struct CameraUniforms {
         previousViewProj;  // the frame before's unjittered (reprojection); this frame's on the first
     glm::mat4 unjitteredViewProj;  // viewProj without the sub-pixel jitter (motion, culling)
     glm::vec4 jitter;  // xy: this frame's jitter, zw: the last frame's, in uv units (pixels / size)
-    glm::vec4 temporal;  // x: 1 when the camera moved since the last frame (0 on the first),
-                         // y: frames since the first frame or the last camera cut
+    glm::vec4 temporal;  // x: 1 when the camera or a node moved since the last frame (0 on the
+                         // first), y: frames since the first frame or the last camera cut, z: 1
+                         // when the camera moved
 };
 
 // The Halton sequence's element `index` (1-based) in base `base`: the sub-pixel jitter's
@@ -319,8 +320,9 @@ void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
     u.previousViewProj = m_previousViewProj.value_or(u.unjitteredViewProj);
     // Pixels moved when the camera or a node did (the fullscreen kind's camera = "moved" passes:
     // TAA's reprojection).
-    u.temporal = glm::vec4(u.previousViewProj != u.unjitteredViewProj || m_nodesMoved ? 1.0f : 0.0f,
-                           static_cast<float>(m_framesSinceCut++), 0.0f, 0.0f);
+    const bool cameraMoved = u.previousViewProj != u.unjitteredViewProj;
+    u.temporal = glm::vec4(cameraMoved || m_nodesMoved ? 1.0f : 0.0f,
+                           static_cast<float>(m_framesSinceCut++), cameraMoved ? 1.0f : 0.0f, 0.0f);
     m_previousViewProj = u.unjitteredViewProj;
     std::memcpy(m_cameraBuffers[slot].mapped(), &u, sizeof u);
     const auto planes = frustumPlanes(u.unjitteredViewProj);

@@ -281,6 +281,7 @@ Result<VkBuffer> GpuScene::makeBvhBuffer() const {
     for (const Node& node : m_scene.nodes) {
         if (node.mesh < 0 || static_cast<size_t>(node.mesh) >= m_scene.meshes.size()) continue;
         if (node.lightShape) continue;  // an area light's shape: its own rays must not find it
+        if (node.dynamic) continue;     // it moves: the hierarchy, built once, would keep it behind
         for (const Primitive& p : m_scene.meshes[static_cast<size_t>(node.mesh)].primitives) {
             const uint32_t material =
                 std::min<uint32_t>(p.material, static_cast<uint32_t>(m_scene.materials.size() - 1));

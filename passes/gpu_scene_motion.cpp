@@ -47,13 +47,17 @@ Result<void> GpuScene::setNodeTransform(const std::string& name, const glm::mat4
             m.placed = world;
             return {};
         }
-    const bool exists = std::any_of(m_scene.nodes.begin(), m_scene.nodes.end(),
-                                    [&](const Node& n) { return n.name == name; });
-    return fail(exists ? ErrorCode::InvalidInput : ErrorCode::NotFound,
-                exists ? "node '" + name +
-                             "' was declared static: only a dynamic node moves after the scene "
-                             "loads (Mesh::dynamic, or a `path` in a Lua scene)"
-                       : "the scene has no node '" + name + "'");
+    const auto node = std::find_if(m_scene.nodes.begin(), m_scene.nodes.end(),
+                                   [&](const Node& n) { return n.name == name; });
+    if (node == m_scene.nodes.end())
+        return fail(ErrorCode::NotFound, "the scene has no node '" + name + "'");
+    if (node->dynamic)
+        return fail(ErrorCode::InvalidInput,
+                    "node '" + name + "' draws no triangles: nothing of it moves on screen");
+    return fail(ErrorCode::InvalidInput,
+                "node '" + name +
+                    "' was declared static: only a dynamic node moves after the scene loads "
+                    "(Mesh::dynamic, or a `path` in a Lua scene)");
 }
 
 void GpuScene::updateMoving(uint32_t slot, bool fresh) {

@@ -135,6 +135,8 @@ void CaptureScenePass::recordDraws(RecordContext& rc) {
         for (size_t gi = 0; gi < m_groups.size(); ++gi)
             for (size_t i : m_groups[gi].draws) {
                 const DrawItem& item = sceneOf(rc)->draws()[i];
+                // A moving node is left out: a probe captured once would keep it where it was.
+                if (sceneOf(rc)->drawMoves(i)) continue;
                 if (!boxInCubeFace(item.boundsMin, item.boundsMax, eye, layer % 6))
                     continue;  // beside this face
                 distance[i] = glm::distance(glm::clamp(eye, item.boundsMin, item.boundsMax), eye);

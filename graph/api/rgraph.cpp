@@ -292,11 +292,15 @@ struct Renderer::Impl {
     std::string pipeline;
     // A new session (a new scene, size or captures): the host's parameters and pass switches
     // carry over as its overrides, as far as the pipeline still has and accepts them.
+    // Where setTransform put the dynamic meshes: placed again in a new session of the same scene
+    // (a new size, a kept resource, another pipeline); a new scene starts without.
+    std::map<std::string, glm::mat4> placements;
     void load() {
         if (pipeline.empty()) return;
         auto s = std::make_unique<rg::Session>(*runtime, options);
         if (session) s->carryOverrides(session->overrides());
         check(s->load(pipeline));
+        for (const auto& [mesh, world] : placements) check(s->setNodeTransform(mesh, world));
         session = std::move(s);
     }
     // Changes the session's options and loads anew; when the load fails, the options are as they
@@ -368,6 +372,7 @@ void Renderer::loadPipelineSource(const std::string& name, const std::string& lu
 }
 
 void Renderer::loadScene(const std::string& file) {
+    m->placements.clear();
     m->reloadWith([&](rg::SessionOptions& o) {
         o.sceneData.reset();
         o.scene = fs::absolute(file).string();
@@ -375,6 +380,7 @@ void Renderer::loadScene(const std::string& file) {
 }
 
 void Renderer::setScene(const Scene& scene) {
+    m->placements.clear();
     auto data = std::make_shared<const rg::Scene>(toScene(scene));
     m->reloadWith([&](rg::SessionOptions& o) {
         o.sceneData = data;
@@ -390,6 +396,7 @@ void Renderer::loadSceneSource(const std::string& name, const std::string& lua,
     o.projectRoot = rg::projectRoot();
     o.baseDir = baseDir.empty() ? fs::current_path(ec).string() : baseDir;
     auto data = std::make_shared<const rg::Scene>(check(rg::loadSceneScript(file, o)));
+    m->placements.clear();
     m->reloadWith([&](rg::SessionOptions& opts) {
         opts.sceneData = data;
         opts.scene.clear();
@@ -425,6 +432,7 @@ void Renderer::cameraCut() {
 void Renderer::setTransform(const std::string& mesh, const float transform[16]) {
     m->loaded();
     check(m->session->setNodeTransform(mesh, glm::make_mat4(transform)));
+    m->placements[mesh] = glm::make_mat4(transform);
 }
 
 void Renderer::render(uint32_t frames) {

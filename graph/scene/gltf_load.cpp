@@ -407,6 +407,7 @@ Result<Scene> Loader::run() {
     if (auto r = materials(); !r) return std::unexpected(r.error());
     if (auto r = meshes(); !r) return std::unexpected(r.error());
     if (auto r = nodes(); !r) return std::unexpected(r.error());
+    if (auto r = animations(); !r) return std::unexpected(r.error());
     volumeScale();
     if (options.buildLods) buildMeshLods(scene);
     computeBounds(scene);

@@ -137,6 +137,15 @@ struct Loader {
         size_t sceneNode;  // its Scene node, posed by skins()
     };
     std::vector<SkinnedNode> skinned;
+    // Per Scene node the walk made: its glTF node, and what lies below that node's transform (an
+    // EXT_mesh_gpu_instancing instance's; identity otherwise) — what an animation moves.
+    std::vector<std::pair<size_t, glm::mat4>> nodeSources;
+    // The animation options.animation chooses (gltf_load_animation.cpp): read, checked and given
+    // to the Scene nodes under the nodes it moves, each placed where it has them at time 0.
+    Result<void> animations();
+    Result<Animation::Sampler> animationSampler(const std::string& where,
+                                                const tinygltf::AnimationSampler& s,
+                                                const std::string& path);
     std::vector<std::optional<glm::mat4>> worlds;  // per glTF node, once the walk has entered it
     std::vector<int> parents;                      // per glTF node (-1: a root), built on demand
     Result<glm::mat4> worldOf(size_t node);

@@ -244,6 +244,7 @@ Result<void> Loader::instances(size_t index, const std::string& name, const glm:
         const glm::mat4 local =
             glm::translate(glm::mat4(1.0f), t) * glm::mat4_cast(q) * glm::scale(glm::mat4(1.0f), s);
         scene.nodes.push_back({name + " #" + std::to_string(i), world * local, mesh});
+        nodeSources.emplace_back(index, local);
     }
     return {};
 }
@@ -288,6 +289,7 @@ Result<void> Loader::enter(size_t index, const glm::mat4& parent, std::vector<bo
         } else {
             if (n.skin >= 0) skinned.push_back({index, scene.nodes.size()});
             scene.nodes.push_back({name, world, mesh});
+            nodeSources.emplace_back(index, glm::mat4(1.0f));
         }
     }
     if (n.camera >= 0)

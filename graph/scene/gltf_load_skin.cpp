@@ -1,6 +1,7 @@
-// glTF morph targets and skins, applied once at load (rgraph has no animation yet): a mesh at its
-// default weights (a node's own weights give that node a copy at those), a skinned mesh in the
-// pose its joints' nodes give (glTF 2.0 §3.7.2.2 and §3.7.3).
+// glTF morph targets and skins, applied once at load (animations move nodes, not weights or joints:
+// gltf_load_animation.cpp): a mesh at its default weights (a node's own weights give that node a
+// copy at those), a skinned mesh in the pose its joints' nodes give (glTF 2.0 §3.7.2.2 and
+// §3.7.3).
 #include <algorithm>
 #include <cmath>
 

@@ -198,6 +198,37 @@ struct Material {
 // ---------------------------------------------------------------------------------------------
 // Nodes, lights, cameras, environment
 
+// A glTF animation (glTF 2.0 §3.11) as the loader read it: its keyframe samplers and every glTF
+// node of the file with its parent, its rest transform and the samplers that drive its
+// translation, rotation and scale. The scene nodes under the nodes it moves share it
+// (Node::animation) and are placed by world() each frame; it loops over its duration.
+struct Animation {
+    enum class Interpolation : uint8_t { Step, Linear, CubicSpline };
+    struct Sampler {
+        std::vector<float> times;  // ascending, seconds
+        // One value per key (xyz; a rotation's quaternion x, y, z, w); CUBICSPLINE: three per key
+        // (in-tangent, value, out-tangent).
+        std::vector<glm::vec4> values;
+        Interpolation interpolation = Interpolation::Linear;
+        bool rotation = false;  // slerped and normalised
+    };
+    struct GltfNode {
+        int32_t parent = -1;
+        glm::vec3 translation{0.0f}, scale{1.0f};
+        glm::vec4 rotation{0.0f, 0.0f, 0.0f, 1.0f};  // x, y, z, w
+        std::optional<glm::mat4> matrix;             // a node given by matrix (never animated)
+        int32_t sampler[3] = {-1, -1, -1};           // translation, rotation, scale
+    };
+    std::string name;
+    std::vector<Sampler> samplers;
+    std::vector<GltfNode> nodes;
+    float duration = 0.0f;  // the last key of any sampler
+    // glTF node `node`'s world transform in the file at `seconds` (modulo the duration).
+    glm::mat4 world(size_t node, double seconds) const;
+    // Sampler s's value at t (inside [0, duration]).
+    glm::vec4 sample(size_t s, float t) const;
+};
+
 // The flattened hierarchy: one entry per node that draws a mesh, with its world transform.
 struct Node {
     std::string name;
@@ -216,9 +247,9 @@ struct Node {
     bool lightShape = false;
     // A node that moves after the scene loads: along `path`, or as the library's
     // Renderer::setTransform places it. Its draws carry this frame's and the last frame's
-    // transforms (the motion target the G-buffer and forward passes write); `world` is its
-    // transform at load, which what is computed once sees (probe captures, the lightmap bake, the
-    // reference mode's and the probes' ray casts).
+    // transforms (the motion target the G-buffer and forward passes write); `world` is where the
+    // first frame has it. What is computed once leaves it out (probe captures, the ray casts'
+    // hierarchy), and a lightmap refuses it.
     bool dynamic = false;
     // A move (a Lua scene object's `path`): keys in time order; at time t (seconds, a frame's
     // ctx.time) the placement's position and rotation (radians about X, then Y, then Z) pass
@@ -230,7 +261,15 @@ struct Node {
     };
     std::vector<Key> path;
     glm::mat4 placed{1.0f};  // below the path's placement: the object's scale, a glTF node's own
-    // The node's world transform at `seconds` along its path (`world` without one).
+    // A glTF animation that moves it (it, or a node above it in the file): then below the path's
+    // placement (or as its whole transform without a path) it is animationPlacement ·
+    // animation->world(animationNode, t) · animationLocal — the placement of the file in the
+    // scene, its glTF node's world in the file, and what lies below that node (an
+    // EXT_mesh_gpu_instancing instance's transform).
+    std::shared_ptr<const Animation> animation;
+    int32_t animationNode = -1;
+    glm::mat4 animationPlacement{1.0f}, animationLocal{1.0f};
+    // The node's world transform at `seconds` along its path and animation (`world` without).
     glm::mat4 at(double seconds) const;
 };
 
@@ -464,6 +503,11 @@ struct GltfOptions {
     // KHR_materials_variants: the variant whose materials the primitives take ("" = the file's
     // default materials). A name the file does not have is an error listing the ones it has.
     std::string variant;
+    // The animation whose channels move the nodes (glTF 2.0 §3.11; translation, rotation and scale
+    // of nodes; played from the frame's time, looping): "" = the file's first, "none" = none (the
+    // nodes stand at their rest transforms). A name the file does not have is an error listing
+    // the ones it has.
+    std::string animation;
 };
 
 // Loads a .gltf (with its external .bin files and images, or data: URIs) or a .glb.

@@ -132,7 +132,11 @@ Result<void> Builder::nodePath(const Where& w, const Value& b, size_t first) {
         Node& node = scene.nodes[n];
         node.dynamic = true;
         node.path = keys;
-        node.placed = unplace * node.world;
+        // An animated glTF node keeps its animation below the placement.
+        if (node.animation)
+            node.animationPlacement = unplace * node.animationPlacement;
+        else
+            node.placed = unplace * node.world;
         node.world = node.at(0.0);  // where the first frame has it
     }
     return {};

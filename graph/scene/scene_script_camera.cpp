@@ -132,7 +132,12 @@ Camera Camera::at(double seconds) const {
 }
 
 glm::mat4 Node::at(double seconds) const {
-    if (path.empty()) return world;
+    const glm::mat4 below =
+        animation
+            ? animationPlacement * animation->world(static_cast<size_t>(animationNode), seconds) *
+                  animationLocal
+            : placed;
+    if (path.empty()) return animation ? below : world;
     const float t = static_cast<float>(seconds);
     const glm::vec3 position = scene_detail::pathCurve(path, t, &Key::position);
     const glm::vec3 rotation = scene_detail::pathCurve(path, t, &Key::rotation);
@@ -141,7 +146,7 @@ glm::mat4 Node::at(double seconds) const {
     m = glm::rotate(m, rotation.z, glm::vec3(0, 0, 1));
     m = glm::rotate(m, rotation.y, glm::vec3(0, 1, 0));
     m = glm::rotate(m, rotation.x, glm::vec3(1, 0, 0));
-    return m * placed;
+    return m * below;
 }
 
 }  // namespace rg

@@ -217,8 +217,13 @@ void Builder::merge(Scene&& sub, const glm::mat4& t, const std::string& prefix) 
         mesh.name = prefix + "/" + mesh.name;
         scene.meshes.push_back(std::move(mesh));
     }
-    for (auto& n : sub.nodes)
-        scene.nodes.push_back({prefix + "/" + n.name, t * n.world, n.mesh + meshOff});
+    for (auto& n : sub.nodes) {
+        Node& node = scene.nodes.emplace_back(std::move(n));
+        node.name = prefix + "/" + node.name;
+        node.world = t * node.world;
+        node.mesh += meshOff;
+        node.animationPlacement = t * node.animationPlacement;
+    }
     const glm::mat3 linear(t);
     auto dir = [&](glm::vec3 v) {
         const glm::vec3 r = linear * v;
@@ -245,9 +250,9 @@ void Builder::merge(Scene&& sub, const glm::mat4& t, const std::string& prefix) 
 Result<void> Builder::gltf(const Declaration& d) {
     Where w = where(d);
     const Value& b = d.body;
-    if (auto r = checkFields(
-            w, b,
-            {"file", "position", "rotation", "scale", "cast_shadows", "variant", "path", "doc"});
+    if (auto r = checkFields(w, b,
+                             {"file", "position", "rotation", "scale", "cast_shadows", "variant",
+                              "animation", "path", "doc"});
         !r)
         return r;
     if (!b.has("file"))
@@ -262,6 +267,7 @@ Result<void> Builder::gltf(const Declaration& d) {
     go.generateMips = options.generateMips;
     go.buildLods = false;  // the script's end builds them for every mesh
     RG_TRY(go.variant, string(w, b, "variant", ""));
+    RG_TRY(go.animation, string(w, b, "animation", ""));
     bool castShadows = true;
     RG_TRY(castShadows, boolean(w, b, "cast_shadows", true));
     auto sub = loadGltf(resolve(b["file"].asString()), go);

@@ -76,7 +76,7 @@ struct Mesh {
                            0, 0, 1, 0, 0, 0, 0, 1};  // column-major, model to world
     // It moves after the scene loads (Renderer::setTransform): its draws carry this frame's and
     // the last frame's transforms, so the pipeline writes its motion (TAA follows it). What is
-    // computed once — probe captures, the reference mode's rays — sees it at `transform`.
+    // computed once leaves it out: probe captures and the ray casts' shadows.
     bool dynamic = false;
 };
 // Meshes as rgraph's Lua scenes make them (centred on the origin): the same vertices, so a scene

@@ -43,7 +43,7 @@ void main() {
 #endif
     // A perspective clip w is the view distance; an orthographic camera that moved is not
     // followed (its history is dropped), one standing still keeps the distance.
-    float expected = ortho ? (camera.temporal.x > 0.5 ? -1.0 : d) : clip.w;
+    float expected = ortho ? (camera.temporal.z > 0.5 ? -1.0 : d) : clip.w;
     if (any(lessThan(before, vec2(0.0))) || any(greaterThan(before, vec2(1.0))) || expected <= 0.0) return;
     vec2 past = textureLod(ao_history, before, 0.0).rg;  // bilinear: a mixed distance at edges is rejected below
     if (past.g <= 0.0 || abs(past.g - expected) > 0.03 * expected + 0.02) return;

@@ -49,14 +49,16 @@ void main() {
     // Read at the nearest texel: a bilinear read costs four, and the clamp below bounds what a
     // texel's shift can bring.
     vec4 clip = camera.previousViewProj * vec4(rgWorldPosition(at, z), 1.0);
+    vec2 uvBefore = clip.xy / clip.w * 0.5 + 0.5;
 #ifdef RG_MOTION
-    // Where nodes move, the surface's own motion (the motion target at the block's first pixel).
-    ivec2 before = ivec2(floor((at - texelFetch(motion, 2 * h, 0).xy) * vec2(last + 1)));
-#else
-    ivec2 before = ivec2(floor((clip.xy / clip.w * 0.5 + 0.5) * vec2(last + 1)));
+    // Where nodes move, the surface's own motion: the motion target at the block's first pixel
+    // when something was drawn there (its depth, Hi-Z level 0), the camera's otherwise.
+    ivec2 first = min(2 * h, textureSize(hiz, 0) - 1);
+    if (texelFetch(hiz, first, 0).r < 1.0) uvBefore = at - texelFetch(motion, first, 0).xy;
 #endif
+    ivec2 before = ivec2(floor(uvBefore * vec2(last + 1)));
     bool ortho = rgCameraOrthographic();
-    float expected = ortho ? (camera.temporal.x > 0.5 ? -1.0 : d) : clip.w;
+    float expected = ortho ? (camera.temporal.z > 0.5 ? -1.0 : d) : clip.w;
     bool onScreen = all(greaterThanEqual(before, ivec2(0))) && all(lessThanEqual(before, last)) && expected > 0.0;
     float pastDistance = onScreen ? texelFetch(ssr_distance_history, before, 0).r : 0.0;
     bool kept = pastDistance > 0.0 && abs(pastDistance - expected) <= 0.03 * expected + 0.02;

@@ -553,10 +553,21 @@ TEST(Library, ADynamicMeshMovesAndWritesItsMotion) {
     const float got = m.pixels[(32 * 64 + 33) * m.channels];
     std::printf("library: the dynamic mesh's motion %.5f uv, expected %.5f\n", got, want);
     EXPECT_NEAR(got, want, 0.01f * want);
-    EXPECT_EQ(m.pixels[(32 * 64 + 50) * m.channels], 0.0f);  // the static post
+    // The static post: drawn (it glows in the display), and without motion.
+    EXPECT_GT(r->readDisplay().pixels[(32 * 64 + 50) * 4], 0.5f);
+    EXPECT_EQ(m.pixels[(32 * 64 + 50) * m.channels], 0.0f);
     // Standing still again: no motion.
     r->render(1);
     EXPECT_EQ(r->readResource("motion").pixels[(32 * 64 + 33) * m.channels], 0.0f);
+    // A reload (another kept resource) places it where the host put it: moved on by 0.1 m more,
+    // it moves 0.1 m (0.2 m had the reload put it back at its Mesh::transform).
+    r->keep("GB1");
+    r->render(1);
+    moved[12] = 0.2f;
+    r->setTransform("mover", moved);
+    r->render(1);
+    const float again = r->readResource("motion").pixels[(32 * 64 + 33) * m.channels];
+    EXPECT_NEAR(again, want, 0.01f * want);
     try {
         r->setTransform("post", moved);
         FAIL() << "a static mesh was moved";

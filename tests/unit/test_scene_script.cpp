@@ -507,6 +507,37 @@ TEST(SceneScript, ObjectsMoveAlongTheirPaths) {
               "'position', 'rotation'");
 }
 
+// A glTF file's animation plays under the declaration's placement, and under its path when it
+// has one; `animation = "none"` keeps the file still.
+TEST(SceneScript, AGltfAnimationPlaysUnderItsPlacementAndPath) {
+    ScriptRunner lua("gltf_animation");
+    GltfBuilder g;
+    addQuad(g, true);
+    const int q = g.node({{"name", "q"}, {"mesh", 0}});
+    g.scene({q});
+    const int times = g.floats({0, 1}, "SCALAR"), slide = g.floats({0, 0, 0, 1, 0, 0}, "VEC3");
+    g.j["animations"] = json::array(
+        {{{"samplers", {{{"input", times}, {"output", slide}}}},
+          {"channels", {{{"sampler", 0}, {"target", {{"node", q}, {"path", "translation"}}}}}}}});
+    fs::create_directories(lua.dir + "/models");
+    g.writeGltf(lua.dir + "/models", "slide");
+    auto scene =
+        lua.run("s.lua",
+                "scene.gltf \"placed\" { file = \"models/slide.gltf\", position = { 10, 0, 0 }, "
+                "scale = 2 }\n"
+                "scene.gltf \"still\" { file = \"models/slide.gltf\", animation = \"none\" }\n"
+                "scene.gltf \"moved\" { file = \"models/slide.gltf\", path = { { time = 0 }, "
+                "{ time = 1, position = { 0, 0, 5 } } } }");
+    ASSERT_TRUE(scene) << errorOf(scene);
+    ASSERT_EQ(scene->nodes.size(), 3u);
+    // 1 m along x over a second, scaled 2 by the placement: 1 m at 0.5 s.
+    EXPECT_TRUE(scene->nodes[0].dynamic);
+    expectNear(origin(scene->nodes[0].at(0.5)), {11, 0, 0}, 1e-5f, "placed");
+    EXPECT_FALSE(scene->nodes[1].dynamic);
+    // The path (two keys: eased, half way at 0.5 s) and the animation below it.
+    expectNear(origin(scene->nodes[2].at(0.5)), {0.5f, 0, 2.5f}, 1e-5f, "under a path");
+}
+
 TEST(SceneScript, GltfIsMergedWithItsTransform) {
     ScriptRunner lua("merge");
     GltfBuilder g;
