@@ -351,6 +351,7 @@ private:
         size_t node = 0;
         uint32_t firstDraw = 0, drawCount = 0, firstLine = 0, lineCount = 0;
         std::vector<std::pair<glm::vec3, glm::vec3>> boxes;
+        std::vector<std::array<float, kMaxDrawLods - 1>> lodErrors;  // per draw, mesh space
         std::optional<glm::mat4> placed;
     };
     std::vector<Moving> m_moving;

@@ -35,6 +35,11 @@ void GpuScene::addMoving(size_t node, uint32_t firstDraw, uint32_t firstLine) {
             lo = glm::min(lo, v.position), hi = glm::max(hi, v.position);
         if (p.vertices.empty()) lo = hi = glm::vec3(0.0f);
         m.boxes.emplace_back(lo, hi);
+        // Its coarser levels' errors in the mesh's space: scaled by the node's scale each frame.
+        std::array<float, kMaxDrawLods - 1> errors{};
+        for (size_t l = 0; l < p.lods.size() && l + 1 < kMaxDrawLods; ++l)
+            errors[l] = p.lods[l].error;
+        m.lodErrors.push_back(errors);
     }
     m_drawMoves.resize(m_draws.size(), 0);
     std::fill(m_drawMoves.begin() + firstDraw, m_drawMoves.end(), uint8_t(1));
@@ -71,6 +76,10 @@ void GpuScene::updateMoving(uint32_t slot, bool fresh) {
         const Node& node = m_scene.nodes[m.node];
         const glm::mat4 world = m.placed ? *m.placed : node.at(m_time);
         const glm::mat4 normal = glm::mat4(glm::transpose(glm::inverse(glm::mat3(world))));
+        // A level's error in the world: times the node's largest axis scale (as at load).
+        const float scale =
+            std::max({glm::length(glm::vec3(world[0])), glm::length(glm::vec3(world[1])),
+                      glm::length(glm::vec3(world[2]))});
         for (uint32_t k = 0; k < m.drawCount; ++k) {
             const size_t d = m.firstDraw + k;
             DrawItem& item = m_draws[d];
@@ -89,6 +98,8 @@ void GpuScene::updateMoving(uint32_t slot, bool fresh) {
             }
             item.boundsMin = m_drawCull[d].lo = wlo;
             item.boundsMax = m_drawCull[d].hi = whi;
+            for (uint32_t l = 1; l < item.lodCount; ++l)
+                item.lods[l].error = m_drawCull[d].error[l - 1] = m.lodErrors[k][l - 1] * scale;
             m_movingMin = glm::min(m_movingMin, wlo);
             m_movingMax = glm::max(m_movingMax, whi);
             writeTransform(transforms + kTransformWords * d, d, previous);

@@ -36,8 +36,9 @@ Result<LightmapAtlas> packLightmap(const Scene& scene, const LightmapSettings& s
         if (n.dynamic)
             return fail(ErrorCode::InvalidInput,
                         "lightmap '" + settings.name + "': node '" + n.name +
-                            "' moves (a path, or a dynamic mesh): a lightmapped scene's nodes "
-                            "stand still; take the lightmap or the move away");
+                            "' moves (a path, a glTF animation or a dynamic mesh): a lightmapped "
+                            "scene's nodes stand still; take the lightmap or the move away (a "
+                            "glTF file's: scene.gltf's animation = \"none\")");
         for (const auto& p : mesh.primitives)
             if (!p.lightmapUv)
                 return fail(

@@ -4,7 +4,9 @@
 // or CUBICSPLINE, looping over the animation's duration. Morph weights are not animated (the
 // meshes keep the weights of the load), nor are skins (posed once at load).
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 #include <memory>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -19,7 +21,7 @@ namespace rg {
 
 namespace {
 
-constexpr size_t kMaxKeys = size_t(1) << 22;  // keys per sampler (a hostile file's count)
+constexpr size_t kMaxKeys = size_t(1) << 22;  // keys in all of an animation's samplers
 
 glm::quat quatOf(glm::vec4 v) { return glm::quat(v.w, v.x, v.y, v.z); }
 glm::vec4 vec4Of(glm::quat q) { return glm::vec4(q.x, q.y, q.z, q.w); }
@@ -134,16 +136,18 @@ Result<Animation::Sampler> Loader::animationSampler(const std::string& where,
     }
     if (out.rotation)
         for (size_t k = 0; k < out.times.size(); ++k) {
-            const glm::vec4 q = out.values[perKey * k + (perKey == 3 ? 1 : 0)];
+            glm::vec4& q = out.values[perKey * k + (perKey == 3 ? 1 : 0)];
             if (glm::length(q) < 1e-6f)
                 return error(ErrorCode::InvalidInput, where + ": output key " + std::to_string(k) +
                                                           " is not a rotation (a zero quaternion)");
+            q = glm::normalize(q);  // slerp takes unit quaternions (quantised ones are near)
         }
     return out;
 }
 
 Result<void> Loader::animations() {
-    if (model.animations.empty() || options.animation == "none") return {};
+    if (options.animation == "none" || (model.animations.empty() && options.animation.empty()))
+        return {};
     size_t chosen = 0;
     if (!options.animation.empty()) {
         std::vector<std::string> names;
@@ -152,7 +156,8 @@ Result<void> Loader::animations() {
         if (it == names.end())
             return error(ErrorCode::InvalidInput,
                          "no animation '" + options.animation + "' (the file has " +
-                             std::to_string(names.size()) + ": " + joinQuoted(names) + ")");
+                             std::to_string(names.size()) +
+                             (names.empty() ? "" : ": " + joinQuoted(names)) + ")");
         chosen = size_t(it - names.begin());
     } else if (model.animations.size() > 1) {
         warn("the file has " + std::to_string(model.animations.size()) +
@@ -162,15 +167,14 @@ Result<void> Loader::animations() {
     const std::string where = named("animation", chosen, a.name);
     auto anim = std::make_shared<Animation>();
     anim->name = a.name;
-    // Every glTF node with its parent and rest transform.
+    // Every glTF node the walk entered, with the node it entered it from and its rest transform
+    // (a node the walk did not enter is never drawn).
     anim->nodes.resize(model.nodes.size());
     for (size_t i = 0; i < model.nodes.size(); ++i) {
         const auto& n = model.nodes[i];
         Animation::GltfNode& g = anim->nodes[i];
-        // Parents among the nodes the walk entered (it refused a node reached twice or a cycle).
-        for (int c : n.children)
-            if (c >= 0 && size_t(c) < model.nodes.size() && worlds[i] && worlds[size_t(c)])
-                anim->nodes[size_t(c)].parent = int32_t(i);
+        if (i >= walkParent.size() || walkParent[i] == -2) continue;
+        g.parent = walkParent[i];
         if (!n.matrix.empty()) {
             RG_TRY(g.matrix, localTransform(i));
             continue;
@@ -182,6 +186,9 @@ Result<void> Loader::animations() {
                                    float(n.rotation[3]));
     }
     std::vector<bool> moved(model.nodes.size(), false);
+    std::vector<std::array<bool, 3>> targeted(model.nodes.size(), {false, false, false});
+    std::map<int, int32_t> read[3];  // glTF sampler -> Animation sampler, per path
+    size_t keys = 0;
     bool weights = false;
     for (size_t c = 0; c < a.channels.size(); ++c) {
         const tinygltf::AnimationChannel& ch = a.channels[c];
@@ -207,33 +214,58 @@ Result<void> Loader::animations() {
             return error(ErrorCode::InvalidInput,
                          cw + ": sampler " + std::to_string(ch.sampler) + " does not exist (" +
                              std::to_string(a.samplers.size()) + " samplers)");
-        Animation::GltfNode& g = anim->nodes[size_t(ch.target_node)];
+        const size_t target = size_t(ch.target_node);
+        const std::string node = named("node", target, model.nodes[target].name);
+        if (targeted[target][size_t(path)])
+            return error(ErrorCode::InvalidInput,
+                         cw + ": " + node + "'s " + ch.target_path +
+                             " is targeted by an earlier channel too (glTF: once per animation)");
+        targeted[target][size_t(path)] = true;
+        Animation::GltfNode& g = anim->nodes[target];
         if (g.matrix)
             return error(ErrorCode::InvalidInput,
-                         cw + ": " +
-                             named("node", size_t(ch.target_node),
-                                   model.nodes[size_t(ch.target_node)].name) +
-                             " is given by a matrix, which glTF does not animate");
-        Animation::Sampler sampler;
-        RG_TRY(sampler, animationSampler(where + ": sampler " + std::to_string(ch.sampler),
-                                         a.samplers[size_t(ch.sampler)], ch.target_path));
-        anim->duration = std::max(anim->duration, sampler.times.back());
-        g.sampler[path] = int32_t(anim->samplers.size());
-        anim->samplers.push_back(std::move(sampler));
-        moved[size_t(ch.target_node)] = true;
+                         cw + ": " + node + " is given by a matrix, which glTF does not animate");
+        // Each sampler read once (per path: the type of its outputs depends on it).
+        auto known = read[path].find(ch.sampler);
+        if (known == read[path].end()) {
+            Animation::Sampler sampler;
+            RG_TRY(sampler, animationSampler(where + ": sampler " + std::to_string(ch.sampler),
+                                             a.samplers[size_t(ch.sampler)], ch.target_path));
+            keys += sampler.times.size();
+            if (keys > kMaxKeys)
+                return error(
+                    ErrorCode::InvalidInput,
+                    where + ": more than " + std::to_string(kMaxKeys) + " keys in its samplers");
+            anim->duration = std::max(anim->duration, sampler.times.back());
+            known = read[path].emplace(ch.sampler, int32_t(anim->samplers.size())).first;
+            anim->samplers.push_back(std::move(sampler));
+        }
+        g.sampler[path] = known->second;
+        moved[target] = true;
     }
     if (weights)
         warn(where +
              " animates morph target weights, which rgraph does not play (the meshes keep "
              "the weights they load with)");
     if (anim->samplers.empty()) return {};
-    // A node moves when it or a node above it is animated.
+    // A node moves when it or a node above it is animated: worked out once per node, from the
+    // highest node not yet known down.
+    std::vector<int8_t> under(model.nodes.size(), -1);  // −1 not yet known
     auto movesUnder = [&](size_t n) {
-        for (int32_t i = int32_t(n), depth = 0; i >= 0 && depth <= int32_t(model.nodes.size());
-             i = anim->nodes[size_t(i)].parent, ++depth)
-            if (moved[size_t(i)]) return true;
-        return false;
+        std::vector<size_t> chain;
+        int32_t i = int32_t(n);
+        for (; i >= 0 && under[size_t(i)] < 0 && chain.size() <= model.nodes.size();
+             i = anim->nodes[size_t(i)].parent)
+            chain.push_back(size_t(i));
+        bool m = i >= 0 && under[size_t(i)] > 0;
+        for (auto c = chain.rbegin(); c != chain.rend(); ++c) {
+            m = m || moved[*c];
+            under[*c] = m ? 1 : 0;
+        }
+        return under[n] > 0;
     };
+    // A pose of one key (duration 0) moves nothing: its nodes take it and stand still.
+    const bool still = anim->duration <= 0.0f;
     std::vector<bool> skinnedNode(scene.nodes.size(), false);
     for (const SkinnedNode& s : skinned)
         if (s.sceneNode < skinnedNode.size()) skinnedNode[s.sceneNode] = true;
@@ -246,11 +278,12 @@ Result<void> Loader::animations() {
         }
         if (!movesUnder(gltfNode)) continue;
         Node& node = scene.nodes[i];
-        node.dynamic = true;
         node.animation = anim;
         node.animationNode = int32_t(gltfNode);
         node.animationLocal = below;
         node.world = node.at(0.0);  // where the first frame has it
+        node.dynamic = !still;
+        if (still) node.animation.reset();
     }
     // Joints moved by it would pose the skin anew each frame; the skin keeps the load's pose.
     for (const SkinnedNode& s : skinned)
@@ -258,11 +291,24 @@ Result<void> Loader::animations() {
              model.nodes[s.node].skin >= 0 && size_t(model.nodes[s.node].skin) < model.skins.size()
                  ? model.skins[size_t(model.nodes[s.node].skin)].joints
                  : std::vector<int>{})
-            if (j >= 0 && size_t(j) < moved.size() && movesUnder(size_t(j))) skinMoved = true;
+            if (j >= 0 && size_t(j) < moved.size() && walkParent[size_t(j)] != -2 &&
+                movesUnder(size_t(j)))
+                skinMoved = true;
     if (skinMoved)
         warn(where +
              " moves a skinned mesh or its joints, which rgraph draws in the pose it loads "
              "with (skins are not animated)");
+    // Lights and cameras stay where the file puts them at rest.
+    for (size_t i = 0; i < model.nodes.size(); ++i) {
+        const auto& n = model.nodes[i];
+        const bool light = n.extensions.count("KHR_lights_punctual") > 0;
+        if ((n.camera >= 0 || light) && walkParent[i] != -2 && movesUnder(i)) {
+            warn(where + " moves " + named("node", i, n.name) + ", whose " +
+                 (light ? "light" : "camera") +
+                 " stays at its rest transform (rgraph animates meshes, not lights or cameras)");
+            break;
+        }
+    }
     return {};
 }
 

@@ -140,6 +140,8 @@ struct Loader {
     // Per Scene node the walk made: its glTF node, and what lies below that node's transform (an
     // EXT_mesh_gpu_instancing instance's; identity otherwise) — what an animation moves.
     std::vector<std::pair<size_t, glm::mat4>> nodeSources;
+    // Per glTF node, the node the walk entered it from: −1 a root of the scene, −2 not entered.
+    std::vector<int32_t> walkParent;
     // The animation options.animation chooses (gltf_load_animation.cpp): read, checked and given
     // to the Scene nodes under the nodes it moves, each placed where it has them at time 0.
     Result<void> animations();

@@ -305,6 +305,7 @@ Result<void> Loader::visit(size_t root, const glm::mat4& parent, std::vector<boo
     };
     std::vector<Frame> stack;
     glm::mat4 world;
+    walkParent[root] = -1;
     if (auto r = enter(root, parent, onPath, seen, depth, world); !r) return r;
     stack.push_back({root, world, 0});
     while (!stack.empty()) {
@@ -321,6 +322,7 @@ Result<void> Loader::visit(size_t root, const glm::mat4& parent, std::vector<boo
                          named("node", f.index, n.name) + ": child " + std::to_string(child) +
                              " does not exist (" + std::to_string(model.nodes.size()) + " nodes)");
         const glm::mat4 parentWorld = f.world;
+        walkParent[size_t(child)] = int32_t(f.index);
         if (auto r = enter(size_t(child), parentWorld, onPath, seen, depth + stack.size(), world);
             !r)
             return r;
@@ -381,6 +383,7 @@ Result<void> Loader::nodes() {
     }
     std::vector<bool> onPath(model.nodes.size(), false), seen(model.nodes.size(), false);
     worlds.assign(model.nodes.size(), std::nullopt);
+    walkParent.assign(model.nodes.size(), -2);
     for (int r : roots) {
         if (r < 0 || size_t(r) >= model.nodes.size())
             return error(ErrorCode::InvalidInput,

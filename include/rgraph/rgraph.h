@@ -217,7 +217,8 @@ public:
     void cameraCut();
     // Places a dynamic mesh (Mesh::dynamic, by name; or a Lua scene object with a `path`, which
     // it then no longer follows) at `transform` (column-major, model to world) from the next
-    // frame. A mesh the scene lacks or one not dynamic is an error.
+    // frame, and again after the renderer reloads (setSize, keep, loadPipeline; a new scene starts
+    // without). A mesh the scene lacks or one not dynamic is an error.
     void setTransform(const std::string& mesh, const float transform[16]);
 
     // Renders `frames` frames (submitting on rgraph's queue, or the host's) and waits for them.

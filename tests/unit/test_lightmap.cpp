@@ -117,8 +117,9 @@ TEST(LightmapAtlas, ANodeThatMovesIsRefusedByName) {
     auto atlas = rg::bake::packLightmap(scene, s);
     ASSERT_FALSE(atlas);
     EXPECT_EQ(atlas.error().message,
-              "lightmap 'gi': node 'cart' moves (a path, or a dynamic mesh): a lightmapped "
-              "scene's nodes stand still; take the lightmap or the move away");
+              "lightmap 'gi': node 'cart' moves (a path, a glTF animation or a dynamic mesh): a "
+              "lightmapped scene's nodes stand still; take the lightmap or the move away (a "
+              "glTF file's: scene.gltf's animation = \"none\")");
 }
 
 TEST(LightmapScene, DeclarationIsChecked) {

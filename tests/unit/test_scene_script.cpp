@@ -526,7 +526,8 @@ TEST(SceneScript, AGltfAnimationPlaysUnderItsPlacementAndPath) {
                 "scene.gltf \"placed\" { file = \"models/slide.gltf\", position = { 10, 0, 0 }, "
                 "scale = 2 }\n"
                 "scene.gltf \"still\" { file = \"models/slide.gltf\", animation = \"none\" }\n"
-                "scene.gltf \"moved\" { file = \"models/slide.gltf\", path = { { time = 0 }, "
+                "scene.gltf \"moved\" { file = \"models/slide.gltf\", position = { 0, 0, 1 }, "
+                "rotation = { 0, 90, 0 }, scale = 2, path = { { time = 0 }, "
                 "{ time = 1, position = { 0, 0, 5 } } } }");
     ASSERT_TRUE(scene) << errorOf(scene);
     ASSERT_EQ(scene->nodes.size(), 3u);
@@ -534,8 +535,10 @@ TEST(SceneScript, AGltfAnimationPlaysUnderItsPlacementAndPath) {
     EXPECT_TRUE(scene->nodes[0].dynamic);
     expectNear(origin(scene->nodes[0].at(0.5)), {11, 0, 0}, 1e-5f, "placed");
     EXPECT_FALSE(scene->nodes[1].dynamic);
-    // The path (two keys: eased, half way at 0.5 s) and the animation below it.
-    expectNear(origin(scene->nodes[2].at(0.5)), {0.5f, 0, 2.5f}, 1e-5f, "under a path");
+    // The path (two keys from the declaration's position: eased, half way at 0.5 s, keeping its
+    // 90° about y) with the declaration's scale 2 and the animation below it: the slide's 0.5 m
+    // along x, doubled, turned to −z.
+    expectNear(origin(scene->nodes[2].at(0.5)), {0, 0, 3.0f - 1.0f}, 1e-5f, "under a path");
 }
 
 TEST(SceneScript, GltfIsMergedWithItsTransform) {
