@@ -374,7 +374,7 @@ VkBuffer GpuScene::bindingBuffer(std::string_view name, uint32_t slot) const {
     if (name == "Decals") return decalBuffer();
     if (name == "Probes") return probeBuffer();
     if (name == "SceneDraws") return drawBuffer(slot);
-    if (name == "SceneTransforms") return m_transforms[m_transforms.size() > 1 ? slot : 0].buffer();
+    if (name == "SceneTransforms") return ofSlot(m_transforms, slot).buffer();
     if (name == "SceneInstances") return m_instanceBuffers[slot].buffer();
     if (name == "SceneBvh") return bvhBuffer();
     if (name == "SceneEnvironmentCdf") return environmentCdfBuffer();

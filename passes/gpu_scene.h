@@ -224,9 +224,7 @@ public:
     // index range and vertex offset, and whether it casts shadows (opaque): what a culling pass
     // needs to write indirect draw commands (shaders/shadows/cascade_cull.comp).
     // Frame slot `slot`'s: a scene whose nodes move writes their boxes there each frame.
-    VkBuffer drawBuffer(uint32_t slot) const {
-        return m_drawBuffers[m_drawBuffers.size() > 1 ? slot : 0].buffer();
-    }
+    VkBuffer drawBuffer(uint32_t slot) const { return ofSlot(m_drawBuffers, slot).buffer(); }
     // Nodes that move (Node::dynamic: a path, or placed by setNodeTransform): updateFrame places
     // them at the frame's time, their draws' transforms, boxes and levels of detail with them,
     // and keeps each draw's last world matrix in SceneTransforms for the motion the camera's
@@ -340,6 +338,10 @@ private:
     // SceneTransforms (kTransformWords vec4 per draw) and SceneDraws: one, or one per frame slot
     // when nodes move.
     std::vector<gpu::Buffer> m_transforms, m_drawBuffers;
+    // Frame slot `slot`'s of such a list (its only one while nothing moves).
+    static const gpu::Buffer& ofSlot(const std::vector<gpu::Buffer>& list, uint32_t slot) {
+        return list[list.size() > 1 ? slot : 0];
+    }
     // Draw d's record of SceneTransforms at `out`: `world` (its world matrix now), its normal
     // matrix and lightmap rect, and `previous`, the last frame's world matrix.
     void writeTransform(glm::vec4* out, size_t d, const glm::mat4& previous) const;

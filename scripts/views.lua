@@ -110,13 +110,9 @@ end }
 
 rg.view "motion" { doc = "each pixel's screen motion since the last frame, as TAA reprojects by it: hue the direction, brightness the length (full at 8 pixels)", build = function(v)
     views.need(v, "depth", "the motion is the camera's, found from each pixel's depth")
-    -- The motion target the scene passes write (render_loop.lua), the objects' own motion where
+    -- The motion target the scene passes write (require "motion"), the objects' own motion where
     -- they were drawn: while nodes move (otherwise the target and RG_MOTION leave the graph).
-    if v.resources.motion then
-        views.fullscreen { shader = "passes/motion_view.frag", reads = { "depth", "motion" }, defines = { RG_MOTION = true } }
-    else
-        views.fullscreen { shader = "passes/motion_view.frag", reads = { "depth" } }
-    end
+    views.fullscreen(require("motion").reads { shader = "passes/motion_view.frag", reads = { "depth" } })
 end }
 
 rg.view "ssao" { doc = "the screen-space ambient occlusion", build = function(v)

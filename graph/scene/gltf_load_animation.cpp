@@ -83,8 +83,7 @@ glm::mat4 Animation::world(size_t node, double seconds) const {
             const glm::vec4 r = g.sampler[1] >= 0 ? sample(size_t(g.sampler[1]), t) : g.rotation;
             const glm::vec3 sc =
                 g.sampler[2] >= 0 ? glm::vec3(sample(size_t(g.sampler[2]), t)) : g.scale;
-            local = glm::translate(glm::mat4(1.0f), tr) *
-                    glm::mat4_cast(glm::normalize(quatOf(r))) * glm::scale(glm::mat4(1.0f), sc);
+            local = scene_detail::trs(tr, glm::normalize(quatOf(r)), sc);
         }
         m = local * m;
     }

@@ -65,7 +65,7 @@ Result<glm::mat4> Loader::localTransform(size_t index) {
                          where + ": rotation is not a unit quaternion (it is zero)");
         q = glm::normalize(glm::quat(r.w, r.x, r.y, r.z));
     }
-    return glm::translate(glm::mat4(1.0f), t) * glm::mat4_cast(q) * glm::scale(glm::mat4(1.0f), s);
+    return scene_detail::trs(t, q, s);
 }
 
 Result<void> Loader::camera(size_t nodeIndex, const glm::mat4& world) {
@@ -241,8 +241,7 @@ Result<void> Loader::instances(size_t index, const std::string& name, const glm:
             q = glm::normalize(glm::quat(r[3], r[0], r[1], r[2]));
         }
         if (!attrs[2].values.empty()) s = glm::make_vec3(&attrs[2].values[3 * i]);
-        const glm::mat4 local =
-            glm::translate(glm::mat4(1.0f), t) * glm::mat4_cast(q) * glm::scale(glm::mat4(1.0f), s);
+        const glm::mat4 local = scene_detail::trs(t, q, s);
         scene.nodes.push_back({name + " #" + std::to_string(i), world * local, mesh});
         nodeSources.emplace_back(index, local);
     }

@@ -5,6 +5,9 @@
 #include <string>
 #include <vector>
 
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/quaternion.hpp>
+
 #include "scene.h"
 
 // `lhs = value of expr`, or return its error: several checks in a row in the loaders.
@@ -20,6 +23,20 @@ struct Scene;
 }
 
 namespace rg::scene_detail {
+
+// translate(position) · Rz · Ry · Rx: a Lua scene's `position` and `rotation` (radians about X,
+// then Y, then Z), as objects, decals, probes and paths place things.
+inline glm::mat4 placement(glm::vec3 position, glm::vec3 radians) {
+    glm::mat4 m = glm::translate(glm::mat4(1.0f), position);
+    m = glm::rotate(m, radians.z, glm::vec3(0, 0, 1));
+    m = glm::rotate(m, radians.y, glm::vec3(0, 1, 0));
+    return glm::rotate(m, radians.x, glm::vec3(1, 0, 0));
+}
+
+// glTF's T · R · S (a node's translation, unit rotation quaternion and scale).
+inline glm::mat4 trs(glm::vec3 t, glm::quat q, glm::vec3 s) {
+    return glm::translate(glm::mat4(1.0f), t) * glm::mat4_cast(q) * glm::scale(glm::mat4(1.0f), s);
+}
 
 // A path's field at time t: through its keys (ascending `time`) on a cubic Hermite curve with
 // Catmull-Rom tangents (per second, from the neighbouring keys; zero at the ends), held before the

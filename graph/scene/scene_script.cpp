@@ -87,11 +87,7 @@ Result<glm::mat4> Builder::transform(const Where& w, const Value& b) {
         RG_TRY(scale, vec3(w, b, "scale", scale, "{x, y, z}", Range::positive()));
     }
     // Rotation in degrees about X, then Y, then Z (R = Rz * Ry * Rx).
-    glm::mat4 m = glm::translate(glm::mat4(1.0f), position);
-    m = glm::rotate(m, rotation.z * kDegrees, glm::vec3(0, 0, 1));
-    m = glm::rotate(m, rotation.y * kDegrees, glm::vec3(0, 1, 0));
-    m = glm::rotate(m, rotation.x * kDegrees, glm::vec3(1, 0, 0));
-    return glm::scale(m, scale);
+    return glm::scale(placement(position, rotation * kDegrees), scale);
 }
 
 Result<void> Builder::nodePath(const Where& w, const Value& b, size_t first) {
@@ -123,11 +119,7 @@ Result<void> Builder::nodePath(const Where& w, const Value& b, size_t first) {
         keys.push_back(k);
     }
     // What lies below the placement: translate(position) · R cancelled from the node's world.
-    glm::mat4 unplace = glm::translate(glm::mat4(1.0f), position);
-    unplace = glm::rotate(unplace, rotation.z * kDegrees, glm::vec3(0, 0, 1));
-    unplace = glm::rotate(unplace, rotation.y * kDegrees, glm::vec3(0, 1, 0));
-    unplace = glm::rotate(unplace, rotation.x * kDegrees, glm::vec3(1, 0, 0));
-    unplace = glm::inverse(unplace);
+    const glm::mat4 unplace = glm::inverse(placement(position, rotation * kDegrees));
     for (size_t n = first; n < scene.nodes.size(); ++n) {
         Node& node = scene.nodes[n];
         node.dynamic = true;

@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <glm/gtc/matrix_transform.hpp>
-
 #include "lua/declarations.h"
 #include "scene.h"
 #include "scene_detail.h"
@@ -126,8 +124,8 @@ Camera Camera::at(double seconds) const {
     if (path.empty()) return *this;
     Camera c = *this;
     const float t = static_cast<float>(seconds);
-    c.position = scene_detail::pathCurve(path, t, &Key::position);
-    c.target = scene_detail::pathCurve(path, t, &Key::target);
+    c.position = pathCurve(path, t, &Key::position);
+    c.target = pathCurve(path, t, &Key::target);
     return c;
 }
 
@@ -139,14 +137,8 @@ glm::mat4 Node::at(double seconds) const {
             : placed;
     if (path.empty()) return animation ? below : world;
     const float t = static_cast<float>(seconds);
-    const glm::vec3 position = scene_detail::pathCurve(path, t, &Key::position);
-    const glm::vec3 rotation = scene_detail::pathCurve(path, t, &Key::rotation);
-    // About X, then Y, then Z (R = Rz · Ry · Rx), as a scene object's `rotation`.
-    glm::mat4 m = glm::translate(glm::mat4(1.0f), position);
-    m = glm::rotate(m, rotation.z, glm::vec3(0, 0, 1));
-    m = glm::rotate(m, rotation.y, glm::vec3(0, 1, 0));
-    m = glm::rotate(m, rotation.x, glm::vec3(1, 0, 0));
-    return m * below;
+    return placement(pathCurve(path, t, &Key::position), pathCurve(path, t, &Key::rotation)) *
+           below;
 }
 
 }  // namespace rg

@@ -294,11 +294,7 @@ Result<void> Builder::probe(const Declaration& d) {
     RG_TRY(p.size, vec3(w, b, "size", p.size, "{x, y, z} in metres", Range::positive()));
     glm::vec3 rotation(0.0f);
     RG_TRY(rotation, vec3(w, b, "rotation", rotation, "{x, y, z} in degrees"));
-    glm::mat4 m(1.0f);
-    m = glm::rotate(m, rotation.z * kDegrees, glm::vec3(0, 0, 1));
-    m = glm::rotate(m, rotation.y * kDegrees, glm::vec3(0, 1, 0));
-    m = glm::rotate(m, rotation.x * kDegrees, glm::vec3(1, 0, 0));
-    p.rotation = glm::mat3(m);
+    p.rotation = glm::mat3(placement(glm::vec3(0.0f), rotation * kDegrees));
     if (b.has("influence")) {
         if (p.box)
             RG_TRY(p.influenceSize,

@@ -296,11 +296,7 @@ Result<void> Builder::decal(const Declaration& d) {
     RG_TRY(position, vec3(w, b, "position", glm::vec3(0.0f)));
     RG_TRY(rotation, vec3(w, b, "rotation", glm::vec3(0.0f), "{x, y, z} in degrees"));
     RG_TRY(size, vec3(w, b, "size", size, "{x, y, z} in metres", Range::positive()));
-    glm::mat4 m = glm::translate(glm::mat4(1.0f), position);
-    m = glm::rotate(m, rotation.z * kDegrees, glm::vec3(0, 0, 1));
-    m = glm::rotate(m, rotation.y * kDegrees, glm::vec3(0, 1, 0));
-    m = glm::rotate(m, rotation.x * kDegrees, glm::vec3(1, 0, 0));
-    decal.world = glm::scale(m, size);
+    decal.world = glm::scale(placement(position, rotation * kDegrees), size);
     RG_TRY(decal.opacity, numberF(w, b, "opacity", 1.0f, Range::unit()));
     decal.hasBaseColor = b.has("base_color");
     decal.hasSmoothness = b.has("smoothness");

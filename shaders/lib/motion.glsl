@@ -26,4 +26,13 @@ vec2 rgClipMotion(vec4 now, vec4 before) {
     return (now.xy / now.w - before.xy / before.w) * 0.5;
 }
 
+// The motion of what pixel `pixel` (at uv, its depth `depth`) shows: where nodes move
+// (RG_MOTION), the motion target's where something was drawn (a surface's own motion), else the
+// camera's from the depth.
+#ifdef RG_MOTION
+vec2 rgPixelMotion(sampler2D target, ivec2 pixel, vec2 uv, float depth) {
+    return depth < 1.0 ? texelFetch(target, pixel, 0).xy : rgMotion(uv, depth);
+}
+#endif
+
 #endif

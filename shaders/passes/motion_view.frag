@@ -15,7 +15,7 @@ layout(set = 0, binding = 1) uniform sampler2D motion;  // while nodes move (scr
 void main() {
     float d = texelFetch(depth, ivec2(gl_FragCoord.xy), 0).r;
 #ifdef RG_MOTION
-    vec2 pixels = (d < 1.0 ? texelFetch(motion, ivec2(gl_FragCoord.xy), 0).xy : rgMotion(uv, d)) * camera.viewport.xy;
+    vec2 pixels = rgPixelMotion(motion, ivec2(gl_FragCoord.xy), uv, d) * camera.viewport.xy;
 #else
     vec2 pixels = rgMotion(uv, d) * camera.viewport.xy;
 #endif

@@ -84,12 +84,11 @@ void main() {
         float d = texelFetch(depth, q, 0).r;
         if (d < nearest) nearest = d, nearestPixel = q;
     }
+    vec2 nearestUv = (vec2(nearestPixel) + 0.5) / vec2(last + 1);
 #ifdef RG_MOTION
-    // A surface's own motion where one was drawn (moving nodes), the camera's beyond.
-    before = uv - (nearest < 1.0 ? texelFetch(motion, nearestPixel, 0).xy
-                                 : rgMotion((vec2(nearestPixel) + 0.5) / vec2(last + 1), nearest));
+    before = uv - rgPixelMotion(motion, nearestPixel, nearestUv, nearest);  // moving nodes' own
 #else
-    before = uv - rgMotion((vec2(nearestPixel) + 0.5) / vec2(last + 1), nearest);
+    before = uv - rgMotion(nearestUv, nearest);
 #endif
     vec4 history = historyCatmullRom(before);
 #else
