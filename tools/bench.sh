@@ -5,6 +5,8 @@
 #   tools/bench.sh [--out DIR] [--frames N] [--quick]
 #
 #   default frame   the default pipeline and scene at 1280x720, N frames (default 10), with floors
+#   antialiasing    the default frame again with FXAA (--set antialiasing=fxaa): TAA's passes
+#                   (taa, taa_moving, taa_history_keep) against FXAA's (fxaa_edges, fxaa)
 #   many lights     scripts/scenes/many_lights.lua at 640x360 with 16 to 65 536 lights: the light
 #                   culling passes (froxels, tiles) + lighting_standard, and its ratios to 64 lights
 #   levels of detail  scripts/scenes/field.lua (1000 dense spheres) at the default size, with its
@@ -46,6 +48,9 @@ step() { echo "tools/bench.sh: $*" >&2; }
 
 step "default frame at $size, $frames frames, with floors"
 "$rgraph" bench --size "$size" --frames "$frames" --floors --json "$out/default.json" >"$out/default.txt"
+
+step "antialiasing: the default frame with FXAA at $size"
+"$rgraph" bench --size "$size" --frames "$frames" --set antialiasing=fxaa --json "$out/fxaa.json" >"$out/fxaa.txt"
 
 for n in $counts; do
     step "many lights: $n at $lights_size"
@@ -90,6 +95,7 @@ import json, sys
 out, counts = sys.argv[1], [int(c) for c in sys.argv[2].split()]
 load = lambda name: json.load(open(f"{out}/{name}"))
 default = load("default.json")
+fxaa = load("fxaa.json")
 lights = {n: load(f"lights_{n}.json") for n in counts}
 compile_ = load("compile.json")
 field = {lod: load(f"field_lod{lod}.json") for lod in (1, 0)}
@@ -98,6 +104,9 @@ def passes(b, *names):
     p = {x["name"]: x["medianMs"] for x in b["passes"]}
     return sum(v for k, v in p.items() if any(k.startswith(n) for n in names))
 startup = load("startup.json")
+def named(b, *names):
+    p = {x["name"]: x["medianMs"] for x in b["passes"]}
+    return sum(p.get(n, 0.0) for n in names)
 def lighting(b):
     p = {x["name"]: x["medianMs"] for x in b["passes"]}
     return sum(v for k, v in p.items() if k.startswith("light_froxels") or k in ("light_culling", "lighting_standard"))
@@ -113,12 +122,15 @@ suite = {
     "city": {"nodes": int(sys.argv[3]), "gbufferMs": passes(city, "gbuffer"), "sunMapsMs": passes(city, "shadow_sun"),
              "frameMs": city["frameTotalMs"]["median"], "cpuRecordMs": city["cpuRecordMs"]["median"],
              "ratioToDefault": city["frameTotalMs"]["median"] / max(default["frameTotalMs"]["median"], 1e-9)},
+    "antialiasing": {"taaMs": named(default, "taa", "taa_moving", "taa_history_keep"),
+                     "fxaaMs": named(fxaa, "fxaa_edges", "fxaa")},
     "compile200Ms": compile_["compileMs"],
     "startupMs": startup,
 }
 for n in (1024, 16384, 65536):
     if n in lights and 64 in lights:
         suite["manyLights"][f"ratio{n}to64"] = lighting(lights[n]) / max(lighting(lights[64]), 1e-9)
+suite["antialiasing"]["taaToFxaa"] = suite["antialiasing"]["taaMs"] / max(suite["antialiasing"]["fxaaMs"], 1e-9)
 json.dump(suite, open(f"{out}/bench.json", "w"), indent=2)
 a, u = default["transientBytesAliased"], default["transientBytesUnaliased"]
 md = [f"# rgraph bench: {default['device']}", "",
@@ -140,6 +152,9 @@ for lod, label in ((1, "levels of detail"), (0, "full meshes (RG_LOD=0)")):
 c = suite["city"]
 md += ["", f"City of {c['nodes']} nodes: frame {c['frameMs']:.1f} ms ({c['ratioToDefault']:.2f}x the default frame), "
        f"gbuffer {c['gbufferMs']:.1f} ms, the sun's maps {c['sunMapsMs']:.1f} ms, CPU recording {c['cpuRecordMs']:.1f} ms"]
+aa = suite["antialiasing"]
+md += ["", f"Antialiasing: TAA (taa, taa_moving, taa_history_keep) {aa['taaMs']:.2f} ms against FXAA "
+       f"(fxaa_edges, fxaa) {aa['fxaaMs']:.2f} ms: {aa['taaToFxaa']:.2f}x"]
 md += ["", f"200-pass graph compile: {compile_['compileMs']:.3f} ms",
        f"Start-up to the first image written: cold {startup['coldMs']} ms, warm {startup['warmMs']} ms "
        f"(warm, to the first frame done: {startup['warmFirstFrameMs']} ms)",

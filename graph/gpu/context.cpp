@@ -333,6 +333,17 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
 // pool and the pipeline cache.
 Result<void> Context::createDeviceObjects(const ContextOptions& options) {
     m_allocator = std::make_unique<Allocator>(m_physical, m_device);
+    // Quad operations in fragment shaders (Vulkan 1.1's subgroup properties); RG_QUAD_OPS=0 turns
+    // their use off (to compare the shaders' two paths).
+    VkPhysicalDeviceSubgroupProperties subgroup{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_SUBGROUP_PROPERTIES};
+    VkPhysicalDeviceProperties2 properties{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_PROPERTIES_2};
+    properties.pNext = &subgroup;
+    vkGetPhysicalDeviceProperties2(m_physical, &properties);
+    const char* quadEnv = std::getenv("RG_QUAD_OPS");
+    m_fragmentQuadOps = (subgroup.supportedStages & VK_SHADER_STAGE_FRAGMENT_BIT) &&
+                        (subgroup.supportedOperations & VK_SUBGROUP_FEATURE_QUAD_BIT) &&
+                        !(quadEnv && std::strcmp(quadEnv, "0") == 0);
 
     VkCommandPoolCreateInfo poolInfo{VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO};
     poolInfo.flags = VK_COMMAND_POOL_CREATE_TRANSIENT_BIT;

@@ -73,6 +73,9 @@ public:
     const VkPhysicalDeviceProperties& properties() const { return m_properties; }
     // Whether indirect draws may start at an instance other than 0 (drawIndirectFirstInstance).
     bool drawIndirectFirstInstance() const { return m_drawIndirectFirstInstance; }
+    // Whether fragment shaders may use quad operations (GL_KHR_shader_subgroup_quad; lavapipe
+    // has them): every shader then gets RG_QUAD_OPS (passes/shader_program.cpp).
+    bool fragmentQuadOps() const { return m_fragmentQuadOps; }
     Allocator& allocator() { return *m_allocator; }
     uint32_t framesInFlight() const { return m_framesInFlight; }
     double timestampPeriodNs() const { return m_properties.limits.timestampPeriod; }
@@ -124,6 +127,7 @@ private:
     uint32_t m_framesInFlight = 2;
     uint32_t m_currentSlot = 0;
     bool m_drawIndirectFirstInstance = false;
+    bool m_fragmentQuadOps = false;
     // One queue per frame slot, plus those pushed before the first frame.
     std::vector<std::vector<std::function<void()>>> m_deletions;
 

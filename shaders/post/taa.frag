@@ -12,13 +12,17 @@
 //     branch would cost lavapipe both sides);
 //   - the history clipped towards the mean of the pixel and its four edge neighbours, into their
 //     box of mean ± 1.25 σ in YCoCg (Salvi 2016's variance clipping): what the pixel's
-//     surroundings cannot make now is ghost. Five taps, not nine: each tap costs lavapipe ~2 ms
-//     of the pass at 1280×720;
+//     surroundings cannot make now is ghost. Five taps, not nine: each fetch costs lavapipe ~1 ms
+//     of the pass at 1280×720 — and on a device with quad operations (RG_QUAD_OPS) two of the
+//     four neighbours are the pixel's partners in its 2×2 quad, read by a swap;
 //   - rejected outside the last frame's screen and where the history is empty (alpha 0: the first
 //     frame, a reset of the histories);
 //   - blended with weights 1 / (1 + luma) (Karis), so a single bright sample does not flicker.
 // In pre-exposed space (lib/exposure.glsl): the history, pre-exposed with the last frame's
 // pre-exposure, is rescaled to this frame's, so an exposure change does not smear through it.
+#ifdef RG_QUAD_OPS
+#extension GL_KHR_shader_subgroup_quad : require
+#endif
 #include "lib/scene.glsl"
 #include "lib/exposure.glsl"
 #include "lib/motion.glsl"
@@ -64,17 +68,33 @@ vec4 historyCatmullRom(vec2 at) {
 
 void main() {
     ivec2 pixel = ivec2(gl_FragCoord.xy), last = textureSize(source, 0) - 1;
-    vec3 current = texelFetch(source, pixel, 0).rgb;
-    // The moments of the pixel and its edge neighbours, in YCoCg.
-    vec3 c = toYCoCg(current), m1 = c, m2 = c * c;
-    const ivec2 plus[4] = ivec2[](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
+    // min: a helper invocation past the last column or row (an odd size) reads the edge's texel,
+    // as the clamped fetch of its neighbour would.
+    vec3 current = texelFetch(source, min(pixel, last), 0).rgb;
+    // The moments of the pixel and its edge neighbours (+x, −x, +y, −y), in YCoCg.
+    const vec3 c = toYCoCg(current);
+#ifdef RG_QUAD_OPS
+    // The neighbour inside the pixel's 2×2 quad, on each axis, is that invocation's own pixel: a
+    // quad swap, not a fetch (a fetch is ~1 ms of the pass at 1280×720 on lavapipe); the one
+    // outside the quad is fetched.
+    const bvec2 odd = notEqual(pixel & 1, ivec2(0));
+    const vec3 acrossX = subgroupQuadSwapHorizontal(c), acrossY = subgroupQuadSwapVertical(c);
+    const vec3 fetchedX = toYCoCg(texelFetch(source, clamp(pixel + ivec2(odd.x ? 1 : -1, 0), ivec2(0), last), 0).rgb);
+    const vec3 fetchedY = toYCoCg(texelFetch(source, clamp(pixel + ivec2(0, odd.y ? 1 : -1), ivec2(0), last), 0).rgb);
+    const vec3 plus[4] = vec3[](odd.x ? fetchedX : acrossX, odd.x ? acrossX : fetchedX,
+                                odd.y ? fetchedY : acrossY, odd.y ? acrossY : fetchedY);
+#else
+    const ivec2 offsets[4] = ivec2[](ivec2(1, 0), ivec2(-1, 0), ivec2(0, 1), ivec2(0, -1));
+    vec3 plus[4];
+    for (int i = 0; i < 4; ++i) plus[i] = toYCoCg(texelFetch(source, clamp(pixel + offsets[i], ivec2(0), last), 0).rgb);
+#endif
+    vec3 m1 = c, m2 = c * c;
     for (int i = 0; i < 4; ++i) {
-        vec3 n = toYCoCg(texelFetch(source, clamp(pixel + plus[i], ivec2(0), last), 0).rgb);
-        m1 += n;
-        m2 += n * n;
+        m1 += plus[i];
+        m2 += plus[i] * plus[i];
     }
-    vec2 before = uv;
 #ifdef RG_TAA_MOVING
+    vec2 before = uv;
     // The nearest depth of the pixel and its diagonal neighbours, and its motion.
     float nearest = texelFetch(depth, pixel, 0).r;
     ivec2 nearestPixel = pixel;
@@ -94,20 +114,25 @@ void main() {
 #else
     vec4 history = texelFetch(taa_history, pixel, 0);
 #endif
-    bool valid = history.a > 0.5 && all(greaterThanEqual(before, vec2(0.0))) && all(lessThanEqual(before, vec2(1.0)));
-    if (!valid) {
-        color = vec4(current, 1.0);
-        return;
-    }
-    // The last frame's pre-exposure is what the exposure state recorded for it.
-    float preExposure = rgPreExposure(ex.state, params.initial_ev100);
-    vec3 past = history.rgb * (ex.state.preExposure > 0.0 ? preExposure / ex.state.preExposure : 1.0);
-    vec3 mean = m1 / 5.0, sigma = sqrt(max(m2 / 5.0 - mean * mean, 0.0));
-    // Clip towards the mean (not a per-channel clamp: that shifts the hue).
+    // Valid: the history has something (alpha 1) and, moving, the pixel was on the last screen.
+#ifdef RG_TAA_MOVING
+    const bool valid = history.a > 0.5 && all(greaterThanEqual(before, vec2(0.0))) && all(lessThanEqual(before, vec2(1.0)));
+#else
+    const bool valid = history.a > 0.5;
+#endif
+    // The last frame's pre-exposure is what the exposure state recorded for it, this frame's its
+    // `exposure` (lib/exposure.glsl's rgPreExposure): before the state's first update both are
+    // unknown and the history is kept as it is. (rgPreExposure's initial EV100 is for that first
+    // frame alone: its exp2 per pixel cost lavapipe ~1.6 ms at 1280×720.)
+    vec3 past = history.rgb * (ex.state.initialized > 0.5 ? ex.state.exposure / ex.state.preExposure : 1.0);
+    // Clip towards the mean (not a per-channel clamp: that shifts the hue): |d| / (1.25 σ) per
+    // channel as |d| · 0.8 / √variance (σ at least 8e-7), one inverse square root for a square
+    // root and a division — the pass's arithmetic costs lavapipe as much as its fetches.
+    vec3 mean = m1 * 0.2, variance = max(m2 * 0.2 - mean * mean, vec3(6.4e-13));
     vec3 h = toYCoCg(past), d = h - mean;
-    vec3 scaled = abs(d / max(1.25 * sigma, vec3(1e-6)));
+    vec3 scaled = abs(d) * (0.8 * inversesqrt(variance));
     float outside = max(scaled.x, max(scaled.y, scaled.z));
-    if (outside > 1.0) h = mean + d / outside;
+    if (outside > 1.0) h = mean + d * (1.0 / outside);
     past = max(fromYCoCg(h), vec3(0.0));
     float feedback = params.taa_feedback;
 #ifdef RG_TAA_MOVING
@@ -115,7 +140,10 @@ void main() {
     // the image moves, the less of it is kept (down by 0.2 at 4 pixels a frame).
     feedback -= 0.2 * clamp(length((uv - before) * vec2(last + 1)) / 4.0, 0.0, 1.0);
 #endif
-    float wc = (1.0 - feedback) / (1.0 + dot(current, vec3(0.2126, 0.7152, 0.0722)));
-    float wh = feedback / (1.0 + dot(past, vec3(0.2126, 0.7152, 0.0722)));
-    color = vec4((current * wc + past * wh) / (wc + wh), 1.0);
+    // The weights (1 − feedback) / (1 + luma(current)) and feedback / (1 + luma(past)), each
+    // multiplied by both denominators: one division.
+    float wc = (1.0 - feedback) * (1.0 + dot(past, vec3(0.2126, 0.7152, 0.0722)));
+    float wh = feedback * (1.0 + dot(current, vec3(0.2126, 0.7152, 0.0722)));
+    // Without a valid history, the frame itself.
+    color = vec4(valid ? (current * wc + past * wh) * (1.0 / (wc + wh)) : current, 1.0);
 }

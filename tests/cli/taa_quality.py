@@ -10,6 +10,10 @@ differently at 4× the pixels; with them the TAA/FXAA p99 ratio is 0.91, all of 
 spheres, not at edges).
 
   - still: 16 frames, the last compared; TAA's p99 display error must be at most 0.6 × FXAA's;
+  - quad swaps: where the device has quad operations in fragment shaders (lavapipe does), TAA
+    reads its neighbours inside the pixel's 2×2 quad by a swap (RG_QUAD_OPS); at an odd size
+    (helper invocations past the last column and row), still and moving, the images must be
+    identical to the fetches' (RG_QUAD_OPS=0);
   - moving (--scene-arg move=1): every frame from 6 on (TAA's history filled) compared with that
     frame's reference: TAA's p99 error must stay below FXAA's (its mean error is printed too: in
     motion TAA softens the surfaces' insides a little, a few % above FXAA's mean); ghosting — the
@@ -33,10 +37,10 @@ SETTINGS = ["--set", "exposure_mode=manual", "--set", "dither=false", "--set", "
 failures = []
 
 
-def render(out, size, frames, aa, *extra):
+def render(out, size, frames, aa, *extra, env=None):
     p = subprocess.run([RGRAPH, "render", "--size", size, "--frames", frames, "--set",
                         f"antialiasing={aa}", *SETTINGS, *extra, "--out", out], cwd=ROOT,
-                       env={**os.environ, "RG_LOD": "0"}, capture_output=True, text=True)
+                       env={**os.environ, "RG_LOD": "0", **(env or {})}, capture_output=True, text=True)
     if p.returncode:
         sys.exit(f"render failed: {p.stderr}")
 
@@ -66,11 +70,23 @@ def check(name, ok, detail):
 def main():
     tmp = tempfile.mkdtemp(prefix="rgraph-taa-")
     try:
+        quad(tmp)
         still(tmp)
         moving(tmp)
     finally:
         shutil.rmtree(tmp, ignore_errors=True)
     return 1 if failures else 0
+
+
+def quad(tmp):
+    for name, frames, extra in (("still", "8", []), ("moving", "5", ["--scene-arg", "move=1"])):
+        images = []
+        for flag in ("0", "1"):
+            render(f"{tmp}/quad{flag}.exr", "161x91", frames, "taa", *extra, env={"RG_QUAD_OPS": flag})
+            images.append(np.asarray(Image.open(f"{tmp}/quad{flag}.png"), dtype=np.int32))
+        differ = int((images[0] != images[1]).any(axis=2).sum())
+        check(f"quad swaps, {name}: TAA's image at 161x91 the same as with fetches", differ == 0,
+              f"{differ} pixels differ")
 
 
 def still(tmp):
