@@ -86,6 +86,13 @@ Result<void> GpuScene::setSetting(const std::string& name, const Value& value) {
 std::optional<bool> GpuScene::feature(const std::string& name) const {
     if (name == "lightmap") return hasLightmap();
     if (name == "motion") return moves();
+    if (name.starts_with("draws:")) {
+        const std::string count = name.substr(6);
+        if (count.empty() || count.size() > 9 ||
+            !std::all_of(count.begin(), count.end(), [](char c) { return c >= '0' && c <= '9'; }))
+            return std::nullopt;
+        return m_draws.size() >= std::stoul(count);
+    }
     if (name.starts_with(kMaterialFeature)) {
         const std::string_view model = std::string_view(name).substr(kMaterialFeature.size());
         return std::any_of(m_draws.begin(), m_draws.end(), [&](const DrawItem& d) {
@@ -99,6 +106,9 @@ std::optional<bool> GpuScene::feature(const std::string& name) const {
 std::optional<uint32_t> GpuScene::layerExtent(const std::string& name) const {
     if (name == kShadowViewsExtent) return m_shadowViewCapacity;
     if (name == kShadowBatchesExtent) return static_cast<uint32_t>(m_shadowBatches.size());
+    if (name == kCameraBatchesExtent) return m_cameraBatchCount;
+    if (name == kDrawsExtent) return static_cast<uint32_t>(m_draws.size());
+    if (name == kMaterialsExtent) return static_cast<uint32_t>(m_scene.materials.size());
     if (name == kShadowCastersExtent) {
         uint32_t casters = 0;
         for (const ShadowBatch& b : m_shadowBatches)

@@ -46,6 +46,8 @@ struct DrawLod {
     float error = 0.0f;
 };
 inline constexpr uint32_t kMaxDrawLods = 4;  // the full range and up to three coarser ones
+// The vec4 words of a draw's record in SceneDraws (lib/scene.glsl RgDraw).
+inline constexpr size_t kDrawWords = 8;
 
 struct DrawItem {
     uint32_t firstIndex = 0;  // the full index range (lods[0])
@@ -119,15 +121,17 @@ public:
     uint64_t id() const override { return m_id; }
     std::optional<uint32_t> layerExtent(const std::string& name) const override;
     std::vector<std::string> extentNames() const override {
-        return {kShadowViewsExtent, kShadowCastersExtent, kShadowBatchesExtent};
+        return {kShadowViewsExtent,   kShadowCastersExtent, kShadowBatchesExtent,
+                kCameraBatchesExtent, kDrawsExtent,         kMaterialsExtent};
     }
     // Its features: "lightmap", a baked lightmap (scene.lightmap, from the cache or baked), and
     // "material:MODEL", whether a draw's material is of that pipeline material (any name: false
     // for one the scene does not draw) — what render_loop.lua's `opaque` copy exists for.
     std::optional<bool> feature(const std::string& name) const override;
-    // and "motion", whether a node moves (Node::dynamic): render_loop.lua's motion target.
+    // and "motion", whether a node moves (Node::dynamic): render_loop.lua's motion target; and
+    // "draws:N", whether it has at least N draws (scripts/culling.lua: the GPU-culled G-buffer).
     std::vector<std::string> featureNames() const override {
-        return {"lightmap", "material:MODEL", "motion"};
+        return {"lightmap", "material:MODEL", "motion", "draws:N"};
     }
     static constexpr const char* kShadowViewsExtent = "shadow_views";
     // The draws that cast shadows, and their batches: casters sharing a mesh (vertex offset,
@@ -141,6 +145,21 @@ public:
         bool doubleSided = false;
     };
     const std::vector<ShadowBatch>& shadowBatches() const { return m_shadowBatches; }
+    // The camera's batches (cameraBatchKey's, without the level), the draws, and the materials:
+    // what the GPU culling of the G-buffer's draws sizes its buffers by
+    // (shaders/passes/camera_cull.comp: a command per batch and level, an instance slot per draw
+    // and level, a count per material).
+    static constexpr const char* kCameraBatchesExtent = "camera_batches";
+    static constexpr const char* kDrawsExtent = "draws";
+    static constexpr const char* kMaterialsExtent = "materials";
+    // Material m's indirect commands (camera_cull.comp): its batches are consecutive, so their
+    // commands (kMaxDrawLods each) are one range. None for a material no draw uses.
+    struct CameraSegment {
+        uint32_t firstCommand = 0, commands = 0;
+    };
+    const CameraSegment& cameraSegment(uint32_t material) const {
+        return m_cameraSegments[material];
+    }
 
     const Scene& scene() const { return m_scene; }
     const std::vector<DrawItem>& draws() const { return m_draws; }
@@ -366,8 +385,9 @@ private:
     // Places the moving nodes for this frame and writes slot `slot`'s records of their draws;
     // `fresh` (the first frame, a cut): the last frame's transforms are this frame's.
     void updateMoving(uint32_t slot, bool fresh);
-    std::vector<ShadowBatch> m_shadowBatches;  // the casters by mesh and cull mode
-    std::vector<uint32_t> m_cameraBatch;       // per draw: its mesh range and material's batch
+    std::vector<ShadowBatch> m_shadowBatches;     // the casters by mesh and cull mode
+    std::vector<uint32_t> m_cameraBatch;          // per draw: its mesh range and material's batch
+    std::vector<CameraSegment> m_cameraSegments;  // per material (cameraSegment)
     // Per draw what updateFrame's culling and level choice read, packed (40 bytes rather than a
     // DrawItem's ~250: the 100 000-node city's update was bound by the memory it walked).
     struct DrawCull {

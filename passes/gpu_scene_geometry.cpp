@@ -138,19 +138,45 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
         c.lodCount = item.lodCount;
         for (uint32_t l = 1; l < item.lodCount; ++l) c.error[l - 1] = item.lods[l].error;
     }
-    // The camera's batches: the same mesh (vertex offset, full index range) and material.
+    // The camera's batches: the same mesh (vertex offset, full index range) and material,
+    // numbered by material (then by their first draw), so that a material's batches are one run:
+    // its indirect commands one range for the GPU-culled G-buffer (RgDraw's `camera`).
+    std::vector<glm::uvec4> cameraWord(m_draws.size(), glm::uvec4(0));
     {
         std::map<std::tuple<int32_t, uint32_t, uint32_t, uint32_t>, uint32_t> batchOf;
-        m_cameraBatch.resize(m_draws.size());
+        std::vector<std::vector<uint32_t>> members;  // per batch in draw order: its draws
         for (size_t d = 0; d < m_draws.size(); ++d) {
             const DrawItem& item = m_draws[d];
-            m_cameraBatch[d] = batchOf
-                                   .emplace(std::tuple(item.vertexOffset, item.firstIndex,
-                                                       item.indexCount, item.material),
-                                            static_cast<uint32_t>(batchOf.size()))
-                                   .first->second;
+            auto [at, added] = batchOf.emplace(
+                std::tuple(item.vertexOffset, item.firstIndex, item.indexCount, item.material),
+                static_cast<uint32_t>(members.size()));
+            if (added) members.emplace_back();
+            members[at->second].push_back(static_cast<uint32_t>(d));
         }
-        m_cameraBatchCount = static_cast<uint32_t>(batchOf.size());
+        std::vector<uint32_t> order(members.size());
+        for (uint32_t b = 0; b < order.size(); ++b) order[b] = b;
+        std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
+            return m_draws[members[a].front()].material < m_draws[members[b].front()].material;
+        });
+        m_cameraBatch.resize(m_draws.size());
+        m_cameraSegments.assign(m_scene.materials.size(), CameraSegment{});
+        uint32_t slot = 0;
+        for (uint32_t b = 0; b < order.size(); ++b) {
+            const std::vector<uint32_t>& draws = members[order[b]];
+            const uint32_t material = m_draws[draws.front()].material;
+            CameraSegment& segment = m_cameraSegments[material];
+            if (segment.commands == 0) segment.firstCommand = b * kMaxDrawLods;
+            segment.commands += kMaxDrawLods;
+            const bool gbuffer = m_scene.materials[material].alphaMode != AlphaMode::Blend;
+            for (uint32_t d : draws) {
+                m_cameraBatch[d] = b;
+                if (gbuffer)
+                    cameraWord[d] = glm::uvec4(b + 1, slot, static_cast<uint32_t>(draws.size()),
+                                               b * kMaxDrawLods - segment.firstCommand);
+            }
+            slot += static_cast<uint32_t>(draws.size());
+        }
+        m_cameraBatchCount = static_cast<uint32_t>(members.size());
     }
     // The casters' batches: the same mesh (vertex offset, full index range) and cull mode, in draw
     // order; each batch's instance slots follow the batches before it (RgDraw's `shadow`).
@@ -177,10 +203,10 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
     }
     // SceneDraws: a uvec4 header (draw count), then per draw (boxMin, firstIndex), (boxMax,
     // indexCount), (vertexOffset, material, casts shadows, level-of-detail count), the levels'
-    // first indices, index counts and errors, then its shadow batch (lib/scene.glsl RgDraw) — 112
-    // bytes.
+    // first indices, index counts and errors, then its shadow and camera batches (lib/scene.glsl
+    // RgDraw) — 128 bytes.
     {
-        constexpr size_t kWords = 7;
+        constexpr size_t kWords = kDrawWords;
         std::vector<glm::vec4> words(1 + kWords * std::max<size_t>(m_draws.size(), 1),
                                      glm::vec4(0.0f));
         words[0] = glm::vec4(std::bit_cast<float>(static_cast<uint32_t>(m_draws.size())), 0.0f,
@@ -199,7 +225,10 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
                 w[4][static_cast<int>(l)] = std::bit_cast<float>(item.lods[l].indexCount);
                 w[5][static_cast<int>(l)] = item.lods[l].error;
             }
-            for (int k = 0; k < 4; ++k) w[6][k] = std::bit_cast<float>(shadowWord[d][k]);
+            for (int k = 0; k < 4; ++k) {
+                w[6][k] = std::bit_cast<float>(shadowWord[d][k]);
+                w[7][k] = std::bit_cast<float>(cameraWord[d][k]);
+            }
         }
         if (auto r = perSlot(ctx, "scene.draws", words, m_drawBuffers); !r) return r;
         m_staticHash.bytes(words.data(), words.size() * sizeof(glm::vec4));

@@ -103,10 +103,13 @@ void GpuScene::updateMoving(uint32_t slot, bool fresh) {
             m_movingMin = glm::min(m_movingMin, wlo);
             m_movingMax = glm::max(m_movingMax, whi);
             writeTransform(transforms + kTransformWords * d, d, previous);
-            // SceneDraws (lib/scene.glsl RgDraw): the box's corners, their w words kept.
-            glm::vec4* w = words + 1 + 7 * d;
+            // SceneDraws (lib/scene.glsl RgDraw): the box's corners, their w words kept, and the
+            // levels' errors at the node's scale now (the GPU's level choices read them).
+            glm::vec4* w = words + 1 + kDrawWords * d;
             w[0] = glm::vec4(wlo, w[0].w);
             w[1] = glm::vec4(whi, w[1].w);
+            for (uint32_t l = 1; l < item.lodCount; ++l)
+                w[5][static_cast<int>(l)] = item.lods[l].error;
         }
         for (uint32_t k = 0; k < m.lineCount; ++k) m_lineDraws[m.firstLine + k].world = world;
     }

@@ -165,6 +165,7 @@ Result<void> SceneDraws::addGroup(PassSetup& setup, const PassMaterial& info,
     if (!m_motionTarget.empty() &&
         std::find(attachments.begin(), attachments.end(), m_motionTarget) != attachments.end())
         vert.defines.emplace_back("RG_MOTION", "1");
+    if (m_cameraInstances) vert.defines.emplace_back("RG_CAMERA_INSTANCES", "1");
     frag.defines.emplace_back("RG_TEXTURES", std::to_string(textures & kTextureBits));
     frag.defines.emplace_back("RG_ALPHA_MASK", (textures & kAlphaMaskVariant) ? "1" : "0");
     g.program = std::make_unique<ShaderProgram>();
@@ -361,6 +362,31 @@ Result<void> GBufferScenePass::prepareDraws(PassSetup& setup) {
     if (auto r = findAttachments(desc, /*depthRead=*/false, kWritesDepth); !r) return r;
     const std::vector<std::string> attachments = colorNames();
     sizeFromDepth(setup);
+    // indirect = "commands", indirect_count = "counts": a culling pass chose the draws on the GPU
+    // (scripts/culling.lua) — while the pass reads both as indirect buffers (a buffer that exists
+    // only for some scenes leaves the pass's reads with it) and the device can start an indirect
+    // draw at an instance; otherwise the CPU chooses them.
+    auto readsIndirect = [&](const std::string& name) {
+        return !name.empty() &&
+               std::any_of(desc.accesses.begin(), desc.accesses.end(), [&](const Access& a) {
+                   return a.resource == name && a.usage == Usage::IndirectRead;
+               });
+    };
+    const std::string indirect = desc.params["indirect"].asString();
+    const std::string indirectCount = desc.params["indirect_count"].asString();
+    if (indirect.empty() != indirectCount.empty())
+        return fail(ErrorCode::InvalidInput,
+                    passPrefix(desc) +
+                        "params.indirect and params.indirect_count: give both (the commands "
+                        "and the count of each material's) or neither");
+    m_indirect.clear();
+    m_indirectCount.clear();
+    m_cameraInstances = readsIndirect(indirect) && readsIndirect(indirectCount) &&
+                        setup.gpu.drawIndirectFirstInstance();
+    if (m_cameraInstances) {
+        m_indirect = indirect;
+        m_indirectCount = indirectCount;
+    }
     for (const PassMaterial& info : desc.materials) {
         for (const auto& t : info.targets)
             if (std::find(attachments.begin(), attachments.end(), t) == attachments.end())
@@ -396,6 +422,15 @@ Result<void> GBufferScenePass::prepareDraws(PassSetup& setup) {
                 !r)
                 return r;
     }
+    m_groupMaterials.assign(m_groups.size(), {});
+    for (size_t gi = 0; gi < m_groups.size(); ++gi) {
+        for (size_t d : m_groups[gi].draws)
+            m_groupMaterials[gi].push_back(sceneOf(setup)->draws()[d].material);
+        std::sort(m_groupMaterials[gi].begin(), m_groupMaterials[gi].end());
+        m_groupMaterials[gi].erase(
+            std::unique(m_groupMaterials[gi].begin(), m_groupMaterials[gi].end()),
+            m_groupMaterials[gi].end());
+    }
     return {};
 }
 
@@ -407,6 +442,10 @@ void GBufferScenePass::recordDraws(RecordContext& rc) {
     depth.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
     depth.clearValue.depthStencil = {1.0f, 0};
     beginCamera(rc, depth);
+    if (m_cameraInstances) {
+        recordIndirect(rc);
+        return;
+    }
     // Per group (one pipeline bind each), front to back within it by the distance from the eye
     // to the draws' boxes, so the depth test rejects hidden fragments before they are shaded.
     const glm::vec3 eye = sceneOf(rc)->frameCamera().position;
@@ -441,6 +480,50 @@ void GBufferScenePass::recordDraws(RecordContext& rc) {
     });
     for (size_t k = 0; k < keys.size(); ++k) order[k] = {keys[k].group, keys[k].draw};
     drawGroups(rc, order);
+}
+
+// Per group (pipeline) and material, the material's run of commands (GpuScene::cameraSegment):
+// as many as the culling pass counted (vkCmdDrawIndexedIndirectCount; every one of the run where
+// the device lacks it — a command without instances draws nothing). The order is the batches',
+// not front to back: the GPU chose the draws.
+void GBufferScenePass::recordIndirect(RecordContext& rc) {
+    const GpuScene& scene = *sceneOf(rc);
+    const PhysicalResource* commands = rc.resources.find(m_indirect);
+    const PhysicalResource* counts = rc.resources.find(m_indirectCount);
+    const glm::vec4 zeros[8] = {};  // scene.vert: all-zero push constants, an instanced draw
+    for (size_t gi = 0; gi < m_groups.size(); ++gi) {
+        Group& g = m_groups[gi];
+        if (m_groupMaterials[gi].empty()) continue;
+        vkCmdBindPipeline(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.pipeline.get());
+        g.program->bind(rc, VK_PIPELINE_BIND_POINT_GRAPHICS);
+        vkCmdSetStencilReference(rc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, g.info.stencilValue);
+        vkCmdPushConstants(rc.cmd, g.program->layout(),
+                           VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                           sizeof zeros, zeros);
+        for (uint32_t material : m_groupMaterials[gi]) {
+            const GpuScene::CameraSegment& run = scene.cameraSegment(material);
+            const VkDeviceSize end =
+                VkDeviceSize(run.firstCommand + run.commands) * kIndirectCommandBytes;
+            if (run.commands == 0 || end > commands->plan->bufferSize ||
+                VkDeviceSize(material + 1) * 4 > counts->plan->bufferSize)
+                continue;  // a buffer without room for the scene's batches: sized for another
+            VkDescriptorSet set = scene.materialSet(material);
+            vkCmdBindDescriptorSets(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.program->layout(), 1,
+                                    1, &set, 0, nullptr);
+            vkCmdSetCullMode(rc.cmd, scene.scene().materials[material].doubleSided
+                                         ? VK_CULL_MODE_NONE
+                                         : VK_CULL_MODE_BACK_BIT);
+            const VkDeviceSize offset = VkDeviceSize(run.firstCommand) * kIndirectCommandBytes;
+            if (rc.gpu.drawIndirectCount())
+                vkCmdDrawIndexedIndirectCount(rc.cmd, commands->buffer->buffer(), offset,
+                                              counts->buffer->buffer(), VkDeviceSize(material) * 4,
+                                              run.commands, kIndirectCommandBytes);
+            else
+                vkCmdDrawIndexedIndirect(rc.cmd, commands->buffer->buffer(), offset, run.commands,
+                                         kIndirectCommandBytes);
+        }
+    }
+    vkCmdEndRendering(rc.cmd);
 }
 
 VkPipelineColorBlendAttachmentState GBufferScenePass::colorBlend(const Group& g,
@@ -610,12 +693,23 @@ PassKindInfo scenePassKind() {
               "light, "
               "for a closed mesh never the nearest)"},
              {"indirect", "string",
+              "the G-buffer mode: a buffer it reads as { NAME, as = 'indirect' } holding a "
+              "VkDrawIndexedIndirectCommand per camera batch (a mesh and material) and level of "
+              "detail, each material's batches one run, written by a culling pass such as "
+              "passes/camera_cull.comp with the instances each draws (a buffer it reads as "
+              "storage `camera_instances`; scene.vert gets RG_CAMERA_INSTANCES): one indirect "
+              "draw per material and pipeline (scripts/culling.lua); without the read, the CPU "
+              "culls and batches the draws. "
               "shadow: a buffer the pass reads as { NAME, as = 'indirect' } holding a "
               "VkDrawIndexedIndirectCommand per view, caster batch (GpuScene::shadowBatches) "
               "and level of detail (view-major), written by a culling pass such as "
               "shadows/cascade_cull.comp with the instances each draws (the vertex shader gets "
               "RG_SHADOW_INSTANCES): one instanced draw per batch and level; a buffer without "
               "room for the scene's batches draws every caster directly"},
+             {"indirect_count", "string",
+              "the G-buffer mode, with indirect: a buffer it reads as { NAME, as = 'indirect' } "
+              "holding per material how many of its run of commands to draw "
+              "(vkCmdDrawIndexedIndirectCount)"},
              {"view", "list",
               "shadow: { first, count }: the target's layer l is view first + l of count (its "
               "matrix, "

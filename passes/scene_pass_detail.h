@@ -113,11 +113,15 @@ protected:
                                                            const std::string& target) const;
     virtual void depthStencil(GraphicsPipelineDesc& d, const Group& g) const;
 
+    static constexpr VkDeviceSize kIndirectCommandBytes = sizeof(VkDrawIndexedIndirectCommand);
     std::vector<Group> m_groups;
     std::vector<Access> m_colors;
     // params.motion (the G-buffer and forward modes): the screen motion's attachment, or "";
     // while the pass writes it, scene.vert gets RG_MOTION.
     std::string m_motionTarget;
+    // The G-buffer's draws culled on the GPU: scene.vert reads the instance lists the culling
+    // pass wrote (RG_CAMERA_INSTANCES).
+    bool m_cameraInstances = false;
     std::optional<Access> m_depth;
     uint32_t m_width = 0, m_height = 0;
     Format m_depthFormat = Format::D32F;
@@ -159,6 +163,13 @@ class GBufferScenePass final : public CameraScenePass {
                                                    const std::string& target) const override;
 
     std::string m_specularTarget;  // params.lightmap_specular: the lightmap's specular, or ""
+    // params.indirect and params.indirect_count while the pass reads them (a culling pass wrote
+    // them: shaders/passes/camera_cull.comp), else "": the draws are culled and batched on the
+    // CPU. Per group, the materials its draws have (one indirect-count draw each).
+    std::string m_indirect, m_indirectCount;
+    std::vector<std::vector<uint32_t>> m_groupMaterials;
+    // Draws every group's materials from the culling pass's commands.
+    void recordIndirect(RecordContext& rc);
 };
 
 // forward = true: the blended draws, lit directly, over the colour target it loads, tested against
@@ -186,8 +197,7 @@ class ShadowScenePass final : public SceneDraws {
 
     bool m_lightViews = false;  // the scene's local-light views rather than the shader's
     VkCullModeFlags m_shadowCull = VK_CULL_MODE_NONE;  // params.cull for single-sided materials
-    std::string m_indirect;  // the buffer of indirect commands per layer and draw
-    static constexpr VkDeviceSize kIndirectCommandBytes = sizeof(VkDrawIndexedIndirectCommand);
+    std::string m_indirect;    // the buffer of indirect commands per layer and draw
     uint32_t m_layers = 1;     // the depth target's layers
     uint32_t m_firstView = 0;  // params.view, the view of the target's layer 0
     uint32_t m_viewCount = 1;  // the views the indirect buffer holds slots for

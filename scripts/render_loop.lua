@@ -70,9 +70,12 @@ loop.specular_aa = { specular_aa = "RG_SPECULAR_AA", specular_aa_variance = "RG_
 
 -- It reads the exposure state for emission given relative to the exposure (a scene material's
 -- emissive_unit = "ev", glTF's emissive): 2^(EV100 + EC − 3), EV100 the last frame's.
-rg.pass "gbuffer" { kind = "scene", writes = { "GB0", "GB1", "GB2", "GB3", "lightmap_specular", "motion", "depth" },
+-- In a scene of many draws the GPU chooses them (scripts/culling.lua).
+local culling = require "culling"
+culling.declare()
+rg.pass "gbuffer" (culling.gbuffer { kind = "scene", writes = { "GB0", "GB1", "GB2", "GB3", "lightmap_specular", "motion", "depth" },
     reads = { { "exposure", as = "uniform" } }, defines = { RG_EMISSIVE_EV = true },
-    lightmap_specular = "lightmap_specular", motion = "motion", switches = loop.specular_aa }
+    lightmap_specular = "lightmap_specular", motion = "motion", switches = loop.specular_aa })
 
 -- Deferred decals (seed 000 §3.3) after the fix-up: the pass reads copies of GB0..GB2 (there is no
 -- programmable blending), blends Normal/BaseColor/Smoothness (MetalMask/Reflectance on the

@@ -76,6 +76,8 @@ public:
     // Whether fragment shaders may use quad operations (GL_KHR_shader_subgroup_quad; lavapipe
     // has them): every shader then gets RG_QUAD_OPS (passes/shader_program.cpp).
     bool fragmentQuadOps() const { return m_fragmentQuadOps; }
+    // Whether vkCmdDrawIndexedIndirectCount may be used (Vulkan 1.2's drawIndirectCount).
+    bool drawIndirectCount() const { return m_drawIndirectCount; }
     Allocator& allocator() { return *m_allocator; }
     uint32_t framesInFlight() const { return m_framesInFlight; }
     double timestampPeriodNs() const { return m_properties.limits.timestampPeriod; }
@@ -128,6 +130,7 @@ private:
     uint32_t m_currentSlot = 0;
     bool m_drawIndirectFirstInstance = false;
     bool m_fragmentQuadOps = false;
+    bool m_drawIndirectCount = false;
     // One queue per frame slot, plus those pushed before the first frame.
     std::vector<std::vector<std::function<void()>>> m_deletions;
 

@@ -17,6 +17,49 @@ Result<uint32_t> mipCount(const Where& w, const Value& m) {
     return w.error("expected a whole number in 1..16 or \"full\"");
 }
 
+// rg.resource's and rg.buffer's only_when = { scene = FEATURE, param = NAME, defines = { ... } }.
+Result<ResourceDesc::Condition> onlyWhen(const Where& ow, const Value& c) {
+    if (!c.isTable() || c.asTable().empty())
+        return ow.error(
+            "expected a table { scene = FEATURE, param = NAME, defines = { ... } }, got " +
+            typeOf(c));
+    if (auto e = checkFields(ow, c, {"scene", "param", "defines"}); !e)
+        return std::unexpected(e.error());
+    ResourceDesc::Condition cond;
+    // A scene feature is a name, or a name:name ("material:transmission": the scene draws that
+    // pipeline material) or name:number ("draws:4096": the scene has at least that many draws).
+    auto featureName = [](const std::string& s) {
+        const size_t colon = s.find(':');
+        if (colon == std::string::npos) return isGlslIdentifier(s);
+        const std::string tail = s.substr(colon + 1);
+        const bool number =
+            !tail.empty() && tail.size() <= 9 &&
+            std::all_of(tail.begin(), tail.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+        return isGlslIdentifier(s.substr(0, colon)) && (isGlslIdentifier(tail) || number);
+    };
+    for (const char* f : {"scene", "param"}) {
+        if (!c.has(f)) continue;
+        if (!c[f].isString())
+            return ow.at(f).error(std::string("expected a name, got ") + typeOf(c[f]));
+        const std::string& name = c[f].asString();
+        if (std::string(f) == "scene" ? !featureName(name) : !isGlslIdentifier(name))
+            return ow.at(f).error(
+                "'" + name + "' is not a name" +
+                (std::string(f) == "scene" ? " (or name:name, name:number)" : ""));
+    }
+    cond.sceneFeature = c["scene"].isString() ? c["scene"].asString() : "";
+    cond.param = c["param"].isString() ? c["param"].asString() : "";
+    if (cond.sceneFeature.empty() && cond.param.empty())
+        return ow.error(
+            "names neither a scene feature (scene = ...) nor a parameter (param = ...)");
+    if (c.has("defines")) {
+        auto defines = stringList(ow.at("defines"), c["defines"]);
+        if (!defines) return std::unexpected(defines.error());
+        cond.defines = *defines;
+    }
+    return cond;
+}
+
 }  // namespace
 
 Result<void> Builder::texture(const Declaration& d) {
@@ -103,42 +146,9 @@ Result<void> Builder::texture(const Declaration& d) {
     r.exported = b["export"].asBool();
     r.imported = b["import"].asBool();
     if (b.has("only_when")) {
-        const Where ow = w.at("only_when");
-        const Value& c = b["only_when"];
-        if (!c.isTable() || c.asTable().empty())
-            return ow.error(
-                "expected a table { scene = FEATURE, param = NAME, defines = { ... } }, got " +
-                typeOf(c));
-        if (auto e = checkFields(ow, c, {"scene", "param", "defines"}); !e) return e;
-        ResourceDesc::Condition cond;
-        // A scene feature is a name, or a name:name ("material:transmission": the scene draws
-        // that pipeline material).
-        auto featureName = [](const std::string& s) {
-            const size_t colon = s.find(':');
-            return colon == std::string::npos ? isGlslIdentifier(s)
-                                              : isGlslIdentifier(s.substr(0, colon)) &&
-                                                    isGlslIdentifier(s.substr(colon + 1));
-        };
-        for (const char* f : {"scene", "param"}) {
-            if (!c.has(f)) continue;
-            if (!c[f].isString())
-                return ow.at(f).error(std::string("expected a name, got ") + typeOf(c[f]));
-            const std::string& name = c[f].asString();
-            if (std::string(f) == "scene" ? !featureName(name) : !isGlslIdentifier(name))
-                return ow.at(f).error("'" + name + "' is not a name" +
-                                      (std::string(f) == "scene" ? " (or name:name)" : ""));
-        }
-        cond.sceneFeature = c["scene"].isString() ? c["scene"].asString() : "";
-        cond.param = c["param"].isString() ? c["param"].asString() : "";
-        if (cond.sceneFeature.empty() && cond.param.empty())
-            return ow.error(
-                "names neither a scene feature (scene = ...) nor a parameter (param = ...)");
-        if (c.has("defines")) {
-            auto defines = stringList(ow.at("defines"), c["defines"]);
-            if (!defines) return std::unexpected(defines.error());
-            cond.defines = *defines;
-        }
-        r.onlyWhen = cond;
+        auto cond = onlyWhen(w.at("only_when"), b["only_when"]);
+        if (!cond) return std::unexpected(cond.error());
+        r.onlyWhen = *cond;
     }
     out.graph.resources.push_back(r);
     if (b.has("history")) {
@@ -283,7 +293,7 @@ Result<void> Builder::buffer(const Declaration& d) {
     const Value& b = d.body;
     if (auto r = checkFields(w, b,
                              {"size", "tile", "tile_bytes", "scene_count", "count_bytes", "export",
-                              "import", "persistent", "doc"});
+                              "import", "persistent", "only_when", "doc"});
         !r)
         return r;
     ResourceDesc r;
@@ -332,6 +342,11 @@ Result<void> Builder::buffer(const Declaration& d) {
     r.exported = b["export"].asBool();
     r.imported = b["import"].asBool();
     r.persistent = b["persistent"].asBool();
+    if (b.has("only_when")) {
+        auto cond = onlyWhen(w.at("only_when"), b["only_when"]);
+        if (!cond) return std::unexpected(cond.error());
+        r.onlyWhen = *cond;
+    }
     out.graph.resources.push_back(r);
     return {};
 }

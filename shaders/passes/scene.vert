@@ -39,8 +39,14 @@ layout(push_constant) uniform Draw {
 #define RG_TRANSFORMS_BINDING 34
 #endif
 layout(set = RG_CAMERA_SET, binding = RG_TRANSFORMS_BINDING, std430) readonly buffer SceneTransforms { vec4 t[]; } sceneTransforms;
-// This frame's instance lists: the draw of each instance, at firstInstance + its index.
+// This frame's instance lists: the draw of each instance, at firstInstance + its index — the
+// scene's, which the CPU writes, or with RG_CAMERA_INSTANCES (the G-buffer's draws culled on the
+// GPU: shaders/passes/camera_cull.comp) those the culling pass wrote.
+#ifdef RG_CAMERA_INSTANCES
+layout(set = 0, binding = 39, std430) readonly buffer camera_instances { uint draw[]; } sceneInstances;
+#else
 layout(set = RG_CAMERA_SET, binding = RG_TRANSFORMS_BINDING + 1, std430) readonly buffer SceneInstances { uint draw[]; } sceneInstances;
+#endif
 
 void main() {
     mat4 world = draw.world;

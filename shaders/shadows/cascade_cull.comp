@@ -17,6 +17,7 @@
 #define RG_SCENE_DRAWS 1
 #include "lib/scene.glsl"
 #include "lib/shadows.glsl"
+#include "lib/culling.glsl"
 
 layout(local_size_x = 64) in;
 layout(set = 0, binding = 0, std430) readonly buffer sun_cascades { RgCascades c; } cascades;
@@ -35,26 +36,6 @@ bool boxMeetsCascade(vec3 lo, vec3 hi, mat4 m) {
     return all(lessThanEqual(cmin, vec2(1.0))) && all(greaterThanEqual(cmax, vec2(-1.0)));
 }
 
-// The level of detail the camera's passes draw the draw with (GpuScene::updateFrame): the coarsest
-// whose error spans at most a pixel at the nearest view depth of its box — here with 1 % to spare,
-// so that rounding never leaves it finer than the CPU's choice.
-uint cameraLevel(RgDraw draw) {
-    vec3 forward = -vec3(camera.view[0][2], camera.view[1][2], camera.view[2][2]);
-    float nearest = 1e30;
-    for (int k = 0; k < 8; ++k) {
-        vec3 p = vec3((k & 1) != 0 ? draw.boxMax.x : draw.boxMin.x, (k & 2) != 0 ? draw.boxMax.y : draw.boxMin.y,
-                      (k & 4) != 0 ? draw.boxMax.z : draw.boxMin.z);
-        nearest = min(nearest, dot(p - camera.position.xyz, forward));
-    }
-    bool orthographic = rgCameraOrthographic();
-    float pixelsPerMetre = abs(camera.proj[1][1]) * camera.viewport.y * 0.5 / (orthographic ? 1.0 : max(nearest, 1e-6));
-    uint level = 0u;
-    if (orthographic || nearest > 0.0)
-        for (uint l = 1u; l < min(draw.info.w, 4u); ++l)
-            if (draw.lodError[l] * pixelsPerMetre <= 1.01) level = l;
-    return level;
-}
-
 void main() {
     const uint batches = uint(commands.command.length()) / uint(RG_CASCADES * 4);
     const uint slots = uint(instances.draw.length()) / uint(RG_CASCADES * 4);  // casters per region
@@ -66,7 +47,7 @@ void main() {
         RgDraw draw = sceneDraws.draw[d];
         const uint batch = draw.shadow.x;
         if (batch == 0u || batch > batches || draw.shadow.y + draw.shadow.z > slots) continue;
-        const uint cameraLod = cameraLevel(draw);
+        const uint cameraLod = rgCameraLevel(draw, 1.01);
         for (int c = 0; c < min(cascadesInUse, RG_CASCADES); ++c) {
             if (!boxMeetsCascade(draw.boxMin.xyz, draw.boxMax.xyz, cascades.c.viewProj[c])) continue;
             // The coarsest level of detail whose error stays within a texel of this cascade — and

@@ -112,7 +112,7 @@ TEST(LuaErrors, OnlyWhenNamesASceneFeature) {
     EXPECT_EQ(loadError("only_when_scene_name.lua"),
               kScripts +
                   "only_when_scene_name.lua:3: resources.extra.only_when.scene: 'material:' is not "
-                  "a name (or name:name)");
+                  "a name (or name:name, name:number)");
 }
 
 // A path without a stencil class is the forward pass's only: its materials say forward = true.
@@ -427,14 +427,14 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // The environment filtering (scripts/ibl.lua, required by render_loop) comes first, then the
     // local probes' capture and filtering (scripts/probes.lua). Then the sun's cascades, its caster
     // culling, its maps' clears (without a sun) and the local lights' maps (scripts/shadows.lua), the
-    // G-buffer half with the passes inserted after it (the light froxels' clear, screen-space AO's
+    // camera's culling on the GPU (scripts/culling.lua: for scenes of many draws), the G-buffer half with the passes inserted after it (the light froxels' clear, screen-space AO's
     // half-resolution depths, each cascade's map drawn and filtered into the sun's mask at once, the
     // foliage fix-up, then the AO itself on the fixed-up normals: scripts/ao.lua), the Hi-Z
     // pyramid, SSR's mask and SSR (scripts/ssr.lua), the composition of SSR and the probes
     // (scripts/reflections.lua), the lighting, the sky, the points and lines, the copy of the opaque
     // frame the transmission sees through, and forward.
-    ASSERT_GE(order.size(), 61u);
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 59),
+    ASSERT_GE(order.size(), 63u);
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 61),
               (std::vector<std::string>{"env_cube",
                                         "env_mips",
                                         "env_irradiance",
@@ -452,6 +452,8 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
                                         "shadow_clear1",
                                         "shadow_clear2",
                                         "shadow_local",
+                                        "camera_cull_clear",
+                                        "camera_cull",
                                         "gbuffer",
                                         "light_froxels_clear",
                                         "ao_depth",
@@ -504,7 +506,7 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // Every script it pulled in is known, for hot reload.
     EXPECT_EQ(
         p->files.size(),
-        19u);  // deferred, post, lighting, render_loop, motion, ibl, shadows, probes, ao, ssr, reflections, lightmap, gbuffer_reader, disney, clearcoat, foliage, two_colour, sheen, transmission
+        20u);  // deferred, post, lighting, render_loop, motion, culling, ibl, shadows, probes, ao, ssr, reflections, lightmap, gbuffer_reader, disney, clearcoat, foliage, two_colour, sheen, transmission
 }
 
 TEST(LuaPipeline, ModulesAreNamespacedAndInsertedAfterTheirAnchor) {

@@ -204,7 +204,8 @@ TEST_F(LuaGpu, ParametersAndResourcesNameWhatTheSceneHas) {
     EXPECT_NE(l.error().describe().find(
                   "scene_setting.lua:" + std::to_string(line) +
                   ": resource 'maps': scene_layers = 'lights': the scene has "
-                  "no such extent (it has 'shadow_views', 'shadow_casters', 'shadow_batches')"),
+                  "no such extent (it has 'shadow_views', 'shadow_casters', 'shadow_batches', "
+                  "'camera_batches', 'draws', 'materials')"),
               std::string::npos)
         << l.error().describe();
     // So does a buffer's scene_count.
@@ -230,7 +231,7 @@ TEST_F(LuaGpu, ParametersAndResourcesNameWhatTheSceneHas) {
     EXPECT_NE(f.error().describe().find(
                   "scene_setting.lua:" + std::to_string(line) +
                   ": resource 'extra': only_when.scene = 'sky': the scene "
-                  "has no such feature (it has 'lightmap', 'material:MODEL', 'motion')"),
+                  "has no such feature (it has 'lightmap', 'material:MODEL', 'motion', 'draws:N')"),
               std::string::npos)
         << f.error().describe();
     // "material:NAME" names a material the pipeline declares: a misspelt one would drop the

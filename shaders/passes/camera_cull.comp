@@ -1,0 +1,59 @@
+#version 460
+// The camera's culling on the GPU (scripts/culling.lua; the G-buffer pass's `indirect`): each draw
+// the G-buffer draws (RgDraw.camera.x: its camera batch + 1 — the draws sharing a mesh and
+// material) whose world box meets the camera's frustum joins the indirect command of its batch at
+// the level of detail the camera takes — the coarsest whose error spans at most a pixel at the
+// nearest depth of its box: the test and the choice GpuScene::updateFrame makes on the CPU.
+//
+// camera_draws (cleared first): per batch and level an indexed indirect command (batch · 4 +
+// level), its instance count grown by an atomic add; every draw that joins writes the same index
+// range and first instance. camera_instances: per level a region of one slot per draw, each
+// batch's run at its first slot (RgDraw.camera.y): instance k of a command is the draw at
+// firstInstance + k (scene.vert with RG_CAMERA_INSTANCES). camera_draw_counts (cleared first):
+// per material how many of its commands the G-buffer draws — a material's batches are
+// consecutive, so its commands are one run from its first batch's (RgDraw.camera.w: the draw's
+// batch's first command within that run), and the count is one past the last that has an instance
+// (vkCmdDrawIndexedIndirectCount; commands before it without one draw nothing). Without
+// RG_CAMERA_CULL (culling off, to compare) every draw joins.
+#define RG_SCENE_DRAWS 1
+#include "lib/scene.glsl"
+#include "lib/culling.glsl"
+
+#ifndef RG_CAMERA_CULL
+#define RG_CAMERA_CULL 1
+#endif
+
+layout(local_size_x = 64) in;
+struct DrawIndexedIndirect { uint indexCount, instanceCount, firstIndex; int vertexOffset; uint firstInstance; };
+layout(set = 0, binding = 0, std430) buffer camera_draws { DrawIndexedIndirect command[]; } commands;
+layout(set = 0, binding = 1, std430) writeonly buffer camera_instances { uint draw[]; } instances;
+layout(set = 0, binding = 2, std430) buffer camera_draw_counts { uint count[]; } counts;
+
+void main() {
+    const uint batches = uint(commands.command.length()) / 4u;
+    const uint slots = uint(instances.draw.length()) / 4u;  // draws per level's region
+    const vec4 planes[6] = rgFrustumPlanes(camera.unjitteredViewProj);
+    // Each invocation takes every (invocations)-th draw: lavapipe ends a shader's loops after
+    // 65 535 iterations in all (DESIGN §8), so no invocation walks many.
+    const uint invocations = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
+    for (uint d = gl_GlobalInvocationID.x; d < sceneDraws.header.x; d += invocations) {
+        const RgDraw draw = sceneDraws.draw[d];
+        const uint batch = draw.camera.x;
+        if (batch == 0u || batch > batches || draw.camera.y + draw.camera.z > slots ||
+            draw.info.y >= uint(counts.count.length()))
+            continue;
+#if RG_CAMERA_CULL
+        if (!rgBoxMeetsFrustum(planes, draw.boxMin.xyz, draw.boxMax.xyz)) continue;
+#endif
+        const uint level = rgCameraLevel(draw, 1.0);
+        const uint k = (batch - 1u) * 4u + level;
+        const uint first = level * slots + draw.camera.y;
+        commands.command[k].indexCount = draw.lodCount[level];
+        commands.command[k].firstIndex = draw.lodFirst[level];
+        commands.command[k].vertexOffset = int(draw.info.x);
+        commands.command[k].firstInstance = first;
+        const uint n = atomicAdd(commands.command[k].instanceCount, 1u);
+        instances.draw[first + n] = d;
+        atomicMax(counts.count[draw.info.y], draw.camera.w + level + 1u);
+    }
+}
