@@ -86,6 +86,7 @@ Result<void> GpuScene::setSetting(const std::string& name, const Value& value) {
 std::optional<bool> GpuScene::feature(const std::string& name) const {
     if (name == "lightmap") return hasLightmap();
     if (name == "motion") return moves();
+    if (name == "local_shadows") return m_shadowViewCapacity > 0;
     if (name.starts_with("draws:")) {
         const std::string count = name.substr(6);
         if (count.empty() || count.size() > 9 ||

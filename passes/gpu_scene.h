@@ -129,9 +129,11 @@ public:
     // for one the scene does not draw) — what render_loop.lua's `opaque` copy exists for.
     std::optional<bool> feature(const std::string& name) const override;
     // and "motion", whether a node moves (Node::dynamic): render_loop.lua's motion target; and
-    // "draws:N", whether it has at least N draws (scripts/culling.lua: the GPU-culled G-buffer).
+    // "draws:N", whether it has at least N draws (scripts/culling.lua: the GPU-culled G-buffer);
+    // "local_shadows", whether a local light casts shadows (scripts/shadows.lua's culling of
+    // their casters).
     std::vector<std::string> featureNames() const override {
-        return {"lightmap", "material:MODEL", "motion", "draws:N"};
+        return {"lightmap", "material:MODEL", "motion", "draws:N", "local_shadows"};
     }
     static constexpr const char* kShadowViewsExtent = "shadow_views";
     // The draws that cast shadows, and their batches: casters sharing a mesh (vertex offset,
@@ -176,7 +178,8 @@ public:
     // From now on the camera's passes draw the full meshes (a pass traces the scene's triangles
     // every frame from the G-buffer's surfaces: they must be the same). The sun's cascades may
     // stay coarser: a caster inside its receiver shadows nothing the full one would not.
-    void drawFullMeshes() const { m_fullMeshes = true; }
+    // SceneDraws' header says so too (its y: 1), for the levels the GPU picks (lib/culling.glsl).
+    void drawFullMeshes() const;
     // Draw d's camera batch at the level of detail viewLod gives: draws with the same key share a
     // mesh range and material (one instanced draw, passes/scene_pass.cpp), keys below
     // cameraBatchKeys().
@@ -232,9 +235,13 @@ public:
     // or six (a cube), in light order, up to kMaxShadowViews; then per light its first view and
     // count. Written by updateFrame with the draws each view sees.
     VkBuffer shadowViewBuffer(uint32_t slot) const { return m_shadowViewBuffers[slot].buffer(); }
-    uint32_t shadowViewCount() const { return static_cast<uint32_t>(m_shadowViewDraws.size()); }
+    uint32_t shadowViewCount() const { return static_cast<uint32_t>(m_shadowViewPlanes.size()); }
     // The draws whose world boxes meet view v's frustum (this frame).
-    const std::vector<size_t>& shadowViewDraws(uint32_t v) const { return m_shadowViewDraws[v]; }
+    // Found on the first call of a frame (a pass that draws every view's casters directly; one
+    // whose culling pass chose them on the GPU, shaders/shadows/local_cull.comp, never asks).
+    const std::vector<size_t>& shadowViewDraws(uint32_t v) const;
+    // How many frames' casters the CPU walked so (shadowViewDraws): none while the GPU culls them.
+    uint64_t shadowViewWalks() const { return m_shadowViewWalks; }
     // The opaque triangles in world space as a ray-cast hierarchy (graph/scene/bvh.h) for
     // shaders that bind `SceneBvh` (lib/bvh.glsl: the reference mode's shadow rays): a uvec4
     // header (nodes, triangles, depth), then FlatBvh::data. Built on first use.
@@ -405,10 +412,12 @@ private:
     bool m_instancing = true;    // RG_INSTANCING=0: none
     gpu::Buffer m_lightTables;   // LightTables: the LTC table and IES profiles, for every slot
     gpu::Buffer m_globalLights;  // GlobalLights: the lights that reach every pixel
-    std::vector<std::vector<size_t>> m_shadowViewDraws;  // per view of this frame
-    mutable gpu::Buffer m_bvh;                           // bvhBuffer(), once built
-    Result<VkBuffer> makeBvhBuffer() const;              // bvhBuffer(), or why it failed
-    Result<VkBuffer> makeEnvironmentCdfBuffer() const;   // environmentCdfBuffer(), or why it failed
+    std::vector<std::array<glm::vec4, 6>> m_shadowViewPlanes;    // per view of this frame
+    mutable std::vector<std::vector<size_t>> m_shadowViewDraws;  // shadowViewDraws, once found
+    mutable uint64_t m_shadowViewWalks = 0;
+    mutable gpu::Buffer m_bvh;                          // bvhBuffer(), once built
+    Result<VkBuffer> makeBvhBuffer() const;             // bvhBuffer(), or why it failed
+    Result<VkBuffer> makeEnvironmentCdfBuffer() const;  // environmentCdfBuffer(), or why it failed
     ContentHash m_staticHash;        // what was uploaded at creation (contentHash)
     std::vector<char> m_drawInView;  // per draw: its box meets the camera's frustum (updateFrame)
     std::vector<uint8_t> m_drawLod;  // per draw: the level of detail viewLod gives (updateFrame)

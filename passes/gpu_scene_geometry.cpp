@@ -49,6 +49,13 @@ Result<void> GpuScene::perSlot(Context& ctx, const char* name, const std::vector
     return {};
 }
 
+void GpuScene::drawFullMeshes() const {
+    m_fullMeshes = true;
+    const uint32_t full = 1;
+    for (const Buffer& b : m_drawBuffers)
+        std::memcpy(static_cast<uint8_t*>(b.mapped()) + sizeof(uint32_t), &full, sizeof full);
+}
+
 Result<void> GpuScene::uploadGeometry(Context& ctx) {
     std::vector<Vertex> vertices;
     std::vector<uint32_t> indices;

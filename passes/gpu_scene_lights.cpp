@@ -52,8 +52,24 @@ std::pair<uint32_t, uint32_t> GpuScene::shadowViewsOf(size_t light) const {
             static_cast<uint32_t>(m_lightViews[light].y)};
 }
 
+const std::vector<size_t>& GpuScene::shadowViewDraws(uint32_t v) const {
+    // The casters each view sees: the boxes that meet its frustum.
+    if (m_shadowViewDraws.size() != m_shadowViewPlanes.size()) {
+        m_shadowViewDraws.assign(m_shadowViewPlanes.size(), {});
+        ++m_shadowViewWalks;
+        for (size_t view = 0; view < m_shadowViewPlanes.size(); ++view)
+            for (size_t d = 0; d < m_draws.size(); ++d)
+                if (m_draws[d].castsShadows &&
+                    boxMeetsFrustum(m_shadowViewPlanes[view], m_draws[d].boundsMin,
+                                    m_draws[d].boundsMax))
+                    m_shadowViewDraws[view].push_back(d);
+    }
+    return m_shadowViewDraws[v];
+}
+
 void GpuScene::updateShadowViews(uint32_t slot, const glm::mat4& cameraViewProj) {
     m_shadowViewDraws.clear();
+    m_shadowViewPlanes.clear();
     m_lightViews.assign(std::max<size_t>(m_scene.lights.size(), 1), glm::ivec4(-1, 0, 0, 0));
     std::vector<GpuShadowView> views;
     const auto camera = frustumPlanes(cameraViewProj);
@@ -93,14 +109,7 @@ void GpuScene::updateShadowViews(uint32_t slot, const glm::mat4& cameraViewProj)
             v.position = glm::vec4(l.position, nearPlane);
             v.params = glm::vec4(far, tanHalf, radius, static_cast<float>(i));
             views.push_back(v);
-            // The casters this view sees.
-            const auto planes = frustumPlanes(v.viewProj);
-            std::vector<size_t> draws;
-            for (size_t d = 0; d < m_draws.size(); ++d)
-                if (m_draws[d].castsShadows &&
-                    boxMeetsFrustum(planes, m_draws[d].boundsMin, m_draws[d].boundsMax))
-                    draws.push_back(d);
-            m_shadowViewDraws.push_back(std::move(draws));
+            m_shadowViewPlanes.push_back(frustumPlanes(v.viewProj));
         }
     }
     auto* p = static_cast<uint8_t*>(m_shadowViewBuffers[slot].mapped());

@@ -364,8 +364,9 @@ Result<void> GBufferScenePass::prepareDraws(PassSetup& setup) {
     sizeFromDepth(setup);
     // indirect = "commands", indirect_count = "counts": a culling pass chose the draws on the GPU
     // (scripts/culling.lua) — while the pass reads both as indirect buffers (a buffer that exists
-    // only for some scenes leaves the pass's reads with it) and the device can start an indirect
-    // draw at an instance; otherwise the CPU chooses them.
+    // only for some scenes leaves the pass's reads with it), the device can start an indirect
+    // draw at an instance and instancing is on (not RG_INSTANCING=0); otherwise the CPU chooses
+    // them (the culling pass's work is then unused).
     auto readsIndirect = [&](const std::string& name) {
         return !name.empty() &&
                std::any_of(desc.accesses.begin(), desc.accesses.end(), [&](const Access& a) {
@@ -382,7 +383,7 @@ Result<void> GBufferScenePass::prepareDraws(PassSetup& setup) {
     m_indirect.clear();
     m_indirectCount.clear();
     m_cameraInstances = readsIndirect(indirect) && readsIndirect(indirectCount) &&
-                        setup.gpu.drawIndirectFirstInstance();
+                        setup.gpu.drawIndirectFirstInstance() && sceneOf(setup)->instancing();
     if (m_cameraInstances) {
         m_indirect = indirect;
         m_indirectCount = indirectCount;
@@ -483,8 +484,9 @@ void GBufferScenePass::recordDraws(RecordContext& rc) {
 }
 
 // Per group (pipeline) and material, the material's run of commands (GpuScene::cameraSegment):
-// as many as the culling pass counted (vkCmdDrawIndexedIndirectCount; every one of the run where
-// the device lacks it — a command without instances draws nothing). The order is the batches',
+// as many as the culling pass counted (vkCmdDrawIndexedIndirectCount; every one of the run, one a
+// call, where the device lacks it or the run is longer than its maxDrawIndirectCount — a command
+// without instances draws nothing). The order is the batches',
 // not front to back: the GPU chose the draws.
 void GBufferScenePass::recordIndirect(RecordContext& rc) {
     const GpuScene& scene = *sceneOf(rc);
@@ -514,13 +516,16 @@ void GBufferScenePass::recordIndirect(RecordContext& rc) {
                                          ? VK_CULL_MODE_NONE
                                          : VK_CULL_MODE_BACK_BIT);
             const VkDeviceSize offset = VkDeviceSize(run.firstCommand) * kIndirectCommandBytes;
-            if (rc.gpu.drawIndirectCount())
+            if (rc.gpu.drawIndirectCount() &&
+                run.commands <= rc.gpu.properties().limits.maxDrawIndirectCount)
                 vkCmdDrawIndexedIndirectCount(rc.cmd, commands->buffer->buffer(), offset,
                                               counts->buffer->buffer(), VkDeviceSize(material) * 4,
                                               run.commands, kIndirectCommandBytes);
-            else
-                vkCmdDrawIndexedIndirect(rc.cmd, commands->buffer->buffer(), offset, run.commands,
-                                         kIndirectCommandBytes);
+            else  // one command a call: a drawCount above 1 needs multiDrawIndirect
+                for (uint32_t k = 0; k < run.commands; ++k)
+                    vkCmdDrawIndexedIndirect(rc.cmd, commands->buffer->buffer(),
+                                             offset + k * kIndirectCommandBytes, 1,
+                                             kIndirectCommandBytes);
         }
     }
     vkCmdEndRendering(rc.cmd);

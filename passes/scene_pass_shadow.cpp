@@ -95,7 +95,11 @@ Result<void> ShadowScenePass::prepareDraws(PassSetup& setup) {
     // level of detail (shaders/shadows/cascade_cull.comp), drawing the instances it lists (the
     // vertex shader built with RG_SHADOW_INSTANCES); a buffer without room for the scene's
     // batches (none) draws every caster directly.
-    if (desc.params["indirect"].isString()) {
+    // A buffer the graph does not have (one that exists only for some scenes or parameters,
+    // only_when, left with its reads): every caster drawn directly.
+    m_indirect.clear();
+    if (desc.params["indirect"].isString() &&
+        setup.resources.find(desc.params["indirect"].asString())) {
         m_indirect = desc.params["indirect"].asString();
         const bool read =
             std::any_of(desc.accesses.begin(), desc.accesses.end(), [&](const Access& a) {
@@ -106,11 +110,6 @@ Result<void> ShadowScenePass::prepareDraws(PassSetup& setup) {
                         passPrefix(desc) + "params.indirect: '" + m_indirect +
                             "' must be among the pass's reads as an indirect buffer ({ \"" +
                             m_indirect + "\", as = \"indirect\" })");
-        if (m_lightViews)
-            return fail(
-                ErrorCode::InvalidInput,
-                passPrefix(desc) +
-                    "params.indirect: views = 'lights' culls on the CPU; give one or the other");
     }
     Group g;
     g.info.name = "shadow";

@@ -138,8 +138,6 @@ Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> s
                             ": expected a number, boolean or string, got " + v.typeName());
         defines.emplace_back(name, value);
     }
-    // A fragment shader may read its 2×2 quad's other pixels by a swap (gpu::Context::fragmentQuadOps).
-    if (setup.gpu.fragmentQuadOps()) defines.emplace_back("RG_QUAD_OPS", "1");
     // The light types of the scene (lib/scene.glsl RG_SCENE_LIGHT_TYPES): the light loop keeps
     // only their branches. A new scene is a new build, so the shaders follow it.
     // RG_SCENE_IES: whether any light has an IES profile (without, no profile lookup at all).
@@ -229,6 +227,10 @@ Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> s
     for (auto& req : stages) {
         req.passName = desc.name;
         req.defines.insert(req.defines.end(), defines.begin(), defines.end());
+        // A fragment shader may read its 2×2 quad's other pixels by a swap
+        // (gpu::Context::fragmentQuadOps).
+        if (req.stage == ShaderStage::Fragment && setup.gpu.fragmentQuadOps())
+            req.defines.emplace_back("RG_QUAD_OPS", "1");
         auto mod = setup.shaders.compile(req);
         if (!mod) {
             Error e = mod.error();

@@ -150,9 +150,29 @@ rg.resource "local_shadow" { format = "d32f", size = { shadows.local_size, shado
 -- The faces towards the light only, as the sun's (its views, lookAt and a projection without a y
 -- flip, land those faces clockwise too): the default scene with its lamp shadowed (six cube faces)
 -- 24.7–25.4 → 14.4–15.5 ms, the image within PSNR 176 dB.
+-- Caster culling per view on the GPU (shaders/shadows/local_cull.comp), as the cascades': the casters
+-- sharing a mesh and cull mode drawn into each view as one instanced indirect draw per level of
+-- detail with those whose boxes meet its frustum, at the camera's level — what the CPU's walk over
+-- every view and caster chose (`gpu_shadow_culling` = false: the CPU walks them again). Only for a
+-- scene with a light that casts shadows (only_when): the instance slots are 96 bytes a caster.
+rg.param "gpu_shadow_culling" { type = "boolean", default = true,
+    doc = "the local lights' shadow casters culled per view on the GPU (false: on the CPU)" }
+local local_when = { scene = "local_shadows", param = "gpu_shadow_culling" }
+rg.buffer "local_shadow_draws" { size = 20, scene_count = "shadow_batches", count_bytes = shadows.local_views * 4 * 20,
+    only_when = local_when,
+    doc = "the local lights' shadow draws: an indirect command per view, caster batch and level of detail (VkDrawIndexedIndirectCommand)" }
+rg.buffer "local_shadow_instances" { size = 4, scene_count = "shadow_casters", count_bytes = shadows.local_views * 4 * 4,
+    only_when = local_when, doc = "the casters each of local_shadow_draws' commands draws: a draw index per instance" }
+rg.pass "local_cull_clear" { kind = "clear", writes = { "local_shadow_draws" } }
+rg.pass "local_cull" {
+    kind = "compute", shader = "shadows/local_cull.comp", groups = { shadows.cull_groups, 1, 1 },
+    defines = { RG_LOCAL_VIEWS = shadows.local_views },
+    writes = { { "local_shadow_draws", as = "storage_rw" }, { "local_shadow_instances", as = "storage" } },
+}
 rg.pass "shadow_local" {
     kind = "scene", shadow = true, views = "lights", writes = { "local_shadow" }, depth_bias = { 1.0, 1.5 },
-    cull = "counter_clockwise",
+    cull = "counter_clockwise", indirect = "local_shadow_draws",
+    reads = { { "local_shadow_draws", as = "indirect" }, { "local_shadow_instances", as = "storage" } },
 }
 
 -- A lighting pass's declaration, shadowed by the maps themselves (a forward pass: its pixels are

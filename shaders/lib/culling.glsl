@@ -27,16 +27,15 @@ bool rgBoxMeetsFrustum(vec4 planes[6], vec3 lo, vec3 hi) {
 
 // The level of detail the camera draws `draw` with: the coarsest whose error spans at most
 // `spare` pixels at the nearest view depth of its box (level 0 where the box reaches the near
-// plane). The camera's passes take spare 1; the sun's cascades 1.01, so that rounding never
+// plane, or where the scene's passes draw the full meshes). The camera's passes take spare 1; the sun's cascades 1.01, so that rounding never
 // leaves a caster finer than the camera's choice for it.
 uint rgCameraLevel(RgDraw draw, float spare) {
+    if (sceneDraws.header.y != 0u) return 0u;  // a pass traces the full meshes (drawFullMeshes)
+    // The box's nearest depth: its centre's less the half extents along |forward| (the smallest of
+    // the linear function over its corners), as the CPU computes it.
     const vec3 forward = -vec3(camera.view[0][2], camera.view[1][2], camera.view[2][2]);
-    float nearest = 1e30;
-    for (int k = 0; k < 8; ++k) {
-        const vec3 p = vec3((k & 1) != 0 ? draw.boxMax.x : draw.boxMin.x, (k & 2) != 0 ? draw.boxMax.y : draw.boxMin.y,
-                            (k & 4) != 0 ? draw.boxMax.z : draw.boxMin.z);
-        nearest = min(nearest, dot(p - camera.position.xyz, forward));
-    }
+    const vec3 centre = 0.5 * (draw.boxMin.xyz + draw.boxMax.xyz), extent = 0.5 * (draw.boxMax.xyz - draw.boxMin.xyz);
+    const float nearest = dot(centre - camera.position.xyz, forward) - dot(extent, abs(forward));
     const bool orthographic = rgCameraOrthographic();
     if (!orthographic && nearest <= rgViewDistance(0.0)) return 0u;
     const float pixelsPerMetre = abs(camera.proj[1][1]) * camera.viewport.y * 0.5 / (orthographic ? 1.0 : nearest);

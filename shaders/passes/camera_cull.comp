@@ -48,12 +48,14 @@ void main() {
         const uint level = rgCameraLevel(draw, 1.0);
         const uint k = (batch - 1u) * 4u + level;
         const uint first = level * slots + draw.camera.y;
-        commands.command[k].indexCount = draw.lodCount[level];
-        commands.command[k].firstIndex = draw.lodFirst[level];
-        commands.command[k].vertexOffset = int(draw.info.x);
-        commands.command[k].firstInstance = first;
         const uint n = atomicAdd(commands.command[k].instanceCount, 1u);
         instances.draw[first + n] = d;
+        if (n == 0u) {  // the first to join writes the rest of the command
+            commands.command[k].indexCount = draw.lodCount[level];
+            commands.command[k].firstIndex = draw.lodFirst[level];
+            commands.command[k].vertexOffset = int(draw.info.x);
+            commands.command[k].firstInstance = first;
+        }
         atomicMax(counts.count[draw.info.y], draw.camera.w + level + 1u);
     }
 }

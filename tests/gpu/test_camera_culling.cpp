@@ -1,9 +1,10 @@
-// The G-buffer's draws chosen on the GPU (scripts/culling.lua, shaders/passes/camera_cull.comp):
+// Draws chosen on the GPU. The G-buffer's (scripts/culling.lua, shaders/passes/camera_cull.comp):
 // in a scene of at least culling.min_draws draws the culling pass lists each draw in its batch's
 // indirect command and the G-buffer draws each material's commands with
 // vkCmdDrawIndexedIndirectCount. The frustum test is conservative (the image without it is the
 // same) and makes the CPU's choices (the image with gpu_culling off is the same), and it drops
-// what lies outside the view.
+// what lies outside the view. The local lights' shadow casters per view (scripts/shadows.lua,
+// shaders/shadows/local_cull.comp): the maps the CPU's walk over every view and caster drew.
 #include <gtest/gtest.h>
 
 #include "gpu_fixture.h"
@@ -29,18 +30,22 @@ struct CityFrame {
     uint32_t gbufferDraws = 0;  // the draws the G-buffer draws at all (not blended)
     uint32_t inView = 0;        // of those, the ones the CPU's frustum test keeps
     uint32_t counted = 0;       // the commands the counts let the G-buffer draw
+    uint32_t coarse = 0;        // instances drawn at a coarser level of detail than the full mesh
+    uint32_t cpuInstances = 0;  // entries of the CPU's instance list the frame used
 };
 
-class CameraCulling : public GpuFixture {
+class GpuCulling : public GpuFixture {
 protected:
     static CityFrame renderCity(const std::string& nodes,
-                                const std::map<std::string, Value>& params, int minDraws);
+                                const std::map<std::string, Value>& params, int minDraws,
+                                bool fullMeshes = false);
 };
 
 // The project's city of `nodes` nodes at 320×180, one frame, with `params` set, through the default
 // pipeline with the GPU culling from `minDraws` draws (culling.min_draws set before it loads).
-CityFrame CameraCulling::renderCity(const std::string& nodes,
-                                    const std::map<std::string, Value>& params, int minDraws) {
+CityFrame GpuCulling::renderCity(const std::string& nodes,
+                                 const std::map<std::string, Value>& params, int minDraws,
+                                 bool fullMeshes) {
     const std::string city = std::string(RG_SOURCE_ROOT) + "/scripts/scenes/city.lua";
     std::ifstream in(std::string(RG_SOURCE_ROOT) + "/scripts/pipelines/deferred.lua");
     std::stringstream deferred;
@@ -58,7 +63,10 @@ CityFrame CameraCulling::renderCity(const std::string& nodes,
     CityFrame out;
     auto r = s.load(pipeline);
     EXPECT_TRUE(r.has_value()) << r.error().describe();
+    // A pass that traces the scene's triangles makes the camera draw the full meshes.
+    if (r && fullMeshes) s.gpuScene()->drawFullMeshes();
     if (!r || !s.frame()) return out;
+    out.cpuInstances = s.gpuScene()->instancesUsed(0);
     if (auto img = rt().executor().readback("hdr")) out.hdr = std::move(*img);
     const passes::GpuScene& scene = *s.gpuScene();
     for (size_t d = 0; d < scene.draws().size(); ++d)
@@ -76,6 +84,7 @@ CityFrame CameraCulling::renderCity(const std::string& nodes,
         uint32_t instances = 0;
         std::memcpy(&instances, commands->data() + k + 4, 4);
         out.instances += instances;
+        if ((k / 20) % 4 != 0) out.coarse += instances;  // batch · 4 + level
     }
     for (size_t m = 0; m + 4 <= counts->size(); m += 4) {
         uint32_t n = 0;
@@ -92,7 +101,7 @@ size_t valuesThatDiffer(const Image& a, const Image& b) {
     return differ;
 }
 
-TEST_F(CameraCulling, TheGpuDrawsWhatTheCpuDrawsAndCullsConservatively) {
+TEST_F(GpuCulling, TheGpuDrawsWhatTheCpuDrawsAndCullsConservatively) {
     const CityFrame gpu = renderCity("2000", {}, 1024);
     const CityFrame all = renderCity("2000", {{"frustum_culling", Value(false)}}, 1024);
     const CityFrame cpu = renderCity("2000", {{"gpu_culling", Value(false)}}, 1024);
@@ -111,15 +120,71 @@ TEST_F(CameraCulling, TheGpuDrawsWhatTheCpuDrawsAndCullsConservatively) {
     EXPECT_LT(gpu.instances, gpu.gbufferDraws) << "what lies behind the camera is dropped";
     EXPECT_GT(gpu.instances, 0u);
     EXPECT_GT(gpu.counted, 0u);
+    EXPECT_EQ(gpu.cpuInstances, 0u) << "the G-buffer drew the GPU's commands, not the CPU's runs";
+    EXPECT_GT(cpu.cpuInstances, 0u);
+    EXPECT_GT(gpu.coarse, 0u) << "the far buildings at coarser levels";
     EXPECT_EQ(valuesThatDiffer(gpu.hdr, all.hdr), 0u) << "culling is conservative";
     EXPECT_EQ(valuesThatDiffer(gpu.hdr, cpu.hdr), 0u) << "the GPU makes the CPU's choices";
 }
 
+// Where a pass traces the full meshes (the reference mode: GpuScene::drawFullMeshes), the GPU's
+// levels are the full ones too.
+TEST_F(GpuCulling, FullMeshesWhereAPassTracesThem) {
+    const CityFrame full = renderCity("2000", {}, 1024, true);
+    ASSERT_TRUE(full.culledOnGpu);
+    EXPECT_GT(full.instances, 0u);
+    EXPECT_EQ(full.coarse, 0u);
+}
+
 // Below culling.min_draws the CPU keeps choosing.
-TEST_F(CameraCulling, ASmallSceneKeepsTheCpuPath) {
+TEST_F(GpuCulling, ASmallSceneKeepsTheCpuPath) {
     const CityFrame small = renderCity("2000", {}, 4096);
     ASSERT_FALSE(small.hdr.pixels.empty());
     EXPECT_FALSE(small.culledOnGpu) << "1522 draws, fewer than 4096";
+}
+
+// A point light's six cube faces over the box: the casters culled per view on the GPU draw the image
+// the CPU's walk draws (gpu_shadow_culling = false), and the CPU no longer walks them.
+TEST_F(GpuCulling, LocalLightsCastersCulledPerViewAsTheCpuDid) {
+    auto render = [&](bool gpu, uint64_t* walks, uint32_t* instances) {
+        SessionOptions o =
+            sceneOptions(std::string(RG_SOURCE_ROOT) + "/tests/gpu/scenes/local_shadow_box.lua",
+                         {{"light", "point"}}, 320, 180);
+        o.captures = {"hdr", "local_shadow_draws"};
+        o.params["gpu_shadow_culling"] = Value(gpu);
+        Session s(rt(), o);
+        Image hdr;
+        auto r = s.load(std::string(RG_SOURCE_ROOT) + "/scripts/pipelines/deferred.lua");
+        EXPECT_TRUE(r.has_value()) << r.error().describe();
+        if (!r || !s.frame()) return hdr;
+        if (auto img = rt().executor().readback("hdr")) hdr = std::move(*img);
+        *walks = s.gpuScene()->shadowViewWalks();
+        *instances = 0;
+        if (auto commands = rt().executor().readbackBuffer("local_shadow_draws"))
+            for (size_t k = 0; k + 20 <= commands->size(); k += 20) {
+                uint32_t n = 0;
+                std::memcpy(&n, commands->data() + k + 4, 4);
+                *instances += n;
+            }
+        return hdr;
+    };
+    uint64_t gpuWalks = 0, cpuWalks = 0;
+    uint32_t gpuInstances = 0, cpuInstances = 0;
+    const Image gpu = render(true, &gpuWalks, &gpuInstances);
+    const Image cpu = render(false, &cpuWalks, &cpuInstances);
+    ASSERT_FALSE(gpu.pixels.empty());
+    std::printf(
+        "six views: %u casters' instances listed on the GPU; CPU walks %llu and %llu; %zu of "
+        "%zu values differ\n",
+        gpuInstances, static_cast<unsigned long long>(gpuWalks),
+        static_cast<unsigned long long>(cpuWalks), valuesThatDiffer(gpu, cpu), gpu.pixels.size());
+    EXPECT_GT(gpuInstances, 0u);
+    EXPECT_LT(gpuInstances, 12u)
+        << "not every caster in every view: the box only in the faces it meets";
+    EXPECT_EQ(gpuWalks, 0u) << "the shadow pass drew the GPU's commands";
+    EXPECT_GT(cpuWalks, 0u);
+    EXPECT_EQ(cpuInstances, 0u) << "gpu_shadow_culling = false: the buffers leave the graph";
+    EXPECT_EQ(valuesThatDiffer(gpu, cpu), 0u);
 }
 
 }  // namespace

@@ -426,15 +426,16 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     for (const auto& pass : p->graph.passes) order.push_back(pass.name);
     // The environment filtering (scripts/ibl.lua, required by render_loop) comes first, then the
     // local probes' capture and filtering (scripts/probes.lua). Then the sun's cascades, its caster
-    // culling, its maps' clears (without a sun) and the local lights' maps (scripts/shadows.lua), the
+    // culling, its maps' clears (without a sun), the local lights' caster culling and maps
+    // (scripts/shadows.lua), the
     // camera's culling on the GPU (scripts/culling.lua: for scenes of many draws), the G-buffer half with the passes inserted after it (the light froxels' clear, screen-space AO's
     // half-resolution depths, each cascade's map drawn and filtered into the sun's mask at once, the
     // foliage fix-up, then the AO itself on the fixed-up normals: scripts/ao.lua), the Hi-Z
     // pyramid, SSR's mask and SSR (scripts/ssr.lua), the composition of SSR and the probes
     // (scripts/reflections.lua), the lighting, the sky, the points and lines, the copy of the opaque
     // frame the transmission sees through, and forward.
-    ASSERT_GE(order.size(), 63u);
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 61),
+    ASSERT_GE(order.size(), 65u);
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 63),
               (std::vector<std::string>{"env_cube",
                                         "env_mips",
                                         "env_irradiance",
@@ -451,6 +452,8 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
                                         "shadow_clear0",
                                         "shadow_clear1",
                                         "shadow_clear2",
+                                        "local_cull_clear",
+                                        "local_cull",
                                         "shadow_local",
                                         "camera_cull_clear",
                                         "camera_cull",

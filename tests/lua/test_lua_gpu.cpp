@@ -231,7 +231,8 @@ TEST_F(LuaGpu, ParametersAndResourcesNameWhatTheSceneHas) {
     EXPECT_NE(f.error().describe().find(
                   "scene_setting.lua:" + std::to_string(line) +
                   ": resource 'extra': only_when.scene = 'sky': the scene "
-                  "has no such feature (it has 'lightmap', 'material:MODEL', 'motion', 'draws:N')"),
+                  "has no such feature (it has 'lightmap', 'material:MODEL', 'motion', 'draws:N', "
+                  "'local_shadows')"),
               std::string::npos)
         << f.error().describe();
     // "material:NAME" names a material the pipeline declares: a misspelt one would drop the
