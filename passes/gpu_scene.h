@@ -233,7 +233,7 @@ public:
     // Frame slot `slot`'s shadow views (ShadowViews): for every local light with castShadows
     // whose range reaches the camera's view, one perspective view (a spot of outer angle ≤ 60°)
     // or six (a cube), in light order, up to kMaxShadowViews; then per light its first view and
-    // count. Written by updateFrame with the draws each view sees.
+    // count. Written by updateFrame; the draws each view sees found when asked (shadowViewDraws).
     VkBuffer shadowViewBuffer(uint32_t slot) const { return m_shadowViewBuffers[slot].buffer(); }
     uint32_t shadowViewCount() const { return static_cast<uint32_t>(m_shadowViewPlanes.size()); }
     // The draws whose world boxes meet view v's frustum (this frame).

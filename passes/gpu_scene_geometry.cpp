@@ -50,7 +50,11 @@ Result<void> GpuScene::perSlot(Context& ctx, const char* name, const std::vector
 }
 
 void GpuScene::drawFullMeshes() const {
+    if (m_fullMeshes) return;
     m_fullMeshes = true;
+    // Frames in flight read these buffers (the culling passes): the first switch waits for them
+    // (it comes with a pipeline build, which prepares the pass that traces the scene).
+    if (m_ctx) (void)m_ctx->waitIdle();
     const uint32_t full = 1;
     for (const Buffer& b : m_drawBuffers)
         std::memcpy(static_cast<uint8_t*>(b.mapped()) + sizeof(uint32_t), &full, sizeof full);

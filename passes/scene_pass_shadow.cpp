@@ -96,10 +96,14 @@ Result<void> ShadowScenePass::prepareDraws(PassSetup& setup) {
     // vertex shader built with RG_SHADOW_INSTANCES); a buffer without room for the scene's
     // batches (none) draws every caster directly.
     // A buffer the graph does not have (one that exists only for some scenes or parameters,
-    // only_when, left with its reads): every caster drawn directly.
+    // only_when, left with the pass's indirect reads): every caster drawn directly. A name the
+    // pass does not read while it reads another indirect buffer is a mistake.
     m_indirect.clear();
+    const bool readsIndirect =
+        std::any_of(desc.accesses.begin(), desc.accesses.end(),
+                    [](const Access& a) { return a.usage == Usage::IndirectRead; });
     if (desc.params["indirect"].isString() &&
-        setup.resources.find(desc.params["indirect"].asString())) {
+        (setup.resources.find(desc.params["indirect"].asString()) || readsIndirect)) {
         m_indirect = desc.params["indirect"].asString();
         const bool read =
             std::any_of(desc.accesses.begin(), desc.accesses.end(), [&](const Access& a) {

@@ -8,8 +8,8 @@
 // slice still shadows it (sun_cascades.comp spans the scene's bounds along the light).
 //
 // sun_shadow_draws (cleared first): per cascade, per batch, per level an indexed indirect command
-// ((cascade · batches + batch) · 4 + level); its instance count grows by an atomic add, and every
-// caster that joins writes the same index range and first instance. sun_shadow_instances: per
+// ((cascade · batches + batch − 1) · 4 + level); its instance count grows by an atomic add, and the
+// first caster to join writes its index range and first instance. sun_shadow_instances: per
 // cascade and level a region of one slot per caster, each batch's run at its first slot
 // (RgDraw.shadow.y): instance k of a command is the draw at firstInstance + k. The shadow passes
 // draw every command (shadow.vert with RG_SHADOW_INSTANCES): batches × levels draws a cascade
@@ -59,12 +59,14 @@ void main() {
                 if (draw.lodError[l] <= cascades.c.texelWorld[c]) level = l;
             const uint k = (uint(c) * batches + batch - 1u) * 4u + level;
             const uint first = (uint(c) * 4u + level) * slots + draw.shadow.y;
-            commands.command[k].indexCount = draw.lodCount[level];
-            commands.command[k].firstIndex = draw.lodFirst[level];
-            commands.command[k].vertexOffset = int(draw.info.x);
-            commands.command[k].firstInstance = first;
             const uint n = atomicAdd(commands.command[k].instanceCount, 1u);
             instances.draw[first + n] = d;
+            if (n == 0u) {  // the first to join writes the rest of the command
+                commands.command[k].indexCount = draw.lodCount[level];
+                commands.command[k].firstIndex = draw.lodFirst[level];
+                commands.command[k].vertexOffset = int(draw.info.x);
+                commands.command[k].firstInstance = first;
+            }
         }
     }
 }

@@ -7,7 +7,8 @@
 // every view and caster did on the CPU.
 //
 // local_shadow_draws (cleared first): per view slot, batch and level an indexed indirect command
-// ((v · batches + batch) · 4 + level), its instance count grown by an atomic add.
+// ((v · batches + batch − 1) · 4 + level), its instance count grown by an atomic add (the first
+// caster to join writes the rest of it).
 // local_shadow_instances: per view slot and level a region of one slot per caster, each batch's
 // run at its first slot (RgDraw.shadow.y). RG_LOCAL_VIEWS view slots: the layers of the map.
 #define RG_SCENE_DRAWS 1
@@ -32,16 +33,18 @@ void main() {
     // Each invocation takes every (invocations)-th draw: lavapipe ends a shader's loops after
     // 65 535 iterations in all (DESIGN §8), so no invocation walks many.
     const uint invocations = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
+    vec4 planes[RG_LOCAL_VIEWS][6];
+    for (uint v = 0u; v < views; ++v) planes[v] = rgFrustumPlanes(rgShadowViews.view[v].viewProj);
     for (uint d = gl_GlobalInvocationID.x; d < sceneDraws.header.x; d += invocations) {
         const RgDraw draw = sceneDraws.draw[d];
         const uint batch = draw.shadow.x;
         if (batch == 0u || batch > batches || draw.shadow.y + draw.shadow.z > slots) continue;
-        // The camera's level of detail, as the CPU's walk drew it: a caster finer than its
-        // receiver would stand in front of it by up to the coarser one's error.
-        const uint level = rgCameraLevel(draw, 1.0);
+        // The camera's level of detail, as the CPU's walk drew it — with 1 % to spare, as the
+        // cascades' (lib/culling.glsl): rounding may leave a caster coarser than its receiver,
+        // never finer (a finer caster would stand in front of it by up to the coarser one's error).
+        const uint level = rgCameraLevel(draw, 1.01);
         for (uint v = 0u; v < views; ++v) {
-            if (!rgBoxMeetsFrustum(rgFrustumPlanes(rgShadowViews.view[v].viewProj), draw.boxMin.xyz, draw.boxMax.xyz))
-                continue;
+            if (!rgBoxMeetsFrustum(planes[v], draw.boxMin.xyz, draw.boxMax.xyz)) continue;
             const uint k = (v * batches + batch - 1u) * 4u + level;
             const uint first = (v * 4u + level) * slots + draw.shadow.y;
             const uint n = atomicAdd(commands.command[k].instanceCount, 1u);

@@ -143,14 +143,28 @@ TEST_F(GpuCulling, ASmallSceneKeepsTheCpuPath) {
     EXPECT_FALSE(small.culledOnGpu) << "1522 draws, fewer than 4096";
 }
 
-// A point light's six cube faces over the box: the casters culled per view on the GPU draw the image
-// the CPU's walk draws (gpu_shadow_culling = false), and the CPU no longer walks them.
+// A point light's six cube faces over a ring of boxes sharing one mesh (one caster batch of eight,
+// the ground another) and spheres with levels of detail: the casters culled per view on the GPU
+// draw the maps the CPU's walk over every view and caster drew (gpu_shadow_culling = false), and
+// the CPU no longer walks them.
+const char* kRing = R"(local scene = require "scene"
+scene.material "grey" { base_color = { 0.6, 0.6, 0.6 }, smoothness = 0.3 }
+scene.plane "ground" { size = { 30, 30 }, material = "grey" }
+for i = 0, 7 do
+    local a = i * math.pi / 4
+    scene.box("box" .. i) { size = { 0.6, 0.6, 0.6 }, position = { 3 * math.cos(a), 0.3, 3 * math.sin(a) }, material = "grey" }
+    scene.sphere("ball" .. i) { radius = 0.3, segments = 45, position = { 5 * math.cos(a + 0.3), 0.3, 5 * math.sin(a + 0.3) }, material = "grey" }
+end
+scene.light "lamp" { type = "point", intensity = 4000, unit = "lm", position = { 0, 1.5, 0 }, range = 30, shadow = true }
+scene.camera "main" { position = { 0, 9, 9 }, target = { 0, 0, 0 }, fov = 45, aperture = 4, shutter = 1 / 60, iso = 100 }
+)";
+
 TEST_F(GpuCulling, LocalLightsCastersCulledPerViewAsTheCpuDid) {
-    auto render = [&](bool gpu, uint64_t* walks, uint32_t* instances) {
-        SessionOptions o =
-            sceneOptions(std::string(RG_SOURCE_ROOT) + "/tests/gpu/scenes/local_shadow_box.lua",
-                         {{"light", "point"}}, 320, 180);
-        o.captures = {"hdr", "local_shadow_draws"};
+    TempFolder tmp("local_cull");
+    std::ofstream(tmp.dir / "ring.lua") << kRing;
+    auto render = [&](bool gpu, uint64_t* walks, uint32_t* instances, std::vector<Image>* maps) {
+        SessionOptions o = sceneOptions((tmp.dir / "ring.lua").string(), {}, 320, 180);
+        o.captures = {"hdr", "local_shadow", "local_shadow_draws"};
         o.params["gpu_shadow_culling"] = Value(gpu);
         Session s(rt(), o);
         Image hdr;
@@ -158,6 +172,9 @@ TEST_F(GpuCulling, LocalLightsCastersCulledPerViewAsTheCpuDid) {
         EXPECT_TRUE(r.has_value()) << r.error().describe();
         if (!r || !s.frame()) return hdr;
         if (auto img = rt().executor().readback("hdr")) hdr = std::move(*img);
+        for (uint32_t layer = 0; layer < 6; ++layer)
+            if (auto map = rt().executor().readback("local_shadow", layer))
+                maps->push_back(std::move(*map));
         *walks = s.gpuScene()->shadowViewWalks();
         *instances = 0;
         if (auto commands = rt().executor().readbackBuffer("local_shadow_draws"))
@@ -170,20 +187,25 @@ TEST_F(GpuCulling, LocalLightsCastersCulledPerViewAsTheCpuDid) {
     };
     uint64_t gpuWalks = 0, cpuWalks = 0;
     uint32_t gpuInstances = 0, cpuInstances = 0;
-    const Image gpu = render(true, &gpuWalks, &gpuInstances);
-    const Image cpu = render(false, &cpuWalks, &cpuInstances);
+    std::vector<Image> gpuMaps, cpuMaps;
+    const Image gpu = render(true, &gpuWalks, &gpuInstances, &gpuMaps);
+    const Image cpu = render(false, &cpuWalks, &cpuInstances, &cpuMaps);
     ASSERT_FALSE(gpu.pixels.empty());
+    ASSERT_EQ(gpuMaps.size(), 6u);
+    ASSERT_EQ(cpuMaps.size(), 6u);
+    size_t mapsDiffer = 0;
+    for (size_t f = 0; f < 6; ++f) mapsDiffer += valuesThatDiffer(gpuMaps[f], cpuMaps[f]);
     std::printf(
-        "six views: %u casters' instances listed on the GPU; CPU walks %llu and %llu; %zu of "
-        "%zu values differ\n",
+        "six views, 17 casters: %u instances listed on the GPU; CPU walks %llu and %llu; "
+        "%zu map texels and %zu image values differ\n",
         gpuInstances, static_cast<unsigned long long>(gpuWalks),
-        static_cast<unsigned long long>(cpuWalks), valuesThatDiffer(gpu, cpu), gpu.pixels.size());
-    EXPECT_GT(gpuInstances, 0u);
-    EXPECT_LT(gpuInstances, 12u)
-        << "not every caster in every view: the box only in the faces it meets";
+        static_cast<unsigned long long>(cpuWalks), mapsDiffer, valuesThatDiffer(gpu, cpu));
+    EXPECT_GT(gpuInstances, 17u) << "casters in more than one face";
+    EXPECT_LT(gpuInstances, 6u * 17u) << "not every caster in every face";
     EXPECT_EQ(gpuWalks, 0u) << "the shadow pass drew the GPU's commands";
     EXPECT_GT(cpuWalks, 0u);
     EXPECT_EQ(cpuInstances, 0u) << "gpu_shadow_culling = false: the buffers leave the graph";
+    EXPECT_EQ(mapsDiffer, 0u);
     EXPECT_EQ(valuesThatDiffer(gpu, cpu), 0u);
 }
 
