@@ -5,6 +5,7 @@
 #include "gpu_scene.h"
 
 #include <algorithm>
+#include <numeric>
 #include <map>
 #include <tuple>
 #include <bit>
@@ -165,7 +166,7 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
             members[at->second].push_back(static_cast<uint32_t>(d));
         }
         std::vector<uint32_t> order(members.size());
-        for (uint32_t b = 0; b < order.size(); ++b) order[b] = b;
+        std::iota(order.begin(), order.end(), 0u);
         std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
             return m_draws[members[a].front()].material < m_draws[members[b].front()].material;
         });

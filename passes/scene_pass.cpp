@@ -423,8 +423,9 @@ Result<void> GBufferScenePass::prepareDraws(PassSetup& setup) {
                 !r)
                 return r;
     }
-    m_groupMaterials.assign(m_groups.size(), {});
-    for (size_t gi = 0; gi < m_groups.size(); ++gi) {
+    // The GPU path's draws: per group, its materials (one run of commands each).
+    m_groupMaterials.assign(m_cameraInstances ? m_groups.size() : 0, {});
+    for (size_t gi = 0; gi < m_groupMaterials.size(); ++gi) {
         for (size_t d : m_groups[gi].draws)
             m_groupMaterials[gi].push_back(sceneOf(setup)->draws()[d].material);
         std::sort(m_groupMaterials[gi].begin(), m_groupMaterials[gi].end());

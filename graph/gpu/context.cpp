@@ -293,7 +293,10 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     queueInfo.queueCount = 1;
     queueInfo.pQueuePriorities = &priority;
 
+    VkPhysicalDeviceVulkan12Features supported12{
+        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
     VkPhysicalDeviceFeatures2 supported{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
+    supported.pNext = &supported12;
     vkGetPhysicalDeviceFeatures2(ctx->m_physical, &supported);
     VkPhysicalDeviceVulkan13Features f13{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_3_FEATURES};
     f13.dynamicRendering = VK_TRUE;
@@ -305,11 +308,6 @@ Result<std::unique_ptr<Context>> Context::create(const ContextOptions& options) 
     f12.hostQueryReset = VK_TRUE;
     // The G-buffer's draws culled on the GPU draw as many commands as a count buffer says
     // (vkCmdDrawIndexedIndirectCount, passes/scene_pass.cpp); without it, every command.
-    VkPhysicalDeviceVulkan12Features supported12{
-        VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_VULKAN_1_2_FEATURES};
-    VkPhysicalDeviceFeatures2 query12{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};
-    query12.pNext = &supported12;
-    vkGetPhysicalDeviceFeatures2(ctx->m_physical, &query12);
     f12.drawIndirectCount = supported12.drawIndirectCount;
     ctx->m_drawIndirectCount = supported12.drawIndirectCount == VK_TRUE;
     VkPhysicalDeviceFeatures2 features{VK_STRUCTURE_TYPE_PHYSICAL_DEVICE_FEATURES_2};

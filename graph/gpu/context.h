@@ -74,7 +74,7 @@ public:
     // Whether indirect draws may start at an instance other than 0 (drawIndirectFirstInstance).
     bool drawIndirectFirstInstance() const { return m_drawIndirectFirstInstance; }
     // Whether fragment shaders may use quad operations (GL_KHR_shader_subgroup_quad; lavapipe
-    // has them): every shader then gets RG_QUAD_OPS (passes/shader_program.cpp).
+    // has them): every fragment shader then gets RG_QUAD_OPS (passes/shader_program.cpp).
     bool fragmentQuadOps() const { return m_fragmentQuadOps; }
     // Whether vkCmdDrawIndexedIndirectCount may be used (Vulkan 1.2's drawIndirectCount).
     bool drawIndirectCount() const { return m_drawIndirectCount; }
