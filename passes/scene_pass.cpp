@@ -5,6 +5,7 @@
 // This file holds the kind (its schema and ScenePass, which picks the mode), what every mode draws
 // with (SceneDraws), and the modes that draw from the camera: the G-buffer and forward passes.
 #include <algorithm>
+#include <cstring>
 #include <iterator>
 #include <limits>
 #include <tuple>
@@ -387,6 +388,14 @@ Result<void> GBufferScenePass::prepareDraws(PassSetup& setup) {
     if (m_cameraInstances) {
         m_indirect = indirect;
         m_indirectCount = indirectCount;
+        if (setup.gpu.drawIndirectCount() && !m_countReset.buffer()) {
+            auto reset = gpu::Buffer::create(setup.gpu, desc.name + ".count_reset", 24,
+                                             VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT, true);
+            if (!reset) return std::unexpected(reset.error());
+            const uint32_t words[6] = {0, 0, 0, 0, 0, 0xffffffffu};
+            std::memcpy(reset->mapped(), words, sizeof words);
+            m_countReset = std::move(*reset);
+        }
     }
     for (const PassMaterial& info : desc.materials) {
         for (const auto& t : info.targets)
@@ -529,6 +538,12 @@ void GBufferScenePass::recordIndirect(RecordContext& rc) {
                                              kIndirectCommandBytes);
         }
     }
+    // Lavapipe (Mesa 22.3) keeps the last count buffer for the command buffer's later indirect
+    // draws without one (the shadow maps'): where this pass's last count was 0 they drew nothing.
+    // A last count draw of one empty command, its count 2^32 − 1, leaves them their own counts.
+    if (m_countReset.buffer() && !m_groupMaterials.empty())
+        vkCmdDrawIndexedIndirectCount(rc.cmd, m_countReset.buffer(), 0, m_countReset.buffer(), 20,
+                                      1, kIndirectCommandBytes);
     vkCmdEndRendering(rc.cmd);
 }
 
@@ -712,6 +727,9 @@ PassKindInfo scenePassKind() {
               "shadows/cascade_cull.comp with the instances each draws (the vertex shader gets "
               "RG_SHADOW_INSTANCES): one instanced draw per batch and level; a buffer without "
               "room for the scene's batches draws every caster directly"},
+             {"bind", "table",
+              "maps a GLSL binding name to a resource name when they differ (the G-buffer's "
+              "first phase: bind = { camera_instances = 'camera_early_instances' })"},
              {"indirect_count", "string",
               "the G-buffer mode, with indirect: a buffer it reads as { NAME, as = 'indirect' } "
               "holding per material how many of its run of commands to draw "

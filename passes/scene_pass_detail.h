@@ -168,6 +168,8 @@ class GBufferScenePass final : public CameraScenePass {
     // CPU. Per group, the materials its draws have (one indirect-count draw each).
     std::string m_indirect, m_indirectCount;
     std::vector<std::vector<uint32_t>> m_groupMaterials;
+    // A command without instances and a count of 2^32 − 1 (recordIndirect's last count draw).
+    gpu::Buffer m_countReset;
     // Draws every group's materials from the culling pass's commands.
     void recordIndirect(RecordContext& rc);
 };

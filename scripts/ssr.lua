@@ -43,7 +43,7 @@ rg.resource "ssr_distance" { format = "r16f", scale = { 0.5, 0.5 }, history = "s
 rg.history "hdr_history" { of = "hdr", mips = "full", doc = "the previous frame's lit image, with mips" }
 
 rg.pass "hiz" {
-    kind = "compute", shader = "ssr/hiz.comp", reads = { "depth" }, writes = { { "hiz", as = "storage" } },
+    kind = "compute", shader = "passes/hiz.comp", reads = { "depth" }, writes = { { "hiz", as = "storage" } },
     per_mip = true, filter = "nearest", insert = { before = "lighting_standard" },
 }
 -- Only the pixels that trace a ray: `ssr_mask` marks them in a half-resolution depth mask (0:

@@ -72,11 +72,13 @@ struct ResourceDesc {
     // empties it when the passes writing `historyOf` change (gpu::Executor::build).
     std::string historyOf;
     // Lua `only_when`: the resource exists only while the scene has the feature `sceneFeature`
-    // (gpu::SceneBinding::feature; without a scene it has none) and the boolean parameter `param`
-    // is on; otherwise it and every access to it leave the graph before the build, and a pass
-    // that loses such an access loses `defines` (Session::buildableGraph).
+    // (gpu::SceneBinding::feature; without a scene it has none) and every boolean parameter of
+    // `params` is on; otherwise it and every access to it leave the graph before the build, and a
+    // pass that loses such an access loses `defines` (Session::buildableGraph). A pass's
+    // only_when (no defines) disables the pass.
     struct Condition {
-        std::string sceneFeature, param;
+        std::string sceneFeature;
+        std::vector<std::string> params;
         std::vector<std::string> defines;
     };
     std::optional<Condition> onlyWhen;
@@ -111,6 +113,9 @@ struct Access {
     Usage usage = Usage::Sampled;
     bool load =
         false;  // attachments and copy destinations: keep previous contents (load op LOAD / blend)
+    // Lua `load = "pass"`: load while that pass runs (it drew the first part), clear otherwise;
+    // Session::buildableGraph sets `load` from it.
+    std::string loadAfter;
     std::string field;  // field path in the script ("passes.lighting.reads[3]"), for errors
     // Sampled: the stencil aspect of a depth/stencil texture (`as = "stencil"`), bound to the
     // shader's `usampler2D <resource>_stencil` (the value in .r).
@@ -154,6 +159,8 @@ struct PassDesc {
     Value params;                    // kind-specific settings (shader, defines, clear value, ...)
     std::string origin;              // "deferred.lua:40", for error messages
     std::vector<PassMaterial> materials;  // a `scene` pass's materials (graphWithParams)
+    // Lua `only_when`: the pass runs only while the condition holds (Session::buildableGraph).
+    std::optional<ResourceDesc::Condition> onlyWhen;
 };
 
 struct GraphDesc {

@@ -106,21 +106,31 @@ Result<PipelineDesc> Builder::build(const OutputNames& names) {
     if (auto r = historyPasses(); !r) return std::unexpected(r.error());  // after every other pass
     if (auto r = checkMaterialReferences(); !r) return std::unexpected(r.error());
     if (auto r = checkSwitches(); !r) return std::unexpected(r.error());
-    for (const ResourceDesc& res : out.graph.resources) {
-        if (!res.onlyWhen || res.onlyWhen->param.empty()) continue;
-        const std::string& name = res.onlyWhen->param;
-        const ParamDesc* p = out.findParam(name);
-        if (p && p->type == ParamType::Boolean) continue;
-        std::vector<std::string> params;
-        for (const auto& q : out.params) params.push_back(q.name);
-        const Where w = where(*resources[res.name]).at("only_when").at("param");
-        return std::unexpected(
-            (p ? w.error("parameter '" + name + "' is a " + paramTypeName(p->type) +
-                         "; only_when takes a boolean one")
-               : w.error("unknown parameter '" + name + "'" + suggestion(name, params) +
-                         " (declare it with rg.param)"))
-                .error());
-    }
+    // only_when's parameters: boolean ones the pipeline declares.
+    auto checkCondition = [&](const std::optional<ResourceDesc::Condition>& c,
+                              const Declaration& d) -> Result<void> {
+        if (!c) return {};
+        for (size_t i = 0; i < c->params.size(); ++i) {
+            const std::string& name = c->params[i];
+            const ParamDesc* p = out.findParam(name);
+            if (p && p->type == ParamType::Boolean) continue;
+            std::vector<std::string> params;
+            for (const auto& q : out.params) params.push_back(q.name);
+            const Where param = where(d).at("only_when").at("param");
+            const Where w = d.body["only_when"]["param"].isList() ? param.index(i) : param;
+            return p ? w.error("parameter '" + name + "' is a " + paramTypeName(p->type) +
+                               "; only_when takes a boolean one")
+                     : w.error("unknown parameter '" + name + "'" + suggestion(name, params) +
+                               " (declare it with rg.param)");
+        }
+        return {};
+    };
+    for (const ResourceDesc& res : out.graph.resources)
+        if (auto r = checkCondition(res.onlyWhen, *resources[res.name]); !r)
+            return std::unexpected(r.error());
+    for (const PassDesc& pass : out.graph.passes)
+        if (auto r = checkCondition(pass.onlyWhen, *passes[pass.name]); !r)
+            return std::unexpected(r.error());
 
     out.output = output.empty() ? "output" : output;
     if (!names.replaced.empty()) out.notes.push_back(names.replaced);

@@ -109,4 +109,8 @@ struct Builder {
     Result<void> checkMaterialReferences();
 };
 
+// only_when = { scene = FEATURE, param = NAME or { NAMES }, defines = { ... } } (declarations_resources.cpp);
+// a pass's takes no defines.
+Result<ResourceDesc::Condition> onlyWhen(const Where& ow, const Value& c, bool withDefines);
+
 }  // namespace rg::declarations

@@ -17,7 +17,7 @@ const PassKindSchema* Builder::kindSchema(const std::string& name) const {
 // One entry of reads/writes: "name" or { "name", as = "...", load = true }.
 Result<Access> Builder::access(const Where& w, const Declaration& d, const Value& e, bool write,
                                const PassKindSchema& kind) {
-    std::string name, as;
+    std::string name, as, loadAfter;
     bool load = write && kind.writesLoad;
     if (e.isString())
         name = e.asString();
@@ -35,9 +35,20 @@ Result<Access> Builder::access(const Where& w, const Declaration& d, const Value
         }
         if (e.has("load")) {
             if (!write) return w.at("load").error("only writes can load");
-            if (auto r = expectType(w.at("load"), e["load"], "boolean"); !r)
-                return std::unexpected(r.error());
-            load = e["load"].asBool();
+            // load = "pass": load while that pass runs (it drew first), clear otherwise.
+            if (e["load"].isString()) {
+                auto pass = resolvePass(w.at("load"), d.module, e["load"].asString());
+                if (!pass) return std::unexpected(pass.error());
+                loadAfter = *pass;
+                load = true;
+            } else if (auto r = expectType(w.at("load"), e["load"], "boolean"); !r) {
+                return std::unexpected(
+                    w.at("load")
+                        .error("expected a boolean, or the name of the pass that runs first")
+                        .error());
+            } else {
+                load = e["load"].asBool();
+            }
         }
     } else
         return w.error("expected a resource name or { \"name\", as = \"...\" }, got " + typeOf(e));
@@ -46,6 +57,7 @@ Result<Access> Builder::access(const Where& w, const Declaration& d, const Value
     Access a;
     a.resource = *resolved;
     a.load = load;
+    a.loadAfter = loadAfter;
     a.field = w.path;
     const Declaration* rd = resources[*resolved];
     bool depthFormat = false;
@@ -109,8 +121,8 @@ Result<void> Builder::pass(const Declaration& d) {
                                   suggestion(*kindName, names) +
                                   "; expected one of: " + joinQuoted(names));
     }
-    std::vector<std::string> allowed = {"kind",    "reads",       "writes", "after",
-                                        "enabled", "side_effect", "doc",    "insert"};
+    std::vector<std::string> allowed = {"kind",        "reads", "writes", "after",    "enabled",
+                                        "side_effect", "doc",   "insert", "only_when"};
     for (const auto& p : kind->params) allowed.push_back(p.name);
     if (auto r = checkFields(w, b, allowed); !r) return r;
     PassDesc p;
@@ -166,6 +178,11 @@ Result<void> Builder::pass(const Declaration& d) {
             if (auto e = expectType(w.at(flag), b[flag], "boolean"); !e) return e;
     p.enabled = b["enabled"].asBool(true);
     p.sideEffect = b["side_effect"].asBool();
+    if (b.has("only_when")) {
+        auto cond = onlyWhen(w.at("only_when"), b["only_when"], /*withDefines=*/false);
+        if (!cond) return std::unexpected(cond.error());
+        p.onlyWhen = *cond;
+    }
     out.graph.passes.push_back(p);
     return {};
 }

@@ -17,13 +17,18 @@ Result<uint32_t> mipCount(const Where& w, const Value& m) {
     return w.error("expected a whole number in 1..16 or \"full\"");
 }
 
-// rg.resource's and rg.buffer's only_when = { scene = FEATURE, param = NAME, defines = { ... } }.
-Result<ResourceDesc::Condition> onlyWhen(const Where& ow, const Value& c) {
+}  // namespace
+
+// rg.resource's and rg.buffer's only_when = { scene = FEATURE, param = NAME or { NAMES },
+// defines = { ... } }; rg.pass's without defines.
+Result<ResourceDesc::Condition> onlyWhen(const Where& ow, const Value& c, bool withDefines) {
     if (!c.isTable() || c.asTable().empty())
         return ow.error(
             "expected a table { scene = FEATURE, param = NAME, defines = { ... } }, got " +
             typeOf(c));
-    if (auto e = checkFields(ow, c, {"scene", "param", "defines"}); !e)
+    if (auto e = withDefines ? checkFields(ow, c, {"scene", "param", "defines"})
+                             : checkFields(ow, c, {"scene", "param"});
+        !e)
         return std::unexpected(e.error());
     ResourceDesc::Condition cond;
     // A scene feature is a name, or a name:name ("material:transmission": the scene draws that
@@ -37,19 +42,34 @@ Result<ResourceDesc::Condition> onlyWhen(const Where& ow, const Value& c) {
             std::all_of(tail.begin(), tail.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
         return isGlslIdentifier(s.substr(0, colon)) && (isGlslIdentifier(tail) || number);
     };
-    for (const char* f : {"scene", "param"}) {
-        if (!c.has(f)) continue;
-        if (!c[f].isString())
-            return ow.at(f).error(std::string("expected a name, got ") + typeOf(c[f]));
-        const std::string& name = c[f].asString();
-        if (std::string(f) == "scene" ? !featureName(name) : !isGlslIdentifier(name))
-            return ow.at(f).error(
-                "'" + name + "' is not a name" +
-                (std::string(f) == "scene" ? " (or name:name, name:number)" : ""));
+    if (c.has("scene")) {
+        if (!c["scene"].isString())
+            return ow.at("scene").error("expected a name, got " + typeOf(c["scene"]));
+        const std::string& name = c["scene"].asString();
+        if (!featureName(name))
+            return ow.at("scene").error("'" + name + "' is not a name (or name:name, name:number)");
+        cond.sceneFeature = name;
     }
-    cond.sceneFeature = c["scene"].isString() ? c["scene"].asString() : "";
-    cond.param = c["param"].isString() ? c["param"].asString() : "";
-    if (cond.sceneFeature.empty() && cond.param.empty())
+    // param = NAME, or a list of names: every one of them on.
+    if (c.has("param")) {
+        if (c["param"].isString())
+            cond.params = {c["param"].asString()};
+        else if (c["param"].isList() && !c["param"].asList().empty())
+            for (size_t i = 0; i < c["param"].asList().size(); ++i) {
+                const Value& v = c["param"].asList()[i];
+                if (!v.isString())
+                    return ow.at("param").index(i).error("expected a name, got " + typeOf(v));
+                cond.params.push_back(v.asString());
+            }
+        else
+            return ow.at("param").error("expected a name or a list of names, got " +
+                                        typeOf(c["param"]));
+        for (size_t i = 0; i < cond.params.size(); ++i)
+            if (!isGlslIdentifier(cond.params[i]))
+                return (c["param"].isList() ? ow.at("param").index(i) : ow.at("param"))
+                    .error("'" + cond.params[i] + "' is not a name");
+    }
+    if (cond.sceneFeature.empty() && cond.params.empty())
         return ow.error(
             "names neither a scene feature (scene = ...) nor a parameter (param = ...)");
     if (c.has("defines")) {
@@ -59,8 +79,6 @@ Result<ResourceDesc::Condition> onlyWhen(const Where& ow, const Value& c) {
     }
     return cond;
 }
-
-}  // namespace
 
 Result<void> Builder::texture(const Declaration& d) {
     Where w = where(d);
@@ -146,7 +164,7 @@ Result<void> Builder::texture(const Declaration& d) {
     r.exported = b["export"].asBool();
     r.imported = b["import"].asBool();
     if (b.has("only_when")) {
-        auto cond = onlyWhen(w.at("only_when"), b["only_when"]);
+        auto cond = onlyWhen(w.at("only_when"), b["only_when"], true);
         if (!cond) return std::unexpected(cond.error());
         r.onlyWhen = *cond;
     }
@@ -343,7 +361,7 @@ Result<void> Builder::buffer(const Declaration& d) {
     r.imported = b["import"].asBool();
     r.persistent = b["persistent"].asBool();
     if (b.has("only_when")) {
-        auto cond = onlyWhen(w.at("only_when"), b["only_when"]);
+        auto cond = onlyWhen(w.at("only_when"), b["only_when"], true);
         if (!cond) return std::unexpected(cond.error());
         r.onlyWhen = *cond;
     }

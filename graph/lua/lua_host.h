@@ -122,8 +122,9 @@ void applyFrameChanges(PipelineDesc& pipeline, const FrameChanges& changes);
 // pass names in `switches` into its defines.
 GraphDesc graphWithParams(const PipelineDesc& pipeline);
 
-// Whether some pass compiles `param` into its shaders (switches = { param = "DEFINE" }): a
-// change to it rebuilds those passes rather than updating uniforms.
+// Whether some pass compiles `param` into its shaders (switches = { param = "DEFINE" }) or an
+// only_when names it (it chooses resources and passes): a change to it rebuilds the graph's
+// changed passes rather than updating uniforms.
 bool isSwitch(const PipelineDesc& pipeline, const std::string& param);
 
 // Makes absolute the passes' relative shader paths that name a file next to the pipeline script

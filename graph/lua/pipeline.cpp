@@ -121,8 +121,14 @@ Value paramAsNumber(const ParamDesc& p) {
 }  // namespace
 
 bool isSwitch(const PipelineDesc& pipeline, const std::string& param) {
+    // A parameter an only_when names changes which resources and passes the graph has.
+    auto names = [&](const std::optional<ResourceDesc::Condition>& c) {
+        return c && std::find(c->params.begin(), c->params.end(), param) != c->params.end();
+    };
     for (const auto& pass : pipeline.graph.passes)
-        if (pass.params["switches"].has(param)) return true;
+        if (pass.params["switches"].has(param) || names(pass.onlyWhen)) return true;
+    for (const auto& r : pipeline.graph.resources)
+        if (names(r.onlyWhen)) return true;
     return false;
 }
 

@@ -108,11 +108,9 @@ Result<GraphDesc> Session::buildableGraph(const PipelineDesc& p, bool keepMissin
     // lavapipe), and the passes that accessed them lose the condition's defines (the reflection
     // then takes the distant probe).
     const gpu::SceneBinding* bound = m_runtime.executor().scene();
-    std::vector<std::pair<std::string, std::vector<std::string>>> dropped;  // name, defines
-    for (const ResourceDesc& r : g.resources) {
-        if (!r.onlyWhen) continue;
-        const ResourceDesc::Condition& c = *r.onlyWhen;
-        bool keep = true;
+    // Whether a resource's or pass's condition holds (`what`: "resource 'NAME'", for errors).
+    auto holds = [&](const ResourceDesc::Condition& c, const std::string& origin,
+                     const std::string& what) -> Result<bool> {
         // "material:NAME" names a material of the pipeline (a misspelt one would drop the
         // resource in every scene, in silence).
         if (c.sceneFeature.starts_with(gpu::SceneBinding::kMaterialFeature)) {
@@ -122,28 +120,40 @@ Result<GraphDesc> Session::buildableGraph(const PipelineDesc& p, bool keepMissin
             for (const MaterialDesc& m : p.materials) names.push_back(m.name);
             if (std::find(names.begin(), names.end(), model) == names.end())
                 return fail(ErrorCode::InvalidInput,
-                            (r.origin.empty() ? "" : r.origin + ": ") + "resource '" + r.name +
-                                "': only_when.scene = '" + c.sceneFeature +
-                                "': the pipeline declares no material '" + model + "' (it has " +
-                                joinQuoted(names) + ")");
+                            (origin.empty() ? "" : origin + ": ") + what + ": only_when.scene = '" +
+                                c.sceneFeature + "': the pipeline declares no material '" + model +
+                                "' (it has " + joinQuoted(names) + ")");
         }
+        bool keep = true;
         if (!c.sceneFeature.empty() && bound) {
             const std::optional<bool> has = bound->feature(c.sceneFeature);
             if (!has)
                 return fail(ErrorCode::InvalidInput,
-                            (r.origin.empty() ? "" : r.origin + ": ") + "resource '" + r.name +
-                                "': only_when.scene = '" + c.sceneFeature +
-                                "': the scene has no such feature (it has " +
+                            (origin.empty() ? "" : origin + ": ") + what + ": only_when.scene = '" +
+                                c.sceneFeature + "': the scene has no such feature (it has " +
                                 joinQuoted(bound->featureNames()) + ")");
             keep = *has;
         } else if (!c.sceneFeature.empty()) {
             keep = false;  // no scene: no feature
         }
-        if (keep && !c.param.empty()) {
-            const ParamDesc* on = p.findParam(c.param);
-            keep = on && on->value.isBool() && on->value.asBool();
+        for (const std::string& name : c.params) {
+            const ParamDesc* on = p.findParam(name);
+            keep = keep && on && on->value.isBool() && on->value.asBool();
         }
-        if (!keep) dropped.emplace_back(r.name, c.defines);
+        return keep;
+    };
+    std::vector<std::pair<std::string, std::vector<std::string>>> dropped;  // name, defines
+    for (const ResourceDesc& r : g.resources) {
+        if (!r.onlyWhen) continue;
+        auto keep = holds(*r.onlyWhen, r.origin, "resource '" + r.name + "'");
+        if (!keep) return std::unexpected(keep.error());
+        if (!*keep) dropped.emplace_back(r.name, r.onlyWhen->defines);
+    }
+    for (PassDesc& pass : g.passes) {
+        if (!pass.onlyWhen) continue;
+        auto keep = holds(*pass.onlyWhen, pass.origin, "pass '" + pass.name + "'");
+        if (!keep) return std::unexpected(keep.error());
+        if (!*keep) pass.enabled = false;
     }
     // A pass that wrote only dropped resources (render_loop.lua's copy of the opaque frame and its
     // mips) has nothing left to do: it leaves with them.
@@ -169,6 +179,14 @@ Result<GraphDesc> Session::buildableGraph(const PipelineDesc& p, bool keepMissin
     if (!dropped.empty())
         for (size_t i = 0; i < g.passes.size(); ++i)
             if (wrote[i] && !writes(g.passes[i])) g.passes[i].enabled = false;
+    // load = "pass": the targets that pass drew first are loaded while it runs, cleared otherwise
+    // (the G-buffer after its first phase: scripts/culling.lua).
+    for (PassDesc& pass : g.passes)
+        for (Access& a : pass.accesses)
+            if (!a.loadAfter.empty()) {
+                const PassDesc* first = g.findPass(a.loadAfter);
+                a.load = first && first->enabled;
+            }
     for (auto& r : g.resources) {
         if (!m_options.view.empty() && r.name == "debug_view") r.exported = true;
         for (const auto& c : m_options.captures)

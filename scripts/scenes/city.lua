@@ -7,6 +7,8 @@
 -- (default 256) facade materials. scene.args.lamps (default 0, up to 65536) street lamps: ranged
 -- point lights 4 m up along the streets. Seen from street level at the city's edge, looking
 -- down a street, so most of the city is far and most of it hidden behind the blocks beside it.
+-- scene.args.walk (default 0, up to 100): the camera walks down the street at that many metres a
+-- second, turning to the right as it goes (blocks come into view and leave it every frame).
 local scene = require "scene"
 
 local function arg(name, default, lo, hi)
@@ -19,6 +21,7 @@ end
 local count = arg("nodes", 10000, 1, 200000)
 local materials = arg("materials", 256, 1, 4096)
 local lamps = arg("lamps", 0, 0, 65536)
+local walk = arg("walk", 0, 0, 100)
 
 -- A fixed linear congruential sequence: the same city every run.
 local seed = 20261129
@@ -91,7 +94,11 @@ scene.light "sun" { type = "sun", intensity = 100000, unit = "lux", direction = 
 scene.environment "sky" { kind = "sky" }
 -- Down the first north-south street, a little to one side: the canyon hides most of the city.
 local street = streets[1]
+local start, target = { street - 2, 1.7, 2 }, { street + 0.12 * size, 6, -size }
 scene.camera "main" {
-  position = { street - 2, 1.7, 2 }, target = { street + 0.12 * size, 6, -size }, fov = 60,
-  aperture = 16, shutter = 1 / 125, iso = 100,
+  position = start, target = target, fov = 60, aperture = 16, shutter = 1 / 125, iso = 100,
+  path = walk > 0 and {
+    { time = 0, position = start, target = target },
+    { time = 1, position = { start[1] + 1, start[2], start[3] - walk }, target = { target[1] + size, target[2], target[3] } },
+  } or nil,
 }

@@ -45,4 +45,48 @@ uint rgCameraLevel(RgDraw draw, float spare) {
     return level;
 }
 
+// Whether any of a world box may show over the depth drawn so far (two-phase occlusion culling:
+// shaders/passes/camera_cull.comp): `hiz` the farthest-depth pyramid of it (passes/hiz.comp with
+// RG_HIZ_FARTHEST; its mip 0 may be coarser than the screen). The box's corners projected bound
+// the pixels it can cover — two pixels wider each way: half a pixel for the pixel centres, half
+// for the jitter, the rest for the rounding of the texel below — and its nearest depth; the pyramid's finest mip over which those
+// pixels span at most 2 × 2 texels gives the farthest depth drawn over all of them. False only
+// when the box's nearest depth lies beyond it: every fragment of the box then fails the depth
+// test against what is drawn (depth 0..1, nearer less). A box reaching the near plane may show.
+bool rgBoxMayShow(sampler2D hiz, mat4 viewProj, vec3 lo, vec3 hi) {
+    vec2 ndcMin = vec2(1e30), ndcMax = vec2(-1e30);
+    float nearest = 1.0;
+    for (int i = 0; i < 8; ++i) {
+        const vec3 corner = vec3((i & 1) != 0 ? hi.x : lo.x, (i & 2) != 0 ? hi.y : lo.y, (i & 4) != 0 ? hi.z : lo.z);
+        const vec4 clip = viewProj * vec4(corner, 1.0);
+        if (clip.w <= 1e-6 || clip.z < 0.0) return true;
+        const vec3 ndc = clip.xyz / clip.w;
+        ndcMin = min(ndcMin, ndc.xy);
+        ndcMax = max(ndcMax, ndc.xy);
+        nearest = min(nearest, ndc.z);
+    }
+    const vec2 pixels = camera.viewport.xy;
+    const ivec2 size0 = textureSize(hiz, 0);
+    // Pixel x lies in mip-0 texel floor(x · size0 / pixels) (hiz.comp's blocks), in mip m in that
+    // texel's >> m, the last texel of a mip taking the odd one left over.
+    const vec2 toTexels = vec2(size0) / pixels;
+    // Clamped as floats: a corner near the camera's plane projects far outside the screen, beyond
+    // what an int holds.
+    const vec2 top = vec2(size0 - 1);
+    const ivec2 t0 = ivec2(clamp(floor(((ndcMin * 0.5 + 0.5) * pixels - 2.0) * toTexels), vec2(0.0), top));
+    const ivec2 t1 = ivec2(clamp(floor(((ndcMax * 0.5 + 0.5) * pixels + 2.0) * toTexels), vec2(0.0), top));
+    const int levels = textureQueryLevels(hiz);
+    int m = 0;
+    while (m + 1 < levels && any(greaterThan((t1 >> m) - (t0 >> m), ivec2(1)))) ++m;
+    // The mip's size from mip 0's (Vulkan's rule): lavapipe (Mesa 22.3) answered textureSize at a
+    // level chosen at run time with sizes past the mip's, and the reads fell outside it.
+    const ivec2 last = max(size0 >> m, ivec2(1)) - 1;
+    const ivec2 a = min(t0 >> m, last), b = min(t1 >> m, last);
+    float farthest = 0.0;
+    for (int y = a.y; y <= b.y; ++y)
+        for (int x = a.x; x <= b.x; ++x) farthest = max(farthest, texelFetch(hiz, ivec2(x, y), m).r);
+    // A margin for the rounding of the two depth computations (the rasteriser's and this).
+    return nearest <= farthest + 1e-6;
+}
+
 #endif

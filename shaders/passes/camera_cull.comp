@@ -15,6 +15,18 @@
 // batch's first command within that run), and the count is one past the last that has an instance
 // (vkCmdDrawIndexedIndirectCount; commands before it without one draw nothing). Without
 // RG_CAMERA_CULL (culling off, to compare) every draw joins.
+//
+// Two-phase occlusion culling (Haar & Aaltonen 2015): camera_visible holds, per draw, whether it
+// showed last frame. RG_CULL_EARLY (the pass camera_cull_early, its commands bound to
+// camera_early_draws and camera_early_counts): the draws in the frustum that showed last frame,
+// which gbuffer_early draws. RG_OCCLUSION (camera_cull, after camera_hiz built the farthest-depth
+// pyramid of what gbuffer_early drew): every draw in the frustum is tested against the pyramid
+// (rgBoxMayShow), its answer kept in camera_visible for the next frame, and the draws that may
+// show but were not drawn first join — the G-buffer draws them over the first phase's. A draw
+// drawn first that no longer shows leaves the next frame's first phase. (The first phase's
+// instances go to camera_early_instances, bound as camera_instances.) The image is that of no
+// occlusion test: a draw is skipped only where everything drawn over its pixels is nearer than
+// all of it.
 #define RG_SCENE_DRAWS 1
 #include "lib/scene.glsl"
 #include "lib/culling.glsl"
@@ -28,6 +40,12 @@ struct DrawIndexedIndirect { uint indexCount, instanceCount, firstIndex; int ver
 layout(set = 0, binding = 0, std430) buffer camera_draws { DrawIndexedIndirect command[]; } commands;
 layout(set = 0, binding = 1, std430) writeonly buffer camera_instances { uint draw[]; } instances;
 layout(set = 0, binding = 2, std430) buffer camera_draw_counts { uint count[]; } counts;
+#if defined(RG_CULL_EARLY) || defined(RG_OCCLUSION)
+layout(set = 0, binding = 3, std430) buffer camera_visible { uint visible[]; } visibility;
+#endif
+#ifdef RG_OCCLUSION
+layout(set = 0, binding = 4) uniform sampler2D camera_hiz;
+#endif
 
 void main() {
     const uint batches = uint(commands.command.length()) / 4u;
@@ -43,7 +61,20 @@ void main() {
             draw.info.y >= uint(counts.count.length()))
             continue;
 #if RG_CAMERA_CULL
-        if (!rgBoxMeetsFrustum(planes, draw.boxMin.xyz, draw.boxMax.xyz)) continue;
+        const bool inFrustum = rgBoxMeetsFrustum(planes, draw.boxMin.xyz, draw.boxMax.xyz);
+#else
+        const bool inFrustum = true;
+#endif
+#if defined(RG_CULL_EARLY)
+        if (!inFrustum || visibility.visible[d] == 0u) continue;
+#elif defined(RG_OCCLUSION)
+        const bool drawnFirst = inFrustum && visibility.visible[d] != 0u;
+        const bool shows = inFrustum && (RG_CAMERA_CULL == 0 ||
+            rgBoxMayShow(camera_hiz, camera.unjitteredViewProj, draw.boxMin.xyz, draw.boxMax.xyz));
+        visibility.visible[d] = shows ? 1u : 0u;
+        if (drawnFirst || !shows) continue;
+#else
+        if (!inFrustum) continue;
 #endif
         const uint level = rgCameraLevel(draw, 1.0);
         const uint k = (batch - 1u) * 4u + level;

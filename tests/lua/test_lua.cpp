@@ -49,6 +49,7 @@ TEST(LuaErrors, UnknownFieldSuggestsTheClosest) {
                   "unknown_field.lua:3: passes.tonemap.shadr: unknown field (did you mean "
                   "'shader'?); expected one of: "
                   "'kind', 'reads', 'writes', 'after', 'enabled', 'side_effect', 'doc', 'insert', "
+                  "'only_when', "
                   "'shader', 'defines', "
                   "'switches', 'bind', 'uniforms', 'constants', 'filter', 'clear', 'blend', "
                   "'stencil', 'depth', 'camera'");
@@ -104,6 +105,18 @@ TEST(LuaErrors, OnlyWhenTakesABooleanParameter) {
               kScripts +
                   "only_when_param.lua:3: resources.extra.only_when.param: parameter 'spec' is a "
                   "number; only_when takes a boolean one");
+}
+
+// A pass's only_when too, each parameter of a list by its place; and `load = "pass"` names a pass.
+TEST(LuaErrors, PassOnlyWhenAndLoadAfterNameWhatExists) {
+    EXPECT_EQ(loadError("only_when_pass_params.lua"),
+              kScripts +
+                  "only_when_pass_params.lua:5: passes.first.only_when.param[2]: parameter 'size' "
+                  "is a number; only_when takes a boolean one");
+    EXPECT_EQ(loadError("load_unknown_pass.lua"),
+              kScripts +
+                  "load_unknown_pass.lua:4: passes.second.writes[1].load: unknown pass 'frist' "
+                  "(did you mean 'first'?)");
 }
 
 // A scene feature is a name or name:name ("material:transmission" on line 2 is one); "material:"
@@ -428,14 +441,16 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // local probes' capture and filtering (scripts/probes.lua). Then the sun's cascades, its caster
     // culling, its maps' clears (without a sun), the local lights' caster culling and maps
     // (scripts/shadows.lua), the
-    // camera's culling on the GPU (scripts/culling.lua: for scenes of many draws), the G-buffer half with the passes inserted after it (the light froxels' clear, screen-space AO's
+    // camera's culling on the GPU in two phases (scripts/culling.lua: for scenes of many draws —
+    // the first phase's culling and G-buffer, the pyramid of its depth, the second's culling), the
+    // G-buffer half with the passes inserted after it (the light froxels' clear, screen-space AO's
     // half-resolution depths, each cascade's map drawn and filtered into the sun's mask at once, the
     // foliage fix-up, then the AO itself on the fixed-up normals: scripts/ao.lua), the Hi-Z
     // pyramid, SSR's mask and SSR (scripts/ssr.lua), the composition of SSR and the probes
     // (scripts/reflections.lua), the lighting, the sky, the points and lines, the copy of the opaque
     // frame the transmission sees through, and forward.
-    ASSERT_GE(order.size(), 65u);
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 63),
+    ASSERT_GE(order.size(), 69u);
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 67),
               (std::vector<std::string>{"env_cube",
                                         "env_mips",
                                         "env_irradiance",
@@ -455,6 +470,10 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
                                         "local_cull_clear",
                                         "local_cull",
                                         "shadow_local",
+                                        "camera_early_clear",
+                                        "camera_cull_early",
+                                        "gbuffer_early",
+                                        "camera_hiz",
                                         "camera_cull_clear",
                                         "camera_cull",
                                         "gbuffer",

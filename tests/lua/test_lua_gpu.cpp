@@ -61,6 +61,32 @@ TEST_F(LuaGpu, DisableOnFrame2EnableOnFrame3) {
               (std::vector<std::string>{"tint"}));
 }
 
+// A pass's only_when (every parameter of its list on) and a write's load = "pass": the second
+// pass adds to what the first cleared while the first runs, to its own clear otherwise — also when
+// a parameter switched at run time leaves the first out, and when it comes back.
+TEST_F(LuaGpu, OnlyWhenPassesAndLoadAfterFollowTheParameters) {
+    Session s(*s_runtime, small());
+    ASSERT_TRUE(s.load(script("first_phase.lua")).has_value());
+    auto red = [&] {
+        auto r = s.frame();
+        EXPECT_TRUE(r.has_value()) << r.error().message;
+        return output(s).at(5, 3, 0);
+    };
+    auto loads = [&] {
+        const PassDesc* second = s_runtime->executor().graph().findPass("second");
+        return second && second->accesses.at(0).load;
+    };
+    EXPECT_FLOAT_EQ(red(), 0.75f);
+    EXPECT_TRUE(loads());
+    ASSERT_TRUE(s.setOverride("occlusion", Value(false)).has_value());
+    EXPECT_FLOAT_EQ(red(), 0.25f) << "the first pass left out, the second clears";
+    EXPECT_FALSE(loads());
+    ASSERT_TRUE(s.setOverride("occlusion", Value(true)).has_value());
+    EXPECT_FLOAT_EQ(red(), 0.75f);
+    ASSERT_TRUE(s.setOverride("culling", Value(false)).has_value());
+    EXPECT_FLOAT_EQ(red(), 0.25f);
+}
+
 TEST_F(LuaGpu, ShaderSwapRebuildsOnlyThatPass) {
     Session s(*s_runtime, small());
     ASSERT_TRUE(s.load(script("swap_shader.lua")).has_value());
