@@ -131,9 +131,11 @@ public:
     // and "motion", whether a node moves (Node::dynamic): render_loop.lua's motion target; and
     // "draws:N", whether it has at least N draws (scripts/culling.lua: the GPU-culled G-buffer);
     // "local_shadows", whether a local light casts shadows (scripts/shadows.lua's culling of
-    // their casters).
+    // their casters); "gpu_draws", whether its passes can draw from instance lists the GPU
+    // wrote (the device starts indirect draws at an instance, and instancing is on: not
+    // RG_INSTANCING=0).
     std::vector<std::string> featureNames() const override {
-        return {"lightmap", "material:MODEL", "motion", "draws:N", "local_shadows"};
+        return {"lightmap", "material:MODEL", "motion", "draws:N", "local_shadows", "gpu_draws"};
     }
     static constexpr const char* kShadowViewsExtent = "shadow_views";
     // The draws that cast shadows, and their batches: casters sharing a mesh (vertex offset,

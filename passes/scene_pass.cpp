@@ -503,6 +503,7 @@ void GBufferScenePass::recordIndirect(RecordContext& rc) {
     const PhysicalResource* commands = rc.resources.find(m_indirect);
     const PhysicalResource* counts = rc.resources.find(m_indirectCount);
     const glm::vec4 zeros[8] = {};  // scene.vert: all-zero push constants, an instanced draw
+    bool counted = false;           // a vkCmdDrawIndexedIndirectCount recorded
     for (size_t gi = 0; gi < m_groups.size(); ++gi) {
         Group& g = m_groups[gi];
         if (m_groupMaterials[gi].empty()) continue;
@@ -527,11 +528,12 @@ void GBufferScenePass::recordIndirect(RecordContext& rc) {
                                          : VK_CULL_MODE_BACK_BIT);
             const VkDeviceSize offset = VkDeviceSize(run.firstCommand) * kIndirectCommandBytes;
             if (rc.gpu.drawIndirectCount() &&
-                run.commands <= rc.gpu.properties().limits.maxDrawIndirectCount)
+                run.commands <= rc.gpu.properties().limits.maxDrawIndirectCount) {
                 vkCmdDrawIndexedIndirectCount(rc.cmd, commands->buffer->buffer(), offset,
                                               counts->buffer->buffer(), VkDeviceSize(material) * 4,
                                               run.commands, kIndirectCommandBytes);
-            else  // one command a call: a drawCount above 1 needs multiDrawIndirect
+                counted = true;
+            } else  // one command a call: a drawCount above 1 needs multiDrawIndirect
                 for (uint32_t k = 0; k < run.commands; ++k)
                     vkCmdDrawIndexedIndirect(rc.cmd, commands->buffer->buffer(),
                                              offset + k * kIndirectCommandBytes, 1,
@@ -540,8 +542,9 @@ void GBufferScenePass::recordIndirect(RecordContext& rc) {
     }
     // Lavapipe (Mesa 22.3) keeps the last count buffer for the command buffer's later indirect
     // draws without one (the shadow maps'): where this pass's last count was 0 they drew nothing.
-    // A last count draw of one empty command, its count 2^32 − 1, leaves them their own counts.
-    if (m_countReset.buffer() && !m_groupMaterials.empty())
+    // A last count draw of one empty command, its count 2^32 − 1, leaves them their own counts
+    // (after a count draw: its group's pipeline, sets and state are bound).
+    if (m_countReset.buffer() && counted)
         vkCmdDrawIndexedIndirectCount(rc.cmd, m_countReset.buffer(), 0, m_countReset.buffer(), 20,
                                       1, kIndirectCommandBytes);
     vkCmdEndRendering(rc.cmd);

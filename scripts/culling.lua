@@ -18,7 +18,8 @@
 -- nearer than all of it — so the image is the CPU path's but where two draws meet at exactly the
 -- same depth: the GPU draws by phase, material, batch and the order the culling listed the
 -- instances, the CPU front to back. Its buffers exist only for a scene of at least
--- `culling.min_draws` draws with `gpu_culling` on (only_when), the second phase's with
+-- `culling.min_draws` draws, on a device that draws from instance lists the GPU wrote
+-- (`gpu_draws`), with `gpu_culling` on (only_when), the first phase's and the pyramid with
 -- `occlusion_culling` on too: below that (the default scene's 53 draws), the CPU's choice and
 -- front-to-back order cost less, and the G-buffer pass, without the reads, draws as before.
 local rg = require "rg"
@@ -33,8 +34,9 @@ culling.min_draws = 1024
 -- Work groups of 64 of the culling pass: each invocation takes every (64 × this)-th draw.
 culling.groups = 256
 
--- Declares the parameters, the buffers (only_when: a scene of at least culling.min_draws draws,
--- gpu_culling on; the second phase's also occlusion_culling on) and the first phase's culling;
+-- Declares the parameters, the buffers (only_when: a scene of at least culling.min_draws draws
+-- the device can draw from GPU-written lists, gpu_culling on; the first phase's and the pyramid
+-- also occlusion_culling on) and the first phase's culling;
 -- render_loop.lua calls it before its G-buffer pass, so a pipeline that sets culling.min_draws
 -- before requiring render_loop chooses from when the GPU culls.
 function culling.declare()
@@ -47,7 +49,7 @@ function culling.declare()
     rg.param "occlusion_culling" { type = "boolean", default = true,
         doc = "with gpu_culling: two phases — last frame's visible draws first, then the rest tested against the depth they drew (off: the frustum alone)" }
 
-    local when = { scene = "draws:" .. culling.min_draws, param = "gpu_culling" }
+    local when = { scene = { "draws:" .. culling.min_draws, "gpu_draws" }, param = "gpu_culling" }
     culling.occluding = { scene = when.scene, param = { "gpu_culling", "occlusion_culling" } }
     rg.buffer "camera_draws" { size = 20, scene_count = "camera_batches", count_bytes = 4 * 20, only_when = when,
         doc = "the G-buffer's draws: an indirect command per camera batch (a mesh and material) and level of detail (VkDrawIndexedIndirectCommand)" }
@@ -72,8 +74,8 @@ function culling.declare()
         switches = { frustum_culling = "RG_CAMERA_CULL" }, defines = { RG_CULL_EARLY = true }, only_when = culling.occluding,
         bind = { camera_draws = "camera_early_draws", camera_draw_counts = "camera_early_counts",
                  camera_instances = "camera_early_instances" },
-        reads = { { "camera_visible", as = "storage" } },
-        writes = { { "camera_early_draws", as = "storage_rw" }, { "camera_early_instances", as = "storage" },
+        writes = { { "camera_visible", as = "storage_rw" },
+                   { "camera_early_draws", as = "storage_rw" }, { "camera_early_instances", as = "storage" },
                    { "camera_early_counts", as = "storage_rw" } },
     }
 end
@@ -93,15 +95,20 @@ end
 -- call it where the G-buffer pass is declared.
 function culling.gbuffer(pass, depth)
     if not culling.declared then return pass end
+    if pass.insert then
+        error("culling.gbuffer: declare the G-buffer pass where it runs, not with insert (its first phase and culling go before it)", 2)
+    end
     depth = depth or "depth"
     local early = {}
     for k, v in pairs(pass) do early[k] = v end
+    early.bind = {}
+    for k, v in pairs(pass.bind or {}) do early.bind[k] = v end
+    early.bind.camera_instances = "camera_early_instances"
     early.reads = {}
     for _, r in ipairs(pass.reads or {}) do table.insert(early.reads, r) end
     read(early, { { "camera_early_draws", as = "indirect" }, { "camera_early_counts", as = "indirect" },
                   { "camera_early_instances", as = "storage" } })
     early.indirect, early.indirect_count, early.only_when = "camera_early_draws", "camera_early_counts", culling.occluding
-    early.bind = { camera_instances = "camera_early_instances" }
     rg.pass "gbuffer_early" (early)
     rg.pass "camera_hiz" {
         kind = "compute", shader = "passes/hiz.comp", reads = { depth }, writes = { { "camera_hiz", as = "storage" } },

@@ -23,7 +23,9 @@ const char* const kHelp =
     "WxH] [--capture RESOURCE]...\n\n"
     "Compiles the pipeline (no GPU needed; memory sizes are estimated) and prints the plan:\n"
     "passes in order, culled passes and why, resources with lifetimes and memory offsets,\n"
-    "barriers. Default format: dot. '--format materials' prints the material system instead:\n"
+    "barriers. Without a scene every resource and pass is planned, those declared only_when\n"
+    "included (what a scene and the parameters leave out shows when rendering with --verbose).\n"
+    "Default format: dot. '--format materials' prints the material system instead:\n"
     "each material's id, layout, lighting path and stencil value, how they were assigned,\n"
     "and how many ids and stencil classes are left.\n";
 

@@ -71,13 +71,13 @@ struct ResourceDesc {
     // The passes that keep it stay while a kept pass reads it (compile's cull), and the executor
     // empties it when the passes writing `historyOf` change (gpu::Executor::build).
     std::string historyOf;
-    // Lua `only_when`: the resource exists only while the scene has the feature `sceneFeature`
-    // (gpu::SceneBinding::feature; without a scene it has none) and every boolean parameter of
-    // `params` is on; otherwise it and every access to it leave the graph before the build, and a
+    // Lua `only_when`: the resource exists only while the scene has every feature of
+    // `sceneFeatures` (gpu::SceneBinding::feature; without a scene it has none) and every boolean
+    // parameter of `params` is on; otherwise it and every access to it leave the graph before the build, and a
     // pass that loses such an access loses `defines` (Session::buildableGraph). A pass's
     // only_when (no defines) disables the pass.
     struct Condition {
-        std::string sceneFeature;
+        std::vector<std::string> sceneFeatures;
         std::vector<std::string> params;
         std::vector<std::string> defines;
     };

@@ -103,6 +103,7 @@ Result<PipelineDesc> Builder::build(const OutputNames& names) {
             if (auto r = material(d); !r) return std::unexpected(r.error());
     if (auto r = materialIdentities(); !r) return std::unexpected(r.error());
     if (auto r = insertModulePasses(); !r) return std::unexpected(r.error());
+    if (auto r = checkLoadAfter(); !r) return std::unexpected(r.error());
     if (auto r = historyPasses(); !r) return std::unexpected(r.error());  // after every other pass
     if (auto r = checkMaterialReferences(); !r) return std::unexpected(r.error());
     if (auto r = checkSwitches(); !r) return std::unexpected(r.error());

@@ -87,6 +87,7 @@ struct Builder {
                           const PassKindSchema& kind);
     Result<void> pass(const Declaration& d);
     Result<void> insertModulePasses();
+    Result<void> checkLoadAfter();
     Result<void> checkSwitches();
 
     // rg.param (declarations_params.cpp).

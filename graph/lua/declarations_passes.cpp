@@ -187,6 +187,29 @@ Result<void> Builder::pass(const Declaration& d) {
     return {};
 }
 
+// `load = "pass"`: that pass runs before this one (once module passes are in place) and writes the
+// resource, so that what this pass loads is what it drew.
+Result<void> Builder::checkLoadAfter() {
+    const auto& all = out.graph.passes;
+    for (size_t i = 0; i < all.size(); ++i)
+        for (const Access& a : all[i].accesses) {
+            if (a.loadAfter.empty()) continue;
+            const Where w = Where{*passes[all[i].name], a.field}.at("load");
+            size_t j = 0;
+            while (j < all.size() && all[j].name != a.loadAfter) ++j;
+            if (j >= i)
+                return w.error("pass '" + a.loadAfter + "' runs after this one" +
+                               (j == i ? " (it is this one)" : "") + ": name the pass that drew '" +
+                               a.resource + "' first");
+            const bool writes = std::any_of(
+                all[j].accesses.begin(), all[j].accesses.end(),
+                [&](const Access& b) { return b.resource == a.resource && usageWrites(b.usage); });
+            if (!writes)
+                return w.error("pass '" + a.loadAfter + "' does not write '" + a.resource + "'");
+        }
+    return {};
+}
+
 // Module passes with `insert = { after = X }` / `{ before = X }` move next to X,
 // in declaration order (so two modules after the same pass keep their load order).
 Result<void> Builder::insertModulePasses() {

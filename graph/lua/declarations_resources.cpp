@@ -19,13 +19,12 @@ Result<uint32_t> mipCount(const Where& w, const Value& m) {
 
 }  // namespace
 
-// rg.resource's and rg.buffer's only_when = { scene = FEATURE, param = NAME or { NAMES },
-// defines = { ... } }; rg.pass's without defines.
+// rg.resource's and rg.buffer's only_when = { scene = FEATURE or { FEATURES }, param = NAME or
+// { NAMES }, defines = { ... } }; rg.pass's without defines.
 Result<ResourceDesc::Condition> onlyWhen(const Where& ow, const Value& c, bool withDefines) {
     if (!c.isTable() || c.asTable().empty())
-        return ow.error(
-            "expected a table { scene = FEATURE, param = NAME, defines = { ... } }, got " +
-            typeOf(c));
+        return ow.error(std::string("expected a table { scene = FEATURE, param = NAME") +
+                        (withDefines ? ", defines = { ... } }" : " }") + ", got " + typeOf(c));
     if (auto e = withDefines ? checkFields(ow, c, {"scene", "param", "defines"})
                              : checkFields(ow, c, {"scene", "param"});
         !e)
@@ -42,34 +41,33 @@ Result<ResourceDesc::Condition> onlyWhen(const Where& ow, const Value& c, bool w
             std::all_of(tail.begin(), tail.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
         return isGlslIdentifier(s.substr(0, colon)) && (isGlslIdentifier(tail) || number);
     };
-    if (c.has("scene")) {
-        if (!c["scene"].isString())
-            return ow.at("scene").error("expected a name, got " + typeOf(c["scene"]));
-        const std::string& name = c["scene"].asString();
-        if (!featureName(name))
-            return ow.at("scene").error("'" + name + "' is not a name (or name:name, name:number)");
-        cond.sceneFeature = name;
-    }
-    // param = NAME, or a list of names: every one of them on.
-    if (c.has("param")) {
-        if (c["param"].isString())
-            cond.params = {c["param"].asString()};
-        else if (c["param"].isList() && !c["param"].asList().empty())
-            for (size_t i = 0; i < c["param"].asList().size(); ++i) {
-                const Value& v = c["param"].asList()[i];
-                if (!v.isString())
-                    return ow.at("param").index(i).error("expected a name, got " + typeOf(v));
-                cond.params.push_back(v.asString());
+    // scene = FEATURE and param = NAME, or lists of them: every one of them.
+    auto names = [&](const char* field, std::vector<std::string>& out) -> Result<void> {
+        const Value& v = c[field];
+        if (v.isString())
+            out = {v.asString()};
+        else if (v.isList() && !v.asList().empty())
+            for (size_t i = 0; i < v.asList().size(); ++i) {
+                if (!v.asList()[i].isString())
+                    return ow.at(field).index(i).error("expected a name, got " +
+                                                       typeOf(v.asList()[i]));
+                out.push_back(v.asList()[i].asString());
             }
         else
-            return ow.at("param").error("expected a name or a list of names, got " +
-                                        typeOf(c["param"]));
-        for (size_t i = 0; i < cond.params.size(); ++i)
-            if (!isGlslIdentifier(cond.params[i]))
-                return (c["param"].isList() ? ow.at("param").index(i) : ow.at("param"))
-                    .error("'" + cond.params[i] + "' is not a name");
-    }
-    if (cond.sceneFeature.empty() && cond.params.empty())
+            return ow.at(field).error("expected a name or a list of names, got " + typeOf(v));
+        const bool scene = std::string(field) == "scene";
+        for (size_t i = 0; i < out.size(); ++i)
+            if (scene ? !featureName(out[i]) : !isGlslIdentifier(out[i]))
+                return (v.isList() ? ow.at(field).index(i) : ow.at(field))
+                    .error("'" + out[i] + "' is not a name" +
+                           (scene ? " (or name:name, name:number)" : ""));
+        return {};
+    };
+    if (c.has("scene"))
+        if (auto r = names("scene", cond.sceneFeatures); !r) return std::unexpected(r.error());
+    if (c.has("param"))
+        if (auto r = names("param", cond.params); !r) return std::unexpected(r.error());
+    if (cond.sceneFeatures.empty() && cond.params.empty())
         return ow.error(
             "names neither a scene feature (scene = ...) nor a parameter (param = ...)");
     if (c.has("defines")) {

@@ -111,30 +111,32 @@ Result<GraphDesc> Session::buildableGraph(const PipelineDesc& p, bool keepMissin
     // Whether a resource's or pass's condition holds (`what`: "resource 'NAME'", for errors).
     auto holds = [&](const ResourceDesc::Condition& c, const std::string& origin,
                      const std::string& what) -> Result<bool> {
-        // "material:NAME" names a material of the pipeline (a misspelt one would drop the
-        // resource in every scene, in silence).
-        if (c.sceneFeature.starts_with(gpu::SceneBinding::kMaterialFeature)) {
-            const std::string model =
-                c.sceneFeature.substr(gpu::SceneBinding::kMaterialFeature.size());
-            std::vector<std::string> names;
-            for (const MaterialDesc& m : p.materials) names.push_back(m.name);
-            if (std::find(names.begin(), names.end(), model) == names.end())
-                return fail(ErrorCode::InvalidInput,
-                            (origin.empty() ? "" : origin + ": ") + what + ": only_when.scene = '" +
-                                c.sceneFeature + "': the pipeline declares no material '" + model +
-                                "' (it has " + joinQuoted(names) + ")");
-        }
+        const std::string prefix =
+            (origin.empty() ? "" : origin + ": ") + what + ": only_when.scene = '";
         bool keep = true;
-        if (!c.sceneFeature.empty() && bound) {
-            const std::optional<bool> has = bound->feature(c.sceneFeature);
+        for (const std::string& feature : c.sceneFeatures) {
+            // "material:NAME" names a material of the pipeline (a misspelt one would drop the
+            // resource in every scene, in silence).
+            if (feature.starts_with(gpu::SceneBinding::kMaterialFeature)) {
+                const std::string model =
+                    feature.substr(gpu::SceneBinding::kMaterialFeature.size());
+                std::vector<std::string> names;
+                for (const MaterialDesc& m : p.materials) names.push_back(m.name);
+                if (std::find(names.begin(), names.end(), model) == names.end())
+                    return fail(ErrorCode::InvalidInput,
+                                prefix + feature + "': the pipeline declares no material '" +
+                                    model + "' (it has " + joinQuoted(names) + ")");
+            }
+            if (!bound) {
+                keep = false;  // no scene: no feature
+                continue;
+            }
+            const std::optional<bool> has = bound->feature(feature);
             if (!has)
                 return fail(ErrorCode::InvalidInput,
-                            (origin.empty() ? "" : origin + ": ") + what + ": only_when.scene = '" +
-                                c.sceneFeature + "': the scene has no such feature (it has " +
+                            prefix + feature + "': the scene has no such feature (it has " +
                                 joinQuoted(bound->featureNames()) + ")");
-            keep = *has;
-        } else if (!c.sceneFeature.empty()) {
-            keep = false;  // no scene: no feature
+            keep = keep && *has;
         }
         for (const std::string& name : c.params) {
             const ParamDesc* on = p.findParam(name);

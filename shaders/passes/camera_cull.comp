@@ -17,9 +17,9 @@
 // RG_CAMERA_CULL (culling off, to compare) every draw joins.
 //
 // Two-phase occlusion culling (Haar & Aaltonen 2015): camera_visible holds, per draw, whether it
-// showed last frame. RG_CULL_EARLY (the pass camera_cull_early, its commands bound to
+// showed last frame (1). RG_CULL_EARLY (the pass camera_cull_early, its commands bound to
 // camera_early_draws and camera_early_counts): the draws in the frustum that showed last frame,
-// which gbuffer_early draws. RG_OCCLUSION (camera_cull, after camera_hiz built the farthest-depth
+// which gbuffer_early draws, each marked 2 (drawn first). RG_OCCLUSION (camera_cull, after camera_hiz built the farthest-depth
 // pyramid of what gbuffer_early drew): every draw in the frustum is tested against the pyramid
 // (rgBoxMayShow), its answer kept in camera_visible for the next frame, and the draws that may
 // show but were not drawn first join — the G-buffer draws them over the first phase's. A draw
@@ -67,8 +67,9 @@ void main() {
 #endif
 #if defined(RG_CULL_EARLY)
         if (!inFrustum || visibility.visible[d] == 0u) continue;
+        visibility.visible[d] = 2u;  // drawn first: the second phase reads it so
 #elif defined(RG_OCCLUSION)
-        const bool drawnFirst = inFrustum && visibility.visible[d] != 0u;
+        const bool drawnFirst = visibility.visible[d] == 2u;
         const bool shows = inFrustum && (RG_CAMERA_CULL == 0 ||
             rgBoxMayShow(camera_hiz, camera.unjitteredViewProj, draw.boxMin.xyz, draw.boxMax.xyz));
         visibility.visible[d] = shows ? 1u : 0u;

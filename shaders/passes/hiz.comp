@@ -30,8 +30,20 @@ void main() {
     if (pc.rg_mip < 0.5) {
         const ivec2 full = textureSize(depth, 0);
         const ivec2 lo = p * full / size, hi = ((p + 1) * full + size - 1) / size;
+#ifdef RG_HIZ_FARTHEST
+        // 2 × 2 texels a gather (a quarter of the fetches); where the block's width or height is
+        // odd the last gathers take a texel of the next block too (or the edge's again, clamped):
+        // the farthest of more texels, still beyond every one of the block's.
+        const vec2 texel = 1.0 / vec2(full);
+        for (int y = lo.y; y < hi.y; y += 2)
+            for (int x = lo.x; x < hi.x; x += 2) {
+                const vec4 g = textureGather(depth, vec2(x + 1, y + 1) * texel, 0);
+                d = max(d, max(max(g.x, g.y), max(g.z, g.w)));
+            }
+#else
         for (int y = lo.y; y < hi.y; ++y)
             for (int x = lo.x; x < hi.x; ++x) d = rgHizJoin(d, texelFetch(depth, ivec2(x, y), 0).r);
+#endif
     } else {
         ivec2 prev = textureSize(hiz_previous, 0);
         ivec2 extra = ivec2(prev.x > 2 * size.x ? 2 : 1, prev.y > 2 * size.y ? 2 : 1);

@@ -10,6 +10,7 @@
 #include "gpu_fixture.h"
 
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -140,7 +141,9 @@ TEST_F(GpuCulling, FullMeshesWhereAPassTracesThem) {
 // turns (blocks come into view every frame): each frame's image is the one without the occlusion
 // test, bit for bit — a draw the first phase (last frame's visible set) lacks is drawn by the
 // second where it shows — while frames after the first draw most of the G-buffer in the first
-// phase and leave the hidden draws out.
+// phase and leave the hidden draws out. At 320×180 and at 203×117, whose depth pyramid has blocks
+// of 8 and 9 pixels and mips of odd sizes; with TAA's sub-pixel jitter on (the test's pixel
+// margin); and with occlusion_culling switched off and on again mid-walk.
 TEST_F(GpuCulling, OcclusionCullingChangesNoPixelAsTheCameraMoves) {
     const std::string city = std::string(RG_SOURCE_ROOT) + "/scripts/scenes/city.lua";
     fs::create_directories(RG_TEST_TMP);
@@ -166,54 +169,81 @@ TEST_F(GpuCulling, OcclusionCullingChangesNoPixelAsTheCameraMoves) {
         std::vector<Image> hdr;
         std::vector<uint32_t> first, second;
     };
-    auto render = [&](bool occlusion) {
-        SessionOptions o = sceneOptions(city, {}, 320, 180);
+    // switchAt: the frame from which occlusion_culling is off for one frame, then on again.
+    auto render = [&](bool occlusion, uint32_t width, uint32_t height, int switchAt = -1) {
+        SessionOptions o = sceneOptions(city, {}, width, height);
         o.sceneArgs["nodes"] = "2000";
         o.sceneArgs["walk"] = "60";
         o.captures = {"hdr", "camera_draws", "camera_early_draws"};
         o.params["occlusion_culling"] = Value(occlusion);
+        o.paramsIfDeclared["taa_jitter"] = Value(true);
         Session s(rt(), o);
         Frames out;
         auto r = s.load(pipeline);
         EXPECT_TRUE(r.has_value()) << r.error().describe();
-        for (int f = 0; r && f < kFrames && s.frame(); ++f) {
+        for (int f = 0; r && f < kFrames; ++f) {
+            if (switchAt >= 0 && (f == switchAt || f == switchAt + 1)) {
+                auto set = s.setOverride("occlusion_culling", Value(f != switchAt));
+                EXPECT_TRUE(set.has_value()) << set.error().describe();
+            }
+            if (!s.frame()) break;
             if (auto img = rt().executor().readback("hdr")) out.hdr.push_back(std::move(*img));
             out.first.push_back(instances("camera_early_draws"));
             out.second.push_back(instances("camera_draws"));
         }
         return out;
     };
-    const Frames on = render(true), off = render(false);
-    ASSERT_EQ(on.hdr.size(), size_t(kFrames));
-    ASSERT_EQ(off.hdr.size(), size_t(kFrames));
-    uint32_t newlyShown = 0;
-    for (size_t f = 0; f < kFrames; ++f) {
-        std::printf(
-            "frame %zu: %u drawn first, %u second, %u in the frustum; %zu of %zu values "
-            "differ\n",
-            f, on.first[f], on.second[f], off.second[f], valuesThatDiffer(on.hdr[f], off.hdr[f]),
-            on.hdr[f].pixels.size());
-        EXPECT_EQ(valuesThatDiffer(on.hdr[f], off.hdr[f]), 0u) << "frame " << f;
-        EXPECT_EQ(off.first[f], 0u) << "occlusion_culling = false: one phase";
-        if (f == 0) continue;
-        EXPECT_GT(on.first[f], 0u) << "last frame's visible set, first";
-        newlyShown += on.second[f];
-        // Frame 0 tested everything against an empty depth (its first phase drew nothing), so
-        // frame 1 draws it all first; from frame 2 the sets are the ones that showed.
-        if (f >= 2) {
-            EXPECT_LT(on.first[f] + on.second[f], off.second[f] / 2) << "most hidden";
+    for (auto [width, height] : {std::pair{320u, 180u}, std::pair{203u, 117u}}) {
+        const Frames on = render(true, width, height), off = render(false, width, height);
+        ASSERT_EQ(on.hdr.size(), size_t(kFrames));
+        ASSERT_EQ(off.hdr.size(), size_t(kFrames));
+        uint32_t newlyShown = 0;
+        for (size_t f = 0; f < kFrames; ++f) {
+            std::printf(
+                "%ux%u frame %zu: %u drawn first, %u second, %u in the frustum; %zu of %zu "
+                "values differ\n",
+                width, height, f, on.first[f], on.second[f], off.second[f],
+                valuesThatDiffer(on.hdr[f], off.hdr[f]), on.hdr[f].pixels.size());
+            EXPECT_EQ(valuesThatDiffer(on.hdr[f], off.hdr[f]), 0u) << width << " frame " << f;
+            EXPECT_EQ(off.first[f], 0u) << "occlusion_culling = false: one phase";
+            if (f == 0) continue;
+            EXPECT_GT(on.first[f], 0u) << "last frame's visible set, first";
+            newlyShown += on.second[f];
+            // Frame 0 tested everything against an empty depth (its first phase drew nothing),
+            // so frame 1 draws it all first; from frame 2 the sets are the ones that showed.
+            if (f >= 2) {
+                EXPECT_LT(on.first[f] + on.second[f], off.second[f] / 2) << "most hidden";
+            }
         }
+        EXPECT_EQ(on.first[0], 0u) << "no last frame: everything tested against an empty depth";
+        EXPECT_EQ(on.second[0], off.second[0]);
+        EXPECT_GT(newlyShown, 0u) << "blocks coming into view drawn in the second phase";
+        if (width != 320) continue;
+        // Switched off at frame 2 and on again at frame 3: the graph is rebuilt each time.
+        const Frames switched = render(true, width, height, 2);
+        ASSERT_EQ(switched.hdr.size(), size_t(kFrames));
+        EXPECT_EQ(switched.first[2], 0u) << "one phase while off";
+        EXPECT_GT(switched.first[5], 0u) << "two phases again";
+        for (size_t f = 0; f < kFrames; ++f)
+            EXPECT_EQ(valuesThatDiffer(switched.hdr[f], off.hdr[f]), 0u) << "switched, frame " << f;
     }
-    EXPECT_EQ(on.first[0], 0u) << "no last frame: everything tested against an empty depth";
-    EXPECT_EQ(on.second[0], off.second[0]);
-    EXPECT_GT(newlyShown, 0u) << "blocks coming into view drawn in the second phase";
 }
 
-// Below culling.min_draws the CPU keeps choosing.
+// Below culling.min_draws the CPU keeps choosing, and where the device cannot draw the GPU's lists.
 TEST_F(GpuCulling, ASmallSceneKeepsTheCpuPath) {
     const CityFrame small = renderCity("2000", {}, 4096);
     ASSERT_FALSE(small.hdr.pixels.empty());
     EXPECT_FALSE(small.culledOnGpu) << "1522 draws, fewer than 4096";
+    // Nor where the passes cannot draw from GPU-written instance lists (scene feature gpu_draws:
+    // here instancing off), so that no culling runs for a G-buffer that would not use it.
+    setenv("RG_INSTANCING", "0", 1);
+    const CityFrame single = renderCity("2000", {}, 1024);
+    unsetenv("RG_INSTANCING");
+    ASSERT_FALSE(single.hdr.pixels.empty());
+    EXPECT_FALSE(single.culledOnGpu) << "RG_INSTANCING=0: the CPU's path";
+    EXPECT_EQ(
+        valuesThatDiffer(single.hdr, renderCity("2000", {{"gpu_culling", Value(false)}}, 1024).hdr),
+        0u);
 }
 
 // A point light's six cube faces over a ring of boxes sharing one mesh (one caster batch of eight,

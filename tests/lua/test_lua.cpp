@@ -117,6 +117,11 @@ TEST(LuaErrors, PassOnlyWhenAndLoadAfterNameWhatExists) {
               kScripts +
                   "load_unknown_pass.lua:4: passes.second.writes[1].load: unknown pass 'frist' "
                   "(did you mean 'first'?)");
+    // The named pass runs first and draws what is loaded.
+    EXPECT_EQ(loadError("load_later_pass.lua"),
+              kScripts +
+                  "load_later_pass.lua:4: passes.first.writes[1].load: pass 'second' runs after "
+                  "this one: name the pass that drew 'output' first");
 }
 
 // A scene feature is a name or name:name ("material:transmission" on line 2 is one); "material:"

@@ -258,7 +258,7 @@ TEST_F(LuaGpu, ParametersAndResourcesNameWhatTheSceneHas) {
                   "scene_setting.lua:" + std::to_string(line) +
                   ": resource 'extra': only_when.scene = 'sky': the scene "
                   "has no such feature (it has 'lightmap', 'material:MODEL', 'motion', 'draws:N', "
-                  "'local_shadows')"),
+                  "'local_shadows', 'gpu_draws')"),
               std::string::npos)
         << f.error().describe();
     // "material:NAME" names a material the pipeline declares: a misspelt one would drop the
