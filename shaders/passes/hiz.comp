@@ -15,22 +15,29 @@ layout(set = 0, binding = 2) uniform sampler2D hiz_previous;
 layout(push_constant) uniform Constants { float rg_mip; } pc;
 
 #ifdef RG_HIZ_FARTHEST
-#define RG_HIZ_EMPTY 0.0
 #define rgHizJoin max
 #else
-#define RG_HIZ_EMPTY 1.0
 #define rgHizJoin min
 #endif
+
+// Mip m > 0: the nearest (farthest) of the texels of mip m − 1 that texel p covers.
+float rgHizPrevious(ivec2 p, ivec2 size, float d) {
+    ivec2 prev = textureSize(hiz_previous, 0);
+    ivec2 extra = ivec2(prev.x > 2 * size.x ? 2 : 1, prev.y > 2 * size.y ? 2 : 1);
+    for (int j = 0; j <= extra.y; ++j)
+        for (int i = 0; i <= extra.x; ++i) d = rgHizJoin(d, texelFetch(hiz_previous, min(2 * p + ivec2(i, j), prev - 1), 0).r);
+    return d;
+}
 
 void main() {
     ivec2 p = ivec2(gl_GlobalInvocationID.xy);
     ivec2 size = imageSize(hiz);
     if (any(greaterThanEqual(p, size))) return;
-    float d = RG_HIZ_EMPTY;
+#ifdef RG_HIZ_FARTHEST
+    float d = 0.0;
     if (pc.rg_mip < 0.5) {
         const ivec2 full = textureSize(depth, 0);
         const ivec2 lo = p * full / size, hi = ((p + 1) * full + size - 1) / size;
-#ifdef RG_HIZ_FARTHEST
         // 2 × 2 texels a gather (a quarter of the fetches); where the block's width or height is
         // odd the last gathers take a texel of the next block too (or the edge's again, clamped):
         // the farthest of more texels, still beyond every one of the block's.
@@ -40,15 +47,16 @@ void main() {
                 const vec4 g = textureGather(depth, vec2(x + 1, y + 1) * texel, 0);
                 d = max(d, max(max(g.x, g.y), max(g.z, g.w)));
             }
-#else
-        for (int y = lo.y; y < hi.y; ++y)
-            for (int x = lo.x; x < hi.x; ++x) d = rgHizJoin(d, texelFetch(depth, ivec2(x, y), 0).r);
-#endif
     } else {
-        ivec2 prev = textureSize(hiz_previous, 0);
-        ivec2 extra = ivec2(prev.x > 2 * size.x ? 2 : 1, prev.y > 2 * size.y ? 2 : 1);
-        for (int j = 0; j <= extra.y; ++j)
-            for (int i = 0; i <= extra.x; ++i) d = rgHizJoin(d, texelFetch(hiz_previous, min(2 * p + ivec2(i, j), prev - 1), 0).r);
+        d = rgHizPrevious(p, size, 0.0);
     }
+#else
+    // SSR's: mip 0 the depth buffer itself (the same size).
+    float d;
+    if (pc.rg_mip < 0.5)
+        d = texelFetch(depth, p, 0).r;
+    else
+        d = rgHizPrevious(p, size, 1.0);
+#endif
     imageStore(hiz, p, vec4(d));
 }
