@@ -27,7 +27,7 @@ local rg = require "rg"
 local culling = {}
 
 -- From this many draws the G-buffer's draws are culled on the GPU. On lavapipe at 1280×720 the
--- project's city from its street draws its G-buffer in ~21 + 3 (camera_hiz) ms at 2 000 nodes
+-- project's city from its street draws its G-buffer in ~21 + 2 (camera_hiz) ms at 2 000 nodes
 -- (1 522 draws) against ~47 on the CPU's path, ~29 against ~52 at 10 000; the default scene's 53
 -- draws, little hidden, ~25 against ~19.
 culling.min_draws = 1024
@@ -64,7 +64,7 @@ function culling.declare()
     rg.buffer "camera_early_instances" { size = 4, scene_count = "draws", count_bytes = 4 * 4, only_when = culling.occluding,
         doc = "the draws each of camera_early_draws' commands draws, as camera_instances" }
     rg.buffer "camera_visible" { size = 4, scene_count = "draws", count_bytes = 4, persistent = true, only_when = culling.occluding,
-        doc = "per draw, whether it showed in the last frame (0 or 1): the first phase draws those" }
+        doc = "per draw, whether it showed in the last frame (1; 0 not; 2 while this frame's first phase drew it): the first phase draws those" }
     rg.resource "camera_hiz" { format = "r32f", scale = 1 / 8, mips = "full",
         only_when = { scene = when.scene, param = culling.occluding.param, defines = { "RG_OCCLUSION" } },
         doc = "the farthest depth gbuffer_early drew, per 8 × 8 pixels and up a pyramid of mips" }
