@@ -87,7 +87,7 @@ std::optional<bool> GpuScene::feature(const std::string& name) const {
     if (name == "lightmap") return hasLightmap();
     if (name == "motion") return moves();
     if (name == "local_shadows") return m_shadowViewCapacity > 0;
-    if (name == "gpu_draws") return m_instancing && m_ctx && m_ctx->drawIndirectFirstInstance();
+    if (name == "gpu_draws") return drawsGpuLists();
     if (name.starts_with("draws:")) {
         const std::string count = name.substr(6);
         if (count.empty() || count.size() > 9 ||

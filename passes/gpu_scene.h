@@ -279,6 +279,11 @@ public:
     // Whether draws that share a mesh are drawn instanced (RG_INSTANCING=0: one at a time, the
     // camera's and the sun's shadows' alike).
     bool instancing() const { return m_instancing; }
+    // Whether its passes can draw from instance lists the GPU wrote: instancing on and the device
+    // starts indirect draws at an instance (feature "gpu_draws").
+    bool drawsGpuLists() const {
+        return m_instancing && m_ctx && m_ctx->drawIndirectFirstInstance();
+    }
     // How many entries of slot `slot`'s list the frame recorded there handed out.
     uint32_t instancesUsed(uint32_t slot) const { return m_instanceCursor[slot]; }
     // The buffer behind scene binding `name` (a shader block of that name: Camera, Lights,

@@ -383,8 +383,8 @@ Result<void> GBufferScenePass::prepareDraws(PassSetup& setup) {
                         "and the count of each material's) or neither");
     m_indirect.clear();
     m_indirectCount.clear();
-    m_cameraInstances = readsIndirect(indirect) && readsIndirect(indirectCount) &&
-                        setup.gpu.drawIndirectFirstInstance() && sceneOf(setup)->instancing();
+    m_cameraInstances =
+        readsIndirect(indirect) && readsIndirect(indirectCount) && sceneOf(setup)->drawsGpuLists();
     if (m_cameraInstances) {
         m_indirect = indirect;
         m_indirectCount = indirectCount;

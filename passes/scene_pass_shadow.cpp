@@ -176,7 +176,7 @@ void ShadowScenePass::recordDraws(RecordContext& rc) {
     const bool batched =
         indirect && !batches.empty() &&
         indirect->plan->bufferSize >= m_viewCount * perView * kIndirectCommandBytes &&
-        rc.gpu.drawIndirectFirstInstance() && sceneOf(rc)->instancing();
+        sceneOf(rc)->drawsGpuLists();
     // shadow.vert's push constants: a draw's world (all zero: a batch's instances) and the view.
     auto push = [&](const glm::mat4& world, uint32_t view) {
         const struct {

@@ -80,6 +80,13 @@ function culling.declare()
     }
 end
 
+-- A shallow copy of table `t` (nil: an empty one).
+local function copy(t)
+    local c = {}
+    for k, v in pairs(t or {}) do c[k] = v end
+    return c
+end
+
 -- Adds `reads`' entries to the pass declaration `pass`'s reads.
 local function read(pass, reads)
     pass.reads = pass.reads or {}
@@ -99,13 +106,9 @@ function culling.gbuffer(pass, depth)
         error("culling.gbuffer: declare the G-buffer pass where it runs, not with insert (its first phase and culling go before it)", 2)
     end
     depth = depth or "depth"
-    local early = {}
-    for k, v in pairs(pass) do early[k] = v end
-    early.bind = {}
-    for k, v in pairs(pass.bind or {}) do early.bind[k] = v end
+    local early = copy(pass)
+    early.bind, early.reads = copy(pass.bind), copy(pass.reads)
     early.bind.camera_instances = "camera_early_instances"
-    early.reads = {}
-    for _, r in ipairs(pass.reads or {}) do table.insert(early.reads, r) end
     read(early, { { "camera_early_draws", as = "indirect" }, { "camera_early_counts", as = "indirect" },
                   { "camera_early_instances", as = "storage" } })
     early.indirect, early.indirect_count, early.only_when = "camera_early_draws", "camera_early_counts", culling.occluding
@@ -125,14 +128,9 @@ function culling.gbuffer(pass, depth)
     }
     local writes = {}
     for _, w in ipairs(pass.writes or {}) do
-        if type(w) == "table" then
-            local t = {}
-            for k, v in pairs(w) do t[k] = v end
-            t.load = t.load or "gbuffer_early"
-            table.insert(writes, t)
-        else
-            table.insert(writes, { w, load = "gbuffer_early" })
-        end
+        local t = type(w) == "table" and copy(w) or { w }
+        t.load = t.load or "gbuffer_early"
+        table.insert(writes, t)
     end
     pass.writes = writes
     read(pass, { { "camera_draws", as = "indirect" }, { "camera_draw_counts", as = "indirect" },
