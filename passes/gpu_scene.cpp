@@ -110,7 +110,8 @@ std::optional<uint32_t> GpuScene::layerExtent(const std::string& name) const {
     if (name == kShadowBatchesExtent) return static_cast<uint32_t>(m_shadowBatches.size());
     if (name == kCameraBatchesExtent) return m_cameraBatchCount;
     if (name == kDrawsExtent) return static_cast<uint32_t>(m_draws.size());
-    if (name == kMaterialsExtent) return static_cast<uint32_t>(m_scene.materials.size());
+    if (name == kCameraRunsExtent)
+        return std::max<uint32_t>(static_cast<uint32_t>(m_cameraRuns.size()), 1u);
     if (name == kShadowCastersExtent) {
         uint32_t casters = 0;
         for (const ShadowBatch& b : m_shadowBatches)
@@ -135,6 +136,7 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(Context& ctx, Scene scene,
     // RG_INSTANCING=0: every camera draw on its own (to compare: the image is the same).
     const char* instancingEnv = std::getenv("RG_INSTANCING");
     s->m_instancing = !(instancingEnv && std::string_view(instancingEnv) == "0");
+    s->assignTextureSets();
     if (auto r = s->uploadGeometry(ctx); !r) return std::unexpected(r.error());
     if (auto r = s->uploadImages(ctx); !r) return std::unexpected(r.error());
     if (auto r = s->createMaterials(ctx); !r) return std::unexpected(r.error());

@@ -1,6 +1,7 @@
 // The scene on the GPU: one vertex and one index buffer for every primitive, the images with
-// their mip chains, a descriptor set per material (set 1 of scene draws, see
-// shaders/lib/material.glsl), and per frame slot the camera uniforms and the light list
+// their mip chains, every material's parameters in one storage buffer and a descriptor set per
+// set of textures materials share (set 1 of scene draws, see shaders/lib/material.glsl), and per
+// frame slot the camera uniforms and the light list
 // (shaders/lib/scene.glsl's Lights block: the lights converted once here — cd, lux or cd/m², see
 // convertLights — followed by their baked IES profiles).
 // Defined in gpu_scene.cpp (creation, the frame, bindings), gpu_scene_geometry.cpp,
@@ -122,7 +123,7 @@ public:
     std::optional<uint32_t> layerExtent(const std::string& name) const override;
     std::vector<std::string> extentNames() const override {
         return {kShadowViewsExtent,   kShadowCastersExtent, kShadowBatchesExtent,
-                kCameraBatchesExtent, kDrawsExtent,         kMaterialsExtent};
+                kCameraBatchesExtent, kDrawsExtent,         kCameraRunsExtent};
     }
     // Its features: "lightmap", a baked lightmap (scene.lightmap, from the cache or baked), and
     // "material:MODEL", whether a draw's material is of that pipeline material (any name: false
@@ -149,21 +150,27 @@ public:
         bool doubleSided = false;
     };
     const std::vector<ShadowBatch>& shadowBatches() const { return m_shadowBatches; }
-    // The camera's batches (cameraBatchKey's, without the level), the draws, and the materials:
-    // what the GPU culling of the G-buffer's draws sizes its buffers by
+    // The camera's batches (cameraBatchKey's, without the level), the draws, and the runs: what
+    // the GPU culling of the G-buffer's draws sizes its buffers by
     // (shaders/passes/camera_cull.comp: a command per batch and level, an instance slot per draw
-    // and level, a count per material).
+    // and level, a count per run).
     static constexpr const char* kCameraBatchesExtent = "camera_batches";
     static constexpr const char* kDrawsExtent = "draws";
-    static constexpr const char* kMaterialsExtent = "materials";
-    // Material m's indirect commands (camera_cull.comp): its batches are consecutive, so their
-    // commands (kMaxDrawLods each) are one range. None for a material no draw uses.
-    struct CameraSegment {
+    static constexpr const char* kCameraRunsExtent = "camera_runs";
+    // A camera run: the batches whose materials draw with one pipeline and one binding — the same
+    // pipeline material, alpha mode (so the same shader variant, with the texture set), cull mode
+    // and texture set (textureSet) — consecutive, so that their indirect commands (kMaxDrawLods
+    // a batch) are one range the G-buffer draws with one vkCmdDrawIndexedIndirectCount: the
+    // draws are grouped by pipeline and textures, not by material (each draw's material
+    // parameters come from the materials' storage buffer). Ordered by that key.
+    struct CameraRun {
         uint32_t firstCommand = 0, commands = 0;
+        uint32_t textureSet = 0;
+        bool doubleSided = false;
     };
-    const CameraSegment& cameraSegment(uint32_t material) const {
-        return m_cameraSegments[material];
-    }
+    const std::vector<CameraRun>& cameraRuns() const { return m_cameraRuns; }
+    // Draw d's camera run.
+    uint32_t cameraRun(size_t d) const { return m_drawRun[d]; }
 
     const Scene& scene() const { return m_scene; }
     const std::vector<DrawItem>& draws() const { return m_draws; }
@@ -193,7 +200,15 @@ public:
     VkBuffer vertexBuffer() const { return m_vertices.buffer(); }
     VkBuffer indexBuffer() const { return m_indices.buffer(); }
     VkDescriptorSetLayout materialSetLayout() const { return m_materialLayout.get(); }
-    VkDescriptorSet materialSet(uint32_t material) const { return m_materialSets[material]; }
+    // The texture sets: materials with the same image and sampler in every texture slot share one
+    // (a scene of untextured materials has one), and its descriptor set — set 1 of scene draws:
+    // its textures, the materials' storage buffer (binding 9, read by index) and a material's
+    // window of their uniform buffer (binding 0, at a dynamic offset).
+    uint32_t textureSet(uint32_t material) const { return m_materialTextureSet[material]; }
+    uint32_t textureSetCount() const { return static_cast<uint32_t>(m_textureSets.size()); }
+    VkDescriptorSet textureSetDescriptors(uint32_t set) const { return m_textureSets[set]; }
+    // Binds set 1 for a draw of `material` alone (its textures, its parameters' window).
+    void bindMaterial(VkCommandBuffer cmd, VkPipelineLayout layout, uint32_t material) const;
 
     // The camera the frame renders with (the scene's first, or `name`).
     const Camera& camera() const { return m_scene.cameras.at(m_camera); }
@@ -340,6 +355,8 @@ private:
     GpuScene() = default;
     Result<void> uploadGeometry(gpu::Context& ctx);
     Result<void> uploadImages(gpu::Context& ctx);
+    // Each material's texture set (textureSet), from the scene alone.
+    void assignTextureSets();
     Result<void> createMaterials(gpu::Context& ctx);
     Result<void> createFrameData(gpu::Context& ctx, const GpuSceneOptions& options);
     Result<void> createLightTables(gpu::Context& ctx, const GpuLightTable& table);
@@ -365,8 +382,15 @@ private:
     gpu::OwnedSampler m_defaultSampler;
     gpu::OwnedDescriptorSetLayout m_materialLayout;
     gpu::OwnedDescriptorPool m_pool;
-    std::vector<gpu::Buffer> m_materialBuffers;
-    std::vector<VkDescriptorSet> m_materialSets;
+    // Every material's RgMaterialData (lib/material.glsl): packed (the storage buffer), and one a
+    // window of m_materialStride bytes (the uniform buffer's dynamic offsets).
+    gpu::Buffer m_materialBuffer, m_materialWindows;
+    uint32_t m_materialStride = 0;
+    // Per material its texture set; per set its slots' (image, sampler) indices into the scene's
+    // (image −1: the slot's default; sampler −1: the default sampler), and its descriptor set.
+    std::vector<uint32_t> m_materialTextureSet;
+    std::vector<std::vector<std::pair<int32_t, int32_t>>> m_textureSetSlots;
+    std::vector<VkDescriptorSet> m_textureSets;
     std::vector<gpu::Buffer> m_cameraBuffers, m_lightBuffers, m_shadowViewBuffers;
     // SceneTransforms (kTransformWords vec4 per draw) and SceneDraws: one, or one per frame slot
     // when nodes move.
@@ -399,9 +423,10 @@ private:
     // Places the moving nodes for this frame and writes slot `slot`'s records of their draws;
     // `fresh` (the first frame, a cut): the last frame's transforms are this frame's.
     void updateMoving(uint32_t slot, bool fresh);
-    std::vector<ShadowBatch> m_shadowBatches;     // the casters by mesh and cull mode
-    std::vector<uint32_t> m_cameraBatch;          // per draw: its mesh range and material's batch
-    std::vector<CameraSegment> m_cameraSegments;  // per material (cameraSegment)
+    std::vector<ShadowBatch> m_shadowBatches;  // the casters by mesh and cull mode
+    std::vector<uint32_t> m_cameraBatch;       // per draw: its mesh range and material's batch
+    std::vector<CameraRun> m_cameraRuns;       // cameraRuns
+    std::vector<uint32_t> m_drawRun;           // per draw: its camera run
     // Per draw what updateFrame's culling and level choice read, packed (40 bytes rather than a
     // DrawItem's ~250: the 100 000-node city's update was bound by the memory it walked).
     struct DrawCull {

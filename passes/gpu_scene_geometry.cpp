@@ -151,8 +151,9 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
         for (uint32_t l = 1; l < item.lodCount; ++l) c.error[l - 1] = item.lods[l].error;
     }
     // The camera's batches: the same mesh (vertex offset, full index range) and material,
-    // numbered by material (then by their first draw), so that a material's batches are one run:
-    // its indirect commands one range for the GPU-culled G-buffer (RgDraw's `camera`).
+    // ordered by their camera run (CameraRun: pipeline material, alpha mode, cull mode, texture
+    // set), then material, then first draw, so that a run's batches are consecutive: its
+    // indirect commands one range for the GPU-culled G-buffer (RgDraw's `camera`).
     std::vector<glm::uvec4> cameraWord(m_draws.size(), glm::uvec4(0));
     {
         std::map<std::tuple<int32_t, uint32_t, uint32_t, uint32_t>, uint32_t> batchOf;
@@ -165,26 +166,45 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
             if (added) members.emplace_back();
             members[at->second].push_back(static_cast<uint32_t>(d));
         }
+        // The runs' keys, numbered in key order.
+        using RunKey = std::tuple<std::string, int, bool, uint32_t>;
+        auto runKey = [&](uint32_t material) {
+            const Material& m = m_scene.materials[material];
+            return RunKey(m.model, static_cast<int>(m.alphaMode), m.doubleSided,
+                          m_materialTextureSet[material]);
+        };
+        std::map<RunKey, uint32_t> runOf;
+        for (const auto& draws : members) runOf.emplace(runKey(m_draws[draws.front()].material), 0);
+        m_cameraRuns.clear();
+        for (auto& [key, run] : runOf) {
+            run = static_cast<uint32_t>(m_cameraRuns.size());
+            m_cameraRuns.push_back({0, 0, std::get<3>(key), std::get<2>(key)});
+        }
+        std::vector<uint32_t> batchRun(members.size());
+        for (size_t b = 0; b < members.size(); ++b)
+            batchRun[b] = runOf.at(runKey(m_draws[members[b].front()].material));
         std::vector<uint32_t> order(members.size());
         std::iota(order.begin(), order.end(), 0u);
         std::stable_sort(order.begin(), order.end(), [&](uint32_t a, uint32_t b) {
-            return m_draws[members[a].front()].material < m_draws[members[b].front()].material;
+            return std::pair(batchRun[a], m_draws[members[a].front()].material) <
+                   std::pair(batchRun[b], m_draws[members[b].front()].material);
         });
         m_cameraBatch.resize(m_draws.size());
-        m_cameraSegments.assign(m_scene.materials.size(), CameraSegment{});
+        m_drawRun.resize(m_draws.size());
         uint32_t slot = 0;
         for (uint32_t b = 0; b < order.size(); ++b) {
             const std::vector<uint32_t>& draws = members[order[b]];
             const uint32_t material = m_draws[draws.front()].material;
-            CameraSegment& segment = m_cameraSegments[material];
-            if (segment.commands == 0) segment.firstCommand = b * kMaxDrawLods;
-            segment.commands += kMaxDrawLods;
+            CameraRun& run = m_cameraRuns[batchRun[order[b]]];
+            if (run.commands == 0) run.firstCommand = b * kMaxDrawLods;
+            run.commands += kMaxDrawLods;
             const bool gbuffer = m_scene.materials[material].alphaMode != AlphaMode::Blend;
             for (uint32_t d : draws) {
                 m_cameraBatch[d] = b;
+                m_drawRun[d] = batchRun[order[b]];
                 if (gbuffer)
                     cameraWord[d] = glm::uvec4(b + 1, slot, static_cast<uint32_t>(draws.size()),
-                                               b * kMaxDrawLods - segment.firstCommand);
+                                               b * kMaxDrawLods - run.firstCommand);
             }
             slot += static_cast<uint32_t>(draws.size());
         }
@@ -214,7 +234,7 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
         }
     }
     // SceneDraws: a uvec4 header (draw count), then per draw (boxMin, firstIndex), (boxMax,
-    // indexCount), (vertexOffset, material, casts shadows, level-of-detail count), the levels'
+    // indexCount), (vertexOffset, camera run, casts shadows, level-of-detail count), the levels'
     // first indices, index counts and errors, then its shadow and camera batches (lib/scene.glsl
     // RgDraw) — 128 bytes.
     {
@@ -229,7 +249,7 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
             w[0] = glm::vec4(item.boundsMin, std::bit_cast<float>(item.firstIndex));
             w[1] = glm::vec4(item.boundsMax, std::bit_cast<float>(item.indexCount));
             w[2] = glm::vec4(std::bit_cast<float>(item.vertexOffset),
-                             std::bit_cast<float>(item.material),
+                             std::bit_cast<float>(m_drawRun[d]),
                              std::bit_cast<float>(item.castsShadows ? 1u : 0u),
                              std::bit_cast<float>(item.lodCount));
             for (uint32_t l = 0; l < kMaxDrawLods; ++l) {

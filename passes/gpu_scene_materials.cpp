@@ -1,11 +1,13 @@
 // GpuScene's images and materials: the scene's textures with their mip chains and samplers, the
-// default textures, the environment and the baked lightmap as images, and per material its
-// uniform block and descriptor set (set 1 of scene draws, shaders/lib/material.glsl).
+// default textures, the environment and the baked lightmap as images, every material's parameters
+// in one storage buffer (and a uniform window each), and a descriptor set per texture set (set 1
+// of scene draws, shaders/lib/material.glsl).
 #include "gpu_scene.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
 #include <glm/gtc/packing.hpp>
 
 #include "core/check.h"
@@ -19,16 +21,18 @@ using namespace rg::gpu;
 
 namespace {
 
-// std140 layout of MaterialData (shaders/lib/material.glsl).
+// RgMaterialData (shaders/lib/material.glsl): vec4s only, the same in std140 and std430.
 struct MaterialUniforms {
     glm::vec4 baseColorOpacity, emissive, factors, factors2, diffuseColor, f0;
     glm::vec4 uvTransform[16];  // 5 standard maps, kMaterialTextureSlots own ones, one spare
     glm::vec4 custom[4];
 };
 static_assert(sizeof(MaterialUniforms) == 416);
-// The standard maps and the model's own: bindings 1 .. kMaterialTextures of set 1.
+// The standard maps and the model's own: bindings 1 .. kMaterialTextures of set 1 (0: a
+// material's parameters, kMaterialTextures + 1: every material's).
 constexpr uint32_t kMaterialTextures = 5 + kMaterialTextureSlots;
 static_assert(2 * kMaterialTextures <= 16);
+static_assert(kMaterialTextures + 1 == 9, "lib/material.glsl's SceneMaterials binding");
 
 VkFilter toVk(Filter f) { return f == Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR; }
 VkSamplerAddressMode toVk(Wrap w) {
@@ -294,14 +298,41 @@ Result<void> GpuScene::uploadImages(Context& ctx) {
     return {};
 }
 
+void GpuScene::assignTextureSets() {
+    std::map<std::vector<std::pair<int32_t, int32_t>>, uint32_t> setOf;
+    m_materialTextureSet.clear();
+    m_textureSetSlots.clear();
+    for (const Material& m : m_scene.materials) {
+        // The five standard maps, then the model's own textures in slot order (none: white).
+        const TextureRef none;
+        std::vector<const TextureRef*> refs = m.textureRefs();
+        refs.resize(kMaterialTextures, &none);
+        std::vector<std::pair<int32_t, int32_t>> slots;
+        for (const TextureRef* ref : refs) {
+            const bool image = ref->image >= 0 && size_t(ref->image) < m_scene.images.size();
+            const bool sampler =
+                ref->sampler >= 0 && size_t(ref->sampler) < m_scene.samplers.size();
+            // A slot the material names a texture for but whose image is missing keeps its own
+            // key (−2): the material's shader variant still samples it (the default's texels).
+            slots.emplace_back(image ? ref->image : (ref->valid() ? -2 : -1),
+                               sampler ? ref->sampler : -1);
+        }
+        auto [at, added] = setOf.emplace(slots, static_cast<uint32_t>(m_textureSetSlots.size()));
+        if (added) m_textureSetSlots.push_back(std::move(slots));
+        m_materialTextureSet.push_back(at->second);
+    }
+}
+
 Result<void> GpuScene::createMaterials(Context& ctx) {
     VkDevice dev = ctx.device();
     std::vector<VkDescriptorSetLayoutBinding> bindings;
-    bindings.push_back({0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1,
+    bindings.push_back({0, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1,
                         VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
     for (uint32_t b = 1; b <= kMaterialTextures; ++b)
         bindings.push_back({b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
                             VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
+    bindings.push_back({kMaterialTextures + 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+                        VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
     VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     li.bindingCount = static_cast<uint32_t>(bindings.size());
     li.pBindings = bindings.data();
@@ -309,28 +340,12 @@ Result<void> GpuScene::createMaterials(Context& ctx) {
     RG_VK_TRY(vkCreateDescriptorSetLayout(dev, &li, nullptr, &layout));
     m_materialLayout = OwnedDescriptorSetLayout(dev, layout);
 
-    const auto count = static_cast<uint32_t>(m_scene.materials.size());
-    VkDescriptorPoolSize sizes[] = {
-        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, count},
-        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, count * kMaterialTextures}};
-    VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
-    pi.maxSets = count;
-    pi.poolSizeCount = 2;
-    pi.pPoolSizes = sizes;
-    VkDescriptorPool pool = VK_NULL_HANDLE;
-    RG_VK_TRY(vkCreateDescriptorPool(dev, &pi, nullptr, &pool));
-    m_pool = OwnedDescriptorPool(dev, pool);
-    std::vector<VkDescriptorSetLayout> layouts(count, layout);
-    m_materialSets.resize(count);
-    VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
-    ai.descriptorPool = pool;
-    ai.descriptorSetCount = count;
-    ai.pSetLayouts = layouts.data();
-    RG_VK_TRY(vkAllocateDescriptorSets(dev, &ai, m_materialSets.data()));
-
-    for (uint32_t i = 0; i < count; ++i) {
+    // Every material's parameters, in material order: a draw reads its own by index
+    // (lib/material.glsl), so draws of many materials go in one call.
+    std::vector<MaterialUniforms> uniforms(m_scene.materials.size());
+    for (size_t i = 0; i < m_scene.materials.size(); ++i) {
         const Material& m = m_scene.materials[i];
-        MaterialUniforms u{};
+        MaterialUniforms& u = uniforms[i];
         u.baseColorOpacity = glm::vec4(m.baseColor, m.opacity);
         // w: 1 for emission relative to the exposure, its EC folded into the colour (the shaders
         // multiply by 2^(EV100 − 3): lib/exposure.glsl's rgEmissiveScale).
@@ -341,7 +356,6 @@ Result<void> GpuScene::createMaterials(Context& ctx) {
                                static_cast<float>(m.alphaMode));
         u.diffuseColor = glm::vec4(m.diffuseColor, m.model == "two_colour" ? 1.0f : 0.0f);
         u.f0 = glm::vec4(m.f0, 0.0f);
-        // The five standard maps, then the model's own textures in slot order (none: white).
         const TextureRef none;
         std::vector<const TextureRef*> refs = m.textureRefs();
         refs.resize(kMaterialTextures, &none);
@@ -363,41 +377,87 @@ Result<void> GpuScene::createMaterials(Context& ctx) {
             m_staticHash.u64(static_cast<uint64_t>(static_cast<int64_t>(ref->image)));
             m_staticHash.u64(static_cast<uint64_t>(static_cast<int64_t>(ref->sampler)));
         }
-        auto buf = Buffer::create(ctx, "material." + m.name, sizeof u,
+    }
+    const VkDeviceSize bytes = uniforms.size() * sizeof(MaterialUniforms);
+    if (auto r = checkStorageRange(ctx, "its materials' parameters", bytes); !r) return r;
+    auto buf =
+        Buffer::create(ctx, "scene.materials", bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
+    if (!buf) return std::unexpected(buf.error());
+    std::memcpy(buf->mapped(), uniforms.data(), bytes);
+    m_materialBuffer = std::move(*buf);
+    // The same, one a window at the device's uniform offset alignment.
+    const auto align =
+        std::max<VkDeviceSize>(ctx.properties().limits.minUniformBufferOffsetAlignment, 1);
+    m_materialStride =
+        static_cast<uint32_t>((sizeof(MaterialUniforms) + align - 1) / align * align);
+    auto windows = Buffer::create(ctx, "scene.material_windows",
+                                  VkDeviceSize(m_materialStride) * uniforms.size(),
                                   VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
-        if (!buf) return std::unexpected(buf.error());
-        std::memcpy(buf->mapped(), &u, sizeof u);
-        m_materialBuffers.push_back(std::move(*buf));
+    if (!windows) return std::unexpected(windows.error());
+    for (size_t i = 0; i < uniforms.size(); ++i)
+        std::memcpy(static_cast<uint8_t*>(windows->mapped()) + i * m_materialStride, &uniforms[i],
+                    sizeof(MaterialUniforms));
+    m_materialWindows = std::move(*windows);
 
-        VkDescriptorBufferInfo bi{m_materialBuffers.back().buffer(), 0, VK_WHOLE_SIZE};
+    // One descriptor set per texture set: a material's window, its textures, every material.
+    const auto count = static_cast<uint32_t>(m_textureSetSlots.size());
+    VkDescriptorPoolSize sizes[] = {
+        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, count},
+        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, count * kMaterialTextures},
+        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, count}};
+    VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
+    pi.maxSets = count;
+    pi.poolSizeCount = 3;
+    pi.pPoolSizes = sizes;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    RG_VK_TRY(vkCreateDescriptorPool(dev, &pi, nullptr, &pool));
+    m_pool = OwnedDescriptorPool(dev, pool);
+    std::vector<VkDescriptorSetLayout> layouts(count, layout);
+    m_textureSets.resize(count);
+    VkDescriptorSetAllocateInfo ai{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO};
+    ai.descriptorPool = pool;
+    ai.descriptorSetCount = count;
+    ai.pSetLayouts = layouts.data();
+    RG_VK_TRY(vkAllocateDescriptorSets(dev, &ai, m_textureSets.data()));
+
+    for (uint32_t i = 0; i < count; ++i) {
+        VkDescriptorBufferInfo window{m_materialWindows.buffer(), 0, sizeof(MaterialUniforms)};
+        VkDescriptorBufferInfo all{m_materialBuffer.buffer(), 0, VK_WHOLE_SIZE};
         VkDescriptorImageInfo ii[kMaterialTextures];
-        VkWriteDescriptorSet writes[kMaterialTextures + 1];
+        VkWriteDescriptorSet writes[kMaterialTextures + 2];
         writes[0] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-        writes[0].dstSet = m_materialSets[i];
+        writes[0].dstSet = m_textureSets[i];
         writes[0].dstBinding = 0;
         writes[0].descriptorCount = 1;
-        writes[0].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
-        writes[0].pBufferInfo = &bi;
+        writes[0].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC;
+        writes[0].pBufferInfo = &window;
+        writes[kMaterialTextures + 1] = writes[0];
+        writes[kMaterialTextures + 1].dstBinding = kMaterialTextures + 1;
+        writes[kMaterialTextures + 1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        writes[kMaterialTextures + 1].pBufferInfo = &all;
         for (uint32_t t = 0; t < kMaterialTextures; ++t) {
-            const TextureRef& ref = *refs[t];
-            const bool has = ref.image >= 0 && static_cast<size_t>(ref.image) < m_images.size();
-            VkImageView view = has ? m_images[static_cast<size_t>(ref.image)].view()
-                                   : (t == 2 ? m_flatNormal.view() : m_white.view());
-            VkSampler sampler =
-                ref.sampler >= 0 && static_cast<size_t>(ref.sampler) < m_samplers.size()
-                    ? m_samplers[static_cast<size_t>(ref.sampler)].get()
-                    : m_defaultSampler.get();
-            ii[t] = {sampler, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+            const auto [image, sampler] = m_textureSetSlots[i][t];
+            VkImageView view = image >= 0 ? m_images[static_cast<size_t>(image)].view()
+                                          : (t == 2 ? m_flatNormal.view() : m_white.view());
+            VkSampler s = sampler >= 0 ? m_samplers[static_cast<size_t>(sampler)].get()
+                                       : m_defaultSampler.get();
+            ii[t] = {s, view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
             writes[t + 1] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
-            writes[t + 1].dstSet = m_materialSets[i];
+            writes[t + 1].dstSet = m_textureSets[i];
             writes[t + 1].dstBinding = static_cast<uint32_t>(t + 1);
             writes[t + 1].descriptorCount = 1;
             writes[t + 1].descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
             writes[t + 1].pImageInfo = &ii[t];
         }
-        vkUpdateDescriptorSets(dev, kMaterialTextures + 1, writes, 0, nullptr);
+        vkUpdateDescriptorSets(dev, kMaterialTextures + 2, writes, 0, nullptr);
     }
     return {};
+}
+
+void GpuScene::bindMaterial(VkCommandBuffer cmd, VkPipelineLayout layout, uint32_t material) const {
+    VkDescriptorSet set = m_textureSets[m_materialTextureSet[material]];
+    const uint32_t offset = material * m_materialStride;
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &set, 1, &offset);
 }
 
 }  // namespace rg::passes

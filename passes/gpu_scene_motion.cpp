@@ -8,12 +8,15 @@
 
 #include "gpu_scene.h"
 
+#include <bit>
+
 namespace rg::passes {
 
 void GpuScene::writeTransform(glm::vec4* out, size_t d, const glm::mat4& previous) const {
     const DrawItem& item = m_draws[d];
     for (int c = 0; c < 4; ++c) out[c] = item.world[c];
     for (int c = 0; c < 3; ++c) out[4 + c] = item.normalMatrix[c];
+    out[4].w = std::bit_cast<float>(item.material);  // scene.vert: lib/material.glsl's index
     out[7] = item.lightmapRect;
     for (int c = 0; c < 4; ++c) out[8 + c] = previous[c];
 }

@@ -1,7 +1,9 @@
 // The `scene` pass kind: draws the scene's primitives into the pass's attachments, one pipeline
 // per pipeline material (Lua rg.material) whose fragment shader rgraph generates from the
-// material's G-buffer layout and its GLSL surface function; per-material descriptor sets
-// (lavapipe has no descriptor indexing); the stencil buffer gets each material's stencil class.
+// material's G-buffer layout and its GLSL surface function; set 1 per texture set that materials
+// share, a material's parameters at a dynamic offset or, drawn from the GPU's lists, every
+// material's by index (lavapipe has no descriptor indexing, so textures are not indexed); the
+// stencil buffer gets each material's stencil class.
 // This file holds the kind (its schema and ScenePass, which picks the mode), what every mode draws
 // with (SceneDraws), and the modes that draw from the camera: the G-buffer and forward passes.
 #include <algorithm>
@@ -166,7 +168,10 @@ Result<void> SceneDraws::addGroup(PassSetup& setup, const PassMaterial& info,
     if (!m_motionTarget.empty() &&
         std::find(attachments.begin(), attachments.end(), m_motionTarget) != attachments.end())
         vert.defines.emplace_back("RG_MOTION", "1");
-    if (m_cameraInstances) vert.defines.emplace_back("RG_CAMERA_INSTANCES", "1");
+    if (m_cameraInstances) {
+        vert.defines.emplace_back("RG_CAMERA_INSTANCES", "1");
+        frag.defines.emplace_back("RG_CAMERA_INSTANCES", "1");  // the material per instance
+    }
     frag.defines.emplace_back("RG_TEXTURES", std::to_string(textures & kTextureBits));
     frag.defines.emplace_back("RG_ALPHA_MASK", (textures & kAlphaMaskVariant) ? "1" : "0");
     g.program = std::make_unique<ShaderProgram>();
@@ -312,11 +317,10 @@ void CameraScenePass::drawGroups(RecordContext& rc, const DrawOrder& order) {
         }
         const DrawItem& item = draws[first];
         if (item.material != boundMaterial) {
-            const Material& m = scene.scene().materials[item.material];
-            VkDescriptorSet set = scene.materialSet(item.material);
-            vkCmdBindDescriptorSets(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.program->layout(), 1,
-                                    1, &set, 0, nullptr);
-            vkCmdSetCullMode(rc.cmd, m.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT);
+            // The material's texture set, its parameters at their offset (lib/material.glsl).
+            scene.bindMaterial(rc.cmd, g.program->layout(), item.material);
+            const bool doubleSided = scene.scene().materials[item.material].doubleSided;
+            vkCmdSetCullMode(rc.cmd, doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT);
             boundMaterial = item.material;
         }
         // The level of detail for the camera (GpuScene::viewLod: at most a pixel of error).
@@ -432,15 +436,14 @@ Result<void> GBufferScenePass::prepareDraws(PassSetup& setup) {
                 !r)
                 return r;
     }
-    // The GPU path's draws: per group, its materials (one run of commands each).
-    m_groupMaterials.assign(m_cameraInstances ? m_groups.size() : 0, {});
-    for (size_t gi = 0; gi < m_groupMaterials.size(); ++gi) {
-        for (size_t d : m_groups[gi].draws)
-            m_groupMaterials[gi].push_back(sceneOf(setup)->draws()[d].material);
-        std::sort(m_groupMaterials[gi].begin(), m_groupMaterials[gi].end());
-        m_groupMaterials[gi].erase(
-            std::unique(m_groupMaterials[gi].begin(), m_groupMaterials[gi].end()),
-            m_groupMaterials[gi].end());
+    // The GPU path's draws: per group, its camera runs (GpuScene::CameraRun: materials of one
+    // pipeline, cull mode and texture set), one indirect count draw each.
+    m_groupRuns.assign(m_cameraInstances ? m_groups.size() : 0, {});
+    for (size_t gi = 0; gi < m_groupRuns.size(); ++gi) {
+        for (size_t d : m_groups[gi].draws) m_groupRuns[gi].push_back(sceneOf(setup)->cameraRun(d));
+        std::sort(m_groupRuns[gi].begin(), m_groupRuns[gi].end());
+        m_groupRuns[gi].erase(std::unique(m_groupRuns[gi].begin(), m_groupRuns[gi].end()),
+                              m_groupRuns[gi].end());
     }
     return {};
 }
@@ -493,11 +496,12 @@ void GBufferScenePass::recordDraws(RecordContext& rc) {
     drawGroups(rc, order);
 }
 
-// Per group (pipeline) and material, the material's run of commands (GpuScene::cameraSegment):
-// as many as the culling pass counted (vkCmdDrawIndexedIndirectCount; every one of the run, one a
-// call, where the device lacks it or the run is longer than its maxDrawIndirectCount — a command
-// without instances draws nothing). The order is the batches',
-// not front to back: the GPU chose the draws.
+// Per group (pipeline) its camera runs (GpuScene::CameraRun: the batches of its materials that
+// share a cull mode and texture set, whatever their material parameters), each one range of
+// commands: as many as the culling pass counted (vkCmdDrawIndexedIndirectCount; every one of the
+// run, one a call, where the device lacks it or the run is longer than its maxDrawIndirectCount —
+// a command without instances draws nothing). The order is the batches', not front to back: the
+// GPU chose the draws.
 void GBufferScenePass::recordIndirect(RecordContext& rc) {
     const GpuScene& scene = *sceneOf(rc);
     const PhysicalResource* commands = rc.resources.find(m_indirect);
@@ -506,31 +510,31 @@ void GBufferScenePass::recordIndirect(RecordContext& rc) {
     bool counted = false;           // a vkCmdDrawIndexedIndirectCount recorded
     for (size_t gi = 0; gi < m_groups.size(); ++gi) {
         Group& g = m_groups[gi];
-        if (m_groupMaterials[gi].empty()) continue;
+        if (m_groupRuns[gi].empty()) continue;
         vkCmdBindPipeline(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.pipeline.get());
         g.program->bind(rc, VK_PIPELINE_BIND_POINT_GRAPHICS);
         vkCmdSetStencilReference(rc.cmd, VK_STENCIL_FACE_FRONT_AND_BACK, g.info.stencilValue);
         vkCmdPushConstants(rc.cmd, g.program->layout(),
                            VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                            sizeof zeros, zeros);
-        for (uint32_t material : m_groupMaterials[gi]) {
-            const GpuScene::CameraSegment& run = scene.cameraSegment(material);
+        for (uint32_t r : m_groupRuns[gi]) {
+            const GpuScene::CameraRun& run = scene.cameraRuns()[r];
             const VkDeviceSize end =
                 VkDeviceSize(run.firstCommand + run.commands) * kIndirectCommandBytes;
             if (run.commands == 0 || end > commands->plan->bufferSize ||
-                VkDeviceSize(material + 1) * 4 > counts->plan->bufferSize)
+                VkDeviceSize(r + 1) * 4 > counts->plan->bufferSize)
                 continue;  // a buffer without room for the scene's batches: sized for another
-            VkDescriptorSet set = scene.materialSet(material);
+            // The run's textures; its materials' parameters by index (lib/material.glsl).
+            const uint32_t anyOffset = 0;
+            VkDescriptorSet set = scene.textureSetDescriptors(run.textureSet);
             vkCmdBindDescriptorSets(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.program->layout(), 1,
-                                    1, &set, 0, nullptr);
-            vkCmdSetCullMode(rc.cmd, scene.scene().materials[material].doubleSided
-                                         ? VK_CULL_MODE_NONE
-                                         : VK_CULL_MODE_BACK_BIT);
+                                    1, &set, 1, &anyOffset);
+            vkCmdSetCullMode(rc.cmd, run.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT);
             const VkDeviceSize offset = VkDeviceSize(run.firstCommand) * kIndirectCommandBytes;
             if (rc.gpu.drawIndirectCount() &&
                 run.commands <= rc.gpu.properties().limits.maxDrawIndirectCount) {
                 vkCmdDrawIndexedIndirectCount(rc.cmd, commands->buffer->buffer(), offset,
-                                              counts->buffer->buffer(), VkDeviceSize(material) * 4,
+                                              counts->buffer->buffer(), VkDeviceSize(r) * 4,
                                               run.commands, kIndirectCommandBytes);
                 counted = true;
             } else  // one command a call: a drawCount above 1 needs multiDrawIndirect

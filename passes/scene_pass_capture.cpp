@@ -157,9 +157,7 @@ void CaptureScenePass::recordDraws(RecordContext& rc) {
                 bound = gi;
             }
             const DrawItem& item = sceneOf(rc)->draws()[i];
-            VkDescriptorSet set = sceneOf(rc)->materialSet(item.material);
-            vkCmdBindDescriptorSets(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.program->layout(), 1,
-                                    1, &set, 0, nullptr);
+            sceneOf(rc)->bindMaterial(rc.cmd, g.program->layout(), item.material);
             struct {
                 glm::mat4 world;
                 glm::vec4 layer;

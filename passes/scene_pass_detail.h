@@ -165,12 +165,12 @@ class GBufferScenePass final : public CameraScenePass {
     std::string m_specularTarget;  // params.lightmap_specular: the lightmap's specular, or ""
     // params.indirect and params.indirect_count while the pass reads them (a culling pass wrote
     // them: shaders/passes/camera_cull.comp), else "": the draws are culled and batched on the
-    // CPU. Per group, the materials its draws have (one indirect-count draw each).
+    // CPU. Per group, the camera runs its draws are in (one indirect-count draw each).
     std::string m_indirect, m_indirectCount;
-    std::vector<std::vector<uint32_t>> m_groupMaterials;
+    std::vector<std::vector<uint32_t>> m_groupRuns;
     // A command without instances and a count of 2^32 − 1 (recordIndirect's last count draw).
     gpu::Buffer m_countReset;
-    // Draws every group's materials from the culling pass's commands.
+    // Draws every group's runs from the culling pass's commands.
     void recordIndirect(RecordContext& rc);
 };
 

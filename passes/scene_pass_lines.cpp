@@ -109,9 +109,7 @@ void LinesScenePass::recordDraws(RecordContext& rc) {
         for (size_t d : g.draws) {
             const LineDrawItem& item = scene.lineDraws()[d];
             if (item.material != boundMaterial) {
-                VkDescriptorSet set = scene.materialSet(item.material);
-                vkCmdBindDescriptorSets(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS,
-                                        g.program->layout(), 1, 1, &set, 0, nullptr);
+                scene.bindMaterial(rc.cmd, g.program->layout(), item.material);
                 boundMaterial = item.material;
             }
             vkCmdPushConstants(rc.cmd, g.program->layout(),

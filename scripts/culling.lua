@@ -55,12 +55,12 @@ function culling.declare()
         doc = "the G-buffer's draws: an indirect command per camera batch (a mesh and material) and level of detail (VkDrawIndexedIndirectCommand)" }
     rg.buffer "camera_instances" { size = 4, scene_count = "draws", count_bytes = 4 * 4, only_when = when,
         doc = "the draws each of camera_draws' commands draws: a draw index per instance, a region per level of detail" }
-    rg.buffer "camera_draw_counts" { size = 4, scene_count = "materials", count_bytes = 4, only_when = when,
-        doc = "per material, how many of its run of camera_draws' commands the G-buffer draws" }
+    rg.buffer "camera_draw_counts" { size = 4, scene_count = "camera_runs", count_bytes = 4, only_when = when,
+        doc = "per camera run (the materials of one pipeline, cull mode and texture set), how many of its range of camera_draws' commands the G-buffer draws" }
     rg.buffer "camera_early_draws" { size = 20, scene_count = "camera_batches", count_bytes = 4 * 20, only_when = culling.occluding,
         doc = "the first phase's commands (gbuffer_early): the draws that showed last frame, as camera_draws" }
-    rg.buffer "camera_early_counts" { size = 4, scene_count = "materials", count_bytes = 4, only_when = culling.occluding,
-        doc = "per material, how many of its run of camera_early_draws' commands gbuffer_early draws" }
+    rg.buffer "camera_early_counts" { size = 4, scene_count = "camera_runs", count_bytes = 4, only_when = culling.occluding,
+        doc = "per camera run, how many of its range of camera_early_draws' commands gbuffer_early draws" }
     rg.buffer "camera_early_instances" { size = 4, scene_count = "draws", count_bytes = 4 * 4, only_when = culling.occluding,
         doc = "the draws each of camera_early_draws' commands draws, as camera_instances" }
     rg.buffer "camera_visible" { size = 4, scene_count = "draws", count_bytes = 4, persistent = true, only_when = culling.occluding,

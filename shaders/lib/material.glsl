@@ -1,9 +1,10 @@
-// The material interface of scene draws (set 1, one descriptor set per scene material, filled by
-// passes/gpu_scene.cpp) and the sampled surface every material's surface function receives.
+// The material interface of scene draws (set 1: the scene's materials and one texture set, filled
+// by passes/gpu_scene_materials.cpp) and the sampled surface every material's surface function
+// receives.
 #ifndef RG_MATERIAL_GLSL
 #define RG_MATERIAL_GLSL
 
-layout(set = 1, binding = 0) uniform MaterialData {
+struct RgMaterialData {
     vec4 baseColorOpacity;  // linear base colour, opacity
     vec4 emissive;          // rgb: nits (cd/m²)
     vec4 factors;           // smoothness, metalMask, reflectance, ao
@@ -12,7 +13,23 @@ layout(set = 1, binding = 0) uniform MaterialData {
     vec4 f0;                // two-colour model
     vec4 uvTransform[16];   // per texture (5 standard, 3 of the model's own): two rows of the affine uv matrix; w of the first row: texCoord
     vec4 custom[4];         // game-team material parameters, in declaration order
-} material;
+};
+// The draw's material. Drawn by the CPU (one material a draw, instanced or not): its own window
+// of the scene's materials, a uniform block bound at the material's offset. Drawn from the GPU's
+// instance lists (RG_CAMERA_INSTANCES: one call draws a camera run of many materials,
+// GpuScene::CameraRun): every material in a storage buffer, read at the instance's material, which
+// scene.vert passes flat — a load per fragment where the uniform block's is once per draw (on
+// lavapipe the G-buffer's ~20 ms grows by ~3, README "GPU-driven culling"; on a GPU such loads
+// are uniform over the draw).
+#ifdef RG_CAMERA_INSTANCES
+layout(set = 1, binding = 9, std430) readonly buffer SceneMaterials { RgMaterialData m[]; } rgMaterials;
+layout(location = 9) flat in uint rgMaterialIndex;
+// `material.NAME`: the draw's parameters, as surface functions read them.
+#define material rgMaterials.m[rgMaterialIndex]
+#else
+layout(set = 1, binding = 0, std140) uniform MaterialData { RgMaterialData data; } rgMaterial;
+#define material rgMaterial.data
+#endif
 layout(set = 1, binding = 1) uniform sampler2D baseColorTex;
 layout(set = 1, binding = 2) uniform sampler2D metallicRoughnessTex;
 layout(set = 1, binding = 3) uniform sampler2D normalTex;

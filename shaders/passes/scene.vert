@@ -21,6 +21,9 @@ layout(location = 3) out vec2 uv0;
 layout(location = 4) out vec2 uv1;
 layout(location = 6) out vec4 vertexColor;
 layout(location = 5) out vec2 lightmapUv;  // the node's square of the scene's lightmap atlas
+#ifdef RG_CAMERA_INSTANCES
+layout(location = 9) flat out uint materialIndex;  // each instance's (lib/material.glsl)
+#endif
 #ifdef RG_MOTION
 layout(location = 7) out vec4 motionNow;     // clip position, this frame's unjittered camera
 layout(location = 8) out vec4 motionBefore;  // clip position on the last frame
@@ -33,8 +36,8 @@ layout(push_constant) uniform Draw {
     vec4 lightmapRect;     // atlas uv = uv1 * xy + zw (0: no lightmap)
 } draw;
 
-// Per draw: world's four columns, the normal matrix's three, the lightmap rect, the last frame's
-// world (RG_TRANSFORM_WORDS, passes/gpu_scene.h).
+// Per draw: world's four columns, the normal matrix's three (the first's w: the material, uint
+// bits), the lightmap rect, the last frame's world (RG_TRANSFORM_WORDS, passes/gpu_scene.h).
 #ifndef RG_TRANSFORMS_BINDING
 #define RG_TRANSFORMS_BINDING 34
 #endif
@@ -52,6 +55,7 @@ void main() {
     mat4 world = draw.world;
     mat3 normalMatrix = mat3(draw.normalMatrix[0].xyz, draw.normalMatrix[1].xyz, draw.normalMatrix[2].xyz);
     vec4 lightmapRect = draw.lightmapRect;
+    uint materialBits = 0u;
 #ifdef RG_MOTION
     mat4 previousWorld = draw.world;
 #endif
@@ -59,6 +63,7 @@ void main() {
         uint base = uint(RG_TRANSFORM_WORDS) * sceneInstances.draw[gl_InstanceIndex];
         world = mat4(sceneTransforms.t[base], sceneTransforms.t[base + 1u], sceneTransforms.t[base + 2u], sceneTransforms.t[base + 3u]);
         normalMatrix = mat3(sceneTransforms.t[base + 4u].xyz, sceneTransforms.t[base + 5u].xyz, sceneTransforms.t[base + 6u].xyz);
+        materialBits = floatBitsToUint(sceneTransforms.t[base + 4u].w);
         lightmapRect = sceneTransforms.t[base + 7u];
 #ifdef RG_MOTION
         previousWorld = mat4(sceneTransforms.t[base + 8u], sceneTransforms.t[base + 9u], sceneTransforms.t[base + 10u], sceneTransforms.t[base + 11u]);
@@ -71,6 +76,9 @@ void main() {
     uv0 = inUv0;
     uv1 = inUv1;
     vertexColor = inColor;
+#ifdef RG_CAMERA_INSTANCES
+    materialIndex = materialBits;
+#endif
     lightmapUv = inUv1 * lightmapRect.xy + lightmapRect.zw;
     gl_Position = camera.viewProj * p;
 #ifdef RG_MOTION

@@ -1,6 +1,7 @@
 // Draws chosen on the GPU. The G-buffer's (scripts/culling.lua, shaders/passes/camera_cull.comp):
 // in a scene of at least culling.min_draws draws the culling pass lists each draw in its batch's
-// indirect command and the G-buffer draws each material's commands with
+// indirect command and the G-buffer draws each camera run's commands (the materials of one
+// pipeline, cull mode and texture set, their parameters read by index) with
 // vkCmdDrawIndexedIndirectCount. The frustum test is conservative (the image without it is the
 // same) and makes the CPU's choices (the image with gpu_culling off is the same), and it drops
 // what lies outside the view. The local lights' shadow casters per view (scripts/shadows.lua,
@@ -16,6 +17,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "image/image.h"
+#include "layout/layout.h"
 #include "passes/gpu_scene.h"
 #include "runtime/session.h"
 
@@ -33,6 +36,7 @@ struct CityFrame {
     uint32_t counted = 0;       // the commands the counts let the G-buffer draw
     uint32_t coarse = 0;        // instances drawn at a coarser level of detail than the full mesh
     uint32_t cpuInstances = 0;  // entries of the CPU's instance list the frame used
+    size_t runs = 0;            // camera runs: one indirect count draw each
 };
 
 class GpuCulling : public GpuFixture {
@@ -70,6 +74,7 @@ CityFrame GpuCulling::renderCity(const std::string& nodes,
     out.cpuInstances = s.gpuScene()->instancesUsed(0);
     if (auto img = rt().executor().readback("hdr")) out.hdr = std::move(*img);
     const passes::GpuScene& scene = *s.gpuScene();
+    out.runs = scene.cameraRuns().size();
     for (size_t d = 0; d < scene.draws().size(); ++d)
         if (scene.scene().materials[scene.draws()[d].material].alphaMode != AlphaMode::Blend) {
             ++out.gbufferDraws;
@@ -116,6 +121,7 @@ TEST_F(GpuCulling, TheGpuDrawsWhatTheCpuDrawsAndCullsConservatively) {
         gpu.gbufferDraws, gpu.inView, gpu.instances, gpu.counted, all.instances,
         valuesThatDiffer(gpu.hdr, cpu.hdr), valuesThatDiffer(all.hdr, cpu.hdr),
         gpu.hdr.pixels.size());
+    EXPECT_EQ(gpu.runs, 1u) << "258 untextured standard materials: one count draw";
     EXPECT_EQ(all.instances, all.gbufferDraws) << "without the test every draw is drawn";
     EXPECT_EQ(gpu.instances, gpu.inView) << "the draws the CPU's frustum test keeps";
     EXPECT_LT(gpu.instances, gpu.gbufferDraws) << "what lies behind the camera is dropped";
@@ -310,6 +316,113 @@ TEST_F(GpuCulling, LocalLightsCastersCulledPerViewAsTheCpuDid) {
     EXPECT_EQ(cpuInstances, 0u) << "gpu_shadow_culling = false: the buffers leave the graph";
     EXPECT_EQ(mapsDiffer, 0u);
     EXPECT_EQ(valuesThatDiffer(gpu, cpu), 0u);
+}
+
+// Many materials, few draw calls (GpuScene::CameraRun): 24 boxes, each its own material (its own
+// colour and smoothness), every third double-sided, four sharing one base-colour map and four
+// another. Their draws go in one indirect count draw per camera run — pipeline material, alpha
+// mode, cull mode and texture set: six here, not 25 — and each box's G-buffer holds its own
+// material's parameters (read by index from the materials' storage buffer), on the GPU's path and
+// on the CPU's, whose G-buffers and images are the same.
+const char* kPalette = R"(local scene = require "scene"
+scene.material "ground" { base_color = { 0.2, 0.2, 0.2 } }
+scene.plane "ground" { size = { 20, 20 }, material = "ground" }
+for i = 0, 23 do
+  local m = { base_color = { (i + 1) / 24, 0.5, 1 - (i + 1) / 24 }, smoothness = 0.2 + i / 40, double_sided = i % 3 == 0 }
+  if i >= 16 then m.base_color_map = i < 20 and "a.png" or "b.png" end
+  scene.material("m" .. i)(m)
+  scene.box("box" .. i) { size = { 0.6, 0.6, 0.6 }, position = { (i % 12 - 5.5) * 1.2, 0.3, (i // 12 - 0.5) * 1.5 }, material = "m" .. i }
+end
+scene.light "sun" { type = "sun", intensity = 50000, unit = "lux", direction = { -0.3, -0.8, -0.5 } }
+scene.camera "main" { position = { 0, 10, 4 }, target = { 0, 0, 0 }, fov = 45, aperture = 16, shutter = 1 / 125, iso = 100 }
+)";
+
+TEST_F(GpuCulling, ManyMaterialsDrawInOneCallPerPipelineCullModeAndTextures) {
+    TempFolder tmp("palette");
+    std::ofstream(tmp.dir / "palette.lua") << kPalette;
+    for (auto [name, grey] : {std::pair("a.png", 0.9f), std::pair("b.png", 0.6f)}) {
+        Image map(4, 4, 3);
+        std::fill(map.pixels.begin(), map.pixels.end(), grey);
+        ASSERT_TRUE(writePng((tmp.dir / name).string(), map).has_value());
+    }
+    std::ifstream in(std::string(RG_SOURCE_ROOT) + "/scripts/pipelines/deferred.lua");
+    std::stringstream deferred;
+    deferred << in.rdbuf();
+    std::ofstream(tmp.dir / "culled.lua") << "require(\"culling\").min_draws = 1\n"
+                                          << deferred.str();
+    constexpr uint32_t kW = 320, kH = 180;
+    const char* targets[] = {"GB0", "GB1", "GB2", "GB3"};
+    struct Frame {
+        std::vector<Image> gbuffer;
+        Image hdr;
+        std::vector<uint8_t> counts;
+        std::vector<std::array<float, 4>> colourSmoothness;  // per untextured box, its top's centre
+    };
+    auto render = [&](bool gpu) {
+        Frame f;
+        SessionOptions o = sceneOptions((tmp.dir / "palette.lua").string(), {}, kW, kH);
+        o.captures = {"hdr", "GB0", "GB1", "GB2", "GB3", "camera_draw_counts"};
+        o.params["gpu_culling"] = Value(gpu);
+        Session s(rt(), o);
+        auto r = s.load((tmp.dir / "culled.lua").string());
+        EXPECT_TRUE(r.has_value()) << r.error().describe();
+        if (!r || !s.frame()) return f;
+        const passes::GpuScene& scene = *s.gpuScene();
+        EXPECT_EQ(scene.scene().materials.size(), 25u);
+        EXPECT_EQ(scene.textureSetCount(), 3u) << "none, a.png, b.png";
+        EXPECT_EQ(scene.cameraRuns().size(), 6u) << "three texture sets, two cull modes";
+        for (const char* t : targets) {
+            auto img = rt().executor().readback(t);
+            EXPECT_TRUE(img.has_value()) << t;
+            if (img) f.gbuffer.push_back(std::move(*img));
+        }
+        if (auto img = rt().executor().readback("hdr")) f.hdr = std::move(*img);
+        if (auto counts = rt().executor().readbackBuffer("camera_draw_counts"))
+            f.counts = std::move(*counts);
+        // The standard layout's channels at each untextured box's top.
+        auto info = analyzeLayout(s.pipeline().layouts.front());
+        EXPECT_TRUE(info.has_value());
+        if (!info || f.gbuffer.size() != 4) return f;
+        const Camera& c = scene.scene().cameras.front();
+        const glm::mat4 viewProj = cameraViewProj(c.position, c.target, 45.0f, kW, kH);
+        for (int i = 0; i < 16; ++i) {
+            const glm::vec3 top((float(i % 12) - 5.5f) * 1.2f, 0.6f, (float(i / 12) - 0.5f) * 1.5f);
+            const glm::ivec2 px = pixelOf(viewProj, kW, kH, top);
+            std::vector<TexelValue> texels;
+            for (size_t t = 0; t < 4; ++t)
+                texels.push_back(texelFromFloats(
+                    info->desc.targets[t].format,
+                    &f.gbuffer[t]
+                         .pixels[(size_t(px.y) * kW + size_t(px.x)) * f.gbuffer[t].channels],
+                    f.gbuffer[t].channels));
+            const auto channels = unpackTexel(*info, texels);
+            const auto& base = channels[static_cast<size_t>(info->find("baseColor"))].v;
+            f.colourSmoothness.push_back(
+                {base[0], base[1], base[2],
+                 channels[static_cast<size_t>(info->find("smoothness"))].v[0]});
+        }
+        return f;
+    };
+    const Frame gpu = render(true);
+    const Frame cpu = render(false);
+    ASSERT_EQ(gpu.gbuffer.size(), 4u);
+    ASSERT_EQ(cpu.gbuffer.size(), 4u);
+    EXPECT_GE(gpu.counts.size(), 6u * 4u) << "the GPU's path: a count per camera run";
+    EXPECT_TRUE(cpu.counts.empty()) << "gpu_culling = false: the CPU's path";
+    for (const Frame* f : {&gpu, &cpu}) {
+        ASSERT_EQ(f->colourSmoothness.size(), 16u);
+        for (int i = 0; i < 16; ++i) {
+            const auto& v = f->colourSmoothness[static_cast<size_t>(i)];
+            const float red = float(i + 1) / 24.0f, blue = 1.0f - red;
+            EXPECT_NEAR(srgbEncode(v[0]), srgbEncode(red), 0.5f / 255 + 1e-4f) << "box " << i;
+            EXPECT_NEAR(srgbEncode(v[1]), srgbEncode(0.5f), 0.5f / 255 + 1e-4f) << "box " << i;
+            EXPECT_NEAR(srgbEncode(v[2]), srgbEncode(blue), 0.5f / 255 + 1e-4f) << "box " << i;
+            EXPECT_NEAR(v[3], 0.2f + float(i) / 40.0f, 0.5f / 1023 + 1e-5f) << "box " << i;
+        }
+    }
+    for (size_t t = 0; t < 4; ++t)
+        EXPECT_EQ(valuesThatDiffer(gpu.gbuffer[t], cpu.gbuffer[t]), 0u) << targets[t];
+    EXPECT_EQ(valuesThatDiffer(gpu.hdr, cpu.hdr), 0u);
 }
 
 }  // namespace

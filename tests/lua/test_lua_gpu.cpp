@@ -231,7 +231,7 @@ TEST_F(LuaGpu, ParametersAndResourcesNameWhatTheSceneHas) {
                   "scene_setting.lua:" + std::to_string(line) +
                   ": resource 'maps': scene_layers = 'lights': the scene has "
                   "no such extent (it has 'shadow_views', 'shadow_casters', 'shadow_batches', "
-                  "'camera_batches', 'draws', 'materials')"),
+                  "'camera_batches', 'draws', 'camera_runs')"),
               std::string::npos)
         << l.error().describe();
     // So does a buffer's scene_count.
