@@ -136,9 +136,14 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(Context& ctx, Scene scene,
     // RG_INSTANCING=0: every camera draw on its own (to compare: the image is the same).
     const char* instancingEnv = std::getenv("RG_INSTANCING");
     s->m_instancing = !(instancingEnv && std::string_view(instancingEnv) == "0");
+    // A window of materials: as many as a uniform block of the device's range holds (64 KiB at
+    // most, the std140 array's 416-byte elements).
+    s->m_materialWindow = std::max<uint32_t>(
+        std::min<uint32_t>(ctx.properties().limits.maxUniformBufferRange, 65536u) / 416u, 1u);
+    // The images first: the texture sets take their arrays, the camera's runs the texture sets.
+    if (auto r = s->uploadImages(ctx); !r) return std::unexpected(r.error());
     s->assignTextureSets();
     if (auto r = s->uploadGeometry(ctx); !r) return std::unexpected(r.error());
-    if (auto r = s->uploadImages(ctx); !r) return std::unexpected(r.error());
     if (auto r = s->createMaterials(ctx); !r) return std::unexpected(r.error());
     if (auto r = s->createFrameData(ctx, options); !r) return std::unexpected(r.error());
     return s;

@@ -1,6 +1,6 @@
 // The scene on the GPU: one vertex and one index buffer for every primitive, the images with
-// their mip chains, every material's parameters in one storage buffer and a descriptor set per
-// set of textures materials share (set 1 of scene draws, see shaders/lib/material.glsl), and per
+// their mip chains as layers of arrays by shape, every material's parameters in uniform buffers
+// and a descriptor set per set of texture arrays materials share (set 1 of scene draws, see shaders/lib/material.glsl), and per
 // frame slot the camera uniforms and the light list
 // (shaders/lib/scene.glsl's Lights block: the lights converted once here — cd, lux or cd/m², see
 // convertLights — followed by their baked IES profiles).
@@ -158,14 +158,15 @@ public:
     static constexpr const char* kDrawsExtent = "draws";
     static constexpr const char* kCameraRunsExtent = "camera_runs";
     // A camera run: the batches whose materials draw with one pipeline and one binding — the same
-    // pipeline material, alpha mode (so the same shader variant, with the texture set), cull mode
-    // and texture set (textureSet) — consecutive, so that their indirect commands (kMaxDrawLods
+    // pipeline material, alpha mode (so the same shader variant, with the texture set), cull mode,
+    // texture set (textureSet) and window of materials (materialWindow) — consecutive, so that their indirect commands (kMaxDrawLods
     // a batch) are one range the G-buffer draws with one vkCmdDrawIndexedIndirectCount: the
     // draws are grouped by pipeline and textures, not by material (each draw's material
-    // parameters come from the materials' storage buffer). Ordered by that key.
+    // parameters come from the run's window of them, its textures' layers among them). Ordered by that key.
     struct CameraRun {
         uint32_t firstCommand = 0, commands = 0;
         uint32_t textureSet = 0;
+        uint32_t firstMaterial = 0;  // its materials' window: this one's (materialWindow)
         bool doubleSided = false;
     };
     const std::vector<CameraRun>& cameraRuns() const { return m_cameraRuns; }
@@ -200,15 +201,24 @@ public:
     VkBuffer vertexBuffer() const { return m_vertices.buffer(); }
     VkBuffer indexBuffer() const { return m_indices.buffer(); }
     VkDescriptorSetLayout materialSetLayout() const { return m_materialLayout.get(); }
-    // The texture sets: materials with the same image and sampler in every texture slot share one
+    // The texture sets: materials with the same texture array (the images of one shape, each a
+    // layer: the layer is the material's parameter) and sampler in every texture slot share one
     // (a scene of untextured materials has one), and its descriptor set — set 1 of scene draws:
-    // its textures, the materials' storage buffer (binding 9, read by index) and a material's
-    // window of their uniform buffer (binding 0, at a dynamic offset).
+    // its textures, a material's parameters (binding 0, at a dynamic offset) and a window of
+    // materialWindow() materials' (binding 9, read by index; a dynamic offset too).
     uint32_t textureSet(uint32_t material) const { return m_materialTextureSet[material]; }
     uint32_t textureSetCount() const { return static_cast<uint32_t>(m_textureSets.size()); }
     VkDescriptorSet textureSetDescriptors(uint32_t set) const { return m_textureSets[set]; }
     // Binds set 1 for a draw of `material` alone (its textures, its parameters' window).
     void bindMaterial(VkCommandBuffer cmd, VkPipelineLayout layout, uint32_t material) const;
+    // Binds texture set `set` with the window of materials holding `material` (a camera run's).
+    void bindTextureSet(VkCommandBuffer cmd, VkPipelineLayout layout, uint32_t set,
+                        uint32_t material) const;
+    // How many materials one window of the GPU's draws holds (lib/material.glsl
+    // RG_MATERIAL_WINDOW): as many as a uniform block of the device's maxUniformBufferRange holds
+    // (at most 64 KiB). A camera run's materials are in one window; an instance's index is its
+    // material's within it (SceneTransforms).
+    uint32_t materialWindow() const { return m_materialWindow; }
 
     // The camera the frame renders with (the scene's first, or `name`).
     const Camera& camera() const { return m_scene.cameras.at(m_camera); }
@@ -370,7 +380,10 @@ private:
     std::vector<DrawItem> m_draws;
     std::vector<LineDrawItem> m_lineDraws;
     gpu::Buffer m_vertices, m_indices;
-    std::vector<gpu::Image> m_images;
+    // The scene's images as layers of 2-D arrays, one per shape (uploadImages); per scene image its
+    // (array, layer).
+    std::vector<gpu::Image> m_textureArrays;
+    std::vector<std::pair<uint32_t, uint32_t>> m_imageLayer;
     gpu::Image m_white, m_flatNormal;  // defaults for missing textures
     gpu::Image m_environment;
     EnvironmentCdf
@@ -382,12 +395,12 @@ private:
     gpu::OwnedSampler m_defaultSampler;
     gpu::OwnedDescriptorSetLayout m_materialLayout;
     gpu::OwnedDescriptorPool m_pool;
-    // Every material's RgMaterialData (lib/material.glsl): packed (the storage buffer), and one a
-    // window of m_materialStride bytes (the uniform buffer's dynamic offsets).
+    // Every material's RgMaterialData (lib/material.glsl), in uniform buffers: one a window of
+    // m_materialStride bytes, and m_materialWindow a window of m_windowStride bytes.
     gpu::Buffer m_materialBuffer, m_materialWindows;
-    uint32_t m_materialStride = 0;
-    // Per material its texture set; per set its slots' (image, sampler) indices into the scene's
-    // (image −1: the slot's default; sampler −1: the default sampler), and its descriptor set.
+    uint32_t m_materialStride = 0, m_windowStride = 0, m_materialWindow = 1;
+    // Per material its texture set; per set its slots' (texture array, sampler) indices (array −1:
+    // the slot's default; sampler −1: the default sampler), and its descriptor set.
     std::vector<uint32_t> m_materialTextureSet;
     std::vector<std::vector<std::pair<int32_t, int32_t>>> m_textureSetSlots;
     std::vector<VkDescriptorSet> m_textureSets;

@@ -152,7 +152,7 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
     }
     // The camera's batches: the same mesh (vertex offset, full index range) and material,
     // ordered by their camera run (CameraRun: pipeline material, alpha mode, cull mode, texture
-    // set), then material, then first draw, so that a run's batches are consecutive: its
+    // set, window of materials), then material, then first draw, so that a run's batches are consecutive: its
     // indirect commands one range for the GPU-culled G-buffer (RgDraw's `camera`).
     std::vector<glm::uvec4> cameraWord(m_draws.size(), glm::uvec4(0));
     {
@@ -167,18 +167,19 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
             members[at->second].push_back(static_cast<uint32_t>(d));
         }
         // The runs' keys, numbered in key order.
-        using RunKey = std::tuple<std::string, int, bool, uint32_t>;
+        using RunKey = std::tuple<std::string, int, bool, uint32_t, uint32_t>;
         auto runKey = [&](uint32_t material) {
             const Material& m = m_scene.materials[material];
             return RunKey(m.model, static_cast<int>(m.alphaMode), m.doubleSided,
-                          m_materialTextureSet[material]);
+                          m_materialTextureSet[material], material / m_materialWindow);
         };
         std::map<RunKey, uint32_t> runOf;
         for (const auto& draws : members) runOf.emplace(runKey(m_draws[draws.front()].material), 0);
         m_cameraRuns.clear();
         for (auto& [key, run] : runOf) {
             run = static_cast<uint32_t>(m_cameraRuns.size());
-            m_cameraRuns.push_back({0, 0, std::get<3>(key), std::get<2>(key)});
+            m_cameraRuns.push_back(
+                {0, 0, std::get<3>(key), std::get<4>(key) * m_materialWindow, std::get<2>(key)});
         }
         std::vector<uint32_t> batchRun(members.size());
         for (size_t b = 0; b < members.size(); ++b)
@@ -323,7 +324,7 @@ GpuScene::Memory GpuScene::memory() const {
     auto bytes = [&](const gpu::Image& image) -> uint64_t {
         return image ? gpu::Image::requirements(*m_ctx, image.desc()).size : 0;
     };
-    for (const gpu::Image& image : m_images) m.textures += bytes(image);
+    for (const gpu::Image& image : m_textureArrays) m.textures += bytes(image);
     m.textures += bytes(m_white) + bytes(m_flatNormal);
     m.environment = bytes(m_environment);
     m.lightmap = bytes(m_lightmap);

@@ -1,7 +1,7 @@
 // GpuScene's images and materials: the scene's textures with their mip chains and samplers, the
 // default textures, the environment and the baked lightmap as images, every material's parameters
-// in one storage buffer (and a uniform window each), and a descriptor set per texture set (set 1
-// of scene draws, shaders/lib/material.glsl).
+// in uniform buffers (one a window, and windows of many), and a descriptor set per texture set
+// (set 1 of scene draws, shaders/lib/material.glsl).
 #include "gpu_scene.h"
 
 #include <algorithm>
@@ -29,10 +29,10 @@ struct MaterialUniforms {
 };
 static_assert(sizeof(MaterialUniforms) == 416);
 // The standard maps and the model's own: bindings 1 .. kMaterialTextures of set 1 (0: a
-// material's parameters, kMaterialTextures + 1: every material's).
+// material's parameters, kMaterialTextures + 1: a window of materials').
 constexpr uint32_t kMaterialTextures = 5 + kMaterialTextureSlots;
 static_assert(2 * kMaterialTextures <= 16);
-static_assert(kMaterialTextures + 1 == 9, "lib/material.glsl's SceneMaterials binding");
+static_assert(kMaterialTextures + 1 == 9, "lib/material.glsl's MaterialWindow binding");
 
 VkFilter toVk(Filter f) { return f == Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR; }
 VkSamplerAddressMode toVk(Wrap w) {
@@ -78,41 +78,48 @@ Result<void> copyToImage(Context& ctx, VkImage image, const Buffer& staging,
     });
 }
 
-// Uploads RGBA8 levels (values already in the image's encoding) and leaves the image ready for sampling.
+// Uploads RGBA8 layers, each its levels (values already in the image's encoding; every layer's
+// level m the same size), as one 2-D array image (an array view even with one layer) ready for
+// sampling.
 Result<gpu::Image> uploadRgba8(Context& ctx, const std::string& name, bool srgb,
-                               const std::vector<const rg::Image*>& levels) {
+                               const std::vector<std::vector<const rg::Image*>>& layers) {
+    const std::vector<const rg::Image*>& first = layers.front();
     ImageDesc d;
     d.name = name;
     d.format = srgb ? Format::RGBA8Srgb : Format::RGBA8Unorm;
-    d.width = levels[0]->width;
-    d.height = levels[0]->height;
-    d.mips = static_cast<uint32_t>(levels.size());
+    d.width = first[0]->width;
+    d.height = first[0]->height;
+    d.mips = static_cast<uint32_t>(first.size());
+    d.layers = static_cast<uint32_t>(layers.size());
+    d.array = true;
     d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     auto img = gpu::Image::create(ctx, d);
     if (!img) return std::unexpected(img.error());
     size_t bytes = 0;
-    for (const auto* l : levels) bytes += size_t(l->width) * l->height * 4;
+    for (const auto& levels : layers)
+        for (const auto* l : levels) bytes += size_t(l->width) * l->height * 4;
     auto staging =
         Buffer::create(ctx, name + ".staging", bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT, true);
     if (!staging) return std::unexpected(staging.error());
     auto* dst = static_cast<uint8_t*>(staging->mapped());
     std::vector<VkBufferImageCopy> regions;
     size_t offset = 0;
-    for (uint32_t m = 0; m < levels.size(); ++m) {
-        const rg::Image& l = *levels[m];
-        for (size_t i = 0; i < size_t(l.width) * l.height; ++i)
-            for (uint32_t c = 0; c < 4; ++c) {
-                float v = c < l.channels ? l.pixels[i * l.channels + c] : 1.0f;
-                dst[offset + i * 4 + c] =
-                    static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
-            }
-        VkBufferImageCopy r{};
-        r.bufferOffset = offset;
-        r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m, 0, 1};
-        r.imageExtent = {l.width, l.height, 1};
-        regions.push_back(r);
-        offset += size_t(l.width) * l.height * 4;
-    }
+    for (uint32_t layer = 0; layer < layers.size(); ++layer)
+        for (uint32_t m = 0; m < layers[layer].size(); ++m) {
+            const rg::Image& l = *layers[layer][m];
+            for (size_t i = 0; i < size_t(l.width) * l.height; ++i)
+                for (uint32_t c = 0; c < 4; ++c) {
+                    float v = c < l.channels ? l.pixels[i * l.channels + c] : 1.0f;
+                    dst[offset + i * 4 + c] =
+                        static_cast<uint8_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+                }
+            VkBufferImageCopy r{};
+            r.bufferOffset = offset;
+            r.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, m, layer, 1};
+            r.imageExtent = {l.width, l.height, 1};
+            regions.push_back(r);
+            offset += size_t(l.width) * l.height * 4;
+        }
     if (auto sub = copyToImage(ctx, img->image(), *staging, regions); !sub)
         return std::unexpected(sub.error());
     return img;
@@ -121,7 +128,7 @@ Result<gpu::Image> uploadRgba8(Context& ctx, const std::string& name, bool srgb,
 Result<gpu::Image> solidTexture(Context& ctx, const std::string& name, glm::vec4 value) {
     rg::Image pixel(1, 1, 4);
     for (int c = 0; c < 4; ++c) pixel.pixels[static_cast<size_t>(c)] = value[c];
-    return uploadRgba8(ctx, name, false, {&pixel});
+    return uploadRgba8(ctx, name, false, {{&pixel}});
 }
 
 // Half-float bits of a value half precision holds exactly (0, ±2^-14..65504 with 10 mantissa bits).
@@ -145,6 +152,7 @@ Result<gpu::Image> solidHalfTexture(Context& ctx, const std::string& name, glm::
     d.name = name;
     d.format = Format::RGBA16F;
     d.width = d.height = 1;
+    d.array = true;  // as the scene's textures (lib/material.glsl's sampler2DArray)
     d.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     auto img = gpu::Image::create(ctx, d);
     if (!img) return std::unexpected(img.error());
@@ -237,6 +245,16 @@ Result<gpu::Image> uploadLightmap(Context& ctx, const Lightmap* lm, ContentHash&
 }  // namespace
 
 Result<void> GpuScene::uploadImages(Context& ctx) {
+    // The scene's images as layers of 2-D array images, one array per shape — size, mip count and
+    // encoding — of at most maxImageArrayLayers: a material's textures are (array, layer), so
+    // materials whose textures differ only in layer share a texture set and a draw call (lavapipe
+    // has no descriptor indexing for one array of every texture).
+    const uint32_t maxLayers = std::max(ctx.properties().limits.maxImageArrayLayers, 1u);
+    std::map<std::tuple<uint32_t, uint32_t, size_t, bool>, uint32_t> open;  // shape → array
+    std::vector<std::vector<std::vector<const rg::Image*>>> arrays;  // per array: layers' levels
+    std::vector<std::string> names;
+    std::vector<bool> srgb;  // per array
+    m_imageLayer.clear();
     for (const SceneImage& si : m_scene.images) {
         std::vector<const rg::Image*> levels;
         for (uint32_t m = 0; m < std::max(1u, si.mipLevels); ++m) {
@@ -252,9 +270,23 @@ Result<void> GpuScene::uploadImages(Context& ctx) {
             m_staticHash.u64(level->channels);
             m_staticHash.bytes(level->pixels.data(), level->pixels.size() * sizeof(float));
         }
-        auto img = uploadRgba8(ctx, "scene." + si.name, si.srgb, levels);
+        const auto shape = std::tuple(levels[0]->width, levels[0]->height, levels.size(), si.srgb);
+        auto at = open.find(shape);
+        if (at == open.end() || arrays[at->second].size() >= maxLayers) {
+            at = open.insert_or_assign(shape, static_cast<uint32_t>(arrays.size())).first;
+            arrays.emplace_back();
+            names.push_back("scene.textures" + std::to_string(arrays.size() - 1) + "." +
+                            std::to_string(levels[0]->width) + "x" +
+                            std::to_string(levels[0]->height) + (si.srgb ? ".srgb" : ""));
+            srgb.push_back(si.srgb);
+        }
+        m_imageLayer.push_back({at->second, static_cast<uint32_t>(arrays[at->second].size())});
+        arrays[at->second].push_back(std::move(levels));
+    }
+    for (size_t a = 0; a < arrays.size(); ++a) {
+        auto img = uploadRgba8(ctx, names[a], srgb[a], arrays[a]);
         if (!img) return std::unexpected(img.error());
-        m_images.push_back(std::move(*img));
+        m_textureArrays.push_back(std::move(*img));
     }
     auto white = solidTexture(ctx, "scene.white", glm::vec4(1.0f));
     if (!white) return std::unexpected(white.error());
@@ -309,12 +341,14 @@ void GpuScene::assignTextureSets() {
         refs.resize(kMaterialTextures, &none);
         std::vector<std::pair<int32_t, int32_t>> slots;
         for (const TextureRef* ref : refs) {
-            const bool image = ref->image >= 0 && size_t(ref->image) < m_scene.images.size();
+            const bool image = ref->image >= 0 && size_t(ref->image) < m_imageLayer.size();
             const bool sampler =
                 ref->sampler >= 0 && size_t(ref->sampler) < m_scene.samplers.size();
-            // A slot the material names a texture for but whose image is missing keeps its own
-            // key (−2): the material's shader variant still samples it (the default's texels).
-            slots.emplace_back(image ? ref->image : (ref->valid() ? -2 : -1),
+            // The image's array (its layer is the material's parameter); a slot the material
+            // names a texture for but whose image is missing keeps its own key (−2): the
+            // material's shader variant still samples it (the default's texels).
+            slots.emplace_back(image ? static_cast<int32_t>(m_imageLayer[size_t(ref->image)].first)
+                                     : (ref->valid() ? -2 : -1),
                                sampler ? ref->sampler : -1);
         }
         auto [at, added] = setOf.emplace(slots, static_cast<uint32_t>(m_textureSetSlots.size()));
@@ -331,7 +365,7 @@ Result<void> GpuScene::createMaterials(Context& ctx) {
     for (uint32_t b = 1; b <= kMaterialTextures; ++b)
         bindings.push_back({b, VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 1,
                             VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
-    bindings.push_back({kMaterialTextures + 1, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1,
+    bindings.push_back({kMaterialTextures + 1, VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 1,
                         VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, nullptr});
     VkDescriptorSetLayoutCreateInfo li{VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO};
     li.bindingCount = static_cast<uint32_t>(bindings.size());
@@ -363,7 +397,11 @@ Result<void> GpuScene::createMaterials(Context& ctx) {
             const glm::mat3& x = refs[t]->transform;  // column-major: x[col][row]
             u.uvTransform[2 * t] =
                 glm::vec4(x[0][0], x[1][0], x[2][0], static_cast<float>(refs[t]->texCoord));
-            u.uvTransform[2 * t + 1] = glm::vec4(x[0][1], x[1][1], x[2][1], 0.0f);
+            // w of the second row: the image's layer in its array (uploadImages).
+            const bool image = refs[t]->image >= 0 && size_t(refs[t]->image) < m_imageLayer.size();
+            u.uvTransform[2 * t + 1] = glm::vec4(
+                x[0][1], x[1][1], x[2][1],
+                image ? static_cast<float>(m_imageLayer[size_t(refs[t]->image)].second) : 0.0f);
         }
         // Game-team parameters: the material's extra numbers, in key order.
         size_t slot = 0;
@@ -378,36 +416,47 @@ Result<void> GpuScene::createMaterials(Context& ctx) {
             m_staticHash.u64(static_cast<uint64_t>(static_cast<int64_t>(ref->sampler)));
         }
     }
-    const VkDeviceSize bytes = uniforms.size() * sizeof(MaterialUniforms);
-    if (auto r = checkStorageRange(ctx, "its materials' parameters", bytes); !r) return r;
-    auto buf =
-        Buffer::create(ctx, "scene.materials", bytes, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT, true);
-    if (!buf) return std::unexpected(buf.error());
-    std::memcpy(buf->mapped(), uniforms.data(), bytes);
-    m_materialBuffer = std::move(*buf);
-    // The same, one a window at the device's uniform offset alignment.
+    // The parameters twice, in uniform buffers (on lavapipe a storage buffer's loads in a fragment
+    // shader skip its helper invocations, whose texture derivatives then went wrong: sparkles along
+    // triangle edges): one material a window at the device's offset alignment, for the CPU's
+    // draws (bound at the material: its loads uniform over the draw); and runs of
+    // materialWindow() materials (a uniform block's range), each window at the alignment, for the
+    // GPU's draws (bound at the run's window, read at the instance's index within it).
     const auto align =
         std::max<VkDeviceSize>(ctx.properties().limits.minUniformBufferOffsetAlignment, 1);
-    m_materialStride =
-        static_cast<uint32_t>((sizeof(MaterialUniforms) + align - 1) / align * align);
-    auto windows = Buffer::create(ctx, "scene.material_windows",
-                                  VkDeviceSize(m_materialStride) * uniforms.size(),
-                                  VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
-    if (!windows) return std::unexpected(windows.error());
-    for (size_t i = 0; i < uniforms.size(); ++i)
-        std::memcpy(static_cast<uint8_t*>(windows->mapped()) + i * m_materialStride, &uniforms[i],
+    auto aligned = [&](VkDeviceSize b) { return (b + align - 1) / align * align; };
+    m_materialStride = static_cast<uint32_t>(aligned(sizeof(MaterialUniforms)));
+    m_windowStride =
+        static_cast<uint32_t>(aligned(VkDeviceSize(m_materialWindow) * sizeof(MaterialUniforms)));
+    const size_t windows = (uniforms.size() + m_materialWindow - 1) / m_materialWindow;
+    auto one =
+        Buffer::create(ctx, "scene.materials", VkDeviceSize(m_materialStride) * uniforms.size(),
+                       VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+    if (!one) return std::unexpected(one.error());
+    auto runs =
+        Buffer::create(ctx, "scene.material_windows", VkDeviceSize(m_windowStride) * windows,
+                       VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+    if (!runs) return std::unexpected(runs.error());
+    std::memset(runs->mapped(), 0, VkDeviceSize(m_windowStride) * windows);
+    for (size_t i = 0; i < uniforms.size(); ++i) {
+        std::memcpy(static_cast<uint8_t*>(one->mapped()) + i * m_materialStride, &uniforms[i],
                     sizeof(MaterialUniforms));
-    m_materialWindows = std::move(*windows);
+        std::memcpy(static_cast<uint8_t*>(runs->mapped()) +
+                        (i / m_materialWindow) * m_windowStride +
+                        (i % m_materialWindow) * sizeof(MaterialUniforms),
+                    &uniforms[i], sizeof(MaterialUniforms));
+    }
+    m_materialBuffer = std::move(*one);
+    m_materialWindows = std::move(*runs);
 
-    // One descriptor set per texture set: a material's window, its textures, every material.
+    // One descriptor set per texture set: a material, its textures, a window of materials.
     const auto count = static_cast<uint32_t>(m_textureSetSlots.size());
     VkDescriptorPoolSize sizes[] = {
-        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, count},
-        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, count * kMaterialTextures},
-        {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, count}};
+        {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC, 2 * count},
+        {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, count * kMaterialTextures}};
     VkDescriptorPoolCreateInfo pi{VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO};
     pi.maxSets = count;
-    pi.poolSizeCount = 3;
+    pi.poolSizeCount = 2;
     pi.pPoolSizes = sizes;
     VkDescriptorPool pool = VK_NULL_HANDLE;
     RG_VK_TRY(vkCreateDescriptorPool(dev, &pi, nullptr, &pool));
@@ -421,8 +470,9 @@ Result<void> GpuScene::createMaterials(Context& ctx) {
     RG_VK_TRY(vkAllocateDescriptorSets(dev, &ai, m_textureSets.data()));
 
     for (uint32_t i = 0; i < count; ++i) {
-        VkDescriptorBufferInfo window{m_materialWindows.buffer(), 0, sizeof(MaterialUniforms)};
-        VkDescriptorBufferInfo all{m_materialBuffer.buffer(), 0, VK_WHOLE_SIZE};
+        VkDescriptorBufferInfo one{m_materialBuffer.buffer(), 0, sizeof(MaterialUniforms)};
+        VkDescriptorBufferInfo window{m_materialWindows.buffer(), 0,
+                                      VkDeviceSize(m_materialWindow) * sizeof(MaterialUniforms)};
         VkDescriptorImageInfo ii[kMaterialTextures];
         VkWriteDescriptorSet writes[kMaterialTextures + 2];
         writes[0] = {VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
@@ -430,14 +480,14 @@ Result<void> GpuScene::createMaterials(Context& ctx) {
         writes[0].dstBinding = 0;
         writes[0].descriptorCount = 1;
         writes[0].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC;
-        writes[0].pBufferInfo = &window;
+        writes[0].pBufferInfo = &one;
         writes[kMaterialTextures + 1] = writes[0];
         writes[kMaterialTextures + 1].dstBinding = kMaterialTextures + 1;
-        writes[kMaterialTextures + 1].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        writes[kMaterialTextures + 1].pBufferInfo = &all;
+        writes[kMaterialTextures + 1].descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER_DYNAMIC;
+        writes[kMaterialTextures + 1].pBufferInfo = &window;
         for (uint32_t t = 0; t < kMaterialTextures; ++t) {
             const auto [image, sampler] = m_textureSetSlots[i][t];
-            VkImageView view = image >= 0 ? m_images[static_cast<size_t>(image)].view()
+            VkImageView view = image >= 0 ? m_textureArrays[static_cast<size_t>(image)].view()
                                           : (t == 2 ? m_flatNormal.view() : m_white.view());
             VkSampler s = sampler >= 0 ? m_samplers[static_cast<size_t>(sampler)].get()
                                        : m_defaultSampler.get();
@@ -455,9 +505,16 @@ Result<void> GpuScene::createMaterials(Context& ctx) {
 }
 
 void GpuScene::bindMaterial(VkCommandBuffer cmd, VkPipelineLayout layout, uint32_t material) const {
-    VkDescriptorSet set = m_textureSets[m_materialTextureSet[material]];
-    const uint32_t offset = material * m_materialStride;
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &set, 1, &offset);
+    bindTextureSet(cmd, layout, m_materialTextureSet[material], material);
+}
+
+void GpuScene::bindTextureSet(VkCommandBuffer cmd, VkPipelineLayout layout, uint32_t set,
+                              uint32_t material) const {
+    VkDescriptorSet ds = m_textureSets[set];
+    // Binding 0's, then binding 9's (dynamic offsets go in binding order).
+    const uint32_t offsets[2] = {material * m_materialStride,
+                                 material / m_materialWindow * m_windowStride};
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, layout, 1, 1, &ds, 2, offsets);
 }
 
 }  // namespace rg::passes

@@ -16,7 +16,8 @@ void GpuScene::writeTransform(glm::vec4* out, size_t d, const glm::mat4& previou
     const DrawItem& item = m_draws[d];
     for (int c = 0; c < 4; ++c) out[c] = item.world[c];
     for (int c = 0; c < 3; ++c) out[4 + c] = item.normalMatrix[c];
-    out[4].w = std::bit_cast<float>(item.material);  // scene.vert: lib/material.glsl's index
+    // scene.vert: the material's index in its window (lib/material.glsl's RG_MATERIAL_WINDOW).
+    out[4].w = std::bit_cast<float>(item.material % m_materialWindow);
     out[7] = item.lightmapRect;
     for (int c = 0; c < 4; ++c) out[8 + c] = previous[c];
 }

@@ -1,9 +1,9 @@
 // The `scene` pass kind: draws the scene's primitives into the pass's attachments, one pipeline
 // per pipeline material (Lua rg.material) whose fragment shader rgraph generates from the
 // material's G-buffer layout and its GLSL surface function; set 1 per texture set that materials
-// share, a material's parameters at a dynamic offset or, drawn from the GPU's lists, every
-// material's by index (lavapipe has no descriptor indexing, so textures are not indexed); the
-// stencil buffer gets each material's stencil class.
+// share (arrays of the scene's images by shape: lavapipe has no descriptor indexing), a
+// material's parameters at a dynamic offset or, drawn from the GPU's lists, a window of
+// materials' read by index; the stencil buffer gets each material's stencil class.
 // This file holds the kind (its schema and ScenePass, which picks the mode), what every mode draws
 // with (SceneDraws), and the modes that draw from the camera: the G-buffer and forward passes.
 #include <algorithm>
@@ -171,6 +171,8 @@ Result<void> SceneDraws::addGroup(PassSetup& setup, const PassMaterial& info,
     if (m_cameraInstances) {
         vert.defines.emplace_back("RG_CAMERA_INSTANCES", "1");
         frag.defines.emplace_back("RG_CAMERA_INSTANCES", "1");  // the material per instance
+        frag.defines.emplace_back("RG_MATERIAL_WINDOW",
+                                  std::to_string(sceneOf(setup)->materialWindow()));
     }
     frag.defines.emplace_back("RG_TEXTURES", std::to_string(textures & kTextureBits));
     frag.defines.emplace_back("RG_ALPHA_MASK", (textures & kAlphaMaskVariant) ? "1" : "0");
@@ -524,11 +526,8 @@ void GBufferScenePass::recordIndirect(RecordContext& rc) {
             if (run.commands == 0 || end > commands->plan->bufferSize ||
                 VkDeviceSize(r + 1) * 4 > counts->plan->bufferSize)
                 continue;  // a buffer without room for the scene's batches: sized for another
-            // The run's textures; its materials' parameters by index (lib/material.glsl).
-            const uint32_t anyOffset = 0;
-            VkDescriptorSet set = scene.textureSetDescriptors(run.textureSet);
-            vkCmdBindDescriptorSets(rc.cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, g.program->layout(), 1,
-                                    1, &set, 1, &anyOffset);
+            // The run's textures and window of materials (lib/material.glsl: read by index).
+            scene.bindTextureSet(rc.cmd, g.program->layout(), run.textureSet, run.firstMaterial);
             vkCmdSetCullMode(rc.cmd, run.doubleSided ? VK_CULL_MODE_NONE : VK_CULL_MODE_BACK_BIT);
             const VkDeviceSize offset = VkDeviceSize(run.firstCommand) * kIndirectCommandBytes;
             if (rc.gpu.drawIndirectCount() &&

@@ -56,7 +56,7 @@ function culling.declare()
     rg.buffer "camera_instances" { size = 4, scene_count = "draws", count_bytes = 4 * 4, only_when = when,
         doc = "the draws each of camera_draws' commands draws: a draw index per instance, a region per level of detail" }
     rg.buffer "camera_draw_counts" { size = 4, scene_count = "camera_runs", count_bytes = 4, only_when = when,
-        doc = "per camera run (the materials of one pipeline, cull mode and texture set), how many of its range of camera_draws' commands the G-buffer draws" }
+        doc = "per camera run (the materials of one pipeline, cull mode, texture set and window of parameters), how many of its range of camera_draws' commands the G-buffer draws" }
     rg.buffer "camera_early_draws" { size = 20, scene_count = "camera_batches", count_bytes = 4 * 20, only_when = culling.occluding,
         doc = "the first phase's commands (gbuffer_early): the draws that showed last frame, as camera_draws" }
     rg.buffer "camera_early_counts" { size = 4, scene_count = "camera_runs", count_bytes = 4, only_when = culling.occluding,

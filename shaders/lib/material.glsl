@@ -11,18 +11,22 @@ struct RgMaterialData {
     vec4 factors2;          // normalScale, occlusionStrength, alphaCutoff, alphaMode (0 opaque, 1 mask, 2 blend)
     vec4 diffuseColor;      // two-colour model (tbl:3); w: 1 for a two-colour material
     vec4 f0;                // two-colour model
-    vec4 uvTransform[16];   // per texture (5 standard, 3 of the model's own): two rows of the affine uv matrix; w of the first row: texCoord
+    vec4 uvTransform[16];   // per texture (5 standard, 3 of the model's own): two rows of the affine uv matrix; w of the first row: texCoord, of the second: the image's layer
     vec4 custom[4];         // game-team material parameters, in declaration order
 };
-// The draw's material. Drawn by the CPU (one material a draw, instanced or not): its own window
-// of the scene's materials, a uniform block bound at the material's offset. Drawn from the GPU's
-// instance lists (RG_CAMERA_INSTANCES: one call draws a camera run of many materials,
-// GpuScene::CameraRun): every material in a storage buffer, read at the instance's material, which
-// scene.vert passes flat — a load per fragment where the uniform block's is once per draw (on
-// lavapipe the G-buffer's ~20 ms grows by ~3, README "GPU-driven culling"; on a GPU such loads
-// are uniform over the draw).
+// The draw's material. Drawn by the CPU (one material a draw, instanced or not): the material's
+// own window of the scene's materials, bound at its offset (binding 0), so its loads are uniform
+// over the draw. Drawn from the GPU's instance lists (RG_CAMERA_INSTANCES: one call draws a camera
+// run of many materials, GpuScene::CameraRun): the run's window of RG_MATERIAL_WINDOW materials
+// (binding 9), read at the instance's index within it, which scene.vert passes flat. Both are
+// uniform blocks: lavapipe (Mesa 22.3) leaves a storage buffer's loads out of a fragment shader's
+// helper invocations, whose texture derivatives then read zeros (sparkles along triangle edges),
+// and its storage-buffer loads cost the G-buffer ~3 ms more at 1280×720 than a uniform block's.
 #ifdef RG_CAMERA_INSTANCES
-layout(set = 1, binding = 9, std430) readonly buffer SceneMaterials { RgMaterialData m[]; } rgMaterials;
+#ifndef RG_MATERIAL_WINDOW
+#define RG_MATERIAL_WINDOW 39  // 16 KiB, every device's maxUniformBufferRange
+#endif
+layout(set = 1, binding = 9, std140) uniform MaterialWindow { RgMaterialData m[RG_MATERIAL_WINDOW]; } rgMaterials;
 layout(location = 9) flat in uint rgMaterialIndex;
 // `material.NAME`: the draw's parameters, as surface functions read them.
 #define material rgMaterials.m[rgMaterialIndex]
@@ -30,17 +34,19 @@ layout(location = 9) flat in uint rgMaterialIndex;
 layout(set = 1, binding = 0, std140) uniform MaterialData { RgMaterialData data; } rgMaterial;
 #define material rgMaterial.data
 #endif
-layout(set = 1, binding = 1) uniform sampler2D baseColorTex;
-layout(set = 1, binding = 2) uniform sampler2D metallicRoughnessTex;
-layout(set = 1, binding = 3) uniform sampler2D normalTex;
-layout(set = 1, binding = 4) uniform sampler2D occlusionTex;
-layout(set = 1, binding = 5) uniform sampler2D emissiveTex;
+// The material's textures: each the array of its images' shape (size, mips, encoding), the image
+// one layer of it (rgTextureCoord) — materials whose images differ only in layer share these.
+layout(set = 1, binding = 1) uniform sampler2DArray baseColorTex;
+layout(set = 1, binding = 2) uniform sampler2DArray metallicRoughnessTex;
+layout(set = 1, binding = 3) uniform sampler2DArray normalTex;
+layout(set = 1, binding = 4) uniform sampler2DArray occlusionTex;
+layout(set = 1, binding = 5) uniform sampler2DArray emissiveTex;
 // The material model's own textures (rg.material's `textures`, in sorted name order): its surface
 // function reads texture i as NAME(s), which the generated shader defines as
 // rgMaterialTexture<i>(s) — white where the scene material has none.
-layout(set = 1, binding = 6) uniform sampler2D materialTexture0;
-layout(set = 1, binding = 7) uniform sampler2D materialTexture1;
-layout(set = 1, binding = 8) uniform sampler2D materialTexture2;
+layout(set = 1, binding = 6) uniform sampler2DArray materialTexture0;
+layout(set = 1, binding = 7) uniform sampler2DArray materialTexture1;
+layout(set = 1, binding = 8) uniform sampler2DArray materialTexture2;
 
 // What a surface function starts from: the material's parameters with its textures applied.
 struct RgSurface {
@@ -81,15 +87,17 @@ struct RgSurface {
 #define RG_ALPHA_MASK 0
 #endif
 
-vec2 rgTextureUv(int texture, vec2 uv0, vec2 uv1) {
+// Where texture `texture` of the material is read: its uv (the set it takes, transformed) and its
+// layer in the array of its shape (passes/gpu_scene_materials.cpp uploadImages).
+vec3 rgTextureCoord(int texture, vec2 uv0, vec2 uv1) {
     vec4 r0 = material.uvTransform[2 * texture], r1 = material.uvTransform[2 * texture + 1];
     vec2 uv = r0.w > 0.5 ? uv1 : uv0;
-    return vec2(dot(r0.xyz, vec3(uv, 1.0)), dot(r1.xyz, vec3(uv, 1.0)));
+    return vec3(dot(r0.xyz, vec3(uv, 1.0)), dot(r1.xyz, vec3(uv, 1.0)), r1.w);
 }
 
 // Texture `slot` of the material (bit `bit` of RG_TEXTURES), or its default when it has none.
 #define rgSampleMaterialTexture(tex, bit, slot, uv0, uv1, absent) \
-    (((RG_TEXTURES) & (bit)) != 0 ? texture(tex, rgTextureUv(slot, uv0, uv1)) : (absent))
+    (((RG_TEXTURES) & (bit)) != 0 ? texture(tex, rgTextureCoord(slot, uv0, uv1)) : (absent))
 
 // The material model's own texture i (0, 1, 2) at the surface's uv, white without one; whether the
 // scene material has it (a surface function reads it as NAME_present).
@@ -179,7 +187,7 @@ RgSurface rgSampleSurface(vec3 position, vec3 normal, vec4 tangent, vec2 uv0, ve
     // How much shorter than the base level's the filtered normal is (rgSpecularAntialiasing).
     float mapLength = 1.0;
 #if ((RG_TEXTURES) & 4) != 0
-    mapLength = min(length(m) / max(length(textureLod(normalTex, rgTextureUv(2, uv0, uv1), 0.0).xyz * 2.0 - 1.0), 1e-3), 1.0);
+    mapLength = min(length(m) / max(length(textureLod(normalTex, rgTextureCoord(2, uv0, uv1), 0.0).xyz * 2.0 - 1.0), 1e-3), 1.0);
 #endif
 #endif
     m.xy *= material.factors2.x;

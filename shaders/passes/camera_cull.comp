@@ -10,7 +10,7 @@
 // range and first instance. camera_instances: per level a region of one slot per draw, each
 // batch's run at its first slot (RgDraw.camera.y): instance k of a command is the draw at
 // firstInstance + k (scene.vert with RG_CAMERA_INSTANCES). camera_draw_counts (cleared first):
-// per camera run (RgDraw.info.y: the materials of one pipeline, cull mode and texture set,
+// per camera run (RgDraw.info.y: the materials of one pipeline, cull mode, texture set and window,
 // GpuScene::CameraRun) how many of its commands the G-buffer draws — a run's batches are
 // consecutive, so its commands are one range from its first batch's (RgDraw.camera.w: the draw's
 // batch's first command within that run), and the count is one past the last that has an instance
