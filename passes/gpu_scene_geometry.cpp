@@ -265,7 +265,10 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
         }
         if (auto r = perSlot(ctx, "scene.draws", words, m_drawBuffers); !r) return r;
         m_staticHash.bytes(words.data(), words.size() * sizeof(glm::vec4));
-        for (const DrawItem& item : m_draws) m_staticHash.bytes(&item.world, sizeof item.world);
+        for (const DrawItem& item : m_draws) {
+            m_staticHash.bytes(&item.world, sizeof item.world);
+            m_staticHash.u64(item.material);  // SceneDraws holds its run, not its material
+        }
         for (const LineDrawItem& item : m_lineDraws) {
             const uint32_t words[] = {item.firstIndex, item.indexCount,
                                       static_cast<uint32_t>(item.vertexOffset), item.material,

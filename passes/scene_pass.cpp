@@ -386,7 +386,7 @@ Result<void> GBufferScenePass::prepareDraws(PassSetup& setup) {
         return fail(ErrorCode::InvalidInput,
                     passPrefix(desc) +
                         "params.indirect and params.indirect_count: give both (the commands "
-                        "and the count of each material's) or neither");
+                        "and the count of each camera run's) or neither");
     m_indirect.clear();
     m_indirectCount.clear();
     m_cameraInstances =
@@ -499,7 +499,7 @@ void GBufferScenePass::recordDraws(RecordContext& rc) {
 }
 
 // Per group (pipeline) its camera runs (GpuScene::CameraRun: the batches of its materials that
-// share a cull mode and texture set, whatever their material parameters), each one range of
+// share a cull mode, texture set and window of parameters, whatever the parameters), each one range of
 // commands: as many as the culling pass counted (vkCmdDrawIndexedIndirectCount; every one of the
 // run, one a call, where the device lacks it or the run is longer than its maxDrawIndirectCount —
 // a command without instances draws nothing). The order is the batches', not front to back: the
@@ -722,11 +722,12 @@ PassKindInfo scenePassKind() {
              {"indirect", "string",
               "the G-buffer mode: a buffer it reads as { NAME, as = 'indirect' } holding a "
               "VkDrawIndexedIndirectCommand per camera batch (a mesh and material) and level of "
-              "detail, each material's batches one run, written by a culling pass such as "
-              "passes/camera_cull.comp with the instances each draws (a buffer it reads as "
+              "detail, each camera run's batches (the materials of one pipeline, cull mode, "
+              "texture set and window of parameters) one range, written by a culling pass such "
+              "as passes/camera_cull.comp with the instances each draws (a buffer it reads as "
               "storage `camera_instances`; scene.vert gets RG_CAMERA_INSTANCES): one indirect "
-              "draw per material and pipeline (scripts/culling.lua); without the read, the CPU "
-              "culls and batches the draws. "
+              "draw per camera run (scripts/culling.lua); without the read, the CPU culls and "
+              "batches the draws. "
               "shadow: a buffer the pass reads as { NAME, as = 'indirect' } holding a "
               "VkDrawIndexedIndirectCommand per view, caster batch (GpuScene::shadowBatches) "
               "and level of detail (view-major), written by a culling pass such as "
@@ -738,7 +739,7 @@ PassKindInfo scenePassKind() {
               "first phase: bind = { camera_instances = 'camera_early_instances' })"},
              {"indirect_count", "string",
               "the G-buffer mode, with indirect: a buffer it reads as { NAME, as = 'indirect' } "
-              "holding per material how many of its run of commands to draw "
+              "holding per camera run how many of its range of commands to draw "
               "(vkCmdDrawIndexedIndirectCount)"},
              {"view", "list",
               "shadow: { first, count }: the target's layer l is view first + l of count (its "

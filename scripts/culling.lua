@@ -4,9 +4,10 @@
 -- level of detail the camera takes, gbuffer_early draws them, camera_hiz builds the pyramid of the
 -- farthest depth they left, and camera_cull tests every draw in the frustum against it: the ones
 -- that may show and were not drawn first are drawn by the G-buffer pass over gbuffer_early's
--- targets, and each draw's answer is kept for the next frame. Each phase draws each material's
--- commands with vkCmdDrawIndexedIndirectCount — the CPU records one draw per material and pipeline
--- whatever the scene's size, and no longer walks the draws each frame.
+-- targets, and each draw's answer is kept for the next frame. Each phase draws each camera run's
+-- commands (the materials of one pipeline, cull mode, texture set and window of parameters) with
+-- vkCmdDrawIndexedIndirectCount — the CPU records one draw per run whatever the scene's size, and
+-- no longer walks the draws each frame.
 --
 --   local culling = require "culling"
 --   culling.declare()                     -- render_loop.lua does

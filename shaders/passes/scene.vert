@@ -36,8 +36,8 @@ layout(push_constant) uniform Draw {
     vec4 lightmapRect;     // atlas uv = uv1 * xy + zw (0: no lightmap)
 } draw;
 
-// Per draw: world's four columns, the normal matrix's three (the first's w: the material, uint
-// bits), the lightmap rect, the last frame's world (RG_TRANSFORM_WORDS, passes/gpu_scene.h).
+// Per draw: world's four columns, the normal matrix's three (the first's w: the material's index in
+// its window, uint bits: lib/material.glsl), the lightmap rect, the last frame's world (RG_TRANSFORM_WORDS, passes/gpu_scene.h).
 #ifndef RG_TRANSFORMS_BINDING
 #define RG_TRANSFORMS_BINDING 34
 #endif
