@@ -136,6 +136,10 @@ Result<std::unique_ptr<GpuScene>> GpuScene::create(Context& ctx, Scene scene,
     // RG_INSTANCING=0: every camera draw on its own (to compare: the image is the same).
     const char* instancingEnv = std::getenv("RG_INSTANCING");
     s->m_instancing = !(instancingEnv && std::string_view(instancingEnv) == "0");
+    // RG_TEXTURE_ARRAY_BYTES=N: texture arrays close at N bytes rather than 256 MiB (to compare:
+    // the image is the same with every image an array of its own).
+    if (const char* arrayEnv = std::getenv("RG_TEXTURE_ARRAY_BYTES"))
+        s->m_textureArrayBytes = std::max<size_t>(std::strtoull(arrayEnv, nullptr, 10), 1);
     // A window of materials: as many as a uniform block of the device's range holds (64 KiB at
     // most, the std140 array's 416-byte elements).
     s->m_materialWindow = std::max<uint32_t>(

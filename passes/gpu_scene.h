@@ -384,7 +384,8 @@ private:
     // (array, layer).
     std::vector<gpu::Image> m_textureArrays;
     std::vector<std::pair<uint32_t, uint32_t>> m_imageLayer;
-    gpu::Image m_white, m_flatNormal;  // defaults for missing textures
+    size_t m_textureArrayBytes = size_t(256) << 20;  // an array's most (RG_TEXTURE_ARRAY_BYTES)
+    gpu::Image m_white, m_flatNormal;                // defaults for missing textures
     gpu::Image m_environment;
     EnvironmentCdf
         m_environmentCdf;  // of the uploaded image (a 1x1 black one without an environment)

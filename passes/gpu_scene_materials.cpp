@@ -246,12 +246,12 @@ Result<gpu::Image> uploadLightmap(Context& ctx, const Lightmap* lm, ContentHash&
 
 Result<void> GpuScene::uploadImages(Context& ctx) {
     // The scene's images as layers of 2-D array images, one array per shape — size, mip count and
-    // encoding — of at most maxImageArrayLayers and kArrayBytes (an array is staged whole, and
-    // one image of it must stay far below any device's maxResourceSize, 2 GiB at least): a
+    // encoding — of at most maxImageArrayLayers and 256 MiB (m_textureArrayBytes: an array is
+    // staged whole, and one image of it must stay far below any device's maxResourceSize, 2 GiB
+    // at least): a
     // material's textures are (array, layer), so materials whose textures differ only in layer
     // share a texture set and a draw call (lavapipe has no descriptor indexing for one array of
     // every texture).
-    constexpr size_t kArrayBytes = size_t(256) << 20;
     const uint32_t maxLayers = std::max(ctx.properties().limits.maxImageArrayLayers, 1u);
     std::vector<size_t> arrayBytes;  // per array, its layers' RGBA8 texels
     std::map<std::tuple<uint32_t, uint32_t, size_t, bool>, uint32_t> open;  // shape → array
@@ -280,7 +280,8 @@ Result<void> GpuScene::uploadImages(Context& ctx) {
             layerBytes += size_t(level->width) * level->height * 4;
         auto at = open.find(shape);
         if (at == open.end() || arrays[at->second].size() >= maxLayers ||
-            (arrayBytes[at->second] > 0 && arrayBytes[at->second] + layerBytes > kArrayBytes)) {
+            (arrayBytes[at->second] > 0 &&
+             arrayBytes[at->second] + layerBytes > m_textureArrayBytes)) {
             at = open.insert_or_assign(shape, static_cast<uint32_t>(arrays.size())).first;
             arrays.emplace_back();
             names.push_back("scene.textures" + std::to_string(arrays.size() - 1) + "." +

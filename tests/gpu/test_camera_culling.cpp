@@ -382,7 +382,8 @@ TEST_F(GpuCulling, ManyMaterialsDrawInOneCallPerPipelineCullModeAndTextures) {
         Image hdr;
         std::vector<uint8_t> counts;
         std::vector<std::array<float, 4>> colourSmoothness;  // per box, its top's centre; the lid
-        size_t runs = 0;
+        size_t sets = 0, runs = 0;
+        uint32_t window = 0;
     };
     auto render = [&](bool gpu) {
         Frame f;
@@ -395,14 +396,9 @@ TEST_F(GpuCulling, ManyMaterialsDrawInOneCallPerPipelineCullModeAndTextures) {
         if (!r || !s.frame()) return f;
         const passes::GpuScene& scene = *s.gpuScene();
         EXPECT_EQ(scene.scene().materials.size(), 176u);
-        EXPECT_EQ(scene.textureSetCount(), 4u)
-            << "none; a.png and b.png's array; c.png's; the ground's";
-        // Window 0 (materials 0-156): the ground; boxes 0-5, untextured, both cull modes. Window
-        // 1: boxes 6-23 and the lid — untextured and 4×4 both cull modes, 8×8 single-sided.
-        if (scene.materialWindow() == 157) {
-            EXPECT_EQ(scene.cameraRuns().size(), 8u);
-        }
+        f.sets = scene.textureSetCount();
         f.runs = scene.cameraRuns().size();
+        f.window = scene.materialWindow();
         for (const char* t : targets) {
             auto img = rt().executor().readback(t);
             EXPECT_TRUE(img.has_value()) << t;
@@ -439,8 +435,22 @@ TEST_F(GpuCulling, ManyMaterialsDrawInOneCallPerPipelineCullModeAndTextures) {
     };
     const Frame gpu = render(true);
     const Frame cpu = render(false);
+    // Every image an array of its own (arrays closed at 80 bytes, below one 4×4 image's 84).
+    setenv("RG_TEXTURE_ARRAY_BYTES", "80", 1);
+    const Frame split = render(true);
+    unsetenv("RG_TEXTURE_ARRAY_BYTES");
     ASSERT_EQ(gpu.gbuffer.size(), 4u);
     ASSERT_EQ(cpu.gbuffer.size(), 4u);
+    ASSERT_EQ(split.gbuffer.size(), 4u);
+    EXPECT_EQ(gpu.sets, 4u) << "none; a.png and b.png's array; c.png's; the ground's";
+    EXPECT_EQ(split.sets, 5u) << "a.png and b.png apart";
+    // Window 0 (materials 0-156): the ground; boxes 0-5, untextured, both cull modes. Window 1:
+    // boxes 6-23 and the lid — untextured and 4×4 both cull modes, 8×8 single-sided; split, a.png
+    // and b.png both cull modes each.
+    if (gpu.window == 157) {
+        EXPECT_EQ(gpu.runs, 8u);
+        EXPECT_EQ(split.runs, 10u);
+    }
     // The GPU's path: a count per camera run (each has draws in view), the rest of the buffer 0.
     size_t counted = 0;
     for (size_t k = 0; k + 4 <= gpu.counts.size(); k += 4) {
@@ -471,9 +481,12 @@ TEST_F(GpuCulling, ManyMaterialsDrawInOneCallPerPipelineCullModeAndTextures) {
             EXPECT_NEAR(v[3], 0.2f + float(i) / 40.0f, 0.5f / 1023 + 1e-5f) << "box " << i;
         }
     }
-    for (size_t t = 0; t < 4; ++t)
+    for (size_t t = 0; t < 4; ++t) {
         EXPECT_EQ(valuesThatDiffer(gpu.gbuffer[t], cpu.gbuffer[t]), 0u) << targets[t];
+        EXPECT_EQ(valuesThatDiffer(split.gbuffer[t], gpu.gbuffer[t]), 0u) << targets[t];
+    }
     EXPECT_EQ(valuesThatDiffer(gpu.hdr, cpu.hdr), 0u);
+    EXPECT_EQ(valuesThatDiffer(split.hdr, gpu.hdr), 0u);
 }
 
 }  // namespace
