@@ -1,7 +1,7 @@
 // The scene on the GPU: one vertex and one index buffer for every primitive, the images with
 // their mip chains as layers of arrays by shape, every material's parameters in uniform buffers
-// and a descriptor set per set of texture arrays materials share (set 1 of scene draws, see shaders/lib/material.glsl), and per
-// frame slot the camera uniforms and the light list
+// and a descriptor set per set of texture arrays materials share (set 1 of scene draws, see
+// shaders/lib/material.glsl), and per frame slot the camera uniforms and the light list
 // (shaders/lib/scene.glsl's Lights block: the lights converted once here — cd, lux or cd/m², see
 // convertLights — followed by their baked IES profiles).
 // Defined in gpu_scene.cpp (creation, the frame, bindings), gpu_scene_geometry.cpp,
@@ -158,11 +158,12 @@ public:
     static constexpr const char* kDrawsExtent = "draws";
     static constexpr const char* kCameraRunsExtent = "camera_runs";
     // A camera run: the batches whose materials draw with one pipeline and one binding — the same
-    // pipeline material, alpha mode (so the same shader variant, with the texture set), cull mode,
-    // texture set (textureSet) and window of materials (materialWindow) — consecutive, so that their indirect commands (kMaxDrawLods
-    // a batch) are one range the G-buffer draws with one vkCmdDrawIndexedIndirectCount: the
-    // draws are grouped by pipeline and textures, not by material (each draw's material
-    // parameters come from the run's window of them, its textures' layers among them). Ordered by that key.
+    // pipeline material, alpha mode (so the same shader variant, with the texture set), cull
+    // mode, texture set (textureSet) and window of materials (materialWindow) — consecutive, so
+    // that their indirect commands (kMaxDrawLods a batch) are one range the G-buffer draws with
+    // one vkCmdDrawIndexedIndirectCount: the draws are grouped by pipeline and textures, not by
+    // material (each draw's parameters come from the run's window of them, its textures' layers
+    // among them). Ordered by that key.
     struct CameraRun {
         uint32_t firstCommand = 0, commands = 0;
         uint32_t textureSet = 0;
@@ -208,7 +209,6 @@ public:
     // materialWindow() materials' (binding 9, read by index; a dynamic offset too).
     uint32_t textureSet(uint32_t material) const { return m_materialTextureSet[material]; }
     uint32_t textureSetCount() const { return static_cast<uint32_t>(m_textureSets.size()); }
-    VkDescriptorSet textureSetDescriptors(uint32_t set) const { return m_textureSets[set]; }
     // Binds set 1 for a draw of `material` alone (its textures, its parameters' window).
     void bindMaterial(VkCommandBuffer cmd, VkPipelineLayout layout, uint32_t material) const;
     // Binds texture set `set` with the window of materials holding `material` (a camera run's).
@@ -365,8 +365,13 @@ private:
     GpuScene() = default;
     Result<void> uploadGeometry(gpu::Context& ctx);
     Result<void> uploadImages(gpu::Context& ctx);
-    // Each material's texture set (textureSet), from the scene alone.
+    // Each material's texture set (textureSet), from the scene and the images' arrays.
     void assignTextureSets();
+    // The (array, layer) of the image `ref` names, if the scene has it (uploadImages).
+    std::optional<std::pair<uint32_t, uint32_t>> imageLayer(const TextureRef& ref) const {
+        if (ref.image < 0 || size_t(ref.image) >= m_imageLayer.size()) return std::nullopt;
+        return m_imageLayer[size_t(ref.image)];
+    }
     Result<void> createMaterials(gpu::Context& ctx);
     Result<void> createFrameData(gpu::Context& ctx, const GpuSceneOptions& options);
     Result<void> createLightTables(gpu::Context& ctx, const GpuLightTable& table);

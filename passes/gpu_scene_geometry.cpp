@@ -152,8 +152,9 @@ Result<void> GpuScene::uploadGeometry(Context& ctx) {
     }
     // The camera's batches: the same mesh (vertex offset, full index range) and material,
     // ordered by their camera run (CameraRun: pipeline material, alpha mode, cull mode, texture
-    // set, window of materials), then material, then first draw, so that a run's batches are consecutive: its
-    // indirect commands one range for the GPU-culled G-buffer (RgDraw's `camera`).
+    // set, window of materials), then material, then first draw, so that a run's batches are
+    // consecutive: its indirect commands one range for the GPU-culled G-buffer (RgDraw's
+    // `camera`).
     std::vector<glm::uvec4> cameraWord(m_draws.size(), glm::uvec4(0));
     {
         std::map<std::tuple<int32_t, uint32_t, uint32_t, uint32_t>, uint32_t> batchOf;

@@ -34,6 +34,15 @@ constexpr uint32_t kMaterialTextures = 5 + kMaterialTextureSlots;
 static_assert(2 * kMaterialTextures <= 16);
 static_assert(kMaterialTextures + 1 == 9, "lib/material.glsl's MaterialWindow binding");
 
+// A material's texture references slot by slot: the five standard maps, then its model's own in
+// slot order; a slot without one: no texture.
+std::vector<const TextureRef*> slotRefs(const Material& m) {
+    static const TextureRef none;
+    std::vector<const TextureRef*> refs = m.textureRefs();
+    refs.resize(kMaterialTextures, &none);
+    return refs;
+}
+
 VkFilter toVk(Filter f) { return f == Filter::Nearest ? VK_FILTER_NEAREST : VK_FILTER_LINEAR; }
 VkSamplerAddressMode toVk(Wrap w) {
     switch (w) {
@@ -248,16 +257,18 @@ Result<void> GpuScene::uploadImages(Context& ctx) {
     // The scene's images as layers of 2-D array images, one array per shape — size, mip count and
     // encoding — of at most maxImageArrayLayers and 256 MiB (m_textureArrayBytes: an array is
     // staged whole, and one image of it must stay far below any device's maxResourceSize, 2 GiB
-    // at least): a
-    // material's textures are (array, layer), so materials whose textures differ only in layer
-    // share a texture set and a draw call (lavapipe has no descriptor indexing for one array of
-    // every texture).
+    // at least): a material's textures are (array, layer), so materials whose textures differ
+    // only in layer share a texture set and a draw call (lavapipe has no descriptor indexing for
+    // one array of every texture).
     const uint32_t maxLayers = std::max(ctx.properties().limits.maxImageArrayLayers, 1u);
-    std::vector<size_t> arrayBytes;  // per array, its layers' RGBA8 texels
+    struct Array {
+        std::string name;
+        bool srgb = false;
+        size_t bytes = 0;                                   // its layers' RGBA8 texels
+        std::vector<std::vector<const rg::Image*>> layers;  // each its levels
+    };
+    std::vector<Array> arrays;
     std::map<std::tuple<uint32_t, uint32_t, size_t, bool>, uint32_t> open;  // shape → array
-    std::vector<std::vector<std::vector<const rg::Image*>>> arrays;  // per array: layers' levels
-    std::vector<std::string> names;
-    std::vector<bool> srgb;  // per array
     m_imageLayer.clear();
     for (const SceneImage& si : m_scene.images) {
         std::vector<const rg::Image*> levels;
@@ -268,34 +279,34 @@ Result<void> GpuScene::uploadImages(Context& ctx) {
         if (levels.empty() || levels[0]->width == 0)
             return fail(ErrorCode::InvalidInput, "scene image '" + si.name + "' has no pixels");
         m_staticHash.u64(si.srgb);
+        size_t layerBytes = 0;
         for (const rg::Image* level : levels) {
             m_staticHash.u64(level->width);
             m_staticHash.u64(level->height);
             m_staticHash.u64(level->channels);
             m_staticHash.bytes(level->pixels.data(), level->pixels.size() * sizeof(float));
+            layerBytes += size_t(level->width) * level->height * 4;
         }
         const auto shape = std::tuple(levels[0]->width, levels[0]->height, levels.size(), si.srgb);
-        size_t layerBytes = 0;
-        for (const rg::Image* level : levels)
-            layerBytes += size_t(level->width) * level->height * 4;
         auto at = open.find(shape);
-        if (at == open.end() || arrays[at->second].size() >= maxLayers ||
-            (arrayBytes[at->second] > 0 &&
-             arrayBytes[at->second] + layerBytes > m_textureArrayBytes)) {
+        if (at == open.end() || arrays[at->second].layers.size() >= maxLayers ||
+            (arrays[at->second].bytes > 0 &&
+             arrays[at->second].bytes + layerBytes > m_textureArrayBytes)) {
             at = open.insert_or_assign(shape, static_cast<uint32_t>(arrays.size())).first;
-            arrays.emplace_back();
-            names.push_back("scene.textures" + std::to_string(arrays.size() - 1) + "." +
-                            std::to_string(levels[0]->width) + "x" +
-                            std::to_string(levels[0]->height) + (si.srgb ? ".srgb" : ""));
-            srgb.push_back(si.srgb);
-            arrayBytes.push_back(0);
+            arrays.push_back({"scene.textures" + std::to_string(arrays.size()) + "." +
+                                  std::to_string(levels[0]->width) + "x" +
+                                  std::to_string(levels[0]->height) + (si.srgb ? ".srgb" : ""),
+                              si.srgb,
+                              0,
+                              {}});
         }
-        arrayBytes[at->second] += layerBytes;
-        m_imageLayer.push_back({at->second, static_cast<uint32_t>(arrays[at->second].size())});
-        arrays[at->second].push_back(std::move(levels));
+        Array& array = arrays[at->second];
+        array.bytes += layerBytes;
+        m_imageLayer.push_back({at->second, static_cast<uint32_t>(array.layers.size())});
+        array.layers.push_back(std::move(levels));
     }
-    for (size_t a = 0; a < arrays.size(); ++a) {
-        auto img = uploadRgba8(ctx, names[a], srgb[a], arrays[a]);
+    for (const Array& array : arrays) {
+        auto img = uploadRgba8(ctx, array.name, array.srgb, array.layers);
         if (!img) return std::unexpected(img.error());
         m_textureArrays.push_back(std::move(*img));
     }
@@ -346,21 +357,17 @@ void GpuScene::assignTextureSets() {
     m_materialTextureSet.clear();
     m_textureSetSlots.clear();
     for (const Material& m : m_scene.materials) {
-        // The five standard maps, then the model's own textures in slot order (none: white).
-        const TextureRef none;
-        std::vector<const TextureRef*> refs = m.textureRefs();
-        refs.resize(kMaterialTextures, &none);
         std::vector<std::pair<int32_t, int32_t>> slots;
-        for (const TextureRef* ref : refs) {
-            const bool image = ref->image >= 0 && size_t(ref->image) < m_imageLayer.size();
+        for (const TextureRef* ref : slotRefs(m)) {
             const bool sampler =
                 ref->sampler >= 0 && size_t(ref->sampler) < m_scene.samplers.size();
             // The image's array (its layer is the material's parameter); a slot the material
             // names a texture for but whose image is missing keeps its own key (−2): the
             // material's shader variant still samples it (the default's texels).
-            slots.emplace_back(image ? static_cast<int32_t>(m_imageLayer[size_t(ref->image)].first)
-                                     : (ref->valid() ? -2 : -1),
-                               sampler ? ref->sampler : -1);
+            const auto image = imageLayer(*ref);
+            slots.emplace_back(
+                image ? static_cast<int32_t>(image->first) : (ref->valid() ? -2 : -1),
+                sampler ? ref->sampler : -1);
         }
         auto [at, added] = setOf.emplace(slots, static_cast<uint32_t>(m_textureSetSlots.size()));
         if (added) m_textureSetSlots.push_back(std::move(slots));
@@ -401,18 +408,15 @@ Result<void> GpuScene::createMaterials(Context& ctx) {
                                static_cast<float>(m.alphaMode));
         u.diffuseColor = glm::vec4(m.diffuseColor, m.model == "two_colour" ? 1.0f : 0.0f);
         u.f0 = glm::vec4(m.f0, 0.0f);
-        const TextureRef none;
-        std::vector<const TextureRef*> refs = m.textureRefs();
-        refs.resize(kMaterialTextures, &none);
+        const std::vector<const TextureRef*> refs = slotRefs(m);
         for (uint32_t t = 0; t < kMaterialTextures; ++t) {
             const glm::mat3& x = refs[t]->transform;  // column-major: x[col][row]
             u.uvTransform[2 * t] =
                 glm::vec4(x[0][0], x[1][0], x[2][0], static_cast<float>(refs[t]->texCoord));
             // w of the second row: the image's layer in its array (uploadImages).
-            const bool image = refs[t]->image >= 0 && size_t(refs[t]->image) < m_imageLayer.size();
-            u.uvTransform[2 * t + 1] = glm::vec4(
-                x[0][1], x[1][1], x[2][1],
-                image ? static_cast<float>(m_imageLayer[size_t(refs[t]->image)].second) : 0.0f);
+            const auto image = imageLayer(*refs[t]);
+            u.uvTransform[2 * t + 1] = glm::vec4(x[0][1], x[1][1], x[2][1],
+                                                 image ? static_cast<float>(image->second) : 0.0f);
         }
         // Game-team parameters: the material's extra numbers, in key order.
         size_t slot = 0;

@@ -439,7 +439,7 @@ Result<void> GBufferScenePass::prepareDraws(PassSetup& setup) {
                 return r;
     }
     // The GPU path's draws: per group, its camera runs (GpuScene::CameraRun: materials of one
-    // pipeline, cull mode and texture set), one indirect count draw each.
+    // pipeline, cull mode, texture set and window of parameters), one indirect count draw each.
     m_groupRuns.assign(m_cameraInstances ? m_groups.size() : 0, {});
     for (size_t gi = 0; gi < m_groupRuns.size(); ++gi) {
         for (size_t d : m_groups[gi].draws) m_groupRuns[gi].push_back(sceneOf(setup)->cameraRun(d));
@@ -499,11 +499,11 @@ void GBufferScenePass::recordDraws(RecordContext& rc) {
 }
 
 // Per group (pipeline) its camera runs (GpuScene::CameraRun: the batches of its materials that
-// share a cull mode, texture set and window of parameters, whatever the parameters), each one range of
-// commands: as many as the culling pass counted (vkCmdDrawIndexedIndirectCount; every one of the
-// run, one a call, where the device lacks it or the run is longer than its maxDrawIndirectCount —
-// a command without instances draws nothing). The order is the batches', not front to back: the
-// GPU chose the draws.
+// share a cull mode, texture set and window of parameters, whatever the parameters), each one
+// range of commands: as many as the culling pass counted (vkCmdDrawIndexedIndirectCount; every one
+// of the run, one a call, where the device lacks it or the run is longer than its
+// maxDrawIndirectCount — a command without instances draws nothing). The order is the batches',
+// not front to back: the GPU chose the draws.
 void GBufferScenePass::recordIndirect(RecordContext& rc) {
     const GpuScene& scene = *sceneOf(rc);
     const PhysicalResource* commands = rc.resources.find(m_indirect);

@@ -15,8 +15,8 @@
 
 // The vec4 words of one draw in the scene's SceneTransforms (passes/gpu_scene.h): its world
 // matrix's four columns, the normal matrix's three (the first's w: the draw's material's index in
-// its window of materials, uint bits, for lib/material.glsl), the lightmap rect, the last frame's world matrix's four
-// (passes/scene.vert, shadows/shadow.vert).
+// its window of materials, uint bits, for lib/material.glsl), the lightmap rect, the last frame's
+// world matrix's four (passes/scene.vert, shadows/shadow.vert).
 #define RG_TRANSFORM_WORDS 12
 
 #endif
