@@ -348,35 +348,47 @@ void GpuScene::updateFrame(uint32_t slot, uint32_t width, uint32_t height) {
                            static_cast<float>(m_framesSinceCut++), cameraMoved ? 1.0f : 0.0f, 0.0f);
     m_previousViewProj = u.unjitteredViewProj;
     std::memcpy(m_cameraBuffers[slot].mapped(), &u, sizeof u);
-    const auto planes = frustumPlanes(u.unjitteredViewProj);
+    // The camera's culling and levels of detail per draw are found when a pass asks for them
+    // (cullForCamera): the GPU-culled passes never do, and a 100 000-draw frame would spend most
+    // of its scene update on them.
+    m_viewCull = ViewCull{frustumPlanes(u.unjitteredViewProj),
+                          c.position,
+                          glm::normalize(c.target - c.position),
+                          std::abs(u.proj[1][1]) * static_cast<float>(height) * 0.5f,
+                          c.nearPlane,
+                          c.orthographic};
+    m_viewCullDone = false;
+    updateShadowViews(slot, u.viewProj);
+    m_instanceCursor[slot] = 0;
+    std::memcpy(static_cast<uint8_t*>(m_lightBuffers[slot].mapped()) + 4, &m_areaLightModel,
+                sizeof m_areaLightModel);
+}
+
+void GpuScene::cullForCamera() const {
+    m_viewCullDone = true;
+    const ViewCull& v = m_viewCull;
     // Per draw: whether its box meets the frustum, and its level of detail — a world length L
     // at view depth z spans L · |proj[1][1]| · height / (2z) pixels (orthographic: without the
     // z); each draw takes the coarsest level whose error spans at most a pixel at the nearest
     // depth of its box (the full one where the box reaches the near plane).
-    const glm::vec3 forward = glm::normalize(c.target - c.position);
-    const glm::vec3 absForward = glm::abs(forward);
-    const float pixelsPerMetre = std::abs(u.proj[1][1]) * static_cast<float>(height) * 0.5f;
+    const glm::vec3 absForward = glm::abs(v.forward);
     m_drawInView.resize(m_draws.size());
     m_drawLod.assign(m_draws.size(), 0);
     for (size_t d = 0; d < m_drawCull.size(); ++d) {
         const DrawCull& item = m_drawCull[d];
-        m_drawInView[d] = boxMeetsFrustum(planes, item.lo, item.hi);
+        m_drawInView[d] = boxMeetsFrustum(v.planes, item.lo, item.hi);
         if (item.lodCount < 2) continue;
         // The box's nearest depth: its centre's less the half extents along |forward| (the
         // smallest of the linear function over the eight corners).
         const glm::vec3 centre = 0.5f * (item.lo + item.hi), half = 0.5f * (item.hi - item.lo);
-        const float nearest = glm::dot(centre - c.position, forward) - glm::dot(half, absForward);
-        if (!c.orthographic && nearest <= c.nearPlane) continue;
-        const float scale = c.orthographic ? pixelsPerMetre : pixelsPerMetre / nearest;
+        const float nearest = glm::dot(centre - v.position, v.forward) - glm::dot(half, absForward);
+        if (!v.orthographic && nearest <= v.nearPlane) continue;
+        const float scale = v.orthographic ? v.pixelsPerMetre : v.pixelsPerMetre / nearest;
         uint8_t level = 0;
         for (uint32_t l = 1; l < item.lodCount; ++l)
             if (item.error[l - 1] * scale <= 1.0f) level = static_cast<uint8_t>(l);
         m_drawLod[d] = level;
     }
-    updateShadowViews(slot, u.viewProj);
-    m_instanceCursor[slot] = 0;
-    std::memcpy(static_cast<uint8_t*>(m_lightBuffers[slot].mapped()) + 4, &m_areaLightModel,
-                sizeof m_areaLightModel);
 }
 
 uint64_t GpuScene::contentHash(uint32_t slot) const {

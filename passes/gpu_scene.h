@@ -178,12 +178,17 @@ public:
     const std::vector<DrawItem>& draws() const { return m_draws; }
     // The points and lines every node with such a mesh draws, in node order.
     const std::vector<LineDrawItem>& lineDraws() const { return m_lineDraws; }
-    // Whether draw d's world box meets the camera's frustum this frame (updateFrame): the camera's
-    // scene passes skip the draws it does not.
-    bool drawInView(size_t d) const { return d >= m_drawInView.size() || m_drawInView[d] != 0; }
-    // The level of detail the camera's scene passes draw draw d with this frame (updateFrame): the
-    // coarsest whose error, at the nearest depth of the draw's box, projects to at most a pixel.
+    // Whether draw d's world box meets the camera's frustum this frame (the camera updateFrame
+    // wrote; found for every draw at the first call of a frame): the camera's scene passes skip
+    // the draws it does not.
+    bool drawInView(size_t d) const {
+        if (!m_viewCullDone) cullForCamera();
+        return d >= m_drawInView.size() || m_drawInView[d] != 0;
+    }
+    // The level of detail the camera's scene passes draw draw d with this frame (as drawInView):
+    // the coarsest whose error, at the nearest depth of the draw's box, projects to at most a pixel.
     const DrawLod& viewLod(size_t d) const {
+        if (!m_viewCullDone) cullForCamera();
         return m_draws[d].lods[d < m_drawLod.size() && !m_fullMeshes ? m_drawLod[d] : 0];
     }
     // From now on the camera's passes draw the full meshes (a pass traces the scene's triangles
@@ -195,6 +200,7 @@ public:
     // mesh range and material (one instanced draw, passes/scene_pass.cpp), keys below
     // cameraBatchKeys().
     uint32_t cameraBatchKey(size_t d) const {
+        if (!m_viewCullDone) cullForCamera();
         return m_cameraBatch[d] * kMaxDrawLods +
                (d < m_drawLod.size() && !m_fullMeshes ? m_drawLod[d] : 0);
     }
@@ -469,11 +475,23 @@ private:
     mutable gpu::Buffer m_bvh;                          // bvhBuffer(), once built
     Result<VkBuffer> makeBvhBuffer() const;             // bvhBuffer(), or why it failed
     Result<VkBuffer> makeEnvironmentCdfBuffer() const;  // environmentCdfBuffer(), or why it failed
-    ContentHash m_staticHash;        // what was uploaded at creation (contentHash)
-    std::vector<char> m_drawInView;  // per draw: its box meets the camera's frustum (updateFrame)
-    std::vector<uint8_t> m_drawLod;  // per draw: the level of detail viewLod gives (updateFrame)
-    bool m_levelsOfDetail = true;    // GpuSceneOptions::levelsOfDetail
-    mutable bool m_fullMeshes = false;  // drawFullMeshes()
+    ContentHash m_staticHash;  // what was uploaded at creation (contentHash)
+    // The camera of the frame updateFrame wrote last, as the per-draw culling and level choice
+    // read it; cullForCamera runs them for it once, when a pass first asks (drawInView, viewLod).
+    struct ViewCull {
+        std::array<glm::vec4, 6> planes{};
+        glm::vec3 position{0.0f}, forward{0.0f, 0.0f, -1.0f};
+        float pixelsPerMetre = 1.0f;  // |proj[1][1]| · height / 2
+        float nearPlane = 0.0f;
+        bool orthographic = false;
+    };
+    ViewCull m_viewCull;
+    mutable bool m_viewCullDone = true;
+    void cullForCamera() const;
+    mutable std::vector<char> m_drawInView;  // per draw: its box meets the camera's frustum
+    mutable std::vector<uint8_t> m_drawLod;  // per draw: the level of detail viewLod gives
+    bool m_levelsOfDetail = true;            // GpuSceneOptions::levelsOfDetail
+    mutable bool m_fullMeshes = false;       // drawFullMeshes()
     std::vector<glm::ivec4>
         m_lightViews;  // per light of the scene: first view (−1: none), count — as uploaded
     void updateShadowViews(uint32_t slot, const glm::mat4& cameraViewProj);

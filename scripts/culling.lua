@@ -14,7 +14,7 @@
 --   rg.pass "gbuffer" (culling.gbuffer { kind = "scene", writes = { ... }, ... })
 --
 -- shaders/passes/camera_cull.comp, over the scene's `SceneDraws`: the same frustum test and
--- level-of-detail choice as the CPU's (lib/culling.glsl, passes/gpu_scene.cpp updateFrame), and an
+-- level-of-detail choice as the CPU's (lib/culling.glsl, passes/gpu_scene.cpp cullForCamera), and an
 -- occlusion test that drops a draw only where everything drawn over the pixels it can cover is
 -- nearer than all of it — so the image is the CPU path's but where two draws meet at exactly the
 -- same depth: the GPU draws by phase, material, batch and the order the culling listed the

@@ -273,18 +273,30 @@ void useLayoutHeaders(Runtime& runtime, const std::string& dir) {
 
 namespace {
 
-// The scene's draws per stencil class of the pipeline's materials (ctx.scene.classes): fixed
-// while the two stay loaded, so counted once per load.
-std::map<std::string, uint32_t> drawsPerClass(const passes::GpuScene& scene,
-                                              const PipelineDesc& pipeline) {
+// What the scene holds for the pipeline (ctx.scene): its counts, and its draws per stencil class
+// of the pipeline's materials. Fixed while the two stay loaded, so counted once per load (over
+// the draws: a frame of a 100 000-node scene would spend a millisecond on it).
+FrameContext::SceneFacts sceneFacts(const passes::GpuScene& scene, const PipelineDesc& pipeline) {
+    const Scene& s = scene.scene();
+    FrameContext::SceneFacts facts;
+    facts.draws = static_cast<uint32_t>(scene.draws().size());
+    facts.lights = scene.lightCount();
+    facts.decals = static_cast<uint32_t>(s.decals.size());
+    facts.suns =
+        static_cast<uint32_t>(std::count_if(s.lights.begin(), s.lights.end(), [](const Light& l) {
+            return l.type == LightType::Directional;
+        }));
+    facts.probes = static_cast<uint32_t>(s.probes.size());
+    facts.lines = static_cast<uint32_t>(scene.lineDraws().size());
     std::map<std::string, std::string> classOf;  // material name -> its stencil class
     for (const auto& m : pipeline.materials)
         if (!m.stencil.empty()) classOf[m.name] = m.stencil;
-    std::map<std::string, uint32_t> classes;
-    for (const auto& d : scene.draws())
-        if (auto it = classOf.find(scene.scene().materials[d.material].model); it != classOf.end())
-            ++classes[it->second];
-    return classes;
+    for (const auto& d : scene.draws()) {
+        const Material& m = s.materials[d.material];
+        facts.blended += m.alphaMode == AlphaMode::Blend;
+        if (auto it = classOf.find(m.model); it != classOf.end()) ++facts.classes[it->second];
+    }
+    return facts;
 }
 
 // What a frame's changes do to the graph, for the log: "disabled 'decals', 'sky' uses X.frag".
@@ -397,12 +409,11 @@ Result<void> Session::load(const std::string& file) {
     std::erase_if(overrides.enabled,
                   [&](const auto& o) { return !pipeline->graph.findPass(o.first); });
     auto tc = Clock::now();
-    std::map<std::string, uint32_t> classes =
-        scene ? drawsPerClass(*scene, *pipeline) : std::map<std::string, uint32_t>{};
+    std::optional<FrameContext::SceneFacts> facts;
+    if (scene) facts = sceneFacts(*scene, *pipeline);
     // A new script's switches start afresh (a line removed from rg.frame takes its switch away).
     std::map<std::string, bool> switches;
-    auto first = frameChanges(*host, frameContext(scene ? scene.get() : nullptr, classes),
-                              *pipeline, overrides, switches);
+    auto first = frameChanges(*host, frameContext(facts), *pipeline, overrides, switches);
     if (!first) return std::unexpected(first.error());
     const double firstCallbackMs = msSince(tc);
     applyFrameChanges(*pipeline, *first);
@@ -437,7 +448,7 @@ Result<void> Session::load(const std::string& file) {
         }
     }
     m_scene = std::move(scene);
-    m_classes = std::move(classes);
+    m_sceneFacts = std::move(facts);
     m_sceneLoadMs = sceneMs;
     // History (exposure, previous frames, a reference accumulation) carries over a reload of the
     // same pipeline drawing the same scene, not to another pipeline or a changed scene.
@@ -462,27 +473,9 @@ Result<void> Session::load(const std::string& file) {
     return {};
 }
 
-FrameContext Session::frameContext(const passes::GpuScene* scene,
-                                   const std::map<std::string, uint32_t>& classes) const {
-    FrameContext ctx{m_frame, static_cast<double>(m_frame) / 60.0, std::nullopt,
-                     m_options.compile.outputWidth, m_options.compile.outputHeight};
-    if (scene)
-        ctx.scene = FrameContext::SceneFacts{
-            static_cast<uint32_t>(scene->draws().size()),
-            scene->lightCount(),
-            static_cast<uint32_t>(scene->scene().decals.size()),
-            static_cast<uint32_t>(
-                std::count_if(scene->scene().lights.begin(), scene->scene().lights.end(),
-                              [](const Light& l) { return l.type == LightType::Directional; })),
-            static_cast<uint32_t>(scene->scene().probes.size()),
-            static_cast<uint32_t>(std::count_if(
-                scene->draws().begin(), scene->draws().end(),
-                [&](const passes::DrawItem& d) {
-                    return scene->scene().materials[d.material].alphaMode == AlphaMode::Blend;
-                })),
-            static_cast<uint32_t>(scene->lineDraws().size())};
-    if (scene) ctx.scene->classes = classes;
-    return ctx;
+FrameContext Session::frameContext(const std::optional<FrameContext::SceneFacts>& facts) const {
+    return FrameContext{m_frame, static_cast<double>(m_frame) / 60.0, facts,
+                        m_options.compile.outputWidth, m_options.compile.outputHeight};
 }
 
 Result<FrameChanges> Session::frameChanges(LuaHost& host, const FrameContext& ctx,
@@ -529,8 +522,8 @@ Result<void> Session::frame(VkCommandBuffer hostCmd) {
         // overrides set since were applied when they were set (setOverride, setPassOverride).
         m_framePrepared.reset();
     } else {
-        changes = frameChanges(*m_host, frameContext(m_scene.get(), m_classes), m_pipeline,
-                               m_overrides, switches);
+        changes =
+            frameChanges(*m_host, frameContext(m_sceneFacts), m_pipeline, m_overrides, switches);
         m_callbackMs = msSince(t0);
     }
     // A parameter restated at the value it has (rg.frame and the overrides restate theirs every

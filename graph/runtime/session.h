@@ -144,10 +144,10 @@ private:
     // keepMissingShaders, a pass whose shader file went missing keeps the path it was built
     // from), captures exported.
     Result<GraphDesc> buildableGraph(const PipelineDesc& p, bool keepMissingShaders);
-    // The frame context of frame m_frame for `scene` and its draws per stencil class (ctx in rg.frame), and what the script's
-    // rg.frame, the frame hook and the overrides change for it in `pipeline`.
-    FrameContext frameContext(const passes::GpuScene* scene,
-                              const std::map<std::string, uint32_t>& classes) const;
+    // The frame context of frame m_frame (ctx in rg.frame), with what the scene holds (`facts`,
+    // counted once per load), and what the script's rg.frame, the frame hook and the overrides
+    // change for it in `pipeline`.
+    FrameContext frameContext(const std::optional<FrameContext::SceneFacts>& facts) const;
     // One rule for pass switches: the overrides (the library, the live page) win, then the
     // explicit switches of rg.frame and the frame hook — kept in `switches` until switched again,
     // so a script switches a pass once — then the automatic ones (auto_enabled), only for passes
@@ -167,8 +167,8 @@ private:
     SessionOptions m_options;
     std::unique_ptr<LuaHost> m_host;
     std::unique_ptr<passes::GpuScene> m_scene;
-    std::map<std::string, uint32_t>
-        m_classes;  // m_scene's draws per stencil class of the pipeline's materials (ctx.scene.classes)
+    // What m_scene holds for the pipeline (ctx.scene): fixed while the two stay loaded.
+    std::optional<FrameContext::SceneFacts> m_sceneFacts;
     std::string m_sceneFile;
     double m_sceneLoadMs = 0;
     std::string m_sceneKey;  // the scene's files (contents) and arguments at the last load

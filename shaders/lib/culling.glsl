@@ -1,9 +1,29 @@
 // Culling and level-of-detail choices the GPU makes for the camera's draws (shaders/passes/
-// camera_cull.comp) and the sun's casters (shaders/shadows/cascade_cull.comp): the same tests as
-// GpuScene::updateFrame's on the CPU (passes/gpu_scene_detail.h). Needs lib/scene.glsl with
-// RG_SCENE_DRAWS.
+// camera_cull.comp) and the shadow views' casters (shaders/shadows/cascade_cull.comp,
+// local_cull.comp): the same tests as GpuScene::cullForCamera's on the CPU
+// (passes/gpu_scene_detail.h). Needs lib/scene.glsl with RG_SCENE_DRAWS.
 #ifndef RG_CULLING_GLSL
 #define RG_CULLING_GLSL
+
+// An indexed indirect draw's command (VkDrawIndexedIndirectCommand).
+struct DrawIndexedIndirect { uint indexCount, instanceCount, firstIndex; int vertexOffset; uint firstInstance; };
+
+// Scene draw d joins indirect command k at level `level`: its index takes the next slot of the
+// command's region of instances, which starts at `first` (an atomic add on the command's
+// instance count), and the first to join writes the rest of the command. A macro, for the
+// culling shaders' own blocks: `commands` (DrawIndexedIndirect command[]) and `instances`
+// (uint draw[]).
+#define rgJoinCommand(k, first, draw, d, level)                                       \
+    {                                                                                 \
+        const uint joined = atomicAdd(commands.command[k].instanceCount, 1u);        \
+        instances.draw[(first) + joined] = (d);                                       \
+        if (joined == 0u) {                                                           \
+            commands.command[k].indexCount = (draw).lodCount[level];                  \
+            commands.command[k].firstIndex = (draw).lodFirst[level];                  \
+            commands.command[k].vertexOffset = int((draw).info.x);                    \
+            commands.command[k].firstInstance = (first);                              \
+        }                                                                             \
+    }
 
 // The six planes (a, b, c, d: inside where a x + b y + c z + d >= 0) of a clip-space frustum with
 // depth 0..1 (Gribb & Hartmann), normalised.

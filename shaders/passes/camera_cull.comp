@@ -3,7 +3,7 @@
 // the G-buffer draws (RgDraw.camera.x: its camera batch + 1 — the draws sharing a mesh and
 // material) whose world box meets the camera's frustum joins the indirect command of its batch at
 // the level of detail the camera takes — the coarsest whose error spans at most a pixel at the
-// nearest depth of its box: the test and the choice GpuScene::updateFrame makes on the CPU.
+// nearest depth of its box: the test and the choice GpuScene::cullForCamera makes on the CPU.
 //
 // camera_draws (cleared first): per batch and level an indexed indirect command (batch · 4 +
 // level), its instance count grown by an atomic add; every draw that joins writes the same index
@@ -37,7 +37,6 @@
 #endif
 
 layout(local_size_x = 64) in;
-struct DrawIndexedIndirect { uint indexCount, instanceCount, firstIndex; int vertexOffset; uint firstInstance; };
 layout(set = 0, binding = 0, std430) buffer camera_draws { DrawIndexedIndirect command[]; } commands;
 layout(set = 0, binding = 1, std430) writeonly buffer camera_instances { uint draw[]; } instances;
 layout(set = 0, binding = 2, std430) buffer camera_draw_counts { uint count[]; } counts;
@@ -81,14 +80,7 @@ void main() {
         const uint level = rgCameraLevel(draw, 1.0);
         const uint k = (batch - 1u) * 4u + level;
         const uint first = level * slots + draw.camera.y;
-        const uint n = atomicAdd(commands.command[k].instanceCount, 1u);
-        instances.draw[first + n] = d;
-        if (n == 0u) {  // the first to join writes the rest of the command
-            commands.command[k].indexCount = draw.lodCount[level];
-            commands.command[k].firstIndex = draw.lodFirst[level];
-            commands.command[k].vertexOffset = int(draw.info.x);
-            commands.command[k].firstInstance = first;
-        }
+        rgJoinCommand(k, first, draw, d, level);
         atomicMax(counts.count[draw.info.y], draw.camera.w + level + 1u);
     }
 }

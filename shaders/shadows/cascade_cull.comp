@@ -21,7 +21,6 @@
 
 layout(local_size_x = 64) in;
 layout(set = 0, binding = 0, std430) readonly buffer sun_cascades { RgCascades c; } cascades;
-struct DrawIndexedIndirect { uint indexCount, instanceCount, firstIndex; int vertexOffset; uint firstInstance; };
 layout(set = 0, binding = 1, std430) buffer sun_shadow_draws { DrawIndexedIndirect command[]; } commands;
 layout(set = 0, binding = 2, std430) writeonly buffer sun_shadow_instances { uint draw[]; } instances;
 
@@ -59,14 +58,7 @@ void main() {
                 if (draw.lodError[l] <= cascades.c.texelWorld[c]) level = l;
             const uint k = (uint(c) * batches + batch - 1u) * 4u + level;
             const uint first = (uint(c) * 4u + level) * slots + draw.shadow.y;
-            const uint n = atomicAdd(commands.command[k].instanceCount, 1u);
-            instances.draw[first + n] = d;
-            if (n == 0u) {  // the first to join writes the rest of the command
-                commands.command[k].indexCount = draw.lodCount[level];
-                commands.command[k].firstIndex = draw.lodFirst[level];
-                commands.command[k].vertexOffset = int(draw.info.x);
-                commands.command[k].firstInstance = first;
-            }
+            rgJoinCommand(k, first, draw, d, level);
         }
     }
 }

@@ -22,7 +22,6 @@
 #endif
 
 layout(local_size_x = 64) in;
-struct DrawIndexedIndirect { uint indexCount, instanceCount, firstIndex; int vertexOffset; uint firstInstance; };
 layout(set = 0, binding = 0, std430) buffer local_shadow_draws { DrawIndexedIndirect command[]; } commands;
 layout(set = 0, binding = 1, std430) writeonly buffer local_shadow_instances { uint draw[]; } instances;
 
@@ -47,14 +46,7 @@ void main() {
             if (!rgBoxMeetsFrustum(planes[v], draw.boxMin.xyz, draw.boxMax.xyz)) continue;
             const uint k = (v * batches + batch - 1u) * 4u + level;
             const uint first = (v * 4u + level) * slots + draw.shadow.y;
-            const uint n = atomicAdd(commands.command[k].instanceCount, 1u);
-            instances.draw[first + n] = d;
-            if (n == 0u) {  // the first to join writes the rest of the command
-                commands.command[k].indexCount = draw.lodCount[level];
-                commands.command[k].firstIndex = draw.lodFirst[level];
-                commands.command[k].vertexOffset = int(draw.info.x);
-                commands.command[k].firstInstance = first;
-            }
+            rgJoinCommand(k, first, draw, d, level);
         }
     }
 }
