@@ -6,7 +6,8 @@
 // whose range meets the froxel). A tile's test: the depth range of its surfaces bounds the
 // view-space box of the tile's frustum between those depths, and a light is kept when its sphere
 // of influence — the range of lst:4's window, by the distance to the light's centre, which also
-// ends area lights (lighting.glsl rgRangeWindow) — meets that box. Lists are in ascending light
+// ends area lights (lighting.glsl rgRangeWindow) — meets that box and the inside of the tile
+// frustum's four side planes (the box alone slants far past the frustum). Lists are in ascending light
 // order: the froxels' sorted lists merged. Lights without a range, and the sun, reach every pixel:
 // they are in the scene's global list (lib/light_tiles.glsl), not in any tile's.
 //
@@ -72,15 +73,33 @@ void main() {
     if (minDepth <= maxDepth) {
         // The view-space box of the tile's frustum between the two depths: its 8 corners.
         vec2 lo = vec2(first) / vec2(size), hi = vec2(last) / vec2(size);
-        vec3 boxMin = vec3(1e30), boxMax = vec3(-1e30);
+        vec3 boxMin = vec3(1e30), boxMax = vec3(-1e30), nearCorner[4];
         for (int c = 0; c < 8; ++c) {
             vec2 uv = vec2((c & 1) != 0 ? hi.x : lo.x, (c & 2) != 0 ? hi.y : lo.y);
             vec4 world = camera.invViewProj * vec4(uv * 2.0 - 1.0, (c & 4) != 0 ? maxDepth : minDepth, 1.0);
             vec3 v = (camera.view * vec4(world.xyz / world.w, 1.0)).xyz;
             boxMin = min(boxMin, v);
             boxMax = max(boxMax, v);
+            if (c < 4) nearCorner[c] = v;
         }
         const uint base = tile * stride + 1u;
+        // The box holds far more than the tile sees where the tile's frustum slants (off the
+        // screen's centre, by up to its depth range × the ray's slope each way: a tile across a
+        // sphere's silhouette, which spans the floor behind it, kept 82 of 16 384 lights in the
+        // many-lights scene). So a light whose sphere meets the box is kept only when it also
+        // meets the inside of each of the frustum's four side planes through the eye (a
+        // perspective's; an orthographic frustum's sides are the box's own).
+        const bool perspective = !rgCameraOrthographic();
+        vec3 sides[4];
+        {
+            const vec3 middle = 0.25 * (nearCorner[0] + nearCorner[1] + nearCorner[2] + nearCorner[3]);
+            const int ring[5] = int[](0, 1, 3, 2, 0);  // the corners around the tile
+            for (int c = 0; c < 4; ++c) {
+                vec3 n = cross(nearCorner[ring[c]], nearCorner[ring[c + 1]]);
+                n *= inversesqrt(max(dot(n, n), 1e-30));
+                sides[c] = dot(n, middle) < 0.0 ? -n : n;
+            }
+        }
 
         // The froxels of the tile's column its depths span, and how much each list holds.
         const uvec2 columns = (uvec2(size) + uvec2(RG_COARSE_TILE_SIZE - 1)) / uvec2(RG_COARSE_TILE_SIZE);
@@ -102,23 +121,40 @@ void main() {
             length[s] = min(froxelCounts.count[froxel0 + s], 2u * froxelStride);
         }
         uint pending = 0u;  // the lower half of the word being filled
+        // Most tiles' surfaces lie in one slice: its list is walked as it is.
+        const bool single = s0 == s1;
+        const uint single0 = (froxel0 + s0) * froxelStride, singleLength = length[s0];
+        uint singleCursor = 0u;
         for (;;) {
             uint i = 0xFFFFFFFFu;
-            for (uint s = s0; s <= s1; ++s)
-                if (cursor[s] < length[s]) {
+            if (single) {
+                const uint k = singleCursor++;
+                if (k < singleLength) i = (froxels.data[single0 + (k >> 1u)] >> ((k & 1u) * 16u)) & 0xFFFFu;
+            } else {
+                for (uint s = s0; s <= s1; ++s)
+                    if (cursor[s] < length[s]) {
+                        const uint f = froxel0 + s, k = cursor[s];
+                        i = min(i, (froxels.data[f * froxelStride + (k >> 1u)] >> ((k & 1u) * 16u)) & 0xFFFFu);
+                    }
+                for (uint s = s0; s <= s1; ++s) {
                     const uint f = froxel0 + s, k = cursor[s];
-                    i = min(i, (froxels.data[f * froxelStride + (k >> 1u)] >> ((k & 1u) * 16u)) & 0xFFFFu);
+                    if (k < length[s] && ((froxels.data[f * froxelStride + (k >> 1u)] >> ((k & 1u) * 16u)) & 0xFFFFu) == i)
+                        cursor[s] = k + 1u;
                 }
-            for (uint s = s0; s <= s1; ++s) {
-                const uint f = froxel0 + s, k = cursor[s];
-                if (k < length[s] && ((froxels.data[f * froxelStride + (k >> 1u)] >> ((k & 1u) * 16u)) & 0xFFFFu) == i)
-                    cursor[s] = k + 1u;
             }
             if (i == 0xFFFFFFFFu) break;
-            RgLight light = lights.light[i];
-            vec3 centre = (camera.view * vec4(light.positionType.xyz, 1.0)).xyz;
-            vec3 outside = max(max(boxMin - centre, centre - boxMax), vec3(0.0));
-            if (dot(outside, outside) * light.directionRange.w < 1.0) {  // distance to the box < range
+            // Only the two fields the test reads (a whole RgLight is six vec4s).
+            const vec3 centre = (camera.view * vec4(lights.light[i].positionType.xyz, 1.0)).xyz;
+            const float invRange2 = lights.light[i].directionRange.w;
+            const vec3 outside = max(max(boxMin - centre, centre - boxMax), vec3(0.0));
+            bool reaches = dot(outside, outside) * invRange2 < 1.0;  // distance to the box < range
+            if (reaches && perspective) {
+                // The range, with a margin for the rounding of the two reconstructions of a
+                // surface's position (this one and the lighting pass's).
+                const float reach = inversesqrt(max(invRange2, 1e-30)) * 1.001 + 1e-4;
+                for (int c = 0; c < 4; ++c) reaches = reaches && dot(sides[c], centre) > -reach;
+            }
+            if (reaches) {
                 // Two 16-bit indices per word (lib/light_tiles.glsl), the word written once full.
                 if (count < rgTileCapacity(stride)) {
                     if ((count & 1u) == 0u) pending = i;

@@ -7,7 +7,8 @@
 //   pass dispatches a fixed number of work groups). A ranged light's sphere of influence — the
 //   range of lst:4's window, which also ends area lights (lighting.glsl rgRangeWindow) — bounds
 //   a rectangle of columns (its view-space box projected) and a run of slices (its depth ± range);
-//   the light goes into the list of every froxel there whose view-space box it meets. Lists grow
+//   the light goes into the list of every froxel there whose view-space box it meets, in the
+//   columns whose four side planes it does not lie wholly outside. Lists grow
 //   by an atomic count, so their order is the order the lights arrived in.
 //   `light_froxels_sort` (RG_FROXEL_SORT): one invocation per column (the pass dispatches over
 //   the depth in columns) sorts each of its froxels'
@@ -77,7 +78,14 @@ void main() {
     const RgFroxelRange range = rgFroxelRange();
     const bool ortho = rgCameraOrthographic();
     const uint invocations = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
-    for (uint i = gl_GlobalInvocationID.x; i < lights.count.x; i += invocations) {
+    // Few lights each cover many columns: their columns are shared out among `parts` invocations
+    // a light (as many as the dispatch has to spare, up to a work group), each taking every
+    // parts-th column of the light's rectangle — or 64 lights would be one work group's, on one
+    // core, walking thousands of froxels each.
+    const uint lightCount = lights.count.x;
+    const uint parts = clamp(invocations / max(lightCount, 1u), 1u, 64u);
+    for (uint g = gl_GlobalInvocationID.x; g < lightCount * parts; g += invocations) {
+        const uint i = g / parts, part = g % parts;
         const RgLight light = lights.light[i];
         if (rgReachesEverything(light)) continue;  // in the global list
         const vec3 c = (camera.view * vec4(light.positionType.xyz, 1.0)).xyz;
@@ -102,11 +110,29 @@ void main() {
         if (any(greaterThan(lo, vec2(1.0))) || any(lessThan(hi, vec2(-1.0)))) continue;  // off screen
         const ivec2 c0 = clamp(ivec2(floor((lo * 0.5 + 0.5) * vec2(size) / float(RG_COARSE_TILE_SIZE))), ivec2(0), ivec2(columns) - 1);
         const ivec2 c1 = clamp(ivec2(floor((hi * 0.5 + 0.5) * vec2(size) / float(RG_COARSE_TILE_SIZE))), ivec2(0), ivec2(columns) - 1);
-        for (int y = c0.y; y <= c1.y; ++y)
-            for (int x = c0.x; x <= c1.x; ++x) {
+        const float reach = r * 1.001 + 1e-4;  // the range, with a margin for rounding
+        const ivec2 extent = c1 - c0 + 1;
+        for (int j = int(part); j < extent.x * extent.y; j += int(parts)) {
+                const int x = c0.x + j % extent.x, y = c0.y + j / extent.x;
                 // The column's four corner rays, in normalised screen coordinates.
                 const vec2 a = vec2(ivec2(x, y) * RG_COARSE_TILE_SIZE) / vec2(size) * 2.0 - 1.0;
                 const vec2 b = min(vec2(ivec2(x + 1, y + 1) * RG_COARSE_TILE_SIZE) / vec2(size), vec2(1.0)) * 2.0 - 1.0;
+                // A perspective column's four side planes through the eye: a sphere wholly outside
+                // one meets none of its froxels. Tighter than the froxels' boxes, which off the
+                // screen's centre slant far past the column (an orthographic column's sides are
+                // its boxes' own).
+                if (!ortho) {
+                    const vec3 ray[4] = vec3[](rgViewPointAt(a, 1.0), rgViewPointAt(vec2(b.x, a.y), 1.0), rgViewPointAt(b, 1.0),
+                                               rgViewPointAt(vec2(a.x, b.y), 1.0));
+                    const vec3 middle = 0.25 * (ray[0] + ray[1] + ray[2] + ray[3]);
+                    bool meets = true;
+                    for (int k = 0; k < 4; ++k) {
+                        vec3 n = cross(ray[k], ray[(k + 1) & 3]);
+                        n *= inversesqrt(max(dot(n, n), 1e-30));
+                        meets = meets && abs(dot(n, c)) * sign(dot(n, c) * dot(n, middle)) > -reach;
+                    }
+                    if (!meets) continue;
+                }
                 float d0 = rgFroxelSliceStart(range, s0);
                 for (uint s = s0; s <= s1; ++s) {
                     // The froxel's view-space box: its 8 corners. The last slice also holds what
