@@ -64,8 +64,13 @@ void main() {
     // invocation of the binning pass takes lights in ascending order). One froxel per invocation
     // as far as the dispatch goes: lavapipe ends a shader's loops after 65 535 iterations in all
     // (DESIGN §8), and a reversed list of 254 takes 32 000.
+    // Neighbouring invocations take the same slice of neighbouring columns, whose lists are about
+    // as long: a CPU rasteriser runs them as one SIMD's lanes, each loop as long as its longest
+    // lane's (neighbouring slices of one column, mostly empty around one full, left 7 of 8 lanes idle).
     const uint invocations = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
-    for (uint f = gl_GlobalInvocationID.x; f < froxelCount; f += invocations) {
+    const uint columnCount = columns.x * columns.y;
+    for (uint g = gl_GlobalInvocationID.x; g < froxelCount; g += invocations) {
+        const uint f = (g % columnCount) * uint(RG_FROXEL_SLICES) + g / columnCount;
         const uint n = min(counts.count[f], capacity), base = f * stride;
         for (uint k = 1u; k < n; ++k) {
             const uint v = entry(base, k);
