@@ -452,7 +452,7 @@ private:
     std::vector<uint32_t> m_cameraBatch;       // per draw: its mesh range and material's batch
     std::vector<CameraRun> m_cameraRuns;       // cameraRuns
     std::vector<uint32_t> m_drawRun;           // per draw: its camera run
-    // Per draw what updateFrame's culling and level choice read, packed (40 bytes rather than a
+    // Per draw what the camera's culling and level choice read (cullForCamera), packed (40 bytes rather than a
     // DrawItem's ~250: the 100 000-node city's update was bound by the memory it walked).
     struct DrawCull {
         glm::vec3 lo{0.0f};

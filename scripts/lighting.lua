@@ -5,8 +5,9 @@
 --
 -- First a froxel grid (shaders/passes/light_froxels.comp): the screen in columns of 32x32 pixels,
 -- each cut into 16 slices of view distance; every ranged light goes into the lists of the froxels
--- its range meets (one invocation per light: the cost is the lights times the froxels each covers,
--- not froxels times lights), and the lists are sorted. Then, after the pass named "gbuffer",
+-- its range meets (one invocation per light, or a few sharing its columns when there are few: the
+-- cost is the lights times the froxels each covers, not froxels times lights), and the lists are
+-- sorted. Then, after the pass named "gbuffer",
 -- `light_culling` lists per 4x4-pixel tile the lights of the froxels its surfaces' depths span
 -- that reach those surfaces. Small tiles keep each pixel's loop to the lights near it. The lights
 -- that reach every pixel (the sun, lights without a range) are the scene's global list, read by
@@ -36,7 +37,8 @@ lighting.tile_words = 32
 lighting.coarse_tile = 32
 lighting.froxel_slices = 16
 lighting.froxel_words = 128
--- Work groups of 64 of the binning pass (each invocation takes every (64 x this)-th light) and of
+-- Work groups of 64 of the binning pass (each invocation takes every (64 x this)-th light, or a
+-- share of one light's columns when the lights are fewer than the invocations) and of
 -- the sort (one froxel per invocation up to 64 x this froxels: 4K's 130 000 at 1024).
 lighting.froxel_groups = 256
 lighting.sort_groups = 1024

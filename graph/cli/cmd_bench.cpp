@@ -157,8 +157,8 @@ int cmdBench(int argc, char** argv) {
     const Stat wall = stats(walls);
     std::printf("%-24s %10.3f %10.3f %10.3f\n", "frame wall time", wall.median, wall.min, wall.max);
     std::printf("%-24s %10.3f %10.3f %10.3f\n", "CPU recording", rec.median, rec.min, rec.max);
-    // Where the recording's CPU time goes: the scene's update (camera, culling, levels of detail)
-    // and the passes that record the most.
+    // Where the recording's CPU time goes: the scene's update (camera, moving nodes, shadow views)
+    // and the passes that record the most (the CPU path's camera culling and levels among them).
     const Stat update = stats(sceneUpdates);
     std::vector<std::pair<double, std::string>> cpuPasses;
     for (const auto& [name, ms] : perPassCpu) cpuPasses.emplace_back(stats(ms).median, name);

@@ -123,7 +123,8 @@ public:
     const BuildStats& buildStats() const { return m_buildStats; }
     const std::vector<PassTiming>& lastTimings() const { return m_lastTimings; }
     double lastRecordMs() const { return m_lastRecordMs; }
-    // Of it, the scene's per-frame update (setScene's perFrame: camera, culling, levels of detail).
+    // Of it, the scene's per-frame update (setScene's perFrame: the camera, moving nodes, shadow
+    // views; the camera's culling and levels run when a pass first asks, in its recording).
     double lastSceneUpdateMs() const { return m_lastSceneUpdateMs; }
     uint64_t framesSubmitted() const { return m_frameIndex; }
     // The frame number shaders see (rg_frame, rg_time = number / 60 s) is `first` + the frames

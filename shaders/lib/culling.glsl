@@ -8,21 +8,21 @@
 // An indexed indirect draw's command (VkDrawIndexedIndirectCommand).
 struct DrawIndexedIndirect { uint indexCount, instanceCount, firstIndex; int vertexOffset; uint firstInstance; };
 
-// Scene draw d joins indirect command k at level `level`: its index takes the next slot of the
-// command's region of instances, which starts at `first` (an atomic add on the command's
-// instance count), and the first to join writes the rest of the command. A macro, for the
-// culling shaders' own blocks: `commands` (DrawIndexedIndirect command[]) and `instances`
-// (uint draw[]).
-#define rgJoinCommand(k, first, draw, d, level)                                       \
-    {                                                                                 \
-        const uint joined = atomicAdd(commands.command[k].instanceCount, 1u);        \
-        instances.draw[(first) + joined] = (d);                                       \
-        if (joined == 0u) {                                                           \
-            commands.command[k].indexCount = (draw).lodCount[level];                  \
-            commands.command[k].firstIndex = (draw).lodFirst[level];                  \
-            commands.command[k].vertexOffset = int((draw).info.x);                    \
-            commands.command[k].firstInstance = (first);                              \
-        }                                                                             \
+// Scene draw d (its RgDraw `record`) joins indirect command k at level `level`: its index takes
+// the next slot of the command's region of instances, which starts at `first` (an atomic add on
+// the command's instance count), and the first to join writes the rest of the command. A macro,
+// for the culling shaders' own blocks: `commands` (DrawIndexedIndirect command[]) and
+// `instances` (uint draw[]).
+#define rgJoinCommand(k, first, record, d, level)                                \
+    {                                                                            \
+        const uint joined = atomicAdd(commands.command[k].instanceCount, 1u);    \
+        instances.draw[(first) + joined] = (d);                                  \
+        if (joined == 0u) {                                                      \
+            commands.command[k].indexCount = (record).lodCount[level];           \
+            commands.command[k].firstIndex = (record).lodFirst[level];           \
+            commands.command[k].vertexOffset = int((record).info.x);             \
+            commands.command[k].firstInstance = (first);                         \
+        }                                                                        \
     }
 
 // The six planes (a, b, c, d: inside where a x + b y + c z + d >= 0) of a clip-space frustum with

@@ -4,15 +4,15 @@
 // (lib/light_tiles.glsl's rgFroxelSlice). Two passes, built from this file:
 //
 //   `light_froxels` (the default): one invocation per light, striding over the scene's lights (the
-//   pass dispatches a fixed number of work groups). A ranged light's sphere of influence — the
+//   pass dispatches a fixed number of work groups); with fewer lights than invocations, up to 64
+//   invocations a light, each taking a share of its columns. A ranged light's sphere of influence — the
 //   range of lst:4's window, which also ends area lights (lighting.glsl rgRangeWindow) — bounds
 //   a rectangle of columns (its view-space box projected) and a run of slices (its depth ± range);
 //   the light goes into the list of every froxel there whose view-space box it meets, in the
 //   columns whose four side planes it does not lie wholly outside. Lists grow
 //   by an atomic count, so their order is the order the lights arrived in.
-//   `light_froxels_sort` (RG_FROXEL_SORT): one invocation per column (the pass dispatches over
-//   the depth in columns) sorts each of its froxels'
-//   lists into ascending light order, so that every list — and every sum over one — is the same
+//   `light_froxels_sort` (RG_FROXEL_SORT): one invocation per froxel (striding over them, the
+//   same slice of neighbouring columns side by side) sorts its list into ascending light order, so that every list — and every sum over one — is the same
 //   from run to run.
 //
 // The cost is lights × the froxels each one covers, not froxels × lights: a scene of many small
