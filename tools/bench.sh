@@ -2,7 +2,7 @@
 # The benchmark suite (issue: performance): runs `rgraph bench` and friends on this machine and
 # writes OUT/bench.json and OUT/bench.md — figures, never pass/fail.
 #
-#   tools/bench.sh [--out DIR] [--frames N] [--quick]
+#   tools/bench.sh [--out DIR] [--frames N] [--quick] [--size WxH] [--lights-size WxH] [--nodes N]
 #
 #   default frame   the default pipeline and scene at 1280x720, N frames (default 10), with floors
 #   antialiasing    the default frame again with FXAA (--set antialiasing=fxaa): TAA's passes
@@ -22,6 +22,10 @@
 #   reload          pipeline load when everything is cached (`rgraph bench`'s "pipeline load")
 #
 # --quick: tiny sizes and 2 frames (what the test suite runs to check the script works).
+# --size, --lights-size, --nodes: the frame size (default 1280x720), the many-lights sweep's
+# (640x360) and the city's nodes (10000) instead. On a hardware GPU the production-scale targets
+# are `--size 1920x1080 --lights-size 1920x1080 --nodes 100000`: the city's ratio to the default
+# frame and the 16384 / 64 lights ratio, both in bench.md.
 # Uses build/rgraph (tools/setup.sh builds it) unless RGRAPH is set.
 set -euo pipefail
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -34,7 +38,10 @@ while [ $# -gt 0 ]; do
         --out) out=$2; shift 2 ;;
         --frames) frames=$2; shift 2 ;;
         --quick) quick=1; shift ;;
-        -h|--help) sed -n '2,20p' "$0" | sed 's/^# \{0,1\}//'; exit 0 ;;
+        --size) size_arg=$2; shift 2 ;;
+        --lights-size) lights_size_arg=$2; shift 2 ;;
+        --nodes) nodes_arg=$2; shift 2 ;;
+        -h|--help) sed -n '2,/^set -euo/p' "$0" | grep '^#' | sed 's/^# \{0,1\}//'; exit 0 ;;
         *) echo "tools/bench.sh: unknown argument '$1' (see --help)" >&2; exit 2 ;;
     esac
 done
@@ -42,6 +49,7 @@ done
 mkdir -p "$out"
 size=1280x720 lights_size=640x360 counts="16 64 256 1024 4096 16384 65536" objects=1000 nodes=10000
 if [ $quick = 1 ]; then size=96x64 lights_size=64x48 frames=2 counts="16 64" objects=20 nodes=200; fi
+size=${size_arg:-$size} lights_size=${lights_size_arg:-$lights_size} nodes=${nodes_arg:-$nodes}
 
 now_ms() { date +%s%3N; }
 step() { echo "tools/bench.sh: $*" >&2; }

@@ -252,8 +252,8 @@ check "aliasing saves 40 %" 0 -- bash -c "'$rgraph' bench --size 1280x720 --fram
 check "bench floors" 0 grep "floor" -- "$rgraph" bench --size 64x64 --frames 2 --floors --json "$tmp/floors.json"
 check "bench floors json" 0 -- python3 -c "import json; b=json.load(open('$tmp/floors.json')); p={x['name']: x for x in b['passes']}; assert all('floorMs' in x and x['floorMs'] >= 0 for x in b['passes']) and b['floorTotalMs'] > 0 and 'gbuffer' in p, b"
 # The benchmark suite (tools/bench.sh): runs at tiny sizes and writes well-formed JSON and Markdown.
-check "bench suite" 0 -- env RGRAPH="$rgraph" "$root/tools/bench.sh" --quick --out "$tmp/suite"
-check "bench suite json" 0 -- python3 -c "import json; b=json.load(open('$tmp/suite/bench.json')); assert b['compile200Ms'] > 0 and b['startupMs']['warmMs'] > 0 and b['startupMs']['warmFirstFrameMs'] > 0 and len(b['default']['passes']) > 30 and set(b['manyLights']) >= {'16', '64'} and all('floorMs' in p for p in b['default']['passes']) and b['levelsOfDetail']['lod']['frameMs'] > 0 and b['levelsOfDetail']['full']['gbufferMs'] > 0, b.keys()"
+check "bench suite" 0 -- env RGRAPH="$rgraph" "$root/tools/bench.sh" --quick --nodes 150 --out "$tmp/suite"
+check "bench suite json" 0 -- python3 -c "import json; b=json.load(open('$tmp/suite/bench.json')); assert b['compile200Ms'] > 0 and b['startupMs']['warmMs'] > 0 and b['startupMs']['warmFirstFrameMs'] > 0 and len(b['default']['passes']) > 30 and set(b['manyLights']) >= {'16', '64'} and all('floorMs' in p for p in b['default']['passes']) and b['levelsOfDetail']['lod']['frameMs'] > 0 and b['levelsOfDetail']['full']['gbufferMs'] > 0 and b['city']['nodes'] == 150, b.keys()"
 check "bench suite markdown" 0 grep "| pass | median ms" -- cat "$tmp/suite/bench.md"
 
 # watch: a valid script, a broken one (reported, old pipeline kept), a fixed one (picked up),
