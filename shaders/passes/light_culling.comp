@@ -44,6 +44,32 @@ layout(set = 0, binding = 2, std430) readonly buffer light_froxel_counts {
 } froxelCounts;
 layout(set = 0, binding = 3, std430) readonly buffer light_froxels { uint data[]; } froxels;
 
+// Light i of a froxel's list, for the tile whose frustum has view-space box boxMin..boxMax and
+// side planes `sides`: appended to the tile's list (`count` so far; `pending` the lower half of
+// the word being filled, two 16-bit indices per word, lib/light_tiles.glsl) when its sphere of
+// influence meets the box and, for a perspective camera, the inside of every side plane.
+void rgConsider(uint i, vec3 boxMin, vec3 boxMax, vec3 sides[4], bool perspective, uint base, uint stride, inout uint count,
+                inout uint pending) {
+    // Only the two fields the test reads (a whole RgLight is six vec4s).
+    const vec3 centre = (camera.view * vec4(lights.light[i].positionType.xyz, 1.0)).xyz;
+    const float invRange2 = lights.light[i].directionRange.w;
+    const vec3 outside = max(max(boxMin - centre, centre - boxMax), vec3(0.0));
+    bool reaches = dot(outside, outside) * invRange2 < 1.0;  // distance to the box < range
+    if (reaches && perspective) {
+        // The range, with a margin for the rounding of the two reconstructions of a surface's
+        // position (this one and the lighting pass's).
+        const float reach = inversesqrt(max(invRange2, 1e-30)) * 1.001 + 1e-4;
+        for (int c = 0; c < 4; ++c) reaches = reaches && dot(sides[c], centre) > -reach;
+    }
+    if (reaches) {
+        if (count < rgTileCapacity(stride)) {
+            if ((count & 1u) == 0u) pending = i;
+            else tiles.data[base + (count >> 1u)] = pending | (i << 16u);  // the word, once full
+        }
+        ++count;
+    }
+}
+
 void main() {
     const ivec2 size = textureSize(depth, 0);
     const uvec2 tileCount = (uvec2(size) + uvec2(RG_TILE_SIZE - 1)) / uvec2(RG_TILE_SIZE);
@@ -121,16 +147,16 @@ void main() {
             length[s] = min(froxelCounts.count[froxel0 + s], 2u * froxelStride);
         }
         uint pending = 0u;  // the lower half of the word being filled
-        // Most tiles' surfaces lie in one slice: its list is walked as it is.
-        const bool single = s0 == s1;
-        const uint single0 = (froxel0 + s0) * froxelStride, singleLength = length[s0];
-        uint singleCursor = 0u;
-        for (;;) {
-            uint i = 0xFFFFFFFFu;
-            if (single) {
-                const uint k = singleCursor++;
-                if (k < singleLength) i = (froxels.data[single0 + (k >> 1u)] >> ((k & 1u) * 16u)) & 0xFFFFu;
-            } else {
+        // Most tiles' surfaces lie in one slice: its list is walked as it is, in a loop of its own
+        // (a SIMD's lanes leave a loop together once none is in it; a branch runs both sides).
+        if (s0 == s1) {
+            const uint single0 = (froxel0 + s0) * froxelStride;
+            for (uint k = 0u; k < length[s0]; ++k)
+                rgConsider((froxels.data[single0 + (k >> 1u)] >> ((k & 1u) * 16u)) & 0xFFFFu, boxMin, boxMax, sides,
+                           perspective, base, stride, count, pending);
+        } else {
+            for (;;) {
+                uint i = 0xFFFFFFFFu;
                 for (uint s = s0; s <= s1; ++s)
                     if (cursor[s] < length[s]) {
                         const uint f = froxel0 + s, k = cursor[s];
@@ -141,26 +167,8 @@ void main() {
                     if (k < length[s] && ((froxels.data[f * froxelStride + (k >> 1u)] >> ((k & 1u) * 16u)) & 0xFFFFu) == i)
                         cursor[s] = k + 1u;
                 }
-            }
-            if (i == 0xFFFFFFFFu) break;
-            // Only the two fields the test reads (a whole RgLight is six vec4s).
-            const vec3 centre = (camera.view * vec4(lights.light[i].positionType.xyz, 1.0)).xyz;
-            const float invRange2 = lights.light[i].directionRange.w;
-            const vec3 outside = max(max(boxMin - centre, centre - boxMax), vec3(0.0));
-            bool reaches = dot(outside, outside) * invRange2 < 1.0;  // distance to the box < range
-            if (reaches && perspective) {
-                // The range, with a margin for the rounding of the two reconstructions of a
-                // surface's position (this one and the lighting pass's).
-                const float reach = inversesqrt(max(invRange2, 1e-30)) * 1.001 + 1e-4;
-                for (int c = 0; c < 4; ++c) reaches = reaches && dot(sides[c], centre) > -reach;
-            }
-            if (reaches) {
-                // Two 16-bit indices per word (lib/light_tiles.glsl), the word written once full.
-                if (count < rgTileCapacity(stride)) {
-                    if ((count & 1u) == 0u) pending = i;
-                    else tiles.data[base + (count >> 1u)] = pending | (i << 16u);
-                }
-                ++count;
+                if (i == 0xFFFFFFFFu) break;
+                rgConsider(i, boxMin, boxMax, sides, perspective, base, stride, count, pending);
             }
         }
         if ((count & 1u) == 1u && count <= rgTileCapacity(stride)) tiles.data[base + (count >> 1u)] = pending;
