@@ -110,6 +110,7 @@ std::optional<uint32_t> GpuScene::layerExtent(const std::string& name) const {
     if (name == kShadowBatchesExtent) return static_cast<uint32_t>(m_shadowBatches.size());
     if (name == kCameraBatchesExtent) return m_cameraBatchCount;
     if (name == kDrawsExtent) return static_cast<uint32_t>(m_draws.size());
+    if (name == kLightsExtent) return std::max(m_lightCount, 1u);
     if (name == kCameraRunsExtent)
         return std::max<uint32_t>(static_cast<uint32_t>(m_cameraRuns.size()), 1u);
     if (name == kShadowCastersExtent) {

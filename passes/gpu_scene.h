@@ -123,7 +123,8 @@ public:
     std::optional<uint32_t> layerExtent(const std::string& name) const override;
     std::vector<std::string> extentNames() const override {
         return {kShadowViewsExtent,   kShadowCastersExtent, kShadowBatchesExtent,
-                kCameraBatchesExtent, kDrawsExtent,         kCameraRunsExtent};
+                kCameraBatchesExtent, kDrawsExtent,         kCameraRunsExtent,
+                kLightsExtent};
     }
     // Its features: "lightmap", a baked lightmap (scene.lightmap, from the cache or baked), and
     // "material:MODEL", whether a draw's material is of that pipeline material (any name: false
@@ -157,6 +158,9 @@ public:
     static constexpr const char* kCameraBatchesExtent = "camera_batches";
     static constexpr const char* kDrawsExtent = "draws";
     static constexpr const char* kCameraRunsExtent = "camera_runs";
+    // The scene's lights (at least 1): what the light culling's per-light buffers are sized by
+    // (scripts/lighting.lua's light_spheres).
+    static constexpr const char* kLightsExtent = "lights";
     // A camera run: the batches whose materials draw with one pipeline and one binding — the same
     // pipeline material, alpha mode (so the same shader variant, with the texture set), cull
     // mode, texture set (textureSet) and window of materials (materialWindow) — consecutive, so

@@ -75,13 +75,17 @@ rg.buffer "light_tiles" {
     size = 16, tile = lighting.tile, tile_bytes = 4 * lighting.tile_words,
     doc = "per 4x4 tile the ranged lights that reach its surfaces (light_culling.comp)",
 }
+rg.buffer "light_spheres" {
+    size = 16, scene_count = "lights", count_bytes = 16,
+    doc = "per light its sphere of influence in view space this frame (xyz the centre, w the range with a margin), written by the binning for the fine culling's test (light_froxels.comp)",
+}
 rg.pass "light_froxels_clear" {
     kind = "clear", writes = { "light_froxel_counts" }, insert = { after = "gbuffer" },
 }
 rg.pass "light_froxels" {
     kind = "compute", shader = "passes/light_froxels.comp", groups = { lighting.froxel_groups, 1, 1 },
     reads = { "depth" },
-    writes = { { "light_froxel_counts", as = "storage_rw" }, { "light_froxels", as = "storage" } },
+    writes = { { "light_froxel_counts", as = "storage_rw" }, { "light_froxels", as = "storage" }, { "light_spheres", as = "storage" } },
     insert = { after = "light_froxels_clear" }, defines = froxel_defines(),
 }
 rg.pass "light_froxels_sort" {
@@ -93,7 +97,7 @@ rg.pass "light_froxels_sort" {
 }
 rg.pass "light_culling" {
     kind = "compute", shader = "passes/light_culling.comp",
-    reads = { "depth", { "light_froxel_counts", as = "storage" }, { "light_froxels", as = "storage" } },
+    reads = { "depth", { "light_froxel_counts", as = "storage" }, { "light_froxels", as = "storage" }, { "light_spheres", as = "storage" } },
     writes = { { "light_tiles", as = "storage" } },
     dispatch = "depth", tile = lighting.tile, insert = { after = "light_froxels_sort" },
     defines = froxel_defines { RG_TILE_SIZE = lighting.tile },

@@ -38,6 +38,13 @@ layout(set = 0, binding = 1, std430) buffer light_froxel_counts {
     uint count[];
 } counts;
 layout(set = 0, binding = 2, std430) buffer light_froxels { uint data[]; } froxels;
+#ifndef RG_FROXEL_SORT
+// Per light its sphere of influence in view space (xyz the centre, w the range with a margin for
+// rounding), for the fine culling (light_culling.comp), which tests every light of a froxel's
+// list against each tile under it: one load there instead of a light's position, range and the
+// view transform.
+layout(set = 0, binding = 3, std430) writeonly buffer light_spheres { vec4 sphere[]; } spheres;
+#endif
 
 #ifdef RG_FROXEL_SORT
 uint entry(uint base, uint k) { return (froxels.data[base + (k >> 1u)] >> ((k & 1u) * 16u)) & 0xFFFFu; }
@@ -95,6 +102,7 @@ void main() {
         if (rgReachesEverything(light)) continue;  // in the global list
         const vec3 c = (camera.view * vec4(light.positionType.xyz, 1.0)).xyz;
         const float r = inversesqrt(light.directionRange.w);
+        if (part == 0u && i < uint(spheres.sphere.length())) spheres.sphere[i] = vec4(c, r * 1.001 + 1e-4);
         const float dMin = -c.z - r, dMax = -c.z + r;
         if (dMax < range.near) continue;  // wholly in front of the near plane
         const uint s0 = rgFroxelSlice(range, max(dMin, range.near)), s1 = rgFroxelSlice(range, dMax);
@@ -115,7 +123,7 @@ void main() {
         if (any(greaterThan(lo, vec2(1.0))) || any(lessThan(hi, vec2(-1.0)))) continue;  // off screen
         const ivec2 c0 = clamp(ivec2(floor((lo * 0.5 + 0.5) * vec2(size) / float(RG_COARSE_TILE_SIZE))), ivec2(0), ivec2(columns) - 1);
         const ivec2 c1 = clamp(ivec2(floor((hi * 0.5 + 0.5) * vec2(size) / float(RG_COARSE_TILE_SIZE))), ivec2(0), ivec2(columns) - 1);
-        const float reach = r * 1.001 + 1e-4;  // the range, with a margin for rounding
+        const float reach = r * 1.001 + 1e-4;  // the range, with a margin for rounding (as the sphere's)
         const ivec2 extent = c1 - c0 + 1;
         for (int j = int(part); j < extent.x * extent.y; j += int(parts)) {
                 const int x = c0.x + j % extent.x, y = c0.y + j / extent.x;

@@ -223,15 +223,15 @@ TEST_F(LuaGpu, ParametersAndResourcesNameWhatTheSceneHas) {
     std::ofstream(file)
         << deferred
         << "rg.resource \"maps\" { format = \"d32f\", size = { 64, 64 }, layers = 4, "
-           "scene_layers = \"lights\" }\n";
+           "scene_layers = \"lamps\" }\n";
     Session layers(*s_runtime, small());
     auto l = layers.load(file);
     ASSERT_FALSE(l);
     EXPECT_NE(l.error().describe().find(
                   "scene_setting.lua:" + std::to_string(line) +
-                  ": resource 'maps': scene_layers = 'lights': the scene has "
+                  ": resource 'maps': scene_layers = 'lamps': the scene has "
                   "no such extent (it has 'shadow_views', 'shadow_casters', 'shadow_batches', "
-                  "'camera_batches', 'draws', 'camera_runs')"),
+                  "'camera_batches', 'draws', 'camera_runs', 'lights')"),
               std::string::npos)
         << l.error().describe();
     // So does a buffer's scene_count.
