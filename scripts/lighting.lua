@@ -6,8 +6,8 @@
 -- First a froxel grid (shaders/passes/light_froxels.comp): the screen in columns of 32x32 pixels,
 -- each cut into 16 slices of view distance; every ranged light goes into the lists of the froxels
 -- its range meets (one invocation per light, or a few sharing its columns when there are few: the
--- cost is the lights times the froxels each covers, not froxels times lights), and the lists are
--- sorted. Then, after the pass named "gbuffer",
+-- cost is the lights times the froxels each covers, not froxels times lights; it also writes each
+-- light's view-space sphere, `light_spheres`), and the lists are sorted. Then, after the pass named "gbuffer",
 -- `light_culling` lists per 4x4-pixel tile the lights of the froxels its surfaces' depths span
 -- that reach those surfaces. Small tiles keep each pixel's loop to the lights near it. The lights
 -- that reach every pixel (the sun, lights without a range) are the scene's global list, read by

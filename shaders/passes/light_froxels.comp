@@ -9,7 +9,8 @@
 //   range of lst:4's window, which also ends area lights (lighting.glsl rgRangeWindow) — bounds
 //   a rectangle of columns (its view-space box projected) and a run of slices (its depth ± range);
 //   the light goes into the list of every froxel there whose view-space box it meets, in the
-//   columns whose four side planes it does not lie wholly outside. Lists grow
+//   columns whose four side planes it does not lie wholly outside, and its sphere in view space
+//   into light_spheres (what the fine culling tests). Lists grow
 //   by an atomic count, so their order is the order the lights arrived in.
 //   `light_froxels_sort` (RG_FROXEL_SORT): one invocation per froxel (striding over them, the
 //   same slice of neighbouring columns side by side) sorts its list into ascending light order, so that every list — and every sum over one — is the same
