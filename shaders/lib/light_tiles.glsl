@@ -87,6 +87,24 @@ vec3 rgViewPointAt(vec2 ndc, float d) {
         return vec3((ndc.x - camera.proj[3][0]) / camera.proj[0][0], (ndc.y - camera.proj[3][1]) / camera.proj[1][1], -d);
     return vec3(ndc.x * d / camera.proj[0][0], ndc.y * d / camera.proj[1][1], -d);
 }
+// The four side planes through the eye of a perspective frustum whose edges pass through
+// `corner` (view space, in order around it), their normals pointing inside: what the light
+// culling tests a light's sphere against besides a box (shaders/passes/light_froxels.comp per
+// column, light_culling.comp per tile; an orthographic frustum's sides are its boxes' own).
+void rgFrustumSides(vec3 corner[4], out vec3 sides[4]) {
+    const vec3 middle = 0.25 * (corner[0] + corner[1] + corner[2] + corner[3]);
+    for (int c = 0; c < 4; ++c) {
+        vec3 n = cross(corner[c], corner[(c + 1) & 3]);
+        n *= inversesqrt(max(dot(n, n), 1e-30));
+        sides[c] = dot(n, middle) < 0.0 ? -n : n;
+    }
+}
+// Whether a sphere (view-space centre, radius) is not wholly outside any of those planes.
+bool rgSphereMeetsSides(vec3 sides[4], vec3 centre, float radius) {
+    bool meets = true;
+    for (int c = 0; c < 4; ++c) meets = meets && dot(sides[c], centre) > -radius;
+    return meets;
+}
 
 struct RgLightList {
     uint base;    // index of the tile's first word after its count in light_tiles.data

@@ -61,8 +61,7 @@ void rgConsider(uint i, vec3 boxMin, vec3 boxMax, vec3 sides[4], bool perspectiv
     const float reach = sphere.w;
     const vec3 outside = max(max(boxMin - centre, centre - boxMax), vec3(0.0));
     bool reaches = dot(outside, outside) < reach * reach;  // distance to the box < range
-    if (reaches && perspective)
-        for (int c = 0; c < 4; ++c) reaches = reaches && dot(sides[c], centre) > -reach;
+    if (reaches && perspective) reaches = rgSphereMeetsSides(sides, centre, reach);
     if (reaches) {
         if (count < rgTileCapacity(stride)) {
             if ((count & 1u) == 0u) pending = i;
@@ -119,15 +118,7 @@ void main() {
         // perspective's; an orthographic frustum's sides are the box's own).
         const bool perspective = !rgCameraOrthographic();
         vec3 sides[4];
-        {
-            const vec3 middle = 0.25 * (nearCorner[0] + nearCorner[1] + nearCorner[2] + nearCorner[3]);
-            const int ring[5] = int[](0, 1, 3, 2, 0);  // the corners around the tile
-            for (int c = 0; c < 4; ++c) {
-                vec3 n = cross(nearCorner[ring[c]], nearCorner[ring[c + 1]]);
-                n *= inversesqrt(max(dot(n, n), 1e-30));
-                sides[c] = dot(n, middle) < 0.0 ? -n : n;
-            }
-        }
+        rgFrustumSides(vec3[](nearCorner[0], nearCorner[1], nearCorner[3], nearCorner[2]), sides);  // around the tile
 
         // The froxels of the tile's column its depths span, and how much each list holds.
         const uvec2 columns = (uvec2(size) + uvec2(RG_COARSE_TILE_SIZE - 1)) / uvec2(RG_COARSE_TILE_SIZE);

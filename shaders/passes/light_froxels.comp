@@ -5,16 +5,16 @@
 //
 //   `light_froxels` (the default): one invocation per light, striding over the scene's lights (the
 //   pass dispatches a fixed number of work groups); with fewer lights than invocations, up to 64
-//   invocations a light, each taking a share of its columns. A ranged light's sphere of influence — the
-//   range of lst:4's window, which also ends area lights (lighting.glsl rgRangeWindow) — bounds
-//   a rectangle of columns (its view-space box projected) and a run of slices (its depth ± range);
+//   invocations a light, each taking a share of its columns. A ranged light's sphere of
+//   influence — the range of lst:4's window, which also ends area lights (lighting.glsl
+//   rgRangeWindow) — bounds a rectangle of columns (its view-space box projected) and a run of slices (its depth ± range);
 //   the light goes into the list of every froxel there whose view-space box it meets, in the
 //   columns whose four side planes it does not lie wholly outside, and its sphere in view space
-//   into light_spheres (what the fine culling tests). Lists grow
-//   by an atomic count, so their order is the order the lights arrived in.
+//   into light_spheres (what the fine culling tests). Lists grow by an atomic count, so their
+//   order is the order the lights arrived in.
 //   `light_froxels_sort` (RG_FROXEL_SORT): one invocation per froxel (striding over them, the
-//   same slice of neighbouring columns side by side) sorts its list into ascending light order, so that every list — and every sum over one — is the same
-//   from run to run.
+//   same slice of neighbouring columns side by side) sorts its list into ascending light order,
+//   so that every list — and every sum over one — is the same from run to run.
 //
 // The cost is lights × the froxels each one covers, not froxels × lights: a scene of many small
 // lights costs about what a few large ones do (the fine tiles, shaders/passes/light_culling.comp,
@@ -74,7 +74,8 @@ void main() {
     // (DESIGN §8), and a reversed list of 254 takes 32 000.
     // Neighbouring invocations take the same slice of neighbouring columns, whose lists are about
     // as long: a CPU rasteriser runs them as one SIMD's lanes, each loop as long as its longest
-    // lane's (neighbouring slices of one column, mostly empty around one full, left 7 of 8 lanes idle).
+    // lane's (neighbouring slices of one column, mostly empty around one full, left 7 of 8
+    // lanes idle).
     const uint invocations = gl_NumWorkGroups.x * gl_WorkGroupSize.x;
     const uint columnCount = columns.x * columns.y;
     for (uint g = gl_GlobalInvocationID.x; g < froxelCount; g += invocations) {
@@ -103,7 +104,8 @@ void main() {
         if (rgReachesEverything(light)) continue;  // in the global list
         const vec3 c = (camera.view * vec4(light.positionType.xyz, 1.0)).xyz;
         const float r = inversesqrt(light.directionRange.w);
-        if (part == 0u && i < uint(spheres.sphere.length())) spheres.sphere[i] = vec4(c, r * 1.001 + 1e-4);
+        const float reach = r * 1.001 + 1e-4;  // the range, with a margin for rounding
+        if (part == 0u && i < uint(spheres.sphere.length())) spheres.sphere[i] = vec4(c, reach);
         const float dMin = -c.z - r, dMax = -c.z + r;
         if (dMax < range.near) continue;  // wholly in front of the near plane
         const uint s0 = rgFroxelSlice(range, max(dMin, range.near)), s1 = rgFroxelSlice(range, dMax);
@@ -124,55 +126,49 @@ void main() {
         if (any(greaterThan(lo, vec2(1.0))) || any(lessThan(hi, vec2(-1.0)))) continue;  // off screen
         const ivec2 c0 = clamp(ivec2(floor((lo * 0.5 + 0.5) * vec2(size) / float(RG_COARSE_TILE_SIZE))), ivec2(0), ivec2(columns) - 1);
         const ivec2 c1 = clamp(ivec2(floor((hi * 0.5 + 0.5) * vec2(size) / float(RG_COARSE_TILE_SIZE))), ivec2(0), ivec2(columns) - 1);
-        const float reach = r * 1.001 + 1e-4;  // the range, with a margin for rounding (as the sphere's)
         const ivec2 extent = c1 - c0 + 1;
         for (int j = int(part); j < extent.x * extent.y; j += int(parts)) {
-                const int x = c0.x + j % extent.x, y = c0.y + j / extent.x;
-                // The column's four corner rays, in normalised screen coordinates.
-                const vec2 a = vec2(ivec2(x, y) * RG_COARSE_TILE_SIZE) / vec2(size) * 2.0 - 1.0;
-                const vec2 b = min(vec2(ivec2(x + 1, y + 1) * RG_COARSE_TILE_SIZE) / vec2(size), vec2(1.0)) * 2.0 - 1.0;
-                // A perspective column's four side planes through the eye: a sphere wholly outside
-                // one meets none of its froxels. Tighter than the froxels' boxes, which off the
-                // screen's centre slant far past the column (an orthographic column's sides are
-                // its boxes' own).
-                if (!ortho) {
-                    const vec3 ray[4] = vec3[](rgViewPointAt(a, 1.0), rgViewPointAt(vec2(b.x, a.y), 1.0), rgViewPointAt(b, 1.0),
-                                               rgViewPointAt(vec2(a.x, b.y), 1.0));
-                    const vec3 middle = 0.25 * (ray[0] + ray[1] + ray[2] + ray[3]);
-                    bool meets = true;
-                    for (int k = 0; k < 4; ++k) {
-                        vec3 n = cross(ray[k], ray[(k + 1) & 3]);
-                        n *= inversesqrt(max(dot(n, n), 1e-30));
-                        meets = meets && abs(dot(n, c)) * sign(dot(n, c) * dot(n, middle)) > -reach;
-                    }
-                    if (!meets) continue;
+            const int x = c0.x + j % extent.x, y = c0.y + j / extent.x;
+            // The column's four corner rays, in normalised screen coordinates.
+            const vec2 a = vec2(ivec2(x, y) * RG_COARSE_TILE_SIZE) / vec2(size) * 2.0 - 1.0;
+            const vec2 b = min(vec2(ivec2(x + 1, y + 1) * RG_COARSE_TILE_SIZE) / vec2(size), vec2(1.0)) * 2.0 - 1.0;
+            // A perspective column's four side planes through the eye: a sphere wholly outside
+            // one meets none of its froxels. Tighter than the froxels' boxes, which off the
+            // screen's centre slant far past the column (an orthographic column's sides are
+            // its boxes' own).
+            if (!ortho) {
+                vec3 sides[4];
+                rgFrustumSides(vec3[](rgViewPointAt(a, 1.0), rgViewPointAt(vec2(b.x, a.y), 1.0), rgViewPointAt(b, 1.0),
+                                      rgViewPointAt(vec2(a.x, b.y), 1.0)),
+                               sides);
+                if (!rgSphereMeetsSides(sides, c, reach)) continue;
+            }
+            float d0 = rgFroxelSliceStart(range, s0);
+            for (uint s = s0; s <= s1; ++s) {
+                // The froxel's view-space box: its 8 corners. The last slice also holds what
+                // lies past the scene's far end: there it reaches as far as the light does.
+                const float d1 = rgFroxelSliceStart(range, s + 1u);
+                const float near = d0, far = s == uint(RG_FROXEL_SLICES - 1) ? max(d1, dMax) : d1;
+                vec3 boxMin = vec3(1e30), boxMax = vec3(-1e30);
+                for (int k = 0; k < 8; ++k) {
+                    vec3 v = rgViewPointAt(vec2((k & 1) != 0 ? b.x : a.x, (k & 2) != 0 ? b.y : a.y), (k & 4) != 0 ? far : near);
+                    boxMin = min(boxMin, v);
+                    boxMax = max(boxMax, v);
                 }
-                float d0 = rgFroxelSliceStart(range, s0);
-                for (uint s = s0; s <= s1; ++s) {
-                    // The froxel's view-space box: its 8 corners. The last slice also holds what
-                    // lies past the scene's far end: there it reaches as far as the light does.
-                    const float d1 = rgFroxelSliceStart(range, s + 1u);
-                    const float near = d0, far = s == uint(RG_FROXEL_SLICES - 1) ? max(d1, dMax) : d1;
-                    vec3 boxMin = vec3(1e30), boxMax = vec3(-1e30);
-                    for (int k = 0; k < 8; ++k) {
-                        vec3 v = rgViewPointAt(vec2((k & 1) != 0 ? b.x : a.x, (k & 2) != 0 ? b.y : a.y), (k & 4) != 0 ? far : near);
-                        boxMin = min(boxMin, v);
-                        boxMax = max(boxMax, v);
-                    }
-                    d0 = d1;
-                    const vec3 outside = max(max(boxMin - c, c - boxMax), vec3(0.0));
-                    if (dot(outside, outside) * light.directionRange.w >= 1.0) continue;  // beyond its range
-                    const uint f = (uint(y) * columns.x + uint(x)) * uint(RG_FROXEL_SLICES) + s;
-                    const uint n = atomicAdd(counts.count[f], 1u);
-                    if (n < capacity) {
-                        // Two lights share a word: each clears and sets its own half (disjoint
-                        // bits, so the two lanes' atomics commute), whatever the word held.
-                        const uint word = f * stride + (n >> 1u), shift = (n & 1u) * 16u;
-                        atomicAnd(froxels.data[word], ~(0xFFFFu << shift));
-                        atomicOr(froxels.data[word], i << shift);
-                    }
+                d0 = d1;
+                const vec3 outside = max(max(boxMin - c, c - boxMax), vec3(0.0));
+                if (dot(outside, outside) * light.directionRange.w >= 1.0) continue;  // beyond its range
+                const uint f = (uint(y) * columns.x + uint(x)) * uint(RG_FROXEL_SLICES) + s;
+                const uint n = atomicAdd(counts.count[f], 1u);
+                if (n < capacity) {
+                    // Two lights share a word: each clears and sets its own half (disjoint
+                    // bits, so the two lanes' atomics commute), whatever the word held.
+                    const uint word = f * stride + (n >> 1u), shift = (n & 1u) * 16u;
+                    atomicAnd(froxels.data[word], ~(0xFFFFu << shift));
+                    atomicOr(froxels.data[word], i << shift);
                 }
             }
+        }
     }
 #endif
 }
