@@ -218,6 +218,10 @@ int rgLightType(RgLight light) { return int(light.positionType.w + 0.5); }
 // Which of light types `types` (bits 1 << RG_LIGHT_*) the scene has: rgEvaluateLightUnshadowedOf
 // compiles only those branches (`types` is a constant at every call).
 #define RG_LIGHT_IN(types, t) (RG_SCENE_HAS_LIGHT(t) && ((types) & (1u << uint(t))) != 0u)
+// Whether every type of `types` the scene has is among `among` (bits): a branch for those needs no
+// test of the light's own type (nor the load of it: lavapipe loads a light's fields lane by lane).
+#define RG_LIGHT_ONLY(types, among) ((((types) & uint(RG_SCENE_LIGHT_TYPES)) & ~(among)) == 0u)
+#define RG_PUNCTUAL_LIGHT_TYPES ((1u << uint(RG_LIGHT_POINT)) | (1u << uint(RG_LIGHT_SPOT)))
 #define RG_AREA_LIGHT_TYPES ((1u << uint(RG_LIGHT_SPHERE)) | (1u << uint(RG_LIGHT_DISK)) | (1u << uint(RG_LIGHT_RECT)) | (1u << uint(RG_LIGHT_TUBE)))
 
 RgLightSample rgEvaluateLightUnshadowedOf(RgLight light, uint types, vec3 P, vec3 N, vec3 V, float linearRoughness) {
@@ -257,10 +261,12 @@ RgLightSample rgEvaluateLightUnshadowedOf(RgLight light, uint types, vec3 P, vec
     float invDist = inversesqrt(sqrDist);
     vec3 L = Lu * invDist;
 
-    if ((RG_LIGHT_IN(types, RG_LIGHT_POINT) || RG_LIGHT_IN(types, RG_LIGHT_SPOT)) && type <= RG_LIGHT_SPOT) {
-        // lst:4 (point: scale 0, offset 1), eq:27 / lst:5 for an IES profile.
+    if ((RG_LIGHT_IN(types, RG_LIGHT_POINT) || RG_LIGHT_IN(types, RG_LIGHT_SPOT)) && (RG_LIGHT_ONLY(types, RG_PUNCTUAL_LIGHT_TYPES) || type <= RG_LIGHT_SPOT)) {
+        // lst:4, eq:27 / lst:5 for an IES profile. A point light's cone (scale 0, offset 1) is 1:
+        // without spot lights in the scene it is not evaluated (nor its parameters loaded: the
+        // many-lights scene's lighting_standard at 16 384 lights, 1280x720 on lavapipe: ~41 -> ~38 ms).
         float att = getDistanceAtt(Lu, light.directionRange.w);
-        att *= getAngleAtt(-L, dir, light.params.x, light.params.y);
+        if (RG_LIGHT_IN(types, RG_LIGHT_SPOT)) att *= getAngleAtt(-L, dir, light.params.x, light.params.y);
         att *= rgIesAttenuation(light, L);
         vec3 E = colour * att;  // cd / d² = lux
         s.Ld = L;

@@ -47,6 +47,11 @@ layout(set = 0, binding = 3, std430) readonly buffer light_froxels { uint data[]
 // centre, w the range with a margin for rounding).
 layout(set = 0, binding = 4, std430) readonly buffer light_spheres { vec4 sphere[]; } spheres;
 
+const uint kNoLight = 0xFFFFFFFFu;  // past a list's end
+
+// Entry k of froxel f's list (16-bit light indices, two a word, `stride` words a froxel).
+uint rgFroxelEntry(uint f, uint stride, uint k) { return (froxels.data[f * stride + (k >> 1u)] >> ((k & 1u) * 16u)) & 0xFFFFu; }
+
 // Light i of a froxel's list, for the tile whose frustum has view-space box boxMin..boxMax and
 // side planes `sides`: appended to the tile's list (`count` so far; `pending` the lower half of
 // the word being filled, two 16-bit indices per word, lib/light_tiles.glsl) when its sphere of
@@ -140,27 +145,30 @@ void main() {
             length[s] = min(froxelCounts.count[froxel0 + s], 2u * froxelStride);
         }
         uint pending = 0u;  // the lower half of the word being filled
-        // Most tiles' surfaces lie in one slice: its list is walked as it is, in a loop of its own
-        // (a SIMD's lanes leave a loop together once none is in it; a branch runs both sides).
-        if (s0 == s1) {
-            const uint single0 = (froxel0 + s0) * froxelStride;
-            for (uint k = 0u; k < length[s0]; ++k)
-                rgConsider((froxels.data[single0 + (k >> 1u)] >> ((k & 1u) * 16u)) & 0xFFFFu, boxMin, boxMax, sides,
-                           perspective, base, stride, count, pending);
+        if (s1 <= s0 + 1u) {
+            // Most tiles' surfaces lie in one slice, most others in two: a two-way merge with
+            // both lists' heads in registers (a one-slice tile's second list is empty), one load
+            // a step. The k-way merge below reloads every list's head twice a step: run for the
+            // two-slice tiles too, it cost ~1.8 ms of ~13.8 at 16 384 lights (many-lights scene,
+            // 1280x720 on lavapipe), where a SIMD with one such tile among its lanes ran it.
+            const uint lenA = length[s0], lenB = s1 > s0 ? length[s1] : 0u;
+            uint kA = 0u, kB = 0u;
+            uint headA = lenA > 0u ? rgFroxelEntry(froxel0 + s0, froxelStride, 0u) : kNoLight;
+            uint headB = lenB > 0u ? rgFroxelEntry(froxel0 + s1, froxelStride, 0u) : kNoLight;
+            for (uint i = min(headA, headB); i != kNoLight; i = min(headA, headB)) {
+                rgConsider(i, boxMin, boxMax, sides, perspective, base, stride, count, pending);
+                if (headA == i) headA = ++kA < lenA ? rgFroxelEntry(froxel0 + s0, froxelStride, kA) : kNoLight;
+                if (headB == i) headB = ++kB < lenB ? rgFroxelEntry(froxel0 + s1, froxelStride, kB) : kNoLight;
+            }
         } else {
+            // Three slices or more (a depth edge): a k-way merge of their ascending lists.
             for (;;) {
-                uint i = 0xFFFFFFFFu;
+                uint i = kNoLight;
                 for (uint s = s0; s <= s1; ++s)
-                    if (cursor[s] < length[s]) {
-                        const uint f = froxel0 + s, k = cursor[s];
-                        i = min(i, (froxels.data[f * froxelStride + (k >> 1u)] >> ((k & 1u) * 16u)) & 0xFFFFu);
-                    }
-                for (uint s = s0; s <= s1; ++s) {
-                    const uint f = froxel0 + s, k = cursor[s];
-                    if (k < length[s] && ((froxels.data[f * froxelStride + (k >> 1u)] >> ((k & 1u) * 16u)) & 0xFFFFu) == i)
-                        cursor[s] = k + 1u;
-                }
-                if (i == 0xFFFFFFFFu) break;
+                    if (cursor[s] < length[s]) i = min(i, rgFroxelEntry(froxel0 + s, froxelStride, cursor[s]));
+                for (uint s = s0; s <= s1; ++s)
+                    if (cursor[s] < length[s] && rgFroxelEntry(froxel0 + s, froxelStride, cursor[s]) == i) ++cursor[s];
+                if (i == kNoLight) break;
                 rgConsider(i, boxMin, boxMax, sides, perspective, base, stride, count, pending);
             }
         }
