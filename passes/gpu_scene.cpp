@@ -178,6 +178,18 @@ Result<void> GpuScene::createFrameData(Context& ctx, const GpuSceneOptions& opti
         !r)
         return r;
     if (auto r = createLightTables(ctx, *table); !r) return r;
+    // The same block as RGBA32F texels for the light loops (lib/scene.glsl's rgLight): on
+    // lavapipe a texel fetch is one gather a field where a storage buffer's load is a loop over
+    // the lanes. Where the device's texel buffers are too small for the scene's lights, none;
+    // RG_LIGHT_TEXELS=0: none either (to compare: the image is the same).
+    const char* texelsEnv = std::getenv("RG_LIGHT_TEXELS");
+    VkFormatProperties texelFormat{};
+    vkGetPhysicalDeviceFormatProperties(ctx.physicalDevice(), VK_FORMAT_R32G32B32A32_SFLOAT,
+                                        &texelFormat);
+    const bool texels =
+        !(texelsEnv && std::string_view(texelsEnv) == "0") &&
+        (texelFormat.bufferFeatures & VK_FORMAT_FEATURE_UNIFORM_TEXEL_BUFFER_BIT) != 0 &&
+        lightBytes / 16 <= ctx.properties().limits.maxTexelBufferElements;
     // lib/light_tiles.glsl's GlobalLights: the lights that reach every pixel (its
     // rgReachesEverything: the sun, lights without a range), ascending — for every tile's loop.
     std::vector<uint32_t> global{0, 0, 0, 0};
@@ -206,7 +218,9 @@ Result<void> GpuScene::createFrameData(Context& ctx, const GpuSceneOptions& opti
         m_shadowViewBuffers.push_back(std::move(*views));
         auto lights = Buffer::create(
             ctx, "scene.lights", lightBytes,
-            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT, true);
+            VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT |
+                (texels ? VkBufferUsageFlags(VK_BUFFER_USAGE_UNIFORM_TEXEL_BUFFER_BIT) : 0u),
+            true);
         if (!lights) return std::unexpected(lights.error());
         auto* p = static_cast<uint8_t*>(lights->mapped());
         std::memset(p, 0, lightBytes);
@@ -214,6 +228,15 @@ Result<void> GpuScene::createFrameData(Context& ctx, const GpuSceneOptions& opti
         std::memcpy(p, header, sizeof header);
         if (m_lightCount)
             std::memcpy(p + 16, table->lights.data(), table->lights.size() * sizeof(GpuLight));
+        if (texels) {
+            VkBufferViewCreateInfo vi{VK_STRUCTURE_TYPE_BUFFER_VIEW_CREATE_INFO};
+            vi.buffer = lights->buffer();
+            vi.format = VK_FORMAT_R32G32B32A32_SFLOAT;
+            vi.range = VK_WHOLE_SIZE;
+            VkBufferView view = VK_NULL_HANDLE;
+            RG_VK_TRY(vkCreateBufferView(ctx.device(), &vi, nullptr, &view));
+            m_lightTexelViews.emplace_back(ctx.device(), view);
+        }
         m_lightBuffers.push_back(std::move(*lights));
         // SceneInstances: room for every draw four times a frame (the G-buffer, forward and
         // any other camera pass), one word each.

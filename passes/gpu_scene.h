@@ -255,6 +255,12 @@ public:
     uint64_t contentHash(uint32_t slot) const override;
     VkBuffer cameraBuffer(uint32_t slot) const { return m_cameraBuffers[slot].buffer(); }
     VkBuffer lightBuffer(uint32_t slot) const { return m_lightBuffers[slot].buffer(); }
+    // Frame slot `slot`'s Lights block as a texel buffer of RGBA32F texels (SceneLightTexels,
+    // lib/scene.glsl's rgLight), or VK_NULL_HANDLE where the device's texel buffers cannot hold
+    // the scene's lights: then the light loops read the block itself.
+    VkBufferView lightTexelView(uint32_t slot) const {
+        return m_lightTexelViews.empty() ? VK_NULL_HANDLE : m_lightTexelViews[slot].get();
+    }
     // Which area-light model the light loop evaluates (lib/scene.glsl's Lights.count.y): 0 Frostbite's
     // (seed 002 §4.7), 1 linearly transformed cosines (lib/ltc.glsl). Written into each frame slot's
     // Lights block by updateFrame; a session sets it from the pipeline's `area_lights` parameter.
@@ -421,6 +427,7 @@ private:
     std::vector<std::vector<std::pair<int32_t, int32_t>>> m_textureSetSlots;
     std::vector<VkDescriptorSet> m_textureSets;
     std::vector<gpu::Buffer> m_cameraBuffers, m_lightBuffers, m_shadowViewBuffers;
+    std::vector<gpu::OwnedBufferView> m_lightTexelViews;  // lightTexelView, per slot (or none)
     // SceneTransforms (kTransformWords vec4 per draw) and SceneDraws: one, or one per frame slot
     // when nodes move.
     std::vector<gpu::Buffer> m_transforms, m_drawBuffers;

@@ -45,6 +45,8 @@ VkDescriptorType toVkDescriptor(DescriptorType t) {
             return VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
         case DescriptorType::StorageBuffer:
             return VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        case DescriptorType::UniformTexelBuffer:
+            return VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
     }
     return VK_DESCRIPTOR_TYPE_MAX_ENUM;
 }
@@ -67,7 +69,8 @@ bool isSceneBinding(const ReflectedBinding& b) {
         {"Probes", DescriptorType::UniformBuffer},
         {"SceneEnvironmentCdf", DescriptorType::StorageBuffer},
         {"SceneEnvironment", DescriptorType::CombinedImageSampler},
-        {"SceneLightmap", DescriptorType::CombinedImageSampler}};
+        {"SceneLightmap", DescriptorType::CombinedImageSampler},
+        {"SceneLightTexels", DescriptorType::UniformTexelBuffer}};
     return std::any_of(std::begin(kScene), std::end(kScene),
                        [&](const auto& e) { return b.name == e.first && b.type == e.second; });
 }
@@ -89,6 +92,7 @@ bool usageFits(DescriptorType t, Usage u) {
         case DescriptorType::UniformBuffer:
             return u == Usage::UniformRead;
         case DescriptorType::Sampler:
+        case DescriptorType::UniformTexelBuffer:  // the scene's lights only
             return false;
     }
     return false;
@@ -195,6 +199,10 @@ Result<void> ShaderProgram::build(PassSetup& setup, std::vector<ShaderRequest> s
             defines.emplace_back("RG_SCENE_TILE_LIGHT_TYPES", std::to_string(tileTypes));
         }
         defines.emplace_back("RG_SCENE_IES", ies ? "1" : "0");
+        // RG_LIGHT_TEXELS: the light loops read the lights through a texel buffer of the same
+        // memory (lib/scene.glsl rgLight) where the device's texel buffers hold them.
+        if (sceneOf(setup)->lightTexelView(0) != VK_NULL_HANDLE)
+            defines.emplace_back("RG_LIGHT_TEXELS", "1");
         // RG_SCENE_PROBES: how many local light probes the scene has (lib/ibl.glsl's composition
         // loops that many times at most: none compiles no loop at all).
         defines.emplace_back(
@@ -407,7 +415,14 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
                 return fail(ErrorCode::InvalidInput,
                             passPrefix(desc) + "shader binding '" + b.name +
                                 "' is the scene's, but no scene is loaded (give --scene)");
-            if (b.type != DescriptorType::CombinedImageSampler) {
+            if (b.type == DescriptorType::UniformTexelBuffer &&
+                sceneOf(setup)->lightTexelView(0) == VK_NULL_HANDLE)
+                return fail(ErrorCode::Unsupported,
+                            passPrefix(desc) + "shader binding '" + b.name +
+                                "': the device's texel buffers cannot hold the scene's lights "
+                                "(read them with rgLight, lib/scene.glsl)");
+            if (b.type != DescriptorType::CombinedImageSampler &&
+                b.type != DescriptorType::UniformTexelBuffer) {
                 if (auto buffer = sceneOf(setup)->makeBindingBuffer(b.name, 0); !buffer)
                     return fail(ErrorCode::Device, passPrefix(desc) +
                                                        "could not make the scene's '" + b.name +
@@ -437,6 +452,11 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
                 continue;
             }
         }
+        if (b.type == DescriptorType::UniformTexelBuffer)
+            return fail(ErrorCode::Unsupported,
+                        passPrefix(desc) + "texel buffer '" + b.name +
+                            "' is not supported (use a storage buffer; a samplerBuffer is read "
+                            "only from the scene's lights, SceneLightTexels)");
         std::string want = bindMap[b.name].isString() ? bindMap[b.name].asString() : "";
         const Access* access = nullptr;
         for (const auto& a : desc.accesses) {
@@ -493,6 +513,8 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
         std::vector<VkDescriptorBufferInfo> buffers;
         images.reserve(bound.size() + sceneBindings.size());
         buffers.reserve(bound.size() + sceneBindings.size() + 1);
+        std::vector<VkBufferView> texelViews;
+        texelViews.reserve(sceneBindings.size());
         for (const auto& bd : bound) {
             VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
             w.dstSet = m_sets[s][bd.binding->set];
@@ -543,6 +565,17 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
                 w.descriptorCount = 1;
                 w.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
                 w.pImageInfo = &images.back();
+                writes.push_back(w);
+                continue;
+            }
+            if (b->type == DescriptorType::UniformTexelBuffer) {  // SceneLightTexels
+                VkWriteDescriptorSet w{VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET};
+                w.dstSet = m_sets[s][b->set];
+                w.dstBinding = b->binding;
+                w.descriptorCount = 1;
+                w.descriptorType = VK_DESCRIPTOR_TYPE_UNIFORM_TEXEL_BUFFER;
+                texelViews.push_back(sceneOf(setup)->lightTexelView(s / m_variants));
+                w.pTexelBufferView = &texelViews.back();
                 writes.push_back(w);
                 continue;
             }

@@ -77,6 +77,7 @@ private:
 using OwnedImage = Owned<VkImage, vkDestroyImage>;
 using OwnedImageView = Owned<VkImageView, vkDestroyImageView>;
 using OwnedBuffer = Owned<VkBuffer, vkDestroyBuffer>;
+using OwnedBufferView = Owned<VkBufferView, vkDestroyBufferView>;
 using OwnedSampler = Owned<VkSampler, vkDestroySampler>;
 using OwnedMemory = Owned<VkDeviceMemory, vkFreeMemory>;
 using OwnedFence = Owned<VkFence, vkDestroyFence>;

@@ -312,6 +312,11 @@ private:
         b.nonReadable = false;
 
         spvc_type base = type(r.base_type_id);
+        // A samplerBuffer is a uniform texel buffer (a sampled image of dimension Buffer: SPIRV-Cross
+        // lists it with the separate images).
+        if ((dt == DescriptorType::CombinedImageSampler || dt == DescriptorType::SampledImage) &&
+            spvc_type_get_image_dimension(base) == SpvDimBuffer)
+            b.type = dt = DescriptorType::UniformTexelBuffer;
         switch (dt) {
             case DescriptorType::UniformBuffer:
             case DescriptorType::StorageBuffer: {
@@ -335,9 +340,10 @@ private:
             case DescriptorType::SampledImage:
             case DescriptorType::StorageImage:
                 if (spvc_type_get_image_dimension(base) == SpvDimBuffer)
-                    return fail(
-                        ErrorCode::Unsupported,
-                        "texel buffer '" + b.name + "' is not supported (use a storage buffer)");
+                    return fail(ErrorCode::Unsupported,
+                                "texel buffer '" + b.name +
+                                    "' is not supported (use a storage buffer; a samplerBuffer "
+                                    "is read only from the scene's lights)");
                 if (dt == DescriptorType::StorageImage) {
                     b.nonWritable = hasDecoration(r.id, SpvDecorationNonWritable);
                     b.nonReadable = hasDecoration(r.id, SpvDecorationNonReadable);
@@ -345,6 +351,7 @@ private:
                 }
                 break;
             case DescriptorType::Sampler:
+            case DescriptorType::UniformTexelBuffer:
                 break;
         }
         return b;
@@ -452,6 +459,8 @@ const char* toString(DescriptorType t) {
             return "uniform_buffer";
         case DescriptorType::StorageBuffer:
             return "storage_buffer";
+        case DescriptorType::UniformTexelBuffer:
+            return "uniform_texel_buffer";
     }
     return "unknown";
 }

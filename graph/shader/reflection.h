@@ -35,10 +35,11 @@ enum class DescriptorType : uint8_t {
     StorageImage,          // image2D
     UniformBuffer,         // uniform Block { ... }
     StorageBuffer,         // buffer Block { ... }
+    UniformTexelBuffer,  // samplerBuffer (bound for the scene's lights only: passes/shader_program.cpp)
 };
 
 // "combined_image_sampler", "sampled_image", "sampler", "storage_image", "uniform_buffer",
-// "storage_buffer".
+// "storage_buffer", "uniform_texel_buffer".
 const char* toString(DescriptorType t);
 
 // A top-level member of a block (UBO, SSBO or push constants), offsets and sizes in bytes as

@@ -147,7 +147,7 @@ layout(set = RG_CAMERA_SET, binding = RG_LIGHTS_WINDOW_BINDING, std140) uniform 
 // block otherwise — the other side folds away. (A varying i would pay for both reads.) Copied
 // member by member: the two blocks' RgLight types differ in layout, which SPIR-V cannot store as one.
 RgLight rgGlobalLight(uint i) {
-    if (i >= uint(RG_LIGHTS_WINDOW)) return lights.light[i];
+    if (i >= uint(RG_LIGHTS_WINDOW)) return rgLight(i);
     RgLight light;
     light.positionType = lightsWindow.light[i].positionType;
     light.directionRange = lightsWindow.light[i].directionRange;
@@ -489,10 +489,10 @@ RgLightSample rgEvaluateLightUnshadowedOf(RgLight light, uint types, vec3 P, vec
 
 // Light i whatever its type (every type the scene has).
 RgLightSample rgEvaluateLightUnshadowed(uint i, vec3 P, vec3 N, vec3 V, float linearRoughness) {
-    return rgEvaluateLightUnshadowedOf(lights.light[i], uint(RG_SCENE_LIGHT_TYPES), P, N, V, linearRoughness);
+    return rgEvaluateLightUnshadowedOf(rgLight(i), uint(RG_SCENE_LIGHT_TYPES), P, N, V, linearRoughness);
 }
 
-// Light i, its data `light` (lights.light[i], or rgGlobalLight(i)).
+// Light i, its data `light` (rgLight(i), or rgGlobalLight(i)).
 RgLightSample rgEvaluateLightOf(RgLight light, uint i, uint types, vec3 P, vec3 N, vec3 V, float linearRoughness, float sunVisibility) {
     RgLightSample s = rgEvaluateLightUnshadowedOf(light, types, P, N, V, linearRoughness);
 #ifdef RG_SHADOWS
@@ -504,7 +504,7 @@ RgLightSample rgEvaluateLightOf(RgLight light, uint i, uint types, vec3 P, vec3 
     return s;
 }
 RgLightSample rgEvaluateLightOf(uint i, uint types, vec3 P, vec3 N, vec3 V, float linearRoughness, float sunVisibility) {
-    return rgEvaluateLightOf(lights.light[i], i, types, P, N, V, linearRoughness, sunVisibility);
+    return rgEvaluateLightOf(rgLight(i), i, types, P, N, V, linearRoughness, sunVisibility);
 }
 RgLightSample rgEvaluateLight(uint i, vec3 P, vec3 N, vec3 V, float linearRoughness, float sunVisibility) {
     return rgEvaluateLightOf(i, uint(RG_SCENE_LIGHT_TYPES), P, N, V, linearRoughness, sunVisibility);
@@ -557,7 +557,7 @@ uint rgLightCount() { return lights.count.x; }
 // and sun; for an area light, its diffuse illuminance on a surface facing its centre (a tube: the
 // closest point of its axis) without the horizon, towards that point.
 vec3 rgLightIlluminance(uint i, vec3 position, out vec3 L) {
-    RgLight light = lights.light[i];
+    RgLight light = rgLight(i);
     int type = rgLightType(light);
     vec3 towards = light.positionType.xyz - position;
     if (type == RG_LIGHT_SUN) towards = -light.directionRange.xyz;

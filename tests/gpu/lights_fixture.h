@@ -203,8 +203,9 @@ struct Frame {
     Image hdr;  // absolute luminance (cd/m²): the HDR divided by its pre-exposure
     Scene scene;
     View view;
-    Surface floor;       // at the centre pixel
-    bool finite = true;  // every HDR and display value
+    Surface floor;             // at the centre pixel
+    bool finite = true;        // every HDR and display value
+    bool lightTexels = false;  // the light loops read the lights through a texel buffer
 };
 
 class Lights : public GpuFixture {
@@ -251,6 +252,7 @@ protected:
         out.hdr = std::move(*hdr);
         out.scene = *s.scene();
         out.view = viewOf(out.scene.cameras.front());
+        out.lightTexels = s.gpuScene()->lightTexelView(0) != VK_NULL_HANDLE;
 
         auto info = analyzeLayout(s.pipeline().layouts.front());
         EXPECT_TRUE(info.has_value());

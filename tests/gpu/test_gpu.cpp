@@ -294,6 +294,18 @@ TEST_F(GpuTest, ShaderErrorNamesFileLineAndPass) {
     EXPECT_NE(r.error().message.find("broken.frag:7:"), std::string::npos) << r.error().message;
 }
 
+TEST_F(GpuTest, TexelBufferOutsideTheSceneIsNamed) {
+    GraphDesc g;
+    g.resources = {texture("out", Format::RGBA16F, true)};
+    g.passes = {pass("texel", "fullscreen", {{"out", Usage::ColorAttachment}},
+                     {{"shader", "tests/gpu/shaders/texel_buffer.frag"}})};
+    auto r = rt().executor().build(g, {});
+    ASSERT_FALSE(r.has_value());
+    EXPECT_EQ(r.error().message,
+              "pass 'texel': texel buffer 'lut' is not supported (use a storage buffer; a "
+              "samplerBuffer is read only from the scene's lights, SceneLightTexels)");
+}
+
 TEST_F(GpuTest, UnboundShaderResourceIsReported) {
     GraphDesc g;
     g.resources = {texture("out", Format::RGBA16F, true)};

@@ -20,6 +20,17 @@ namespace {
 
 // ---- Light culling per screen tile (scripts/lighting.lua, shaders/passes/light_culling.comp) -----
 
+// How many values of image `a` differ from reference `b`'s (the same size), and `b`'s sum.
+size_t differing(const Image& a, const Image& b, double& sum) {
+    size_t differ = 0;
+    sum = 0;
+    for (size_t i = 0; i < b.pixels.size(); ++i) {
+        differ += a.pixels[i] != b.pixels[i];
+        sum += b.pixels[i];
+    }
+    return differ;
+}
+
 // The many-lights scene rendered with the default pipeline at manual exposure; `tiled` false
 // swaps in a lighting module whose passes loop over every light (no culling pass).
 struct TiledFrame {
@@ -119,12 +130,8 @@ TEST_F(Lights, TileCullingChangesNoPixel) {
         TiledFrame culled = renderManyLights(rt(), n, true, 200, 120, ranged, glass, frames);
         TiledFrame all = renderManyLights(rt(), n, false, 200, 120, ranged, glass, frames);
         ASSERT_EQ(culled.hdr.pixels.size(), all.hdr.pixels.size());
-        size_t differ = 0;
         double sum = 0;
-        for (size_t i = 0; i < all.hdr.pixels.size(); ++i) {
-            differ += culled.hdr.pixels[i] != all.hdr.pixels[i];
-            sum += all.hdr.pixels[i];
-        }
+        const size_t differ = differing(culled.hdr, all.hdr, sum);
         std::printf("%u %s lights%s, frame %d: %zu of %zu values differ\n", n,
                     ranged ? "ranged" : "unranged",
                     glass ? " (a blended pane lit in the forward pass)" : "", frames, differ,
@@ -132,6 +139,27 @@ TEST_F(Lights, TileCullingChangesNoPixel) {
         EXPECT_EQ(differ, 0u) << n << " lights";
         EXPECT_GT(sum, 0.0);
     }
+}
+
+TEST_F(Lights, LightsReadThroughTexelsChangeNoPixel) {
+    // The light loops read a light's fields through a texel buffer over the Lights block
+    // (lib/scene.glsl rgLight) where the device allows; RG_LIGHT_TEXELS=0 reads the block itself.
+    // Ranged lights of every type (a spot with an IES profile among them) in the tiles' lists, a
+    // sun in the global list and a blended pane lit from its froxels: the same image bit for bit.
+    const std::string scene = kScenes + "lights_every_type.lua";
+    const Frame texels = render(scene);
+    setenv("RG_LIGHT_TEXELS", "0", 1);
+    const Frame block = render(scene);
+    unsetenv("RG_LIGHT_TEXELS");
+    EXPECT_TRUE(texels.lightTexels) << "lavapipe's texel buffers hold the scene's lights";
+    EXPECT_FALSE(block.lightTexels) << "RG_LIGHT_TEXELS=0";
+    ASSERT_EQ(texels.hdr.pixels.size(), block.hdr.pixels.size());
+    double sum = 0;
+    const size_t differ = differing(texels.hdr, block.hdr, sum);
+    std::printf("every light type, through texels and the block: %zu of %zu values differ\n",
+                differ, block.hdr.pixels.size());
+    EXPECT_EQ(differ, 0u);
+    EXPECT_GT(sum, 0.0);
 }
 
 TEST_F(Lights, TileListsFollowLightsPerPixelNotLightsInTheScene) {

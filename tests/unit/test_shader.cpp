@@ -588,18 +588,30 @@ TEST(ShaderErrors, SelfIncludeIsAnErrorNotAHang) {
 }
 
 TEST(ShaderErrors, UnsupportedResourceKindIsNamed) {
+    // A storage texel buffer is refused by name; a samplerBuffer reflects as a uniform texel
+    // buffer (bound only for the scene's lights: passes/shader_program.cpp).
     ShaderCompiler compiler(options({}));
-    auto m =
-        compiler.compile(inMemory("#version 460\n"
-                                  "layout(local_size_x = 1) in;\n"
-                                  "layout(set = 0, binding = 0) uniform samplerBuffer lut;\n"
-                                  "void main() {}\n",
-                                  "gen/texel.comp", "lut"));
+    auto compile = [&](const std::string& declaration, const std::string& body) {
+        return compiler.compile(inMemory("#version 460\nlayout(local_size_x = 1) in;\n" +
+                                             declaration + "\nvoid main() {" + body + "}\n",
+                                         "gen/texel.comp", "lut"));
+    };
+    auto m = compile("layout(set = 0, binding = 0, r32f) uniform imageBuffer lut;", "");
     ASSERT_FALSE(m);
     EXPECT_EQ(m.error().code, ErrorCode::Unsupported);
     EXPECT_EQ(m.error().message,
               "pass 'lut': gen/texel.comp: texel buffer 'lut' is not supported (use a storage "
-              "buffer)");
+              "buffer; a samplerBuffer is read only from the scene's lights)");
+    auto t = compile(
+        "layout(set = 0, binding = 3) uniform samplerBuffer lut;\n"
+        "layout(set = 0, binding = 0) buffer Out { vec4 v; } o;",
+        " o.v = texelFetch(lut, 2); ");
+    ASSERT_TRUE(t.has_value()) << t.error().describe();
+    const ReflectedBinding* b = t->reflection.find("lut");
+    ASSERT_NE(b, nullptr);
+    EXPECT_EQ(b->type, DescriptorType::UniformTexelBuffer);
+    EXPECT_EQ(b->binding, 3u);
+    EXPECT_STREQ(toString(b->type), "uniform_texel_buffer");
 }
 
 TEST(ShaderCompiler, ReflectsSeparateImagesSamplersAndSpecializedGroupSize) {
