@@ -236,6 +236,8 @@ Result<void> GpuScene::createFrameData(Context& ctx, const GpuSceneOptions& opti
             VkBufferView view = VK_NULL_HANDLE;
             RG_VK_TRY(vkCreateBufferView(ctx.device(), &vi, nullptr, &view));
             m_lightTexelViews.emplace_back(ctx.device(), view);
+            ctx.setName(VK_OBJECT_TYPE_BUFFER_VIEW, reinterpret_cast<uint64_t>(view),
+                        "scene.light_texels");
         }
         m_lightBuffers.push_back(std::move(*lights));
         // SceneInstances: room for every draw four times a frame (the G-buffer, forward and

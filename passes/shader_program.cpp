@@ -408,6 +408,13 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
     const Value& bindMap = desc.params["bind"];
     std::vector<const ReflectedBinding*> sceneBindings;
     for (const auto& b : m_reflection.bindings) {
+        // A texel buffer is bound only for the scene's lights, in any set (another set's would
+        // be missing from the layouts the scene provides).
+        if (b.type == DescriptorType::UniformTexelBuffer && !isSceneBinding(b))
+            return fail(ErrorCode::Unsupported,
+                        passPrefix(desc) + "texel buffer '" + b.name +
+                            "' is not supported (use a storage buffer; a samplerBuffer is read "
+                            "only from the scene's lights, SceneLightTexels)");
         if (isParamsBlock(b) || m_external.count(b.set)) continue;
         // The scene's camera, lights and the rest, bound whatever the pass declares.
         if (isSceneBinding(b)) {
@@ -452,11 +459,6 @@ Result<void> ShaderProgram::writeDescriptors(PassSetup& setup) {
                 continue;
             }
         }
-        if (b.type == DescriptorType::UniformTexelBuffer)
-            return fail(ErrorCode::Unsupported,
-                        passPrefix(desc) + "texel buffer '" + b.name +
-                            "' is not supported (use a storage buffer; a samplerBuffer is read "
-                            "only from the scene's lights, SceneLightTexels)");
         std::string want = bindMap[b.name].isString() ? bindMap[b.name].asString() : "";
         const Access* access = nullptr;
         for (const auto& a : desc.accesses) {

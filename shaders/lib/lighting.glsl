@@ -143,8 +143,8 @@ layout(set = RG_CAMERA_SET, binding = RG_LIGHTS_WINDOW_BINDING, std140) uniform 
 } lightsWindow;
 
 // Light i's data, for an i the compiler knows (the unrolled loop over the lights that reach every
-// pixel, materials/standard_shading.glsl): from the uniform window when it holds it, the storage
-// block otherwise — the other side folds away. (A varying i would pay for both reads.) Copied
+// pixel, materials/standard_shading.glsl): from the uniform window when it holds it, rgLight
+// otherwise — the other side folds away. (A varying i would pay for both reads.) Copied
 // member by member: the two blocks' RgLight types differ in layout, which SPIR-V cannot store as one.
 RgLight rgGlobalLight(uint i) {
     if (i >= uint(RG_LIGHTS_WINDOW)) return rgLight(i);
@@ -216,7 +216,9 @@ int rgLightType(RgLight light) { return int(light.positionType.w + 0.5); }
 // P: world position (m), N: unit normal, V: unit direction to the viewer, linearRoughness of the
 // specular lobe (1 − smoothness; its α = max(linearRoughness², 1e-3) as rgStandardBrdf's).
 // Which of light types `types` (bits 1 << RG_LIGHT_*) the scene has: rgEvaluateLightUnshadowedOf
-// compiles only those branches (`types` is a constant at every call).
+// compiles only those branches (`types` is a constant at every call). Every light a caller passes
+// must be of a type in `types`: a branch whose types are the only ones left takes the light
+// without testing its type.
 #define RG_LIGHT_IN(types, t) (RG_SCENE_HAS_LIGHT(t) && ((types) & (1u << uint(t))) != 0u)
 // Whether every type of `types` the scene has is among `among` (bits): a branch for those needs no
 // test of the light's own type (nor the load of it: lavapipe loads a light's fields lane by lane).
@@ -263,8 +265,9 @@ RgLightSample rgEvaluateLightUnshadowedOf(RgLight light, uint types, vec3 P, vec
 
     if ((RG_LIGHT_IN(types, RG_LIGHT_POINT) || RG_LIGHT_IN(types, RG_LIGHT_SPOT)) && (RG_LIGHT_ONLY(types, RG_PUNCTUAL_LIGHT_TYPES) || type <= RG_LIGHT_SPOT)) {
         // lst:4, eq:27 / lst:5 for an IES profile. A point light's cone (scale 0, offset 1) is 1:
-        // without spot lights in the scene it is not evaluated (nor its parameters loaded: the
-        // many-lights scene's lighting_standard at 16 384 lights, 1280x720 on lavapipe: ~41 -> ~38 ms).
+        // where `types` holds no spot light of the scene's it is not evaluated (nor its parameters
+        // loaded: the many-lights scene's lighting_standard at 16 384 lights, 1280x720 on
+        // lavapipe: ~41 -> ~38 ms).
         float att = getDistanceAtt(Lu, light.directionRange.w);
         if (RG_LIGHT_IN(types, RG_LIGHT_SPOT)) att *= getAngleAtt(-L, dir, light.params.x, light.params.y);
         att *= rgIesAttenuation(light, L);

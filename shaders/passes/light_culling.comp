@@ -148,7 +148,7 @@ void main() {
         if (s1 <= s0 + 1u) {
             // Most tiles' surfaces lie in one slice, most others in two: a two-way merge with
             // both lists' heads in registers (a one-slice tile's second list is empty), one load
-            // a step. The k-way merge below reloads every list's head twice a step: run for the
+            // a step (two where both heads hold the light). The k-way merge below reloads every list's head twice a step: run for the
             // two-slice tiles too, it cost ~1.8 ms of ~13.8 at 16 384 lights (many-lights scene,
             // 1280x720 on lavapipe), where a SIMD with one such tile among its lanes ran it.
             const uint lenA = length[s0], lenB = s1 > s0 ? length[s1] : 0u;
