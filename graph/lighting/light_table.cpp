@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <limits>
 #include <map>
 
 #include "core/light_units.h"
@@ -74,7 +75,12 @@ Result<GpuLightTable> convertLights(const std::vector<Light>& lights, IesMode ie
                                static_cast<float>(rgb[2]));
         }
         GpuLight g{};
-        const float invSqrRange = l.range > 0 ? 1.0f / (l.range * l.range) : 0.0f;
+        // 1/range², at least the smallest normal float: a range so long that it underflows to 0
+        // (~1.8e19 m) would read as "no range" on the GPU (the global lights' rule, w <= 0) while
+        // the shaders' build counts the light as ranged (passes/shader_program.cpp).
+        const float invSqrRange =
+            l.range > 0 ? std::max(1.0f / (l.range * l.range), std::numeric_limits<float>::min())
+                        : 0.0f;
         g.positionType = glm::vec4(l.position, 0.0f);
         g.directionRange = glm::vec4(direction, invSqrRange);
         g.intensity.a = -1.0f;

@@ -13,6 +13,7 @@
 #include "core/light_units.h"
 #include "lighting/area_lights.h"
 #include "lighting/brdf.h"
+#include "lighting/light_table.h"
 #include "lighting/punctual.h"
 #include "lighting_test_util.h"
 
@@ -187,4 +188,19 @@ TEST(LightUnits, AreaLightsInLumensLightLikeTheirPunctualCounterparts) {
     EXPECT_NEAR(lighting::diskLuminanceFromLumens(phi, 1e-4) *
                     lighting::diskIlluminanceAboveHorizon(1e-4, d * d, 1.0, 1.0),
                 lights::illuminance(lights::spotIntensityFromLumens(phi, 0.5), d), 1e-6);
+}
+
+TEST(LightUnits, AnyRangeKeepsItsWindowOnTheGpu) {
+    // 1/range² in GpuLight::directionRange.w: 0 means no range (the light reaches every pixel and
+    // is in the global list), so a range so long that 1/range² underflows keeps the smallest
+    // normal float rather than turning into "no range" behind the shaders' back.
+    std::vector<Light> lights(3);
+    lights[0].range = 5.0f;
+    lights[1].range = 1e20f;
+    lights[2].range = 0.0f;
+    auto table = lighting::convertLights(lights);
+    ASSERT_TRUE(table.has_value()) << table.error().describe();
+    EXPECT_FLOAT_EQ(table->lights[0].directionRange.w, 1.0f / 25.0f);
+    EXPECT_GT(table->lights[1].directionRange.w, 0.0f);
+    EXPECT_EQ(table->lights[2].directionRange.w, 0.0f);
 }
