@@ -100,7 +100,7 @@ void main() {
     const uint parts = clamp(invocations / max(lightCount, 1u), 1u, 64u);
     for (uint g = gl_GlobalInvocationID.x; g < lightCount * parts; g += invocations) {
         const uint i = g / parts, part = g % parts;
-        const RgLight light = lights.light[i];
+        const RgLight light = rgLight(i);
         if (rgReachesEverything(light)) continue;  // in the global list
         const vec3 c = (camera.view * vec4(light.positionType.xyz, 1.0)).xyz;
         const float r = inversesqrt(light.directionRange.w);

@@ -555,7 +555,7 @@ void main() {
     // Delta lights: no sampling, no noise.
     uint sampled = 0u;
     for (uint i = 0u; i < count; ++i) {
-        RgLight light = lights.light[i];
+        RgLight light = rgLight(i);
         if (rgLightType(light) <= RG_LIGHT_SPOT) luminance += punctual(s, light);
         else ++sampled;
     }
@@ -590,7 +590,7 @@ void main() {
             }
         }
         for (uint i = 0u; i < count; ++i) {
-            RgLight light = lights.light[i];
+            RgLight light = rgLight(i);
             int type = rgLightType(light);
             if (type <= RG_LIGHT_SPOT) continue;
             vec3 Le = lightRadiance(light, type, s.P);

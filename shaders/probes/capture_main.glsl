@@ -54,7 +54,7 @@ void main() {
     for (uint i = 0u; i < rgLightCount(); ++i) {
         RgLightSample l = rgEvaluateLightUnshadowed(i, worldPosition, N, V, linearRoughness);
         if (dot(l.diffuseIlluminance, vec3(1.0)) <= 0.0) continue;
-        RgLight light = lights.light[i];
+        RgLight light = rgLight(i);
         float distance = rgLightType(light) == RG_LIGHT_SUN ? 1e5 : length(light.positionType.xyz - worldPosition) - 1e-2;
         if (rgOccluded(origin, l.Ld, distance)) continue;
         luminance += albedo * rgDiffuseBrdf(N, V, l.Ld, linearRoughness) * l.diffuseIlluminance;
