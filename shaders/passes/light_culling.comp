@@ -88,13 +88,15 @@ void main() {
     if (tile == 0u) tiles.header = uvec4(tileCount, stride, RG_TILE_SIZE);
     if (stride < 2u) return;
 
-    // The depth range over the pixels something was drawn on (depth < 1).
+    // The depth range over the pixels something was drawn on (depth < 1). Constant bounds, the
+    // frame's edge clamped (a pixel read twice changes no extreme): the compiler unrolls the 16
+    // reads, where loops to the edge cost a masked pass each (~0.3 ms at 1280x720 on lavapipe).
     const ivec2 first = ivec2(t * uvec2(RG_TILE_SIZE));
     const ivec2 last = min(first + ivec2(RG_TILE_SIZE), size);
     float minDepth = 1.0, maxDepth = 0.0;
-    for (int y = first.y; y < last.y; ++y)
-        for (int x = first.x; x < last.x; ++x) {
-            float d = texelFetch(depth, ivec2(x, y), 0).r;
+    for (int y = 0; y < RG_TILE_SIZE; ++y)
+        for (int x = 0; x < RG_TILE_SIZE; ++x) {
+            float d = texelFetch(depth, min(first + ivec2(x, y), last - 1), 0).r;
             if (d < 1.0) {
                 minDepth = min(minDepth, d);
                 maxDepth = max(maxDepth, d);
