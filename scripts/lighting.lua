@@ -42,6 +42,11 @@ lighting.froxel_words = 128
 -- the sort (one froxel per invocation up to 64 x this froxels: 4K's 130 000 at 1024).
 lighting.froxel_groups = 256
 lighting.sort_groups = 1024
+-- Work groups of the pass of large lights (light_froxels_large): its invocations share the
+-- columns of the lights the binning left to it (one across a 4K frame: 8 columns each). Few,
+-- since most frames leave it none and an idle invocation still costs a pass of its loop's body
+-- on lavapipe (256 groups: 0.46 ms a frame; 16: ~0.13).
+lighting.froxel_large_groups = 16
 -- The most lights a scene may have is rg.limits.max_lights (shaders/lib/limits.h's RG_MAX_LIGHTS:
 -- the lists' 16-bit indices); nothing here is sized by it.
 
@@ -79,20 +84,35 @@ rg.buffer "light_spheres" {
     size = 16, scene_count = "lights", count_bytes = 16,
     doc = "per light its sphere of influence in view space this frame (xyz the centre, w the range with a margin), written by the binning for the fine culling's test (light_froxels.comp)",
 }
+rg.buffer "light_froxels_large" {
+    size = 16, scene_count = "lights", count_bytes = 4,
+    doc = "the lights whose share of the binning would test too many froxels (a count, then their indices), binned by light_froxels_large",
+}
 rg.pass "light_froxels_clear" {
-    kind = "clear", writes = { "light_froxel_counts" }, insert = { after = "gbuffer" },
+    kind = "clear", writes = { "light_froxel_counts", "light_froxels_large" }, insert = { after = "gbuffer" },
 }
 rg.pass "light_froxels" {
     kind = "compute", shader = "passes/light_froxels.comp", groups = { lighting.froxel_groups, 1, 1 },
     reads = { "depth" },
-    writes = { { "light_froxel_counts", as = "storage_rw" }, { "light_froxels", as = "storage" }, { "light_spheres", as = "storage" } },
+    writes = { { "light_froxel_counts", as = "storage_rw" }, { "light_froxels", as = "storage" }, { "light_spheres", as = "storage" },
+               { "light_froxels_large", as = "storage_rw" } },
     insert = { after = "light_froxels_clear" }, defines = froxel_defines(),
+}
+-- The lights the binning left because a share of theirs would test more froxels than
+-- RG_FROXEL_LARGE_WORK (a light across the frame, or many columns at 4K): every invocation of the
+-- dispatch takes a share of their columns (lavapipe ends a shader's loops after 65 535
+-- iterations in all, so one invocation cannot walk a 4K frame's 130 000 froxels).
+rg.pass "light_froxels_large" {
+    kind = "compute", shader = "passes/light_froxels.comp", groups = { lighting.froxel_large_groups, 1, 1 },
+    reads = { "depth", { "light_froxels_large", as = "storage" } },
+    writes = { { "light_froxel_counts", as = "storage_rw" }, { "light_froxels", as = "storage_rw" } },
+    insert = { after = "light_froxels" }, defines = froxel_defines { RG_FROXEL_LARGE = true },
 }
 rg.pass "light_froxels_sort" {
     kind = "compute", shader = "passes/light_froxels.comp", groups = { lighting.sort_groups, 1, 1 },
     reads = { "depth", { "light_froxel_counts", as = "storage" } },
     writes = { { "light_froxels", as = "storage_rw" } },
-    insert = { after = "light_froxels" },
+    insert = { after = "light_froxels_large" },
     defines = froxel_defines { RG_FROXEL_SORT = true },
 }
 rg.pass "light_culling" {

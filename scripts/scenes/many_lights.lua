@@ -53,6 +53,13 @@ for k = 0, count - 1 do
   }
 end
 
+-- --scene-arg lamp=1: one more light (the last), over the camera, whose range (100 m) reaches every
+-- froxel of the view: a light the binning leaves to the pass of large lights (scripts/lighting.lua).
+-- At most 65 535 lights beside it.
+if (scene.args.lamp or 0) ~= 0 then
+  scene.light "lamp" { type = "point", intensity = 2000, unit = "lm", position = { 0, 10, 11 }, range = 100 }
+end
+
 -- --scene-arg glass=1: a blended pane over the near half of the floor, lit in the forward pass
 -- from the froxels' lists (scripts/lighting.lua's lighting.clustered).
 if (scene.args.glass or 0) ~= 0 then

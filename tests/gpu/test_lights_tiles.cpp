@@ -37,11 +37,28 @@ struct TiledFrame {
     Image hdr;
     std::vector<uint32_t> tiles;    // light_tiles, when tiled
     std::vector<uint32_t> froxels;  // light_froxel_counts, when tiled
+    std::vector<uint32_t> lists;    // light_froxels, when tiled
 };
-// The last of `frames` frames (from the second on, the camera is jittered for TAA).
+// The last of `frames` frames (from the second on, the camera is jittered for TAA). `edits`:
+// replacements in scripts/lighting.lua (the module copied beside the pipeline).
 TiledFrame renderManyLights(Runtime& rt, uint32_t lights, bool tiled, uint32_t w, uint32_t h,
-                            bool ranged = true, bool glass = false, int frames = 1) {
+                            bool ranged = true, bool glass = false, int frames = 1,
+                            const std::vector<std::pair<std::string, std::string>>& edits = {},
+                            bool lamp = false) {
     std::string pipeline = kRoot + "/scripts/pipelines/deferred.lua";
+    if (!edits.empty()) {
+        const std::string dir = std::string(RG_TEST_TMP) + "/lighting_edited";
+        std::filesystem::create_directories(dir);
+        std::ofstream(dir + "/deferred.lua") << readFile(pipeline);
+        std::string module = readFile(kRoot + "/scripts/lighting.lua");
+        for (const auto& [from, to] : edits) {
+            const size_t at = module.find(from);
+            EXPECT_NE(at, std::string::npos) << "scripts/lighting.lua: no '" << from << "'";
+            if (at != std::string::npos) module.replace(at, from.size(), to);
+        }
+        std::ofstream(dir + "/lighting.lua") << module;
+        pipeline = dir + "/deferred.lua";
+    }
     if (!tiled) {
         const std::string dir = std::string(RG_TEST_TMP) + "/untiled";
         std::filesystem::create_directories(dir);
@@ -71,8 +88,9 @@ TiledFrame renderManyLights(Runtime& rt, uint32_t lights, bool tiled, uint32_t w
     o.sceneArgs["lights"] = std::to_string(lights);
     o.sceneArgs["ranged"] = ranged ? "1" : "0";
     o.sceneArgs["glass"] = glass ? "1" : "0";
+    o.sceneArgs["lamp"] = lamp ? "1" : "0";
     o.params["exposure_mode"] = Value("manual");
-    if (tiled) o.captures = {"light_tiles", "light_froxel_counts"};
+    if (tiled) o.captures = {"light_tiles", "light_froxel_counts", "light_froxels"};
     Session s(rt, o);
     TiledFrame out;
     auto r = s.load(pipeline);
@@ -104,6 +122,12 @@ TiledFrame renderManyLights(Runtime& rt, uint32_t lights, bool tiled, uint32_t w
         if (counts) {
             out.froxels.resize(counts->size() / 4);
             std::memcpy(out.froxels.data(), counts->data(), out.froxels.size() * 4);
+        }
+        auto lists = rt.executor().readbackBuffer("light_froxels");
+        EXPECT_TRUE(lists.has_value());
+        if (lists) {
+            out.lists.resize(lists->size() / 4);
+            std::memcpy(out.lists.data(), lists->data(), out.lists.size() * 4);
         }
     }
     return out;
@@ -139,6 +163,41 @@ TEST_F(Lights, TileCullingChangesNoPixel) {
         EXPECT_EQ(differ, 0u) << n << " lights";
         EXPECT_GT(sum, 0.0);
     }
+}
+
+TEST_F(Lights, ALightAcrossTheFrameReachesEveryFroxel) {
+    // A share of the binning that would test more froxels than RG_FROXEL_LARGE_WORK leaves its
+    // light to the pass of large lights, whose every invocation takes a share of the columns:
+    // lavapipe ends a shader's loops after 65 535 iterations in all, and one invocation binning a
+    // light across 14 400 columns × 16 slices lost the columns past ~3 800 without a word. Here
+    // with 8-pixel columns at 1280×720 and 4 work groups (the binning's shares are one a light
+    // from 256 lights on), the many-lights scene and its lamp, whose range reaches every froxel:
+    // every froxel's list ends with the lamp (the last light, the lists ascending).
+    const uint32_t n = 300;
+    TiledFrame f =
+        renderManyLights(rt(), n, true, 1280, 720, true, false, 1,
+                         {{"lighting.coarse_tile = 32", "lighting.coarse_tile = 8"},
+                          {"lighting.froxel_words = 128", "lighting.froxel_words = 16"},
+                          {"lighting.froxel_groups = 256", "lighting.froxel_groups = 4"}},
+                         true);
+    ASSERT_GE(f.froxels.size(), 4u);
+    const uint32_t columns = f.froxels[0] * f.froxels[1], slices = f.froxels[2],
+                   stride = f.froxels[3];
+    ASSERT_EQ(columns, 160u * 90u);
+    ASSERT_EQ(stride, 16u);
+    ASSERT_GE(f.lists.size(), size_t(columns) * slices * stride);
+    size_t without = 0, overflowed = 0;
+    for (size_t froxel = 0; froxel < size_t(columns) * slices; ++froxel) {
+        const uint32_t count = f.froxels[4 + froxel];
+        overflowed += count > 2 * stride;
+        const uint32_t last = count == 0 ? 0 : std::min(count, 2 * stride) - 1;
+        const uint32_t entry = (f.lists[froxel * stride + last / 2] >> (last % 2 * 16)) & 0xFFFFu;
+        without += count == 0 || entry != n;
+    }
+    std::printf("%u columns x %u slices: %zu froxels without the lamp, %zu overflowed\n", columns,
+                slices, without, overflowed);
+    EXPECT_EQ(overflowed, 0u);
+    EXPECT_EQ(without, 0u);
 }
 
 TEST_F(Lights, LightsReadThroughTexelsChangeNoPixel) {

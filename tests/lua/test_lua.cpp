@@ -454,8 +454,8 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
     // pyramid, SSR's mask and SSR (scripts/ssr.lua), the composition of SSR and the probes
     // (scripts/reflections.lua), the lighting, the sky, the points and lines, the copy of the opaque
     // frame the transmission sees through, and forward.
-    ASSERT_GE(order.size(), 69u);
-    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 67),
+    ASSERT_GE(order.size(), 70u);
+    EXPECT_EQ(std::vector<std::string>(order.begin(), order.begin() + 68),
               (std::vector<std::string>{"env_cube",
                                         "env_mips",
                                         "env_irradiance",
@@ -503,6 +503,7 @@ TEST(LuaPipeline, DefaultPipelineDeclaresTheMaterialSystem) {
                                         "ao_temporal",
                                         "ao_upsample",
                                         "light_froxels",
+                                        "light_froxels_large",
                                         "light_froxels_sort",
                                         "light_culling",
                                         "decals_copy0",
