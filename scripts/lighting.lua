@@ -7,9 +7,10 @@
 -- each cut into 16 slices of view distance; every ranged light goes into the lists of the froxels
 -- its range meets (one invocation per light, or a few sharing its columns when there are few: the
 -- cost is the lights times the froxels each covers, not froxels times lights; it also writes each
--- light's view-space sphere, `light_spheres`), and the lists are sorted. Then, after the pass named "gbuffer",
--- `light_culling` lists per 4x4-pixel tile the lights of the froxels its surfaces' depths span
--- that reach those surfaces. Small tiles keep each pixel's loop to the lights near it. The lights
+-- light's view-space sphere, `light_spheres`; a light too large for one invocation's share is left
+-- to `light_froxels_large`, whose invocations all share it), and the lists are sorted. Then, after
+-- the pass named "gbuffer", `light_culling` lists per 4x4-pixel tile the lights of the froxels its
+-- surfaces' depths span that reach those surfaces. Small tiles keep each pixel's loop to the lights near it. The lights
 -- that reach every pixel (the sun, lights without a range) are the scene's global list, read by
 -- every lighting loop before the tile's. `lighting.tiled` makes a lighting pass read the tile lists
 -- (the shader's light loop, through lib/light_tiles.glsl, then visits only the tile's lights). A

@@ -57,6 +57,7 @@ end
 -- froxel of the view: a light the binning leaves to the pass of large lights (scripts/lighting.lua).
 -- At most 65 535 lights beside it.
 if (scene.args.lamp or 0) ~= 0 then
+  if count > 65535 then error("scene.args.lamp: at most 65535 lights beside the lamp, got " .. count) end
   scene.light "lamp" { type = "point", intensity = 2000, unit = "lm", position = { 0, 10, 11 }, range = 100 }
 end
 

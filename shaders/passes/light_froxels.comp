@@ -31,9 +31,10 @@
 // by more lights than its list holds keeps the first that arrived: its count says so, and the tiles
 // under it are marked (the `lights` view shows them magenta). No invocation ever walks every light
 // or every froxel: lavapipe ends a shader's loops after 65 535 iterations in all, so such a loop
-// would stop short without a word. (The pass of large lights could still exceed it with more than
-// ~480 lights each across a 4K frame — its 1 024 invocations' shares grow with them — but then
-// their froxels' lists have overflowed long before, and the tiles under them are marked.)
+// would stop short without a word. (The pass of large lights still can, with more than ~340
+// lights each across a 4K frame: its 1 024 invocations' shares grow with them, and every share
+// stops short at the same column, so the last rows of columns lack them without a mark — while
+// every froxel they do reach holds more than its 254 lights and marks its tiles.)
 #define RG_LIGHT_TILES_WRITER
 #include "lib/scene.glsl"
 #include "lib/light_tiles.glsl"

@@ -171,8 +171,9 @@ TEST_F(Lights, ALightAcrossTheFrameReachesEveryFroxel) {
     // lavapipe ends a shader's loops after 65 535 iterations in all, and one invocation binning a
     // light across 14 400 columns × 16 slices lost the columns past ~3 800 without a word. Here
     // with 8-pixel columns at 1280×720 and 4 work groups (the binning's shares are one a light
-    // from 256 lights on), the many-lights scene and its lamp, whose range reaches every froxel:
-    // every froxel's list ends with the lamp (the last light, the lists ascending).
+    // from 129 lights on), the many-lights scene and its lamp, whose range reaches every froxel:
+    // every froxel's list ends with the lamp (the last light), and every list is strictly
+    // ascending (sorted after both passes, no light binned by both).
     const uint32_t n = 300;
     TiledFrame f =
         renderManyLights(rt(), n, true, 1280, 720, true, false, 1,
@@ -185,19 +186,26 @@ TEST_F(Lights, ALightAcrossTheFrameReachesEveryFroxel) {
                    stride = f.froxels[3];
     ASSERT_EQ(columns, 160u * 90u);
     ASSERT_EQ(stride, 16u);
+    ASSERT_GE(f.froxels.size(), 4 + size_t(columns) * slices);
     ASSERT_GE(f.lists.size(), size_t(columns) * slices * stride);
-    size_t without = 0, overflowed = 0;
+    size_t without = 0, overflowed = 0, unordered = 0;
     for (size_t froxel = 0; froxel < size_t(columns) * slices; ++froxel) {
         const uint32_t count = f.froxels[4 + froxel];
         overflowed += count > 2 * stride;
-        const uint32_t last = count == 0 ? 0 : std::min(count, 2 * stride) - 1;
-        const uint32_t entry = (f.lists[froxel * stride + last / 2] >> (last % 2 * 16)) & 0xFFFFu;
-        without += count == 0 || entry != n;
+        auto entry = [&](uint32_t k) {
+            return (f.lists[froxel * stride + k / 2] >> (k % 2 * 16)) & 0xFFFFu;
+        };
+        const uint32_t held = std::min(count, 2 * stride);
+        for (uint32_t k = 1; k < held; ++k) unordered += entry(k - 1) >= entry(k);
+        without += held == 0 || entry(held - 1) != n;
     }
-    std::printf("%u columns x %u slices: %zu froxels without the lamp, %zu overflowed\n", columns,
-                slices, without, overflowed);
+    std::printf(
+        "%u columns x %u slices: %zu froxels without the lamp, %zu overflowed, %zu pairs "
+        "out of order\n",
+        columns, slices, without, overflowed, unordered);
     EXPECT_EQ(overflowed, 0u);
     EXPECT_EQ(without, 0u);
+    EXPECT_EQ(unordered, 0u);
 }
 
 TEST_F(Lights, LightsReadThroughTexelsChangeNoPixel) {
