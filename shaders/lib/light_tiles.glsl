@@ -115,6 +115,8 @@ struct RgLightList {
 // A tile's list holds two 16-bit light indices per word (RG_MAX_LIGHTS ≤ 65536), the lower half
 // first: `stride` words hold the count and 2 (stride − 1) lights.
 uint rgTileCapacity(uint stride) { return 2u * (stride - 1u); }
+// Entry k of a list of 16-bit light indices (tiles' and froxels' alike) out of its word k / 2.
+uint rgListEntry(uint word, uint k) { return (word >> ((k & 1u) * 16u)) & 0xFFFFu; }
 // Set in a tile's count when a froxel it read had lost lights (more reached it than its list held).
 #define RG_TILE_INCOMPLETE 0x80000000u
 
@@ -146,7 +148,7 @@ RgLightList rgLightList(ivec2 pixel) {
 uint rgListLight(RgLightList list, uint k) {
     if (k < list.global) return globalLights.light[k];
     uint j = k - list.global;
-    return (lightTiles.data[list.base + (j >> 1u)] >> ((j & 1u) * 16u)) & 0xFFFFu;
+    return rgListEntry(lightTiles.data[list.base + (j >> 1u)], j);
 }
 #elif defined(RG_LIGHT_FROXELS) && !defined(RG_LIGHT_TILES_WRITER)
 // A pass without a depth buffer of its own surfaces (forward: blended surfaces over the opaque
@@ -173,7 +175,7 @@ RgLightList rgLightList(ivec2 pixel) {
 uint rgListLight(RgLightList list, uint k) {
     if (k < list.global) return globalLights.light[k];
     uint j = k - list.global;
-    return (froxelLists.data[list.base + (j >> 1u)] >> ((j & 1u) * 16u)) & 0xFFFFu;
+    return rgListEntry(froxelLists.data[list.base + (j >> 1u)], j);
 }
 #elif !defined(RG_LIGHT_TILES_WRITER)
 RgLightList rgLightList(ivec2 pixel) { return RgLightList(0u, lights.count.x, 0u); }

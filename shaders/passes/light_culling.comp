@@ -50,7 +50,7 @@ layout(set = 0, binding = 4, std430) readonly buffer light_spheres { vec4 sphere
 const uint kNoLight = 0xFFFFFFFFu;  // past a list's end
 
 // Entry k of froxel f's list (16-bit light indices, two a word, `stride` words a froxel).
-uint rgFroxelEntry(uint f, uint stride, uint k) { return (froxels.data[f * stride + (k >> 1u)] >> ((k & 1u) * 16u)) & 0xFFFFu; }
+uint rgFroxelEntry(uint f, uint stride, uint k) { return rgListEntry(froxels.data[f * stride + (k >> 1u)], k); }
 
 // Light i of a froxel's list, for the tile whose frustum has view-space box boxMin..boxMax and
 // side planes `sides`: appended to the tile's list (`count` so far; `pending` the lower half of

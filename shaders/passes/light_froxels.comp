@@ -75,9 +75,9 @@ layout(set = 0, binding = 4, std430) buffer light_froxels_large {
 // of every froxel there whose view-space box its sphere of influence meets, in the columns whose
 // four side planes it does not lie wholly outside. `mayDefer`: a share that would test more than
 // RG_FROXEL_LARGE_WORK froxels instead leaves the light to the pass of large lights (share 0
-// lists it). The binning also writes the light's view-space sphere (share 0).
-void rgBinLight(uint i, uint part, uint parts, uvec2 size, uvec2 columns, uint stride, bool mayDefer) {
-    const RgFroxelRange range = rgFroxelRange();
+// lists it). The binning also writes the light's view-space sphere (share 0). `range`: the
+// frame's rgFroxelRange, taken once per invocation.
+void rgBinLight(uint i, uint part, uint parts, uvec2 size, uvec2 columns, uint stride, RgFroxelRange range, bool mayDefer) {
     const bool ortho = rgCameraOrthographic();
     const uint capacity = 2u * stride;
     const RgLight light = rgLight(i);
@@ -159,7 +159,7 @@ void rgBinLight(uint i, uint part, uint parts, uvec2 size, uvec2 columns, uint s
     }
 }
 #else
-uint entry(uint base, uint k) { return (froxels.data[base + (k >> 1u)] >> ((k & 1u) * 16u)) & 0xFFFFu; }
+uint entry(uint base, uint k) { return rgListEntry(froxels.data[base + (k >> 1u)], k); }
 void setEntry(uint base, uint k, uint v) {
     uint word = froxels.data[base + (k >> 1u)];
     uint shift = (k & 1u) * 16u;
@@ -203,8 +203,9 @@ void main() {
     // The lights the binning deferred: every invocation of the dispatch shares their columns.
     const uint largeCount = min(large.count, uint(large.light.length()));
     const uint parts = max(invocations / max(largeCount, 1u), 1u);
+    const RgFroxelRange range = rgFroxelRange();
     for (uint g = gl_GlobalInvocationID.x; g < largeCount * parts; g += invocations)
-        rgBinLight(large.light[g / parts], g % parts, parts, size, columns, stride, false);
+        rgBinLight(large.light[g / parts], g % parts, parts, size, columns, stride, range, false);
 #else
     // Few lights each cover many columns: their columns are shared out among `parts` invocations
     // a light (as many as the dispatch has to spare, up to a work group), each taking every
@@ -212,7 +213,8 @@ void main() {
     // core, walking thousands of froxels each.
     const uint lightCount = lights.count.x;
     const uint parts = clamp(invocations / max(lightCount, 1u), 1u, 64u);
+    const RgFroxelRange range = rgFroxelRange();
     for (uint g = gl_GlobalInvocationID.x; g < lightCount * parts; g += invocations)
-        rgBinLight(g / parts, g % parts, parts, size, columns, stride, true);
+        rgBinLight(g / parts, g % parts, parts, size, columns, stride, range, true);
 #endif
 }
